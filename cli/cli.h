@@ -1,0 +1,49 @@
+/* The geardyn command line: one file per subcommand, sharing these helpers. */
+#ifndef GD_CLI_H
+#define GD_CLI_H
+#include <cjson/cJSON.h>
+#include <stdio.h>
+
+#include "geardyn/error.h"
+
+/* Exit codes: 0 success, 1 internal/numerical failure, 2 bad input or usage. */
+enum { GD_EXIT_OK = 0, GD_EXIT_FAIL = 1, GD_EXIT_INPUT = 2 };
+
+/* Each subcommand: argv[0] is the subcommand name. */
+int gd_cmd_check(int argc, char **argv);
+int gd_cmd_modal(int argc, char **argv);
+int gd_cmd_mesh_stiffness(int argc, char **argv);
+
+/* Prints "geardyn: error: ..." to stderr and returns the exit code for err. */
+int gd_cli_report(const gd_error *err);
+/* Usage error for a subcommand: message, then "see 'geardyn CMD --help'". Returns 2. */
+int gd_cli_usage_error(const char *cmd, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+/* Parses a positive whole number option value; returns 0 on success. */
+int gd_cli_parse_count(const char *text, long lo, long hi, long *out);
+
+/* Prints item as JSON (pretty) followed by a newline; frees nothing. */
+void gd_cli_print_json(FILE *f, const cJSON *item);
+
+/* Output files are first written into a staging folder inside DIR and moved into
+ * place only when every file is complete, so a failure leaves nothing half-written. */
+typedef struct gd_outdir {
+    char dir[1024];
+    char stage[1100];
+    int nfiles;
+    char names[16][64];
+} gd_outdir;
+
+int gd_outdir_begin(gd_outdir *od, const char *dir, gd_error *err);
+/* Opens DIR/<stage>/name for writing; NULL on failure (err set). */
+FILE *gd_outdir_open(gd_outdir *od, const char *name, gd_error *err);
+/* Closes f, checking for write errors. */
+int gd_outdir_close(gd_outdir *od, FILE *f, const char *name, gd_error *err);
+int gd_outdir_commit(gd_outdir *od, gd_error *err);
+void gd_outdir_abort(gd_outdir *od);
+
+#endif

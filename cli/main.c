@@ -1,0 +1,46 @@
+/* geardyn: command-line front end. Each subcommand lives in its own cmd_*.c. */
+#include <stdio.h>
+#include <string.h>
+
+#include "cli.h"
+
+typedef struct command {
+    const char *name;
+    int (*run)(int argc, char **argv);
+    const char *summary;
+} command;
+
+static const command COMMANDS[] = {
+    /* {name, function, one-line summary}: keep in the order shown by --help */
+};
+
+static void usage(FILE *f)
+{
+    fprintf(f, "usage: geardyn COMMAND [ARGS]\n\n"
+               "Dynamics of geared rotor systems. Commands:\n");
+    for (size_t i = 0; i < sizeof COMMANDS / sizeof COMMANDS[0]; i++)
+        fprintf(f, "  %-16s %s\n", COMMANDS[i].name, COMMANDS[i].summary);
+    fprintf(f, "\nRun 'geardyn COMMAND --help' for the options of a command.\n"
+               "Model format: docs/model-format.md\n");
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return GD_EXIT_INPUT;
+    }
+    if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
+        usage(stdout);
+        return GD_EXIT_OK;
+    }
+    if (!strcmp(argv[1], "--version")) {
+        printf("geardyn 0.1.0\n");
+        return GD_EXIT_OK;
+    }
+    for (size_t i = 0; i < sizeof COMMANDS / sizeof COMMANDS[0]; i++)
+        if (!strcmp(argv[1], COMMANDS[i].name)) return COMMANDS[i].run(argc - 1, argv + 1);
+    fprintf(stderr, "geardyn: unknown command '%s'\n", argv[1]);
+    usage(stderr);
+    return GD_EXIT_INPUT;
+}

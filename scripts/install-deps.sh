@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Installs the Debian packages geardyn builds and tests with, if any is missing.
+# Safe to run repeatedly: it only calls apt-get when something is absent.
+set -euo pipefail
+pkgs=(build-essential cmake pkg-config libyaml-dev libcjson-dev liblapacke-dev
+      libopenblas-dev libsuitesparse-dev libsundials-dev libfftw3-dev libarpack2-dev
+      valgrind)
+missing=()
+for p in "${pkgs[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+echo "install-deps: installing ${missing[*]}" >&2
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then
+    if command -v sudo >/dev/null 2>&1; then SUDO="sudo"; else
+        echo "install-deps: need root (or sudo) to install: ${missing[*]}" >&2; exit 1
+    fi
+fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

@@ -1,0 +1,82 @@
+/* A YAML document as a tree of scalars, sequences and maps that remember their
+ * line and column, so every later check can point at the offending text. */
+#ifndef GD_YAML_DOC_H
+#define GD_YAML_DOC_H
+#include <stddef.h>
+
+#include "geardyn/error.h"
+#include "geardyn/units.h"
+
+typedef enum gd_ykind { GD_Y_SCALAR, GD_Y_SEQ, GD_Y_MAP } gd_ykind;
+
+typedef struct gd_ynode gd_ynode;
+struct gd_ynode {
+    gd_ykind kind;
+    int line, column; /* 1-based */
+    char *text;       /* scalar text */
+    int quoted;       /* scalar was quoted */
+    size_t n, cap;    /* items in a sequence, entries in a map */
+    gd_ynode **items; /* sequence items, or map values */
+    gd_ynode **keys;  /* map keys (scalars) */
+};
+
+typedef struct gd_ydoc {
+    gd_ynode *root; /* NULL for an empty document */
+    char *file;
+} gd_ydoc;
+
+gd_status gd_ydoc_load_file(const char *path, gd_ydoc **out, gd_error *err);
+/* name is used in error messages in place of a file name. */
+gd_status gd_ydoc_load_string(const char *text, const char *name, gd_ydoc **out, gd_error *err);
+void gd_ydoc_free(gd_ydoc *doc);
+
+/* ---- reading typed values with located errors ---- */
+
+typedef struct gd_yreader {
+    const char *file;
+    gd_error *err;
+} gd_yreader;
+
+enum {
+    GD_YREQ = 1 << 0,      /* the key must be present */
+    GD_YPOS = 1 << 1,      /* value > 0 */
+    GD_YNONNEG = 1 << 2,   /* value >= 0 */
+};
+
+const gd_ynode *gd_ymap_get(const gd_ynode *map, const char *key);
+const char *gd_ykind_name(gd_ykind kind);
+
+/* Errors located at node n (or the document start when n is NULL). */
+gd_status gd_yfail(gd_yreader *r, const gd_ynode *n, const char *path, const char *hint,
+                   const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 5, 6)))
+#endif
+    ;
+
+gd_status gd_yexpect(gd_yreader *r, const gd_ynode *n, gd_ykind kind, const char *path);
+/* Fails on any key of map not in the NULL-terminated list, suggesting the nearest. */
+gd_status gd_ycheck_keys(gd_yreader *r, const gd_ynode *map, const char *path,
+                         const char *const *allowed);
+
+/* Each reader leaves *out untouched when the key is absent and not required;
+ * *present (may be NULL) says whether it was there. path is the map's path. */
+gd_status gd_yread_qty(gd_yreader *r, const gd_ynode *map, const char *key, const char *path,
+                       gd_qty qty, int flags, double *out, int *present);
+gd_status gd_yread_node_qty(gd_yreader *r, const gd_ynode *n, const char *path, gd_qty qty,
+                            int flags, double *out);
+gd_status gd_yread_int(gd_yreader *r, const gd_ynode *map, const char *key, const char *path,
+                       long lo, long hi, int flags, long *out, int *present);
+gd_status gd_yread_bool(gd_yreader *r, const gd_ynode *map, const char *key, const char *path,
+                        int flags, int *out, int *present);
+/* A string; if choices (NULL-terminated) is given, the value must be one of them and
+ * *choice_index is set. out may be NULL when only the index is wanted. */
+gd_status gd_yread_str(gd_yreader *r, const gd_ynode *map, const char *key, const char *path,
+                       const char *const *choices, int flags, const char **out,
+                       int *choice_index, int *present);
+
+/* Joins "path.key" or "path[i]" into buf. */
+const char *gd_ypath_key(char *buf, size_t size, const char *path, const char *key);
+const char *gd_ypath_index(char *buf, size_t size, const char *path, size_t index);
+
+#endif

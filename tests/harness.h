@@ -1,0 +1,98 @@
+/* A minimal test harness: each test_*.c is one program of TEST()s run by ctest.
+ * It prints one line per failure and the closing line "N passed, N failed". */
+#ifndef GD_TEST_HARNESS_H
+#define GD_TEST_HARNESS_H
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+typedef struct gd_test_state {
+    int checks_failed;
+} gd_test_state;
+
+typedef void (*gd_test_fn)(gd_test_state *);
+typedef struct gd_test_case {
+    const char *name;
+    gd_test_fn fn;
+} gd_test_case;
+
+#define TEST(name) static void name(gd_test_state *gd_ts_)
+
+#define CHECK(cond)                                                                                \
+    do {                                                                                           \
+        if (!(cond)) {                                                                             \
+            fprintf(stderr, "  %s:%d: CHECK(%s) failed\n", __FILE__, __LINE__, #cond);            \
+            gd_ts_->checks_failed++;                                                               \
+        }                                                                                          \
+    } while (0)
+
+/* |a - b| <= tol * max(|b|, floor): relative with an absolute floor. */
+#define CHECK_REL(a, b, tol)                                                                       \
+    do {                                                                                           \
+        double a_ = (a), b_ = (b), t_ = (tol);                                                     \
+        double s_ = fabs(b_) > 1e-300 ? fabs(b_) : 1.0;                                            \
+        if (!(fabs(a_ - b_) <= t_ * s_)) {                                                         \
+            fprintf(stderr, "  %s:%d: %s = %.12g, expected %.12g (rel tol %g, rel err %.3g)\n",   \
+                    __FILE__, __LINE__, #a, a_, b_, t_, fabs(a_ - b_) / s_);                       \
+            gd_ts_->checks_failed++;                                                               \
+        }                                                                                          \
+    } while (0)
+
+#define CHECK_ABS(a, b, tol)                                                                       \
+    do {                                                                                           \
+        double a_ = (a), b_ = (b), t_ = (tol);                                                     \
+        if (!(fabs(a_ - b_) <= t_)) {                                                              \
+            fprintf(stderr, "  %s:%d: %s = %.12g, expected %.12g (abs tol %g)\n", __FILE__,       \
+                    __LINE__, #a, a_, b_, t_);                                                     \
+            gd_ts_->checks_failed++;                                                               \
+        }                                                                                          \
+    } while (0)
+
+#define CHECK_STR(a, b)                                                                            \
+    do {                                                                                           \
+        const char *a_ = (a), *b_ = (b);                                                           \
+        if (!a_ || strcmp(a_, b_) != 0) {                                                          \
+            fprintf(stderr, "  %s:%d: %s = \"%s\", expected \"%s\"\n", __FILE__, __LINE__, #a,    \
+                    a_ ? a_ : "(null)", b_);                                                       \
+            gd_ts_->checks_failed++;                                                               \
+        }                                                                                          \
+    } while (0)
+
+/* Stops the current test (e.g. a NULL result) after recording a failure. */
+#define REQUIRE(cond)                                                                              \
+    do {                                                                                           \
+        if (!(cond)) {                                                                             \
+            fprintf(stderr, "  %s:%d: REQUIRE(%s) failed\n", __FILE__, __LINE__, #cond);          \
+            gd_ts_->checks_failed++;                                                               \
+            return;                                                                                \
+        }                                                                                          \
+    } while (0)
+
+static inline int gd_test_run(const gd_test_case *cases, int n, int argc, char **argv)
+{
+    int passed = 0, failed = 0;
+    for (int i = 0; i < n; i++) {
+        if (argc > 1 && !strstr(cases[i].name, argv[1])) continue;
+        gd_test_state st = {0};
+        cases[i].fn(&st);
+        if (st.checks_failed) {
+            fprintf(stderr, "FAIL %s\n", cases[i].name);
+            failed++;
+        } else {
+            printf("ok   %s\n", cases[i].name);
+            passed++;
+        }
+    }
+    printf("%d passed, %d failed\n", passed, failed);
+    return failed ? 1 : 0;
+}
+
+#define RUN_TESTS(...)                                                                             \
+    int main(int argc, char **argv)                                                                \
+    {                                                                                              \
+        static const gd_test_case cases_[] = {__VA_ARGS__};                                       \
+        return gd_test_run(cases_, (int)(sizeof cases_ / sizeof cases_[0]), argc, argv);          \
+    }
+#define T(name) {#name, name}
+
+#endif
