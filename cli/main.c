@@ -10,8 +10,17 @@ typedef struct command {
     const char *summary;
 } command;
 
+static int cmd_version(int argc, char **argv)
+{
+    (void)argc;
+    (void)argv;
+    printf("geardyn 0.1.0\n");
+    return GD_EXIT_OK;
+}
+
 static const command COMMANDS[] = {
     /* {name, function, one-line summary}: keep in the order shown by --help */
+    {"version", cmd_version, "print the version"},
 };
 
 static void usage(FILE *f)
@@ -34,10 +43,7 @@ int main(int argc, char **argv)
         usage(stdout);
         return GD_EXIT_OK;
     }
-    if (!strcmp(argv[1], "--version")) {
-        printf("geardyn 0.1.0\n");
-        return GD_EXIT_OK;
-    }
+    if (!strcmp(argv[1], "--version")) return cmd_version(argc, argv);
     for (size_t i = 0; i < sizeof COMMANDS / sizeof COMMANDS[0]; i++)
         if (!strcmp(argv[1], COMMANDS[i].name)) return COMMANDS[i].run(argc - 1, argv + 1);
     fprintf(stderr, "geardyn: unknown command '%s'\n", argv[1]);
