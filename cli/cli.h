@@ -47,3 +47,13 @@ int gd_outdir_commit(gd_outdir *od, gd_error *err);
 void gd_outdir_abort(gd_outdir *od);
 
 #endif
+
+/* ---- shared by the model-based commands ---- */
+#include "geardyn/model.h"
+#include "geardyn/system.h"
+
+/* Loads MODEL, applies --coupling LEVEL (NULL: keep the model's) and builds the
+ * system. On failure reports the error and returns the exit code (non-zero). */
+int gd_cli_load(const char *path, const char *coupling, gd_model **model, gd_system **sys);
+/* Parses a speed option value with units ("3000 rpm"); 0 on success. */
+int gd_cli_parse_speed(const char *cmd, const char *text, double *out);

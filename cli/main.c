@@ -20,6 +20,8 @@ static int cmd_version(int argc, char **argv)
 
 static const command COMMANDS[] = {
     /* {name, function, one-line summary}: keep in the order shown by --help */
+    {"check", gd_cmd_check, "validate a model and summarise it"},
+    {"modal", gd_cmd_modal, "natural frequencies, damping, whirl and energy of the modes"},
     {"version", cmd_version, "print the version"},
 };
 

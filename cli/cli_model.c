@@ -1,0 +1,45 @@
+#include <string.h>
+
+#include "cli.h"
+#include "geardyn/units.h"
+
+int gd_cli_load(const char *path, const char *coupling, gd_model **model, gd_system **sys)
+{
+    gd_error err;
+    gd_error_clear(&err);
+    *model = NULL;
+    *sys = NULL;
+    int level = -1;
+    if (coupling) {
+        for (int i = 0; i < 3; i++)
+            if (!strcmp(coupling, gd_coupling_names[i])) level = i;
+        if (level < 0) {
+            gd_error_set(&err, GD_EINPUT, "", 0, 0, "--coupling",
+                         "use torsional, lateral-torsional or full", "unknown coupling level '%s'",
+                         coupling);
+            return gd_cli_report(&err);
+        }
+    }
+    if (gd_model_load(path, model, &err)) return gd_cli_report(&err);
+    if (level >= 0) gd_model_set_coupling(*model, (gd_coupling)level);
+    if (gd_system_build(*model, sys, &err)) {
+        gd_model_free(*model);
+        *model = NULL;
+        return gd_cli_report(&err);
+    }
+    return GD_EXIT_OK;
+}
+
+int gd_cli_parse_speed(const char *cmd, const char *text, double *out)
+{
+    char why[200];
+    if (gd_parse_quantity(text, GD_QTY_ANGULAR_SPEED, out, why, sizeof why)) {
+        gd_cli_usage_error(cmd, "--speed: %s (e.g. --speed 3000rpm or --speed 314.16)", why);
+        return 1;
+    }
+    if (*out < 0) {
+        gd_cli_usage_error(cmd, "--speed: give a speed of zero or more");
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,128 @@
+/* geardyn check MODEL: validate a model and summarise it. */
+#include <getopt.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+
+static const char USAGE[] =
+    "usage: geardyn check MODEL.yaml [--coupling LEVEL] [--json]\n\n"
+    "Validates a model and prints a summary: nodes, DOFs, elements, meshes, and the mass\n"
+    "and polar inertia of each shaft with everything on it.\n\n"
+    "  --coupling LEVEL  torsional | lateral-torsional | full: override every mesh\n"
+    "  --json            print the summary as one JSON object\n";
+
+static void print_text(const gd_model *m, const gd_system *s)
+{
+    printf("model     %s\n", m->file);
+    printf("nodes     %d\n", m->nnodes);
+    printf("DOFs      %d active (", s->ndof);
+    for (int d = 0, first = 1; d < GD_NODE_DOFS; d++)
+        if (m->dof_mask & GD_DOF_BIT(d)) {
+            printf("%s%s", first ? "" : " ", gd_dof_names[d]);
+            first = 0;
+        }
+    printf(" per node where used), %d massless\n", s->nmassless);
+    printf("elements  %d shaft elements, %d disks, %d bearings, %d springs, %d meshes\n",
+           m->nelements, m->ndisks, m->nbearings, m->nsprings, m->nmeshes);
+    printf("speed     %g rad/s (%g rpm) on shaft '%s'\n\n", m->speed, m->speed * 30 / M_PI,
+           m->shafts[m->reference_shaft].name);
+    printf("%-16s %6s %8s %10s %10s %14s %11s\n", "shaft", "nodes", "elements", "length(m)",
+           "mass(kg)", "Ip(kg*m^2)", "speed ratio");
+    for (int i = 0; i < m->nshafts; i++) {
+        gd_shaft_summary ss;
+        gd_model_shaft_summary(m, i, &ss);
+        printf("%-16s %6d %8d %10.4g %10.4g %14.5g %11.5g\n", m->shafts[i].name, ss.nnodes,
+               ss.nelements, ss.length, ss.mass, ss.polar_inertia, m->shafts[i].speed_ratio);
+    }
+    if (m->nmeshes) {
+        printf("\n%-12s %-24s %8s %10s %10s %10s %10s %s\n", "mesh", "driver -> driven", "ratio",
+               "rb1(m)", "rb2(m)", "k(N/m)", "c(N*s/m)", "coupling");
+        for (int i = 0; i < m->nmeshes; i++) {
+            const gd_mesh *g = &m->meshes[i];
+            char pair[64];
+            snprintf(pair, sizeof pair, "%.11s -> %.11s", m->nodes[g->driver].name,
+                     m->nodes[g->driven].name);
+            printf("%-12s %-24s %8.5g %10.5g %10.5g %10.4g %10.4g %s\n", g->name, pair,
+                   g->base_radius[1] / g->base_radius[0], g->base_radius[0], g->base_radius[1],
+                   g->stiffness, g->damping, gd_coupling_names[g->coupling]);
+        }
+    }
+}
+
+static cJSON *summary_json(const gd_model *m, const gd_system *s)
+{
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "model", m->file);
+    cJSON_AddNumberToObject(o, "nodes", m->nnodes);
+    cJSON_AddNumberToObject(o, "dofs", s->ndof);
+    cJSON_AddNumberToObject(o, "massless_dofs", s->nmassless);
+    cJSON_AddNumberToObject(o, "shaft_elements", m->nelements);
+    cJSON_AddNumberToObject(o, "disks", m->ndisks);
+    cJSON_AddNumberToObject(o, "bearings", m->nbearings);
+    cJSON_AddNumberToObject(o, "springs", m->nsprings);
+    cJSON_AddNumberToObject(o, "speed_rad_s", m->speed);
+    cJSON *shafts = cJSON_AddArrayToObject(o, "shafts");
+    for (int i = 0; i < m->nshafts; i++) {
+        gd_shaft_summary ss;
+        gd_model_shaft_summary(m, i, &ss);
+        cJSON *j = cJSON_CreateObject();
+        cJSON_AddStringToObject(j, "name", m->shafts[i].name);
+        cJSON_AddNumberToObject(j, "nodes", ss.nnodes);
+        cJSON_AddNumberToObject(j, "elements", ss.nelements);
+        cJSON_AddNumberToObject(j, "length_m", ss.length);
+        cJSON_AddNumberToObject(j, "mass_kg", ss.mass);
+        cJSON_AddNumberToObject(j, "polar_inertia_kg_m2", ss.polar_inertia);
+        cJSON_AddNumberToObject(j, "speed_ratio", m->shafts[i].speed_ratio);
+        cJSON_AddItemToArray(shafts, j);
+    }
+    cJSON *meshes = cJSON_AddArrayToObject(o, "meshes");
+    for (int i = 0; i < m->nmeshes; i++) {
+        const gd_mesh *g = &m->meshes[i];
+        cJSON *j = cJSON_CreateObject();
+        cJSON_AddStringToObject(j, "name", g->name);
+        cJSON_AddStringToObject(j, "driver", m->nodes[g->driver].name);
+        cJSON_AddStringToObject(j, "driven", m->nodes[g->driven].name);
+        cJSON_AddNumberToObject(j, "stiffness_N_per_m", g->stiffness);
+        cJSON_AddNumberToObject(j, "damping_N_s_per_m", g->damping);
+        cJSON_AddStringToObject(j, "coupling", gd_coupling_names[g->coupling]);
+        cJSON_AddItemToArray(meshes, j);
+    }
+    return o;
+}
+
+int gd_cmd_check(int argc, char **argv)
+{
+    static const struct option opts[] = {{"coupling", required_argument, 0, 'c'},
+                                         {"json", no_argument, 0, 'j'},
+                                         {"help", no_argument, 0, 'h'},
+                                         {0, 0, 0, 0}};
+    const char *coupling = NULL;
+    int json = 0, c;
+    optind = 1;
+    opterr = 0;
+    while ((c = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+        switch (c) {
+        case 'c': coupling = optarg; break;
+        case 'j': json = 1; break;
+        case 'h': fputs(USAGE, stdout); return GD_EXIT_OK;
+        default: return gd_cli_usage_error("check", "unknown or incomplete option '%s'", argv[optind - 1]);
+        }
+    }
+    if (optind != argc - 1) return gd_cli_usage_error("check", "give exactly one model file");
+    gd_model *m;
+    gd_system *s;
+    int rc = gd_cli_load(argv[optind], coupling, &m, &s);
+    if (rc) return rc;
+    if (json) {
+        cJSON *o = summary_json(m, s);
+        gd_cli_print_json(stdout, o);
+        cJSON_Delete(o);
+    } else {
+        print_text(m, s);
+    }
+    gd_system_free(s);
+    gd_model_free(m);
+    return GD_EXIT_OK;
+}

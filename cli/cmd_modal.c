@@ -1,0 +1,224 @@
+/* geardyn modal MODEL: natural frequencies and modes. */
+#include <getopt.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "geardyn/modal.h"
+
+static const char USAGE[] =
+    "usage: geardyn modal MODEL.yaml [--speed VALUE] [--modes N|all] [--undamped | --damped]\n"
+    "                     [--coupling LEVEL] [--json] [--out DIR]\n\n"
+    "Natural frequencies, damping, whirl direction and modal strain energy of each mode.\n"
+    "Damped/gyroscopic modes (state space, left and right eigenvectors) are computed when\n"
+    "the model has damping or gyroscopic terms at the speed; otherwise undamped modes.\n\n"
+    "  --speed VALUE     reference shaft speed, e.g. 3000rpm, 314 (rad/s); default: model's\n"
+    "  --modes N|all     number of lowest modes (default: all up to 30 DOFs, else 20)\n"
+    "  --undamped        drop damping and gyroscopic terms (symmetric eigenproblem)\n"
+    "  --damped          always use the state-space (damped) eigenproblem\n"
+    "  --coupling LEVEL  torsional | lateral-torsional | full: override every mesh and\n"
+    "                    keep only the DOFs that level uses\n"
+    "  --json            print one JSON object on stdout instead of the table\n"
+    "  --out DIR         write DIR/modes.csv and DIR/mode_shapes.csv (every active DOF of\n"
+    "                    every mode, complex)\n";
+
+static double share(const gd_mode *md, int k) { return 100.0 * md->energy_share[k]; }
+
+static const char *component_name(const gd_system *s, int c)
+{
+    int idx;
+    const char *name = "";
+    if (c >= 0) gd_system_component(s, c, &idx, &name);
+    return name;
+}
+
+static void print_table(const gd_system *s, const gd_modal_result *r)
+{
+    printf("%s: %d DOFs, speed %g rad/s (%g rpm), %s modes\n\n", s->model->file, s->ndof,
+           r->speed, r->speed * 30 / M_PI, r->damped ? "damped (state space)" : "undamped");
+    printf("%4s %12s %12s %12s %9s %9s  %-10s %-10s %-14s %5s %5s %5s %5s\n", "mode", "f_n(Hz)",
+           "w_n(rad/s)", "w_d(rad/s)", "zeta", "logdec", "whirl", "dominant", "component",
+           "lat%", "tor%", "ax%", "tilt%");
+    for (int j = 0; j < r->nmodes; j++) {
+        const gd_mode *md = &r->modes[j];
+        if (md->rigid_body) {
+            printf("%4d %12.6g %12.6g %12.6g %9s %9s  %-10s %-10s %-14s\n", j + 1, 0.0, 0.0, 0.0,
+                   "-", "-", "none", gd_motion_names[md->dominant_motion], "(rigid body)");
+            continue;
+        }
+        char ld[16];
+        if (isnan(md->log_decrement))
+            snprintf(ld, sizeof ld, "-");
+        else
+            snprintf(ld, sizeof ld, "%.4g", md->log_decrement);
+        printf("%4d %12.6g %12.6g %12.6g %9.4g %9s  %-10s %-10s %-14.14s %5.1f %5.1f %5.1f %5.1f%s\n",
+               j + 1, md->frequency_hz, md->omega_n, md->omega_d, md->damping_ratio, ld,
+               gd_whirl_names[md->whirl], gd_motion_names[md->dominant_motion],
+               component_name(s, md->dominant_component), share(md, 0), share(md, 1),
+               share(md, 2), share(md, 3),
+               md->unstable ? "  UNSTABLE" : (md->overdamped ? "  overdamped" : ""));
+    }
+}
+
+static void add_num(cJSON *o, const char *k, double v)
+{
+    if (isfinite(v))
+        cJSON_AddNumberToObject(o, k, v);
+    else
+        cJSON_AddNullToObject(o, k);
+}
+
+static cJSON *result_json(const gd_system *s, const gd_modal_result *r)
+{
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "model", s->model->file);
+    cJSON_AddNumberToObject(o, "speed_rad_s", r->speed);
+    cJSON_AddBoolToObject(o, "damped", r->damped);
+    cJSON_AddNumberToObject(o, "dofs", s->ndof);
+    cJSON *modes = cJSON_AddArrayToObject(o, "modes");
+    for (int j = 0; j < r->nmodes; j++) {
+        const gd_mode *md = &r->modes[j];
+        cJSON *m = cJSON_CreateObject();
+        cJSON_AddNumberToObject(m, "mode", j + 1);
+        add_num(m, "omega_n_rad_s", md->omega_n);
+        add_num(m, "frequency_hz", md->frequency_hz);
+        add_num(m, "omega_d_rad_s", md->omega_d);
+        add_num(m, "damped_frequency_hz", md->omega_d / (2 * M_PI));
+        add_num(m, "damping_ratio", md->damping_ratio);
+        add_num(m, "log_decrement", md->log_decrement);
+        add_num(m, "eigenvalue_real", md->lambda_re);
+        add_num(m, "eigenvalue_imag", md->lambda_im);
+        cJSON_AddStringToObject(m, "whirl", gd_whirl_names[md->whirl]);
+        cJSON_AddStringToObject(m, "dominant_motion", gd_motion_names[md->dominant_motion]);
+        if (md->dominant_component >= 0)
+            cJSON_AddStringToObject(m, "dominant_component", component_name(s, md->dominant_component));
+        else
+            cJSON_AddNullToObject(m, "dominant_component");
+        cJSON_AddBoolToObject(m, "rigid_body", md->rigid_body);
+        cJSON_AddBoolToObject(m, "overdamped", md->overdamped);
+        cJSON_AddBoolToObject(m, "unstable", md->unstable);
+        cJSON *es = cJSON_AddObjectToObject(m, "energy_share");
+        for (int k = 0; k < GD_NMOTIONS; k++) add_num(es, gd_motion_names[k], md->energy_share[k]);
+        cJSON *ec = cJSON_AddObjectToObject(m, "energy_by_component");
+        for (int c = 0; c < s->ncomponents; c++)
+            add_num(ec, component_name(s, c), r->energy_by_component[c + (size_t)j * s->ncomponents]);
+        cJSON_AddItemToArray(modes, m);
+    }
+    return o;
+}
+
+static int write_csv(const gd_system *s, const gd_modal_result *r, const char *dir)
+{
+    gd_error err;
+    gd_error_clear(&err);
+    gd_outdir od;
+    if (gd_outdir_begin(&od, dir, &err)) return gd_cli_report(&err);
+    FILE *f = gd_outdir_open(&od, "modes.csv", &err);
+    if (!f) goto fail;
+    fprintf(f, "mode,omega_n_rad_s,frequency_hz,omega_d_rad_s,damping_ratio,log_decrement,"
+               "whirl,dominant_motion,dominant_component,rigid_body,energy_lateral,"
+               "energy_torsional,energy_axial,energy_tilt\n");
+    for (int j = 0; j < r->nmodes; j++) {
+        const gd_mode *md = &r->modes[j];
+        fprintf(f, "%d,%.10g,%.10g,%.10g,%.10g,%.10g,%s,%s,%s,%d,%.6g,%.6g,%.6g,%.6g\n", j + 1,
+                md->omega_n, md->frequency_hz, md->omega_d, md->damping_ratio, md->log_decrement,
+                gd_whirl_names[md->whirl], gd_motion_names[md->dominant_motion],
+                component_name(s, md->dominant_component), md->rigid_body, md->energy_share[0],
+                md->energy_share[1], md->energy_share[2], md->energy_share[3]);
+    }
+    if (gd_outdir_close(&od, f, "modes.csv", &err)) goto fail;
+    f = gd_outdir_open(&od, "mode_shapes.csv", &err);
+    if (!f) goto fail;
+    fprintf(f, "mode,node,dof,real,imag,magnitude,phase_deg\n");
+    for (int j = 0; j < r->nmodes; j++)
+        for (int i = 0; i < s->ndof; i++) {
+            double re = r->shape_re[i + (size_t)j * s->ndof], im = r->shape_im[i + (size_t)j * s->ndof];
+            fprintf(f, "%d,%s,%s,%.10g,%.10g,%.10g,%.6g\n", j + 1,
+                    s->model->nodes[s->dof_node[i]].name, gd_dof_names[s->dof_type[i]], re, im,
+                    hypot(re, im), atan2(im, re) * 180 / M_PI);
+        }
+    if (gd_outdir_close(&od, f, "mode_shapes.csv", &err)) goto fail;
+    if (gd_outdir_commit(&od, &err)) return gd_cli_report(&err);
+    return GD_EXIT_OK;
+fail:
+    gd_outdir_abort(&od);
+    return gd_cli_report(&err);
+}
+
+int gd_cmd_modal(int argc, char **argv)
+{
+    static const struct option opts[] = {
+        {"speed", required_argument, 0, 's'}, {"modes", required_argument, 0, 'n'},
+        {"undamped", no_argument, 0, 'u'},    {"damped", no_argument, 0, 'd'},
+        {"coupling", required_argument, 0, 'c'}, {"json", no_argument, 0, 'j'},
+        {"out", required_argument, 0, 'o'},   {"help", no_argument, 0, 'h'},
+        {0, 0, 0, 0}};
+    gd_modal_options opt;
+    gd_modal_options_default(&opt);
+    opt.want_left = 0;
+    const char *coupling = NULL, *out = NULL, *speed = NULL;
+    int json = 0, c, all = 0;
+    long nmodes = -1;
+    optind = 1;
+    opterr = 0;
+    while ((c = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+        switch (c) {
+        case 's': speed = optarg; break;
+        case 'n':
+            if (!strcmp(optarg, "all"))
+                all = 1;
+            else if (gd_cli_parse_count(optarg, 1, 1000000, &nmodes))
+                return gd_cli_usage_error("modal", "--modes: '%s' is not a positive whole number or 'all'", optarg);
+            break;
+        case 'u':
+            if (opt.kind == GD_MODAL_DAMPED)
+                return gd_cli_usage_error("modal", "--undamped and --damped exclude each other");
+            opt.kind = GD_MODAL_UNDAMPED;
+            break;
+        case 'd':
+            if (opt.kind == GD_MODAL_UNDAMPED)
+                return gd_cli_usage_error("modal", "--undamped and --damped exclude each other");
+            opt.kind = GD_MODAL_DAMPED;
+            break;
+        case 'c': coupling = optarg; break;
+        case 'j': json = 1; break;
+        case 'o': out = optarg; break;
+        case 'h': fputs(USAGE, stdout); return GD_EXIT_OK;
+        default: return gd_cli_usage_error("modal", "unknown or incomplete option '%s'", argv[optind - 1]);
+        }
+    }
+    if (optind != argc - 1) return gd_cli_usage_error("modal", "give exactly one model file");
+    gd_model *m;
+    gd_system *s;
+    int rc = gd_cli_load(argv[optind], coupling, &m, &s);
+    if (rc) return rc;
+    opt.speed = m->speed;
+    if (speed && gd_cli_parse_speed("modal", speed, &opt.speed)) {
+        gd_system_free(s);
+        gd_model_free(m);
+        return GD_EXIT_INPUT;
+    }
+    opt.nmodes = all ? 0 : nmodes > 0 ? (int)nmodes : (s->ndof <= 30 ? 0 : 20);
+    gd_modal_result *r;
+    gd_error err;
+    gd_error_clear(&err);
+    if (gd_modal_solve(s, &opt, &r, &err)) {
+        rc = gd_cli_report(&err);
+    } else {
+        if (out) rc = write_csv(s, r, out);
+        if (rc == GD_EXIT_OK) {
+            if (json) {
+                cJSON *o = result_json(s, r);
+                gd_cli_print_json(stdout, o);
+                cJSON_Delete(o);
+            } else {
+                print_table(s, r);
+            }
+        }
+        gd_modal_free(r);
+    }
+    gd_system_free(s);
+    gd_model_free(m);
+    return rc;
+}

@@ -1,0 +1,60 @@
+/* Modal analysis: undamped modes (symmetric generalized eigenproblem) and damped,
+ * gyroscopic modes at a speed (state space with right and left eigenvectors,
+ * bi-orthonormalised as in 004 Eqs. 9-13). */
+#ifndef GEARDYN_MODAL_H
+#define GEARDYN_MODAL_H
+#include "geardyn/system.h"
+
+typedef enum gd_whirl {
+    GD_WHIRL_NONE,     /* no lateral orbit, or straight-line orbits */
+    GD_WHIRL_FORWARD,  /* every orbit turns with its shaft */
+    GD_WHIRL_BACKWARD, /* every orbit turns against its shaft */
+    GD_WHIRL_MIXED
+} gd_whirl;
+extern const char *const gd_whirl_names[4];
+
+typedef enum gd_modal_kind {
+    GD_MODAL_AUTO,     /* damped if the model has damping or gyroscopics at speed */
+    GD_MODAL_UNDAMPED, /* drop damping and gyroscopic terms */
+    GD_MODAL_DAMPED
+} gd_modal_kind;
+
+typedef struct gd_modal_options {
+    double speed;       /* reference speed, rad/s */
+    int nmodes;         /* lowest modes kept; 0: all */
+    gd_modal_kind kind;
+    int want_left;      /* compute bi-orthonormal left eigenvectors (damped) */
+} gd_modal_options;
+
+typedef struct gd_mode {
+    double lambda_re, lambda_im; /* eigenvalue; undamped: (0, omega) */
+    double omega_n;              /* natural frequency |lambda|, rad/s */
+    double omega_d;              /* damped frequency Im(lambda), rad/s */
+    double frequency_hz;         /* omega_n / 2 pi */
+    double damping_ratio;        /* -Re(lambda)/|lambda| */
+    double log_decrement;        /* 2 pi zeta / sqrt(1 - zeta^2); NAN when overdamped */
+    int rigid_body;              /* zero frequency: free motion */
+    int overdamped;              /* real eigenvalue */
+    int unstable;                /* growing (Re lambda > 0) or negative stiffness */
+    gd_whirl whirl;
+    double energy_share[GD_NMOTIONS]; /* fractions of modal strain energy */
+    gd_motion dominant_motion;
+    int dominant_component; /* gd_system component index; -1 for rigid modes */
+} gd_mode;
+
+typedef struct gd_modal_result {
+    int ndof, nmodes, ncomponents;
+    int damped;
+    double speed;
+    gd_mode *modes;           /* ascending natural frequency */
+    double *shape_re, *shape_im; /* ndof x nmodes, column-major; largest entry = 1 */
+    double *left_re, *left_im;   /* NULL unless requested: v^T (2 lambda M + D) u = 1 */
+    double *energy_by_component; /* ncomponents x nmodes, column-major: fractions */
+} gd_modal_result;
+
+void gd_modal_options_default(gd_modal_options *opt);
+gd_status gd_modal_solve(const gd_system *sys, const gd_modal_options *opt,
+                         gd_modal_result **out, gd_error *err);
+void gd_modal_free(gd_modal_result *res);
+
+#endif

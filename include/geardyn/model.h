@@ -1,0 +1,159 @@
+/* The model: a typed, validated description of a geared rotor system, read from a
+ * YAML file (docs/model-format.md). Parsing and validation live here and nowhere
+ * else; every later layer trusts a gd_model. All quantities are SI. */
+#ifndef GEARDYN_MODEL_H
+#define GEARDYN_MODEL_H
+#include "geardyn/error.h"
+#include "geardyn/material.h"
+
+#define GD_NAME_MAX 64
+
+/* Node DOFs, in this order: two lateral translations, axial translation, two tilts,
+ * torsion about the shaft axis z. */
+typedef enum gd_dof { GD_X, GD_Y, GD_Z, GD_RX, GD_RY, GD_RZ, GD_NODE_DOFS } gd_dof;
+#define GD_DOF_BIT(d) (1u << (d))
+#define GD_DOFS_ALL 0x3fu
+extern const char *const gd_dof_names[GD_NODE_DOFS]; /* "x", "y", "z", "rx", "ry", "rz" */
+
+typedef enum gd_coupling {
+    GD_COUPLING_TORSIONAL,         /* rz only */
+    GD_COUPLING_LATERAL_TORSIONAL, /* x, y, rz */
+    GD_COUPLING_FULL,              /* all six */
+} gd_coupling;
+extern const char *const gd_coupling_names[3];
+/* The node DOFs a coupling level keeps: torsional {rz}; lateral-torsional drops the
+ * axial DOF z; full keeps all. (Shaft bending needs the tilts, so they stay.) */
+unsigned gd_coupling_dof_mask(gd_coupling level);
+
+typedef struct gd_loc {
+    int line, column; /* where in the model file, for errors found later */
+} gd_loc;
+
+typedef struct gd_section {
+    double length, outer_diameter, inner_diameter;
+    int material;
+    int elements; /* number of elements this section is split into */
+    gd_loc loc;
+} gd_section;
+
+typedef struct gd_shaft {
+    char name[GD_NAME_MAX];
+    int nsections;
+    gd_section *sections;
+    int first_node, nnodes; /* the shaft's nodes are contiguous, ordered by position */
+    double speed_ratio;     /* signed: speed = speed_ratio * reference speed, about +z */
+    int speed_ratio_given;
+    gd_loc loc;
+} gd_shaft;
+
+typedef struct gd_node {
+    char name[GD_NAME_MAX]; /* user's name, or "<shaft>@<index>" for generated nodes */
+    int shaft;
+    double position; /* axial position along the shaft, m */
+    int named;       /* named by the user */
+    gd_loc loc;
+} gd_node;
+
+/* A 2-node Timoshenko shaft element, generated from the sections. */
+typedef struct gd_element {
+    int shaft, section, node1, node2;
+    double length, outer_diameter, inner_diameter;
+    int material;
+} gd_element;
+
+typedef struct gd_disk {
+    char name[GD_NAME_MAX];
+    int node;
+    double mass, polar_inertia, diametral_inertia;
+    gd_loc loc;
+} gd_disk;
+
+/* Linear bearing/support coefficients (stiffness N/m, N m/rad; damping N s/m, ...). */
+typedef struct gd_bearing_coeffs {
+    double kxx, kxy, kyx, kyy, kzz, ktilt, ktorsion;
+    double cxx, cxy, cyx, cyy, czz, ctilt, ctorsion;
+} gd_bearing_coeffs;
+
+typedef struct gd_bearing {
+    char name[GD_NAME_MAX];
+    int node, node2; /* node2 = -1: to ground */
+    gd_bearing_coeffs coeffs;  /* constant coefficients (or the table's first row) */
+    int ntable;                /* > 0: coefficients interpolated in speed of the node's shaft */
+    double *table_speed;       /* ntable speeds, increasing, rad/s */
+    gd_bearing_coeffs *table;  /* ntable rows */
+    gd_loc loc;
+} gd_bearing;
+
+/* Lumped spring and damper on one DOF, between two nodes or from a node to ground. */
+typedef struct gd_spring {
+    char name[GD_NAME_MAX];
+    int node1, node2; /* node2 = -1: to ground */
+    gd_dof dof;
+    double stiffness, damping;
+    gd_loc loc;
+} gd_spring;
+
+/* External gear mesh between a driving and a driven gear on different shafts. The
+ * mesh deformation is d = a . q along the contact normal; stiffness k acts on d. */
+typedef struct gd_mesh {
+    char name[GD_NAME_MAX];
+    int driver, driven;         /* node indices */
+    int teeth[2];               /* 0 when not given */
+    double base_radius[2];      /* m */
+    double pressure_angle;      /* transverse operating pressure angle, rad */
+    double helix_angle;         /* at the pitch circle, rad (0: spur) */
+    double base_helix_angle;    /* derived: tan(bb) = tan(b) cos(alpha_t) */
+    int hand;                   /* driver's hand: +1 right, -1 left */
+    double line_of_centres;     /* angle from +x of the line driver -> driven centre, rad */
+    int driver_sense;           /* derived: +1 driver turns about +z at positive speed */
+    double stiffness, damping;  /* along the contact normal: N/m, N s/m */
+    gd_coupling coupling;
+    gd_loc loc;
+} gd_mesh;
+
+typedef struct gd_model {
+    char file[256];
+    int nmaterials;
+    gd_material *materials;
+    int nshafts;
+    gd_shaft *shafts;
+    int nnodes;
+    gd_node *nodes;
+    int nelements;
+    gd_element *elements;
+    int ndisks;
+    gd_disk *disks;
+    int nbearings;
+    gd_bearing *bearings;
+    int nsprings;
+    gd_spring *springs;
+    int nmeshes;
+    gd_mesh *meshes;
+    unsigned dof_mask;    /* active node DOFs (GD_DOF_BIT) */
+    int reference_shaft;  /* shaft whose speed is the reference speed */
+    double speed;         /* reference speed, rad/s (0 unless given) */
+} gd_model;
+
+gd_status gd_model_load(const char *path, gd_model **out, gd_error *err);
+/* name stands in for the file name in messages. */
+gd_status gd_model_load_string(const char *yaml, const char *name, gd_model **out,
+                               gd_error *err);
+void gd_model_free(gd_model *model);
+
+/* Overrides every mesh's coupling level and restricts the active DOFs to the level's
+ * (as `--coupling` does on the command line). */
+void gd_model_set_coupling(gd_model *model, gd_coupling level);
+
+int gd_model_find_node(const gd_model *model, const char *name);
+int gd_model_find_shaft(const gd_model *model, const char *name);
+int gd_model_find_mesh(const gd_model *model, const char *name);
+
+/* Mass, polar and diametral inertia of a shaft with everything on its nodes. */
+typedef struct gd_shaft_summary {
+    double mass, polar_inertia;
+    double length;
+    int nelements, nnodes;
+} gd_shaft_summary;
+void gd_model_shaft_summary(const gd_model *model, int shaft, gd_shaft_summary *out);
+
+#endif

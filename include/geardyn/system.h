@@ -1,0 +1,85 @@
+/* The system: a model turned into numbers once (like an FFTW plan). Global DOF
+ * numbering over the active DOFs, sparse constant matrices, and the per-element data
+ * later analyses need. Equation of motion at reference speed W:
+ *     M q'' + (C + C_b(W) + W G) q' + (K + K_b(W)) q = f
+ * where K_b, C_b are the speed-dependent bearing terms (zero unless a bearing has a
+ * speed table) and G is the gyroscopic matrix per unit reference speed (each shaft's
+ * signed speed ratio folded in). */
+#ifndef GEARDYN_SYSTEM_H
+#define GEARDYN_SYSTEM_H
+#include "geardyn/error.h"
+#include "geardyn/model.h"
+
+/* Compressed sparse columns, square n x n. */
+typedef struct gd_csc {
+    int n;
+    int *colptr; /* n + 1 */
+    int *rowind; /* colptr[n] */
+    double *values;
+} gd_csc;
+
+/* Motion types for modal strain energy. Shaft bending counts as lateral; tilt is the
+ * energy of tilt springs (bearings' k_tilt, rx/ry springs, mesh tilt coupling). */
+typedef enum gd_motion {
+    GD_MOTION_LATERAL,
+    GD_MOTION_TORSIONAL,
+    GD_MOTION_AXIAL,
+    GD_MOTION_TILT,
+    GD_NMOTIONS
+} gd_motion;
+extern const char *const gd_motion_names[GD_NMOTIONS];
+
+/* Components that store strain energy, in this order: shafts, bearings, springs,
+ * meshes. */
+typedef enum gd_component_kind {
+    GD_COMP_SHAFT,
+    GD_COMP_BEARING,
+    GD_COMP_SPRING,
+    GD_COMP_MESH
+} gd_component_kind;
+
+typedef struct gd_system {
+    const gd_model *model; /* borrowed: must outlive the system */
+    int ndof;
+    int *dof_node;    /* ndof: node of each DOF */
+    gd_dof *dof_type; /* ndof: which of x..rz */
+    int *node_dof;    /* nnodes * 6: active DOF index, or -1 */
+    int *massless;    /* ndof: 1 where M has no diagonal term */
+    int nmassless;
+    gd_csc M, K, C, G;
+    int has_speed_dependent; /* a bearing has a speed table */
+    int has_damping;         /* C or a bearing table has damping terms */
+    int has_gyroscopic;      /* G is not zero */
+    int ncomponents;         /* nshafts + nbearings + nsprings + nmeshes */
+} gd_system;
+
+gd_status gd_system_build(const gd_model *model, gd_system **out, gd_error *err);
+void gd_system_free(gd_system *sys);
+
+/* Active DOF index of (node, dof), or -1. */
+int gd_system_dof(const gd_system *sys, int node, gd_dof dof);
+/* "node.dof" label of DOF i, e.g. "pinion.rz". */
+void gd_system_dof_label(const gd_system *sys, int i, char *buf, int size);
+
+/* Dense column-major n x n matrices at reference speed W: M, the total damping
+ * D = C + C_b(W) + W G, and K + K_b(W). Any pointer may be NULL. */
+void gd_system_dense(const gd_system *sys, double speed, double *M, double *D, double *K);
+
+/* Component index -> kind, index within kind and name. */
+gd_component_kind gd_system_component(const gd_system *sys, int c, int *index, const char **name);
+
+/* Mesh deformation vector of mesh k: d = sum a[j] q[dof[j]] over n entries (n <= 12). */
+typedef struct gd_mesh_vector {
+    int n;
+    int dof[12];
+    double a[12];
+} gd_mesh_vector;
+void gd_system_mesh_vector(const gd_system *sys, int mesh, gd_mesh_vector *out);
+
+/* Modal strain energy of displacement u (complex: re, im; im may be NULL) at speed W,
+ * split by motion type (by_motion[GD_NMOTIONS]) and by component (by_component
+ * [ncomponents], may be NULL). Returns the total. */
+double gd_system_strain_energy(const gd_system *sys, double speed, const double *re,
+                               const double *im, double *by_motion, double *by_component);
+
+#endif

@@ -1,0 +1,121 @@
+/* Internal pieces of the mesh-stiffness module, one concept per file. */
+#ifndef GD_MS_INTERNAL_H
+#define GD_MS_INTERNAL_H
+#include <stddef.h>
+
+#include "geardyn/mesh_stiffness.h"
+
+#define GD_MS_PI 3.14159265358979323846
+
+/* ---- quadrature.c: adaptive Gauss-Kronrod (7/15) ---- */
+typedef double (*gd_ms_fn)(double x, void *ctx);
+/* Integral of f over [a, b] to relative tolerance rtol; *neval (may be NULL) counts calls. */
+double gd_ms_integrate(gd_ms_fn f, void *ctx, double a, double b, double rtol, int *neval);
+/* Fixed n-point Gauss-Legendre (n = 4, 8, 16 or 32), for convergence tests. */
+double gd_ms_gauss_legendre(gd_ms_fn f, void *ctx, double a, double b, int n);
+
+/* ---- tooth_energy.c: one tooth as a non-uniform cantilever (Yang & Lin 1987,
+ * Tian 2004, Chen & Shao 2011), plane stress, per unit face width ---- */
+typedef struct gd_ms_tooth {
+    double rb;      /* base radius (transverse) */
+    double alpha2;  /* half tooth angle on the base circle */
+    double rf;      /* root radius */
+    double rbore;   /* hub/bore radius (fillet foundation) */
+    double E, nu;
+} gd_ms_tooth;
+
+/* Bending + shear + axial compliance (m/N times m of face width) of one tooth loaded at
+ * the involute point of roll angle tc = (roll length)/rb. */
+double gd_ms_tooth_beam_compliance(const gd_ms_tooth *t, double tc, double rtol, int *neval);
+/* The same terms split: out[0] bending, out[1] shear, out[2] axial. Fixed Gauss rule
+ * of n points when n > 0 (convergence tests), else adaptive to rtol. */
+void gd_ms_tooth_beam_terms(const gd_ms_tooth *t, double tc, double rtol, int n, double out[3]);
+/* Half tooth angle at the root circle (theta_f) of the cantilever model. */
+double gd_ms_tooth_root_half_angle(const gd_ms_tooth *t);
+
+/* ---- fillet_foundation.c: Sainsot, Velex & Duverger 2004 ---- */
+double gd_ms_fillet_compliance(const gd_ms_tooth *t, double tc);
+
+/* ---- hertz.c: Yang & Lin 1987 line contact, per unit face width ---- */
+double gd_ms_hertz_compliance(double E1, double nu1, double E2, double nu2);
+
+/* ---- chebyshev.c: smooth functions on [a, b] tabulated at Chebyshev points ---- */
+typedef struct gd_ms_cheb {
+    int n;
+    double a, b;
+    double *x, *f; /* nodes (ascending) and values */
+} gd_ms_cheb;
+/* Tabulates f with n points, doubling n (up to nmax) until interpolation at the
+ * midpoints between nodes matches f to rtol. Returns 0, or -1 when out of memory. */
+int gd_ms_cheb_build(gd_ms_cheb *c, gd_ms_fn f, void *ctx, double a, double b, int n,
+                     int nmax, double rtol);
+double gd_ms_cheb_eval(const gd_ms_cheb *c, double x);
+void gd_ms_cheb_free(gd_ms_cheb *c);
+
+/* ---- stiffness laws: tooth-pair stiffness per unit face width (transverse plane,
+ * N/m per m) as a function of the contact position s on the line of action ---- */
+typedef double (*gd_ms_law_fn)(double s, const void *ctx);
+
+/* ---- slicing.c: pairs and slices in contact (002_... Sec. 2.1, Eq. 1) ---- */
+typedef struct gd_ms_slicing {
+    const gd_gear_pair_derived *d;
+    double face_width;
+    int slices;
+    gd_ms_law_fn law;
+    const void *law_ctx;
+    int nslots; /* load-share columns */
+} gd_ms_slicing;
+/* Transverse stiffness at driver angle theta; per-pair parts into pair_k[nslots]
+ * (may be NULL); returns the sum. *npairs = tooth pairs with contact. */
+double gd_ms_slicing_eval(const gd_ms_slicing *sl, double theta, double *pair_k, int *npairs);
+
+/* ---- energy_law.c: tooth-pair compliance by the potential energy method ---- */
+typedef struct gd_ms_energy_law {
+    gd_ms_tooth tooth[2];
+    double line_of_action; /* N1N2 */
+    double hertz;          /* Hertz compliance per unit width */
+    double rtol;
+    gd_ms_cheb table;      /* pair stiffness per unit width over [s_A, s_E] */
+} gd_ms_energy_law;
+/* Sets up the two teeth from the geometry; tabulates. Returns 0 or -1 (no memory). */
+int gd_ms_energy_law_init(gd_ms_energy_law *e, const gd_gear_pair_geometry *g,
+                          const gd_gear_pair_derived *d, double rtol);
+/* Direct (untabulated) pair stiffness per unit width at contact position s. */
+double gd_ms_energy_pair_stiffness(const gd_ms_energy_law *e, double s);
+double gd_ms_energy_law_eval(double s, const void *ctx); /* tabulated */
+void gd_ms_energy_law_free(gd_ms_energy_law *e);
+
+/* ---- iso6336.c: ISO 6336-1:2006 Method B stiffness, per unit face width, N/m^2,
+ * transverse plane ---- */
+typedef struct gd_ms_iso {
+    double c_th;        /* theoretical single stiffness 1/q' */
+    double C_M, C_R, C_B, E_factor;
+    double c_single;    /* c' */
+    double c_gamma_alpha, c_gamma_beta;
+} gd_ms_iso;
+void gd_ms_iso6336(const gd_gear_pair_geometry *g, const gd_gear_pair_derived *d, gd_ms_iso *iso);
+
+/* ---- single_pair_law.c: Cai & Hayashi 1994 (003_... Eq. 5) ---- */
+typedef struct gd_ms_cai_law {
+    double s_A, g_alpha; /* contact arc */
+    double k_single;     /* k_m per unit width: ISO c' */
+} gd_ms_cai_law;
+/* Factor k_s/k_m at xi = x/(eps p) in [0, 1]: 0.55 at the ends, 1 in the middle. */
+double gd_ms_cai_factor(double xi);
+double gd_ms_cai_law_eval(double s, const void *ctx);
+
+/* ---- square_wave.c: constant stiffness per tooth pair ---- */
+double gd_ms_square_law_eval(double s, const void *ctx); /* ctx: const double *c_single */
+
+/* ---- body_compliance.c: 003_... Eq. 6 ---- */
+/* Torsional stiffness of gear body i (N m/rad), or 0 when rigid. */
+double gd_ms_body_torsional_stiffness(const gd_gear_pair_geometry *g,
+                                      const gd_gear_pair_derived *d, int i);
+/* Series body stiffness along the normal line of action, N/m (0 when both rigid). */
+double gd_ms_body_stiffness(const gd_gear_pair_geometry *g, const gd_gear_pair_derived *d);
+
+/* ---- fourier.c ---- */
+/* Harmonics 1..H of n samples over one period: x ~ mean + sum amp cos(h w t + phase). */
+void gd_ms_fourier(const double *x, size_t n, int H, double *amp, double *phase);
+
+#endif

@@ -1,0 +1,89 @@
+/* Model queries and edits that do not involve parsing. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "geardyn/model.h"
+
+const char *const gd_dof_names[GD_NODE_DOFS] = {"x", "y", "z", "rx", "ry", "rz"};
+const char *const gd_coupling_names[3] = {"torsional", "lateral-torsional", "full"};
+
+unsigned gd_coupling_dof_mask(gd_coupling level)
+{
+    switch (level) {
+    case GD_COUPLING_TORSIONAL: return GD_DOF_BIT(GD_RZ);
+    case GD_COUPLING_LATERAL_TORSIONAL: return GD_DOFS_ALL & ~GD_DOF_BIT(GD_Z);
+    case GD_COUPLING_FULL: return GD_DOFS_ALL;
+    }
+    return GD_DOFS_ALL;
+}
+
+void gd_model_set_coupling(gd_model *model, gd_coupling level)
+{
+    for (int i = 0; i < model->nmeshes; i++) model->meshes[i].coupling = level;
+    model->dof_mask &= gd_coupling_dof_mask(level);
+}
+
+void gd_model_free(gd_model *model)
+{
+    if (!model) return;
+    for (int i = 0; i < model->nshafts; i++) free(model->shafts[i].sections);
+    for (int i = 0; i < model->nbearings; i++) {
+        free(model->bearings[i].table_speed);
+        free(model->bearings[i].table);
+    }
+    free(model->materials);
+    free(model->shafts);
+    free(model->nodes);
+    free(model->elements);
+    free(model->disks);
+    free(model->bearings);
+    free(model->springs);
+    free(model->meshes);
+    free(model);
+}
+
+int gd_model_find_node(const gd_model *model, const char *name)
+{
+    for (int i = 0; i < model->nnodes; i++)
+        if (!strcmp(model->nodes[i].name, name)) return i;
+    return -1;
+}
+
+int gd_model_find_shaft(const gd_model *model, const char *name)
+{
+    for (int i = 0; i < model->nshafts; i++)
+        if (!strcmp(model->shafts[i].name, name)) return i;
+    return -1;
+}
+
+int gd_model_find_mesh(const gd_model *model, const char *name)
+{
+    for (int i = 0; i < model->nmeshes; i++)
+        if (!strcmp(model->meshes[i].name, name)) return i;
+    return -1;
+}
+
+void gd_model_shaft_summary(const gd_model *model, int shaft, gd_shaft_summary *out)
+{
+    memset(out, 0, sizeof *out);
+    const gd_shaft *s = &model->shafts[shaft];
+    out->nnodes = s->nnodes;
+    for (int e = 0; e < model->nelements; e++) {
+        const gd_element *el = &model->elements[e];
+        if (el->shaft != shaft) continue;
+        const gd_material *mat = &model->materials[el->material];
+        double ro = 0.5 * el->outer_diameter, ri = 0.5 * el->inner_diameter;
+        double area = 3.14159265358979323846 * (ro * ro - ri * ri);
+        double m = mat->density * area * el->length;
+        out->mass += m;
+        out->polar_inertia += 0.5 * m * (ro * ro + ri * ri);
+        out->length += el->length;
+        out->nelements++;
+    }
+    for (int d = 0; d < model->ndisks; d++) {
+        const gd_disk *dk = &model->disks[d];
+        if (model->nodes[dk->node].shaft != shaft) continue;
+        out->mass += dk->mass;
+        out->polar_inertia += dk->polar_inertia;
+    }
+}
