@@ -40,7 +40,7 @@ gd_status gd_material_read(gd_yreader *r, const gd_ynode *map, const char *path,
         out->poisson = out->E / (2.0 * out->G) - 1.0;
         if (!(out->poisson > -1.0 && out->poisson < 0.5))
             return gd_yfail(r, gd_ymap_get(map, "G"), gd_ypath_key(p, sizeof p, path, "G"),
-                            "G must lie between E/3 and E/2 for an isotropic material",
+                            "G must be greater than E/3 (a Poisson's ratio below 0.5); steel: G = 0.385 E",
                             "E and G give a Poisson's ratio of %g", out->poisson);
     }
     return GD_OK;

@@ -79,7 +79,8 @@ gd_status gd_condense_setup(const gd_system *sys, const double *K, const double 
                 int s = c->slave[k];
                 if (D[s + (size_t)j * N] != 0.0 || D[j + (size_t)s * N] != 0.0) {
                     gd_system_dof_label(sys, s, label, sizeof label);
-                    gd_error_set(err, GD_EINPUT, sys->model->file, 0, 0, label,
+                    const gd_loc *loc = &sys->model->nodes[sys->dof_node[s]].loc;
+                    gd_error_set(err, GD_EINPUT, sys->model->file, loc->line, loc->column, label,
                                  "give the node a mass or inertia (a disk), or remove the "
                                  "damper on it",
                                  "DOF %s has damping or gyroscopic terms but no mass", label);
@@ -114,7 +115,8 @@ gd_status gd_condense_setup(const gd_system *sys, const double *K, const double 
     if (info != 0 || !(mindiag > 1e-13 * maxdiag)) {
         int bad = c->slave[info > 0 ? info - 1 : 0];
         gd_system_dof_label(sys, bad, label, sizeof label);
-        gd_error_set(err, GD_EINPUT, sys->model->file, 0, 0, label,
+        const gd_loc *loc = &sys->model->nodes[sys->dof_node[bad]].loc;
+        gd_error_set(err, GD_EINPUT, sys->model->file, loc->line, loc->column, label,
                      "give the node a mass or inertia, or a spring that holds it",
                      "the massless DOFs cannot be condensed: DOF %s has no mass and is not "
                      "held by any stiffness",

@@ -34,7 +34,12 @@ static gd_status get_list(parser *p, const gd_ynode *map, const char *key, const
     char q[200];
     gd_ypath_key(q, sizeof q, path, key);
     if (!*list) {
-        if (required) return gd_yfail(&p->r, map, q, NULL, "required list '%s' is missing", key);
+        if (required) {
+            char hint[160];
+            snprintf(hint, sizeof hint, "add `%s:` with a list of entries (see docs/model-format.md)",
+                     key);
+            return gd_yfail(&p->r, map, q, hint, "required list '%s' is missing", key);
+        }
         return GD_OK;
     }
     return gd_yexpect(&p->r, *list, GD_Y_SEQ, q);
@@ -96,10 +101,52 @@ static gd_status material_index(parser *p, const gd_ynode *ref, const char *path
             *out = i;
             return GD_OK;
         }
-    char hint[256];
-    snprintf(hint, sizeof hint,
-             "define it under `materials: {%s: {density: ..., E: ..., poisson: ...}}`", ref->text);
+    char hint[300];
+    if (p->m->nmaterials) {
+        int used = snprintf(hint, sizeof hint, "defined materials:");
+        for (int i = 0; i < p->m->nmaterials && used < (int)sizeof hint - 70; i++)
+            used += snprintf(hint + used, sizeof hint - (size_t)used, " %s",
+                             p->m->materials[i].name);
+        snprintf(hint + used, sizeof hint - (size_t)used, "; or define '%s' under `materials:`",
+                 ref->text);
+    } else {
+        snprintf(hint, sizeof hint,
+                 "define it under `materials: {%s: {density: ..., E: ..., poisson: ...}}`",
+                 ref->text);
+    }
     return gd_yfail(&p->r, ref, path, hint, "unknown material '%s'", ref->text);
+}
+
+/* Shafts, bearings, springs and meshes share one namespace (modal energy is reported
+ * per component by name): a new name must not repeat an earlier one. */
+static gd_status check_component_name(parser *p, const char *name, const gd_ynode *map,
+                                      const char *path, const char *kind, int index)
+{
+    const gd_model *m = p->m;
+    const char *what = NULL;
+    int line = 0;
+    for (int i = 0; i < m->nshafts && !what; i++)
+        if ((strcmp(kind, "shaft") || i < index) && !strcmp(m->shafts[i].name, name))
+            what = "shaft", line = m->shafts[i].loc.line;
+    for (int i = 0; i < m->nbearings && !what; i++)
+        if ((strcmp(kind, "bearing") || i < index) && !strcmp(m->bearings[i].name, name))
+            what = "bearing", line = m->bearings[i].loc.line;
+    for (int i = 0; i < m->nsprings && !what; i++)
+        if ((strcmp(kind, "spring") || i < index) && !strcmp(m->springs[i].name, name))
+            what = "spring", line = m->springs[i].loc.line;
+    for (int i = 0; i < m->nmeshes && !what; i++)
+        if ((strcmp(kind, "mesh") || i < index) && !strcmp(m->meshes[i].name, name))
+            what = "mesh", line = m->meshes[i].loc.line;
+    if (!what) return GD_OK;
+    char q[200];
+    const gd_ynode *nn = gd_ymap_get(map, "name");
+    gd_ypath_key(q, sizeof q, path, "name");
+    const char *hint = "give every shaft, bearing, spring and mesh its own name";
+    if (!strcmp(what, kind))
+        return gd_yfail(&p->r, nn ? nn : map, q, hint, "duplicate %s name '%s' (first on line %d)",
+                        kind, name, line);
+    return gd_yfail(&p->r, nn ? nn : map, q, hint, "name '%s' is already used by the %s on line %d",
+                    name, what, line);
 }
 
 /* ---- shafts and nodes ---- */
@@ -120,6 +167,7 @@ static int cmp_double(const void *a, const void *b)
 typedef struct station {
     double pos;
     const gd_ynode *node_map; /* named node at this position, or NULL */
+    int list_index;           /* its index in `nodes:` */
 } station;
 
 static int cmp_station(const void *a, const void *b)
@@ -127,7 +175,7 @@ static int cmp_station(const void *a, const void *b)
     return cmp_double(&((const station *)a)->pos, &((const station *)b)->pos);
 }
 
-static gd_status add_node(parser *p, int shaft, double pos, const char *name, int named,
+static gd_status add_node(parser *p, int shaft, double pos, const char *name, int list_index,
                           gd_loc loc, int *cap)
 {
     gd_model *m = p->m;
@@ -142,12 +190,13 @@ static gd_status add_node(parser *p, int shaft, double pos, const char *name, in
     memset(n, 0, sizeof *n);
     n->shaft = shaft;
     n->position = pos;
-    n->named = named;
+    n->named = name != NULL;
+    n->list_index = list_index;
     n->loc = loc;
-    if (named)
+    if (name)
         snprintf(n->name, sizeof n->name, "%s", name);
     else
-        snprintf(n->name, sizeof n->name, "%.40s@%d", m->shafts[shaft].name,
+        snprintf(n->name, sizeof n->name, "%s@%d", m->shafts[shaft].name,
                  m->nnodes - 1 - m->shafts[shaft].first_node);
     return GD_OK;
 }
@@ -188,15 +237,12 @@ static gd_status parse_shaft(parser *p, const gd_ynode *sm, const char *path, in
     snprintf(fallback, sizeof fallback, "shaft%d", index + 1);
     if ((st = read_name(p, sm, path, sh->name, fallback, 0))) return st;
     sh->loc = loc_of(sm);
-    for (int i = 0; i < index; i++)
-        if (!strcmp(m->shafts[i].name, sh->name))
-            return gd_yfail(r, gd_ymap_get(sm, "name"), gd_ypath_key(q, sizeof q, path, "name"),
-                            "give every shaft its own name", "duplicate shaft name '%s'",
-                            sh->name);
+    if ((st = check_component_name(p, sh->name, sm, path, "shaft", index))) return st;
     sh->speed_ratio = 1.0;
     if ((st = gd_yread_qty(r, sm, "speed_ratio", path, GD_QTY_DIMLESS, 0, &sh->speed_ratio,
                            &sh->speed_ratio_given)))
         return st;
+    sh->speed_ratio_loc = loc_of(gd_ymap_get(sm, "speed_ratio"));
     long per_section = 1;
     double max_len = 0;
     int has_per = 0, has_max = 0;
@@ -259,12 +305,14 @@ static gd_status parse_shaft(parser *p, const gd_ynode *sm, const char *path, in
             long ne = 0;
             int has_ne = 0;
             if ((st = gd_yread_int(r, s, "elements", sp, 1, 10000, 0, &ne, &has_ne))) return st;
-            if (has_ne)
+            if (has_ne) {
                 sec->elements = (int)ne;
-            else if (has_max)
+            } else if (has_max) {
+                sec->max_element_length = max_len;
                 sec->elements = (int)ceil(sec->length / max_len - 1e-9);
-            else
+            } else {
                 sec->elements = (int)per_section;
+            }
             total += sec->length;
             sh->nsections++;
         }
@@ -316,8 +364,16 @@ static gd_status parse_shaft(parser *p, const gd_ynode *sm, const char *path, in
             return gd_yfail(r, gd_ymap_get(nm, "at"), gd_ypath_key(ap, sizeof ap, np, "at"),
                             hint, "position %g m lies outside the shaft", at);
         }
+        if (strlen(nn) >= GD_NAME_MAX) {
+            free(sts);
+            char fp[220];
+            return gd_yfail(r, gd_ymap_get(nm, "name"), gd_ypath_key(fp, sizeof fp, np, "name"),
+                            "use a shorter name", "name longer than %d characters",
+                            GD_NAME_MAX - 1);
+        }
         sts[k].pos = at;
         sts[k].node_map = nm;
+        sts[k].list_index = (int)i;
         k++;
     }
     qsort(sts, k, sizeof *sts, cmp_station);
@@ -341,6 +397,7 @@ static gd_status parse_shaft(parser *p, const gd_ynode *sm, const char *path, in
                 }
                 snprintf(ln->name, sizeof ln->name, "%s", gd_ymap_get(nm, "name")->text);
                 ln->named = 1;
+                ln->list_index = sts[i].list_index;
                 ln->loc = loc_of(nm);
             }
             continue;
@@ -356,10 +413,12 @@ static gd_status parse_shaft(parser *p, const gd_ynode *sm, const char *path, in
                 acc += sh->sections[sec].length;
             }
             const gd_section *s = &sh->sections[sec];
-            int nel = (int)lround(s->elements * (b - a) / s->length);
+            int nel = s->max_element_length > 0
+                          ? (int)ceil((b - a) / s->max_element_length - 1e-9)
+                          : (int)lround(s->elements * (b - a) / s->length);
             if (nel < 1) nel = 1;
             for (int e = 1; e < nel; e++) {
-                if ((st = add_node(p, index, a + (b - a) * e / nel, NULL, 0, s->loc, node_cap)) ||
+                if ((st = add_node(p, index, a + (b - a) * e / nel, NULL, -1, s->loc, node_cap)) ||
                     (st = add_element(p, index, sec, m->nnodes - 2, m->nnodes - 1, elem_cap))) {
                     free(sts);
                     return st;
@@ -367,16 +426,16 @@ static gd_status parse_shaft(parser *p, const gd_ynode *sm, const char *path, in
             }
             (void)seg_start;
             const char *name = nm ? gd_ymap_get(nm, "name")->text : NULL;
-            if ((st = add_node(p, index, b, name, nm != NULL, nm ? loc_of(nm) : s->loc,
-                               node_cap)) ||
+            if ((st = add_node(p, index, b, name, nm ? sts[i].list_index : -1,
+                               nm ? loc_of(nm) : s->loc, node_cap)) ||
                 (st = add_element(p, index, sec, m->nnodes - 2, m->nnodes - 1, elem_cap))) {
                 free(sts);
                 return st;
             }
         } else {
             const char *name = nm ? gd_ymap_get(nm, "name")->text : NULL;
-            if ((st = add_node(p, index, sts[i].pos, name, nm != NULL, loc_of(nm ? nm : sm),
-                               node_cap))) {
+            if ((st = add_node(p, index, sts[i].pos, name, nm ? sts[i].list_index : -1,
+                               loc_of(nm ? nm : sm), node_cap))) {
                 free(sts);
                 return st;
             }
@@ -385,9 +444,6 @@ static gd_status parse_shaft(parser *p, const gd_ynode *sm, const char *path, in
     }
     free(sts);
     sh->nnodes = m->nnodes - sh->first_node;
-    for (int i = sh->first_node; i < m->nnodes; i++)
-        if (strlen(m->nodes[i].name) >= GD_NAME_MAX - 1)
-            return gd_yfail(r, sm, path, "use a shorter name", "node name too long");
     return GD_OK;
 }
 
@@ -396,11 +452,22 @@ static gd_status check_unique_node_names(parser *p)
     gd_model *m = p->m;
     for (int i = 0; i < m->nnodes; i++)
         for (int j = 0; j < i; j++)
-            if (!strcmp(m->nodes[i].name, m->nodes[j].name))
-                return gd_error_set(p->r.err, GD_EINPUT, p->r.file, m->nodes[i].loc.line,
-                                    m->nodes[i].loc.column, "nodes", "give every node its own name",
-                                    "node name '%s' is used twice (also on line %d)",
-                                    m->nodes[i].name, m->nodes[j].loc.line);
+            if (!strcmp(m->nodes[i].name, m->nodes[j].name)) {
+                /* the later of the two, by its place in the file */
+                const gd_node *n = m->nodes[i].loc.line >= m->nodes[j].loc.line ? &m->nodes[i]
+                                                                                  : &m->nodes[j];
+                const gd_node *o = n == &m->nodes[i] ? &m->nodes[j] : &m->nodes[i];
+                char field[160];
+                if (n->list_index >= 0)
+                    snprintf(field, sizeof field, "shafts[%d].nodes[%d].name", n->shaft,
+                             n->list_index);
+                else
+                    snprintf(field, sizeof field, "shafts[%d].name", n->shaft);
+                return gd_error_set(p->r.err, GD_EINPUT, p->r.file, n->loc.line, n->loc.column,
+                                    field, "give every node its own name",
+                                    "node name '%s' is used twice (also on line %d)", n->name,
+                                    o->loc.line);
+            }
     return GD_OK;
 }
 
@@ -482,6 +549,14 @@ static gd_status parse_disks(parser *p)
         if ((st = read_name(p, dm, q, d->name, fb, 0)) ||
             (st = node_ref(p, dm, "node", q, 1, &d->node)))
             return st;
+        for (size_t j = 0; j < i; j++)
+            if (!strcmp(p->m->disks[j].name, d->name)) {
+                char np[100];
+                return gd_yfail(&p->r, gd_ymap_get(dm, "name"), gd_ypath_key(np, sizeof np, q, "name"),
+                                "give every disk its own name",
+                                "duplicate disk name '%s' (also on line %d)", d->name,
+                                p->m->disks[j].loc.line);
+            }
         d->loc = loc_of(dm);
         const gd_ynode *geom = gd_ymap_get(dm, "geometry");
         int has_m = 0, has_ip = 0, has_id = 0;
@@ -508,9 +583,13 @@ static gd_status parse_disks(parser *p)
             if ((st = material_index(p, gd_ymap_get(geom, "material"),
                                      gd_ypath_key(mp, sizeof mp, gp, "material"), &mi)))
                 return st;
-            if (id >= od)
-                return gd_yfail(&p->r, geom, gp, "the bore must be smaller than the outer diameter",
-                                "inner diameter is not less than outer diameter");
+            if (id >= od) {
+                char fp[180];
+                return gd_yfail(&p->r, gd_ymap_get(geom, "inner_diameter"),
+                                gd_ypath_key(fp, sizeof fp, gp, "inner_diameter"),
+                                "the bore must be smaller than the outer diameter",
+                                "inner diameter %g m is not less than outer diameter %g m", id, od);
+            }
             double rho = p->m->materials[mi].density;
             d->mass = rho * PI / 4.0 * (od * od - id * id) * w;
             /* thick disk: Ip = m (Ro^2 + Ri^2)/2, Id = Ip/2 + m w^2/12 */
@@ -613,11 +692,13 @@ static gd_status parse_bearings(parser *p)
         snprintf(fb, sizeof fb, "bearing%zu", i + 1);
         b->loc = loc_of(bm);
         if ((st = read_name(p, bm, q, b->name, fb, 0)) ||
+            (st = check_component_name(p, b->name, bm, q, "bearing", (int)i)) ||
             (st = node_ref(p, bm, "node", q, 1, &b->node)) ||
             (st = node_ref(p, bm, "to", q, 0, &b->node2)))
             return st;
+        char tp0[100];
         if (b->node2 == b->node)
-            return gd_yfail(&p->r, gd_ymap_get(bm, "to"), q,
+            return gd_yfail(&p->r, gd_ymap_get(bm, "to"), gd_ypath_key(tp0, sizeof tp0, q, "to"),
                             "connect two different nodes, or omit `to` for ground",
                             "bearing connects a node to itself");
         int any = 0;
@@ -687,6 +768,7 @@ static gd_status parse_springs(parser *p)
         s->loc = loc_of(sm);
         int dof = 0, has_k = 0, has_c = 0;
         if ((st = read_name(p, sm, q, s->name, fb, 0)) ||
+            (st = check_component_name(p, s->name, sm, q, "spring", (int)i)) ||
             (st = node_ref(p, sm, "node", q, 1, &s->node1)) ||
             (st = node_ref(p, sm, "to", q, 0, &s->node2)) ||
             (st = gd_yread_str(&p->r, sm, "dof", q, DOF_CHOICES,
@@ -698,8 +780,9 @@ static gd_status parse_springs(parser *p)
         if ((st = gd_yread_qty(&p->r, sm, "stiffness", q, kq, GD_YNONNEG, &s->stiffness, &has_k)) ||
             (st = gd_yread_qty(&p->r, sm, "damping", q, cq, GD_YNONNEG, &s->damping, &has_c)))
             return st;
+        char tp0[100];
         if (s->node2 == s->node1)
-            return gd_yfail(&p->r, gd_ymap_get(sm, "to"), q,
+            return gd_yfail(&p->r, gd_ymap_get(sm, "to"), gd_ypath_key(tp0, sizeof tp0, q, "to"),
                             "connect two different nodes, or omit `to` for ground",
                             "spring connects a node to itself");
         if (!(s->stiffness > 0) && !(s->damping > 0))
@@ -848,14 +931,10 @@ static gd_status propagate_speeds(parser *p, const gd_ynode *list)
     gd_status st = GD_OK;
     /* every connected group starts from its own root: the reference shaft first */
     for (int start = -1; start < m->nshafts && !st; start++) {
+        /* a shaft not geared to the reference keeps its own speed_ratio (default 1) */
         int root = start < 0 ? m->reference_shaft : start;
         if (seen[root]) continue;
         seen[root] = 1;
-        double r0 = m->shafts[root].speed_ratio;
-        if (root == m->reference_shaft && !m->shafts[root].speed_ratio_given) r0 = 1.0;
-        m->shafts[root].speed_ratio = root == m->reference_shaft
-                                          ? (m->shafts[root].speed_ratio_given ? r0 : 1.0)
-                                          : r0;
         int head = 0, tail = 0;
         queue[tail++] = root;
         while (head < tail && !st) {
@@ -876,18 +955,23 @@ static gd_status propagate_speeds(parser *p, const gd_ynode *list)
                 }
                 gd_shaft *o = &m->shafts[other];
                 if (!seen[other]) {
-                    if (o->speed_ratio_given && fabs(o->speed_ratio - ratio) > 1e-6 * fabs(ratio))
-                        st = gd_error_set(p->r.err, GD_EINPUT, p->r.file, o->loc.line,
-                                          o->loc.column, "speed_ratio",
+                    if (o->speed_ratio_given && fabs(o->speed_ratio - ratio) > 1e-6 * fabs(ratio)) {
+                        char field[100];
+                        snprintf(field, sizeof field, "shafts[%d].speed_ratio", other);
+                        st = gd_error_set(p->r.err, GD_EINPUT, p->r.file, o->speed_ratio_loc.line,
+                                          o->speed_ratio_loc.column, field,
                                           "remove speed_ratio: it follows from the gear meshes",
                                           "shaft '%s' has speed_ratio %g but its meshes give %g",
                                           o->name, o->speed_ratio, ratio);
+                    }
                     o->speed_ratio = ratio;
                     seen[other] = 1;
                     queue[tail++] = other;
                 } else if (fabs(o->speed_ratio - ratio) > 1e-6 * fabs(ratio)) {
+                    char field[100];
+                    snprintf(field, sizeof field, "meshes[%d]", k);
                     st = gd_error_set(p->r.err, GD_EINPUT, p->r.file, g->loc.line, g->loc.column,
-                                      "meshes", "check the radii or teeth of the meshes in the loop",
+                                      field, "check the radii or teeth of the meshes in the loop",
                                       "mesh '%s' closes a loop with inconsistent gear ratios "
                                       "(%g vs %g for shaft '%s')",
                                       g->name, ratio, o->speed_ratio, o->name);
@@ -932,11 +1016,10 @@ static gd_status parse_meshes(parser *p)
         for (size_t i = 0; i < list->n; i++) {
             char q[64];
             gd_ypath_index(q, sizeof q, "meshes", i);
-            if ((st = parse_mesh(p, list->items[i], q, &p->m->meshes[i]))) return st;
-            for (size_t j = 0; j < i; j++)
-                if (!strcmp(p->m->meshes[j].name, p->m->meshes[i].name))
-                    return gd_yfail(&p->r, list->items[i], q, "give every mesh its own name",
-                                    "duplicate mesh name '%s'", p->m->meshes[i].name);
+            if ((st = parse_mesh(p, list->items[i], q, &p->m->meshes[i])) ||
+                (st = check_component_name(p, p->m->meshes[i].name, list->items[i], q, "mesh",
+                                           (int)i)))
+                return st;
             p->m->nmeshes++;
         }
     }
@@ -987,10 +1070,15 @@ static gd_status parse_globals(parser *p)
     int rot = 0;
     if ((st = gd_yread_str(r, p->root, "rotation", "", ROTATIONS, 0, NULL, &rot, NULL))) return st;
     gd_shaft *rs = &m->shafts[m->reference_shaft];
-    if (rs->speed_ratio_given && fabs(fabs(rs->speed_ratio) - 1.0) > 1e-12)
-        return gd_error_set(r->err, GD_EINPUT, r->file, rs->loc.line, rs->loc.column,
-                            "speed_ratio", "the reference shaft turns at the reference speed",
+    if (rs->speed_ratio_given && fabs(fabs(rs->speed_ratio) - 1.0) > 1e-12) {
+        char field[100];
+        snprintf(field, sizeof field, "shafts[%d].speed_ratio", m->reference_shaft);
+        return gd_error_set(r->err, GD_EINPUT, r->file, rs->speed_ratio_loc.line,
+                            rs->speed_ratio_loc.column, field,
+                            "the reference shaft turns at the reference speed; remove "
+                            "speed_ratio or use `rotation: cw` for the opposite sense",
                             "reference shaft '%s' has speed_ratio %g", rs->name, rs->speed_ratio);
+    }
     if (!rs->speed_ratio_given) rs->speed_ratio = rot == 0 ? 1.0 : -1.0;
     rs->speed_ratio_given = 1;
     return GD_OK;
@@ -999,9 +1087,12 @@ static gd_status parse_globals(parser *p)
 static gd_status parse(parser *p)
 {
     gd_status st;
-    if (!p->root)
-        return gd_error_set(p->r.err, GD_EINPUT, p->r.file, 1, 1, "",
-                            "see docs/model-format.md for a complete example", "the file is empty");
+    const gd_ynode *rt = p->root;
+    if (!rt || (rt->kind == GD_Y_SCALAR && !rt->quoted &&
+                (!rt->text[0] || !strcmp(rt->text, "~") || !strcmp(rt->text, "null"))))
+        return gd_error_set(p->r.err, GD_EINPUT, p->r.file, rt ? rt->line : 1, 1, "",
+                            "see docs/model-format.md for a complete example",
+                            "the file is empty: no model in it");
     if ((st = gd_yexpect(&p->r, p->root, GD_Y_MAP, "")) ||
         (st = gd_ycheck_keys(&p->r, p->root, "", TOP_KEYS)))
         return st;

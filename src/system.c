@@ -30,7 +30,9 @@ static void scatter(assembler *as, gd_trip *t, const double *local, int n, const
             double v = scale * local[a * n + b];
             if (v == 0.0) continue;
             if (gd_trip_add(t, idx[a], idx[b], v)) as->fail = 1;
-            as->used[idx[a]] = as->used[idx[b]] = 1;
+            /* a gyroscopic term alone does not make a DOF: with no inertia, stiffness or
+             * damping it has nothing to act on and is dropped with its G entries */
+            if (t != &as->G) as->used[idx[a]] = as->used[idx[b]] = 1;
         }
     }
 }

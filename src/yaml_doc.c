@@ -6,6 +6,18 @@
 #include <string.h>
 #include <yaml.h>
 
+/* libyaml's problem, and where the unfinished construct began when it knows. */
+static gd_status syntax_error(yaml_parser_t *p, const char *file, gd_error *err)
+{
+    char ctx[160] = "";
+    if (p->context && p->context_mark.line < p->problem_mark.line)
+        snprintf(ctx, sizeof ctx, " (%s on line %d)", p->context, (int)p->context_mark.line + 1);
+    return gd_error_set(err, GD_EINPUT, file, (int)p->problem_mark.line + 1,
+                        (int)p->problem_mark.column + 1, "",
+                        "check indentation, colons, quotes and brackets near this point",
+                        "YAML syntax error: %s%s", p->problem ? p->problem : "unknown problem", ctx);
+}
+
 static gd_ynode *node_new(gd_ykind kind, const yaml_mark_t *mark)
 {
     gd_ynode *n = calloc(1, sizeof *n);
@@ -87,11 +99,7 @@ static gd_status build(yaml_parser_t *p, yaml_event_t *ev, const char *file, gd_
             yaml_event_t e;
             if (!yaml_parser_parse(p, &e)) {
                 node_free(n);
-                return gd_error_set(err, GD_EINPUT, file, (int)p->problem_mark.line + 1,
-                                    (int)p->problem_mark.column + 1, "",
-                                    "check indentation, colons and brackets near this point",
-                                    "YAML syntax error: %s",
-                                    p->problem ? p->problem : "unknown problem");
+                return syntax_error(p, file, err);
             }
             if (e.type == YAML_SEQUENCE_END_EVENT || e.type == YAML_MAPPING_END_EVENT) {
                 yaml_event_delete(&e);
@@ -127,11 +135,7 @@ static gd_status build(yaml_parser_t *p, yaml_event_t *ev, const char *file, gd_
                 if (!yaml_parser_parse(p, &e2)) {
                     node_free(key);
                     node_free(n);
-                    return gd_error_set(err, GD_EINPUT, file, (int)p->problem_mark.line + 1,
-                                        (int)p->problem_mark.column + 1, "",
-                                        "check indentation, colons and brackets near this point",
-                                        "YAML syntax error: %s",
-                                        p->problem ? p->problem : "unknown problem");
+                    return syntax_error(p, file, err);
                 }
                 st = build(p, &e2, file, &value, err, depth + 1);
                 yaml_event_delete(&e2);
@@ -168,10 +172,7 @@ static gd_status load(yaml_parser_t *p, const char *name, gd_ydoc **out, gd_erro
     for (;;) {
         yaml_event_t ev;
         if (!yaml_parser_parse(p, &ev)) {
-            st = gd_error_set(err, GD_EINPUT, name, (int)p->problem_mark.line + 1,
-                              (int)p->problem_mark.column + 1, "",
-                              "check indentation, colons and brackets near this point",
-                              "YAML syntax error: %s", p->problem ? p->problem : "unknown");
+            st = syntax_error(p, name, err);
             break;
         }
         yaml_event_type_t type = ev.type;

@@ -54,10 +54,20 @@ gd_status gd_yfail(gd_yreader *r, const gd_ynode *n, const char *path, const cha
                         hint, "%s", msg);
 }
 
+static const char *kind_hint(gd_ykind kind)
+{
+    switch (kind) {
+    case GD_Y_SCALAR: return "write a single value here, e.g. `key: 1.5`";
+    case GD_Y_SEQ: return "write a list here: `- item` lines or [a, b]";
+    case GD_Y_MAP: return "write `key: value` entries here (see docs/model-format.md)";
+    }
+    return NULL;
+}
+
 gd_status gd_yexpect(gd_yreader *r, const gd_ynode *n, gd_ykind kind, const char *path)
 {
     if (n && n->kind == kind) return GD_OK;
-    return gd_yfail(r, n, path, NULL, "expected %s, found %s", gd_ykind_name(kind),
+    return gd_yfail(r, n, path, kind_hint(kind), "expected %s, found %s", gd_ykind_name(kind),
                     n ? gd_ykind_name(n->kind) : "nothing");
 }
 
@@ -124,12 +134,16 @@ static gd_status lookup(gd_yreader *r, const gd_ynode *map, const char *key, con
     *val = gd_ymap_get(map, key);
     if (present) *present = *val != NULL;
     if (!*val) {
-        if (flags & GD_YREQ)
-            return gd_yfail(r, map, p, NULL, "required key '%s' is missing", key);
+        if (flags & GD_YREQ) {
+            char hint[160];
+            snprintf(hint, sizeof hint, "add `%s: ...` to this map (see docs/model-format.md)",
+                     key);
+            return gd_yfail(r, map, p, hint, "required key '%s' is missing", key);
+        }
         return GD_OK;
     }
     if ((*val)->kind != GD_Y_SCALAR)
-        return gd_yfail(r, *val, p, NULL, "expected a single value, found %s",
+        return gd_yfail(r, *val, p, kind_hint(GD_Y_SCALAR), "expected a single value, found %s",
                         gd_ykind_name((*val)->kind));
     return GD_OK;
 }
@@ -138,8 +152,8 @@ gd_status gd_yread_node_qty(gd_yreader *r, const gd_ynode *n, const char *path, 
                             int flags, double *out)
 {
     if (!n || n->kind != GD_Y_SCALAR)
-        return gd_yfail(r, n, path, NULL, "expected a number, found %s",
-                        n ? gd_ykind_name(n->kind) : "nothing");
+        return gd_yfail(r, n, path, "write a number, optionally with a unit, e.g. 0.25 or \"25 mm\"",
+                        "expected a number, found %s", n ? gd_ykind_name(n->kind) : "nothing");
     double v;
     char why[200], hint[200];
     if (gd_parse_quantity(n->text, qty, &v, why, sizeof why)) {

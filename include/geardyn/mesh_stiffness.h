@@ -24,15 +24,15 @@
 
 /* One gear of a pair. Coefficients are in units of the normal module. */
 typedef struct gd_gear_geometry {
-    int teeth;                  /* z >= 5 */
-    double profile_shift;       /* x (coefficient), default 0 */
-    double addendum_coef;       /* h_a*, default 1.0 */
-    double dedendum_coef;       /* h_f* of the basic rack, default 1.25 */
-    double fillet_radius_coef;  /* rho_fP* of the basic rack tip, default 0.38 */
-    double tip_radius;          /* m; 0 = derive r + (h_a* + x - k) m_n */
-    double root_radius;         /* m; 0 = derive r - (h_f* - x) m_n */
-    double bore_radius;         /* m; hub/bore radius for the fillet foundation; 0 = derive */
-    double E, poisson;          /* Pa, - */
+    int teeth;                 /* z >= 5 */
+    double profile_shift;      /* x (coefficient), default 0 */
+    double addendum_coef;      /* h_a*, default 1.0 */
+    double dedendum_coef;      /* h_f* of the basic rack, default 1.25 */
+    double fillet_radius_coef; /* rho_fP* of the basic rack tip, default 0.38 */
+    double tip_radius;         /* m; 0 = derive r + (h_a* + x - k) m_n */
+    double root_radius;        /* m; 0 = derive r - (h_f* - x) m_n */
+    double bore_radius;        /* m; hub/bore radius for the fillet foundation; 0 = derive */
+    double E, poisson;         /* Pa, - */
     /* gear body in series (003_... Eq. 6): either a torsional stiffness or a web */
     double body_torsional_stiffness; /* N m/rad; 0 = from the web, or rigid if no web */
     double web_thickness;            /* m; 0 = solid body */
@@ -59,7 +59,7 @@ typedef struct gd_gear_pair_derived {
     double transverse_module, transverse_pressure_angle; /* m_t, alpha_t */
     double working_pressure_angle;                       /* alpha_wt */
     double base_helix_angle;                             /* beta_b */
-    double center_distance, reference_center_distance;  /* a, a0 */
+    double center_distance, reference_center_distance;   /* a, a0 */
     double tip_shortening;                               /* k (coef): tip reduced by k m_n */
     double pitch_radius[2], base_radius[2], tip_radius[2], root_radius[2];
     double bore_radius[2];
@@ -67,10 +67,10 @@ typedef struct gd_gear_pair_derived {
     double half_angle_base[2]; /* half tooth angle on the base circle, rad */
     double tip_clearance[2];   /* a - r_a(i) - r_f(other), m */
     double base_pitch_transverse, base_pitch_normal; /* m */
-    double line_of_action;     /* N1N2, m */
-    double contact_start, contact_end; /* s_A, s_E, m */
-    double contact_length;     /* g_alpha = s_E - s_A */
-    double overlap_length;     /* g_beta = b tan(beta_b), along the line of action */
+    double line_of_action;                           /* N1N2, m */
+    double contact_start, contact_end;               /* s_A, s_E, m */
+    double contact_length;                           /* g_alpha = s_E - s_A */
+    double overlap_length; /* g_beta = b tan(beta_b), along the line of action */
     double contact_ratio_transverse, contact_ratio_face, contact_ratio_total;
     double mesh_period; /* 2 pi / z1, rad of driver rotation */
     double ratio;       /* z2 / z1 */
@@ -126,11 +126,11 @@ typedef struct gd_tvms_result {
     /* k(theta) ~ mean + sum_h amp[h-1] cos(h z1 theta + phase[h-1]), h = 1..harmonics */
     double *harmonic_amplitude, *harmonic_phase;
     /* ISO 6336-1 values (N/m, normal plane, whole face width), for every method */
-    double iso_single_stiffness;      /* c' b */
-    double iso_mesh_stiffness_alpha;  /* c_gamma_alpha b */
-    double iso_mesh_stiffness_beta;   /* c_gamma_beta b */
-    double body_stiffness;            /* series body stiffness, N/m; 0 if not used */
-    int slices;                       /* slices used */
+    double iso_single_stiffness;     /* c' b */
+    double iso_mesh_stiffness_alpha; /* c_gamma_alpha b */
+    double iso_mesh_stiffness_beta;  /* c_gamma_beta b */
+    double body_stiffness;           /* series body stiffness, N/m; 0 if not used */
+    int slices;                      /* slices used */
 } gd_tvms_result;
 
 gd_status gd_tvms_compute(const gd_gear_pair_geometry *g, const gd_tvms_options *opt,

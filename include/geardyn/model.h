@@ -7,6 +7,8 @@
 #include "geardyn/material.h"
 
 #define GD_NAME_MAX 64
+/* node names: a user's name, or a generated "<shaft>@<index>" */
+#define GD_NODE_NAME_MAX (GD_NAME_MAX + 16)
 
 /* Node DOFs, in this order: two lateral translations, axial translation, two tilts,
  * torsion about the shaft axis z. */
@@ -32,7 +34,8 @@ typedef struct gd_loc {
 typedef struct gd_section {
     double length, outer_diameter, inner_diameter;
     int material;
-    int elements; /* number of elements this section is split into */
+    int elements;              /* number of elements this section is split into */
+    double max_element_length; /* > 0: no element longer than this (0: use elements) */
     gd_loc loc;
 } gd_section;
 
@@ -44,13 +47,15 @@ typedef struct gd_shaft {
     double speed_ratio;     /* signed: speed = speed_ratio * reference speed, about +z */
     int speed_ratio_given;
     gd_loc loc;
+    gd_loc speed_ratio_loc; /* of the speed_ratio key, when given */
 } gd_shaft;
 
 typedef struct gd_node {
-    char name[GD_NAME_MAX]; /* user's name, or "<shaft>@<index>" for generated nodes */
+    char name[GD_NODE_NAME_MAX]; /* user's name, or "<shaft>@<index>" if generated */
     int shaft;
     double position; /* axial position along the shaft, m */
     int named;       /* named by the user */
+    int list_index;  /* index in the shaft's `nodes:` list, -1 if generated */
     gd_loc loc;
 } gd_node;
 
