@@ -23,6 +23,13 @@ int gd_cli_usage_error(const char *cmd, const char *fmt, ...)
 #endif
     ;
 
+/* Reports a getopt failure (c is '?' or ':'; optstring must start with ':').
+ * Returns 2. */
+int gd_cli_option_error(const char *cmd, int c, char **argv, int optind_now);
+
+/* Fails early (before any computing) when --out names something that is not a folder. */
+int gd_outdir_check(const char *dir, gd_error *err);
+
 /* Parses a positive whole number option value; returns 0 on success. */
 int gd_cli_parse_count(const char *text, long lo, long hi, long *out);
 

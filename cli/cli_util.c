@@ -27,6 +27,23 @@ int gd_cli_usage_error(const char *cmd, const char *fmt, ...)
     return GD_EXIT_INPUT;
 }
 
+int gd_cli_option_error(const char *cmd, int c, char **argv, int optind_now)
+{
+    const char *opt = argv[optind_now - 1];
+    if (c == ':') return gd_cli_usage_error(cmd, "option '%s' needs a value", opt);
+    return gd_cli_usage_error(cmd, "unknown option '%s'", opt);
+}
+
+int gd_outdir_check(const char *dir, gd_error *err)
+{
+    struct stat sb;
+    if (stat(dir, &sb) == 0 && !S_ISDIR(sb.st_mode))
+        return gd_error_set(err, GD_EIO, dir, 0, 0, "--out",
+                            "give a folder (it is created if missing)",
+                            "exists and is not a folder");
+    return GD_OK;
+}
+
 int gd_cli_parse_count(const char *text, long lo, long hi, long *out)
 {
     char *end;

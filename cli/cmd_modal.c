@@ -162,7 +162,7 @@ int gd_cmd_modal(int argc, char **argv)
     long nmodes = -1;
     optind = 1;
     opterr = 0;
-    while ((c = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+    while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
         switch (c) {
         case 's': speed = optarg; break;
         case 'n':
@@ -185,10 +185,13 @@ int gd_cmd_modal(int argc, char **argv)
         case 'j': json = 1; break;
         case 'o': out = optarg; break;
         case 'h': fputs(USAGE, stdout); return GD_EXIT_OK;
-        default: return gd_cli_usage_error("modal", "unknown or incomplete option '%s'", argv[optind - 1]);
+        default: return gd_cli_option_error("modal", c, argv, optind);
         }
     }
     if (optind != argc - 1) return gd_cli_usage_error("modal", "give exactly one model file");
+    gd_error oerr;
+    gd_error_clear(&oerr);
+    if (out && gd_outdir_check(out, &oerr)) return gd_cli_report(&oerr);
     gd_model *m;
     gd_system *s;
     int rc = gd_cli_load(argv[optind], coupling, &m, &s);
