@@ -39,6 +39,7 @@ void gd_model_free(gd_model *model)
     free(model->bearings);
     free(model->springs);
     free(model->meshes);
+    free(model->unbalances);
     free(model);
 }
 

@@ -19,7 +19,7 @@ typedef struct parser {
 static const char *const TOP_KEYS[] = {"title",  "description", "materials", "dofs",
                                        "shafts", "disks",       "bearings",  "springs",
                                        "meshes", "speed",       "reference_shaft",
-                                       "rotation", NULL};
+                                       "rotation", "unbalances", NULL};
 
 static gd_status oom(parser *p)
 {
@@ -1027,6 +1027,50 @@ static gd_status parse_meshes(parser *p)
     return propagate_speeds(p, list ? list : &empty);
 }
 
+/* ---- unbalances ---- */
+
+static const char *const UNBALANCE_KEYS[] = {"name", "node", "amount", "mass", "eccentricity",
+                                             "phase", NULL};
+
+static gd_status parse_unbalances(parser *p)
+{
+    const gd_ynode *list;
+    gd_status st = get_list(p, p->root, "unbalances", "", &list, 0);
+    if (st || !list) return st;
+    p->m->unbalances = calloc(list->n ? list->n : 1, sizeof *p->m->unbalances);
+    if (!p->m->unbalances) return oom(p);
+    for (size_t i = 0; i < list->n; i++) {
+        char q[64], fb[32];
+        gd_ypath_index(q, sizeof q, "unbalances", i);
+        const gd_ynode *um = list->items[i];
+        gd_unbalance *u = &p->m->unbalances[i];
+        if ((st = gd_yexpect(&p->r, um, GD_Y_MAP, q)) ||
+            (st = gd_ycheck_keys(&p->r, um, q, UNBALANCE_KEYS)))
+            return st;
+        snprintf(fb, sizeof fb, "unbalance%zu", i + 1);
+        u->loc = loc_of(um);
+        double mass = 0, ecc = 0;
+        int has_amount = 0, has_mass = 0, has_ecc = 0;
+        if ((st = read_name(p, um, q, u->name, fb, 0)) ||
+            (st = node_ref(p, um, "node", q, 1, &u->node)) ||
+            (st = gd_yread_qty(&p->r, um, "amount", q, GD_QTY_MASS_LENGTH, GD_YPOS, &u->amount,
+                               &has_amount)) ||
+            (st = gd_yread_qty(&p->r, um, "mass", q, GD_QTY_MASS, GD_YPOS, &mass, &has_mass)) ||
+            (st = gd_yread_qty(&p->r, um, "eccentricity", q, GD_QTY_LENGTH, GD_YPOS, &ecc,
+                               &has_ecc)) ||
+            (st = gd_yread_qty(&p->r, um, "phase", q, GD_QTY_ANGLE, 0, &u->phase, NULL)))
+            return st;
+        if (has_amount == (has_mass || has_ecc) || has_mass != has_ecc)
+            return gd_yfail(&p->r, um, q,
+                            "give `amount` (kg*m), or both `mass` and `eccentricity`",
+                            has_amount ? "amount given together with mass/eccentricity"
+                                       : "unbalance amount missing");
+        if (!has_amount) u->amount = mass * ecc;
+        p->m->nunbalances++;
+    }
+    return GD_OK;
+}
+
 /* ---- top level ---- */
 
 static gd_status parse_globals(parser *p)
@@ -1101,7 +1145,7 @@ static gd_status parse(parser *p)
         (st = gd_yread_str(&p->r, p->root, "description", "", NULL, 0, &s, NULL, NULL)) ||
         (st = parse_materials(p)) || (st = parse_shafts(p)) || (st = parse_globals(p)) ||
         (st = parse_disks(p)) || (st = parse_bearings(p)) || (st = parse_springs(p)) ||
-        (st = parse_meshes(p)))
+        (st = parse_meshes(p)) || (st = parse_unbalances(p)))
         return st;
     return GD_OK;
 }

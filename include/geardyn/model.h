@@ -116,6 +116,16 @@ typedef struct gd_mesh {
     gd_loc loc;
 } gd_mesh;
 
+/* Rotating unbalance at a node: amount = mass x eccentricity (kg m), turning with the
+ * node's shaft; phase is the angle of the heavy spot at t = 0 from +x, in the sense of
+ * the shaft's rotation. */
+typedef struct gd_unbalance {
+    char name[GD_NAME_MAX];
+    int node;
+    double amount, phase;
+    gd_loc loc;
+} gd_unbalance;
+
 typedef struct gd_model {
     char file[256];
     int nmaterials;
@@ -134,6 +144,8 @@ typedef struct gd_model {
     gd_spring *springs;
     int nmeshes;
     gd_mesh *meshes;
+    int nunbalances;
+    gd_unbalance *unbalances;
     unsigned dof_mask;    /* active node DOFs (GD_DOF_BIT) */
     int reference_shaft;  /* shaft whose speed is the reference speed */
     double speed;         /* reference speed, rad/s (0 unless given) */
