@@ -22,6 +22,7 @@ static const command COMMANDS[] = {
     /* {name, function, one-line summary}: keep in the order shown by --help */
     {"check", gd_cmd_check, "validate a model and summarise it"},
     {"modal", gd_cmd_modal, "natural frequencies, damping, whirl and energy of the modes"},
+    {"mesh-stiffness", gd_cmd_mesh_stiffness, "contact ratios and time-varying mesh stiffness from gear geometry"},
     {"version", cmd_version, "print the version"},
 };
 

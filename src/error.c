@@ -32,28 +32,33 @@ gd_status gd_error_set(gd_error *err, gd_status status, const char *file, int li
     return status;
 }
 
+/* Appends to buf at *n, never past size; keeps *n <= size - 1. */
+static void append(char *buf, size_t size, size_t *n, const char *fmt, ...)
+{
+    if (*n >= size - 1) return;
+    va_list ap;
+    va_start(ap, fmt);
+    int w = vsnprintf(buf + *n, size - *n, fmt, ap);
+    va_end(ap);
+    if (w > 0) *n += (size_t)w;
+    if (*n > size - 1) *n = size - 1;
+}
+
 size_t gd_error_format(const gd_error *err, char *buf, size_t size)
 {
     if (!buf || size == 0) return 0;
     buf[0] = '\0';
     if (!err) return 0;
     size_t n = 0;
-#define APPEND(...)                                                                                \
-    do {                                                                                           \
-        int w_ = snprintf(buf + n, size > n ? size - n : 0, __VA_ARGS__);                          \
-        if (w_ > 0) n += (size_t)w_;                                                               \
-        if (n >= size) n = size - 1;                                                               \
-    } while (0)
     if (err->file[0]) {
-        APPEND("%s", err->file);
-        if (err->line > 0) APPEND(":%d", err->line);
-        if (err->line > 0 && err->column > 0) APPEND(":%d", err->column);
-        APPEND(": ");
+        append(buf, size, &n, "%s", err->file);
+        if (err->line > 0) append(buf, size, &n, ":%d", err->line);
+        if (err->line > 0 && err->column > 0) append(buf, size, &n, ":%d", err->column);
+        append(buf, size, &n, ": ");
     }
-    if (err->field[0]) APPEND("%s: ", err->field);
-    APPEND("%s", err->message[0] ? err->message : gd_status_name(err->status));
-    if (err->hint[0]) APPEND("\n  hint: %s", err->hint);
-#undef APPEND
+    if (err->field[0]) append(buf, size, &n, "%s: ", err->field);
+    append(buf, size, &n, "%s", err->message[0] ? err->message : gd_status_name(err->status));
+    if (err->hint[0]) append(buf, size, &n, "\n  hint: %s", err->hint);
     return n;
 }
 

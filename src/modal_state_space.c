@@ -116,8 +116,9 @@ static lapack_int eig_selected(eig *e, hess *h, const int *want, int want_left)
             e->vcol[j] = ncols;
             ncols += e->wi[j] > 0 ? 2 : 1;
         }
-    e->VR = malloc((size_t)n2 * (ncols ? ncols : 1) * sizeof *e->VR);
-    e->VL = want_left ? malloc((size_t)n2 * (ncols ? ncols : 1) * sizeof *e->VL) : NULL;
+    /* zeroed: LAPACKE checks the (unused, initv = 'N') inputs for NaN */
+    e->VR = calloc((size_t)n2 * (ncols ? ncols : 1), sizeof *e->VR);
+    e->VL = want_left ? calloc((size_t)n2 * (ncols ? ncols : 1), sizeof *e->VL) : NULL;
     lapack_int *fl = malloc((size_t)(ncols ? ncols : 1) * sizeof *fl);
     lapack_int *fr = malloc((size_t)(ncols ? ncols : 1) * sizeof *fr);
     lapack_int info = -1000, m = 0;

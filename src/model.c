@@ -2,6 +2,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "geardyn/mesh_stiffness.h"
 #include "geardyn/model.h"
 
 const char *const gd_dof_names[GD_NODE_DOFS] = {"x", "y", "z", "rx", "ry", "rz"};
@@ -38,6 +39,7 @@ void gd_model_free(gd_model *model)
     free(model->disks);
     free(model->bearings);
     free(model->springs);
+    for (int i = 0; i < model->nmeshes; i++) gd_tvms_free(model->meshes[i].tvms);
     free(model->meshes);
     free(model->unbalances);
     free(model);

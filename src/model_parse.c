@@ -5,7 +5,9 @@
 #include <string.h>
 
 #include "geardyn/model.h"
+#include "geardyn/mesh_stiffness.h"
 #include "material_read.h"
+#include "mesh_geometry_read.h"
 #include "yaml_doc.h"
 
 #define PI 3.14159265358979323846
@@ -843,16 +845,16 @@ static gd_status parse_mesh(parser *p, const gd_ynode *mm, const char *q, gd_mes
                         p->m->nodes[g->driver].name, p->m->nodes[g->driven].name,
                         p->m->shafts[p->m->nodes[g->driver].shaft].name);
     double teeth[2] = {0, 0}, rb[2] = {0, 0}, rp[2] = {0, 0}, module = 0;
-    int has_teeth, has_rb, has_rp, has_mod;
+    int has_teeth, has_rb, has_rp, has_mod, has_pa, has_helix;
     g->pressure_angle = 20.0 * PI / 180.0;
     if ((st = read_pair(p, mm, "teeth", q, GD_QTY_DIMLESS, teeth, &has_teeth)) ||
         (st = read_pair(p, mm, "base_radius", q, GD_QTY_LENGTH, rb, &has_rb)) ||
         (st = read_pair(p, mm, "pitch_radius", q, GD_QTY_LENGTH, rp, &has_rp)) ||
         (st = gd_yread_qty(r, mm, "module", q, GD_QTY_LENGTH, GD_YPOS, &module, &has_mod)) ||
         (st = gd_yread_qty(r, mm, "pressure_angle", q, GD_QTY_ANGLE, GD_YNONNEG,
-                           &g->pressure_angle, NULL)) ||
+                           &g->pressure_angle, &has_pa)) ||
         (st = gd_yread_qty(r, mm, "helix_angle", q, GD_QTY_ANGLE, GD_YNONNEG, &g->helix_angle,
-                           NULL)) ||
+                           &has_helix)) ||
         (st = gd_yread_qty(r, mm, "line_of_centres", q, GD_QTY_ANGLE, 0, &g->line_of_centres,
                            NULL)))
         return st;
@@ -880,11 +882,30 @@ static gd_status parse_mesh(parser *p, const gd_ynode *mm, const char *q, gd_mes
                         "helix angle %g rad is not below 60 deg (plain numbers are radians)",
                         g->helix_angle);
     }
-    int ngiven = has_rb + has_rp + has_mod;
+    /* gear geometry (docs/mesh-stiffness.md): validated here so `check` catches it, and
+     * the source of the gear sizes when the mesh gives none */
+    const gd_ynode *geom_node = gd_ymap_get(mm, "geometry");
+    gd_gear_pair_geometry geom;
+    gd_tvms_options tvms_opt;
+    gd_gear_pair_derived der;
+    gd_tvms_options_init(&tvms_opt);
+    if (geom_node) {
+        if ((st = gd_gear_pair_read(r, p->root, mm, q, &geom, &tvms_opt))) return st;
+        if ((st = gd_gear_pair_derive(&geom, &der, r->err))) {
+            gd_gear_pair_error_locate(r->file, mm, q, r->err);
+            return st;
+        }
+        const char *dup = has_teeth ? "teeth" : has_pa ? "pressure_angle" : has_helix ? "helix_angle" : NULL;
+        if (dup)
+            return gd_yfail(r, gd_ymap_get(mm, dup), gd_ypath_key(fp, sizeof fp, q, dup),
+                            "with `geometry:` the teeth and angles come from it; remove this key",
+                            "'%s' given together with `geometry:`", dup);
+    }
+    int ngiven = has_rb + has_rp + has_mod + (geom_node != NULL);
     if (ngiven != 1)
         return gd_yfail(r, mm, q,
-                        "give exactly one of base_radius: [rb1, rb2], pitch_radius: [r1, r2], or "
-                        "module with teeth",
+                        "give exactly one of base_radius: [rb1, rb2], pitch_radius: [r1, r2], "
+                        "module with teeth, or geometry:",
                         ngiven ? "gear size given more than once" : "gear size missing");
     if (has_mod && !has_teeth)
         return gd_yfail(r, gd_ymap_get(mm, "module"), q, "add `teeth: [z1, z2]`",
@@ -902,16 +923,40 @@ static gd_status parse_mesh(parser *p, const gd_ynode *mm, const char *q, gd_mes
                             "radii and teeth numbers must give the same gear ratio",
                             "radius ratio %.6g differs from teeth ratio %.6g", rr, tr);
     }
-    int hand = 0, coupling = GD_COUPLING_FULL, hand_given = 0;
-    if ((st = gd_yread_str(r, mm, "hand", q, HANDS, 0, NULL, &hand, &hand_given)) ||
+    int hand = 0, coupling = GD_COUPLING_FULL;
+    if ((st = gd_yread_str(r, mm, "hand", q, HANDS, 0, NULL, &hand, NULL)) ||
         (st = gd_yread_str(r, mm, "coupling", q, COUPLINGS, 0, NULL, &coupling, NULL)))
         return st;
     g->hand = hand == 0 ? 1 : -1;
     g->coupling = (gd_coupling)coupling;
     g->base_helix_angle = atan(tan(g->helix_angle) * cos(g->pressure_angle));
-    if ((st = gd_yread_qty(r, mm, "stiffness", q, GD_QTY_STIFFNESS, GD_YREQ | GD_YPOS,
-                           &g->stiffness, NULL)) ||
-        (st = gd_yread_qty(r, mm, "damping", q, GD_QTY_DAMPING, GD_YNONNEG, &g->damping, NULL)))
+    if (geom_node) {
+        for (int i = 0; i < 2; i++) {
+            g->teeth[i] = geom.gear[i].teeth;
+            g->base_radius[i] = der.base_radius[i];
+        }
+        g->pressure_angle = der.working_pressure_angle;
+        g->helix_angle = geom.helix_angle;
+        g->base_helix_angle = der.base_helix_angle;
+        g->hand = geom.hand;
+    }
+    const gd_ynode *stiff = gd_ymap_get(mm, "stiffness");
+    if (stiff && stiff->kind == GD_Y_MAP) {
+        /* {from: geometry, ...}: the mean of k(angle) for linear analyses, the table kept */
+        if (!geom_node)
+            return gd_yfail(r, stiff, gd_ypath_key(fp, sizeof fp, q, "stiffness"),
+                            "add a `geometry:` map to the mesh (docs/mesh-stiffness.md)",
+                            "stiffness from geometry needs the mesh's geometry");
+        if ((st = gd_tvms_compute(&geom, &tvms_opt, &g->tvms, r->err))) {
+            gd_gear_pair_error_locate(r->file, mm, q, r->err);
+            return st;
+        }
+        g->stiffness = g->tvms->mean;
+    } else if ((st = gd_yread_qty(r, mm, "stiffness", q, GD_QTY_STIFFNESS, GD_YREQ | GD_YPOS,
+                                  &g->stiffness, NULL))) {
+        return st;
+    }
+    if ((st = gd_yread_qty(r, mm, "damping", q, GD_QTY_DAMPING, GD_YNONNEG, &g->damping, NULL)))
         return st;
     return GD_OK;
 }
@@ -1016,11 +1061,11 @@ static gd_status parse_meshes(parser *p)
         for (size_t i = 0; i < list->n; i++) {
             char q[64];
             gd_ypath_index(q, sizeof q, "meshes", i);
+            p->m->nmeshes++; /* counted first: gd_model_free releases a half-read mesh */
             if ((st = parse_mesh(p, list->items[i], q, &p->m->meshes[i])) ||
                 (st = check_component_name(p, p->m->meshes[i].name, list->items[i], q, "mesh",
                                            (int)i)))
                 return st;
-            p->m->nmeshes++;
         }
     }
     static const gd_ynode empty = {GD_Y_SEQ, 0, 0, NULL, 0, 0, 0, NULL, NULL};

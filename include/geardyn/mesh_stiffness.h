@@ -31,7 +31,7 @@ typedef struct gd_gear_geometry {
     double fillet_radius_coef; /* rho_fP* of the basic rack tip, default 0.38 */
     double tip_radius;         /* m; 0 = derive r + (h_a* + x - k) m_n */
     double root_radius;        /* m; 0 = derive r - (h_f* - x) m_n */
-    double bore_radius;        /* m; hub/bore radius for the fillet foundation; 0 = derive */
+    double bore_radius;        /* m; hub/bore radius (fillet foundation); 0 = 0.5 r_f */
     double E, poisson;         /* Pa, - */
     /* gear body in series (003_... Eq. 6): either a torsional stiffness or a web */
     double body_torsional_stiffness; /* N m/rad; 0 = from the web, or rigid if no web */

@@ -98,6 +98,8 @@ typedef struct gd_spring {
     gd_loc loc;
 } gd_spring;
 
+struct gd_tvms_result;
+
 /* External gear mesh between a driving and a driven gear on different shafts. The
  * mesh deformation is d = a . q along the contact normal; stiffness k acts on d. */
 typedef struct gd_mesh {
@@ -113,6 +115,9 @@ typedef struct gd_mesh {
     int driver_sense;           /* derived: +1 driver turns about +z at positive speed */
     double stiffness, damping;  /* along the contact normal: N/m, N s/m */
     gd_coupling coupling;
+    /* stiffness: {from: geometry}: k(driver angle) over a mesh cycle, owned; stiffness
+     * above is its mean (linear analyses). NULL for a constant stiffness. */
+    struct gd_tvms_result *tvms;
     gd_loc loc;
 } gd_mesh;
 

@@ -8,14 +8,15 @@
 
 #include "ms_internal.h"
 
-double gd_ms_body_torsional_stiffness(const gd_gear_pair_geometry *g,
-                                      const gd_gear_pair_derived *d, int i)
+double gd_ms_body_torsional_stiffness(const gd_gear_pair_geometry *g, const gd_gear_pair_derived *d,
+                                      int i)
 {
     const gd_gear_geometry *w = &g->gear[i];
     if (w->body_torsional_stiffness > 0) return w->body_torsional_stiffness;
     if (!(w->web_thickness > 0)) return 0;
     double ri = w->web_inner_radius > 0 ? w->web_inner_radius : d->bore_radius[i];
-    double ro = w->web_outer_radius > 0 ? w->web_outer_radius : d->root_radius[i] - 2 * g->normal_module;
+    double ro =
+        w->web_outer_radius > 0 ? w->web_outer_radius : d->root_radius[i] - 2 * g->normal_module;
     if (!(ro > ri)) return 0;
     double G = w->E / (2 * (1 + w->poisson));
     return 4 * GD_MS_PI * G * w->web_thickness / (1 / (ri * ri) - 1 / (ro * ro));

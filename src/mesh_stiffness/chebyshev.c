@@ -12,8 +12,8 @@ static double node(double a, double b, int j, int n)
     return a + (b - a) * 0.5 * (1 - cos(GD_MS_PI * j / (n - 1)));
 }
 
-int gd_ms_cheb_build(gd_ms_cheb *c, gd_ms_fn f, void *ctx, double a, double b, int n,
-                     int nmax, double rtol)
+int gd_ms_cheb_build(gd_ms_cheb *c, gd_ms_fn f, void *ctx, double a, double b, int n, int nmax,
+                     double rtol)
 {
     c->x = c->f = NULL;
     c->a = a;

@@ -19,7 +19,10 @@ double gd_ms_energy_pair_stiffness(const gd_ms_energy_law *e, double s)
     return 1.0 / c;
 }
 
-static double direct(double s, void *ctx) { return gd_ms_energy_pair_stiffness(ctx, s); }
+static double direct(double s, void *ctx)
+{
+    return gd_ms_energy_pair_stiffness(ctx, s);
+}
 
 int gd_ms_energy_law_init(gd_ms_energy_law *e, const gd_gear_pair_geometry *g,
                           const gd_gear_pair_derived *d, double rtol)
@@ -34,8 +37,8 @@ int gd_ms_energy_law_init(gd_ms_energy_law *e, const gd_gear_pair_geometry *g,
         t->nu = g->gear[i].poisson;
     }
     e->line_of_action = d->line_of_action;
-    e->hertz = gd_ms_hertz_compliance(g->gear[0].E, g->gear[0].poisson, g->gear[1].E,
-                                      g->gear[1].poisson);
+    e->hertz =
+        gd_ms_hertz_compliance(g->gear[0].E, g->gear[0].poisson, g->gear[1].E, g->gear[1].poisson);
     e->rtol = rtol;
     /* the table need not be finer than the integrals, nor than 1e-9 */
     double ttol = rtol > 1e-9 ? rtol : 1e-9;
@@ -48,4 +51,7 @@ double gd_ms_energy_law_eval(double s, const void *ctx)
     return gd_ms_cheb_eval(&e->table, s);
 }
 
-void gd_ms_energy_law_free(gd_ms_energy_law *e) { gd_ms_cheb_free(&e->table); }
+void gd_ms_energy_law_free(gd_ms_energy_law *e)
+{
+    gd_ms_cheb_free(&e->table);
+}

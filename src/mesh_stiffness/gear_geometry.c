@@ -26,7 +26,10 @@ void gd_gear_pair_geometry_init(gd_gear_pair_geometry *g)
     g->hand = 1;
 }
 
-static double involute(double a) { return tan(a) - a; }
+static double involute(double a)
+{
+    return tan(a) - a;
+}
 
 /* Inverse of the involute function by Newton's method (monotone, convex on (0, pi/2)). */
 static double inverse_involute(double v)
@@ -58,7 +61,8 @@ static gd_status check_inputs(const gd_gear_pair_geometry *g, gd_error *err)
     if (!(g->normal_pressure_angle > 0 && g->normal_pressure_angle < 45 * deg)) {
         double a = g->normal_pressure_angle;
         if (a >= 1 && a <= 45)
-            snprintf(hint, sizeof hint, "angles are in rad unless a unit is given: did you mean '%g deg'?", a);
+            snprintf(hint, sizeof hint,
+                     "angles are in rad unless a unit is given: did you mean '%g deg'?", a);
         else
             snprintf(hint, sizeof hint, "give a value between 0 and 45 deg, e.g. \"20 deg\"");
         snprintf(msg, sizeof msg, "normal pressure angle %g rad is outside (0, 45 deg)", a);
@@ -67,7 +71,8 @@ static gd_status check_inputs(const gd_gear_pair_geometry *g, gd_error *err)
     if (!(g->helix_angle >= 0 && g->helix_angle < 45 * deg)) {
         double a = g->helix_angle;
         if (a >= 1 && a < 45)
-            snprintf(hint, sizeof hint, "angles are in rad unless a unit is given: did you mean '%g deg'?", a);
+            snprintf(hint, sizeof hint,
+                     "angles are in rad unless a unit is given: did you mean '%g deg'?", a);
         else
             snprintf(hint, sizeof hint,
                      "give a value from 0 (spur) up to 45 deg; the hand is given by 'hand'");
@@ -92,12 +97,14 @@ static gd_status check_inputs(const gd_gear_pair_geometry *g, gd_error *err)
         }
         if (!(w->addendum_coef > 0 && w->addendum_coef <= 2)) {
             snprintf(field, sizeof field, "%s.addendum_coef", gn);
-            snprintf(msg, sizeof msg, "addendum coefficient %g is outside (0, 2]", w->addendum_coef);
+            snprintf(msg, sizeof msg, "addendum coefficient %g is outside (0, 2]",
+                     w->addendum_coef);
             return fail(err, field, "the standard value is 1.0 (times the normal module)", msg);
         }
         if (!(w->dedendum_coef > 0 && w->dedendum_coef <= 2.5)) {
             snprintf(field, sizeof field, "%s.dedendum_coef", gn);
-            snprintf(msg, sizeof msg, "dedendum coefficient %g is outside (0, 2.5]", w->dedendum_coef);
+            snprintf(msg, sizeof msg, "dedendum coefficient %g is outside (0, 2.5]",
+                     w->dedendum_coef);
             return fail(err, field, "the standard value is 1.25 (times the normal module)", msg);
         }
         if (!(w->fillet_radius_coef >= 0 && w->fillet_radius_coef < 0.6)) {
@@ -109,7 +116,8 @@ static gd_status check_inputs(const gd_gear_pair_geometry *g, gd_error *err)
         if (!(fabs(w->profile_shift) <= 2)) {
             snprintf(field, sizeof field, "%s.profile_shift", gn);
             snprintf(msg, sizeof msg, "profile shift %g is outside [-2, 2]", w->profile_shift);
-            return fail(err, field, "profile shift is a coefficient of the module, typically -0.5..1", msg);
+            return fail(err, field,
+                        "profile shift is a coefficient of the module, typically -0.5..1", msg);
         }
         if (!(w->E > 0) || !(w->poisson > -1 && w->poisson < 0.5)) {
             snprintf(field, sizeof field, "%s.material", gn);
@@ -118,8 +126,9 @@ static gd_status check_inputs(const gd_gear_pair_geometry *g, gd_error *err)
         }
         if (!(w->tip_radius >= 0) || !(w->root_radius >= 0) || !(w->bore_radius >= 0)) {
             snprintf(field, sizeof field, "%s.%s", gn,
-                     !(w->tip_radius >= 0) ? "tip_radius"
-                                           : !(w->root_radius >= 0) ? "root_radius" : "bore_radius");
+                     !(w->tip_radius >= 0)    ? "tip_radius"
+                     : !(w->root_radius >= 0) ? "root_radius"
+                                              : "bore_radius");
             return fail(err, field, "give a positive radius or leave it out to derive it",
                         "radius must not be negative");
         }
@@ -156,13 +165,16 @@ gd_status gd_gear_pair_derive(const gd_gear_pair_geometry *g, gd_gear_pair_deriv
     if (g->center_distance > 0) {
         a = g->center_distance;
         if (a <= d->base_radius[0] + d->base_radius[1]) {
-            snprintf(msg, sizeof msg, "centre distance %.4g mm does not exceed the sum of base radii %.4g mm",
+            snprintf(msg, sizeof msg,
+                     "centre distance %.4g mm does not exceed the sum of base radii %.4g mm",
                      a * 1e3, (d->base_radius[0] + d->base_radius[1]) * 1e3);
-            return fail(err, "center_distance", "leave it out to derive it from the profile shifts", msg);
+            return fail(err, "center_distance", "leave it out to derive it from the profile shifts",
+                        msg);
         }
         if (a < a_shift * (1 - 1e-9)) {
             snprintf(msg, sizeof msg,
-                     "centre distance %.6g mm is below %.6g mm, the zero-backlash distance for profile shifts %g + %g: the teeth would jam",
+                     "centre distance %.6g mm is below %.6g mm, the zero-backlash distance for "
+                     "profile shifts %g + %g: the teeth would jam",
                      a * 1e3, a_shift * 1e3, x1, x2);
             return fail(err, "center_distance",
                         "enlarge the centre distance or reduce the profile shifts", msg);
@@ -178,9 +190,11 @@ gd_status gd_gear_pair_derive(const gd_gear_pair_geometry *g, gd_gear_pair_deriv
         const gd_gear_geometry *w = &g->gear[i];
         const char *gn = GEAR_NAME[i];
         double r = d->pitch_radius[i], rb = d->base_radius[i];
-        double ra = w->tip_radius > 0 ? w->tip_radius
-                                       : r + (w->addendum_coef + w->profile_shift - d->tip_shortening) * mn;
-        double rf = w->root_radius > 0 ? w->root_radius : r - (w->dedendum_coef - w->profile_shift) * mn;
+        double ra = w->tip_radius > 0
+                        ? w->tip_radius
+                        : r + (w->addendum_coef + w->profile_shift - d->tip_shortening) * mn;
+        double rf =
+            w->root_radius > 0 ? w->root_radius : r - (w->dedendum_coef - w->profile_shift) * mn;
         d->tip_radius[i] = ra;
         d->root_radius[i] = rf;
         if (!(rf > 0) || !(ra > rf)) {
@@ -203,7 +217,8 @@ gd_status gd_gear_pair_derive(const gd_gear_pair_geometry *g, gd_gear_pair_deriv
         if (w->profile_shift < xmin - 1e-9) {
             snprintf(field, sizeof field, "%s.profile_shift", gn);
             snprintf(msg, sizeof msg,
-                     "%d teeth with profile shift %g are undercut: the profile shift must be at least %.4f (without shift at least %.1f teeth)",
+                     "%d teeth with profile shift %g are undercut: the profile shift must be at "
+                     "least %.4f (without shift at least %.1f teeth)",
                      w->teeth, w->profile_shift, xmin, 2 * hstar * cos(beta) / (sin(at) * sin(at)));
             snprintf(hint, sizeof hint, "set %s.profile_shift to %.3f or more, or use more teeth",
                      gn, xmin);
@@ -224,15 +239,17 @@ gd_status gd_gear_pair_derive(const gd_gear_pair_geometry *g, gd_gear_pair_deriv
             snprintf(field, sizeof field, "%s.tip_radius", gn);
             snprintf(msg, sizeof msg, "the tooth comes to a point below the tip radius %.4g mm",
                      ra * 1e3);
-            return fail(err, field, "reduce the tip radius, the addendum or the profile shift", msg);
+            return fail(err, field, "reduce the tip radius, the addendum or the profile shift",
+                        msg);
         }
         double rbore = w->bore_radius > 0 ? w->bore_radius : 0.5 * rf; /* documented default */
         d->bore_radius[i] = rbore;
         if (!(rbore < rf - mn)) {
             snprintf(field, sizeof field, "%s.bore_radius", gn);
-            snprintf(msg, sizeof msg,
-                     "bore radius %.4g mm leaves a rim below one module under the root radius %.4g mm",
-                     rbore * 1e3, rf * 1e3);
+            snprintf(
+                msg, sizeof msg,
+                "bore radius %.4g mm leaves a rim below one module under the root radius %.4g mm",
+                rbore * 1e3, rf * 1e3);
             return fail(err, field, "give a bore/hub radius below root radius - module", msg);
         }
     }
@@ -241,10 +258,14 @@ gd_status gd_gear_pair_derive(const gd_gear_pair_geometry *g, gd_gear_pair_deriv
         if (d->tip_clearance[i] < 0) {
             snprintf(field, sizeof field, "%s.tip_radius", GEAR_NAME[i]);
             snprintf(msg, sizeof msg,
-                     "negative tip clearance %.4g mm: the %s tip (%.4g mm) reaches below the %s root circle (limit: tip radius <= %.4g mm)",
+                     "negative tip clearance %.4g mm: the %s tip (%.4g mm) reaches below the %s "
+                     "root circle (limit: tip radius <= %.4g mm)",
                      d->tip_clearance[i] * 1e3, GEAR_NAME[i], d->tip_radius[i] * 1e3,
                      GEAR_NAME[1 - i], (a - d->root_radius[1 - i]) * 1e3);
-            return fail(err, field, "reduce the tip radius or the other gear's dedendum, or enlarge the centre distance", msg);
+            return fail(err, field,
+                        "reduce the tip radius or the other gear's dedendum, or enlarge the centre "
+                        "distance",
+                        msg);
         }
     }
     const double N1N2 = a * sin(aw);
@@ -254,17 +275,23 @@ gd_status gd_gear_pair_derive(const gd_gear_pair_geometry *g, gd_gear_pair_deriv
     d->contact_start = N1N2 - sqrt(d->tip_radius[1] * d->tip_radius[1] - rb2 * rb2);
     if (d->contact_start < d->form_roll[0] - 1e-12) {
         snprintf(msg, sizeof msg,
-                 "tip interference: the driven tip meets the driver %.4g mm from its base circle, below the usable involute that starts at %.4g mm",
+                 "tip interference: the driven tip meets the driver %.4g mm from its base circle, "
+                 "below the usable involute that starts at %.4g mm",
                  d->contact_start * 1e3, d->form_roll[0] * 1e3);
-        return fail(err, "driven.tip_radius",
-                    "reduce the driven tip radius or addendum, or give the driver a positive profile shift", msg);
+        return fail(
+            err, "driven.tip_radius",
+            "reduce the driven tip radius or addendum, or give the driver a positive profile shift",
+            msg);
     }
     if (N1N2 - d->contact_end < d->form_roll[1] - 1e-12) {
         snprintf(msg, sizeof msg,
-                 "tip interference: the driver tip meets the driven gear %.4g mm from its base circle, below the usable involute that starts at %.4g mm",
+                 "tip interference: the driver tip meets the driven gear %.4g mm from its base "
+                 "circle, below the usable involute that starts at %.4g mm",
                  (N1N2 - d->contact_end) * 1e3, d->form_roll[1] * 1e3);
         return fail(err, "driver.tip_radius",
-                    "reduce the driver tip radius or addendum, or give the driven gear a positive profile shift", msg);
+                    "reduce the driver tip radius or addendum, or give the driven gear a positive "
+                    "profile shift",
+                    msg);
     }
     d->contact_length = d->contact_end - d->contact_start;
     d->base_pitch_transverse = 2 * GD_MS_PI * rb1 / z1;
@@ -277,9 +304,12 @@ gd_status gd_gear_pair_derive(const gd_gear_pair_geometry *g, gd_gear_pair_deriv
     d->ratio = (double)z2 / z1;
     if (d->contact_ratio_total < 1) {
         snprintf(msg, sizeof msg,
-                 "total contact ratio %.4f (transverse %.4f + face %.4f) is below the limit 1: contact would be lost between tooth pairs",
+                 "total contact ratio %.4f (transverse %.4f + face %.4f) is below the limit 1: "
+                 "contact would be lost between tooth pairs",
                  d->contact_ratio_total, d->contact_ratio_transverse, d->contact_ratio_face);
-        return fail(err, "", "raise the addendum coefficients or tip radii, or the face width / helix angle", msg);
+        return fail(err, "",
+                    "raise the addendum coefficients or tip radii, or the face width / helix angle",
+                    msg);
     }
     return GD_OK;
 }

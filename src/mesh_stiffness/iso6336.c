@@ -12,7 +12,8 @@
 
 #include "ms_internal.h"
 
-static const double C[10] = {0, 0.04723, 0.15551, 0.25791, -0.00635, -0.11654, -0.00193, -0.24188, 0.00529, 0.00182};
+static const double C[10] = {0,        0.04723,  0.15551,  0.25791, -0.00635,
+                             -0.11654, -0.00193, -0.24188, 0.00529, 0.00182};
 
 void gd_ms_iso6336(const gd_gear_pair_geometry *g, const gd_gear_pair_derived *d, gd_ms_iso *iso)
 {

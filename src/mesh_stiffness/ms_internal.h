@@ -17,10 +17,10 @@ double gd_ms_gauss_legendre(gd_ms_fn f, void *ctx, double a, double b, int n);
 /* ---- tooth_energy.c: one tooth as a non-uniform cantilever (Yang & Lin 1987,
  * Tian 2004, Chen & Shao 2011), plane stress, per unit face width ---- */
 typedef struct gd_ms_tooth {
-    double rb;      /* base radius (transverse) */
-    double alpha2;  /* half tooth angle on the base circle */
-    double rf;      /* root radius */
-    double rbore;   /* hub/bore radius (fillet foundation) */
+    double rb;     /* base radius (transverse) */
+    double alpha2; /* half tooth angle on the base circle */
+    double rf;     /* root radius */
+    double rbore;  /* hub/bore radius (fillet foundation) */
     double E, nu;
 } gd_ms_tooth;
 
@@ -47,8 +47,8 @@ typedef struct gd_ms_cheb {
 } gd_ms_cheb;
 /* Tabulates f with n points, doubling n (up to nmax) until interpolation at the
  * midpoints between nodes matches f to rtol. Returns 0, or -1 when out of memory. */
-int gd_ms_cheb_build(gd_ms_cheb *c, gd_ms_fn f, void *ctx, double a, double b, int n,
-                     int nmax, double rtol);
+int gd_ms_cheb_build(gd_ms_cheb *c, gd_ms_fn f, void *ctx, double a, double b, int n, int nmax,
+                     double rtol);
 double gd_ms_cheb_eval(const gd_ms_cheb *c, double x);
 void gd_ms_cheb_free(gd_ms_cheb *c);
 
@@ -75,7 +75,7 @@ typedef struct gd_ms_energy_law {
     double line_of_action; /* N1N2 */
     double hertz;          /* Hertz compliance per unit width */
     double rtol;
-    gd_ms_cheb table;      /* pair stiffness per unit width over [s_A, s_E] */
+    gd_ms_cheb table; /* pair stiffness per unit width over [s_A, s_E] */
 } gd_ms_energy_law;
 /* Sets up the two teeth from the geometry; tabulates. Returns 0 or -1 (no memory). */
 int gd_ms_energy_law_init(gd_ms_energy_law *e, const gd_gear_pair_geometry *g,
@@ -88,9 +88,9 @@ void gd_ms_energy_law_free(gd_ms_energy_law *e);
 /* ---- iso6336.c: ISO 6336-1:2006 Method B stiffness, per unit face width, N/m^2,
  * transverse plane ---- */
 typedef struct gd_ms_iso {
-    double c_th;        /* theoretical single stiffness 1/q' */
+    double c_th; /* theoretical single stiffness 1/q' */
     double C_M, C_R, C_B, E_factor;
-    double c_single;    /* c' */
+    double c_single; /* c' */
     double c_gamma_alpha, c_gamma_beta;
 } gd_ms_iso;
 void gd_ms_iso6336(const gd_gear_pair_geometry *g, const gd_gear_pair_derived *d, gd_ms_iso *iso);
@@ -109,8 +109,8 @@ double gd_ms_square_law_eval(double s, const void *ctx); /* ctx: const double *c
 
 /* ---- body_compliance.c: 003_... Eq. 6 ---- */
 /* Torsional stiffness of gear body i (N m/rad), or 0 when rigid. */
-double gd_ms_body_torsional_stiffness(const gd_gear_pair_geometry *g,
-                                      const gd_gear_pair_derived *d, int i);
+double gd_ms_body_torsional_stiffness(const gd_gear_pair_geometry *g, const gd_gear_pair_derived *d,
+                                      int i);
 /* Series body stiffness along the normal line of action, N/m (0 when both rigid). */
 double gd_ms_body_stiffness(const gd_gear_pair_geometry *g, const gd_gear_pair_derived *d);
 

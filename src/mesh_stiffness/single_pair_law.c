@@ -6,7 +6,10 @@
  * add in parallel; helical pairs go through the same slicing as the energy method. */
 #include "ms_internal.h"
 
-double gd_ms_cai_factor(double xi) { return -1.8 * xi * xi + 1.8 * xi + 0.55; }
+double gd_ms_cai_factor(double xi)
+{
+    return -1.8 * xi * xi + 1.8 * xi + 0.55;
+}
 
 double gd_ms_cai_law_eval(double s, const void *ctx)
 {

@@ -24,14 +24,14 @@ double gd_ms_slicing_eval(const gd_ms_slicing *sl, double theta, double *pair_k,
     if (pair_k) memset(pair_k, 0, (size_t)sl->nslots * sizeof *pair_k);
     double total = 0;
     int count = 0;
-    long mlo = (long)ceil(-phase - 1e-9), mhi = (long)floor(eps_g - phase) + 1;
+    long mlo = (long)ceil(-phase - 1e-12), mhi = (long)floor(eps_g - phase) + 1;
     for (long m = mlo; m <= mhi; m++) {
-        double q = phase + (double)m; /* pitches since the front face entered */
-        if (q < -1e-9 || q >= eps_g) continue;
+        double q = phase + (double)m;           /* pitches since the front face entered */
+        if (q < -1e-12 || q >= eps_g) continue; /* tolerance: rounding of theta/T */
         if (q < 0) q = 0;
-        double sm = sA + q * p, km = 0;
+        double sm = sA + q * p, km = 0, width = 0;
         if (gb <= 0) {
-            if (sm < sE) km = b * sl->law(sm, sl->law_ctx);
+            if (sm < sE) km = b * sl->law(sm, sl->law_ctx), width = b;
         } else {
             double ylo = (sm - sE) / tb, yhi = (sm - sA) / tb;
             if (ylo < 0) ylo = 0;
@@ -44,11 +44,15 @@ double gd_ms_slicing_eval(const gd_ms_slicing *sl, double theta, double *pair_k,
                     double ya = i * db, yb = (i + 1) * db;
                     if (ya < ylo) ya = ylo;
                     if (yb > yhi) yb = yhi;
-                    if (yb > ya) km += (yb - ya) * sl->law(sm - 0.5 * (ya + yb) * tb, sl->law_ctx);
+                    if (yb > ya) {
+                        km += (yb - ya) * sl->law(sm - 0.5 * (ya + yb) * tb, sl->law_ctx);
+                        width += yb - ya;
+                    }
                 }
             }
         }
-        if (km > 0) {
+        /* a contact line shorter than 1e-9 b is rounding, not contact */
+        if (km > 0 && width > 1e-9 * b) {
             count++;
             total += km;
             if (pair_k) {

@@ -24,17 +24,21 @@ static double integrand(double g, void *vp)
     const beam_ctx *c = vp;
     const double a2 = c->t->alpha2, E = c->t->E;
     double sg = sin(g), cg = cos(g);
-    double lever = (a2 - g) * cg;           /* dy / (rb dg) */
-    double D = sg + lever;                  /* h / rb */
+    double lever = (a2 - g) * cg;                /* dy / (rb dg) */
+    double D = sg + lever;                       /* h / rb */
     double m = 1 + c->ca * ((a2 - g) * sg - cg); /* bending moment / (F rb) */
     double vb = 3 * m * m * lever / (2 * E * D * D * D);
     double vs = 1.2 * (1 + c->t->nu) * lever * c->ca * c->ca / (E * D);
     double va = lever * c->sa * c->sa / (2 * E * D);
     switch (c->term) {
-    case 0: return vb;
-    case 1: return vs;
-    case 2: return va;
-    default: return vb + vs + va;
+    case 0:
+        return vb;
+    case 1:
+        return vs;
+    case 2:
+        return va;
+    default:
+        return vb + vs + va;
     }
 }
 
@@ -85,7 +89,8 @@ void gd_ms_tooth_beam_terms(const gd_ms_tooth *t, double tc, double rtol, int n,
     if (d1 > 0) {
         double s[3];
         straight_terms(t, a1, d1, hb, s);
-        for (int k = 0; k < 3; k++) out[k] += s[k];
+        for (int k = 0; k < 3; k++)
+            out[k] += s[k];
     }
 }
 

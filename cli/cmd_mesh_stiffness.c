@@ -1,0 +1,343 @@
+/* geardyn mesh-stiffness FILE: contact ratios and time-varying mesh stiffness of a
+ * gear pair described by its geometry (docs/mesh-stiffness.md). */
+#include <getopt.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "geardyn/mesh_stiffness.h"
+#include "geardyn/units.h"
+#include "mesh_geometry_read.h"
+#include "yaml_doc.h"
+
+static const char USAGE[] =
+    "usage: geardyn mesh-stiffness FILE [--mesh NAME] [--method M] [--points N] [--cycles N]\n"
+    "                              [--slices N] [--helix-angle VALUE] [--json] [--out DIR]\n\n"
+    "Computes, from the geometry of a gear pair (a mesh entry with a `geometry:` map, in a\n"
+    "model file or a stand-alone file with `meshes:`), the transverse, face and total\n"
+    "contact ratios, base pitch, mesh period and the time-varying mesh stiffness k(angle)\n"
+    "over the driver's rotation angle: pairs in contact, load shares, mean, max, min,\n"
+    "peak-to-peak and Fourier harmonics. k acts along the contact normal (normal plane).\n\n"
+    "  --mesh NAME          the mesh to use (default: the first with a geometry)\n"
+    "  --method M           energy (default) | iso6336 | single-pair-law | square\n"
+    "  --points N           samples per mesh cycle (default 360, or the file's)\n"
+    "  --cycles N           mesh cycles sampled (default 1)\n"
+    "  --slices N           face-width slices of a helical pair (default 50)\n"
+    "  --helix-angle VALUE  override the helix angle, e.g. \"15 deg\" (plain numbers are rad)\n"
+    "  --json               print everything as one JSON object\n"
+    "  --out DIR            write DIR/mesh_stiffness.csv and DIR/summary.json\n\n"
+    "Exit status: 0 ok, 2 bad input or usage, 1 numerical failure.\n";
+
+typedef struct ms_args {
+    const char *file, *mesh, *out;
+    int json, has_method, has_helix;
+    gd_tvms_method method;
+    long points, cycles, slices; /* 0 = not given */
+    double helix;
+} ms_args;
+
+static int parse_args(int argc, char **argv, ms_args *a)
+{
+    static const struct option opts[] = {
+        {"mesh", required_argument, 0, 'm'},   {"method", required_argument, 0, 'M'},
+        {"points", required_argument, 0, 'p'}, {"cycles", required_argument, 0, 'c'},
+        {"slices", required_argument, 0, 's'}, {"helix-angle", required_argument, 0, 'b'},
+        {"json", no_argument, 0, 'j'},         {"out", required_argument, 0, 'o'},
+        {"help", no_argument, 0, 'h'},         {0, 0, 0, 0}};
+    const char *cmd = "mesh-stiffness";
+    int c;
+    optind = 1;
+    opterr = 0;
+    while ((c = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+        switch (c) {
+        case 'm':
+            a->mesh = optarg;
+            break;
+        case 'M':
+            if (gd_tvms_method_parse(optarg, &a->method))
+                return gd_cli_usage_error(cmd,
+                                          "--method: unknown method '%s' (use energy, iso6336, "
+                                          "single-pair-law or square)",
+                                          optarg);
+            a->has_method = 1;
+            break;
+        case 'p':
+            if (gd_cli_parse_count(optarg, 8, 1000000, &a->points))
+                return gd_cli_usage_error(
+                    cmd, "--points: '%s' is not a whole number from 8 to 1000000", optarg);
+            break;
+        case 'c':
+            if (gd_cli_parse_count(optarg, 1, 10000, &a->cycles))
+                return gd_cli_usage_error(
+                    cmd, "--cycles: '%s' is not a whole number from 1 to 10000", optarg);
+            break;
+        case 's':
+            if (gd_cli_parse_count(optarg, 1, 100000, &a->slices))
+                return gd_cli_usage_error(
+                    cmd, "--slices: '%s' is not a whole number from 1 to 100000", optarg);
+            break;
+        case 'b': {
+            char why[200];
+            if (gd_parse_quantity(optarg, GD_QTY_ANGLE, &a->helix, why, sizeof why))
+                return gd_cli_usage_error(cmd, "--helix-angle: %s (write e.g. \"15 deg\")", why);
+            a->has_helix = 1;
+            break;
+        }
+        case 'j':
+            a->json = 1;
+            break;
+        case 'o':
+            a->out = optarg;
+            break;
+        case 'h':
+            fputs(USAGE, stdout);
+            return -1;
+        default:
+            return gd_cli_usage_error(cmd, "unknown or incomplete option '%s'", argv[optind - 1]);
+        }
+    }
+    if (optind != argc - 1) return gd_cli_usage_error(cmd, "give exactly one FILE");
+    a->file = argv[optind];
+    return 0;
+}
+
+/* The mesh entry to use: by name, else the first with a geometry. */
+static const gd_ynode *pick_mesh(gd_yreader *r, const gd_ynode *root, const char *name, char *path,
+                                 size_t psize)
+{
+    const gd_ynode *meshes = gd_ymap_get(root, "meshes");
+    if (!meshes || meshes->kind != GD_Y_SEQ || meshes->n == 0) {
+        gd_yfail(r, meshes ? meshes : root, "meshes",
+                 "add `meshes: [{name: ..., geometry: {...}}]` (see docs/mesh-stiffness.md)",
+                 "the file has no list of meshes");
+        return NULL;
+    }
+    char names[256] = "";
+    for (size_t i = 0; i < meshes->n; i++) {
+        const gd_ynode *m = meshes->items[i];
+        if (!m || m->kind != GD_Y_MAP) continue;
+        const gd_ynode *nm = gd_ymap_get(m, "name");
+        const char *mn = nm && nm->kind == GD_Y_SCALAR ? nm->text : "";
+        size_t used = strlen(names);
+        snprintf(names + used, sizeof names - used, "%s'%s'", used ? ", " : "", mn);
+        int has_geom = gd_ymap_get(m, "geometry") != NULL;
+        if ((name && !strcmp(name, mn)) || (!name && has_geom)) {
+            gd_ypath_index(path, psize, "meshes", i);
+            return m;
+        }
+    }
+    char hint[320];
+    if (name) {
+        snprintf(hint, sizeof hint, "known meshes: %s", names);
+        gd_yfail(r, meshes, "--mesh", hint, "no mesh named '%s'", name);
+    } else {
+        gd_yfail(r, meshes, "meshes",
+                 "add a `geometry:` map to a mesh (see docs/mesh-stiffness.md)",
+                 "no mesh has a geometry to compute its stiffness from");
+    }
+    return NULL;
+}
+
+static cJSON *numbers(const double *x, size_t n)
+{
+    cJSON *a = cJSON_CreateArray();
+    for (size_t i = 0; i < n && a; i++)
+        cJSON_AddItemToArray(a, cJSON_CreateNumber(x[i]));
+    return a;
+}
+
+static cJSON *make_json(const gd_tvms_result *r, const gd_gear_pair_geometry *g, const char *file,
+                        const char *mesh, int arrays)
+{
+    const gd_gear_pair_derived *d = &r->geom;
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "file", file);
+    cJSON_AddStringToObject(o, "mesh", mesh);
+    cJSON_AddStringToObject(o, "method", gd_tvms_method_name(r->method));
+    cJSON_AddNumberToObject(o, "slices", r->slices);
+    cJSON_AddStringToObject(o, "stiffness_convention",
+                            "N/m along the contact normal (normal plane): k in K = k a a^T; "
+                            "transverse k_t = k cos^2(beta_b)");
+    cJSON_AddStringToObject(o, "angle",
+                            "driver rotation in rad from the start of contact of a tooth pair");
+    int teeth[2] = {g->gear[0].teeth, g->gear[1].teeth};
+    cJSON_AddItemToObject(o, "teeth", cJSON_CreateIntArray(teeth, 2));
+    cJSON_AddNumberToObject(o, "contact_ratio_transverse", d->contact_ratio_transverse);
+    cJSON_AddNumberToObject(o, "contact_ratio_face", d->contact_ratio_face);
+    cJSON_AddNumberToObject(o, "contact_ratio_total", d->contact_ratio_total);
+    cJSON_AddNumberToObject(o, "base_pitch_transverse_m", d->base_pitch_transverse);
+    cJSON_AddNumberToObject(o, "base_pitch_normal_m", d->base_pitch_normal);
+    cJSON_AddNumberToObject(o, "mesh_period_rad", r->mesh_period_rad);
+    cJSON_AddNumberToObject(o, "center_distance_m", d->center_distance);
+    cJSON_AddNumberToObject(o, "transverse_pressure_angle_rad", d->transverse_pressure_angle);
+    cJSON_AddNumberToObject(o, "working_pressure_angle_rad", d->working_pressure_angle);
+    cJSON_AddNumberToObject(o, "base_helix_angle_rad", d->base_helix_angle);
+    cJSON_AddItemToObject(o, "pitch_radius_m", cJSON_CreateDoubleArray(d->pitch_radius, 2));
+    cJSON_AddItemToObject(o, "base_radius_m", cJSON_CreateDoubleArray(d->base_radius, 2));
+    cJSON_AddItemToObject(o, "tip_radius_m", cJSON_CreateDoubleArray(d->tip_radius, 2));
+    cJSON_AddItemToObject(o, "root_radius_m", cJSON_CreateDoubleArray(d->root_radius, 2));
+    cJSON_AddItemToObject(o, "bore_radius_m", cJSON_CreateDoubleArray(d->bore_radius, 2));
+    cJSON_AddNumberToObject(o, "stiffness_mean", r->mean);
+    cJSON_AddNumberToObject(o, "stiffness_max", r->max);
+    cJSON_AddNumberToObject(o, "stiffness_min", r->min);
+    cJSON_AddNumberToObject(o, "stiffness_peak_to_peak", r->peak_to_peak);
+    cJSON_AddNumberToObject(o, "stiffness_transverse_mean", r->mean * r->transverse_factor);
+    cJSON_AddNumberToObject(o, "iso6336_single_stiffness", r->iso_single_stiffness);
+    cJSON_AddNumberToObject(o, "iso6336_mesh_stiffness_alpha", r->iso_mesh_stiffness_alpha);
+    cJSON_AddNumberToObject(o, "iso6336_mesh_stiffness_beta", r->iso_mesh_stiffness_beta);
+    cJSON_AddNumberToObject(o, "body_stiffness", r->body_stiffness);
+    cJSON *h = cJSON_AddArrayToObject(o, "harmonics");
+    for (int i = 0; i < r->harmonics; i++) {
+        cJSON *j = cJSON_CreateObject();
+        cJSON_AddNumberToObject(j, "order", i + 1);
+        cJSON_AddNumberToObject(j, "amplitude", r->harmonic_amplitude[i]);
+        cJSON_AddNumberToObject(j, "phase_rad", r->harmonic_phase[i]);
+        cJSON_AddItemToArray(h, j);
+    }
+    if (arrays) {
+        cJSON_AddItemToObject(o, "angle_rad", numbers(r->angle_rad, r->n));
+        cJSON_AddItemToObject(o, "stiffness", numbers(r->stiffness, r->n));
+        cJSON_AddItemToObject(o, "pairs_in_contact",
+                              cJSON_CreateIntArray(r->pairs_in_contact, (int)r->n));
+        cJSON *ls = cJSON_AddArrayToObject(o, "load_share");
+        for (size_t i = 0; i < r->n; i++)
+            cJSON_AddItemToArray(
+                ls, numbers(r->load_share + i * (size_t)r->max_pairs, (size_t)r->max_pairs));
+    }
+    return o;
+}
+
+static void write_csv(FILE *f, const gd_tvms_result *r)
+{
+    fprintf(f, "angle_rad,stiffness_N_per_m,pairs_in_contact");
+    for (int j = 0; j < r->max_pairs; j++)
+        fprintf(f, ",load_share_%d", j);
+    fputc('\n', f);
+    for (size_t i = 0; i < r->n; i++) {
+        fprintf(f, "%.10g,%.10g,%d", r->angle_rad[i], r->stiffness[i], r->pairs_in_contact[i]);
+        for (int j = 0; j < r->max_pairs; j++)
+            fprintf(f, ",%.6g", r->load_share[i * (size_t)r->max_pairs + j]);
+        fputc('\n', f);
+    }
+}
+
+static void print_text(const gd_tvms_result *r, const gd_gear_pair_geometry *g, const char *file,
+                       const char *mesh, int csv)
+{
+    const gd_gear_pair_derived *d = &r->geom;
+    printf("mesh             %s (%s)\n", mesh, file);
+    printf("method           %s, %d slice%s\n", gd_tvms_method_name(r->method), r->slices,
+           r->slices == 1 ? "" : "s");
+    printf("teeth            %d / %d, normal module %g mm, helix %g deg\n", g->gear[0].teeth,
+           g->gear[1].teeth, g->normal_module * 1e3, g->helix_angle * 180 / M_PI);
+    printf("contact ratio    transverse %.4f  face %.4f  total %.4f\n", d->contact_ratio_transverse,
+           d->contact_ratio_face, d->contact_ratio_total);
+    printf("base pitch       transverse %.6g mm, normal %.6g mm\n", d->base_pitch_transverse * 1e3,
+           d->base_pitch_normal * 1e3);
+    printf("mesh period      %.6g rad of driver rotation (2 pi / %d)\n", r->mesh_period_rad,
+           g->gear[0].teeth);
+    printf("stiffness (N/m)  mean %.5g  max %.5g  min %.5g  peak-to-peak %.5g\n", r->mean, r->max,
+           r->min, r->peak_to_peak);
+    printf("                 along the contact normal; transverse mean %.5g\n",
+           r->mean * r->transverse_factor);
+    printf("ISO 6336-1       c'b %.5g  c_gamma_alpha b %.5g  c_gamma_beta b %.5g N/m\n",
+           r->iso_single_stiffness, r->iso_mesh_stiffness_alpha, r->iso_mesh_stiffness_beta);
+    if (r->body_stiffness > 0) printf("gear bodies      %.5g N/m in series\n", r->body_stiffness);
+    if (r->harmonics) {
+        printf("harmonics        order  amplitude(N/m)  phase(rad)\n");
+        for (int i = 0; i < r->harmonics; i++)
+            printf("                 %5d  %14.5g  %10.4f\n", i + 1, r->harmonic_amplitude[i],
+                   r->harmonic_phase[i]);
+    }
+    if (csv) {
+        printf("\n");
+        write_csv(stdout, r);
+    }
+}
+
+static int write_out(const char *dir, const gd_tvms_result *r, cJSON *summary)
+{
+    gd_error err;
+    gd_error_clear(&err);
+    gd_outdir od;
+    if (gd_outdir_begin(&od, dir, &err)) return gd_cli_report(&err);
+    FILE *f = gd_outdir_open(&od, "mesh_stiffness.csv", &err);
+    if (!f) goto fail;
+    write_csv(f, r);
+    if (gd_outdir_close(&od, f, "mesh_stiffness.csv", &err)) goto fail;
+    f = gd_outdir_open(&od, "summary.json", &err);
+    if (!f) goto fail;
+    gd_cli_print_json(f, summary);
+    if (gd_outdir_close(&od, f, "summary.json", &err)) goto fail;
+    if (gd_outdir_commit(&od, &err)) return gd_cli_report(&err);
+    return GD_EXIT_OK;
+fail:
+    gd_outdir_abort(&od);
+    return gd_cli_report(&err);
+}
+
+int gd_cmd_mesh_stiffness(int argc, char **argv)
+{
+    ms_args a;
+    memset(&a, 0, sizeof a);
+    int rc = parse_args(argc, argv, &a);
+    if (rc) return rc < 0 ? GD_EXIT_OK : rc;
+
+    gd_error err;
+    gd_error_clear(&err);
+    gd_ydoc *doc = NULL;
+    if (gd_ydoc_load_file(a.file, &doc, &err)) return gd_cli_report(&err);
+    gd_yreader r = {doc->file, &err};
+    const gd_ynode *root = doc->root;
+    char path[64] = "";
+    gd_gear_pair_geometry g;
+    gd_tvms_options opt;
+    gd_tvms_options_init(&opt);
+    gd_tvms_result *res = NULL;
+    const gd_ynode *mesh = NULL;
+    if (!root || root->kind != GD_Y_MAP) {
+        gd_yfail(&r, root, "", "the file must be a map with a `meshes:` list", "not a map of keys");
+        goto fail;
+    }
+    if (!(mesh = pick_mesh(&r, root, a.mesh, path, sizeof path))) goto fail;
+    if (gd_gear_pair_read(&r, root, mesh, path, &g, &opt)) goto fail;
+    if (a.has_method) opt.method = a.method;
+    if (a.points) opt.points = (int)a.points;
+    if (a.cycles) opt.cycles = (int)a.cycles;
+    if (a.slices) opt.slices = (int)a.slices;
+    if (a.has_helix) g.helix_angle = a.helix;
+    if (gd_tvms_compute(&g, &opt, &res, &err)) {
+        if (a.has_helix && !strcmp(err.field, "helix_angle")) {
+            snprintf(err.field, sizeof err.field, "--helix-angle");
+            snprintf(err.file, sizeof err.file, "%s", a.file);
+        } else {
+            gd_gear_pair_error_locate(doc->file, mesh, path, &err);
+        }
+        goto fail;
+    }
+    const gd_ynode *nm = gd_ymap_get(mesh, "name");
+    const char *mesh_name = nm && nm->kind == GD_Y_SCALAR ? nm->text : path;
+    rc = GD_EXIT_OK;
+    if (a.out) {
+        cJSON *summary = make_json(res, &g, a.file, mesh_name, 0);
+        rc = write_out(a.out, res, summary);
+        cJSON_Delete(summary);
+    }
+    if (rc == GD_EXIT_OK) {
+        if (a.json) {
+            cJSON *o = make_json(res, &g, a.file, mesh_name, 1);
+            gd_cli_print_json(stdout, o);
+            cJSON_Delete(o);
+        } else {
+            print_text(res, &g, a.file, mesh_name, !a.out);
+        }
+    }
+    gd_tvms_free(res);
+    gd_ydoc_free(doc);
+    return rc;
+fail:
+    gd_tvms_free(res);
+    gd_ydoc_free(doc);
+    return gd_cli_report(&err);
+}
