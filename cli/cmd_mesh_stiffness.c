@@ -49,7 +49,7 @@ static int parse_args(int argc, char **argv, ms_args *a)
     int c;
     optind = 1;
     opterr = 0;
-    while ((c = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+    while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
         switch (c) {
         case 'm':
             a->mesh = optarg;
@@ -94,7 +94,7 @@ static int parse_args(int argc, char **argv, ms_args *a)
             fputs(USAGE, stdout);
             return -1;
         default:
-            return gd_cli_usage_error(cmd, "unknown or incomplete option '%s'", argv[optind - 1]);
+            return gd_cli_option_error(cmd, c, argv, optind);
         }
     }
     if (optind != argc - 1) return gd_cli_usage_error(cmd, "give exactly one FILE");
