@@ -35,10 +35,22 @@ test-asan: deps
 	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
 	    UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ctest --output-on-failure -j$(JOBS)
 
+# The test programs, then the CLI itself on the examples and on error paths (the CLI
+# tests run it through /bin/sh, which valgrind does not follow).
 memcheck: build
 	@set -e; for t in $(BUILD)/test_*; do \
 	    echo "valgrind $$t"; OPENBLAS_NUM_THREADS=1 $(VALGRIND) $$t >/dev/null; done; \
-	echo "valgrind: all test programs clean"
+	out=$$(mktemp -d); \
+	for args in "check examples/rig2018.yaml" "modal examples/rig2018.yaml --speed 3000rpm --json" \
+	            "modal examples/chen1998_gear_pair.yaml --out $$out" \
+	            "mesh-stiffness examples/helical_pair1.yaml --json"; do \
+	    echo "valgrind geardyn $$args"; OPENBLAS_NUM_THREADS=1 $(VALGRIND) $(BUILD)/geardyn $$args >/dev/null; done; \
+	for args in "modal examples/missing.yaml" "modal examples/rig2018.yaml --speed fast" \
+	            "check examples/helical_pair1.yaml"; do \
+	    echo "valgrind geardyn $$args (must fail with exit 2)"; \
+	    rc=0; OPENBLAS_NUM_THREADS=1 $(VALGRIND) $(BUILD)/geardyn $$args >/dev/null 2>&1 || rc=$$?; \
+	    [ $$rc -eq 2 ] || { echo "exit $$rc, expected 2"; exit 1; }; done; \
+	rm -rf $$out; echo "valgrind: all test programs and CLI runs clean"
 
 bench: build
 	bash bench/run.sh $(BUILD)
