@@ -1,0 +1,197 @@
+/* Nonlinear and time-varying element laws for time integration (docs/transient.md).
+ * Each law is a pure function of its arguments: no state, no allocation (except the
+ * tables, created once). All quantities are SI: m, rad, s, N, N m, kg, Pa s.
+ *
+ *  - tables: y(x) by linear or cubic-spline interpolation, periodic (TVMS k(angle),
+ *    static transmission error e(angle), valve lift s(cam angle), torque vs angle) or
+ *    not (prescribed angle vs time);
+ *  - harmonic series: mean + sum_h a_h cos(h nu x) + b_h sin(h nu x);
+ *  - backlash mesh force (003_... Eqs. 2-4), contact on the drive and the coast flank;
+ *  - squeeze film damper forces, short-bearing (Ocvirk) theory, pi and 2pi film, with a
+ *    finite-length correction factor (001_..., Barrett, Allaire & Gunter 1980);
+ *  - cam inertial torque of a desmodromic valve train (003_... Eq. 10);
+ *  - applied torque/force laws and prescribed motion laws. */
+#ifndef GEARDYN_NONLINEAR_H
+#define GEARDYN_NONLINEAR_H
+#include "geardyn/error.h"
+#include "geardyn/mesh_stiffness.h"
+
+/* ---------------------------------------------------------------- tables */
+
+typedef enum gd_interp {
+    GD_INTERP_LINEAR = 0, /* piecewise linear: y' piecewise constant, y'' = 0 */
+    GD_INTERP_SPLINE = 1  /* cubic spline: periodic if the table is, else natural */
+} gd_interp;
+
+/* y(x) sampled at n points x[0] < x[1] < ... < x[n-1].
+ * Periodic (period > 0): x[n-1] - x[0] < period; x is wrapped into [x[0], x[0] + period)
+ * and the interval from x[n-1] to x[0] + period closes the loop.
+ * Not periodic (period = 0): beyond the ends the table is continued linearly with its
+ * end slope (an angle-vs-time table keeps turning), y'' = 0 there. */
+typedef struct gd_table {
+    int n;
+    double period; /* 0: not periodic */
+    gd_interp interp;
+    double *x, *y;
+    double *m;      /* spline: second derivatives y''(x_i); NULL for linear */
+    double uniform; /* > 0: constant spacing, for O(1) look-up */
+} gd_table;
+
+/* n >= 2 (spline: n >= 3). Copies x and y. */
+gd_status gd_table_create(int n, const double *x, const double *y, double period, gd_interp interp,
+                          gd_table **out, gd_error *err);
+/* Periodic table of a mesh stiffness result: k(driver angle) over its first cycle. */
+gd_status gd_table_from_tvms(const gd_tvms_result *r, gd_interp interp, gd_table **out,
+                             gd_error *err);
+void gd_table_free(gd_table *t);
+/* y(x); dy and d2y (may be NULL) receive y'(x) and y''(x). */
+double gd_table_eval(const gd_table *t, double x, double *dy, double *d2y);
+
+/* ---------------------------------------------------------------- harmonic series */
+
+#define GD_HARMONICS_MAX 32
+/* y(x) = mean + sum_{h=1..n} [cos_amp[h-1] cos(h order x) + sin_amp[h-1] sin(h order x)] */
+typedef struct gd_harmonic {
+    double mean;
+    double order; /* base order nu (e.g. 1 for once per revolution, teeth for the mesh) */
+    int n;        /* 0..GD_HARMONICS_MAX */
+    double cos_amp[GD_HARMONICS_MAX], sin_amp[GD_HARMONICS_MAX];
+} gd_harmonic;
+
+double gd_harmonic_eval(const gd_harmonic *h, double x, double *dy, double *d2y);
+
+/* ---------------------------------------------------------------- backlash mesh */
+
+/* Contact state of a mesh: the flank in contact. */
+typedef enum gd_contact {
+    GD_CONTACT_COAST = -1,    /* inverse (coast) flank: d < -b */
+    GD_CONTACT_SEPARATED = 0, /* |d| <= b: no tooth contact */
+    GD_CONTACT_DRIVE = 1      /* direct (drive) flank: d > b */
+} gd_contact;
+
+/* Parameters at one instant (stiffnesses may vary with the mesh angle). */
+typedef struct gd_backlash_params {
+    double b;                /* gap on each flank at the nominal position, m (>= 0);
+                                the total free play is 2 b */
+    double k_drive, k_coast; /* contact stiffness on each flank, N/m */
+    double c_drive, c_coast; /* damping while in contact, N s/m */
+    double c_free;           /* damping while separated (003: "other dissipative effects") */
+} gd_backlash_params;
+
+/* Flank from the deformation d (m) along the contact normal. */
+gd_contact gd_backlash_state(double d, double b);
+/* Mesh force F (N, positive pressing the drive flanks) for a given state, 003 Eqs. 2-4:
+ *   drive:      F = k_drive (d - b) + c_drive d'
+ *   separated:  F = c_free d'
+ *   coast:      F = k_coast (d + b) + c_coast d'
+ * The state is an argument so an integrator can keep it frozen between located events;
+ * each branch is continued smoothly beyond its interval. */
+double gd_backlash_force(const gd_backlash_params *p, gd_contact state, double d, double dd);
+/* The same with the state from d (written to *state if not NULL). */
+double gd_backlash_force_auto(const gd_backlash_params *p, double d, double dd, gd_contact *state);
+/* Mesh damping: constant plus proportional to the instantaneous stiffness,
+ * c = c_const + c_per_k * k (c_per_k in s). */
+double gd_mesh_damping(double c_const, double c_per_k, double k);
+
+/* ---------------------------------------------------------------- squeeze film damper */
+
+typedef enum gd_sfd_film {
+    GD_SFD_PI_FILM = 0, /* cavitated: pressure only where the film is squeezed (p > 0) */
+    GD_SFD_2PI_FILM = 1 /* uncavitated: full film, negative pressures kept */
+} gd_sfd_film;
+
+typedef struct gd_sfd_params {
+    double viscosity; /* mu, Pa s */
+    double radius;    /* journal radius R = D / 2, m */
+    double length;    /* land length L, m */
+    double clearance; /* radial clearance c, m */
+    gd_sfd_film film;
+    /* Finite-length correction factor multiplying the short-bearing forces:
+     * > 0: this value; 0: gd_sfd_correction_factor(L / D); < 0: none (pure short bearing) */
+    double correction;
+    double max_eccentricity; /* eccentricity ratio is capped here (0: 0.995) */
+} gd_sfd_params;
+
+/* Finite-length correction of the short-bearing damper forces for L / D (see
+ * docs/transient.md): eta = 3 / lambda^2 (1 - tanh(lambda) / lambda), lambda = L/D, the
+ * exact ratio of the finite-length to the short-bearing force of the uncavitated film
+ * at small eccentricity with the hyperbolic-cosine axial profile. eta -> 1 as L/D -> 0. */
+double gd_sfd_correction_factor(double l_over_d);
+
+/* Short-bearing film integrals over theta in [t1, t2] with h = c (1 + eps cos theta):
+ * j[0] = int cos^2/(1+eps cos)^3, j[1] = int sin cos/(...)^3, j[2] = int sin^2/(...)^3,
+ * closed forms through the eccentric anomaly (exact for any interval, 0 <= eps < 1). */
+void gd_sfd_integrals(double eps, double t1, double t2, double j[3]);
+
+/* Damper forces on the journal in the radial direction (along the eccentricity, from the
+ * housing centre to the journal centre) and the tangential direction (+90 deg from it),
+ * from e (m), e' (m/s) and the whirl speed phi' (rad/s). The journal does not spin. */
+void gd_sfd_force_polar(const gd_sfd_params *p, double e, double edot, double phidot, double *fr,
+                        double *ft);
+/* Damper forces (N) on the journal at position (x, y) and velocity (vx, vy) relative to
+ * the housing centre. */
+void gd_sfd_force(const gd_sfd_params *p, double x, double y, double vx, double vy, double *fx,
+                  double *fy);
+
+/* ---------------------------------------------------------------- cam inertial torque */
+
+typedef enum gd_lift_kind { GD_LIFT_TABLE = 0, GD_LIFT_HARMONIC = 1 } gd_lift_kind;
+
+/* Valve lift s(theta) (m) vs cam angle theta (rad) over one cam revolution. */
+typedef struct gd_lift_law {
+    gd_lift_kind kind;
+    const gd_table *table; /* periodic, period 2 pi (borrowed) */
+    gd_harmonic harmonic;  /* for GD_LIFT_HARMONIC (order 1 for once per revolution) */
+} gd_lift_law;
+
+/* s, s' = ds/dtheta, s'' at cam angle theta. */
+double gd_lift_eval(const gd_lift_law *law, double theta, double *ds, double *d2s);
+/* 003_... Eq. 10: torque (N m) the camshaft supplies to one valve train of equivalent
+ * mass m_eq (kg) at camshaft angle theta, speed W and acceleration Wdot:
+ *   T = m_eq s'(theta - phase) [s''(theta - phase) W^2 + s'(theta - phase) Wdot]
+ * It acts on the camshaft against its rotation. */
+double gd_cam_torque(const gd_lift_law *law, double m_eq, double phase, double theta, double w,
+                     double wdot);
+
+/* ---------------------------------------------------------------- torque / force laws */
+
+typedef enum gd_load_kind {
+    GD_LOAD_CONSTANT = 0,       /* mean */
+    GD_LOAD_HARMONIC_TIME = 1,  /* mean + amplitude cos(frequency t + phase) */
+    GD_LOAD_HARMONIC_ANGLE = 2, /* mean + amplitude cos(frequency angle + phase), frequency
+                                   is an order per radian of the DOF's total angle */
+    GD_LOAD_TABLE_ANGLE = 3     /* mean + table(angle + phase) */
+} gd_load_kind;
+
+typedef struct gd_load_law {
+    gd_load_kind kind;
+    double mean, amplitude, frequency, phase;
+    const gd_table *table; /* borrowed */
+} gd_load_law;
+
+/* Value (N or N m) at time t and total DOF angle (rad; nominal rotation plus torsion). */
+double gd_load_eval(const gd_load_law *law, double t, double angle);
+
+/* ---------------------------------------------------------------- prescribed motion */
+
+typedef enum gd_prescribed_kind {
+    GD_PRESCRIBED_NOMINAL = 0, /* the DOF follows its nominal motion: q = 0 (a shaft turning
+                              exactly at its speed, or a fixed lateral DOF) */
+    GD_PRESCRIBED_SPEED = 1,   /* total angle = speed t: q = (speed - nominal rate) t */
+    GD_PRESCRIBED_TABLE = 2,   /* total angle (or displacement) vs time from a table */
+    GD_PRESCRIBED_HARMONIC = 3 /* q = amplitude cos(frequency t + phase) */
+} gd_prescribed_kind;
+
+typedef struct gd_prescribed_law {
+    gd_prescribed_kind kind;
+    double speed;                       /* rad/s, for GD_PRESCRIBED_SPEED */
+    double amplitude, frequency, phase; /* for GD_PRESCRIBED_HARMONIC */
+    const gd_table *table;              /* borrowed; total value vs time */
+} gd_prescribed_law;
+
+/* q, q', q'' of the DOF's perturbation coordinate at time t, where nominal_rate is the
+ * DOF's nominal speed (speed ratio x reference speed for rz, 0 otherwise). */
+void gd_prescribed_eval(const gd_prescribed_law *law, double t, double nominal_rate, double *q,
+                        double *qd, double *qdd);
+
+#endif

@@ -1,0 +1,193 @@
+/* Time integration of the nonlinear, time-varying system (docs/transient.md):
+ *
+ *   M q'' + (C + C_b(W) + W G) q' + (K + K_b(W)) q = f(t, q, q') - sum_m (F_m - k_m d_m - c_m d_m')
+ * a_m
+ *
+ * at a constant reference speed W, where q are the system's DOFs (perturbations of the
+ * nominal motion: a torsional DOF's total angle is ratio W t + q), d_m = a_m . q the
+ * deformation of mesh m, k_m, c_m the linear mesh terms the system assembled (removed
+ * for the meshes described here) and F_m the mesh force law (time-varying stiffness,
+ * damping, static transmission error, backlash). f holds squeeze film damper forces,
+ * unbalance forces, applied loads and cam inertial torques.
+ *
+ * Built once (gd_transient_create: matrices at the speed, sparse Cholesky of the mass,
+ * mesh vectors, workspaces); gd_transient_run integrates with SUNDIALS CVODE (BDF or
+ * Adams, Newton iteration with GMRES preconditioned by a sparse LU of M + g D + g^2 K)
+ * and locates every contact change of a backlash mesh (CVodeRootInit on d -/+ b; the
+ * contact state is frozen between located events, so the right-hand side is smooth on
+ * every step). The right-hand side allocates nothing and assembles nothing.
+ *
+ * Prescribed DOFs are removed from the unknowns: their q, q', q'' come from their law,
+ * and their inertia, damping and stiffness couplings act on the free DOFs as forces.
+ * Tables and lift laws are borrowed: they must outlive the problem. One run at a time per
+ * problem (it holds the run's contact states); separate problems may run in parallel. */
+#ifndef GEARDYN_TRANSIENT_H
+#define GEARDYN_TRANSIENT_H
+#include "geardyn/error.h"
+#include "geardyn/nonlinear.h"
+#include "geardyn/system.h"
+
+/* A mesh with a nonlinear or time-varying law. Its linear k a a^T and c a a^T are taken
+ * out of K and C and the force F a is applied instead. Stiffness k(theta) of the driver's
+ * angle theta = s (ratio W t + q_rz) + angle_offset, s = +1 when the driver turns about
+ * +z (the mesh's driver_sense): from `tvms` (N/m, periodic in the mesh period) or the
+ * constant `stiffness`. */
+typedef struct gd_tr_mesh {
+    int mesh;             /* model mesh index */
+    const gd_table *tvms; /* k_drive(theta), N/m; NULL: constant `stiffness` */
+    double stiffness;     /* N/m, used when tvms is NULL */
+    double coast_scale;   /* k_coast = coast_scale * k_drive (per-flank stiffness) */
+    double damping;       /* constant part of the contact damping, N s/m */
+    double damping_per_k; /* c = damping + damping_per_k * k(theta), s */
+    double damping_free;  /* damping while separated (c0), N s/m */
+    int backlash;         /* 1: backlash law with gap b on each flank */
+    double gap;           /* b, m */
+    const gd_table *ste;  /* static transmission error e(theta), m (NULL: none) */
+    double angle_offset;  /* rad, added to the driver angle for tvms and ste */
+} gd_tr_mesh;
+/* Defaults from the model: constant model stiffness and damping, coast_scale 1, no
+ * backlash, no STE. */
+void gd_tr_mesh_default(const gd_system *sys, int mesh, gd_tr_mesh *m);
+
+/* Squeeze film damper between a journal node and ground (or a housing node), acting on
+ * the x, y DOFs. */
+typedef struct gd_tr_sfd {
+    int node, node2; /* node2 = -1: ground */
+    gd_sfd_params params;
+} gd_tr_sfd;
+
+/* Applied force or torque on one DOF; angle = the DOF's total angle (nominal + q). */
+typedef struct gd_tr_load {
+    int dof; /* active DOF index (gd_system_dof) */
+    gd_load_law law;
+} gd_tr_load;
+
+/* One valve train on a camshaft torsional DOF (003_... Eq. 10). The cam angle is the
+ * camshaft's rotation in its own sense, theta = s (ratio W t + q), W = s (ratio W + q');
+ * the torque acts against the rotation. */
+typedef struct gd_tr_cam {
+    int dof;                /* camshaft rz DOF */
+    const gd_lift_law *law; /* borrowed */
+    double mass;            /* equivalent mass m_eq, kg */
+    double phase;           /* rad of cam angle */
+} gd_tr_cam;
+
+/* A DOF whose motion is prescribed (removed from the unknowns). */
+typedef struct gd_tr_prescribed {
+    int dof;
+    gd_prescribed_law law;
+} gd_tr_prescribed;
+
+typedef struct gd_transient_spec {
+    const gd_tr_mesh *meshes;
+    int nmeshes;
+    const gd_tr_sfd *sfds;
+    int nsfds;
+    const gd_tr_load *loads;
+    int nloads;
+    const gd_tr_cam *cams;
+    int ncams;
+    const gd_tr_prescribed *prescribed;
+    int nprescribed;
+    int unbalances;       /* 1: the model's unbalances, at their shafts' nominal speeds */
+    int cam_acceleration; /* 1: keep the m_eq s'^2 dW/dt term of Eq. 10 (an angle-
+                             dependent inertia, solved exactly by a low-rank update) */
+} gd_transient_spec;
+
+typedef struct gd_transient gd_transient;
+
+/* Builds the problem at reference speed W (rad/s). */
+gd_status gd_transient_create(const gd_system *sys, const gd_transient_spec *spec, double speed,
+                              gd_transient **out, gd_error *err);
+void gd_transient_free(gd_transient *tr);
+
+/* The state layout: y = [q_f; q_f'] over the nfree free DOFs (in increasing DOF order). */
+int gd_transient_nstates(const gd_transient *tr);
+/* The right-hand side y' = f(t, y) with the current contact states (for benchmarks and
+ * tests; returns 0). */
+int gd_transient_rhs(gd_transient *tr, double t, const double *y, double *ydot);
+/* Sets every backlash mesh's contact state from the deformation in y at time t. */
+void gd_transient_set_contacts(gd_transient *tr, double t, const double *y);
+
+typedef enum gd_tr_method { GD_TR_BDF = 0, GD_TR_ADAMS = 1 } gd_tr_method;
+typedef enum gd_tr_init {
+    GD_TR_INIT_REST = 0,   /* q = 0, q' = 0 on the free DOFs */
+    GD_TR_INIT_STATIC = 1, /* static equilibrium under the loads at t_start (needs a
+                              stiffness holding every free DOF) */
+    GD_TR_INIT_GIVEN = 2   /* q0, v0 (length ndof; prescribed entries ignored) */
+} gd_tr_init;
+
+typedef struct gd_transient_options {
+    double t_start, t_end;  /* s */
+    double output_interval; /* s; 0: (t_end - record_from) / 1000 */
+    double record_from;     /* records and statistics from this time (>= t_start) */
+    double rtol;            /* default 1e-6 */
+    double atol_q, atol_v;  /* absolute tolerances on q (m, rad) and q' (default 1e-12,
+                               1e-9) */
+    gd_tr_method method;
+    gd_tr_init init;
+    const double *q0, *v0;
+    double max_step;   /* s; 0: none */
+    long max_steps;    /* 0: 50 million */
+    int max_order;     /* 0: CVODE's (5 BDF, 12 Adams); 2 makes BDF A-stable, which
+                          suits lightly damped stiff modes */
+    int locate_events; /* 1 (default): root-finding on contact changes */
+} gd_transient_options;
+void gd_transient_options_default(gd_transient_options *opt);
+
+typedef enum gd_tr_record_kind {
+    GD_REC_DISP = 0,        /* q[index] (m or rad, perturbation) */
+    GD_REC_VEL,             /* q'[index] */
+    GD_REC_ANGLE,           /* total angle of DOF index: nominal rate t + q */
+    GD_REC_SPEED,           /* total speed of DOF index: nominal rate + q' */
+    GD_REC_SPEED_RATIO,     /* total speed of index / total speed of index2 */
+    GD_REC_MESH_FORCE,      /* force of model mesh index along its normal, N */
+    GD_REC_MESH_DEFLECTION, /* d = a . q of model mesh index, m */
+    GD_REC_MESH_STATE,      /* -1 coast, 0 separated, 1 drive */
+    GD_REC_MESH_STIFFNESS,  /* k(theta), N/m */
+    GD_REC_SFD_FX,          /* force on the journal of damper index (spec order), N */
+    GD_REC_SFD_FY,
+    GD_REC_SFD_ECCENTRICITY /* e / c */
+} gd_tr_record_kind;
+
+typedef struct gd_tr_record {
+    gd_tr_record_kind kind;
+    int index, index2;
+} gd_tr_record;
+
+/* min, max, mean, rms (root mean square of the value), peak-to-peak, standard deviation
+ * over the recorded samples. */
+typedef struct gd_tr_stats {
+    double min, max, mean, rms, peak_to_peak, std;
+} gd_tr_stats;
+
+/* Contact history of a backlash mesh from record_from to t_end. */
+typedef struct gd_tr_contact_stats {
+    int contact_losses;                            /* drive -> separated */
+    int coast_impacts;                             /* separated -> coast */
+    int drive_impacts;                             /* separated -> drive (re-contact) */
+    double separated_time, coast_time, drive_time; /* s */
+} gd_tr_contact_stats;
+
+typedef struct gd_transient_result {
+    int nout;  /* samples */
+    double *t; /* nout */
+    int nrecords;
+    gd_tr_record *records;
+    double *values; /* record r, sample k: values[r * nout + k] */
+    gd_tr_stats *stats;
+    int nmeshes; /* = spec nmeshes */
+    gd_tr_contact_stats *contacts;
+    int ndof;
+    double *q_end, *v_end; /* ndof, at t_end (prescribed DOFs from their law) */
+    /* solver statistics over the whole run */
+    long steps, rhs_evals, lin_iters, prec_setups, events, reinits;
+    double cpu_seconds;
+} gd_transient_result;
+
+gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
+                           const gd_tr_record *records, int nrecords, gd_transient_result **out,
+                           gd_error *err);
+void gd_transient_result_free(gd_transient_result *r);
+
+#endif

@@ -1,0 +1,100 @@
+/* Internals of the transient problem shared by its source files. */
+#ifndef GD_TRANSIENT_INTERNAL_H
+#define GD_TRANSIENT_INTERNAL_H
+#include <cs.h>
+
+#include "geardyn/transient.h"
+
+typedef struct tr_mesh {
+    gd_tr_mesh spec;
+    int model_mesh;
+    gd_mesh_vector a;
+    double k_lin, c_lin; /* linear terms the system assembled, taken out again */
+    int drv_dof;         /* driver's rz DOF, -1 if not active */
+    double drv_rate;     /* driver's nominal speed about +z (ratio W) */
+    int sense;           /* +1 driver turns about +z */
+    gd_contact state;    /* current contact state (frozen between events) */
+} tr_mesh;
+
+typedef struct tr_sfd {
+    gd_sfd_params p;
+    int dx, dy, dx2, dy2; /* -1 where absent */
+} tr_sfd;
+
+typedef struct tr_unb {
+    int dx, dy;
+    double force; /* U omega^2 */
+    double omega; /* signed shaft speed */
+    double phase; /* angle of the heavy spot at t = 0 from +x */
+} tr_unb;
+
+typedef struct tr_cam {
+    gd_tr_cam spec;
+    double rate; /* nominal speed about +z */
+    int sense;
+    int slot; /* index among the distinct free cam DOFs, -1 if prescribed */
+} tr_cam;
+
+struct gd_transient {
+    const gd_system *sys;
+    int n, nf, np;
+    int *fidx;     /* n: free index of each DOF, -1 if prescribed */
+    int *free_dof; /* nf */
+    gd_tr_prescribed *pres;
+    double speed;
+    double *rate;        /* n: nominal speed of each DOF (ratio W for rz, else 0) */
+    cs *K, *D, *M;       /* full, at the speed */
+    cs *Mff, *Kff, *Dff; /* free blocks */
+    css *Msym;
+    csn *Mnum; /* Cholesky of M_ff */
+    cs *S;     /* preconditioner M_ff + g D_ff + g^2 K_ff */
+    int *mapM, *mapD, *mapK;
+    css *Ssym;
+    csn *Snum;
+    double gamma;
+    int nmesh;
+    tr_mesh *mesh;
+    int nmodel_mesh;
+    gd_mesh_vector *model_a; /* every model mesh, for records */
+    int *nl_of_mesh;         /* model mesh -> index in mesh[], or -1 */
+    int nsfd;
+    tr_sfd *sfd;
+    int nload;
+    gd_tr_load *load;
+    int nunb;
+    tr_unb *unb;
+    int ncam;
+    tr_cam *cam;
+    int cam_acc;
+    int ncd;      /* distinct free cam DOFs */
+    int *cd_free; /* ncd: free index */
+    double *Z;    /* nf x ncd: M_ff^-1 e_j */
+    double *G;    /* ncd x ncd: E^T Z */
+    double *mu, *A, *wv;
+    int nroot; /* 2 per backlash mesh */
+    /* workspaces (n each) */
+    double *q, *v, *acc, *r, *w1, *w2;
+    char msg[256]; /* last solver message */
+};
+
+/* Fills q, v, acc (length n) at time t from the state y: free DOFs from y, prescribed
+ * ones from their laws (acc is zero on free DOFs). */
+void gd_tr_fill(gd_transient *tr, double t, const double *y, double *q, double *v, double *acc);
+/* Mesh force with the given state; d, dd: raw deformation and rate (a . q, a . v);
+ * k: stiffness at the angle; de: deformation minus STE (for the contact test). */
+double gd_tr_mesh_force(const gd_transient *tr, const tr_mesh *m, gd_contact state, double t,
+                        const double *q, const double *v, double *d, double *dd, double *k,
+                        double *de);
+/* Net generalised force r (length n) at (t, q, v, acc) with the current contact states,
+ * without the inertia of the free DOFs; mu receives the cam inertias (if not NULL). */
+void gd_tr_residual(gd_transient *tr, double t, const double *q, const double *v, const double *acc,
+                    double *r);
+/* x = M_ff^-1 b (b, x of length nf; b is overwritten). */
+void gd_tr_mass_solve(gd_transient *tr, double *b, double *x);
+/* Root functions d_e - b, d_e + b of every backlash mesh. */
+void gd_tr_roots(gd_transient *tr, double t, const double *y, double *g);
+/* Preconditioner set-up (sparse LU of M + g D + g^2 K) and solve. 0 ok. */
+int gd_tr_prec_setup(gd_transient *tr, double gamma);
+void gd_tr_prec_solve(gd_transient *tr, const double *r, double *z);
+
+#endif

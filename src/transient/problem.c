@@ -1,0 +1,407 @@
+/* Building the transient problem once: matrices at the speed, free/prescribed
+ * partition, sparse Cholesky of the free mass block, preconditioner pattern, element
+ * data (mesh vectors, DOF indices, unbalance forces, cam inertia update). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "geardyn/model.h"
+#include "internal.h"
+
+static gd_status fail(gd_error *err, gd_status st, const char *field, const char *hint,
+                      const char *msg)
+{
+    return gd_error_set(err, st, "", 0, 0, field, hint, "%s", msg);
+}
+
+void gd_tr_mesh_default(const gd_system *sys, int mesh, gd_tr_mesh *m)
+{
+    memset(m, 0, sizeof *m);
+    m->mesh = mesh;
+    const gd_mesh *gm = &sys->model->meshes[mesh];
+    m->stiffness = gm->stiffness;
+    m->damping = gm->damping;
+    m->coast_scale = 1.0;
+}
+
+/* A cs view of a gd_csc (no copy). */
+static cs view(const gd_csc *a)
+{
+    cs v;
+    v.nzmax = a->colptr[a->n] > 0 ? a->colptr[a->n] : 1;
+    v.m = v.n = a->n;
+    v.p = a->colptr;
+    v.i = a->rowind;
+    v.x = a->values;
+    v.nz = -1;
+    return v;
+}
+
+/* Dense column-major n x n to CSC, dropping zeros. */
+static cs *from_dense(int n, const double *A)
+{
+    int nz = 0;
+    for (long k = 0; k < (long)n * n; k++)
+        if (A[k] != 0.0) nz++;
+    cs *T = cs_spalloc(n, n, nz > 0 ? nz : 1, 1, 1);
+    if (!T) return NULL;
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++)
+            if (A[(long)j * n + i] != 0.0) cs_entry(T, i, j, A[(long)j * n + i]);
+    cs *C = cs_compress(T);
+    cs_spfree(T);
+    return C;
+}
+
+/* The block of A on the free rows and columns. */
+static cs *free_block(const cs *A, const int *fidx, int nf)
+{
+    cs *T = cs_spalloc(nf, nf, A->p[A->n] > 0 ? A->p[A->n] : 1, 1, 1);
+    if (!T) return NULL;
+    for (int j = 0; j < A->n; j++) {
+        if (fidx[j] < 0) continue;
+        for (int p = A->p[j]; p < A->p[j + 1]; p++)
+            if (fidx[A->i[p]] >= 0 && !cs_entry(T, fidx[A->i[p]], fidx[j], A->x[p])) {
+                cs_spfree(T);
+                return NULL;
+            }
+    }
+    cs *C = cs_compress(T);
+    cs_spfree(T);
+    if (C && !cs_dupl(C)) {
+        cs_spfree(C);
+        return NULL;
+    }
+    return C;
+}
+
+/* map[k] = position in S of entry k of A (same pattern subset). */
+static int *pattern_map(const cs *A, const cs *S, int *mark)
+{
+    int *map = malloc((size_t)(A->p[A->n] > 0 ? A->p[A->n] : 1) * sizeof *map);
+    if (!map) return NULL;
+    for (int j = 0; j < A->n; j++) {
+        for (int p = S->p[j]; p < S->p[j + 1]; p++)
+            mark[S->i[p]] = p;
+        for (int p = A->p[j]; p < A->p[j + 1]; p++)
+            map[p] = mark[A->i[p]];
+    }
+    return map;
+}
+
+static int is_prescribed(const gd_transient_spec *spec, int dof)
+{
+    for (int i = 0; i < spec->nprescribed; i++)
+        if (spec->prescribed[i].dof == dof) return 1;
+    return 0;
+}
+
+gd_status gd_transient_create(const gd_system *sys, const gd_transient_spec *spec, double speed,
+                              gd_transient **out, gd_error *err)
+{
+    *out = NULL;
+    const gd_model *model = sys->model;
+    const int n = sys->ndof;
+    char buf[GD_NODE_NAME_MAX + 8], msg[256];
+    if (!isfinite(speed)) return fail(err, GD_EINPUT, "speed", "", "speed must be finite");
+    for (int i = 0; i < spec->nprescribed; i++) {
+        int d = spec->prescribed[i].dof;
+        if (d < 0 || d >= n)
+            return fail(err, GD_EINPUT, "prescribed", "use gd_system_dof", "no such DOF");
+        if (spec->prescribed[i].law.kind == GD_PRESCRIBED_TABLE && !spec->prescribed[i].law.table)
+            return fail(err, GD_EINPUT, "prescribed", "", "prescribed table missing");
+        for (int j = 0; j < i; j++)
+            if (spec->prescribed[j].dof == d)
+                return fail(err, GD_EINPUT, "prescribed", "", "a DOF is prescribed twice");
+    }
+    for (int i = 0; i < spec->nmeshes; i++) {
+        const gd_tr_mesh *m = &spec->meshes[i];
+        if (m->mesh < 0 || m->mesh >= model->nmeshes)
+            return fail(err, GD_EINPUT, "meshes", "", "no such mesh");
+        if (m->backlash && !(m->gap >= 0))
+            return fail(err, GD_EINPUT, "meshes.backlash", "", "backlash gap must be >= 0");
+        for (int j = 0; j < i; j++)
+            if (spec->meshes[j].mesh == m->mesh)
+                return fail(err, GD_EINPUT, "meshes", "", "a mesh is described twice");
+    }
+    for (int i = 0; i < spec->nloads; i++)
+        if (spec->loads[i].dof < 0 || spec->loads[i].dof >= n ||
+            (spec->loads[i].law.kind == GD_LOAD_TABLE_ANGLE && !spec->loads[i].law.table))
+            return fail(err, GD_EINPUT, "loads", "", "load on no DOF, or table missing");
+    for (int i = 0; i < spec->ncams; i++)
+        if (spec->cams[i].dof < 0 || spec->cams[i].dof >= n || !spec->cams[i].law)
+            return fail(err, GD_EINPUT, "cams", "", "cam on no DOF, or lift law missing");
+    for (int i = 0; i < spec->nsfds; i++) {
+        const gd_tr_sfd *s = &spec->sfds[i];
+        if (s->node < 0 || s->node >= model->nnodes || s->node2 >= model->nnodes ||
+            s->node == s->node2)
+            return fail(err, GD_EINPUT, "sfd", "", "damper node missing");
+        const gd_sfd_params *p = &s->params;
+        if (!(p->viscosity > 0 && p->radius > 0 && p->length > 0 && p->clearance > 0))
+            return fail(err, GD_EINPUT, "sfd", "give viscosity, radius, length, clearance > 0",
+                        "damper parameters must be positive");
+        if (gd_system_dof(sys, s->node, GD_X) < 0 || gd_system_dof(sys, s->node, GD_Y) < 0)
+            return fail(err, GD_EINPUT, "sfd", "keep x and y in the model's dofs",
+                        "damper node has no active x and y DOFs");
+    }
+
+    gd_transient *tr = calloc(1, sizeof *tr);
+    if (!tr) return fail(err, GD_ENOMEM, "", "", "out of memory");
+    gd_status st = GD_ENOMEM;
+    tr->sys = sys;
+    tr->n = n;
+    tr->speed = speed;
+    tr->cam_acc = spec->cam_acceleration;
+    tr->fidx = malloc((size_t)n * sizeof *tr->fidx);
+    tr->rate = calloc((size_t)n, sizeof *tr->rate);
+    tr->q = calloc((size_t)n, sizeof *tr->q);
+    tr->v = calloc((size_t)n, sizeof *tr->v);
+    tr->acc = calloc((size_t)n, sizeof *tr->acc);
+    tr->r = calloc((size_t)n, sizeof *tr->r);
+    tr->w1 = calloc((size_t)n, sizeof *tr->w1);
+    tr->w2 = calloc((size_t)n, sizeof *tr->w2);
+    if (!tr->fidx || !tr->rate || !tr->q || !tr->v || !tr->acc || !tr->r || !tr->w1 || !tr->w2)
+        goto fail;
+    for (int i = 0; i < n; i++) {
+        tr->fidx[i] = is_prescribed(spec, i) ? -1 : tr->nf++;
+        if (sys->dof_type[i] == GD_RZ)
+            tr->rate[i] = model->shafts[model->nodes[sys->dof_node[i]].shaft].speed_ratio * speed;
+    }
+    tr->np = n - tr->nf;
+    if (tr->nf == 0) {
+        st =
+            fail(err, GD_EINPUT, "prescribed", "", "every DOF is prescribed: nothing to integrate");
+        goto fail;
+    }
+    tr->free_dof = malloc((size_t)tr->nf * sizeof *tr->free_dof);
+    if (!tr->free_dof) goto fail;
+    for (int i = 0; i < n; i++)
+        if (tr->fidx[i] >= 0) tr->free_dof[tr->fidx[i]] = i;
+    for (int i = 0; i < n; i++)
+        if (tr->fidx[i] >= 0 && sys->massless[i]) {
+            gd_system_dof_label(sys, i, buf, (int)sizeof buf);
+            snprintf(msg, sizeof msg,
+                     "DOF %s has no mass: time integration needs mass on every free DOF", buf);
+            st = fail(err, GD_EINPUT, "dofs",
+                      "give the node a mass or inertia, or prescribe the DOF", msg);
+            goto fail;
+        }
+    if (spec->nprescribed) {
+        tr->pres = malloc((size_t)spec->nprescribed * sizeof *tr->pres);
+        if (!tr->pres) goto fail;
+        memcpy(tr->pres, spec->prescribed, (size_t)spec->nprescribed * sizeof *tr->pres);
+    }
+
+    /* matrices at the speed */
+    cs Kv = view(&sys->K), Cv = view(&sys->C), Gv = view(&sys->G), Mv = view(&sys->M);
+    tr->M = cs_add(&Mv, &Mv, 1.0, 0.0);
+    if (sys->has_speed_dependent) {
+        double *Dd = malloc((size_t)n * n * sizeof *Dd), *Kd = malloc((size_t)n * n * sizeof *Kd);
+        if (Dd && Kd) {
+            gd_system_dense(sys, speed, NULL, Dd, Kd);
+            tr->K = from_dense(n, Kd);
+            tr->D = from_dense(n, Dd);
+        }
+        free(Dd);
+        free(Kd);
+    } else {
+        tr->K = cs_add(&Kv, &Kv, 1.0, 0.0);
+        tr->D = cs_add(&Cv, &Gv, 1.0, speed);
+    }
+    if (!tr->M || !tr->K || !tr->D) goto fail;
+    tr->Mff = free_block(tr->M, tr->fidx, tr->nf);
+    tr->Kff = free_block(tr->K, tr->fidx, tr->nf);
+    tr->Dff = free_block(tr->D, tr->fidx, tr->nf);
+    if (!tr->Mff || !tr->Kff || !tr->Dff) goto fail;
+    tr->Msym = cs_schol(1, tr->Mff);
+    if (!tr->Msym) goto fail;
+    tr->Mnum = cs_chol(tr->Mff, tr->Msym);
+    if (!tr->Mnum) {
+        st = fail(err, GD_ENUMERIC, "dofs", "check the masses and inertias",
+                  "the mass matrix of the free DOFs is not positive definite");
+        goto fail;
+    }
+    /* preconditioner pattern */
+    {
+        cs *MD = cs_add(tr->Mff, tr->Dff, 1.0, 1.0);
+        if (!MD) goto fail;
+        tr->S = cs_add(MD, tr->Kff, 1.0, 1.0);
+        cs_spfree(MD);
+        int *mark = malloc((size_t)tr->nf * sizeof *mark);
+        if (!tr->S || !mark) {
+            free(mark);
+            goto fail;
+        }
+        tr->mapM = pattern_map(tr->Mff, tr->S, mark);
+        tr->mapD = pattern_map(tr->Dff, tr->S, mark);
+        tr->mapK = pattern_map(tr->Kff, tr->S, mark);
+        free(mark);
+        if (!tr->mapM || !tr->mapD || !tr->mapK) goto fail;
+        tr->Ssym = cs_sqr(1, tr->S, 0);
+        if (!tr->Ssym) goto fail;
+    }
+
+    /* meshes */
+    tr->nmodel_mesh = model->nmeshes;
+    if (model->nmeshes) {
+        tr->model_a = malloc((size_t)model->nmeshes * sizeof *tr->model_a);
+        tr->nl_of_mesh = malloc((size_t)model->nmeshes * sizeof *tr->nl_of_mesh);
+        if (!tr->model_a || !tr->nl_of_mesh) goto fail;
+        for (int k = 0; k < model->nmeshes; k++) {
+            gd_system_mesh_vector(sys, k, &tr->model_a[k]);
+            tr->nl_of_mesh[k] = -1;
+        }
+    }
+    tr->nmesh = spec->nmeshes;
+    if (tr->nmesh) {
+        tr->mesh = calloc((size_t)tr->nmesh, sizeof *tr->mesh);
+        if (!tr->mesh) goto fail;
+    }
+    for (int i = 0; i < tr->nmesh; i++) {
+        tr_mesh *m = &tr->mesh[i];
+        m->spec = spec->meshes[i];
+        if (!(m->spec.coast_scale > 0)) m->spec.coast_scale = 1.0;
+        m->model_mesh = m->spec.mesh;
+        const gd_mesh *gm = &model->meshes[m->model_mesh];
+        m->a = tr->model_a[m->model_mesh];
+        m->k_lin = gm->stiffness;
+        m->c_lin = gm->damping;
+        m->drv_dof = gd_system_dof(sys, gm->driver, GD_RZ);
+        m->drv_rate = model->shafts[model->nodes[gm->driver].shaft].speed_ratio * speed;
+        m->sense = gm->driver_sense >= 0 ? 1 : -1;
+        m->state = GD_CONTACT_DRIVE;
+        tr->nl_of_mesh[m->model_mesh] = i;
+        if (m->spec.backlash) tr->nroot += 2;
+    }
+    /* dampers */
+    tr->nsfd = spec->nsfds;
+    if (tr->nsfd) {
+        tr->sfd = calloc((size_t)tr->nsfd, sizeof *tr->sfd);
+        if (!tr->sfd) goto fail;
+    }
+    for (int i = 0; i < tr->nsfd; i++) {
+        const gd_tr_sfd *s = &spec->sfds[i];
+        tr->sfd[i].p = s->params;
+        tr->sfd[i].dx = gd_system_dof(sys, s->node, GD_X);
+        tr->sfd[i].dy = gd_system_dof(sys, s->node, GD_Y);
+        tr->sfd[i].dx2 = s->node2 >= 0 ? gd_system_dof(sys, s->node2, GD_X) : -1;
+        tr->sfd[i].dy2 = s->node2 >= 0 ? gd_system_dof(sys, s->node2, GD_Y) : -1;
+    }
+    /* loads */
+    tr->nload = spec->nloads;
+    if (tr->nload) {
+        tr->load = malloc((size_t)tr->nload * sizeof *tr->load);
+        if (!tr->load) goto fail;
+        memcpy(tr->load, spec->loads, (size_t)tr->nload * sizeof *tr->load);
+    }
+    /* unbalances */
+    if (spec->unbalances && model->nunbalances) {
+        tr->unb = calloc((size_t)model->nunbalances, sizeof *tr->unb);
+        if (!tr->unb) goto fail;
+        for (int i = 0; i < model->nunbalances; i++) {
+            const gd_unbalance *u = &model->unbalances[i];
+            double w = model->shafts[model->nodes[u->node].shaft].speed_ratio * speed;
+            int dx = gd_system_dof(sys, u->node, GD_X), dy = gd_system_dof(sys, u->node, GD_Y);
+            if (w == 0.0 || (dx < 0 && dy < 0)) continue;
+            tr_unb *b = &tr->unb[tr->nunb++];
+            b->dx = dx;
+            b->dy = dy;
+            b->omega = w;
+            b->force = u->amount * w * w;
+            b->phase = w > 0 ? u->phase : -u->phase;
+        }
+    }
+    /* cams */
+    tr->ncam = spec->ncams;
+    if (tr->ncam) {
+        tr->cam = calloc((size_t)tr->ncam, sizeof *tr->cam);
+        tr->cd_free = malloc((size_t)tr->ncam * sizeof *tr->cd_free);
+        if (!tr->cam || !tr->cd_free) goto fail;
+    }
+    for (int i = 0; i < tr->ncam; i++) {
+        tr_cam *c = &tr->cam[i];
+        c->spec = spec->cams[i];
+        c->rate = tr->rate[c->spec.dof];
+        c->sense = c->rate >= 0 ? 1 : -1;
+        int f = tr->fidx[c->spec.dof];
+        c->slot = -1;
+        if (f < 0) continue;
+        for (int j = 0; j < tr->ncd; j++)
+            if (tr->cd_free[j] == f) c->slot = j;
+        if (c->slot < 0) {
+            c->slot = tr->ncd;
+            tr->cd_free[tr->ncd++] = f;
+        }
+    }
+    if (tr->ncd) {
+        int k = tr->ncd;
+        tr->Z = calloc((size_t)tr->nf * k, sizeof *tr->Z);
+        tr->G = calloc((size_t)k * k, sizeof *tr->G);
+        tr->mu = calloc((size_t)k, sizeof *tr->mu);
+        tr->A = calloc((size_t)k * k, sizeof *tr->A);
+        tr->wv = calloc((size_t)k, sizeof *tr->wv);
+        if (!tr->Z || !tr->G || !tr->mu || !tr->A || !tr->wv) goto fail;
+        for (int j = 0; j < k; j++) {
+            memset(tr->w1, 0, (size_t)tr->nf * sizeof *tr->w1);
+            tr->w1[tr->cd_free[j]] = 1.0;
+            gd_tr_mass_solve(tr, tr->w1, tr->Z + (size_t)j * tr->nf);
+        }
+        for (int i = 0; i < k; i++)
+            for (int j = 0; j < k; j++)
+                tr->G[i + j * k] = tr->Z[(size_t)j * tr->nf + tr->cd_free[i]];
+    }
+    *out = tr;
+    return GD_OK;
+fail:
+    gd_transient_free(tr);
+    if (st == GD_ENOMEM) return fail(err, GD_ENOMEM, "", "", "out of memory");
+    return st;
+}
+
+void gd_transient_free(gd_transient *tr)
+{
+    if (!tr) return;
+    free(tr->fidx);
+    free(tr->free_dof);
+    free(tr->pres);
+    free(tr->rate);
+    cs_spfree(tr->K);
+    cs_spfree(tr->D);
+    cs_spfree(tr->M);
+    cs_spfree(tr->Mff);
+    cs_spfree(tr->Kff);
+    cs_spfree(tr->Dff);
+    cs_sfree(tr->Msym);
+    cs_nfree(tr->Mnum);
+    cs_spfree(tr->S);
+    free(tr->mapM);
+    free(tr->mapD);
+    free(tr->mapK);
+    cs_sfree(tr->Ssym);
+    cs_nfree(tr->Snum);
+    free(tr->mesh);
+    free(tr->model_a);
+    free(tr->nl_of_mesh);
+    free(tr->sfd);
+    free(tr->load);
+    free(tr->unb);
+    free(tr->cam);
+    free(tr->cd_free);
+    free(tr->Z);
+    free(tr->G);
+    free(tr->mu);
+    free(tr->A);
+    free(tr->wv);
+    free(tr->q);
+    free(tr->v);
+    free(tr->acc);
+    free(tr->r);
+    free(tr->w1);
+    free(tr->w2);
+    free(tr);
+}
+
+int gd_transient_nstates(const gd_transient *tr)
+{
+    return 2 * tr->nf;
+}

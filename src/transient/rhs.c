@@ -1,0 +1,288 @@
+/* The right-hand side y' = f(t, y) of the first-order form y = [q_f; q_f'], the root
+ * functions of the backlash meshes and the preconditioner. Nothing here allocates. */
+#include <math.h>
+#include <string.h>
+
+#include "internal.h"
+
+void gd_tr_fill(gd_transient *tr, double t, const double *y, double *q, double *v, double *acc)
+{
+    const int n = tr->n, nf = tr->nf;
+    for (int i = 0; i < n; i++) {
+        int f = tr->fidx[i];
+        if (f >= 0) {
+            q[i] = y[f];
+            v[i] = y[nf + f];
+            if (acc) acc[i] = 0.0;
+        }
+    }
+    for (int k = 0; k < tr->np; k++) {
+        int d = tr->pres[k].dof;
+        double a;
+        gd_prescribed_eval(&tr->pres[k].law, t, tr->rate[d], &q[d], &v[d], &a);
+        if (acc) acc[d] = a;
+    }
+}
+
+double gd_tr_mesh_force(const gd_transient *tr, const tr_mesh *m, gd_contact state, double t,
+                        const double *q, const double *v, double *d_out, double *dd_out,
+                        double *k_out, double *de_out)
+{
+    double d = 0.0, dd = 0.0;
+    for (int j = 0; j < m->a.n; j++) {
+        d += m->a.a[j] * q[m->a.dof[j]];
+        dd += m->a.a[j] * v[m->a.dof[j]];
+    }
+    if (d_out) *d_out = d;
+    if (dd_out) *dd_out = dd;
+    const gd_tr_mesh *s = &m->spec;
+    double k = s->stiffness;
+    if (s->tvms || s->ste) {
+        double qd = m->drv_dof >= 0 ? q[m->drv_dof] : 0.0;
+        double vd = m->drv_dof >= 0 ? v[m->drv_dof] : 0.0;
+        double th = s->angle_offset + m->sense * (m->drv_rate * t + qd);
+        double thd = m->sense * (m->drv_rate + vd);
+        if (s->tvms) k = gd_table_eval(s->tvms, th, NULL, NULL);
+        if (s->ste) {
+            double de;
+            double e = gd_table_eval(s->ste, th, &de, NULL);
+            d -= e;
+            dd -= de * thd;
+        }
+    }
+    (void)tr;
+    if (k_out) *k_out = k;
+    if (de_out) *de_out = d;
+    double c = s->damping + s->damping_per_k * k;
+    if (!s->backlash) return k * d + c * dd;
+    gd_backlash_params p;
+    p.b = s->gap;
+    p.k_drive = k;
+    p.k_coast = s->coast_scale * k;
+    p.c_drive = c;
+    p.c_coast = s->damping + s->damping_per_k * p.k_coast;
+    p.c_free = s->damping_free;
+    return gd_backlash_force(&p, state, d, dd);
+}
+
+/* r -= A x over the whole matrix */
+static void sub_mul(const cs *A, const double *x, double *r)
+{
+    for (int j = 0; j < A->n; j++) {
+        double xj = x[j];
+        if (xj == 0.0) continue;
+        for (int p = A->p[j]; p < A->p[j + 1]; p++)
+            r[A->i[p]] -= A->x[p] * xj;
+    }
+}
+
+void gd_tr_residual(gd_transient *tr, double t, const double *q, const double *v, const double *acc,
+                    double *r)
+{
+    const int n = tr->n;
+    memset(r, 0, (size_t)n * sizeof *r);
+    for (int i = 0; i < tr->nload; i++) {
+        int d = tr->load[i].dof;
+        r[d] += gd_load_eval(&tr->load[i].law, t, tr->rate[d] * t + q[d]);
+    }
+    for (int i = 0; i < tr->nunb; i++) {
+        const tr_unb *u = &tr->unb[i];
+        double psi = u->omega * t + u->phase;
+        if (u->dx >= 0) r[u->dx] += u->force * cos(psi);
+        if (u->dy >= 0) r[u->dy] += u->force * sin(psi);
+    }
+    for (int i = 0; i < tr->nsfd; i++) {
+        const tr_sfd *s = &tr->sfd[i];
+        double x = q[s->dx], y = q[s->dy], vx = v[s->dx], vy = v[s->dy];
+        if (s->dx2 >= 0) {
+            x -= q[s->dx2];
+            vx -= v[s->dx2];
+        }
+        if (s->dy2 >= 0) {
+            y -= q[s->dy2];
+            vy -= v[s->dy2];
+        }
+        double fx, fy;
+        gd_sfd_force(&s->p, x, y, vx, vy, &fx, &fy);
+        r[s->dx] += fx;
+        r[s->dy] += fy;
+        if (s->dx2 >= 0) r[s->dx2] -= fx;
+        if (s->dy2 >= 0) r[s->dy2] -= fy;
+    }
+    if (tr->ncd) memset(tr->mu, 0, (size_t)tr->ncd * sizeof *tr->mu);
+    for (int i = 0; i < tr->ncam; i++) {
+        const tr_cam *c = &tr->cam[i];
+        int d = c->spec.dof;
+        double th = c->sense * (c->rate * t + q[d]);
+        double w = c->sense * (c->rate + v[d]);
+        double s1, s2;
+        gd_lift_eval(c->spec.law, th - c->spec.phase, &s1, &s2);
+        double m = c->spec.mass;
+        /* T = m s' (s'' W^2 + s' W'), W' = sense q''; generalised force -sense T */
+        r[d] -= c->sense * m * s1 * s2 * w * w;
+        if (c->slot < 0) {
+            if (tr->cam_acc) r[d] -= m * s1 * s1 * acc[d];
+        } else if (tr->cam_acc) {
+            tr->mu[c->slot] += m * s1 * s1;
+        }
+    }
+    sub_mul(tr->K, q, r);
+    sub_mul(tr->D, v, r);
+    if (tr->np) sub_mul(tr->M, acc, r);
+    for (int i = 0; i < tr->nmesh; i++) {
+        const tr_mesh *m = &tr->mesh[i];
+        double d, dd;
+        double F = gd_tr_mesh_force(tr, m, m->state, t, q, v, &d, &dd, NULL, NULL);
+        double g = F - m->k_lin * d - m->c_lin * dd;
+        for (int j = 0; j < m->a.n; j++)
+            r[m->a.dof[j]] -= m->a.a[j] * g;
+    }
+}
+
+void gd_tr_mass_solve(gd_transient *tr, double *b, double *x)
+{
+    const int nf = tr->nf;
+    cs_ipvec(tr->Msym->pinv, b, x, nf);
+    cs_lsolve(tr->Mnum->L, x);
+    cs_ltsolve(tr->Mnum->L, x);
+    cs_pvec(tr->Msym->pinv, x, b, nf);
+    memcpy(x, b, (size_t)nf * sizeof *x);
+}
+
+/* Solves the small dense system A z = b (k x k, column-major) in place by Gaussian
+ * elimination with partial pivoting. */
+static void small_solve(int k, double *A, double *b)
+{
+    for (int c = 0; c < k; c++) {
+        int p = c;
+        for (int i = c + 1; i < k; i++)
+            if (fabs(A[i + c * k]) > fabs(A[p + c * k])) p = i;
+        if (p != c) {
+            for (int j = 0; j < k; j++) {
+                double t = A[c + j * k];
+                A[c + j * k] = A[p + j * k];
+                A[p + j * k] = t;
+            }
+            double t = b[c];
+            b[c] = b[p];
+            b[p] = t;
+        }
+        double piv = A[c + c * k];
+        if (piv == 0.0) continue;
+        for (int i = c + 1; i < k; i++) {
+            double f = A[i + c * k] / piv;
+            if (f == 0.0) continue;
+            for (int j = c; j < k; j++)
+                A[i + j * k] -= f * A[c + j * k];
+            b[i] -= f * b[c];
+        }
+    }
+    for (int c = k - 1; c >= 0; c--) {
+        double s = b[c];
+        for (int j = c + 1; j < k; j++)
+            s -= A[c + j * k] * b[j];
+        b[c] = A[c + c * k] != 0.0 ? s / A[c + c * k] : 0.0;
+    }
+}
+
+int gd_transient_rhs(gd_transient *tr, double t, const double *y, double *ydot)
+{
+    const int nf = tr->nf;
+    gd_tr_fill(tr, t, y, tr->q, tr->v, tr->acc);
+    gd_tr_residual(tr, t, tr->q, tr->v, tr->acc, tr->r);
+    for (int i = 0; i < nf; i++)
+        tr->w1[i] = tr->r[tr->free_dof[i]];
+    double *x = ydot + nf;
+    gd_tr_mass_solve(tr, tr->w1, x);
+    if (tr->ncd && tr->cam_acc) {
+        /* (M + E D E^T)^-1 r = x - Z (I + D G)^-1 D E^T x */
+        const int k = tr->ncd;
+        int any = 0;
+        for (int i = 0; i < k; i++) {
+            tr->wv[i] = tr->mu[i] * x[tr->cd_free[i]];
+            if (tr->mu[i] != 0.0) any = 1;
+            for (int j = 0; j < k; j++)
+                tr->A[i + j * k] = (i == j ? 1.0 : 0.0) + tr->mu[i] * tr->G[i + j * k];
+        }
+        if (any) {
+            small_solve(k, tr->A, tr->wv);
+            for (int j = 0; j < k; j++) {
+                const double *z = tr->Z + (size_t)j * nf;
+                double c = tr->wv[j];
+                for (int i = 0; i < nf; i++)
+                    x[i] -= z[i] * c;
+            }
+        }
+    }
+    memcpy(ydot, y + nf, (size_t)nf * sizeof *ydot);
+    return 0;
+}
+
+void gd_tr_roots(gd_transient *tr, double t, const double *y, double *g)
+{
+    gd_tr_fill(tr, t, y, tr->q, tr->v, NULL);
+    int k = 0;
+    for (int i = 0; i < tr->nmesh; i++) {
+        const tr_mesh *m = &tr->mesh[i];
+        if (!m->spec.backlash) continue;
+        double de;
+        gd_tr_mesh_force(tr, m, m->state, t, tr->q, tr->v, NULL, NULL, NULL, &de);
+        g[k++] = de - m->spec.gap;
+        g[k++] = de + m->spec.gap;
+    }
+}
+
+void gd_transient_set_contacts(gd_transient *tr, double t, const double *y)
+{
+    gd_tr_fill(tr, t, y, tr->q, tr->v, NULL);
+    for (int i = 0; i < tr->nmesh; i++) {
+        tr_mesh *m = &tr->mesh[i];
+        if (!m->spec.backlash) {
+            m->state = GD_CONTACT_DRIVE;
+            continue;
+        }
+        double de;
+        gd_tr_mesh_force(tr, m, m->state, t, tr->q, tr->v, NULL, NULL, NULL, &de);
+        m->state = gd_backlash_state(de, m->spec.gap);
+    }
+}
+
+int gd_tr_prec_setup(gd_transient *tr, double gamma)
+{
+    cs *S = tr->S;
+    memset(S->x, 0, (size_t)S->p[S->n] * sizeof *S->x);
+    for (int p = 0; p < tr->Mff->p[tr->nf]; p++)
+        S->x[tr->mapM[p]] += tr->Mff->x[p];
+    for (int p = 0; p < tr->Dff->p[tr->nf]; p++)
+        S->x[tr->mapD[p]] += gamma * tr->Dff->x[p];
+    for (int p = 0; p < tr->Kff->p[tr->nf]; p++)
+        S->x[tr->mapK[p]] += gamma * gamma * tr->Kff->x[p];
+    cs_nfree(tr->Snum);
+    tr->Snum = cs_lu(S, tr->Ssym, 1e-3);
+    tr->gamma = gamma;
+    return tr->Snum ? 0 : 1;
+}
+
+/* (I - g J) z = r with J = [0 I; -M^-1 K, -M^-1 D]:
+ * (M + g D + g^2 K) z_v = M r_v - g K r_q, z_q = r_q + g z_v. */
+void gd_tr_prec_solve(gd_transient *tr, const double *r, double *z)
+{
+    const int nf = tr->nf;
+    const double g = tr->gamma;
+    const double *rq = r, *rv = r + nf;
+    double *b = tr->w1, *x = tr->w2;
+    memset(b, 0, (size_t)nf * sizeof *b);
+    const cs *M = tr->Mff, *K = tr->Kff;
+    for (int j = 0; j < nf; j++) {
+        for (int p = M->p[j]; p < M->p[j + 1]; p++)
+            b[M->i[p]] += M->x[p] * rv[j];
+        for (int p = K->p[j]; p < K->p[j + 1]; p++)
+            b[K->i[p]] -= g * K->x[p] * rq[j];
+    }
+    cs_ipvec(tr->Snum->pinv, b, x, nf);
+    cs_lsolve(tr->Snum->L, x);
+    cs_usolve(tr->Snum->U, x);
+    cs_ipvec(tr->Ssym->q, x, z + nf, nf);
+    for (int i = 0; i < nf; i++)
+        z[i] = rq[i] + g * z[nf + i];
+}
