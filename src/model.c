@@ -39,10 +39,31 @@ void gd_model_free(gd_model *model)
     free(model->disks);
     free(model->bearings);
     free(model->springs);
-    for (int i = 0; i < model->nmeshes; i++) gd_tvms_free(model->meshes[i].tvms);
+    for (int i = 0; i < model->nmeshes; i++) {
+        gd_tvms_free(model->meshes[i].tvms);
+        gd_table_free(model->meshes[i].dyn.tvms);
+        gd_table_free(model->meshes[i].dyn.ste);
+    }
+    for (int i = 0; i < model->nexcitations; i++)
+        gd_table_free((gd_table *)model->excitations[i].law.table);
+    for (int i = 0; i < model->nprescribed; i++)
+        gd_table_free((gd_table *)model->prescribed[i].law.table);
+    for (int i = 0; i < model->ncams; i++) {
+        gd_table_free((gd_table *)model->cams[i].lift.table);
+        free(model->cams[i].valve_mass);
+        free(model->cams[i].valve_phase);
+    }
+    free(model->excitations);
+    free(model->prescribed);
+    free(model->cams);
     free(model->meshes);
     free(model->unbalances);
     free(model);
+}
+
+double gd_mesh_linear_damping(const gd_mesh *mesh)
+{
+    return mesh->damping + mesh->dyn.damping_per_stiffness * mesh->stiffness;
 }
 
 int gd_model_find_node(const gd_model *model, const char *name)

@@ -8,28 +8,25 @@
 #include "geardyn/mesh_stiffness.h"
 #include "material_read.h"
 #include "mesh_geometry_read.h"
+#include "model_parse_internal.h"
 #include "yaml_doc.h"
 
 #define PI 3.14159265358979323846
 
-typedef struct parser {
-    gd_yreader r;
-    const gd_ynode *root;
-    gd_model *m;
-} parser;
 
 static const char *const TOP_KEYS[] = {"title",  "description", "materials", "dofs",
                                        "shafts", "disks",       "bearings",  "springs",
                                        "meshes", "speed",       "reference_shaft",
-                                       "rotation", "unbalances", NULL};
+                                       "rotation", "unbalances", "excitations",
+                                       "prescribed", "cam_torques", NULL};
 
-static gd_status oom(parser *p)
+gd_status gd_mp_oom(gd_mparser *p)
 {
     return gd_error_set(p->r.err, GD_ENOMEM, p->r.file, 0, 0, "", "", "out of memory");
 }
 
 /* A list under a top-level key: NULL/absent gives n = 0. */
-static gd_status get_list(parser *p, const gd_ynode *map, const char *key, const char *path,
+gd_status gd_mp_get_list(gd_mparser *p, const gd_ynode *map, const char *key, const char *path,
                           const gd_ynode **list, int required)
 {
     *list = gd_ymap_get(map, key);
@@ -47,7 +44,7 @@ static gd_status get_list(parser *p, const gd_ynode *map, const char *key, const
     return gd_yexpect(&p->r, *list, GD_Y_SEQ, q);
 }
 
-static gd_status read_name(parser *p, const gd_ynode *map, const char *path, char *out,
+gd_status gd_mp_read_name(gd_mparser *p, const gd_ynode *map, const char *path, char *out,
                            const char *fallback, int required)
 {
     const char *s = NULL;
@@ -64,7 +61,7 @@ static gd_status read_name(parser *p, const gd_ynode *map, const char *path, cha
     return GD_OK;
 }
 
-static gd_loc loc_of(const gd_ynode *n)
+gd_loc gd_mp_loc(const gd_ynode *n)
 {
     gd_loc l = {n ? n->line : 0, n ? n->column : 0};
     return l;
@@ -72,14 +69,14 @@ static gd_loc loc_of(const gd_ynode *n)
 
 /* ---- materials ---- */
 
-static gd_status parse_materials(parser *p)
+static gd_status parse_materials(gd_mparser *p)
 {
     const gd_ynode *mats = gd_ymap_get(p->root, "materials");
     if (!mats) return GD_OK;
     gd_status st = gd_yexpect(&p->r, mats, GD_Y_MAP, "materials");
     if (st) return st;
     p->m->materials = calloc(mats->n ? mats->n : 1, sizeof *p->m->materials);
-    if (!p->m->materials) return oom(p);
+    if (!p->m->materials) return gd_mp_oom(p);
     for (size_t i = 0; i < mats->n; i++) {
         char q[200];
         snprintf(q, sizeof q, "materials.%s", mats->keys[i]->text);
@@ -93,7 +90,7 @@ static gd_status parse_materials(parser *p)
     return GD_OK;
 }
 
-static gd_status material_index(parser *p, const gd_ynode *ref, const char *path, int *out)
+static gd_status material_index(gd_mparser *p, const gd_ynode *ref, const char *path, int *out)
 {
     if (!ref || ref->kind != GD_Y_SCALAR)
         return gd_yfail(&p->r, ref, path, "name a material defined under `materials:`",
@@ -121,7 +118,7 @@ static gd_status material_index(parser *p, const gd_ynode *ref, const char *path
 
 /* Shafts, bearings, springs and meshes share one namespace (modal energy is reported
  * per component by name): a new name must not repeat an earlier one. */
-static gd_status check_component_name(parser *p, const char *name, const gd_ynode *map,
+static gd_status check_component_name(gd_mparser *p, const char *name, const gd_ynode *map,
                                       const char *path, const char *kind, int index)
 {
     const gd_model *m = p->m;
@@ -177,14 +174,14 @@ static int cmp_station(const void *a, const void *b)
     return cmp_double(&((const station *)a)->pos, &((const station *)b)->pos);
 }
 
-static gd_status add_node(parser *p, int shaft, double pos, const char *name, int list_index,
+static gd_status add_node(gd_mparser *p, int shaft, double pos, const char *name, int list_index,
                           gd_loc loc, int *cap)
 {
     gd_model *m = p->m;
     if (m->nnodes == *cap) {
         int nc = *cap ? 2 * *cap : 16;
         gd_node *nn = realloc(m->nodes, (size_t)nc * sizeof *nn);
-        if (!nn) return oom(p);
+        if (!nn) return gd_mp_oom(p);
         m->nodes = nn;
         *cap = nc;
     }
@@ -203,13 +200,13 @@ static gd_status add_node(parser *p, int shaft, double pos, const char *name, in
     return GD_OK;
 }
 
-static gd_status add_element(parser *p, int shaft, int section, int n1, int n2, int *cap)
+static gd_status add_element(gd_mparser *p, int shaft, int section, int n1, int n2, int *cap)
 {
     gd_model *m = p->m;
     if (m->nelements == *cap) {
         int nc = *cap ? 2 * *cap : 16;
         gd_element *ne = realloc(m->elements, (size_t)nc * sizeof *ne);
-        if (!ne) return oom(p);
+        if (!ne) return gd_mp_oom(p);
         m->elements = ne;
         *cap = nc;
     }
@@ -226,7 +223,7 @@ static gd_status add_element(parser *p, int shaft, int section, int n1, int n2, 
     return GD_OK;
 }
 
-static gd_status parse_shaft(parser *p, const gd_ynode *sm, const char *path, int index,
+static gd_status parse_shaft(gd_mparser *p, const gd_ynode *sm, const char *path, int index,
                              int *node_cap, int *elem_cap)
 {
     gd_yreader *r = &p->r;
@@ -237,14 +234,14 @@ static gd_status parse_shaft(parser *p, const gd_ynode *sm, const char *path, in
     if ((st = gd_yexpect(r, sm, GD_Y_MAP, path)) || (st = gd_ycheck_keys(r, sm, path, SHAFT_KEYS)))
         return st;
     snprintf(fallback, sizeof fallback, "shaft%d", index + 1);
-    if ((st = read_name(p, sm, path, sh->name, fallback, 0))) return st;
-    sh->loc = loc_of(sm);
+    if ((st = gd_mp_read_name(p, sm, path, sh->name, fallback, 0))) return st;
+    sh->loc = gd_mp_loc(sm);
     if ((st = check_component_name(p, sh->name, sm, path, "shaft", index))) return st;
     sh->speed_ratio = 1.0;
     if ((st = gd_yread_qty(r, sm, "speed_ratio", path, GD_QTY_DIMLESS, 0, &sh->speed_ratio,
                            &sh->speed_ratio_given)))
         return st;
-    sh->speed_ratio_loc = loc_of(gd_ymap_get(sm, "speed_ratio"));
+    sh->speed_ratio_loc = gd_mp_loc(gd_ymap_get(sm, "speed_ratio"));
     long per_section = 1;
     double max_len = 0;
     int has_per = 0, has_max = 0;
@@ -258,8 +255,8 @@ static gd_status parse_shaft(parser *p, const gd_ynode *sm, const char *path, in
                         "both elements_per_section and max_element_length given");
     const gd_ynode *default_mat = gd_ymap_get(sm, "material");
     const gd_ynode *sections, *nodes;
-    if ((st = get_list(p, sm, "sections", path, &sections, 0)) ||
-        (st = get_list(p, sm, "nodes", path, &nodes, 0)))
+    if ((st = gd_mp_get_list(p, sm, "sections", path, &sections, 0)) ||
+        (st = gd_mp_get_list(p, sm, "nodes", path, &nodes, 0)))
         return st;
     if ((!sections || sections->n == 0) && (!nodes || nodes->n == 0))
         return gd_yfail(r, sm, path,
@@ -270,7 +267,7 @@ static gd_status parse_shaft(parser *p, const gd_ynode *sm, const char *path, in
     double total = 0;
     if (sections && sections->n) {
         sh->sections = calloc(sections->n, sizeof *sh->sections);
-        if (!sh->sections) return oom(p);
+        if (!sh->sections) return gd_mp_oom(p);
         for (size_t i = 0; i < sections->n; i++) {
             char sp[200];
             gd_ypath_index(sp, sizeof sp, gd_ypath_key(q, sizeof q, path, "sections"), i);
@@ -279,7 +276,7 @@ static gd_status parse_shaft(parser *p, const gd_ynode *sm, const char *path, in
             if ((st = gd_yexpect(r, s, GD_Y_MAP, sp)) ||
                 (st = gd_ycheck_keys(r, s, sp, SECTION_KEYS)))
                 return st;
-            sec->loc = loc_of(s);
+            sec->loc = gd_mp_loc(s);
             if ((st = gd_yread_qty(r, s, "length", sp, GD_QTY_LENGTH, GD_YREQ | GD_YPOS,
                                    &sec->length, NULL)) ||
                 (st = gd_yread_qty(r, s, "outer_diameter", sp, GD_QTY_LENGTH, GD_YREQ | GD_YPOS,
@@ -324,7 +321,7 @@ static gd_status parse_shaft(parser *p, const gd_ynode *sm, const char *path, in
     size_t nnamed = nodes ? nodes->n : 0;
     size_t nst = (size_t)sh->nsections + 1 + nnamed;
     station *sts = calloc(nst, sizeof *sts);
-    if (!sts) return oom(p);
+    if (!sts) return gd_mp_oom(p);
     size_t k = 0;
     if (sh->nsections) {
         double pos = 0;
@@ -400,7 +397,7 @@ static gd_status parse_shaft(parser *p, const gd_ynode *sm, const char *path, in
                 snprintf(ln->name, sizeof ln->name, "%s", gd_ymap_get(nm, "name")->text);
                 ln->named = 1;
                 ln->list_index = sts[i].list_index;
-                ln->loc = loc_of(nm);
+                ln->loc = gd_mp_loc(nm);
             }
             continue;
         }
@@ -429,7 +426,7 @@ static gd_status parse_shaft(parser *p, const gd_ynode *sm, const char *path, in
             (void)seg_start;
             const char *name = nm ? gd_ymap_get(nm, "name")->text : NULL;
             if ((st = add_node(p, index, b, name, nm ? sts[i].list_index : -1,
-                               nm ? loc_of(nm) : s->loc, node_cap)) ||
+                               nm ? gd_mp_loc(nm) : s->loc, node_cap)) ||
                 (st = add_element(p, index, sec, m->nnodes - 2, m->nnodes - 1, elem_cap))) {
                 free(sts);
                 return st;
@@ -437,7 +434,7 @@ static gd_status parse_shaft(parser *p, const gd_ynode *sm, const char *path, in
         } else {
             const char *name = nm ? gd_ymap_get(nm, "name")->text : NULL;
             if ((st = add_node(p, index, sts[i].pos, name, nm ? sts[i].list_index : -1,
-                               loc_of(nm ? nm : sm), node_cap))) {
+                               gd_mp_loc(nm ? nm : sm), node_cap))) {
                 free(sts);
                 return st;
             }
@@ -449,7 +446,7 @@ static gd_status parse_shaft(parser *p, const gd_ynode *sm, const char *path, in
     return GD_OK;
 }
 
-static gd_status check_unique_node_names(parser *p)
+static gd_status check_unique_node_names(gd_mparser *p)
 {
     gd_model *m = p->m;
     for (int i = 0; i < m->nnodes; i++)
@@ -473,15 +470,15 @@ static gd_status check_unique_node_names(parser *p)
     return GD_OK;
 }
 
-static gd_status parse_shafts(parser *p)
+static gd_status parse_shafts(gd_mparser *p)
 {
     const gd_ynode *list;
-    gd_status st = get_list(p, p->root, "shafts", "", &list, 1);
+    gd_status st = gd_mp_get_list(p, p->root, "shafts", "", &list, 1);
     if (st) return st;
     if (list->n == 0)
         return gd_yfail(&p->r, list, "shafts", "describe at least one shaft", "no shafts");
     p->m->shafts = calloc(list->n, sizeof *p->m->shafts);
-    if (!p->m->shafts) return oom(p);
+    if (!p->m->shafts) return gd_mp_oom(p);
     int node_cap = 0, elem_cap = 0;
     for (size_t i = 0; i < list->n; i++) {
         char q[64];
@@ -493,7 +490,7 @@ static gd_status parse_shafts(parser *p)
 }
 
 /* A node reference by name, with a helpful list on failure. */
-static gd_status node_ref(parser *p, const gd_ynode *map, const char *key, const char *path,
+gd_status gd_mp_node_ref(gd_mparser *p, const gd_ynode *map, const char *key, const char *path,
                           int required, int *out)
 {
     const char *name = NULL;
@@ -532,13 +529,13 @@ static const char *const DISK_KEYS[] = {"name", "node", "mass", "polar_inertia",
 static const char *const DISK_GEOM_KEYS[] = {"outer_diameter", "inner_diameter", "width",
                                              "material", NULL};
 
-static gd_status parse_disks(parser *p)
+static gd_status parse_disks(gd_mparser *p)
 {
     const gd_ynode *list;
-    gd_status st = get_list(p, p->root, "disks", "", &list, 0);
+    gd_status st = gd_mp_get_list(p, p->root, "disks", "", &list, 0);
     if (st || !list) return st;
     p->m->disks = calloc(list->n ? list->n : 1, sizeof *p->m->disks);
-    if (!p->m->disks) return oom(p);
+    if (!p->m->disks) return gd_mp_oom(p);
     for (size_t i = 0; i < list->n; i++) {
         char q[64], fb[32], gp[120];
         gd_ypath_index(q, sizeof q, "disks", i);
@@ -548,8 +545,8 @@ static gd_status parse_disks(parser *p)
             (st = gd_ycheck_keys(&p->r, dm, q, DISK_KEYS)))
             return st;
         snprintf(fb, sizeof fb, "disk%zu", i + 1);
-        if ((st = read_name(p, dm, q, d->name, fb, 0)) ||
-            (st = node_ref(p, dm, "node", q, 1, &d->node)))
+        if ((st = gd_mp_read_name(p, dm, q, d->name, fb, 0)) ||
+            (st = gd_mp_node_ref(p, dm, "node", q, 1, &d->node)))
             return st;
         for (size_t j = 0; j < i; j++)
             if (!strcmp(p->m->disks[j].name, d->name)) {
@@ -559,7 +556,7 @@ static gd_status parse_disks(parser *p)
                                 "duplicate disk name '%s' (also on line %d)", d->name,
                                 p->m->disks[j].loc.line);
             }
-        d->loc = loc_of(dm);
+        d->loc = gd_mp_loc(dm);
         const gd_ynode *geom = gd_ymap_get(dm, "geometry");
         int has_m = 0, has_ip = 0, has_id = 0;
         if (geom) {
@@ -621,12 +618,12 @@ static gd_status parse_disks(parser *p)
 
 static const char *const BEARING_KEYS[] = {
     "name", "node", "to", "k", "c", "kxx", "kxy", "kyx", "kyy", "kzz", "k_tilt", "k_torsion",
-    "cxx", "cxy", "cyx", "cyy", "czz", "c_tilt", "c_torsion", "table", NULL};
+    "cxx", "cxy", "cyx", "cyy", "czz", "c_tilt", "c_torsion", "table", "sfd", NULL};
 static const char *const TABLE_ROW_KEYS[] = {
     "speed", "k", "c", "kxx", "kxy", "kyx", "kyy", "kzz", "k_tilt", "k_torsion",
     "cxx", "cxy", "cyx", "cyy", "czz", "c_tilt", "c_torsion", NULL};
 
-static gd_status read_coeffs(parser *p, const gd_ynode *map, const char *path,
+static gd_status read_coeffs(gd_mparser *p, const gd_ynode *map, const char *path,
                              gd_bearing_coeffs *c, int *any)
 {
     gd_status st;
@@ -675,13 +672,13 @@ static gd_status read_coeffs(parser *p, const gd_ynode *map, const char *path,
     return GD_OK;
 }
 
-static gd_status parse_bearings(parser *p)
+static gd_status parse_bearings(gd_mparser *p)
 {
     const gd_ynode *list;
-    gd_status st = get_list(p, p->root, "bearings", "", &list, 0);
+    gd_status st = gd_mp_get_list(p, p->root, "bearings", "", &list, 0);
     if (st || !list) return st;
     p->m->bearings = calloc(list->n ? list->n : 1, sizeof *p->m->bearings);
-    if (!p->m->bearings) return oom(p);
+    if (!p->m->bearings) return gd_mp_oom(p);
     for (size_t i = 0; i < list->n; i++) {
         char q[64], fb[32];
         gd_ypath_index(q, sizeof q, "bearings", i);
@@ -692,11 +689,11 @@ static gd_status parse_bearings(parser *p)
             (st = gd_ycheck_keys(&p->r, bm, q, BEARING_KEYS)))
             return st;
         snprintf(fb, sizeof fb, "bearing%zu", i + 1);
-        b->loc = loc_of(bm);
-        if ((st = read_name(p, bm, q, b->name, fb, 0)) ||
+        b->loc = gd_mp_loc(bm);
+        if ((st = gd_mp_read_name(p, bm, q, b->name, fb, 0)) ||
             (st = check_component_name(p, b->name, bm, q, "bearing", (int)i)) ||
-            (st = node_ref(p, bm, "node", q, 1, &b->node)) ||
-            (st = node_ref(p, bm, "to", q, 0, &b->node2)))
+            (st = gd_mp_node_ref(p, bm, "node", q, 1, &b->node)) ||
+            (st = gd_mp_node_ref(p, bm, "to", q, 0, &b->node2)))
             return st;
         char tp0[100];
         if (b->node2 == b->node)
@@ -719,7 +716,7 @@ static gd_status parse_bearings(parser *p)
                                 "a speed table needs two or more rows");
             b->table_speed = calloc(table->n, sizeof *b->table_speed);
             b->table = calloc(table->n, sizeof *b->table);
-            if (!b->table_speed || !b->table) return oom(p);
+            if (!b->table_speed || !b->table) return gd_mp_oom(p);
             for (size_t j = 0; j < table->n; j++) {
                 char rp[120];
                 gd_ypath_index(rp, sizeof rp, tp, j);
@@ -740,8 +737,9 @@ static gd_status parse_bearings(parser *p)
             b->coeffs = b->table[0];
             any = 1;
         }
-        if (!any)
-            return gd_yfail(&p->r, bm, q, "give at least one of k, kxx, kyy, kzz, c, ...",
+        if ((st = gd_mp_bearing_sfd(p, bm, q, b))) return st;
+        if (!any && !b->has_sfd)
+            return gd_yfail(&p->r, bm, q, "give at least one of k, kxx, kyy, kzz, c, ..., sfd",
                             "bearing has no stiffness or damping");
     }
     return GD_OK;
@@ -751,13 +749,13 @@ static const char *const DOF_CHOICES[] = {"x", "y", "z", "rx", "ry", "rz", NULL}
 static const char *const SPRING_KEYS[] = {"name", "node", "to", "dof", "stiffness", "damping",
                                           NULL};
 
-static gd_status parse_springs(parser *p)
+static gd_status parse_springs(gd_mparser *p)
 {
     const gd_ynode *list;
-    gd_status st = get_list(p, p->root, "springs", "", &list, 0);
+    gd_status st = gd_mp_get_list(p, p->root, "springs", "", &list, 0);
     if (st || !list) return st;
     p->m->springs = calloc(list->n ? list->n : 1, sizeof *p->m->springs);
-    if (!p->m->springs) return oom(p);
+    if (!p->m->springs) return gd_mp_oom(p);
     for (size_t i = 0; i < list->n; i++) {
         char q[64], fb[32];
         gd_ypath_index(q, sizeof q, "springs", i);
@@ -767,12 +765,12 @@ static gd_status parse_springs(parser *p)
             (st = gd_ycheck_keys(&p->r, sm, q, SPRING_KEYS)))
             return st;
         snprintf(fb, sizeof fb, "spring%zu", i + 1);
-        s->loc = loc_of(sm);
+        s->loc = gd_mp_loc(sm);
         int dof = 0, has_k = 0, has_c = 0;
-        if ((st = read_name(p, sm, q, s->name, fb, 0)) ||
+        if ((st = gd_mp_read_name(p, sm, q, s->name, fb, 0)) ||
             (st = check_component_name(p, s->name, sm, q, "spring", (int)i)) ||
-            (st = node_ref(p, sm, "node", q, 1, &s->node1)) ||
-            (st = node_ref(p, sm, "to", q, 0, &s->node2)) ||
+            (st = gd_mp_node_ref(p, sm, "node", q, 1, &s->node1)) ||
+            (st = gd_mp_node_ref(p, sm, "to", q, 0, &s->node2)) ||
             (st = gd_yread_str(&p->r, sm, "dof", q, DOF_CHOICES,
                                GD_YREQ, NULL, &dof, NULL)))
             return st;
@@ -801,13 +799,13 @@ static const char *const MESH_KEYS[] = {
     "name",          "driver",          "driven",    "teeth",     "base_radius",
     "pitch_radius",  "module",          "pressure_angle", "helix_angle", "hand",
     "line_of_centres", "driver_rotation", "stiffness", "damping",  "coupling",
-    "geometry",      NULL};
+    "geometry",      "tvms",            "transmission_error", "backlash", NULL};
 static const char *const HANDS[] = {"right", "left", NULL};
 static const char *const ROTATIONS[] = {"ccw", "cw", NULL};
 static const char *const COUPLINGS[] = {"torsional", "lateral-torsional", "full", NULL};
 
 /* Reads a two-element list [driver, driven] of quantities. */
-static gd_status read_pair(parser *p, const gd_ynode *map, const char *key, const char *path,
+static gd_status read_pair(gd_mparser *p, const gd_ynode *map, const char *key, const char *path,
                            gd_qty qty, double out[2], int *present)
 {
     const gd_ynode *v = gd_ymap_get(map, key);
@@ -827,17 +825,17 @@ static gd_status read_pair(parser *p, const gd_ynode *map, const char *key, cons
     return GD_OK;
 }
 
-static gd_status parse_mesh(parser *p, const gd_ynode *mm, const char *q, gd_mesh *g)
+static gd_status parse_mesh(gd_mparser *p, const gd_ynode *mm, const char *q, gd_mesh *g)
 {
     gd_yreader *r = &p->r;
     gd_status st;
     char fp[200];
     if ((st = gd_yexpect(r, mm, GD_Y_MAP, q)) || (st = gd_ycheck_keys(r, mm, q, MESH_KEYS)) ||
-        (st = read_name(p, mm, q, g->name, "", 1)) ||
-        (st = node_ref(p, mm, "driver", q, 1, &g->driver)) ||
-        (st = node_ref(p, mm, "driven", q, 1, &g->driven)))
+        (st = gd_mp_read_name(p, mm, q, g->name, "", 1)) ||
+        (st = gd_mp_node_ref(p, mm, "driver", q, 1, &g->driver)) ||
+        (st = gd_mp_node_ref(p, mm, "driven", q, 1, &g->driven)))
         return st;
-    g->loc = loc_of(mm);
+    g->loc = gd_mp_loc(mm);
     if (p->m->nodes[g->driver].shaft == p->m->nodes[g->driven].shaft)
         return gd_yfail(r, gd_ymap_get(mm, "driven"), gd_ypath_key(fp, sizeof fp, q, "driven"),
                         "a gear mesh joins gears on two different shafts",
@@ -941,6 +939,7 @@ static gd_status parse_mesh(parser *p, const gd_ynode *mm, const char *q, gd_mes
         g->hand = geom.hand;
     }
     const gd_ynode *stiff = gd_ymap_get(mm, "stiffness");
+    int from_table = 0;
     if (stiff && stiff->kind == GD_Y_MAP) {
         /* {from: geometry, ...}: the mean of k(angle) for linear analyses, the table kept */
         if (!geom_node)
@@ -952,18 +951,19 @@ static gd_status parse_mesh(parser *p, const gd_ynode *mm, const char *q, gd_mes
             return st;
         }
         g->stiffness = g->tvms->mean;
-    } else if ((st = gd_yread_qty(r, mm, "stiffness", q, GD_QTY_STIFFNESS, GD_YREQ | GD_YPOS,
-                                  &g->stiffness, NULL))) {
-        return st;
     }
-    if ((st = gd_yread_qty(r, mm, "damping", q, GD_QTY_DAMPING, GD_YNONNEG, &g->damping, NULL)))
+    /* time-integration keys; a tvms table gives the mean stiffness when none is given */
+    if ((st = gd_mp_mesh_dynamics(p, mm, q, g, &from_table))) return st;
+    if (!(stiff && stiff->kind == GD_Y_MAP) &&
+        (st = gd_yread_qty(r, mm, "stiffness", q, GD_QTY_STIFFNESS,
+                           GD_YPOS | (from_table ? 0 : GD_YREQ), &g->stiffness, NULL)))
         return st;
     return GD_OK;
 }
 
 /* Shaft speeds follow the gear ratios from the reference shaft: an external mesh
  * reverses the sense, omega_driven = -omega_driver * rb_driver / rb_driven. */
-static gd_status propagate_speeds(parser *p, const gd_ynode *list)
+static gd_status propagate_speeds(gd_mparser *p, const gd_ynode *list)
 {
     gd_model *m = p->m;
     int *seen = calloc((size_t)m->nshafts, sizeof *seen);
@@ -971,7 +971,7 @@ static gd_status propagate_speeds(parser *p, const gd_ynode *list)
     if (!seen || !queue) {
         free(seen);
         free(queue);
-        return oom(p);
+        return gd_mp_oom(p);
     }
     gd_status st = GD_OK;
     /* every connected group starts from its own root: the reference shaft first */
@@ -1050,14 +1050,14 @@ static gd_status propagate_speeds(parser *p, const gd_ynode *list)
     return GD_OK;
 }
 
-static gd_status parse_meshes(parser *p)
+static gd_status parse_meshes(gd_mparser *p)
 {
     const gd_ynode *list;
-    gd_status st = get_list(p, p->root, "meshes", "", &list, 0);
+    gd_status st = gd_mp_get_list(p, p->root, "meshes", "", &list, 0);
     if (st) return st;
     if (list && list->n) {
         p->m->meshes = calloc(list->n, sizeof *p->m->meshes);
-        if (!p->m->meshes) return oom(p);
+        if (!p->m->meshes) return gd_mp_oom(p);
         for (size_t i = 0; i < list->n; i++) {
             char q[64];
             gd_ypath_index(q, sizeof q, "meshes", i);
@@ -1077,13 +1077,13 @@ static gd_status parse_meshes(parser *p)
 static const char *const UNBALANCE_KEYS[] = {"name", "node", "amount", "mass", "eccentricity",
                                              "phase", NULL};
 
-static gd_status parse_unbalances(parser *p)
+static gd_status parse_unbalances(gd_mparser *p)
 {
     const gd_ynode *list;
-    gd_status st = get_list(p, p->root, "unbalances", "", &list, 0);
+    gd_status st = gd_mp_get_list(p, p->root, "unbalances", "", &list, 0);
     if (st || !list) return st;
     p->m->unbalances = calloc(list->n ? list->n : 1, sizeof *p->m->unbalances);
-    if (!p->m->unbalances) return oom(p);
+    if (!p->m->unbalances) return gd_mp_oom(p);
     for (size_t i = 0; i < list->n; i++) {
         char q[64], fb[32];
         gd_ypath_index(q, sizeof q, "unbalances", i);
@@ -1093,11 +1093,11 @@ static gd_status parse_unbalances(parser *p)
             (st = gd_ycheck_keys(&p->r, um, q, UNBALANCE_KEYS)))
             return st;
         snprintf(fb, sizeof fb, "unbalance%zu", i + 1);
-        u->loc = loc_of(um);
+        u->loc = gd_mp_loc(um);
         double mass = 0, ecc = 0;
         int has_amount = 0, has_mass = 0, has_ecc = 0;
-        if ((st = read_name(p, um, q, u->name, fb, 0)) ||
-            (st = node_ref(p, um, "node", q, 1, &u->node)) ||
+        if ((st = gd_mp_read_name(p, um, q, u->name, fb, 0)) ||
+            (st = gd_mp_node_ref(p, um, "node", q, 1, &u->node)) ||
             (st = gd_yread_qty(&p->r, um, "amount", q, GD_QTY_MASS_LENGTH, GD_YPOS, &u->amount,
                                &has_amount)) ||
             (st = gd_yread_qty(&p->r, um, "mass", q, GD_QTY_MASS, GD_YPOS, &mass, &has_mass)) ||
@@ -1118,7 +1118,7 @@ static gd_status parse_unbalances(parser *p)
 
 /* ---- top level ---- */
 
-static gd_status parse_globals(parser *p)
+static gd_status parse_globals(gd_mparser *p)
 {
     gd_yreader *r = &p->r;
     gd_model *m = p->m;
@@ -1173,7 +1173,7 @@ static gd_status parse_globals(parser *p)
     return GD_OK;
 }
 
-static gd_status parse(parser *p)
+static gd_status parse(gd_mparser *p)
 {
     gd_status st;
     const gd_ynode *rt = p->root;
@@ -1190,14 +1190,14 @@ static gd_status parse(parser *p)
         (st = gd_yread_str(&p->r, p->root, "description", "", NULL, 0, &s, NULL, NULL)) ||
         (st = parse_materials(p)) || (st = parse_shafts(p)) || (st = parse_globals(p)) ||
         (st = parse_disks(p)) || (st = parse_bearings(p)) || (st = parse_springs(p)) ||
-        (st = parse_meshes(p)) || (st = parse_unbalances(p)))
+        (st = parse_meshes(p)) || (st = parse_unbalances(p)) || (st = gd_mp_dynamics(p)))
         return st;
     return GD_OK;
 }
 
 static gd_status load_doc(gd_ydoc *doc, const char *name, gd_model **out, gd_error *err)
 {
-    parser p = {{name, err}, doc->root, calloc(1, sizeof(gd_model))};
+    gd_mparser p = {{name, err}, doc->root, calloc(1, sizeof(gd_model))};
     if (!p.m) return gd_error_set(err, GD_ENOMEM, name, 0, 0, "", "", "out of memory");
     snprintf(p.m->file, sizeof p.m->file, "%s", name);
     gd_status st = parse(&p);

@@ -137,7 +137,7 @@ static void assemble(assembler *as, int *has_table)
         for (int i = 0; i < 12; i++)
             for (int j = 0; j < 12; j++) {
                 kk[i * 12 + j] = mesh->stiffness * a[i] * a[j];
-                cc[i * 12 + j] = mesh->damping * a[i] * a[j];
+                cc[i * 12 + j] = gd_mesh_linear_damping(mesh) * a[i] * a[j];
             }
         node_idx(mesh->driver, idx);
         node_idx(mesh->driven, idx + 6);

@@ -5,6 +5,7 @@
 #define GEARDYN_MODEL_H
 #include "geardyn/error.h"
 #include "geardyn/material.h"
+#include "geardyn/nonlinear.h"
 
 #define GD_NAME_MAX 64
 /* node names: a user's name, or a generated "<shaft>@<index>" */
@@ -82,6 +83,8 @@ typedef struct gd_bearing_coeffs {
 typedef struct gd_bearing {
     char name[GD_NAME_MAX];
     int node, node2; /* node2 = -1: to ground */
+    int has_sfd;          /* a squeeze film damper acts here in time integration */
+    gd_sfd_params sfd;
     gd_bearing_coeffs coeffs;  /* constant coefficients (or the table's first row) */
     int ntable;                /* > 0: coefficients interpolated in speed of the node's shaft */
     double *table_speed;       /* ntable speeds, increasing, rad/s */
@@ -99,6 +102,20 @@ typedef struct gd_spring {
 } gd_spring;
 
 struct gd_tvms_result;
+
+/* What a mesh does in time integration beyond its constant k and c (docs/transient.md).
+ * Tables are owned by the model. */
+typedef struct gd_mesh_dynamics {
+    gd_table *tvms;              /* k(driver angle), N/m, one mesh period; NULL: the
+                                    `stiffness: {from: geometry}` result, or constant */
+    double tvms_phase;           /* added to the driver angle, rad */
+    double damping_per_stiffness;/* c = damping + this * k(angle), s */
+    double damping_separated;    /* while the teeth are apart (backlash), N s/m */
+    gd_table *ste;               /* static transmission error e(driver angle), m; NULL */
+    int backlash;                /* 1: gap on each flank */
+    double gap;                  /* b, m */
+    double coast_stiffness_ratio;/* k_coast / k_drive (default 1) */
+} gd_mesh_dynamics;
 
 /* External gear mesh between a driving and a driven gear on different shafts. The
  * mesh deformation is d = a . q along the contact normal; stiffness k acts on d. */
@@ -118,6 +135,7 @@ typedef struct gd_mesh {
     /* stiffness: {from: geometry}: k(driver angle) over a mesh cycle, owned; stiffness
      * above is its mean (linear analyses). NULL for a constant stiffness. */
     struct gd_tvms_result *tvms;
+    gd_mesh_dynamics dyn;
     gd_loc loc;
 } gd_mesh;
 
@@ -130,6 +148,35 @@ typedef struct gd_unbalance {
     double amount, phase;
     gd_loc loc;
 } gd_unbalance;
+
+/* An applied torque or force on one DOF (time integration). */
+typedef struct gd_excitation {
+    char name[GD_NAME_MAX];
+    int node;
+    gd_dof dof;
+    gd_load_law law; /* law.table, if any, is owned */
+    gd_loc loc;
+} gd_excitation;
+
+/* A DOF whose motion is prescribed (time integration). */
+typedef struct gd_prescription {
+    int node;
+    gd_dof dof;
+    gd_prescribed_law law; /* law.table, if any, is owned */
+    gd_loc loc;
+} gd_prescription;
+
+/* The valve trains of one camshaft (003 Eq. 10): one lift law, a mass and phase per
+ * valve. */
+typedef struct gd_cam {
+    char name[GD_NAME_MAX];
+    int node;
+    gd_lift_law lift; /* lift.table, if any, is owned */
+    int include_acceleration;
+    int nvalves;
+    double *valve_mass, *valve_phase;
+    gd_loc loc;
+} gd_cam;
 
 typedef struct gd_model {
     char file[256];
@@ -151,6 +198,14 @@ typedef struct gd_model {
     gd_mesh *meshes;
     int nunbalances;
     gd_unbalance *unbalances;
+    /* time integration (docs/transient.md) */
+    int nexcitations;
+    gd_excitation *excitations;
+    int excite_unbalances; /* the unbalances act in time integration (default 1) */
+    int nprescribed;
+    gd_prescription *prescribed;
+    int ncams;
+    gd_cam *cams;
     unsigned dof_mask;    /* active node DOFs (GD_DOF_BIT) */
     int reference_shaft;  /* shaft whose speed is the reference speed */
     double speed;         /* reference speed, rad/s (0 unless given) */
@@ -165,6 +220,10 @@ void gd_model_free(gd_model *model);
 /* Overrides every mesh's coupling level and restricts the active DOFs to the level's
  * (as `--coupling` does on the command line). */
 void gd_model_set_coupling(gd_model *model, gd_coupling level);
+
+/* The damping the linear analyses use for a mesh: its constant damping plus the part
+ * proportional to stiffness at the mean stiffness (c + c_per_k * k_mean). */
+double gd_mesh_linear_damping(const gd_mesh *mesh);
 
 int gd_model_find_node(const gd_model *model, const char *name);
 int gd_model_find_shaft(const gd_model *model, const char *name);

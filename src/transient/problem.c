@@ -265,7 +265,7 @@ gd_status gd_transient_create(const gd_system *sys, const gd_transient_spec *spe
         const gd_mesh *gm = &model->meshes[m->model_mesh];
         m->a = tr->model_a[m->model_mesh];
         m->k_lin = gm->stiffness;
-        m->c_lin = gm->damping;
+        m->c_lin = gd_mesh_linear_damping(gm); /* what the system assembled */
         m->drv_dof = gd_system_dof(sys, gm->driver, GD_RZ);
         m->drv_rate = model->shafts[model->nodes[gm->driver].shaft].speed_ratio * speed;
         m->sense = gm->driver_sense >= 0 ? 1 : -1;
