@@ -64,3 +64,30 @@ void gd_outdir_abort(gd_outdir *od);
 int gd_cli_load(const char *path, const char *coupling, gd_model **model, gd_system **sys);
 /* Parses a speed option value with units ("3000 rpm"); 0 on success. */
 int gd_cli_parse_speed(const char *cmd, const char *text, double *out);
+
+/* ---- sweeps: Campbell, FRF, unbalance (cli_sweep.c) ---- */
+#include "geardyn/frf.h"
+
+int gd_cmd_campbell(int argc, char **argv);
+int gd_cmd_frf(int argc, char **argv);
+int gd_cmd_unbalance(int argc, char **argv);
+
+/* Parses FROM:TO:COUNT (speeds or frequencies, units allowed: "0:12000rpm:121"; a FROM
+ * without a unit takes TO's) into count evenly spaced values in rad/s (malloc'd).
+ * Reports a usage error naming opt and returns 2 on failure, 0 on success. */
+int gd_cli_parse_range(const char *cmd, const char *opt, const char *text, double **values,
+                       int *count);
+/* Output spec: NODE.DOF | node:NODE.DOF | mesh:NAME | bearing:NAME.DIR. 0 or 2. */
+int gd_cli_parse_probe(const char *cmd, const char *opt, const gd_system *sys, const char *text,
+                       gd_probe *out);
+/* Input spec: NODE.DOF | node:NODE.DOF | torque:NODE (= NODE.rz) | NODE.xy (directional:
+ * *xy = 1, *dof is the x DOF). 0 or 2. */
+int gd_cli_parse_input(const char *cmd, const gd_system *sys, const char *text, int *dof, int *xy,
+                       char *label, size_t label_size);
+/* Parses a whole number of threads (>= 1); 0 or 2. */
+int gd_cli_parse_threads(const char *cmd, const char *text, int *out);
+/* JSON number or null when not finite. */
+cJSON *gd_cli_json_number(double v);
+
+/* ---- time integration (cmd_transient.c) ---- */
+int gd_cmd_transient(int argc, char **argv);

@@ -132,6 +132,11 @@ typedef struct gd_transient_options {
     int max_order;     /* 0: CVODE's (5 BDF, 12 Adams); 2 makes BDF A-stable, which
                           suits lightly damped stiff modes */
     int locate_events; /* 1 (default): root-finding on contact changes */
+    /* Optional progress report (NULL: none): called with the time reached, at every
+     * output sample and about every 1/200 of the span before record_from. The library
+     * prints nothing itself. */
+    void (*progress)(double t, double t_start, double t_end, void *data);
+    void *progress_data;
 } gd_transient_options;
 void gd_transient_options_default(gd_transient_options *opt);
 

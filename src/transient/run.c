@@ -159,7 +159,12 @@ static gd_status check_record(const gd_transient *tr, const gd_tr_record *r, gd_
 }
 
 /* Static equilibrium at t: modified Newton with the linear stiffness (meshes at their
- * model stiffness, always in contact) as the iteration matrix. */
+ * model stiffness, always in contact) as the iteration matrix. Backlash meshes are held
+ * on a flank (each flank's law continued beyond its interval, so the problem is smooth):
+ * all start on the drive flank; after convergence a mesh whose force pulls (F < 0) moves
+ * to the coast flank and one pushing on the coast flank back to the drive flank, until
+ * no flank changes. A mesh carrying no load is left in the gap by the caller's
+ * gd_transient_set_contacts. */
 static gd_status static_state(gd_transient *tr, double t, double *y, gd_error *err)
 {
     const int nf = tr->nf;
@@ -176,27 +181,46 @@ static gd_status static_state(gd_transient *tr, double t, double *y, gd_error *e
     memset(y, 0, (size_t)2 * nf * sizeof *y);
     gd_status st = GD_OK;
     double *b = tr->w1, *x = tr->w2;
-    int it;
-    for (it = 0; it < 200; it++) {
-        gd_transient_set_contacts(tr, t, y);
-        gd_tr_fill(tr, t, y, tr->q, tr->v, tr->acc);
-        memset(tr->acc, 0, (size_t)tr->n * sizeof *tr->acc);
-        gd_tr_residual(tr, t, tr->q, tr->v, tr->acc, tr->r);
-        for (int i = 0; i < nf; i++)
-            b[i] = tr->r[tr->free_dof[i]];
-        cs_ipvec(N->pinv, b, x, nf);
-        cs_lsolve(N->L, x);
-        cs_usolve(N->U, x);
-        cs_ipvec(S->q, x, b, nf);
-        double dn = 0, qn = 0;
-        for (int i = 0; i < nf; i++) {
-            y[i] += b[i];
-            dn = fmax(dn, fabs(b[i]));
-            qn = fmax(qn, fabs(y[i]));
+    for (int i = 0; i < tr->nmesh; i++)
+        tr->mesh[i].state = GD_CONTACT_DRIVE;
+    int converged = 0;
+    for (int outer = 0; outer < 20 && !converged; outer++) {
+        int it;
+        for (it = 0; it < 500; it++) {
+            gd_tr_fill(tr, t, y, tr->q, tr->v, tr->acc);
+            memset(tr->acc, 0, (size_t)tr->n * sizeof *tr->acc);
+            gd_tr_residual(tr, t, tr->q, tr->v, tr->acc, tr->r);
+            for (int i = 0; i < nf; i++)
+                b[i] = tr->r[tr->free_dof[i]];
+            cs_ipvec(N->pinv, b, x, nf);
+            cs_lsolve(N->L, x);
+            cs_usolve(N->U, x);
+            cs_ipvec(S->q, x, b, nf);
+            double dn = 0, qn = 0;
+            for (int i = 0; i < nf; i++) {
+                y[i] += b[i];
+                dn = fmax(dn, fabs(b[i]));
+                qn = fmax(qn, fabs(y[i]));
+            }
+            if (dn <= 1e-13 * qn || dn == 0.0) break;
         }
-        if (dn <= 1e-13 * qn || dn == 0.0) break;
+        if (it == 500) break;
+        converged = 1;
+        gd_tr_fill(tr, t, y, tr->q, tr->v, NULL);
+        for (int i = 0; i < tr->nmesh; i++) {
+            tr_mesh *m = &tr->mesh[i];
+            if (!m->spec.backlash) continue;
+            double F = gd_tr_mesh_force(tr, m, m->state, t, tr->q, tr->v, NULL, NULL, NULL, NULL);
+            if (m->state == GD_CONTACT_DRIVE && F < 0) {
+                m->state = GD_CONTACT_COAST;
+                converged = 0;
+            } else if (m->state == GD_CONTACT_COAST && F > 0) {
+                m->state = GD_CONTACT_DRIVE;
+                converged = 0;
+            }
+        }
     }
-    if (it == 200)
+    if (!converged)
         st = gd_error_set(err, GD_ENUMERIC, "", 0, 0, "init", "start from rest",
                           "static initial state did not converge");
     cs_sfree(S);
@@ -399,7 +423,12 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
         double tk = from + k * dt;
         if (tk > opt->t_end || k == nout - 1) tk = fmin(tk, opt->t_end);
         while (t < tk) {
-            flag = CVode(mem, tk, y, &t, CV_NORMAL);
+            /* with a progress report, the stretch before record_from is split (CVODE
+             * interpolates at the intermediate times; its steps are the same) */
+            double tout = tk, chunk = (opt->t_end - opt->t_start) / 200.0;
+            if (opt->progress && tk - t > 1.5 * chunk) tout = t + chunk;
+            flag = CVode(mem, tout, y, &t, CV_NORMAL);
+            if (opt->progress) opt->progress(t, opt->t_start, opt->t_end, opt->progress_data);
             if (flag == CV_ROOT_RETURN) {
                 CVodeGetRootInfo(mem, rootsfound);
                 int changed = 0, kr = 0;

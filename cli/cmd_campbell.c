@@ -1,0 +1,345 @@
+/* geardyn campbell MODEL --speeds FROM:TO:COUNT: Campbell diagram, critical speeds,
+ * stability. */
+#include <cblas.h>
+#include <getopt.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "geardyn/campbell.h"
+#include "geardyn/units.h"
+
+static const char USAGE[] =
+    "usage: geardyn campbell MODEL.yaml --speeds FROM:TO:COUNT [--modes N|all] [--orders LIST]\n"
+    "                        [--no-shaft-orders] [--no-mesh-orders] [--method auto|dense|sparse]\n"
+    "                        [--undamped] [--shift VALUE] [--threads N] [--coupling LEVEL]\n"
+    "                        [--json] [--out DIR]\n\n"
+    "Damped modes at every speed, tracked across speeds by mode shape (MAC), with whirl\n"
+    "direction, dominant motion and log decrement; critical speeds where a mode meets an\n"
+    "excitation order (1x of each shaft, --orders, tooth-mesh orders); instability onset.\n\n"
+    "  --speeds FROM:TO:COUNT  reference speeds, units allowed: 0:12000rpm:121 (required)\n"
+    "  --modes N|all       elastic modes tracked (default 12; rigid-body modes are left out)\n"
+    "  --orders LIST       extra orders of the reference speed, comma-separated: 2,0.5\n"
+    "  --no-shaft-orders   leave out the 1x order of each shaft\n"
+    "  --no-mesh-orders    leave out the tooth-mesh orders (teeth x shaft speed)\n"
+    "  --method M          auto (sparse shift-invert from 200 DOFs), dense (LAPACK) or sparse\n"
+    "  --undamped          drop damping (gyroscopic terms stay)\n"
+    "  --shift VALUE       sparse shift below zero, e.g. 10Hz (default: automatic)\n"
+    "  --threads N         parallel threads over speeds (default: all cores)\n"
+    "  --coupling LEVEL    torsional | lateral-torsional | full\n"
+    "  --json              one JSON object on stdout instead of the tables\n"
+    "  --out DIR           write DIR/campbell.csv (long form) and DIR/critical_speeds.csv\n";
+
+#define PI 3.14159265358979323846
+
+static double fd_hz(const gd_mode *md)
+{
+    return md->omega_d / (2 * PI);
+}
+
+static void print_tables(const gd_system *s, const gd_campbell_result *r)
+{
+    int ns = r->nspeeds;
+    printf("%s: %d DOFs, %d speeds, %d tracked modes (%s eigensolver), %d rigid-body mode(s) left "
+           "out\n\n",
+           s->model->file, s->ndof, ns, r->ntracks, r->sparse ? "sparse shift-invert" : "dense",
+           r->nrigid);
+    printf("damped natural frequencies (Hz)\n%10s", "rpm");
+    for (int t = 0; t < r->ntracks; t++)
+        printf(" %10s%d", "mode", r->tracks[t].id);
+    printf("\n");
+    for (int k = 0; k < ns; k++) {
+        printf("%10.1f", r->speeds[k] * 30 / PI);
+        for (int t = 0; t < r->ntracks; t++) {
+            const gd_mode *md = &r->modes[(size_t)t * ns + k];
+            if (md->rigid_body < 0)
+                printf(" %11s", "-");
+            else
+                printf(" %11.5g", fd_hz(md));
+        }
+        printf("\n");
+    }
+    printf("\n%4s  %-9s %-10s %12s %12s %10s\n", "mode", "whirl", "dominant", "f_first(Hz)",
+           "f_last(Hz)", "min logdec");
+    for (int t = 0; t < r->ntracks; t++) {
+        double f0 = NAN, f1 = NAN, ld = INFINITY;
+        for (int k = 0; k < ns; k++) {
+            const gd_mode *md = &r->modes[(size_t)t * ns + k];
+            if (md->rigid_body < 0) continue;
+            if (isnan(f0)) f0 = fd_hz(md);
+            f1 = fd_hz(md);
+            if (!isnan(md->log_decrement) && md->log_decrement < ld) ld = md->log_decrement;
+        }
+        printf("%4d  %-9s %-10s %12.6g %12.6g %10.4g\n", r->tracks[t].id,
+               gd_whirl_names[r->tracks[t].whirl], gd_motion_names[r->tracks[t].dominant_motion],
+               f0, f1, isfinite(ld) ? ld : NAN);
+    }
+    printf("\ncritical speeds\n%4s  %-32s %12s %12s\n", "mode", "order", "rpm", "f(Hz)");
+    for (int c = 0; c < r->ncritical; c++)
+        printf("%4d  %-32.32s %12.6g %12.6g\n", r->critical[c].mode,
+               r->orders[r->critical[c].order].label, r->critical[c].speed_rpm,
+               r->critical[c].frequency_hz);
+    if (!r->ncritical) printf("  (none in the speed range)\n");
+    if (isnan(r->instability_onset))
+        printf("\nstable over the whole speed range\n");
+    else
+        printf("\nUNSTABLE from %.6g rpm (mode %d)\n", r->instability_onset * 30 / PI,
+               r->instability_track);
+}
+
+static cJSON *result_json(const gd_system *s, const gd_campbell_result *r)
+{
+    int ns = r->nspeeds;
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "model", s->model->file);
+    cJSON_AddStringToObject(o, "eigensolver", r->sparse ? "sparse" : "dense");
+    cJSON *sp = cJSON_AddArrayToObject(o, "speeds_rad_s");
+    cJSON *rpm = cJSON_AddArrayToObject(o, "speeds_rpm");
+    for (int k = 0; k < ns; k++) {
+        cJSON_AddItemToArray(sp, cJSON_CreateNumber(r->speeds[k]));
+        cJSON_AddItemToArray(rpm, cJSON_CreateNumber(r->speeds[k] * 30 / PI));
+    }
+    cJSON *modes = cJSON_AddArrayToObject(o, "modes");
+    for (int t = 0; t < r->ntracks; t++) {
+        cJSON *m = cJSON_CreateObject();
+        cJSON_AddNumberToObject(m, "id", r->tracks[t].id);
+        cJSON_AddStringToObject(m, "whirl", gd_whirl_names[r->tracks[t].whirl]);
+        cJSON_AddStringToObject(m, "dominant_motion",
+                                gd_motion_names[r->tracks[t].dominant_motion]);
+        cJSON *f = cJSON_AddArrayToObject(m, "frequency_hz");
+        cJSON *fn = cJSON_AddArrayToObject(m, "natural_frequency_hz");
+        cJSON *z = cJSON_AddArrayToObject(m, "damping_ratio");
+        cJSON *ld = cJSON_AddArrayToObject(m, "log_decrement");
+        cJSON *wh = cJSON_AddArrayToObject(m, "whirl_by_speed");
+        for (int k = 0; k < ns; k++) {
+            const gd_mode *md = &r->modes[(size_t)t * ns + k];
+            int ex = md->rigid_body >= 0;
+            cJSON_AddItemToArray(f, gd_cli_json_number(ex ? fd_hz(md) : NAN));
+            cJSON_AddItemToArray(fn, gd_cli_json_number(md->frequency_hz));
+            cJSON_AddItemToArray(z, gd_cli_json_number(md->damping_ratio));
+            cJSON_AddItemToArray(ld, gd_cli_json_number(md->log_decrement));
+            cJSON_AddItemToArray(wh, ex ? cJSON_CreateString(gd_whirl_names[md->whirl])
+                                        : cJSON_CreateNull());
+        }
+        cJSON_AddItemToArray(modes, m);
+    }
+    cJSON *cs = cJSON_AddArrayToObject(o, "critical_speeds");
+    for (int c = 0; c < r->ncritical; c++) {
+        cJSON *x = cJSON_CreateObject();
+        cJSON_AddNumberToObject(x, "mode", r->critical[c].mode);
+        cJSON_AddStringToObject(x, "order", r->orders[r->critical[c].order].label);
+        cJSON_AddNumberToObject(x, "order_value", r->orders[r->critical[c].order].order);
+        cJSON_AddNumberToObject(x, "speed_rpm", r->critical[c].speed_rpm);
+        cJSON_AddNumberToObject(x, "frequency_hz", r->critical[c].frequency_hz);
+        cJSON_AddItemToArray(cs, x);
+    }
+    cJSON_AddItemToObject(o, "instability_onset_rpm",
+                          gd_cli_json_number(r->instability_onset * 30 / PI));
+    return o;
+}
+
+static int write_csv(const gd_campbell_result *r, const char *dir)
+{
+    gd_error err;
+    gd_error_clear(&err);
+    gd_outdir od;
+    if (gd_outdir_begin(&od, dir, &err)) return gd_cli_report(&err);
+    FILE *f = gd_outdir_open(&od, "campbell.csv", &err);
+    if (!f) goto fail;
+    fprintf(f, "speed_rad_s,speed_rpm,mode,frequency_hz,natural_frequency_hz,damping_ratio,"
+               "log_decrement,whirl,dominant_motion\n");
+    for (int k = 0; k < r->nspeeds; k++)
+        for (int t = 0; t < r->ntracks; t++) {
+            const gd_mode *md = &r->modes[(size_t)t * r->nspeeds + k];
+            if (md->rigid_body < 0) continue;
+            fprintf(f, "%.10g,%.10g,%d,%.10g,%.10g,%.10g,%.10g,%s,%s\n", r->speeds[k],
+                    r->speeds[k] * 30 / PI, r->tracks[t].id, fd_hz(md), md->frequency_hz,
+                    md->damping_ratio, md->log_decrement, gd_whirl_names[md->whirl],
+                    gd_motion_names[md->dominant_motion]);
+        }
+    if (gd_outdir_close(&od, f, "campbell.csv", &err)) goto fail;
+    f = gd_outdir_open(&od, "critical_speeds.csv", &err);
+    if (!f) goto fail;
+    fprintf(f, "mode,order,order_value,speed_rpm,frequency_hz\n");
+    for (int c = 0; c < r->ncritical; c++)
+        fprintf(f, "%d,%s,%.10g,%.10g,%.10g\n", r->critical[c].mode,
+                r->orders[r->critical[c].order].label, r->orders[r->critical[c].order].order,
+                r->critical[c].speed_rpm, r->critical[c].frequency_hz);
+    if (gd_outdir_close(&od, f, "critical_speeds.csv", &err)) goto fail;
+    if (gd_outdir_commit(&od, &err)) return gd_cli_report(&err);
+    return GD_EXIT_OK;
+fail:
+    gd_outdir_abort(&od);
+    return gd_cli_report(&err);
+}
+
+static int parse_orders(const char *text, double **out, int *n)
+{
+    int cap = 1;
+    for (const char *p = text; *p; p++)
+        cap += *p == ',';
+    double *v = malloc((size_t)cap * sizeof *v);
+    if (!v) return 1;
+    char buf[512];
+    snprintf(buf, sizeof buf, "%s", text);
+    int k = 0;
+    for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok;
+         tok = strtok_r(NULL, ",", &save)) {
+        char *end;
+        double x = strtod(tok, &end);
+        if (end == tok || *end || !(x > 0) || !isfinite(x)) {
+            free(v);
+            return 1;
+        }
+        v[k++] = x;
+    }
+    if (k == 0) {
+        free(v);
+        return 1;
+    }
+    *out = v;
+    *n = k;
+    return 0;
+}
+
+int gd_cmd_campbell(int argc, char **argv)
+{
+    static const struct option opts[] = {
+        {"speeds", required_argument, 0, 's'},   {"modes", required_argument, 0, 'n'},
+        {"orders", required_argument, 0, 'r'},   {"no-shaft-orders", no_argument, 0, 'S'},
+        {"no-mesh-orders", no_argument, 0, 'M'}, {"method", required_argument, 0, 'm'},
+        {"undamped", no_argument, 0, 'u'},       {"shift", required_argument, 0, 'f'},
+        {"threads", required_argument, 0, 't'},  {"coupling", required_argument, 0, 'c'},
+        {"json", no_argument, 0, 'j'},           {"out", required_argument, 0, 'o'},
+        {"help", no_argument, 0, 'h'},           {0, 0, 0, 0}};
+    const char *cmd = "campbell", *speeds = NULL, *coupling = NULL, *out = NULL, *orders = NULL,
+               *shift = NULL;
+    gd_campbell_options opt;
+    gd_campbell_options_default(&opt);
+    int json = 0, c;
+    long nm;
+    optind = 1;
+    opterr = 0;
+    while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
+        switch (c) {
+        case 's':
+            speeds = optarg;
+            break;
+        case 'n':
+            if (!strcmp(optarg, "all"))
+                opt.nmodes = 0;
+            else if (gd_cli_parse_count(optarg, 1, 100000, &nm))
+                return gd_cli_usage_error(
+                    cmd, "--modes: '%s' is not a positive whole number or 'all'", optarg);
+            else
+                opt.nmodes = (int)nm;
+            break;
+        case 'r':
+            orders = optarg;
+            break;
+        case 'S':
+            opt.shaft_orders = 0;
+            break;
+        case 'M':
+            opt.mesh_orders = 0;
+            break;
+        case 'm':
+            if (!strcmp(optarg, "auto"))
+                opt.method = GD_EIG_AUTO;
+            else if (!strcmp(optarg, "dense"))
+                opt.method = GD_EIG_DENSE;
+            else if (!strcmp(optarg, "sparse"))
+                opt.method = GD_EIG_SPARSE;
+            else
+                return gd_cli_usage_error(cmd, "--method: '%s' is not auto, dense or sparse",
+                                          optarg);
+            break;
+        case 'u':
+            opt.kind = GD_MODAL_UNDAMPED;
+            break;
+        case 'f':
+            shift = optarg;
+            break;
+        case 't':
+            if (gd_cli_parse_threads(cmd, optarg, &opt.nthreads)) return GD_EXIT_INPUT;
+            break;
+        case 'c':
+            coupling = optarg;
+            break;
+        case 'j':
+            json = 1;
+            break;
+        case 'o':
+            out = optarg;
+            break;
+        case 'h':
+            fputs(USAGE, stdout);
+            return GD_EXIT_OK;
+        default:
+            return gd_cli_option_error(cmd, c, argv, optind);
+        }
+    }
+    if (optind != argc - 1) return gd_cli_usage_error(cmd, "give exactly one model file");
+    if (!speeds) return gd_cli_usage_error(cmd, "--speeds FROM:TO:COUNT is required");
+    double *ord = NULL;
+    if (orders && parse_orders(orders, &ord, &opt.norders))
+        return gd_cli_usage_error(
+            cmd, "--orders: '%s' is not a comma-separated list of positive numbers", orders);
+    opt.orders = ord;
+    char why[200];
+    if (shift && gd_parse_quantity(shift, GD_QTY_ANGULAR_SPEED, &opt.shift, why, sizeof why)) {
+        free(ord);
+        return gd_cli_usage_error(cmd, "--shift: %s (e.g. --shift 10Hz)", why);
+    }
+    if (shift && !(opt.shift > 0)) {
+        free(ord);
+        return gd_cli_usage_error(cmd, "--shift: give a value above zero");
+    }
+    double *sp = NULL;
+    int rc = gd_cli_parse_range(cmd, "--speeds", speeds, &sp, &opt.nspeeds);
+    if (rc) {
+        free(ord);
+        return rc;
+    }
+    opt.speeds = sp;
+    gd_error oerr;
+    gd_error_clear(&oerr);
+    if (out && gd_outdir_check(out, &oerr)) {
+        free(ord);
+        free(sp);
+        return gd_cli_report(&oerr);
+    }
+    gd_model *m;
+    gd_system *s;
+    rc = gd_cli_load(argv[optind], coupling, &m, &s);
+    if (rc) {
+        free(ord);
+        free(sp);
+        return rc;
+    }
+    openblas_set_num_threads(1); /* the sweep is parallel over speeds instead */
+    gd_campbell_result *r;
+    gd_error err;
+    gd_error_clear(&err);
+    if (gd_campbell(s, &opt, &r, &err)) {
+        rc = gd_cli_report(&err);
+    } else {
+        if (out) rc = write_csv(r, out);
+        if (rc == GD_EXIT_OK) {
+            if (json) {
+                cJSON *o = result_json(s, r);
+                gd_cli_print_json(stdout, o);
+                cJSON_Delete(o);
+            } else {
+                print_tables(s, r);
+            }
+        }
+        gd_campbell_free(r);
+    }
+    gd_system_free(s);
+    gd_model_free(m);
+    free(ord);
+    free(sp);
+    return rc;
+}

@@ -1,0 +1,293 @@
+/* geardyn frf MODEL --input WHAT --output WHAT --freq FROM:TO:COUNT: frequency
+ * response functions, direct or by modal summation, and directional FRFs. */
+#include <cblas.h>
+#include <getopt.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "sweep_output.h"
+
+static const char USAGE[] =
+    "usage: geardyn frf MODEL.yaml --input WHAT --output WHAT [--output WHAT ...]\n"
+    "                   --freq FROM:TO:COUNT [--speed VALUE] [--method direct|modal]\n"
+    "                   [--modes N|all] [--type receptance|mobility|accelerance]\n"
+    "                   [--threads N] [--coupling LEVEL] [--json] [--out DIR]\n\n"
+    "Response to a unit harmonic force or moment. Inputs:\n"
+    "  NODE.DOF, node:NODE.DOF  force (x, y, z) or moment (rx, ry, rz) at a node, e.g. pinion.y\n"
+    "  torque:NODE              torque about the shaft axis (= NODE.rz)\n"
+    "  NODE.xy                  directional FRFs: forward and backward (outputs NODE.xy too)\n"
+    "Outputs (repeat --output):\n"
+    "  NODE.DOF, node:NODE.DOF  displacement (or velocity/acceleration, --type)\n"
+    "  mesh:NAME                dynamic mesh force k d + c d' along the contact normal (N)\n"
+    "  bearing:NAME.DIR         force the bearing transmits in DIR (x, y, z, rx, ry, rz)\n\n"
+    "  --freq FROM:TO:COUNT  frequencies, units allowed: 0:26000:1001 (rad/s), 0:5kHz:501\n"
+    "  --speed VALUE     reference shaft speed (gyroscopics, bearing tables); default: model's\n"
+    "  --method M        direct (sparse complex solve per frequency, default) or modal\n"
+    "                    (summation over left/right eigenvectors, rigid-body modes exact)\n"
+    "  --modes N|all     modes summed by --method modal (default all; fewer truncates)\n"
+    "  --type T          receptance (default), mobility or accelerance (DOF outputs)\n"
+    "  --threads N       parallel threads over frequencies (default: all cores)\n"
+    "  --coupling LEVEL  torsional | lateral-torsional | full\n"
+    "  --json            one JSON object on stdout\n"
+    "  --out DIR         write DIR/frf.csv (long form)\n";
+
+#define MAXOUT 16
+
+int gd_cmd_frf(int argc, char **argv)
+{
+    static const struct option opts[] = {{"input", required_argument, 0, 'i'},
+                                         {"output", required_argument, 0, 'O'},
+                                         {"freq", required_argument, 0, 'F'},
+                                         {"speed", required_argument, 0, 's'},
+                                         {"method", required_argument, 0, 'm'},
+                                         {"modes", required_argument, 0, 'n'},
+                                         {"type", required_argument, 0, 'T'},
+                                         {"threads", required_argument, 0, 't'},
+                                         {"coupling", required_argument, 0, 'c'},
+                                         {"json", no_argument, 0, 'j'},
+                                         {"out", required_argument, 0, 'o'},
+                                         {"help", no_argument, 0, 'h'},
+                                         {0, 0, 0, 0}};
+    const char *cmd = "frf", *input = NULL, *freq = NULL, *speed = NULL, *coupling = NULL,
+               *out = NULL, *outs[MAXOUT];
+    int nouts = 0, json = 0, c;
+    long nm;
+    gd_frf_options opt;
+    gd_frf_options_default(&opt);
+    optind = 1;
+    opterr = 0;
+    while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
+        switch (c) {
+        case 'i':
+            if (input) return gd_cli_usage_error(cmd, "give one --input");
+            input = optarg;
+            break;
+        case 'O':
+            if (nouts == MAXOUT) return gd_cli_usage_error(cmd, "at most %d outputs", MAXOUT);
+            outs[nouts++] = optarg;
+            break;
+        case 'F':
+            freq = optarg;
+            break;
+        case 's':
+            speed = optarg;
+            break;
+        case 'm':
+            if (!strcmp(optarg, "direct"))
+                opt.method = GD_FRF_DIRECT;
+            else if (!strcmp(optarg, "modal"))
+                opt.method = GD_FRF_MODAL;
+            else
+                return gd_cli_usage_error(cmd, "--method: '%s' is not direct or modal", optarg);
+            break;
+        case 'n':
+            if (!strcmp(optarg, "all"))
+                opt.nmodes = 0;
+            else if (gd_cli_parse_count(optarg, 1, 1000000, &nm))
+                return gd_cli_usage_error(
+                    cmd, "--modes: '%s' is not a positive whole number or 'all'", optarg);
+            else
+                opt.nmodes = (int)nm;
+            break;
+        case 'T': {
+            int q = -1;
+            for (int k = 0; k < 3; k++)
+                if (!strcmp(optarg, gd_frf_quantity_names[k])) q = k;
+            if (q < 0)
+                return gd_cli_usage_error(
+                    cmd, "--type: '%s' is not receptance, mobility or accelerance", optarg);
+            opt.quantity = (gd_frf_quantity)q;
+            break;
+        }
+        case 't':
+            if (gd_cli_parse_threads(cmd, optarg, &opt.nthreads)) return GD_EXIT_INPUT;
+            break;
+        case 'c':
+            coupling = optarg;
+            break;
+        case 'j':
+            json = 1;
+            break;
+        case 'o':
+            out = optarg;
+            break;
+        case 'h':
+            fputs(USAGE, stdout);
+            return GD_EXIT_OK;
+        default:
+            return gd_cli_option_error(cmd, c, argv, optind);
+        }
+    }
+    if (optind != argc - 1) return gd_cli_usage_error(cmd, "give exactly one model file");
+    if (!input) return gd_cli_usage_error(cmd, "--input is required");
+    if (!nouts) return gd_cli_usage_error(cmd, "give at least one --output");
+    if (!freq) return gd_cli_usage_error(cmd, "--freq FROM:TO:COUNT is required");
+    double *fr = NULL;
+    int rc = gd_cli_parse_range(cmd, "--freq", freq, &fr, &opt.nfreq);
+    if (rc) return rc;
+    opt.freqs = fr;
+    gd_error err;
+    gd_error_clear(&err);
+    if (out && gd_outdir_check(out, &err)) {
+        free(fr);
+        return gd_cli_report(&err);
+    }
+    gd_model *m;
+    gd_system *s;
+    if ((rc = gd_cli_load(argv[optind], coupling, &m, &s))) {
+        free(fr);
+        return rc;
+    }
+    gd_probe probes[2 * MAXOUT];
+    int inputs[2], xy = 0, np = 0;
+    char inlabel[200];
+    opt.speed = m->speed;
+    gd_frf_result *r = NULL;
+    gd_series *ser = NULL;
+    double *dirbuf = NULL;
+    int nser = 0;
+    if (speed && gd_cli_parse_speed(cmd, speed, &opt.speed)) {
+        rc = GD_EXIT_INPUT;
+        goto done;
+    }
+    if ((rc = gd_cli_parse_input(cmd, s, input, &inputs[0], &xy, inlabel, sizeof inlabel)))
+        goto done;
+    if (xy) {
+        const char *in = !strncmp(input, "node:", 5) ? input + 5 : input;
+        char buf[256];
+        snprintf(buf, sizeof buf, "%.*s.y", (int)strlen(in) - 3, in);
+        gd_probe py;
+        if ((rc = gd_cli_parse_probe(cmd, "--input", s, buf, &py))) goto done;
+        inputs[1] = py.index;
+        for (int k = 0; k < nouts; k++) {
+            const char *o = !strncmp(outs[k], "node:", 5) ? outs[k] + 5 : outs[k];
+            size_t len = strlen(o);
+            if (len < 4 || strcmp(o + len - 3, ".xy")) {
+                rc = gd_cli_usage_error(
+                    cmd, "--output: with a directional input (%s) give outputs NODE.xy, not '%s'",
+                    input, outs[k]);
+                goto done;
+            }
+            for (int d = 0; d < 2; d++) {
+                snprintf(buf, sizeof buf, "%.*s.%s", (int)len - 3, o, d ? "y" : "x");
+                if ((rc = gd_cli_parse_probe(cmd, "--output", s, buf, &probes[np++]))) goto done;
+            }
+        }
+        opt.ninputs = 2;
+    } else {
+        for (int k = 0; k < nouts; k++) {
+            size_t len = strlen(outs[k]);
+            if (len > 3 && !strcmp(outs[k] + len - 3, ".xy")) {
+                rc = gd_cli_usage_error(
+                    cmd, "--output '%s' is directional: give a directional input NODE.xy too",
+                    outs[k]);
+                goto done;
+            }
+            if ((rc = gd_cli_parse_probe(cmd, "--output", s, outs[k], &probes[np++]))) goto done;
+        }
+        opt.ninputs = 1;
+    }
+    if (opt.quantity != GD_FRF_RECEPTANCE)
+        for (int k = 0; k < np; k++)
+            if (probes[k].kind != GD_PROBE_DOF) {
+                rc = gd_cli_usage_error(
+                    cmd, "--type %s applies to displacement outputs; '%s' is a force",
+                    gd_frf_quantity_names[opt.quantity], probes[k].name);
+                goto done;
+            }
+    opt.inputs = inputs;
+    opt.outputs = probes;
+    opt.noutputs = np;
+    openblas_set_num_threads(1); /* parallel over frequencies instead */
+    if (gd_frf(s, &opt, &r, &err)) {
+        rc = gd_cli_report(&err);
+        goto done;
+    }
+    if (r->nsingular)
+        fprintf(stderr,
+                "geardyn frf: note: %d frequenc%s hit a singular dynamic stiffness (a rigid-body "
+                "mode at 0 rad/s or an undamped resonance); values there are null/nan\n",
+                r->nsingular, r->nsingular == 1 ? "y" : "ies");
+    nser = xy ? 2 * nouts : np;
+    ser = calloc((size_t)nser, sizeof *ser);
+    dirbuf = xy ? malloc((size_t)4 * nouts * opt.nfreq * sizeof *dirbuf) : NULL;
+    if (!ser || (xy && !dirbuf)) {
+        rc = GD_EXIT_FAIL;
+        goto done;
+    }
+    for (int k = 0; k < nser; k++) {
+        gd_series *z = &ser[k];
+        z->xname = "frequency_rad_s";
+        z->n = opt.nfreq;
+        z->x = r->freqs;
+        if (xy) {
+            int o = k / 2, bwd = k % 2;
+            double *b = dirbuf + (size_t)4 * o * opt.nfreq;
+            if (!bwd)
+                gd_frf_directional(r, 2 * o, 2 * o + 1, b, b + opt.nfreq, b + 2 * opt.nfreq,
+                                   b + 3 * opt.nfreq);
+            z->re = b + (size_t)(bwd ? 2 : 0) * opt.nfreq;
+            z->im = b + (size_t)(bwd ? 3 : 1) * opt.nfreq;
+            snprintf(z->name, sizeof z->name, "%s %s", outs[o], bwd ? "backward" : "forward");
+            z->quantity = gd_frf_quantity_names[opt.quantity];
+        } else {
+            z->re = r->re + (size_t)k * opt.nfreq;
+            z->im = r->im + (size_t)k * opt.nfreq;
+            snprintf(z->name, sizeof z->name, "%s", probes[k].name);
+            z->quantity =
+                probes[k].kind == GD_PROBE_DOF ? gd_frf_quantity_names[opt.quantity] : "force";
+        }
+    }
+    if (out) {
+        gd_outdir od;
+        FILE *f;
+        if (gd_outdir_begin(&od, out, &err)) {
+            rc = gd_cli_report(&err);
+            goto done;
+        }
+        if (!(f = gd_outdir_open(&od, "frf.csv", &err))) {
+            gd_outdir_abort(&od);
+            rc = gd_cli_report(&err);
+            goto done;
+        }
+        fprintf(f, "output,frequency_rad_s,frequency_hz,magnitude,phase_deg,real,imag\n");
+        for (int k = 0; k < nser; k++)
+            gd_series_csv(f, &ser[k]);
+        if (gd_outdir_close(&od, f, "frf.csv", &err) || gd_outdir_commit(&od, &err)) {
+            gd_outdir_abort(&od);
+            rc = gd_cli_report(&err);
+            goto done;
+        }
+    }
+    if (json) {
+        cJSON *o = cJSON_CreateObject();
+        cJSON_AddStringToObject(o, "model", m->file);
+        cJSON_AddStringToObject(o, "input", inlabel);
+        cJSON_AddNumberToObject(o, "speed_rad_s", opt.speed);
+        cJSON_AddStringToObject(o, "method", opt.method == GD_FRF_MODAL ? "modal" : "direct");
+        if (opt.method == GD_FRF_MODAL) {
+            cJSON_AddNumberToObject(o, "modes_summed", r->nmodes_used);
+            cJSON_AddNumberToObject(o, "rigid_body_modes", r->nrigid);
+        }
+        cJSON *arr = cJSON_AddArrayToObject(o, "outputs");
+        for (int k = 0; k < nser; k++)
+            cJSON_AddItemToArray(arr, gd_series_json(&ser[k]));
+        gd_cli_print_json(stdout, o);
+        cJSON_Delete(o);
+    } else {
+        printf("%s: FRF to a unit %s at %s, speed %g rad/s, %s method\n\n", m->file,
+               s->dof_type[inputs[0]] >= GD_RX ? "moment" : "force", inlabel, opt.speed,
+               opt.method == GD_FRF_MODAL ? "modal" : "direct");
+        gd_series_table(stdout, ser, nser, "w(rad/s)", 1.0);
+    }
+done:
+    free(ser);
+    free(dirbuf);
+    gd_frf_free(r);
+    gd_system_free(s);
+    gd_model_free(m);
+    free(fr);
+    return rc;
+}

@@ -1,0 +1,566 @@
+/* geardyn transient MODEL: time integration of the nonlinear, time-varying system
+ * (docs/transient.md), records, statistics, contact history and spectra. */
+#include <getopt.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "cli.h"
+#include "geardyn/spectrum.h"
+#include "geardyn/transient_model.h"
+#include "geardyn/units.h"
+#include "transient_record.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+static const char CMD[] = "transient";
+
+static const char USAGE[] =
+    "usage: geardyn transient MODEL.yaml [--duration T | --revolutions N] [--speed S]\n"
+    "                         [--record WHAT]... [--from T] [--output-interval T]\n"
+    "                         [--rtol R] [--method bdf|adams] [--start rest|static]\n"
+    "                         [--spectrum] [--window hann|rect] [--unbalance-scale F]\n"
+    "                         [--coupling LEVEL] [--json] [--out DIR] [--quiet]\n\n"
+    "Integrates the equations of motion at a constant reference speed with the model's\n"
+    "nonlinear and time-varying laws (mesh TVMS, transmission error, backlash, squeeze\n"
+    "film dampers, loads, prescribed motions, cam torques, unbalances), then prints\n"
+    "statistics of the records over the steady part and the contact history of the\n"
+    "meshes.\n\n"
+    "  --duration T         simulated time, with units (e.g. 12ms); > 0\n"
+    "  --revolutions N      or N revolutions of the reference shaft: T = 2 pi N / speed\n"
+    "  --speed S            reference speed (e.g. 10000rpm); default: the model's\n"
+    "  --record WHAT        what to record, comma-separated, repeatable:\n"
+    "                         NODE.DOF[:disp|vel|angle|speed]  (disp: perturbation q;\n"
+    "                           angle, speed: total, nominal motion included)\n"
+    "                         ratio:NODE_A/NODE_B   angular speed of A over B (rz)\n"
+    "                         mesh:NAME[:force|state|deflection|stiffness] (NAME or *)\n"
+    "                         sfd:BEARING[:fx|fy|ecc]  damper force, e/c (BEARING or *)\n"
+    "                       default: force and contact state of the nonlinear meshes,\n"
+    "                       fx and fy of the dampers\n"
+    "  --from T             records and statistics from this time (default: last half)\n"
+    "  --output-interval T  sampling of the records (default: 2000 samples, at least 32\n"
+    "                       per revolution); frequencies above half the sampling rate\n"
+    "                       fold back into a spectrum: sample fast enough\n"
+    "  --rtol R             relative tolerance (default 1e-6)\n"
+    "  --method M           bdf (default) or adams\n"
+    "  --start S            rest (default): q = q' = 0 (nominal motion), or static:\n"
+    "                       static equilibrium under the loads at t = 0\n"
+    "  --spectrum           amplitude spectrum (FFT, mean removed) of every record over\n"
+    "                       the recorded part: leading peaks with their order of the\n"
+    "                       reference speed; with --out, DIR/spectrum.csv\n"
+    "  --window W           hann (default) or rect\n"
+    "  --unbalance-scale F  multiplies every unbalance of the model (F >= 0)\n"
+    "  --coupling LEVEL     torsional | lateral-torsional | full (as in modal)\n"
+    "  --json               one JSON object on stdout\n"
+    "  --out DIR            DIR/records.csv (time and one column per record),\n"
+    "                       DIR/summary.json, DIR/spectrum.csv with --spectrum\n"
+    "  --quiet              no progress bar (it is shown on stderr only on a terminal)\n";
+
+enum { NPEAKS = 6 };
+
+typedef struct progress {
+    int last; /* last percentage drawn */
+    int drawn;
+} progress;
+
+static void progress_cb(double t, double t0, double t1, void *data)
+{
+    progress *p = data;
+    int pct = (int)(100.0 * (t - t0) / (t1 - t0));
+    if (pct < 0) pct = 0;
+    if (pct > 100) pct = 100;
+    if (pct == p->last) return;
+    p->last = pct;
+    p->drawn = 1;
+    char bar[41];
+    int fill = pct * 40 / 100;
+    for (int i = 0; i < 40; i++)
+        bar[i] = i < fill ? '#' : '.';
+    bar[40] = 0;
+    fprintf(stderr, "\r[%s] %3d%%  t = %.6g s", bar, pct, t);
+    fflush(stderr);
+}
+
+static int parse_time(const char *opt, const char *text, double *out)
+{
+    char why[200];
+    if (gd_parse_quantity(text, GD_QTY_TIME, out, why, sizeof why))
+        return gd_cli_usage_error(CMD, "%s: %s (e.g. %s 12ms)", opt, why, opt);
+    if (!isfinite(*out)) return gd_cli_usage_error(CMD, "%s: give a finite time", opt);
+    return 0;
+}
+
+static int parse_positive(const char *opt, const char *text, double *out)
+{
+    char *end;
+    double v = strtod(text, &end);
+    if (end == text || *end || !isfinite(v) || v <= 0)
+        return gd_cli_usage_error(CMD, "%s: '%s' is not a positive number", opt, text);
+    *out = v;
+    return 0;
+}
+
+typedef struct run_info {
+    double speed, t_end, from, dt;
+    const char *method, *start;
+    gd_window window;
+    int spectrum;
+} run_info;
+
+static double order_of(double f_hz, double speed)
+{
+    return speed > 0 ? f_hz * 2 * M_PI / speed : 0.0;
+}
+
+static cJSON *spectrum_json(const gd_spectrum *s, double speed)
+{
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "window", gd_window_names[s->window]);
+    cJSON_AddNumberToObject(o, "df_hz", s->df);
+    gd_spectrum_peak pk[NPEAKS];
+    int np = gd_spectrum_peaks(s, 1e-3, NPEAKS, pk);
+    cJSON *a = cJSON_AddArrayToObject(o, "peaks");
+    for (int k = 0; k < np; k++) {
+        cJSON *p = cJSON_CreateObject();
+        cJSON_AddNumberToObject(p, "frequency_hz", pk[k].frequency);
+        if (speed > 0) cJSON_AddNumberToObject(p, "order", order_of(pk[k].frequency, speed));
+        cJSON_AddNumberToObject(p, "amplitude", pk[k].amplitude);
+        cJSON_AddItemToArray(a, p);
+    }
+    if (speed > 0) {
+        double f1 = speed / (2 * M_PI), fa = 0, fb = 0;
+        double one = gd_spectrum_band_max(s, 0.95 * f1, 1.05 * f1, &fa);
+        /* below 1x: from 3 bins (clear of the mean) to 0.95x, and 4 bins clear of the
+         * 1x main lobe */
+        double below = gd_spectrum_band_max(s, 2.5 * s->df, fmin(0.95 * f1, f1 - 4 * s->df), &fb);
+        cJSON_AddNumberToObject(o, "amplitude_1x", one);
+        cJSON_AddNumberToObject(o, "max_below_1x", below);
+        cJSON_AddNumberToObject(o, "max_below_1x_order", order_of(fb, speed));
+    }
+    return o;
+}
+
+static cJSON *summary_json(const gd_system *sys, const gd_transient_model *tm,
+                           const gd_cli_records *recs, const gd_transient_result *res,
+                           gd_spectrum *const *spec, const run_info *ri, int nfree)
+{
+    const gd_model *m = sys->model;
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "model", m->file);
+    cJSON_AddNumberToObject(o, "speed_rad_s", ri->speed);
+    cJSON_AddNumberToObject(o, "speed_rpm", ri->speed * 30 / M_PI);
+    cJSON_AddNumberToObject(o, "dofs", sys->ndof);
+    cJSON_AddNumberToObject(o, "free_dofs", nfree);
+    cJSON_AddNumberToObject(o, "t_end_s", ri->t_end);
+    cJSON_AddNumberToObject(o, "record_from_s", ri->from);
+    cJSON_AddNumberToObject(o, "output_interval_s", ri->dt);
+    cJSON_AddNumberToObject(o, "samples", res->nout);
+    cJSON_AddStringToObject(o, "method", ri->method);
+    cJSON_AddStringToObject(o, "start", ri->start);
+    cJSON_AddNumberToObject(o, "steps", (double)res->steps);
+    cJSON_AddNumberToObject(o, "rhs_evaluations", (double)res->rhs_evals);
+    cJSON_AddNumberToObject(o, "linear_iterations", (double)res->lin_iters);
+    cJSON_AddNumberToObject(o, "preconditioner_setups", (double)res->prec_setups);
+    cJSON_AddNumberToObject(o, "events", (double)res->events);
+    cJSON_AddNumberToObject(o, "restarts", (double)res->reinits);
+    cJSON_AddNumberToObject(o, "cpu_seconds", res->cpu_seconds);
+    cJSON *ra = cJSON_AddArrayToObject(o, "records");
+    for (int r = 0; r < recs->n; r++) {
+        const gd_tr_stats *st = &res->stats[r];
+        cJSON *e = cJSON_CreateObject();
+        cJSON_AddStringToObject(e, "name", recs->r[r].name);
+        cJSON_AddStringToObject(e, "unit", recs->r[r].unit);
+        cJSON_AddItemToObject(e, "min", gd_cli_json_number(st->min));
+        cJSON_AddItemToObject(e, "max", gd_cli_json_number(st->max));
+        cJSON_AddItemToObject(e, "mean", gd_cli_json_number(st->mean));
+        cJSON_AddItemToObject(e, "rms", gd_cli_json_number(st->rms));
+        cJSON_AddItemToObject(e, "peak_to_peak", gd_cli_json_number(st->peak_to_peak));
+        cJSON_AddItemToObject(e, "std", gd_cli_json_number(st->std));
+        if (spec && spec[r])
+            cJSON_AddItemToObject(e, "spectrum", spectrum_json(spec[r], ri->speed));
+        cJSON_AddItemToArray(ra, e);
+    }
+    cJSON *ma = cJSON_AddArrayToObject(o, "meshes");
+    for (int i = 0; i < tm->spec.nmeshes; i++) {
+        const gd_tr_mesh *tmsh = &tm->meshes[i];
+        const gd_tr_contact_stats *c = &res->contacts[i];
+        cJSON *e = cJSON_CreateObject();
+        cJSON_AddStringToObject(e, "name", m->meshes[tmsh->mesh].name);
+        cJSON_AddBoolToObject(e, "backlash", tmsh->backlash);
+        cJSON_AddNumberToObject(e, "contact_losses", c->contact_losses);
+        cJSON_AddNumberToObject(e, "coast_impacts", c->coast_impacts);
+        cJSON_AddNumberToObject(e, "drive_impacts", c->drive_impacts);
+        cJSON_AddNumberToObject(e, "separated_time_s", c->separated_time);
+        cJSON_AddNumberToObject(e, "coast_time_s", c->coast_time);
+        cJSON_AddNumberToObject(e, "drive_time_s", c->drive_time);
+        cJSON_AddItemToArray(ma, e);
+    }
+    return o;
+}
+
+static void print_text(const gd_system *sys, const gd_transient_model *tm,
+                       const gd_cli_records *recs, const gd_transient_result *res,
+                       gd_spectrum *const *spec, const run_info *ri, int nfree)
+{
+    const gd_model *m = sys->model;
+    printf("%s: %d DOFs (%d free), speed %g rad/s (%g rpm), t = 0 .. %g s, %s start, %s\n", m->file,
+           sys->ndof, nfree, ri->speed, ri->speed * 30 / M_PI, ri->t_end, ri->start, ri->method);
+    printf("records from %g s every %g s (%d samples); %ld steps, %ld RHS evaluations, %ld "
+           "contact events, %.3g s CPU\n\n",
+           ri->from, ri->dt, res->nout, res->steps, res->rhs_evals, res->events, res->cpu_seconds);
+    int w = 6;
+    for (int r = 0; r < recs->n; r++) {
+        int l = (int)strlen(recs->r[r].name);
+        if (l > w) w = l;
+    }
+    printf("%-*s %-6s %13s %13s %13s %13s %13s\n", w, "record", "unit", "min", "max", "mean", "rms",
+           "peak_to_peak");
+    for (int r = 0; r < recs->n; r++) {
+        const gd_tr_stats *st = &res->stats[r];
+        printf("%-*s %-6s %13.6g %13.6g %13.6g %13.6g %13.6g\n", w, recs->r[r].name,
+               recs->r[r].unit, st->min, st->max, st->mean, st->rms, st->peak_to_peak);
+    }
+    if (tm->spec.nmeshes) {
+        printf("\n%-20s %8s %14s %8s %8s %14s\n", "mesh", "backlash", "contact_losses", "coast",
+               "drive", "separated_s");
+        printf("%-20s %8s %14s %8s %8s %14s\n", "", "", "", "impacts", "impacts", "");
+        for (int i = 0; i < tm->spec.nmeshes; i++) {
+            const gd_tr_contact_stats *c = &res->contacts[i];
+            printf("%-20.20s %8s %14d %8d %8d %14.6g\n", m->meshes[tm->meshes[i].mesh].name,
+                   tm->meshes[i].backlash ? "yes" : "no", c->contact_losses, c->coast_impacts,
+                   c->drive_impacts, c->separated_time);
+        }
+    }
+    if (spec) {
+        printf("\nspectrum peaks (%s window, df = %g Hz): frequency Hz (order) amplitude\n",
+               gd_window_names[ri->window], spec[0] ? spec[0]->df : 0.0);
+        for (int r = 0; r < recs->n; r++) {
+            if (!spec[r]) continue;
+            gd_spectrum_peak pk[NPEAKS];
+            int np = gd_spectrum_peaks(spec[r], 1e-3, NPEAKS, pk);
+            printf("%-*s", w, recs->r[r].name);
+            for (int k = 0; k < np; k++)
+                printf("  %.6g (%.4gx) %.4g", pk[k].frequency, order_of(pk[k].frequency, ri->speed),
+                       pk[k].amplitude);
+            printf("\n");
+        }
+    }
+}
+
+static int write_outputs(const char *dir, const gd_cli_records *recs,
+                         const gd_transient_result *res, gd_spectrum *const *spec,
+                         const cJSON *summary, double speed)
+{
+    gd_error err;
+    gd_error_clear(&err);
+    gd_outdir od;
+    if (gd_outdir_begin(&od, dir, &err)) return gd_cli_report(&err);
+    FILE *f = gd_outdir_open(&od, "records.csv", &err);
+    if (!f) goto fail;
+    fprintf(f, "time_s");
+    for (int r = 0; r < recs->n; r++)
+        fprintf(f, ",%s", recs->r[r].name);
+    fprintf(f, "\n");
+    for (int k = 0; k < res->nout; k++) {
+        fprintf(f, "%.12g", res->t[k]);
+        for (int r = 0; r < recs->n; r++)
+            fprintf(f, ",%.10g", res->values[(size_t)r * res->nout + k]);
+        fprintf(f, "\n");
+    }
+    if (gd_outdir_close(&od, f, "records.csv", &err)) goto fail;
+    if (spec) {
+        f = gd_outdir_open(&od, "spectrum.csv", &err);
+        if (!f) goto fail;
+        fprintf(f, "frequency_hz,order");
+        for (int r = 0; r < recs->n; r++)
+            fprintf(f, ",%s", recs->r[r].name);
+        fprintf(f, "\n");
+        int nb = spec[0] ? spec[0]->n : 0;
+        for (int k = 0; k < nb; k++) {
+            fprintf(f, "%.10g,%.8g", spec[0]->freq[k], order_of(spec[0]->freq[k], speed));
+            for (int r = 0; r < recs->n; r++)
+                fprintf(f, ",%.10g", spec[r] ? spec[r]->amplitude[k] : 0.0);
+            fprintf(f, "\n");
+        }
+        if (gd_outdir_close(&od, f, "spectrum.csv", &err)) goto fail;
+    }
+    f = gd_outdir_open(&od, "summary.json", &err);
+    if (!f) goto fail;
+    gd_cli_print_json(f, summary);
+    if (gd_outdir_close(&od, f, "summary.json", &err)) goto fail;
+    if (gd_outdir_commit(&od, &err)) return gd_cli_report(&err);
+    return GD_EXIT_OK;
+fail:
+    gd_outdir_abort(&od);
+    return gd_cli_report(&err);
+}
+
+typedef struct cli_opts {
+    const char *duration, *revolutions, *speed, *from, *interval, *coupling, *out;
+    const char *records[64];
+    int nrecords;
+    double rtol, unbalance_scale;
+    int json, quiet, spectrum;
+    gd_tr_method method;
+    gd_tr_init init;
+    gd_window window;
+} cli_opts;
+
+static int parse_args(int argc, char **argv, cli_opts *o)
+{
+    static const struct option opts[] = {
+        {"duration", required_argument, 0, 'd'}, {"revolutions", required_argument, 0, 'n'},
+        {"speed", required_argument, 0, 's'},    {"record", required_argument, 0, 'r'},
+        {"from", required_argument, 0, 'f'},     {"output-interval", required_argument, 0, 'i'},
+        {"rtol", required_argument, 0, 't'},     {"method", required_argument, 0, 'm'},
+        {"start", required_argument, 0, 'a'},    {"spectrum", no_argument, 0, 'S'},
+        {"window", required_argument, 0, 'w'},   {"unbalance-scale", required_argument, 0, 'u'},
+        {"coupling", required_argument, 0, 'c'}, {"json", no_argument, 0, 'j'},
+        {"out", required_argument, 0, 'o'},      {"quiet", no_argument, 0, 'q'},
+        {"help", no_argument, 0, 'h'},           {0, 0, 0, 0}};
+    memset(o, 0, sizeof *o);
+    o->rtol = 1e-6;
+    o->unbalance_scale = 1.0;
+    o->method = GD_TR_BDF;
+    o->init = GD_TR_INIT_REST;
+    o->window = GD_WINDOW_HANN;
+    int c;
+    optind = 1;
+    opterr = 0;
+    while ((c = getopt_long(argc, argv, ":hq", opts, NULL)) != -1) {
+        switch (c) {
+        case 'd':
+            o->duration = optarg;
+            break;
+        case 'n':
+            o->revolutions = optarg;
+            break;
+        case 's':
+            o->speed = optarg;
+            break;
+        case 'r':
+            if (o->nrecords == 64) return gd_cli_usage_error(CMD, "--record: at most 64 options");
+            o->records[o->nrecords++] = optarg;
+            break;
+        case 'f':
+            o->from = optarg;
+            break;
+        case 'i':
+            o->interval = optarg;
+            break;
+        case 't':
+            if (parse_positive("--rtol", optarg, &o->rtol)) return GD_EXIT_INPUT;
+            if (o->rtol >= 0.1) return gd_cli_usage_error(CMD, "--rtol: give a value below 0.1");
+            break;
+        case 'm':
+            if (!strcmp(optarg, "bdf"))
+                o->method = GD_TR_BDF;
+            else if (!strcmp(optarg, "adams"))
+                o->method = GD_TR_ADAMS;
+            else
+                return gd_cli_usage_error(CMD, "--method: '%s' is not bdf or adams", optarg);
+            break;
+        case 'a':
+            if (!strcmp(optarg, "rest"))
+                o->init = GD_TR_INIT_REST;
+            else if (!strcmp(optarg, "static"))
+                o->init = GD_TR_INIT_STATIC;
+            else
+                return gd_cli_usage_error(CMD, "--start: '%s' is not rest or static", optarg);
+            break;
+        case 'S':
+            o->spectrum = 1;
+            break;
+        case 'w':
+            if (!strcmp(optarg, "hann"))
+                o->window = GD_WINDOW_HANN;
+            else if (!strcmp(optarg, "rect"))
+                o->window = GD_WINDOW_RECT;
+            else
+                return gd_cli_usage_error(CMD, "--window: '%s' is not hann or rect", optarg);
+            break;
+        case 'u': {
+            char *end;
+            o->unbalance_scale = strtod(optarg, &end);
+            if (end == optarg || *end || !isfinite(o->unbalance_scale) || o->unbalance_scale < 0)
+                return gd_cli_usage_error(CMD, "--unbalance-scale: '%s' is not a number >= 0",
+                                          optarg);
+            break;
+        }
+        case 'c':
+            o->coupling = optarg;
+            break;
+        case 'j':
+            o->json = 1;
+            break;
+        case 'o':
+            o->out = optarg;
+            break;
+        case 'q':
+            o->quiet = 1;
+            break;
+        case 'h':
+            fputs(USAGE, stdout);
+            return -1;
+        default:
+            return gd_cli_option_error(CMD, c, argv, optind);
+        }
+    }
+    if (optind != argc - 1) return gd_cli_usage_error(CMD, "give exactly one model file");
+    if (o->duration && o->revolutions)
+        return gd_cli_usage_error(CMD, "--duration and --revolutions exclude each other");
+    if (!o->duration && !o->revolutions)
+        return gd_cli_usage_error(CMD, "give --duration T or --revolutions N");
+    return 0;
+}
+
+/* Times from the options: t_end, record_from, output interval. */
+static int resolve_times(const cli_opts *o, double speed, run_info *ri)
+{
+    if (o->duration) {
+        if (parse_time("--duration", o->duration, &ri->t_end)) return GD_EXIT_INPUT;
+        if (ri->t_end <= 0)
+            return gd_cli_usage_error(CMD, "--duration: give a time > 0 (got %s)", o->duration);
+    } else {
+        double n = 0;
+        if (parse_positive("--revolutions", o->revolutions, &n)) return GD_EXIT_INPUT;
+        if (!(speed > 0))
+            return gd_cli_usage_error(CMD,
+                                      "--revolutions needs a reference speed > 0: give --speed "
+                                      "or 'speed:' in the model, or use --duration");
+        ri->t_end = 2 * M_PI * n / speed;
+    }
+    ri->from = 0.5 * ri->t_end;
+    if (o->from) {
+        if (parse_time("--from", o->from, &ri->from)) return GD_EXIT_INPUT;
+        if (ri->from < 0 || ri->from >= ri->t_end)
+            return gd_cli_usage_error(CMD, "--from: give a time in [0, %g s)", ri->t_end);
+    }
+    /* 2000 samples, and at least 32 per revolution of the reference shaft (the records
+     * are samples, not filtered: a spectrum shows frequencies above the Nyquist
+     * frequency folded back) */
+    ri->dt = (ri->t_end - ri->from) / 2000.0;
+    if (speed > 0 && 2 * M_PI / speed / 32 < ri->dt)
+        ri->dt = fmax(2 * M_PI / speed / 32, (ri->t_end - ri->from) / 2e6);
+    if (o->interval) {
+        if (parse_time("--output-interval", o->interval, &ri->dt)) return GD_EXIT_INPUT;
+        if (ri->dt <= 0) return gd_cli_usage_error(CMD, "--output-interval: give a time > 0");
+        if ((ri->t_end - ri->from) / ri->dt > 1e7)
+            return gd_cli_usage_error(CMD,
+                                      "--output-interval: more than 1e7 samples; give a longer "
+                                      "interval or a later --from");
+    }
+    return 0;
+}
+
+int gd_cmd_transient(int argc, char **argv)
+{
+    cli_opts o;
+    int rc = parse_args(argc, argv, &o);
+    if (rc) return rc < 0 ? GD_EXIT_OK : rc;
+    gd_error err;
+    gd_error_clear(&err);
+    if (o.out && gd_outdir_check(o.out, &err)) return gd_cli_report(&err);
+    gd_model *m = NULL;
+    gd_system *s = NULL;
+    gd_transient_model *tm = NULL;
+    gd_transient *tr = NULL;
+    gd_transient_result *res = NULL;
+    gd_spectrum **spec = NULL;
+    gd_cli_records recs = {0, 0, NULL};
+    cJSON *summary = NULL;
+    rc = gd_cli_load(argv[optind], o.coupling, &m, &s);
+    if (rc) return rc;
+    run_info ri;
+    memset(&ri, 0, sizeof ri);
+    ri.speed = m->speed;
+    ri.method = o.method == GD_TR_ADAMS ? "adams" : "bdf";
+    ri.start = o.init == GD_TR_INIT_STATIC ? "static" : "rest";
+    ri.window = o.window;
+    if (o.speed && gd_cli_parse_speed(CMD, o.speed, &ri.speed)) {
+        rc = GD_EXIT_INPUT;
+        goto done;
+    }
+    if ((rc = resolve_times(&o, ri.speed, &ri))) goto done;
+    for (int i = 0; i < m->nunbalances; i++)
+        m->unbalances[i].amount *= o.unbalance_scale;
+    if (gd_transient_model_build(s, &tm, &err)) {
+        rc = gd_cli_report(&err);
+        goto done;
+    }
+    for (int k = 0; k < o.nrecords; k++)
+        if ((rc = gd_cli_parse_records(CMD, s, tm, o.records[k], &recs))) goto done;
+    if (!o.nrecords && (rc = gd_cli_default_records(s, tm, &recs))) goto done;
+    if (gd_transient_create(s, &tm->spec, ri.speed, &tr, &err)) {
+        rc = gd_cli_report(&err);
+        goto done;
+    }
+    gd_transient_options opt;
+    gd_transient_options_default(&opt);
+    opt.t_end = ri.t_end;
+    opt.record_from = ri.from;
+    opt.output_interval = ri.dt;
+    opt.rtol = o.rtol;
+    opt.method = o.method;
+    opt.init = o.init;
+    progress pg = {-1, 0};
+    if (!o.quiet && isatty(2)) {
+        opt.progress = progress_cb;
+        opt.progress_data = &pg;
+    }
+    gd_tr_record *rr = malloc((size_t)(recs.n > 0 ? recs.n : 1) * sizeof *rr);
+    if (!rr) {
+        fprintf(stderr, "geardyn: error: out of memory\n");
+        rc = GD_EXIT_FAIL;
+        goto done;
+    }
+    for (int r = 0; r < recs.n; r++)
+        rr[r] = recs.r[r].rec;
+    gd_status st = gd_transient_run(tr, &opt, rr, recs.n, &res, &err);
+    free(rr);
+    if (pg.drawn) fprintf(stderr, "\r%60s\r", "");
+    if (st) {
+        rc = gd_cli_report(&err);
+        goto done;
+    }
+    if (o.spectrum) {
+        spec = calloc((size_t)(recs.n > 0 ? recs.n : 1), sizeof *spec);
+        if (!spec) {
+            rc = GD_EXIT_FAIL;
+            goto done;
+        }
+        for (int r = 0; r < recs.n; r++) {
+            gd_error serr;
+            gd_error_clear(&serr);
+            if (gd_spectrum_compute(res->values + (size_t)r * res->nout, res->nout, ri.dt, o.window,
+                                    &spec[r], &serr)) {
+                rc = gd_cli_report(&serr);
+                goto done;
+            }
+        }
+    }
+    int nfree = gd_transient_nstates(tr) / 2;
+    summary = summary_json(s, tm, &recs, res, spec, &ri, nfree);
+    if (o.out && (rc = write_outputs(o.out, &recs, res, spec, summary, ri.speed))) goto done;
+    if (o.json)
+        gd_cli_print_json(stdout, summary);
+    else
+        print_text(s, tm, &recs, res, spec, &ri, nfree);
+    rc = GD_EXIT_OK;
+done:
+    cJSON_Delete(summary);
+    if (spec)
+        for (int r = 0; r < recs.n; r++)
+            gd_spectrum_free(spec[r]);
+    free(spec);
+    gd_transient_result_free(res);
+    gd_transient_free(tr);
+    gd_transient_model_free(tm);
+    gd_cli_records_free(&recs);
+    gd_system_free(s);
+    gd_model_free(m);
+    return rc;
+}

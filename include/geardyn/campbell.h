@@ -1,0 +1,89 @@
+/* Campbell diagram: damped modes over a range of speeds, tracked across speeds by mode
+ * shape (MAC), critical speeds where a tracked mode meets an excitation order (1x of
+ * each shaft, user orders, tooth-mesh orders), log decrement and the onset speed of
+ * instability. Also the sparse lowest-modes eigensolver it uses. */
+#ifndef GEARDYN_CAMPBELL_H
+#define GEARDYN_CAMPBELL_H
+#include "geardyn/modal.h"
+
+/* Lowest opt->nmodes (> 0) modes by shift-invert Krylov-Schur on the sparse
+ * first-order system, real shift sigma = -shift (rad/s; <= 0: automatic). Same result
+ * layout as gd_modal_solve, right vectors only (left_re/left_im are NULL). Needs mass
+ * on every DOF (sys->nmassless == 0); otherwise GD_EINPUT: use gd_modal_solve. */
+gd_status gd_modal_solve_sparse(const gd_system *sys, const gd_modal_options *opt, double shift,
+                                gd_modal_result **out, gd_error *err);
+
+typedef enum gd_eig_method {
+    GD_EIG_AUTO,  /* sparse for >= 200 DOFs with nmodes > 0 and no massless DOF */
+    GD_EIG_DENSE, /* LAPACK on the dense state-space matrix (gd_modal_solve) */
+    GD_EIG_SPARSE /* shift-invert Krylov-Schur with KLU */
+} gd_eig_method;
+
+/* An excitation order: frequency = order x reference speed. */
+typedef enum gd_order_kind {
+    GD_ORDER_SHAFT, /* 1x of a shaft: |speed_ratio| */
+    GD_ORDER_USER,  /* given by the user, multiples of the reference speed */
+    GD_ORDER_MESH   /* tooth-mesh: teeth x shaft speed */
+} gd_order_kind;
+
+typedef struct gd_order {
+    gd_order_kind kind;
+    double order;   /* multiple of the reference speed */
+    char label[96]; /* e.g. "1x driving", "2x", "mesh 48x driving" */
+} gd_order;
+
+typedef struct gd_campbell_options {
+    int nspeeds;
+    const double *speeds; /* reference speeds, rad/s, increasing */
+    int nmodes;           /* elastic modes tracked, > 0; 0: all (dense) */
+    gd_modal_kind kind;   /* damped (default AUTO) or undamped */
+    gd_eig_method method;
+    double shift; /* sparse shift, rad/s; 0: automatic */
+    int norders;
+    const double *orders; /* user orders (multiples of the reference speed) */
+    int shaft_orders;     /* add 1x of every shaft (default 1) */
+    int mesh_orders;      /* add tooth-mesh orders of meshes with teeth (default 1) */
+    double mac_min;       /* below this, a mode starts a new track (default 0.1) */
+    int nthreads;         /* OpenMP threads; 0: the OpenMP default */
+} gd_campbell_options;
+
+typedef struct gd_critical_speed {
+    int mode;     /* track id */
+    int order;    /* index into orders */
+    double speed; /* reference speed, rad/s */
+    double speed_rpm;
+    double frequency_hz;
+} gd_critical_speed;
+
+typedef struct gd_campbell_track {
+    int id;
+    gd_whirl whirl;            /* most frequent at speeds > 0 (none if never whirling) */
+    gd_motion dominant_motion; /* most frequent over the speeds */
+} gd_campbell_track;
+
+typedef struct gd_campbell_result {
+    int nspeeds, ntracks, ndof;
+    double *speeds; /* rad/s */
+    gd_campbell_track *tracks;
+    /* ntracks x nspeeds (track-major: [t * nspeeds + s]); rigid_body = -1 marks a speed
+     * where the track does not exist (its numbers are NaN) */
+    gd_mode *modes;
+    int norders;
+    gd_order *orders;
+    int ncritical;
+    gd_critical_speed *critical; /* by speed */
+    double instability_onset;    /* rad/s, interpolated; NAN when stable throughout */
+    int instability_track;       /* -1 when stable */
+    int nrigid;                  /* rigid-body modes left out of the tracks */
+    int sparse;                  /* the sparse eigensolver was used */
+} gd_campbell_result;
+
+void gd_campbell_options_default(gd_campbell_options *opt);
+gd_status gd_campbell(const gd_system *sys, const gd_campbell_options *opt,
+                      gd_campbell_result **out, gd_error *err);
+void gd_campbell_free(gd_campbell_result *r);
+
+/* Complex MAC |a^H b|^2 / (|a|^2 |b|^2) of two shapes of n entries. */
+double gd_mac(const double *are, const double *aim, const double *bre, const double *bim, int n);
+
+#endif

@@ -1,0 +1,213 @@
+/* Campbell diagram: the damped modes at every speed (in parallel over speeds, one
+ * result slot per speed, so the numbers do not depend on the number of threads), then
+ * tracking, orders, critical speeds and stability. The sparse path builds the pattern
+ * and its symbolic factorisation once and factors P(sigma) per speed. */
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "campbell_internal.h"
+#include "sweep_internal.h"
+
+void gd_campbell_options_default(gd_campbell_options *opt)
+{
+    memset(opt, 0, sizeof *opt);
+    opt->nmodes = 12;
+    opt->kind = GD_MODAL_AUTO;
+    opt->method = GD_EIG_AUTO;
+    opt->shaft_orders = 1;
+    opt->mesh_orders = 1;
+    opt->mac_min = 0.1;
+}
+
+void gd_campbell_free(gd_campbell_result *r)
+{
+    if (!r) return;
+    free(r->speeds);
+    free(r->tracks);
+    free(r->modes);
+    free(r->orders);
+    free(r->critical);
+    free(r);
+}
+
+static gd_status solve_one(const gd_system *sys, const gd_dynmat *a, const gd_splu_symbolic *sym,
+                           const gd_campbell_options *opt, int nreq, double speed, gd_sparse_ws *ws,
+                           gd_modal_result **out, gd_error *err)
+{
+    gd_modal_options o;
+    gd_modal_options_default(&o);
+    o.speed = speed;
+    o.nmodes = nreq;
+    o.kind = opt->kind;
+    o.want_left = 0;
+    if (a) return gd_sparse_modes(a, sym, &o, opt->shift, ws, out, err);
+    return gd_modal_solve(sys, &o, out, err);
+}
+
+static gd_whirl majority_whirl(const gd_mode *md, const double *speeds, int ns)
+{
+    int cnt[4] = {0};
+    for (int s = 0; s < ns; s++)
+        if (md[s].rigid_body >= 0 && speeds[s] != 0) cnt[md[s].whirl]++;
+    static const gd_whirl pref[3] = {GD_WHIRL_FORWARD, GD_WHIRL_BACKWARD, GD_WHIRL_MIXED};
+    gd_whirl best = GD_WHIRL_NONE;
+    int bc = 0;
+    for (int i = 0; i < 3; i++)
+        if (cnt[pref[i]] > bc) {
+            bc = cnt[pref[i]];
+            best = pref[i];
+        }
+    return bc >= cnt[GD_WHIRL_NONE] ? best : GD_WHIRL_NONE;
+}
+
+static gd_motion majority_motion(const gd_mode *md, int ns)
+{
+    int cnt[GD_NMOTIONS] = {0}, best = 0;
+    for (int s = 0; s < ns; s++)
+        if (md[s].rigid_body >= 0) cnt[md[s].dominant_motion]++;
+    for (int k = 1; k < GD_NMOTIONS; k++)
+        if (cnt[k] > cnt[best]) best = k;
+    return (gd_motion)best;
+}
+
+gd_status gd_campbell(const gd_system *sys, const gd_campbell_options *opt,
+                      gd_campbell_result **out, gd_error *err)
+{
+    *out = NULL;
+    const gd_model *m = sys->model;
+    int ns = opt->nspeeds;
+    if (ns < 1 || !opt->speeds)
+        return gd_error_set(err, GD_EINPUT, "", 0, 0, "speeds", "give at least one speed",
+                            "no speeds to compute");
+    for (int s = 0; s < ns; s++)
+        if (!isfinite(opt->speeds[s]) || (s > 0 && !(opt->speeds[s] > opt->speeds[s - 1])))
+            return gd_error_set(err, GD_EINPUT, "", 0, 0, "speeds",
+                                "give finite speeds in increasing order",
+                                "speed %d (%g rad/s) is not finite or not above the previous",
+                                s + 1, opt->speeds[s]);
+    if (opt->nmodes < 0)
+        return gd_error_set(err, GD_EINPUT, "", 0, 0, "modes", "give a positive number of modes",
+                            "negative number of modes");
+    int sparse = opt->method == GD_EIG_SPARSE ||
+                 (opt->method == GD_EIG_AUTO && sys->ndof >= 200 && opt->nmodes > 0 &&
+                  sys->nmassless == 0 && 2 * opt->nmodes + 16 < sys->ndof);
+    if (sparse && (opt->nmodes == 0 || sys->nmassless > 0))
+        return gd_error_set(err, GD_EINPUT, m->file, 0, 0, "method",
+                            "use the dense method (it condenses massless DOFs and gives all modes)",
+                            opt->nmodes == 0 ? "the sparse eigensolver computes the lowest modes, "
+                                               "not all of them"
+                                             : "the sparse eigensolver needs mass on every DOF");
+    gd_status st = GD_OK;
+    gd_dynmat a = {0};
+    gd_splu_symbolic sym = {0};
+    gd_modal_result **res = calloc((size_t)ns, sizeof *res);
+    gd_error *errs = calloc((size_t)ns, sizeof *errs);
+    gd_status *sts = calloc((size_t)ns, sizeof *sts);
+    int **elastic = calloc((size_t)ns, sizeof *elastic),
+        **track = calloc((size_t)ns, sizeof *track);
+    int *nel = calloc((size_t)ns, sizeof *nel);
+    gd_campbell_result *r = calloc(1, sizeof *r);
+    if (!res || !errs || !sts || !elastic || !track || !nel || !r) goto nomem;
+    if (sparse) {
+        if ((st = gd_dynmat_build(sys, &a, err))) goto done;
+        if ((st = gd_splu_analyze(&a, &sym, err))) goto done;
+    }
+    /* rigid-body modes are not tracked: count them once, then ask for that many more */
+    int nreq = 0, nrigid = 0;
+    if (opt->nmodes > 0) {
+        gd_modal_result *r0 = NULL;
+        int probe = opt->nmodes + 6 < sys->ndof ? opt->nmodes + 6 : sys->ndof;
+        if (sparse && 2 * probe + 16 >= 2 * sys->ndof) probe = opt->nmodes;
+        if ((st = solve_one(sys, sparse ? &a : NULL, &sym, opt, probe, opt->speeds[0], NULL, &r0,
+                            err)))
+            goto done;
+        for (int j = 0; j < r0->nmodes; j++)
+            nrigid += r0->modes[j].rigid_body;
+        gd_modal_free(r0);
+        nreq = opt->nmodes + nrigid;
+    }
+    int nt = opt->nthreads > 0 ? opt->nthreads : omp_get_max_threads();
+    /* one workspace per thread, reused over its speeds; one result slot per speed */
+#pragma omp parallel num_threads(nt)
+    {
+        gd_sparse_ws ws = {0};
+        int ok = !sparse || !gd_sparse_ws_init(&ws, &a, nreq);
+#pragma omp for schedule(dynamic, 1)
+        for (int s = 0; s < ns; s++)
+            sts[s] = solve_one(sys, sparse ? &a : NULL, &sym, opt, nreq, opt->speeds[s],
+                               ok && sparse ? &ws : NULL, &res[s], &errs[s]);
+        gd_sparse_ws_free(&ws);
+    }
+    for (int s = 0; s < ns; s++)
+        if (sts[s]) {
+            if (err) *err = errs[s];
+            st = sts[s];
+            goto done;
+        }
+    int maxk = 0;
+    for (int s = 0; s < ns; s++) {
+        elastic[s] = malloc((size_t)(res[s]->nmodes > 0 ? res[s]->nmodes : 1) * sizeof **elastic);
+        track[s] = malloc((size_t)(res[s]->nmodes > 0 ? res[s]->nmodes : 1) * sizeof **track);
+        if (!elastic[s] || !track[s]) goto nomem;
+        int lim = opt->nmodes > 0 ? opt->nmodes : res[s]->nmodes;
+        for (int j = 0; j < res[s]->nmodes && nel[s] < lim; j++)
+            if (!res[s]->modes[j].rigid_body) elastic[s][nel[s]++] = j;
+        if (res[s]->nmodes - nel[s] > nrigid && opt->nmodes == 0) nrigid = res[s]->nmodes - nel[s];
+        if (nel[s] > maxk) maxk = nel[s];
+    }
+    int nt_tracks = gd_campbell_assign_tracks(res, ns, elastic, nel, opt->mac_min, track);
+    if (nt_tracks < 0) goto nomem;
+    r->nspeeds = ns;
+    r->ntracks = nt_tracks;
+    r->ndof = sys->ndof;
+    r->nrigid = nrigid;
+    r->sparse = sparse;
+    r->speeds = malloc((size_t)ns * sizeof *r->speeds);
+    r->tracks = calloc((size_t)(nt_tracks > 0 ? nt_tracks : 1), sizeof *r->tracks);
+    r->modes = malloc((size_t)(nt_tracks > 0 ? nt_tracks : 1) * (size_t)ns * sizeof *r->modes);
+    if (!r->speeds || !r->tracks || !r->modes) goto nomem;
+    memcpy(r->speeds, opt->speeds, (size_t)ns * sizeof *r->speeds);
+    for (size_t i = 0; i < (size_t)nt_tracks * ns; i++) {
+        gd_mode *md = &r->modes[i];
+        memset(md, 0, sizeof *md);
+        md->lambda_re = md->lambda_im = md->omega_n = md->omega_d = NAN;
+        md->frequency_hz = md->damping_ratio = md->log_decrement = NAN;
+        md->rigid_body = -1;
+        md->dominant_component = -1;
+    }
+    for (int s = 0; s < ns; s++)
+        for (int j = 0; j < nel[s]; j++)
+            r->modes[(size_t)track[s][j] * ns + s] = res[s]->modes[elastic[s][j]];
+    for (int t = 0; t < nt_tracks; t++) {
+        r->tracks[t].id = t + 1;
+        r->tracks[t].whirl = majority_whirl(r->modes + (size_t)t * ns, r->speeds, ns);
+        r->tracks[t].dominant_motion = majority_motion(r->modes + (size_t)t * ns, ns);
+    }
+    r->norders = gd_campbell_orders(m, opt, &r->orders);
+    if (r->norders < 0 || gd_campbell_crossings(r)) goto nomem;
+    *out = r;
+    r = NULL;
+    goto done;
+nomem:
+    st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory in the Campbell sweep");
+done:
+    if (sparse) {
+        gd_splu_symbolic_free(&sym);
+        gd_dynmat_free(&a);
+    }
+    for (int s = 0; s < ns && res; s++) {
+        gd_modal_free(res[s]);
+        if (elastic) free(elastic[s]);
+        if (track) free(track[s]);
+    }
+    free(res);
+    free(errs);
+    free(sts);
+    free(elastic);
+    free(track);
+    free(nel);
+    gd_campbell_free(r);
+    return st;
+}

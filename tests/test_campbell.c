@@ -1,0 +1,292 @@
+/* Campbell diagrams: the sparse shift-invert eigensolver against the dense one,
+ * gyroscopic splitting (forward up, backward down, equal pairs at rest), tracking,
+ * critical speeds against a direct solve, instability onset, thread independence,
+ * errors. */
+#include <stdlib.h>
+
+#include "geardyn/campbell.h"
+#include "harness.h"
+
+typedef struct fx {
+    gd_model *m;
+    gd_system *s;
+} fx;
+
+static int load(fx *f, const char *path, const char *yaml)
+{
+    gd_error err;
+    memset(f, 0, sizeof *f);
+    gd_status st = path ? gd_model_load(path, &f->m, &err)
+                        : gd_model_load_string(yaml, "inline.yaml", &f->m, &err);
+    if (!st) st = gd_system_build(f->m, &f->s, &err);
+    if (st) fprintf(stderr, "  %s\n", err.message);
+    return st == GD_OK;
+}
+
+static void fx_free(fx *f)
+{
+    gd_system_free(f->s);
+    gd_model_free(f->m);
+}
+
+static double *linspace(double a, double b, int n)
+{
+    double *v = malloc((size_t)n * sizeof *v);
+    for (int i = 0; i < n; i++)
+        v[i] = n == 1 ? a : a + (b - a) * i / (n - 1);
+    return v;
+}
+
+/* Shift-invert Krylov-Schur gives the dense solver's eigenvalues to 1e-8 and the same
+ * shapes (MAC 1), rigid torsional mode included, at rest and at speed. */
+TEST(sparse_equals_dense)
+{
+    fx f;
+    REQUIRE(load(&f, "examples/rig2018.yaml", NULL));
+    const double speeds[2] = {0, 628.3};
+    for (int k = 0; k < 2; k++) {
+        gd_modal_options o;
+        gd_modal_options_default(&o);
+        o.speed = speeds[k];
+        o.nmodes = 13;
+        o.want_left = 0;
+        o.kind = GD_MODAL_DAMPED;
+        gd_modal_result *d, *s;
+        gd_error err;
+        REQUIRE(gd_modal_solve(f.s, &o, &d, &err) == GD_OK);
+        REQUIRE(gd_modal_solve_sparse(f.s, &o, 0, &s, &err) == GD_OK);
+        REQUIRE(s->nmodes == 13);
+        CHECK(s->modes[0].rigid_body && d->modes[0].rigid_body);
+        for (int j = 1; j < 13; j++) {
+            CHECK_REL(s->modes[j].lambda_im, d->modes[j].lambda_im, 1e-8);
+            CHECK_ABS(s->modes[j].lambda_re, d->modes[j].lambda_re, 1e-8 * d->modes[j].omega_n);
+            CHECK(s->modes[j].whirl == d->modes[j].whirl);
+            int n = f.s->ndof;
+            /* repeated eigenvalues (x/y pairs at rest) have no preferred vectors */
+            int repeated =
+                fabs(d->modes[j].omega_n - d->modes[j - 1].omega_n) < 1e-6 * d->modes[j].omega_n ||
+                (j + 1 < 13 &&
+                 fabs(d->modes[j].omega_n - d->modes[j + 1].omega_n) < 1e-6 * d->modes[j].omega_n);
+            if (!repeated)
+                CHECK(gd_mac(s->shape_re + (size_t)j * n, s->shape_im + (size_t)j * n,
+                             d->shape_re + (size_t)j * n, d->shape_im + (size_t)j * n, n) > 0.999);
+        }
+        gd_modal_free(d);
+        gd_modal_free(s);
+    }
+    fx_free(&f);
+}
+
+static const char ROTOR[] =
+    "dofs: [x, y, rx, ry]\n"
+    "materials:\n  steel: {density: 7800, E: 2.1e11, poisson: 0.3}\n"
+    "shafts:\n  - name: rotor\n    material: steel\n    elements_per_section: 6\n"
+    "    sections: [{length: 0.6, outer_diameter: 0.03}]\n"
+    "    nodes: [{name: b1, at: 0}, {name: disk, at: 0.45}, {name: b2, at: 0.6}]\n"
+    "disks:\n  - {name: disk, node: disk, mass: 8, polar_inertia: 0.12, diametral_inertia: 0.06}\n"
+    "bearings:\n  - {name: B1, node: b1, k: 2e6, c: 30}\n  - {name: B2, node: b2, k: 2e6, c: 30}\n";
+
+/* A gyroscopic rotor: pairs are equal at rest, then forward modes rise and backward
+ * modes fall with speed, and each track keeps its whirl. */
+TEST(gyroscopic_forward_rises_backward_falls)
+{
+    fx f;
+    REQUIRE(load(&f, NULL, ROTOR));
+    double *sp = linspace(0, 3000, 31);
+    gd_campbell_options o;
+    gd_campbell_options_default(&o);
+    o.speeds = sp;
+    o.nspeeds = 31;
+    o.nmodes = 4;
+    gd_campbell_result *r;
+    gd_error err;
+    REQUIRE(gd_campbell(f.s, &o, &r, &err) == GD_OK);
+    REQUIRE(r->ntracks == 4);
+    CHECK(r->nrigid == 0);
+    int nf = 0, nb = 0;
+    for (int t = 0; t < 4; t++) {
+        const gd_mode *md = r->modes + (size_t)t * 31;
+        for (int k = 0; k < 31; k++)
+            CHECK(md[k].rigid_body == 0); /* present everywhere */
+        if (r->tracks[t].whirl == GD_WHIRL_FORWARD) {
+            nf++;
+            for (int k = 1; k < 31; k++)
+                CHECK(md[k].omega_d > md[k - 1].omega_d);
+        } else if (r->tracks[t].whirl == GD_WHIRL_BACKWARD) {
+            nb++;
+            for (int k = 1; k < 31; k++)
+                CHECK(md[k].omega_d < md[k - 1].omega_d);
+        }
+        for (int k = 1; k < 31; k++)
+            CHECK(md[k].whirl == r->tracks[t].whirl);
+    }
+    CHECK(nf == 2 && nb == 2);
+    /* at rest the tracks come in equal pairs (isotropic bearings) */
+    CHECK_REL(r->modes[0].omega_d, r->modes[31].omega_d, 1e-8);
+    CHECK_REL(r->modes[62].omega_d, r->modes[93].omega_d, 1e-8);
+    gd_campbell_free(r);
+    free(sp);
+    fx_free(&f);
+}
+
+/* The same sweep on 1 and 3 threads, dense and sparse, is bitwise identical; the
+ * sparse and dense Campbell diagrams agree. */
+TEST(threads_and_methods_agree)
+{
+    fx f;
+    REQUIRE(load(&f, "examples/rig2018.yaml", NULL));
+    double *sp = linspace(0, 1256.6, 21);
+    gd_campbell_options o;
+    gd_campbell_options_default(&o);
+    o.speeds = sp;
+    o.nspeeds = 21;
+    o.nmodes = 8;
+    gd_campbell_result *r[4];
+    gd_error err;
+    for (int k = 0; k < 4; k++) {
+        o.method = k < 2 ? GD_EIG_DENSE : GD_EIG_SPARSE;
+        o.nthreads = k % 2 ? 3 : 1;
+        REQUIRE(gd_campbell(f.s, &o, &r[k], &err) == GD_OK);
+    }
+    CHECK(!r[0]->sparse && r[2]->sparse);
+    for (int k = 0; k < 4; k += 2) {
+        REQUIRE(r[k]->ntracks == r[k + 1]->ntracks);
+        size_t n = (size_t)r[k]->ntracks * 21;
+        int same = 1;
+        for (size_t i = 0; i < n; i++)
+            same &=
+                !memcmp(&r[k]->modes[i].lambda_re, &r[k + 1]->modes[i].lambda_re, sizeof(double)) &&
+                !memcmp(&r[k]->modes[i].lambda_im, &r[k + 1]->modes[i].lambda_im, sizeof(double));
+        CHECK(same);
+        CHECK(r[k]->ncritical == r[k + 1]->ncritical);
+    }
+    REQUIRE(r[0]->ntracks == r[2]->ntracks);
+    for (size_t i = 0; i < (size_t)r[0]->ntracks * 21; i++)
+        CHECK_REL(r[2]->modes[i].omega_d, r[0]->modes[i].omega_d, 1e-8);
+    CHECK(r[0]->ncritical == r[2]->ncritical);
+    for (int k = 0; k < 4; k++)
+        gd_campbell_free(r[k]);
+    free(sp);
+    fx_free(&f);
+}
+
+/* Every critical speed's mode frequency, solved directly at that speed, is within the
+ * linear interpolation error of order x speed; orders come from the shafts (1x at their
+ * ratios) and the mesh (48 teeth x driving shaft). */
+TEST(critical_speeds)
+{
+    fx f;
+    REQUIRE(load(&f, "examples/rig2018.yaml", NULL));
+    double *sp = linspace(0, 1256.6, 41);
+    double user[1] = {2};
+    gd_campbell_options o;
+    gd_campbell_options_default(&o);
+    o.speeds = sp;
+    o.nspeeds = 41;
+    o.nmodes = 4;
+    o.orders = user;
+    o.norders = 1;
+    gd_campbell_result *r;
+    gd_error err;
+    REQUIRE(gd_campbell(f.s, &o, &r, &err) == GD_OK);
+    REQUIRE(r->norders == 4); /* 1x driving (1), 1x driven (1.5), 2x, mesh 48x */
+    CHECK_REL(r->orders[0].order, 1.0, 1e-12);
+    CHECK_REL(r->orders[1].order, 1.5, 1e-12);
+    CHECK_REL(r->orders[2].order, 2.0, 1e-12);
+    CHECK_REL(r->orders[3].order, 48.0, 1e-12);
+    CHECK_STR(r->orders[3].label, "mesh mesh 48x driving");
+    REQUIRE(r->ncritical >= 8);
+    for (int c = 0; c < r->ncritical; c++) {
+        const gd_critical_speed *cs = &r->critical[c];
+        CHECK_REL(cs->frequency_hz, r->orders[cs->order].order * cs->speed / (2 * M_PI), 1e-4);
+        gd_modal_options mo;
+        gd_modal_options_default(&mo);
+        mo.speed = cs->speed;
+        mo.nmodes = 5;
+        gd_modal_result *mr;
+        REQUIRE(gd_modal_solve(f.s, &mo, &mr, &err) == GD_OK);
+        double best = INFINITY;
+        for (int j = 0; j < mr->nmodes; j++)
+            best = fmin(best, fabs(mr->modes[j].omega_d / (2 * M_PI) - cs->frequency_hz));
+        CHECK(best < 1e-4 * cs->frequency_hz);
+        gd_modal_free(mr);
+    }
+    CHECK(isnan(r->instability_onset));
+    gd_campbell_free(r);
+    free(sp);
+    fx_free(&f);
+}
+
+/* An oil-film bearing whose cross-coupled stiffness grows with speed destabilises the
+ * forward mode: the onset is where the damping ratio crosses zero. */
+static const char UNSTABLE[] =
+    "dofs: [x, y]\n"
+    "shafts:\n  - name: rotor\n    nodes: [{name: j}]\n"
+    "disks:\n  - {name: d, node: j, mass: 10}\n"
+    "bearings:\n  - name: oil\n    node: j\n    table:\n"
+    "      - {speed: 0, k: 1e6, c: 200}\n"
+    "      - {speed: 1000, kxx: 1e6, kyy: 1e6, kxy: 1e5, kyx: -1e5, c: 200}\n";
+
+TEST(instability_onset)
+{
+    fx f;
+    REQUIRE(load(&f, NULL, UNSTABLE));
+    double *sp = linspace(0, 1000, 101);
+    gd_campbell_options o;
+    gd_campbell_options_default(&o);
+    o.speeds = sp;
+    o.nspeeds = 101;
+    o.nmodes = 2;
+    gd_campbell_result *r;
+    gd_error err;
+    REQUIRE(gd_campbell(f.s, &o, &r, &err) == GD_OK);
+    REQUIRE(!isnan(r->instability_onset));
+    /* forward mode: Re lambda = -c/2m + kxy/(2 m w) with kxy = 100 W:  w ~ sqrt(k/m) =
+     * 316.2, so the onset is at 100 W / (2 * 10 * 316.2) = 10, i.e. W = 632.5 rad/s */
+    CHECK_REL(r->instability_onset, 632.5, 0.01);
+    const gd_mode *md = r->modes + (size_t)(r->instability_track - 1) * 101;
+    CHECK(md[100].damping_ratio < 0 && md[100].log_decrement < 0);
+    CHECK(md[50].damping_ratio > 0);
+    gd_campbell_free(r);
+    free(sp);
+    fx_free(&f);
+}
+
+TEST(mac_and_hungarian)
+{
+    double a[3] = {1, 0, 0}, b[3] = {0, 1, 0}, c[3] = {1, 1, 0}, ci[3] = {0, 0, 0};
+    CHECK_ABS(gd_mac(a, NULL, b, NULL, 3), 0, 1e-15);
+    CHECK_REL(gd_mac(a, NULL, c, ci, 3), 0.5, 1e-15);
+    double zi[3] = {1, 0, 0}; /* a times (1 + i) */
+    CHECK_REL(gd_mac(a, NULL, a, zi, 3), 1.0, 1e-15);
+}
+
+TEST(errors)
+{
+    fx f;
+    REQUIRE(load(&f, "examples/rig2018.yaml", NULL));
+    double sp[3] = {0, 100, 50};
+    gd_campbell_options o;
+    gd_campbell_options_default(&o);
+    o.speeds = sp;
+    o.nspeeds = 3;
+    gd_campbell_result *r = (gd_campbell_result *)1;
+    gd_error err;
+    CHECK(gd_campbell(f.s, &o, &r, &err) == GD_EINPUT && r == NULL);
+    CHECK(strstr(err.message, "not above the previous") != NULL);
+    o.nspeeds = 0;
+    CHECK(gd_campbell(f.s, &o, &r, &err) == GD_EINPUT);
+    o.nspeeds = 2;
+    o.nmodes = 0;
+    o.method = GD_EIG_SPARSE;
+    CHECK(gd_campbell(f.s, &o, &r, &err) == GD_EINPUT);
+    CHECK(strstr(err.message, "lowest modes") != NULL);
+    o.nmodes = -1;
+    o.method = GD_EIG_AUTO;
+    CHECK(gd_campbell(f.s, &o, &r, &err) == GD_EINPUT);
+    fx_free(&f);
+}
+
+RUN_TESTS(T(sparse_equals_dense), T(gyroscopic_forward_rises_backward_falls),
+          T(threads_and_methods_agree), T(critical_speeds), T(instability_onset),
+          T(mac_and_hungarian), T(errors))

@@ -1,0 +1,561 @@
+/* geardyn transient, run as a program (GD_CLI_PATH) from the source folder: every
+ * option and error path, JSON names, output files, and the examples: the Ducati timing
+ * geartrain (speed ratios near the gear ratios with fluctuation, contact losses) and
+ * the Chen gear pair with its squeeze film damper (orbits of gear a at 1200 and 5500
+ * rad/s, spectrum of the vertical response at 5425 rad/s with e_u = C). Runs are short
+ * (a few tenths of a second each). */
+#include <cjson/cJSON.h>
+#include <dirent.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+
+#include "harness.h"
+
+#define DUCATI "examples/ducati_timing_geartrain.yaml"
+#define CHEN "examples/chen1998_gear_pair.yaml"
+#define KUMAR "examples/kumar2011_torsional.yaml"
+
+/* ---- running the program ---- */
+
+typedef struct scratch {
+    char dir[128];
+} scratch;
+
+static int scratch_open(scratch *s)
+{
+    snprintf(s->dir, sizeof s->dir, "/tmp/gd_test_cli_tr_XXXXXX");
+    return mkdtemp(s->dir) != NULL;
+}
+
+static void scratch_close(scratch *s)
+{
+    char cmd[256];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", s->dir);
+    if (system(cmd) != 0) fprintf(stderr, "  could not remove %s\n", s->dir);
+}
+
+static char *read_file(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    size_t cap = 4096, n = 0;
+    char *buf = malloc(cap);
+    size_t got;
+    while (buf && (got = fread(buf + n, 1, cap - n - 1, f)) > 0) {
+        n += got;
+        if (cap - n - 1 == 0) {
+            char *nb = realloc(buf, 2 * cap);
+            if (!nb) {
+                free(buf);
+                buf = NULL;
+                break;
+            }
+            buf = nb;
+            cap *= 2;
+        }
+    }
+    fclose(f);
+    if (buf) buf[n] = '\0';
+    return buf;
+}
+
+static void write_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f) return;
+    fputs(text, f);
+    fclose(f);
+}
+
+typedef struct run_result {
+    int code; /* exit status; -1 when killed by a signal */
+    char *out, *err;
+} run_result;
+
+static void run_free(run_result *r)
+{
+    free(r->out);
+    free(r->err);
+    r->out = r->err = NULL;
+}
+
+/* Runs "geardyn ARGS" (ARGS printf-style, already shell-quoted) from the source folder,
+ * capturing stdout and stderr in the scratch folder. */
+static int run(scratch *s, run_result *r, const char *fmt, ...)
+{
+    char args[2048], cmd[4096], outp[256], errp[256];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(args, sizeof args, fmt, ap);
+    va_end(ap);
+    snprintf(outp, sizeof outp, "%s/stdout.txt", s->dir);
+    snprintf(errp, sizeof errp, "%s/stderr.txt", s->dir);
+    snprintf(cmd, sizeof cmd, "cd '%s' && '%s' %s >'%s' 2>'%s'", GD_SOURCE_DIR, GD_CLI_PATH, args,
+             outp, errp);
+    int st = system(cmd);
+    r->code = (st != -1 && WIFEXITED(st)) ? WEXITSTATUS(st) : -1;
+    r->out = read_file(outp);
+    r->err = read_file(errp);
+    if (!r->out) r->out = calloc(1, 1);
+    if (!r->err) r->err = calloc(1, 1);
+    return r->code;
+}
+
+static int contains(const char *text, const char *word)
+{
+    return text && strstr(text, word);
+}
+
+static int count_lines(const char *text)
+{
+    int n = 0;
+    for (const char *p = text; p && *p; p++)
+        n += *p == '\n';
+    return n;
+}
+
+static int file_exists(const char *path)
+{
+    struct stat sb;
+    return stat(path, &sb) == 0;
+}
+
+/* Entries of a folder other than . and .. (-1 if it cannot be opened). */
+static int count_entries(const char *dir)
+{
+    DIR *d = opendir(dir);
+    if (!d) return -1;
+    int n = 0;
+    struct dirent *e;
+    while ((e = readdir(d)))
+        if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) n++;
+    closedir(d);
+    return n;
+}
+
+static void show(const run_result *r)
+{
+    fprintf(stderr, "    exit %d\n    stdout: %.600s\n    stderr: %.600s\n", r->code, r->out,
+            r->err);
+}
+
+static double jnum(const cJSON *o, const char *key)
+{
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, key);
+    return cJSON_IsNumber(v) ? v->valuedouble : NAN;
+}
+
+static const char *jstr(const cJSON *o, const char *key)
+{
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, key);
+    return cJSON_IsString(v) ? v->valuestring : "";
+}
+
+/* ---- helpers for the summary ---- */
+
+static const cJSON *record_named(const cJSON *o, const char *name)
+{
+    const cJSON *recs = cJSON_GetObjectItemCaseSensitive(o, "records"), *e;
+    cJSON_ArrayForEach(e, recs) if (!strcmp(jstr(e, "name"), name)) return e;
+    return NULL;
+}
+
+/* Runs and parses --json; NULL (and shows the run) unless it exits 0 with JSON. */
+static cJSON *run_json(gd_test_state *gd_ts_, scratch *s, const char *fmt, ...)
+{
+    char args[2048];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(args, sizeof args, fmt, ap);
+    va_end(ap);
+    run_result r;
+    run(s, &r, "%s --json", args);
+    cJSON *o = r.code == 0 ? cJSON_Parse(r.out) : NULL;
+    if (!o) {
+        show(&r);
+        gd_ts_->checks_failed++;
+    }
+    CHECK(r.err[0] == '\0'); /* no progress bar when stderr is not a terminal */
+    run_free(&r);
+    return o;
+}
+
+/* An error run: exit 2, the words on stderr, nothing on stdout, nothing in --out. */
+static void expect_error(gd_test_state *gd_ts_, scratch *s, const char *w1, const char *w2,
+                         const char *fmt, ...)
+{
+    char args[2048], out[256];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(args, sizeof args, fmt, ap);
+    va_end(ap);
+    snprintf(out, sizeof out, "%s/err_out", s->dir);
+    run_result r;
+    run(s, &r, "%s --out '%s'", args, out);
+    int ok = r.code == 2 && contains(r.err, w1) && (!w2 || contains(r.err, w2)) && !r.out[0];
+    if (!ok) {
+        fprintf(stderr, "  args: %s\n", args);
+        show(&r);
+        gd_ts_->checks_failed++;
+    }
+    CHECK(count_entries(out) <= 0); /* not created, or left empty */
+    run_free(&r);
+}
+
+/* ---- the Ducati timing geartrain ---- */
+
+TEST(ducati_speed_ratios_and_contact_losses)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    cJSON *o = run_json(gd_ts_, &s,
+                        "transient " DUCATI " --revolutions 2 --from 0 "
+                        "--record ratio:gear_wheel/crank_pinion,ratio:cam_ve/crank_pinion "
+                        "--record crank_pinion.rz:speed,cam_ve.rz:speed");
+    REQUIRE(o);
+    CHECK_REL(jnum(o, "speed_rad_s"), 10000 * M_PI / 30, 1e-12);
+    CHECK_REL(jnum(o, "t_end_s"), 0.012, 1e-12); /* two crank revolutions */
+    CHECK(jnum(o, "record_from_s") == 0);
+    CHECK(jnum(o, "dofs") == 12);
+    CHECK(jnum(o, "free_dofs") == 11); /* crank pinion prescribed */
+    CHECK(jnum(o, "steps") > 1000);
+    CHECK(jnum(o, "rhs_evaluations") >= jnum(o, "steps"));
+    CHECK(jnum(o, "samples") == 2001);
+    const cJSON *g = record_named(o, "ratio:gear_wheel/crank_pinion");
+    const cJSON *c = record_named(o, "ratio:cam_ve/crank_pinion");
+    const cJSON *w0 = record_named(o, "crank_pinion.rz:speed");
+    REQUIRE(g && c && w0);
+    /* gear wheel: -30/45 (turns the other way); camshaft: 1/2 */
+    CHECK_REL(jnum(g, "mean"), -2.0 / 3.0, 3e-3);
+    CHECK_REL(jnum(c, "mean"), 0.5, 5e-3);
+    CHECK(jnum(g, "peak_to_peak") > 0.02 && jnum(g, "peak_to_peak") < 0.2);
+    CHECK(jnum(c, "peak_to_peak") > 0.05 && jnum(c, "peak_to_peak") < 0.3);
+    CHECK(jnum(g, "min") < jnum(g, "mean") && jnum(g, "max") > jnum(g, "mean"));
+    CHECK(fabs(jnum(g, "rms") - fabs(jnum(g, "mean"))) < 0.01);
+    /* the crank turns exactly at its speed */
+    CHECK_REL(jnum(w0, "min"), 10000 * M_PI / 30, 1e-12);
+    CHECK(jnum(w0, "peak_to_peak") < 1e-9);
+    const cJSON *meshes = cJSON_GetObjectItemCaseSensitive(o, "meshes"), *e;
+    CHECK(cJSON_GetArraySize(meshes) == 9);
+    int losses = 0, coast = 0, n = 0;
+    cJSON_ArrayForEach(e, meshes)
+    {
+        CHECK(jstr(e, "name")[0] != 0);
+        CHECK(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(e, "backlash")));
+        CHECK(jnum(e, "contact_losses") >= 0);
+        CHECK(jnum(e, "separated_time_s") >= 0 && jnum(e, "separated_time_s") < 0.012);
+        CHECK_REL(jnum(e, "separated_time_s") + jnum(e, "coast_time_s") + jnum(e, "drive_time_s"),
+                  0.012, 1e-9);
+        losses += (int)jnum(e, "contact_losses");
+        coast += (int)jnum(e, "coast_impacts");
+        n++;
+    }
+    CHECK(n == 9);
+    CHECK_STR(jstr(cJSON_GetArrayItem(meshes, 0), "name"), "m01");
+    /* the alternating cam torques make the teeth rattle through the backlash */
+    CHECK(losses > 50);
+    CHECK(coast > 50);
+    cJSON_Delete(o);
+    scratch_close(&s);
+}
+
+TEST(ducati_text_static_start_and_wildcards)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    run_result r;
+    run(&s, &r,
+        "transient " DUCATI " --duration 3ms --start static --record 'mesh:*:state' --quiet");
+    CHECK(r.code == 0);
+    CHECK(contains(r.out, "12 DOFs (11 free)"));
+    CHECK(contains(r.out, "static start"));
+    CHECK(contains(r.out, "mesh:m34vi:state"));
+    CHECK(contains(r.out, "contact_losses"));
+    CHECK(r.err[0] == 0);
+    run_free(&r);
+    /* default records: force and state of every nonlinear mesh */
+    cJSON *o = run_json(gd_ts_, &s, "transient " DUCATI " --duration 1ms --method adams");
+    REQUIRE(o);
+    CHECK(cJSON_GetArraySize(cJSON_GetObjectItemCaseSensitive(o, "records")) == 18);
+    CHECK(record_named(o, "mesh:m01:force") && record_named(o, "mesh:m01:state"));
+    CHECK_STR(jstr(o, "method"), "adams");
+    CHECK_STR(jstr(o, "start"), "rest");
+    /* default: records from the last half */
+    CHECK_REL(jnum(o, "record_from_s"), 0.5e-3, 1e-12);
+    const cJSON *st = record_named(o, "mesh:m01:state");
+    CHECK(jnum(st, "min") >= -1 && jnum(st, "max") <= 1);
+    cJSON_Delete(o);
+    scratch_close(&s);
+}
+
+TEST(outputs_and_spectrum_files)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    char out[256], path[512];
+    snprintf(out, sizeof out, "%s/res", s.dir);
+    run_result r;
+    run(&s, &r,
+        "transient " CHEN " --speed 1200 --duration 50ms --from 20ms --output-interval 0.1ms "
+        "--record gear_a.y,sfd:support_a:fy --spectrum --window rect --out '%s' --quiet",
+        out);
+    CHECK(r.code == 0);
+    if (r.code) show(&r);
+    CHECK(contains(r.out, "spectrum peaks (rect window"));
+    run_free(&r);
+    CHECK(count_entries(out) == 3);
+    snprintf(path, sizeof path, "%s/records.csv", out);
+    CHECK(file_exists(path));
+    char *csv = read_file(path);
+    REQUIRE(csv);
+    const char *h1 = "time_s,gear_a.y:disp,sfd:support_a:fy\n";
+    CHECK(!strncmp(csv, h1, strlen(h1)));
+    CHECK(count_lines(csv) == 302); /* header + 301 samples */
+    free(csv);
+    snprintf(path, sizeof path, "%s/spectrum.csv", out);
+    csv = read_file(path);
+    REQUIRE(csv);
+    const char *h2 = "frequency_hz,order,gear_a.y:disp,sfd:support_a:fy\n";
+    CHECK(!strncmp(csv, h2, strlen(h2)));
+    CHECK(count_lines(csv) == 1 + 301 / 2 + 1);
+    free(csv);
+    snprintf(path, sizeof path, "%s/summary.json", out);
+    char *js = read_file(path);
+    cJSON *o = js ? cJSON_Parse(js) : NULL;
+    free(js);
+    REQUIRE(o);
+    const cJSON *y = record_named(o, "gear_a.y:disp");
+    REQUIRE(y);
+    CHECK_STR(jstr(y, "unit"), "m");
+    const cJSON *sp = cJSON_GetObjectItemCaseSensitive(y, "spectrum");
+    CHECK_STR(jstr(sp, "window"), "rect");
+    CHECK_REL(jnum(sp, "df_hz"), 1.0 / (301 * 1e-4), 1e-9);
+    const cJSON *pk = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(sp, "peaks"), 0);
+    CHECK_REL(jnum(pk, "order"), 1.0, 0.02);
+    cJSON_Delete(o);
+    scratch_close(&s);
+}
+
+/* ---- the Chen gear pair with its squeeze film damper ---- */
+
+/* Steady orbits of gear a (12.7 um eccentricity): elliptical, at 1200 rad/s near the
+ * second coupled mode and at 5500 rad/s near the mesh mode. */
+TEST(chen_sfd_orbits)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    static const double W[2] = {1200, 5500};
+    static const double X[2] = {6.609e-5, 3.255e-5}, Y[2] = {5.236e-5, 1.463e-5};
+    static const double E[2][2] = {{0.2276, 0.5031}, {0.0439, 0.2302}};
+    for (int k = 0; k < 2; k++) {
+        cJSON *o = run_json(gd_ts_, &s,
+                            "transient " CHEN " --speed %g --duration 0.3 --from 0.2 "
+                            "--record gear_a.x,gear_a.y,sfd:support_a:ecc",
+                            W[k]);
+        REQUIRE(o);
+        const cJSON *x = record_named(o, "gear_a.x:disp"), *y = record_named(o, "gear_a.y:disp");
+        const cJSON *e = record_named(o, "sfd:support_a:ecc");
+        REQUIRE(x && y && e);
+        CHECK_REL(jnum(x, "peak_to_peak"), X[k], 0.01);
+        CHECK_REL(jnum(y, "peak_to_peak"), Y[k], 0.01);
+        CHECK(fabs(jnum(x, "mean")) < 0.01 * X[k]); /* centred orbit */
+        CHECK_ABS(jnum(e, "min"), E[k][0], 0.005);
+        CHECK_ABS(jnum(e, "max"), E[k][1], 0.005);
+        CHECK(jnum(o, "samples") >= 2000);
+        cJSON_Delete(o);
+    }
+    /* Adams agrees */
+    cJSON *o = run_json(gd_ts_, &s,
+                        "transient " CHEN " --speed 1200 --duration 0.3 --from 0.2 --method adams "
+                        "--rtol 1e-7 --record gear_a.x");
+    REQUIRE(o);
+    CHECK_REL(jnum(record_named(o, "gear_a.x:disp"), "peak_to_peak"), X[0], 0.01);
+    cJSON_Delete(o);
+    scratch_close(&s);
+}
+
+/* 5425 rad/s with e_u = C (--unbalance-scale 6, 001 Figs. 10-11): the spectrum of the
+ * vertical response. With the example's parameters the steady response is periodic:
+ * 1x and the odd super-harmonics 3x, 5x of the damper's nonlinearity; the content below
+ * 1x stays at the leakage level (the paper's sub-harmonic is not reproduced, see
+ * docs/transient.md). The 6x unbalance gives about 6x the orbit of the normal one. */
+TEST(chen_sfd_spectrum_high_unbalance)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    cJSON *o = run_json(gd_ts_, &s,
+                        "transient " CHEN " --speed 5425 --duration 0.25 --from 0.15 "
+                        "--unbalance-scale 6 --record gear_a.y --spectrum");
+    REQUIRE(o);
+    const cJSON *y = record_named(o, "gear_a.y:disp");
+    REQUIRE(y);
+    const cJSON *sp = cJSON_GetObjectItemCaseSensitive(y, "spectrum");
+    const cJSON *pk = cJSON_GetObjectItemCaseSensitive(sp, "peaks");
+    REQUIRE(cJSON_GetArraySize(pk) >= 3);
+    CHECK_REL(jnum(cJSON_GetArrayItem(pk, 0), "order"), 1.0, 2e-3);
+    CHECK_REL(jnum(cJSON_GetArrayItem(pk, 0), "amplitude"), 5.9e-5, 0.02);
+    CHECK_REL(jnum(cJSON_GetArrayItem(pk, 1), "order"), 3.0, 2e-3);
+    CHECK_REL(jnum(cJSON_GetArrayItem(pk, 1), "amplitude"), 6.8e-6, 0.03);
+    CHECK_REL(jnum(cJSON_GetArrayItem(pk, 2), "order"), 5.0, 2e-3);
+    CHECK(jnum(sp, "max_below_1x") < 1e-2 * jnum(sp, "amplitude_1x"));
+    CHECK_REL(jnum(y, "peak_to_peak"), 2 * 6.70e-5, 0.01);
+    cJSON_Delete(o);
+    o = run_json(gd_ts_, &s,
+                 "transient " CHEN " --speed 5425 --duration 0.25 --from 0.15 "
+                 "--record gear_a.y --spectrum");
+    REQUIRE(o);
+    y = record_named(o, "gear_a.y:disp");
+    CHECK(jnum(y, "peak_to_peak") < 0.2 * 2 * 6.70e-5);
+    cJSON_Delete(o);
+    scratch_close(&s);
+}
+
+/* ---- errors ---- */
+
+TEST(record_errors)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    const char *d = "transient " DUCATI " --duration 1ms";
+    expect_error(gd_ts_, &s, "unknown node 'nosuch'", "nodes: crank_pinion",
+                 "%s --record nosuch.rz", d);
+    expect_error(gd_ts_, &s, "unknown DOF 'q'", NULL, "%s --record cam_ve.q", d);
+    expect_error(gd_ts_, &s, "crank_pinion.x is not an active DOF", "has rz",
+                 "%s --record crank_pinion.x", d);
+    expect_error(gd_ts_, &s, "unknown DOF quantity 'accel'", NULL, "%s --record cam_ve.rz:accel",
+                 d);
+    expect_error(gd_ts_, &s, "expected NODE.DOF", NULL, "%s --record cam_ve", d);
+    expect_error(gd_ts_, &s, "unknown mesh 'm99'", "meshes: m01", "%s --record mesh:m99", d);
+    expect_error(gd_ts_, &s, "unknown mesh quantity 'torque'", NULL, "%s --record mesh:m01:torque",
+                 d);
+    expect_error(gd_ts_, &s, "no squeeze film damper", NULL, "%s --record sfd:x", d);
+    expect_error(gd_ts_, &s, "ratio:NODE_A/NODE_B", NULL, "%s --record ratio:cam_ve", d);
+    expect_error(gd_ts_, &s, "unknown node 'zz'", NULL, "%s --record ratio:cam_ve/zz", d);
+    expect_error(gd_ts_, &s, "empty item", NULL, "%s --record cam_ve.rz,,cam_he.rz", d);
+    expect_error(gd_ts_, &s, "no squeeze film damper 'support_b'", NULL,
+                 "transient " CHEN " --duration 1ms --record sfd:support_b:fx");
+    expect_error(gd_ts_, &s, "unknown damper quantity 'fz'", NULL,
+                 "transient " CHEN " --duration 1ms --record sfd:support_a:fz");
+    scratch_close(&s);
+}
+
+TEST(option_errors)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    expect_error(gd_ts_, &s, "--duration: give a time > 0", NULL,
+                 "transient " DUCATI " --duration -1ms");
+    expect_error(gd_ts_, &s, "--duration: give a time > 0", NULL,
+                 "transient " DUCATI " --duration 0");
+    expect_error(gd_ts_, &s, "--duration", NULL, "transient " DUCATI " --duration 3kg");
+    expect_error(gd_ts_, &s, "--revolutions needs a reference speed", NULL,
+                 "transient " KUMAR " --revolutions 2");
+    expect_error(gd_ts_, &s, "--revolutions needs a reference speed", NULL,
+                 "transient " DUCATI " --revolutions 2 --speed 0");
+    expect_error(gd_ts_, &s, "not a positive number", NULL,
+                 "transient " DUCATI " --revolutions -1");
+    expect_error(gd_ts_, &s, "exclude each other", NULL,
+                 "transient " DUCATI " --revolutions 1 --duration 1ms");
+    expect_error(gd_ts_, &s, "give --duration T or --revolutions N", NULL, "transient " DUCATI);
+    expect_error(gd_ts_, &s, "--from: give a time in [0", NULL,
+                 "transient " DUCATI " --duration 1ms --from 2ms");
+    expect_error(gd_ts_, &s, "--from", NULL, "transient " DUCATI " --duration 1ms --from -1ms");
+    expect_error(gd_ts_, &s, "--output-interval: give a time > 0", NULL,
+                 "transient " DUCATI " --duration 1ms --output-interval 0");
+    expect_error(gd_ts_, &s, "more than 1e7 samples", NULL,
+                 "transient " DUCATI " --duration 1 --output-interval 1e-9");
+    expect_error(gd_ts_, &s, "--rtol", NULL, "transient " DUCATI " --duration 1ms --rtol 0");
+    expect_error(gd_ts_, &s, "--rtol: give a value below 0.1", NULL,
+                 "transient " DUCATI " --duration 1ms --rtol 0.5");
+    expect_error(gd_ts_, &s, "not bdf or adams", NULL,
+                 "transient " DUCATI " --duration 1ms --method rk4");
+    expect_error(gd_ts_, &s, "not rest or static", NULL,
+                 "transient " DUCATI " --duration 1ms --start hot");
+    expect_error(gd_ts_, &s, "not hann or rect", NULL,
+                 "transient " DUCATI " --duration 1ms --window x");
+    expect_error(gd_ts_, &s, "--unbalance-scale", NULL,
+                 "transient " CHEN " --duration 1ms --unbalance-scale -2");
+    expect_error(gd_ts_, &s, "--speed", NULL, "transient " DUCATI " --duration 1ms --speed fast");
+    expect_error(gd_ts_, &s, "unknown option '--bogus'", NULL,
+                 "transient " DUCATI " --duration 1ms --bogus");
+    expect_error(gd_ts_, &s, "exactly one model file", NULL, "transient --duration 1ms");
+    expect_error(gd_ts_, &s, "cannot open", NULL, "transient examples/none.yaml --duration 1ms");
+    expect_error(gd_ts_, &s, "unknown coupling level", NULL,
+                 "transient " CHEN " --duration 1ms --coupling x");
+    /* --coupling torsional drops x, y: the damper has nothing to act on */
+    expect_error(gd_ts_, &s, "support_a", "no active x and y",
+                 "transient " CHEN " --duration 1ms --coupling torsional");
+    /* a static start needs every free DOF held */
+    expect_error(gd_ts_, &s, "singular", NULL, "transient " KUMAR " --duration 1ms --start static");
+    /* --out naming a file */
+    char path[256];
+    snprintf(path, sizeof path, "%s/afile", s.dir);
+    write_file(path, "x");
+    run_result r;
+    run(&s, &r, "transient " DUCATI " --duration 1ms --out '%s'", path);
+    CHECK(r.code == 2);
+    CHECK(contains(r.err, "not a folder"));
+    run_free(&r);
+    run(&s, &r, "transient " DUCATI " --duration");
+    CHECK(r.code == 2);
+    CHECK(contains(r.err, "option '--duration' needs a value"));
+    run_free(&r);
+    run(&s, &r, "transient --help");
+    CHECK(r.code == 0);
+    CHECK(contains(r.out, "ratio:NODE_A/NODE_B"));
+    CHECK(contains(r.out, "--revolutions N"));
+    run_free(&r);
+    scratch_close(&s);
+}
+
+/* Model errors found when the spec is built: a load on an inactive DOF (with the model
+ * line), a cam without its lift table. */
+TEST(model_errors)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    char path[256];
+    snprintf(path, sizeof path, "%s/m.yaml", s.dir);
+    const char *base =
+        "dofs: [rz]\n"
+        "speed: 100\n"
+        "shafts:\n"
+        "  - {name: a, nodes: [{name: p}]}\n"
+        "  - {name: b, nodes: [{name: g}]}\n"
+        "disks: [{node: p, polar_inertia: 1e-3}, {node: g, polar_inertia: 2e-3}]\n"
+        "meshes:\n"
+        "  - {name: m, driver: p, driven: g, teeth: [20, 40], base_radius: [0.02, 0.04],\n"
+        "     stiffness: 1e8, coupling: torsional, backlash: {gap: 10 um}}\n";
+    char yaml[2048];
+    snprintf(yaml, sizeof yaml,
+             "%sexcitations:\n  loads:\n    - {name: push, node: g, dof: x, value: 1 N}\n", base);
+    write_file(path, yaml);
+    expect_error(gd_ts_, &s, "m.yaml:12", "g.x, which is not an active DOF",
+                 "transient '%s' --duration 1ms", path);
+    snprintf(yaml, sizeof yaml, "%scam_torques:\n  - {camshaft: g, valves: [{mass: 0.1}]}\n", base);
+    write_file(path, yaml);
+    expect_error(gd_ts_, &s, "lift", NULL, "transient '%s' --duration 1ms", path);
+    snprintf(yaml, sizeof yaml,
+             "%scam_torques:\n  - {camshaft: g, lift: {angle: [0, 1], lift: [0]}, valves: [{mass: "
+             "0.1}]}\n",
+             base);
+    write_file(path, yaml);
+    expect_error(gd_ts_, &s, "lift", NULL, "transient '%s' --duration 1ms", path);
+    /* the good model runs: a free pair from rest stays at rest */
+    write_file(path, base);
+    cJSON *o =
+        run_json(gd_ts_, &s, "transient '%s' --duration 1ms --record p.rz,mesh:m:state", path);
+    REQUIRE(o);
+    CHECK(jnum(record_named(o, "p.rz:disp"), "peak_to_peak") == 0);
+    cJSON_Delete(o);
+    scratch_close(&s);
+}
+
+RUN_TESTS(T(ducati_speed_ratios_and_contact_losses), T(ducati_text_static_start_and_wildcards),
+          T(outputs_and_spectrum_files), T(chen_sfd_orbits), T(chen_sfd_spectrum_high_unbalance),
+          T(record_errors), T(option_errors), T(model_errors))
