@@ -68,11 +68,29 @@ typedef struct gd_test_case {
         }                                                                                          \
     } while (0)
 
+/* Runs every test; "prog NAME" runs those whose name contains NAME, and
+ * "prog -NAME1,NAME2" all but those (the slowest are skipped under valgrind). */
+static inline int gd_test_skipped(const char *name, const char *list)
+{
+    const char *p = list;
+    while (*p) {
+        const char *e = strchr(p, ',');
+        size_t len = e ? (size_t)(e - p) : strlen(p);
+        if (len && strncmp(name, p, len) == 0 && name[len] == '\0') return 1;
+        p += len + (e ? 1 : 0);
+    }
+    return 0;
+}
+
 static inline int gd_test_run(const gd_test_case *cases, int n, int argc, char **argv)
 {
     int passed = 0, failed = 0;
     for (int i = 0; i < n; i++) {
-        if (argc > 1 && !strstr(cases[i].name, argv[1])) continue;
+        if (argc > 1 && argv[1][0] == '-') {
+            if (gd_test_skipped(cases[i].name, argv[1] + 1)) continue;
+        } else if (argc > 1 && !strstr(cases[i].name, argv[1])) {
+            continue;
+        }
         gd_test_state st = {0};
         cases[i].fn(&st);
         if (st.checks_failed) {
