@@ -104,10 +104,17 @@ int gd_cmd_check(int argc, char **argv)
     opterr = 0;
     while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
         switch (c) {
-        case 'c': coupling = optarg; break;
-        case 'j': json = 1; break;
-        case 'h': fputs(USAGE, stdout); return GD_EXIT_OK;
-        default: return gd_cli_option_error("check", c, argv, optind);
+        case 'c':
+            coupling = optarg;
+            break;
+        case 'j':
+            json = 1;
+            break;
+        case 'h':
+            fputs(USAGE, stdout);
+            return GD_EXIT_OK;
+        default:
+            return gd_cli_option_error("check", c, argv, optind);
         }
     }
     if (optind != argc - 1) return gd_cli_usage_error("check", "give exactly one model file");

@@ -23,7 +23,10 @@ static const char USAGE[] =
     "  --out DIR         write DIR/modes.csv and DIR/mode_shapes.csv (every active DOF of\n"
     "                    every mode, complex)\n";
 
-static double share(const gd_mode *md, int k) { return 100.0 * md->energy_share[k]; }
+static double share(const gd_mode *md, int k)
+{
+    return 100.0 * md->energy_share[k];
+}
 
 static const char *component_name(const gd_system *s, int c)
 {
@@ -35,11 +38,11 @@ static const char *component_name(const gd_system *s, int c)
 
 static void print_table(const gd_system *s, const gd_modal_result *r)
 {
-    printf("%s: %d DOFs, speed %g rad/s (%g rpm), %s modes\n\n", s->model->file, s->ndof,
-           r->speed, r->speed * 30 / M_PI, r->damped ? "damped (state space)" : "undamped");
+    printf("%s: %d DOFs, speed %g rad/s (%g rpm), %s modes\n\n", s->model->file, s->ndof, r->speed,
+           r->speed * 30 / M_PI, r->damped ? "damped (state space)" : "undamped");
     printf("%4s %12s %12s %12s %9s %9s  %-10s %-10s %-14s %5s %5s %5s %5s\n", "mode", "f_n(Hz)",
-           "w_n(rad/s)", "w_d(rad/s)", "zeta", "logdec", "whirl", "dominant", "component",
-           "lat%", "tor%", "ax%", "tilt%");
+           "w_n(rad/s)", "w_d(rad/s)", "zeta", "logdec", "whirl", "dominant", "component", "lat%",
+           "tor%", "ax%", "tilt%");
     for (int j = 0; j < r->nmodes; j++) {
         const gd_mode *md = &r->modes[j];
         if (md->rigid_body) {
@@ -52,12 +55,12 @@ static void print_table(const gd_system *s, const gd_modal_result *r)
             snprintf(ld, sizeof ld, "-");
         else
             snprintf(ld, sizeof ld, "%.4g", md->log_decrement);
-        printf("%4d %12.6g %12.6g %12.6g %9.4g %9s  %-10s %-10s %-14.14s %5.1f %5.1f %5.1f %5.1f%s\n",
-               j + 1, md->frequency_hz, md->omega_n, md->omega_d, md->damping_ratio, ld,
-               gd_whirl_names[md->whirl], gd_motion_names[md->dominant_motion],
-               component_name(s, md->dominant_component), share(md, 0), share(md, 1),
-               share(md, 2), share(md, 3),
-               md->unstable ? "  UNSTABLE" : (md->overdamped ? "  overdamped" : ""));
+        printf(
+            "%4d %12.6g %12.6g %12.6g %9.4g %9s  %-10s %-10s %-14.14s %5.1f %5.1f %5.1f %5.1f%s\n",
+            j + 1, md->frequency_hz, md->omega_n, md->omega_d, md->damping_ratio, ld,
+            gd_whirl_names[md->whirl], gd_motion_names[md->dominant_motion],
+            component_name(s, md->dominant_component), share(md, 0), share(md, 1), share(md, 2),
+            share(md, 3), md->unstable ? "  UNSTABLE" : (md->overdamped ? "  overdamped" : ""));
     }
 }
 
@@ -92,17 +95,20 @@ static cJSON *result_json(const gd_system *s, const gd_modal_result *r)
         cJSON_AddStringToObject(m, "whirl", gd_whirl_names[md->whirl]);
         cJSON_AddStringToObject(m, "dominant_motion", gd_motion_names[md->dominant_motion]);
         if (md->dominant_component >= 0)
-            cJSON_AddStringToObject(m, "dominant_component", component_name(s, md->dominant_component));
+            cJSON_AddStringToObject(m, "dominant_component",
+                                    component_name(s, md->dominant_component));
         else
             cJSON_AddNullToObject(m, "dominant_component");
         cJSON_AddBoolToObject(m, "rigid_body", md->rigid_body);
         cJSON_AddBoolToObject(m, "overdamped", md->overdamped);
         cJSON_AddBoolToObject(m, "unstable", md->unstable);
         cJSON *es = cJSON_AddObjectToObject(m, "energy_share");
-        for (int k = 0; k < GD_NMOTIONS; k++) add_num(es, gd_motion_names[k], md->energy_share[k]);
+        for (int k = 0; k < GD_NMOTIONS; k++)
+            add_num(es, gd_motion_names[k], md->energy_share[k]);
         cJSON *ec = cJSON_AddObjectToObject(m, "energy_by_component");
         for (int c = 0; c < s->ncomponents; c++)
-            add_num(ec, component_name(s, c), r->energy_by_component[c + (size_t)j * s->ncomponents]);
+            add_num(ec, component_name(s, c),
+                    r->energy_by_component[c + (size_t)j * s->ncomponents]);
         cJSON_AddItemToArray(modes, m);
     }
     return o;
@@ -133,7 +139,8 @@ static int write_csv(const gd_system *s, const gd_modal_result *r, const char *d
     fprintf(f, "mode,node,dof,real,imag,magnitude,phase_deg\n");
     for (int j = 0; j < r->nmodes; j++)
         for (int i = 0; i < s->ndof; i++) {
-            double re = r->shape_re[i + (size_t)j * s->ndof], im = r->shape_im[i + (size_t)j * s->ndof];
+            double re = r->shape_re[i + (size_t)j * s->ndof],
+                   im = r->shape_im[i + (size_t)j * s->ndof];
             fprintf(f, "%d,%s,%s,%.10g,%.10g,%.10g,%.6g\n", j + 1,
                     s->model->nodes[s->dof_node[i]].name, gd_dof_names[s->dof_type[i]], re, im,
                     hypot(re, im), atan2(im, re) * 180 / M_PI);
@@ -148,12 +155,15 @@ fail:
 
 int gd_cmd_modal(int argc, char **argv)
 {
-    static const struct option opts[] = {
-        {"speed", required_argument, 0, 's'}, {"modes", required_argument, 0, 'n'},
-        {"undamped", no_argument, 0, 'u'},    {"damped", no_argument, 0, 'd'},
-        {"coupling", required_argument, 0, 'c'}, {"json", no_argument, 0, 'j'},
-        {"out", required_argument, 0, 'o'},   {"help", no_argument, 0, 'h'},
-        {0, 0, 0, 0}};
+    static const struct option opts[] = {{"speed", required_argument, 0, 's'},
+                                         {"modes", required_argument, 0, 'n'},
+                                         {"undamped", no_argument, 0, 'u'},
+                                         {"damped", no_argument, 0, 'd'},
+                                         {"coupling", required_argument, 0, 'c'},
+                                         {"json", no_argument, 0, 'j'},
+                                         {"out", required_argument, 0, 'o'},
+                                         {"help", no_argument, 0, 'h'},
+                                         {0, 0, 0, 0}};
     gd_modal_options opt;
     gd_modal_options_default(&opt);
     opt.want_left = 0;
@@ -164,12 +174,15 @@ int gd_cmd_modal(int argc, char **argv)
     opterr = 0;
     while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
         switch (c) {
-        case 's': speed = optarg; break;
+        case 's':
+            speed = optarg;
+            break;
         case 'n':
             if (!strcmp(optarg, "all"))
                 all = 1;
             else if (gd_cli_parse_count(optarg, 1, 1000000, &nmodes))
-                return gd_cli_usage_error("modal", "--modes: '%s' is not a positive whole number or 'all'", optarg);
+                return gd_cli_usage_error(
+                    "modal", "--modes: '%s' is not a positive whole number or 'all'", optarg);
             break;
         case 'u':
             if (opt.kind == GD_MODAL_DAMPED)
@@ -181,11 +194,20 @@ int gd_cmd_modal(int argc, char **argv)
                 return gd_cli_usage_error("modal", "--undamped and --damped exclude each other");
             opt.kind = GD_MODAL_DAMPED;
             break;
-        case 'c': coupling = optarg; break;
-        case 'j': json = 1; break;
-        case 'o': out = optarg; break;
-        case 'h': fputs(USAGE, stdout); return GD_EXIT_OK;
-        default: return gd_cli_option_error("modal", c, argv, optind);
+        case 'c':
+            coupling = optarg;
+            break;
+        case 'j':
+            json = 1;
+            break;
+        case 'o':
+            out = optarg;
+            break;
+        case 'h':
+            fputs(USAGE, stdout);
+            return GD_EXIT_OK;
+        default:
+            return gd_cli_option_error("modal", c, argv, optind);
         }
     }
     if (optind != argc - 1) return gd_cli_usage_error("modal", "give exactly one model file");

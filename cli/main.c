@@ -23,10 +23,13 @@ static const command COMMANDS[] = {
     {"check", gd_cmd_check, "validate a model and summarise it"},
     {"modal", gd_cmd_modal, "natural frequencies, damping, whirl and energy of the modes"},
     {"campbell", gd_cmd_campbell, "Campbell diagram: modes over speed, critical speeds, stability"},
-    {"frf", gd_cmd_frf, "frequency response (direct or modal), mesh and bearing forces, directional"},
+    {"frf", gd_cmd_frf,
+     "frequency response (direct or modal), mesh and bearing forces, directional"},
     {"unbalance", gd_cmd_unbalance, "steady response to the model's unbalances over speed"},
-    {"transient", gd_cmd_transient, "time integration: TVMS, backlash, dampers, cams; records, contact losses, spectra"},
-    {"mesh-stiffness", gd_cmd_mesh_stiffness, "contact ratios and time-varying mesh stiffness from gear geometry"},
+    {"transient", gd_cmd_transient,
+     "time integration: TVMS, backlash, dampers, cams; records, contact losses, spectra"},
+    {"mesh-stiffness", gd_cmd_mesh_stiffness,
+     "contact ratios and time-varying mesh stiffness from gear geometry"},
     {"version", cmd_version, "print the version"},
 };
 

@@ -20,11 +20,13 @@ void gd_bearing_coeffs_at(const gd_bearing *b, double shaft_speed, gd_bearing_co
         return;
     }
     int j = 1;
-    while (b->table_speed[j] < shaft_speed) j++;
+    while (b->table_speed[j] < shaft_speed)
+        j++;
     double t = (shaft_speed - b->table_speed[j - 1]) / (b->table_speed[j] - b->table_speed[j - 1]);
     const double *lo = (const double *)&b->table[j - 1], *hi = (const double *)&b->table[j];
     double *o = (double *)out;
-    for (size_t k = 0; k < sizeof *out / sizeof(double); k++) o[k] = lo[k] + t * (hi[k] - lo[k]);
+    for (size_t k = 0; k < sizeof *out / sizeof(double); k++)
+        o[k] = lo[k] + t * (hi[k] - lo[k]);
 }
 
 void gd_bearing_matrices(const gd_bearing_coeffs *c, double K[36], double C[36])

@@ -65,11 +65,16 @@ size_t gd_error_format(const gd_error *err, char *buf, size_t size)
 const char *gd_status_name(gd_status status)
 {
     switch (status) {
-    case GD_OK: return "ok";
-    case GD_EINPUT: return "input error";
-    case GD_ENUMERIC: return "numerical error";
-    case GD_ENOMEM: return "out of memory";
-    case GD_EIO: return "i/o error";
+    case GD_OK:
+        return "ok";
+    case GD_EINPUT:
+        return "input error";
+    case GD_ENUMERIC:
+        return "numerical error";
+    case GD_ENOMEM:
+        return "out of memory";
+    case GD_EIO:
+        return "i/o error";
     }
     return "error";
 }

@@ -39,9 +39,10 @@ gd_status gd_material_read(gd_yreader *r, const gd_ynode *map, const char *path,
     } else {
         out->poisson = out->E / (2.0 * out->G) - 1.0;
         if (!(out->poisson > -1.0 && out->poisson < 0.5))
-            return gd_yfail(r, gd_ymap_get(map, "G"), gd_ypath_key(p, sizeof p, path, "G"),
-                            "G must be greater than E/3 (a Poisson's ratio below 0.5); steel: G = 0.385 E",
-                            "E and G give a Poisson's ratio of %g", out->poisson);
+            return gd_yfail(
+                r, gd_ymap_get(map, "G"), gd_ypath_key(p, sizeof p, path, "G"),
+                "G must be greater than E/3 (a Poisson's ratio below 0.5); steel: G = 0.385 E",
+                "E and G give a Poisson's ratio of %g", out->poisson);
     }
     return GD_OK;
 }
@@ -57,7 +58,8 @@ gd_status gd_material_resolve(gd_yreader *r, const gd_ynode *root, const gd_ynod
     const gd_ynode *m = gd_ymap_get(mats, ref->text);
     if (!m) {
         char hint[256];
-        snprintf(hint, sizeof hint, "define it under `materials: {%s: {density: ..., E: ..., poisson: ...}}`",
+        snprintf(hint, sizeof hint,
+                 "define it under `materials: {%s: {density: ..., E: ..., poisson: ...}}`",
                  ref->text);
         return gd_yfail(r, ref, path, hint, "unknown material '%s'", ref->text);
     }

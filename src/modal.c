@@ -52,12 +52,13 @@ static double *submatrix(const double *A, int N, const int *rows, int nr, const 
     double *S = malloc((size_t)(nr > 0 ? nr : 1) * (size_t)(nc > 0 ? nc : 1) * sizeof *S);
     if (!S) return NULL;
     for (int j = 0; j < nc; j++)
-        for (int i = 0; i < nr; i++) S[i + (size_t)j * nr] = A[rows[i] + (size_t)cols[j] * N];
+        for (int i = 0; i < nr; i++)
+            S[i + (size_t)j * nr] = A[rows[i] + (size_t)cols[j] * N];
     return S;
 }
 
-gd_status gd_condense_setup(const gd_system *sys, const double *K, const double *D,
-                            gd_condense *c, gd_error *err)
+gd_status gd_condense_setup(const gd_system *sys, const double *K, const double *D, gd_condense *c,
+                            gd_error *err)
 {
     int N = sys->ndof;
     memset(c, 0, sizeof *c);
@@ -103,7 +104,8 @@ gd_status gd_condense_setup(const gd_system *sys, const double *K, const double 
         goto nomem;
     }
     for (int i = 0; i < c->nm; i++)
-        for (int j = 0; j < c->ns; j++) c->kms_t[j + (size_t)i * c->ns] = kms[i + (size_t)j * c->nm];
+        for (int j = 0; j < c->ns; j++)
+            c->kms_t[j + (size_t)i * c->ns] = kms[i + (size_t)j * c->nm];
     free(kms);
     lapack_int info = LAPACKE_dgetrf(LAPACK_COL_MAJOR, c->ns, c->ns, c->kss_lu, c->ns, c->ipiv);
     double maxdiag = 0, mindiag = INFINITY;
@@ -150,7 +152,8 @@ double *gd_condense_matrix(const gd_condense *c, const double *A, int is_stiffne
         for (int k = 0; k < ns; k++) {
             double x = X[k + (size_t)j * ns];
             if (x == 0.0) continue;
-            for (int i = 0; i < nm; i++) R[i + (size_t)j * nm] -= Ams[i + (size_t)k * nm] * x;
+            for (int i = 0; i < nm; i++)
+                R[i + (size_t)j * nm] -= Ams[i + (size_t)k * nm] * x;
         }
     free(X);
     free(Ams);
@@ -159,20 +162,22 @@ double *gd_condense_matrix(const gd_condense *c, const double *A, int is_stiffne
 
 /* Full vector from master values: slaves u_s = -K_ss^-1 K_sm u_m (or, for left
  * vectors, -K_ss^-T K_ms^T v_m). */
-void gd_condense_expand(const gd_condense *c, const double *um, double *u, int left,
-                        double *work)
+void gd_condense_expand(const gd_condense *c, const double *um, double *u, int left, double *work)
 {
-    for (int i = 0; i < c->nm; i++) u[c->master[i]] = um[i];
+    for (int i = 0; i < c->nm; i++)
+        u[c->master[i]] = um[i];
     if (c->ns == 0) return;
     const double *B = left ? c->kms_t : c->ksm;
     for (int k = 0; k < c->ns; k++) {
         double s = 0;
-        for (int i = 0; i < c->nm; i++) s += B[k + (size_t)i * c->ns] * um[i];
+        for (int i = 0; i < c->nm; i++)
+            s += B[k + (size_t)i * c->ns] * um[i];
         work[k] = -s;
     }
     LAPACKE_dgetrs(LAPACK_COL_MAJOR, left ? 'T' : 'N', c->ns, 1, c->kss_lu, c->ns, c->ipiv, work,
                    c->ns);
-    for (int k = 0; k < c->ns; k++) u[c->slave[k]] = work[k];
+    for (int k = 0; k < c->ns; k++)
+        u[c->slave[k]] = work[k];
 }
 
 /* ---- per-mode properties ---- */
@@ -223,15 +228,17 @@ void gd_mode_finish(const gd_system *sys, double speed, gd_mode *md, const doubl
     md->dominant_motion = GD_MOTION_LATERAL;
     md->dominant_component = -1;
     if (md->rigid_body || !(total > 0)) {
-        for (int k = 0; k < GD_NMOTIONS; k++) md->energy_share[k] = 0;
-        for (int c = 0; c < nc; c++) by_comp[c] = 0;
+        for (int k = 0; k < GD_NMOTIONS; k++)
+            md->energy_share[k] = 0;
+        for (int c = 0; c < nc; c++)
+            by_comp[c] = 0;
         /* a rigid mode is named by how it moves: the largest kinetic DOF type */
         double ke[GD_NMOTIONS] = {0};
         for (int i = 0; i < sys->ndof; i++) {
             double a = re[i] * re[i] + (im ? im[i] * im[i] : 0);
             gd_dof d = sys->dof_type[i];
-            int mo = d == GD_RZ ? GD_MOTION_TORSIONAL
-                     : d == GD_Z ? GD_MOTION_AXIAL
+            int mo = d == GD_RZ                   ? GD_MOTION_TORSIONAL
+                     : d == GD_Z                  ? GD_MOTION_AXIAL
                      : (d == GD_RX || d == GD_RY) ? GD_MOTION_TILT
                                                   : GD_MOTION_LATERAL;
             for (int k = sys->M.colptr[i]; k < sys->M.colptr[i + 1]; k++)
@@ -318,8 +325,7 @@ gd_status gd_modal_solve(const gd_system *sys, const gd_modal_options *opt, gd_m
         goto done;
     }
     gd_system_dense(sys, opt->speed, M, D, K);
-    int damped = opt->kind == GD_MODAL_DAMPED ||
-                 (opt->kind == GD_MODAL_AUTO && any_nonzero(D, nn));
+    int damped = opt->kind == GD_MODAL_DAMPED || (opt->kind == GD_MODAL_AUTO && any_nonzero(D, nn));
     if (opt->kind == GD_MODAL_UNDAMPED) memset(D, 0, nn * sizeof *D);
     if (!is_symmetric(K, N)) damped = 1; /* cross-coupled bearings: general problem */
     if ((st = gd_condense_setup(sys, K, damped ? D : NULL, &cond, err))) goto done;

@@ -13,9 +13,9 @@ gd_modal_result *gd_modal_result_new(const gd_system *sys, int nmodes, int with_
     r->modes = calloc((size_t)(nmodes > 0 ? nmodes : 1), sizeof *r->modes);
     r->shape_re = calloc(n, sizeof(double));
     r->shape_im = calloc(n, sizeof(double));
-    r->energy_by_component =
-        calloc((size_t)(sys->ncomponents > 0 ? sys->ncomponents : 1) * (size_t)(nmodes > 0 ? nmodes : 1),
-               sizeof(double));
+    r->energy_by_component = calloc((size_t)(sys->ncomponents > 0 ? sys->ncomponents : 1) *
+                                        (size_t)(nmodes > 0 ? nmodes : 1),
+                                    sizeof(double));
     if (with_left) {
         r->left_re = calloc(n, sizeof(double));
         r->left_im = calloc(n, sizeof(double));

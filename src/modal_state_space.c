@@ -65,9 +65,10 @@ static lapack_int eig_all(double *A, eig *e, int want_left)
     e->VR = malloc((size_t)n2 * n2 * sizeof *e->VR);
     e->VL = want_left ? malloc((size_t)n2 * n2 * sizeof *e->VL) : NULL;
     if (!e->VR || (want_left && !e->VL)) return -1000;
-    lapack_int info = LAPACKE_dgeev(LAPACK_COL_MAJOR, want_left ? 'V' : 'N', 'V', n2, A, n2,
-                                    e->wr, e->wi, e->VL, n2, e->VR, n2);
-    for (int j = 0; j < n2; j++) e->vcol[j] = j;
+    lapack_int info = LAPACKE_dgeev(LAPACK_COL_MAJOR, want_left ? 'V' : 'N', 'V', n2, A, n2, e->wr,
+                                    e->wi, e->VL, n2, e->VR, n2);
+    for (int j = 0; j < n2; j++)
+        e->vcol[j] = j;
     return info;
 }
 
@@ -95,7 +96,8 @@ static lapack_int eig_values(double *A, eig *e, hess *h)
     if (!info) info = LAPACKE_dgehrd(LAPACK_COL_MAJOR, n2, h->ilo, h->ihi, A, n2, h->tau);
     if (!info) {
         for (int j = 0; j < n2; j++)
-            for (int i = 0; i < n2; i++) h->H[i + (size_t)j * n2] = i > j + 1 ? 0.0 : A[i + (size_t)j * n2];
+            for (int i = 0; i < n2; i++)
+                h->H[i + (size_t)j * n2] = i > j + 1 ? 0.0 : A[i + (size_t)j * n2];
         memcpy(T, h->H, (size_t)n2 * n2 * sizeof *T);
         info = LAPACKE_dhseqr(LAPACK_COL_MAJOR, 'E', 'N', n2, h->ilo, h->ihi, T, n2, e->wr, e->wi,
                               NULL, 1);
@@ -123,8 +125,8 @@ static lapack_int eig_selected(eig *e, hess *h, const int *want, int want_left)
     lapack_int *fr = malloc((size_t)(ncols ? ncols : 1) * sizeof *fr);
     lapack_int info = -1000, m = 0;
     if (e->VR && (!want_left || e->VL) && fl && fr) {
-        info = LAPACKE_dhsein(LAPACK_COL_MAJOR, want_left ? 'B' : 'R', 'Q', 'N', sel, n2, h->H,
-                              n2, e->wr, e->wi, e->VL, n2, e->VR, n2, ncols, &m, fl, fr);
+        info = LAPACKE_dhsein(LAPACK_COL_MAJOR, want_left ? 'B' : 'R', 'Q', 'N', sel, n2, h->H, n2,
+                              e->wr, e->wi, e->VL, n2, e->VR, n2, ncols, &m, fl, fr);
         /* info > 0: some vectors did not converge; the rest are usable but we refuse */
         if (!info)
             info = LAPACKE_dormhr(LAPACK_COL_MAJOR, 'L', 'N', n2, m, h->ilo, h->ihi, h->A, n2,
@@ -183,18 +185,22 @@ static int bi_orthonormalise(double complex *Z, double complex *W, const candida
         for (int x = 0; x < c; x++)
             for (int y = 0; y < c; y++) {
                 double complex s = 0;
-                const double complex *w = W + (size_t)members[x] * n2, *z = Z + (size_t)members[y] * n2;
-                for (int i = 0; i < n2; i++) s += w[i] * z[i];
+                const double complex *w = W + (size_t)members[x] * n2,
+                                     *z = Z + (size_t)members[y] * n2;
+                for (int i = 0; i < n2; i++)
+                    s += w[i] * z[i];
                 P[x + (size_t)y * c] = s;
             }
         for (int x = 0; x < c; x++)
-            for (int i = 0; i < n2; i++) X[x + (size_t)i * c] = W[(size_t)members[x] * n2 + i];
+            for (int i = 0; i < n2; i++)
+                X[x + (size_t)i * c] = W[(size_t)members[x] * n2 + i];
         if (LAPACKE_zgesv(LAPACK_COL_MAJOR, c, n2, P, c, piv, X, c) != 0) {
             bad = 1;
             continue;
         }
         for (int x = 0; x < c; x++)
-            for (int i = 0; i < n2; i++) W[(size_t)members[x] * n2 + i] = X[x + (size_t)i * c];
+            for (int i = 0; i < n2; i++)
+                W[(size_t)members[x] * n2 + i] = X[x + (size_t)i * c];
     }
 out:
     free(done);
@@ -225,7 +231,7 @@ gd_status gd_modal_state_space(const gd_system *sys, const gd_modal_options *opt
     double *L = gd_condense_matrix(c, M, 0), *Kt = gd_condense_matrix(c, K, 1);
     double *Dt = gd_condense_matrix(c, D, 0);
     double *A = calloc((size_t)n2 * n2, sizeof *A);
-    eig e = {n2, malloc((size_t)n2 * sizeof(double)), malloc((size_t)n2 * sizeof(double)), NULL,
+    eig e = {n2,   malloc((size_t)n2 * sizeof(double)), malloc((size_t)n2 * sizeof(double)), NULL,
              NULL, malloc((size_t)n2 * sizeof(int))};
     hess h = {0};
     candidate *cand = malloc((size_t)n2 * sizeof *cand);
@@ -234,9 +240,11 @@ gd_status gd_modal_state_space(const gd_system *sys, const gd_modal_options *opt
     double *work = malloc((size_t)(N + 8) * sizeof *work);
     double complex *Z = NULL, *W = NULL;
     gd_modal_result *res = NULL;
-    if (!L || !Kt || !Dt || !A || !e.wr || !e.wi || !e.vcol || !cand || !want || !vr || !vi || !work)
+    if (!L || !Kt || !Dt || !A || !e.wr || !e.wi || !e.vcol || !cand || !want || !vr || !vi ||
+        !work)
         goto nomem;
-    for (int j = 0; j < n2; j++) e.vcol[j] = -1;
+    for (int j = 0; j < n2; j++)
+        e.vcol[j] = -1;
 
     if (LAPACKE_dpotrf(LAPACK_COL_MAJOR, 'L', n, L, n) != 0) {
         st = gd_error_set(err, GD_EINPUT, sys->model->file, 0, 0, "",
@@ -247,10 +255,10 @@ gd_status gd_modal_state_space(const gd_system *sys, const gd_modal_options *opt
     /* K~ = L^-1 K L^-T, D~ = L^-1 D L^-T */
     double *mats[2] = {Kt, Dt};
     for (int t = 0; t < 2; t++) {
-        cblas_dtrsm(CblasColMajor, CblasLeft, CblasLower, CblasNoTrans, CblasNonUnit, n, n, 1.0,
-                    L, n, mats[t], n);
-        cblas_dtrsm(CblasColMajor, CblasRight, CblasLower, CblasTrans, CblasNonUnit, n, n, 1.0,
-                    L, n, mats[t], n);
+        cblas_dtrsm(CblasColMajor, CblasLeft, CblasLower, CblasNoTrans, CblasNonUnit, n, n, 1.0, L,
+                    n, mats[t], n);
+        cblas_dtrsm(CblasColMajor, CblasRight, CblasLower, CblasTrans, CblasNonUnit, n, n, 1.0, L,
+                    n, mats[t], n);
     }
     for (int j = 0; j < n; j++) {
         A[j + (size_t)(n + j) * n2] = 1.0;
@@ -279,7 +287,8 @@ gd_status gd_modal_state_space(const gd_system *sys, const gd_modal_options *opt
     qsort(cand, (size_t)ncand, sizeof *cand, cmp_candidate);
     int k = opt->nmodes > 0 && opt->nmodes < ncand ? opt->nmodes : ncand;
     if (few) {
-        for (int m = 0; m < k; m++) want[cand[m].col] = 1;
+        for (int m = 0; m < k; m++)
+            want[cand[m].col] = 1;
         info = eig_selected(&e, &h, want, opt->want_left);
         if (info == -1000) goto nomem;
         if (info != 0) goto noconv;
@@ -294,7 +303,8 @@ gd_status gd_modal_state_space(const gd_system *sys, const gd_modal_options *opt
             /* w = conj(y): LAPACK's left vectors satisfy y^H A = lambda y^H */
             double complex *w = W + (size_t)m * n2;
             eigvec(&e, e.VL, cand[m].col, w);
-            for (int i = 0; i < n2; i++) w[i] = conj(w[i]);
+            for (int i = 0; i < n2; i++)
+                w[i] = conj(w[i]);
         }
     }
     if (opt->want_left && bi_orthonormalise(Z, W, cand, k, n2, lmax)) {

@@ -8,9 +8,8 @@
 #include "modal_internal.h"
 #include "sparse.h"
 
-gd_status gd_modal_undamped(const gd_system *sys, const gd_modal_options *opt,
-                            const gd_condense *c, const double *M, const double *K,
-                            gd_modal_result **out, gd_error *err)
+gd_status gd_modal_undamped(const gd_system *sys, const gd_modal_options *opt, const gd_condense *c,
+                            const double *M, const double *K, gd_modal_result **out, gd_error *err)
 {
     int n = c->nm, N = sys->ndof;
     int k = opt->nmodes > 0 && opt->nmodes < n ? opt->nmodes : n;
@@ -40,8 +39,8 @@ gd_status gd_modal_undamped(const gd_system *sys, const gd_modal_options *opt,
             goto nomem;
         }
         lapack_int found;
-        info = LAPACKE_dsygvx(LAPACK_COL_MAJOR, 1, 'V', 'I', 'U', n, Kr, n, Mr, n, 0, 0, 1, k,
-                              0.0, &found, w, Z, n, ifail);
+        info = LAPACKE_dsygvx(LAPACK_COL_MAJOR, 1, 'V', 'I', 'U', n, Kr, n, Mr, n, 0, 0, 1, k, 0.0,
+                              &found, w, Z, n, ifail);
         free(ifail);
     }
     if (info != 0) {
@@ -75,12 +74,14 @@ gd_status gd_modal_undamped(const gd_system *sys, const gd_modal_options *opt,
         memcpy(um, Z + (size_t)j * n, (size_t)n * sizeof *um);
         gd_condense_expand(c, um, re, 0, work);
         gd_normalise_max(re, im, N);
-        gd_mode_finish(sys, opt->speed, md, re, im, res->energy_by_component + (size_t)j * sys->ncomponents);
+        gd_mode_finish(sys, opt->speed, md, re, im,
+                       res->energy_by_component + (size_t)j * sys->ncomponents);
         if (opt->want_left && !md->rigid_body && om > 0) {
             /* D = 0: v = u / (2 i w u^T M u) satisfies v^T (2 lambda M) u = 1 */
             gd_csc_mul(&sys->M, re, Mu);
             double mr = 0;
-            for (int i = 0; i < N; i++) mr += re[i] * Mu[i];
+            for (int i = 0; i < N; i++)
+                mr += re[i] * Mu[i];
             for (int i = 0; i < N; i++) {
                 res->left_re[i + (size_t)j * N] = 0;
                 res->left_im[i + (size_t)j * N] = -re[i] / (2.0 * om * mr);

@@ -11,23 +11,28 @@ const char *const gd_coupling_names[3] = {"torsional", "lateral-torsional", "ful
 unsigned gd_coupling_dof_mask(gd_coupling level)
 {
     switch (level) {
-    case GD_COUPLING_TORSIONAL: return GD_DOF_BIT(GD_RZ);
-    case GD_COUPLING_LATERAL_TORSIONAL: return GD_DOFS_ALL & ~GD_DOF_BIT(GD_Z);
-    case GD_COUPLING_FULL: return GD_DOFS_ALL;
+    case GD_COUPLING_TORSIONAL:
+        return GD_DOF_BIT(GD_RZ);
+    case GD_COUPLING_LATERAL_TORSIONAL:
+        return GD_DOFS_ALL & ~GD_DOF_BIT(GD_Z);
+    case GD_COUPLING_FULL:
+        return GD_DOFS_ALL;
     }
     return GD_DOFS_ALL;
 }
 
 void gd_model_set_coupling(gd_model *model, gd_coupling level)
 {
-    for (int i = 0; i < model->nmeshes; i++) model->meshes[i].coupling = level;
+    for (int i = 0; i < model->nmeshes; i++)
+        model->meshes[i].coupling = level;
     model->dof_mask &= gd_coupling_dof_mask(level);
 }
 
 void gd_model_free(gd_model *model)
 {
     if (!model) return;
-    for (int i = 0; i < model->nshafts; i++) free(model->shafts[i].sections);
+    for (int i = 0; i < model->nshafts; i++)
+        free(model->shafts[i].sections);
     for (int i = 0; i < model->nbearings; i++) {
         free(model->bearings[i].table_speed);
         free(model->bearings[i].table);

@@ -13,12 +13,11 @@
 
 #define PI 3.14159265358979323846
 
-
-static const char *const TOP_KEYS[] = {"title",  "description", "materials", "dofs",
-                                       "shafts", "disks",       "bearings",  "springs",
-                                       "meshes", "speed",       "reference_shaft",
-                                       "rotation", "unbalances", "excitations",
-                                       "prescribed", "cam_torques", NULL};
+static const char *const TOP_KEYS[] = {
+    "title",           "description", "materials",  "dofs",        "shafts",
+    "disks",           "bearings",    "springs",    "meshes",      "speed",
+    "reference_shaft", "rotation",    "unbalances", "excitations", "prescribed",
+    "cam_torques",     NULL};
 
 gd_status gd_mp_oom(gd_mparser *p)
 {
@@ -27,7 +26,7 @@ gd_status gd_mp_oom(gd_mparser *p)
 
 /* A list under a top-level key: NULL/absent gives n = 0. */
 gd_status gd_mp_get_list(gd_mparser *p, const gd_ynode *map, const char *key, const char *path,
-                          const gd_ynode **list, int required)
+                         const gd_ynode **list, int required)
 {
     *list = gd_ymap_get(map, key);
     char q[200];
@@ -35,8 +34,8 @@ gd_status gd_mp_get_list(gd_mparser *p, const gd_ynode *map, const char *key, co
     if (!*list) {
         if (required) {
             char hint[160];
-            snprintf(hint, sizeof hint, "add `%s:` with a list of entries (see docs/model-format.md)",
-                     key);
+            snprintf(hint, sizeof hint,
+                     "add `%s:` with a list of entries (see docs/model-format.md)", key);
             return gd_yfail(&p->r, map, q, hint, "required list '%s' is missing", key);
         }
         return GD_OK;
@@ -45,11 +44,11 @@ gd_status gd_mp_get_list(gd_mparser *p, const gd_ynode *map, const char *key, co
 }
 
 gd_status gd_mp_read_name(gd_mparser *p, const gd_ynode *map, const char *path, char *out,
-                           const char *fallback, int required)
+                          const char *fallback, int required)
 {
     const char *s = NULL;
-    gd_status st = gd_yread_str(&p->r, map, "name", path, NULL, required ? GD_YREQ : 0, &s,
-                                NULL, NULL);
+    gd_status st =
+        gd_yread_str(&p->r, map, "name", path, NULL, required ? GD_YREQ : 0, &s, NULL, NULL);
     if (st) return st;
     if (!s) s = fallback;
     if (strlen(s) >= GD_NAME_MAX) {
@@ -104,8 +103,8 @@ static gd_status material_index(gd_mparser *p, const gd_ynode *ref, const char *
     if (p->m->nmaterials) {
         int used = snprintf(hint, sizeof hint, "defined materials:");
         for (int i = 0; i < p->m->nmaterials && used < (int)sizeof hint - 70; i++)
-            used += snprintf(hint + used, sizeof hint - (size_t)used, " %s",
-                             p->m->materials[i].name);
+            used +=
+                snprintf(hint + used, sizeof hint - (size_t)used, " %s", p->m->materials[i].name);
         snprintf(hint + used, sizeof hint - (size_t)used, "; or define '%s' under `materials:`",
                  ref->text);
     } else {
@@ -150,11 +149,11 @@ static gd_status check_component_name(gd_mparser *p, const char *name, const gd_
 
 /* ---- shafts and nodes ---- */
 
-static const char *const SHAFT_KEYS[] = {"name",  "material", "sections", "nodes",
-                                         "elements_per_section", "max_element_length",
-                                         "speed_ratio", NULL};
-static const char *const SECTION_KEYS[] = {"length", "outer_diameter", "inner_diameter",
-                                           "material", "elements", NULL};
+static const char *const SHAFT_KEYS[] = {
+    "name",        "material", "sections", "nodes", "elements_per_section", "max_element_length",
+    "speed_ratio", NULL};
+static const char *const SECTION_KEYS[] = {"length",   "outer_diameter", "inner_diameter",
+                                           "material", "elements",       NULL};
 static const char *const NODE_KEYS[] = {"name", "at", NULL};
 
 static int cmp_double(const void *a, const void *b)
@@ -360,8 +359,8 @@ static gd_status parse_shaft(gd_mparser *p, const gd_ynode *sm, const char *path
             free(sts);
             char hint[120];
             snprintf(hint, sizeof hint, "positions run from 0 to the shaft length %g m", total);
-            return gd_yfail(r, gd_ymap_get(nm, "at"), gd_ypath_key(ap, sizeof ap, np, "at"),
-                            hint, "position %g m lies outside the shaft", at);
+            return gd_yfail(r, gd_ymap_get(nm, "at"), gd_ypath_key(ap, sizeof ap, np, "at"), hint,
+                            "position %g m lies outside the shaft", at);
         }
         if (strlen(nn) >= GD_NAME_MAX) {
             free(sts);
@@ -384,15 +383,16 @@ static gd_status parse_shaft(gd_mparser *p, const gd_ynode *sm, const char *path
     double seg_start = 0;
     for (size_t i = 0; i < k; i++) {
         const gd_ynode *nm = sts[i].node_map;
-        int same = last_node >= 0 && sh->nsections && fabs(sts[i].pos - m->nodes[last_node].position) <= tol;
+        int same = last_node >= 0 && sh->nsections &&
+                   fabs(sts[i].pos - m->nodes[last_node].position) <= tol;
         if (same) {
             if (nm) {
                 gd_node *ln = &m->nodes[last_node];
                 if (ln->named) {
                     free(sts);
                     return gd_yfail(r, nm, path, "merge the two names or move one node",
-                                    "nodes '%s' and '%s' are at the same position",
-                                    ln->name, gd_ymap_get(nm, "name")->text);
+                                    "nodes '%s' and '%s' are at the same position", ln->name,
+                                    gd_ymap_get(nm, "name")->text);
                 }
                 snprintf(ln->name, sizeof ln->name, "%s", gd_ymap_get(nm, "name")->text);
                 ln->named = 1;
@@ -412,9 +412,8 @@ static gd_status parse_shaft(gd_mparser *p, const gd_ynode *sm, const char *path
                 acc += sh->sections[sec].length;
             }
             const gd_section *s = &sh->sections[sec];
-            int nel = s->max_element_length > 0
-                          ? (int)ceil((b - a) / s->max_element_length - 1e-9)
-                          : (int)lround(s->elements * (b - a) / s->length);
+            int nel = s->max_element_length > 0 ? (int)ceil((b - a) / s->max_element_length - 1e-9)
+                                                : (int)lround(s->elements * (b - a) / s->length);
             if (nel < 1) nel = 1;
             for (int e = 1; e < nel; e++) {
                 if ((st = add_node(p, index, a + (b - a) * e / nel, NULL, -1, s->loc, node_cap)) ||
@@ -453,8 +452,8 @@ static gd_status check_unique_node_names(gd_mparser *p)
         for (int j = 0; j < i; j++)
             if (!strcmp(m->nodes[i].name, m->nodes[j].name)) {
                 /* the later of the two, by its place in the file */
-                const gd_node *n = m->nodes[i].loc.line >= m->nodes[j].loc.line ? &m->nodes[i]
-                                                                                  : &m->nodes[j];
+                const gd_node *n =
+                    m->nodes[i].loc.line >= m->nodes[j].loc.line ? &m->nodes[i] : &m->nodes[j];
                 const gd_node *o = n == &m->nodes[i] ? &m->nodes[j] : &m->nodes[i];
                 char field[160];
                 if (n->list_index >= 0)
@@ -491,11 +490,11 @@ static gd_status parse_shafts(gd_mparser *p)
 
 /* A node reference by name, with a helpful list on failure. */
 gd_status gd_mp_node_ref(gd_mparser *p, const gd_ynode *map, const char *key, const char *path,
-                          int required, int *out)
+                         int required, int *out)
 {
     const char *name = NULL;
-    gd_status st = gd_yread_str(&p->r, map, key, path, NULL, required ? GD_YREQ : 0, &name,
-                                NULL, NULL);
+    gd_status st =
+        gd_yread_str(&p->r, map, key, path, NULL, required ? GD_YREQ : 0, &name, NULL, NULL);
     if (st) return st;
     if (!name) {
         *out = -1;
@@ -524,8 +523,8 @@ gd_status gd_mp_node_ref(gd_mparser *p, const gd_ynode *map, const char *key, co
 
 /* ---- disks ---- */
 
-static const char *const DISK_KEYS[] = {"name", "node", "mass", "polar_inertia",
-                                        "diametral_inertia", "geometry", NULL};
+static const char *const DISK_KEYS[] = {
+    "name", "node", "mass", "polar_inertia", "diametral_inertia", "geometry", NULL};
 static const char *const DISK_GEOM_KEYS[] = {"outer_diameter", "inner_diameter", "width",
                                              "material", NULL};
 
@@ -551,10 +550,10 @@ static gd_status parse_disks(gd_mparser *p)
         for (size_t j = 0; j < i; j++)
             if (!strcmp(p->m->disks[j].name, d->name)) {
                 char np[100];
-                return gd_yfail(&p->r, gd_ymap_get(dm, "name"), gd_ypath_key(np, sizeof np, q, "name"),
-                                "give every disk its own name",
-                                "duplicate disk name '%s' (also on line %d)", d->name,
-                                p->m->disks[j].loc.line);
+                return gd_yfail(
+                    &p->r, gd_ymap_get(dm, "name"), gd_ypath_key(np, sizeof np, q, "name"),
+                    "give every disk its own name", "duplicate disk name '%s' (also on line %d)",
+                    d->name, p->m->disks[j].loc.line);
             }
         d->loc = gd_mp_loc(dm);
         const gd_ynode *geom = gd_ymap_get(dm, "geometry");
@@ -617,11 +616,12 @@ static gd_status parse_disks(gd_mparser *p)
 /* ---- bearings and springs ---- */
 
 static const char *const BEARING_KEYS[] = {
-    "name", "node", "to", "k", "c", "kxx", "kxy", "kyx", "kyy", "kzz", "k_tilt", "k_torsion",
-    "cxx", "cxy", "cyx", "cyy", "czz", "c_tilt", "c_torsion", "table", "sfd", NULL};
+    "name", "node",   "to",        "k",         "c",   "kxx", "kxy", "kyx",
+    "kyy",  "kzz",    "k_tilt",    "k_torsion", "cxx", "cxy", "cyx", "cyy",
+    "czz",  "c_tilt", "c_torsion", "table",     "sfd", NULL};
 static const char *const TABLE_ROW_KEYS[] = {
-    "speed", "k", "c", "kxx", "kxy", "kyx", "kyy", "kzz", "k_tilt", "k_torsion",
-    "cxx", "cxy", "cyx", "cyy", "czz", "c_tilt", "c_torsion", NULL};
+    "speed",     "k",   "c",   "kxx", "kxy", "kyx", "kyy",    "kzz",       "k_tilt",
+    "k_torsion", "cxx", "cxy", "cyx", "cyy", "czz", "c_tilt", "c_torsion", NULL};
 
 static gd_status read_coeffs(gd_mparser *p, const gd_ynode *map, const char *path,
                              gd_bearing_coeffs *c, int *any)
@@ -708,8 +708,7 @@ static gd_status parse_bearings(gd_mparser *p)
             gd_ypath_key(tp, sizeof tp, q, "table");
             if ((st = gd_yexpect(&p->r, table, GD_Y_SEQ, tp))) return st;
             if (any)
-                return gd_yfail(&p->r, table, tp,
-                                "put every coefficient in the table rows",
+                return gd_yfail(&p->r, table, tp, "put every coefficient in the table rows",
                                 "constant coefficients given together with a speed table");
             if (table->n < 2)
                 return gd_yfail(&p->r, table, tp, "give at least two rows {speed: ..., kxx: ...}",
@@ -746,8 +745,8 @@ static gd_status parse_bearings(gd_mparser *p)
 }
 
 static const char *const DOF_CHOICES[] = {"x", "y", "z", "rx", "ry", "rz", NULL};
-static const char *const SPRING_KEYS[] = {"name", "node", "to", "dof", "stiffness", "damping",
-                                          NULL};
+static const char *const SPRING_KEYS[] = {"name",      "node",    "to", "dof",
+                                          "stiffness", "damping", NULL};
 
 static gd_status parse_springs(gd_mparser *p)
 {
@@ -771,8 +770,7 @@ static gd_status parse_springs(gd_mparser *p)
             (st = check_component_name(p, s->name, sm, q, "spring", (int)i)) ||
             (st = gd_mp_node_ref(p, sm, "node", q, 1, &s->node1)) ||
             (st = gd_mp_node_ref(p, sm, "to", q, 0, &s->node2)) ||
-            (st = gd_yread_str(&p->r, sm, "dof", q, DOF_CHOICES,
-                               GD_YREQ, NULL, &dof, NULL)))
+            (st = gd_yread_str(&p->r, sm, "dof", q, DOF_CHOICES, GD_YREQ, NULL, &dof, NULL)))
             return st;
         s->dof = (gd_dof)dof;
         gd_qty kq = dof >= GD_RX ? GD_QTY_ROT_STIFFNESS : GD_QTY_STIFFNESS;
@@ -795,11 +793,26 @@ static gd_status parse_springs(gd_mparser *p)
 
 /* ---- gear meshes ---- */
 
-static const char *const MESH_KEYS[] = {
-    "name",          "driver",          "driven",    "teeth",     "base_radius",
-    "pitch_radius",  "module",          "pressure_angle", "helix_angle", "hand",
-    "line_of_centres", "driver_rotation", "stiffness", "damping",  "coupling",
-    "geometry",      "tvms",            "transmission_error", "backlash", NULL};
+static const char *const MESH_KEYS[] = {"name",
+                                        "driver",
+                                        "driven",
+                                        "teeth",
+                                        "base_radius",
+                                        "pitch_radius",
+                                        "module",
+                                        "pressure_angle",
+                                        "helix_angle",
+                                        "hand",
+                                        "line_of_centres",
+                                        "driver_rotation",
+                                        "stiffness",
+                                        "damping",
+                                        "coupling",
+                                        "geometry",
+                                        "tvms",
+                                        "transmission_error",
+                                        "backlash",
+                                        NULL};
 static const char *const HANDS[] = {"right", "left", NULL};
 static const char *const ROTATIONS[] = {"ccw", "cw", NULL};
 static const char *const COUPLINGS[] = {"torsional", "lateral-torsional", "full", NULL};
@@ -818,8 +831,8 @@ static gd_status read_pair(gd_mparser *p, const gd_ynode *map, const char *key, 
                         "expected a list of two values");
     for (int i = 0; i < 2; i++) {
         char ip[220];
-        gd_status st = gd_yread_node_qty(&p->r, v->items[i], gd_ypath_index(ip, sizeof ip, q, (size_t)i),
-                                         qty, GD_YPOS, &out[i]);
+        gd_status st = gd_yread_node_qty(
+            &p->r, v->items[i], gd_ypath_index(ip, sizeof ip, q, (size_t)i), qty, GD_YPOS, &out[i]);
         if (st) return st;
     }
     return GD_OK;
@@ -849,17 +862,18 @@ static gd_status parse_mesh(gd_mparser *p, const gd_ynode *mm, const char *q, gd
         (st = read_pair(p, mm, "base_radius", q, GD_QTY_LENGTH, rb, &has_rb)) ||
         (st = read_pair(p, mm, "pitch_radius", q, GD_QTY_LENGTH, rp, &has_rp)) ||
         (st = gd_yread_qty(r, mm, "module", q, GD_QTY_LENGTH, GD_YPOS, &module, &has_mod)) ||
-        (st = gd_yread_qty(r, mm, "pressure_angle", q, GD_QTY_ANGLE, GD_YNONNEG,
-                           &g->pressure_angle, &has_pa)) ||
+        (st = gd_yread_qty(r, mm, "pressure_angle", q, GD_QTY_ANGLE, GD_YNONNEG, &g->pressure_angle,
+                           &has_pa)) ||
         (st = gd_yread_qty(r, mm, "helix_angle", q, GD_QTY_ANGLE, GD_YNONNEG, &g->helix_angle,
                            &has_helix)) ||
-        (st = gd_yread_qty(r, mm, "line_of_centres", q, GD_QTY_ANGLE, 0, &g->line_of_centres,
-                           NULL)))
+        (st =
+             gd_yread_qty(r, mm, "line_of_centres", q, GD_QTY_ANGLE, 0, &g->line_of_centres, NULL)))
         return st;
     if (has_teeth)
         for (int i = 0; i < 2; i++) {
             if (teeth[i] != floor(teeth[i]) || teeth[i] < 3)
-                return gd_yfail(r, gd_ymap_get(mm, "teeth"), gd_ypath_key(fp, sizeof fp, q, "teeth"),
+                return gd_yfail(r, gd_ymap_get(mm, "teeth"),
+                                gd_ypath_key(fp, sizeof fp, q, "teeth"),
                                 "teeth numbers are whole numbers of 3 or more",
                                 "invalid teeth number %g", teeth[i]);
             g->teeth[i] = (int)teeth[i];
@@ -875,10 +889,9 @@ static gd_status parse_mesh(gd_mparser *p, const gd_ynode *mm, const char *q, gd
     if (g->helix_angle >= 60.0 * PI / 180.0) {
         char hint[80];
         snprintf(hint, sizeof hint, "did you mean '%g deg'?", g->helix_angle);
-        return gd_yfail(r, gd_ymap_get(mm, "helix_angle"),
-                        gd_ypath_key(fp, sizeof fp, q, "helix_angle"), hint,
-                        "helix angle %g rad is not below 60 deg (plain numbers are radians)",
-                        g->helix_angle);
+        return gd_yfail(
+            r, gd_ymap_get(mm, "helix_angle"), gd_ypath_key(fp, sizeof fp, q, "helix_angle"), hint,
+            "helix angle %g rad is not below 60 deg (plain numbers are radians)", g->helix_angle);
     }
     /* gear geometry (docs/mesh-stiffness.md): validated here so `check` catches it, and
      * the source of the gear sizes when the mesh gives none */
@@ -893,7 +906,10 @@ static gd_status parse_mesh(gd_mparser *p, const gd_ynode *mm, const char *q, gd
             gd_gear_pair_error_locate(r->file, mm, q, r->err);
             return st;
         }
-        const char *dup = has_teeth ? "teeth" : has_pa ? "pressure_angle" : has_helix ? "helix_angle" : NULL;
+        const char *dup = has_teeth   ? "teeth"
+                          : has_pa    ? "pressure_angle"
+                          : has_helix ? "helix_angle"
+                                      : NULL;
         if (dup)
             return gd_yfail(r, gd_ymap_get(mm, dup), gd_ypath_key(fp, sizeof fp, q, dup),
                             "with `geometry:` the teeth and angles come from it; remove this key",
@@ -1074,8 +1090,8 @@ static gd_status parse_meshes(gd_mparser *p)
 
 /* ---- unbalances ---- */
 
-static const char *const UNBALANCE_KEYS[] = {"name", "node", "amount", "mass", "eccentricity",
-                                             "phase", NULL};
+static const char *const UNBALANCE_KEYS[] = {"name",         "node",  "amount", "mass",
+                                             "eccentricity", "phase", NULL};
 
 static gd_status parse_unbalances(gd_mparser *p)
 {
@@ -1106,8 +1122,7 @@ static gd_status parse_unbalances(gd_mparser *p)
             (st = gd_yread_qty(&p->r, um, "phase", q, GD_QTY_ANGLE, 0, &u->phase, NULL)))
             return st;
         if (has_amount == (has_mass || has_ecc) || has_mass != has_ecc)
-            return gd_yfail(&p->r, um, q,
-                            "give `amount` (kg*m), or both `mass` and `eccentricity`",
+            return gd_yfail(&p->r, um, q, "give `amount` (kg*m), or both `mass` and `eccentricity`",
                             has_amount ? "amount given together with mass/eccentricity"
                                        : "unbalance amount missing");
         if (!has_amount) u->amount = mass * ecc;
@@ -1137,8 +1152,8 @@ static gd_status parse_globals(gd_mparser *p)
                 for (int k = 0; k < GD_NODE_DOFS; k++)
                     if (!strcmp(d->text, gd_dof_names[k])) found = k;
             if (found < 0)
-                return gd_yfail(r, d, q, "use names from: x, y, z, rx, ry, rz",
-                                "unknown DOF '%s'", d->kind == GD_Y_SCALAR ? d->text : "?");
+                return gd_yfail(r, d, q, "use names from: x, y, z, rx, ry, rz", "unknown DOF '%s'",
+                                d->kind == GD_Y_SCALAR ? d->text : "?");
             m->dof_mask |= GD_DOF_BIT(found);
         }
         if (!m->dof_mask)
@@ -1148,7 +1163,8 @@ static gd_status parse_globals(gd_mparser *p)
                            NULL)))
         return st;
     const char *ref = NULL;
-    if ((st = gd_yread_str(r, p->root, "reference_shaft", "", NULL, 0, &ref, NULL, NULL))) return st;
+    if ((st = gd_yread_str(r, p->root, "reference_shaft", "", NULL, 0, &ref, NULL, NULL)))
+        return st;
     m->reference_shaft = 0;
     if (ref) {
         m->reference_shaft = gd_model_find_shaft(m, ref);

@@ -29,8 +29,8 @@ static gd_status read_qty_list(gd_mparser *p, const gd_ynode *map, const char *k
     if (!*out) return gd_mp_oom(p);
     for (size_t i = 0; i < v->n; i++) {
         char ip[240];
-        if ((st = gd_yread_node_qty(&p->r, v->items[i], gd_ypath_index(ip, sizeof ip, q, i), qty,
-                                    0, &(*out)[i]))) {
+        if ((st = gd_yread_node_qty(&p->r, v->items[i], gd_ypath_index(ip, sizeof ip, q, i), qty, 0,
+                                    &(*out)[i]))) {
             free(*out);
             *out = NULL;
             return st;
@@ -42,9 +42,9 @@ static gd_status read_qty_list(gd_mparser *p, const gd_ynode *map, const char *k
 
 /* A table {xkey: [...], ykey: [...], interpolation}; periodic with period (0: not).
  * Angles of a periodic table must lie in [0, period). */
-static gd_status read_table(gd_mparser *p, const gd_ynode *map, const char *path,
-                            const char *xkey, gd_qty xq, const char *ykey, gd_qty yq,
-                            double period, gd_interp def_interp, gd_table **out)
+static gd_status read_table(gd_mparser *p, const gd_ynode *map, const char *path, const char *xkey,
+                            gd_qty xq, const char *ykey, gd_qty yq, double period,
+                            gd_interp def_interp, gd_table **out)
 {
     const char *const keys[4] = {xkey, ykey, "interpolation", NULL};
     gd_status st;
@@ -61,8 +61,8 @@ static gd_status read_table(gd_mparser *p, const gd_ynode *map, const char *path
     char q[220];
     if (nx != ny) {
         st = gd_yfail(&p->r, gd_ymap_get(map, ykey), gd_ypath_key(q, sizeof q, path, ykey),
-                      "give one value per entry of the first list",
-                      "%d values for %d %s", ny, nx, xkey);
+                      "give one value per entry of the first list", "%d values for %d %s", ny, nx,
+                      xkey);
         goto done;
     }
     int need = ii == GD_INTERP_SPLINE ? 3 : 2;
@@ -104,7 +104,8 @@ static double table_mean(const gd_table *t, double period)
 {
     const int n = 2048;
     double s = 0;
-    for (int i = 0; i < n; i++) s += gd_table_eval(t, period * i / n, NULL, NULL);
+    for (int i = 0; i < n; i++)
+        s += gd_table_eval(t, period * i / n, NULL, NULL);
     return s / n;
 }
 
@@ -175,8 +176,8 @@ gd_status gd_mp_mesh_dynamics(gd_mparser *p, const gd_ynode *mm, const char *pat
         for (int i = 0; i < d->tvms->n; i++)
             if (!(d->tvms->y[i] > 0))
                 return gd_yfail(r, gd_ymap_get(tv, "stiffness"), q,
-                                "mesh stiffness values must be positive", "stiffness %g at entry %d",
-                                d->tvms->y[i], i);
+                                "mesh stiffness values must be positive",
+                                "stiffness %g at entry %d", d->tvms->y[i], i);
         g->stiffness = table_mean(d->tvms, period);
         *stiffness_from_table = 1;
     }
@@ -191,7 +192,8 @@ gd_status gd_mp_mesh_dynamics(gd_mparser *p, const gd_ynode *mm, const char *pat
     const gd_ynode *bl = gd_ymap_get(mm, "backlash");
     if (bl) {
         gd_ypath_key(q, sizeof q, path, "backlash");
-        if ((st = gd_yexpect(r, bl, GD_Y_MAP, q)) || (st = gd_ycheck_keys(r, bl, q, BACKLASH_KEYS)) ||
+        if ((st = gd_yexpect(r, bl, GD_Y_MAP, q)) ||
+            (st = gd_ycheck_keys(r, bl, q, BACKLASH_KEYS)) ||
             (st = gd_yread_qty(r, bl, "gap", q, GD_QTY_LENGTH, GD_YREQ | GD_YNONNEG, &d->gap,
                                NULL)) ||
             (st = gd_yread_qty(r, bl, "coast_stiffness_ratio", q, GD_QTY_DIMLESS, GD_YPOS,
@@ -204,8 +206,8 @@ gd_status gd_mp_mesh_dynamics(gd_mparser *p, const gd_ynode *mm, const char *pat
 
 /* ---- squeeze film dampers ---- */
 
-static const char *const SFD_KEYS[] = {"viscosity", "diameter", "length", "clearance", "film",
-                                       "correction", "max_eccentricity", NULL};
+static const char *const SFD_KEYS[] = {"viscosity", "diameter",   "length",           "clearance",
+                                       "film",      "correction", "max_eccentricity", NULL};
 static const char *const FILMS[] = {"pi", "2pi", NULL};
 
 gd_status gd_mp_bearing_sfd(gd_mparser *p, const gd_ynode *bm, const char *path, gd_bearing *b)
@@ -226,8 +228,8 @@ gd_status gd_mp_bearing_sfd(gd_mparser *p, const gd_ynode *bm, const char *path,
                            NULL)) ||
         (st = gd_yread_qty(r, sm, "length", q, GD_QTY_LENGTH, GD_YREQ | GD_YPOS, &s->length,
                            NULL)) ||
-        (st = gd_yread_qty(r, sm, "clearance", q, GD_QTY_LENGTH, GD_YREQ | GD_YPOS,
-                           &s->clearance, NULL)) ||
+        (st = gd_yread_qty(r, sm, "clearance", q, GD_QTY_LENGTH, GD_YREQ | GD_YPOS, &s->clearance,
+                           NULL)) ||
         (st = gd_yread_str(r, sm, "film", q, FILMS, 0, NULL, &film, NULL)) ||
         (st = gd_yread_qty(r, sm, "max_eccentricity", q, GD_QTY_DIMLESS, GD_YPOS,
                            &s->max_eccentricity, NULL)))
@@ -240,7 +242,8 @@ gd_status gd_mp_bearing_sfd(gd_mparser *p, const gd_ynode *bm, const char *path,
                         gd_ypath_key(fp, sizeof fp, q, "max_eccentricity"),
                         "an eccentricity ratio below 1, e.g. 0.995", "must be below 1");
     if (s->clearance >= s->radius)
-        return gd_yfail(r, gd_ymap_get(sm, "clearance"), gd_ypath_key(fp, sizeof fp, q, "clearance"),
+        return gd_yfail(r, gd_ymap_get(sm, "clearance"),
+                        gd_ypath_key(fp, sizeof fp, q, "clearance"),
                         "the radial clearance is a small fraction of the radius",
                         "clearance %g m is not below the radius %g m", s->clearance, s->radius);
     const gd_ynode *corr = gd_ymap_get(sm, "correction");
@@ -253,7 +256,8 @@ gd_status gd_mp_bearing_sfd(gd_mparser *p, const gd_ynode *bm, const char *path,
             s->correction = -1;
         else if ((st = gd_yread_node_qty(r, corr, fp, GD_QTY_DIMLESS, GD_YPOS, &s->correction)))
             return gd_yfail(r, corr, fp, "write auto, none or a positive factor",
-                            "'%s' is not a correction", corr->kind == GD_Y_SCALAR ? corr->text : "?");
+                            "'%s' is not a correction",
+                            corr->kind == GD_Y_SCALAR ? corr->text : "?");
     }
     b->has_sfd = 1;
     return GD_OK;
@@ -262,7 +266,7 @@ gd_status gd_mp_bearing_sfd(gd_mparser *p, const gd_ynode *bm, const char *path,
 /* ---- top level: excitations, prescribed, cam_torques ---- */
 
 static const char *const EXCITATION_KEYS[] = {"unbalances", "loads", NULL};
-static const char *const LOAD_KEYS[] = {"name", "node", "dof", "value", "mean", "amplitude",
+static const char *const LOAD_KEYS[] = {"name",      "node",  "dof",   "value", "mean", "amplitude",
                                         "frequency", "order", "phase", "table", NULL};
 static const char *const DOF_CHOICES[] = {"x", "y", "z", "rx", "ry", "rz", NULL};
 
@@ -339,7 +343,8 @@ static gd_status parse_excitations(gd_mparser *p)
     gd_status st;
     if ((st = gd_yexpect(&p->r, ex, GD_Y_MAP, "excitations")) ||
         (st = gd_ycheck_keys(&p->r, ex, "excitations", EXCITATION_KEYS)) ||
-        (st = gd_yread_bool(&p->r, ex, "unbalances", "excitations", 0, &m->excite_unbalances, NULL)))
+        (st =
+             gd_yread_bool(&p->r, ex, "unbalances", "excitations", 0, &m->excite_unbalances, NULL)))
         return st;
     const gd_ynode *list;
     if ((st = gd_mp_get_list(p, ex, "loads", "excitations", &list, 0)) || !list) return st;
@@ -354,8 +359,8 @@ static gd_status parse_excitations(gd_mparser *p)
     return GD_OK;
 }
 
-static const char *const PRESCRIBED_KEYS[] = {"node", "dof", "motion", "speed", "table",
-                                              "amplitude", "frequency", "phase", NULL};
+static const char *const PRESCRIBED_KEYS[] = {"node",      "dof",       "motion", "speed", "table",
+                                              "amplitude", "frequency", "phase",  NULL};
 static const char *const MOTIONS[] = {"nominal", NULL};
 static const char *const TIME_TABLE_KEYS_ANGLE[] = {"time", "angle", "interpolation", NULL};
 
@@ -410,9 +415,10 @@ static gd_status parse_prescribed(gd_mparser *p)
             char tq[100];
             gd_table *t;
             gd_qty vq = pr->dof >= GD_RX ? GD_QTY_ANGLE : GD_QTY_LENGTH;
-            if ((st = read_table(p, gd_ymap_get(pm, "table"), gd_ypath_key(tq, sizeof tq, q, "table"),
-                                 "time", GD_QTY_TIME, pr->dof >= GD_RX ? "angle" : "position", vq, 0,
-                                 GD_INTERP_SPLINE, &t)))
+            if ((st = read_table(p, gd_ymap_get(pm, "table"),
+                                 gd_ypath_key(tq, sizeof tq, q, "table"), "time", GD_QTY_TIME,
+                                 pr->dof >= GD_RX ? "angle" : "position", vq, 0, GD_INTERP_SPLINE,
+                                 &t)))
                 return st;
             pr->law.kind = GD_PRESCRIBED_TABLE;
             pr->law.table = t;
@@ -421,7 +427,7 @@ static gd_status parse_prescribed(gd_mparser *p)
     return GD_OK;
 }
 
-static const char *const CAM_KEYS[] = {"name", "camshaft", "lift", "include_acceleration",
+static const char *const CAM_KEYS[] = {"name",   "camshaft", "lift", "include_acceleration",
                                        "valves", NULL};
 static const char *const VALVE_KEYS[] = {"mass", "phase", NULL};
 static const char *const HARMONIC_KEYS[] = {"mean", "cos", "sin", NULL};
@@ -496,10 +502,11 @@ static gd_status parse_cams(gd_mparser *p)
             return st;
         c->loc = gd_mp_loc(cm);
         if (!gd_ymap_get(cm, "lift"))
-            return gd_yfail(&p->r, cm, gd_ypath_key(lq, sizeof lq, q, "lift"),
-                            "add the valve lift law: `lift: {angle: [...], lift: [...]}` over one "
-                            "cam revolution, or `lift: {harmonics: {mean, cos: [...], sin: [...]}}`",
-                            "cam torque without a lift law");
+            return gd_yfail(
+                &p->r, cm, gd_ypath_key(lq, sizeof lq, q, "lift"),
+                "add the valve lift law: `lift: {angle: [...], lift: [...]}` over one "
+                "cam revolution, or `lift: {harmonics: {mean, cos: [...], sin: [...]}}`",
+                "cam torque without a lift law");
         if ((st = parse_lift(p, gd_ymap_get(cm, "lift"), gd_ypath_key(lq, sizeof lq, q, "lift"),
                              &c->lift)) ||
             (st = gd_mp_get_list(p, cm, "valves", q, &valves, 1)))

@@ -25,8 +25,8 @@ gd_status gd_mp_node_ref(gd_mparser *p, const gd_ynode *map, const char *key, co
 
 /* Time-integration keys of a mesh (tvms, damping map, transmission_error, backlash), a
  * bearing (sfd) and the top level (excitations, prescribed, cam_torques). */
-gd_status gd_mp_mesh_dynamics(gd_mparser *p, const gd_ynode *mesh_map, const char *path,
-                              gd_mesh *g, int *stiffness_from_table);
+gd_status gd_mp_mesh_dynamics(gd_mparser *p, const gd_ynode *mesh_map, const char *path, gd_mesh *g,
+                              int *stiffness_from_table);
 gd_status gd_mp_bearing_sfd(gd_mparser *p, const gd_ynode *bearing_map, const char *path,
                             gd_bearing *b);
 gd_status gd_mp_dynamics(gd_mparser *p);

@@ -51,13 +51,15 @@ void gd_shaft_element_matrices(const gd_element *e, const gd_material *mat, doub
     double m4 = (13.0 / 420 + 3.0 * phi / 40 + phi * phi / 24) * L;
     double m5 = (1.0 / 105 + phi / 60 + phi * phi / 120) * L2;
     double m6 = (1.0 / 140 + phi / 60 + phi * phi / 120) * L2;
-    double Mt[4][4] = {{m1, m2, m3, -m4}, {m2, m5, m4, -m6}, {m3, m4, m1, -m2}, {-m4, -m6, -m2, m5}};
+    double Mt[4][4] = {
+        {m1, m2, m3, -m4}, {m2, m5, m4, -m6}, {m3, m4, m1, -m2}, {-m4, -m6, -m2, m5}};
     /* rotary inertia */
     double mr = rho * I / (L * p2);
     double r1 = 6.0 / 5, r2 = (1.0 / 10 - phi / 2) * L;
     double r3 = (2.0 / 15 + phi / 6 + phi * phi / 3) * L2;
     double r4 = (1.0 / 30 + phi / 6 - phi * phi / 6) * L2;
-    double Mr[4][4] = {{r1, r2, -r1, r2}, {r2, r3, -r2, -r4}, {-r1, -r2, r1, -r2}, {r2, -r4, -r2, r3}};
+    double Mr[4][4] = {
+        {r1, r2, -r1, r2}, {r2, r3, -r2, -r4}, {-r1, -r2, r1, -r2}, {r2, -r4, -r2, r3}};
 
     for (int a = 0; a < 4; a++)
         for (int b = 0; b < 4; b++) {

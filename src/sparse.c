@@ -91,5 +91,6 @@ void gd_csc_mul(const gd_csc *s, const double *x, double *y)
     memset(y, 0, (size_t)s->n * sizeof *y);
     if (!s->colptr) return;
     for (int j = 0; j < s->n; j++)
-        for (int k = s->colptr[j]; k < s->colptr[j + 1]; k++) y[s->rowind[k]] += s->values[k] * x[j];
+        for (int k = s->colptr[j]; k < s->colptr[j + 1]; k++)
+            y[s->rowind[k]] += s->values[k] * x[j];
 }

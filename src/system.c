@@ -39,7 +39,8 @@ static void scatter(assembler *as, gd_trip *t, const double *local, int n, const
 
 static void node_idx(int node, int *idx)
 {
-    for (int d = 0; d < 6; d++) idx[d] = node < 0 ? -1 : 6 * node + d;
+    for (int d = 0; d < 6; d++)
+        idx[d] = node < 0 ? -1 : 6 * node + d;
 }
 
 /* Two-node 12 x 12 from a one-node 6 x 6 connecting node1 to node2 (or ground):
@@ -79,7 +80,8 @@ static void mark_table_bearing(assembler *as, const gd_bearing *b)
         for (int d = 0; d < 6; d++) {
             if (!(as->m->dof_mask & GD_DOF_BIT(d))) continue;
             int nz = 0;
-            for (int e = 0; e < 6; e++) nz |= K[d * 6 + e] != 0 || C[d * 6 + e] != 0;
+            for (int e = 0; e < 6; e++)
+                nz |= K[d * 6 + e] != 0 || C[d * 6 + e] != 0;
             if (nz) {
                 as->used[6 * b->node + d] = 1;
                 if (b->node2 >= 0) as->used[6 * b->node2 + d] = 1;
@@ -159,7 +161,8 @@ gd_status gd_system_build(const gd_model *m, gd_system **out, gd_error *err)
     if (as.fail) goto nomem;
 
     int n = 0;
-    for (int r = 0; r < raw; r++) map[r] = as.used[r] ? n++ : -1;
+    for (int r = 0; r < raw; r++)
+        map[r] = as.used[r] ? n++ : -1;
     if (n == 0) {
         gd_error_set(err, GD_EINPUT, m->file, 0, 0, "dofs",
                      "add shafts with sections, disks or springs on the active DOFs",
@@ -253,8 +256,7 @@ static double node_speed(const gd_model *m, int node, double ref_speed)
     return fabs(m->shafts[m->nodes[node].shaft].speed_ratio * ref_speed);
 }
 
-static void add_dense_local(const gd_system *s, const double *a6, int node1, int node2,
-                            double *A)
+static void add_dense_local(const gd_system *s, const double *a6, int node1, int node2, double *A)
 {
     int n = s->ndof;
     int idx[12];
@@ -379,12 +381,12 @@ static double local_energy(const double *Kl, int n, const cplx *u, const gd_moti
     return total;
 }
 
-static const gd_motion SHAFT_MOTION[6] = {GD_MOTION_LATERAL, GD_MOTION_LATERAL, GD_MOTION_AXIAL,
-                                          GD_MOTION_LATERAL, GD_MOTION_LATERAL,
-                                          GD_MOTION_TORSIONAL};
-static const gd_motion SUPPORT_MOTION[6] = {GD_MOTION_LATERAL, GD_MOTION_LATERAL, GD_MOTION_AXIAL,
-                                            GD_MOTION_TILT,    GD_MOTION_TILT,
-                                            GD_MOTION_TORSIONAL};
+static const gd_motion SHAFT_MOTION[6] = {GD_MOTION_LATERAL, GD_MOTION_LATERAL,
+                                          GD_MOTION_AXIAL,   GD_MOTION_LATERAL,
+                                          GD_MOTION_LATERAL, GD_MOTION_TORSIONAL};
+static const gd_motion SUPPORT_MOTION[6] = {GD_MOTION_LATERAL, GD_MOTION_LATERAL,
+                                            GD_MOTION_AXIAL,   GD_MOTION_TILT,
+                                            GD_MOTION_TILT,    GD_MOTION_TORSIONAL};
 
 static double connector_energy(const gd_system *s, const double *a6, int node1, int node2,
                                const double *re, const double *im, double *by_motion)
@@ -398,14 +400,16 @@ static double connector_energy(const gd_system *s, const double *a6, int node1, 
     return local_energy(a6, 6, u, SUPPORT_MOTION, by_motion);
 }
 
-double gd_system_strain_energy(const gd_system *s, double speed, const double *re,
-                               const double *im, double *by_motion, double *by_component)
+double gd_system_strain_energy(const gd_system *s, double speed, const double *re, const double *im,
+                               double *by_motion, double *by_component)
 {
     const gd_model *m = s->model;
     double total = 0;
-    for (int k = 0; k < GD_NMOTIONS; k++) by_motion[k] = 0;
+    for (int k = 0; k < GD_NMOTIONS; k++)
+        by_motion[k] = 0;
     if (by_component)
-        for (int c = 0; c < s->ncomponents; c++) by_component[c] = 0;
+        for (int c = 0; c < s->ncomponents; c++)
+            by_component[c] = 0;
     unsigned mask = m->dof_mask;
     for (int e = 0; e < m->nelements; e++) {
         const gd_element *el = &m->elements[e];
@@ -430,7 +434,8 @@ double gd_system_strain_energy(const gd_system *s, double speed, const double *r
         gd_bearing_matrices(&c, Kb, Cb);
         for (int d = 0; d < 6; d++)
             if (!(mask & GD_DOF_BIT(d)))
-                for (int e = 0; e < 6; e++) Kb[d * 6 + e] = Kb[e * 6 + d] = 0;
+                for (int e = 0; e < 6; e++)
+                    Kb[d * 6 + e] = Kb[e * 6 + d] = 0;
         double en = connector_energy(s, Kb, br->node, br->node2, re, im, by_motion);
         total += en;
         if (by_component) by_component[c0 + b] += en;
@@ -462,7 +467,8 @@ double gd_system_strain_energy(const gd_system *s, double speed, const double *r
         }
         double en = 0.5 * m->meshes[g].stiffness * (d.re * d.re + d.im * d.im);
         double wsum = 0;
-        for (int k = 0; k < GD_NMOTIONS; k++) wsum += dm[k].re * dm[k].re + dm[k].im * dm[k].im;
+        for (int k = 0; k < GD_NMOTIONS; k++)
+            wsum += dm[k].re * dm[k].re + dm[k].im * dm[k].im;
         if (wsum > 0)
             for (int k = 0; k < GD_NMOTIONS; k++)
                 by_motion[k] += en * (dm[k].re * dm[k].re + dm[k].im * dm[k].im) / wsum;

@@ -22,21 +22,21 @@ typedef struct unit_def {
 } unit_def;
 
 static const unit_def UNITS[] = {
-    {"m", 1.0, {0, 1, 0, 0}},        {"mm", 1e-3, {0, 1, 0, 0}},
-    {"cm", 1e-2, {0, 1, 0, 0}},      {"um", 1e-6, {0, 1, 0, 0}},
-    {"\xc2\xb5m", 1e-6, {0, 1, 0, 0}}, {"km", 1e3, {0, 1, 0, 0}},
-    {"in", 0.0254, {0, 1, 0, 0}},    {"ft", 0.3048, {0, 1, 0, 0}},
-    {"kg", 1.0, {1, 0, 0, 0}},       {"g", 1e-3, {1, 0, 0, 0}},
-    {"s", 1.0, {0, 0, 1, 0}},        {"ms", 1e-3, {0, 0, 1, 0}},
-    {"us", 1e-6, {0, 0, 1, 0}},      {"min", 60.0, {0, 0, 1, 0}},
-    {"h", 3600.0, {0, 0, 1, 0}},     {"N", 1.0, {1, 1, -2, 0}},
-    {"mN", 1e-3, {1, 1, -2, 0}},     {"kN", 1e3, {1, 1, -2, 0}},
-    {"MN", 1e6, {1, 1, -2, 0}},      {"GN", 1e9, {1, 1, -2, 0}},
-    {"Nm", 1.0, {1, 2, -2, 0}},      {"J", 1.0, {1, 2, -2, 0}},
-    {"Pa", 1.0, {1, -1, -2, 0}},     {"kPa", 1e3, {1, -1, -2, 0}},
-    {"MPa", 1e6, {1, -1, -2, 0}},    {"GPa", 1e9, {1, -1, -2, 0}},
-    {"rad", 1.0, {0, 0, 0, 1}},      {"mrad", 1e-3, {0, 0, 0, 1}},
-    {"urad", 1e-6, {0, 0, 0, 1}},    {"deg", GD_PI / 180.0, {0, 0, 0, 1}},
+    {"m", 1.0, {0, 1, 0, 0}},           {"mm", 1e-3, {0, 1, 0, 0}},
+    {"cm", 1e-2, {0, 1, 0, 0}},         {"um", 1e-6, {0, 1, 0, 0}},
+    {"\xc2\xb5m", 1e-6, {0, 1, 0, 0}},  {"km", 1e3, {0, 1, 0, 0}},
+    {"in", 0.0254, {0, 1, 0, 0}},       {"ft", 0.3048, {0, 1, 0, 0}},
+    {"kg", 1.0, {1, 0, 0, 0}},          {"g", 1e-3, {1, 0, 0, 0}},
+    {"s", 1.0, {0, 0, 1, 0}},           {"ms", 1e-3, {0, 0, 1, 0}},
+    {"us", 1e-6, {0, 0, 1, 0}},         {"min", 60.0, {0, 0, 1, 0}},
+    {"h", 3600.0, {0, 0, 1, 0}},        {"N", 1.0, {1, 1, -2, 0}},
+    {"mN", 1e-3, {1, 1, -2, 0}},        {"kN", 1e3, {1, 1, -2, 0}},
+    {"MN", 1e6, {1, 1, -2, 0}},         {"GN", 1e9, {1, 1, -2, 0}},
+    {"Nm", 1.0, {1, 2, -2, 0}},         {"J", 1.0, {1, 2, -2, 0}},
+    {"Pa", 1.0, {1, -1, -2, 0}},        {"kPa", 1e3, {1, -1, -2, 0}},
+    {"MPa", 1e6, {1, -1, -2, 0}},       {"GPa", 1e9, {1, -1, -2, 0}},
+    {"rad", 1.0, {0, 0, 0, 1}},         {"mrad", 1e-3, {0, 0, 0, 1}},
+    {"urad", 1e-6, {0, 0, 0, 1}},       {"deg", GD_PI / 180.0, {0, 0, 0, 1}},
     {"rev", 2.0 * GD_PI, {0, 0, 0, 1}}, {"rpm", 2.0 * GD_PI / 60.0, {0, 0, -1, 1}},
     {"Hz", 2.0 * GD_PI, {0, 0, -1, 1}}, {"kHz", 2.0e3 * GD_PI, {0, 0, -1, 1}},
 };
@@ -99,7 +99,8 @@ static int parse_unit_expr(const char *s, double *factor, dims *d, char *why, si
             continue;
         }
         const char *start = p;
-        while (*p && *p != ' ' && *p != '*' && *p != '/' && *p != '^' && *p != '.') p++;
+        while (*p && *p != ' ' && *p != '*' && *p != '/' && *p != '^' && *p != '.')
+            p++;
         const unit_def *u = find_unit(start, (size_t)(p - start));
         if (!u) {
             snprintf(why, why_size, "unknown unit '%.*s' in '%s'", (int)(p - start), start, s);
@@ -139,7 +140,8 @@ int gd_parse_quantity(const char *text, gd_qty qty, double *value, char *why, si
         snprintf(why, why_size, "no value");
         return 1;
     }
-    while (isspace((unsigned char)*text)) text++;
+    while (isspace((unsigned char)*text))
+        text++;
     errno = 0;
     char *end;
     double x = strtod(text, &end);
@@ -153,7 +155,8 @@ int gd_parse_quantity(const char *text, gd_qty qty, double *value, char *why, si
     }
     char unit[96];
     size_t n = strlen(end);
-    while (n > 0 && isspace((unsigned char)end[n - 1])) n--;
+    while (n > 0 && isspace((unsigned char)end[n - 1]))
+        n--;
     while (n > 0 && isspace((unsigned char)*end)) {
         end++;
         n--;

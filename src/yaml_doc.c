@@ -12,10 +12,10 @@ static gd_status syntax_error(yaml_parser_t *p, const char *file, gd_error *err)
     char ctx[160] = "";
     if (p->context && p->context_mark.line < p->problem_mark.line)
         snprintf(ctx, sizeof ctx, " (%s on line %d)", p->context, (int)p->context_mark.line + 1);
-    return gd_error_set(err, GD_EINPUT, file, (int)p->problem_mark.line + 1,
-                        (int)p->problem_mark.column + 1, "",
-                        "check indentation, colons, quotes and brackets near this point",
-                        "YAML syntax error: %s%s", p->problem ? p->problem : "unknown problem", ctx);
+    return gd_error_set(
+        err, GD_EINPUT, file, (int)p->problem_mark.line + 1, (int)p->problem_mark.column + 1, "",
+        "check indentation, colons, quotes and brackets near this point", "YAML syntax error: %s%s",
+        p->problem ? p->problem : "unknown problem", ctx);
 }
 
 static gd_ynode *node_new(gd_ykind kind, const yaml_mark_t *mark)
@@ -87,8 +87,7 @@ static gd_status build(yaml_parser_t *p, yaml_event_t *ev, const char *file, gd_
     }
     case YAML_ALIAS_EVENT:
         return gd_error_set(err, GD_EINPUT, file, (int)ev->start_mark.line + 1,
-                            (int)ev->start_mark.column + 1, "",
-                            "write the values out in full",
+                            (int)ev->start_mark.column + 1, "", "write the values out in full",
                             "YAML aliases (*name) are not supported in model files");
     case YAML_SEQUENCE_START_EVENT:
     case YAML_MAPPING_START_EVENT: {
@@ -122,8 +121,8 @@ static gd_status build(yaml_parser_t *p, yaml_event_t *ev, const char *file, gd_
                 }
                 for (size_t i = 0; i < n->n; i++) {
                     if (strcmp(n->keys[i]->text, key->text) == 0) {
-                        st = gd_error_set(err, GD_EINPUT, file, key->line, key->column,
-                                          key->text, "remove one of the two entries",
+                        st = gd_error_set(err, GD_EINPUT, file, key->line, key->column, key->text,
+                                          "remove one of the two entries",
                                           "duplicate key (first given on line %d)",
                                           n->keys[i]->line);
                         node_free(key);

@@ -38,9 +38,9 @@ typedef struct gd_yreader {
 } gd_yreader;
 
 enum {
-    GD_YREQ = 1 << 0,      /* the key must be present */
-    GD_YPOS = 1 << 1,      /* value > 0 */
-    GD_YNONNEG = 1 << 2,   /* value >= 0 */
+    GD_YREQ = 1 << 0,    /* the key must be present */
+    GD_YPOS = 1 << 1,    /* value > 0 */
+    GD_YNONNEG = 1 << 2, /* value >= 0 */
 };
 
 const gd_ynode *gd_ymap_get(const gd_ynode *map, const char *key);
@@ -72,8 +72,8 @@ gd_status gd_yread_bool(gd_yreader *r, const gd_ynode *map, const char *key, con
 /* A string; if choices (NULL-terminated) is given, the value must be one of them and
  * *choice_index is set. out may be NULL when only the index is wanted. */
 gd_status gd_yread_str(gd_yreader *r, const gd_ynode *map, const char *key, const char *path,
-                       const char *const *choices, int flags, const char **out,
-                       int *choice_index, int *present);
+                       const char *const *choices, int flags, const char **out, int *choice_index,
+                       int *present);
 
 /* Joins "path.key" or "path[i]" into buf. */
 const char *gd_ypath_key(char *buf, size_t size, const char *path, const char *key);

@@ -12,9 +12,12 @@
 const char *gd_ykind_name(gd_ykind kind)
 {
     switch (kind) {
-    case GD_Y_SCALAR: return "a value";
-    case GD_Y_SEQ: return "a list";
-    case GD_Y_MAP: return "a map";
+    case GD_Y_SCALAR:
+        return "a value";
+    case GD_Y_SEQ:
+        return "a list";
+    case GD_Y_MAP:
+        return "a map";
     }
     return "?";
 }
@@ -50,16 +53,19 @@ gd_status gd_yfail(gd_yreader *r, const gd_ynode *n, const char *path, const cha
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    return gd_error_set(r->err, GD_EINPUT, r->file, n ? n->line : 0, n ? n->column : 0, path,
-                        hint, "%s", msg);
+    return gd_error_set(r->err, GD_EINPUT, r->file, n ? n->line : 0, n ? n->column : 0, path, hint,
+                        "%s", msg);
 }
 
 static const char *kind_hint(gd_ykind kind)
 {
     switch (kind) {
-    case GD_Y_SCALAR: return "write a single value here, e.g. `key: 1.5`";
-    case GD_Y_SEQ: return "write a list here: `- item` lines or [a, b]";
-    case GD_Y_MAP: return "write `key: value` entries here (see docs/model-format.md)";
+    case GD_Y_SCALAR:
+        return "write a single value here, e.g. `key: 1.5`";
+    case GD_Y_SEQ:
+        return "write a list here: `- item` lines or [a, b]";
+    case GD_Y_MAP:
+        return "write `key: value` entries here (see docs/model-format.md)";
     }
     return NULL;
 }
@@ -76,7 +82,8 @@ static size_t edit_distance(const char *a, const char *b)
     size_t la = strlen(a), lb = strlen(b);
     if (la > 63 || lb > 63) return 99;
     size_t row[64];
-    for (size_t j = 0; j <= lb; j++) row[j] = j;
+    for (size_t j = 0; j <= lb; j++)
+        row[j] = j;
     for (size_t i = 1; i <= la; i++) {
         size_t prev = row[0];
         row[0] = i;
@@ -152,12 +159,14 @@ gd_status gd_yread_node_qty(gd_yreader *r, const gd_ynode *n, const char *path, 
                             int flags, double *out)
 {
     if (!n || n->kind != GD_Y_SCALAR)
-        return gd_yfail(r, n, path, "write a number, optionally with a unit, e.g. 0.25 or \"25 mm\"",
+        return gd_yfail(r, n, path,
+                        "write a number, optionally with a unit, e.g. 0.25 or \"25 mm\"",
                         "expected a number, found %s", n ? gd_ykind_name(n->kind) : "nothing");
     double v;
     char why[200], hint[200];
     if (gd_parse_quantity(n->text, qty, &v, why, sizeof why)) {
-        snprintf(hint, sizeof hint, "write a number in SI (%s) or a number with a unit, e.g. \"%s\"",
+        snprintf(hint, sizeof hint,
+                 "write a number in SI (%s) or a number with a unit, e.g. \"%s\"",
                  gd_qty_si_unit(qty), qty == GD_QTY_ANGLE ? "20 deg" : "1.5 mm");
         return gd_yfail(r, n, path, hint, "%s", why);
     }
@@ -191,7 +200,8 @@ gd_status gd_yread_int(gd_yreader *r, const gd_ynode *map, const char *key, cons
     char *end;
     errno = 0;
     long x = strtol(v->text, &end, 10);
-    while (*end == ' ') end++;
+    while (*end == ' ')
+        end++;
     if (end == v->text || *end || errno)
         return gd_yfail(r, v, p, "write a whole number", "'%s' is not a whole number", v->text);
     if (x < lo || x > hi) {
@@ -220,8 +230,8 @@ gd_status gd_yread_bool(gd_yreader *r, const gd_ynode *map, const char *key, con
 }
 
 gd_status gd_yread_str(gd_yreader *r, const gd_ynode *map, const char *key, const char *path,
-                       const char *const *choices, int flags, const char **out,
-                       int *choice_index, int *present)
+                       const char *const *choices, int flags, const char **out, int *choice_index,
+                       int *present)
 {
     const gd_ynode *v;
     char p[200];

@@ -21,7 +21,7 @@ typedef struct gd_test_case {
 #define CHECK(cond)                                                                                \
     do {                                                                                           \
         if (!(cond)) {                                                                             \
-            fprintf(stderr, "  %s:%d: CHECK(%s) failed\n", __FILE__, __LINE__, #cond);            \
+            fprintf(stderr, "  %s:%d: CHECK(%s) failed\n", __FILE__, __LINE__, #cond);             \
             gd_ts_->checks_failed++;                                                               \
         }                                                                                          \
     } while (0)
@@ -32,7 +32,7 @@ typedef struct gd_test_case {
         double a_ = (a), b_ = (b), t_ = (tol);                                                     \
         double s_ = fabs(b_) > 1e-300 ? fabs(b_) : 1.0;                                            \
         if (!(fabs(a_ - b_) <= t_ * s_)) {                                                         \
-            fprintf(stderr, "  %s:%d: %s = %.12g, expected %.12g (rel tol %g, rel err %.3g)\n",   \
+            fprintf(stderr, "  %s:%d: %s = %.12g, expected %.12g (rel tol %g, rel err %.3g)\n",    \
                     __FILE__, __LINE__, #a, a_, b_, t_, fabs(a_ - b_) / s_);                       \
             gd_ts_->checks_failed++;                                                               \
         }                                                                                          \
@@ -42,7 +42,7 @@ typedef struct gd_test_case {
     do {                                                                                           \
         double a_ = (a), b_ = (b), t_ = (tol);                                                     \
         if (!(fabs(a_ - b_) <= t_)) {                                                              \
-            fprintf(stderr, "  %s:%d: %s = %.12g, expected %.12g (abs tol %g)\n", __FILE__,       \
+            fprintf(stderr, "  %s:%d: %s = %.12g, expected %.12g (abs tol %g)\n", __FILE__,        \
                     __LINE__, #a, a_, b_, t_);                                                     \
             gd_ts_->checks_failed++;                                                               \
         }                                                                                          \
@@ -52,7 +52,7 @@ typedef struct gd_test_case {
     do {                                                                                           \
         const char *a_ = (a), *b_ = (b);                                                           \
         if (!a_ || strcmp(a_, b_) != 0) {                                                          \
-            fprintf(stderr, "  %s:%d: %s = \"%s\", expected \"%s\"\n", __FILE__, __LINE__, #a,    \
+            fprintf(stderr, "  %s:%d: %s = \"%s\", expected \"%s\"\n", __FILE__, __LINE__, #a,     \
                     a_ ? a_ : "(null)", b_);                                                       \
             gd_ts_->checks_failed++;                                                               \
         }                                                                                          \
@@ -62,7 +62,7 @@ typedef struct gd_test_case {
 #define REQUIRE(cond)                                                                              \
     do {                                                                                           \
         if (!(cond)) {                                                                             \
-            fprintf(stderr, "  %s:%d: REQUIRE(%s) failed\n", __FILE__, __LINE__, #cond);          \
+            fprintf(stderr, "  %s:%d: REQUIRE(%s) failed\n", __FILE__, __LINE__, #cond);           \
             gd_ts_->checks_failed++;                                                               \
             return;                                                                                \
         }                                                                                          \
@@ -108,9 +108,12 @@ static inline int gd_test_run(const gd_test_case *cases, int n, int argc, char *
 #define RUN_TESTS(...)                                                                             \
     int main(int argc, char **argv)                                                                \
     {                                                                                              \
-        static const gd_test_case cases_[] = {__VA_ARGS__};                                       \
-        return gd_test_run(cases_, (int)(sizeof cases_ / sizeof cases_[0]), argc, argv);          \
+        static const gd_test_case cases_[] = {__VA_ARGS__};                                        \
+        return gd_test_run(cases_, (int)(sizeof cases_ / sizeof cases_[0]), argc, argv);           \
     }
-#define T(name) {#name, name}
+#define T(name)                                                                                    \
+    {                                                                                              \
+#name, name                                                                                \
+    }
 
 #endif

@@ -6,28 +6,9 @@
 
 #include "geardyn/campbell.h"
 #include "harness.h"
+#include "model_support.h"
 
-typedef struct fx {
-    gd_model *m;
-    gd_system *s;
-} fx;
-
-static int load(fx *f, const char *path, const char *yaml)
-{
-    gd_error err;
-    memset(f, 0, sizeof *f);
-    gd_status st = path ? gd_model_load(path, &f->m, &err)
-                        : gd_model_load_string(yaml, "inline.yaml", &f->m, &err);
-    if (!st) st = gd_system_build(f->m, &f->s, &err);
-    if (st) fprintf(stderr, "  %s\n", err.message);
-    return st == GD_OK;
-}
-
-static void fx_free(fx *f)
-{
-    gd_system_free(f->s);
-    gd_model_free(f->m);
-}
+/* fx, load, fx_free, dof: tests/model_support.h */
 
 static double *linspace(double a, double b, int n)
 {

@@ -26,7 +26,8 @@ static gd_mesh make_mesh(double gamma, double alpha, double beta, int hand, int 
 static double dot12(const double *a, const double *q)
 {
     double s = 0;
-    for (int i = 0; i < 12; i++) s += a[i] * q[i];
+    for (int i = 0; i < 12; i++)
+        s += a[i] * q[i];
     return s;
 }
 
@@ -44,41 +45,33 @@ static double dot12(const double *a, const double *q)
                         body                                                                       \
                     }
 
-TEST(rigid_rotation_in_gear_ratio_gives_no_deformation)
-{
-    FOR_ALL_MESHES({
+TEST(rigid_rotation_in_gear_ratio_gives_no_deformation){FOR_ALL_MESHES({
+    double q[12] = {0};
+    q[GD_RZ] = 1e-3;
+    q[6 + GD_RZ] = -1e-3 * g.base_radius[0] / g.base_radius[1];
+    CHECK_ABS(dot12(a, q), 0, 1e-18);
+})}
+
+TEST(common_translation_gives_no_deformation){FOR_ALL_MESHES({
+    for (int d = GD_X; d <= GD_Z; d++) {
         double q[12] = {0};
-        q[GD_RZ] = 1e-3;
-        q[6 + GD_RZ] = -1e-3 * g.base_radius[0] / g.base_radius[1];
+        q[d] = q[6 + d] = 1e-4;
         CHECK_ABS(dot12(a, q), 0, 1e-18);
-    })
-}
+    }
+})}
 
-TEST(common_translation_gives_no_deformation)
-{
-    FOR_ALL_MESHES({
-        for (int d = GD_X; d <= GD_Z; d++) {
-            double q[12] = {0};
-            q[d] = q[6 + d] = 1e-4;
-            CHECK_ABS(dot12(a, q), 0, 1e-18);
-        }
-    })
-}
-
-TEST(contact_normal_is_unit_and_torque_resists_the_driver)
-{
-    FOR_ALL_MESHES({
-        if (lv != GD_COUPLING_FULL) continue;
-        CHECK_REL(a[0] * a[0] + a[1] * a[1] + a[2] * a[2], 1.0, 1e-14);
-        /* moment arm of the normal force about each centre: rb cos(bb) in the plane */
-        CHECK_REL(fabs(a[GD_RZ]), g.base_radius[0] * cos(g.base_helix_angle), 1e-14);
-        CHECK_REL(fabs(a[6 + GD_RZ]), g.base_radius[1] * cos(g.base_helix_angle), 1e-14);
-        /* compression pushes the driver against its rotation: torque -k d a_rz opposes s */
-        CHECK(a[GD_RZ] * sense > 0);
-        /* the normal force on each gear is equal and opposite */
-        for (int d = 0; d < 3; d++) CHECK_ABS(a[d] + a[6 + d], 0, 1e-15);
-    })
-}
+TEST(contact_normal_is_unit_and_torque_resists_the_driver){FOR_ALL_MESHES({
+    if (lv != GD_COUPLING_FULL) continue;
+    CHECK_REL(a[0] * a[0] + a[1] * a[1] + a[2] * a[2], 1.0, 1e-14);
+    /* moment arm of the normal force about each centre: rb cos(bb) in the plane */
+    CHECK_REL(fabs(a[GD_RZ]), g.base_radius[0] * cos(g.base_helix_angle), 1e-14);
+    CHECK_REL(fabs(a[6 + GD_RZ]), g.base_radius[1] * cos(g.base_helix_angle), 1e-14);
+    /* compression pushes the driver against its rotation: torque -k d a_rz opposes s */
+    CHECK(a[GD_RZ] * sense > 0);
+    /* the normal force on each gear is equal and opposite */
+    for (int d = 0; d < 3; d++)
+        CHECK_ABS(a[d] + a[6 + d], 0, 1e-15);
+})}
 
 TEST(helical_at_zero_helix_equals_spur)
 {
@@ -89,10 +82,12 @@ TEST(helical_at_zero_helix_equals_spur)
             double ah[12], as[12];
             gd_mesh_vector_local(&h, ah);
             gd_mesh_vector_local(&s, as);
-            for (int i = 0; i < 12; i++) CHECK_ABS(ah[i], as[i], 1e-16);
+            for (int i = 0; i < 12; i++)
+                CHECK_ABS(ah[i], as[i], 1e-16);
             /* spur: no axial or tilt coupling at all */
             for (int k = 0; k < 2; k++)
-                for (int d = GD_Z; d <= GD_RY; d++) CHECK_ABS(ah[6 * k + d], 0, 1e-16);
+                for (int d = GD_Z; d <= GD_RY; d++)
+                    CHECK_ABS(ah[6 * k + d], 0, 1e-16);
         }
     /* and a small helix angle tends to it continuously */
     gd_mesh h = make_mesh(0.3, 0.349, 1e-7, 1, 1, GD_COUPLING_FULL);
@@ -100,7 +95,8 @@ TEST(helical_at_zero_helix_equals_spur)
     double ah[12], as[12];
     gd_mesh_vector_local(&h, ah);
     gd_mesh_vector_local(&s, as);
-    for (int i = 0; i < 12; i++) CHECK_ABS(ah[i], as[i], 1e-7);
+    for (int i = 0; i < 12; i++)
+        CHECK_ABS(ah[i], as[i], 1e-7);
 }
 
 TEST(helical_hand_and_sense_flip_axial_thrust)
@@ -144,7 +140,8 @@ TEST(kumar_mesh_vector)
     double a[12];
     gd_mesh_vector_local(&g, a);
     const double want[12] = {0, 1, 0, 0, 0, 0.0445, 0, -1, 0, 0, 0, 0.047};
-    for (int i = 0; i < 12; i++) CHECK_ABS(a[i], want[i], 1e-16);
+    for (int i = 0; i < 12; i++)
+        CHECK_ABS(a[i], want[i], 1e-16);
 }
 
 RUN_TESTS(T(rigid_rotation_in_gear_ratio_gives_no_deformation),

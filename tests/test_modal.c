@@ -65,16 +65,18 @@ TEST(kumar_torsional_table_3_1)
     REQUIRE(f.r->nmodes == 4);
     const double paper[4] = {0, 122.32, 309.7, 25727.92};
     CHECK(f.r->modes[0].rigid_body);
-    for (int k = 1; k < 4; k++) CHECK_REL(f.r->modes[k].omega_n, paper[k], 0.01);
+    for (int k = 1; k < 4; k++)
+        CHECK_REL(f.r->modes[k].omega_n, paper[k], 0.01);
     for (int k = 0; k < 3; k++)
-        CHECK_REL(shape(&f, k, "gear", GD_RZ, NULL) / shape(&f, k, "pinion", GD_RZ, NULL),
-                  -0.9468, 2e-3);
+        CHECK_REL(shape(&f, k, "gear", GD_RZ, NULL) / shape(&f, k, "pinion", GD_RZ, NULL), -0.9468,
+                  2e-3);
     /* mode 2 is the motor against the load: Table 3.1 ratios -2.0153 and 3.7617 */
     double p = shape(&f, 1, "pinion", GD_RZ, NULL);
     CHECK_REL(shape(&f, 1, "motor", GD_RZ, NULL) / p, -2.0153, 0.01);
     CHECK_REL(shape(&f, 1, "load", GD_RZ, NULL) / p, -3.7617, 0.01);
     /* mode 4 is the mesh mode, 1 : -1.9012 in the paper */
-    CHECK_REL(shape(&f, 3, "gear", GD_RZ, NULL) / shape(&f, 3, "pinion", GD_RZ, NULL), 1.9012, 0.01);
+    CHECK_REL(shape(&f, 3, "gear", GD_RZ, NULL) / shape(&f, 3, "pinion", GD_RZ, NULL), 1.9012,
+              0.01);
     fx_free(&f);
 }
 
@@ -87,7 +89,8 @@ TEST(kumar_coupled_table_3_2)
     CHECK(!f.r->damped);
     const double paper[8] = {0, 122.32, 309.70, 23446.05, 38659.61, 40474.36, 54672.94, 57304.6};
     CHECK(f.r->modes[0].rigid_body);
-    for (int k = 1; k < 8; k++) CHECK_REL(f.r->modes[k].omega_n, paper[k], 0.01);
+    for (int k = 1; k < 8; k++)
+        CHECK_REL(f.r->modes[k].omega_n, paper[k], 0.01);
     /* modes 5 and 7 are the uncoupled x modes: only x of the pinion, then of the gear */
     const int xmode[2] = {4, 6};
     const char *xnode[2] = {"pinion", "gear"};
@@ -106,7 +109,8 @@ TEST(kumar_coupled_table_3_2)
                   1.9012, 0.01);
     /* the two low modes are torsional as in the 4-DOF model (the paper's "without any
      * participation by lateral motion": the bearings hold 2e-5 of the energy here) */
-    for (int k = 1; k < 3; k++) CHECK_REL(f.r->modes[k].energy_share[GD_MOTION_TORSIONAL], 1.0, 1e-4);
+    for (int k = 1; k < 3; k++)
+        CHECK_REL(f.r->modes[k].energy_share[GD_MOTION_TORSIONAL], 1.0, 1e-4);
     fx_free(&f);
 }
 
@@ -121,7 +125,8 @@ TEST(chen_fig3_modes_within_5_percent)
     REQUIRE(fx_solve(&f, "examples/chen1998_gear_pair.yaml", NULL, &o));
     REQUIRE(f.r->nmodes == 6);
     /* 5%: the OCR damaged Appendix II (DESIGN.md) */
-    for (int k = 0; k < 6; k++) CHECK_REL(f.r->modes[k].omega_n, CHEN_FIG3[k], 0.05);
+    for (int k = 0; k < 6; k++)
+        CHECK_REL(f.r->modes[k].omega_n, CHEN_FIG3[k], 0.05);
     CHECK(f.r->modes[0].dominant_motion == GD_MOTION_TORSIONAL);
     CHECK(f.r->modes[5].dominant_motion == GD_MOTION_TORSIONAL);
     fx_free(&f);
@@ -141,7 +146,8 @@ TEST(chen_pure_lateral_modes_independent_of_mesh_stiffness)
         gd_error err;
         REQUIRE(gd_system_build(f.m, &f.s, &err) == GD_OK);
         REQUIRE(gd_modal_solve(f.s, &o, &f.r, &err) == GD_OK);
-        for (int k = 0; k < 6; k++) w[t][k] = f.r->modes[k].omega_n;
+        for (int k = 0; k < 6; k++)
+            w[t][k] = f.r->modes[k].omega_n;
         fx_free(&f);
     }
     double wa = sqrt(5.683e6 / 8.975), wb = sqrt(25.5735e6 / 9.124);
@@ -160,7 +166,8 @@ TEST(chen_pure_lateral_modes_independent_of_mesh_stiffness)
 /* ---- 004: the 2018 test rig, Tables 4 and 5 ---- */
 
 static const double RIG_COUPLED[8] = {126.45, 135.88, 153.81, 161.82, 740.3, 740.3, 770.66, 770.66};
-static const double RIG_UNCOUPLED[8] = {135.88, 135.88, 161.82, 161.82, 740.3, 740.3, 770.66, 770.66};
+static const double RIG_UNCOUPLED[8] = {135.88, 135.88, 161.82, 161.82,
+                                        740.3,  740.3,  770.66, 770.66};
 
 static void rig_frequencies(int coupled, int per_section, double *hz)
 {
@@ -168,7 +175,8 @@ static void rig_frequencies(int coupled, int per_section, double *hz)
     gd_system *s;
     gd_modal_result *r;
     gd_error err;
-    for (int k = 0; k < 9; k++) hz[k] = NAN;
+    for (int k = 0; k < 9; k++)
+        hz[k] = NAN;
     if (gd_model_load("examples/rig2018.yaml", &m, &err)) return;
     if (!coupled) m->nmeshes = 0;
     if (per_section > 0) {
@@ -213,9 +221,11 @@ TEST(rig2018_tables_4_and_5)
 {
     double hz[9];
     rig_frequencies(1, 0, hz);
-    for (int k = 0; k < 8; k++) CHECK_REL(hz[k], RIG_COUPLED[k], 0.005);
+    for (int k = 0; k < 8; k++)
+        CHECK_REL(hz[k], RIG_COUPLED[k], 0.005);
     rig_frequencies(0, 0, hz);
-    for (int k = 0; k < 8; k++) CHECK_REL(hz[k], RIG_UNCOUPLED[k], 0.005);
+    for (int k = 0; k < 8; k++)
+        CHECK_REL(hz[k], RIG_UNCOUPLED[k], 0.005);
 }
 
 /* Refining the mesh converges monotonically from above (a conforming model is
@@ -224,7 +234,8 @@ TEST(rig2018_converges_with_element_count)
 {
     const int counts[4] = {1, 2, 4, 8};
     double hz[4][9];
-    for (int c = 0; c < 4; c++) rig_frequencies(1, counts[c], hz[c]);
+    for (int c = 0; c < 4; c++)
+        rig_frequencies(1, counts[c], hz[c]);
     for (int k = 0; k < 8; k++) {
         double d1 = hz[0][k] - hz[1][k], d2 = hz[1][k] - hz[2][k], d3 = hz[2][k] - hz[3][k];
         CHECK(d1 >= -1e-9 * hz[0][k] && d2 >= -1e-9 * hz[0][k] && d3 >= -1e-9 * hz[0][k]);
@@ -258,14 +269,16 @@ TEST(left_right_vectors_are_bi_orthonormal)
             for (int a = 0; a < n; a++) {
                 double complex s = 0;
                 for (int b = 0; b < n; b++) {
-                    double complex u = f.r->shape_re[b + (size_t)r * n] + I * f.r->shape_im[b + (size_t)r * n];
+                    double complex u =
+                        f.r->shape_re[b + (size_t)r * n] + I * f.r->shape_im[b + (size_t)r * n];
                     s += ((li + lr) * M[a + (size_t)b * n] + D[a + (size_t)b * n]) * u;
                 }
                 Bu[a] = s;
             }
             double complex p = 0;
             for (int a = 0; a < n; a++)
-                p += (f.r->left_re[a + (size_t)i * n] + I * f.r->left_im[a + (size_t)i * n]) * Bu[a];
+                p +=
+                    (f.r->left_re[a + (size_t)i * n] + I * f.r->left_im[a + (size_t)i * n]) * Bu[a];
             CHECK_ABS(cabs(p - (i == r ? 1.0 : 0.0)), 0, 1e-8);
             checked++;
         }
@@ -291,7 +304,8 @@ TEST(modal_summation_equals_direct_receptance)
     gd_system_dense(f.s, 0, M, D, K);
     const double w = 1500.0;
     lapack_complex_double *Z = malloc(sizeof(lapack_complex_double) * n * n);
-    for (int k = 0; k < n * n; k++) Z[k] = -w * w * M[k] + I * w * D[k] + K[k];
+    for (int k = 0; k < n * n; k++)
+        Z[k] = -w * w * M[k] + I * w * D[k] + K[k];
     lapack_int *piv = malloc(sizeof(lapack_int) * n);
     REQUIRE(LAPACKE_zgetrf(LAPACK_COL_MAJOR, n, n, Z, n, piv) == 0);
     REQUIRE(LAPACKE_zgetri(LAPACK_COL_MAJOR, n, Z, n, piv) == 0);
@@ -324,20 +338,20 @@ TEST(undamped_and_state_space_agree)
     REQUIRE(a.r->nmodes == b.r->nmodes);
     for (int k = 0; k < a.r->nmodes; k++) {
         CHECK(a.r->modes[k].rigid_body == b.r->modes[k].rigid_body);
-        if (!a.r->modes[k].rigid_body) CHECK_REL(b.r->modes[k].omega_n, a.r->modes[k].omega_n, 1e-9);
+        if (!a.r->modes[k].rigid_body)
+            CHECK_REL(b.r->modes[k].omega_n, a.r->modes[k].omega_n, 1e-9);
     }
     fx_free(&a);
     fx_free(&b);
 }
 
 /* A massless node between two torsional springs is condensed: k_eq = k1 k2/(k1 + k2). */
-static const char *CONDENSE_YAML =
-    "dofs: [rz]\n"
-    "shafts: [{name: s, nodes: [{name: a}, {name: mid}]}]\n"
-    "disks: [{node: a, polar_inertia: 0.02}]\n"
-    "springs:\n"
-    "  - {node: a, to: mid, dof: rz, stiffness: 3000}\n"
-    "  - {node: mid, dof: rz, stiffness: 6000%s}\n";
+static const char *CONDENSE_YAML = "dofs: [rz]\n"
+                                   "shafts: [{name: s, nodes: [{name: a}, {name: mid}]}]\n"
+                                   "disks: [{node: a, polar_inertia: 0.02}]\n"
+                                   "springs:\n"
+                                   "  - {node: a, to: mid, dof: rz, stiffness: 3000}\n"
+                                   "  - {node: mid, dof: rz, stiffness: 6000%s}\n";
 
 TEST(massless_dofs_are_condensed)
 {
@@ -415,8 +429,10 @@ TEST(energy_shares_sum_to_one)
     REQUIRE(fx_solve(&f, "examples/kumar2011_coupled.yaml", NULL, &o));
     for (int k = 1; k < f.r->nmodes; k++) {
         double s = 0, c = 0;
-        for (int j = 0; j < GD_NMOTIONS; j++) s += f.r->modes[k].energy_share[j];
-        for (int j = 0; j < f.s->ncomponents; j++) c += f.r->energy_by_component[j + k * f.s->ncomponents];
+        for (int j = 0; j < GD_NMOTIONS; j++)
+            s += f.r->modes[k].energy_share[j];
+        for (int j = 0; j < f.s->ncomponents; j++)
+            c += f.r->energy_by_component[j + k * f.s->ncomponents];
         CHECK_REL(s, 1.0, 1e-12);
         CHECK_REL(c, 1.0, 1e-12);
     }
@@ -427,9 +443,9 @@ TEST(energy_shares_sum_to_one)
 }
 
 RUN_TESTS(T(kumar_torsional_table_3_1), T(kumar_coupled_table_3_2),
-          T(chen_fig3_modes_within_5_percent), T(chen_pure_lateral_modes_independent_of_mesh_stiffness),
-          T(rig2018_tables_4_and_5), T(rig2018_converges_with_element_count),
-          T(left_right_vectors_are_bi_orthonormal), T(modal_summation_equals_direct_receptance),
-          T(undamped_and_state_space_agree), T(massless_dofs_are_condensed),
-          T(gyroscopic_forward_rises_backward_falls), T(whirl_is_relative_to_the_shaft_sense),
-          T(energy_shares_sum_to_one))
+          T(chen_fig3_modes_within_5_percent),
+          T(chen_pure_lateral_modes_independent_of_mesh_stiffness), T(rig2018_tables_4_and_5),
+          T(rig2018_converges_with_element_count), T(left_right_vectors_are_bi_orthonormal),
+          T(modal_summation_equals_direct_receptance), T(undamped_and_state_space_agree),
+          T(massless_dofs_are_condensed), T(gyroscopic_forward_rises_backward_falls),
+          T(whirl_is_relative_to_the_shaft_sense), T(energy_shares_sum_to_one))

@@ -5,21 +5,21 @@
 #include "harness.h"
 
 #define PAIR                                                                                       \
-    "dofs: [rz]\n"                                  /* 1 */                                        \
-    "shafts:\n"                                     /* 2 */                                        \
-    "  - {name: a, nodes: [{name: p}, {name: m}]}\n" /* 3 */                                       \
-    "  - {name: b, nodes: [{name: g}]}\n"           /* 4 */                                        \
-    "disks:\n"                                      /* 5 */                                        \
-    "  - {node: p, polar_inertia: 1e-3}\n"          /* 6 */                                        \
-    "  - {node: m, polar_inertia: 1e-2}\n"          /* 7 */                                        \
-    "  - {node: g, polar_inertia: 2e-3}\n"          /* 8 */                                        \
+    "dofs: [rz]\n"                                           /* 1 */                               \
+    "shafts:\n"                                              /* 2 */                               \
+    "  - {name: a, nodes: [{name: p}, {name: m}]}\n"         /* 3 */                               \
+    "  - {name: b, nodes: [{name: g}]}\n"                    /* 4 */                               \
+    "disks:\n"                                               /* 5 */                               \
+    "  - {node: p, polar_inertia: 1e-3}\n"                   /* 6 */                               \
+    "  - {node: m, polar_inertia: 1e-2}\n"                   /* 7 */                               \
+    "  - {node: g, polar_inertia: 2e-3}\n"                   /* 8 */                               \
     "springs: [{node: m, to: p, dof: rz, stiffness: 1e4}]\n" /* 9 */                               \
-    "meshes:\n"                                     /* 10 */                                       \
-    "  - name: mesh\n"                              /* 11 */                                       \
-    "    driver: p\n"                               /* 12 */                                       \
-    "    driven: g\n"                               /* 13 */                                       \
-    "    teeth: [20, 40]\n"                         /* 14 */                                       \
-    "    base_radius: [0.02, 0.04]\n"               /* 15 */
+    "meshes:\n"                                              /* 10 */                              \
+    "  - name: mesh\n"                                       /* 11 */                              \
+    "    driver: p\n"                                        /* 12 */                              \
+    "    driven: g\n"                                        /* 13 */                              \
+    "    teeth: [20, 40]\n"                                  /* 14 */                              \
+    "    base_radius: [0.02, 0.04]\n"                        /* 15 */
 
 static gd_model *load(gd_test_state *gd_ts_, const char *yaml, gd_error *err)
 {
@@ -83,8 +83,8 @@ TEST(mesh_tvms_table_damping_backlash_and_ste)
 
 TEST(mesh_dynamics_errors)
 {
-    EXPECT(PAIR "    tvms: {angle: [0, 20 deg], stiffness: [3e8, 4e8]}\n", 16, "meshes[0].tvms.angle",
-           "period");
+    EXPECT(PAIR "    tvms: {angle: [0, 20 deg], stiffness: [3e8, 4e8]}\n", 16,
+           "meshes[0].tvms.angle", "period");
     EXPECT(PAIR "    tvms: {angle: [0, 5 deg, 3 deg], stiffness: [3e8, 4e8, 1e8]}\n", 16,
            "meshes[0].tvms.angle", "increase");
     EXPECT(PAIR "    tvms: {angle: [0, 5 deg], stiffness: [3e8]}\n", 16, "meshes[0].tvms.stiffness",
@@ -111,14 +111,15 @@ TEST(mesh_dynamics_errors)
 TEST(squeeze_film_damper)
 {
     gd_error err;
-    gd_model *m = load(gd_ts_,
-                       PAIR "    stiffness: 3e8\n"
-                            "bearings:\n"
-                            "  - {name: s, node: g, sfd: {viscosity: 6.895e-3 Pa*s, diameter: 35.56 "
-                            "mm, length: 17.145 mm, clearance: 76.2 um}}\n"
-                            "  - {name: t, node: p, k: 1e6, sfd: {viscosity: 1e-2, diameter: 0.04, "
-                            "length: 0.01, clearance: 1e-4, film: 2pi, correction: none}}\n",
-                       &err);
+    gd_model *m =
+        load(gd_ts_,
+             PAIR "    stiffness: 3e8\n"
+                  "bearings:\n"
+                  "  - {name: s, node: g, sfd: {viscosity: 6.895e-3 Pa*s, diameter: 35.56 "
+                  "mm, length: 17.145 mm, clearance: 76.2 um}}\n"
+                  "  - {name: t, node: p, k: 1e6, sfd: {viscosity: 1e-2, diameter: 0.04, "
+                  "length: 0.01, clearance: 1e-4, film: 2pi, correction: none}}\n",
+             &err);
     REQUIRE(m);
     const gd_bearing *s = &m->bearings[0], *t = &m->bearings[1];
     CHECK(s->has_sfd && t->has_sfd);
@@ -146,29 +147,29 @@ TEST(squeeze_film_damper)
 TEST(loads_prescribed_and_cams)
 {
     gd_error err;
-    gd_model *m = load(
-        gd_ts_,
-        PAIR "    stiffness: 3e8\n"
-             "excitations:\n"
-             "  unbalances: false\n"
-             "  loads:\n"
-             "    - {name: brake, node: g, value: -12 N*m}\n"
-             "    - {node: g, mean: 5, amplitude: 2, frequency: 50 Hz, phase: 90 deg}\n"
-             "    - {node: g, amplitude: 3, order: 2}\n"
-             "    - {node: g, table: {angle: [0, 180 deg], value: [1, 3]}}\n"
-             "prescribed:\n"
-             "  - {node: m, motion: nominal}\n"
-             "  - {node: p, dof: rz, speed: 600 rpm}\n"
-             "cam_torques:\n"
-             "  - name: intake\n"
-             "    camshaft: g\n"
-             "    lift: {angle: [0, 90 deg, 180 deg, 270 deg], lift: [0, 5 mm, 8 mm, 5 mm]}\n"
-             "    valves: [{mass: 0.1 kg, phase: 0}, {mass: 0.12, phase: 90 deg}]\n"
-             "  - camshaft: g\n"
-             "    include_acceleration: false\n"
-             "    lift: {harmonics: {mean: 4 mm, cos: [-4 mm, 0.5 mm]}}\n"
-             "    valves: [{mass: 0.1}]\n",
-        &err);
+    gd_model *m =
+        load(gd_ts_,
+             PAIR "    stiffness: 3e8\n"
+                  "excitations:\n"
+                  "  unbalances: false\n"
+                  "  loads:\n"
+                  "    - {name: brake, node: g, value: -12 N*m}\n"
+                  "    - {node: g, mean: 5, amplitude: 2, frequency: 50 Hz, phase: 90 deg}\n"
+                  "    - {node: g, amplitude: 3, order: 2}\n"
+                  "    - {node: g, table: {angle: [0, 180 deg], value: [1, 3]}}\n"
+                  "prescribed:\n"
+                  "  - {node: m, motion: nominal}\n"
+                  "  - {node: p, dof: rz, speed: 600 rpm}\n"
+                  "cam_torques:\n"
+                  "  - name: intake\n"
+                  "    camshaft: g\n"
+                  "    lift: {angle: [0, 90 deg, 180 deg, 270 deg], lift: [0, 5 mm, 8 mm, 5 mm]}\n"
+                  "    valves: [{mass: 0.1 kg, phase: 0}, {mass: 0.12, phase: 90 deg}]\n"
+                  "  - camshaft: g\n"
+                  "    include_acceleration: false\n"
+                  "    lift: {harmonics: {mean: 4 mm, cos: [-4 mm, 0.5 mm]}}\n"
+                  "    valves: [{mass: 0.1}]\n",
+             &err);
     REQUIRE(m);
     CHECK(m->excite_unbalances == 0);
     REQUIRE(m->nexcitations == 4);

@@ -1361,9 +1361,10 @@ TEST(torsion_only_disk_in_model_with_tilts)
 
 TEST(unbalance_amount_or_mass_and_eccentricity)
 {
-    gd_model *m = load_ok(gd_ts_, ONE_NODE "unbalances:\n"
-                                           "  - {node: n1, mass: 2, eccentricity: 10 um, phase: 90 deg}\n"
-                                           "  - {name: u2, node: n1, amount: 3 g*mm}\n");
+    gd_model *m =
+        load_ok(gd_ts_, ONE_NODE "unbalances:\n"
+                                 "  - {node: n1, mass: 2, eccentricity: 10 um, phase: 90 deg}\n"
+                                 "  - {name: u2, node: n1, amount: 3 g*mm}\n");
     REQUIRE(m);
     REQUIRE(m->nunbalances == 2);
     CHECK_REL(m->unbalances[0].amount, 2e-5, 1e-12);
@@ -1395,7 +1396,8 @@ TEST(unbalance_errors)
                       5, "unbalances[0].ecc", "unknown key", "eccentricity");
 }
 
-RUN_TESTS(T(unbalance_amount_or_mass_and_eccentricity), T(unbalance_errors), T(valid_bases_load_with_units), T(yaml_syntax_error),
+RUN_TESTS(T(unbalance_amount_or_mass_and_eccentricity), T(unbalance_errors),
+          T(valid_bases_load_with_units), T(yaml_syntax_error),
           T(yaml_unclosed_bracket_names_its_line), T(yaml_duplicate_key), T(yaml_alias_rejected),
           T(yaml_two_documents), T(empty_file), T(empty_document_marker_is_empty),
           T(top_level_not_a_map), T(unknown_key_top), T(unknown_key_top_far_from_any),

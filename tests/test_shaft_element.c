@@ -130,8 +130,8 @@ TEST(pinned_pinned_thick_beam_matches_timoshenko)
     REQUIRE(r);
     for (int n = 1; n <= 3; n++) {
         double exact = timoshenko_ss(n, 0.8, 0.1);
-        double euler = pow(n * M_PI / 0.8, 2) * sqrt(STEEL.E * M_PI * pow(0.1, 4) / 64 /
-                                                     (STEEL.density * M_PI * 0.01 / 4));
+        double euler = pow(n * M_PI / 0.8, 2) *
+                       sqrt(STEEL.E * M_PI * pow(0.1, 4) / 64 / (STEEL.density * M_PI * 0.01 / 4));
         CHECK(exact < euler * 0.99); /* the test is sensitive to shear */
         CHECK_REL(r->modes[n - 1].omega_n, exact, 2e-4);
     }
@@ -162,15 +162,17 @@ TEST(free_free_slender_beam_matches_euler_bernoulli)
 
 TEST(torsion_and_axial_rod_frequencies)
 {
-    const char *yaml = "dofs: [z, rz]\n"
-                       "materials: {steel: {density: 7800, E: 2.0e11, poisson: 0.3}}\n"
-                       "shafts:\n"
-                       "  - {name: rod, material: steel, elements_per_section: 80,\n"
-                       "     sections: [{length: 1.0, outer_diameter: 0.05, inner_diameter: 0.03}]}\n";
+    const char *yaml =
+        "dofs: [z, rz]\n"
+        "materials: {steel: {density: 7800, E: 2.0e11, poisson: 0.3}}\n"
+        "shafts:\n"
+        "  - {name: rod, material: steel, elements_per_section: 80,\n"
+        "     sections: [{length: 1.0, outer_diameter: 0.05, inner_diameter: 0.03}]}\n";
     gd_modal_result *r = solve_yaml(yaml, 6);
     REQUIRE(r);
     int rigid = 0;
-    for (int j = 0; j < 6; j++) rigid += r->modes[j].rigid_body;
+    for (int j = 0; j < 6; j++)
+        rigid += r->modes[j].rigid_body;
     CHECK(rigid == 2);
     double wt = M_PI * sqrt(STEEL.G / STEEL.density), wa = M_PI * sqrt(STEEL.E / STEEL.density);
     /* free-free rods: n pi/L sqrt(G/rho) (torsion), n pi/L sqrt(E/rho) (axial) */
@@ -183,7 +185,8 @@ TEST(torsion_and_axial_rod_frequencies)
     gd_modal_free(r);
 }
 
-RUN_TESTS(T(matrices_symmetric_and_gyroscopic_skew), T(stiffness_has_six_rigid_modes_mass_positive_definite),
+RUN_TESTS(T(matrices_symmetric_and_gyroscopic_skew),
+          T(stiffness_has_six_rigid_modes_mass_positive_definite),
           T(mass_matrix_reproduces_rigid_body_inertia), T(shear_coefficient_solid_and_thin),
           T(pinned_pinned_thick_beam_matches_timoshenko),
           T(free_free_slender_beam_matches_euler_bernoulli), T(torsion_and_axial_rod_frequencies))

@@ -52,4 +52,5 @@ TEST(wrong_dimensions_and_garbage_are_rejected)
     CHECK(gd_parse_quantity("1 m^9", GD_QTY_LENGTH, &v, why, sizeof why) != 0);
 }
 
-RUN_TESTS(T(plain_numbers_are_si), T(units_convert_to_si), T(wrong_dimensions_and_garbage_are_rejected))
+RUN_TESTS(T(plain_numbers_are_si), T(units_convert_to_si),
+          T(wrong_dimensions_and_garbage_are_rejected))

@@ -5,7 +5,8 @@ TEST(tree_keeps_lines)
 {
     gd_error err;
     gd_ydoc *doc;
-    REQUIRE(gd_ydoc_load_string("a: 1\nb:\n  - x: 2 mm\n  - [1, 2]\n", "t.yaml", &doc, &err) == GD_OK);
+    REQUIRE(gd_ydoc_load_string("a: 1\nb:\n  - x: 2 mm\n  - [1, 2]\n", "t.yaml", &doc, &err) ==
+            GD_OK);
     REQUIRE(doc->root && doc->root->kind == GD_Y_MAP);
     const gd_ynode *b = gd_ymap_get(doc->root, "b");
     REQUIRE(b && b->kind == GD_Y_SEQ && b->n == 2);
@@ -54,7 +55,8 @@ TEST(typed_readers_check_values)
 {
     gd_error err;
     gd_ydoc *doc;
-    REQUIRE(gd_ydoc_load_string("m: -2\nn: 3.5\nc: blue\nb: yes\nq: [1]\n", "v.yaml", &doc, &err) == GD_OK);
+    REQUIRE(gd_ydoc_load_string("m: -2\nn: 3.5\nc: blue\nb: yes\nq: [1]\n", "v.yaml", &doc, &err) ==
+            GD_OK);
     gd_yreader r = {"v.yaml", &err};
     double m;
     CHECK(gd_yread_qty(&r, doc->root, "m", "", GD_QTY_MASS, GD_YPOS, &m, NULL) == GD_EINPUT);

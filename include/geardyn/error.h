@@ -6,10 +6,10 @@
 
 typedef enum gd_status {
     GD_OK = 0,
-    GD_EINPUT = 2,    /* the model or an option is wrong: user's to fix */
-    GD_ENUMERIC = 3,  /* a solver failed (singular system, no convergence) */
-    GD_ENOMEM = 4,    /* out of memory */
-    GD_EIO = 5,       /* a file could not be read or written */
+    GD_EINPUT = 2,   /* the model or an option is wrong: user's to fix */
+    GD_ENUMERIC = 3, /* a solver failed (singular system, no convergence) */
+    GD_ENOMEM = 4,   /* out of memory */
+    GD_EIO = 5,      /* a file could not be read or written */
 } gd_status;
 
 typedef struct gd_error {

@@ -20,10 +20,10 @@ typedef enum gd_modal_kind {
 } gd_modal_kind;
 
 typedef struct gd_modal_options {
-    double speed;       /* reference speed, rad/s */
-    int nmodes;         /* lowest modes kept; 0: all */
+    double speed; /* reference speed, rad/s */
+    int nmodes;   /* lowest modes kept; 0: all */
     gd_modal_kind kind;
-    int want_left;      /* compute bi-orthonormal left eigenvectors (damped) */
+    int want_left; /* compute bi-orthonormal left eigenvectors (damped) */
 } gd_modal_options;
 
 typedef struct gd_mode {
@@ -46,15 +46,15 @@ typedef struct gd_modal_result {
     int ndof, nmodes, ncomponents;
     int damped;
     double speed;
-    gd_mode *modes;           /* ascending natural frequency */
+    gd_mode *modes;              /* ascending natural frequency */
     double *shape_re, *shape_im; /* ndof x nmodes, column-major; largest entry = 1 */
     double *left_re, *left_im;   /* NULL unless requested: v^T (2 lambda M + D) u = 1 */
     double *energy_by_component; /* ncomponents x nmodes, column-major: fractions */
 } gd_modal_result;
 
 void gd_modal_options_default(gd_modal_options *opt);
-gd_status gd_modal_solve(const gd_system *sys, const gd_modal_options *opt,
-                         gd_modal_result **out, gd_error *err);
+gd_status gd_modal_solve(const gd_system *sys, const gd_modal_options *opt, gd_modal_result **out,
+                         gd_error *err);
 void gd_modal_free(gd_modal_result *res);
 
 #endif

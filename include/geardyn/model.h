@@ -83,12 +83,12 @@ typedef struct gd_bearing_coeffs {
 typedef struct gd_bearing {
     char name[GD_NAME_MAX];
     int node, node2; /* node2 = -1: to ground */
-    int has_sfd;          /* a squeeze film damper acts here in time integration */
+    int has_sfd;     /* a squeeze film damper acts here in time integration */
     gd_sfd_params sfd;
-    gd_bearing_coeffs coeffs;  /* constant coefficients (or the table's first row) */
-    int ntable;                /* > 0: coefficients interpolated in speed of the node's shaft */
-    double *table_speed;       /* ntable speeds, increasing, rad/s */
-    gd_bearing_coeffs *table;  /* ntable rows */
+    gd_bearing_coeffs coeffs; /* constant coefficients (or the table's first row) */
+    int ntable;               /* > 0: coefficients interpolated in speed of the node's shaft */
+    double *table_speed;      /* ntable speeds, increasing, rad/s */
+    gd_bearing_coeffs *table; /* ntable rows */
     gd_loc loc;
 } gd_bearing;
 
@@ -106,31 +106,31 @@ struct gd_tvms_result;
 /* What a mesh does in time integration beyond its constant k and c (docs/transient.md).
  * Tables are owned by the model. */
 typedef struct gd_mesh_dynamics {
-    gd_table *tvms;              /* k(driver angle), N/m, one mesh period; NULL: the
-                                    `stiffness: {from: geometry}` result, or constant */
-    double tvms_phase;           /* added to the driver angle, rad */
-    double damping_per_stiffness;/* c = damping + this * k(angle), s */
-    double damping_separated;    /* while the teeth are apart (backlash), N s/m */
-    gd_table *ste;               /* static transmission error e(driver angle), m; NULL */
-    int backlash;                /* 1: gap on each flank */
-    double gap;                  /* b, m */
-    double coast_stiffness_ratio;/* k_coast / k_drive (default 1) */
+    gd_table *tvms;               /* k(driver angle), N/m, one mesh period; NULL: the
+                                     `stiffness: {from: geometry}` result, or constant */
+    double tvms_phase;            /* added to the driver angle, rad */
+    double damping_per_stiffness; /* c = damping + this * k(angle), s */
+    double damping_separated;     /* while the teeth are apart (backlash), N s/m */
+    gd_table *ste;                /* static transmission error e(driver angle), m; NULL */
+    int backlash;                 /* 1: gap on each flank */
+    double gap;                   /* b, m */
+    double coast_stiffness_ratio; /* k_coast / k_drive (default 1) */
 } gd_mesh_dynamics;
 
 /* External gear mesh between a driving and a driven gear on different shafts. The
  * mesh deformation is d = a . q along the contact normal; stiffness k acts on d. */
 typedef struct gd_mesh {
     char name[GD_NAME_MAX];
-    int driver, driven;         /* node indices */
-    int teeth[2];               /* 0 when not given */
-    double base_radius[2];      /* m */
-    double pressure_angle;      /* transverse operating pressure angle, rad */
-    double helix_angle;         /* at the pitch circle, rad (0: spur) */
-    double base_helix_angle;    /* derived: tan(bb) = tan(b) cos(alpha_t) */
-    int hand;                   /* driver's hand: +1 right, -1 left */
-    double line_of_centres;     /* angle from +x of the line driver -> driven centre, rad */
-    int driver_sense;           /* derived: +1 driver turns about +z at positive speed */
-    double stiffness, damping;  /* along the contact normal: N/m, N s/m */
+    int driver, driven;        /* node indices */
+    int teeth[2];              /* 0 when not given */
+    double base_radius[2];     /* m */
+    double pressure_angle;     /* transverse operating pressure angle, rad */
+    double helix_angle;        /* at the pitch circle, rad (0: spur) */
+    double base_helix_angle;   /* derived: tan(bb) = tan(b) cos(alpha_t) */
+    int hand;                  /* driver's hand: +1 right, -1 left */
+    double line_of_centres;    /* angle from +x of the line driver -> driven centre, rad */
+    int driver_sense;          /* derived: +1 driver turns about +z at positive speed */
+    double stiffness, damping; /* along the contact normal: N/m, N s/m */
     gd_coupling coupling;
     /* stiffness: {from: geometry}: k(driver angle) over a mesh cycle, owned; stiffness
      * above is its mean (linear analyses). NULL for a constant stiffness. */
@@ -206,15 +206,14 @@ typedef struct gd_model {
     gd_prescription *prescribed;
     int ncams;
     gd_cam *cams;
-    unsigned dof_mask;    /* active node DOFs (GD_DOF_BIT) */
-    int reference_shaft;  /* shaft whose speed is the reference speed */
-    double speed;         /* reference speed, rad/s (0 unless given) */
+    unsigned dof_mask;   /* active node DOFs (GD_DOF_BIT) */
+    int reference_shaft; /* shaft whose speed is the reference speed */
+    double speed;        /* reference speed, rad/s (0 unless given) */
 } gd_model;
 
 gd_status gd_model_load(const char *path, gd_model **out, gd_error *err);
 /* name stands in for the file name in messages. */
-gd_status gd_model_load_string(const char *yaml, const char *name, gd_model **out,
-                               gd_error *err);
+gd_status gd_model_load_string(const char *yaml, const char *name, gd_model **out, gd_error *err);
 void gd_model_free(gd_model *model);
 
 /* Overrides every mesh's coupling level and restricts the active DOFs to the level's
