@@ -380,7 +380,6 @@ static gd_status parse_shaft(gd_mparser *p, const gd_ynode *sm, const char *path
     sh->first_node = m->nnodes;
     double tol = 1e-9 * (total > 0 ? total : 1.0);
     int last_node = -1;
-    double seg_start = 0;
     for (size_t i = 0; i < k; i++) {
         const gd_ynode *nm = sts[i].node_map;
         int same = last_node >= 0 && sh->nsections &&
@@ -422,7 +421,6 @@ static gd_status parse_shaft(gd_mparser *p, const gd_ynode *sm, const char *path
                     return st;
                 }
             }
-            (void)seg_start;
             const char *name = nm ? gd_ymap_get(nm, "name")->text : NULL;
             if ((st = add_node(p, index, b, name, nm ? sts[i].list_index : -1,
                                nm ? gd_mp_loc(nm) : s->loc, node_cap)) ||

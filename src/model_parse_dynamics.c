@@ -362,7 +362,6 @@ static gd_status parse_excitations(gd_mparser *p)
 static const char *const PRESCRIBED_KEYS[] = {"node",      "dof",       "motion", "speed", "table",
                                               "amplitude", "frequency", "phase",  NULL};
 static const char *const MOTIONS[] = {"nominal", NULL};
-static const char *const TIME_TABLE_KEYS_ANGLE[] = {"time", "angle", "interpolation", NULL};
 
 static gd_status parse_prescribed(gd_mparser *p)
 {
@@ -372,7 +371,6 @@ static gd_status parse_prescribed(gd_mparser *p)
     if (st || !list) return st;
     m->prescribed = calloc(list->n ? list->n : 1, sizeof *m->prescribed);
     if (!m->prescribed) return gd_mp_oom(p);
-    (void)TIME_TABLE_KEYS_ANGLE;
     for (size_t i = 0; i < list->n; i++) {
         char q[64];
         gd_ypath_index(q, sizeof q, "prescribed", i);
