@@ -470,6 +470,11 @@ static gd_status check_unique_node_names(gd_mparser *p)
 static gd_status parse_shafts(gd_mparser *p)
 {
     const gd_ynode *list;
+    if (!gd_ymap_get(p->root, "shafts") && gd_ymap_get(p->root, "meshes"))
+        return gd_yfail(&p->r, p->root, "shafts",
+                        "a file with only gear meshes is an input of `geardyn mesh-stiffness`; "
+                        "a model also needs `shafts:` (docs/model-format.md)",
+                        "required list 'shafts' is missing");
     gd_status st = gd_mp_get_list(p, p->root, "shafts", "", &list, 1);
     if (st) return st;
     if (list->n == 0)

@@ -115,5 +115,16 @@ TEST(geometry_errors)
                  18, "meshes[0].geometry.driver.profile_shift", "undercut");
 }
 
-RUN_TESTS(T(mesh_sizes_and_stiffness_from_geometry), T(constant_stiffness_with_geometry),
+/* A stand-alone mesh-stiffness file given where a model is expected says so. */
+TEST(mesh_only_file_points_to_mesh_stiffness)
+{
+    gd_error err;
+    gd_model *m = NULL;
+    CHECK(gd_model_load("examples/rig2018_pair.yaml", &m, &err) == GD_EINPUT);
+    CHECK(m == NULL);
+    CHECK_STR(err.field, "shafts");
+    CHECK(strstr(err.hint, "geardyn mesh-stiffness") != NULL);
+}
+
+RUN_TESTS(T(mesh_only_file_points_to_mesh_stiffness), T(mesh_sizes_and_stiffness_from_geometry), T(constant_stiffness_with_geometry),
           T(geometry_errors))
