@@ -168,8 +168,3 @@ int gd_cli_parse_threads(const char *cmd, const char *text, int *out)
     *out = (int)v;
     return 0;
 }
-
-cJSON *gd_cli_json_number(double v)
-{
-    return isfinite(v) ? cJSON_CreateNumber(v) : cJSON_CreateNull();
-}

@@ -1,5 +1,6 @@
 #include <errno.h>
 #include <limits.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -52,6 +53,11 @@ int gd_cli_parse_count(const char *text, long lo, long hi, long *out)
     if (end == text || *end || errno || v < lo || v > hi) return 1;
     *out = v;
     return 0;
+}
+
+cJSON *gd_cli_json_number(double v)
+{
+    return isfinite(v) ? cJSON_CreateNumber(v) : cJSON_CreateNull();
 }
 
 void gd_cli_print_json(FILE *f, const cJSON *item)

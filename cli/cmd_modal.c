@@ -64,12 +64,10 @@ static void print_table(const gd_system *s, const gd_modal_result *r)
     }
 }
 
+/* a number, or null when not finite (JSON has no NaN) */
 static void add_num(cJSON *o, const char *k, double v)
 {
-    if (isfinite(v))
-        cJSON_AddNumberToObject(o, k, v);
-    else
-        cJSON_AddNullToObject(o, k);
+    cJSON_AddItemToObject(o, k, gd_cli_json_number(v));
 }
 
 static cJSON *result_json(const gd_system *s, const gd_modal_result *r)
