@@ -90,13 +90,13 @@ static void mark_table_bearing(assembler *as, const gd_bearing *b)
     }
 }
 
-static void assemble(assembler *as, int *has_table)
+static void assemble(assembler *as, int *has_table, double *element_K)
 {
     const gd_model *m = as->m;
     int idx[12];
     for (int e = 0; e < m->nelements; e++) {
         const gd_element *el = &m->elements[e];
-        double Me[144], Ke[144], Ge[144];
+        double Me[144], Ge[144], *Ke = element_K + (size_t)e * 144;
         gd_shaft_element_matrices(el, &m->materials[el->material], Me, Ke, Ge);
         node_idx(el->node1, idx);
         node_idx(el->node2, idx + 6);
@@ -157,7 +157,9 @@ gd_status gd_system_build(const gd_model *m, gd_system **out, gd_error *err)
     int *map = malloc((size_t)(raw > 0 ? raw : 1) * sizeof *map);
     if (!as.used || !s || !map) goto nomem;
     s->model = m;
-    assemble(&as, &s->has_speed_dependent);
+    s->element_K = malloc((size_t)(m->nelements > 0 ? m->nelements : 1) * 144 * sizeof(double));
+    if (!s->element_K) goto nomem;
+    assemble(&as, &s->has_speed_dependent, s->element_K);
     if (as.fail) goto nomem;
 
     int n = 0;
@@ -231,6 +233,7 @@ void gd_system_free(gd_system *s)
     free(s->dof_type);
     free(s->node_dof);
     free(s->massless);
+    free(s->element_K);
     gd_csc_free(&s->M);
     gd_csc_free(&s->K);
     gd_csc_free(&s->C);
@@ -413,8 +416,7 @@ double gd_system_strain_energy(const gd_system *s, double speed, const double *r
     unsigned mask = m->dof_mask;
     for (int e = 0; e < m->nelements; e++) {
         const gd_element *el = &m->elements[e];
-        double Me[144], Ke[144], Ge[144];
-        gd_shaft_element_matrices(el, &m->materials[el->material], Me, Ke, Ge);
+        const double *Ke = s->element_K + (size_t)e * 144;
         cplx u[12];
         for (int k = 0; k < 12; k++) {
             int d = k % 6;

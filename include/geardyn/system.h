@@ -51,6 +51,8 @@ typedef struct gd_system {
     int has_damping;         /* C or a bearing table has damping terms */
     int has_gyroscopic;      /* G is not zero */
     int ncomponents;         /* nshafts + nbearings + nsprings + nmeshes */
+    double *element_K;       /* nelements x 144: each shaft element's stiffness, kept from
+                                the assembly for the modal strain energy */
 } gd_system;
 
 gd_status gd_system_build(const gd_model *model, gd_system **out, gd_error *err);
