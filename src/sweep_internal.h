@@ -28,8 +28,9 @@ gd_status gd_dynmat_build(const gd_system *sys, gd_dynmat *out, gd_error *err);
 void gd_dynmat_free(gd_dynmat *a);
 /* k = K + K_b(W), d = C + C_b(W) + W G on the pattern (nnz each). */
 void gd_dynmat_at(const gd_dynmat *a, double speed, double *k, double *d);
-/* y = S x for values s on the pattern (real). */
-void gd_dynmat_mul(const gd_dynmat *a, const double *s, const double *x, double *y);
+/* y = S x + T z for values s, t on the pattern (real): one pass over the pattern. */
+void gd_dynmat_mul2(const gd_dynmat *a, const double *s, const double *x, const double *t,
+                    const double *z, double *y);
 /* Union position of (row, col), or -1. */
 int gd_dynmat_find(const gd_dynmat *a, int row, int col);
 
@@ -62,22 +63,23 @@ int gd_dynmat_factor_at(const gd_dynmat *a, const gd_splu_symbolic *s, const dou
                         const double *d, double w, double *z, gd_splu *lu);
 
 /* ---- sparse_shift_invert.c: (A - sigma B)^-1 B of the first-order form ---- */
-/* For lambda^2 M + lambda D + K with z = [u; lambda u], A = [0 I; -K -D], B = [I 0; 0 M]
- * and a real shift sigma: y = (A - sigma B)^-1 B x needs only P(sigma) = sigma^2 M +
- * sigma D + K:  P y1 = -(M x2 + (D + sigma M) x1),  y2 = x1 + sigma y1. */
+/* For lambda^2 M + lambda D + K with z = [u; lambda u / g], A = [0 gI; -K -gD],
+ * B = [I 0; 0 gM] and a real shift sigma: y = (A - sigma B)^-1 B x needs only
+ * P(sigma) = sigma^2 M + sigma D + K:  P y1 = -(M (g x2 + sigma x1) + D x1),
+ * y2 = (x1 + sigma y1) / g. */
 typedef struct gd_shift_invert {
     const gd_dynmat *a;
     int n;
-    double sigma;
+    double sigma, scale; /* sigma, g */
     const double *m, *d; /* values on the pattern */
     gd_splu lu;
     double *work; /* 2 n */
 } gd_shift_invert;
 
-/* Factors P(sigma) for the pattern values k, d (m from the pattern). Returns 0, 1 when
- * P(sigma) is singular, -1 when out of memory. */
+/* Factors P(sigma) for the pattern values k, d (m from the pattern), state scaling
+ * g > 0. Returns 0, 1 when P(sigma) is singular, -1 when out of memory. */
 int gd_shift_invert_setup(gd_shift_invert *op, const gd_dynmat *a, const gd_splu_symbolic *s,
-                          double sigma, const double *k, const double *d);
+                          double sigma, double scale, const double *k, const double *d);
 void gd_shift_invert_apply(gd_shift_invert *op, const gd_splu_symbolic *s, const double *x,
                            double *y);
 void gd_shift_invert_free(gd_shift_invert *op);
@@ -87,23 +89,25 @@ typedef void (*gd_op_fn)(void *ctx, const double *x, double *y);
 typedef struct gd_ks_result {
     int nconv;
     double *mu_re, *mu_im;   /* nconv eigenvalues of the operator */
-    double *vec_re, *vec_im; /* n x nconv eigenvectors (unit 2-norm) */
+    double *vec_re, *vec_im; /* nout x nconv: leading rows of the eigenvectors */
     int iterations;          /* restarts */
 } gd_ks_result;
 /* Workspace for an n x n operator and basis size ncv; reusable across calls. */
 typedef struct gd_ks_work {
     int n, ncv;
-    double *V, *H, *T, *Q, *X, *wr, *wi, *h, *h2, *b, *res, *Z;
-    int *sel;
+    double *V, *H, *T, *Q, *X, *S, *work, *wr, *wr2, *wi, *h, *h2, *b, *res, *Z;
+    int *sel, *grp, *ifail;
     struct mag_index *order;
 } gd_ks_work;
 int gd_ks_work_init(gd_ks_work *w, int n, int ncv); /* 0 ok, 1 out of memory */
 void gd_ks_work_free(gd_ks_work *w);
-/* nev wanted eigenvalues of largest magnitude of the n x n operator, basis size ncv
- * (> nev + 2), relative residual tol. Deterministic: a fixed start vector. Returns
- * GD_OK, GD_ENUMERIC (no convergence within maxit restarts) or GD_ENOMEM. */
-gd_status gd_krylov_schur(gd_op_fn op, void *ctx, int n, int nev, int ncv, double tol, int maxit,
-                          gd_ks_work *ws, gd_ks_result *out); /* ws may be NULL */
+/* nev wanted eigenvalues of largest magnitude of the n x n operator (both members of
+ * a conjugate pair count), basis size at most ncv (> nev + 2), relative residual tol;
+ * the eigenvectors' first nout rows (unit 2-norm over them). Deterministic: a fixed
+ * start vector. Returns GD_OK, GD_ENUMERIC (no convergence within maxit restarts) or
+ * GD_ENOMEM. */
+gd_status gd_krylov_schur(gd_op_fn op, void *ctx, int n, int nout, int nev, int ncv, double tol,
+                          int maxit, gd_ks_work *ws, gd_ks_result *out); /* ws may be NULL */
 void gd_ks_result_free(gd_ks_result *r);
 
 /* ---- sparse_modal.c ---- */
@@ -120,7 +124,9 @@ void gd_sparse_ws_free(gd_sparse_ws *w);
 gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
                           const gd_modal_options *opt, double shift, gd_sparse_ws *ws,
                           gd_modal_result **out, gd_error *err);
-/* 1e-3 sqrt(min K_ii / M_ii): far below the lowest elastic mode of most models. */
-double gd_sparse_auto_shift(const gd_dynmat *a, const double *k);
+/* sqrt(min K_ii / M_ii): a frequency of the order of the lowest modes' (1 when no
+ * DOF has both). The automatic shift is 1e-3 of it, far below the lowest elastic
+ * mode of most models; the state scaling g is this frequency itself. */
+double gd_sparse_diag_frequency(const gd_dynmat *a, const double *k);
 
 #endif
