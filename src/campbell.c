@@ -46,6 +46,14 @@ static gd_status solve_one(const gd_system *sys, const gd_dynmat *a, const gd_sp
     return gd_modal_solve(sys, &o, out, err);
 }
 
+/* Releases the mode shapes of a result whose modes have been tracked. */
+static void drop_shapes(gd_modal_result *r)
+{
+    free(r->shape_re);
+    free(r->shape_im);
+    r->shape_re = r->shape_im = NULL;
+}
+
 static gd_whirl majority_whirl(const gd_mode *md, const double *speeds, int ns)
 {
     int cnt[4] = {0};
@@ -109,6 +117,8 @@ gd_status gd_campbell(const gd_system *sys, const gd_campbell_options *opt,
         **track = calloc((size_t)ns, sizeof *track);
     int *nel = calloc((size_t)ns, sizeof *nel);
     gd_campbell_result *r = calloc(1, sizeof *r);
+    gd_sparse_ws *wss = NULL;
+    int nt = 1;
     if (!res || !errs || !sts || !elastic || !track || !nel || !r) goto nomem;
     if (sparse) {
         if ((st = gd_dynmat_build(sys, &a, err))) goto done;
@@ -140,38 +150,49 @@ gd_status gd_campbell(const gd_system *sys, const gd_campbell_options *opt,
             gd_modal_free(r0);
         }
     }
-    int nt = opt->nthreads > 0 ? opt->nthreads : omp_get_max_threads();
-    /* one workspace per thread, reused over its speeds; one result slot per speed */
-#pragma omp parallel num_threads(nt)
-    {
-        gd_sparse_ws ws = {0};
-        int ok = !sparse || !gd_sparse_ws_init(&ws, &a, nreq);
-#pragma omp for schedule(dynamic, 1)
-        for (int s = 0; s < ns; s++)
+    nt = opt->nthreads > 0 ? opt->nthreads : omp_get_max_threads();
+    /* one workspace per thread, reused over its speeds; one result slot per speed. The
+     * speeds go in blocks: each block is solved in parallel, then tracked, and the
+     * mode shapes that tracking no longer needs are released, so the next block reuses
+     * their memory (fresh pages cost more than the tracking itself). Blocks change
+     * nothing in the numbers. */
+    wss = calloc((size_t)nt, sizeof *wss);
+    if (!wss) goto nomem;
+    for (int t = 0; t < nt && sparse; t++)
+        if (gd_sparse_ws_init(&wss[t], &a, nreq)) memset(&wss[t], 0, sizeof wss[t]);
+    int nt_tracks = 0, block = 8 * nt;
+    for (int b0 = 0; b0 < ns; b0 += block) {
+        int b1 = b0 + block < ns ? b0 + block : ns;
+#pragma omp parallel for num_threads(nt) schedule(dynamic, 1)
+        for (int s = b0; s < b1; s++) {
+            gd_sparse_ws *ws = sparse ? &wss[omp_get_thread_num()] : NULL;
             if (!res[s])
                 sts[s] = solve_one(sys, sparse ? &a : NULL, &sym, opt, nreq, opt->speeds[s],
-                                   ok && sparse ? &ws : NULL, &res[s], &errs[s]);
-        gd_sparse_ws_free(&ws);
-    }
-    for (int s = 0; s < ns; s++)
-        if (sts[s]) {
-            if (err) *err = errs[s];
-            st = sts[s];
-            goto done;
+                                   ws && ws->k ? ws : NULL, &res[s], &errs[s]);
         }
-    int maxk = 0;
-    for (int s = 0; s < ns; s++) {
-        elastic[s] = malloc((size_t)(res[s]->nmodes > 0 ? res[s]->nmodes : 1) * sizeof **elastic);
-        track[s] = malloc((size_t)(res[s]->nmodes > 0 ? res[s]->nmodes : 1) * sizeof **track);
-        if (!elastic[s] || !track[s]) goto nomem;
-        int lim = opt->nmodes > 0 ? opt->nmodes : res[s]->nmodes;
-        for (int j = 0; j < res[s]->nmodes && nel[s] < lim; j++)
-            if (!res[s]->modes[j].rigid_body) elastic[s][nel[s]++] = j;
-        if (res[s]->nmodes - nel[s] > nrigid && opt->nmodes == 0) nrigid = res[s]->nmodes - nel[s];
-        if (nel[s] > maxk) maxk = nel[s];
+        for (int s = b0; s < b1; s++)
+            if (sts[s]) {
+                if (err) *err = errs[s];
+                st = sts[s];
+                goto done;
+            }
+        for (int s = b0; s < b1; s++) {
+            int cap = res[s]->nmodes > 0 ? res[s]->nmodes : 1;
+            elastic[s] = malloc((size_t)cap * sizeof **elastic);
+            track[s] = malloc((size_t)cap * sizeof **track);
+            if (!elastic[s] || !track[s]) goto nomem;
+            int lim = opt->nmodes > 0 ? opt->nmodes : res[s]->nmodes;
+            for (int j = 0; j < res[s]->nmodes && nel[s] < lim; j++)
+                if (!res[s]->modes[j].rigid_body) elastic[s][nel[s]++] = j;
+            if (res[s]->nmodes - nel[s] > nrigid && opt->nmodes == 0)
+                nrigid = res[s]->nmodes - nel[s];
+            if (gd_campbell_track_step(s > 0 ? res[s - 1] : NULL, s > 0 ? elastic[s - 1] : NULL,
+                                       s > 0 ? nel[s - 1] : 0, s > 0 ? track[s - 1] : NULL, res[s],
+                                       elastic[s], nel[s], opt->mac_min, track[s], &nt_tracks))
+                goto nomem;
+            if (s > 0) drop_shapes(res[s - 1]);
+        }
     }
-    int nt_tracks = gd_campbell_assign_tracks(res, ns, elastic, nel, opt->mac_min, track);
-    if (nt_tracks < 0) goto nomem;
     r->nspeeds = ns;
     r->ntracks = nt_tracks;
     r->ndof = sys->ndof;
@@ -206,6 +227,9 @@ gd_status gd_campbell(const gd_system *sys, const gd_campbell_options *opt,
 nomem:
     st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory in the Campbell sweep");
 done:
+    for (int t = 0; wss && t < nt; t++)
+        gd_sparse_ws_free(&wss[t]);
+    free(wss);
     if (sparse) {
         gd_splu_symbolic_free(&sym);
         gd_dynmat_free(&a);

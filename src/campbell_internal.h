@@ -3,12 +3,15 @@
 #define GD_CAMPBELL_INTERNAL_H
 #include "geardyn/campbell.h"
 
-/* Assigns track ids to the elastic modes of every speed. elastic[s] lists, for speed s,
- * the indices into res[s]->modes of its nel[s] elastic modes (ascending frequency).
- * Fills track[s][j] (id of elastic mode j at speed s) and returns the number of
- * tracks, or -1 when out of memory. */
-int gd_campbell_assign_tracks(gd_modal_result *const *res, int nspeeds, int *const *elastic,
-                              const int *nel, double mac_min, int **track);
+/* Assigns track ids to the elastic modes of one speed from those of the previous one
+ * (prev NULL at the first speed: new tracks). elastic lists the indices into
+ * cur->modes of its nel_cur elastic modes (ascending frequency); track[j] receives the
+ * id of elastic mode j, a new id (*ntracks)++ when no previous mode matches with a MAC
+ * of at least mac_min. Needs the mode shapes of both speeds. Returns 0, or -1 when
+ * out of memory. */
+int gd_campbell_track_step(const gd_modal_result *prev, const int *prev_elastic, int prev_nel,
+                           const int *prev_track, const gd_modal_result *cur, const int *elastic,
+                           int nel_cur, double mac_min, int *track, int *ntracks);
 
 /* Orders: 1x of each shaft, user orders, tooth-mesh orders (deduplicated). Returns
  * the count (out allocated, caller frees) or -1 when out of memory. */

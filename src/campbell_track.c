@@ -92,76 +92,75 @@ int gd_hungarian(const double *cost, int n, int *col_of_row)
     return 0;
 }
 
-int gd_campbell_assign_tracks(gd_modal_result *const *res, int nspeeds, int *const *elastic,
-                              const int *nel, double mac_min, int **track)
+int gd_campbell_track_step(const gd_modal_result *prev, const int *prev_elastic, int prev_nel,
+                           const int *prev_track, const gd_modal_result *cur, const int *elastic,
+                           int nel_cur, double mac_min, int *track, int *ntracks)
 {
-    int ntracks = 0;
-    for (int j = 0; j < nel[0]; j++)
-        track[0][j] = ntracks++;
-    for (int s = 1; s < nspeeds; s++) {
-        int a = nel[s - 1], b = nel[s], N = a > b ? a : b, n = res[s]->ndof;
-        double *cost = malloc((size_t)(N > 0 ? N : 1) * (size_t)(N > 0 ? N : 1) * sizeof *cost);
-        double *mac = malloc((size_t)(N > 0 ? N : 1) * (size_t)(N > 0 ? N : 1) * sizeof *mac);
-        int *col = malloc((size_t)(N > 0 ? N : 1) * sizeof *col);
-        if (!cost || !mac || !col) {
-            free(cost);
-            free(mac);
-            free(col);
-            return -1;
-        }
-        for (int j = 0; j < N; j++)
-            for (int i = 0; i < N; i++) {
-                double v = 0;
-                if (i < a && j < b) {
-                    int pi = elastic[s - 1][i], cj = elastic[s][j];
-                    v = gd_mac(res[s - 1]->shape_re + (size_t)pi * n,
-                               res[s - 1]->shape_im + (size_t)pi * n,
-                               res[s]->shape_re + (size_t)cj * n, res[s]->shape_im + (size_t)cj * n,
-                               n);
-                }
-                mac[i + (size_t)j * N] = v;
-            }
-        /* Repeated eigenvalues (e.g. the x/y pairs of an isotropic rotor at rest) have no
-         * preferred vectors: compare with their whole eigenspace (sum of the MACs over
-         * the group) and let ties keep the frequency order, so the tracks do not depend
-         * on which basis the eigensolver returned. */
-        for (int i = 0; i < a; i++) {
-            const gd_mode *mi = &res[s - 1]->modes[elastic[s - 1][i]];
-            for (int j = 0; j < N; j++) {
-                double v = mac[i + (size_t)j * N];
-                if (j < b)
-                    for (int k = 0; k < a; k++) {
-                        const gd_mode *mk = &res[s - 1]->modes[elastic[s - 1][k]];
-                        if (k != i && hypot(mk->lambda_re - mi->lambda_re,
-                                            mk->lambda_im - mi->lambda_im) <= 1e-7 * mi->omega_n)
-                            v += mac[k + (size_t)j * N];
-                    }
-                cost[i + (size_t)j * N] = 1.0 - (v > 1 ? 1 : v) + 1e-9 * abs(i - j);
-            }
-        }
-        for (int i = a; i < N; i++)
-            for (int j = 0; j < N; j++)
-                cost[i + (size_t)j * N] = 1.0 + 1e-9 * abs(i - j);
-        for (int j = 0; j < b; j++)
-            for (int i = 0; i < a; i++)
-                mac[i + (size_t)j * N] = 1.0 - cost[i + (size_t)j * N] + 1e-9 * abs(i - j);
-        for (int j = 0; j < b; j++)
-            track[s][j] = -1;
-        if (N > 0 && gd_hungarian(cost, N, col)) {
-            free(cost);
-            free(mac);
-            free(col);
-            return -1;
-        }
-        for (int i = 0; i < a; i++) {
-            int j = col[i];
-            if (j < b && mac[i + (size_t)j * N] >= mac_min) track[s][j] = track[s - 1][i];
-        }
-        for (int j = 0; j < b; j++)
-            if (track[s][j] < 0) track[s][j] = ntracks++;
+    if (!prev) {
+        for (int j = 0; j < nel_cur; j++)
+            track[j] = (*ntracks)++;
+        return 0;
+    }
+    int a = prev_nel, b = nel_cur, N = a > b ? a : b, n = cur->ndof;
+    double *cost = malloc((size_t)(N > 0 ? N : 1) * (size_t)(N > 0 ? N : 1) * sizeof *cost);
+    double *mac = malloc((size_t)(N > 0 ? N : 1) * (size_t)(N > 0 ? N : 1) * sizeof *mac);
+    int *col = malloc((size_t)(N > 0 ? N : 1) * sizeof *col);
+    if (!cost || !mac || !col) {
         free(cost);
         free(mac);
         free(col);
+        return -1;
     }
-    return ntracks;
+    for (int j = 0; j < N; j++)
+        for (int i = 0; i < N; i++) {
+            double v = 0;
+            if (i < a && j < b) {
+                int pi = prev_elastic[i], cj = elastic[j];
+                v = gd_mac(prev->shape_re + (size_t)pi * n, prev->shape_im + (size_t)pi * n,
+                           cur->shape_re + (size_t)cj * n, cur->shape_im + (size_t)cj * n, n);
+            }
+            mac[i + (size_t)j * N] = v;
+        }
+    /* Repeated eigenvalues (e.g. the x/y pairs of an isotropic rotor at rest) have no
+     * preferred vectors: compare with their whole eigenspace (sum of the MACs over
+     * the group) and let ties keep the frequency order, so the tracks do not depend
+     * on which basis the eigensolver returned. */
+    for (int i = 0; i < a; i++) {
+        const gd_mode *mi = &prev->modes[prev_elastic[i]];
+        for (int j = 0; j < N; j++) {
+            double v = mac[i + (size_t)j * N];
+            if (j < b)
+                for (int k = 0; k < a; k++) {
+                    const gd_mode *mk = &prev->modes[prev_elastic[k]];
+                    if (k != i && hypot(mk->lambda_re - mi->lambda_re,
+                                        mk->lambda_im - mi->lambda_im) <= 1e-7 * mi->omega_n)
+                        v += mac[k + (size_t)j * N];
+                }
+            cost[i + (size_t)j * N] = 1.0 - (v > 1 ? 1 : v) + 1e-9 * abs(i - j);
+        }
+    }
+    for (int i = a; i < N; i++)
+        for (int j = 0; j < N; j++)
+            cost[i + (size_t)j * N] = 1.0 + 1e-9 * abs(i - j);
+    for (int j = 0; j < b; j++)
+        for (int i = 0; i < a; i++)
+            mac[i + (size_t)j * N] = 1.0 - cost[i + (size_t)j * N] + 1e-9 * abs(i - j);
+    for (int j = 0; j < b; j++)
+        track[j] = -1;
+    if (N > 0 && gd_hungarian(cost, N, col)) {
+        free(cost);
+        free(mac);
+        free(col);
+        return -1;
+    }
+    for (int i = 0; i < a; i++) {
+        int j = col[i];
+        if (j < b && mac[i + (size_t)j * N] >= mac_min) track[j] = prev_track[i];
+    }
+    for (int j = 0; j < b; j++)
+        if (track[j] < 0) track[j] = (*ntracks)++;
+    free(cost);
+    free(mac);
+    free(col);
+    return 0;
 }
