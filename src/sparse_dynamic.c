@@ -187,5 +187,5 @@ int gd_dynmat_factor_at(const gd_dynmat *a, const gd_splu_symbolic *s, const dou
         z[2 * p] = k[p] - w * w * a->m[p];
         z[2 * p + 1] = w * d[p];
     }
-    return gd_splu_factor(lu, a, s, z, 1);
+    return gd_splu_factor(lu, a, s, z, 1, 1);
 }

@@ -27,10 +27,11 @@ void gd_splu_symbolic_free(gd_splu_symbolic *s)
 }
 
 int gd_splu_factor(gd_splu *lu, const gd_dynmat *a, const gd_splu_symbolic *s, const double *x,
-                   int is_complex)
+                   int is_complex, int row_scaling)
 {
     memset(lu, 0, sizeof *lu);
     klu_defaults(&lu->common);
+    if (!row_scaling) lu->common.scale = 0;
     lu->is_complex = is_complex;
     /* KLU takes non-const pointers but does not modify its inputs */
     klu_symbolic *sym = s->sym;

@@ -49,10 +49,11 @@ typedef struct gd_splu {
 
 gd_status gd_splu_analyze(const gd_dynmat *a, gd_splu_symbolic *s, gd_error *err);
 void gd_splu_symbolic_free(gd_splu_symbolic *s);
-/* Factors the matrix with values x (real nnz, or complex interleaved 2 nnz).
- * Returns 0, 1 when singular, -1 when out of memory. */
+/* Factors the matrix with values x (real nnz, or complex interleaved 2 nnz), with
+ * KLU's row scaling or without it (for a matrix the caller has scaled). Returns 0, 1
+ * when singular, -1 when out of memory. */
 int gd_splu_factor(gd_splu *lu, const gd_dynmat *a, const gd_splu_symbolic *s, const double *x,
-                   int is_complex);
+                   int is_complex, int row_scaling);
 /* Solves A x = b in place (complex: interleaved), nrhs columns of leading dimension n. */
 void gd_splu_solve(gd_splu *lu, const gd_splu_symbolic *s, int n, int nrhs, double *b);
 void gd_splu_free(gd_splu *lu);
@@ -72,8 +73,9 @@ typedef struct gd_shift_invert {
     int n;
     double sigma, scale; /* sigma, g */
     const double *m, *d; /* values on the pattern */
-    gd_splu lu;
-    double *work; /* 2 n */
+    gd_splu lu;           /* of R P(sigma) R */
+    double *r;            /* n: the symmetric diagonal scaling R = diag(|P_ii|^-1/2) */
+    double *work;         /* 2 n */
 } gd_shift_invert;
 
 /* Factors P(sigma) for the pattern values k, d (m from the pattern), state scaling
