@@ -10,20 +10,34 @@
 
 #include "campbell_internal.h"
 
-double gd_mac(const double *are, const double *aim, const double *bre, const double *bim, int n)
+/* sum |z|^2 of a complex vector given as parts (im may be NULL) */
+static double norm2(const double *re, const double *im, int n)
 {
-    /* a^H b = sum (ar br + ai bi) + i (ar bi - ai br), in real arithmetic */
-    double abr = 0, abi = 0, aa = 0, bb = 0;
+    double s = 0;
+    for (int i = 0; i < n; i++)
+        s += re[i] * re[i] + (im ? im[i] * im[i] : 0);
+    return s;
+}
+
+/* |a^H b|^2 / (aa bb) for precomputed aa = |a|^2, bb = |b|^2, in real arithmetic:
+ * a^H b = sum (ar br + ai bi) + i (ar bi - ai br). */
+static double mac_with_norms(const double *are, const double *aim, double aa, const double *bre,
+                             const double *bim, double bb, int n)
+{
+    if (!(aa > 0 && bb > 0)) return 0;
+    double abr = 0, abi = 0;
     for (int i = 0; i < n; i++) {
         double ar = are[i], ai = aim ? aim[i] : 0, br = bre[i], bi = bim ? bim[i] : 0;
         abr += ar * br + ai * bi;
         abi += ar * bi - ai * br;
-        aa += ar * ar + ai * ai;
-        bb += br * br + bi * bi;
     }
-    if (!(aa > 0 && bb > 0)) return 0;
     double m = (abr * abr + abi * abi) / (aa * bb);
     return m > 1 ? 1 : m;
+}
+
+double gd_mac(const double *are, const double *aim, const double *bre, const double *bim, int n)
+{
+    return mac_with_norms(are, aim, norm2(are, aim, n), bre, bim, norm2(bre, bim, n), n);
 }
 
 int gd_hungarian(const double *cost, int n, int *col_of_row)
@@ -105,7 +119,9 @@ int gd_campbell_track_step(const gd_modal_result *prev, const int *prev_elastic,
     double *cost = malloc((size_t)(N > 0 ? N : 1) * (size_t)(N > 0 ? N : 1) * sizeof *cost);
     double *mac = malloc((size_t)(N > 0 ? N : 1) * (size_t)(N > 0 ? N : 1) * sizeof *mac);
     int *col = malloc((size_t)(N > 0 ? N : 1) * sizeof *col);
-    if (!cost || !mac || !col) {
+    double *nrm = malloc((size_t)(N > 0 ? 2 * N : 1) * sizeof *nrm);
+    if (!cost || !mac || !col || !nrm) {
+        free(nrm);
         free(cost);
         free(mac);
         free(col);
@@ -148,6 +164,7 @@ int gd_campbell_track_step(const gd_modal_result *prev, const int *prev_elastic,
     for (int j = 0; j < b; j++)
         track[j] = -1;
     if (N > 0 && gd_hungarian(cost, N, col)) {
+        free(nrm);
         free(cost);
         free(mac);
         free(col);
@@ -159,6 +176,7 @@ int gd_campbell_track_step(const gd_modal_result *prev, const int *prev_elastic,
     }
     for (int j = 0; j < b; j++)
         if (track[j] < 0) track[j] = (*ntracks)++;
+    free(nrm);
     free(cost);
     free(mac);
     free(col);

@@ -284,11 +284,15 @@ double complex gd_normalise_max(double *re, double *im, int n)
     }
     double complex s = re[best] + I * im[best];
     if (cabs(s) == 0) return 1.0;
+    /* times 1/s = conj(s) / |s|^2: one division instead of one per entry */
+    double ir = re[best] / bm, ii = -im[best] / bm;
     for (int i = 0; i < n; i++) {
-        double complex z = (re[i] + I * im[i]) / s;
-        re[i] = creal(z);
-        im[i] = cimag(z);
+        double zr = re[i] * ir - im[i] * ii, zi = re[i] * ii + im[i] * ir;
+        re[i] = zr;
+        im[i] = zi;
     }
+    re[best] = 1.0;
+    im[best] = 0.0;
     return s;
 }
 

@@ -371,9 +371,14 @@ static double local_energy(const double *Kl, int n, const cplx *u, const gd_moti
                            double *by_motion)
 {
     double total = 0;
-    for (int a = 0; a < n; a++) {
+    int act[12], na = 0; /* DOFs that move (absent DOF types are zero) */
+    for (int b = 0; b < n && b < 12; b++)
+        if (u[b].re != 0 || u[b].im != 0) act[na++] = b;
+    for (int ia = 0; ia < na; ia++) {
+        int a = act[ia];
         double fr = 0, fi = 0;
-        for (int b = 0; b < n; b++) {
+        for (int ib = 0; ib < na; ib++) {
+            int b = act[ib];
             fr += Kl[a * n + b] * u[b].re;
             fi += Kl[a * n + b] * u[b].im;
         }
