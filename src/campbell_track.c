@@ -14,8 +14,15 @@
 static double norm2(const double *re, const double *im, int n)
 {
     double s = 0;
-    for (int i = 0; i < n; i++)
-        s += re[i] * re[i] + (im ? im[i] * im[i] : 0);
+    if (im) {
+#pragma omp simd reduction(+ : s)
+        for (int i = 0; i < n; i++)
+            s += re[i] * re[i] + im[i] * im[i];
+    } else {
+#pragma omp simd reduction(+ : s)
+        for (int i = 0; i < n; i++)
+            s += re[i] * re[i];
+    }
     return s;
 }
 
@@ -26,10 +33,18 @@ static double mac_with_norms(const double *are, const double *aim, double aa, co
 {
     if (!(aa > 0 && bb > 0)) return 0;
     double abr = 0, abi = 0;
-    for (int i = 0; i < n; i++) {
-        double ar = are[i], ai = aim ? aim[i] : 0, br = bre[i], bi = bim ? bim[i] : 0;
-        abr += ar * br + ai * bi;
-        abi += ar * bi - ai * br;
+    if (aim && bim) {
+#pragma omp simd reduction(+ : abr, abi)
+        for (int i = 0; i < n; i++) {
+            abr += are[i] * bre[i] + aim[i] * bim[i];
+            abi += are[i] * bim[i] - aim[i] * bre[i];
+        }
+    } else {
+        for (int i = 0; i < n; i++) {
+            double ai = aim ? aim[i] : 0, bi = bim ? bim[i] : 0;
+            abr += are[i] * bre[i] + ai * bi;
+            abi += are[i] * bi - ai * bre[i];
+        }
     }
     double m = (abr * abr + abi * abi) / (aa * bb);
     return m > 1 ? 1 : m;
