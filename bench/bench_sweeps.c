@@ -59,16 +59,23 @@ int main(int argc, char **argv)
         co.nspeeds = 100;
         co.nmodes = 12;
         co.nthreads = th;
-        gd_campbell_result *cr;
-        double t0 = now();
-        if (gd_campbell(s, &co, &cr, &err)) {
-            fprintf(stderr, "campbell: %s\n", err.message);
-            return 1;
+        /* best of five: the first run also pays for cold caches and fresh pages */
+        double tc = 1e30;
+        int sparse = 0;
+        for (int rep = 0; rep < 5; rep++) {
+            gd_campbell_result *cr;
+            double t0 = now();
+            if (gd_campbell(s, &co, &cr, &err)) {
+                fprintf(stderr, "campbell: %s\n", err.message);
+                return 1;
+            }
+            double dt = now() - t0;
+            tc = dt < tc ? dt : tc;
+            sparse = cr->sparse;
+            gd_campbell_free(cr);
         }
-        double tc = now() - t0;
-        printf("threads %d: campbell 100 speeds x 12 modes (%s) %.3f s\n", th,
-               cr->sparse ? "sparse" : "dense", tc);
-        gd_campbell_free(cr);
+        printf("threads %d: campbell 100 speeds x 12 modes (%s) %.3f s (best of 5)\n", th,
+               sparse ? "sparse" : "dense", tc);
         gd_frf_options fo;
         gd_frf_options_default(&fo);
         fo.freqs = fr;
@@ -80,7 +87,7 @@ int main(int argc, char **argv)
         fo.speed = 314.16;
         fo.nthreads = th;
         gd_frf_result *frr;
-        t0 = now();
+        double t0 = now();
         if (gd_frf(s, &fo, &frr, &err)) {
             fprintf(stderr, "frf: %s\n", err.message);
             return 1;

@@ -73,9 +73,9 @@ typedef struct gd_shift_invert {
     int n;
     double sigma, scale; /* sigma, g */
     const double *m, *d; /* values on the pattern */
-    gd_splu lu;           /* of R P(sigma) R */
-    double *r;            /* n: the symmetric diagonal scaling R = diag(|P_ii|^-1/2) */
-    double *work;         /* 2 n */
+    gd_splu lu;          /* of R P(sigma) R */
+    double *r;           /* n: the symmetric diagonal scaling R = diag(|P_ii|^-1/2) */
+    double *work;        /* 2 n */
 } gd_shift_invert;
 
 /* Factors P(sigma) for the pattern values k, d (m from the pattern), state scaling
