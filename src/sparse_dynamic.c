@@ -104,7 +104,10 @@ gd_status gd_dynmat_build(const gd_system *sys, gd_dynmat *a, gd_error *err)
     a->g = malloc(z * sizeof(double));
     a->k = malloc(z * sizeof(double));
     a->tab = calloc((size_t)(a->ntab > 0 ? a->ntab : 1), sizeof *a->tab);
-    if (!a->m || !a->c || !a->g || !a->k || !a->tab) goto nomem;
+    a->diag = malloc((size_t)(n > 0 ? n : 1) * sizeof *a->diag);
+    if (!a->m || !a->c || !a->g || !a->k || !a->tab || !a->diag) goto nomem;
+    for (int j = 0; j < n; j++)
+        a->diag[j] = gd_dynmat_find(a, j, j);
     scatter_values(a, &sys->M, a->m);
     scatter_values(a, &sys->C, a->c);
     scatter_values(a, &sys->G, a->g);
@@ -140,6 +143,7 @@ void gd_dynmat_free(gd_dynmat *a)
     free(a->g);
     free(a->k);
     free(a->tab);
+    free(a->diag);
     memset(a, 0, sizeof *a);
 }
 

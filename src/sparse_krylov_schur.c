@@ -280,12 +280,18 @@ static int next_check(int m, double worst, int prev_m, double prev_worst, int ne
     return m + add;
 }
 
-/* Real Schur form T = Q^T H Q of the m x m Rayleigh quotient, eigenvalues in wr, wi. */
-static gd_status schur_form(gd_ks_work *ws, int m)
+/* T = the leading m x m block of H (leading dimension m), for LAPACK to overwrite. */
+static void copy_rayleigh_quotient(gd_ks_work *ws, int m)
 {
     int ldh = ws->ncv + 1;
     for (int j = 0; j < m; j++)
         memcpy(ws->T + (size_t)j * m, ws->H + (size_t)j * ldh, (size_t)m * sizeof *ws->T);
+}
+
+/* Real Schur form T = Q^T H Q of the m x m Rayleigh quotient, eigenvalues in wr, wi. */
+static gd_status schur_form(gd_ks_work *ws, int m)
+{
+    copy_rayleigh_quotient(ws, m);
     lapack_int sdim = 0;
     memset(ws->Q, 0, (size_t)m * m * sizeof *ws->Q); /* LAPACKE checks outputs for NaN */
     if (LAPACKE_dgees(LAPACK_COL_MAJOR, 'V', 'N', NULL, m, ws->T, m, &sdim, ws->wr, ws->wi, ws->Q,
@@ -309,8 +315,7 @@ static gd_status ritz_pairs(gd_ks_work *ws, int m, int nev, int hessenberg, doub
     double *wr = ws->wr, *wi = ws->wi, *S = ws->S;
     gd_status st;
     if (hessenberg) {
-        for (int j = 0; j < m; j++)
-            memcpy(ws->T + (size_t)j * m, ws->H + (size_t)j * ldh, (size_t)m * sizeof *ws->T);
+        copy_rayleigh_quotient(ws, m);
         lapack_int lw = (lapack_int)((m + 3) * m);
         if (LAPACKE_dhseqr_work(LAPACK_COL_MAJOR, 'E', 'N', m, 1, m, ws->T, m, wr, wi, NULL, 1,
                                 ws->work, lw))

@@ -49,7 +49,7 @@ double gd_sparse_diag_frequency(const gd_dynmat *a, const double *k)
 {
     double best = INFINITY;
     for (int j = 0; j < a->n; j++) {
-        int p = gd_dynmat_find(a, j, j);
+        int p = a->diag[j];
         if (p < 0) continue;
         if (a->m[p] > 0 && k[p] > 0 && k[p] / a->m[p] < best) best = k[p] / a->m[p];
     }

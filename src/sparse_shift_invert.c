@@ -40,7 +40,7 @@ int gd_shift_invert_setup(gd_shift_invert *op, const gd_dynmat *a, const gd_splu
      * costs two vector products instead of n divisions, and the pivot-ratio
      * singularity test compares like with like */
     for (int j = 0; j < a->n; j++) {
-        int q = gd_dynmat_find(a, j, j);
+        int q = a->diag[j];
         double djj = q >= 0 ? fabs(p[q]) : 0;
         op->r[j] = djj > 0 && isfinite(djj) ? 1.0 / sqrt(djj) : 1.0;
     }

@@ -21,6 +21,7 @@ typedef struct gd_dynmat {
     double *m, *c, *g, *k;
     int ntab;
     gd_dyn_bearing *tab;
+    int *diag; /* position of (j, j), or -1 */
     const gd_system *sys;
 } gd_dynmat;
 
