@@ -66,7 +66,7 @@ bench: build
 	bash bench/run.sh $(BUILD)
 
 format:
-	clang-format -i include/geardyn/*.h src/*.c src/*.h src/*/*.c src/*/*.h cli/*.c cli/*.h tests/*.c tests/*.h
+	clang-format -i $$(git ls-files "*.c" "*.h")
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD)

@@ -10,6 +10,7 @@
 
 #include "geardyn/campbell.h"
 #include "geardyn/frf.h"
+#include "geardyn/unbalance.h"
 
 static double now(void)
 {

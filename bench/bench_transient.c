@@ -9,7 +9,7 @@
 #include <time.h>
 
 #include "geardyn/transient.h"
-#include "sparse.h"
+#include "linalg/linalg_impl.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846

@@ -67,6 +67,7 @@ int gd_cli_parse_speed(const char *cmd, const char *text, double *out);
 
 /* ---- sweeps: Campbell, FRF, unbalance (cli_sweep.c) ---- */
 #include "geardyn/frf.h"
+#include "geardyn/unbalance.h"
 
 int gd_cmd_campbell(int argc, char **argv);
 int gd_cmd_frf(int argc, char **argv);

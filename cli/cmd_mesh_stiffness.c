@@ -8,8 +8,8 @@
 #include "cli.h"
 #include "geardyn/mesh_stiffness.h"
 #include "geardyn/units.h"
-#include "mesh_geometry_read.h"
-#include "yaml_doc.h"
+#include "model_file/mesh_geometry_read_impl.h"
+#include "model_file/yaml_doc_impl.h"
 
 static const char USAGE[] =
     "usage: geardyn mesh-stiffness FILE [--mesh NAME] [--method M] [--points N] [--cycles N]\n"

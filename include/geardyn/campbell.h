@@ -1,17 +1,10 @@
 /* Campbell diagram: damped modes over a range of speeds, tracked across speeds by mode
  * shape (MAC), critical speeds where a tracked mode meets an excitation order (1x of
  * each shaft, user orders, tooth-mesh orders), log decrement and the onset speed of
- * instability. Also the sparse lowest-modes eigensolver it uses. */
+ * instability. */
 #ifndef GEARDYN_CAMPBELL_H
 #define GEARDYN_CAMPBELL_H
 #include "geardyn/modal.h"
-
-/* Lowest opt->nmodes (> 0) modes by shift-invert Krylov-Schur on the sparse
- * first-order system, real shift sigma = -shift (rad/s; <= 0: automatic). Same result
- * layout as gd_modal_solve, right vectors only (left_re/left_im are NULL). Needs mass
- * on every DOF (sys->nmassless == 0); otherwise GD_EINPUT: use gd_modal_solve. */
-gd_status gd_modal_solve_sparse(const gd_system *sys, const gd_modal_options *opt, double shift,
-                                gd_modal_result **out, gd_error *err);
 
 typedef enum gd_eig_method {
     GD_EIG_AUTO,  /* sparse for >= 200 DOFs with nmodes > 0 and no massless DOF */

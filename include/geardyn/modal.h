@@ -57,4 +57,11 @@ gd_status gd_modal_solve(const gd_system *sys, const gd_modal_options *opt, gd_m
                          gd_error *err);
 void gd_modal_free(gd_modal_result *res);
 
+/* Lowest opt->nmodes (> 0) modes by shift-invert Krylov-Schur on the sparse
+ * first-order system, real shift sigma = -shift (rad/s; <= 0: automatic). Same result
+ * layout as gd_modal_solve, right vectors only (left_re/left_im are NULL). Needs mass
+ * on every DOF (sys->nmassless == 0); otherwise GD_EINPUT: use gd_modal_solve. */
+gd_status gd_modal_solve_sparse(const gd_system *sys, const gd_modal_options *opt, double shift,
+                                gd_modal_result **out, gd_error *err);
+
 #endif

@@ -5,7 +5,7 @@
 #define GEARDYN_MODEL_H
 #include "geardyn/error.h"
 #include "geardyn/material.h"
-#include "geardyn/nonlinear.h"
+#include "geardyn/laws.h"
 
 #define GD_NAME_MAX 64
 /* node names: a user's name, or a generated "<shaft>@<index>" */

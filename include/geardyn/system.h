@@ -9,14 +9,7 @@
 #define GEARDYN_SYSTEM_H
 #include "geardyn/error.h"
 #include "geardyn/model.h"
-
-/* Compressed sparse columns, square n x n. */
-typedef struct gd_csc {
-    int n;
-    int *colptr; /* n + 1 */
-    int *rowind; /* colptr[n] */
-    double *values;
-} gd_csc;
+#include "geardyn/sparse.h"
 
 /* Motion types for modal strain energy. Shaft bending counts as lateral; tilt is the
  * energy of tilt springs (bearings' k_tilt, rx/ry springs, mesh tilt coupling). */

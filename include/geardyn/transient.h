@@ -24,7 +24,7 @@
 #ifndef GEARDYN_TRANSIENT_H
 #define GEARDYN_TRANSIENT_H
 #include "geardyn/error.h"
-#include "geardyn/nonlinear.h"
+#include "geardyn/laws.h"
 #include "geardyn/system.h"
 
 /* A mesh with a nonlinear or time-varying law. Its linear k a a^T and c a a^T are taken

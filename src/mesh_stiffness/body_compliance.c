@@ -6,7 +6,7 @@
  * neither is rigid. */
 #include <math.h>
 
-#include "ms_internal.h"
+#include "mesh_stiffness/mesh_stiffness_impl.h"
 
 double gd_ms_body_torsional_stiffness(const gd_gear_pair_geometry *g, const gd_gear_pair_derived *d,
                                       int i)

@@ -5,7 +5,7 @@
  * slices use the transverse profile (002_... Sec. 2.2). */
 #include <math.h>
 
-#include "ms_internal.h"
+#include "mesh_stiffness/mesh_stiffness_impl.h"
 
 double gd_ms_energy_pair_stiffness(const gd_ms_energy_law *e, double s)
 {

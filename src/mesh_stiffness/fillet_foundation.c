@@ -6,7 +6,7 @@
  * X* = A/theta_f^2 + B h^2 + C h/theta_f + D/theta_f + E h + F, h = rf/r_bore. */
 #include <math.h>
 
-#include "ms_internal.h"
+#include "mesh_stiffness/mesh_stiffness_impl.h"
 
 static const double COEF[4][6] = {
     /*        A            B            C            D          E        F */

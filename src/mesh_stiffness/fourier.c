@@ -2,7 +2,7 @@
  * harmonics are wanted): x(t) ~ mean + sum_h amp_h cos(h w t + phase_h). */
 #include <math.h>
 
-#include "ms_internal.h"
+#include "mesh_stiffness/mesh_stiffness_impl.h"
 
 void gd_ms_fourier(const double *x, size_t n, int H, double *amp, double *phase)
 {

@@ -7,7 +7,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "ms_internal.h"
+#include "mesh_stiffness/mesh_stiffness_impl.h"
 
 static const char *const GEAR_NAME[2] = {"driver", "driven"};
 

@@ -10,7 +10,7 @@
  * dynamic factor); 1 N/(mm um) = 1e9 N/m^2. */
 #include <math.h>
 
-#include "ms_internal.h"
+#include "mesh_stiffness/mesh_stiffness_impl.h"
 
 static const double C[10] = {0,        0.04723,  0.15551,  0.25791, -0.00635,
                              -0.11654, -0.00193, -0.24188, 0.00529, 0.00182};

@@ -5,7 +5,7 @@
 #include <float.h>
 #include <math.h>
 
-#include "ms_internal.h"
+#include "mesh_stiffness/mesh_stiffness_impl.h"
 
 static const double XGK[8] = {
     0.991455371120812639206854697526329, 0.949107912342758524526189684047851,

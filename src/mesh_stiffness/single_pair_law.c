@@ -4,7 +4,7 @@
  * 0.55 K_m where a pair enters and leaves, K_m at mid-arc. K_m is the ISO 6336-1
  * single stiffness c' (003_...: "K_m is evaluated according to ISO"). Pairs in contact
  * add in parallel; helical pairs go through the same slicing as the energy method. */
-#include "ms_internal.h"
+#include "mesh_stiffness/mesh_stiffness_impl.h"
 
 double gd_ms_cai_factor(double xi)
 {

@@ -10,7 +10,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "ms_internal.h"
+#include "mesh_stiffness/mesh_stiffness_impl.h"
 
 double gd_ms_slicing_eval(const gd_ms_slicing *sl, double theta, double *pair_k, int *npairs)
 {

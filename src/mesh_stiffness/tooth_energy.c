@@ -11,7 +11,7 @@
  * the roll angle of the contact point. Per unit face width, plane stress. */
 #include <math.h>
 
-#include "ms_internal.h"
+#include "mesh_stiffness/mesh_stiffness_impl.h"
 
 typedef struct beam_ctx {
     const gd_ms_tooth *t;

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ms_internal.h"
+#include "mesh_stiffness/mesh_stiffness_impl.h"
 
 static const char *const METHOD_NAMES[GD_TVMS_METHOD_COUNT_] = {"energy", "iso6336",
                                                                 "single-pair-law", "square"};

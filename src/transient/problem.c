@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "geardyn/model.h"
-#include "internal.h"
+#include "transient/transient_impl.h"
 
 static gd_status fail(gd_error *err, gd_status st, const char *field, const char *hint,
                       const char *msg)

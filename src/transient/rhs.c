@@ -3,7 +3,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "internal.h"
+#include "transient/transient_impl.h"
 
 void gd_tr_fill(gd_transient *tr, double t, const double *y, double *q, double *v, double *acc)
 {

@@ -10,7 +10,7 @@
 #include <sunlinsol/sunlinsol_spgmr.h>
 #include <time.h>
 
-#include "internal.h"
+#include "transient/transient_impl.h"
 
 void gd_transient_options_default(gd_transient_options *opt)
 {

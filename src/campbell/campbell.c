@@ -1,0 +1,250 @@
+/* Campbell diagram: the damped modes at every speed (in parallel over speeds, one
+ * result slot per speed, so the numbers do not depend on the number of threads), then
+ * tracking, orders, critical speeds and stability. The sparse path builds the pattern
+ * and its symbolic factorisation once and factors P(sigma) per speed. */
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "campbell/campbell_impl.h"
+#include "modal/modal_impl.h"
+
+void gd_campbell_options_default(gd_campbell_options *opt)
+{
+    memset(opt, 0, sizeof *opt);
+    opt->nmodes = 12;
+    opt->kind = GD_MODAL_AUTO;
+    opt->method = GD_EIG_AUTO;
+    opt->shaft_orders = 1;
+    opt->mesh_orders = 1;
+    opt->mac_min = 0.1;
+}
+
+void gd_campbell_free(gd_campbell_result *r)
+{
+    if (!r) return;
+    free(r->speeds);
+    free(r->tracks);
+    free(r->modes);
+    free(r->orders);
+    free(r->critical);
+    free(r);
+}
+
+static gd_status solve_one(const gd_system *sys, const gd_dynmat *a, const gd_splu_symbolic *sym,
+                           const gd_campbell_options *opt, int nreq, double speed, gd_sparse_ws *ws,
+                           gd_modal_result **out, gd_error *err)
+{
+    gd_modal_options o;
+    gd_modal_options_default(&o);
+    o.speed = speed;
+    o.nmodes = nreq;
+    o.kind = opt->kind;
+    o.want_left = 0;
+    if (a) return gd_sparse_modes(a, sym, &o, opt->shift, ws, out, err);
+    return gd_modal_solve(sys, &o, out, err);
+}
+
+/* Releases the mode shapes of a result whose modes have been tracked. */
+static void drop_shapes(gd_modal_result *r)
+{
+    free(r->shape_re);
+    free(r->shape_im);
+    r->shape_re = r->shape_im = NULL;
+}
+
+static gd_whirl majority_whirl(const gd_mode *md, const double *speeds, int ns)
+{
+    int cnt[4] = {0};
+    for (int s = 0; s < ns; s++)
+        if (md[s].rigid_body >= 0 && speeds[s] != 0) cnt[md[s].whirl]++;
+    static const gd_whirl pref[3] = {GD_WHIRL_FORWARD, GD_WHIRL_BACKWARD, GD_WHIRL_MIXED};
+    gd_whirl best = GD_WHIRL_NONE;
+    int bc = 0;
+    for (int i = 0; i < 3; i++)
+        if (cnt[pref[i]] > bc) {
+            bc = cnt[pref[i]];
+            best = pref[i];
+        }
+    return bc >= cnt[GD_WHIRL_NONE] ? best : GD_WHIRL_NONE;
+}
+
+static gd_motion majority_motion(const gd_mode *md, int ns)
+{
+    int cnt[GD_NMOTIONS] = {0}, best = 0;
+    for (int s = 0; s < ns; s++)
+        if (md[s].rigid_body >= 0) cnt[md[s].dominant_motion]++;
+    for (int k = 1; k < GD_NMOTIONS; k++)
+        if (cnt[k] > cnt[best]) best = k;
+    return (gd_motion)best;
+}
+
+gd_status gd_campbell(const gd_system *sys, const gd_campbell_options *opt,
+                      gd_campbell_result **out, gd_error *err)
+{
+    *out = NULL;
+    const gd_model *m = sys->model;
+    int ns = opt->nspeeds;
+    if (ns < 1 || !opt->speeds)
+        return gd_error_set(err, GD_EINPUT, "", 0, 0, "speeds", "give at least one speed",
+                            "no speeds to compute");
+    for (int s = 0; s < ns; s++)
+        if (!isfinite(opt->speeds[s]) || (s > 0 && !(opt->speeds[s] > opt->speeds[s - 1])))
+            return gd_error_set(err, GD_EINPUT, "", 0, 0, "speeds",
+                                "give finite speeds in increasing order",
+                                "speed %d (%g rad/s) is not finite or not above the previous",
+                                s + 1, opt->speeds[s]);
+    if (opt->nmodes < 0)
+        return gd_error_set(err, GD_EINPUT, "", 0, 0, "modes", "give a positive number of modes",
+                            "negative number of modes");
+    int sparse = opt->method == GD_EIG_SPARSE ||
+                 (opt->method == GD_EIG_AUTO && sys->ndof >= 200 && opt->nmodes > 0 &&
+                  sys->nmassless == 0 && 2 * opt->nmodes + 16 < sys->ndof);
+    if (sparse && (opt->nmodes == 0 || sys->nmassless > 0))
+        return gd_error_set(err, GD_EINPUT, m->file, 0, 0, "method",
+                            "use the dense method (it condenses massless DOFs and gives all modes)",
+                            opt->nmodes == 0 ? "the sparse eigensolver computes the lowest modes, "
+                                               "not all of them"
+                                             : "the sparse eigensolver needs mass on every DOF");
+    gd_status st = GD_OK;
+    gd_dynmat a = {0};
+    gd_splu_symbolic sym = {0};
+    gd_modal_result **res = calloc((size_t)ns, sizeof *res);
+    gd_error *errs = calloc((size_t)ns, sizeof *errs);
+    gd_status *sts = calloc((size_t)ns, sizeof *sts);
+    int **elastic = calloc((size_t)ns, sizeof *elastic),
+        **track = calloc((size_t)ns, sizeof *track);
+    int *nel = calloc((size_t)ns, sizeof *nel);
+    gd_campbell_result *r = calloc(1, sizeof *r);
+    gd_sparse_ws *wss = NULL;
+    int nt = 1;
+    if (!res || !errs || !sts || !elastic || !track || !nel || !r) goto nomem;
+    if (sparse) {
+        if ((st = gd_dynmat_build(sys, &a, err))) goto done;
+        if ((st = gd_splu_analyze(&a.pat, &sym, err))) goto done;
+    }
+    /* rigid-body modes are not tracked: count them once at the first speed (they sort
+     * first, so a probe that is not all rigid has found them all), then ask for that
+     * many more; with none, the probe is the first speed's result */
+    int nreq = 0, nrigid = 0;
+    if (opt->nmodes > 0) {
+        for (int probe = opt->nmodes;; probe *= 2) {
+            if (probe > sys->ndof) probe = sys->ndof;
+            gd_modal_result *r0 = NULL;
+            if ((st = solve_one(sys, sparse ? &a : NULL, &sym, opt, probe, opt->speeds[0], NULL,
+                                &r0, err)))
+                goto done;
+            nrigid = 0;
+            for (int j = 0; j < r0->nmodes; j++)
+                nrigid += r0->modes[j].rigid_body;
+            if (nrigid < r0->nmodes || probe == sys->ndof) {
+                nreq = opt->nmodes + nrigid;
+                if (nreq > sys->ndof) nreq = sys->ndof;
+                if (nreq == probe)
+                    res[0] = r0;
+                else
+                    gd_modal_free(r0);
+                break;
+            }
+            gd_modal_free(r0);
+        }
+    }
+    nt = opt->nthreads > 0 ? opt->nthreads : omp_get_max_threads();
+    /* one workspace per thread, reused over its speeds; one result slot per speed. The
+     * speeds go in blocks: each block is solved in parallel, then tracked, and the
+     * mode shapes that tracking no longer needs are released, so the next block reuses
+     * their memory (fresh pages cost more than the tracking itself). Blocks change
+     * nothing in the numbers. */
+    wss = calloc((size_t)nt, sizeof *wss);
+    if (!wss) goto nomem;
+    for (int t = 0; t < nt && sparse; t++)
+        if (gd_sparse_ws_init(&wss[t], &a, nreq)) memset(&wss[t], 0, sizeof wss[t]);
+    int nt_tracks = 0, block = 8 * nt;
+    for (int b0 = 0; b0 < ns; b0 += block) {
+        int b1 = b0 + block < ns ? b0 + block : ns;
+#pragma omp parallel for num_threads(nt) schedule(dynamic, 1)
+        for (int s = b0; s < b1; s++) {
+            gd_sparse_ws *ws = sparse ? &wss[omp_get_thread_num()] : NULL;
+            if (!res[s])
+                sts[s] = solve_one(sys, sparse ? &a : NULL, &sym, opt, nreq, opt->speeds[s],
+                                   ws && ws->k ? ws : NULL, &res[s], &errs[s]);
+        }
+        for (int s = b0; s < b1; s++)
+            if (sts[s]) {
+                if (err) *err = errs[s];
+                st = sts[s];
+                goto done;
+            }
+        for (int s = b0; s < b1; s++) {
+            int cap = res[s]->nmodes > 0 ? res[s]->nmodes : 1;
+            elastic[s] = malloc((size_t)cap * sizeof **elastic);
+            track[s] = malloc((size_t)cap * sizeof **track);
+            if (!elastic[s] || !track[s]) goto nomem;
+            int lim = opt->nmodes > 0 ? opt->nmodes : res[s]->nmodes;
+            for (int j = 0; j < res[s]->nmodes && nel[s] < lim; j++)
+                if (!res[s]->modes[j].rigid_body) elastic[s][nel[s]++] = j;
+            if (res[s]->nmodes - nel[s] > nrigid && opt->nmodes == 0)
+                nrigid = res[s]->nmodes - nel[s];
+            if (gd_campbell_track_step(s > 0 ? res[s - 1] : NULL, s > 0 ? elastic[s - 1] : NULL,
+                                       s > 0 ? nel[s - 1] : 0, s > 0 ? track[s - 1] : NULL, res[s],
+                                       elastic[s], nel[s], opt->mac_min, track[s], &nt_tracks))
+                goto nomem;
+            if (s > 0) drop_shapes(res[s - 1]);
+        }
+    }
+    r->nspeeds = ns;
+    r->ntracks = nt_tracks;
+    r->ndof = sys->ndof;
+    r->nrigid = nrigid;
+    r->sparse = sparse;
+    r->speeds = malloc((size_t)ns * sizeof *r->speeds);
+    r->tracks = calloc((size_t)(nt_tracks > 0 ? nt_tracks : 1), sizeof *r->tracks);
+    r->modes = malloc((size_t)(nt_tracks > 0 ? nt_tracks : 1) * (size_t)ns * sizeof *r->modes);
+    if (!r->speeds || !r->tracks || !r->modes) goto nomem;
+    memcpy(r->speeds, opt->speeds, (size_t)ns * sizeof *r->speeds);
+    for (size_t i = 0; i < (size_t)nt_tracks * ns; i++) {
+        gd_mode *md = &r->modes[i];
+        memset(md, 0, sizeof *md);
+        md->lambda_re = md->lambda_im = md->omega_n = md->omega_d = NAN;
+        md->frequency_hz = md->damping_ratio = md->log_decrement = NAN;
+        md->rigid_body = -1;
+        md->dominant_component = -1;
+    }
+    for (int s = 0; s < ns; s++)
+        for (int j = 0; j < nel[s]; j++)
+            r->modes[(size_t)track[s][j] * ns + s] = res[s]->modes[elastic[s][j]];
+    for (int t = 0; t < nt_tracks; t++) {
+        r->tracks[t].id = t + 1;
+        r->tracks[t].whirl = majority_whirl(r->modes + (size_t)t * ns, r->speeds, ns);
+        r->tracks[t].dominant_motion = majority_motion(r->modes + (size_t)t * ns, ns);
+    }
+    r->norders = gd_campbell_orders(m, opt, &r->orders);
+    if (r->norders < 0 || gd_campbell_crossings(r)) goto nomem;
+    *out = r;
+    r = NULL;
+    goto done;
+nomem:
+    st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory in the Campbell sweep");
+done:
+    for (int t = 0; wss && t < nt; t++)
+        gd_sparse_ws_free(&wss[t]);
+    free(wss);
+    if (sparse) {
+        gd_splu_symbolic_free(&sym);
+        gd_dynmat_free(&a);
+    }
+    for (int s = 0; s < ns && res; s++) {
+        gd_modal_free(res[s]);
+        if (elastic) free(elastic[s]);
+        if (track) free(track[s]);
+    }
+    free(res);
+    free(errs);
+    free(sts);
+    free(elastic);
+    free(track);
+    free(nel);
+    gd_campbell_free(r);
+    return st;
+}

@@ -1,0 +1,34 @@
+/* Backlash mesh force with contact on the drive and the coast flank, 003_... Eqs. 2-4
+ * (as cleaned up in DESIGN.md), and mesh damping laws. */
+#include "geardyn/laws.h"
+
+gd_contact gd_backlash_state(double d, double b)
+{
+    if (d > b) return GD_CONTACT_DRIVE;
+    if (d < -b) return GD_CONTACT_COAST;
+    return GD_CONTACT_SEPARATED;
+}
+
+double gd_backlash_force(const gd_backlash_params *p, gd_contact state, double d, double dd)
+{
+    switch (state) {
+    case GD_CONTACT_DRIVE:
+        return p->k_drive * (d - p->b) + p->c_drive * dd;
+    case GD_CONTACT_COAST:
+        return p->k_coast * (d + p->b) + p->c_coast * dd;
+    default:
+        return p->c_free * dd;
+    }
+}
+
+double gd_backlash_force_auto(const gd_backlash_params *p, double d, double dd, gd_contact *state)
+{
+    gd_contact s = gd_backlash_state(d, p->b);
+    if (state) *state = s;
+    return gd_backlash_force(p, s, d, dd);
+}
+
+double gd_mesh_damping(double c_const, double c_per_k, double k)
+{
+    return c_const + c_per_k * k;
+}

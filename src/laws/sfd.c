@@ -1,0 +1,129 @@
+/* Squeeze film damper forces by short-bearing (Ocvirk) theory, pi (cavitated) and 2pi
+ * (uncavitated) film, with a finite-length correction factor (001_..., Barrett, Allaire &
+ * Gunter 1980). Derivation (docs/transient.md):
+ *
+ * Journal centre at e (e, phi) from the housing centre, no spin. With theta measured from
+ * the point of maximum film (opposite to the eccentricity), h = c (1 + eps cos theta) and
+ * dh/dt = c (eps' cos theta + eps phi' sin theta). Short-bearing Reynolds equation with
+ * p = 0 at both ends: p = 6 mu (dh/dt) (z^2 - L^2/4) / h^3, so int p dz = -mu L^3 h_t / h^3.
+ * The force on the journal is -int p n R dtheta dz with n the outward normal; its
+ * components along e (radial) and +90 deg from it (tangential) are
+ *   F_r = -(mu R L^3 / c^2) [eps' J1 + eps phi' J2]
+ *   F_t = -(mu R L^3 / c^2) [eps' J2 + eps phi' J3]
+ * with J1..J3 the integrals of cos^2, sin cos, sin^2 over (1 + eps cos theta)^3 on the
+ * film: all of [0, 2 pi) for the 2pi film; for the pi film the half where the film is
+ * squeezed (p > 0): theta in (psi0 + pi/2, psi0 + 3 pi/2), psi0 = atan2(eps phi', eps').
+ * Closed forms through the eccentric anomaly gamma, cos gamma = (eps + cos theta) /
+ * (1 + eps cos theta), which turns every integrand into a trigonometric polynomial:
+ *   J1 = [(1/2 + eps^2) gamma + sin(2 gamma)/4 - 2 eps sin gamma] / s^5
+ *   J2 = [sin^2(gamma)/2 + eps cos gamma] / s^4
+ *   J3 = [gamma/2 - sin(2 gamma)/4] / s^3,            s = sqrt(1 - eps^2). */
+#include <math.h>
+
+#include "geardyn/laws.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+double gd_sfd_correction_factor(double l_over_d)
+{
+    double l = l_over_d;
+    if (!(l > 0)) return 1.0;
+    if (l < 1e-3) return 1.0 - 0.4 * l * l; /* series: 1 - 2 l^2/5 + O(l^4) */
+    return 3.0 / (l * l) * (1.0 - tanh(l) / l);
+}
+
+/* Continuous eccentric anomaly of theta: gamma - theta lies in (-pi, pi) and both agree
+ * at multiples of pi. */
+static double anomaly(double eps, double s, double theta)
+{
+    double g0 = atan2(s * sin(theta), eps + cos(theta));
+    return theta + remainder(g0 - theta, 2.0 * M_PI);
+}
+
+static void antiderivatives(double eps, double s, double g, double out[3])
+{
+    double sg = sin(g), cg = cos(g), s2g = 2.0 * sg * cg;
+    double s3 = s * s * s, s4 = s3 * s, s5 = s4 * s;
+    out[0] = ((0.5 + eps * eps) * g + 0.25 * s2g - 2.0 * eps * sg) / s5;
+    out[1] = (0.5 * sg * sg + eps * cg) / s4;
+    out[2] = (0.5 * g - 0.25 * s2g) / s3;
+}
+
+void gd_sfd_integrals(double eps, double t1, double t2, double j[3])
+{
+    double s = sqrt((1.0 - eps) * (1.0 + eps));
+    double a[3], b[3];
+    /* keep gamma continuous over the interval: add whole turns of theta to gamma */
+    double turns = floor((t2 - t1) / (2.0 * M_PI));
+    double t2r = t2 - turns * 2.0 * M_PI;
+    double g2 = anomaly(eps, s, t2r);
+    double g1 = anomaly(eps, s, t1);
+    antiderivatives(eps, s, g1, a);
+    /* gamma(t2r) must not be below gamma(t1) when t2r >= t1 */
+    while (g2 < g1 - 1e-15)
+        g2 += 2.0 * M_PI;
+    g2 += turns * 2.0 * M_PI;
+    antiderivatives(eps, s, g2, b);
+    for (int k = 0; k < 3; k++)
+        j[k] = b[k] - a[k];
+}
+
+void gd_sfd_force_polar(const gd_sfd_params *p, double e, double edot, double phidot, double *fr,
+                        double *ft)
+{
+    double c = p->clearance;
+    double emax = p->max_eccentricity > 0 ? p->max_eccentricity : 0.995;
+    double eps = e / c;
+    if (eps > emax) eps = emax;
+    if (eps < 0) eps = 0;
+    double epsd = edot / c, wv = eps * phidot; /* eps', eps phi' */
+    double eta = p->correction > 0   ? p->correction
+                 : p->correction < 0 ? 1.0
+                                     : gd_sfd_correction_factor(p->length / (2.0 * p->radius));
+    double scale = p->viscosity * p->radius * p->length * p->length * p->length / (c * c) * eta;
+    double j[3];
+    if (p->film == GD_SFD_2PI_FILM) {
+        gd_sfd_integrals(eps, 0.0, 2.0 * M_PI, j);
+    } else {
+        if (epsd == 0.0 && wv == 0.0) {
+            *fr = *ft = 0.0;
+            return;
+        }
+        double psi0 = atan2(wv, epsd);
+        gd_sfd_integrals(eps, psi0 + 0.5 * M_PI, psi0 + 1.5 * M_PI, j);
+    }
+    *fr = -scale * (epsd * j[0] + wv * j[1]);
+    *ft = -scale * (epsd * j[1] + wv * j[2]);
+}
+
+void gd_sfd_force(const gd_sfd_params *p, double x, double y, double vx, double vy, double *fx,
+                  double *fy)
+{
+    double e = hypot(x, y);
+    double cphi, sphi;
+    if (e > 1e-12 * p->clearance) {
+        cphi = x / e;
+        sphi = y / e;
+    } else {
+        /* centred: the forces are isotropic, any direction serves; take the velocity's */
+        double v = hypot(vx, vy);
+        cphi = v > 0 ? vx / v : 1.0;
+        sphi = v > 0 ? vy / v : 0.0;
+        e = 0.0;
+    }
+    double edot = vx * cphi + vy * sphi;   /* radial velocity */
+    double ephid = -vx * sphi + vy * cphi; /* tangential velocity e phi' */
+    double phidot = e > 0 ? ephid / e : 0.0;
+    double fr, ft;
+    if (e > 0) {
+        gd_sfd_force_polar(p, e, edot, phidot, &fr, &ft);
+    } else {
+        /* eps phi' = ephid / c is finite as e -> 0: evaluate with a tiny eccentricity */
+        double et = 1e-9 * p->clearance;
+        gd_sfd_force_polar(p, et, edot, ephid / et, &fr, &ft);
+    }
+    *fx = fr * cphi - ft * sphi;
+    *fy = fr * sphi + ft * cphi;
+}

@@ -1,0 +1,518 @@
+/* Krylov-Schur (Stewart, SIAM J. Matrix Anal. Appl. 23, 2001) in real arithmetic for
+ * the eigenvalues of largest magnitude of a real operator: Arnoldi with full (twice
+ * classical Gram-Schmidt) reorthogonalisation, real Schur form of the Rayleigh
+ * quotient (dgees), reordering of the wanted Schur vectors to the front (dtrsen) and
+ * restart from them. Written here rather than taken from ARPACK because ARPACK keeps
+ * its state in Fortran SAVE variables and cannot run in several threads at once; this
+ * one keeps everything in its arguments. The vector kernels are plain loops (no
+ * threaded BLAS inside a parallel sweep); the m x m problems go to LAPACK.
+ *
+ * The first pass grows one Arnoldi decomposition and checks for convergence at a few
+ * sizes (from twice the wanted count, then extrapolating the residual decay), so a
+ * well-separated problem stops without any restart. Before a restart the Rayleigh
+ * quotient is still Hessenberg, and a check needs only its eigenvalues (Hessenberg QR)
+ * and the wanted eigenvectors (inverse iteration, dhsein); the full Schur form is
+ * computed only to restart. */
+#include <lapacke.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "linalg/linalg_impl.h"
+
+/* The vector kernels below are also compiled for AVX2 and AVX-512 and picked at load
+ * time (function multiversioning, GCC and Clang on x86-64 Linux); elsewhere they are
+ * the portable loops. The clone depends on the machine only, so results do not depend
+ * on the number of threads. */
+#if defined(__x86_64__) && defined(__GNUC__) && defined(__linux__)
+#define GD_VECTOR_KERNEL                                                                           \
+    __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#else
+#define GD_VECTOR_KERNEL
+#endif
+
+static double dot(const double *a, const double *b, int n)
+{
+    double s = 0;
+#pragma omp simd reduction(+ : s)
+    for (int i = 0; i < n; i++)
+        s += a[i] * b[i];
+    return s;
+}
+
+/* sum a[i * lda] b[i]: a row of a column-major matrix times a vector */
+static double dot_strided(const double *a, int lda, const double *b, int n)
+{
+    double s = 0;
+    for (int i = 0; i < n; i++)
+        s += a[(size_t)i * lda] * b[i];
+    return s;
+}
+
+/* h[c] = V[:, c]^T w for c < k, four columns per sweep over w */
+GD_VECTOR_KERNEL static void dots(const double *V, int n, int k, const double *w, double *h)
+{
+    int c = 0;
+    for (; c + 4 <= k; c += 4) {
+        const double *v0 = V + (size_t)c * n, *v1 = v0 + n, *v2 = v1 + n, *v3 = v2 + n;
+        double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
+#pragma omp simd reduction(+ : s0, s1, s2, s3)
+        for (int i = 0; i < n; i++) {
+            s0 += v0[i] * w[i];
+            s1 += v1[i] * w[i];
+            s2 += v2[i] * w[i];
+            s3 += v3[i] * w[i];
+        }
+        h[c] = s0;
+        h[c + 1] = s1;
+        h[c + 2] = s2;
+        h[c + 3] = s3;
+    }
+    for (; c < k; c++)
+        h[c] = dot(V + (size_t)c * n, w, n);
+}
+
+/* w -= V[:, 0:k] h, four columns per sweep */
+GD_VECTOR_KERNEL static void subtract(const double *V, int n, int k, const double *h, double *w)
+{
+    int c = 0;
+    for (; c + 4 <= k; c += 4) {
+        const double *v0 = V + (size_t)c * n, *v1 = v0 + n, *v2 = v1 + n, *v3 = v2 + n;
+        double a0 = h[c], a1 = h[c + 1], a2 = h[c + 2], a3 = h[c + 3];
+#pragma omp simd
+        for (int i = 0; i < n; i++)
+            w[i] -= (a0 * v0[i] + a1 * v1[i]) + (a2 * v2[i] + a3 * v3[i]);
+    }
+    for (; c < k; c++) {
+        const double *v = V + (size_t)c * n;
+        double a = h[c];
+#pragma omp simd
+        for (int i = 0; i < n; i++)
+            w[i] -= a * v[i];
+    }
+}
+
+/* w -= V[:, 0:k] h after h = V^T w; repeated once when the first pass cancelled most
+ * of w (Daniel, Gragg, Kaufman and Stewart's criterion), as twice is enough. */
+static void orthogonalise(const double *V, int n, int k, double *w, double *h, double *h2)
+{
+    double before = sqrt(dot(w, w, n));
+    dots(V, n, k, w, h);
+    subtract(V, n, k, h, w);
+    double after = sqrt(dot(w, w, n));
+    if (after > 0.7071 * before) return;
+    dots(V, n, k, w, h2);
+    subtract(V, n, k, h2, w);
+    for (int c = 0; c < k; c++)
+        h[c] += h2[c];
+}
+
+/* Z[:, 0:p] = V[0:n, 0:m] Q[:, 0:p] (V with leading dimension ldv, Q is m x m, Z is
+ * n x p) */
+GD_VECTOR_KERNEL static void basis_times(const double *V, int ldv, int n, int m, const double *Q,
+                                         int p, double *Z)
+{
+    for (int c = 0; c < p; c++) {
+        double *z = Z + (size_t)c * n;
+        const double *q = Q + (size_t)c * m;
+        for (int i = 0; i < n; i++)
+            z[i] = 0;
+        int r = 0;
+        for (; r + 4 <= m; r += 4) {
+            const double *v0 = V + (size_t)r * ldv, *v1 = v0 + ldv, *v2 = v1 + ldv, *v3 = v2 + ldv;
+            double a0 = q[r], a1 = q[r + 1], a2 = q[r + 2], a3 = q[r + 3];
+#pragma omp simd
+            for (int i = 0; i < n; i++)
+                z[i] += (a0 * v0[i] + a1 * v1[i]) + (a2 * v2[i] + a3 * v3[i]);
+        }
+        for (; r < m; r++) {
+            const double *v = V + (size_t)r * ldv;
+            double a = q[r];
+#pragma omp simd
+            for (int i = 0; i < n; i++)
+                z[i] += a * v[i];
+        }
+    }
+}
+
+/* Deterministic pseudo-random vector (a fixed linear congruential sequence). */
+static void start_vector(double *v, int n, unsigned seed)
+{
+    unsigned long long x = 0x9E3779B97F4A7C15ull ^ seed;
+    for (int i = 0; i < n; i++) {
+        x = x * 6364136223846793005ull + 1442695040888963407ull;
+        v[i] = (double)(x >> 11) / 9007199254740992.0 - 0.5;
+    }
+}
+
+static double nrm2(const double *v, int n)
+{
+    return sqrt(dot(v, v, n));
+}
+
+/* Orders eigenvalue indices by decreasing magnitude (ties: index). */
+typedef struct mag_index {
+    double mag;
+    int i;
+} mag_index;
+static int cmp_mag(const void *a, const void *b)
+{
+    const mag_index *x = a, *y = b;
+    if (x->mag != y->mag) return x->mag < y->mag ? 1 : -1;
+    return x->i - y->i;
+}
+
+int gd_ks_work_init(gd_ks_work *w, int n, int ncv)
+{
+    memset(w, 0, sizeof *w);
+    if (ncv > n) ncv = n;
+    int m = ncv;
+    w->n = n;
+    w->ncv = m;
+    w->V = malloc((size_t)n * (size_t)(m + 1) * sizeof(double));
+    w->H = malloc((size_t)(m + 1) * (size_t)m * sizeof(double));
+    w->T = malloc((size_t)m * m * sizeof(double));
+    w->Q = malloc((size_t)m * m * sizeof(double));
+    w->X = malloc((size_t)m * m * sizeof(double));
+    w->S = malloc((size_t)m * m * sizeof(double));
+    w->work = malloc((size_t)(m + 3) * m * sizeof(double));
+    w->wr = malloc((size_t)m * sizeof(double));
+    w->wr2 = malloc((size_t)m * sizeof(double));
+    w->wi = malloc((size_t)m * sizeof(double));
+    w->h = malloc((size_t)(m + 1) * sizeof(double));
+    w->h2 = malloc((size_t)(m + 1) * sizeof(double));
+    w->b = malloc((size_t)m * sizeof(double));
+    w->res = malloc((size_t)m * sizeof(double));
+    w->Z = malloc((size_t)n * (size_t)m * sizeof(double));
+    w->sel = malloc((size_t)m * sizeof(lapack_logical));
+    w->grp = malloc((size_t)m * sizeof(int));
+    w->ifail = malloc((size_t)2 * m * sizeof(lapack_int));
+    w->order = malloc((size_t)m * sizeof(mag_index));
+    if (!w->V || !w->H || !w->T || !w->Q || !w->X || !w->S || !w->work || !w->wr || !w->wr2 ||
+        !w->wi || !w->h || !w->h2 || !w->b || !w->res || !w->Z || !w->sel || !w->grp || !w->ifail ||
+        !w->order) {
+        gd_ks_work_free(w);
+        return 1;
+    }
+    return 0;
+}
+
+void gd_ks_work_free(gd_ks_work *w)
+{
+    free(w->V);
+    free(w->H);
+    free(w->T);
+    free(w->Q);
+    free(w->X);
+    free(w->S);
+    free(w->work);
+    free(w->wr);
+    free(w->wr2);
+    free(w->wi);
+    free(w->h);
+    free(w->h2);
+    free(w->b);
+    free(w->res);
+    free(w->Z);
+    free(w->sel);
+    free(w->grp);
+    free(w->ifail);
+    free(w->order);
+    memset(w, 0, sizeof *w);
+}
+
+/* Selects the largest eigenvalues, keeping conjugate pairs together, until at least
+ * target are selected; returns the count. */
+static int select_largest(const double *wr, const double *wi, int m, int target, int *sel,
+                          mag_index *order)
+{
+    for (int i = 0; i < m; i++) {
+        order[i] = (mag_index){hypot(wr[i], wi[i]), i};
+        sel[i] = 0;
+    }
+    qsort(order, (size_t)m, sizeof *order, cmp_mag);
+    int cnt = 0;
+    for (int r = 0; r < m && cnt < target; r++) {
+        int i = order[r].i;
+        if (sel[i]) continue;
+        sel[i] = 1;
+        cnt++;
+        if (wi[i] != 0) {
+            int partner = wi[i] > 0 ? i + 1 : i - 1;
+            if (partner >= 0 && partner < m && !sel[partner]) {
+                sel[partner] = 1;
+                cnt++;
+            }
+        }
+    }
+    return cnt;
+}
+
+void gd_ks_result_free(gd_ks_result *r)
+{
+    free(r->mu_re);
+    free(r->mu_im);
+    free(r->vec_re);
+    free(r->vec_im);
+    memset(r, 0, sizeof *r);
+}
+
+/* Basis size of the first convergence check while the first pass grows: shift-invert
+ * Ritz values of the lowest modes typically converge once the basis holds about twice
+ * the wanted count (measured on shaft models); each check costs a Hessenberg QR. */
+static int first_check(int nev, int ncv)
+{
+    int m = nev > 8 ? 2 * nev : nev + 8;
+    return m < ncv ? m : ncv;
+}
+
+/* Basis size of the next check: the worst residual falls about geometrically with
+ * the basis size, so extrapolate from the last two checks to the size where it reaches
+ * tol (at least two more vectors); a fixed step after the first. */
+static int next_check(int m, double worst, int prev_m, double prev_worst, int nev, double tol)
+{
+    int add = nev / 6 > 4 ? nev / 6 : 4;
+    if (prev_m > 0 && worst < prev_worst && worst > 0) {
+        double rate = log(prev_worst / worst) / (m - prev_m);
+        double need = ceil(log(worst / tol) / rate);
+        add = need < 2 ? 2 : need > 4 * add ? 4 * add : (int)need;
+    }
+    return m + add;
+}
+
+/* T = the leading m x m block of H (leading dimension m), for LAPACK to overwrite. */
+static void copy_rayleigh_quotient(gd_ks_work *ws, int m)
+{
+    int ldh = ws->ncv + 1;
+    for (int j = 0; j < m; j++)
+        memcpy(ws->T + (size_t)j * m, ws->H + (size_t)j * ldh, (size_t)m * sizeof *ws->T);
+}
+
+/* Real Schur form T = Q^T H Q of the m x m Rayleigh quotient, eigenvalues in wr, wi. */
+static gd_status schur_form(gd_ks_work *ws, int m)
+{
+    copy_rayleigh_quotient(ws, m);
+    lapack_int sdim = 0;
+    memset(ws->Q, 0, (size_t)m * m * sizeof *ws->Q); /* LAPACKE checks outputs for NaN */
+    if (LAPACKE_dgees(LAPACK_COL_MAJOR, 'V', 'N', NULL, m, ws->T, m, &sdim, ws->wr, ws->wi, ws->Q,
+                      m))
+        return GD_ENUMERIC;
+    return GD_OK;
+}
+
+/* The Ritz pairs of the nev largest Ritz values of the m-vector decomposition: their
+ * coefficient vectors in the basis as the columns of S (one column per real value,
+ * the real and imaginary parts for each conjugate pair), grp[g] = the index of the
+ * value of group g (the member with positive imaginary part), and the relative
+ * residuals res[g] = |beta e_m^T s| / (|s| |mu|). While H is still Hessenberg (no
+ * restart yet), only its eigenvalues are computed (dhseqr) and the wanted vectors come
+ * from inverse iteration on H (dhsein). Returns the group count in *ngrp and the
+ * count of selected values in *nsel. */
+static gd_status ritz_pairs(gd_ks_work *ws, int m, int nev, int hessenberg, double beta, int *ngrp,
+                            int *nsel)
+{
+    int ldh = ws->ncv + 1;
+    double *wr = ws->wr, *wi = ws->wi, *S = ws->S;
+    gd_status st;
+    if (hessenberg) {
+        copy_rayleigh_quotient(ws, m);
+        lapack_int lw = (lapack_int)((m + 3) * m);
+        if (LAPACKE_dhseqr_work(LAPACK_COL_MAJOR, 'E', 'N', m, 1, m, ws->T, m, wr, wi, NULL, 1,
+                                ws->work, lw))
+            return GD_ENUMERIC;
+    } else if ((st = schur_form(ws, m))) {
+        return st;
+    }
+    *nsel = select_largest(wr, wi, m, nev, ws->sel, ws->order);
+    int g = 0, ncol = 0;
+    for (int j = 0; j < m; j++)
+        if (ws->sel[j] && wi[j] >= 0) {
+            ws->grp[g++] = j;
+            ncol += wi[j] > 0 ? 2 : 1;
+        }
+    *ngrp = g;
+    memset(S, 0, (size_t)m * ncol * sizeof *S);
+    lapack_int used = 0;
+    if (hessenberg) {
+        /* dhsein may perturb close eigenvalues of its wr copy to separate the vectors */
+        memcpy(ws->wr2, wr, (size_t)m * sizeof *wr);
+        lapack_int info =
+            LAPACKE_dhsein_work(LAPACK_COL_MAJOR, 'R', 'Q', 'N', ws->sel, m, ws->H, ldh, ws->wr2,
+                                wi, NULL, 1, S, m, ncol, &used, ws->work, ws->ifail, ws->ifail + m);
+        if (info < 0) return GD_ENUMERIC;
+        if (info > 0) /* a vector did not converge: take the Schur route instead */
+            return ritz_pairs(ws, m, nev, 0, beta, ngrp, nsel);
+    } else {
+        memset(ws->X, 0, (size_t)m * ncol * sizeof *ws->X);
+        if (LAPACKE_dtrevc_work(LAPACK_COL_MAJOR, 'R', 'S', ws->sel, m, ws->T, m, NULL, 1, ws->X, m,
+                                ncol, &used, ws->work))
+            return GD_ENUMERIC;
+        /* S = Q X: the vectors of T back in the basis of H */
+        for (int c = 0; c < ncol; c++)
+            for (int i = 0; i < m; i++)
+                S[i + (size_t)c * m] = dot_strided(ws->Q + i, m, ws->X + (size_t)c * m, m);
+    }
+    for (int k = 0, c = 0; k < g; k++) {
+        int j = ws->grp[k], pair = wi[j] > 0;
+        const double *sr = S + (size_t)c * m, *si = pair ? sr + m : NULL;
+        double ns = sqrt(dot(sr, sr, m) + (pair ? dot(si, si, m) : 0));
+        double last = pair ? hypot(sr[m - 1], si[m - 1]) : fabs(sr[m - 1]);
+        double mag = hypot(wr[j], wi[j]);
+        ws->res[k] = fabs(beta) * last / (ns * (mag > 0 ? mag : 1));
+        c += pair ? 2 : 1;
+    }
+    return GD_OK;
+}
+
+/* The selected Ritz pairs: one basis product Y = V S over the first nout rows, then
+ * each group's vector (a conjugate pair gives both members, the second the conjugate
+ * of the first). */
+static gd_status ritz_output(gd_ks_work *ws, int n, int nout, int m, int ngrp, int nsel,
+                             gd_ks_result *out)
+{
+    const double *wr = ws->wr, *wi = ws->wi;
+    double *Y = ws->Z;
+    out->mu_re = malloc((size_t)nsel * sizeof(double));
+    out->mu_im = malloc((size_t)nsel * sizeof(double));
+    out->vec_re = malloc((size_t)nout * nsel * sizeof(double));
+    out->vec_im = malloc((size_t)nout * nsel * sizeof(double));
+    if (!out->mu_re || !out->mu_im || !out->vec_re || !out->vec_im) return GD_ENOMEM;
+    int ncol = 0;
+    for (int k = 0; k < ngrp; k++)
+        ncol += wi[ws->grp[k]] > 0 ? 2 : 1;
+    basis_times(ws->V, n, nout, m, ws->S, ncol, Y);
+    int c = 0, col = 0;
+    for (int k = 0; k < ngrp; k++) {
+        int j = ws->grp[k], pair = wi[j] > 0;
+        const double *yr = Y + (size_t)col * nout, *yi = pair ? yr + nout : NULL;
+        double ny = sqrt(dot(yr, yr, nout) + (pair ? dot(yi, yi, nout) : 0));
+        double inv = ny > 0 ? 1.0 / ny : 1.0;
+        for (int member = 0; member < (pair ? 2 : 1); member++, c++) {
+            double sg = member ? -1.0 : 1.0;
+            double *vr = out->vec_re + (size_t)c * nout, *vi = out->vec_im + (size_t)c * nout;
+            for (int i = 0; i < nout; i++) {
+                vr[i] = yr[i] * inv;
+                vi[i] = pair ? sg * inv * yi[i] : 0;
+            }
+            out->mu_re[c] = wr[j];
+            out->mu_im[c] = sg * wi[j];
+        }
+        col += pair ? 2 : 1;
+    }
+    out->nconv = c;
+    return GD_OK;
+}
+
+gd_status gd_krylov_schur(gd_op_fn op, void *ctx, int n, int nout, int nev, int ncv, double tol,
+                          int maxit, gd_ks_work *ws, gd_ks_result *out)
+{
+    memset(out, 0, sizeof *out);
+    if (ncv > n) ncv = n;
+    if (nev > ncv - 2) nev = ncv - 2;
+    if (nout > n) nout = n;
+    gd_status st = GD_OK;
+    gd_ks_work local = {0};
+    if (!ws) {
+        if (gd_ks_work_init(&local, n, ncv)) return GD_ENOMEM;
+        ws = &local;
+    }
+    if (ws->n != n || ws->ncv < ncv) {
+        gd_ks_work_free(&local);
+        return GD_ENOMEM;
+    }
+    int ldh = ws->ncv + 1;
+    double *V = ws->V, *H = ws->H, *T = ws->T, *Q = ws->Q, *wr = ws->wr, *wi = ws->wi;
+    double *h = ws->h, *h2 = ws->h2, *b = ws->b, *res = ws->res, *Z = ws->Z;
+    lapack_logical *sel = ws->sel;
+    mag_index *order = ws->order;
+    memset(H, 0, (size_t)ldh * ncv * sizeof *H);
+    start_vector(V, n, 1u);
+    double nv = nrm2(V, n);
+    for (int i = 0; i < n; i++)
+        V[i] /= nv;
+    /* the first pass grows to the check sizes; after a restart, to ncv at once */
+    int k = 0, m = first_check(nev, ncv), restarted = 0, prev_m = 0;
+    double prev_worst = 0;
+    for (int it = 0; it <= maxit;) {
+        for (int j = k; j < m; j++) {
+            double *w = V + (size_t)(j + 1) * n;
+            op(ctx, V + (size_t)j * n, w);
+            orthogonalise(V, n, j + 1, w, h, h2);
+            double beta = nrm2(w, n), hn = nrm2(h, j + 1);
+            for (int r = 0; r <= j; r++)
+                H[r + (size_t)j * ldh] = h[r];
+            if (!(beta > 1e-13 * hn)) { /* invariant subspace: continue with a fresh vector */
+                start_vector(w, n, 7u + (unsigned)j);
+                orthogonalise(V, n, j + 1, w, h, h2);
+                beta = 0;
+                double inv = 1.0 / nrm2(w, n);
+                for (int i = 0; i < n; i++)
+                    w[i] *= inv;
+            } else {
+                double inv = 1.0 / beta;
+                for (int i = 0; i < n; i++)
+                    w[i] *= inv;
+            }
+            H[j + 1 + (size_t)j * ldh] = beta;
+        }
+        k = m;
+        double beta = H[m + (size_t)(m - 1) * ldh];
+        int ngrp = 0, nsel = 0;
+        if ((st = ritz_pairs(ws, m, nev, !restarted, beta, &ngrp, &nsel))) goto done;
+        /* the nev largest must have converged */
+        double worst = 0;
+        for (int g = 0; g < ngrp; g++)
+            worst = res[g] > worst || isnan(res[g]) ? res[g] : worst;
+        int converged = worst <= tol;
+        out->iterations = it;
+        if (converged || (it == maxit && m == ncv)) {
+            if ((st = ritz_output(ws, n, nout, m, ngrp, nsel, out))) goto done;
+            if (!converged) st = GD_ENUMERIC;
+            goto done;
+        }
+        if (m < ncv) { /* grow the same Arnoldi decomposition */
+            int next = next_check(m, worst, prev_m, prev_worst, nev, tol);
+            prev_m = m;
+            prev_worst = worst;
+            m = next < ncv ? next : ncv;
+            continue;
+        }
+        /* restart from the wanted values and half of the rest: reorder them to the
+         * front of the Schur form, V[:, 0:p] = V Q[:, 0:p], V[:, p] = v_m,
+         * H = [T_pp; b^T] */
+        int keep = nev + (m - nev) / 2;
+        if (keep > m - 2) keep = m - 2;
+        if (!restarted && (st = schur_form(ws, m))) goto done;
+        select_largest(wr, wi, m, keep, sel, order);
+        lapack_int msel = 0;
+        double sep, s;
+        /* the _work form with our own iwork: dtrsen writes iwork(1) even for job 'N',
+         * which LAPACKE_dtrsen passes as NULL */
+        lapack_int iwork[1];
+        if (LAPACKE_dtrsen_work(LAPACK_COL_MAJOR, 'N', 'V', sel, m, T, m, Q, m, wr, wi, &msel, &s,
+                                &sep, h2, m, iwork, 1)) {
+            st = GD_ENUMERIC;
+            goto done;
+        }
+        int p = (int)msel;
+        for (int i = 0; i < p; i++)
+            b[i] = beta * Q[(m - 1) + (size_t)i * m];
+        basis_times(V, n, n, m, Q, p, Z);
+        memcpy(V + (size_t)p * n, V + (size_t)m * n, (size_t)n * sizeof *V);
+        memcpy(V, Z, (size_t)n * p * sizeof *V);
+        memset(H, 0, (size_t)ldh * ncv * sizeof *H);
+        for (int j = 0; j < p; j++) {
+            for (int i = 0; i < p; i++)
+                H[i + (size_t)j * ldh] = T[i + (size_t)j * m];
+            H[p + (size_t)j * ldh] = b[j];
+        }
+        k = p;
+        m = ncv;
+        restarted = 1;
+        it++;
+    }
+done:
+    gd_ks_work_free(&local);
+    if (st) gd_ks_result_free(out);
+    return st;
+}

@@ -1,0 +1,42 @@
+/* Internals shared by the undamped and state-space modal solvers. */
+#ifndef GD_MODAL_IMPL_H
+#define GD_MODAL_IMPL_H
+#include <complex.h>
+
+#include "geardyn/modal.h"
+#include "system/system_impl.h"
+
+/* Energy shares, dominant motion/component and whirl of a mode with full shape u. */
+void gd_mode_finish(const gd_system *sys, double speed, gd_mode *md, const double *re,
+                    const double *im, double *comp_share);
+double complex gd_normalise_max(double *re, double *im, int n);
+
+gd_status gd_modal_undamped(const gd_system *sys, const gd_modal_options *opt, const gd_condense *c,
+                            const double *M, const double *K, gd_modal_result **out, gd_error *err);
+gd_status gd_modal_state_space(const gd_system *sys, const gd_modal_options *opt,
+                               const gd_condense *c, const double *M, const double *D,
+                               const double *K, gd_modal_result **out, gd_error *err);
+
+/* Allocates a result for nmodes modes (shapes zeroed). */
+gd_modal_result *gd_modal_result_new(const gd_system *sys, int nmodes, int with_left);
+
+/* ---- sparse_modes.c ---- */
+/* Lowest opt->nmodes damped modes at opt->speed by shift-invert about sigma = -shift
+ * (shift <= 0: automatic), reusing a built pattern and symbolic analysis. */
+typedef struct gd_sparse_ws {
+    gd_ks_work ks;
+    double *k, *d;
+} gd_sparse_ws;
+/* Workspace for nmodes modes of the pattern a (0 ok, 1 out of memory). */
+int gd_sparse_ws_init(gd_sparse_ws *w, const gd_dynmat *a, int nmodes);
+void gd_sparse_ws_free(gd_sparse_ws *w);
+/* ws may be NULL (allocated per call). */
+gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
+                          const gd_modal_options *opt, double shift, gd_sparse_ws *ws,
+                          gd_modal_result **out, gd_error *err);
+/* sqrt(min K_ii / M_ii): a frequency of the order of the lowest modes' (1 when no
+ * DOF has both). The automatic shift is 1e-3 of it, far below the lowest elastic
+ * mode of most models; the state scaling g is this frequency itself. */
+double gd_sparse_diag_frequency(const gd_dynmat *a, const double *k);
+
+#endif

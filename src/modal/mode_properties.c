@@ -1,0 +1,127 @@
+/* Per-mode properties: whirl direction from the forward/backward circular components
+ * of each node's x/y orbit, modal strain energy shares by motion type and by
+ * component, the dominant ones, and the normalisation of a complex shape. */
+#include <complex.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "modal/modal_impl.h"
+
+#define PI 3.14159265358979323846
+
+const char *const gd_whirl_names[4] = {"none", "forward", "backward", "mixed"};
+
+static gd_whirl mode_whirl(const gd_system *sys, const double *re, const double *im)
+{
+    const gd_model *m = sys->model;
+    double maxr = 0;
+    for (int node = 0; node < m->nnodes; node++) {
+        int ix = gd_system_dof(sys, node, GD_X), iy = gd_system_dof(sys, node, GD_Y);
+        if (ix < 0 || iy < 0) continue;
+        double complex X = re[ix] + I * im[ix], Y = re[iy] + I * im[iy];
+        double r = cabs(X + I * Y) + cabs(X - I * Y);
+        if (r > maxr) maxr = r;
+    }
+    if (!(maxr > 0)) return GD_WHIRL_NONE;
+    int fwd = 0, bwd = 0;
+    for (int node = 0; node < m->nnodes; node++) {
+        int ix = gd_system_dof(sys, node, GD_X), iy = gd_system_dof(sys, node, GD_Y);
+        if (ix < 0 || iy < 0) continue;
+        double complex X = re[ix] + I * im[ix], Y = re[iy] + I * im[iy];
+        /* x + i y = (X + iY)/2 e^{iwt} + conj(X - iY)/2 e^{-iwt}: forward and backward
+         * circular components (000 Eqs. 2.5-2.8) */
+        double rf = cabs(X + I * Y), rb = cabs(X - I * Y);
+        if (rf + rb < 1e-3 * maxr) continue;
+        if (m->shafts[m->nodes[node].shaft].speed_ratio < 0) {
+            double t = rf;
+            rf = rb;
+            rb = t;
+        }
+        double ell = (rf - rb) / (rf + rb);
+        if (ell > 1e-3) fwd = 1;
+        if (ell < -1e-3) bwd = 1;
+    }
+    if (fwd && bwd) return GD_WHIRL_MIXED;
+    if (fwd) return GD_WHIRL_FORWARD;
+    if (bwd) return GD_WHIRL_BACKWARD;
+    return GD_WHIRL_NONE;
+}
+
+void gd_mode_finish(const gd_system *sys, double speed, gd_mode *md, const double *re,
+                    const double *im, double *comp_share)
+{
+    int nc = sys->ncomponents;
+    double by_motion[GD_NMOTIONS];
+    double *by_comp = comp_share;
+    double total = gd_system_strain_energy(sys, speed, re, im, by_motion, by_comp);
+    md->dominant_motion = GD_MOTION_LATERAL;
+    md->dominant_component = -1;
+    if (md->rigid_body || !(total > 0)) {
+        for (int k = 0; k < GD_NMOTIONS; k++)
+            md->energy_share[k] = 0;
+        for (int c = 0; c < nc; c++)
+            by_comp[c] = 0;
+        /* a rigid mode is named by how it moves: the largest kinetic DOF type */
+        double ke[GD_NMOTIONS] = {0};
+        for (int i = 0; i < sys->ndof; i++) {
+            double a = re[i] * re[i] + (im ? im[i] * im[i] : 0);
+            gd_dof d = sys->dof_type[i];
+            int mo = d == GD_RZ                   ? GD_MOTION_TORSIONAL
+                     : d == GD_Z                  ? GD_MOTION_AXIAL
+                     : (d == GD_RX || d == GD_RY) ? GD_MOTION_TILT
+                                                  : GD_MOTION_LATERAL;
+            for (int k = sys->M.colptr[i]; k < sys->M.colptr[i + 1]; k++)
+                if (sys->M.rowind[k] == i) ke[mo] += sys->M.values[k] * a;
+        }
+        int best = 0;
+        for (int k = 1; k < GD_NMOTIONS; k++)
+            if (ke[k] > ke[best]) best = k;
+        md->dominant_motion = (gd_motion)best;
+    } else {
+        int best = 0;
+        for (int k = 0; k < GD_NMOTIONS; k++) {
+            md->energy_share[k] = by_motion[k] / total;
+            if (by_motion[k] > by_motion[best]) best = k;
+        }
+        md->dominant_motion = (gd_motion)best;
+        int bc = 0;
+        for (int c = 0; c < nc; c++) {
+            by_comp[c] /= total;
+            if (by_comp[c] > by_comp[bc]) bc = c;
+        }
+        md->dominant_component = nc > 0 ? bc : -1;
+    }
+    /* whirl is relative to the spin; at rest there is no direction to compare with */
+    md->whirl = speed != 0.0 ? mode_whirl(sys, re, im) : GD_WHIRL_NONE;
+    /* no lateral motion to speak of: no whirl */
+    if (!md->rigid_body && total > 0 && md->energy_share[GD_MOTION_LATERAL] < 1e-6 &&
+        md->energy_share[GD_MOTION_TILT] < 1e-6)
+        md->whirl = GD_WHIRL_NONE;
+}
+
+/* Scales a complex vector so its largest entry is 1 + 0i; returns the divisor. */
+double complex gd_normalise_max(double *re, double *im, int n)
+{
+    int best = 0;
+    double bm = -1;
+    for (int i = 0; i < n; i++) {
+        double a = re[i] * re[i] + im[i] * im[i];
+        if (a > bm * (1 + 1e-12)) {
+            bm = a;
+            best = i;
+        }
+    }
+    double complex s = re[best] + I * im[best];
+    if (cabs(s) == 0) return 1.0;
+    /* times 1/s = conj(s) / |s|^2: one division instead of one per entry */
+    double ir = re[best] / bm, ii = -im[best] / bm;
+    for (int i = 0; i < n; i++) {
+        double zr = re[i] * ir - im[i] * ii, zi = re[i] * ii + im[i] * ir;
+        re[i] = zr;
+        im[i] = zi;
+    }
+    re[best] = 1.0;
+    im[best] = 0.0;
+    return s;
+}

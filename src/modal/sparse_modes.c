@@ -1,0 +1,217 @@
+/* Lowest damped modes on the sparse system: shift-invert Krylov-Schur on the
+ * first-order form with a real shift sigma = -s just left of the origin, so the modes
+ * nearest zero (the lowest, for light damping |lambda + s| grows with the frequency)
+ * converge first and rigid-body modes (lambda = 0) do not make the factorised matrix
+ * singular. Each shift-invert step costs one sparse n x n solve, so the cost per
+ * speed grows about linearly with the DOFs. Right eigenvectors only. */
+#include <complex.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "modal/modal_impl.h"
+
+#define PI 3.14159265358979323846
+/* Relative residual of the Ritz pairs in the scaled first-order form; measured on the
+ * refined MMT rig (610 DOFs, 12 modes, 0-12000 rpm): eigenvalues within 2e-10 of the
+ * dense solver's, and one check less than 1e-11 would take. */
+#define GD_SPARSE_TOL 1e-9
+
+typedef struct si_ctx {
+    gd_shift_invert *op;
+    const gd_splu_symbolic *sym;
+} si_ctx;
+
+static void si_apply(void *ctx, const double *x, double *y)
+{
+    si_ctx *c = ctx;
+    gd_shift_invert_apply(c->op, c->sym, x, y);
+}
+
+typedef struct cand {
+    int idx;
+    double re, im;
+    int rigid;
+} cand;
+
+static int cmp_cand(const void *a, const void *b)
+{
+    const cand *x = a, *y = b;
+    if (x->rigid != y->rigid) return y->rigid - x->rigid;
+    double ax = hypot(x->re, x->im), ay = hypot(y->re, y->im);
+    if (ax != ay) return (ax > ay) - (ax < ay);
+    return x->idx - y->idx;
+}
+
+double gd_sparse_diag_frequency(const gd_dynmat *a, const double *k)
+{
+    double best = INFINITY;
+    for (int j = 0; j < a->pat.n; j++) {
+        int p = a->pat.diag[j];
+        if (p < 0) continue;
+        if (a->m[p] > 0 && k[p] > 0 && k[p] / a->m[p] < best) best = k[p] / a->m[p];
+    }
+    return isfinite(best) ? sqrt(best) : 1e3;
+}
+
+/* Krylov sizes for nmodes modes of an n-DOF system: nev Ritz values (both members of
+ * each conjugate pair) in a basis of at most ncv vectors (the first pass stops as soon
+ * as they have converged, usually near 2 nev). */
+static void ks_sizes(int n, int nmodes, int *nev, int *ncv)
+{
+    int n2 = 2 * n;
+    *nev = 2 * nmodes;
+    if (*nev > n2 - 3) *nev = n2 - 3;
+    *ncv = 2 * *nev + 12; /* measured: fewer restarts beat a smaller basis */
+    if (*ncv > n2 - 1) *ncv = n2 - 1;
+}
+
+int gd_sparse_ws_init(gd_sparse_ws *w, const gd_dynmat *a, int nmodes)
+{
+    memset(w, 0, sizeof *w);
+    int nev, ncv;
+    ks_sizes(a->pat.n, nmodes > 0 ? nmodes : a->pat.n, &nev, &ncv);
+    w->k = malloc((size_t)(a->pat.nnz > 0 ? a->pat.nnz : 1) * sizeof *w->k);
+    w->d = malloc((size_t)(a->pat.nnz > 0 ? a->pat.nnz : 1) * sizeof *w->d);
+    if (!w->k || !w->d || gd_ks_work_init(&w->ks, 2 * a->pat.n, ncv)) {
+        gd_sparse_ws_free(w);
+        return 1;
+    }
+    return 0;
+}
+
+void gd_sparse_ws_free(gd_sparse_ws *w)
+{
+    free(w->k);
+    free(w->d);
+    gd_ks_work_free(&w->ks);
+    memset(w, 0, sizeof *w);
+}
+
+gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
+                          const gd_modal_options *opt, double shift, gd_sparse_ws *ws,
+                          gd_modal_result **out, gd_error *err)
+{
+    *out = NULL;
+    const gd_system *sys = a->sys;
+    int n = a->pat.n, n2 = 2 * n, nnz = a->pat.nnz;
+    if (sys->nmassless > 0)
+        return gd_error_set(err, GD_EINPUT, sys->model->file, 0, 0, "",
+                            "use the dense solver (it condenses massless DOFs)",
+                            "the sparse eigensolver needs mass on every DOF (%d massless)",
+                            sys->nmassless);
+    gd_status st = GD_OK;
+    int want = opt->nmodes > 0 ? opt->nmodes : n, nev, ncv;
+    ks_sizes(n, want, &nev, &ncv);
+    gd_sparse_ws local = {0};
+    if (!ws || ws->ks.ncv < ncv) {
+        if (gd_sparse_ws_init(&local, a, want))
+            return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "",
+                                "out of memory in the sparse eigensolver");
+        ws = &local;
+    }
+    double *k = ws->k, *d = ws->d;
+    gd_shift_invert op = {0};
+    gd_ks_result ks = {0};
+    cand *cd = NULL;
+    double *ure = NULL, *uim = NULL;
+    gd_modal_result *res = NULL;
+    gd_dynmat_at(a, opt->speed, k, d);
+    int any_d = 0;
+    if (opt->kind == GD_MODAL_UNDAMPED)
+        memset(d, 0, (size_t)nnz * sizeof *d);
+    else
+        for (int i = 0; i < nnz; i++)
+            any_d |= d[i] != 0;
+    double g = gd_sparse_diag_frequency(a, k), s = shift > 0 ? shift : 1e-3 * g;
+    int rc = gd_shift_invert_setup(&op, &a->pat, a->m, sym, -s, g, k, d);
+    if (rc < 0) goto nomem;
+    if (rc > 0) {
+        st = gd_error_set(err, GD_ENUMERIC, sys->model->file, 0, 0, "", "give a different shift",
+                          "the shifted matrix is singular at shift -%g", s);
+        goto done;
+    }
+    si_ctx ctx = {&op, sym};
+    st = gd_krylov_schur(si_apply, &ctx, n2, n, nev, ncv, GD_SPARSE_TOL, 200, &ws->ks, &ks);
+    if (st == GD_ENOMEM) goto nomem;
+    if (st) {
+        st = gd_error_set(err, GD_ENUMERIC, sys->model->file, 0, 0, "",
+                          "use the dense solver (--modes all) or fewer modes",
+                          "the sparse eigensolver did not converge at speed %g rad/s", opt->speed);
+        goto done;
+    }
+    cd = malloc((size_t)(ks.nconv > 0 ? ks.nconv : 1) * sizeof *cd);
+    if (!cd) goto nomem;
+    int nc = 0, nrigid_real = 0;
+    double rtol = 1e-3 * s; /* a defective double zero converges to ~sqrt(tol) */
+    for (int i = 0; i < ks.nconv; i++) {
+        double complex mu = ks.mu_re[i] + I * ks.mu_im[i];
+        double complex lam = -s + 1.0 / mu;
+        double lr = creal(lam), li = ks.mu_im[i] == 0 ? 0.0 : cimag(lam);
+        if (li < 0) continue;
+        int rigid = hypot(lr, li) <= rtol;
+        if (rigid && li == 0 && (nrigid_real++ % 2)) continue;
+        cd[nc++] = (cand){i, lr, li, rigid};
+    }
+    qsort(cd, (size_t)nc, sizeof *cd, cmp_cand);
+    int km = nc < want ? nc : want;
+    res = gd_modal_result_new(sys, km, 0);
+    if (!res) goto nomem;
+    res->damped = any_d || opt->kind == GD_MODAL_DAMPED;
+    res->speed = opt->speed;
+    for (int j = 0; j < km; j++) {
+        gd_mode *md = &res->modes[j];
+        const cand *c = &cd[j];
+        md->rigid_body = c->rigid;
+        double mag = hypot(c->re, c->im);
+        if (!c->rigid) {
+            md->lambda_re = c->re;
+            md->lambda_im = c->im;
+            md->omega_n = mag;
+            md->omega_d = c->im;
+            md->frequency_hz = mag / (2 * PI);
+            md->damping_ratio = -c->re / mag;
+            md->overdamped = c->im == 0;
+            md->unstable = c->re > 1e-8 * mag;
+            double z = md->damping_ratio;
+            md->log_decrement = c->im > 0 && fabs(z) < 1 ? 2 * PI * z / sqrt(1 - z * z) : NAN;
+        }
+        double *re = res->shape_re + (size_t)j * n, *im = res->shape_im + (size_t)j * n;
+        memcpy(re, ks.vec_re + (size_t)c->idx * n, (size_t)n * sizeof *re);
+        memcpy(im, ks.vec_im + (size_t)c->idx * n, (size_t)n * sizeof *im);
+        gd_normalise_max(re, im, n);
+        gd_mode_finish(sys, opt->speed, md, re, im,
+                       res->energy_by_component + (size_t)j * sys->ncomponents);
+    }
+    *out = res;
+    res = NULL;
+    goto done;
+nomem:
+    st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory in the sparse eigensolver");
+done:
+    gd_modal_free(res);
+    free(cd);
+    free(ure);
+    free(uim);
+    gd_ks_result_free(&ks);
+    gd_shift_invert_free(&op);
+    gd_sparse_ws_free(&local);
+    return st;
+}
+
+gd_status gd_modal_solve_sparse(const gd_system *sys, const gd_modal_options *opt, double shift,
+                                gd_modal_result **out, gd_error *err)
+{
+    *out = NULL;
+    gd_dynmat a;
+    gd_splu_symbolic sym;
+    gd_status st = gd_dynmat_build(sys, &a, err);
+    if (st) return st;
+    st = gd_splu_analyze(&a.pat, &sym, err);
+    if (!st) {
+        st = gd_sparse_modes(&a, &sym, opt, shift, NULL, out, err);
+        gd_splu_symbolic_free(&sym);
+    }
+    gd_dynmat_free(&a);
+    return st;
+}

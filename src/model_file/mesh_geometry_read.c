@@ -1,0 +1,213 @@
+/* Reader of the `geometry:` and `stiffness: {from: geometry}` keys of a mesh entry. */
+#include "model_file/mesh_geometry_read_impl.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "model_file/material_read_impl.h"
+
+static const char *const GEOMETRY_KEYS[] = {"normal_module",
+                                            "normal_pressure_angle",
+                                            "helix_angle",
+                                            "hand",
+                                            "face_width",
+                                            "center_distance",
+                                            "driver",
+                                            "driven",
+                                            NULL};
+static const char *const GEAR_KEYS[] = {"teeth",
+                                        "profile_shift",
+                                        "addendum_coef",
+                                        "dedendum_coef",
+                                        "fillet_radius_coef",
+                                        "tip_radius",
+                                        "root_radius",
+                                        "bore_radius",
+                                        "material",
+                                        "body_torsional_stiffness",
+                                        "web_thickness",
+                                        "web_inner_radius",
+                                        "web_outer_radius",
+                                        NULL};
+static const char *const STIFFNESS_KEYS[] = {"from",   "method",          "points",    "cycles",
+                                             "slices", "body_compliance", "harmonics", NULL};
+static const char *const HANDS[] = {"right", "left", NULL};
+static const char *const FROM[] = {"geometry", NULL};
+static const char *const METHODS[] = {"energy", "iso6336", "single-pair-law", "square", NULL};
+
+static gd_status read_gear(gd_yreader *r, const gd_ynode *root, const gd_ynode *m, const char *path,
+                           gd_gear_geometry *w)
+{
+    gd_status st;
+    if ((st = gd_yexpect(r, m, GD_Y_MAP, path)) || (st = gd_ycheck_keys(r, m, path, GEAR_KEYS)))
+        return st;
+    long teeth = 0;
+    if ((st = gd_yread_int(r, m, "teeth", path, 5, 100000, GD_YREQ, &teeth, NULL))) return st;
+    w->teeth = (int)teeth;
+    if ((st = gd_yread_qty(r, m, "profile_shift", path, GD_QTY_DIMLESS, 0, &w->profile_shift,
+                           NULL)) ||
+        (st = gd_yread_qty(r, m, "addendum_coef", path, GD_QTY_DIMLESS, GD_YPOS, &w->addendum_coef,
+                           NULL)) ||
+        (st = gd_yread_qty(r, m, "dedendum_coef", path, GD_QTY_DIMLESS, GD_YPOS, &w->dedendum_coef,
+                           NULL)) ||
+        (st = gd_yread_qty(r, m, "fillet_radius_coef", path, GD_QTY_DIMLESS, GD_YNONNEG,
+                           &w->fillet_radius_coef, NULL)) ||
+        (st = gd_yread_qty(r, m, "tip_radius", path, GD_QTY_LENGTH, GD_YPOS, &w->tip_radius,
+                           NULL)) ||
+        (st = gd_yread_qty(r, m, "root_radius", path, GD_QTY_LENGTH, GD_YPOS, &w->root_radius,
+                           NULL)) ||
+        (st = gd_yread_qty(r, m, "bore_radius", path, GD_QTY_LENGTH, GD_YPOS, &w->bore_radius,
+                           NULL)) ||
+        (st = gd_yread_qty(r, m, "body_torsional_stiffness", path, GD_QTY_ROT_STIFFNESS, GD_YPOS,
+                           &w->body_torsional_stiffness, NULL)) ||
+        (st = gd_yread_qty(r, m, "web_thickness", path, GD_QTY_LENGTH, GD_YPOS, &w->web_thickness,
+                           NULL)) ||
+        (st = gd_yread_qty(r, m, "web_inner_radius", path, GD_QTY_LENGTH, GD_YPOS,
+                           &w->web_inner_radius, NULL)) ||
+        (st = gd_yread_qty(r, m, "web_outer_radius", path, GD_QTY_LENGTH, GD_YPOS,
+                           &w->web_outer_radius, NULL)))
+        return st;
+    char p[200];
+    const gd_ynode *mat = gd_ymap_get(m, "material");
+    if (!mat)
+        return gd_yfail(r, m, gd_ypath_key(p, sizeof p, path, "material"),
+                        "name a material from `materials:` or give {E: ..., poisson: ...}",
+                        "required key 'material' is missing");
+    gd_material mt;
+    if ((st = gd_material_resolve(r, root, mat, gd_ypath_key(p, sizeof p, path, "material"), 0,
+                                  &mt)))
+        return st;
+    w->E = mt.E;
+    w->poisson = mt.poisson;
+    return GD_OK;
+}
+
+/* The node for a field path like "driver.profile_shift" under map, or the deepest map
+ * on the way when the key is absent. */
+static const gd_ynode *locate(const gd_ynode *map, const char *field)
+{
+    const gd_ynode *n = map;
+    const char *p = field;
+    while (*p && n && n->kind == GD_Y_MAP) {
+        char key[80];
+        size_t len = strcspn(p, ".");
+        if (len >= sizeof key) break;
+        memcpy(key, p, len);
+        key[len] = '\0';
+        const gd_ynode *next = gd_ymap_get(n, key);
+        if (!next) break;
+        n = next;
+        p += len;
+        if (*p == '.') p++;
+    }
+    return n;
+}
+
+void gd_gear_pair_error_locate(const char *file, const gd_ynode *mesh_map, const char *path,
+                               gd_error *err)
+{
+    if (!err || err->line > 0) return;
+    static const char *const OPTION_FIELDS[] = {"method", "points",    "cycles",
+                                                "slices", "harmonics", NULL};
+    const char *section = "geometry";
+    for (int i = 0; OPTION_FIELDS[i]; i++)
+        if (!strcmp(err->field, OPTION_FIELDS[i])) section = "stiffness";
+    const gd_ynode *sec = gd_ymap_get(mesh_map, section);
+    const gd_ynode *n = sec ? locate(sec, err->field) : mesh_map;
+    char field[sizeof err->field];
+    if (err->field[0])
+        snprintf(field, sizeof field, "%s.%s.%.100s", path, section, err->field);
+    else
+        snprintf(field, sizeof field, "%s.%s", path, section);
+    snprintf(err->field, sizeof err->field, "%s", field);
+    if (file) snprintf(err->file, sizeof err->file, "%s", file);
+    if (n) {
+        err->line = n->line;
+        err->column = n->column;
+    }
+}
+
+static gd_status read_options(gd_yreader *r, const gd_ynode *s, const char *path,
+                              gd_tvms_options *opt)
+{
+    gd_status st;
+    if ((st = gd_ycheck_keys(r, s, path, STIFFNESS_KEYS))) return st;
+    int idx = 0, present = 0;
+    if ((st = gd_yread_str(r, s, "from", path, FROM, GD_YREQ, NULL, &idx, NULL))) return st;
+    if (!opt) return GD_OK;
+    if ((st = gd_yread_str(r, s, "method", path, METHODS, 0, NULL, &idx, &present))) return st;
+    if (present) opt->method = (gd_tvms_method)idx;
+    long v;
+    if ((st = gd_yread_int(r, s, "points", path, 8, 1000000, 0, &v, &present))) return st;
+    if (present) opt->points = (int)v;
+    if ((st = gd_yread_int(r, s, "cycles", path, 1, 10000, 0, &v, &present))) return st;
+    if (present) opt->cycles = (int)v;
+    if ((st = gd_yread_int(r, s, "slices", path, 1, 100000, 0, &v, &present))) return st;
+    if (present) opt->slices = (int)v;
+    if ((st = gd_yread_int(r, s, "harmonics", path, 0, 100, 0, &v, &present))) return st;
+    if (present) opt->harmonics = (int)v;
+    if ((st = gd_yread_bool(r, s, "body_compliance", path, 0, &opt->body_compliance, NULL)))
+        return st;
+    return GD_OK;
+}
+
+gd_status gd_gear_pair_read(gd_yreader *r, const gd_ynode *root, const gd_ynode *mesh_map,
+                            const char *path, gd_gear_pair_geometry *geom, gd_tvms_options *opt)
+{
+    gd_status st;
+    char gp[200], p[200];
+    gd_ypath_key(gp, sizeof gp, path, "geometry");
+    const gd_ynode *g = gd_ymap_get(mesh_map, "geometry");
+    if (!g)
+        return gd_yfail(r, mesh_map, gp,
+                        "add a `geometry:` map (teeth, normal_module, face_width, ...) or give the "
+                        "stiffness as a number",
+                        "this mesh has no geometry to compute its stiffness from");
+    if ((st = gd_yexpect(r, g, GD_Y_MAP, gp)) || (st = gd_ycheck_keys(r, g, gp, GEOMETRY_KEYS)))
+        return st;
+    gd_gear_pair_geometry_init(geom);
+    if ((st = gd_yread_qty(r, g, "normal_module", gp, GD_QTY_LENGTH, GD_YREQ | GD_YPOS,
+                           &geom->normal_module, NULL)) ||
+        (st = gd_yread_qty(r, g, "normal_pressure_angle", gp, GD_QTY_ANGLE, GD_YPOS,
+                           &geom->normal_pressure_angle, NULL)) ||
+        (st = gd_yread_qty(r, g, "helix_angle", gp, GD_QTY_ANGLE, GD_YNONNEG, &geom->helix_angle,
+                           NULL)) ||
+        (st = gd_yread_qty(r, g, "face_width", gp, GD_QTY_LENGTH, GD_YREQ | GD_YPOS,
+                           &geom->face_width, NULL)) ||
+        (st = gd_yread_qty(r, g, "center_distance", gp, GD_QTY_LENGTH, GD_YPOS,
+                           &geom->center_distance, NULL)))
+        return st;
+    /* the hand does not change k; absent here, the mesh's own `hand` is used if it
+     * says right or left, else right */
+    int hand = 0, present = 0;
+    if ((st = gd_yread_str(r, g, "hand", gp, HANDS, 0, NULL, &hand, &present))) return st;
+    if (!present) {
+        const gd_ynode *mh = gd_ymap_get(mesh_map, "hand");
+        if (mh && mh->kind == GD_Y_SCALAR && !strcmp(mh->text, "left")) hand = 1;
+    }
+    geom->hand = hand == 1 ? -1 : 1;
+    static const char *const NAMES[2] = {"driver", "driven"};
+    for (int i = 0; i < 2; i++) {
+        const gd_ynode *m = gd_ymap_get(g, NAMES[i]);
+        gd_ypath_key(p, sizeof p, gp, NAMES[i]);
+        if (!m) {
+            char hint[200];
+            snprintf(hint, sizeof hint, "add `%s: {teeth: ..., material: ...}`", NAMES[i]);
+            return gd_yfail(r, g, p, hint, "required key '%s' is missing", NAMES[i]);
+        }
+        if ((st = read_gear(r, root, m, p, &geom->gear[i]))) return st;
+    }
+    const gd_ynode *s = gd_ymap_get(mesh_map, "stiffness");
+    if (s && s->kind == GD_Y_MAP) {
+        if ((st = read_options(r, s, gd_ypath_key(p, sizeof p, path, "stiffness"), opt))) return st;
+    }
+    gd_gear_pair_derived d;
+    gd_error local;
+    gd_error *e = r->err ? r->err : &local;
+    if ((st = gd_gear_pair_derive(geom, &d, e))) {
+        gd_gear_pair_error_locate(r->file, mesh_map, path, e);
+        return st;
+    }
+    return GD_OK;
+}
