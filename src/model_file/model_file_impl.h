@@ -31,4 +31,7 @@ gd_status gd_mp_bearing_sfd(gd_mparser *p, const gd_ynode *bearing_map, const ch
                             gd_bearing *b);
 gd_status gd_mp_dynamics(gd_mparser *p);
 
+/* The model described by a loaded YAML document; name stands for the file in messages. */
+gd_status gd_model_from_ydoc(const gd_ydoc *doc, const char *name, gd_model **out, gd_error *err);
+
 #endif

@@ -1214,7 +1214,7 @@ static gd_status parse(gd_mparser *p)
     return GD_OK;
 }
 
-static gd_status load_doc(gd_ydoc *doc, const char *name, gd_model **out, gd_error *err)
+gd_status gd_model_from_ydoc(const gd_ydoc *doc, const char *name, gd_model **out, gd_error *err)
 {
     gd_mparser p = {{name, err}, doc->root, calloc(1, sizeof(gd_model))};
     if (!p.m) return gd_error_set(err, GD_ENOMEM, name, 0, 0, "", "", "out of memory");
@@ -1234,7 +1234,7 @@ gd_status gd_model_load(const char *path, gd_model **out, gd_error *err)
     gd_ydoc *doc;
     gd_status st = gd_ydoc_load_file(path, &doc, err);
     if (st) return st;
-    st = load_doc(doc, path, out, err);
+    st = gd_model_from_ydoc(doc, path, out, err);
     gd_ydoc_free(doc);
     return st;
 }
@@ -1245,7 +1245,7 @@ gd_status gd_model_load_string(const char *yaml, const char *name, gd_model **ou
     gd_ydoc *doc;
     gd_status st = gd_ydoc_load_string(yaml, name, &doc, err);
     if (st) return st;
-    st = load_doc(doc, name, out, err);
+    st = gd_model_from_ydoc(doc, name, out, err);
     gd_ydoc_free(doc);
     return st;
 }
