@@ -2,34 +2,35 @@
  * numbering over the active DOFs, sparse constant matrices, and the per-element data
  * later analyses need. Equation of motion at reference speed W:
  *     M q'' + (C + C_b(W) + W G) q' + (K + K_b(W)) q = f
- * where K_b, C_b are the speed-dependent bearing terms (zero unless a bearing has a
- * speed table) and G is the gyroscopic matrix per unit reference speed (each shaft's
- * signed speed ratio folded in). */
+ * where K_b, C_b are the speed-dependent terms (zero unless a bearing has a speed
+ * table) and G is the gyroscopic matrix per unit reference speed (each shaft's signed
+ * speed ratio folded in). Every matrix is assembled by looping over the element
+ * registry (geardyn/elements.h).
+ *
+ * Ownership and threads: gd_system_build returns a system the caller frees with
+ * gd_system_free; it borrows the model, which must outlive it and not change while it
+ * lives. A built system is read-only: every function taking a const gd_system * may be
+ * called from several threads at once. */
 #ifndef GEARDYN_SYSTEM_H
 #define GEARDYN_SYSTEM_H
+#include "geardyn/elements.h"
 #include "geardyn/error.h"
 #include "geardyn/model.h"
 #include "geardyn/sparse.h"
 
-/* Motion types for modal strain energy. Shaft bending counts as lateral; tilt is the
- * energy of tilt springs (bearings' k_tilt, rx/ry springs, mesh tilt coupling). */
-typedef enum gd_motion {
-    GD_MOTION_LATERAL,
-    GD_MOTION_TORSIONAL,
-    GD_MOTION_AXIAL,
-    GD_MOTION_TILT,
-    GD_NMOTIONS
-} gd_motion;
-extern const char *const gd_motion_names[GD_NMOTIONS];
-
-/* Components that store strain energy, in this order: shafts, bearings, springs,
- * meshes. */
-typedef enum gd_component_kind {
-    GD_COMP_SHAFT,
-    GD_COMP_BEARING,
-    GD_COMP_SPRING,
-    GD_COMP_MESH
-} gd_component_kind;
+/* One element of the model as the system sees it: its kind, its index among that
+ * kind's instances, and the active DOF index of each local DOF (-1: not active or
+ * ground). */
+typedef struct gd_element_instance {
+    const gd_element_type *type;
+    int index;
+    int nlocal;                   /* 6 x nodes */
+    int dof[GD_ELEMENT_MAX_DOFS]; /* nlocal */
+    unsigned terms;               /* GD_TERM_* */
+    int component;                /* strain-energy component, or -1 */
+    double *K;                    /* nlocal^2: the constant local stiffness (kept for the
+                                     strain energy), NULL for speed-dependent elements */
+} gd_element_instance;
 
 typedef struct gd_system {
     const gd_model *model; /* borrowed: must outlive the system */
@@ -44,8 +45,9 @@ typedef struct gd_system {
     int has_damping;         /* C or a bearing table has damping terms */
     int has_gyroscopic;      /* G is not zero */
     int ncomponents;         /* nshafts + nbearings + nsprings + nmeshes */
-    double *element_K;       /* nelements x 144: each shaft element's stiffness, kept from
-                                the assembly for the modal strain energy */
+    int ninstances;          /* every element of every kind, in registry order */
+    gd_element_instance *instances;
+    double *instance_K; /* storage of the instances' K */
 } gd_system;
 
 gd_status gd_system_build(const gd_model *model, gd_system **out, gd_error *err);

@@ -1,6 +1,20 @@
 /* Two-node Timoshenko shaft element: bending in two planes with shear deformation and
  * rotary inertia, gyroscopic coupling, torsion and axial rod (Friswell, Penny, Garvey &
- * Lees, "Dynamics of Rotating Machines", 2010, Sec. 5.4; Nelson 1980). */
+ * Lees, "Dynamics of Rotating Machines", 2010, Sec. 5.4; Nelson 1980).
+ *
+ * Bending in plane xz uses the local DOFs (x1, ry1, x2, ry2); plane yz uses
+ * (y1, -rx1, y2, -rx2), since a positive rx tilts the axis towards -y. With
+ * phi = 12 E I / (kappa G A L^2) (kappa: Cowper's shear coefficient) the bending
+ * stiffness in either plane is
+ *     E I / (L^3 (1 + phi)) [12, 6L, -12, 6L; 6L, (4+phi)L^2, -6L, (2-phi)L^2; ...],
+ * the mass is the translational part rho A L / (1+phi)^2 [m1 .. m6] plus the rotary
+ * part rho I / (L (1+phi)^2) [r1 .. r4] (coefficients below), and the gyroscopic
+ * matrix (per unit spin) is twice the rotary inertia part, coupling the two planes
+ * skew-symmetrically. Torsion (rz1, rz2) and axial motion (z1, z2) are rods:
+ *     K = (G J / L) [1 -1; -1 1],  M = (rho J L / 6) [2 1; 1 2]   (J = 2 I),
+ *     K = (E A / L) [1 -1; -1 1],  M = (rho A L / 6) [2 1; 1 2].
+ * Strain energy: bending and tilt count as lateral, z as axial, rz as torsional, each
+ * element to its shaft's component. */
 #include <math.h>
 #include <string.h>
 
@@ -10,7 +24,8 @@
 
 double gd_shear_coefficient(double nu, double outer_diameter, double inner_diameter)
 {
-    /* Hutchinson (2001) for a hollow circle; solid: 6(1+nu)/(7+6nu). */
+    /* Cowper (1966), "The shear coefficient in Timoshenko's beam theory", J. Appl.
+     * Mech. 33, Table 1, hollow circle with m = d_i / d_o; solid: 6(1+nu)/(7+6nu). */
     double m = inner_diameter / outer_diameter, m2 = m * m, q = (1 + m2) * (1 + m2);
     return 6.0 * (1 + nu) * q / ((7 + 6 * nu) * q + (20 + 12 * nu) * m2);
 }
@@ -89,3 +104,70 @@ void gd_shaft_element_matrices(const gd_element *e, const gd_material *mat, doub
             M[az[a] * 12 + az[b]] += w * max;
         }
 }
+
+static int shaft_count(const gd_model *m)
+{
+    return m->nelements;
+}
+
+static int shaft_nodes(const gd_model *m, int i, int node[2])
+{
+    node[0] = m->elements[i].node1;
+    node[1] = m->elements[i].node2;
+    return 2;
+}
+
+static unsigned shaft_terms(const gd_model *m, int i)
+{
+    (void)m;
+    (void)i;
+    return GD_TERM_M | GD_TERM_K | GD_TERM_G;
+}
+
+static void shaft_matrices(const gd_model *m, int i, double speed, double *M, double *K, double *C,
+                           double *G)
+{
+    (void)speed;
+    const gd_element *e = &m->elements[i];
+    double Me[144], Ke[144], Ge[144];
+    gd_shaft_element_matrices(e, &m->materials[e->material], Me, Ke, Ge);
+    double ratio = m->shafts[e->shaft].speed_ratio;
+    if (M) memcpy(M, Me, sizeof Me);
+    if (K) memcpy(K, Ke, sizeof Ke);
+    if (G)
+        for (int k = 0; k < 144; k++)
+            G[k] = ratio * Ge[k];
+    if (C) memset(C, 0, sizeof Me);
+}
+
+static const gd_motion SHAFT_MOTION[6] = {GD_MOTION_LATERAL, GD_MOTION_LATERAL,
+                                          GD_MOTION_AXIAL,   GD_MOTION_LATERAL,
+                                          GD_MOTION_LATERAL, GD_MOTION_TORSIONAL};
+
+static int shaft_ncomponents(const gd_model *m)
+{
+    return m->nshafts;
+}
+
+static int shaft_component(const gd_model *m, int i)
+{
+    return m->elements[i].shaft;
+}
+
+static const char *shaft_name(const gd_model *m, int c)
+{
+    return m->shafts[c].name;
+}
+
+const gd_element_type gd_element_shaft = {
+    .name = "shaft",
+    .count = shaft_count,
+    .nodes = shaft_nodes,
+    .terms = shaft_terms,
+    .matrices = shaft_matrices,
+    .motion = SHAFT_MOTION,
+    .component_kind = GD_COMP_SHAFT,
+    .ncomponents = shaft_ncomponents,
+    .component = shaft_component,
+    .component_name = shaft_name,
+};

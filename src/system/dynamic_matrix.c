@@ -1,22 +1,13 @@
 /* The dynamic stiffness s^2 M + s D(W) + K(W) of a system on one sparse pattern: the
- * union of M, C, G, K and the entries of bearings whose coefficients depend on speed.
+ * union of M, C, G, K and the entries of elements whose K and C depend on speed.
  * Built once per system; values at a speed are filled in O(nnz), so a sweep reuses the
  * pattern and its symbolic factorisation at every point. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "elements/elements_impl.h"
 #include "linalg/linalg_impl.h"
 #include "system/system_impl.h"
-
-static void bearing_dofs(const gd_system *sys, const gd_bearing *b, int idx[12])
-{
-    for (int d = 0; d < 6; d++) {
-        idx[d] = gd_system_dof(sys, b->node, (gd_dof)d);
-        idx[d + 6] = b->node2 >= 0 ? gd_system_dof(sys, b->node2, (gd_dof)d) : -1;
-    }
-}
 
 static int add_pattern(gd_trip *t, const gd_csc *s)
 {
@@ -52,7 +43,6 @@ gd_status gd_dynmat_build(const gd_system *sys, gd_dynmat *a, gd_error *err)
 {
     memset(a, 0, sizeof *a);
     int n = sys->ndof;
-    const gd_model *m = sys->model;
     gd_trip t = {0};
     gd_csc u = {0};
     int *map = malloc((size_t)n * sizeof *map);
@@ -64,14 +54,15 @@ gd_status gd_dynmat_build(const gd_system *sys, gd_dynmat *a, gd_error *err)
     if (add_pattern(&t, &sys->M) || add_pattern(&t, &sys->C) || add_pattern(&t, &sys->G) ||
         add_pattern(&t, &sys->K))
         goto nomem;
-    for (int b = 0; b < m->nbearings; b++) {
-        if (!m->bearings[b].ntable) continue;
+    for (int e = 0; e < sys->ninstances; e++) {
+        const gd_element_instance *in = &sys->instances[e];
+        if (!(in->terms & GD_TERM_SPEED)) continue;
         a->ntab++;
-        int idx[12];
-        bearing_dofs(sys, &m->bearings[b], idx);
-        for (int i = 0; i < 12; i++)
-            for (int j = 0; j < 12; j++)
-                if (idx[i] >= 0 && idx[j] >= 0 && gd_trip_add(&t, idx[i], idx[j], 1.0)) goto nomem;
+        for (int i = 0; i < in->nlocal; i++)
+            for (int j = 0; j < in->nlocal; j++)
+                if (in->dof[i] >= 0 && in->dof[j] >= 0 &&
+                    gd_trip_add(&t, in->dof[i], in->dof[j], 1.0))
+                    goto nomem;
     }
     if (gd_trip_compress(&t, map, n, &u)) goto nomem;
     gd_trip_free(&t);
@@ -99,16 +90,17 @@ gd_status gd_dynmat_build(const gd_system *sys, gd_dynmat *a, gd_error *err)
     scatter_values(a, &sys->G, a->g);
     scatter_values(a, &sys->K, a->k);
     int tb = 0;
-    for (int b = 0; b < m->nbearings; b++) {
-        if (!m->bearings[b].ntable) continue;
-        gd_dyn_bearing *db = &a->tab[tb++];
-        db->bearing = b;
-        int idx[12];
-        bearing_dofs(sys, &m->bearings[b], idx);
-        for (int i = 0; i < 12; i++)
-            for (int j = 0; j < 12; j++)
-                db->pos[i * 12 + j] =
-                    idx[i] >= 0 && idx[j] >= 0 ? gd_pattern_find(&a->pat, idx[i], idx[j]) : -1;
+    for (int e = 0; e < sys->ninstances; e++) {
+        const gd_element_instance *in = &sys->instances[e];
+        if (!(in->terms & GD_TERM_SPEED)) continue;
+        gd_dyn_term *dt = &a->tab[tb++];
+        dt->instance = e;
+        int nl = in->nlocal;
+        for (int i = 0; i < nl; i++)
+            for (int j = 0; j < nl; j++)
+                dt->pos[i * nl + j] = in->dof[i] >= 0 && in->dof[j] >= 0
+                                          ? gd_pattern_find(&a->pat, in->dof[i], in->dof[j])
+                                          : -1;
     }
     a->sys = sys;
     return GD_OK;
@@ -140,22 +132,18 @@ void gd_dynmat_at(const gd_dynmat *a, double speed, double *k, double *d)
     if (d)
         for (size_t i = 0; i < z; i++)
             d[i] = a->c[i] + speed * a->g[i];
-    const gd_model *m = a->sys->model;
+    const gd_system *sys = a->sys;
     for (int t = 0; t < a->ntab; t++) {
-        const gd_bearing *b = &m->bearings[a->tab[t].bearing];
-        double ws = fabs(m->shafts[m->nodes[b->node].shaft].speed_ratio * speed);
-        gd_bearing_coeffs c;
-        gd_bearing_coeffs_at(b, ws, &c);
-        double Kb[36], Cb[36];
-        gd_bearing_matrices(&c, Kb, Cb);
-        for (int i = 0; i < 12; i++)
-            for (int j = 0; j < 12; j++) {
-                int p = a->tab[t].pos[i * 12 + j];
-                if (p < 0) continue;
-                double sg = (i < 6) != (j < 6) ? -1.0 : 1.0;
-                if (k) k[p] += sg * Kb[(i % 6) * 6 + j % 6];
-                if (d) d[p] += sg * Cb[(i % 6) * 6 + j % 6];
-            }
+        const gd_element_instance *in = &sys->instances[a->tab[t].instance];
+        double Kl[GD_ELEMENT_MAX_DOFS * GD_ELEMENT_MAX_DOFS],
+            Cl[GD_ELEMENT_MAX_DOFS * GD_ELEMENT_MAX_DOFS];
+        in->type->matrices(sys->model, in->index, speed, NULL, Kl, Cl, NULL);
+        for (int p = 0; p < in->nlocal * in->nlocal; p++) {
+            int q = a->tab[t].pos[p];
+            if (q < 0) continue;
+            if (k) k[q] += Kl[p];
+            if (d) d[q] += Cl[p];
+        }
     }
 }
 

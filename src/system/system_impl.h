@@ -5,17 +5,18 @@
 #include "geardyn/system.h"
 #include "linalg/linalg_impl.h"
 
-/* ---- dynamic_matrix.c: M, C, G, K and the speed-table bearings on one pattern ---- */
-typedef struct gd_dyn_bearing {
-    int bearing;
-    int pos[144]; /* union position of local (i, j) of the 12 x 12 [A -A; -A A], or -1 */
-} gd_dyn_bearing;
+/* ---- dynamic_matrix.c: M, C, G, K and the speed-dependent elements on one pattern ---- */
+typedef struct gd_dyn_term {
+    int instance; /* index in sys->instances of an element with GD_TERM_SPEED */
+    int pos[GD_ELEMENT_MAX_DOFS * GD_ELEMENT_MAX_DOFS]; /* pattern position of local (i, j),
+                                                          row-major, or -1 */
+} gd_dyn_term;
 
 typedef struct gd_dynmat {
     gd_pattern pat; /* the union pattern */
     double *m, *c, *g, *k;
     int ntab;
-    gd_dyn_bearing *tab;
+    gd_dyn_term *tab;
     const gd_system *sys;
 } gd_dynmat;
 
