@@ -1,0 +1,82 @@
+#!/usr/bin/env bash
+# The library's layers (DESIGN.md, docs/architecture.md): data flows one way, model file ->
+# model -> system -> analyses -> output, so a module may include only its own headers
+# and those of lower layers; two modules of one layer never include each other. Every
+# #include "..." under src/ and include/geardyn/ is checked against this table, and the
+# CLI may include only public headers. Exits 1 listing every violation.
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+
+declare -A level=(
+    [core]=0
+    [linalg]=1 [mesh_stiffness]=1 [signal]=1
+    [laws]=2
+    [model]=3
+    [model_file]=4 [elements]=4
+    [system]=5
+    [modal]=6
+    [campbell]=7 [response]=7 [transient]=7
+    [api]=9
+)
+# public header -> module
+declare -A header=(
+    [error.h]=core [units.h]=core [version.h]=core [export.h]=core
+    [sparse.h]=linalg [mesh_stiffness.h]=mesh_stiffness [spectrum.h]=signal
+    [laws.h]=laws
+    [model.h]=model [material.h]=model [builder.h]=model
+    [model_file.h]=model_file [elements.h]=elements
+    [system.h]=system
+    [modal.h]=modal
+    [campbell.h]=campbell [probe.h]=response [frf.h]=response [unbalance.h]=response
+    [transient.h]=transient [transient_model.h]=transient
+    [geardyn.h]=api
+)
+
+module_of_include() { # "geardyn/x.h" | "module/x_impl.h"
+    local inc=$1
+    case $inc in
+        geardyn/*) echo "${header[${inc#geardyn/}]:-unknown:$inc}" ;;
+        */*) echo "${inc%%/*}" ;;
+        *) echo "unknown:$inc" ;;
+    esac
+}
+
+bad=0
+check_file() { # file module
+    local f=$1 mod=$2 inc target
+    while IFS= read -r inc; do
+        target=$(module_of_include "$inc")
+        if [[ $target == unknown:* ]]; then
+            echo "$f: #include \"$inc\": not a known module header (use \"module/x_impl.h\" or \"geardyn/x.h\")"
+            bad=1
+        elif [[ $target != "$mod" ]] && ((level[$target] >= level[$mod])); then
+            echo "$f: #include \"$inc\": $mod (layer ${level[$mod]}) may not include $target (layer ${level[$target]})"
+            bad=1
+        fi
+    done < <(sed -n 's/^#include "\([^"]*\)".*/\1/p' "$f")
+}
+
+for f in src/*/*.c src/*/*.h; do
+    mod=${f#src/}
+    mod=${mod%%/*}
+    [[ -n ${level[$mod]+x} ]] || { echo "$f: module '$mod' is not in the layer table"; bad=1; continue; }
+    check_file "$f" "$mod"
+done
+for f in include/geardyn/*.h include/geardyn/*.h.in; do
+    [[ -e $f ]] || continue
+    h=$(basename "$f" .in)
+    mod=${header[$h]:-}
+    [[ -n $mod ]] || { echo "$f: public header not in the layer table"; bad=1; continue; }
+    check_file "$f" "$mod"
+done
+# the CLI and the installed-library test use public headers only
+for f in cli/*.c cli/*.h; do
+    while IFS= read -r inc; do
+        case $inc in geardyn/*) ;; *) [[ -e cli/$inc ]] || { echo "$f: #include \"$inc\": the CLI uses public headers only"; bad=1; } ;; esac
+    done < <(sed -n 's/^#include "\([^"]*\)".*/\1/p' "$f")
+done
+if ((bad)); then
+    echo "layers: violations found"
+    exit 1
+fi
+echo "layers: $(ls src/*/*.[ch] include/geardyn/*.h | wc -l) files, no upward or sideways includes"
