@@ -34,7 +34,7 @@ int main(int argc, char **argv)
     double t_build = now() - t0;
     int n = s->ndof, n2 = 2 * n;
     gd_modal_options o;
-    gd_modal_options_default(&o);
+    gd_modal_options_init(&o);
     o.speed = speed;
     o.nmodes = 20;
     o.want_left = 0;

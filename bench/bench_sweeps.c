@@ -55,7 +55,7 @@ int main(int argc, char **argv)
     for (int t = 0; t < nthr; t++) {
         int th = argc > 2 ? atoi(argv[2 + t]) : 1;
         gd_campbell_options co;
-        gd_campbell_options_default(&co);
+        gd_campbell_options_init(&co);
         co.speeds = sp;
         co.nspeeds = 100;
         co.nmodes = 12;
@@ -78,7 +78,7 @@ int main(int argc, char **argv)
         printf("threads %d: campbell 100 speeds x 12 modes (%s) %.3f s (best of 5)\n", th,
                sparse ? "sparse" : "dense", tc);
         gd_frf_options fo;
-        gd_frf_options_default(&fo);
+        gd_frf_options_init(&fo);
         fo.freqs = fr;
         fo.nfreq = 1000;
         fo.inputs = &in;
@@ -98,7 +98,7 @@ int main(int argc, char **argv)
         gd_frf_free(frr);
         if (m->nunbalances > 0) {
             gd_unbalance_options uo;
-            gd_unbalance_options_default(&uo);
+            gd_unbalance_options_init(&uo);
             uo.speeds = usp;
             uo.nspeeds = 1000;
             uo.outputs = outs;
@@ -115,7 +115,7 @@ int main(int argc, char **argv)
         }
     }
     gd_modal_options mo;
-    gd_modal_options_default(&mo);
+    gd_modal_options_init(&mo);
     mo.speed = 314.16;
     mo.nmodes = 0;
     mo.want_left = 0;

@@ -63,10 +63,10 @@ static int bench(const char *label, const char *yaml, const char *path, double s
         e[i] = ste * sin(teeth * x[i]);
     }
     gd_table *tk = NULL, *te = NULL;
-    gd_table_create(N, x, k, per, GD_INTERP_SPLINE, &tk, &err);
-    gd_table_create(N, x, e, per, GD_INTERP_SPLINE, &te, &err);
+    gd_table_new(N, x, k, per, GD_INTERP_SPLINE, &tk, &err);
+    gd_table_new(N, x, e, per, GD_INTERP_SPLINE, &te, &err);
     gd_tr_mesh m;
-    gd_tr_mesh_default(sys, 0, &m);
+    gd_tr_mesh_init(sys, 0, &m);
     m.tvms = tk;
     m.ste = te;
     m.damping_per_k = 0.05 * 2 / (teeth * speed * 1.25); /* ~5 % near the mesh mode */
@@ -90,7 +90,7 @@ static int bench(const char *label, const char *yaml, const char *path, double s
     spec.nloads = 1;
     gd_transient *tr = NULL;
     double t0 = now();
-    st = gd_transient_create(sys, &spec, speed, &tr, &err);
+    st = gd_transient_new(sys, &spec, speed, &tr, &err);
     double t_create = now() - t0;
     if (st) {
         fprintf(stderr, "bench_transient: %s: %s\n", label, err.message);
@@ -98,7 +98,7 @@ static int bench(const char *label, const char *yaml, const char *path, double s
     }
     gd_tr_record rec[2] = {{GD_REC_MESH_FORCE, 0, 0}, {GD_REC_MESH_STATE, 0, 0}};
     gd_transient_options o;
-    gd_transient_options_default(&o);
+    gd_transient_options_init(&o);
     o.t_end = t_end;
     o.output_interval = t_end / 2000;
     o.init = GD_TR_INIT_STATIC;

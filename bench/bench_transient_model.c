@@ -45,7 +45,7 @@ int main(int argc, char **argv)
         goto out;
     }
     double t0 = now();
-    st = gd_transient_create(sys, &tm->spec, model->speed, &tr, &err);
+    st = gd_transient_new(sys, &tm->spec, model->speed, &tr, &err);
     double t_create = now() - t0;
     if (st) {
         fprintf(stderr, "bench_transient_model: %s\n", err.message);
@@ -53,7 +53,7 @@ int main(int argc, char **argv)
     }
     double t_end = 2 * M_PI * revs / model->speed;
     gd_transient_options o;
-    gd_transient_options_default(&o);
+    gd_transient_options_init(&o);
     o.t_end = t_end;
     o.output_interval = t_end / 2000;
     gd_tr_record rec[1] = {{GD_REC_MESH_FORCE, 0, 0}};

@@ -216,7 +216,7 @@ int gd_cmd_campbell(int argc, char **argv)
     const char *cmd = "campbell", *speeds = NULL, *coupling = NULL, *out = NULL, *orders = NULL,
                *shift = NULL;
     gd_campbell_options opt;
-    gd_campbell_options_default(&opt);
+    gd_campbell_options_init(&opt);
     int json = 0, c;
     long nm;
     optind = 1;

@@ -55,7 +55,7 @@ int gd_cmd_frf(int argc, char **argv)
     int nouts = 0, json = 0, c;
     long nm;
     gd_frf_options opt;
-    gd_frf_options_default(&opt);
+    gd_frf_options_init(&opt);
     optind = 1;
     opterr = 0;
     while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {

@@ -163,7 +163,7 @@ int gd_cmd_modal(int argc, char **argv)
                                          {"help", no_argument, 0, 'h'},
                                          {0, 0, 0, 0}};
     gd_modal_options opt;
-    gd_modal_options_default(&opt);
+    gd_modal_options_init(&opt);
     opt.want_left = 0;
     const char *coupling = NULL, *out = NULL, *speed = NULL;
     int json = 0, c, all = 0;

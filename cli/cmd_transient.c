@@ -494,12 +494,12 @@ int gd_cmd_transient(int argc, char **argv)
     for (int k = 0; k < o.nrecords; k++)
         if ((rc = gd_cli_parse_records(CMD, s, tm, o.records[k], &recs))) goto done;
     if (!o.nrecords && (rc = gd_cli_default_records(s, tm, &recs))) goto done;
-    if (gd_transient_create(s, &tm->spec, ri.speed, &tr, &err)) {
+    if (gd_transient_new(s, &tm->spec, ri.speed, &tr, &err)) {
         rc = gd_cli_report(&err);
         goto done;
     }
     gd_transient_options opt;
-    gd_transient_options_default(&opt);
+    gd_transient_options_init(&opt);
     opt.t_end = ri.t_end;
     opt.record_from = ri.from;
     opt.output_interval = ri.dt;

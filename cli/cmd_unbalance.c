@@ -74,7 +74,7 @@ int gd_cmd_unbalance(int argc, char **argv)
     const char *cmd = "unbalance", *speeds = NULL, *coupling = NULL, *out = NULL, *outs[MAXOUT];
     int nouts = 0, json = 0, c;
     gd_unbalance_options opt;
-    gd_unbalance_options_default(&opt);
+    gd_unbalance_options_init(&opt);
     optind = 1;
     opterr = 0;
     while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {

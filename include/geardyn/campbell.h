@@ -71,7 +71,7 @@ typedef struct gd_campbell_result {
     int sparse;                  /* the sparse eigensolver was used */
 } gd_campbell_result;
 
-void gd_campbell_options_default(gd_campbell_options *opt);
+void gd_campbell_options_init(gd_campbell_options *opt);
 gd_status gd_campbell(const gd_system *sys, const gd_campbell_options *opt,
                       gd_campbell_result **out, gd_error *err);
 void gd_campbell_free(gd_campbell_result *r);

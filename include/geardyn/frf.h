@@ -42,7 +42,7 @@ typedef struct gd_frf_result {
     int nrigid;
 } gd_frf_result;
 
-void gd_frf_options_default(gd_frf_options *opt);
+void gd_frf_options_init(gd_frf_options *opt);
 gd_status gd_frf(const gd_system *sys, const gd_frf_options *opt, gd_frf_result **out,
                  gd_error *err);
 void gd_frf_free(gd_frf_result *r);

@@ -38,8 +38,8 @@ typedef struct gd_table {
 } gd_table;
 
 /* n >= 2 (spline: n >= 3). Copies x and y. */
-gd_status gd_table_create(int n, const double *x, const double *y, double period, gd_interp interp,
-                          gd_table **out, gd_error *err);
+gd_status gd_table_new(int n, const double *x, const double *y, double period, gd_interp interp,
+                       gd_table **out, gd_error *err);
 /* Periodic table of a mesh stiffness result: k(driver angle) over its first cycle. */
 gd_status gd_table_from_tvms(const gd_tvms_result *r, gd_interp interp, gd_table **out,
                              gd_error *err);

@@ -52,7 +52,7 @@ typedef struct gd_modal_result {
     double *energy_by_component; /* ncomponents x nmodes, column-major: fractions */
 } gd_modal_result;
 
-void gd_modal_options_default(gd_modal_options *opt);
+void gd_modal_options_init(gd_modal_options *opt);
 gd_status gd_modal_solve(const gd_system *sys, const gd_modal_options *opt, gd_modal_result **out,
                          gd_error *err);
 void gd_modal_free(gd_modal_result *res);

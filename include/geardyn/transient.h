@@ -10,7 +10,7 @@
  * damping, static transmission error, backlash). f holds squeeze film damper forces,
  * unbalance forces, applied loads and cam inertial torques.
  *
- * Built once (gd_transient_create: matrices at the speed, sparse Cholesky of the mass,
+ * Built once (gd_transient_new: matrices at the speed, sparse Cholesky of the mass,
  * mesh vectors, workspaces); gd_transient_run integrates with SUNDIALS CVODE (BDF or
  * Adams, Newton iteration with GMRES preconditioned by a sparse LU of M + g D + g^2 K)
  * and locates every contact change of a backlash mesh (CVodeRootInit on d -/+ b; the
@@ -47,7 +47,7 @@ typedef struct gd_tr_mesh {
 } gd_tr_mesh;
 /* Defaults from the model: constant model stiffness and damping, coast_scale 1, no
  * backlash, no STE. */
-void gd_tr_mesh_default(const gd_system *sys, int mesh, gd_tr_mesh *m);
+void gd_tr_mesh_init(const gd_system *sys, int mesh, gd_tr_mesh *m);
 
 /* Squeeze film damper between a journal node and ground (or a housing node), acting on
  * the x, y DOFs. */
@@ -97,8 +97,8 @@ typedef struct gd_transient_spec {
 typedef struct gd_transient gd_transient;
 
 /* Builds the problem at reference speed W (rad/s). */
-gd_status gd_transient_create(const gd_system *sys, const gd_transient_spec *spec, double speed,
-                              gd_transient **out, gd_error *err);
+gd_status gd_transient_new(const gd_system *sys, const gd_transient_spec *spec, double speed,
+                           gd_transient **out, gd_error *err);
 void gd_transient_free(gd_transient *tr);
 
 /* The state layout: y = [q_f; q_f'] over the nfree free DOFs (in increasing DOF order). */
@@ -138,7 +138,7 @@ typedef struct gd_transient_options {
     void (*progress)(double t, double t_start, double t_end, void *data);
     void *progress_data;
 } gd_transient_options;
-void gd_transient_options_default(gd_transient_options *opt);
+void gd_transient_options_init(gd_transient_options *opt);
 
 typedef enum gd_tr_record_kind {
     GD_REC_DISP = 0,        /* q[index] (m or rad, perturbation) */

@@ -13,7 +13,7 @@
 #include "geardyn/transient.h"
 
 typedef struct gd_transient_model {
-    gd_transient_spec spec; /* ready for gd_transient_create */
+    gd_transient_spec spec; /* ready for gd_transient_new */
     gd_tr_mesh *meshes;     /* spec.nmeshes */
     gd_tr_sfd *sfds;
     gd_tr_load *loads;

@@ -38,7 +38,7 @@ typedef struct gd_unbalance_result {
     int *singular;    /* nspeeds */
 } gd_unbalance_result;
 
-void gd_unbalance_options_default(gd_unbalance_options *opt);
+void gd_unbalance_options_init(gd_unbalance_options *opt);
 gd_status gd_unbalance_response(const gd_system *sys, const gd_unbalance_options *opt,
                                 gd_unbalance_result **out, gd_error *err);
 void gd_unbalance_free(gd_unbalance_result *r);

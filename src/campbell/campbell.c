@@ -10,7 +10,7 @@
 #include "campbell/campbell_impl.h"
 #include "modal/modal_impl.h"
 
-void gd_campbell_options_default(gd_campbell_options *opt)
+void gd_campbell_options_init(gd_campbell_options *opt)
 {
     memset(opt, 0, sizeof *opt);
     opt->nmodes = 12;
@@ -37,7 +37,7 @@ static gd_status solve_one(const gd_system *sys, const gd_dynmat *a, const gd_sp
                            gd_modal_result **out, gd_error *err)
 {
     gd_modal_options o;
-    gd_modal_options_default(&o);
+    gd_modal_options_init(&o);
     o.speed = speed;
     o.nmodes = nreq;
     o.kind = opt->kind;

@@ -99,8 +99,8 @@ done:
     return rc;
 }
 
-gd_status gd_table_create(int n, const double *x, const double *y, double period, gd_interp interp,
-                          gd_table **out, gd_error *err)
+gd_status gd_table_new(int n, const double *x, const double *y, double period, gd_interp interp,
+                       gd_table **out, gd_error *err)
 {
     *out = NULL;
     if (n < 2 || (interp == GD_INTERP_SPLINE && n < 3))
@@ -152,8 +152,8 @@ gd_status gd_table_from_tvms(const gd_tvms_result *r, gd_interp interp, gd_table
     *out = NULL;
     if (!r || r->points < 2 || r->n < r->points || !(r->mesh_period_rad > 0))
         return table_error(err, GD_EINPUT, "tvms", "mesh stiffness result has no full cycle");
-    return gd_table_create((int)r->points, r->angle_rad, r->stiffness, r->mesh_period_rad, interp,
-                           out, err);
+    return gd_table_new((int)r->points, r->angle_rad, r->stiffness, r->mesh_period_rad, interp, out,
+                        err);
 }
 
 void gd_table_free(gd_table *t)

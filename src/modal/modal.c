@@ -13,7 +13,7 @@
 
 #define PI 3.14159265358979323846
 
-void gd_modal_options_default(gd_modal_options *opt)
+void gd_modal_options_init(gd_modal_options *opt)
 {
     memset(opt, 0, sizeof *opt);
     opt->kind = GD_MODAL_AUTO;

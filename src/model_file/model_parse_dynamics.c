@@ -87,7 +87,7 @@ static gd_status read_table(gd_mparser *p, const gd_ynode *map, const char *path
                       "angles outside one period");
         goto done;
     }
-    if ((st = gd_table_create(nx, x, y, period, (gd_interp)ii, out, p->r.err))) {
+    if ((st = gd_table_new(nx, x, y, period, (gd_interp)ii, out, p->r.err))) {
         /* locate the library's complaint at the table */
         p->r.err->line = map->line;
         p->r.err->column = map->column;

@@ -13,7 +13,7 @@
 #include "geardyn/frf.h"
 #include "system/system_impl.h"
 
-void gd_frf_options_default(gd_frf_options *opt)
+void gd_frf_options_init(gd_frf_options *opt)
 {
     memset(opt, 0, sizeof *opt);
     opt->quantity = GD_FRF_RECEPTANCE;
@@ -204,7 +204,7 @@ static gd_status frf_modal(const gd_system *sys, const gd_frf_options *opt, cons
                            gd_frf_result *r, gd_error *err)
 {
     gd_modal_options mo;
-    gd_modal_options_default(&mo);
+    gd_modal_options_init(&mo);
     mo.speed = opt->speed;
     mo.nmodes = opt->nmodes;
     mo.want_left = 1;

@@ -16,7 +16,7 @@
 
 #define PI 3.14159265358979323846
 
-void gd_unbalance_options_default(gd_unbalance_options *opt)
+void gd_unbalance_options_init(gd_unbalance_options *opt)
 {
     memset(opt, 0, sizeof *opt);
 }

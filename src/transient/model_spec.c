@@ -1,5 +1,5 @@
 /* The transient spec of a model: its meshes' nonlinear laws, dampers, loads, prescribed
- * motions and cams turned into the C description gd_transient_create takes. */
+ * motions and cams turned into the C description gd_transient_new takes. */
 #include "geardyn/transient_model.h"
 
 #include <stdio.h>
@@ -74,7 +74,7 @@ gd_status gd_transient_model_build(const gd_system *sys, gd_transient_model **ou
         if (!mesh_is_nonlinear(g)) continue;
         const gd_mesh_dynamics *d = &g->dyn;
         gd_tr_mesh *tmsh = &tm->meshes[sp->nmeshes++];
-        gd_tr_mesh_default(sys, i, tmsh);
+        gd_tr_mesh_init(sys, i, tmsh);
         tmsh->tvms = d->tvms;
         if (!tmsh->tvms && g->tvms) {
             gd_table *t = NULL;

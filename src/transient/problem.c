@@ -14,7 +14,7 @@ static gd_status fail(gd_error *err, gd_status st, const char *field, const char
     return gd_error_set(err, st, "", 0, 0, field, hint, "%s", msg);
 }
 
-void gd_tr_mesh_default(const gd_system *sys, int mesh, gd_tr_mesh *m)
+void gd_tr_mesh_init(const gd_system *sys, int mesh, gd_tr_mesh *m)
 {
     memset(m, 0, sizeof *m);
     m->mesh = mesh;
@@ -96,8 +96,8 @@ static int is_prescribed(const gd_transient_spec *spec, int dof)
     return 0;
 }
 
-gd_status gd_transient_create(const gd_system *sys, const gd_transient_spec *spec, double speed,
-                              gd_transient **out, gd_error *err)
+gd_status gd_transient_new(const gd_system *sys, const gd_transient_spec *spec, double speed,
+                           gd_transient **out, gd_error *err)
 {
     *out = NULL;
     const gd_model *model = sys->model;

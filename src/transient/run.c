@@ -12,7 +12,7 @@
 
 #include "transient/transient_impl.h"
 
-void gd_transient_options_default(gd_transient_options *opt)
+void gd_transient_options_init(gd_transient_options *opt)
 {
     memset(opt, 0, sizeof *opt);
     opt->rtol = 1e-6;

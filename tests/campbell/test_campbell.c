@@ -27,7 +27,7 @@ TEST(sparse_equals_dense)
     const double speeds[2] = {0, 628.3};
     for (int k = 0; k < 2; k++) {
         gd_modal_options o;
-        gd_modal_options_default(&o);
+        gd_modal_options_init(&o);
         o.speed = speeds[k];
         o.nmodes = 13;
         o.want_left = 0;
@@ -75,7 +75,7 @@ TEST(gyroscopic_forward_rises_backward_falls)
     REQUIRE(load(&f, NULL, ROTOR));
     double *sp = linspace(0, 3000, 31);
     gd_campbell_options o;
-    gd_campbell_options_default(&o);
+    gd_campbell_options_init(&o);
     o.speeds = sp;
     o.nspeeds = 31;
     o.nmodes = 4;
@@ -118,7 +118,7 @@ TEST(threads_and_methods_agree)
     REQUIRE(load(&f, "examples/rig2018.yaml", NULL));
     double *sp = linspace(0, 1256.6, 21);
     gd_campbell_options o;
-    gd_campbell_options_default(&o);
+    gd_campbell_options_init(&o);
     o.speeds = sp;
     o.nspeeds = 21;
     o.nmodes = 8;
@@ -161,7 +161,7 @@ TEST(critical_speeds)
     double *sp = linspace(0, 1256.6, 41);
     double user[1] = {2};
     gd_campbell_options o;
-    gd_campbell_options_default(&o);
+    gd_campbell_options_init(&o);
     o.speeds = sp;
     o.nspeeds = 41;
     o.nmodes = 4;
@@ -181,7 +181,7 @@ TEST(critical_speeds)
         const gd_critical_speed *cs = &r->critical[c];
         CHECK_REL(cs->frequency_hz, r->orders[cs->order].order * cs->speed / (2 * M_PI), 1e-4);
         gd_modal_options mo;
-        gd_modal_options_default(&mo);
+        gd_modal_options_init(&mo);
         mo.speed = cs->speed;
         mo.nmodes = 5;
         gd_modal_result *mr;
@@ -214,7 +214,7 @@ TEST(instability_onset)
     REQUIRE(load(&f, NULL, UNSTABLE));
     double *sp = linspace(0, 1000, 101);
     gd_campbell_options o;
-    gd_campbell_options_default(&o);
+    gd_campbell_options_init(&o);
     o.speeds = sp;
     o.nspeeds = 101;
     o.nmodes = 2;
@@ -248,7 +248,7 @@ TEST(errors)
     REQUIRE(load(&f, "examples/rig2018.yaml", NULL));
     double sp[3] = {0, 100, 50};
     gd_campbell_options o;
-    gd_campbell_options_default(&o);
+    gd_campbell_options_init(&o);
     o.speeds = sp;
     o.nspeeds = 3;
     gd_campbell_result *r = (gd_campbell_result *)1;

@@ -10,31 +10,32 @@
 #include "harness.h"
 #include "model_support.h"
 
-static const char *MODEL = "dofs: [x, y, z, rx, ry, rz]\n"
-                           "shafts:\n"
-                           "  - name: a\n"
-                           "    speed_ratio: 1\n"
-                           "    nodes: [{name: journal}, {name: housing}]\n"
-                           "  - name: b\n"
-                           "    speed_ratio: -2\n"
-                           "    nodes: [{name: wheel}]\n"
-                           "disks:\n"
-                           "  - {node: journal, mass: 20, polar_inertia: 0.1, diametral_inertia: 0.06}\n"
-                           "  - {node: housing, mass: 50}\n"
-                           "  - {node: wheel, mass: 3, polar_inertia: 0.02, diametral_inertia: 0.01}\n"
-                           "bearings:\n"
-                           "  - name: oil_film\n"
-                           "    node: journal\n"
-                           "    to: housing\n"
-                           "    table:\n"
-                           "      - {speed: 0, k: 1e8, c: 2e3}\n"
-                           "      - {speed: 100, kxx: 8e7, kyy: 1.2e8, kxy: 3e7, kyx: -3e7, c: 1e3}\n"
-                           "  - {name: pedestal, node: housing, k: 5e8, c: 1e4, kzz: 1e8, "
-                           "k_tilt: 1e6, k_torsion: 1e5}\n"
-                           "  - {name: wheel_support, node: wheel, k: 2e8, kzz: 1e8, k_tilt: 1e6}\n"
-                           "springs:\n"
-                           "  - {name: coupling, node: journal, to: wheel, dof: rz, "
-                           "stiffness: 2000, damping: 0.5}\n";
+static const char *MODEL =
+    "dofs: [x, y, z, rx, ry, rz]\n"
+    "shafts:\n"
+    "  - name: a\n"
+    "    speed_ratio: 1\n"
+    "    nodes: [{name: journal}, {name: housing}]\n"
+    "  - name: b\n"
+    "    speed_ratio: -2\n"
+    "    nodes: [{name: wheel}]\n"
+    "disks:\n"
+    "  - {node: journal, mass: 20, polar_inertia: 0.1, diametral_inertia: 0.06}\n"
+    "  - {node: housing, mass: 50}\n"
+    "  - {node: wheel, mass: 3, polar_inertia: 0.02, diametral_inertia: 0.01}\n"
+    "bearings:\n"
+    "  - name: oil_film\n"
+    "    node: journal\n"
+    "    to: housing\n"
+    "    table:\n"
+    "      - {speed: 0, k: 1e8, c: 2e3}\n"
+    "      - {speed: 100, kxx: 8e7, kyy: 1.2e8, kxy: 3e7, kyx: -3e7, c: 1e3}\n"
+    "  - {name: pedestal, node: housing, k: 5e8, c: 1e4, kzz: 1e8, "
+    "k_tilt: 1e6, k_torsion: 1e5}\n"
+    "  - {name: wheel_support, node: wheel, k: 2e8, kzz: 1e8, k_tilt: 1e6}\n"
+    "springs:\n"
+    "  - {name: coupling, node: journal, to: wheel, dof: rz, "
+    "stiffness: 2000, damping: 0.5}\n";
 
 TEST(registry_order_and_lookup)
 {
@@ -147,7 +148,8 @@ TEST(spring_matrix_energy_and_force_by_hand)
     int j = gd_system_dof(f.s, gd_model_find_node(f.m, "journal"), GD_RZ);
     int w = gd_system_dof(f.s, gd_model_find_node(f.m, "wheel"), GD_RZ);
     REQUIRE(j >= 0 && w >= 0);
-    double *re = calloc((size_t)f.s->ndof, sizeof *re), *comp = calloc((size_t)f.s->ncomponents, sizeof(double));
+    double *re = calloc((size_t)f.s->ndof, sizeof *re),
+           *comp = calloc((size_t)f.s->ncomponents, sizeof(double));
     re[j] = u[GD_RZ];
     re[w] = u[6 + GD_RZ];
     double total = gd_system_strain_energy(f.s, 0.0, re, NULL, by, comp);

@@ -90,7 +90,7 @@ static gd_modal_result *solve_yaml(const char *yaml, int nmodes)
     }
     if (gd_system_build(m, &s, &err) == GD_OK) {
         gd_modal_options o;
-        gd_modal_options_default(&o);
+        gd_modal_options_init(&o);
         o.nmodes = nmodes;
         if (gd_modal_solve(s, &o, &r, &err)) fprintf(stderr, "%s\n", err.message);
     }

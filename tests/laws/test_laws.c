@@ -223,7 +223,7 @@ TEST(table_linear_periodic)
     double x[4] = {0.0, 1.0, 2.5, 3.0}, y[4] = {1.0, 3.0, 0.0, 2.0};
     gd_table *t;
     gd_error err;
-    REQUIRE(gd_table_create(4, x, y, 4.0, GD_INTERP_LINEAR, &t, &err) == GD_OK);
+    REQUIRE(gd_table_new(4, x, y, 4.0, GD_INTERP_LINEAR, &t, &err) == GD_OK);
     double d;
     CHECK_REL(gd_table_eval(t, 0.5, &d, NULL), 2.0, 1e-15);
     CHECK_REL(d, 2.0, 1e-15);
@@ -237,9 +237,9 @@ TEST(table_linear_periodic)
     gd_table_free(t);
     /* errors */
     double bad[3] = {0, 2, 1};
-    CHECK(gd_table_create(3, bad, y, 0, GD_INTERP_LINEAR, &t, &err) == GD_EINPUT);
-    CHECK(gd_table_create(4, x, y, 3.0, GD_INTERP_LINEAR, &t, &err) == GD_EINPUT);
-    CHECK(gd_table_create(2, x, y, 0, GD_INTERP_SPLINE, &t, &err) == GD_EINPUT);
+    CHECK(gd_table_new(3, bad, y, 0, GD_INTERP_LINEAR, &t, &err) == GD_EINPUT);
+    CHECK(gd_table_new(4, x, y, 3.0, GD_INTERP_LINEAR, &t, &err) == GD_EINPUT);
+    CHECK(gd_table_new(2, x, y, 0, GD_INTERP_SPLINE, &t, &err) == GD_EINPUT);
 }
 
 TEST(table_periodic_spline)
@@ -254,12 +254,12 @@ TEST(table_periodic_spline)
     }
     gd_table *t, *tn;
     gd_error err;
-    REQUIRE(gd_table_create(N, x, y, 2 * M_PI, GD_INTERP_SPLINE, &t, &err) == GD_OK);
+    REQUIRE(gd_table_new(N, x, y, 2 * M_PI, GD_INTERP_SPLINE, &t, &err) == GD_OK);
     CHECK(t->uniform > 0);
     double yn[N];
     for (int i = 0; i < N; i++)
         yn[i] = sin(xn[i]) + 0.3 * cos(2 * xn[i]);
-    REQUIRE(gd_table_create(N, xn, yn, 2 * M_PI, GD_INTERP_SPLINE, &tn, &err) == GD_OK);
+    REQUIRE(gd_table_new(N, xn, yn, 2 * M_PI, GD_INTERP_SPLINE, &tn, &err) == GD_OK);
     CHECK(tn->uniform == 0);
     double e0 = 0, e1 = 0, e2 = 0;
     for (int k = 0; k < 997; k++) {
@@ -293,7 +293,7 @@ TEST(table_not_periodic)
         y[i] = 100 * x[i];
     gd_table *t;
     gd_error err;
-    REQUIRE(gd_table_create(5, x, y, 0, GD_INTERP_SPLINE, &t, &err) == GD_OK);
+    REQUIRE(gd_table_new(5, x, y, 0, GD_INTERP_SPLINE, &t, &err) == GD_OK);
     double d1, d2;
     CHECK_REL(gd_table_eval(t, 0.25, &d1, &d2), 25.0, 1e-13);
     CHECK_REL(d1, 100.0, 1e-13);
@@ -358,7 +358,7 @@ TEST(cam_torque_harmonic_law)
     }
     gd_table *t;
     gd_error err;
-    REQUIRE(gd_table_create(N, x, y, 2 * M_PI, GD_INTERP_SPLINE, &t, &err) == GD_OK);
+    REQUIRE(gd_table_new(N, x, y, 2 * M_PI, GD_INTERP_SPLINE, &t, &err) == GD_OK);
     gd_lift_law tab = {.kind = GD_LIFT_TABLE, .table = t};
     double tmax = m * 7e-3 * 11e-3 * W * W;
     for (int i = 0; i < 50; i++) {
@@ -383,7 +383,7 @@ TEST(load_and_prescribed_laws)
     double x[3] = {0, 1, 2}, y[3] = {5, 7, 6};
     gd_table *t;
     gd_error err;
-    REQUIRE(gd_table_create(3, x, y, 3, GD_INTERP_LINEAR, &t, &err) == GD_OK);
+    REQUIRE(gd_table_new(3, x, y, 3, GD_INTERP_LINEAR, &t, &err) == GD_OK);
     gd_load_law tl = {.kind = GD_LOAD_TABLE_ANGLE, .mean = 1, .table = t, .phase = 0.5};
     CHECK_REL(gd_load_eval(&tl, 0, 3.0), 1 + 6.0, 1e-15); /* angle 3.5 -> 0.5 */
     gd_table_free(t);
@@ -403,7 +403,7 @@ TEST(load_and_prescribed_laws)
     CHECK_REL(qd, -0.05 * sin(0.7), 1e-14);
     CHECK_REL(qdd, -2.5 * cos(0.7), 1e-14);
     double tt[4] = {0, 0.01, 0.02, 0.03}, an[4] = {0, 1.0, 2.0, 3.0};
-    REQUIRE(gd_table_create(4, tt, an, 0, GD_INTERP_LINEAR, &t, &err) == GD_OK);
+    REQUIRE(gd_table_new(4, tt, an, 0, GD_INTERP_LINEAR, &t, &err) == GD_OK);
     gd_prescribed_law pt = {.kind = GD_PRESCRIBED_TABLE, .table = t};
     gd_prescribed_eval(&pt, 0.015, 90, &q, &qd, &qdd);
     CHECK_REL(q, 1.5 - 90 * 0.015, 1e-13);

@@ -37,7 +37,7 @@ static int fx_solve(fixture *f, const char *path, const char *yaml, gd_modal_opt
 static gd_modal_options opts(double speed, int nmodes, gd_modal_kind kind)
 {
     gd_modal_options o;
-    gd_modal_options_default(&o);
+    gd_modal_options_init(&o);
     o.speed = speed;
     o.nmodes = nmodes;
     o.kind = kind;

@@ -1259,7 +1259,7 @@ static gd_status modal_status(gd_test_state *gd_ts_, const char *yaml, gd_modal_
     if (s) {
         *nmassless = s->nmassless;
         gd_modal_options o;
-        gd_modal_options_default(&o);
+        gd_modal_options_init(&o);
         o.kind = kind;
         gd_modal_result *r = NULL;
         gd_error_clear(e);

@@ -50,7 +50,7 @@ TEST(mesh_sizes_and_stiffness_from_geometry)
     gd_system *s;
     gd_modal_result *r;
     gd_modal_options o;
-    gd_modal_options_default(&o);
+    gd_modal_options_init(&o);
     REQUIRE(gd_system_build(m, &s, &err) == GD_OK);
     REQUIRE(gd_modal_solve(s, &o, &r, &err) == GD_OK);
     REQUIRE(r->nmodes == 2);

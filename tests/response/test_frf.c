@@ -59,7 +59,7 @@ TEST(rig_direct_equals_modal)
                         {GD_PROBE_MESH, 0, GD_X, "mesh"},
                         {GD_PROBE_BEARING, 0, GD_X, "A1.x"}};
     gd_frf_options o;
-    gd_frf_options_default(&o);
+    gd_frf_options_init(&o);
     o.freqs = freqs;
     o.nfreq = 6;
     o.speed = 314.159;
@@ -106,7 +106,7 @@ TEST(rig_driving_point_peaks_at_modes)
     fx f;
     REQUIRE(load(&f, "examples/rig2018.yaml", NULL));
     gd_modal_options mo;
-    gd_modal_options_default(&mo);
+    gd_modal_options_init(&mo);
     mo.nmodes = 12;
     gd_modal_result *mr;
     gd_error err;
@@ -115,7 +115,7 @@ TEST(rig_driving_point_peaks_at_modes)
     double *fr = linspace(600, 10000, 47001); /* 0.2 rad/s steps */
     gd_probe out = probe_dof(in);
     gd_frf_options o;
-    gd_frf_options_default(&o);
+    gd_frf_options_init(&o);
     o.freqs = fr;
     o.nfreq = 47001;
     o.inputs = &in;
@@ -176,7 +176,7 @@ static int kumar_peaks(const char *path, double top, double *pk)
     int in = dof(&f, "motor", GD_RZ);
     gd_probe out = {GD_PROBE_MESH, 0, GD_X, "mesh"};
     gd_frf_options o;
-    gd_frf_options_default(&o);
+    gd_frf_options_init(&o);
     o.freqs = fr;
     o.nfreq = nf;
     o.inputs = &in;
@@ -233,7 +233,7 @@ TEST(directional_frf_separates_forward_and_backward)
     REQUIRE(load(&f, NULL, ROTOR));
     double W = 2000;
     gd_modal_options mo;
-    gd_modal_options_default(&mo);
+    gd_modal_options_init(&mo);
     mo.speed = W;
     mo.nmodes = 2;
     gd_modal_result *mr;
@@ -246,7 +246,7 @@ TEST(directional_frf_separates_forward_and_backward)
     gd_probe out[2] = {probe_dof(in[0]), probe_dof(in[1])};
     double fr[2] = {wb, wf};
     gd_frf_options o;
-    gd_frf_options_default(&o);
+    gd_frf_options_init(&o);
     o.freqs = fr;
     o.nfreq = 2;
     o.speed = W;
@@ -277,7 +277,7 @@ TEST(quantities_scale_by_iw)
     gd_probe out = probe_dof(dof(&f, "gear_b", GD_RZ));
     double fr[1] = {900};
     gd_frf_options o;
-    gd_frf_options_default(&o);
+    gd_frf_options_init(&o);
     o.freqs = fr;
     o.nfreq = 1;
     o.inputs = &in;
@@ -308,7 +308,7 @@ TEST(threads_give_identical_results)
     int in = dof(&f, "gear32", GD_Y);
     gd_probe out[2] = {probe_dof(dof(&f, "gear48", GD_Y)), {GD_PROBE_MESH, 0, GD_X, "mesh"}};
     gd_frf_options o;
-    gd_frf_options_default(&o);
+    gd_frf_options_init(&o);
     o.freqs = fr;
     o.nfreq = 401;
     o.inputs = &in;
@@ -357,7 +357,7 @@ TEST(mesh_force_probe_uses_assembled_damping)
     int in = dof(&f, "gear_a", GD_RZ);
     double freqs[3] = {300, 1000, 4000};
     gd_frf_options o;
-    gd_frf_options_default(&o);
+    gd_frf_options_init(&o);
     o.freqs = freqs;
     o.nfreq = 3;
     o.inputs = &in;
@@ -386,7 +386,7 @@ TEST(errors)
     double fr[2] = {10, -1};
     gd_probe out = probe_dof(0);
     gd_frf_options o;
-    gd_frf_options_default(&o);
+    gd_frf_options_init(&o);
     o.freqs = fr;
     o.nfreq = 2;
     o.inputs = &in;

@@ -39,7 +39,7 @@ TEST(jeffcott_closed_form)
                        {GD_PROBE_BEARING, 0, GD_X, "B.x"}};
     int node = gd_model_find_node(f.m, "disk");
     gd_unbalance_options o;
-    gd_unbalance_options_default(&o);
+    gd_unbalance_options_init(&o);
     o.speeds = sp;
     o.nspeeds = 61;
     o.outputs = out;
@@ -94,7 +94,7 @@ TEST(chen_fig5_all_modes_but_gear_b_lateral)
     for (int i = 0; i < nd; i++)
         out[i] = (gd_probe){GD_PROBE_DOF, i, GD_X, "q"};
     gd_unbalance_options o;
-    gd_unbalance_options_default(&o);
+    gd_unbalance_options_init(&o);
     o.speeds = sp;
     o.nspeeds = ns;
     o.outputs = out;
@@ -147,7 +147,7 @@ TEST(kumar_two_harmonics_and_torsion)
                        {GD_PROBE_MESH, 0, GD_X, "mesh"}};
     int nodes[2] = {gd_model_find_node(f.m, "pinion"), gd_model_find_node(f.m, "gear")};
     gd_unbalance_options o;
-    gd_unbalance_options_default(&o);
+    gd_unbalance_options_init(&o);
     o.speeds = sp;
     o.nspeeds = 3;
     o.outputs = out;
@@ -185,7 +185,7 @@ TEST(threads_identical)
     gd_probe out[2] = {{GD_PROBE_MESH, 0, GD_X, "mesh"},
                        {GD_PROBE_BEARING, 1, GD_Y, "support_b.y"}};
     gd_unbalance_options o;
-    gd_unbalance_options_default(&o);
+    gd_unbalance_options_init(&o);
     o.speeds = sp;
     o.nspeeds = 301;
     o.outputs = out;
@@ -210,7 +210,7 @@ TEST(errors)
     REQUIRE(load(&f, "examples/rig2018.yaml", NULL)); /* no unbalances */
     double sp[1] = {100};
     gd_unbalance_options o;
-    gd_unbalance_options_default(&o);
+    gd_unbalance_options_init(&o);
     o.speeds = sp;
     o.nspeeds = 1;
     gd_unbalance_result *r = (gd_unbalance_result *)1;

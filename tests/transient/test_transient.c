@@ -75,7 +75,7 @@ static double energy_drift(const fixture *f, gd_transient *tr, double rtol, gd_t
     gd_tr_record rec[4] = {
         {GD_REC_DISP, 0, 0}, {GD_REC_DISP, 1, 0}, {GD_REC_VEL, 0, 0}, {GD_REC_VEL, 1, 0}};
     gd_transient_options o;
-    gd_transient_options_default(&o);
+    gd_transient_options_init(&o);
     o.t_end = 0.6; /* about 20 periods of the lower mode */
     o.output_interval = 1e-4;
     o.rtol = rtol;
@@ -109,7 +109,7 @@ TEST(free_vibration_energy_and_tolerance)
     gd_transient_spec spec = {0};
     gd_transient *tr;
     gd_error err;
-    REQUIRE(gd_transient_create(f.s, &spec, 0.0, &tr, &err) == GD_OK);
+    REQUIRE(gd_transient_new(f.s, &spec, 0.0, &tr, &err) == GD_OK);
     for (int meth = 0; meth < 2; meth++) {
         double d1 = energy_drift(&f, tr, 1e-7, meth);
         double d2 = energy_drift(&f, tr, 5e-8, meth);
@@ -160,7 +160,7 @@ TEST(linear_forced_steady_state_matches_frequency_domain)
     /* the mesh declared nonlinear with its own linear law: taken out of K, C and put
      * back as a force, the result must not change */
     gd_tr_mesh mesh;
-    gd_tr_mesh_default(f.s, 0, &mesh);
+    gd_tr_mesh_init(f.s, 0, &mesh);
     gd_tr_load load = {motor, {GD_LOAD_HARMONIC_TIME, 0.0, T0, w, 0.0, NULL}};
     for (int variant = 0; variant < 2; variant++) {
         gd_transient_spec spec = {0};
@@ -172,14 +172,14 @@ TEST(linear_forced_steady_state_matches_frequency_domain)
         }
         gd_transient *tr;
         gd_error err;
-        REQUIRE(gd_transient_create(f.s, &spec, 100.0, &tr, &err) == GD_OK);
+        REQUIRE(gd_transient_new(f.s, &spec, 100.0, &tr, &err) == GD_OK);
         gd_tr_record rec[5] = {{GD_REC_DISP, 0, 0},
                                {GD_REC_DISP, 1, 0},
                                {GD_REC_DISP, 2, 0},
                                {GD_REC_DISP, 3, 0},
                                {GD_REC_MESH_FORCE, 0, 0}};
         gd_transient_options o;
-        gd_transient_options_default(&o);
+        gd_transient_options_init(&o);
         o.t_end = 1.2;
         o.record_from = 1.2 - 4 * 2 * M_PI / w;
         o.output_interval = 1e-4;
@@ -263,8 +263,8 @@ static int pair_setup(pair_case *c, double ste_amp)
     }
     gd_error err;
     c->tvms = c->ste = NULL;
-    if (gd_table_create(N, x, k, per, GD_INTERP_SPLINE, &c->tvms, &err)) return 0;
-    if (gd_table_create(N, x, e, per, GD_INTERP_SPLINE, &c->ste, &err)) return 0;
+    if (gd_table_new(N, x, k, per, GD_INTERP_SPLINE, &c->tvms, &err)) return 0;
+    if (gd_table_new(N, x, e, per, GD_INTERP_SPLINE, &c->ste, &err)) return 0;
     c->F0 = 1000.0;
     return fx_load(&c->f, pair);
 }
@@ -281,7 +281,7 @@ static gd_transient_result *pair_run(pair_case *c, int backlash, double gap, dou
                                      double t_end, double from, const double *start)
 {
     gd_tr_mesh m;
-    gd_tr_mesh_default(c->f.s, 0, &m);
+    gd_tr_mesh_init(c->f.s, 0, &m);
     m.tvms = c->tvms;
     m.ste = c->ste;
     m.damping = 0.0;
@@ -302,7 +302,7 @@ static gd_transient_result *pair_run(pair_case *c, int backlash, double gap, dou
     spec.nloads = 1;
     gd_transient *tr;
     gd_error err;
-    if (gd_transient_create(c->f.s, &spec, 537.0, &tr, &err)) {
+    if (gd_transient_new(c->f.s, &spec, 537.0, &tr, &err)) {
         fprintf(stderr, "  create: %s\n", err.message);
         return NULL;
     }
@@ -311,7 +311,7 @@ static gd_transient_result *pair_run(pair_case *c, int backlash, double gap, dou
                            {GD_REC_VEL, gear, 0},
                            {GD_REC_DISP, gear, 0}};
     gd_transient_options o;
-    gd_transient_options_default(&o);
+    gd_transient_options_init(&o);
     o.t_end = t_end;
     o.record_from = from;
     o.output_interval = 1e-6;
@@ -498,7 +498,7 @@ TEST(cam_inertia_update_matches_dense_solve)
     spec.cam_acceleration = 1;
     gd_transient *tr;
     gd_error err;
-    REQUIRE(gd_transient_create(f.s, &spec, 500.0, &tr, &err) == GD_OK);
+    REQUIRE(gd_transient_new(f.s, &spec, 500.0, &tr, &err) == GD_OK);
     double y[4] = {1e-3, -2e-3, 3.0, -4.0}, yd[4];
     double t = 0.0123;
     gd_transient_rhs(tr, t, y, yd);
@@ -559,11 +559,11 @@ TEST(sfd_unbalance_orbit_is_circular_and_matches_force_balance)
     spec.unbalances = 1;
     gd_transient *tr;
     gd_error err;
-    REQUIRE(gd_transient_create(f.s, &spec, 1000.0, &tr, &err) == GD_OK);
+    REQUIRE(gd_transient_new(f.s, &spec, 1000.0, &tr, &err) == GD_OK);
     gd_tr_record rec[3] = {
         {GD_REC_SFD_ECCENTRICITY, 0, 0}, {GD_REC_SFD_FX, 0, 0}, {GD_REC_SFD_FY, 0, 0}};
     gd_transient_options o;
-    gd_transient_options_default(&o);
+    gd_transient_options_init(&o);
     o.t_end = 0.5;
     o.record_from = 0.45;
     o.output_interval = 1e-4;
@@ -599,19 +599,19 @@ TEST(errors_are_reported)
     gd_transient_spec spec = {0};
     spec.prescribed = pr;
     spec.nprescribed = 2;
-    CHECK(gd_transient_create(f.s, &spec, 1.0, &tr, &err) == GD_EINPUT);
+    CHECK(gd_transient_new(f.s, &spec, 1.0, &tr, &err) == GD_EINPUT);
     spec.nprescribed = 0;
     gd_tr_mesh m;
-    gd_tr_mesh_default(f.s, 0, &m);
+    gd_tr_mesh_init(f.s, 0, &m);
     m.mesh = 3;
     spec.meshes = &m;
     spec.nmeshes = 1;
-    CHECK(gd_transient_create(f.s, &spec, 1.0, &tr, &err) == GD_EINPUT);
+    CHECK(gd_transient_new(f.s, &spec, 1.0, &tr, &err) == GD_EINPUT);
     /* static start of a free rigid-body train */
     spec.nmeshes = 0;
-    REQUIRE(gd_transient_create(f.s, &spec, 1.0, &tr, &err) == GD_OK);
+    REQUIRE(gd_transient_new(f.s, &spec, 1.0, &tr, &err) == GD_OK);
     gd_transient_options o;
-    gd_transient_options_default(&o);
+    gd_transient_options_init(&o);
     o.t_end = 1e-3;
     o.init = GD_TR_INIT_STATIC;
     gd_transient_result *r = NULL;

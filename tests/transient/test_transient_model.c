@@ -56,7 +56,7 @@ static gd_table *table(int n, const double *x, const double *y, double period, g
 {
     gd_table *t = NULL;
     gd_error err;
-    if (gd_table_create(n, x, y, period, ip, &t, &err)) fprintf(stderr, "  %s\n", err.message);
+    if (gd_table_new(n, x, y, period, ip, &t, &err)) fprintf(stderr, "  %s\n", err.message);
     return t;
 }
 
@@ -345,9 +345,9 @@ TEST(run_static_brake)
     REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
     gd_transient *tr = NULL;
     double W = 0.05; /* slow: quasi-static */
-    REQUIRE(gd_transient_create(f.s, &tm->spec, W, &tr, &err) == GD_OK);
+    REQUIRE(gd_transient_new(f.s, &tm->spec, W, &tr, &err) == GD_OK);
     gd_transient_options o;
-    gd_transient_options_default(&o);
+    gd_transient_options_init(&o);
     o.t_end = 0.2;
     o.record_from = 0.0;
     o.output_interval = 0.01;
@@ -394,9 +394,9 @@ TEST(run_cam)
     REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
     gd_transient *tr = NULL;
     double W = 300; /* load turns at -150 rad/s */
-    REQUIRE(gd_transient_create(f.s, &tm->spec, W, &tr, &err) == GD_OK);
+    REQUIRE(gd_transient_new(f.s, &tm->spec, W, &tr, &err) == GD_OK);
     gd_transient_options o;
-    gd_transient_options_default(&o);
+    gd_transient_options_init(&o);
     double rev = 2 * M_PI / 150;
     o.t_end = 6 * rev;
     o.record_from = 2 * rev;
@@ -443,9 +443,9 @@ TEST(sfd_bearing)
     CHECK(gd_transient_model_sfd_index(tm, 0) == 0);
     CHECK(tm->spec.unbalances == 1);
     gd_transient *tr = NULL;
-    REQUIRE(gd_transient_create(f.s, &tm->spec, 500, &tr, &err) == GD_OK);
+    REQUIRE(gd_transient_new(f.s, &tm->spec, 500, &tr, &err) == GD_OK);
     gd_transient_options o;
-    gd_transient_options_default(&o);
+    gd_transient_options_init(&o);
     o.t_end = 0.4;
     o.record_from = 0.35;
     o.output_interval = 1e-4;
