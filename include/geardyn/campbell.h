@@ -1,7 +1,13 @@
 /* Campbell diagram: damped modes over a range of speeds, tracked across speeds by mode
  * shape (MAC), critical speeds where a tracked mode meets an excitation order (1x of
  * each shaft, user orders, tooth-mesh orders), log decrement and the onset speed of
- * instability. */
+ * instability.
+ *
+ * Ownership and threads: gd_campbell returns a result the caller frees with
+ * gd_campbell_free; the options and their arrays are borrowed for the call only. The
+ * speeds are solved in parallel (OpenMP, opt.nthreads) with bitwise the same result on
+ * any number of threads; separate calls may run concurrently on the same system.
+ */
 #ifndef GEARDYN_CAMPBELL_H
 #define GEARDYN_CAMPBELL_H
 #include "geardyn/modal.h"

@@ -1,5 +1,10 @@
 /* Errors: every failing geardyn call fills a gd_error that names the file, line,
- * field, what is wrong and how to fix it. No global state: the caller owns it. */
+ * field, what is wrong and how to fix it. No global state: the caller owns it.
+ *
+ * Ownership and threads: a gd_error is a plain struct owned by the caller (usually on
+ * its stack); nothing in it is allocated. Functions taking a gd_error * write only to
+ * it, and accept NULL when the caller does not want the details.
+ */
 #ifndef GEARDYN_ERROR_H
 #define GEARDYN_ERROR_H
 #include <stddef.h>

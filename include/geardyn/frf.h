@@ -2,7 +2,13 @@
  * or moment at a DOF to DOF displacements and to derived forces (dynamic mesh force,
  * bearing force), solved directly (one sparse complex factorisation per frequency) or
  * by modal summation over left and right eigenvectors (004 Eqs. 14-15); directional
- * (forward/backward) FRFs of lateral node pairs (000 Eqs. 2.5-2.8). */
+ * (forward/backward) FRFs of lateral node pairs (000 Eqs. 2.5-2.8).
+ *
+ * Ownership and threads: gd_frf returns a result the caller frees with gd_frf_free;
+ * the options' arrays are borrowed for the call only. Frequencies are solved in
+ * parallel (OpenMP, opt.nthreads), bitwise the same on any number of threads; separate
+ * calls may run concurrently on one system.
+ */
 #ifndef GEARDYN_FRF_H
 #define GEARDYN_FRF_H
 #include "geardyn/modal.h"

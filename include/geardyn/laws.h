@@ -10,7 +10,12 @@
  *  - squeeze film damper forces, short-bearing (Ocvirk) theory, pi and 2pi film, with a
  *    finite-length correction factor (001_..., Barrett, Allaire & Gunter 1980);
  *  - cam inertial torque of a desmodromic valve train (003_... Eq. 10);
- *  - applied torque/force laws and prescribed motion laws. */
+ *  - applied torque/force laws and prescribed motion laws.
+ *
+ * Ownership and threads: a gd_table is made by gd_table_new (or gd_table_from_tvms) and
+ * freed by gd_table_free; the laws that point to a table borrow it. Every evaluation is
+ * a pure function, safe from any number of threads on the same table.
+ */
 #ifndef GEARDYN_NONLINEAR_H
 #define GEARDYN_NONLINEAR_H
 #include "geardyn/error.h"

@@ -1,4 +1,7 @@
-/* An isotropic elastic material. */
+/* An isotropic elastic material.
+ *
+ * Ownership and threads: a plain value struct; nothing to free.
+ */
 #ifndef GEARDYN_MATERIAL_H
 #define GEARDYN_MATERIAL_H
 

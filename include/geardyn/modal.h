@@ -1,6 +1,12 @@
 /* Modal analysis: undamped modes (symmetric generalized eigenproblem) and damped,
  * gyroscopic modes at a speed (state space with right and left eigenvectors,
- * bi-orthonormalised as in 004 Eqs. 9-13). */
+ * bi-orthonormalised as in 004 Eqs. 9-13).
+ *
+ * Ownership and threads: gd_modal_solve and gd_modal_solve_sparse return a result the
+ * caller frees with gd_modal_free (modes, shapes, left vectors and energy shares are
+ * owned by it). The system is only read: several solves may run concurrently on one
+ * system.
+ */
 #ifndef GEARDYN_MODAL_H
 #define GEARDYN_MODAL_H
 #include "geardyn/system.h"

@@ -1,6 +1,10 @@
 /* Probes: what a frequency or unbalance response is measured on (a DOF, the dynamic
  * force of a gear mesh, the force a bearing transmits), each a linear functional of the
- * complex amplitudes, built by the element kind that owns the quantity. */
+ * complex amplitudes, built by the element kind that owns the quantity.
+ *
+ * Ownership and threads: probes and functionals are plain value structs; building a
+ * functional reads the system only, so it is safe from any thread.
+ */
 #ifndef GEARDYN_PROBE_H
 #define GEARDYN_PROBE_H
 #include "geardyn/system.h"

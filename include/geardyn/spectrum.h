@@ -9,7 +9,11 @@
  * Thread safety: FFTW's planner is not thread-safe. Every plan here is made with
  * FFTW_ESTIMATE (no measurement, no wisdom written), used once and destroyed inside the
  * call; calls from several threads at the same time must still be serialised by the
- * caller (as FFTW requires for the planner). The execution itself is re-entrant. */
+ * caller (as FFTW requires for the planner). The execution itself is re-entrant.
+ *
+ * Ownership: gd_spectrum_compute returns a result the caller frees with
+ * gd_spectrum_free; the samples are borrowed for the call only.
+ */
 #ifndef GEARDYN_SPECTRUM_H
 #define GEARDYN_SPECTRUM_H
 #include "geardyn/error.h"

@@ -20,7 +20,12 @@
  * Prescribed DOFs are removed from the unknowns: their q, q', q'' come from their law,
  * and their inertia, damping and stiffness couplings act on the free DOFs as forces.
  * Tables and lift laws are borrowed: they must outlive the problem. One run at a time per
- * problem (it holds the run's contact states); separate problems may run in parallel. */
+ * problem (it holds the run's contact states); separate problems may run in parallel.
+ *
+ * Ownership and threads: gd_transient_new returns a problem the caller frees with
+ * gd_transient_free; the system, the spec's arrays and its tables are borrowed and must
+ * outlive it. gd_transient_run returns a result freed with gd_transient_result_free.
+ */
 #ifndef GEARDYN_TRANSIENT_H
 #define GEARDYN_TRANSIENT_H
 #include "geardyn/error.h"

@@ -6,7 +6,12 @@
  *
  * The spec and the arrays it points to are owned by the gd_transient_model; the tables
  * it points to are the model's (borrowed: the model must outlive it), except the TVMS
- * tables made here from `stiffness: {from: geometry}` results, which it owns. */
+ * tables made here from `stiffness: {from: geometry}` results, which it owns.
+ *
+ * Ownership and threads: gd_transient_model_build returns an object the caller frees
+ * with gd_transient_model_free; it reads the system and model only, so builds from one
+ * system may run concurrently.
+ */
 #ifndef GEARDYN_TRANSIENT_MODEL_H
 #define GEARDYN_TRANSIENT_MODEL_H
 #include "geardyn/system.h"

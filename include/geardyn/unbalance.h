@@ -1,5 +1,11 @@
 /* Unbalance response: the steady response to the model's rotating unbalances over a
- * range of reference speeds, one harmonic per distinct shaft speed, with orbits. */
+ * range of reference speeds, one harmonic per distinct shaft speed, with orbits.
+ *
+ * Ownership and threads: gd_unbalance_response returns a result the caller frees with
+ * gd_unbalance_free; the options' arrays are borrowed for the call only. Speeds are
+ * solved in parallel (OpenMP), bitwise the same on any number of threads; separate
+ * calls may run concurrently on one system.
+ */
 #ifndef GEARDYN_UNBALANCE_H
 #define GEARDYN_UNBALANCE_H
 #include "geardyn/modal.h"

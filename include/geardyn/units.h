@@ -1,6 +1,10 @@
 /* Physical quantities in model files: SI numbers, or strings with a unit such as
  * "3000 rpm", "20 deg", "2.75e9 N/m", "25.4 mm". Plain numbers are SI (angles in rad,
- * speeds in rad/s). Frequencies and speeds are angular: "1 Hz" is 2*pi rad/s. */
+ * speeds in rad/s). Frequencies and speeds are angular: "1 Hz" is 2*pi rad/s.
+ *
+ * Ownership and threads: pure functions of their arguments writing only to the
+ * caller's buffers; safe from any thread.
+ */
 #ifndef GEARDYN_UNITS_H
 #define GEARDYN_UNITS_H
 #include <stddef.h>
