@@ -2,12 +2,13 @@
 BUILD      ?= build
 ASAN_BUILD ?= build-asan
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
+PREFIX     ?= /usr/local
 VALGRIND    = valgrind --quiet --error-exitcode=1 --leak-check=full \
               --errors-for-leak-kinds=definite,indirect --show-possibly-lost=no \
               --trace-children=yes \
               --trace-children-skip='/bin/*,/usr/bin/*'
 
-.PHONY: all deps build demo test test-unit test-asan memcheck bench format clean
+.PHONY: all deps build install demo test test-unit test-asan memcheck bench format clean
 
 all: build
 
@@ -17,6 +18,10 @@ deps:
 build: deps
 	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release >/dev/null
 	@cmake --build $(BUILD) -j$(JOBS)
+
+# The libraries, the CLI, the headers, geardyn.pc and the CMake package under PREFIX.
+install: build
+	cmake --install $(BUILD) --prefix $(PREFIX)
 
 demo: build
 	./$(BUILD)/geardyn check examples/rig2018.yaml
@@ -43,6 +48,7 @@ test-asan: deps
 VALGRIND_SKIP_test_campbell = -threads_and_methods_agree,critical_speeds
 memcheck: build
 	@set -e; for t in $(BUILD)/test_*; do \
+	    [ -f $$t ] && [ -x $$t ] && [ "$$(head -c 4 $$t | tail -c 3)" = ELF ] || continue; \
 	    name=$$(basename $$t); skip=""; \
 	    [ "$$name" = test_campbell ] && skip="$(VALGRIND_SKIP_test_campbell)"; \
 	    echo "valgrind $$t $$skip"; OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=2 $(VALGRIND) $$t $$skip >/dev/null; done; \

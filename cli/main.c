@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "geardyn/version.h"
 
 typedef struct command {
     const char *name;
@@ -14,7 +15,7 @@ static int cmd_version(int argc, char **argv)
 {
     (void)argc;
     (void)argv;
-    printf("geardyn 0.1.0\n");
+    printf("geardyn %s\n", gd_version());
     return GD_EXIT_OK;
 }
 
