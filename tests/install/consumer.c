@@ -25,7 +25,7 @@ int main(int argc, char **argv)
     gd_system *sys = NULL;
     gd_modal_result *modes = NULL;
     gd_modal_options opt;
-    gd_modal_options_default(&opt);
+    gd_modal_options_init(&opt);
     int rc = 1;
     if (gd_model_load(argv[1], &model, &err) != GD_OK ||
         gd_system_build(model, &sys, &err) != GD_OK ||
