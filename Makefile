@@ -55,6 +55,10 @@ memcheck: build
 	out=$$(mktemp -d); \
 	for args in "check examples/rig2018.yaml" "modal examples/rig2018.yaml --speed 3000rpm --json" \
 	            "modal examples/chen1998_gear_pair.yaml --out $$out" \
+	            "modal examples/chen1998_gear_pair.yaml --set meshes.*.stiffness=5e7 --set meshes.mesh.base_radius=[12mm,54mm]" \
+	            "matrices examples/rig2018.yaml --speed 3000rpm --out $$out/m" \
+	            "matrices examples/chen1998_gear_pair.yaml --format json --out $$out/j" \
+	            "mesh-stiffness examples/helical_pair1.yaml --set meshes.pair1.geometry.helix_angle=15deg" \
 	            "mesh-stiffness examples/helical_pair1.yaml --json" \
 	            "campbell examples/kumar2011_coupled.yaml --speeds 0:3000rpm:4 --json" \
 	            "frf examples/kumar2011_coupled.yaml --input torque:motor --output mesh:mesh --freq 100:26000:20 --json" \
@@ -62,7 +66,10 @@ memcheck: build
 	            "transient examples/ducati_timing_geartrain.yaml --revolutions 0.2 --quiet --json"; do \
 	    echo "valgrind geardyn $$args"; OPENBLAS_NUM_THREADS=1 $(VALGRIND) $(BUILD)/geardyn $$args >/dev/null; done; \
 	for args in "modal examples/missing.yaml" "modal examples/rig2018.yaml --speed fast" \
-	            "check examples/helical_pair1.yaml"; do \
+	            "check examples/helical_pair1.yaml" \
+	            "check examples/rig2018.yaml --set bearings.*.k=-1" \
+	            "check examples/rig2018.yaml --set shafts.nope.name=x" \
+	            "matrices examples/rig2018.yaml --out $$out/bad --set disks.0.mass=-1"; do \
 	    echo "valgrind geardyn $$args (must fail with exit 2)"; \
 	    rc=0; OPENBLAS_NUM_THREADS=1 $(VALGRIND) $(BUILD)/geardyn $$args >/dev/null 2>&1 || rc=$$?; \
 	    [ $$rc -eq 2 ] || { echo "exit $$rc, expected 2"; exit 1; }; done; \

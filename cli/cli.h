@@ -29,6 +29,9 @@ int gd_cli_option_error(const char *cmd, int c, char **argv, int optind_now);
 
 /* Fails early (before any computing) when --out names something that is not a folder. */
 int gd_outdir_check(const char *dir, gd_error *err);
+/* As gd_outdir_check, and also when the folder cannot be written into or, when it does
+ * not exist yet, cannot be created (its parent is missing or not writable). */
+int gd_outdir_check_writable(const char *dir, gd_error *err);
 
 /* Parses a positive whole number option value; returns 0 on success. */
 int gd_cli_parse_count(const char *text, long lo, long hi, long *out);
@@ -57,11 +60,31 @@ void gd_outdir_abort(gd_outdir *od);
 
 /* ---- shared by the model-based commands ---- */
 #include "geardyn/model.h"
+#include "geardyn/model_file.h"
 #include "geardyn/system.h"
 
-/* Loads MODEL, applies --coupling LEVEL (NULL: keep the model's) and builds the
- * system. On failure reports the error and returns the exit code (non-zero). */
-int gd_cli_load(const char *path, const char *coupling, gd_model **model, gd_system **sys);
+/* --set PATH=VALUE, repeatable (docs/model-format.md, "Overrides (--set)"): each
+ * command lists GD_CLI_SET_OPTION in its getopt_long table and passes the value of
+ * GD_CLI_OPT_SET to gd_cli_add_set. The strings are argv's. */
+enum { GD_CLI_OPT_SET = 0x5e7, GD_CLI_MAX_SET = 64 };
+#define GD_CLI_SET_OPTION                                                                          \
+    {                                                                                              \
+        "set", required_argument, 0, GD_CLI_OPT_SET                                                \
+    }
+typedef struct gd_cli_sets {
+    int nset;
+    const char *set[GD_CLI_MAX_SET];
+} gd_cli_sets;
+/* Adds one --set value; 0, or a usage error (2) past GD_CLI_MAX_SET. */
+int gd_cli_add_set(const char *cmd, gd_cli_sets *sets, const char *arg);
+/* The sets as the library's load options (borrowing sets' strings). */
+gd_load_options gd_cli_load_options(const gd_cli_sets *sets);
+
+/* Loads MODEL with the --set overrides (sets may be NULL), applies --coupling LEVEL
+ * (NULL: keep the model's) and builds the system. On failure reports the error and
+ * returns the exit code (non-zero). */
+int gd_cli_load(const char *path, const gd_cli_sets *sets, const char *coupling, gd_model **model,
+                gd_system **sys);
 /* Parses a speed option value with units ("3000 rpm"); 0 on success. */
 int gd_cli_parse_speed(const char *cmd, const char *text, double *out);
 
@@ -89,6 +112,9 @@ int gd_cli_parse_input(const char *cmd, const gd_system *sys, const char *text, 
 int gd_cli_parse_threads(const char *cmd, const char *text, int *out);
 /* JSON number or null when not finite. */
 cJSON *gd_cli_json_number(double v);
+
+/* ---- the system's matrices (cmd_matrices.c) ---- */
+int gd_cmd_matrices(int argc, char **argv);
 
 /* ---- time integration (cmd_transient.c) ---- */
 int gd_cmd_transient(int argc, char **argv);

@@ -3,7 +3,28 @@
 #include "cli.h"
 #include "geardyn/units.h"
 
-int gd_cli_load(const char *path, const char *coupling, gd_model **model, gd_system **sys)
+int gd_cli_add_set(const char *cmd, gd_cli_sets *sets, const char *arg)
+{
+    if (sets->nset == GD_CLI_MAX_SET)
+        return gd_cli_usage_error(cmd, "--set: at most %d options; edit a copy of the file",
+                                  GD_CLI_MAX_SET);
+    sets->set[sets->nset++] = arg;
+    return 0;
+}
+
+gd_load_options gd_cli_load_options(const gd_cli_sets *sets)
+{
+    gd_load_options lo;
+    gd_load_options_init(&lo);
+    if (sets) {
+        lo.nset = sets->nset;
+        lo.set = sets->set;
+    }
+    return lo;
+}
+
+int gd_cli_load(const char *path, const gd_cli_sets *sets, const char *coupling, gd_model **model,
+                gd_system **sys)
 {
     gd_error err;
     gd_error_clear(&err);
@@ -20,7 +41,8 @@ int gd_cli_load(const char *path, const char *coupling, gd_model **model, gd_sys
             return gd_cli_report(&err);
         }
     }
-    if (gd_model_load(path, model, &err)) return gd_cli_report(&err);
+    gd_load_options lo = gd_cli_load_options(sets);
+    if (gd_model_load_opts(path, &lo, model, &err)) return gd_cli_report(&err);
     if (level >= 0) gd_model_set_coupling(*model, (gd_coupling)level);
     if (gd_system_build(*model, sys, &err)) {
         gd_model_free(*model);

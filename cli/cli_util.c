@@ -45,6 +45,40 @@ int gd_outdir_check(const char *dir, gd_error *err)
     return GD_OK;
 }
 
+/* The folder dir would be created in: "." or everything before the last '/'. */
+static void parent_of(const char *dir, char *buf, size_t size)
+{
+    snprintf(buf, size, "%s", dir);
+    size_t n = strlen(buf);
+    while (n > 1 && buf[n - 1] == '/')
+        buf[--n] = '\0';
+    char *slash = strrchr(buf, '/');
+    if (!slash)
+        snprintf(buf, size, ".");
+    else
+        slash[slash == buf ? 1 : 0] = '\0';
+}
+
+int gd_outdir_check_writable(const char *dir, gd_error *err)
+{
+    if (gd_outdir_check(dir, err)) return GD_EIO;
+    struct stat sb;
+    if (stat(dir, &sb) == 0) {
+        if (access(dir, W_OK | X_OK) != 0)
+            return gd_error_set(err, GD_EIO, dir, 0, 0, "--out",
+                                "check that the folder is writable", "cannot write into folder: %s",
+                                strerror(errno));
+        return GD_OK;
+    }
+    char parent[1024];
+    parent_of(dir, parent, sizeof parent);
+    if (stat(parent, &sb) != 0 || !S_ISDIR(sb.st_mode) || access(parent, W_OK | X_OK) != 0)
+        return gd_error_set(err, GD_EIO, dir, 0, 0, "--out",
+                            "check that the parent folder exists and is writable",
+                            "cannot create folder: '%s' is not a writable folder", parent);
+    return GD_OK;
+}
+
 int gd_cli_parse_count(const char *text, long lo, long hi, long *out)
 {
     char *end;

@@ -14,7 +14,7 @@ static const char USAGE[] =
     "usage: geardyn campbell MODEL.yaml --speeds FROM:TO:COUNT [--modes N|all] [--orders LIST]\n"
     "                        [--no-shaft-orders] [--no-mesh-orders] [--method auto|dense|sparse]\n"
     "                        [--undamped] [--shift VALUE] [--threads N] [--coupling LEVEL]\n"
-    "                        [--json] [--out DIR]\n\n"
+    "                        [--set PATH=VALUE]... [--json] [--out DIR]\n\n"
     "Damped modes at every speed, tracked across speeds by mode shape (MAC), with whirl\n"
     "direction, dominant motion and log decrement; critical speeds where a mode meets an\n"
     "excitation order (1x of each shaft, --orders, tooth-mesh orders); instability onset.\n\n"
@@ -28,6 +28,8 @@ static const char USAGE[] =
     "  --shift VALUE       sparse shift below zero, e.g. 10Hz (default: automatic)\n"
     "  --threads N         parallel threads over speeds (default: all cores)\n"
     "  --coupling LEVEL    torsional | lateral-torsional | full\n"
+    "  --set PATH=VALUE    change a value of the model file, e.g.\n"
+    "                      --set meshes.mesh.stiffness=3e8N/m (repeatable; docs/model-format.md)\n"
     "  --json              one JSON object on stdout instead of the tables\n"
     "  --out DIR           write DIR/campbell.csv (long form) and DIR/critical_speeds.csv\n";
 
@@ -205,19 +207,27 @@ static int parse_orders(const char *text, double **out, int *n)
 
 int gd_cmd_campbell(int argc, char **argv)
 {
-    static const struct option opts[] = {
-        {"speeds", required_argument, 0, 's'},   {"modes", required_argument, 0, 'n'},
-        {"orders", required_argument, 0, 'r'},   {"no-shaft-orders", no_argument, 0, 'S'},
-        {"no-mesh-orders", no_argument, 0, 'M'}, {"method", required_argument, 0, 'm'},
-        {"undamped", no_argument, 0, 'u'},       {"shift", required_argument, 0, 'f'},
-        {"threads", required_argument, 0, 't'},  {"coupling", required_argument, 0, 'c'},
-        {"json", no_argument, 0, 'j'},           {"out", required_argument, 0, 'o'},
-        {"help", no_argument, 0, 'h'},           {0, 0, 0, 0}};
+    static const struct option opts[] = {{"speeds", required_argument, 0, 's'},
+                                         {"modes", required_argument, 0, 'n'},
+                                         {"orders", required_argument, 0, 'r'},
+                                         {"no-shaft-orders", no_argument, 0, 'S'},
+                                         {"no-mesh-orders", no_argument, 0, 'M'},
+                                         {"method", required_argument, 0, 'm'},
+                                         {"undamped", no_argument, 0, 'u'},
+                                         {"shift", required_argument, 0, 'f'},
+                                         {"threads", required_argument, 0, 't'},
+                                         {"coupling", required_argument, 0, 'c'},
+                                         {"json", no_argument, 0, 'j'},
+                                         {"out", required_argument, 0, 'o'},
+                                         GD_CLI_SET_OPTION,
+                                         {"help", no_argument, 0, 'h'},
+                                         {0, 0, 0, 0}};
     const char *cmd = "campbell", *speeds = NULL, *coupling = NULL, *out = NULL, *orders = NULL,
                *shift = NULL;
     gd_campbell_options opt;
     gd_campbell_options_init(&opt);
     int json = 0, c;
+    gd_cli_sets sets = {0};
     long nm;
     optind = 1;
     opterr = 0;
@@ -267,6 +277,9 @@ int gd_cmd_campbell(int argc, char **argv)
         case 'c':
             coupling = optarg;
             break;
+        case GD_CLI_OPT_SET:
+            if (gd_cli_add_set(cmd, &sets, optarg)) return GD_EXIT_INPUT;
+            break;
         case 'j':
             json = 1;
             break;
@@ -312,7 +325,7 @@ int gd_cmd_campbell(int argc, char **argv)
     }
     gd_model *m;
     gd_system *s;
-    rc = gd_cli_load(argv[optind], coupling, &m, &s);
+    rc = gd_cli_load(argv[optind], &sets, coupling, &m, &s);
     if (rc) {
         free(ord);
         free(sp);

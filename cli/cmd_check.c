@@ -7,10 +7,12 @@
 #include "cli.h"
 
 static const char USAGE[] =
-    "usage: geardyn check MODEL.yaml [--coupling LEVEL] [--json]\n\n"
+    "usage: geardyn check MODEL.yaml [--coupling LEVEL] [--set PATH=VALUE]... [--json]\n\n"
     "Validates a model and prints a summary: nodes, DOFs, elements, meshes, and the mass\n"
     "and polar inertia of each shaft with everything on it.\n\n"
     "  --coupling LEVEL  torsional | lateral-torsional | full: override every mesh\n"
+    "  --set PATH=VALUE  change a value of the file before checking, e.g.\n"
+    "                    --set meshes.mesh.stiffness=3e8N/m (repeatable; docs/model-format.md)\n"
     "  --json            print the summary as one JSON object\n";
 
 static void print_text(const gd_model *m, const gd_system *s)
@@ -95,10 +97,12 @@ static cJSON *summary_json(const gd_model *m, const gd_system *s)
 int gd_cmd_check(int argc, char **argv)
 {
     static const struct option opts[] = {{"coupling", required_argument, 0, 'c'},
+                                         GD_CLI_SET_OPTION,
                                          {"json", no_argument, 0, 'j'},
                                          {"help", no_argument, 0, 'h'},
                                          {0, 0, 0, 0}};
     const char *coupling = NULL;
+    gd_cli_sets sets = {0};
     int json = 0, c;
     optind = 1;
     opterr = 0;
@@ -106,6 +110,9 @@ int gd_cmd_check(int argc, char **argv)
         switch (c) {
         case 'c':
             coupling = optarg;
+            break;
+        case GD_CLI_OPT_SET:
+            if (gd_cli_add_set("check", &sets, optarg)) return GD_EXIT_INPUT;
             break;
         case 'j':
             json = 1;
@@ -120,7 +127,7 @@ int gd_cmd_check(int argc, char **argv)
     if (optind != argc - 1) return gd_cli_usage_error("check", "give exactly one model file");
     gd_model *m;
     gd_system *s;
-    int rc = gd_cli_load(argv[optind], coupling, &m, &s);
+    int rc = gd_cli_load(argv[optind], &sets, coupling, &m, &s);
     if (rc) return rc;
     if (json) {
         cJSON *o = summary_json(m, s);

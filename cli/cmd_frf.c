@@ -13,7 +13,8 @@ static const char USAGE[] =
     "usage: geardyn frf MODEL.yaml --input WHAT --output WHAT [--output WHAT ...]\n"
     "                   --freq FROM:TO:COUNT [--speed VALUE] [--method direct|modal]\n"
     "                   [--modes N|all] [--type receptance|mobility|accelerance]\n"
-    "                   [--threads N] [--coupling LEVEL] [--json] [--out DIR]\n\n"
+    "                   [--threads N] [--coupling LEVEL] [--set PATH=VALUE]... [--json]\n"
+    "                   [--out DIR]\n\n"
     "Response to a unit harmonic force or moment. Inputs:\n"
     "  NODE.DOF, node:NODE.DOF  force (x, y, z) or moment (rx, ry, rz) at a node, e.g. pinion.y\n"
     "  torque:NODE              torque about the shaft axis (= NODE.rz)\n"
@@ -30,6 +31,8 @@ static const char USAGE[] =
     "  --type T          receptance (default), mobility or accelerance (DOF outputs)\n"
     "  --threads N       parallel threads over frequencies (default: all cores)\n"
     "  --coupling LEVEL  torsional | lateral-torsional | full\n"
+    "  --set PATH=VALUE  change a value of the model file, e.g.\n"
+    "                    --set meshes.mesh.stiffness=3e8N/m (repeatable; docs/model-format.md)\n"
     "  --json            one JSON object on stdout\n"
     "  --out DIR         write DIR/frf.csv (long form)\n";
 
@@ -37,22 +40,18 @@ static const char USAGE[] =
 
 int gd_cmd_frf(int argc, char **argv)
 {
-    static const struct option opts[] = {{"input", required_argument, 0, 'i'},
-                                         {"output", required_argument, 0, 'O'},
-                                         {"freq", required_argument, 0, 'F'},
-                                         {"speed", required_argument, 0, 's'},
-                                         {"method", required_argument, 0, 'm'},
-                                         {"modes", required_argument, 0, 'n'},
-                                         {"type", required_argument, 0, 'T'},
-                                         {"threads", required_argument, 0, 't'},
-                                         {"coupling", required_argument, 0, 'c'},
-                                         {"json", no_argument, 0, 'j'},
-                                         {"out", required_argument, 0, 'o'},
-                                         {"help", no_argument, 0, 'h'},
-                                         {0, 0, 0, 0}};
+    static const struct option opts[] = {
+        {"input", required_argument, 0, 'i'},    {"output", required_argument, 0, 'O'},
+        {"freq", required_argument, 0, 'F'},     {"speed", required_argument, 0, 's'},
+        {"method", required_argument, 0, 'm'},   {"modes", required_argument, 0, 'n'},
+        {"type", required_argument, 0, 'T'},     {"threads", required_argument, 0, 't'},
+        {"coupling", required_argument, 0, 'c'}, GD_CLI_SET_OPTION,
+        {"json", no_argument, 0, 'j'},           {"out", required_argument, 0, 'o'},
+        {"help", no_argument, 0, 'h'},           {0, 0, 0, 0}};
     const char *cmd = "frf", *input = NULL, *freq = NULL, *speed = NULL, *coupling = NULL,
                *out = NULL, *outs[MAXOUT];
     int nouts = 0, json = 0, c;
+    gd_cli_sets sets = {0};
     long nm;
     gd_frf_options opt;
     gd_frf_options_init(&opt);
@@ -107,6 +106,9 @@ int gd_cmd_frf(int argc, char **argv)
         case 'c':
             coupling = optarg;
             break;
+        case GD_CLI_OPT_SET:
+            if (gd_cli_add_set(cmd, &sets, optarg)) return GD_EXIT_INPUT;
+            break;
         case 'j':
             json = 1;
             break;
@@ -136,7 +138,7 @@ int gd_cmd_frf(int argc, char **argv)
     }
     gd_model *m;
     gd_system *s;
-    if ((rc = gd_cli_load(argv[optind], coupling, &m, &s))) {
+    if ((rc = gd_cli_load(argv[optind], &sets, coupling, &m, &s))) {
         free(fr);
         return rc;
     }

@@ -7,13 +7,13 @@
 
 #include "cli.h"
 #include "geardyn/mesh_stiffness.h"
+#include "geardyn/model_file.h"
 #include "geardyn/units.h"
-#include "model_file/mesh_geometry_read_impl.h"
-#include "model_file/yaml_doc_impl.h"
 
 static const char USAGE[] =
     "usage: geardyn mesh-stiffness FILE [--mesh NAME] [--method M] [--points N] [--cycles N]\n"
-    "                              [--slices N] [--helix-angle VALUE] [--json] [--out DIR]\n\n"
+    "                              [--slices N] [--helix-angle VALUE] [--set PATH=VALUE]...\n"
+    "                              [--json] [--out DIR]\n\n"
     "Computes, from the geometry of a gear pair (a mesh entry with a `geometry:` map, in a\n"
     "model file or a stand-alone file with `meshes:`), the transverse, face and total\n"
     "contact ratios, base pitch, mesh period and the time-varying mesh stiffness k(angle)\n"
@@ -25,6 +25,9 @@ static const char USAGE[] =
     "  --cycles N           mesh cycles sampled (default 1)\n"
     "  --slices N           face-width slices of a helical pair (default 50)\n"
     "  --helix-angle VALUE  override the helix angle, e.g. \"15 deg\" (plain numbers are rad)\n"
+    "  --set PATH=VALUE     change a value of the file first, e.g.\n"
+    "                       --set meshes.pair1.geometry.face_width=30mm (repeatable;\n"
+    "                       docs/model-format.md, \"Overrides (--set)\")\n"
     "  --json               print everything as one JSON object\n"
     "  --out DIR            write DIR/mesh_stiffness.csv and DIR/summary.json\n\n"
     "Exit status: 0 ok, 2 bad input or usage, 1 numerical failure.\n";
@@ -35,16 +38,22 @@ typedef struct ms_args {
     gd_tvms_method method;
     long points, cycles, slices; /* 0 = not given */
     double helix;
+    gd_cli_sets sets;
 } ms_args;
 
 static int parse_args(int argc, char **argv, ms_args *a)
 {
-    static const struct option opts[] = {
-        {"mesh", required_argument, 0, 'm'},   {"method", required_argument, 0, 'M'},
-        {"points", required_argument, 0, 'p'}, {"cycles", required_argument, 0, 'c'},
-        {"slices", required_argument, 0, 's'}, {"helix-angle", required_argument, 0, 'b'},
-        {"json", no_argument, 0, 'j'},         {"out", required_argument, 0, 'o'},
-        {"help", no_argument, 0, 'h'},         {0, 0, 0, 0}};
+    static const struct option opts[] = {{"mesh", required_argument, 0, 'm'},
+                                         {"method", required_argument, 0, 'M'},
+                                         {"points", required_argument, 0, 'p'},
+                                         {"cycles", required_argument, 0, 'c'},
+                                         {"slices", required_argument, 0, 's'},
+                                         {"helix-angle", required_argument, 0, 'b'},
+                                         {"json", no_argument, 0, 'j'},
+                                         {"out", required_argument, 0, 'o'},
+                                         GD_CLI_SET_OPTION,
+                                         {"help", no_argument, 0, 'h'},
+                                         {0, 0, 0, 0}};
     const char *cmd = "mesh-stiffness";
     int c;
     optind = 1;
@@ -87,6 +96,9 @@ static int parse_args(int argc, char **argv, ms_args *a)
         case 'j':
             a->json = 1;
             break;
+        case GD_CLI_OPT_SET:
+            if (gd_cli_add_set(cmd, &a->sets, optarg)) return GD_EXIT_INPUT;
+            break;
         case 'o':
             a->out = optarg;
             break;
@@ -100,43 +112,6 @@ static int parse_args(int argc, char **argv, ms_args *a)
     if (optind != argc - 1) return gd_cli_usage_error(cmd, "give exactly one FILE");
     a->file = argv[optind];
     return 0;
-}
-
-/* The mesh entry to use: by name, else the first with a geometry. */
-static const gd_ynode *pick_mesh(gd_yreader *r, const gd_ynode *root, const char *name, char *path,
-                                 size_t psize)
-{
-    const gd_ynode *meshes = gd_ymap_get(root, "meshes");
-    if (!meshes || meshes->kind != GD_Y_SEQ || meshes->n == 0) {
-        gd_yfail(r, meshes ? meshes : root, "meshes",
-                 "add `meshes: [{name: ..., geometry: {...}}]` (see docs/mesh-stiffness.md)",
-                 "the file has no list of meshes");
-        return NULL;
-    }
-    char names[256] = "";
-    for (size_t i = 0; i < meshes->n; i++) {
-        const gd_ynode *m = meshes->items[i];
-        if (!m || m->kind != GD_Y_MAP) continue;
-        const gd_ynode *nm = gd_ymap_get(m, "name");
-        const char *mn = nm && nm->kind == GD_Y_SCALAR ? nm->text : "";
-        size_t used = strlen(names);
-        snprintf(names + used, sizeof names - used, "%s'%s'", used ? ", " : "", mn);
-        int has_geom = gd_ymap_get(m, "geometry") != NULL;
-        if ((name && !strcmp(name, mn)) || (!name && has_geom)) {
-            gd_ypath_index(path, psize, "meshes", i);
-            return m;
-        }
-    }
-    char hint[320];
-    if (name) {
-        snprintf(hint, sizeof hint, "known meshes: %s", names);
-        gd_yfail(r, meshes, "--mesh", hint, "no mesh named '%s'", name);
-    } else {
-        gd_yfail(r, meshes, "meshes",
-                 "add a `geometry:` map to a mesh (see docs/mesh-stiffness.md)",
-                 "no mesh has a geometry to compute its stiffness from");
-    }
-    return NULL;
 }
 
 static cJSON *numbers(const double *x, size_t n)
@@ -286,38 +261,26 @@ int gd_cmd_mesh_stiffness(int argc, char **argv)
 
     gd_error err;
     gd_error_clear(&err);
-    gd_ydoc *doc = NULL;
-    if (gd_ydoc_load_file(a.file, &doc, &err)) return gd_cli_report(&err);
-    gd_yreader r = {doc->file, &err};
-    const gd_ynode *root = doc->root;
-    char path[64] = "";
     gd_gear_pair_geometry g;
     gd_tvms_options opt;
-    gd_tvms_options_init(&opt);
     gd_tvms_result *res = NULL;
-    const gd_ynode *mesh = NULL;
-    if (!root || root->kind != GD_Y_MAP) {
-        gd_yfail(&r, root, "", "the file must be a map with a `meshes:` list", "not a map of keys");
-        goto fail;
-    }
-    if (!(mesh = pick_mesh(&r, root, a.mesh, path, sizeof path))) goto fail;
-    if (gd_gear_pair_read(&r, root, mesh, path, &g, &opt)) goto fail;
+    char mesh_name[GD_NODE_NAME_MAX];
+    gd_load_options lo = gd_cli_load_options(&a.sets);
+    if (gd_gear_pair_load(a.file, a.mesh, &lo, &g, &opt, mesh_name, sizeof mesh_name, &err))
+        return gd_cli_report(&err);
     if (a.has_method) opt.method = a.method;
     if (a.points) opt.points = (int)a.points;
     if (a.cycles) opt.cycles = (int)a.cycles;
     if (a.slices) opt.slices = (int)a.slices;
     if (a.has_helix) g.helix_angle = a.helix;
     if (gd_tvms_compute(&g, &opt, &res, &err)) {
-        if (a.has_helix && !strcmp(err.field, "helix_angle")) {
+        /* the file's geometry and options were checked when loading: what fails now
+         * comes from the options given here */
+        if (a.has_helix && !strcmp(err.field, "helix_angle"))
             snprintf(err.field, sizeof err.field, "--helix-angle");
-            snprintf(err.file, sizeof err.file, "%s", a.file);
-        } else {
-            gd_gear_pair_error_locate(doc->file, mesh, path, &err);
-        }
-        goto fail;
+        if (!err.file[0]) snprintf(err.file, sizeof err.file, "%s", a.file);
+        return gd_cli_report(&err);
     }
-    const gd_ynode *nm = gd_ymap_get(mesh, "name");
-    const char *mesh_name = nm && nm->kind == GD_Y_SCALAR ? nm->text : path;
     rc = GD_EXIT_OK;
     if (a.out) {
         cJSON *summary = make_json(res, &g, a.file, mesh_name, 0);
@@ -334,10 +297,5 @@ int gd_cmd_mesh_stiffness(int argc, char **argv)
         }
     }
     gd_tvms_free(res);
-    gd_ydoc_free(doc);
     return rc;
-fail:
-    gd_tvms_free(res);
-    gd_ydoc_free(doc);
-    return gd_cli_report(&err);
 }

@@ -9,7 +9,7 @@
 
 static const char USAGE[] =
     "usage: geardyn modal MODEL.yaml [--speed VALUE] [--modes N|all] [--undamped | --damped]\n"
-    "                     [--coupling LEVEL] [--json] [--out DIR]\n\n"
+    "                     [--coupling LEVEL] [--set PATH=VALUE]... [--json] [--out DIR]\n\n"
     "Natural frequencies, damping, whirl direction and modal strain energy of each mode.\n"
     "Damped/gyroscopic modes (state space, left and right eigenvectors) are computed when\n"
     "the model has damping or gyroscopic terms at the speed; otherwise undamped modes.\n\n"
@@ -19,6 +19,8 @@ static const char USAGE[] =
     "  --damped          always use the state-space (damped) eigenproblem\n"
     "  --coupling LEVEL  torsional | lateral-torsional | full: override every mesh and\n"
     "                    keep only the DOFs that level uses\n"
+    "  --set PATH=VALUE  change a value of the model file, e.g.\n"
+    "                    --set meshes.mesh.stiffness=3e8N/m (repeatable; docs/model-format.md)\n"
     "  --json            print one JSON object on stdout instead of the table\n"
     "  --out DIR         write DIR/modes.csv and DIR/mode_shapes.csv (every active DOF of\n"
     "                    every mode, complex)\n";
@@ -153,19 +155,17 @@ fail:
 
 int gd_cmd_modal(int argc, char **argv)
 {
-    static const struct option opts[] = {{"speed", required_argument, 0, 's'},
-                                         {"modes", required_argument, 0, 'n'},
-                                         {"undamped", no_argument, 0, 'u'},
-                                         {"damped", no_argument, 0, 'd'},
-                                         {"coupling", required_argument, 0, 'c'},
-                                         {"json", no_argument, 0, 'j'},
-                                         {"out", required_argument, 0, 'o'},
-                                         {"help", no_argument, 0, 'h'},
-                                         {0, 0, 0, 0}};
+    static const struct option opts[] = {
+        {"speed", required_argument, 0, 's'},    {"modes", required_argument, 0, 'n'},
+        {"undamped", no_argument, 0, 'u'},       {"damped", no_argument, 0, 'd'},
+        {"coupling", required_argument, 0, 'c'}, GD_CLI_SET_OPTION,
+        {"json", no_argument, 0, 'j'},           {"out", required_argument, 0, 'o'},
+        {"help", no_argument, 0, 'h'},           {0, 0, 0, 0}};
     gd_modal_options opt;
     gd_modal_options_init(&opt);
     opt.want_left = 0;
     const char *coupling = NULL, *out = NULL, *speed = NULL;
+    gd_cli_sets sets = {0};
     int json = 0, c, all = 0;
     long nmodes = -1;
     optind = 1;
@@ -195,6 +195,9 @@ int gd_cmd_modal(int argc, char **argv)
         case 'c':
             coupling = optarg;
             break;
+        case GD_CLI_OPT_SET:
+            if (gd_cli_add_set("modal", &sets, optarg)) return GD_EXIT_INPUT;
+            break;
         case 'j':
             json = 1;
             break;
@@ -214,7 +217,7 @@ int gd_cmd_modal(int argc, char **argv)
     if (out && gd_outdir_check(out, &oerr)) return gd_cli_report(&oerr);
     gd_model *m;
     gd_system *s;
-    int rc = gd_cli_load(argv[optind], coupling, &m, &s);
+    int rc = gd_cli_load(argv[optind], &sets, coupling, &m, &s);
     if (rc) return rc;
     opt.speed = m->speed;
     if (speed && gd_cli_parse_speed("modal", speed, &opt.speed)) {

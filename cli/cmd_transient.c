@@ -23,7 +23,8 @@ static const char USAGE[] =
     "                         [--record WHAT]... [--from T] [--output-interval T]\n"
     "                         [--rtol R] [--method bdf|adams] [--start rest|static]\n"
     "                         [--spectrum] [--window hann|rect] [--unbalance-scale F]\n"
-    "                         [--coupling LEVEL] [--json] [--out DIR] [--quiet]\n\n"
+    "                         [--coupling LEVEL] [--set PATH=VALUE]... [--json] [--out DIR]\n"
+    "                         [--quiet]\n\n"
     "Integrates the equations of motion at a constant reference speed with the model's\n"
     "nonlinear and time-varying laws (mesh TVMS, transmission error, backlash, squeeze\n"
     "film dampers, loads, prescribed motions, cam torques, unbalances), then prints\n"
@@ -54,6 +55,9 @@ static const char USAGE[] =
     "  --window W           hann (default) or rect\n"
     "  --unbalance-scale F  multiplies every unbalance of the model (F >= 0)\n"
     "  --coupling LEVEL     torsional | lateral-torsional | full (as in modal)\n"
+    "  --set PATH=VALUE     change a value of the model file, e.g.\n"
+    "                       --set meshes.mesh.stiffness=3e8N/m (repeatable;\n"
+    "                       docs/model-format.md)\n"
     "  --json               one JSON object on stdout\n"
     "  --out DIR            DIR/records.csv (time and one column per record),\n"
     "                       DIR/summary.json, DIR/spectrum.csv with --spectrum\n"
@@ -302,6 +306,7 @@ typedef struct cli_opts {
     const char *duration, *revolutions, *speed, *from, *interval, *coupling, *out;
     const char *records[64];
     int nrecords;
+    gd_cli_sets sets;
     double rtol, unbalance_scale;
     int json, quiet, spectrum;
     gd_tr_method method;
@@ -311,16 +316,25 @@ typedef struct cli_opts {
 
 static int parse_args(int argc, char **argv, cli_opts *o)
 {
-    static const struct option opts[] = {
-        {"duration", required_argument, 0, 'd'}, {"revolutions", required_argument, 0, 'n'},
-        {"speed", required_argument, 0, 's'},    {"record", required_argument, 0, 'r'},
-        {"from", required_argument, 0, 'f'},     {"output-interval", required_argument, 0, 'i'},
-        {"rtol", required_argument, 0, 't'},     {"method", required_argument, 0, 'm'},
-        {"start", required_argument, 0, 'a'},    {"spectrum", no_argument, 0, 'S'},
-        {"window", required_argument, 0, 'w'},   {"unbalance-scale", required_argument, 0, 'u'},
-        {"coupling", required_argument, 0, 'c'}, {"json", no_argument, 0, 'j'},
-        {"out", required_argument, 0, 'o'},      {"quiet", no_argument, 0, 'q'},
-        {"help", no_argument, 0, 'h'},           {0, 0, 0, 0}};
+    static const struct option opts[] = {{"duration", required_argument, 0, 'd'},
+                                         {"revolutions", required_argument, 0, 'n'},
+                                         {"speed", required_argument, 0, 's'},
+                                         {"record", required_argument, 0, 'r'},
+                                         {"from", required_argument, 0, 'f'},
+                                         {"output-interval", required_argument, 0, 'i'},
+                                         {"rtol", required_argument, 0, 't'},
+                                         {"method", required_argument, 0, 'm'},
+                                         {"start", required_argument, 0, 'a'},
+                                         {"spectrum", no_argument, 0, 'S'},
+                                         {"window", required_argument, 0, 'w'},
+                                         {"unbalance-scale", required_argument, 0, 'u'},
+                                         {"coupling", required_argument, 0, 'c'},
+                                         {"json", no_argument, 0, 'j'},
+                                         {"out", required_argument, 0, 'o'},
+                                         {"quiet", no_argument, 0, 'q'},
+                                         GD_CLI_SET_OPTION,
+                                         {"help", no_argument, 0, 'h'},
+                                         {0, 0, 0, 0}};
     memset(o, 0, sizeof *o);
     o->rtol = 1e-6;
     o->unbalance_scale = 1.0;
@@ -392,6 +406,9 @@ static int parse_args(int argc, char **argv, cli_opts *o)
         }
         case 'c':
             o->coupling = optarg;
+            break;
+        case GD_CLI_OPT_SET:
+            if (gd_cli_add_set(CMD, &o->sets, optarg)) return GD_EXIT_INPUT;
             break;
         case 'j':
             o->json = 1;
@@ -472,7 +489,7 @@ int gd_cmd_transient(int argc, char **argv)
     gd_spectrum **spec = NULL;
     gd_cli_records recs = {0, 0, NULL};
     cJSON *summary = NULL;
-    rc = gd_cli_load(argv[optind], o.coupling, &m, &s);
+    rc = gd_cli_load(argv[optind], &o.sets, o.coupling, &m, &s);
     if (rc) return rc;
     run_info ri;
     memset(&ri, 0, sizeof ri);

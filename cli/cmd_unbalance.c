@@ -11,7 +11,8 @@
 
 static const char USAGE[] =
     "usage: geardyn unbalance MODEL.yaml --speeds FROM:TO:COUNT [--output WHAT ...]\n"
-    "                         [--threads N] [--coupling LEVEL] [--json] [--out DIR]\n\n"
+    "                         [--threads N] [--coupling LEVEL] [--set PATH=VALUE]...\n"
+    "                         [--json] [--out DIR]\n\n"
     "Steady response to the unbalances of the model, each turning with its own shaft.\n"
     "Shafts with different |speed ratio| give different harmonics (order = |ratio| of the\n"
     "reference speed); each output is reported per harmonic.\n\n"
@@ -22,6 +23,8 @@ static const char USAGE[] =
     "                    of every unbalanced node, every mesh force, x and y of every bearing\n"
     "  --threads N       parallel threads over speeds (default: all cores)\n"
     "  --coupling LEVEL  torsional | lateral-torsional | full\n"
+    "  --set PATH=VALUE  change a value of the model file, e.g.\n"
+    "                    --set meshes.mesh.stiffness=3e8N/m (repeatable; docs/model-format.md)\n"
     "  --json            one JSON object on stdout\n"
     "  --out DIR         write DIR/unbalance.csv and DIR/orbits.csv (long form)\n";
 
@@ -66,13 +69,18 @@ static int add_default_outputs(const gd_system *s, gd_probe *pr, int *np, int *o
 
 int gd_cmd_unbalance(int argc, char **argv)
 {
-    static const struct option opts[] = {
-        {"speeds", required_argument, 0, 's'},  {"output", required_argument, 0, 'O'},
-        {"threads", required_argument, 0, 't'}, {"coupling", required_argument, 0, 'c'},
-        {"json", no_argument, 0, 'j'},          {"out", required_argument, 0, 'o'},
-        {"help", no_argument, 0, 'h'},          {0, 0, 0, 0}};
+    static const struct option opts[] = {{"speeds", required_argument, 0, 's'},
+                                         {"output", required_argument, 0, 'O'},
+                                         {"threads", required_argument, 0, 't'},
+                                         {"coupling", required_argument, 0, 'c'},
+                                         {"json", no_argument, 0, 'j'},
+                                         {"out", required_argument, 0, 'o'},
+                                         GD_CLI_SET_OPTION,
+                                         {"help", no_argument, 0, 'h'},
+                                         {0, 0, 0, 0}};
     const char *cmd = "unbalance", *speeds = NULL, *coupling = NULL, *out = NULL, *outs[MAXOUT];
     int nouts = 0, json = 0, c;
+    gd_cli_sets sets = {0};
     gd_unbalance_options opt;
     gd_unbalance_options_init(&opt);
     optind = 1;
@@ -91,6 +99,9 @@ int gd_cmd_unbalance(int argc, char **argv)
             break;
         case 'c':
             coupling = optarg;
+            break;
+        case GD_CLI_OPT_SET:
+            if (gd_cli_add_set(cmd, &sets, optarg)) return GD_EXIT_INPUT;
             break;
         case 'j':
             json = 1;
@@ -119,7 +130,7 @@ int gd_cmd_unbalance(int argc, char **argv)
     }
     gd_model *m;
     gd_system *s;
-    if ((rc = gd_cli_load(argv[optind], coupling, &m, &s))) {
+    if ((rc = gd_cli_load(argv[optind], &sets, coupling, &m, &s))) {
         free(sp);
         return rc;
     }

@@ -27,6 +27,8 @@ static const command COMMANDS[] = {
     {"frf", gd_cmd_frf,
      "frequency response (direct or modal), mesh and bearing forces, directional"},
     {"unbalance", gd_cmd_unbalance, "steady response to the model's unbalances over speed"},
+    {"matrices", gd_cmd_matrices,
+     "write the system matrices M, K, C, G at a speed (Matrix Market)"},
     {"transient", gd_cmd_transient,
      "time integration: TVMS, backlash, dampers, cams; records, contact losses, spectra"},
     {"mesh-stiffness", gd_cmd_mesh_stiffness,

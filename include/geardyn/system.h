@@ -62,6 +62,17 @@ void gd_system_dof_label(const gd_system *sys, int i, char *buf, int size);
  * D = C + C_b(W) + W G, and K + K_b(W). Any pointer may be NULL. */
 void gd_system_dense(const gd_system *sys, double speed, double *M, double *D, double *K);
 
+/* The system's matrices at reference speed W, each on its own sparse pattern: M; K with
+ * the speed-table bearings at W (K + K_b(W)); C with them (C + C_b(W)), without the
+ * gyroscopic term; and G per unit reference speed, so the damping at W is C + W G (what
+ * gd_system_dense returns as D). Rows and columns are the active DOFs (dof_node,
+ * dof_type); exact zeros are left out and rows are sorted within each column. Each
+ * output is filled and owned by the caller, who frees it with gd_csc_free; any output
+ * may be NULL. speed must be finite (GD_EINPUT otherwise). On failure the outputs are
+ * left empty (zeroed). */
+gd_status gd_system_matrices(const gd_system *sys, double speed, gd_csc *M, gd_csc *K, gd_csc *C,
+                             gd_csc *G, gd_error *err);
+
 /* Component index -> kind, index within kind and name. */
 gd_component_kind gd_system_component(const gd_system *sys, int c, int *index, const char **name);
 

@@ -121,11 +121,10 @@ void gd_gear_pair_error_locate(const char *file, const gd_ynode *mesh_map, const
     else
         snprintf(field, sizeof field, "%s.%s", path, section);
     snprintf(err->field, sizeof err->field, "%s", field);
-    if (file) snprintf(err->file, sizeof err->file, "%s", file);
-    if (n) {
-        err->line = n->line;
-        err->column = n->column;
-    }
+    if (n)
+        gd_ylocate(err, file, n);
+    else if (file)
+        snprintf(err->file, sizeof err->file, "%s", file);
 }
 
 static gd_status read_options(gd_yreader *r, const gd_ynode *s, const char *path,

@@ -228,6 +228,82 @@ void gd_ydoc_free(gd_ydoc *doc)
 {
     if (!doc) return;
     node_free(doc->root);
+    for (size_t i = 0; i < doc->norigins; i++)
+        free(doc->origins[i]);
+    free(doc->origins);
     free(doc->file);
     free(doc);
+}
+
+void gd_ynode_free(gd_ynode *n)
+{
+    node_free(n);
+}
+
+/* A node an override wrote: the node first (a gd_yover * is a gd_ynode *), then the
+ * override. gd_ynode_free frees it like any node. */
+typedef struct gd_yover {
+    gd_ynode node;
+    const char *origin;
+} gd_yover;
+
+const char *gd_ynode_origin(const gd_ynode *n)
+{
+    if (!n || n->line != 0 || n->column != GD_YCOL_OVERRIDE) return NULL;
+    return ((const gd_yover *)(const void *)n)->origin;
+}
+
+static gd_ynode *over_new(gd_ykind kind, const char *text, const char *origin)
+{
+    gd_yover *o = calloc(1, sizeof *o);
+    if (!o) return NULL;
+    o->node.kind = kind;
+    o->node.column = GD_YCOL_OVERRIDE;
+    o->origin = origin;
+    if (text && !(o->node.text = strdup(text))) {
+        free(o);
+        return NULL;
+    }
+    return &o->node;
+}
+
+gd_ynode *gd_ynode_new_scalar(const char *text, const char *origin)
+{
+    return over_new(GD_Y_SCALAR, text, origin);
+}
+
+gd_ynode *gd_ynode_copy(const gd_ynode *n, const char *origin)
+{
+    gd_ynode *c = over_new(n->kind, n->text, origin);
+    if (!c) return NULL;
+    c->quoted = n->quoted;
+    for (size_t i = 0; i < n->n; i++) {
+        gd_ynode *k = n->kind == GD_Y_MAP ? gd_ynode_copy(n->keys[i], origin) : NULL;
+        gd_ynode *v = gd_ynode_copy(n->items[i], origin);
+        if (!v || (n->kind == GD_Y_MAP && !k) || node_push(c, k, v)) {
+            node_free(k);
+            node_free(v);
+            node_free(c);
+            return NULL;
+        }
+    }
+    return c;
+}
+
+int gd_ynode_map_append(gd_ynode *map, gd_ynode *key, gd_ynode *value)
+{
+    return node_push(map, key, value);
+}
+
+const char *gd_ydoc_keep(gd_ydoc *doc, const char *text)
+{
+    char *copy = strdup(text);
+    char **more = copy ? realloc(doc->origins, (doc->norigins + 1) * sizeof *more) : NULL;
+    if (!more) {
+        free(copy);
+        return NULL;
+    }
+    doc->origins = more;
+    doc->origins[doc->norigins++] = copy;
+    return copy;
 }

@@ -20,15 +20,38 @@ struct gd_ynode {
     gd_ynode **keys;  /* map keys (scalars) */
 };
 
+/* A node an override wrote (overrides_impl.h) has no place in the file: its line is 0
+ * and its column GD_YCOL_OVERRIDE, and gd_ynode_origin gives the override,
+ * "--set PATH=VALUE", which errors at the node name instead of the file (gd_ylocate). */
+#define GD_YCOL_OVERRIDE (-1)
+
 typedef struct gd_ydoc {
     gd_ynode *root; /* NULL for an empty document */
     char *file;
+    char **origins; /* the texts nodes' origin point to (overrides.c), owned */
+    size_t norigins;
 } gd_ydoc;
 
 gd_status gd_ydoc_load_file(const char *path, gd_ydoc **out, gd_error *err);
 /* name is used in error messages in place of a file name. */
 gd_status gd_ydoc_load_string(const char *text, const char *name, gd_ydoc **out, gd_error *err);
 void gd_ydoc_free(gd_ydoc *doc);
+
+/* ---- building and changing nodes (overrides.c) ---- */
+
+/* The override that wrote n, or NULL for a node read from the file. */
+const char *gd_ynode_origin(const gd_ynode *n);
+/* Nodes written by the override origin (a string that must outlive them, e.g. kept by
+ * gd_ydoc_keep): a scalar with a copy of text, or a deep copy of n. NULL if out of
+ * memory. */
+gd_ynode *gd_ynode_new_scalar(const char *text, const char *origin);
+gd_ynode *gd_ynode_copy(const gd_ynode *n, const char *origin);
+/* Frees n and everything under it. */
+void gd_ynode_free(gd_ynode *n);
+/* Appends key: value to a map (which then owns both); 0 ok, 1 out of memory. */
+int gd_ynode_map_append(gd_ynode *map, gd_ynode *key, gd_ynode *value);
+/* Keeps a copy of text in doc for nodes' origin to point to; NULL if out of memory. */
+const char *gd_ydoc_keep(gd_ydoc *doc, const char *text);
 
 /* ---- reading typed values with located errors ---- */
 
@@ -46,7 +69,12 @@ enum {
 const gd_ynode *gd_ymap_get(const gd_ynode *map, const char *key);
 const char *gd_ykind_name(gd_ykind kind);
 
-/* Errors located at node n (or the document start when n is NULL). */
+/* Locates err at node n of file: its line and column, or, for a node an override
+ * wrote, the override ("--set PATH=VALUE") in place of the file with line 0. A NULL
+ * file keeps err->file. */
+void gd_ylocate(gd_error *err, const char *file, const gd_ynode *n);
+
+/* Errors located at node n (or the document start when n is NULL), see gd_ylocate. */
 gd_status gd_yfail(gd_yreader *r, const gd_ynode *n, const char *path, const char *hint,
                    const char *fmt, ...)
 #if defined(__GNUC__)

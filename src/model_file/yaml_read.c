@@ -45,6 +45,16 @@ const char *gd_ypath_index(char *buf, size_t size, const char *path, size_t inde
     return buf;
 }
 
+void gd_ylocate(gd_error *err, const char *file, const gd_ynode *n)
+{
+    if (!err) return;
+    const char *origin = gd_ynode_origin(n);
+    const char *where = origin ? origin : file;
+    if (where && where != err->file) snprintf(err->file, sizeof err->file, "%s", where);
+    err->line = n && !origin ? n->line : 0;
+    err->column = n && !origin ? n->column : 0;
+}
+
 gd_status gd_yfail(gd_yreader *r, const gd_ynode *n, const char *path, const char *hint,
                    const char *fmt, ...)
 {
@@ -53,8 +63,9 @@ gd_status gd_yfail(gd_yreader *r, const gd_ynode *n, const char *path, const cha
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    return gd_error_set(r->err, GD_EINPUT, r->file, n ? n->line : 0, n ? n->column : 0, path, hint,
-                        "%s", msg);
+    gd_status st = gd_error_set(r->err, GD_EINPUT, r->file, 0, 0, path, hint, "%s", msg);
+    gd_ylocate(r->err, r->file, n);
+    return st;
 }
 
 static const char *kind_hint(gd_ykind kind)

@@ -1,0 +1,54 @@
+/* Model files (docs/model-format.md): loading a model with overrides applied to the
+ * file's values before validation (`--set PATH=VALUE`, section "Overrides (--set)"),
+ * and reading a gear pair's geometry from a mesh entry of a file
+ * (docs/mesh-stiffness.md).
+ *
+ * gd_gear_pair_load lives here rather than in mesh_stiffness.h because it is file
+ * reading: YAML, overrides, errors located in the file. The mesh-stiffness module
+ * computes from a gd_gear_pair_geometry and knows nothing about files.
+ *
+ * Ownership and threads: every function here is reentrant: no global state, each call
+ * reads its own file into its own document, which is freed before returning. The
+ * options and their strings are only read, during the call. The caller owns the model
+ * (free it with gd_model_free) and the structs it passes in. */
+#ifndef GEARDYN_MODEL_FILE_H
+#define GEARDYN_MODEL_FILE_H
+#include <stddef.h>
+
+#include "geardyn/error.h"
+#include "geardyn/mesh_stiffness.h"
+#include "geardyn/model.h"
+
+typedef struct gd_load_options {
+    int nset;               /* number of overrides */
+    const char *const *set; /* nset assignments "PATH=VALUE", applied in this order */
+} gd_load_options;
+
+/* No overrides. */
+void gd_load_options_init(gd_load_options *opt);
+
+/* As gd_model_load / gd_model_load_string (model.h), with opt's overrides applied to the
+ * document first (opt may be NULL: none). The model's own validation then checks the new
+ * values; an error at a value an override wrote names the override: err->file is
+ * "--set PATH=VALUE" and err->line 0. A path that matches nothing, or a malformed
+ * assignment, is GD_EINPUT with the same file, the field the part of the path that
+ * failed, and the keys or names available there as the hint. */
+gd_status gd_model_load_opts(const char *path, const gd_load_options *opt, gd_model **out,
+                             gd_error *err);
+gd_status gd_model_load_string_opts(const char *yaml, const char *name, const gd_load_options *opt,
+                                    gd_model **out, gd_error *err);
+
+/* Reads the gear pair of one mesh entry of the file at path (a model file or a
+ * stand-alone file with a `meshes:` list), after applying opt's overrides (opt may be
+ * NULL). mesh_name picks the mesh by name; NULL: the first mesh with a `geometry:` map.
+ * geom receives the validated geometry. tvms (may be NULL) is reset to the defaults
+ * (gd_tvms_options_init) and then takes the options of the mesh's
+ * `stiffness: {from: geometry, ...}` map. mesh_name_out (may be NULL) receives the
+ * mesh's name, or its path "meshes[i]" when it has none, truncated to size. Errors are
+ * located in the file; a mesh_name that names no mesh has the field "--mesh" and the
+ * known names as the hint. */
+gd_status gd_gear_pair_load(const char *path, const char *mesh_name, const gd_load_options *opt,
+                            gd_gear_pair_geometry *geom, gd_tvms_options *tvms, char *mesh_name_out,
+                            size_t size, gd_error *err);
+
+#endif
