@@ -31,10 +31,13 @@ gd_status gd_build_oom(const gd_model *m, gd_error *err)
 
 const char *gd_build_path(char *buf, size_t size, const char *path, const char *key)
 {
-    if (path && path[0])
-        snprintf(buf, size, "%s.%s", path, key);
-    else
-        snprintf(buf, size, "%s", key);
+    /* joined by hand: a path longer than buf is cut */
+    size_t n = 0;
+    const char *parts[3] = {path && path[0] ? path : "", path && path[0] ? "." : "", key};
+    for (int i = 0; i < 3; i++)
+        for (const char *c = parts[i]; *c && n + 1 < size; c++)
+            buf[n++] = *c;
+    if (size) buf[n] = '\0';
     return buf;
 }
 
@@ -458,11 +461,10 @@ gd_status gd_model_add_node(gd_model *m, const gd_node_spec *s, int *index, gd_e
     if ((st = gd_build_open(m, err))) return st;
     int sh = s->shaft ? gd_model_find_shaft(m, s->shaft) : -1;
     if (sh < 0) {
-        char q[200];
-        snprintf(q, sizeof q, "%s", s->path ? s->path : "nodes");
-        return gd_build_fail(m, err, s->loc, NULL, gd_build_path(q, sizeof q, q, "shaft"),
-                             "add the shaft first, then its nodes", "unknown shaft '%s'",
-                             s->shaft ? s->shaft : "");
+        char q[220];
+        gd_build_path(q, sizeof q, s->path ? s->path : "nodes", "shaft");
+        return gd_build_fail(m, err, s->loc, NULL, q, "add the shaft first, then its nodes",
+                             "unknown shaft '%s'", s->shaft ? s->shaft : "");
     }
     gd_bshaft *bs = &m->build->shafts[sh];
     char path[200];
