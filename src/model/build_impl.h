@@ -71,6 +71,7 @@ typedef struct gd_model_build {
 } gd_model_build;
 
 void gd_model_build_free(gd_model *m);
+void gd_build_free_shaft(gd_bshaft *bs, int nsections);
 
 /* An input error at loc, or where the locator puts locate_path (may be NULL). */
 gd_status gd_build_fail(const gd_model *m, gd_error *err, gd_loc loc, const char *locate_path,
@@ -93,6 +94,11 @@ gd_status gd_build_name(const gd_model *m, gd_error *err, gd_loc loc, const char
 /* v > 0 (allow_zero: v >= 0) for path.key */
 gd_status gd_build_positive(const gd_model *m, gd_error *err, gd_loc loc, const char *path,
                             const char *key, double v, int allow_zero);
+/* An item's path: given, or "<kind>[<i>]". */
+const char *gd_build_item_path(char *buf, size_t size, const char *given, const char *kind, int i);
+/* Copies path and names into it; 0 when out of memory. */
+int gd_build_item_init(gd_bitem *it, const char *path, const char *node, const char *node2,
+                       const char *material);
 /* The node named name, for the field path.key; an error listing the named nodes. */
 gd_status gd_build_node_ref(const gd_model *m, gd_error *err, gd_loc loc, const char *path,
                             const char *key, const char *name, int *out);

@@ -42,38 +42,18 @@ gd_status gd_build_make_table(const gd_model *m, gd_error *err, gd_loc loc, cons
     return st;
 }
 
-static const char *item_path(char *buf, size_t size, const char *given, const char *kind, int i)
-{
-    if (given)
-        snprintf(buf, size, "%s", given);
-    else
-        snprintf(buf, size, "%s[%d]", kind, i);
-    return buf;
-}
-
 /* Grows a model array and its builder array by one; 0 on failure. */
 static int grow2(void *a, void *b, int n, size_t sa, size_t sb)
 {
     return gd_build_grow(a, n, sa) && gd_build_grow(b, n, sb);
 }
 
-static int item_init(gd_bitem *it, const char *path, const char *node)
-{
-    memset(it, 0, sizeof *it);
-    it->path = gd_build_strdup(path);
-    it->node = gd_build_strdup(node);
-    if (!it->path || (node && !it->node)) {
-        free(it->path);
-        free(it->node);
-        return 0;
-    }
-    return 1;
-}
-
 static void item_drop(gd_bitem *it, gd_btable *t)
 {
     free(it->path);
     free(it->node);
+    free(it->node2);
+    free(it->material);
     if (t) {
         free(t->x);
         free(t->y);
@@ -113,7 +93,7 @@ gd_status gd_model_add_unbalance(gd_model *m, const gd_unbalance_spec *s, int *i
     if ((st = gd_build_open(m, err))) return st;
     int idx = m->nunbalances;
     char path[160], fb[32];
-    item_path(path, sizeof path, s->path, "unbalances", idx);
+    gd_build_item_path(path, sizeof path, s->path, "unbalances", idx);
     gd_unbalance u;
     memset(&u, 0, sizeof u);
     snprintf(fb, sizeof fb, "unbalance%d", idx + 1);
@@ -125,7 +105,7 @@ gd_status gd_model_add_unbalance(gd_model *m, const gd_unbalance_spec *s, int *i
     u.phase = s->phase;
     u.loc = s->loc;
     gd_bitem it;
-    if (!item_init(&it, path, s->node)) return gd_build_oom(m, err);
+    if (!gd_build_item_init(&it, path, s->node, NULL, NULL)) return gd_build_oom(m, err);
     if (!grow2(&m->unbalances, &m->build->unbalances, idx, sizeof *m->unbalances,
                sizeof *m->build->unbalances)) {
         item_drop(&it, NULL);
@@ -155,7 +135,7 @@ gd_status gd_model_add_excitation(gd_model *m, const gd_excitation_spec *s, int 
     if ((st = gd_build_open(m, err))) return st;
     int idx = m->nexcitations;
     char path[160], fb[32];
-    item_path(path, sizeof path, s->path, "excitations.loads", idx);
+    gd_build_item_path(path, sizeof path, s->path, "excitations.loads", idx);
     gd_excitation e;
     memset(&e, 0, sizeof e);
     snprintf(fb, sizeof fb, "load%d", idx + 1);
@@ -189,7 +169,7 @@ gd_status gd_model_add_excitation(gd_model *m, const gd_excitation_spec *s, int 
     gd_bitem it;
     gd_btable t;
     memset(&t, 0, sizeof t);
-    if (!item_init(&it, path, s->node)) return gd_build_oom(m, err);
+    if (!gd_build_item_init(&it, path, s->node, NULL, NULL)) return gd_build_oom(m, err);
     if ((s->law.kind == GD_LOAD_TABLE_ANGLE && !gd_build_copy_table(&t, &s->table)) ||
         !grow2(&m->excitations, &m->build->excitations, idx, sizeof *m->excitations,
                sizeof *m->build->excitations) ||
@@ -222,7 +202,7 @@ gd_status gd_model_add_prescribed(gd_model *m, const gd_prescribed_spec *s, int 
     if ((st = gd_build_open(m, err))) return st;
     int idx = m->nprescribed;
     char path[160];
-    item_path(path, sizeof path, s->path, "prescribed", idx);
+    gd_build_item_path(path, sizeof path, s->path, "prescribed", idx);
     if ((st = check_dof(m, err, s->loc, path, s->dof))) return st;
     gd_prescription p;
     memset(&p, 0, sizeof p);
@@ -252,7 +232,7 @@ gd_status gd_model_add_prescribed(gd_model *m, const gd_prescribed_spec *s, int 
     gd_bitem it;
     gd_btable t;
     memset(&t, 0, sizeof t);
-    if (!item_init(&it, path, s->node)) return gd_build_oom(m, err);
+    if (!gd_build_item_init(&it, path, s->node, NULL, NULL)) return gd_build_oom(m, err);
     if ((s->law.kind == GD_PRESCRIBED_TABLE && !gd_build_copy_table(&t, &s->table)) ||
         !grow2(&m->prescribed, &m->build->prescribed, idx, sizeof *m->prescribed,
                sizeof *m->build->prescribed) ||
@@ -284,7 +264,7 @@ gd_status gd_model_add_cam(gd_model *m, const gd_cam_spec *s, int *index, gd_err
     if ((st = gd_build_open(m, err))) return st;
     int idx = m->ncams;
     char path[160], fb[32], q[200];
-    item_path(path, sizeof path, s->path, "cam_torques", idx);
+    gd_build_item_path(path, sizeof path, s->path, "cam_torques", idx);
     gd_cam c;
     memset(&c, 0, sizeof c);
     snprintf(fb, sizeof fb, "cam%d", idx + 1);
@@ -317,7 +297,7 @@ gd_status gd_model_add_cam(gd_model *m, const gd_cam_spec *s, int *index, gd_err
     gd_bitem it;
     gd_btable t;
     memset(&t, 0, sizeof t);
-    if (!item_init(&it, path, s->camshaft)) return gd_build_oom(m, err);
+    if (!gd_build_item_init(&it, path, s->camshaft, NULL, NULL)) return gd_build_oom(m, err);
     c.valve_mass = malloc((size_t)s->nvalves * sizeof *c.valve_mass);
     c.valve_phase = calloc((size_t)s->nvalves, sizeof *c.valve_phase);
     if (!c.valve_mass || !c.valve_phase ||

@@ -98,9 +98,8 @@ gd_status gd_build_component_name(const gd_model *m, gd_error *err, const char *
                          name, what, line);
 }
 
-/* Stores path and node names for a new item. */
-static int item_init(gd_bitem *it, const char *path, const char *node, const char *node2,
-                     const char *material)
+int gd_build_item_init(gd_bitem *it, const char *path, const char *node, const char *node2,
+                       const char *material)
 {
     memset(it, 0, sizeof *it);
     it->path = gd_build_strdup(path);
@@ -117,7 +116,7 @@ static int item_init(gd_bitem *it, const char *path, const char *node, const cha
     return 1;
 }
 
-static const char *item_path(char *buf, size_t size, const char *given, const char *kind, int i)
+const char *gd_build_item_path(char *buf, size_t size, const char *given, const char *kind, int i)
 {
     if (given)
         snprintf(buf, size, "%s", given);
@@ -140,7 +139,7 @@ gd_status gd_model_add_disk(gd_model *m, const gd_disk_spec *s, int *index, gd_e
     if ((st = gd_build_open(m, err))) return st;
     int idx = m->ndisks;
     char path[160], fb[32], gp[200];
-    item_path(path, sizeof path, s->path, "disks", idx);
+    gd_build_item_path(path, sizeof path, s->path, "disks", idx);
     gd_build_path(gp, sizeof gp, path, "geometry");
     gd_disk d;
     memset(&d, 0, sizeof d);
@@ -178,7 +177,7 @@ gd_status gd_model_add_disk(gd_model *m, const gd_disk_spec *s, int *index, gd_e
             s->diametral_inertia >= 0 ? s->diametral_inertia : 0.5 * s->polar_inertia;
     }
     gd_bitem it;
-    if (!item_init(&it, path, s->node, NULL, s->from_geometry ? s->material : NULL))
+    if (!gd_build_item_init(&it, path, s->node, NULL, s->from_geometry ? s->material : NULL))
         return gd_build_oom(m, err);
     it.from_geometry = s->from_geometry != 0;
     it.od = s->outer_diameter;
@@ -298,7 +297,7 @@ gd_status gd_model_add_bearing(gd_model *m, const gd_bearing_spec *s, int *index
     if ((st = gd_build_open(m, err))) return st;
     int idx = m->nbearings;
     char path[160], fb[32], tp[200];
-    item_path(path, sizeof path, s->path, "bearings", idx);
+    gd_build_item_path(path, sizeof path, s->path, "bearings", idx);
     gd_build_path(tp, sizeof tp, path, "table");
     gd_bearing b;
     memset(&b, 0, sizeof b);
@@ -346,7 +345,7 @@ gd_status gd_model_add_bearing(gd_model *m, const gd_bearing_spec *s, int *index
             b.coeffs = b.table[0];
         }
     }
-    if ((s->ntable && !b.ntable) || !item_init(&it, path, s->node, s->to, NULL)) {
+    if ((s->ntable && !b.ntable) || !gd_build_item_init(&it, path, s->node, s->to, NULL)) {
         free(b.table_speed);
         free(b.table);
         return gd_build_oom(m, err);
@@ -381,7 +380,7 @@ gd_status gd_model_add_spring(gd_model *m, const gd_spring_spec *s, int *index, 
     if ((st = gd_build_open(m, err))) return st;
     int idx = m->nsprings;
     char path[160], fb[32], q[200];
-    item_path(path, sizeof path, s->path, "springs", idx);
+    gd_build_item_path(path, sizeof path, s->path, "springs", idx);
     gd_spring sp;
     memset(&sp, 0, sizeof sp);
     snprintf(fb, sizeof fb, "spring%d", idx + 1);
@@ -401,7 +400,7 @@ gd_status gd_model_add_spring(gd_model *m, const gd_spring_spec *s, int *index, 
     sp.stiffness = s->stiffness;
     sp.damping = s->damping;
     gd_bitem it;
-    if (!item_init(&it, path, s->node, s->to, NULL)) return gd_build_oom(m, err);
+    if (!gd_build_item_init(&it, path, s->node, s->to, NULL)) return gd_build_oom(m, err);
     if (!gd_build_grow(&m->springs, m->nsprings, sizeof *m->springs) ||
         !gd_build_grow(&m->build->springs, m->nsprings, sizeof *m->build->springs)) {
         free(it.path);

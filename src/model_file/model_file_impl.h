@@ -6,7 +6,7 @@
  *   model_parse.c: the machinery, top level and globals;
  *   shafts_read.c: materials and shafts; supports_read.c: disks, bearings, springs,
  *   unbalances; meshes_read.c: gear meshes; model_parse_dynamics.c: what only time
- *   integration reads. */
+ *   integration reads; tables_read.c: tables and lists of quantities. */
 #ifndef GD_MODEL_PARSE_INTERNAL_H
 #define GD_MODEL_PARSE_INTERNAL_H
 #include "geardyn/builder.h"
@@ -46,6 +46,9 @@ gd_status gd_mp_springs(gd_mparser *p);
 gd_status gd_mp_meshes(gd_mparser *p);
 gd_status gd_mp_unbalances(gd_mparser *p);
 
+/* A list of n >= 1 quantities under key (tables_read.c; free *out). */
+gd_status gd_mp_read_qty_list(gd_mparser *p, const gd_ynode *map, const char *key, const char *path,
+                              gd_qty qty, double **out, int *n);
 /* A table {xkey: [...], ykey: [...], interpolation} (periodic with period > 0) read
  * into *out (gd_table_free it). */
 gd_status gd_mp_read_table(gd_mparser *p, const gd_ynode *map, const char *path, const char *xkey,

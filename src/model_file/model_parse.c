@@ -2,7 +2,6 @@
  * machinery, the top level and the globals. The document's sections are read into
  * builder specs by shafts_read.c, supports_read.c, meshes_read.c and
  * model_parse_dynamics.c; gd_model_finish completes the model. */
-#include <ctype.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
