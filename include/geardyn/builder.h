@@ -41,7 +41,7 @@ gd_status gd_model_new(const char *name, gd_model **out, gd_error *err);
 /* Discretises the shafts into elements and nodes, resolves every name, propagates the
  * shaft speeds along the gear train from the reference shaft, sizes and stiffens the
  * meshes from their geometry (TVMS) and validates the whole. On failure the model
- * stays unfinished (free it). */
+ * stays unfinished and can only be freed: adds and another finish are refused. */
 gd_status gd_model_finish(gd_model *m, gd_error *err);
 
 /* 1 once gd_model_finish has succeeded (and for models read from files). */
@@ -61,7 +61,10 @@ typedef struct gd_material_spec {
     gd_loc loc;
     const char *path;
 } gd_material_spec;
+/* Defaults: all zero. */
 void gd_material_spec_init(gd_material_spec *s);
+/* *index: the material's index. Errors: a missing, too long or repeated name; density
+ * or E not positive; G negative; a Poisson's ratio outside (-1, 0.5). */
 gd_status gd_model_add_material(gd_model *m, const gd_material_spec *s, int *index, gd_error *err);
 
 /* ---- shafts and nodes ---- */
@@ -103,10 +106,19 @@ typedef struct gd_shaft_spec {
     gd_loc speed_ratio_loc; /* where speed_ratio was written (errors about it) */
     const char *path;       /* NULL: "shafts[<index>]" */
 } gd_shaft_spec;
+/* Defaults: all zero (NULL names: the shaft's material; elements: the shaft's rule). */
 void gd_section_spec_init(gd_section_spec *s);
+/* Defaults: all zero. */
 void gd_station_spec_init(gd_station_spec *s);
+/* Defaults: all zero, speed_ratio 1 (used only with has_speed_ratio). */
 void gd_shaft_spec_init(gd_shaft_spec *s);
-/* *index: the shaft's index. */
+/* *index: the shaft's index. Errors now: a too long name; neither sections nor
+ * stations; both elements_per_section and max_element_length; a section's length or
+ * outer diameter not positive, its bore not below its outer diameter, no material on
+ * the section or the shaft, elements beyond 10000; a station without a name or outside
+ * the shaft. At finish: an unknown material, a name repeating another shaft's, two
+ * named stations at one position, a node name used twice, a speed_ratio the meshes
+ * contradict. */
 gd_status gd_model_add_shaft(gd_model *m, const gd_shaft_spec *s, int *index, gd_error *err);
 
 /* One more named station on a shaft added before. */
@@ -117,6 +129,7 @@ typedef struct gd_node_spec {
     gd_loc loc;
     const char *path; /* NULL: "shafts[<shaft>].nodes[<station index>]" */
 } gd_node_spec;
+/* Defaults: all zero. */
 void gd_node_spec_init(gd_node_spec *s);
 /* *index: the station's index among the shaft's stations (the node's index in the
  * model is known after finish: gd_model_find_node). */
@@ -137,7 +150,11 @@ typedef struct gd_disk_spec {
     gd_loc loc;
     const char *path; /* NULL: "disks[<index>]" */
 } gd_disk_spec;
+/* Defaults: all zero, diametral_inertia -1 (a thin disk). */
 void gd_disk_spec_init(gd_disk_spec *s);
+/* *index: the disk's index. Errors now: negative mass or polar inertia, no mass and no
+ * inertia; with geometry: diameters or width not positive, the bore not below the outer
+ * diameter, no material. At finish: an unknown node or material, a repeated name. */
 gd_status gd_model_add_disk(gd_model *m, const gd_disk_spec *s, int *index, gd_error *err);
 
 /* A linear bearing between a node and ground (or a second node): constant
@@ -149,7 +166,7 @@ typedef struct gd_bearing_spec {
     const char *to;                 /* NULL: ground */
     gd_bearing_coeffs coeffs;       /* constant coefficients (all 0 by default); the direct
                                        terms (xx, yy, zz, tilt, torsion) must not be negative */
-    int ntable;                     /* 0, or >= 2 rows of a speed table (then coeffs unused) */
+    int ntable;                     /* 0, or >= 2 rows of a speed table (coeffs then all 0) */
     const double *table_speed;      /* ntable increasing speeds, rad/s */
     const gd_bearing_coeffs *table; /* ntable rows */
     int has_sfd;                    /* 1: sfd below */
@@ -157,7 +174,13 @@ typedef struct gd_bearing_spec {
     gd_loc loc;
     const char *path; /* NULL: "bearings[<index>]" */
 } gd_bearing_spec;
+/* Defaults: all zero (no coefficients, to ground, no table, no SFD). */
 void gd_bearing_spec_init(gd_bearing_spec *s);
+/* *index: the bearing's index. Errors now: a negative direct coefficient; a table of
+ * one row, with constant coefficients too, or with speeds not increasing; an SFD whose
+ * dimensions are not positive, max_eccentricity not below 1 or clearance not below
+ * the radius; nothing at all (no coefficient, table or SFD). At finish: an unknown
+ * node, a node joined to itself, a name already used. */
 gd_status gd_model_add_bearing(gd_model *m, const gd_bearing_spec *s, int *index, gd_error *err);
 
 /* A spring and damper on one DOF, to ground or to a second node. */
@@ -170,7 +193,11 @@ typedef struct gd_spring_spec {
     gd_loc loc;
     const char *path; /* NULL: "springs[<index>]" */
 } gd_spring_spec;
+/* Defaults: all zero, dof GD_RZ. */
 void gd_spring_spec_init(gd_spring_spec *s);
+/* *index: the spring's index. Errors now: an unknown DOF, negative values, neither
+ * stiffness nor damping. At finish: an unknown node, a node joined to itself, a name
+ * already used. */
 gd_status gd_model_add_spring(gd_model *m, const gd_spring_spec *s, int *index, gd_error *err);
 
 /* ---- gear meshes ---- */
@@ -217,7 +244,19 @@ typedef struct gd_mesh_spec {
     gd_loc loc;
     const char *path; /* NULL: "meshes[<index>]" */
 } gd_mesh_spec;
+/* Defaults: all zero, pressure_angle 20 deg, hand +1, coupling full, tvms_options from
+ * gd_tvms_options_init, linear table interpolation, coast_stiffness_ratio 1. */
 void gd_mesh_spec_init(gd_mesh_spec *s);
+/* *index: the mesh's index. Errors now: no name; teeth below 3; radii or module not
+ * positive; angles negative or not below 60 deg; the gear size missing or given twice;
+ * a module without teeth; radii and teeth of different ratios; teeth with geometry;
+ * stiffness from geometry without geometry; a tvms or transmission_error table without
+ * the driver's teeth, with fewer than two points, or (tvms) with a value not
+ * positive, or given with stiffness from geometry; no stiffness at all. At finish:
+ * unknown nodes, both gears on one shaft, the geometry invalid (gd_gear_pair_derive,
+ * gd_tvms_compute), a table outside one mesh period, a name already used, a loop of
+ * meshes whose ratios disagree, driver_rotation against the train. With
+ * stiffness_from_geometry the TVMS mean is the linear stiffness. */
 gd_status gd_model_add_mesh(gd_model *m, const gd_mesh_spec *s, int *index, gd_error *err);
 
 /* ---- unbalances and time-integration items ---- */
@@ -230,7 +269,10 @@ typedef struct gd_unbalance_spec {
     gd_loc loc;
     const char *path; /* NULL: "unbalances[<index>]" */
 } gd_unbalance_spec;
+/* Defaults: all zero. */
 void gd_unbalance_spec_init(gd_unbalance_spec *s);
+/* *index: the unbalance's index. Errors: amount not positive; at finish an unknown
+ * node. */
 gd_status gd_model_add_unbalance(gd_model *m, const gd_unbalance_spec *s, int *index,
                                  gd_error *err);
 
@@ -245,7 +287,11 @@ typedef struct gd_excitation_spec {
     gd_loc loc;
     const char *path; /* NULL: "excitations.loads[<index>]" */
 } gd_excitation_spec;
+/* Defaults: all zero, dof GD_RZ, a constant law, linear table interpolation. */
 void gd_excitation_spec_init(gd_excitation_spec *s);
+/* *index: the load's index. Errors: an unknown DOF or law, a harmonic frequency (or
+ * order) not positive, a table law without two points; at finish an unknown node or a
+ * table gd_table_create refuses (over one revolution, 2 pi). */
 gd_status gd_model_add_excitation(gd_model *m, const gd_excitation_spec *s, int *index,
                                   gd_error *err);
 /* Whether the unbalances act in time integration (default 1). */
@@ -261,7 +307,11 @@ typedef struct gd_prescribed_spec {
     gd_loc loc;
     const char *path; /* NULL: "prescribed[<index>]" */
 } gd_prescribed_spec;
+/* Defaults: all zero, dof GD_RZ, the nominal motion, spline table interpolation. */
 void gd_prescribed_spec_init(gd_prescribed_spec *s);
+/* *index: the prescription's index. Errors: an unknown DOF or kind, a harmonic
+ * frequency not positive, a table law without two points; at finish an unknown node,
+ * a DOF prescribed twice, a table gd_table_create refuses. */
 gd_status gd_model_add_prescribed(gd_model *m, const gd_prescribed_spec *s, int *index,
                                   gd_error *err);
 
@@ -279,7 +329,12 @@ typedef struct gd_cam_spec {
     gd_loc loc;
     const char *path; /* NULL: "cam_torques[<index>]" */
 } gd_cam_spec;
+/* Defaults: all zero, a table lift law (spline), include_acceleration 1. */
 void gd_cam_spec_init(gd_cam_spec *s);
+/* *index: the cam's index. Errors: no lift table (or more than GD_HARMONICS_MAX
+ * harmonics), no valves, a valve mass not positive; at finish an unknown node or a
+ * lift table gd_table_create refuses (over one revolution). valve_phase may be NULL
+ * (all 0). */
 gd_status gd_model_add_cam(gd_model *m, const gd_cam_spec *s, int *index, gd_error *err);
 
 /* ---- globals ---- */

@@ -315,6 +315,10 @@ TEST(unknown_node_is_reported_by_finish)
     OK(lumped_shaft(m, "a", "n1", &err));
     OK(support(m, "b1", "n1", 1e6, 0, 0, 0, &err));
     OK(support(m, "b2", "n2", 1e6, 0, 0, 0, &err));
+    gd_system *sys = NULL;
+    CHECK(gd_system_build(m, &sys, &err) == GD_EINPUT); /* not finished */
+    CHECK(sys == NULL);
+    CHECK(strstr(err.message, "not finished") != NULL);
     CHECK_CODE_ERROR(gd_model_finish(m, &err), &err, "bearings[1].node", "unknown node 'n2'");
     CHECK(strstr(err.hint, "n1") != NULL);
     CHECK(!gd_model_is_finished(m));
