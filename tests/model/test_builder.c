@@ -591,6 +591,95 @@ TEST(unfinished_model_is_freed)
     gd_model_free(m);
 }
 
+/* ---- a mesh stiffened from its geometry ---- */
+
+static const char *const GEOMETRY_PAIR =
+    "dofs: [rz]\n"
+    "materials: {steel: {density: 7800, E: 2.0e11, poisson: 0.3}}\n"
+    "shafts:\n"
+    "  - {name: a, nodes: [{name: p}]}\n"
+    "  - {name: b, nodes: [{name: g}]}\n"
+    "disks:\n"
+    "  - {node: p, polar_inertia: 1.3e-3}\n"
+    "  - {node: g, polar_inertia: 2.5e-4}\n"
+    "meshes:\n"
+    "  - name: m\n"
+    "    driver: p\n"
+    "    driven: g\n"
+    "    coupling: torsional\n"
+    "    geometry:\n"
+    "      normal_module: 2 mm\n"
+    "      normal_pressure_angle: 20 deg\n"
+    "      face_width: 20 mm\n"
+    "      driver: {teeth: 48, material: steel, bore_radius: 12.7 mm}\n"
+    "      driven: {teeth: 32, material: steel, bore_radius: 12.7 mm}\n"
+    "    stiffness: {from: geometry}\n";
+
+static gd_status geometry_pair(gd_model *m, int teeth, gd_error *err)
+{
+    gd_status st;
+    gd_disk_spec d;
+    gd_disk_spec_init(&d);
+    if ((st = gd_model_set_dofs(m, GD_DOF_BIT(GD_RZ), err)) ||
+        (st = lumped_shaft(m, "a", "p", err)) || (st = lumped_shaft(m, "b", "g", err)))
+        return st;
+    const char *nodes[2] = {"p", "g"};
+    const double ip[2] = {1.3e-3, 2.5e-4};
+    for (int i = 0; i < 2; i++) {
+        d.node = nodes[i];
+        d.polar_inertia = ip[i];
+        if ((st = gd_model_add_disk(m, &d, NULL, err))) return st;
+    }
+    gd_gear_pair_geometry geom;
+    gd_gear_pair_geometry_init(&geom);
+    geom.normal_module = 2e-3;
+    geom.normal_pressure_angle = 20 * DEG;
+    geom.face_width = 20e-3;
+    const int z[2] = {teeth, 32};
+    for (int i = 0; i < 2; i++) {
+        geom.gear[i].teeth = z[i];
+        geom.gear[i].E = 2.0e11;
+        geom.gear[i].poisson = 0.3;
+        geom.gear[i].bore_radius = 12.7e-3;
+    }
+    gd_mesh_spec g;
+    gd_mesh_spec_init(&g);
+    g.name = "m";
+    g.driver = "p";
+    g.driven = "g";
+    g.coupling = GD_COUPLING_TORSIONAL;
+    g.geometry = &geom; /* copied by the add */
+    g.stiffness_from_geometry = 1;
+    return gd_model_add_mesh(m, &g, NULL, err);
+}
+
+TEST(mesh_from_geometry_in_code_matches_the_file)
+{
+    gd_error err;
+    gd_model *m = NULL, *f = NULL;
+    OK(gd_model_new("code.c", &m, &err));
+    OK(geometry_pair(m, 48, &err));
+    OK(gd_model_finish(m, &err));
+    OK(gd_model_load_string(GEOMETRY_PAIR, "g.yaml", &f, &err));
+    const gd_mesh *a = &m->meshes[0], *b = &f->meshes[0];
+    REQUIRE(a->tvms != NULL && b->tvms != NULL);
+    CHECK(a->teeth[0] == 48 && a->teeth[1] == 32);
+    CHECK_REL(a->stiffness, b->stiffness, 1e-14);
+    CHECK_REL(a->base_radius[0], b->base_radius[0], 1e-15);
+    CHECK_REL(a->pressure_angle, b->pressure_angle, 1e-15);
+    CHECK_REL(m->shafts[1].speed_ratio, -1.5, 1e-12);
+    gd_model_free(f);
+    gd_model_free(m);
+
+    /* an invalid geometry, found by finish, named under the mesh's geometry */
+    OK(gd_model_new("code.c", &m, &err));
+    OK(geometry_pair(m, 2, &err));
+    CHECK(gd_model_finish(m, &err) == GD_EINPUT);
+    CHECK(strncmp(err.field, "meshes[0].geometry", 18) == 0);
+    CHECK(err.line == 0);
+    gd_model_free(m);
+}
+
 /* ---- spec defaults ---- */
 
 TEST(spec_init_defaults)
@@ -659,4 +748,5 @@ RUN_TESTS(T(rig2018_built_in_code_matches_the_file), T(gear_pair_built_in_code_m
           T(negative_mass_names_the_field_at_line_0), T(unknown_node_is_reported_by_finish),
           T(generated_nodes_and_added_stations), T(add_after_finish_is_refused),
           T(gear_loop_speed_ratios), T(value_and_name_errors_from_code),
-          T(unfinished_model_is_freed), T(spec_init_defaults))
+          T(unfinished_model_is_freed), T(mesh_from_geometry_in_code_matches_the_file),
+          T(spec_init_defaults))
