@@ -1,6 +1,7 @@
 /* The model: a typed, validated description of a geared rotor system, read from a
- * YAML file (docs/model-format.md). Parsing and validation live here and nowhere
- * else; every later layer trusts a gd_model. All quantities are SI. */
+ * YAML file (docs/model-format.md) or built in code (geardyn/builder.h, which the
+ * file reader uses too). Validation lives in the builder; every later layer trusts a
+ * finished gd_model. All quantities are SI. */
 #ifndef GEARDYN_MODEL_H
 #define GEARDYN_MODEL_H
 #include "geardyn/error.h"
@@ -209,6 +210,9 @@ typedef struct gd_model {
     unsigned dof_mask;   /* active node DOFs (GD_DOF_BIT) */
     int reference_shaft; /* shaft whose speed is the reference speed */
     double speed;        /* reference speed, rad/s (0 unless given) */
+    /* builder state while the model is built (include/geardyn/builder.h); NULL once
+       gd_model_finish has succeeded */
+    struct gd_model_build *build;
 } gd_model;
 
 gd_status gd_model_load(const char *path, gd_model **out, gd_error *err);

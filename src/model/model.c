@@ -4,6 +4,7 @@
 
 #include "geardyn/mesh_stiffness.h"
 #include "geardyn/model.h"
+#include "model/build_impl.h"
 
 const char *const gd_dof_names[GD_NODE_DOFS] = {"x", "y", "z", "rx", "ry", "rz"};
 const char *const gd_coupling_names[3] = {"torsional", "lateral-torsional", "full"};
@@ -31,6 +32,7 @@ void gd_model_set_coupling(gd_model *model, gd_coupling level)
 void gd_model_free(gd_model *model)
 {
     if (!model) return;
+    gd_model_build_free(model);
     for (int i = 0; i < model->nshafts; i++)
         free(model->shafts[i].sections);
     for (int i = 0; i < model->nbearings; i++) {

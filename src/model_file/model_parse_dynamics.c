@@ -10,156 +10,46 @@
 
 #define PI 3.14159265358979323846
 
-static const char *const INTERPOLATIONS[] = {"linear", "spline", NULL};
-
-/* A list of n >= 1 quantities. */
-static gd_status read_qty_list(gd_mparser *p, const gd_ynode *map, const char *key,
-                               const char *path, gd_qty qty, double **out, int *n)
-{
-    char q[220];
-    gd_ypath_key(q, sizeof q, path, key);
-    const gd_ynode *v = gd_ymap_get(map, key);
-    *out = NULL;
-    *n = 0;
-    if (!v) return gd_yfail(&p->r, map, q, NULL, "required list '%s' is missing", key);
-    gd_status st = gd_yexpect(&p->r, v, GD_Y_SEQ, q);
-    if (st) return st;
-    if (v->n == 0) return gd_yfail(&p->r, v, q, "give at least two values", "empty list");
-    *out = malloc(v->n * sizeof **out);
-    if (!*out) return gd_mp_oom(p);
-    for (size_t i = 0; i < v->n; i++) {
-        char ip[240];
-        if ((st = gd_yread_node_qty(&p->r, v->items[i], gd_ypath_index(ip, sizeof ip, q, i), qty, 0,
-                                    &(*out)[i]))) {
-            free(*out);
-            *out = NULL;
-            return st;
-        }
-    }
-    *n = (int)v->n;
-    return GD_OK;
-}
-
-/* A table {xkey: [...], ykey: [...], interpolation}; periodic with period (0: not).
- * Angles of a periodic table must lie in [0, period). */
-static gd_status read_table(gd_mparser *p, const gd_ynode *map, const char *path, const char *xkey,
-                            gd_qty xq, const char *ykey, gd_qty yq, double period,
-                            gd_interp def_interp, gd_table **out)
-{
-    const char *const keys[4] = {xkey, ykey, "interpolation", NULL};
-    gd_status st;
-    if ((st = gd_yexpect(&p->r, map, GD_Y_MAP, path)) ||
-        (st = gd_ycheck_keys(&p->r, map, path, keys)))
-        return st;
-    int ii = def_interp, nx, ny;
-    if ((st = gd_yread_str(&p->r, map, "interpolation", path, INTERPOLATIONS, 0, NULL, &ii, NULL)))
-        return st;
-    double *x = NULL, *y = NULL;
-    if ((st = read_qty_list(p, map, xkey, path, xq, &x, &nx)) ||
-        (st = read_qty_list(p, map, ykey, path, yq, &y, &ny)))
-        goto done;
-    char q[220];
-    if (nx != ny) {
-        st = gd_yfail(&p->r, gd_ymap_get(map, ykey), gd_ypath_key(q, sizeof q, path, ykey),
-                      "give one value per entry of the first list", "%d values for %d %s", ny, nx,
-                      xkey);
-        goto done;
-    }
-    int need = ii == GD_INTERP_SPLINE ? 3 : 2;
-    if (nx < need) {
-        st = gd_yfail(&p->r, gd_ymap_get(map, xkey), gd_ypath_key(q, sizeof q, path, xkey),
-                      need == 3 ? "a spline needs three points or more" : "give two points or more",
-                      "only %d point%s", nx, nx == 1 ? "" : "s");
-        goto done;
-    }
-    for (int i = 1; i < nx; i++)
-        if (!(x[i] > x[i - 1])) {
-            st = gd_yfail(&p->r, gd_ymap_get(map, xkey), gd_ypath_key(q, sizeof q, path, xkey),
-                          "sort the points by increasing value, without repeats",
-                          "values must increase (entry %d is not above entry %d)", i, i - 1);
-            goto done;
-        }
-    if (period > 0 && (x[0] < 0 || x[nx - 1] >= period * (1 - 1e-12))) {
-        char hint[160];
-        snprintf(hint, sizeof hint, "give one period: angles from 0 up to (not including) %.6g rad",
-                 period);
-        st = gd_yfail(&p->r, gd_ymap_get(map, xkey), gd_ypath_key(q, sizeof q, path, xkey), hint,
-                      "angles outside one period");
-        goto done;
-    }
-    if ((st = gd_table_new(nx, x, y, period, (gd_interp)ii, out, p->r.err))) {
-        /* locate the library's complaint at the table */
-        p->r.err->line = map->line;
-        p->r.err->column = map->column;
-        snprintf(p->r.err->file, sizeof p->r.err->file, "%s", p->r.file);
-        snprintf(p->r.err->field, sizeof p->r.err->field, "%s", path);
-    }
-done:
-    free(x);
-    free(y);
-    return st;
-}
-
-static double table_mean(const gd_table *t, double period)
-{
-    const int n = 2048;
-    double s = 0;
-    for (int i = 0; i < n; i++)
-        s += gd_table_eval(t, period * i / n, NULL, NULL);
-    return s / n;
-}
-
 /* ---- meshes ---- */
 
 static const char *const MESH_DAMPING_KEYS[] = {"constant", "per_stiffness", "separated", NULL};
 static const char *const BACKLASH_KEYS[] = {"gap", "coast_stiffness_ratio", NULL};
 static const char *const TVMS_KEYS[] = {"angle", "stiffness", "interpolation", "phase", NULL};
 
-static gd_status need_teeth(gd_mparser *p, const gd_ynode *at, const char *path, const gd_mesh *g)
-{
-    if (g->teeth[0] > 0) return GD_OK;
-    return gd_yfail(&p->r, at, path, "add `teeth: [z1, z2]` (or `geometry:`) to the mesh",
-                    "a table over the mesh period needs the driver's teeth number");
-}
-
-gd_status gd_mp_mesh_dynamics(gd_mparser *p, const gd_ynode *mm, const char *path, gd_mesh *g,
-                              int *stiffness_from_table)
+gd_status gd_mp_mesh_dynamics(gd_mparser *p, const gd_ynode *mm, const char *path, int teeth,
+                              gd_mesh_spec *s, gd_table **tvms, gd_table **ste)
 {
     gd_yreader *r = &p->r;
     gd_status st;
     char q[200];
-    gd_mesh_dynamics *d = &g->dyn;
-    d->coast_stiffness_ratio = 1.0;
-    *stiffness_from_table = 0;
+    *tvms = *ste = NULL;
 
     const gd_ynode *damp = gd_ymap_get(mm, "damping");
     if (damp && damp->kind == GD_Y_MAP) {
         gd_ypath_key(q, sizeof q, path, "damping");
         if ((st = gd_ycheck_keys(r, damp, q, MESH_DAMPING_KEYS)) ||
-            (st = gd_yread_qty(r, damp, "constant", q, GD_QTY_DAMPING, GD_YNONNEG, &g->damping,
+            (st = gd_yread_qty(r, damp, "constant", q, GD_QTY_DAMPING, GD_YNONNEG, &s->damping,
                                NULL)) ||
             (st = gd_yread_qty(r, damp, "per_stiffness", q, GD_QTY_TIME, GD_YNONNEG,
-                               &d->damping_per_stiffness, NULL)) ||
+                               &s->damping_per_stiffness, NULL)) ||
             (st = gd_yread_qty(r, damp, "separated", q, GD_QTY_DAMPING, GD_YNONNEG,
-                               &d->damping_separated, NULL)))
+                               &s->damping_separated, NULL)))
             return st;
-    } else if ((st = gd_yread_qty(r, mm, "damping", path, GD_QTY_DAMPING, GD_YNONNEG, &g->damping,
+    } else if ((st = gd_yread_qty(r, mm, "damping", path, GD_QTY_DAMPING, GD_YNONNEG, &s->damping,
                                   NULL))) {
         return st;
     }
 
-    double period = g->teeth[0] > 0 ? 2 * PI / g->teeth[0] : 0;
+    /* a table spans the mesh period: without the driver's teeth (period 0) the
+       builder reports the missing teeth */
+    double period = teeth > 0 ? 2 * PI / teeth : 0;
     const gd_ynode *tv = gd_ymap_get(mm, "tvms");
     if (tv) {
         gd_ypath_key(q, sizeof q, path, "tvms");
-        if (g->tvms)
-            return gd_yfail(r, tv, q, "keep one: the table, or `stiffness: {from: geometry}`",
-                            "tvms table given together with stiffness from geometry");
-        if ((st = need_teeth(p, tv, q, g)) || (st = gd_yexpect(r, tv, GD_Y_MAP, q)) ||
-            (st = gd_ycheck_keys(r, tv, q, TVMS_KEYS)) ||
-            (st = gd_yread_qty(r, tv, "phase", q, GD_QTY_ANGLE, 0, &d->tvms_phase, NULL)))
+        if ((st = gd_yexpect(r, tv, GD_Y_MAP, q)) || (st = gd_ycheck_keys(r, tv, q, TVMS_KEYS)) ||
+            (st = gd_yread_qty(r, tv, "phase", q, GD_QTY_ANGLE, 0, &s->tvms_phase, NULL)))
             return st;
-        /* read_table checks only its own keys: hand it the map without `phase` */
+        /* gd_mp_read_table checks only its own keys: hand it the map without `phase` */
         gd_ynode copy = *tv;
         gd_ynode *keys[4], *items[4];
         copy.n = 0;
@@ -170,36 +60,30 @@ gd_status gd_mp_mesh_dynamics(gd_mparser *p, const gd_ynode *mm, const char *pat
                 keys[copy.n] = tv->keys[i];
                 items[copy.n++] = tv->items[i];
             }
-        if ((st = read_table(p, &copy, q, "angle", GD_QTY_ANGLE, "stiffness", GD_QTY_STIFFNESS,
-                             period, GD_INTERP_LINEAR, &d->tvms)))
+        if ((st = gd_mp_read_table(p, &copy, q, "angle", GD_QTY_ANGLE, "stiffness",
+                                   GD_QTY_STIFFNESS, period, GD_INTERP_LINEAR, tvms)))
             return st;
-        for (int i = 0; i < d->tvms->n; i++)
-            if (!(d->tvms->y[i] > 0))
-                return gd_yfail(r, gd_ymap_get(tv, "stiffness"), q,
-                                "mesh stiffness values must be positive",
-                                "stiffness %g at entry %d", d->tvms->y[i], i);
-        g->stiffness = table_mean(d->tvms, period);
-        *stiffness_from_table = 1;
+        s->tvms = gd_mp_table_spec(*tvms);
     }
     const gd_ynode *te = gd_ymap_get(mm, "transmission_error");
     if (te) {
         gd_ypath_key(q, sizeof q, path, "transmission_error");
-        if ((st = need_teeth(p, te, q, g)) ||
-            (st = read_table(p, te, q, "angle", GD_QTY_ANGLE, "error", GD_QTY_LENGTH, period,
-                             GD_INTERP_LINEAR, &d->ste)))
+        if ((st = gd_mp_read_table(p, te, q, "angle", GD_QTY_ANGLE, "error", GD_QTY_LENGTH, period,
+                                   GD_INTERP_LINEAR, ste)))
             return st;
+        s->transmission_error = gd_mp_table_spec(*ste);
     }
     const gd_ynode *bl = gd_ymap_get(mm, "backlash");
     if (bl) {
         gd_ypath_key(q, sizeof q, path, "backlash");
         if ((st = gd_yexpect(r, bl, GD_Y_MAP, q)) ||
             (st = gd_ycheck_keys(r, bl, q, BACKLASH_KEYS)) ||
-            (st = gd_yread_qty(r, bl, "gap", q, GD_QTY_LENGTH, GD_YREQ | GD_YNONNEG, &d->gap,
-                               NULL)) ||
+            (st = gd_yread_qty(r, bl, "gap", q, GD_QTY_LENGTH, GD_YREQ | GD_YNONNEG,
+                               &s->backlash_gap, NULL)) ||
             (st = gd_yread_qty(r, bl, "coast_stiffness_ratio", q, GD_QTY_DIMLESS, GD_YPOS,
-                               &d->coast_stiffness_ratio, NULL)))
+                               &s->coast_stiffness_ratio, NULL)))
             return st;
-        d->backlash = 1;
+        s->backlash = 1;
     }
     return GD_OK;
 }
@@ -210,7 +94,7 @@ static const char *const SFD_KEYS[] = {"viscosity", "diameter",   "length",     
                                        "film",      "correction", "max_eccentricity", NULL};
 static const char *const FILMS[] = {"pi", "2pi", NULL};
 
-gd_status gd_mp_bearing_sfd(gd_mparser *p, const gd_ynode *bm, const char *path, gd_bearing *b)
+gd_status gd_mp_bearing_sfd(gd_mparser *p, const gd_ynode *bm, const char *path, gd_bearing_spec *b)
 {
     const gd_ynode *sm = gd_ymap_get(bm, "sfd");
     if (!sm) return GD_OK;
@@ -236,19 +120,10 @@ gd_status gd_mp_bearing_sfd(gd_mparser *p, const gd_ynode *bm, const char *path,
         return st;
     s->radius = 0.5 * diameter;
     s->film = film == 0 ? GD_SFD_PI_FILM : GD_SFD_2PI_FILM;
-    char fp[220];
-    if (s->max_eccentricity >= 1.0)
-        return gd_yfail(r, gd_ymap_get(sm, "max_eccentricity"),
-                        gd_ypath_key(fp, sizeof fp, q, "max_eccentricity"),
-                        "an eccentricity ratio below 1, e.g. 0.995", "must be below 1");
-    if (s->clearance >= s->radius)
-        return gd_yfail(r, gd_ymap_get(sm, "clearance"),
-                        gd_ypath_key(fp, sizeof fp, q, "clearance"),
-                        "the radial clearance is a small fraction of the radius",
-                        "clearance %g m is not below the radius %g m", s->clearance, s->radius);
     const gd_ynode *corr = gd_ymap_get(sm, "correction");
     s->correction = 0; /* auto */
     if (corr) {
+        char fp[220];
         gd_ypath_key(fp, sizeof fp, q, "correction");
         if (corr->kind == GD_Y_SCALAR && !strcmp(corr->text, "auto"))
             s->correction = 0;
@@ -278,20 +153,23 @@ static gd_status read_dof(gd_mparser *p, const gd_ynode *map, const char *path, 
     return st;
 }
 
-static gd_status parse_load(gd_mparser *p, const gd_ynode *lm, const char *q, gd_excitation *e,
-                            int index)
+static gd_status read_load(gd_mparser *p, const gd_ynode *lm, const char *q, int index)
 {
     gd_yreader *r = &p->r;
     gd_status st;
-    char fb[32];
+    char fb[32], name[GD_NAME_MAX];
+    gd_excitation_spec e;
+    gd_excitation_spec_init(&e);
     snprintf(fb, sizeof fb, "load%d", index + 1);
     if ((st = gd_yexpect(r, lm, GD_Y_MAP, q)) || (st = gd_ycheck_keys(r, lm, q, LOAD_KEYS)) ||
-        (st = gd_mp_read_name(p, lm, q, e->name, fb, 0)) ||
-        (st = gd_mp_node_ref(p, lm, "node", q, 1, &e->node)) || (st = read_dof(p, lm, q, &e->dof)))
+        (st = gd_mp_read_name(p, lm, q, name, fb, 0)) ||
+        (st = gd_mp_node_name(p, lm, "node", q, 1, &e.node)) || (st = read_dof(p, lm, q, &e.dof)))
         return st;
-    e->loc = gd_mp_loc(lm);
-    gd_qty vq = e->dof >= GD_RX ? GD_QTY_TORQUE : GD_QTY_FORCE;
-    gd_load_law *L = &e->law;
+    e.name = name;
+    e.loc = gd_mp_loc(lm);
+    e.path = q;
+    gd_qty vq = e.dof >= GD_RX ? GD_QTY_TORQUE : GD_QTY_FORCE;
+    gd_load_law *L = &e.law;
     int has_value, has_mean, has_amp, has_freq, has_order, has_table;
     double order = 0;
     if ((st = gd_yread_qty(r, lm, "value", q, vq, 0, &L->mean, &has_value)) ||
@@ -315,6 +193,7 @@ static gd_status parse_load(gd_mparser *p, const gd_ynode *lm, const char *q, gd
         return gd_yfail(r, lm, q, hint, "`amplitude` needs `frequency` or `order`");
     if (!has_value && !has_mean && !has_amp && !has_table)
         return gd_yfail(r, lm, q, hint, "the load has no value");
+    gd_table *t = NULL;
     if (has_freq) {
         L->kind = GD_LOAD_HARMONIC_TIME;
     } else if (has_order) {
@@ -322,39 +201,37 @@ static gd_status parse_load(gd_mparser *p, const gd_ynode *lm, const char *q, gd
         L->frequency = order;
     } else if (has_table) {
         char tq[220];
-        gd_table *t;
         L->kind = GD_LOAD_TABLE_ANGLE;
-        if ((st = read_table(p, gd_ymap_get(lm, "table"), gd_ypath_key(tq, sizeof tq, q, "table"),
-                             "angle", GD_QTY_ANGLE, "value", vq, 2 * PI, GD_INTERP_LINEAR, &t)))
+        if ((st = gd_mp_read_table(p, gd_ymap_get(lm, "table"),
+                                   gd_ypath_key(tq, sizeof tq, q, "table"), "angle", GD_QTY_ANGLE,
+                                   "value", vq, 2 * PI, GD_INTERP_LINEAR, &t)))
             return st;
-        L->table = t;
+        e.table = gd_mp_table_spec(t);
     } else {
         L->kind = GD_LOAD_CONSTANT;
     }
-    return GD_OK;
+    st = gd_model_add_excitation(p->m, &e, NULL, r->err);
+    gd_table_free(t);
+    return st;
 }
 
 static gd_status parse_excitations(gd_mparser *p)
 {
-    gd_model *m = p->m;
-    m->excite_unbalances = 1;
     const gd_ynode *ex = gd_ymap_get(p->root, "excitations");
     if (!ex) return GD_OK;
     gd_status st;
+    int on = 1;
     if ((st = gd_yexpect(&p->r, ex, GD_Y_MAP, "excitations")) ||
         (st = gd_ycheck_keys(&p->r, ex, "excitations", EXCITATION_KEYS)) ||
-        (st =
-             gd_yread_bool(&p->r, ex, "unbalances", "excitations", 0, &m->excite_unbalances, NULL)))
+        (st = gd_yread_bool(&p->r, ex, "unbalances", "excitations", 0, &on, NULL)) ||
+        (st = gd_model_set_excite_unbalances(p->m, on, p->r.err)))
         return st;
     const gd_ynode *list;
     if ((st = gd_mp_get_list(p, ex, "loads", "excitations", &list, 0)) || !list) return st;
-    m->excitations = calloc(list->n ? list->n : 1, sizeof *m->excitations);
-    if (!m->excitations) return gd_mp_oom(p);
     for (size_t i = 0; i < list->n; i++) {
         char q[80];
         gd_ypath_index(q, sizeof q, "excitations.loads", i);
-        m->nexcitations++; /* counted first: a table read before a later error is freed */
-        if ((st = parse_load(p, list->items[i], q, &m->excitations[i], (int)i))) return st;
+        if ((st = read_load(p, list->items[i], q, (int)i))) return st;
     }
     return GD_OK;
 }
@@ -363,66 +240,66 @@ static const char *const PRESCRIBED_KEYS[] = {"node",      "dof",       "motion"
                                               "amplitude", "frequency", "phase",  NULL};
 static const char *const MOTIONS[] = {"nominal", NULL};
 
+static gd_status read_prescribed(gd_mparser *p, const gd_ynode *pm, const char *q)
+{
+    gd_prescribed_spec pr;
+    gd_prescribed_spec_init(&pr);
+    int has_motion, has_speed, has_amp, has_freq, has_table;
+    gd_status st;
+    if ((st = gd_yexpect(&p->r, pm, GD_Y_MAP, q)) ||
+        (st = gd_ycheck_keys(&p->r, pm, q, PRESCRIBED_KEYS)) ||
+        (st = gd_mp_node_name(p, pm, "node", q, 1, &pr.node)) ||
+        (st = read_dof(p, pm, q, &pr.dof)) ||
+        (st = gd_yread_str(&p->r, pm, "motion", q, MOTIONS, 0, NULL, NULL, &has_motion)) ||
+        (st = gd_yread_qty(&p->r, pm, "speed", q, GD_QTY_ANGULAR_SPEED, 0, &pr.law.speed,
+                           &has_speed)) ||
+        (st =
+             gd_yread_qty(&p->r, pm, "amplitude", q, pr.dof >= GD_RX ? GD_QTY_ANGLE : GD_QTY_LENGTH,
+                          0, &pr.law.amplitude, &has_amp)) ||
+        (st = gd_yread_qty(&p->r, pm, "frequency", q, GD_QTY_ANGULAR_SPEED, GD_YPOS,
+                           &pr.law.frequency, &has_freq)) ||
+        (st = gd_yread_qty(&p->r, pm, "phase", q, GD_QTY_ANGLE, 0, &pr.law.phase, NULL)))
+        return st;
+    pr.loc = gd_mp_loc(pm);
+    pr.path = q;
+    has_table = gd_ymap_get(pm, "table") != NULL;
+    if (has_motion + has_speed + has_table + has_amp != 1 || has_amp != has_freq)
+        return gd_yfail(&p->r, pm, q,
+                        "give one of `motion: nominal`, `speed: ...`, `table: {time: [...], "
+                        "angle: [...]}` or `amplitude` with `frequency`",
+                        "the prescribed motion is missing or given twice");
+    gd_table *t = NULL;
+    if (has_motion) {
+        pr.law.kind = GD_PRESCRIBED_NOMINAL;
+    } else if (has_speed) {
+        pr.law.kind = GD_PRESCRIBED_SPEED;
+    } else if (has_amp) {
+        pr.law.kind = GD_PRESCRIBED_HARMONIC;
+    } else {
+        char tq[100];
+        gd_qty vq = pr.dof >= GD_RX ? GD_QTY_ANGLE : GD_QTY_LENGTH;
+        if ((st = gd_mp_read_table(
+                 p, gd_ymap_get(pm, "table"), gd_ypath_key(tq, sizeof tq, q, "table"), "time",
+                 GD_QTY_TIME, pr.dof >= GD_RX ? "angle" : "position", vq, 0, GD_INTERP_SPLINE, &t)))
+            return st;
+        pr.law.kind = GD_PRESCRIBED_TABLE;
+        pr.table = gd_mp_table_spec(t);
+    }
+    st = gd_model_add_prescribed(p->m, &pr, NULL, p->r.err);
+    gd_table_free(t);
+    return st;
+}
+
 static gd_status parse_prescribed(gd_mparser *p)
 {
-    gd_model *m = p->m;
     const gd_ynode *list;
     gd_status st = gd_mp_get_list(p, p->root, "prescribed", "", &list, 0);
-    if (st || !list) return st;
-    m->prescribed = calloc(list->n ? list->n : 1, sizeof *m->prescribed);
-    if (!m->prescribed) return gd_mp_oom(p);
-    for (size_t i = 0; i < list->n; i++) {
+    for (size_t i = 0; !st && list && i < list->n; i++) {
         char q[64];
         gd_ypath_index(q, sizeof q, "prescribed", i);
-        const gd_ynode *pm = list->items[i];
-        gd_prescription *pr = &m->prescribed[i];
-        m->nprescribed++;
-        int has_motion, has_speed, has_amp, has_freq, has_table;
-        if ((st = gd_yexpect(&p->r, pm, GD_Y_MAP, q)) ||
-            (st = gd_ycheck_keys(&p->r, pm, q, PRESCRIBED_KEYS)) ||
-            (st = gd_mp_node_ref(p, pm, "node", q, 1, &pr->node)) ||
-            (st = read_dof(p, pm, q, &pr->dof)) ||
-            (st = gd_yread_str(&p->r, pm, "motion", q, MOTIONS, 0, NULL, NULL, &has_motion)) ||
-            (st = gd_yread_qty(&p->r, pm, "speed", q, GD_QTY_ANGULAR_SPEED, 0, &pr->law.speed,
-                               &has_speed)) ||
-            (st = gd_yread_qty(&p->r, pm, "amplitude", q,
-                               pr->dof >= GD_RX ? GD_QTY_ANGLE : GD_QTY_LENGTH, 0,
-                               &pr->law.amplitude, &has_amp)) ||
-            (st = gd_yread_qty(&p->r, pm, "frequency", q, GD_QTY_ANGULAR_SPEED, GD_YPOS,
-                               &pr->law.frequency, &has_freq)) ||
-            (st = gd_yread_qty(&p->r, pm, "phase", q, GD_QTY_ANGLE, 0, &pr->law.phase, NULL)))
-            return st;
-        pr->loc = gd_mp_loc(pm);
-        has_table = gd_ymap_get(pm, "table") != NULL;
-        if (has_motion + has_speed + has_table + has_amp != 1 || has_amp != has_freq)
-            return gd_yfail(&p->r, pm, q,
-                            "give one of `motion: nominal`, `speed: ...`, `table: {time: [...], "
-                            "angle: [...]}` or `amplitude` with `frequency`",
-                            "the prescribed motion is missing or given twice");
-        for (size_t j = 0; j < i; j++)
-            if (m->prescribed[j].node == pr->node && m->prescribed[j].dof == pr->dof)
-                return gd_yfail(&p->r, pm, q, "prescribe each DOF once",
-                                "this DOF is already prescribed (entry %zu)", j);
-        if (has_motion) {
-            pr->law.kind = GD_PRESCRIBED_NOMINAL;
-        } else if (has_speed) {
-            pr->law.kind = GD_PRESCRIBED_SPEED;
-        } else if (has_amp) {
-            pr->law.kind = GD_PRESCRIBED_HARMONIC;
-        } else {
-            char tq[100];
-            gd_table *t;
-            gd_qty vq = pr->dof >= GD_RX ? GD_QTY_ANGLE : GD_QTY_LENGTH;
-            if ((st = read_table(p, gd_ymap_get(pm, "table"),
-                                 gd_ypath_key(tq, sizeof tq, q, "table"), "time", GD_QTY_TIME,
-                                 pr->dof >= GD_RX ? "angle" : "position", vq, 0, GD_INTERP_SPLINE,
-                                 &t)))
-                return st;
-            pr->law.kind = GD_PRESCRIBED_TABLE;
-            pr->law.table = t;
-        }
+        st = read_prescribed(p, list->items[i], q);
     }
-    return GD_OK;
+    return st;
 }
 
 static const char *const CAM_KEYS[] = {"name",   "camshaft", "lift", "include_acceleration",
@@ -430,10 +307,12 @@ static const char *const CAM_KEYS[] = {"name",   "camshaft", "lift", "include_ac
 static const char *const VALVE_KEYS[] = {"mass", "phase", NULL};
 static const char *const HARMONIC_KEYS[] = {"mean", "cos", "sin", NULL};
 
-static gd_status parse_lift(gd_mparser *p, const gd_ynode *lm, const char *q, gd_lift_law *law)
+/* The lift law; a table goes to *t (to free after the add). */
+static gd_status read_lift(gd_mparser *p, const gd_ynode *lm, const char *q, gd_cam_spec *c,
+                           gd_table **t)
 {
     gd_status st;
-    if (!lm) return gd_yfail(&p->r, NULL, q, "add `lift: {angle: [...], lift: [...]}`", "missing");
+    gd_lift_law *law = &c->lift;
     const gd_ynode *h = gd_ymap_get(lm, "harmonics");
     if (lm->kind == GD_Y_MAP && h) {
         char hq[160];
@@ -453,7 +332,7 @@ static gd_status parse_lift(gd_mparser *p, const gd_ynode *lm, const char *q, gd
             if (!v) continue;
             double *vals;
             int n;
-            if ((st = read_qty_list(p, h, keys[k], hq, GD_QTY_LENGTH, &vals, &n))) return st;
+            if ((st = gd_mp_read_qty_list(p, h, keys[k], hq, GD_QTY_LENGTH, &vals, &n))) return st;
             if (n > GD_HARMONICS_MAX) {
                 free(vals);
                 return gd_yfail(&p->r, v, hq, "use fewer harmonics", "more than %d harmonics",
@@ -465,72 +344,88 @@ static gd_status parse_lift(gd_mparser *p, const gd_ynode *lm, const char *q, gd
         }
         return GD_OK;
     }
-    gd_table *t;
-    if ((st = read_table(p, lm, q, "angle", GD_QTY_ANGLE, "lift", GD_QTY_LENGTH, 2 * PI,
-                         GD_INTERP_SPLINE, &t)))
+    if ((st = gd_mp_read_table(p, lm, q, "angle", GD_QTY_ANGLE, "lift", GD_QTY_LENGTH, 2 * PI,
+                               GD_INTERP_SPLINE, t)))
         return st;
     law->kind = GD_LIFT_TABLE;
-    law->table = t;
+    c->lift_table = gd_mp_table_spec(*t);
     return GD_OK;
+}
+
+static gd_status read_valves(gd_mparser *p, const gd_ynode *valves, const char *vq, double *mass,
+                             double *phase)
+{
+    gd_status st;
+    for (size_t j = 0; j < valves->n; j++) {
+        char ip[120];
+        gd_ypath_index(ip, sizeof ip, vq, j);
+        const gd_ynode *v = valves->items[j];
+        if ((st = gd_yexpect(&p->r, v, GD_Y_MAP, ip)) ||
+            (st = gd_ycheck_keys(&p->r, v, ip, VALVE_KEYS)) ||
+            (st = gd_yread_qty(&p->r, v, "mass", ip, GD_QTY_MASS, GD_YREQ | GD_YPOS, &mass[j],
+                               NULL)) ||
+            (st = gd_yread_qty(&p->r, v, "phase", ip, GD_QTY_ANGLE, 0, &phase[j], NULL)))
+            return st;
+    }
+    return GD_OK;
+}
+
+static gd_status read_cam(gd_mparser *p, const gd_ynode *cm, const char *q, size_t i)
+{
+    char fb[32], lq[100], vq[100], name[GD_NAME_MAX];
+    gd_cam_spec c;
+    gd_cam_spec_init(&c);
+    snprintf(fb, sizeof fb, "cam%zu", i + 1);
+    const gd_ynode *valves;
+    gd_status st;
+    if ((st = gd_yexpect(&p->r, cm, GD_Y_MAP, q)) ||
+        (st = gd_ycheck_keys(&p->r, cm, q, CAM_KEYS)) ||
+        (st = gd_mp_read_name(p, cm, q, name, fb, 0)) ||
+        (st = gd_mp_node_name(p, cm, "camshaft", q, 1, &c.camshaft)) ||
+        (st =
+             gd_yread_bool(&p->r, cm, "include_acceleration", q, 0, &c.include_acceleration, NULL)))
+        return st;
+    c.name = name;
+    c.loc = gd_mp_loc(cm);
+    c.path = q;
+    if (!gd_ymap_get(cm, "lift"))
+        return gd_yfail(&p->r, cm, gd_ypath_key(lq, sizeof lq, q, "lift"),
+                        "add the valve lift law: `lift: {angle: [...], lift: [...]}` over one "
+                        "cam revolution, or `lift: {harmonics: {mean, cos: [...], sin: [...]}}`",
+                        "cam torque without a lift law");
+    gd_table *t = NULL;
+    double *mass = NULL, *phase = NULL;
+    if (!(st = read_lift(p, gd_ymap_get(cm, "lift"), gd_ypath_key(lq, sizeof lq, q, "lift"), &c,
+                         &t)) &&
+        !(st = gd_mp_get_list(p, cm, "valves", q, &valves, 1))) {
+        gd_ypath_key(vq, sizeof vq, q, "valves");
+        mass = calloc(valves->n + 1, sizeof *mass);
+        phase = calloc(valves->n + 1, sizeof *phase);
+        if (!mass || !phase)
+            st = gd_mp_oom(p);
+        else
+            st = read_valves(p, valves, vq, mass, phase);
+        c.nvalves = (int)valves->n;
+        c.valve_mass = mass;
+        c.valve_phase = phase;
+    }
+    if (!st) st = gd_model_add_cam(p->m, &c, NULL, p->r.err);
+    gd_table_free(t);
+    free(mass);
+    free(phase);
+    return st;
 }
 
 static gd_status parse_cams(gd_mparser *p)
 {
-    gd_model *m = p->m;
     const gd_ynode *list;
     gd_status st = gd_mp_get_list(p, p->root, "cam_torques", "", &list, 0);
-    if (st || !list) return st;
-    m->cams = calloc(list->n ? list->n : 1, sizeof *m->cams);
-    if (!m->cams) return gd_mp_oom(p);
-    for (size_t i = 0; i < list->n; i++) {
-        char q[64], fb[32], lq[100], vq[100];
+    for (size_t i = 0; !st && list && i < list->n; i++) {
+        char q[64];
         gd_ypath_index(q, sizeof q, "cam_torques", i);
-        const gd_ynode *cm = list->items[i];
-        gd_cam *c = &m->cams[i];
-        m->ncams++;
-        snprintf(fb, sizeof fb, "cam%zu", i + 1);
-        c->include_acceleration = 1;
-        const gd_ynode *valves;
-        if ((st = gd_yexpect(&p->r, cm, GD_Y_MAP, q)) ||
-            (st = gd_ycheck_keys(&p->r, cm, q, CAM_KEYS)) ||
-            (st = gd_mp_read_name(p, cm, q, c->name, fb, 0)) ||
-            (st = gd_mp_node_ref(p, cm, "camshaft", q, 1, &c->node)) ||
-            (st = gd_yread_bool(&p->r, cm, "include_acceleration", q, 0, &c->include_acceleration,
-                                NULL)))
-            return st;
-        c->loc = gd_mp_loc(cm);
-        if (!gd_ymap_get(cm, "lift"))
-            return gd_yfail(
-                &p->r, cm, gd_ypath_key(lq, sizeof lq, q, "lift"),
-                "add the valve lift law: `lift: {angle: [...], lift: [...]}` over one "
-                "cam revolution, or `lift: {harmonics: {mean, cos: [...], sin: [...]}}`",
-                "cam torque without a lift law");
-        if ((st = parse_lift(p, gd_ymap_get(cm, "lift"), gd_ypath_key(lq, sizeof lq, q, "lift"),
-                             &c->lift)) ||
-            (st = gd_mp_get_list(p, cm, "valves", q, &valves, 1)))
-            return st;
-        gd_ypath_key(vq, sizeof vq, q, "valves");
-        if (valves->n == 0)
-            return gd_yfail(&p->r, valves, vq, "list the valves: [{mass: 0.1 kg, phase: 0 deg}]",
-                            "no valves");
-        c->valve_mass = calloc(valves->n, sizeof *c->valve_mass);
-        c->valve_phase = calloc(valves->n, sizeof *c->valve_phase);
-        if (!c->valve_mass || !c->valve_phase) return gd_mp_oom(p);
-        for (size_t j = 0; j < valves->n; j++) {
-            char ip[120];
-            gd_ypath_index(ip, sizeof ip, vq, j);
-            const gd_ynode *v = valves->items[j];
-            if ((st = gd_yexpect(&p->r, v, GD_Y_MAP, ip)) ||
-                (st = gd_ycheck_keys(&p->r, v, ip, VALVE_KEYS)) ||
-                (st = gd_yread_qty(&p->r, v, "mass", ip, GD_QTY_MASS, GD_YREQ | GD_YPOS,
-                                   &c->valve_mass[j], NULL)) ||
-                (st = gd_yread_qty(&p->r, v, "phase", ip, GD_QTY_ANGLE, 0, &c->valve_phase[j],
-                                   NULL)))
-                return st;
-            c->nvalves++;
-        }
+        st = read_cam(p, list->items[i], q, i);
     }
-    return GD_OK;
+    return st;
 }
 
 gd_status gd_mp_dynamics(gd_mparser *p)

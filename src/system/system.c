@@ -141,6 +141,10 @@ static int has_speed_damping(const gd_system *s)
 gd_status gd_system_build(const gd_model *m, gd_system **out, gd_error *err)
 {
     *out = NULL;
+    if (m->build) /* under construction (geardyn/builder.h): no nodes or names resolved */
+        return gd_error_set(err, GD_EINPUT, m->file, 0, 0, "",
+                            "call gd_model_finish before building the system",
+                            "the model is not finished");
     int raw = 6 * m->nnodes;
     assembler as = {.m = m, .used = calloc((size_t)(raw > 0 ? raw : 1), sizeof(int))};
     gd_system *s = calloc(1, sizeof *s);

@@ -1,0 +1,352 @@
+/* Building a model in code (docs/builder.md). The YAML reader (gd_model_load) is one
+ * caller of this API; a program can be another: create a model, add materials,
+ * shafts, nodes, disks, bearings, springs, gear meshes and the time-integration items
+ * through small spec structs, then gd_model_finish discretises the shafts, propagates
+ * the gear-train speeds, sizes and stiffens the meshes from their geometry and
+ * validates, with the same located errors as the file reader.
+ *
+ * Specs. Every add function takes a spec struct; fill it with its _init function
+ * (which sets the defaults documented on each field; most are zero) and set what you
+ * need. Names refer to items by name: a shaft's sections name their material, a disk
+ * names its node, a mesh its driver and driven nodes. Names are resolved by
+ * gd_model_finish, so items may be added in any order; a generated node is named
+ * "<shaft>@<index>" as in model files.
+ *
+ * Errors. Every function returns GD_OK or fills err (which may be NULL) and returns
+ * the status: GD_EINPUT for a value that is wrong, GD_ENOMEM when out of memory. The
+ * error's field is the item's path and key, e.g. "bearings[2].kxx" (the item's index
+ * among its kind, in the order added), its line and column those of the spec's `loc`
+ * (0 for a model built in code). A spec's `path`, when not NULL, replaces the default
+ * path prefix ("bearings[2]"); the YAML reader passes the key paths of the file. A
+ * failed add leaves the model as it was; the model can still be freed, or added to.
+ *
+ * Ownership and threads. The caller keeps ownership of everything it passes: specs,
+ * their strings and arrays are read during the call and not kept; the builder copies
+ * whatever it keeps. The model returned by gd_model_new is the caller's, to free with
+ * gd_model_free, finished or not. After gd_model_finish succeeds the model is
+ * immutable for the builder: every add or set returns GD_EINPUT. A model under
+ * construction must not be used from two threads at once; distinct models may be
+ * built concurrently (the builder has no global state). */
+#ifndef GEARDYN_BUILDER_H
+#define GEARDYN_BUILDER_H
+#include "geardyn/error.h"
+#include "geardyn/laws.h"
+#include "geardyn/mesh_stiffness.h"
+#include "geardyn/model.h"
+
+/* An empty model. name stands for the file in error messages (e.g. "rig.c"; NULL:
+ * ""). *out is NULL on failure. */
+gd_status gd_model_new(const char *name, gd_model **out, gd_error *err);
+
+/* Discretises the shafts into elements and nodes, resolves every name, propagates the
+ * shaft speeds along the gear train from the reference shaft, sizes and stiffens the
+ * meshes from their geometry (TVMS) and validates the whole. On failure the model
+ * stays unfinished and can only be freed: adds and another finish are refused. */
+gd_status gd_model_finish(gd_model *m, gd_error *err);
+
+/* 1 once gd_model_finish has succeeded (and for models read from files). */
+int gd_model_is_finished(const gd_model *m);
+
+/* ---- materials ---- */
+
+/* An isotropic material: E and one of poisson or G. With G = 0 (the default),
+ * G = E / (2 (1 + poisson)); with G > 0 and poisson = 0, poisson = E / (2 G) - 1; both
+ * given are kept as they are. Default path "materials.<name>". */
+typedef struct gd_material_spec {
+    const char *name; /* required, unique, < GD_NAME_MAX characters */
+    double density;   /* kg/m^3, > 0 */
+    double E;         /* Pa, > 0 */
+    double G;         /* Pa; 0: from E and poisson */
+    double poisson;   /* in (-1, 0.5) */
+    gd_loc loc;
+    const char *path;
+} gd_material_spec;
+/* Defaults: all zero. */
+void gd_material_spec_init(gd_material_spec *s);
+/* *index: the material's index. Errors: a missing, too long or repeated name; density
+ * or E not positive; G negative; a Poisson's ratio outside (-1, 0.5). */
+gd_status gd_model_add_material(gd_model *m, const gd_material_spec *s, int *index, gd_error *err);
+
+/* ---- shafts and nodes ---- */
+
+/* A section: a hollow cylinder of constant diameters along the shaft. */
+typedef struct gd_section_spec {
+    double length, outer_diameter; /* m, > 0 */
+    double inner_diameter;         /* m, 0 (default) for a solid shaft, < outer */
+    const char *material;          /* NULL: the shaft's material */
+    int elements; /* elements this section is split into; 0 (default): the shaft's rule */
+    gd_loc loc;
+} gd_section_spec;
+
+/* A named station (node) on a shaft, at an axial position from the shaft's start. On
+ * a shaft with sections a station at a section end takes that node; elsewhere it
+ * splits the section. On a shaft without sections (lumped bodies) `at` only orders
+ * the nodes. */
+typedef struct gd_station_spec {
+    const char *name; /* required, unique among all nodes */
+    double at;        /* m, within [0, shaft length] */
+    gd_loc loc;
+} gd_station_spec;
+
+typedef struct gd_shaft_spec {
+    const char *name;     /* NULL: "shaft<index + 1>"; shares one namespace with
+                             bearings, springs and meshes */
+    const char *material; /* default material of the sections; NULL: none */
+    int nsections;
+    const gd_section_spec *sections; /* nsections, from the shaft's start */
+    int nstations;
+    const gd_station_spec *stations; /* nstations named nodes (more: gd_model_add_node) */
+    int elements_per_section;        /* 0 (default): 1 */
+    double max_element_length;       /* > 0: sections without `elements` get elements no longer
+                                        than this (excludes elements_per_section) */
+    int has_speed_ratio;             /* 1: speed_ratio below is given */
+    double speed_ratio;              /* signed, about +z, times the reference speed; it must agree
+                                        with the gear meshes (they fix it when not given) */
+    gd_loc loc;
+    gd_loc speed_ratio_loc; /* where speed_ratio was written (errors about it) */
+    const char *path;       /* NULL: "shafts[<index>]" */
+} gd_shaft_spec;
+/* Defaults: all zero (NULL names: the shaft's material; elements: the shaft's rule). */
+void gd_section_spec_init(gd_section_spec *s);
+/* Defaults: all zero. */
+void gd_station_spec_init(gd_station_spec *s);
+/* Defaults: all zero, speed_ratio 1 (used only with has_speed_ratio). */
+void gd_shaft_spec_init(gd_shaft_spec *s);
+/* *index: the shaft's index. Errors now: a too long name; neither sections nor
+ * stations; both elements_per_section and max_element_length; a section's length or
+ * outer diameter not positive, its bore not below its outer diameter, no material on
+ * the section or the shaft, elements beyond 10000; a station without a name or outside
+ * the shaft. At finish: an unknown material, a name repeating another shaft's, two
+ * named stations at one position, a node name used twice, a speed_ratio the meshes
+ * contradict. */
+gd_status gd_model_add_shaft(gd_model *m, const gd_shaft_spec *s, int *index, gd_error *err);
+
+/* One more named station on a shaft added before. */
+typedef struct gd_node_spec {
+    const char *shaft; /* the shaft's name */
+    const char *name;  /* required */
+    double at;         /* m */
+    gd_loc loc;
+    const char *path; /* NULL: "shafts[<shaft>].nodes[<station index>]" */
+} gd_node_spec;
+/* Defaults: all zero. */
+void gd_node_spec_init(gd_node_spec *s);
+/* *index: the station's index among the shaft's stations (the node's index in the
+ * model is known after finish: gd_model_find_node). */
+gd_status gd_model_add_node(gd_model *m, const gd_node_spec *s, int *index, gd_error *err);
+
+/* ---- bodies and supports ---- */
+
+/* A rigid disk: mass and inertias, or a solid (or bored) cylinder of a material. */
+typedef struct gd_disk_spec {
+    const char *name;         /* NULL: "disk<index + 1>"; unique among disks */
+    const char *node;         /* required */
+    double mass;              /* kg, >= 0 */
+    double polar_inertia;     /* kg m^2, >= 0 */
+    double diametral_inertia; /* kg m^2; < 0 (the default): polar_inertia / 2, a thin disk */
+    int from_geometry;        /* 1: mass and inertias from the cylinder below */
+    double outer_diameter, inner_diameter, width; /* m (geometry) */
+    const char *material;                         /* required with geometry */
+    gd_loc loc;
+    const char *path; /* NULL: "disks[<index>]" */
+} gd_disk_spec;
+/* Defaults: all zero, diametral_inertia -1 (a thin disk). */
+void gd_disk_spec_init(gd_disk_spec *s);
+/* *index: the disk's index. Errors now: negative mass or polar inertia, no mass and no
+ * inertia; with geometry: diameters or width not positive, the bore not below the outer
+ * diameter, no material. At finish: an unknown node or material, a repeated name. */
+gd_status gd_model_add_disk(gd_model *m, const gd_disk_spec *s, int *index, gd_error *err);
+
+/* A linear bearing between a node and ground (or a second node): constant
+ * coefficients, or coefficients interpolated in the speed of the node's shaft; an
+ * optional squeeze film damper acts in time integration. */
+typedef struct gd_bearing_spec {
+    const char *name;               /* NULL: "bearing<index + 1>" */
+    const char *node;               /* required */
+    const char *to;                 /* NULL: ground */
+    gd_bearing_coeffs coeffs;       /* constant coefficients (all 0 by default); the direct
+                                       terms (xx, yy, zz, tilt, torsion) must not be negative */
+    int ntable;                     /* 0, or >= 2 rows of a speed table (coeffs then all 0) */
+    const double *table_speed;      /* ntable increasing speeds, rad/s */
+    const gd_bearing_coeffs *table; /* ntable rows */
+    int has_sfd;                    /* 1: sfd below */
+    gd_sfd_params sfd;
+    gd_loc loc;
+    const char *path; /* NULL: "bearings[<index>]" */
+} gd_bearing_spec;
+/* Defaults: all zero (no coefficients, to ground, no table, no SFD). */
+void gd_bearing_spec_init(gd_bearing_spec *s);
+/* *index: the bearing's index. Errors now: a negative direct coefficient; a table of
+ * one row, with constant coefficients too, or with speeds not increasing; an SFD whose
+ * dimensions are not positive, max_eccentricity not below 1 or clearance not below
+ * the radius; nothing at all (no coefficient, table or SFD). At finish: an unknown
+ * node, a node joined to itself, a name already used. */
+gd_status gd_model_add_bearing(gd_model *m, const gd_bearing_spec *s, int *index, gd_error *err);
+
+/* A spring and damper on one DOF, to ground or to a second node. */
+typedef struct gd_spring_spec {
+    const char *name;          /* NULL: "spring<index + 1>" */
+    const char *node;          /* required */
+    const char *to;            /* NULL: ground */
+    gd_dof dof;                /* default GD_RZ */
+    double stiffness, damping; /* >= 0, not both 0 */
+    gd_loc loc;
+    const char *path; /* NULL: "springs[<index>]" */
+} gd_spring_spec;
+/* Defaults: all zero, dof GD_RZ. */
+void gd_spring_spec_init(gd_spring_spec *s);
+/* *index: the spring's index. Errors now: an unknown DOF, negative values, neither
+ * stiffness nor damping. At finish: an unknown node, a node joined to itself, a name
+ * already used. */
+gd_status gd_model_add_spring(gd_model *m, const gd_spring_spec *s, int *index, gd_error *err);
+
+/* ---- gear meshes ---- */
+
+/* Table data y(x) the builder copies (x increasing). n = 0: no table. */
+typedef struct gd_table_spec {
+    int n;
+    const double *x, *y;
+    gd_interp interp; /* default GD_INTERP_LINEAR */
+} gd_table_spec;
+
+/* An external gear mesh. The gear size is given by exactly one of base_radius,
+ * pitch_radius, module (with teeth), or geometry. */
+typedef struct gd_mesh_spec {
+    const char *name;       /* required */
+    const char *driver;     /* node of the driving gear, required */
+    const char *driven;     /* node of the driven gear, on another shaft */
+    int teeth[2];           /* 0: not given; >= 3 */
+    double base_radius[2];  /* m; 0: not given */
+    double pitch_radius[2]; /* m; 0: not given */
+    double module;          /* m; 0: not given */
+    double pressure_angle;  /* transverse, rad, < 60 deg; default 20 deg */
+    double helix_angle;     /* rad, < 60 deg; default 0 (spur) */
+    int hand;               /* of the driver: +1 right (default), -1 left */
+    double line_of_centres; /* rad, from +x, driver -> driven centre */
+    int driver_rotation;    /* 0: not checked; +1 ccw / -1 cw: must match the train */
+    /* geometry (docs/mesh-stiffness.md): the teeth, angles and hand come from it */
+    const gd_gear_pair_geometry *geometry; /* NULL: none */
+    int stiffness_from_geometry;           /* 1: k(angle) by gd_tvms_compute (needs geometry) */
+    gd_tvms_options tvms_options;          /* for stiffness_from_geometry (defaults) */
+    double stiffness;     /* N/m along the contact normal, > 0; 0: from the tvms table or the
+                             geometry (required otherwise) */
+    double damping;       /* N s/m, >= 0 */
+    gd_coupling coupling; /* default GD_COUPLING_FULL */
+    /* time integration (docs/transient.md) */
+    double damping_per_stiffness;     /* s, >= 0 */
+    double damping_separated;         /* N s/m while the teeth are apart, >= 0 */
+    gd_table_spec tvms;               /* k(driver angle) over one mesh period; needs teeth */
+    double tvms_phase;                /* rad */
+    gd_table_spec transmission_error; /* e(driver angle), m, over one mesh period */
+    int backlash;                     /* 1: a gap on each flank */
+    double backlash_gap;              /* m, >= 0 */
+    double coast_stiffness_ratio;     /* > 0, default 1 */
+    gd_loc loc;
+    const char *path; /* NULL: "meshes[<index>]" */
+} gd_mesh_spec;
+/* Defaults: all zero, pressure_angle 20 deg, hand +1, coupling full, tvms_options from
+ * gd_tvms_options_init, linear table interpolation, coast_stiffness_ratio 1. */
+void gd_mesh_spec_init(gd_mesh_spec *s);
+/* *index: the mesh's index. Errors now: no name; teeth below 3; radii or module not
+ * positive; angles negative or not below 60 deg; the gear size missing or given twice;
+ * a module without teeth; radii and teeth of different ratios; teeth with geometry;
+ * stiffness from geometry without geometry; a tvms or transmission_error table without
+ * the driver's teeth, with fewer than two points, or (tvms) with a value not
+ * positive, or given with stiffness from geometry; no stiffness at all. At finish:
+ * unknown nodes, both gears on one shaft, the geometry invalid (gd_gear_pair_derive,
+ * gd_tvms_compute), a table outside one mesh period, a name already used, a loop of
+ * meshes whose ratios disagree, driver_rotation against the train. With
+ * stiffness_from_geometry the TVMS mean is the linear stiffness. */
+gd_status gd_model_add_mesh(gd_model *m, const gd_mesh_spec *s, int *index, gd_error *err);
+
+/* ---- unbalances and time-integration items ---- */
+
+typedef struct gd_unbalance_spec {
+    const char *name; /* NULL: "unbalance<index + 1>" */
+    const char *node; /* required */
+    double amount;    /* kg m, > 0 */
+    double phase;     /* rad */
+    gd_loc loc;
+    const char *path; /* NULL: "unbalances[<index>]" */
+} gd_unbalance_spec;
+/* Defaults: all zero. */
+void gd_unbalance_spec_init(gd_unbalance_spec *s);
+/* *index: the unbalance's index. Errors: amount not positive; at finish an unknown
+ * node. */
+gd_status gd_model_add_unbalance(gd_model *m, const gd_unbalance_spec *s, int *index,
+                                 gd_error *err);
+
+/* An applied load. law.kind says which law; law.table is ignored: a
+ * GD_LOAD_TABLE_ANGLE law takes its values over one revolution from `table`. */
+typedef struct gd_excitation_spec {
+    const char *name; /* NULL: "load<index + 1>" */
+    const char *node; /* required */
+    gd_dof dof;       /* default GD_RZ */
+    gd_load_law law;  /* default constant 0 */
+    gd_table_spec table;
+    gd_loc loc;
+    const char *path; /* NULL: "excitations.loads[<index>]" */
+} gd_excitation_spec;
+/* Defaults: all zero, dof GD_RZ, a constant law, linear table interpolation. */
+void gd_excitation_spec_init(gd_excitation_spec *s);
+/* *index: the load's index. Errors: an unknown DOF or law, a harmonic frequency (or
+ * order) not positive, a table law without two points; at finish an unknown node or a
+ * table gd_table_new refuses (over one revolution, 2 pi). */
+gd_status gd_model_add_excitation(gd_model *m, const gd_excitation_spec *s, int *index,
+                                  gd_error *err);
+/* Whether the unbalances act in time integration (default 1). */
+gd_status gd_model_set_excite_unbalances(gd_model *m, int on, gd_error *err);
+
+/* A prescribed DOF motion; a GD_PRESCRIBED_TABLE law takes its values (total value vs
+ * time) from `table` (default interpolation there: spline). */
+typedef struct gd_prescribed_spec {
+    const char *node;      /* required */
+    gd_dof dof;            /* default GD_RZ; each node DOF at most once */
+    gd_prescribed_law law; /* default nominal */
+    gd_table_spec table;
+    gd_loc loc;
+    const char *path; /* NULL: "prescribed[<index>]" */
+} gd_prescribed_spec;
+/* Defaults: all zero, dof GD_RZ, the nominal motion, spline table interpolation. */
+void gd_prescribed_spec_init(gd_prescribed_spec *s);
+/* *index: the prescription's index. Errors: an unknown DOF or kind, a harmonic
+ * frequency not positive, a table law without two points; at finish an unknown node,
+ * a DOF prescribed twice, a table gd_table_new refuses. */
+gd_status gd_model_add_prescribed(gd_model *m, const gd_prescribed_spec *s, int *index,
+                                  gd_error *err);
+
+/* Valve trains on a camshaft node: a lift law (lift.kind GD_LIFT_TABLE takes s(angle)
+ * over one revolution from `lift_table`, default spline; GD_LIFT_HARMONIC uses
+ * lift.harmonic) and a mass and phase per valve. */
+typedef struct gd_cam_spec {
+    const char *name;     /* NULL: "cam<index + 1>" */
+    const char *camshaft; /* node, required */
+    gd_lift_law lift;     /* default: a table */
+    gd_table_spec lift_table;
+    int include_acceleration;               /* default 1 */
+    int nvalves;                            /* >= 1 */
+    const double *valve_mass, *valve_phase; /* kg (> 0), rad */
+    gd_loc loc;
+    const char *path; /* NULL: "cam_torques[<index>]" */
+} gd_cam_spec;
+/* Defaults: all zero, a table lift law (spline), include_acceleration 1. */
+void gd_cam_spec_init(gd_cam_spec *s);
+/* *index: the cam's index. Errors: no lift table (or more than GD_HARMONICS_MAX
+ * harmonics), no valves, a valve mass not positive; at finish an unknown node or a
+ * lift table gd_table_new refuses (over one revolution). valve_phase may be NULL
+ * (all 0). */
+gd_status gd_model_add_cam(gd_model *m, const gd_cam_spec *s, int *index, gd_error *err);
+
+/* ---- globals ---- */
+
+/* The active node DOFs (GD_DOF_BIT mask, not 0; default GD_DOFS_ALL). */
+gd_status gd_model_set_dofs(gd_model *m, unsigned dof_mask, gd_error *err);
+/* The shaft whose speed is the reference speed (default: the first shaft) and its
+ * sense: rotation +1 turns it about +z (ccw, default), -1 about -z (cw). loc locates
+ * errors about an unknown name. */
+gd_status gd_model_set_reference_shaft(gd_model *m, const char *shaft, int rotation, gd_loc loc,
+                                       gd_error *err);
+/* The reference speed, rad/s, >= 0 (default 0). */
+gd_status gd_model_set_speed(gd_model *m, double speed, gd_error *err);
+
+#endif
