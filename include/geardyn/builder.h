@@ -29,6 +29,7 @@
  * built concurrently (the builder has no global state). */
 #ifndef GEARDYN_BUILDER_H
 #define GEARDYN_BUILDER_H
+#include "geardyn/export.h"
 #include "geardyn/error.h"
 #include "geardyn/laws.h"
 #include "geardyn/mesh_stiffness.h"
@@ -36,16 +37,16 @@
 
 /* An empty model. name stands for the file in error messages (e.g. "rig.c"; NULL:
  * ""). *out is NULL on failure. */
-gd_status gd_model_new(const char *name, gd_model **out, gd_error *err);
+GD_API gd_status gd_model_new(const char *name, gd_model **out, gd_error *err);
 
 /* Discretises the shafts into elements and nodes, resolves every name, propagates the
  * shaft speeds along the gear train from the reference shaft, sizes and stiffens the
  * meshes from their geometry (TVMS) and validates the whole. On failure the model
  * stays unfinished and can only be freed: adds and another finish are refused. */
-gd_status gd_model_finish(gd_model *m, gd_error *err);
+GD_API gd_status gd_model_finish(gd_model *m, gd_error *err);
 
 /* 1 once gd_model_finish has succeeded (and for models read from files). */
-int gd_model_is_finished(const gd_model *m);
+GD_API int gd_model_is_finished(const gd_model *m);
 
 /* ---- materials ---- */
 
@@ -62,10 +63,11 @@ typedef struct gd_material_spec {
     const char *path;
 } gd_material_spec;
 /* Defaults: all zero. */
-void gd_material_spec_init(gd_material_spec *s);
+GD_API void gd_material_spec_init(gd_material_spec *s);
 /* *index: the material's index. Errors: a missing, too long or repeated name; density
  * or E not positive; G negative; a Poisson's ratio outside (-1, 0.5). */
-gd_status gd_model_add_material(gd_model *m, const gd_material_spec *s, int *index, gd_error *err);
+GD_API gd_status gd_model_add_material(gd_model *m, const gd_material_spec *s, int *index,
+                                       gd_error *err);
 
 /* ---- shafts and nodes ---- */
 
@@ -107,11 +109,11 @@ typedef struct gd_shaft_spec {
     const char *path;       /* NULL: "shafts[<index>]" */
 } gd_shaft_spec;
 /* Defaults: all zero (NULL names: the shaft's material; elements: the shaft's rule). */
-void gd_section_spec_init(gd_section_spec *s);
+GD_API void gd_section_spec_init(gd_section_spec *s);
 /* Defaults: all zero. */
-void gd_station_spec_init(gd_station_spec *s);
+GD_API void gd_station_spec_init(gd_station_spec *s);
 /* Defaults: all zero, speed_ratio 1 (used only with has_speed_ratio). */
-void gd_shaft_spec_init(gd_shaft_spec *s);
+GD_API void gd_shaft_spec_init(gd_shaft_spec *s);
 /* *index: the shaft's index. Errors now: a too long name; neither sections nor
  * stations; both elements_per_section and max_element_length; a section's length or
  * outer diameter not positive, its bore not below its outer diameter, no material on
@@ -119,7 +121,7 @@ void gd_shaft_spec_init(gd_shaft_spec *s);
  * the shaft. At finish: an unknown material, a name repeating another shaft's, two
  * named stations at one position, a node name used twice, a speed_ratio the meshes
  * contradict. */
-gd_status gd_model_add_shaft(gd_model *m, const gd_shaft_spec *s, int *index, gd_error *err);
+GD_API gd_status gd_model_add_shaft(gd_model *m, const gd_shaft_spec *s, int *index, gd_error *err);
 
 /* One more named station on a shaft added before. */
 typedef struct gd_node_spec {
@@ -130,10 +132,10 @@ typedef struct gd_node_spec {
     const char *path; /* NULL: "shafts[<shaft>].nodes[<station index>]" */
 } gd_node_spec;
 /* Defaults: all zero. */
-void gd_node_spec_init(gd_node_spec *s);
+GD_API void gd_node_spec_init(gd_node_spec *s);
 /* *index: the station's index among the shaft's stations (the node's index in the
  * model is known after finish: gd_model_find_node). */
-gd_status gd_model_add_node(gd_model *m, const gd_node_spec *s, int *index, gd_error *err);
+GD_API gd_status gd_model_add_node(gd_model *m, const gd_node_spec *s, int *index, gd_error *err);
 
 /* ---- bodies and supports ---- */
 
@@ -151,11 +153,11 @@ typedef struct gd_disk_spec {
     const char *path; /* NULL: "disks[<index>]" */
 } gd_disk_spec;
 /* Defaults: all zero, diametral_inertia -1 (a thin disk). */
-void gd_disk_spec_init(gd_disk_spec *s);
+GD_API void gd_disk_spec_init(gd_disk_spec *s);
 /* *index: the disk's index. Errors now: negative mass or polar inertia, no mass and no
  * inertia; with geometry: diameters or width not positive, the bore not below the outer
  * diameter, no material. At finish: an unknown node or material, a repeated name. */
-gd_status gd_model_add_disk(gd_model *m, const gd_disk_spec *s, int *index, gd_error *err);
+GD_API gd_status gd_model_add_disk(gd_model *m, const gd_disk_spec *s, int *index, gd_error *err);
 
 /* A linear bearing between a node and ground (or a second node): constant
  * coefficients, or coefficients interpolated in the speed of the node's shaft; an
@@ -175,13 +177,14 @@ typedef struct gd_bearing_spec {
     const char *path; /* NULL: "bearings[<index>]" */
 } gd_bearing_spec;
 /* Defaults: all zero (no coefficients, to ground, no table, no SFD). */
-void gd_bearing_spec_init(gd_bearing_spec *s);
+GD_API void gd_bearing_spec_init(gd_bearing_spec *s);
 /* *index: the bearing's index. Errors now: a negative direct coefficient; a table of
  * one row, with constant coefficients too, or with speeds not increasing; an SFD whose
  * dimensions are not positive, max_eccentricity not below 1 or clearance not below
  * the radius; nothing at all (no coefficient, table or SFD). At finish: an unknown
  * node, a node joined to itself, a name already used. */
-gd_status gd_model_add_bearing(gd_model *m, const gd_bearing_spec *s, int *index, gd_error *err);
+GD_API gd_status gd_model_add_bearing(gd_model *m, const gd_bearing_spec *s, int *index,
+                                      gd_error *err);
 
 /* A spring and damper on one DOF, to ground or to a second node. */
 typedef struct gd_spring_spec {
@@ -194,11 +197,12 @@ typedef struct gd_spring_spec {
     const char *path; /* NULL: "springs[<index>]" */
 } gd_spring_spec;
 /* Defaults: all zero, dof GD_RZ. */
-void gd_spring_spec_init(gd_spring_spec *s);
+GD_API void gd_spring_spec_init(gd_spring_spec *s);
 /* *index: the spring's index. Errors now: an unknown DOF, negative values, neither
  * stiffness nor damping. At finish: an unknown node, a node joined to itself, a name
  * already used. */
-gd_status gd_model_add_spring(gd_model *m, const gd_spring_spec *s, int *index, gd_error *err);
+GD_API gd_status gd_model_add_spring(gd_model *m, const gd_spring_spec *s, int *index,
+                                     gd_error *err);
 
 /* ---- gear meshes ---- */
 
@@ -246,7 +250,7 @@ typedef struct gd_mesh_spec {
 } gd_mesh_spec;
 /* Defaults: all zero, pressure_angle 20 deg, hand +1, coupling full, tvms_options from
  * gd_tvms_options_init, linear table interpolation, coast_stiffness_ratio 1. */
-void gd_mesh_spec_init(gd_mesh_spec *s);
+GD_API void gd_mesh_spec_init(gd_mesh_spec *s);
 /* *index: the mesh's index. Errors now: no name; teeth below 3; radii or module not
  * positive; angles negative or not below 60 deg; the gear size missing or given twice;
  * a module without teeth; radii and teeth of different ratios; teeth with geometry;
@@ -257,7 +261,7 @@ void gd_mesh_spec_init(gd_mesh_spec *s);
  * gd_tvms_compute), a table outside one mesh period, a name already used, a loop of
  * meshes whose ratios disagree, driver_rotation against the train. With
  * stiffness_from_geometry the TVMS mean is the linear stiffness. */
-gd_status gd_model_add_mesh(gd_model *m, const gd_mesh_spec *s, int *index, gd_error *err);
+GD_API gd_status gd_model_add_mesh(gd_model *m, const gd_mesh_spec *s, int *index, gd_error *err);
 
 /* ---- unbalances and time-integration items ---- */
 
@@ -270,11 +274,11 @@ typedef struct gd_unbalance_spec {
     const char *path; /* NULL: "unbalances[<index>]" */
 } gd_unbalance_spec;
 /* Defaults: all zero. */
-void gd_unbalance_spec_init(gd_unbalance_spec *s);
+GD_API void gd_unbalance_spec_init(gd_unbalance_spec *s);
 /* *index: the unbalance's index. Errors: amount not positive; at finish an unknown
  * node. */
-gd_status gd_model_add_unbalance(gd_model *m, const gd_unbalance_spec *s, int *index,
-                                 gd_error *err);
+GD_API gd_status gd_model_add_unbalance(gd_model *m, const gd_unbalance_spec *s, int *index,
+                                        gd_error *err);
 
 /* An applied load. law.kind says which law; law.table is ignored: a
  * GD_LOAD_TABLE_ANGLE law takes its values over one revolution from `table`. */
@@ -288,14 +292,14 @@ typedef struct gd_excitation_spec {
     const char *path; /* NULL: "excitations.loads[<index>]" */
 } gd_excitation_spec;
 /* Defaults: all zero, dof GD_RZ, a constant law, linear table interpolation. */
-void gd_excitation_spec_init(gd_excitation_spec *s);
+GD_API void gd_excitation_spec_init(gd_excitation_spec *s);
 /* *index: the load's index. Errors: an unknown DOF or law, a harmonic frequency (or
  * order) not positive, a table law without two points; at finish an unknown node or a
  * table gd_table_new refuses (over one revolution, 2 pi). */
-gd_status gd_model_add_excitation(gd_model *m, const gd_excitation_spec *s, int *index,
-                                  gd_error *err);
+GD_API gd_status gd_model_add_excitation(gd_model *m, const gd_excitation_spec *s, int *index,
+                                         gd_error *err);
 /* Whether the unbalances act in time integration (default 1). */
-gd_status gd_model_set_excite_unbalances(gd_model *m, int on, gd_error *err);
+GD_API gd_status gd_model_set_excite_unbalances(gd_model *m, int on, gd_error *err);
 
 /* A prescribed DOF motion; a GD_PRESCRIBED_TABLE law takes its values (total value vs
  * time) from `table` (default interpolation there: spline). */
@@ -308,12 +312,12 @@ typedef struct gd_prescribed_spec {
     const char *path; /* NULL: "prescribed[<index>]" */
 } gd_prescribed_spec;
 /* Defaults: all zero, dof GD_RZ, the nominal motion, spline table interpolation. */
-void gd_prescribed_spec_init(gd_prescribed_spec *s);
+GD_API void gd_prescribed_spec_init(gd_prescribed_spec *s);
 /* *index: the prescription's index. Errors: an unknown DOF or kind, a harmonic
  * frequency not positive, a table law without two points; at finish an unknown node,
  * a DOF prescribed twice, a table gd_table_new refuses. */
-gd_status gd_model_add_prescribed(gd_model *m, const gd_prescribed_spec *s, int *index,
-                                  gd_error *err);
+GD_API gd_status gd_model_add_prescribed(gd_model *m, const gd_prescribed_spec *s, int *index,
+                                         gd_error *err);
 
 /* Valve trains on a camshaft node: a lift law (lift.kind GD_LIFT_TABLE takes s(angle)
  * over one revolution from `lift_table`, default spline; GD_LIFT_HARMONIC uses
@@ -330,23 +334,23 @@ typedef struct gd_cam_spec {
     const char *path; /* NULL: "cam_torques[<index>]" */
 } gd_cam_spec;
 /* Defaults: all zero, a table lift law (spline), include_acceleration 1. */
-void gd_cam_spec_init(gd_cam_spec *s);
+GD_API void gd_cam_spec_init(gd_cam_spec *s);
 /* *index: the cam's index. Errors: no lift table (or more than GD_HARMONICS_MAX
  * harmonics), no valves, a valve mass not positive; at finish an unknown node or a
  * lift table gd_table_new refuses (over one revolution). valve_phase may be NULL
  * (all 0). */
-gd_status gd_model_add_cam(gd_model *m, const gd_cam_spec *s, int *index, gd_error *err);
+GD_API gd_status gd_model_add_cam(gd_model *m, const gd_cam_spec *s, int *index, gd_error *err);
 
 /* ---- globals ---- */
 
 /* The active node DOFs (GD_DOF_BIT mask, not 0; default GD_DOFS_ALL). */
-gd_status gd_model_set_dofs(gd_model *m, unsigned dof_mask, gd_error *err);
+GD_API gd_status gd_model_set_dofs(gd_model *m, unsigned dof_mask, gd_error *err);
 /* The shaft whose speed is the reference speed (default: the first shaft) and its
  * sense: rotation +1 turns it about +z (ccw, default), -1 about -z (cw). loc locates
  * errors about an unknown name. */
-gd_status gd_model_set_reference_shaft(gd_model *m, const char *shaft, int rotation, gd_loc loc,
-                                       gd_error *err);
+GD_API gd_status gd_model_set_reference_shaft(gd_model *m, const char *shaft, int rotation,
+                                              gd_loc loc, gd_error *err);
 /* The reference speed, rad/s, >= 0 (default 0). */
-gd_status gd_model_set_speed(gd_model *m, double speed, gd_error *err);
+GD_API gd_status gd_model_set_speed(gd_model *m, double speed, gd_error *err);
 
 #endif

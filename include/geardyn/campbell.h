@@ -10,6 +10,7 @@
  */
 #ifndef GEARDYN_CAMPBELL_H
 #define GEARDYN_CAMPBELL_H
+#include "geardyn/export.h"
 #include "geardyn/modal.h"
 
 typedef enum gd_eig_method {
@@ -77,12 +78,13 @@ typedef struct gd_campbell_result {
     int sparse;                  /* the sparse eigensolver was used */
 } gd_campbell_result;
 
-void gd_campbell_options_init(gd_campbell_options *opt);
-gd_status gd_campbell(const gd_system *sys, const gd_campbell_options *opt,
-                      gd_campbell_result **out, gd_error *err);
-void gd_campbell_free(gd_campbell_result *r);
+GD_API void gd_campbell_options_init(gd_campbell_options *opt);
+GD_API gd_status gd_campbell(const gd_system *sys, const gd_campbell_options *opt,
+                             gd_campbell_result **out, gd_error *err);
+GD_API void gd_campbell_free(gd_campbell_result *r);
 
 /* Complex MAC |a^H b|^2 / (|a|^2 |b|^2) of two shapes of n entries. */
-double gd_mac(const double *are, const double *aim, const double *bre, const double *bim, int n);
+GD_API double gd_mac(const double *are, const double *aim, const double *bre, const double *bim,
+                     int n);
 
 #endif

@@ -15,6 +15,7 @@
  * the caller's buffers), so one type may be used from any number of threads. */
 #ifndef GEARDYN_ELEMENTS_H
 #define GEARDYN_ELEMENTS_H
+#include "geardyn/export.h"
 #include "geardyn/model.h"
 
 /* Motion types for modal strain energy. Shaft bending counts as lateral; tilt is the
@@ -26,7 +27,7 @@ typedef enum gd_motion {
     GD_MOTION_TILT,
     GD_NMOTIONS
 } gd_motion;
-extern const char *const gd_motion_names[GD_NMOTIONS];
+GD_API extern const char *const gd_motion_names[GD_NMOTIONS];
 
 /* Components that store strain energy, in registry order: shafts, bearings, springs,
  * meshes (disks store none). */
@@ -88,11 +89,11 @@ typedef struct gd_element_type {
 } gd_element_type;
 
 /* The registry, in assembly order (shaft, disk, bearing, spring, mesh). */
-extern const gd_element_type *const gd_element_types[];
-extern const int gd_nelement_types;
-extern const gd_element_type gd_element_shaft, gd_element_disk, gd_element_bearing,
+GD_API extern const gd_element_type *const gd_element_types[];
+GD_API extern const int gd_nelement_types;
+GD_API extern const gd_element_type gd_element_shaft, gd_element_disk, gd_element_bearing,
     gd_element_spring, gd_element_mesh;
 /* The kind named name, or NULL. */
-const gd_element_type *gd_element_type_find(const char *name);
+GD_API const gd_element_type *gd_element_type_find(const char *name);
 
 #endif

@@ -7,6 +7,7 @@
  */
 #ifndef GEARDYN_ERROR_H
 #define GEARDYN_ERROR_H
+#include "geardyn/export.h"
 #include <stddef.h>
 
 typedef enum gd_status {
@@ -26,20 +27,20 @@ typedef struct gd_error {
     char hint[320];    /* what to do about it */
 } gd_error;
 
-void gd_error_clear(gd_error *err);
+GD_API void gd_error_clear(gd_error *err);
 
 /* Fills err (if not NULL) and returns status. printf-style message. */
-gd_status gd_error_set(gd_error *err, gd_status status, const char *file, int line, int column,
-                       const char *field, const char *hint, const char *fmt, ...)
+GD_API gd_status gd_error_set(gd_error *err, gd_status status, const char *file, int line,
+                              int column, const char *field, const char *hint, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 8, 9)))
 #endif
     ;
 
 /* "file:line:col: field: message\n  hint: ..." into buf; returns chars written. */
-size_t gd_error_format(const gd_error *err, char *buf, size_t size);
+GD_API size_t gd_error_format(const gd_error *err, char *buf, size_t size);
 
 /* Short lower-case name of a status, e.g. "input error". */
-const char *gd_status_name(gd_status status);
+GD_API const char *gd_status_name(gd_status status);
 
 #endif

@@ -11,6 +11,7 @@
  */
 #ifndef GEARDYN_FRF_H
 #define GEARDYN_FRF_H
+#include "geardyn/export.h"
 #include "geardyn/modal.h"
 #include "geardyn/probe.h"
 
@@ -19,7 +20,7 @@ typedef enum gd_frf_quantity {
     GD_FRF_MOBILITY,   /* velocity / force */
     GD_FRF_ACCELERANCE /* acceleration / force */
 } gd_frf_quantity;
-extern const char *const gd_frf_quantity_names[3];
+GD_API extern const char *const gd_frf_quantity_names[3];
 
 typedef enum gd_frf_method { GD_FRF_DIRECT, GD_FRF_MODAL } gd_frf_method;
 
@@ -48,10 +49,10 @@ typedef struct gd_frf_result {
     int nrigid;
 } gd_frf_result;
 
-void gd_frf_options_init(gd_frf_options *opt);
-gd_status gd_frf(const gd_system *sys, const gd_frf_options *opt, gd_frf_result **out,
-                 gd_error *err);
-void gd_frf_free(gd_frf_result *r);
+GD_API void gd_frf_options_init(gd_frf_options *opt);
+GD_API gd_status gd_frf(const gd_system *sys, const gd_frf_options *opt, gd_frf_result **out,
+                        gd_error *err);
+GD_API void gd_frf_free(gd_frf_result *r);
 
 /* Directional FRFs from the complex coordinates p = x + i y of the output node and
  * g = f_x + i f_y of the input node: forward H_f = (H_xx + H_yy + i (H_yx - H_xy)) / 2
@@ -60,7 +61,7 @@ void gd_frf_free(gd_frf_result *r);
  * 2.5-2.8; Lee's dFRFs). Directions are about +z. r holds the four H of inputs
  * (x, y) and outputs (x, y) of a gd_frf run with inputs {x_in, y_in} and outputs
  * {x_out, y_out}; fwd/bwd get nfreq complex values each (re, im). */
-void gd_frf_directional(const gd_frf_result *r, int out_x, int out_y, double *fwd_re,
-                        double *fwd_im, double *bwd_re, double *bwd_im);
+GD_API void gd_frf_directional(const gd_frf_result *r, int out_x, int out_y, double *fwd_re,
+                               double *fwd_im, double *bwd_re, double *bwd_im);
 
 #endif

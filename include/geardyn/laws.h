@@ -18,6 +18,7 @@
  */
 #ifndef GEARDYN_NONLINEAR_H
 #define GEARDYN_NONLINEAR_H
+#include "geardyn/export.h"
 #include "geardyn/error.h"
 #include "geardyn/mesh_stiffness.h"
 
@@ -43,14 +44,14 @@ typedef struct gd_table {
 } gd_table;
 
 /* n >= 2 (spline: n >= 3). Copies x and y. */
-gd_status gd_table_new(int n, const double *x, const double *y, double period, gd_interp interp,
-                       gd_table **out, gd_error *err);
+GD_API gd_status gd_table_new(int n, const double *x, const double *y, double period,
+                              gd_interp interp, gd_table **out, gd_error *err);
 /* Periodic table of a mesh stiffness result: k(driver angle) over its first cycle. */
-gd_status gd_table_from_tvms(const gd_tvms_result *r, gd_interp interp, gd_table **out,
-                             gd_error *err);
-void gd_table_free(gd_table *t);
+GD_API gd_status gd_table_from_tvms(const gd_tvms_result *r, gd_interp interp, gd_table **out,
+                                    gd_error *err);
+GD_API void gd_table_free(gd_table *t);
 /* y(x); dy and d2y (may be NULL) receive y'(x) and y''(x). */
-double gd_table_eval(const gd_table *t, double x, double *dy, double *d2y);
+GD_API double gd_table_eval(const gd_table *t, double x, double *dy, double *d2y);
 
 /* ---------------------------------------------------------------- harmonic series */
 
@@ -63,7 +64,7 @@ typedef struct gd_harmonic {
     double cos_amp[GD_HARMONICS_MAX], sin_amp[GD_HARMONICS_MAX];
 } gd_harmonic;
 
-double gd_harmonic_eval(const gd_harmonic *h, double x, double *dy, double *d2y);
+GD_API double gd_harmonic_eval(const gd_harmonic *h, double x, double *dy, double *d2y);
 
 /* ---------------------------------------------------------------- backlash mesh */
 
@@ -84,19 +85,20 @@ typedef struct gd_backlash_params {
 } gd_backlash_params;
 
 /* Flank from the deformation d (m) along the contact normal. */
-gd_contact gd_backlash_state(double d, double b);
+GD_API gd_contact gd_backlash_state(double d, double b);
 /* Mesh force F (N, positive pressing the drive flanks) for a given state, 003 Eqs. 2-4:
  *   drive:      F = k_drive (d - b) + c_drive d'
  *   separated:  F = c_free d'
  *   coast:      F = k_coast (d + b) + c_coast d'
  * The state is an argument so an integrator can keep it frozen between located events;
  * each branch is continued smoothly beyond its interval. */
-double gd_backlash_force(const gd_backlash_params *p, gd_contact state, double d, double dd);
+GD_API double gd_backlash_force(const gd_backlash_params *p, gd_contact state, double d, double dd);
 /* The same with the state from d (written to *state if not NULL). */
-double gd_backlash_force_auto(const gd_backlash_params *p, double d, double dd, gd_contact *state);
+GD_API double gd_backlash_force_auto(const gd_backlash_params *p, double d, double dd,
+                                     gd_contact *state);
 /* Mesh damping: constant plus proportional to the instantaneous stiffness,
  * c = c_const + c_per_k * k (c_per_k in s). */
-double gd_mesh_damping(double c_const, double c_per_k, double k);
+GD_API double gd_mesh_damping(double c_const, double c_per_k, double k);
 
 /* ---------------------------------------------------------------- squeeze film damper */
 
@@ -121,22 +123,22 @@ typedef struct gd_sfd_params {
  * docs/transient.md): eta = 3 / lambda^2 (1 - tanh(lambda) / lambda), lambda = L/D, the
  * exact ratio of the finite-length to the short-bearing force of the uncavitated film
  * at small eccentricity with the hyperbolic-cosine axial profile. eta -> 1 as L/D -> 0. */
-double gd_sfd_correction_factor(double l_over_d);
+GD_API double gd_sfd_correction_factor(double l_over_d);
 
 /* Short-bearing film integrals over theta in [t1, t2] with h = c (1 + eps cos theta):
  * j[0] = int cos^2/(1+eps cos)^3, j[1] = int sin cos/(...)^3, j[2] = int sin^2/(...)^3,
  * closed forms through the eccentric anomaly (exact for any interval, 0 <= eps < 1). */
-void gd_sfd_integrals(double eps, double t1, double t2, double j[3]);
+GD_API void gd_sfd_integrals(double eps, double t1, double t2, double j[3]);
 
 /* Damper forces on the journal in the radial direction (along the eccentricity, from the
  * housing centre to the journal centre) and the tangential direction (+90 deg from it),
  * from e (m), e' (m/s) and the whirl speed phi' (rad/s). The journal does not spin. */
-void gd_sfd_force_polar(const gd_sfd_params *p, double e, double edot, double phidot, double *fr,
-                        double *ft);
+GD_API void gd_sfd_force_polar(const gd_sfd_params *p, double e, double edot, double phidot,
+                               double *fr, double *ft);
 /* Damper forces (N) on the journal at position (x, y) and velocity (vx, vy) relative to
  * the housing centre. */
-void gd_sfd_force(const gd_sfd_params *p, double x, double y, double vx, double vy, double *fx,
-                  double *fy);
+GD_API void gd_sfd_force(const gd_sfd_params *p, double x, double y, double vx, double vy,
+                         double *fx, double *fy);
 
 /* ---------------------------------------------------------------- cam inertial torque */
 
@@ -150,13 +152,13 @@ typedef struct gd_lift_law {
 } gd_lift_law;
 
 /* s, s' = ds/dtheta, s'' at cam angle theta. */
-double gd_lift_eval(const gd_lift_law *law, double theta, double *ds, double *d2s);
+GD_API double gd_lift_eval(const gd_lift_law *law, double theta, double *ds, double *d2s);
 /* 003_... Eq. 10: torque (N m) the camshaft supplies to one valve train of equivalent
  * mass m_eq (kg) at camshaft angle theta, speed W and acceleration Wdot:
  *   T = m_eq s'(theta - phase) [s''(theta - phase) W^2 + s'(theta - phase) Wdot]
  * It acts on the camshaft against its rotation. */
-double gd_cam_torque(const gd_lift_law *law, double m_eq, double phase, double theta, double w,
-                     double wdot);
+GD_API double gd_cam_torque(const gd_lift_law *law, double m_eq, double phase, double theta,
+                            double w, double wdot);
 
 /* ---------------------------------------------------------------- torque / force laws */
 
@@ -175,7 +177,7 @@ typedef struct gd_load_law {
 } gd_load_law;
 
 /* Value (N or N m) at time t and total DOF angle (rad; nominal rotation plus torsion). */
-double gd_load_eval(const gd_load_law *law, double t, double angle);
+GD_API double gd_load_eval(const gd_load_law *law, double t, double angle);
 
 /* ---------------------------------------------------------------- prescribed motion */
 
@@ -196,7 +198,7 @@ typedef struct gd_prescribed_law {
 
 /* q, q', q'' of the DOF's perturbation coordinate at time t, where nominal_rate is the
  * DOF's nominal speed (speed ratio x reference speed for rz, 0 otherwise). */
-void gd_prescribed_eval(const gd_prescribed_law *law, double t, double nominal_rate, double *q,
-                        double *qd, double *qdd);
+GD_API void gd_prescribed_eval(const gd_prescribed_law *law, double t, double nominal_rate,
+                               double *q, double *qd, double *qdd);
 
 #endif

@@ -18,6 +18,7 @@
  *    both are the same. */
 #ifndef GEARDYN_MESH_STIFFNESS_H
 #define GEARDYN_MESH_STIFFNESS_H
+#include "geardyn/export.h"
 #include <stddef.h>
 
 #include "geardyn/error.h"
@@ -51,7 +52,7 @@ typedef struct gd_gear_pair_geometry {
 } gd_gear_pair_geometry;
 
 /* Fills g with the defaults above (teeth = 0, steel E = 2.06e11 Pa, poisson 0.3). */
-void gd_gear_pair_geometry_init(gd_gear_pair_geometry *g);
+GD_API void gd_gear_pair_geometry_init(gd_gear_pair_geometry *g);
 
 /* Quantities derived from the geometry. Contact positions s are measured along the
  * transverse line of action from N1, the tangent point on the driver's base circle. */
@@ -78,8 +79,8 @@ typedef struct gd_gear_pair_derived {
 
 /* Derives and validates. On bad geometry returns GD_EINPUT with err->field set to the
  * offending key relative to the geometry map (e.g. "driver.profile_shift"). */
-gd_status gd_gear_pair_derive(const gd_gear_pair_geometry *g, gd_gear_pair_derived *d,
-                              gd_error *err);
+GD_API gd_status gd_gear_pair_derive(const gd_gear_pair_geometry *g, gd_gear_pair_derived *d,
+                                     gd_error *err);
 
 typedef enum gd_tvms_method {
     GD_TVMS_ENERGY = 0,  /* potential energy + slicing (default) */
@@ -90,9 +91,9 @@ typedef enum gd_tvms_method {
 } gd_tvms_method;
 
 /* "energy", "iso6336", "single-pair-law", "square"; NULL if out of range. */
-const char *gd_tvms_method_name(gd_tvms_method m);
+GD_API const char *gd_tvms_method_name(gd_tvms_method m);
 /* Returns 0 and sets *m when name is known, else -1. */
-int gd_tvms_method_parse(const char *name, gd_tvms_method *m);
+GD_API int gd_tvms_method_parse(const char *name, gd_tvms_method *m);
 
 typedef struct gd_tvms_options {
     gd_tvms_method method;
@@ -104,7 +105,7 @@ typedef struct gd_tvms_options {
     double quad_tol;     /* relative tolerance of the energy integrals, default 1e-10 */
 } gd_tvms_options;
 
-void gd_tvms_options_init(gd_tvms_options *opt);
+GD_API void gd_tvms_options_init(gd_tvms_options *opt);
 
 typedef struct gd_tvms_result {
     gd_tvms_method method;
@@ -133,11 +134,11 @@ typedef struct gd_tvms_result {
     int slices;                      /* slices used */
 } gd_tvms_result;
 
-gd_status gd_tvms_compute(const gd_gear_pair_geometry *g, const gd_tvms_options *opt,
-                          gd_tvms_result **out, gd_error *err);
-void gd_tvms_free(gd_tvms_result *r);
+GD_API gd_status gd_tvms_compute(const gd_gear_pair_geometry *g, const gd_tvms_options *opt,
+                                 gd_tvms_result **out, gd_error *err);
+GD_API void gd_tvms_free(gd_tvms_result *r);
 
 /* k at any driver angle (rad), by periodic linear interpolation of the first cycle. */
-double gd_tvms_eval(const gd_tvms_result *r, double driver_angle);
+GD_API double gd_tvms_eval(const gd_tvms_result *r, double driver_angle);
 
 #endif

@@ -9,6 +9,7 @@
  */
 #ifndef GEARDYN_MODAL_H
 #define GEARDYN_MODAL_H
+#include "geardyn/export.h"
 #include "geardyn/system.h"
 
 typedef enum gd_whirl {
@@ -17,7 +18,7 @@ typedef enum gd_whirl {
     GD_WHIRL_BACKWARD, /* every orbit turns against its shaft */
     GD_WHIRL_MIXED
 } gd_whirl;
-extern const char *const gd_whirl_names[4];
+GD_API extern const char *const gd_whirl_names[4];
 
 typedef enum gd_modal_kind {
     GD_MODAL_AUTO,     /* damped if the model has damping or gyroscopics at speed */
@@ -58,16 +59,16 @@ typedef struct gd_modal_result {
     double *energy_by_component; /* ncomponents x nmodes, column-major: fractions */
 } gd_modal_result;
 
-void gd_modal_options_init(gd_modal_options *opt);
-gd_status gd_modal_solve(const gd_system *sys, const gd_modal_options *opt, gd_modal_result **out,
-                         gd_error *err);
-void gd_modal_free(gd_modal_result *res);
+GD_API void gd_modal_options_init(gd_modal_options *opt);
+GD_API gd_status gd_modal_solve(const gd_system *sys, const gd_modal_options *opt,
+                                gd_modal_result **out, gd_error *err);
+GD_API void gd_modal_free(gd_modal_result *res);
 
 /* Lowest opt->nmodes (> 0) modes by shift-invert Krylov-Schur on the sparse
  * first-order system, real shift sigma = -shift (rad/s; <= 0: automatic). Same result
  * layout as gd_modal_solve, right vectors only (left_re/left_im are NULL). Needs mass
  * on every DOF (sys->nmassless == 0); otherwise GD_EINPUT: use gd_modal_solve. */
-gd_status gd_modal_solve_sparse(const gd_system *sys, const gd_modal_options *opt, double shift,
-                                gd_modal_result **out, gd_error *err);
+GD_API gd_status gd_modal_solve_sparse(const gd_system *sys, const gd_modal_options *opt,
+                                       double shift, gd_modal_result **out, gd_error *err);
 
 #endif

@@ -4,6 +4,7 @@
  * finished gd_model. All quantities are SI. */
 #ifndef GEARDYN_MODEL_H
 #define GEARDYN_MODEL_H
+#include "geardyn/export.h"
 #include "geardyn/error.h"
 #include "geardyn/material.h"
 #include "geardyn/laws.h"
@@ -17,17 +18,17 @@
 typedef enum gd_dof { GD_X, GD_Y, GD_Z, GD_RX, GD_RY, GD_RZ, GD_NODE_DOFS } gd_dof;
 #define GD_DOF_BIT(d) (1u << (d))
 #define GD_DOFS_ALL 0x3fu
-extern const char *const gd_dof_names[GD_NODE_DOFS]; /* "x", "y", "z", "rx", "ry", "rz" */
+GD_API extern const char *const gd_dof_names[GD_NODE_DOFS]; /* "x", "y", "z", "rx", "ry", "rz" */
 
 typedef enum gd_coupling {
     GD_COUPLING_TORSIONAL,         /* rz only */
     GD_COUPLING_LATERAL_TORSIONAL, /* x, y, rz */
     GD_COUPLING_FULL,              /* all six */
 } gd_coupling;
-extern const char *const gd_coupling_names[3];
+GD_API extern const char *const gd_coupling_names[3];
 /* The node DOFs a coupling level keeps: torsional {rz}; lateral-torsional drops the
  * axial DOF z; full keeps all. (Shaft bending needs the tilts, so they stay.) */
-unsigned gd_coupling_dof_mask(gd_coupling level);
+GD_API unsigned gd_coupling_dof_mask(gd_coupling level);
 
 typedef struct gd_loc {
     int line, column; /* where in the model file, for errors found later */
@@ -215,22 +216,23 @@ typedef struct gd_model {
     struct gd_model_build *build;
 } gd_model;
 
-gd_status gd_model_load(const char *path, gd_model **out, gd_error *err);
+GD_API gd_status gd_model_load(const char *path, gd_model **out, gd_error *err);
 /* name stands in for the file name in messages. */
-gd_status gd_model_load_string(const char *yaml, const char *name, gd_model **out, gd_error *err);
-void gd_model_free(gd_model *model);
+GD_API gd_status gd_model_load_string(const char *yaml, const char *name, gd_model **out,
+                                      gd_error *err);
+GD_API void gd_model_free(gd_model *model);
 
 /* Overrides every mesh's coupling level and restricts the active DOFs to the level's
  * (as `--coupling` does on the command line). */
-void gd_model_set_coupling(gd_model *model, gd_coupling level);
+GD_API void gd_model_set_coupling(gd_model *model, gd_coupling level);
 
 /* The damping the linear analyses use for a mesh: its constant damping plus the part
  * proportional to stiffness at the mean stiffness (c + c_per_k * k_mean). */
-double gd_mesh_linear_damping(const gd_mesh *mesh);
+GD_API double gd_mesh_linear_damping(const gd_mesh *mesh);
 
-int gd_model_find_node(const gd_model *model, const char *name);
-int gd_model_find_shaft(const gd_model *model, const char *name);
-int gd_model_find_mesh(const gd_model *model, const char *name);
+GD_API int gd_model_find_node(const gd_model *model, const char *name);
+GD_API int gd_model_find_shaft(const gd_model *model, const char *name);
+GD_API int gd_model_find_mesh(const gd_model *model, const char *name);
 
 /* Mass, polar and diametral inertia of a shaft with everything on its nodes. */
 typedef struct gd_shaft_summary {
@@ -238,6 +240,6 @@ typedef struct gd_shaft_summary {
     double length;
     int nelements, nnodes;
 } gd_shaft_summary;
-void gd_model_shaft_summary(const gd_model *model, int shaft, gd_shaft_summary *out);
+GD_API void gd_model_shaft_summary(const gd_model *model, int shaft, gd_shaft_summary *out);
 
 #endif

@@ -13,6 +13,7 @@
  * (free it with gd_model_free) and the structs it passes in. */
 #ifndef GEARDYN_MODEL_FILE_H
 #define GEARDYN_MODEL_FILE_H
+#include "geardyn/export.h"
 #include <stddef.h>
 
 #include "geardyn/error.h"
@@ -25,7 +26,7 @@ typedef struct gd_load_options {
 } gd_load_options;
 
 /* No overrides. */
-void gd_load_options_init(gd_load_options *opt);
+GD_API void gd_load_options_init(gd_load_options *opt);
 
 /* As gd_model_load / gd_model_load_string (model.h), with opt's overrides applied to the
  * document first (opt may be NULL: none). The model's own validation then checks the new
@@ -33,10 +34,11 @@ void gd_load_options_init(gd_load_options *opt);
  * "--set PATH=VALUE" and err->line 0. A path that matches nothing, or a malformed
  * assignment, is GD_EINPUT with the same file, the field the part of the path that
  * failed, and the keys or names available there as the hint. */
-gd_status gd_model_load_opts(const char *path, const gd_load_options *opt, gd_model **out,
-                             gd_error *err);
-gd_status gd_model_load_string_opts(const char *yaml, const char *name, const gd_load_options *opt,
-                                    gd_model **out, gd_error *err);
+GD_API gd_status gd_model_load_opts(const char *path, const gd_load_options *opt, gd_model **out,
+                                    gd_error *err);
+GD_API gd_status gd_model_load_string_opts(const char *yaml, const char *name,
+                                           const gd_load_options *opt, gd_model **out,
+                                           gd_error *err);
 
 /* Reads the gear pair of one mesh entry of the file at path (a model file or a
  * stand-alone file with a `meshes:` list), after applying opt's overrides (opt may be
@@ -47,8 +49,9 @@ gd_status gd_model_load_string_opts(const char *yaml, const char *name, const gd
  * mesh's name, or its path "meshes[i]" when it has none, truncated to size. Errors are
  * located in the file; a mesh_name that names no mesh has the field "--mesh" and the
  * known names as the hint. */
-gd_status gd_gear_pair_load(const char *path, const char *mesh_name, const gd_load_options *opt,
-                            gd_gear_pair_geometry *geom, gd_tvms_options *tvms, char *mesh_name_out,
-                            size_t size, gd_error *err);
+GD_API gd_status gd_gear_pair_load(const char *path, const char *mesh_name,
+                                   const gd_load_options *opt, gd_gear_pair_geometry *geom,
+                                   gd_tvms_options *tvms, char *mesh_name_out, size_t size,
+                                   gd_error *err);
 
 #endif

@@ -7,6 +7,7 @@
  */
 #ifndef GEARDYN_PROBE_H
 #define GEARDYN_PROBE_H
+#include "geardyn/export.h"
 #include "geardyn/system.h"
 
 /* What a response is measured on. */
@@ -32,6 +33,7 @@ typedef struct gd_functional {
     int is_force; /* a force, not a displacement */
 } gd_functional;
 /* The functional of a probe at reference speed W (bearing tables are evaluated there). */
-void gd_probe_functional(const gd_system *sys, const gd_probe *p, double speed, gd_functional *out);
+GD_API void gd_probe_functional(const gd_system *sys, const gd_probe *p, double speed,
+                                gd_functional *out);
 
 #endif

@@ -4,6 +4,7 @@
  * leaves the struct zeroed. Reading one matrix from several threads is safe. */
 #ifndef GEARDYN_SPARSE_H
 #define GEARDYN_SPARSE_H
+#include "geardyn/export.h"
 
 /* Compressed sparse columns, square n x n, row indices sorted within each column. */
 typedef struct gd_csc {
@@ -13,6 +14,6 @@ typedef struct gd_csc {
     double *values;
 } gd_csc;
 
-void gd_csc_free(gd_csc *a);
+GD_API void gd_csc_free(gd_csc *a);
 
 #endif

@@ -16,13 +16,14 @@
  */
 #ifndef GEARDYN_SPECTRUM_H
 #define GEARDYN_SPECTRUM_H
+#include "geardyn/export.h"
 #include "geardyn/error.h"
 
 typedef enum gd_window {
     GD_WINDOW_HANN = 0, /* w_j = 0.5 (1 - cos(2 pi j / n)), periodic Hann (default) */
     GD_WINDOW_RECT = 1  /* no window */
 } gd_window;
-extern const char *const gd_window_names[2]; /* "hann", "rect" */
+GD_API extern const char *const gd_window_names[2]; /* "hann", "rect" */
 
 typedef struct gd_spectrum {
     int nsamples;
@@ -35,9 +36,9 @@ typedef struct gd_spectrum {
 } gd_spectrum;
 
 /* nsamples >= 4, dt > 0, finite samples. */
-gd_status gd_spectrum_compute(const double *x, int nsamples, double dt, gd_window window,
-                              gd_spectrum **out, gd_error *err);
-void gd_spectrum_free(gd_spectrum *s);
+GD_API gd_status gd_spectrum_compute(const double *x, int nsamples, double dt, gd_window window,
+                                     gd_spectrum **out, gd_error *err);
+GD_API void gd_spectrum_free(gd_spectrum *s);
 
 /* A spectral peak, refined between bins from the two largest bins (exact for a single
  * tone of the window's shape: Hann dk = (2a - 1) / (a + 1), rectangular dk = a / (1 + a),
@@ -50,9 +51,9 @@ typedef struct gd_spectrum_peak {
 
 /* The largest local maxima of the amplitude (bins 1 .. n-2, at least min_rel times the
  * largest amplitude), at most max of them, in decreasing amplitude. Returns how many. */
-int gd_spectrum_peaks(const gd_spectrum *s, double min_rel, int max, gd_spectrum_peak *out);
+GD_API int gd_spectrum_peaks(const gd_spectrum *s, double min_rel, int max, gd_spectrum_peak *out);
 
 /* Largest amplitude over bins with f_lo <= f <= f_hi (0 if none); *f_at its frequency. */
-double gd_spectrum_band_max(const gd_spectrum *s, double f_lo, double f_hi, double *f_at);
+GD_API double gd_spectrum_band_max(const gd_spectrum *s, double f_lo, double f_hi, double *f_at);
 
 #endif

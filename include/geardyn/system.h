@@ -13,6 +13,7 @@
  * called from several threads at once. */
 #ifndef GEARDYN_SYSTEM_H
 #define GEARDYN_SYSTEM_H
+#include "geardyn/export.h"
 #include "geardyn/elements.h"
 #include "geardyn/error.h"
 #include "geardyn/model.h"
@@ -50,17 +51,17 @@ typedef struct gd_system {
     double *instance_K; /* storage of the instances' K */
 } gd_system;
 
-gd_status gd_system_build(const gd_model *model, gd_system **out, gd_error *err);
-void gd_system_free(gd_system *sys);
+GD_API gd_status gd_system_build(const gd_model *model, gd_system **out, gd_error *err);
+GD_API void gd_system_free(gd_system *sys);
 
 /* Active DOF index of (node, dof), or -1. */
-int gd_system_dof(const gd_system *sys, int node, gd_dof dof);
+GD_API int gd_system_dof(const gd_system *sys, int node, gd_dof dof);
 /* "node.dof" label of DOF i, e.g. "pinion.rz". */
-void gd_system_dof_label(const gd_system *sys, int i, char *buf, int size);
+GD_API void gd_system_dof_label(const gd_system *sys, int i, char *buf, int size);
 
 /* Dense column-major n x n matrices at reference speed W: M, the total damping
  * D = C + C_b(W) + W G, and K + K_b(W). Any pointer may be NULL. */
-void gd_system_dense(const gd_system *sys, double speed, double *M, double *D, double *K);
+GD_API void gd_system_dense(const gd_system *sys, double speed, double *M, double *D, double *K);
 
 /* The system's matrices at reference speed W, each on its own sparse pattern: M; K with
  * the speed-table bearings at W (K + K_b(W)); C with them (C + C_b(W)), without the
@@ -70,11 +71,12 @@ void gd_system_dense(const gd_system *sys, double speed, double *M, double *D, d
  * output is filled and owned by the caller, who frees it with gd_csc_free; any output
  * may be NULL. speed must be finite (GD_EINPUT otherwise). On failure the outputs are
  * left empty (zeroed). */
-gd_status gd_system_matrices(const gd_system *sys, double speed, gd_csc *M, gd_csc *K, gd_csc *C,
-                             gd_csc *G, gd_error *err);
+GD_API gd_status gd_system_matrices(const gd_system *sys, double speed, gd_csc *M, gd_csc *K,
+                                    gd_csc *C, gd_csc *G, gd_error *err);
 
 /* Component index -> kind, index within kind and name. */
-gd_component_kind gd_system_component(const gd_system *sys, int c, int *index, const char **name);
+GD_API gd_component_kind gd_system_component(const gd_system *sys, int c, int *index,
+                                             const char **name);
 
 /* Mesh deformation vector of mesh k: d = sum a[j] q[dof[j]] over n entries (n <= 12). */
 typedef struct gd_mesh_vector {
@@ -82,12 +84,12 @@ typedef struct gd_mesh_vector {
     int dof[12];
     double a[12];
 } gd_mesh_vector;
-void gd_system_mesh_vector(const gd_system *sys, int mesh, gd_mesh_vector *out);
+GD_API void gd_system_mesh_vector(const gd_system *sys, int mesh, gd_mesh_vector *out);
 
 /* Modal strain energy of displacement u (complex: re, im; im may be NULL) at speed W,
  * split by motion type (by_motion[GD_NMOTIONS]) and by component (by_component
  * [ncomponents], may be NULL). Returns the total. */
-double gd_system_strain_energy(const gd_system *sys, double speed, const double *re,
-                               const double *im, double *by_motion, double *by_component);
+GD_API double gd_system_strain_energy(const gd_system *sys, double speed, const double *re,
+                                      const double *im, double *by_motion, double *by_component);
 
 #endif

@@ -28,6 +28,7 @@
  */
 #ifndef GEARDYN_TRANSIENT_H
 #define GEARDYN_TRANSIENT_H
+#include "geardyn/export.h"
 #include "geardyn/error.h"
 #include "geardyn/laws.h"
 #include "geardyn/system.h"
@@ -52,7 +53,7 @@ typedef struct gd_tr_mesh {
 } gd_tr_mesh;
 /* Defaults from the model: constant model stiffness and damping, coast_scale 1, no
  * backlash, no STE. */
-void gd_tr_mesh_init(const gd_system *sys, int mesh, gd_tr_mesh *m);
+GD_API void gd_tr_mesh_init(const gd_system *sys, int mesh, gd_tr_mesh *m);
 
 /* Squeeze film damper between a journal node and ground (or a housing node), acting on
  * the x, y DOFs. */
@@ -102,17 +103,17 @@ typedef struct gd_transient_spec {
 typedef struct gd_transient gd_transient;
 
 /* Builds the problem at reference speed W (rad/s). */
-gd_status gd_transient_new(const gd_system *sys, const gd_transient_spec *spec, double speed,
-                           gd_transient **out, gd_error *err);
-void gd_transient_free(gd_transient *tr);
+GD_API gd_status gd_transient_new(const gd_system *sys, const gd_transient_spec *spec, double speed,
+                                  gd_transient **out, gd_error *err);
+GD_API void gd_transient_free(gd_transient *tr);
 
 /* The state layout: y = [q_f; q_f'] over the nfree free DOFs (in increasing DOF order). */
-int gd_transient_nstates(const gd_transient *tr);
+GD_API int gd_transient_nstates(const gd_transient *tr);
 /* The right-hand side y' = f(t, y) with the current contact states (for benchmarks and
  * tests; returns 0). */
-int gd_transient_rhs(gd_transient *tr, double t, const double *y, double *ydot);
+GD_API int gd_transient_rhs(gd_transient *tr, double t, const double *y, double *ydot);
 /* Sets every backlash mesh's contact state from the deformation in y at time t. */
-void gd_transient_set_contacts(gd_transient *tr, double t, const double *y);
+GD_API void gd_transient_set_contacts(gd_transient *tr, double t, const double *y);
 
 typedef enum gd_tr_method { GD_TR_BDF = 0, GD_TR_ADAMS = 1 } gd_tr_method;
 typedef enum gd_tr_init {
@@ -143,7 +144,7 @@ typedef struct gd_transient_options {
     void (*progress)(double t, double t_start, double t_end, void *data);
     void *progress_data;
 } gd_transient_options;
-void gd_transient_options_init(gd_transient_options *opt);
+GD_API void gd_transient_options_init(gd_transient_options *opt);
 
 typedef enum gd_tr_record_kind {
     GD_REC_DISP = 0,        /* q[index] (m or rad, perturbation) */
@@ -195,9 +196,9 @@ typedef struct gd_transient_result {
     double cpu_seconds;
 } gd_transient_result;
 
-gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
-                           const gd_tr_record *records, int nrecords, gd_transient_result **out,
-                           gd_error *err);
-void gd_transient_result_free(gd_transient_result *r);
+GD_API gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
+                                  const gd_tr_record *records, int nrecords,
+                                  gd_transient_result **out, gd_error *err);
+GD_API void gd_transient_result_free(gd_transient_result *r);
 
 #endif

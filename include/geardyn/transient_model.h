@@ -14,6 +14,7 @@
  */
 #ifndef GEARDYN_TRANSIENT_MODEL_H
 #define GEARDYN_TRANSIENT_MODEL_H
+#include "geardyn/export.h"
 #include "geardyn/system.h"
 #include "geardyn/transient.h"
 
@@ -36,12 +37,13 @@ typedef struct gd_transient_model {
  * C. Errors (GD_EINPUT, naming the model file, line and entry): an excitation,
  * prescription or cam on a DOF that is not active, a damper on a node without x and y,
  * a cam without a lift table, a table law without its table. */
-gd_status gd_transient_model_build(const gd_system *sys, gd_transient_model **out, gd_error *err);
-void gd_transient_model_free(gd_transient_model *tm);
+GD_API gd_status gd_transient_model_build(const gd_system *sys, gd_transient_model **out,
+                                          gd_error *err);
+GD_API void gd_transient_model_free(gd_transient_model *tm);
 
 /* Index in tm->spec.meshes of model mesh `mesh`, or -1 when it stays linear. */
-int gd_transient_model_mesh_index(const gd_transient_model *tm, int mesh);
+GD_API int gd_transient_model_mesh_index(const gd_transient_model *tm, int mesh);
 /* Index in tm->spec.sfds of the damper of model bearing `bearing`, or -1. */
-int gd_transient_model_sfd_index(const gd_transient_model *tm, int bearing);
+GD_API int gd_transient_model_sfd_index(const gd_transient_model *tm, int bearing);
 
 #endif

@@ -8,6 +8,7 @@
  */
 #ifndef GEARDYN_UNBALANCE_H
 #define GEARDYN_UNBALANCE_H
+#include "geardyn/export.h"
 #include "geardyn/modal.h"
 #include "geardyn/probe.h"
 
@@ -44,13 +45,13 @@ typedef struct gd_unbalance_result {
     int *singular;    /* nspeeds */
 } gd_unbalance_result;
 
-void gd_unbalance_options_init(gd_unbalance_options *opt);
-gd_status gd_unbalance_response(const gd_system *sys, const gd_unbalance_options *opt,
-                                gd_unbalance_result **out, gd_error *err);
-void gd_unbalance_free(gd_unbalance_result *r);
+GD_API void gd_unbalance_options_init(gd_unbalance_options *opt);
+GD_API gd_status gd_unbalance_response(const gd_system *sys, const gd_unbalance_options *opt,
+                                       gd_unbalance_result **out, gd_error *err);
+GD_API void gd_unbalance_free(gd_unbalance_result *r);
 
 /* Orbit of a node from the complex amplitudes X, Y of its x and y motion; sense is the
  * sign of its shaft's speed ratio (+1 turns about +z). */
-void gd_orbit_from(double xr, double xi, double yr, double yi, double sense, gd_orbit *o);
+GD_API void gd_orbit_from(double xr, double xi, double yr, double yi, double sense, gd_orbit *o);
 
 #endif

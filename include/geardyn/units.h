@@ -7,6 +7,7 @@
  */
 #ifndef GEARDYN_UNITS_H
 #define GEARDYN_UNITS_H
+#include "geardyn/export.h"
 #include <stddef.h>
 
 typedef enum gd_qty {
@@ -32,9 +33,10 @@ typedef enum gd_qty {
 
 /* Parses text as a quantity of kind qty into SI. Returns 0 on success; otherwise
  * non-zero with a one-line reason in why. */
-int gd_parse_quantity(const char *text, gd_qty qty, double *value, char *why, size_t why_size);
+GD_API int gd_parse_quantity(const char *text, gd_qty qty, double *value, char *why,
+                             size_t why_size);
 
 /* The SI unit written for a kind, e.g. "N/m". */
-const char *gd_qty_si_unit(gd_qty qty);
+GD_API const char *gd_qty_si_unit(gd_qty qty);
 
 #endif

@@ -13,6 +13,8 @@
 #include "geardyn/frf.h"
 #include "system/system_impl.h"
 
+const char *const gd_frf_quantity_names[3] = {"receptance", "mobility", "accelerance"};
+
 void gd_frf_options_init(gd_frf_options *opt)
 {
     memset(opt, 0, sizeof *opt);

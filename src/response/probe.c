@@ -6,8 +6,6 @@
 
 #include "geardyn/probe.h"
 
-const char *const gd_frf_quantity_names[3] = {"receptance", "mobility", "accelerance"};
-
 /* The element kind whose force a probe kind measures. */
 static const gd_element_type *probe_element(gd_probe_kind kind)
 {
