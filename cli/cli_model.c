@@ -54,9 +54,10 @@ int gd_cli_load(const char *path, const gd_cli_sets *sets, const char *coupling,
 
 int gd_cli_parse_speed(const char *cmd, const char *text, double *out)
 {
-    char why[200];
-    if (gd_parse_quantity(text, GD_QTY_ANGULAR_SPEED, out, why, sizeof why)) {
-        gd_cli_usage_error(cmd, "--speed: %s (e.g. --speed 3000rpm or --speed 314.16)", why);
+    gd_error why;
+    if (gd_parse_quantity(text, GD_QTY_ANGULAR_SPEED, out, &why)) {
+        gd_cli_usage_error(cmd, "--speed: %s (e.g. --speed 3000rpm or --speed 314.16)",
+                           why.message);
         return 1;
     }
     if (*out < 0) {

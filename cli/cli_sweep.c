@@ -12,12 +12,13 @@
 static int parse_speedlike(const char *cmd, const char *opt, const char *text, const char *unit,
                            double *out)
 {
-    char buf[256], why[200];
+    char buf[256];
+    gd_error why;
     int w = snprintf(buf, sizeof buf, "%s %s", text, unit ? unit : "");
     if (w < 0 || (size_t)w >= sizeof buf)
         return gd_cli_usage_error(cmd, "%s: '%.40s...' is too long", opt, text);
-    if (gd_parse_quantity(buf, GD_QTY_ANGULAR_SPEED, out, why, sizeof why))
-        return gd_cli_usage_error(cmd, "%s: '%s': %s", opt, text, why);
+    if (gd_parse_quantity(buf, GD_QTY_ANGULAR_SPEED, out, &why))
+        return gd_cli_usage_error(cmd, "%s: '%s': %s", opt, text, why.message);
     return 0;
 }
 

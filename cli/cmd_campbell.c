@@ -300,10 +300,10 @@ int gd_cmd_campbell(int argc, char **argv)
         return gd_cli_usage_error(
             cmd, "--orders: '%s' is not a comma-separated list of positive numbers", orders);
     opt.orders = ord;
-    char why[200];
-    if (shift && gd_parse_quantity(shift, GD_QTY_ANGULAR_SPEED, &opt.shift, why, sizeof why)) {
+    gd_error why;
+    if (shift && gd_parse_quantity(shift, GD_QTY_ANGULAR_SPEED, &opt.shift, &why)) {
         free(ord);
-        return gd_cli_usage_error(cmd, "--shift: %s (e.g. --shift 10Hz)", why);
+        return gd_cli_usage_error(cmd, "--shift: %s (e.g. --shift 10Hz)", why.message);
     }
     if (shift && !(opt.shift > 0)) {
         free(ord);

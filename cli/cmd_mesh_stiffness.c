@@ -64,7 +64,7 @@ static int parse_args(int argc, char **argv, ms_args *a)
             a->mesh = optarg;
             break;
         case 'M':
-            if (gd_tvms_method_parse(optarg, &a->method))
+            if (gd_tvms_method_parse(optarg, &a->method, NULL))
                 return gd_cli_usage_error(cmd,
                                           "--method: unknown method '%s' (use energy, iso6336, "
                                           "single-pair-law or square)",
@@ -87,9 +87,10 @@ static int parse_args(int argc, char **argv, ms_args *a)
                     cmd, "--slices: '%s' is not a whole number from 1 to 100000", optarg);
             break;
         case 'b': {
-            char why[200];
-            if (gd_parse_quantity(optarg, GD_QTY_ANGLE, &a->helix, why, sizeof why))
-                return gd_cli_usage_error(cmd, "--helix-angle: %s (write e.g. \"15 deg\")", why);
+            gd_error why;
+            if (gd_parse_quantity(optarg, GD_QTY_ANGLE, &a->helix, &why))
+                return gd_cli_usage_error(cmd, "--helix-angle: %s (write e.g. \"15 deg\")",
+                                          why.message);
             a->has_helix = 1;
             break;
         }

@@ -90,9 +90,9 @@ static void progress_cb(double t, double t0, double t1, void *data)
 
 static int parse_time(const char *opt, const char *text, double *out)
 {
-    char why[200];
-    if (gd_parse_quantity(text, GD_QTY_TIME, out, why, sizeof why))
-        return gd_cli_usage_error(CMD, "%s: %s (e.g. %s 12ms)", opt, why, opt);
+    gd_error why;
+    if (gd_parse_quantity(text, GD_QTY_TIME, out, &why))
+        return gd_cli_usage_error(CMD, "%s: %s (e.g. %s 12ms)", opt, why.message, opt);
     if (!isfinite(*out)) return gd_cli_usage_error(CMD, "%s: give a finite time", opt);
     return 0;
 }

@@ -6,7 +6,10 @@
  *
  * GCC and Clang: default visibility, so the symbol stays exported when the library is
  * compiled with -fvisibility=hidden. Windows: dllexport while building the DLL,
- * dllimport when using it. Static consumers: empty. */
+ * dllimport when using it. Static consumers: empty.
+ *
+ * Nothing here allocates or keeps state.
+ */
 #ifndef GEARDYN_EXPORT_H
 #define GEARDYN_EXPORT_H
 

@@ -15,7 +15,12 @@
  *    rigid rotation theta1 of the driver moves the contact by rb1*cos(beta_b)*theta1
  *    along that normal, so the torsional stiffness is k*cos^2(beta_b)*rb1^2; the
  *    transverse-plane stiffness k_t = k*cos^2(beta_b) is also given. For spur gears
- *    both are the same. */
+ *    both are the same.
+ *
+ * Ownership and threads: gd_tvms_compute returns a result the caller frees with
+ * gd_tvms_free; geometry and options are plain value structs. Every function is
+ * reentrant and safe from any number of threads.
+ */
 #ifndef GEARDYN_MESH_STIFFNESS_H
 #define GEARDYN_MESH_STIFFNESS_H
 #include "geardyn/export.h"
@@ -92,8 +97,9 @@ typedef enum gd_tvms_method {
 
 /* "energy", "iso6336", "single-pair-law", "square"; NULL if out of range. */
 GD_API const char *gd_tvms_method_name(gd_tvms_method m);
-/* Returns 0 and sets *m when name is known, else -1. */
-GD_API int gd_tvms_method_parse(const char *name, gd_tvms_method *m);
+/* Sets *m for a known name: GD_OK, or GD_EINPUT naming the known methods (err may be
+ * NULL). */
+GD_API gd_status gd_tvms_method_parse(const char *name, gd_tvms_method *m, gd_error *err);
 
 typedef struct gd_tvms_options {
     gd_tvms_method method;

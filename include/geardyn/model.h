@@ -1,7 +1,15 @@
 /* The model: a typed, validated description of a geared rotor system, read from a
  * YAML file (docs/model-format.md) or built in code (geardyn/builder.h, which the
  * file reader uses too). Validation lives in the builder; every later layer trusts a
- * finished gd_model. All quantities are SI. */
+ * finished gd_model. All quantities are SI.
+ *
+ * Ownership and threads: a model is made by gd_model_load / gd_model_load_string
+ * (model_file.h has the variants with overrides) or gd_model_new + gd_model_finish
+ * (builder.h), and freed by gd_model_free; it owns every array and table it points to.
+ * A finished model is read-only for the rest of the library: systems, analyses and
+ * several threads may read one model at once. gd_model_set_coupling changes it: call it
+ * before building a system from it.
+ */
 #ifndef GEARDYN_MODEL_H
 #define GEARDYN_MODEL_H
 #include "geardyn/export.h"

@@ -110,8 +110,8 @@ GD_API void gd_transient_free(gd_transient *tr);
 /* The state layout: y = [q_f; q_f'] over the nfree free DOFs (in increasing DOF order). */
 GD_API int gd_transient_nstates(const gd_transient *tr);
 /* The right-hand side y' = f(t, y) with the current contact states (for benchmarks and
- * tests; returns 0). */
-GD_API int gd_transient_rhs(gd_transient *tr, double t, const double *y, double *ydot);
+ * tests). */
+GD_API void gd_transient_rhs(gd_transient *tr, double t, const double *y, double *ydot);
 /* Sets every backlash mesh's contact state from the deformation in y at time t. */
 GD_API void gd_transient_set_contacts(gd_transient *tr, double t, const double *y);
 

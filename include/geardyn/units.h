@@ -7,6 +7,7 @@
  */
 #ifndef GEARDYN_UNITS_H
 #define GEARDYN_UNITS_H
+#include "geardyn/error.h"
 #include "geardyn/export.h"
 #include <stddef.h>
 
@@ -31,10 +32,9 @@ typedef enum gd_qty {
     GD_QTY_COUNT_
 } gd_qty;
 
-/* Parses text as a quantity of kind qty into SI. Returns 0 on success; otherwise
- * non-zero with a one-line reason in why. */
-GD_API int gd_parse_quantity(const char *text, gd_qty qty, double *value, char *why,
-                             size_t why_size);
+/* Parses text as a quantity of kind qty into SI. Returns GD_OK, or GD_EINPUT with a
+ * one-line reason in err->message (err may be NULL). */
+GD_API gd_status gd_parse_quantity(const char *text, gd_qty qty, double *value, gd_error *err);
 
 /* The SI unit written for a kind, e.g. "N/m". */
 GD_API const char *gd_qty_si_unit(gd_qty qty);

@@ -128,13 +128,8 @@ static int parse_unit_expr(const char *s, double *factor, dims *d, char *why, si
     return 0;
 }
 
-int gd_parse_quantity(const char *text, gd_qty qty, double *value, char *why, size_t why_size)
+static int parse_quantity(const char *text, gd_qty qty, double *value, char *why, size_t why_size)
 {
-    char dummy[8];
-    if (!why) {
-        why = dummy;
-        why_size = sizeof dummy;
-    }
     why[0] = '\0';
     if (!text || qty < 0 || qty >= GD_QTY_COUNT_) {
         snprintf(why, why_size, "no value");
@@ -183,4 +178,11 @@ int gd_parse_quantity(const char *text, gd_qty qty, double *value, char *why, si
     }
     *value = x * f;
     return 0;
+}
+
+gd_status gd_parse_quantity(const char *text, gd_qty qty, double *value, gd_error *err)
+{
+    char why[200];
+    if (!parse_quantity(text, qty, value, why, sizeof why)) return GD_OK;
+    return gd_error_set(err, GD_EINPUT, "", 0, 0, "", "", "%s", why);
 }

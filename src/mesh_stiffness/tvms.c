@@ -16,14 +16,16 @@ const char *gd_tvms_method_name(gd_tvms_method m)
     return (int)m >= 0 && m < GD_TVMS_METHOD_COUNT_ ? METHOD_NAMES[m] : NULL;
 }
 
-int gd_tvms_method_parse(const char *name, gd_tvms_method *m)
+gd_status gd_tvms_method_parse(const char *name, gd_tvms_method *m, gd_error *err)
 {
     for (int i = 0; i < GD_TVMS_METHOD_COUNT_; i++)
         if (name && strcmp(name, METHOD_NAMES[i]) == 0) {
             *m = (gd_tvms_method)i;
-            return 0;
+            return GD_OK;
         }
-    return -1;
+    return gd_error_set(err, GD_EINPUT, "", 0, 0, "method",
+                        "use energy, iso6336, single-pair-law or square", "unknown method '%s'",
+                        name ? name : "");
 }
 
 void gd_tvms_options_init(gd_tvms_options *opt)

@@ -174,12 +174,13 @@ gd_status gd_yread_node_qty(gd_yreader *r, const gd_ynode *n, const char *path, 
                         "write a number, optionally with a unit, e.g. 0.25 or \"25 mm\"",
                         "expected a number, found %s", n ? gd_ykind_name(n->kind) : "nothing");
     double v;
-    char why[200], hint[200];
-    if (gd_parse_quantity(n->text, qty, &v, why, sizeof why)) {
+    char hint[200];
+    gd_error why;
+    if (gd_parse_quantity(n->text, qty, &v, &why)) {
         snprintf(hint, sizeof hint,
                  "write a number in SI (%s) or a number with a unit, e.g. \"%s\"",
                  gd_qty_si_unit(qty), qty == GD_QTY_ANGLE ? "20 deg" : "1.5 mm");
-        return gd_yfail(r, n, path, hint, "%s", why);
+        return gd_yfail(r, n, path, hint, "%s", why.message);
     }
     if ((flags & GD_YPOS) && !(v > 0))
         return gd_yfail(r, n, path, "give a value greater than zero", "must be positive (got %s)",

@@ -185,7 +185,7 @@ static void small_solve(int k, double *A, double *b)
     }
 }
 
-int gd_transient_rhs(gd_transient *tr, double t, const double *y, double *ydot)
+void gd_transient_rhs(gd_transient *tr, double t, const double *y, double *ydot)
 {
     const int nf = tr->nf;
     gd_tr_fill(tr, t, y, tr->q, tr->v, tr->acc);
@@ -215,7 +215,6 @@ int gd_transient_rhs(gd_transient *tr, double t, const double *y, double *ydot)
         }
     }
     memcpy(ydot, y + nf, (size_t)nf * sizeof *ydot);
-    return 0;
 }
 
 void gd_tr_roots(gd_transient *tr, double t, const double *y, double *g)

@@ -25,7 +25,8 @@ void gd_transient_options_init(gd_transient_options *opt)
 
 static int cv_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void *ud)
 {
-    return gd_transient_rhs(ud, t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+    gd_transient_rhs(ud, t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+    return 0;
 }
 
 static int cv_root(sunrealtype t, N_Vector y, sunrealtype *g, void *ud)

@@ -4,8 +4,8 @@
 static double q(const char *s, gd_qty k)
 {
     double v = NAN;
-    char why[128];
-    if (gd_parse_quantity(s, k, &v, why, sizeof why)) return NAN;
+    gd_error why;
+    if (gd_parse_quantity(s, k, &v, &why)) return NAN;
     return v;
 }
 
@@ -39,17 +39,17 @@ TEST(units_convert_to_si)
 TEST(wrong_dimensions_and_garbage_are_rejected)
 {
     double v;
-    char why[128];
-    CHECK(gd_parse_quantity("20 mm", GD_QTY_ANGLE, &v, why, sizeof why) != 0);
-    CHECK(strstr(why, "rad") != NULL);
-    CHECK(gd_parse_quantity("3 N/m", GD_QTY_DAMPING, &v, why, sizeof why) != 0);
-    CHECK(gd_parse_quantity("abc", GD_QTY_LENGTH, &v, why, sizeof why) != 0);
-    CHECK(gd_parse_quantity("3 furlongs", GD_QTY_LENGTH, &v, why, sizeof why) != 0);
-    CHECK(strstr(why, "furlongs") != NULL);
-    CHECK(gd_parse_quantity("nan", GD_QTY_LENGTH, &v, why, sizeof why) != 0);
-    CHECK(gd_parse_quantity("inf mm", GD_QTY_LENGTH, &v, why, sizeof why) != 0);
-    CHECK(gd_parse_quantity("1 N/m/s", GD_QTY_DAMPING, &v, why, sizeof why) != 0);
-    CHECK(gd_parse_quantity("1 m^9", GD_QTY_LENGTH, &v, why, sizeof why) != 0);
+    gd_error why;
+    CHECK(gd_parse_quantity("20 mm", GD_QTY_ANGLE, &v, &why) != 0);
+    CHECK(strstr(why.message, "rad") != NULL);
+    CHECK(gd_parse_quantity("3 N/m", GD_QTY_DAMPING, &v, &why) != 0);
+    CHECK(gd_parse_quantity("abc", GD_QTY_LENGTH, &v, &why) != 0);
+    CHECK(gd_parse_quantity("3 furlongs", GD_QTY_LENGTH, &v, &why) != 0);
+    CHECK(strstr(why.message, "furlongs") != NULL);
+    CHECK(gd_parse_quantity("nan", GD_QTY_LENGTH, &v, &why) != 0);
+    CHECK(gd_parse_quantity("inf mm", GD_QTY_LENGTH, &v, &why) != 0);
+    CHECK(gd_parse_quantity("1 N/m/s", GD_QTY_DAMPING, &v, &why) != 0);
+    CHECK(gd_parse_quantity("1 m^9", GD_QTY_LENGTH, &v, &why) != 0);
 }
 
 RUN_TESTS(T(plain_numbers_are_si), T(units_convert_to_si),

@@ -650,8 +650,10 @@ TEST(bad_geometry_errors)
     CHECK_STR(err.field, "driven.teeth");
     /* unknown method */
     gd_tvms_method m;
-    CHECK(gd_tvms_method_parse("fem", &m) == -1);
-    CHECK(gd_tvms_method_parse("single-pair-law", &m) == 0 && m == GD_TVMS_SINGLE_PAIR);
+    gd_error e;
+    CHECK(gd_tvms_method_parse("fem", &m, &e) == GD_EINPUT);
+    CHECK_STR(e.message, "unknown method 'fem'");
+    CHECK(gd_tvms_method_parse("single-pair-law", &m, NULL) == GD_OK && m == GD_TVMS_SINGLE_PAIR);
     pair_004(&g);
     gd_tvms_options o;
     gd_tvms_options_init(&o);
