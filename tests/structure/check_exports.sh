@@ -7,7 +7,9 @@ cd "$(dirname "$0")/../.."
 lib=$1
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-nm -D --defined-only "$lib" | awk '{print $3}' | sort -u > "$tmp/exported"
+# (a sanitizer build adds its own __odr_asan.* / __asan_* symbols: not ours)
+nm -D --defined-only "$lib" | awk '{print $3}' | grep -v '^__odr_asan\.\|^__asan\|^__ubsan' |
+    sort -u > "$tmp/exported"
 # declarations may continue on the next lines (a list of objects): join each GD_API
 # declaration up to its ';'
 awk '/^GD_API/ {d = ""; on = 1} on {d = d " " $0} on && /;/ {print d; on = 0}' \
