@@ -44,6 +44,7 @@ void gd_cli_print_json(FILE *f, const cJSON *item);
 typedef struct gd_outdir {
     char dir[1024];
     char stage[1100];
+    int created; /* dir was made by gd_outdir_begin (removed again on abort) */
     int nfiles;
     char names[16][64];
 } gd_outdir;

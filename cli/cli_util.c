@@ -121,11 +121,17 @@ int gd_outdir_begin(gd_outdir *od, const char *dir, gd_error *err)
         return gd_error_set(err, GD_EIO, dir, 0, 0, "--out",
                             "check that the parent folder exists and is writable",
                             "cannot create folder: %s", strerror(errno));
+    } else {
+        od->created = 1;
     }
     snprintf(od->stage, sizeof od->stage, "%s/.geardyn-stage-XXXXXX", dir);
-    if (!mkdtemp(od->stage))
-        return gd_error_set(err, GD_EIO, dir, 0, 0, "--out", "check that the folder is writable",
-                            "cannot write into folder: %s", strerror(errno));
+    if (!mkdtemp(od->stage)) {
+        gd_error_set(err, GD_EIO, dir, 0, 0, "--out", "check that the folder is writable",
+                     "cannot write into folder: %s", strerror(errno));
+        od->stage[0] = '\0';
+        gd_outdir_abort(od);
+        return GD_EIO;
+    }
     return GD_OK;
 }
 
@@ -183,5 +189,7 @@ void gd_outdir_abort(gd_outdir *od)
         unlink(path);
     }
     if (od->stage[0]) rmdir(od->stage);
+    /* a folder made for this run and left empty goes too: nothing half-written */
+    if (od->created) rmdir(od->dir);
     od->nfiles = 0;
 }
