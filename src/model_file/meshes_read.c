@@ -111,8 +111,9 @@ static gd_status read_mesh_keys(gd_mparser *p, const gd_ynode *mm, const char *q
     return GD_OK;
 }
 
-static gd_status read_mesh(gd_mparser *p, const gd_ynode *mm, const char *q)
+static gd_status read_mesh(gd_mparser *p, const gd_ynode *mm, const char *q, size_t index)
 {
+    (void)index;
     gd_yreader *r = &p->r;
     gd_status st;
     char name[GD_NAME_MAX];
@@ -144,12 +145,5 @@ static gd_status read_mesh(gd_mparser *p, const gd_ynode *mm, const char *q)
 
 gd_status gd_mp_meshes(gd_mparser *p)
 {
-    const gd_ynode *list;
-    gd_status st = gd_mp_get_list(p, p->root, "meshes", "", &list, 0);
-    for (size_t i = 0; !st && list && i < list->n; i++) {
-        char q[64];
-        gd_ypath_index(q, sizeof q, "meshes", i);
-        st = read_mesh(p, list->items[i], q);
-    }
-    return st;
+    return gd_mp_each(p, "meshes", read_mesh);
 }

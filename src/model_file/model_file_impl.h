@@ -23,6 +23,12 @@ gd_status gd_mp_oom(gd_mparser *p);
 /* A list under key; absent gives *list = NULL (an error if required). */
 gd_status gd_mp_get_list(gd_mparser *p, const gd_ynode *map, const char *key, const char *path,
                          const gd_ynode **list, int required);
+/* Reads one item of a top-level list: its node, its path ("bearings[2]") and index. */
+typedef gd_status (*gd_mp_item_reader)(gd_mparser *p, const gd_ynode *item, const char *path,
+                                       size_t index);
+/* Calls read on every item of the optional top-level list `key`, stopping at the first
+ * error. */
+gd_status gd_mp_each(gd_mparser *p, const char *key, gd_mp_item_reader read);
 /* `name` of map into out (fallback when absent and not required). */
 gd_status gd_mp_read_name(gd_mparser *p, const gd_ynode *map, const char *path, char *out,
                           const char *fallback, int required);

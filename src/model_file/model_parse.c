@@ -43,6 +43,18 @@ gd_status gd_mp_get_list(gd_mparser *p, const gd_ynode *map, const char *key, co
     return gd_yexpect(&p->r, *list, GD_Y_SEQ, q);
 }
 
+gd_status gd_mp_each(gd_mparser *p, const char *key, gd_mp_item_reader read)
+{
+    const gd_ynode *list;
+    gd_status st = gd_mp_get_list(p, p->root, key, "", &list, 0);
+    for (size_t i = 0; !st && list && i < list->n; i++) {
+        char q[64];
+        gd_ypath_index(q, sizeof q, key, i);
+        st = read(p, list->items[i], q, i);
+    }
+    return st;
+}
+
 gd_status gd_mp_read_name(gd_mparser *p, const gd_ynode *map, const char *path, char *out,
                           const char *fallback, int required)
 {

@@ -240,8 +240,9 @@ static const char *const PRESCRIBED_KEYS[] = {"node",      "dof",       "motion"
                                               "amplitude", "frequency", "phase",  NULL};
 static const char *const MOTIONS[] = {"nominal", NULL};
 
-static gd_status read_prescribed(gd_mparser *p, const gd_ynode *pm, const char *q)
+static gd_status read_prescribed(gd_mparser *p, const gd_ynode *pm, const char *q, size_t index)
 {
+    (void)index;
     gd_prescribed_spec pr;
     gd_prescribed_spec_init(&pr);
     int has_motion, has_speed, has_amp, has_freq, has_table;
@@ -292,14 +293,7 @@ static gd_status read_prescribed(gd_mparser *p, const gd_ynode *pm, const char *
 
 static gd_status parse_prescribed(gd_mparser *p)
 {
-    const gd_ynode *list;
-    gd_status st = gd_mp_get_list(p, p->root, "prescribed", "", &list, 0);
-    for (size_t i = 0; !st && list && i < list->n; i++) {
-        char q[64];
-        gd_ypath_index(q, sizeof q, "prescribed", i);
-        st = read_prescribed(p, list->items[i], q);
-    }
-    return st;
+    return gd_mp_each(p, "prescribed", read_prescribed);
 }
 
 static const char *const CAM_KEYS[] = {"name",   "camshaft", "lift", "include_acceleration",
@@ -418,14 +412,7 @@ static gd_status read_cam(gd_mparser *p, const gd_ynode *cm, const char *q, size
 
 static gd_status parse_cams(gd_mparser *p)
 {
-    const gd_ynode *list;
-    gd_status st = gd_mp_get_list(p, p->root, "cam_torques", "", &list, 0);
-    for (size_t i = 0; !st && list && i < list->n; i++) {
-        char q[64];
-        gd_ypath_index(q, sizeof q, "cam_torques", i);
-        st = read_cam(p, list->items[i], q, i);
-    }
-    return st;
+    return gd_mp_each(p, "cam_torques", read_cam);
 }
 
 gd_status gd_mp_dynamics(gd_mparser *p)

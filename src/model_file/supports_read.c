@@ -58,14 +58,7 @@ static gd_status read_disk(gd_mparser *p, const gd_ynode *dm, const char *q, siz
 
 gd_status gd_mp_disks(gd_mparser *p)
 {
-    const gd_ynode *list;
-    gd_status st = gd_mp_get_list(p, p->root, "disks", "", &list, 0);
-    for (size_t i = 0; !st && list && i < list->n; i++) {
-        char q[64];
-        gd_ypath_index(q, sizeof q, "disks", i);
-        st = read_disk(p, list->items[i], q, i);
-    }
-    return st;
+    return gd_mp_each(p, "disks", read_disk);
 }
 
 /* ---- bearings ---- */
@@ -198,14 +191,7 @@ static gd_status read_bearing(gd_mparser *p, const gd_ynode *bm, const char *q, 
 
 gd_status gd_mp_bearings(gd_mparser *p)
 {
-    const gd_ynode *list;
-    gd_status st = gd_mp_get_list(p, p->root, "bearings", "", &list, 0);
-    for (size_t i = 0; !st && list && i < list->n; i++) {
-        char q[64];
-        gd_ypath_index(q, sizeof q, "bearings", i);
-        st = read_bearing(p, list->items[i], q, i);
-    }
-    return st;
+    return gd_mp_each(p, "bearings", read_bearing);
 }
 
 /* ---- springs ---- */
@@ -244,14 +230,7 @@ static gd_status read_spring(gd_mparser *p, const gd_ynode *sm, const char *q, s
 
 gd_status gd_mp_springs(gd_mparser *p)
 {
-    const gd_ynode *list;
-    gd_status st = gd_mp_get_list(p, p->root, "springs", "", &list, 0);
-    for (size_t i = 0; !st && list && i < list->n; i++) {
-        char q[64];
-        gd_ypath_index(q, sizeof q, "springs", i);
-        st = read_spring(p, list->items[i], q, i);
-    }
-    return st;
+    return gd_mp_each(p, "springs", read_spring);
 }
 
 /* ---- unbalances ---- */
@@ -292,12 +271,5 @@ static gd_status read_unbalance(gd_mparser *p, const gd_ynode *um, const char *q
 
 gd_status gd_mp_unbalances(gd_mparser *p)
 {
-    const gd_ynode *list;
-    gd_status st = gd_mp_get_list(p, p->root, "unbalances", "", &list, 0);
-    for (size_t i = 0; !st && list && i < list->n; i++) {
-        char q[64];
-        gd_ypath_index(q, sizeof q, "unbalances", i);
-        st = read_unbalance(p, list->items[i], q, i);
-    }
-    return st;
+    return gd_mp_each(p, "unbalances", read_unbalance);
 }
