@@ -57,7 +57,9 @@ void gd_mode_finish(const gd_system *sys, double speed, gd_mode *md, const doubl
     double total = gd_system_strain_energy(sys, speed, re, im, by_motion, by_comp);
     md->dominant_motion = GD_MOTION_LATERAL;
     md->dominant_component = -1;
-    if (md->rigid_body || !(total > 0)) {
+    /* a divergent mode (negative stiffness) has negative strain energy: its shares are
+     * fractions of that negative total like any other */
+    if (md->rigid_body || total == 0 || !isfinite(total)) {
         for (int k = 0; k < GD_NMOTIONS; k++)
             md->energy_share[k] = 0;
         for (int c = 0; c < nc; c++)
@@ -81,13 +83,14 @@ void gd_mode_finish(const gd_system *sys, double speed, gd_mode *md, const doubl
     } else {
         int best = 0;
         for (int k = 0; k < GD_NMOTIONS; k++) {
-            md->energy_share[k] = by_motion[k] / total;
-            if (by_motion[k] > by_motion[best]) best = k;
+            /* + 0.0: no -0 shares when the total is negative */
+            md->energy_share[k] = by_motion[k] / total + 0.0;
+            if (md->energy_share[k] > md->energy_share[best]) best = k;
         }
         md->dominant_motion = (gd_motion)best;
         int bc = 0;
         for (int c = 0; c < nc; c++) {
-            by_comp[c] /= total;
+            by_comp[c] = by_comp[c] / total + 0.0;
             if (by_comp[c] > by_comp[bc]) bc = c;
         }
         md->dominant_component = nc > 0 ? bc : -1;
@@ -95,7 +98,7 @@ void gd_mode_finish(const gd_system *sys, double speed, gd_mode *md, const doubl
     /* whirl is relative to the spin; at rest there is no direction to compare with */
     md->whirl = speed != 0.0 ? mode_whirl(sys, re, im) : GD_WHIRL_NONE;
     /* no lateral motion to speak of: no whirl */
-    if (!md->rigid_body && total > 0 && md->energy_share[GD_MOTION_LATERAL] < 1e-6 &&
+    if (!md->rigid_body && total != 0 && md->energy_share[GD_MOTION_LATERAL] < 1e-6 &&
         md->energy_share[GD_MOTION_TILT] < 1e-6)
         md->whirl = GD_WHIRL_NONE;
 }

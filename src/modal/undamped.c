@@ -64,12 +64,21 @@ gd_status gd_modal_undamped(const gd_system *sys, const gd_modal_options *opt, c
         gd_mode *md = &res->modes[j];
         double lam = w[j], tol = 1e-12 * wscale2;
         md->rigid_body = fabs(lam) <= tol;
-        md->unstable = lam < -tol;
         double om = md->rigid_body ? 0.0 : sqrt(fabs(lam));
-        md->lambda_re = 0;
-        md->lambda_im = om;
-        md->omega_n = md->omega_d = om;
+        md->omega_n = om;
         md->frequency_hz = om / (2.0 * 3.14159265358979323846);
+        if (lam < -tol) {
+            /* negative stiffness: lambda = +-sqrt(-w^2) is real, a divergence, not an
+             * oscillation; reported by its growing root as the state-space solver does */
+            md->unstable = md->overdamped = 1;
+            md->lambda_re = om;
+            md->lambda_im = md->omega_d = 0;
+            md->damping_ratio = -1;
+            md->log_decrement = NAN;
+        } else {
+            md->lambda_re = 0;
+            md->lambda_im = md->omega_d = om;
+        }
         double *re = res->shape_re + (size_t)j * N, *im = res->shape_im + (size_t)j * N;
         memcpy(um, Z + (size_t)j * n, (size_t)n * sizeof *um);
         gd_condense_expand(c, um, re, 0, work);
@@ -77,14 +86,16 @@ gd_status gd_modal_undamped(const gd_system *sys, const gd_modal_options *opt, c
         gd_mode_finish(sys, opt->speed, md, re, im,
                        res->energy_by_component + (size_t)j * sys->ncomponents);
         if (opt->want_left && !md->rigid_body && om > 0) {
-            /* D = 0: v = u / (2 i w u^T M u) satisfies v^T (2 lambda M) u = 1 */
+            /* D = 0: v = u / (2 lambda u^T M u) satisfies v^T (2 lambda M) u = 1; for
+             * lambda = i w that is -i u / (2 w u^T M u), for a real lambda real */
             gd_csc_mul(&sys->M, re, Mu);
             double mr = 0;
             for (int i = 0; i < N; i++)
                 mr += re[i] * Mu[i];
             for (int i = 0; i < N; i++) {
-                res->left_re[i + (size_t)j * N] = 0;
-                res->left_im[i + (size_t)j * N] = -re[i] / (2.0 * om * mr);
+                double v = re[i] / (2.0 * om * mr);
+                res->left_re[i + (size_t)j * N] = md->overdamped ? v : 0;
+                res->left_im[i + (size_t)j * N] = md->overdamped ? 0 : -v;
             }
         }
     }

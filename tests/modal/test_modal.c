@@ -2,6 +2,7 @@
  * FRF = direct inverse, condensation, gyroscopic splitting, rigid-body counts). */
 #include <complex.h>
 #include <lapacke.h>
+#include <math.h>
 #include <stdlib.h>
 
 #include "geardyn/modal.h"
@@ -442,10 +443,62 @@ TEST(energy_shares_sum_to_one)
     fx_free(&f);
 }
 
+/* A real divergence (issue 14): one node of mass 1 on a bearing kxx = kyy = 1e6,
+ * kxy = kyx = 2e6 N/m has K's eigenvalues 3e6 and -1e6, so lambda^2 = -3e6 (an
+ * oscillation at 1732.05 rad/s) and lambda^2 = +1e6 (lambda = +-1000, real). The
+ * undamped solver reports the divergence by its growing root, as the state-space
+ * solver does, with its strain energy shares (negative energy, all lateral, all in the
+ * bearing) and a left vector with v^T (2 lambda M) u = 1. Before, it reported
+ * omega_d = 1000 and zeta = 0, an oscillation that does not exist, with zero shares. */
+TEST(negative_stiffness_is_a_divergence_not_an_oscillation)
+{
+    static const char Y[] =
+        "dofs: [x, y]\n"
+        "shafts: [{name: s, nodes: [{name: n}]}]\n"
+        "disks: [{node: n, mass: 1}]\n"
+        "bearings: [{name: b, node: n, kxx: 1e6, kyy: 1e6, kxy: 2e6, kyx: 2e6}]\n";
+    for (int kind = 0; kind < 2; kind++) {
+        fixture f;
+        gd_modal_options o = opts(0, 0, kind ? GD_MODAL_DAMPED : GD_MODAL_AUTO);
+        REQUIRE(fx_solve(&f, NULL, Y, &o));
+        REQUIRE(f.r->nmodes == (kind ? 3 : 2)); /* damped: one entry per conjugate pair */
+        const gd_mode *grow = NULL, *osc = NULL;
+        for (int k = 0; k < f.r->nmodes; k++) {
+            const gd_mode *md = &f.r->modes[k];
+            if (md->lambda_re > 1) grow = md;
+            if (md->omega_d > 1) osc = md;
+        }
+        REQUIRE(grow && osc);
+        CHECK_REL(grow->lambda_re, 1000, 1e-12);
+        CHECK_ABS(grow->lambda_im, 0, 0);
+        CHECK_ABS(grow->omega_d, 0, 0);
+        CHECK_REL(grow->omega_n, 1000, 1e-12);
+        CHECK_REL(grow->damping_ratio, -1, 1e-12);
+        CHECK(grow->unstable && grow->overdamped && isnan(grow->log_decrement));
+        CHECK_REL(grow->energy_share[GD_MOTION_LATERAL], 1, 1e-12);
+        CHECK(grow->dominant_motion == GD_MOTION_LATERAL);
+        int idx;
+        const char *name = "";
+        CHECK(gd_system_component(f.s, grow->dominant_component, &idx, &name) == GD_COMP_BEARING);
+        CHECK_REL(osc->omega_d, sqrt(3e6), 1e-12);
+        CHECK(!osc->unstable);
+        if (!kind) {
+            /* left vector of the real root: v^T (2 lambda M) u = 1, M = I */
+            int k = (int)(grow - f.r->modes), N = f.s->ndof;
+            double s = 0;
+            for (int i = 0; i < N; i++)
+                s += f.r->left_re[i + k * N] * 2 * 1000 * f.r->shape_re[i + k * N];
+            CHECK_REL(s, 1, 1e-12);
+        }
+        fx_free(&f);
+    }
+}
+
 RUN_TESTS(T(kumar_torsional_table_3_1), T(kumar_coupled_table_3_2),
           T(chen_fig3_modes_within_5_percent),
           T(chen_pure_lateral_modes_independent_of_mesh_stiffness), T(rig2018_tables_4_and_5),
           T(rig2018_converges_with_element_count), T(left_right_vectors_are_bi_orthonormal),
           T(modal_summation_equals_direct_receptance), T(undamped_and_state_space_agree),
           T(massless_dofs_are_condensed), T(gyroscopic_forward_rises_backward_falls),
-          T(whirl_is_relative_to_the_shaft_sense), T(energy_shares_sum_to_one))
+          T(whirl_is_relative_to_the_shaft_sense), T(energy_shares_sum_to_one),
+          T(negative_stiffness_is_a_divergence_not_an_oscillation))
