@@ -3,7 +3,7 @@
 # Safe to run repeatedly: it only calls apt-get when something is absent.
 set -euo pipefail
 pkgs=(build-essential cmake pkg-config libyaml-dev libcjson-dev liblapacke-dev
-      libopenblas-dev libsuitesparse-dev libsundials-dev libfftw3-dev libarpack2-dev
+      libopenblas-dev libsuitesparse-dev libsundials-dev libfftw3-dev
       valgrind)
 missing=()
 for p in "${pkgs[@]}"; do
