@@ -118,4 +118,10 @@ double gd_ms_body_stiffness(const gd_gear_pair_geometry *g, const gd_gear_pair_d
 /* Harmonics 1..H of n samples over one period: x ~ mean + sum amp cos(h w t + phase). */
 void gd_ms_fourier(const double *x, size_t n, int H, double *amp, double *phase);
 
+/* ---- tvms.c: where gear-pair errors point ---- */
+/* gd_gear_pair_derive and gd_tvms_compute name a field relative to the mesh's `geometry`
+ * map (the options: its `stiffness` map). Prefixes err->field with mesh_path and that
+ * map's key, and returns the key. */
+const char *gd_gear_pair_error_prefix(gd_error *err, const char *mesh_path);
+
 #endif

@@ -28,6 +28,22 @@ gd_status gd_tvms_method_parse(const char *name, gd_tvms_method *m, gd_error *er
                         name ? name : "");
 }
 
+const char *gd_gear_pair_error_prefix(gd_error *err, const char *mesh_path)
+{
+    static const char *const OPTION_FIELDS[] = {"method", "points",    "cycles",
+                                                "slices", "harmonics", NULL};
+    const char *section = "geometry";
+    for (int i = 0; OPTION_FIELDS[i]; i++)
+        if (!strcmp(err->field, OPTION_FIELDS[i])) section = "stiffness";
+    char field[sizeof err->field];
+    if (err->field[0])
+        snprintf(field, sizeof field, "%s.%s.%.100s", mesh_path, section, err->field);
+    else
+        snprintf(field, sizeof field, "%s.%s", mesh_path, section);
+    snprintf(err->field, sizeof err->field, "%s", field);
+    return section;
+}
+
 void gd_tvms_options_init(gd_tvms_options *opt)
 {
     memset(opt, 0, sizeof *opt);

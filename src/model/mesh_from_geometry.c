@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "mesh_stiffness/mesh_stiffness_impl.h"
 #include "model/build_impl.h"
 
 #define PI 3.14159265358979323846
@@ -18,17 +19,7 @@ static gd_status locate_geometry_error(const gd_model *m, const gd_mesh *g, cons
     if (!err) return st;
     const gd_field_locator *l = &m->build->locator;
     if (l->locate_geometry && l->locate_geometry(l->ctx, path, err)) return st;
-    static const char *const OPTION_FIELDS[] = {"method", "points",    "cycles",
-                                                "slices", "harmonics", NULL};
-    const char *section = "geometry";
-    for (int i = 0; OPTION_FIELDS[i]; i++)
-        if (!strcmp(err->field, OPTION_FIELDS[i])) section = "stiffness";
-    char field[sizeof err->field];
-    if (err->field[0])
-        snprintf(field, sizeof field, "%s.%s.%.100s", path, section, err->field);
-    else
-        snprintf(field, sizeof field, "%s.%s", path, section);
-    snprintf(err->field, sizeof err->field, "%s", field);
+    gd_gear_pair_error_prefix(err, path);
     snprintf(err->file, sizeof err->file, "%s", m->file);
     err->line = g->loc.line;
     err->column = g->loc.column;

@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "mesh_stiffness/mesh_stiffness_impl.h"
 #include "model_file/material_read_impl.h"
 
 static const char *const GEOMETRY_KEYS[] = {"normal_module",
@@ -108,19 +109,11 @@ void gd_gear_pair_error_locate(const char *file, const gd_ynode *mesh_map, const
                                gd_error *err)
 {
     if (!err || err->line > 0) return;
-    static const char *const OPTION_FIELDS[] = {"method", "points",    "cycles",
-                                                "slices", "harmonics", NULL};
-    const char *section = "geometry";
-    for (int i = 0; OPTION_FIELDS[i]; i++)
-        if (!strcmp(err->field, OPTION_FIELDS[i])) section = "stiffness";
+    char relative[sizeof err->field];
+    snprintf(relative, sizeof relative, "%s", err->field);
+    const char *section = gd_gear_pair_error_prefix(err, path);
     const gd_ynode *sec = gd_ymap_get(mesh_map, section);
-    const gd_ynode *n = sec ? locate(sec, err->field) : mesh_map;
-    char field[sizeof err->field];
-    if (err->field[0])
-        snprintf(field, sizeof field, "%s.%s.%.100s", path, section, err->field);
-    else
-        snprintf(field, sizeof field, "%s.%s", path, section);
-    snprintf(err->field, sizeof err->field, "%s", field);
+    const gd_ynode *n = sec ? locate(sec, relative) : mesh_map;
     if (n)
         gd_ylocate(err, file, n);
     else if (file)

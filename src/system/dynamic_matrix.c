@@ -125,13 +125,8 @@ void gd_dynmat_free(gd_dynmat *a)
     memset(a, 0, sizeof *a);
 }
 
-void gd_dynmat_at(const gd_dynmat *a, double speed, double *k, double *d)
+void gd_dynmat_add_speed_terms(const gd_dynmat *a, double speed, double *k, double *c)
 {
-    size_t z = (size_t)a->pat.nnz;
-    if (k) memcpy(k, a->k, z * sizeof *k);
-    if (d)
-        for (size_t i = 0; i < z; i++)
-            d[i] = a->c[i] + speed * a->g[i];
     const gd_system *sys = a->sys;
     for (int t = 0; t < a->ntab; t++) {
         const gd_element_instance *in = &sys->instances[a->tab[t].instance];
@@ -142,9 +137,19 @@ void gd_dynmat_at(const gd_dynmat *a, double speed, double *k, double *d)
             int q = a->tab[t].pos[p];
             if (q < 0) continue;
             if (k) k[q] += Kl[p];
-            if (d) d[q] += Cl[p];
+            if (c) c[q] += Cl[p];
         }
     }
+}
+
+void gd_dynmat_at(const gd_dynmat *a, double speed, double *k, double *d)
+{
+    size_t z = (size_t)a->pat.nnz;
+    if (k) memcpy(k, a->k, z * sizeof *k);
+    if (d)
+        for (size_t i = 0; i < z; i++)
+            d[i] = a->c[i] + speed * a->g[i];
+    gd_dynmat_add_speed_terms(a, speed, k, d);
 }
 
 int gd_dynmat_factor_at(const gd_dynmat *a, const gd_splu_symbolic *s, const double *k,

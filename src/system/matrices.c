@@ -31,21 +31,6 @@ static int compress(const gd_pattern *p, const double *v, gd_csc *out)
     return 0;
 }
 
-/* k = K + K_b(W) and c = C + C_b(W): the damping is evaluated on a copy of the dynamic
- * matrix without G, so no W G is added and taken away again. */
-static int values_at(const gd_dynmat *a, double speed, double *k, double *c)
-{
-    size_t z = (size_t)(a->pat.nnz ? a->pat.nnz : 1);
-    double *zero = calloc(z, sizeof *zero);
-    if (!zero) return 1;
-    gd_dynmat no_g = *a;
-    no_g.g = zero;
-    gd_dynmat_at(a, speed, k, NULL);
-    gd_dynmat_at(&no_g, speed, NULL, c);
-    free(zero);
-    return 0;
-}
-
 static void clear(gd_csc *a)
 {
     if (a) memset(a, 0, sizeof *a);
@@ -67,7 +52,13 @@ gd_status gd_system_matrices(const gd_system *sys, double speed, gd_csc *M, gd_c
     if (st) return st;
     size_t z = (size_t)(a.pat.nnz ? a.pat.nnz : 1);
     double *k = malloc(z * sizeof *k), *c = malloc(z * sizeof *c);
-    int bad = !k || !c || values_at(&a, speed, k, c);
+    int bad = !k || !c;
+    if (!bad) {
+        /* K + K_b(W) and C + C_b(W): the damping without W G */
+        memcpy(k, a.k, (size_t)a.pat.nnz * sizeof *k);
+        memcpy(c, a.c, (size_t)a.pat.nnz * sizeof *c);
+        gd_dynmat_add_speed_terms(&a, speed, k, c);
+    }
     bad = bad || (M && compress(&a.pat, a.m, M)) || (K && compress(&a.pat, k, K)) ||
           (C && compress(&a.pat, c, C)) || (G && compress(&a.pat, a.g, G));
     free(k);

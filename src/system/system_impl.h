@@ -22,6 +22,9 @@ typedef struct gd_dynmat {
 
 gd_status gd_dynmat_build(const gd_system *sys, gd_dynmat *out, gd_error *err);
 void gd_dynmat_free(gd_dynmat *a);
+/* k += K_b(W), c += C_b(W): the speed-dependent terms on the pattern (either may be
+ * NULL). */
+void gd_dynmat_add_speed_terms(const gd_dynmat *a, double speed, double *k, double *c);
 /* k = K + K_b(W), d = C + C_b(W) + W G on the pattern (nnz each). */
 void gd_dynmat_at(const gd_dynmat *a, double speed, double *k, double *d);
 
