@@ -2,7 +2,8 @@
 # The README starts with the two commands a new user runs on a fresh machine, and CI runs
 # the test one: the first ```sh block of README.md must hold exactly `./setup demo` and
 # `./setup test` (comments aside), .ci/run must run `./setup test`, and ./setup must be
-# an executable script whose targets exist in the Makefile.
+# an executable script whose targets exist in the Makefile (and, with no target, a usage
+# error that lists them).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 block=$(awk '/^```sh$/ {on = 1; next} on && /^```$/ {exit} on' README.md | sed 's/[[:space:]]*#.*$//' | sed '/^$/d')
@@ -15,5 +16,10 @@ head -1 setup | grep -q bash || { echo "./setup must be a bash script (a minimal
 for target in demo test; do
     grep -q "^$target:" Makefile || { echo "the Makefile has no '$target' target"; bad=1; }
 done
+# ./setup with no target is a usage error (exit 2) that lists the targets, and installs nothing
+rc=0
+usage=$(./setup 2>&1) || rc=$?
+[ $rc -eq 2 ] || { echo "./setup with no target exited $rc, expected 2"; bad=1; }
+grep -q '\./setup demo' <<< "$usage" || { echo "./setup with no target does not list its targets"; bad=1; }
 [ $bad -eq 0 ] || exit 1
 echo "README commands: ./setup demo, ./setup test; .ci/run runs ./setup test"
