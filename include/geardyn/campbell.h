@@ -13,12 +13,6 @@
 #include "geardyn/export.h"
 #include "geardyn/modal.h"
 
-typedef enum gd_eig_method {
-    GD_EIG_AUTO,  /* sparse for >= 200 DOFs with nmodes > 0 and no massless DOF */
-    GD_EIG_DENSE, /* LAPACK on the dense state-space matrix (gd_modal_solve) */
-    GD_EIG_SPARSE /* shift-invert Krylov-Schur with KLU */
-} gd_eig_method;
-
 /* An excitation order: frequency = order x reference speed. */
 typedef enum gd_order_kind {
     GD_ORDER_SHAFT, /* 1x of a shaft: |speed_ratio| */
@@ -37,7 +31,7 @@ typedef struct gd_campbell_options {
     const double *speeds; /* reference speeds, rad/s, increasing */
     int nmodes;           /* elastic modes tracked, > 0; 0: all (dense) */
     gd_modal_kind kind;   /* damped (default AUTO) or undamped */
-    gd_eig_method method;
+    gd_eig_method method; /* AUTO: the cheaper by gd_modal_solve's cost model */
     double shift; /* sparse shift, rad/s; 0: automatic */
     int norders;
     const double *orders; /* user orders (multiples of the reference speed) */

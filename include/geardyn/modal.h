@@ -26,11 +26,22 @@ typedef enum gd_modal_kind {
     GD_MODAL_DAMPED
 } gd_modal_kind;
 
+/* Which eigensolver computes the modes. AUTO takes the sparse one when the measured
+ * cost model (src/modal/method_cost.c) says it is cheaper for this model and number of
+ * modes; the sparse solver gives the lowest modes only (nmodes > 0), right vectors only,
+ * and needs mass on every DOF, so AUTO is dense otherwise. */
+typedef enum gd_eig_method {
+    GD_EIG_AUTO,
+    GD_EIG_DENSE, /* LAPACK on the dense problem (all modes, left vectors, condensation) */
+    GD_EIG_SPARSE /* shift-invert Krylov-Schur with KLU (gd_modal_solve_sparse) */
+} gd_eig_method;
+
 typedef struct gd_modal_options {
     double speed; /* reference speed, rad/s */
     int nmodes;   /* lowest modes kept; 0: all */
     gd_modal_kind kind;
     int want_left; /* compute bi-orthonormal left eigenvectors (damped) */
+    gd_eig_method method; /* default AUTO */
 } gd_modal_options;
 
 typedef struct gd_mode {

@@ -42,8 +42,31 @@ static gd_status solve_one(const gd_system *sys, const gd_dynmat *a, const gd_sp
     o.nmodes = nreq;
     o.kind = opt->kind;
     o.want_left = 0;
+    o.method = GD_EIG_DENSE;
     if (a) return gd_sparse_modes(a, sym, &o, opt->shift, ws, out, err);
     return gd_modal_solve(sys, &o, out, err);
+}
+
+/* The cost model of gd_modal_solve (src/modal/method.c) per speed, judged at the
+ * highest speed, where gyroscopic terms make the problem damped if any speed does. */
+static int sparse_cheaper(const gd_system *sys, const gd_dynmat *a, const gd_splu_symbolic *sym,
+                          const gd_campbell_options *opt)
+{
+    size_t nz = (size_t)(a->pat.nnz > 0 ? a->pat.nnz : 1);
+    double *k = malloc(nz * sizeof *k), *d = malloc(nz * sizeof *d);
+    int cheaper = 1;
+    if (k && d) {
+        gd_modal_options o;
+        gd_modal_options_init(&o);
+        o.speed = opt->speeds[opt->nspeeds - 1];
+        o.kind = opt->kind;
+        int damped = gd_modal_damped_at(a, &o, k, d);
+        cheaper = gd_cost_sparse(&a->pat, sym, opt->nmodes) <
+                  gd_cost_dense(sys->ndof, damped, opt->nmodes);
+    }
+    free(k);
+    free(d);
+    return cheaper;
 }
 
 /* Releases the mode shapes of a result whose modes have been tracked. */
@@ -99,8 +122,7 @@ gd_status gd_campbell(const gd_system *sys, const gd_campbell_options *opt,
         return gd_error_set(err, GD_EINPUT, "", 0, 0, "modes", "give a positive number of modes",
                             "negative number of modes");
     int sparse = opt->method == GD_EIG_SPARSE ||
-                 (opt->method == GD_EIG_AUTO && sys->ndof >= 200 && opt->nmodes > 0 &&
-                  sys->nmassless == 0 && 2 * opt->nmodes + 16 < sys->ndof);
+                 (opt->method == GD_EIG_AUTO && gd_sparse_applicable(sys, opt->nmodes));
     if (sparse && (opt->nmodes == 0 || sys->nmassless > 0))
         return gd_error_set(err, GD_EINPUT, m->file, 0, 0, "method",
                             "use the dense method (it condenses massless DOFs and gives all modes)",
@@ -123,6 +145,13 @@ gd_status gd_campbell(const gd_system *sys, const gd_campbell_options *opt,
     if (sparse) {
         if ((st = gd_dynmat_build(sys, &a, err))) goto done;
         if ((st = gd_splu_analyze(&a.pat, &sym, err))) goto done;
+        if (opt->method == GD_EIG_AUTO && !sparse_cheaper(sys, &a, &sym, opt)) {
+            gd_splu_symbolic_free(&sym);
+            gd_dynmat_free(&a);
+            memset(&a, 0, sizeof a);
+            memset(&sym, 0, sizeof sym);
+            sparse = 0;
+        }
     }
     /* rigid-body modes are not tracked: count them once at the first speed (they sort
      * first, so a probe that is not all rigid has found them all), then ask for that

@@ -50,8 +50,8 @@ static int any_nonzero(const double *A, size_t n)
     return 0;
 }
 
-gd_status gd_modal_solve(const gd_system *sys, const gd_modal_options *opt, gd_modal_result **out,
-                         gd_error *err)
+gd_status gd_modal_solve_dense(const gd_system *sys, const gd_modal_options *opt,
+                               gd_modal_result **out, gd_error *err)
 {
     *out = NULL;
     int N = sys->ndof;

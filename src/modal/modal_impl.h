@@ -17,6 +17,10 @@ gd_status gd_modal_state_space(const gd_system *sys, const gd_modal_options *opt
                                const gd_condense *c, const double *M, const double *D,
                                const double *K, gd_modal_result **out, gd_error *err);
 
+/* The dense (LAPACK) solver behind gd_modal_solve, whatever opt->method says. */
+gd_status gd_modal_solve_dense(const gd_system *sys, const gd_modal_options *opt,
+                               gd_modal_result **out, gd_error *err);
+
 /* Allocates a result for nmodes modes (shapes zeroed). */
 gd_modal_result *gd_modal_result_new(const gd_system *sys, int nmodes, int with_left);
 
@@ -38,5 +42,25 @@ gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
  * DOF has both). The automatic shift is 1e-3 of it, far below the lowest elastic
  * mode of most models; the state scaling g is this frequency itself. */
 double gd_sparse_diag_frequency(const gd_dynmat *a, const double *k);
+/* Krylov sizes for nmodes modes of an n-DOF system: nev Ritz values (both members of
+ * each conjugate pair) in a basis of at most ncv vectors. */
+void gd_sparse_ks_sizes(int n, int nmodes, int *nev, int *ncv);
+
+/* ---- method_cost.c: dense or sparse, by a measured cost model ---- */
+/* 1 when the sparse solver can give these modes: nmodes > 0, mass on every DOF and a
+ * Krylov basis smaller than the state (2 nmodes + 16 < n). */
+int gd_sparse_applicable(const gd_system *sys, int nmodes);
+/* Estimated seconds of one dense solve of n DOFs (state space 2n when damped, the
+ * symmetric problem otherwise) and of one sparse solve of nmodes modes on the pattern
+ * p with its symbolic analysis sym (factorisation, shift-invert products,
+ * orthogonalisation). */
+double gd_cost_dense(int n, int damped, int nmodes);
+double gd_cost_sparse(const gd_pattern *p, const gd_splu_symbolic *sym, int nmodes);
+/* 1 when the damped (state-space) problem is the one to solve at this speed: asked for,
+ * or AUTO and the damping at the speed is not zero. */
+/* 1 when the values k on the pattern p are symmetric to 1e-12 of the largest (the
+ * dense solver's test). */
+int gd_pattern_symmetric(const gd_pattern *p, const double *k);
+int gd_modal_damped_at(const gd_dynmat *a, const gd_modal_options *opt, double *k, double *d);
 
 #endif

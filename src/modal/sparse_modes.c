@@ -57,7 +57,7 @@ double gd_sparse_diag_frequency(const gd_dynmat *a, const double *k)
 /* Krylov sizes for nmodes modes of an n-DOF system: nev Ritz values (both members of
  * each conjugate pair) in a basis of at most ncv vectors (the first pass stops as soon
  * as they have converged, usually near 2 nev). */
-static void ks_sizes(int n, int nmodes, int *nev, int *ncv)
+void gd_sparse_ks_sizes(int n, int nmodes, int *nev, int *ncv)
 {
     int n2 = 2 * n;
     *nev = 2 * nmodes;
@@ -70,7 +70,7 @@ int gd_sparse_ws_init(gd_sparse_ws *w, const gd_dynmat *a, int nmodes)
 {
     memset(w, 0, sizeof *w);
     int nev, ncv;
-    ks_sizes(a->pat.n, nmodes > 0 ? nmodes : a->pat.n, &nev, &ncv);
+    gd_sparse_ks_sizes(a->pat.n, nmodes > 0 ? nmodes : a->pat.n, &nev, &ncv);
     w->k = malloc((size_t)(a->pat.nnz > 0 ? a->pat.nnz : 1) * sizeof *w->k);
     w->d = malloc((size_t)(a->pat.nnz > 0 ? a->pat.nnz : 1) * sizeof *w->d);
     if (!w->k || !w->d || gd_ks_work_init(&w->ks, 2 * a->pat.n, ncv)) {
@@ -102,7 +102,7 @@ gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
                             sys->nmassless);
     gd_status st = GD_OK;
     int want = opt->nmodes > 0 ? opt->nmodes : n, nev, ncv;
-    ks_sizes(n, want, &nev, &ncv);
+    gd_sparse_ks_sizes(n, want, &nev, &ncv);
     gd_sparse_ws local = {0};
     if (!ws || ws->ks.ncv < ncv) {
         if (gd_sparse_ws_init(&local, a, want))
@@ -144,9 +144,17 @@ gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
     if (!cd) goto nomem;
     int nc = 0, nrigid_real = 0;
     double rtol = 1e-3 * s; /* a defective double zero converges to ~sqrt(tol) */
+    /* no damping and symmetric K: the eigenvalues solve lambda^2 = -omega^2 exactly
+     * (imaginary, or real for a negative stiffness), as the dense symmetric solver
+     * gives them; the Ritz values carry a real part of the order of the tolerance */
+    int conservative = !any_d && gd_pattern_symmetric(&a->pat, k);
     for (int i = 0; i < ks.nconv; i++) {
         double complex mu = ks.mu_re[i] + I * ks.mu_im[i];
         double complex lam = -s + 1.0 / mu;
+        if (conservative) {
+            double l2 = creal(lam * lam);
+            lam = l2 < 0 ? I * sqrt(-l2) * (cimag(lam) < 0 ? -1 : 1) : sqrt(l2);
+        }
         double lr = creal(lam), li = ks.mu_im[i] == 0 ? 0.0 : cimag(lam);
         if (li < 0) continue;
         int rigid = hypot(lr, li) <= rtol;
