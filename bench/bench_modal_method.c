@@ -82,9 +82,9 @@ int main(int argc, char **argv)
             dev = fmax(dev, hypot(rs->modes[j].lambda_re - rd->modes[j].lambda_re,
                                   rs->modes[j].lambda_im - rd->modes[j].lambda_im) /
                                 fmax(rd->modes[j].omega_n, 1.0));
-    printf("model %s: n %d nnz %d lnz+unz %.0f est_flops %.3g ncv %d damped %d modes %d\n",
-           argv[1], s->ndof, a.pat.nnz, sym.sym->lnz + sym.sym->unz, sym.sym->est_flops, ncv,
-           damped, o.nmodes);
+    printf("model %s: n %d nnz %d lnz+unz %.0f est_flops %.3g ncv %d damped %d modes %d\n", argv[1],
+           s->ndof, a.pat.nnz, sym.sym->lnz + sym.sym->unz, sym.sym->est_flops, ncv, damped,
+           o.nmodes);
     printf("sparse   %9.6f s   model %9.6f s\n", ts, cs);
     printf("dense    %9.6f s   model %9.6f s\n", td, cd);
     printf("auto     %9.6f s   picks %s\n", ta, cs < cd ? "sparse" : "dense");

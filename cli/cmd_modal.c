@@ -9,7 +9,8 @@
 
 static const char USAGE[] =
     "usage: geardyn modal MODEL.yaml [--speed VALUE] [--modes N|all] [--undamped | --damped]\n"
-    "                     [--coupling LEVEL] [--set PATH=VALUE]... [--json] [--out DIR]\n\n"
+    "                     [--coupling LEVEL] [--method auto|dense|sparse] [--set PATH=VALUE]...\n"
+    "                     [--json] [--out DIR]\n\n"
     "Natural frequencies, damping, whirl direction and modal strain energy of each mode.\n"
     "Damped/gyroscopic modes (state space, left and right eigenvectors) are computed when\n"
     "the model has damping or gyroscopic terms at the speed; otherwise undamped modes.\n\n"
@@ -17,6 +18,9 @@ static const char USAGE[] =
     "  --modes N|all     number of lowest modes (default: all up to 30 DOFs, else 20)\n"
     "  --undamped        drop damping and gyroscopic terms (symmetric eigenproblem)\n"
     "  --damped          always use the state-space (damped) eigenproblem\n"
+    "  --method M        auto (default): the cheaper of the two by a measured cost model;\n"
+    "                    dense: LAPACK (all modes); sparse: shift-invert Krylov-Schur\n"
+    "                    with a sparse LU (the lowest N modes, needs mass on every DOF)\n"
     "  --coupling LEVEL  torsional | lateral-torsional | full: override every mesh and\n"
     "                    keep only the DOFs that level uses\n"
     "  --set PATH=VALUE  change a value of the model file, e.g.\n"
@@ -40,8 +44,9 @@ static const char *component_name(const gd_system *s, int c)
 
 static void print_table(const gd_system *s, const gd_modal_result *r)
 {
-    printf("%s: %d DOFs, speed %g rad/s (%g rpm), %s modes\n\n", s->model->file, s->ndof, r->speed,
-           r->speed * 30 / M_PI, r->damped ? "damped (state space)" : "undamped");
+    printf("%s: %d DOFs, speed %g rad/s (%g rpm), %s modes (%s solver)\n\n", s->model->file,
+           s->ndof, r->speed, r->speed * 30 / M_PI, r->damped ? "damped (state space)" : "undamped",
+           r->sparse ? "sparse" : "dense");
     printf("%4s %12s %12s %12s %9s %9s  %-10s %-10s %-14s %5s %5s %5s %5s\n", "mode", "f_n(Hz)",
            "w_n(rad/s)", "w_d(rad/s)", "zeta", "logdec", "whirl", "dominant", "component", "lat%",
            "tor%", "ax%", "tilt%");
@@ -78,6 +83,7 @@ static cJSON *result_json(const gd_system *s, const gd_modal_result *r)
     cJSON_AddStringToObject(o, "model", s->model->file);
     cJSON_AddNumberToObject(o, "speed_rad_s", r->speed);
     cJSON_AddBoolToObject(o, "damped", r->damped);
+    cJSON_AddStringToObject(o, "method", r->sparse ? "sparse" : "dense");
     cJSON_AddNumberToObject(o, "dofs", s->ndof);
     cJSON *modes = cJSON_AddArrayToObject(o, "modes");
     for (int j = 0; j < r->nmodes; j++) {
@@ -155,12 +161,17 @@ fail:
 
 int gd_cmd_modal(int argc, char **argv)
 {
-    static const struct option opts[] = {
-        {"speed", required_argument, 0, 's'},    {"modes", required_argument, 0, 'n'},
-        {"undamped", no_argument, 0, 'u'},       {"damped", no_argument, 0, 'd'},
-        {"coupling", required_argument, 0, 'c'}, GD_CLI_SET_OPTION,
-        {"json", no_argument, 0, 'j'},           {"out", required_argument, 0, 'o'},
-        {"help", no_argument, 0, 'h'},           {0, 0, 0, 0}};
+    static const struct option opts[] = {{"speed", required_argument, 0, 's'},
+                                         {"modes", required_argument, 0, 'n'},
+                                         {"undamped", no_argument, 0, 'u'},
+                                         {"damped", no_argument, 0, 'd'},
+                                         {"coupling", required_argument, 0, 'c'},
+                                         GD_CLI_SET_OPTION,
+                                         {"method", required_argument, 0, 'm'},
+                                         {"json", no_argument, 0, 'j'},
+                                         {"out", required_argument, 0, 'o'},
+                                         {"help", no_argument, 0, 'h'},
+                                         {0, 0, 0, 0}};
     gd_modal_options opt;
     gd_modal_options_init(&opt);
     opt.want_left = 0;
@@ -197,6 +208,17 @@ int gd_cmd_modal(int argc, char **argv)
             break;
         case GD_CLI_OPT_SET:
             if (gd_cli_add_set("modal", &sets, optarg)) return GD_EXIT_INPUT;
+            break;
+        case 'm':
+            if (!strcmp(optarg, "auto"))
+                opt.method = GD_EIG_AUTO;
+            else if (!strcmp(optarg, "dense"))
+                opt.method = GD_EIG_DENSE;
+            else if (!strcmp(optarg, "sparse"))
+                opt.method = GD_EIG_SPARSE;
+            else
+                return gd_cli_usage_error("modal", "--method: '%s' is not auto, dense or sparse",
+                                          optarg);
             break;
         case 'j':
             json = 1;

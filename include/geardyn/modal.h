@@ -63,6 +63,7 @@ typedef struct gd_mode {
 typedef struct gd_modal_result {
     int ndof, nmodes, ncomponents;
     int damped;
+    int sparse; /* computed by the sparse (shift-invert) solver */
     double speed;
     gd_mode *modes;              /* ascending natural frequency */
     double *shape_re, *shape_im; /* ndof x nmodes, column-major; largest entry = 1 */

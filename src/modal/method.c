@@ -18,10 +18,10 @@
  * - dense symmetric (undamped, dsygvx on n): 0.18 ms at n = 30, 0.38 ms at 50, 2.7 ms
  *   at 170, 11 ms at 366, 115 ms at 1010: C_SYM0 + C_SYM2 n^2 + C_SYM3 n^3 within 30 %;
  * - sparse: 0.9 ms (n 170, 6 modes), 2.4 ms (366, 12), 5.9 ms (366, 30), 3.8 ms
- *   (1010, 12), 13.8 ms (1010, 30), 0.22 ms (30, 6, undamped): C_FIXED + C_DOF n + C_APPLY x entries touched by
- *   the shift-invert products (factors, M and D, vectors) over 2 ncv Krylov vectors +
- *   C_ORTH 2n ncv^2 (Gram-Schmidt) + C_SCHUR ncv^3 (Schur form of the projected
- *   matrix), within 30 %; C_LU per flop of the KLU factorisation (AMD's estimate). */
+ *   (1010, 12), 13.8 ms (1010, 30), 0.22 ms (30, 6, undamped): C_FIXED + C_DOF n + C_APPLY x
+ * entries touched by the shift-invert products (factors, M and D, vectors) over 2 ncv Krylov
+ * vectors + C_ORTH 2n ncv^2 (Gram-Schmidt) + C_SCHUR ncv^3 (Schur form of the projected matrix),
+ * within 30 %; C_LU per flop of the KLU factorisation (AMD's estimate). */
 #define C_DENSE2 2.0e-7
 #define C_DENSE3 9.4e-11
 #define C_SYM0 1.0e-4
@@ -117,11 +117,11 @@ gd_status gd_modal_solve(const gd_system *sys, const gd_modal_options *opt, gd_m
     } else {
         int damped = gd_modal_damped_at(&a, opt, ws.k, ws.d);
         if (err) gd_error_clear(err);
-        if (gd_cost_sparse(&a.pat, &sym, opt->nmodes) < gd_cost_dense(sys->ndof, damped,
-                                                                        opt->nmodes))
+        if (gd_cost_sparse(&a.pat, &sym, opt->nmodes) <
+            gd_cost_dense(sys->ndof, damped, opt->nmodes))
             st = gd_sparse_modes(&a, &sym, opt, 0, &ws, out, err);
         else
-            st = GD_ENUMERIC; /* dense below */
+            st = GD_ENUMERIC;  /* dense below */
         if (st == GD_ENUMERIC) /* also when Krylov-Schur did not converge */
             st = gd_modal_solve_dense(sys, opt, out, err);
         gd_sparse_ws_free(&ws);

@@ -165,7 +165,8 @@ gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
     int km = nc < want ? nc : want;
     res = gd_modal_result_new(sys, km, 0);
     if (!res) goto nomem;
-    res->damped = any_d || opt->kind == GD_MODAL_DAMPED;
+    res->damped = any_d || opt->kind == GD_MODAL_DAMPED || !conservative;
+    res->sparse = 1;
     res->speed = opt->speed;
     for (int j = 0; j < km; j++) {
         gd_mode *md = &res->modes[j];

@@ -636,6 +636,45 @@ TEST(error_bad_coupling)
     scratch_close(&s);
 }
 
+/* --method: a bad name, and sparse where it cannot serve (all modes), exit 2; sparse
+ * and dense give the same frequencies on the rig (to the 6 digits of the table). */
+TEST(modal_method_option)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    run_result r;
+    run(&s, &r, "modal " RIG " --method lanczos");
+    CHECK(r.code == 2);
+    CHECK(contains(r.err, "--method: 'lanczos' is not auto, dense or sparse"));
+    CHECK(r.out[0] == '\0');
+    run_free(&r);
+    run(&s, &r, "modal " RIG " --method sparse --modes all");
+    CHECK(r.code == 2);
+    CHECK(contains(r.err, "lowest modes, not all"));
+    CHECK(r.out[0] == '\0');
+    run_free(&r);
+    double f[2][6];
+    const char *m[2] = {"dense", "sparse"};
+    for (int k = 0; k < 2; k++) {
+        char cmd[256];
+        snprintf(cmd, sizeof cmd, "modal " RIG " --json --modes 6 --speed 3000rpm --method %s",
+                 m[k]);
+        run(&s, &r, cmd);
+        CHECK(r.code == 0);
+        cJSON *o = cJSON_Parse(r.out);
+        REQUIRE(o);
+        CHECK_STR(cJSON_GetStringValue(cJSON_GetObjectItemCaseSensitive(o, "method")), m[k]);
+        const cJSON *modes = cJSON_GetObjectItemCaseSensitive(o, "modes");
+        for (int i = 0; i < 6; i++)
+            f[k][i] = jnum(cJSON_GetArrayItem(modes, i), "frequency_hz");
+        cJSON_Delete(o);
+        run_free(&r);
+    }
+    for (int i = 0; i < 6; i++)
+        CHECK_REL(f[1][i], f[0][i], 1e-9);
+    scratch_close(&s);
+}
+
 TEST(error_undamped_with_damped)
 {
     scratch s;
@@ -741,5 +780,5 @@ RUN_TESTS(T(help_lists_commands), T(unknown_command), T(check_every_example), T(
           T(modal_coupling_torsional_matches_torsional_model), T(modal_out_writes_csv),
           T(error_missing_file), T(error_bad_model_names_file_and_line),
           T(error_unknown_option_and_missing_argument), T(error_bad_speed), T(error_bad_modes),
-          T(error_bad_coupling), T(error_undamped_with_damped), T(error_out_is_a_file),
-          T(error_run_writes_nothing_into_out))
+          T(error_bad_coupling), T(modal_method_option), T(error_undamped_with_damped),
+          T(error_out_is_a_file), T(error_run_writes_nothing_into_out))
