@@ -21,7 +21,8 @@ static const char CMD[] = "transient";
 static const char USAGE[] =
     "usage: geardyn transient MODEL.yaml [--duration T | --revolutions N] [--speed S]\n"
     "                         [--record WHAT]... [--from T] [--output-interval T]\n"
-    "                         [--rtol R] [--method bdf|adams] [--start rest|static]\n"
+    "                         [--rtol R] [--method bdf|adams|galpha] [--step T]\n"
+    "                         [--rho-inf R] [--start rest|static]\n"
     "                         [--spectrum] [--window hann|rect] [--unbalance-scale F]\n"
     "                         [--coupling LEVEL] [--set PATH=VALUE]... [--json] [--out DIR]\n"
     "                         [--quiet]\n\n"
@@ -46,7 +47,13 @@ static const char USAGE[] =
     "                       per revolution); frequencies above half the sampling rate\n"
     "                       fold back into a spectrum: sample fast enough\n"
     "  --rtol R             relative tolerance (default 1e-6)\n"
-    "  --method M           bdf (default) or adams\n"
+    "  --method M           bdf (default) or adams: CVODE, error-controlled by --rtol,\n"
+    "                       contact changes located; galpha: fixed-step generalized-alpha\n"
+    "                       (Chung-Hulbert; Newmark's average acceleration at --rho-inf 1),\n"
+    "                       contact changes resolved to the step\n"
+    "  --step T             galpha: largest time step (default: output interval / 10)\n"
+    "  --rho-inf R          galpha: spectral radius at infinite step, 0..1 (default 0.9):\n"
+    "                       below 1 damps the unresolved high modes\n"
     "  --start S            rest (default): q = q' = 0 (nominal motion), or static:\n"
     "                       static equilibrium under the loads at t = 0\n"
     "  --spectrum           amplitude spectrum (FFT, mean removed) of every record over\n"
@@ -303,11 +310,11 @@ fail:
 }
 
 typedef struct cli_opts {
-    const char *duration, *revolutions, *speed, *from, *interval, *coupling, *out;
+    const char *duration, *revolutions, *speed, *from, *interval, *coupling, *out, *step;
     const char *records[64];
     int nrecords;
     gd_cli_sets sets;
-    double rtol, unbalance_scale;
+    double rtol, unbalance_scale, rho_inf;
     int json, quiet, spectrum;
     gd_tr_method method;
     gd_tr_init init;
@@ -324,6 +331,8 @@ static int parse_args(int argc, char **argv, cli_opts *o)
                                          {"output-interval", required_argument, 0, 'i'},
                                          {"rtol", required_argument, 0, 't'},
                                          {"method", required_argument, 0, 'm'},
+                                         {"step", required_argument, 0, 'H'},
+                                         {"rho-inf", required_argument, 0, 'R'},
                                          {"start", required_argument, 0, 'a'},
                                          {"spectrum", no_argument, 0, 'S'},
                                          {"window", required_argument, 0, 'w'},
@@ -338,6 +347,7 @@ static int parse_args(int argc, char **argv, cli_opts *o)
     memset(o, 0, sizeof *o);
     o->rtol = 1e-6;
     o->unbalance_scale = 1.0;
+    o->rho_inf = 0.9;
     o->method = GD_TR_BDF;
     o->init = GD_TR_INIT_REST;
     o->window = GD_WINDOW_HANN;
@@ -374,9 +384,23 @@ static int parse_args(int argc, char **argv, cli_opts *o)
                 o->method = GD_TR_BDF;
             else if (!strcmp(optarg, "adams"))
                 o->method = GD_TR_ADAMS;
+            else if (!strcmp(optarg, "galpha"))
+                o->method = GD_TR_GEN_ALPHA;
             else
-                return gd_cli_usage_error(CMD, "--method: '%s' is not bdf or adams", optarg);
+                return gd_cli_usage_error(CMD, "--method: '%s' is not bdf, adams or galpha",
+                                          optarg);
             break;
+        case 'H':
+            o->step = optarg;
+            break;
+        case 'R': {
+            char *end;
+            o->rho_inf = strtod(optarg, &end);
+            if (end == optarg || *end || !(o->rho_inf >= 0 && o->rho_inf <= 1))
+                return gd_cli_usage_error(CMD, "--rho-inf: '%s' is not a number from 0 to 1",
+                                          optarg);
+            break;
+        }
         case 'a':
             if (!strcmp(optarg, "rest"))
                 o->init = GD_TR_INIT_REST;
@@ -494,7 +518,7 @@ int gd_cmd_transient(int argc, char **argv)
     run_info ri;
     memset(&ri, 0, sizeof ri);
     ri.speed = m->speed;
-    ri.method = o.method == GD_TR_ADAMS ? "adams" : "bdf";
+    ri.method = o.method == GD_TR_ADAMS ? "adams" : o.method == GD_TR_GEN_ALPHA ? "galpha" : "bdf";
     ri.start = o.init == GD_TR_INIT_STATIC ? "static" : "rest";
     ri.window = o.window;
     if (o.speed && gd_cli_parse_speed(CMD, o.speed, &ri.speed)) {
@@ -523,6 +547,17 @@ int gd_cmd_transient(int argc, char **argv)
     opt.rtol = o.rtol;
     opt.method = o.method;
     opt.init = o.init;
+    opt.rho_inf = o.rho_inf;
+    if (o.step) {
+        if (parse_time("--step", o.step, &opt.step)) {
+            rc = GD_EXIT_INPUT;
+            goto done;
+        }
+        if (!(opt.step > 0)) {
+            rc = gd_cli_usage_error(CMD, "--step: give a time > 0");
+            goto done;
+        }
+    }
     progress pg = {-1, 0};
     if (!o.quiet && isatty(2)) {
         opt.progress = progress_cb;

@@ -115,7 +115,14 @@ GD_API void gd_transient_rhs(gd_transient *tr, double t, const double *y, double
 /* Sets every backlash mesh's contact state from the deformation in y at time t. */
 GD_API void gd_transient_set_contacts(gd_transient *tr, double t, const double *y);
 
-typedef enum gd_tr_method { GD_TR_BDF = 0, GD_TR_ADAMS = 1 } gd_tr_method;
+typedef enum gd_tr_method {
+    GD_TR_BDF = 0,
+    GD_TR_ADAMS = 1,
+    /* fixed-step generalized-alpha (Chung & Hulbert 1993): step, rho_inf; Newmark's
+     * average acceleration at rho_inf = 1. rtol/atol and max_order are not used, nor
+     * event location: contact changes are resolved to the step */
+    GD_TR_GEN_ALPHA = 2
+} gd_tr_method;
 typedef enum gd_tr_init {
     GD_TR_INIT_REST = 0,   /* q = 0, q' = 0 on the free DOFs */
     GD_TR_INIT_STATIC = 1, /* static equilibrium under the loads at t_start (needs a
@@ -138,6 +145,10 @@ typedef struct gd_transient_options {
     int max_order;     /* 0: CVODE's (5 BDF, 12 Adams); 2 makes BDF A-stable, which
                           suits lightly damped stiff modes */
     int locate_events; /* 1 (default): root-finding on contact changes */
+    double step;       /* GD_TR_GEN_ALPHA: largest step, s (0: output interval / 10); the
+                          step is shortened to fit each output interval */
+    double rho_inf;    /* GD_TR_GEN_ALPHA: spectral radius at infinite step, 0..1
+                          (default 0.9); 1: no numerical dissipation */
     /* Optional progress report (NULL: none): called with the time reached, at every
      * output sample and about every 1/200 of the span before record_from. The library
      * prints nothing itself. */

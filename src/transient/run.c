@@ -21,6 +21,7 @@ void gd_transient_options_init(gd_transient_options *opt)
     opt->method = GD_TR_BDF;
     opt->init = GD_TR_INIT_REST;
     opt->locate_events = 1;
+    opt->rho_inf = 0.9;
 }
 
 static int cv_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void *ud)
@@ -67,8 +68,8 @@ static void cv_err(int code, const char *module, const char *function, char *msg
 }
 
 /* Record value r at time t with full q, v. */
-static double record_value(gd_transient *tr, const gd_tr_record *rec, double t, const double *q,
-                           const double *v)
+double gd_tr_record_value(gd_transient *tr, const gd_tr_record *rec, double t, const double *q,
+                          const double *v)
 {
     const gd_model *model = tr->sys->model;
     int i = rec->index;
@@ -273,11 +274,6 @@ static void add_counters(void *mem, gd_transient_result *res)
     if (!CVodeGetNumPrecEvals(mem, &v)) res->prec_setups += v;
 }
 
-/* Bookkeeping of contact states over [record_from, t_end]. */
-typedef struct contact_track {
-    double since;
-} contact_track;
-
 static void account(gd_tr_contact_stats *cs_, gd_contact state, double t0, double t1, double from)
 {
     if (t0 < from) t0 = from;
@@ -290,8 +286,8 @@ static void account(gd_tr_contact_stats *cs_, gd_contact state, double t0, doubl
         cs_->drive_time += t1 - t0;
 }
 
-static void change_state(gd_transient *tr, int i, gd_contact ns, double t, double from,
-                         gd_tr_contact_stats *st, contact_track *track)
+void gd_tr_change_state(gd_transient *tr, int i, gd_contact ns, double t, double from,
+                        gd_tr_contact_stats *st, gd_tr_contact_track *track)
 {
     tr_mesh *m = &tr->mesh[i];
     if (ns == m->state) return;
@@ -344,7 +340,7 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
     res->contacts = calloc((size_t)(tr->nmesh > 0 ? tr->nmesh : 1), sizeof *res->contacts);
     res->q_end = calloc((size_t)n, sizeof *res->q_end);
     res->v_end = calloc((size_t)n, sizeof *res->v_end);
-    contact_track *track = calloc((size_t)(tr->nmesh > 0 ? tr->nmesh : 1), sizeof *track);
+    gd_tr_contact_track *track = calloc((size_t)(tr->nmesh > 0 ? tr->nmesh : 1), sizeof *track);
     int *rootsfound = calloc((size_t)(tr->nroot > 0 ? tr->nroot : 1), sizeof *rootsfound);
     if (!res->t || !res->records || !res->values || !res->stats || !res->contacts || !res->q_end ||
         !res->v_end || !track || !rootsfound) {
@@ -391,6 +387,11 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
     for (int i = 0; i < tr->nmesh; i++)
         track[i].since = opt->t_start;
 
+    if (opt->method == GD_TR_GEN_ALPHA) {
+        st = gd_tr_run_gen_alpha(tr, opt, records, nrecords, from, dt, yd, res, track, err);
+        if (st) goto done;
+        goto finish;
+    }
     mem = CVodeCreate(opt->method == GD_TR_ADAMS ? CV_ADAMS : CV_BDF, ctx);
     if (!mem) {
         st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "CVODE");
@@ -445,7 +446,7 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
                     else if (r0 < 0 || r1 > 0)
                         ns = GD_CONTACT_SEPARATED;
                     if (ns != m->state) {
-                        change_state(tr, i, ns, t, from, res->contacts, track);
+                        gd_tr_change_state(tr, i, ns, t, from, res->contacts, track);
                         changed = 1;
                     }
                     if (r0 || r1) res->events++;
@@ -476,7 +477,7 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
                     gd_contact ns = gd_backlash_state(de, m->spec.gap);
                     double tol = 1e-6 * m->spec.gap + 1e-15;
                     if (ns != m->state && fabs(fabs(de) - m->spec.gap) > tol) {
-                        change_state(tr, i, ns, t, from, res->contacts, track);
+                        gd_tr_change_state(tr, i, ns, t, from, res->contacts, track);
                         changed = 1;
                         res->events++;
                     }
@@ -491,14 +492,16 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
         res->t[k] = tk;
         gd_tr_fill(tr, tk, yd, tr->q, tr->v, NULL);
         for (int r = 0; r < nrecords; r++)
-            res->values[(size_t)r * nout + k] = record_value(tr, &records[r], tk, tr->q, tr->v);
+            res->values[(size_t)r * nout + k] =
+                gd_tr_record_value(tr, &records[r], tk, tr->q, tr->v);
     }
+finish:
     for (int i = 0; i < tr->nmesh; i++)
         account(&res->contacts[i], tr->mesh[i].state, track[i].since, opt->t_end, from);
     gd_tr_fill(tr, opt->t_end, yd, res->q_end, res->v_end, NULL);
     for (int r = 0; r < nrecords; r++)
         stats_of(res->values + (size_t)r * nout, nout, &res->stats[r]);
-    add_counters(mem, res);
+    if (mem) add_counters(mem, res);
 done:
     res->cpu_seconds = (double)(clock() - c0) / CLOCKS_PER_SEC;
     if (mem) CVodeFree(&mem);

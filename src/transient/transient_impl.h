@@ -97,4 +97,23 @@ void gd_tr_roots(gd_transient *tr, double t, const double *y, double *g);
 int gd_tr_prec_setup(gd_transient *tr, double gamma);
 void gd_tr_prec_solve(gd_transient *tr, const double *r, double *z);
 
+/* ---- run.c: records and contact statistics, shared by the integrators ---- */
+typedef struct gd_tr_contact_track {
+    double since; /* time of the last state change */
+} gd_tr_contact_track;
+/* Record value at time t with full q, v (current contact states). */
+double gd_tr_record_value(gd_transient *tr, const gd_tr_record *rec, double t, const double *q,
+                          const double *v);
+/* Mesh i changes to contact state ns at time t: statistics over [from, t_end]. */
+void gd_tr_change_state(gd_transient *tr, int i, gd_contact ns, double t, double from,
+                        gd_tr_contact_stats *st, gd_tr_contact_track *track);
+
+/* ---- gen_alpha.c ---- */
+/* Integrates from opt->t_start with the state y = [q_f; q_f'] (updated to the last
+ * sample) and fills res's samples t, values and counters; from, dt: the sampling. */
+gd_status gd_tr_run_gen_alpha(gd_transient *tr, const gd_transient_options *opt,
+                              const gd_tr_record *records, int nrecords, double from, double dt,
+                              double *y, gd_transient_result *res, gd_tr_contact_track *track,
+                              gd_error *err);
+
 #endif
