@@ -30,7 +30,7 @@
 typedef struct ga {
     gd_transient *tr;
     int nf, nw, linear;
-    double am, af, gamma, beta, h;
+    double am, af, gamma, beta, h, atol;
     csn *N;
     int *wmesh;    /* nw: meshes with a tangent update */
     double *W;     /* nf x nw: S^-1 a_m (free part) */
@@ -249,13 +249,16 @@ static int ga_step(ga *g, double t, long *nres)
             for (int p = M->p[j]; p < M->p[j + 1]; p++)
                 g->R[M->i[p]] += M->x[p] * g->x[j];
         if (tangent_solve(g, g->R, g->x)) return -1;
-        double dn = 0, an = 0;
+        /* converged when the update moves no displacement by more than atol_q + 1e-10
+         * of it (DOF by DOF: accelerations mix m/s^2 with the rad/s^2 of light tilts,
+         * whose round-off would stall a relative test on a) */
+        int conv = 1;
         for (int i = 0; i < nf; i++) {
             g->a1[i] -= g->x[i];
-            dn = fmax(dn, fabs(g->x[i]));
-            an = fmax(an, fabs(g->a1[i]));
+            double qn = fabs(g->q[i]) + h * fabs(g->v[i]);
+            if (be * h * h * fabs(g->x[i]) > g->atol + 1e-10 * qn) conv = 0;
         }
-        if (g->linear || dn <= 1e-10 * an || dn == 0.0) {
+        if (g->linear || conv) {
             for (int i = 0; i < nf; i++) {
                 g->q1[i] = g->q[i] + h * g->v[i] + h * h * ((0.5 - be) * g->a[i] + be * g->a1[i]);
                 g->v1[i] = g->v[i] + h * ((1.0 - ga_) * g->a[i] + ga_ * g->a1[i]);
@@ -294,6 +297,7 @@ gd_status gd_tr_run_gen_alpha(gd_transient *tr, const gd_transient_options *opt,
     g.af = rho / (rho + 1.0);
     g.gamma = 0.5 - g.am + g.af;
     g.beta = 0.25 * (1.0 - g.am + g.af) * (1.0 - g.am + g.af);
+    g.atol = opt->atol_q;
     double hmax = opt->step > 0 ? opt->step : dt / 10.0;
     gd_contact *s0 = malloc((size_t)(tr->nmesh > 0 ? tr->nmesh : 1) * sizeof *s0);
     if (!s0) {
