@@ -38,7 +38,7 @@ static cs view(const gd_csc *a)
 }
 
 /* Dense column-major n x n to CSC, dropping zeros. */
-static cs *from_dense(int n, const double *A)
+cs *gd_tr_cs_from_dense(int n, const double *A)
 {
     int nz = 0;
     for (long k = 0; k < (long)n * n; k++)
@@ -94,6 +94,43 @@ static int is_prescribed(const gd_transient_spec *spec, int dof)
     for (int i = 0; i < spec->nprescribed; i++)
         if (spec->prescribed[i].dof == dof) return 1;
     return 0;
+}
+
+/* The free blocks of M, K, D, the Cholesky factor of M_ff and the pattern of
+ * M_ff + g D_ff + g^2 K_ff with its symbolic LU, from tr->M, K, D and the partition. */
+gd_status gd_tr_linear_setup(gd_transient *tr, gd_error *err)
+{
+    tr->Mff = free_block(tr->M, tr->fidx, tr->nf);
+    tr->Kff = free_block(tr->K, tr->fidx, tr->nf);
+    tr->Dff = free_block(tr->D, tr->fidx, tr->nf);
+    if (!tr->Mff || !tr->Kff || !tr->Dff) return GD_ENOMEM;
+    tr->Msym = cs_schol(1, tr->Mff);
+    if (!tr->Msym) return GD_ENOMEM;
+    tr->Mnum = cs_chol(tr->Mff, tr->Msym);
+    if (!tr->Mnum)
+        return fail(err, GD_ENUMERIC, "dofs", "check the masses and inertias",
+                    "the mass matrix of the free DOFs is not positive definite");
+    /* preconditioner pattern */
+    {
+        cs *MD = cs_add(tr->Mff, tr->Dff, 1.0, 1.0);
+        if (!MD) return GD_ENOMEM;
+        tr->S = cs_add(MD, tr->Kff, 1.0, 1.0);
+        cs_spfree(MD);
+        int *mark = malloc((size_t)tr->nf * sizeof *mark);
+        if (!tr->S || !mark) {
+            free(mark);
+            return GD_ENOMEM;
+        }
+        tr->mapM = pattern_map(tr->Mff, tr->S, mark);
+        tr->mapD = pattern_map(tr->Dff, tr->S, mark);
+        tr->mapK = pattern_map(tr->Kff, tr->S, mark);
+        free(mark);
+        if (!tr->mapM || !tr->mapD || !tr->mapK) return GD_ENOMEM;
+        tr->Ssym = cs_sqr(1, tr->S, 0);
+        if (!tr->Ssym) return GD_ENOMEM;
+    }
+
+    return GD_OK;
 }
 
 gd_status gd_transient_new(const gd_system *sys, const gd_transient_spec *spec, double speed,
@@ -196,51 +233,22 @@ gd_status gd_transient_new(const gd_system *sys, const gd_transient_spec *spec, 
     cs Kv = view(&sys->K), Cv = view(&sys->C), Gv = view(&sys->G), Mv = view(&sys->M);
     tr->M = cs_add(&Mv, &Mv, 1.0, 0.0);
     if (sys->has_speed_dependent) {
-        double *Dd = malloc((size_t)n * n * sizeof *Dd), *Kd = malloc((size_t)n * n * sizeof *Kd);
-        if (Dd && Kd) {
-            gd_system_dense(sys, speed, NULL, Dd, Kd);
-            tr->K = from_dense(n, Kd);
-            tr->D = from_dense(n, Dd);
+        /* sparse K + K_b(W), C + C_b(W): memory linear in the DOFs */
+        gd_csc Ks = {0}, Cs = {0};
+        if (!gd_system_matrices(sys, speed, NULL, &Ks, &Cs, NULL, NULL)) {
+            cs Kb = view(&Ks), Cb = view(&Cs);
+            tr->K = cs_add(&Kb, &Kb, 1.0, 0.0);
+            tr->D = cs_add(&Cb, &Gv, 1.0, speed);
         }
-        free(Dd);
-        free(Kd);
+        gd_csc_free(&Ks);
+        gd_csc_free(&Cs);
     } else {
         tr->K = cs_add(&Kv, &Kv, 1.0, 0.0);
         tr->D = cs_add(&Cv, &Gv, 1.0, speed);
     }
     if (!tr->M || !tr->K || !tr->D) goto fail;
-    tr->Mff = free_block(tr->M, tr->fidx, tr->nf);
-    tr->Kff = free_block(tr->K, tr->fidx, tr->nf);
-    tr->Dff = free_block(tr->D, tr->fidx, tr->nf);
-    if (!tr->Mff || !tr->Kff || !tr->Dff) goto fail;
-    tr->Msym = cs_schol(1, tr->Mff);
-    if (!tr->Msym) goto fail;
-    tr->Mnum = cs_chol(tr->Mff, tr->Msym);
-    if (!tr->Mnum) {
-        st = fail(err, GD_ENUMERIC, "dofs", "check the masses and inertias",
-                  "the mass matrix of the free DOFs is not positive definite");
-        goto fail;
-    }
-    /* preconditioner pattern */
-    {
-        cs *MD = cs_add(tr->Mff, tr->Dff, 1.0, 1.0);
-        if (!MD) goto fail;
-        tr->S = cs_add(MD, tr->Kff, 1.0, 1.0);
-        cs_spfree(MD);
-        int *mark = malloc((size_t)tr->nf * sizeof *mark);
-        if (!tr->S || !mark) {
-            free(mark);
-            goto fail;
-        }
-        tr->mapM = pattern_map(tr->Mff, tr->S, mark);
-        tr->mapD = pattern_map(tr->Dff, tr->S, mark);
-        tr->mapK = pattern_map(tr->Kff, tr->S, mark);
-        free(mark);
-        if (!tr->mapM || !tr->mapD || !tr->mapK) goto fail;
-        tr->Ssym = cs_sqr(1, tr->S, 0);
-        if (!tr->Ssym) goto fail;
-    }
-
+    if ((st = gd_tr_linear_setup(tr, err))) goto fail;
+    st = GD_ENOMEM;
     /* meshes */
     tr->nmodel_mesh = model->nmeshes;
     if (model->nmeshes) {

@@ -97,6 +97,11 @@ void gd_tr_roots(gd_transient *tr, double t, const double *y, double *g);
 int gd_tr_prec_setup(gd_transient *tr, double gamma);
 void gd_tr_prec_solve(gd_transient *tr, const double *r, double *z);
 
+/* ---- problem.c ---- */
+gd_status gd_tr_linear_setup(gd_transient *tr, gd_error *err);
+/* Dense column-major n x n to compressed columns, exact zeros dropped (NULL: no memory). */
+cs *gd_tr_cs_from_dense(int n, const double *A);
+
 /* ---- run.c: records and contact statistics, shared by the integrators ---- */
 typedef struct gd_tr_contact_track {
     double since; /* time of the last state change */

@@ -373,8 +373,14 @@ TEST(option_errors)
     expect_error(gd_ts_, &s, "--rtol", NULL, "transient " DUCATI " --duration 1ms --rtol 0");
     expect_error(gd_ts_, &s, "--rtol: give a value below 0.1", NULL,
                  "transient " DUCATI " --duration 1ms --rtol 0.5");
-    expect_error(gd_ts_, &s, "not bdf or adams", NULL,
+    expect_error(gd_ts_, &s, "not bdf, adams or galpha", NULL,
                  "transient " DUCATI " --duration 1ms --method rk4");
+    expect_error(gd_ts_, &s, "--step: give a time > 0", NULL,
+                 "transient " DUCATI " --duration 1ms --method galpha --step 0");
+    expect_error(gd_ts_, &s, "--rho-inf: '2' is not a number from 0 to 1", NULL,
+                 "transient " DUCATI " --duration 1ms --method galpha --rho-inf 2");
+    expect_error(gd_ts_, &s, "does not take the cams' angle-dependent inertia", NULL,
+                 "transient " DUCATI " --duration 1ms --method galpha");
     expect_error(gd_ts_, &s, "not rest or static", NULL,
                  "transient " DUCATI " --duration 1ms --start hot");
     expect_error(gd_ts_, &s, "not hann or rect", NULL,
