@@ -22,7 +22,7 @@ static const char USAGE[] =
     "usage: geardyn transient MODEL.yaml [--duration T | --revolutions N] [--speed S]\n"
     "                         [--record WHAT]... [--from T] [--output-interval T]\n"
     "                         [--rtol R] [--method bdf|adams|galpha] [--step T]\n"
-    "                         [--rho-inf R] [--start rest|static]\n"
+    "                         [--rho-inf R] [--reduce F] [--start rest|static]\n"
     "                         [--spectrum] [--window hann|rect] [--unbalance-scale F]\n"
     "                         [--coupling LEVEL] [--set PATH=VALUE]... [--json] [--out DIR]\n"
     "                         [--quiet]\n\n"
@@ -54,6 +54,9 @@ static const char USAGE[] =
     "  --step T             galpha: largest time step (default: output interval / 10)\n"
     "  --rho-inf R          galpha: spectral radius at infinite step, 0..1 (default 0.9):\n"
     "                       below 1 damps the unresolved high modes\n"
+    "  --reduce F           modal reduction (Craig-Bampton): DOFs with laws stay physical,\n"
+    "                       the rest become their modes below F (e.g. 5kHz) plus static\n"
+    "                       constraint modes; any --method runs the reduced model\n"
     "  --start S            rest (default): q = q' = 0 (nominal motion), or static:\n"
     "                       static equilibrium under the loads at t = 0\n"
     "  --spectrum           amplitude spectrum (FFT, mean removed) of every record over\n"
@@ -119,6 +122,7 @@ typedef struct run_info {
     const char *method, *start;
     gd_window window;
     int spectrum;
+    int kept, modes; /* reduced model: physical DOFs kept, modes; kept -1: full */
 } run_info;
 
 static double order_of(double f_hz, double speed)
@@ -165,6 +169,10 @@ static cJSON *summary_json(const gd_system *sys, const gd_transient_model *tm,
     cJSON_AddNumberToObject(o, "speed_rpm", ri->speed * 30 / M_PI);
     cJSON_AddNumberToObject(o, "dofs", sys->ndof);
     cJSON_AddNumberToObject(o, "free_dofs", nfree);
+    if (ri->kept >= 0) {
+        cJSON_AddNumberToObject(o, "reduced_kept_dofs", ri->kept);
+        cJSON_AddNumberToObject(o, "reduced_modes", ri->modes);
+    }
     cJSON_AddNumberToObject(o, "t_end_s", ri->t_end);
     cJSON_AddNumberToObject(o, "record_from_s", ri->from);
     cJSON_AddNumberToObject(o, "output_interval_s", ri->dt);
@@ -219,6 +227,8 @@ static void print_text(const gd_system *sys, const gd_transient_model *tm,
     const gd_model *m = sys->model;
     printf("%s: %d DOFs (%d free), speed %g rad/s (%g rpm), t = 0 .. %g s, %s start, %s\n", m->file,
            sys->ndof, nfree, ri->speed, ri->speed * 30 / M_PI, ri->t_end, ri->start, ri->method);
+    if (ri->kept >= 0)
+        printf("reduced: %d physical DOFs kept, %d interior modes\n", ri->kept, ri->modes);
     printf("records from %g s every %g s (%d samples); %ld steps, %ld RHS evaluations, %ld "
            "contact events, %.3g s CPU\n\n",
            ri->from, ri->dt, res->nout, res->steps, res->rhs_evals, res->events, res->cpu_seconds);
@@ -310,7 +320,7 @@ fail:
 }
 
 typedef struct cli_opts {
-    const char *duration, *revolutions, *speed, *from, *interval, *coupling, *out, *step;
+    const char *duration, *revolutions, *speed, *from, *interval, *coupling, *out, *step, *reduce;
     const char *records[64];
     int nrecords;
     gd_cli_sets sets;
@@ -333,6 +343,7 @@ static int parse_args(int argc, char **argv, cli_opts *o)
                                          {"method", required_argument, 0, 'm'},
                                          {"step", required_argument, 0, 'H'},
                                          {"rho-inf", required_argument, 0, 'R'},
+                                         {"reduce", required_argument, 0, 'F'},
                                          {"start", required_argument, 0, 'a'},
                                          {"spectrum", no_argument, 0, 'S'},
                                          {"window", required_argument, 0, 'w'},
@@ -392,6 +403,9 @@ static int parse_args(int argc, char **argv, cli_opts *o)
             break;
         case 'H':
             o->step = optarg;
+            break;
+        case 'F':
+            o->reduce = optarg;
             break;
         case 'R': {
             char *end;
@@ -517,6 +531,7 @@ int gd_cmd_transient(int argc, char **argv)
     if (rc) return rc;
     run_info ri;
     memset(&ri, 0, sizeof ri);
+    ri.kept = -1;
     ri.speed = m->speed;
     ri.method = o.method == GD_TR_ADAMS ? "adams" : o.method == GD_TR_GEN_ALPHA ? "galpha" : "bdf";
     ri.start = o.init == GD_TR_INIT_STATIC ? "static" : "rest";
@@ -535,10 +550,22 @@ int gd_cmd_transient(int argc, char **argv)
     for (int k = 0; k < o.nrecords; k++)
         if ((rc = gd_cli_parse_records(CMD, s, tm, o.records[k], &recs))) goto done;
     if (!o.nrecords && (rc = gd_cli_default_records(s, tm, &recs))) goto done;
-    if (gd_transient_new(s, &tm->spec, ri.speed, &tr, &err)) {
+    double cutoff = 0;
+    if (o.reduce) {
+        gd_error why;
+        if (gd_parse_quantity(o.reduce, GD_QTY_ANGULAR_SPEED, &cutoff, &why) || !(cutoff > 0) ||
+            !isfinite(cutoff)) {
+            rc = gd_cli_usage_error(CMD, "--reduce: '%s' is not a frequency > 0 (e.g. 5kHz)",
+                                    o.reduce);
+            goto done;
+        }
+    }
+    if (o.reduce ? gd_transient_new_reduced(s, &tm->spec, ri.speed, cutoff, &tr, &err)
+                 : gd_transient_new(s, &tm->spec, ri.speed, &tr, &err)) {
         rc = gd_cli_report(&err);
         goto done;
     }
+    if (o.reduce) gd_transient_reduced_size(tr, &ri.kept, &ri.modes);
     gd_transient_options opt;
     gd_transient_options_init(&opt);
     opt.t_end = ri.t_end;

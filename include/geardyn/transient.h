@@ -107,6 +107,18 @@ GD_API gd_status gd_transient_new(const gd_system *sys, const gd_transient_spec 
                                   gd_transient **out, gd_error *err);
 GD_API void gd_transient_free(gd_transient *tr);
 
+/* The same problem reduced (Craig-Bampton): the DOFs the laws act on (meshes, dampers,
+ * loads, unbalances, prescribed DOFs) stay physical; the others are replaced by their
+ * fixed-interface modes below cutoff (rad/s) and the static constraint modes. Every
+ * integrator runs it; records, q0/v0 and q_end/v_end stay in the system's DOFs. Not
+ * with cam valve trains (GD_EINPUT). */
+GD_API gd_status gd_transient_new_reduced(const gd_system *sys, const gd_transient_spec *spec,
+                                          double speed, double cutoff, gd_transient **out,
+                                          gd_error *err);
+/* Size of the problem's coordinates; nkept: physical DOFs kept, nmodes: interior modes
+ * (either may be NULL; an unreduced problem: all kept, 0 modes). */
+GD_API int gd_transient_reduced_size(const gd_transient *tr, int *nkept, int *nmodes);
+
 /* The state layout: y = [q_f; q_f'] over the nfree free DOFs (in increasing DOF order). */
 GD_API int gd_transient_nstates(const gd_transient *tr);
 /* The right-hand side y' = f(t, y) with the current contact states (for benchmarks and

@@ -366,13 +366,8 @@ fail:
     return st;
 }
 
-void gd_transient_free(gd_transient *tr)
+void gd_tr_release_linear(gd_transient *tr)
 {
-    if (!tr) return;
-    free(tr->fidx);
-    free(tr->free_dof);
-    free(tr->pres);
-    free(tr->rate);
     cs_spfree(tr->K);
     cs_spfree(tr->D);
     cs_spfree(tr->M);
@@ -387,6 +382,21 @@ void gd_transient_free(gd_transient *tr)
     free(tr->mapK);
     cs_sfree(tr->Ssym);
     cs_nfree(tr->Snum);
+    tr->K = tr->D = tr->M = tr->Mff = tr->Kff = tr->Dff = tr->S = NULL;
+    tr->Msym = tr->Ssym = NULL;
+    tr->Mnum = tr->Snum = NULL;
+    tr->mapM = tr->mapD = tr->mapK = NULL;
+}
+
+void gd_transient_free(gd_transient *tr)
+{
+    if (!tr) return;
+    free(tr->fidx);
+    free(tr->free_dof);
+    free(tr->pres);
+    free(tr->rate);
+    gd_tr_release_linear(tr);
+    gd_tr_reduction_free(tr->red);
     free(tr->mesh);
     free(tr->model_a);
     free(tr->nl_of_mesh);

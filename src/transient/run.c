@@ -75,16 +75,17 @@ double gd_tr_record_value(gd_transient *tr, const gd_tr_record *rec, double t, c
     int i = rec->index;
     switch (rec->kind) {
     case GD_REC_DISP:
-        return q[i];
+        return gd_tr_full_value(tr, i, q);
     case GD_REC_VEL:
-        return v[i];
+        return gd_tr_full_value(tr, i, v);
     case GD_REC_ANGLE:
-        return tr->rate[i] * t + q[i];
+        return gd_tr_full_rate(tr, i) * t + gd_tr_full_value(tr, i, q);
     case GD_REC_SPEED:
-        return tr->rate[i] + v[i];
+        return gd_tr_full_rate(tr, i) + gd_tr_full_value(tr, i, v);
     case GD_REC_SPEED_RATIO: {
-        double den = tr->rate[rec->index2] + v[rec->index2];
-        return den != 0.0 ? (tr->rate[i] + v[i]) / den : 0.0;
+        int j = rec->index2;
+        double den = gd_tr_full_rate(tr, j) + gd_tr_full_value(tr, j, v);
+        return den != 0.0 ? (gd_tr_full_rate(tr, i) + gd_tr_full_value(tr, i, v)) / den : 0.0;
     }
     case GD_REC_MESH_FORCE:
     case GD_REC_MESH_DEFLECTION:
@@ -131,16 +132,16 @@ double gd_tr_record_value(gd_transient *tr, const gd_tr_record *rec, double t, c
 
 static gd_status check_record(const gd_transient *tr, const gd_tr_record *r, gd_error *err)
 {
-    int ok = 1;
+    int ok = 1, nfull = tr->red ? tr->red->nfull : tr->n;
     switch (r->kind) {
     case GD_REC_DISP:
     case GD_REC_VEL:
     case GD_REC_ANGLE:
     case GD_REC_SPEED:
-        ok = r->index >= 0 && r->index < tr->n;
+        ok = r->index >= 0 && r->index < nfull;
         break;
     case GD_REC_SPEED_RATIO:
-        ok = r->index >= 0 && r->index < tr->n && r->index2 >= 0 && r->index2 < tr->n;
+        ok = r->index >= 0 && r->index < nfull && r->index2 >= 0 && r->index2 < nfull;
         break;
     case GD_REC_MESH_FORCE:
     case GD_REC_MESH_DEFLECTION:
@@ -306,7 +307,7 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
                            gd_error *err)
 {
     *out = NULL;
-    const int nf = tr->nf, n = tr->n;
+    const int nf = tr->nf, n = tr->red ? tr->red->nfull : tr->n;
     double from = opt->record_from > opt->t_start ? opt->record_from : opt->t_start;
     if (!(opt->t_end > opt->t_start) || !(from <= opt->t_end) || !(opt->rtol > 0) ||
         !(opt->atol_q > 0) || !(opt->atol_v > 0))
@@ -374,7 +375,14 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
         ad[nf + i] = opt->atol_v;
     }
     memset(yd, 0, (size_t)2 * nf * sizeof *yd);
-    if (opt->init == GD_TR_INIT_GIVEN) {
+    if (opt->init == GD_TR_INIT_GIVEN && tr->red) {
+        gd_tr_project(tr, opt->q0, tr->w1);
+        gd_tr_project(tr, opt->v0, tr->w2);
+        for (int i = 0; i < nf; i++) {
+            yd[i] = tr->w1[tr->free_dof[i]];
+            yd[nf + i] = tr->w2[tr->free_dof[i]];
+        }
+    } else if (opt->init == GD_TR_INIT_GIVEN) {
         for (int i = 0; i < nf; i++) {
             yd[i] = opt->q0[tr->free_dof[i]];
             yd[nf + i] = opt->v0[tr->free_dof[i]];
@@ -498,7 +506,15 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
 finish:
     for (int i = 0; i < tr->nmesh; i++)
         account(&res->contacts[i], tr->mesh[i].state, track[i].since, opt->t_end, from);
-    gd_tr_fill(tr, opt->t_end, yd, res->q_end, res->v_end, NULL);
+    if (tr->red) {
+        gd_tr_fill(tr, opt->t_end, yd, tr->q, tr->v, NULL);
+        for (int i = 0; i < n; i++) {
+            res->q_end[i] = gd_tr_full_value(tr, i, tr->q);
+            res->v_end[i] = gd_tr_full_value(tr, i, tr->v);
+        }
+    } else {
+        gd_tr_fill(tr, opt->t_end, yd, res->q_end, res->v_end, NULL);
+    }
     for (int r = 0; r < nrecords; r++)
         stats_of(res->values + (size_t)r * nout, nout, &res->stats[r]);
     if (mem) add_counters(mem, res);

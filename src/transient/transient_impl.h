@@ -35,6 +35,17 @@ typedef struct tr_cam {
     int slot; /* index among the distinct free cam DOFs, -1 if prescribed */
 } tr_cam;
 
+/* A modal reduction (reduce.c): the problem's coordinates x = [q_B; eta] and the
+ * physical DOFs q = T x. */
+typedef struct gd_tr_reduction {
+    int nfull, nb, nr, nmodes;
+    int *kept;    /* nfull: index in x of a kept DOF, or -1 */
+    int *irow;    /* nfull: row of TI of an interior DOF, or -1 */
+    double *rate; /* nfull: nominal speed of each physical DOF */
+    double *TI;   /* interior rows of T, row-major (nI x nr): [Psi Phi] */
+    double *MTI;  /* rows of M_II Phi in columns nb.. (projection of a state) */
+} gd_tr_reduction;
+
 struct gd_transient {
     const gd_system *sys;
     int n, nf, np;
@@ -74,7 +85,8 @@ struct gd_transient {
     int nroot; /* 2 per backlash mesh */
     /* workspaces (n each) */
     double *q, *v, *acc, *r, *w1, *w2;
-    char msg[256]; /* last solver message */
+    char msg[256];        /* last solver message */
+    gd_tr_reduction *red; /* NULL: the physical DOFs */
 };
 
 /* Fills q, v, acc (length n) at time t from the state y: free DOFs from y, prescribed
@@ -101,6 +113,18 @@ void gd_tr_prec_solve(gd_transient *tr, const double *r, double *z);
 gd_status gd_tr_linear_setup(gd_transient *tr, gd_error *err);
 /* Dense column-major n x n to compressed columns, exact zeros dropped (NULL: no memory). */
 cs *gd_tr_cs_from_dense(int n, const double *A);
+
+/* Frees M, K, D, the free blocks, the mass factor and the preconditioner pattern. */
+void gd_tr_release_linear(gd_transient *tr);
+
+/* ---- reduce.c ---- */
+void gd_tr_reduction_free(gd_tr_reduction *r);
+/* Physical DOF i (of the system) from the problem's coordinates x. */
+double gd_tr_full_value(const gd_transient *tr, int i, const double *x);
+double gd_tr_full_rate(const gd_transient *tr, int i);
+/* x (nr) from a physical state (nfull): kept DOFs as they are, modal amplitudes by
+ * M-orthogonal projection of the interior motion not explained by them. */
+void gd_tr_project(const gd_transient *tr, const double *full, double *x);
 
 /* ---- run.c: records and contact statistics, shared by the integrators ---- */
 typedef struct gd_tr_contact_track {
