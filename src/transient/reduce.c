@@ -157,13 +157,18 @@ static gd_status interior_modes(const cs *K, const cs *M, double cutoff, double 
             /* M-orthonormal (twice classical Gram-Schmidt): the modes of a double
              * eigenvalue (x and y bending of a round shaft) come as any basis of their
              * plane, and the projection of an initial state needs Phi^T M Phi = I */
-            for (int i = 0, c = 0; i < ks.nconv; i++) {
+            int c = 0;
+            for (int i = 0; i < ks.nconv; i++) {
                 if (!(ks.mu_im[i] == 0 && ks.mu_re[i] >= mu_cut)) continue;
                 double *col = *phi + (size_t)c * n;
                 memcpy(col, ks.vec_re + (size_t)i * n, (size_t)n * sizeof *col);
+                double mm0 = 0;
                 for (int pass = 0; pass < 3; pass++) {
                     memset(op.w, 0, (size_t)n * sizeof *op.w);
                     cs_gaxpy(M, col, op.w);
+                    if (pass == 0)
+                        for (int r = 0; r < n; r++)
+                            mm0 += col[r] * op.w[r];
                     if (pass == 2) break;
                     for (int j = 0; j < c; j++) {
                         const double *pj = *phi + (size_t)j * n;
@@ -177,11 +182,13 @@ static gd_status interior_modes(const cs *K, const cs *M, double cutoff, double 
                 double mm = 0;
                 for (int r = 0; r < n; r++)
                     mm += col[r] * op.w[r];
+                /* a second Ritz vector of an eigenspace already spanned: drop it */
+                if (!(mm > 1e-12 * mm0)) continue;
                 for (int r = 0; r < n; r++)
                     col[r] /= sqrt(mm);
                 c++;
             }
-            *nphi = k;
+            *nphi = c;
         }
     }
     gd_ks_result_free(&ks);
