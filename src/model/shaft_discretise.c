@@ -172,26 +172,50 @@ static gd_status discretise(gd_model *m, int index, int *node_cap, int *elem_cap
     return st;
 }
 
+typedef struct named {
+    const char *name;
+    int index;
+} named;
+
+static int cmp_named(const void *a, const void *b)
+{
+    const named *x = a, *y = b;
+    int c = strcmp(x->name, y->name);
+    return c ? c : (x->index > y->index) - (x->index < y->index);
+}
+
+/* Node names are unique: sorted by (name, index), O(n log n) (a pairwise test took 70 %
+ * of `check` at 100 000 DOFs). The pair reported is the one the pairwise scan finds
+ * first: the smallest index i that repeats an earlier name, with its first holder j. */
 static gd_status check_unique_node_names(gd_model *m, gd_error *err)
 {
-    for (int i = 0; i < m->nnodes; i++)
-        for (int j = 0; j < i; j++)
-            if (!strcmp(m->nodes[i].name, m->nodes[j].name)) {
-                /* the later of the two, by its place in the file */
-                const gd_node *n =
-                    m->nodes[i].loc.line >= m->nodes[j].loc.line ? &m->nodes[i] : &m->nodes[j];
-                const gd_node *o = n == &m->nodes[i] ? &m->nodes[j] : &m->nodes[i];
-                const gd_bshaft *bs = &m->build->shafts[n->shaft];
-                char field[240];
-                if (n->list_index >= 0)
-                    gd_build_path(field, sizeof field, bs->stations[n->list_index].path, "name");
-                else
-                    gd_build_path(field, sizeof field, bs->path, "name");
-                return gd_build_fail(m, err, n->loc, NULL, field, "give every node its own name",
-                                     "node name '%s' is used twice (also on line %d)", n->name,
-                                     o->loc.line);
-            }
-    return GD_OK;
+    int n = m->nnodes;
+    named *ord = malloc((size_t)(n > 0 ? n : 1) * sizeof *ord);
+    if (!ord) return gd_build_oom(m, err);
+    for (int k = 0; k < n; k++)
+        ord[k] = (named){m->nodes[k].name, k};
+    qsort(ord, (size_t)n, sizeof *ord, cmp_named);
+    int bi = -1, bj = -1;
+    for (int k = 1; k < n; k++)
+        if (!strcmp(ord[k].name, ord[k - 1].name) &&
+            (k < 2 || strcmp(ord[k - 1].name, ord[k - 2].name)) && (bi < 0 || ord[k].index < bi)) {
+            bi = ord[k].index;
+            bj = ord[k - 1].index;
+        }
+    free(ord);
+    if (bi < 0) return GD_OK;
+    int i = bi, j = bj;
+    /* the later of the two, by its place in the file */
+    const gd_node *nd = m->nodes[i].loc.line >= m->nodes[j].loc.line ? &m->nodes[i] : &m->nodes[j];
+    const gd_node *o = nd == &m->nodes[i] ? &m->nodes[j] : &m->nodes[i];
+    const gd_bshaft *bs = &m->build->shafts[nd->shaft];
+    char field[240];
+    if (nd->list_index >= 0)
+        gd_build_path(field, sizeof field, bs->stations[nd->list_index].path, "name");
+    else
+        gd_build_path(field, sizeof field, bs->path, "name");
+    return gd_build_fail(m, err, nd->loc, NULL, field, "give every node its own name",
+                         "node name '%s' is used twice (also on line %d)", nd->name, o->loc.line);
 }
 
 gd_status gd_build_discretise_shafts(gd_model *m, gd_error *err)

@@ -1,0 +1,131 @@
+/* Linear time response: unbalance switched on from rest, on a model file with
+ * unbalances (bench_transient_linear.sh: the 366-DOF rotor), every method against
+ * CVODE BDF at a tight tolerance (rtol 1e-10): error (largest difference over the
+ * samples / peak of the reference) on a kept DOF and on an interior DOF, and time.
+ * Asserts nothing.
+ * usage: bench_transient_linear MODEL SPEED_RAD_S T_END NODE_A NODE_B */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "geardyn/model_file.h"
+#include "geardyn/transient.h"
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+typedef struct cfg {
+    const char *label;
+    gd_tr_method method;
+    double rtol, step, rho, cutoff_hz;
+} cfg;
+
+static gd_transient_result *run(const gd_system *s, double speed, double t_end,
+                                const gd_tr_record *rec, const cfg *c, double *secs, int *nr)
+{
+    gd_transient_spec spec;
+    memset(&spec, 0, sizeof spec);
+    spec.unbalances = 1;
+    gd_transient *tr = NULL;
+    gd_error err;
+    double t0 = now();
+    gd_status st = c->cutoff_hz > 0 ? gd_transient_new_reduced(s, &spec, speed,
+                                                               2 * M_PI * c->cutoff_hz, &tr, &err)
+                                    : gd_transient_new(s, &spec, speed, &tr, &err);
+    if (st) {
+        fprintf(stderr, "%s: %s\n", c->label, err.message);
+        return NULL;
+    }
+    *nr = gd_transient_nstates(tr) / 2;
+    gd_transient_options o;
+    gd_transient_options_init(&o);
+    o.t_end = t_end;
+    o.output_interval = 1e-4;
+    o.method = c->method;
+    o.step = c->step;
+    o.rho_inf = c->rho;
+    if (c->rtol > 0) {
+        o.rtol = c->rtol;
+        o.atol_q = 1e-6 * c->rtol;
+        o.atol_v = 1e-3 * c->rtol;
+    }
+    gd_transient_result *r = NULL;
+    if (gd_transient_run(tr, &o, rec, 2, &r, &err))
+        fprintf(stderr, "%s: %s\n", c->label, err.message);
+    *secs = now() - t0;
+    gd_transient_free(tr);
+    return r;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 6) {
+        fprintf(stderr, "usage: bench_transient_linear MODEL SPEED T_END NODE_A NODE_B\n");
+        return 2;
+    }
+    double speed = atof(argv[2]), t_end = atof(argv[3]);
+    gd_error err;
+    gd_model *m;
+    gd_system *s;
+    if (gd_model_load(argv[1], &m, &err) || gd_system_build(m, &s, &err)) {
+        fprintf(stderr, "%s\n", err.message);
+        return 1;
+    }
+    gd_tr_record rec[2] = {
+        {GD_REC_DISP, gd_system_dof(s, gd_model_find_node(m, argv[4]), GD_X), 0},
+        {GD_REC_DISP, gd_system_dof(s, gd_model_find_node(m, argv[5]), GD_Y), 0}};
+    static const cfg cases[] = {
+        {"cvode bdf rtol 1e-10 (reference)", GD_TR_BDF, 1e-10, 0, 0, 0},
+        {"cvode bdf rtol 1e-6 (default)", GD_TR_BDF, 1e-6, 0, 0, 0},
+        {"cvode bdf rtol 1e-3", GD_TR_BDF, 1e-3, 0, 0, 0},
+        {"galpha rho 0.9 h 2e-5", GD_TR_GEN_ALPHA, 0, 2e-5, 0.9, 0},
+        {"galpha rho 0.9 h 1e-5", GD_TR_GEN_ALPHA, 0, 1e-5, 0.9, 0},
+        {"galpha rho 1.0 h 1e-5 (Newmark)", GD_TR_GEN_ALPHA, 0, 1e-5, 1.0, 0},
+        {"galpha rho 0.9 h 2e-6", GD_TR_GEN_ALPHA, 0, 2e-6, 0.9, 0},
+        {"galpha rho 0.9 h 5e-7", GD_TR_GEN_ALPHA, 0, 5e-7, 0.9, 0},
+        {"reduced 5 kHz + galpha h 2e-5", GD_TR_GEN_ALPHA, 0, 2e-5, 0.9, 5000},
+        {"reduced 5 kHz + galpha h 1e-5", GD_TR_GEN_ALPHA, 0, 1e-5, 0.9, 5000},
+        {"reduced 20 kHz + galpha h 2e-6", GD_TR_GEN_ALPHA, 0, 2e-6, 0.9, 20000},
+        {"reduced 5 kHz + cvode bdf rtol 1e-6", GD_TR_BDF, 1e-6, 0, 0, 5000},
+        {"reduced 20 kHz + cvode bdf rtol 1e-8", GD_TR_BDF, 1e-8, 0, 0, 20000},
+    };
+    int nc = (int)(sizeof cases / sizeof cases[0]);
+    printf("model %s: %d DOFs, speed %g rad/s, %g s from rest, records %s.x and %s.y\n", argv[1],
+           s->ndof, speed, t_end, argv[4], argv[5]);
+    printf("%-38s %8s %10s %12s %12s %10s\n", "method", "coords", "time (s)", "err A", "err B",
+           "steps");
+    gd_transient_result *ref = NULL;
+    for (int c = 0; c < nc; c++) {
+        double secs;
+        int nr;
+        gd_transient_result *r = run(s, speed, t_end, rec, &cases[c], &secs, &nr);
+        if (!r) continue;
+        double e[2] = {0, 0};
+        if (ref)
+            for (int k = 0; k < 2; k++) {
+                double pk = 0, d = 0;
+                for (int i = 0; i < r->nout; i++) {
+                    pk = fmax(pk, fabs(ref->values[k * r->nout + i]));
+                    d = fmax(d, fabs(r->values[k * r->nout + i] - ref->values[k * r->nout + i]));
+                }
+                e[k] = d / pk;
+            }
+        printf("%-38s %8d %10.4f %12.3g %12.3g %10ld\n", cases[c].label, nr, secs, e[0], e[1],
+               r->steps);
+        fflush(stdout);
+        if (!ref)
+            ref = r;
+        else
+            gd_transient_result_free(r);
+    }
+    gd_transient_result_free(ref);
+    gd_system_free(s);
+    gd_model_free(m);
+    return 0;
+}
