@@ -23,7 +23,7 @@ static const char USAGE[] =
     "  --orders LIST       extra orders of the reference speed, comma-separated: 2,0.5\n"
     "  --no-shaft-orders   leave out the 1x order of each shaft\n"
     "  --no-mesh-orders    leave out the tooth-mesh orders (teeth x shaft speed)\n"
-    "  --method M          auto (sparse shift-invert from 200 DOFs), dense (LAPACK) or sparse\n"
+    "  --method M          auto (the cheaper by a measured cost model), dense (LAPACK) or sparse\n"
     "  --undamped          drop damping (gyroscopic terms stay)\n"
     "  --shift VALUE       sparse shift below zero, e.g. 10Hz (default: automatic)\n"
     "  --threads N         parallel threads over speeds (default: all cores)\n"
