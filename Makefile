@@ -46,11 +46,19 @@ test-asan: deps
 # The two Campbell sweeps over many speeds take minutes under valgrind; they run in the
 # normal and sanitizer builds.
 VALGRIND_SKIP_test_campbell = -threads_and_methods_agree,critical_speeds
+# Dense 340-state solves and long fixed-step runs on the 170-DOF rig: normal and
+# sanitizer builds only.
+VALGRIND_SKIP_test_modal_method = -auto_picks_sparse_for_the_rig
+VALGRIND_SKIP_test_gen_alpha = -linear_unbalance_run_up_matches_tight_cvode
+VALGRIND_SKIP_test_reduce = -reduced_unbalance_response_matches_the_full_model
 memcheck: build
 	@set -e; for t in $(BUILD)/test_*; do \
 	    [ -f $$t ] && [ -x $$t ] && [ "$$(head -c 4 $$t | tail -c 3)" = ELF ] || continue; \
 	    name=$$(basename $$t); skip=""; \
 	    [ "$$name" = test_campbell ] && skip="$(VALGRIND_SKIP_test_campbell)"; \
+	    [ "$$name" = test_modal_method ] && skip="$(VALGRIND_SKIP_test_modal_method)"; \
+	    [ "$$name" = test_gen_alpha ] && skip="$(VALGRIND_SKIP_test_gen_alpha)"; \
+	    [ "$$name" = test_reduce ] && skip="$(VALGRIND_SKIP_test_reduce)"; \
 	    echo "valgrind $$t $$skip"; OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=2 $(VALGRIND) $$t $$skip >/dev/null; done; \
 	out=$$(mktemp -d); \
 	for args in "check examples/rig2018.yaml" "modal examples/rig2018.yaml --speed 3000rpm --json" \
@@ -63,7 +71,8 @@ memcheck: build
 	            "campbell examples/kumar2011_coupled.yaml --speeds 0:3000rpm:4 --json" \
 	            "frf examples/kumar2011_coupled.yaml --input torque:motor --output mesh:mesh --freq 100:26000:20 --json" \
 	            "unbalance examples/chen1998_gear_pair.yaml --speeds 100:6000:8 --json" \
-	            "transient examples/ducati_timing_geartrain.yaml --revolutions 0.2 --quiet --json"; do \
+	            "transient examples/ducati_timing_geartrain.yaml --revolutions 0.2 --quiet --json" \
+	            "transient examples/rig2018.yaml --set shafts.*.elements_per_section=1 --duration 1ms --output-interval 20us --method galpha --reduce 5kHz --quiet"; do \
 	    echo "valgrind geardyn $$args"; OPENBLAS_NUM_THREADS=1 $(VALGRIND) $(BUILD)/geardyn $$args >/dev/null; done; \
 	for args in "modal examples/missing.yaml" "modal examples/rig2018.yaml --speed fast" \
 	            "check examples/helical_pair1.yaml" \

@@ -84,13 +84,17 @@ TEST(reduced_frequencies_below_the_cutoff)
     gd_modal_options_init(&o);
     o.kind = GD_MODAL_UNDAMPED;
     o.want_left = 0;
-    o.nmodes = 0;
+    o.nmodes = 24; /* the lowest, by the sparse solver: cheap under valgrind */
     gd_modal_result *r = NULL;
     REQUIRE(gd_modal_solve(f.s, &o, &r, NULL) == GD_OK);
     int checked = 0;
     for (int k = 0; k < nr && k < r->nmodes; k++) {
         double full = r->modes[k].omega_n, red = sqrt(fmax(w[k], 0.0));
         if (full > cutoff / 2) break;
+        if (r->modes[k].rigid_body) { /* zero to round-off (valgrind's: 4e-4 rad/s) */
+            CHECK_ABS(red, 0.0, 1e-2);
+            continue;
+        }
         CHECK(red >= full * (1 - 1e-9));
         CHECK_REL(red, full, full < cutoff / 5 ? 1e-4 : 2e-3);
         checked++;
