@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Scaling with model size on one core: the MMT rig (examples/rig2018.yaml) refined from
 # 1 000 to 100 000 DOFs (elements_per_section 50 .. 5000, two geared shafts, 5 DOFs per
-# node), with an unbalance on the driving gear. Wall time and peak resident memory
+# node), with an unbalance on the driving gear. CPU time (user + system) and peak memory
 # (/usr/bin/time) of check; modal, 10 lowest damped modes at 3000 rpm; campbell, 20
 # speeds 0..12000 rpm, 10 modes; frf, direct, 100 frequencies to 2 kHz; transient,
 # unbalance from rest for 1 ms by gen-alpha (h 10 us) on the full model and on the model
@@ -16,10 +16,10 @@ trap 'rm -rf "$tmp"' EXIT
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
 T=/usr/bin/time
 [ -x "$T" ] || { echo "/usr/bin/time missing (apt-get install time)"; exit 0; }
-run() { # label, command...: prints "seconds MB"
+run() { # command...: prints CPU seconds (user + system: the machine may be shared) and MB
     local out="$tmp/time"
-    if "$T" -f "%e %M" -o "$out" "$@" > /dev/null 2> "$tmp/err"; then
-        awk '{printf "%8.2f s %7.0f MB", $1, $2 / 1024}' "$out"
+    if "$T" -f "%U %S %M" -o "$out" "$@" > /dev/null 2> "$tmp/err"; then
+        awk '{printf "%8.2f s %7.0f MB", $1 + $2, $3 / 1024}' "$out"
     else
         printf "%20s" "failed"
         sed 's/^/    # /' "$tmp/err" | head -3 >&2

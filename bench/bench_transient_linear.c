@@ -1,7 +1,8 @@
 /* Linear time response: unbalance switched on from rest, on a model file with
  * unbalances (bench_transient_linear.sh: the 366-DOF rotor), every method against
  * CVODE BDF at a tight tolerance (rtol 1e-10): error (largest difference over the
- * samples / peak of the reference) on a kept DOF and on an interior DOF, and time.
+ * samples / peak of the reference) on a kept DOF and on an interior DOF, and CPU time
+ * (set-up, reduction included).
  * Asserts nothing.
  * usage: bench_transient_linear MODEL SPEED_RAD_S T_END NODE_A NODE_B */
 #include <math.h>
@@ -13,10 +14,12 @@
 #include "geardyn/model_file.h"
 #include "geardyn/transient.h"
 
+/* CPU time of the process: the machine running the benchmarks is shared, and wall time
+ * there measures the neighbours as much as the method */
 static double now(void)
 {
     struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
     return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
@@ -83,7 +86,6 @@ int main(int argc, char **argv)
     static const cfg cases[] = {
         {"cvode bdf rtol 1e-10 (reference)", GD_TR_BDF, 1e-10, 0, 0, 0},
         {"cvode bdf rtol 1e-6 (default)", GD_TR_BDF, 1e-6, 0, 0, 0},
-        {"cvode bdf rtol 1e-3", GD_TR_BDF, 1e-3, 0, 0, 0},
         {"galpha rho 0.9 h 2e-5", GD_TR_GEN_ALPHA, 0, 2e-5, 0.9, 0},
         {"galpha rho 0.9 h 1e-5", GD_TR_GEN_ALPHA, 0, 1e-5, 0.9, 0},
         {"galpha rho 1.0 h 1e-5 (Newmark)", GD_TR_GEN_ALPHA, 0, 1e-5, 1.0, 0},
@@ -98,7 +100,7 @@ int main(int argc, char **argv)
     int nc = (int)(sizeof cases / sizeof cases[0]);
     printf("model %s: %d DOFs, speed %g rad/s, %g s from rest, records %s.x and %s.y\n", argv[1],
            s->ndof, speed, t_end, argv[4], argv[5]);
-    printf("%-38s %8s %10s %12s %12s %10s\n", "method", "coords", "time (s)", "err A", "err B",
+    printf("%-38s %8s %10s %12s %12s %10s\n", "method", "coords", "CPU (s)", "err A", "err B",
            "steps");
     gd_transient_result *ref = NULL;
     for (int c = 0; c < nc; c++) {

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """The floor for `geardyn modal --modes N`: scipy's ARPACK (eigs, shift-invert with
 SuperLU) and LAPACK dgeev (scipy.linalg.eig) on the same first-order matrices, read
-from `geardyn matrices --format mtx`. Prints best-of-R wall times and the lowest
+from `geardyn matrices --format mtx`. Prints best-of-R CPU times (the machine may be
+shared; one thread: OMP_NUM_THREADS=OPENBLAS_NUM_THREADS=1) and the lowest
 frequencies; asserts nothing.
 
 usage: floor_modal.py DIR SPEED_RAD_S NMODES [REPEATS] [--no-dense]
@@ -20,9 +21,9 @@ def best(f, reps):
     t = 1e30
     out = None
     for _ in range(reps):
-        t0 = time.perf_counter()
+        t0 = time.process_time()
         out = f()
-        t = min(t, time.perf_counter() - t0)
+        t = min(t, time.process_time() - t0)
     return t, out
 
 
