@@ -88,6 +88,10 @@ int gd_cli_load(const char *path, const gd_cli_sets *sets, const char *coupling,
                 gd_system **sys);
 /* Parses a speed option value with units ("3000 rpm"); 0 on success. */
 int gd_cli_parse_speed(const char *cmd, const char *text, double *out);
+/* Parses --method auto|dense|sparse (the eigensolver); 0 on success, else the usage
+ * error's exit code. */
+#include "geardyn/modal.h"
+int gd_cli_parse_eig_method(const char *cmd, const char *text, gd_eig_method *out);
 
 /* ---- sweeps: Campbell, FRF, unbalance (cli_sweep.c) ---- */
 #include "geardyn/frf.h"

@@ -255,15 +255,7 @@ int gd_cmd_campbell(int argc, char **argv)
             opt.mesh_orders = 0;
             break;
         case 'm':
-            if (!strcmp(optarg, "auto"))
-                opt.method = GD_EIG_AUTO;
-            else if (!strcmp(optarg, "dense"))
-                opt.method = GD_EIG_DENSE;
-            else if (!strcmp(optarg, "sparse"))
-                opt.method = GD_EIG_SPARSE;
-            else
-                return gd_cli_usage_error(cmd, "--method: '%s' is not auto, dense or sparse",
-                                          optarg);
+            if (gd_cli_parse_eig_method(cmd, optarg, &opt.method)) return GD_EXIT_INPUT;
             break;
         case 'u':
             opt.kind = GD_MODAL_UNDAMPED;

@@ -210,15 +210,7 @@ int gd_cmd_modal(int argc, char **argv)
             if (gd_cli_add_set("modal", &sets, optarg)) return GD_EXIT_INPUT;
             break;
         case 'm':
-            if (!strcmp(optarg, "auto"))
-                opt.method = GD_EIG_AUTO;
-            else if (!strcmp(optarg, "dense"))
-                opt.method = GD_EIG_DENSE;
-            else if (!strcmp(optarg, "sparse"))
-                opt.method = GD_EIG_SPARSE;
-            else
-                return gd_cli_usage_error("modal", "--method: '%s' is not auto, dense or sparse",
-                                          optarg);
+            if (gd_cli_parse_eig_method("modal", optarg, &opt.method)) return GD_EXIT_INPUT;
             break;
         case 'j':
             json = 1;

@@ -53,15 +53,14 @@ cs *gd_tr_cs_from_dense(int n, const double *A)
     return C;
 }
 
-/* The block of A on the free rows and columns. */
-static cs *free_block(const cs *A, const int *fidx, int nf)
+cs *gd_tr_cs_block(const cs *A, const int *rmap, const int *cmap, int nr, int nc)
 {
-    cs *T = cs_spalloc(nf, nf, A->p[A->n] > 0 ? A->p[A->n] : 1, 1, 1);
+    cs *T = cs_spalloc(nr, nc, A->p[A->n] > 0 ? A->p[A->n] : 1, 1, 1);
     if (!T) return NULL;
     for (int j = 0; j < A->n; j++) {
-        if (fidx[j] < 0) continue;
+        if (cmap[j] < 0) continue;
         for (int p = A->p[j]; p < A->p[j + 1]; p++)
-            if (fidx[A->i[p]] >= 0 && !cs_entry(T, fidx[A->i[p]], fidx[j], A->x[p])) {
+            if (rmap[A->i[p]] >= 0 && !cs_entry(T, rmap[A->i[p]], cmap[j], A->x[p])) {
                 cs_spfree(T);
                 return NULL;
             }
@@ -100,9 +99,9 @@ static int is_prescribed(const gd_transient_spec *spec, int dof)
  * M_ff + g D_ff + g^2 K_ff with its symbolic LU, from tr->M, K, D and the partition. */
 gd_status gd_tr_linear_setup(gd_transient *tr, gd_error *err)
 {
-    tr->Mff = free_block(tr->M, tr->fidx, tr->nf);
-    tr->Kff = free_block(tr->K, tr->fidx, tr->nf);
-    tr->Dff = free_block(tr->D, tr->fidx, tr->nf);
+    tr->Mff = gd_tr_cs_block(tr->M, tr->fidx, tr->fidx, tr->nf, tr->nf);
+    tr->Kff = gd_tr_cs_block(tr->K, tr->fidx, tr->fidx, tr->nf, tr->nf);
+    tr->Dff = gd_tr_cs_block(tr->D, tr->fidx, tr->fidx, tr->nf, tr->nf);
     if (!tr->Mff || !tr->Kff || !tr->Dff) return GD_ENOMEM;
     tr->Msym = cs_schol(1, tr->Mff);
     if (!tr->Msym) return GD_ENOMEM;

@@ -28,29 +28,6 @@ static gd_status fail(gd_error *err, gd_status st, const char *hint, const char 
     return gd_error_set(err, st, "", 0, 0, "reduce", hint, "%s", msg);
 }
 
-/* Block A(rows, cols) of a full matrix as a new CSC matrix; rmap, cmap: full index ->
- * block index or -1. */
-static cs *block(const cs *A, const int *rmap, const int *cmap, int nr, int nc)
-{
-    cs *T = cs_spalloc(nr, nc, A->p[A->n] > 0 ? A->p[A->n] : 1, 1, 1);
-    if (!T) return NULL;
-    for (int j = 0; j < A->n; j++) {
-        if (cmap[j] < 0) continue;
-        for (int p = A->p[j]; p < A->p[j + 1]; p++)
-            if (rmap[A->i[p]] >= 0 && !cs_entry(T, rmap[A->i[p]], cmap[j], A->x[p])) {
-                cs_spfree(T);
-                return NULL;
-            }
-    }
-    cs *C = cs_compress(T);
-    cs_spfree(T);
-    if (C && !cs_dupl(C)) {
-        cs_spfree(C);
-        return NULL;
-    }
-    return C;
-}
-
 typedef struct lu_op {
     css *S;
     csn *N;
@@ -323,9 +300,9 @@ static gd_status reduce(gd_transient *tr, double cutoff, gd_error *err)
         st = GD_OK;
         goto done;
     }
-    KII = block(tr->K, imap, imap, ni, ni);
-    MII = block(tr->M, imap, imap, ni, ni);
-    KIB = block(tr->K, imap, bmap, ni, nb);
+    KII = gd_tr_cs_block(tr->K, imap, imap, ni, ni);
+    MII = gd_tr_cs_block(tr->M, imap, imap, ni, ni);
+    KIB = gd_tr_cs_block(tr->K, imap, bmap, ni, nb);
     if (!KII || !MII || !KIB) goto done;
     int nphi = 0;
     if (ni > 12) {

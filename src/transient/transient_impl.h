@@ -113,6 +113,9 @@ void gd_tr_prec_solve(gd_transient *tr, const double *r, double *z);
 gd_status gd_tr_linear_setup(gd_transient *tr, gd_error *err);
 /* Dense column-major n x n to compressed columns, exact zeros dropped (NULL: no memory). */
 cs *gd_tr_cs_from_dense(int n, const double *A);
+/* Block A(rows, cols) as a new nr x nc matrix; rmap, cmap: index in A -> index in the
+ * block, or -1 (NULL: no memory). */
+cs *gd_tr_cs_block(const cs *A, const int *rmap, const int *cmap, int nr, int nc);
 
 /* Frees M, K, D, the free blocks, the mass factor and the preconditioner pattern. */
 void gd_tr_release_linear(gd_transient *tr);
