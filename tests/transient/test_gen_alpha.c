@@ -9,6 +9,10 @@
 #include "geardyn/transient.h"
 #include "harness.h"
 
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
 typedef struct fixture {
     gd_model *m;
     gd_system *s;
@@ -195,5 +199,97 @@ TEST(linear_unbalance_run_up_matches_tight_cvode)
     fx_free(&f);
 }
 
+/* An impacting torsional pair (backlash 3 um, TVMS +-20 %, STE 10 um, 1000 N load,
+ * pinion at 537 rad/s, 20 teeth), 0.05 s from static equilibrium: gen-alpha (h = mesh
+ * period / 40, contact resolved to the step) against CVODE with located events (rtol
+ * 1e-6). Measured: the same 86 contact losses and 85 coast impacts, separated time
+ * 1.9 % and RMS mesh force 1.1 % apart (impacts resolved to the step); bounds 2 % (one
+ * event), 4 % and 3 %. */
+TEST(backlash_pair_matches_cvode_with_located_events)
+{
+    static const char *pair =
+        "dofs: [rz]\n"
+        "shafts: [{name: input, nodes: [{name: pinion}]}, {name: output, nodes: [{name: "
+        "gear}]}]\n"
+        "disks: [{node: pinion, polar_inertia: 1e-3}, {node: gear, polar_inertia: 4e-3}]\n"
+        "meshes:\n"
+        "  - {name: mesh, driver: pinion, driven: gear, teeth: [20, 40],\n"
+        "     base_radius: [0.03, 0.06], pressure_angle: 20 deg, stiffness: 2e8,\n"
+        "     coupling: torsional}\n";
+    gd_error err;
+    gd_model *m = NULL;
+    gd_system *s = NULL;
+    REQUIRE(gd_model_load_string(pair, "pair.yaml", &m, &err) == GD_OK);
+    REQUIRE(gd_system_build(m, &s, &err) == GD_OK);
+    const double speed = 537.0, per = 2 * M_PI / 20;
+    enum { N = 64 };
+    double x[N], k[N], e[N];
+    for (int i = 0; i < N; i++) {
+        x[i] = i * per / N;
+        k[i] = 2e8 * (1 + 0.2 * cos(20 * x[i]));
+        e[i] = 1e-5 * sin(20 * x[i]);
+    }
+    gd_table *tk = NULL, *te = NULL;
+    REQUIRE(gd_table_new(N, x, k, per, GD_INTERP_SPLINE, &tk, &err) == GD_OK);
+    REQUIRE(gd_table_new(N, x, e, per, GD_INTERP_SPLINE, &te, &err) == GD_OK);
+    int drv = gd_system_dof(s, m->meshes[0].driver, GD_RZ),
+        dvn = gd_system_dof(s, m->meshes[0].driven, GD_RZ);
+    gd_tr_mesh tm;
+    gd_tr_mesh_init(s, 0, &tm);
+    tm.tvms = tk;
+    tm.ste = te;
+    tm.damping_per_k = 0.05 * 2 / (20 * speed * 1.25);
+    tm.damping = 0;
+    tm.damping_free = 10;
+    tm.backlash = 1;
+    tm.gap = 3e-6;
+    gd_mesh_vector a;
+    gd_system_mesh_vector(s, 0, &a);
+    double ag = 0;
+    for (int j = 0; j < a.n; j++)
+        if (a.dof[j] == dvn) ag = a.a[j];
+    gd_tr_prescribed pr = {drv, {GD_PRESCRIBED_NOMINAL, 0, 0, 0, 0, NULL}};
+    gd_tr_load load = {dvn, {GD_LOAD_CONSTANT, 1000.0 * ag, 0, 0, 0, NULL}};
+    gd_transient_spec spec;
+    memset(&spec, 0, sizeof spec);
+    spec.meshes = &tm;
+    spec.nmeshes = 1;
+    spec.prescribed = &pr;
+    spec.nprescribed = 1;
+    spec.loads = &load;
+    spec.nloads = 1;
+    gd_transient *tr = NULL;
+    REQUIRE(gd_transient_new(s, &spec, speed, &tr, &err) == GD_OK);
+    gd_tr_record rec = {GD_REC_MESH_FORCE, 0, 0};
+    gd_transient_result *r[2] = {NULL, NULL};
+    for (int c = 0; c < 2; c++) {
+        gd_transient_options o;
+        gd_transient_options_init(&o);
+        o.t_end = 0.05;
+        o.output_interval = 0.05 / 2000;
+        o.init = GD_TR_INIT_STATIC;
+        if (c) {
+            o.method = GD_TR_GEN_ALPHA;
+            o.step = 2 * M_PI / (20 * speed) / 40;
+        }
+        if (gd_transient_run(tr, &o, &rec, 1, &r[c], &err)) fprintf(stderr, "  %s\n", err.message);
+    }
+    REQUIRE(r[0] && r[1]);
+    const gd_tr_contact_stats *c0 = &r[0]->contacts[0], *c1 = &r[1]->contacts[0];
+    CHECK(c0->contact_losses > 50 && c0->coast_impacts > 50); /* it does impact */
+    CHECK_REL(c1->contact_losses, c0->contact_losses, 0.02);
+    CHECK_REL(c1->coast_impacts, c0->coast_impacts, 0.02);
+    CHECK_REL(c1->separated_time, c0->separated_time, 0.04);
+    CHECK_REL(r[1]->stats[0].rms, r[0]->stats[0].rms, 0.03);
+    gd_transient_result_free(r[0]);
+    gd_transient_result_free(r[1]);
+    gd_transient_free(tr);
+    gd_table_free(tk);
+    gd_table_free(te);
+    gd_system_free(s);
+    gd_model_free(m);
+}
+
 RUN_TESTS(T(second_order_convergence_on_an_oscillator), T(amplification_matches_the_closed_form),
-          T(linear_unbalance_run_up_matches_tight_cvode))
+          T(linear_unbalance_run_up_matches_tight_cvode),
+          T(backlash_pair_matches_cvode_with_located_events))
