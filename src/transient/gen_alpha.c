@@ -29,7 +29,7 @@
 
 typedef struct ga {
     gd_transient *tr;
-    int nf, nw, linear;
+    int nf, nw, linear, piecewise;
     double am, af, gamma, beta, h, atol;
     csn *N;
     int *wmesh;    /* nw: meshes with a tangent update */
@@ -74,11 +74,19 @@ static int ga_alloc(ga *g, gd_transient *tr)
     g->x = g->R + nf;
     /* meshes whose law may differ from the assembled k a a^T, c a a^T */
     g->linear = tr->nsfd == 0 && tr->nload == 0 && tr->ncam == 0;
+    /* piecewise linear: affine in (q, q') within each contact state (loads of time only,
+     * mesh laws whose angle is the driver's nominal or prescribed motion) */
+    g->piecewise = tr->nsfd == 0 && tr->ncam == 0;
+    for (int i = 0; i < tr->nload; i++)
+        if (tr->load[i].law.kind != GD_LOAD_CONSTANT &&
+            tr->load[i].law.kind != GD_LOAD_HARMONIC_TIME)
+            g->piecewise = 0;
     for (int i = 0; i < tr->nmesh; i++) {
         const tr_mesh *m = &tr->mesh[i];
         const gd_tr_mesh *s = &m->spec;
         int nonlin = s->backlash || s->tvms || s->ste;
         if (nonlin) g->linear = 0;
+        if ((s->tvms || s->ste) && m->drv_dof >= 0 && tr->fidx[m->drv_dof] >= 0) g->piecewise = 0;
         if (nonlin || s->stiffness != m->k_lin ||
             s->damping + s->damping_per_k * s->stiffness != m->c_lin)
             g->wmesh[g->nw++] = i;
@@ -206,6 +214,30 @@ static void free_force(ga *g, double t, const double *q, const double *v, double
         out[i] = tr->r[tr->free_dof[i]];
 }
 
+/* 1 when every backlash mesh is, at the alpha point of the current a1, in the contact
+ * state the last iterate used. */
+static int same_states(ga *g, double ta)
+{
+    gd_transient *tr = g->tr;
+    const int nf = g->nf;
+    const double h = g->h, af = g->af, be = g->beta, ga_ = g->gamma;
+    for (int i = 0; i < nf; i++) {
+        double qn = g->q[i] + h * g->v[i] + h * h * ((0.5 - be) * g->a[i] + be * g->a1[i]);
+        double vn = g->v[i] + h * ((1.0 - ga_) * g->a[i] + ga_ * g->a1[i]);
+        g->y2[i] = (1.0 - af) * qn + af * g->q[i];
+        g->y2[nf + i] = (1.0 - af) * vn + af * g->v[i];
+    }
+    gd_tr_fill(tr, ta, g->y2, tr->q, tr->v, NULL);
+    for (int w = 0; w < g->nw; w++) {
+        const tr_mesh *m = &tr->mesh[g->wmesh[w]];
+        if (!m->spec.backlash) continue;
+        double de;
+        gd_tr_mesh_force(tr, m, m->state, ta, tr->q, tr->v, NULL, NULL, NULL, &de);
+        if (gd_backlash_state(de, m->spec.gap) != m->state) return 0;
+    }
+    return 1;
+}
+
 /* One step from (t, q, v, a) to t + h into q1, v1, a1. Returns the Newton iterations,
  * or -1 when they did not converge. */
 static int ga_step(ga *g, double t, long *nres)
@@ -258,6 +290,9 @@ static int ga_step(ga *g, double t, long *nres)
             double qn = fabs(g->q[i]) + h * fabs(g->v[i]);
             if (be * h * h * fabs(g->x[i]) > g->atol + 1e-10 * qn) conv = 0;
         }
+        /* piecewise linear: the step is exact once the contact states it assumed hold
+         * at the new alpha point (saves the checking iteration) */
+        if (!conv && g->piecewise && same_states(g, ta)) conv = 1;
         if (g->linear || conv) {
             for (int i = 0; i < nf; i++) {
                 g->q1[i] = g->q[i] + h * g->v[i] + h * h * ((0.5 - be) * g->a[i] + be * g->a1[i]);
