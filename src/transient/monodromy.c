@@ -19,7 +19,7 @@
  *
  * with grad g . v and the total rate of g along the flow by the same central differences
  * of the root functions. The block of Phi in the Newton matrix is J, so every block is
- * preconditioned by the problem's own preconditioner. */
+ * preconditioned by the problem's own preconditioner (gd_tr_cv_psolve). */
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
@@ -84,7 +84,7 @@ static double root_rate(mono *m, double t, const double *y, double dt, const dou
 
 static int aug_rhs(sunrealtype t, N_Vector Y, N_Vector Yd, void *ud)
 {
-    mono *m = ud;
+    mono *m = ((gd_transient *)ud)->mono;
     const int N = m->N;
     const double *y = N_VGetArrayPointer(Y);
     double *yd = N_VGetArrayPointer(Yd);
@@ -96,32 +96,7 @@ static int aug_rhs(sunrealtype t, N_Vector Y, N_Vector Yd, void *ud)
 
 static int aug_root(sunrealtype t, N_Vector Y, sunrealtype *g, void *ud)
 {
-    mono *m = ud;
-    gd_tr_roots(m->tr, t, N_VGetArrayPointer(Y), g);
-    return 0;
-}
-
-static int aug_psetup(sunrealtype t, N_Vector y, N_Vector fy, sunbooleantype jok,
-                      sunbooleantype *jcur, sunrealtype gamma, void *ud)
-{
-    return gd_tr_cv_psetup(t, y, fy, jok, jcur, gamma, ((mono *)ud)->tr);
-}
-
-/* Block-diagonal: the problem's preconditioner on y and on every column of Phi. */
-static int aug_psolve(sunrealtype t, N_Vector y, N_Vector fy, N_Vector r, N_Vector z,
-                      sunrealtype gamma, sunrealtype delta, int lr, void *ud)
-{
-    (void)t;
-    (void)y;
-    (void)fy;
-    (void)gamma;
-    (void)delta;
-    (void)lr;
-    mono *m = ud;
-    const double *rd = N_VGetArrayPointer(r);
-    double *zd = N_VGetArrayPointer(z);
-    for (int j = 0; j <= m->N; j++)
-        gd_tr_prec_solve(m->tr, rd + (size_t)m->N * j, zd + (size_t)m->N * j);
+    gd_tr_roots(ud, t, N_VGetArrayPointer(Y), g);
     return 0;
 }
 
@@ -213,12 +188,13 @@ gd_status gd_transient_monodromy(gd_transient *tr, double t0, double period, con
             ad[(size_t)N * (j + 1) + i] = ad[i] / m.scale[j];
         }
     gd_transient_set_contacts(tr, t0, Yd);
+    tr->mono = &m;
     int flag = 0;
     double t1 = t0 + period;
     tr->msg[0] = 0;
     mem = gd_tr_cvode_new(ctx, opt, t0, t1, Y, atol, aug_rhs, aug_root,
-                          opt->locate_events ? tr->nroot : 0, aug_psetup, aug_psolve, &m, tr, &LS,
-                          &flag);
+                          opt->locate_events ? tr->nroot : 0, gd_tr_cv_psetup, gd_tr_cv_psolve, tr,
+                          tr, &LS, &flag);
     if (!mem || flag) {
         st = gd_error_set(err, GD_ENUMERIC, "", 0, 0, "", "", "CVODE set-up failed (%d) %s", flag,
                           tr->msg);
@@ -263,6 +239,7 @@ gd_status gd_transient_monodromy(gd_transient *tr, double t0, double period, con
         memcpy(phi + (size_t)N * j, Yd + (size_t)N * (j + 1), (size_t)N * sizeof *phi);
     if (y_end) memcpy(y_end, Yd, (size_t)N * sizeof *y_end);
 done:
+    tr->mono = NULL;
     if (mem) CVodeFree(&mem);
     if (LS) SUNLinSolFree(LS);
     if (Y) N_VDestroy(Y);

@@ -44,8 +44,8 @@ int gd_tr_cv_psetup(sunrealtype t, N_Vector y, N_Vector fy, sunbooleantype jok,
     return gd_tr_prec_setup(ud, gamma) ? 1 : 0; /* > 0: recoverable */
 }
 
-static int cv_psolve(sunrealtype t, N_Vector y, N_Vector fy, N_Vector r, N_Vector z,
-                     sunrealtype gamma, sunrealtype delta, int lr, void *ud)
+int gd_tr_cv_psolve(sunrealtype t, N_Vector y, N_Vector fy, N_Vector r, N_Vector z,
+                    sunrealtype gamma, sunrealtype delta, int lr, void *ud)
 {
     (void)t;
     (void)y;
@@ -53,7 +53,12 @@ static int cv_psolve(sunrealtype t, N_Vector y, N_Vector fy, N_Vector r, N_Vecto
     (void)gamma;
     (void)delta;
     (void)lr;
-    gd_tr_prec_solve(ud, N_VGetArrayPointer(r), N_VGetArrayPointer(z));
+    gd_transient *tr = ud;
+    const double *rd = N_VGetArrayPointer(r);
+    double *zd = N_VGetArrayPointer(z);
+    const sunindextype N = 2 * tr->nf, nb = N > 0 ? N_VGetLength(r) / N : 0;
+    for (sunindextype j = 0; j < nb; j++)
+        gd_tr_prec_solve(tr, rd + N * j, zd + N * j);
     return 0;
 }
 
@@ -531,7 +536,7 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
 
     mem = gd_tr_cvode_new(ctx, opt, opt->t_start, opt->t_end, y, atol, cv_rhs, cv_root,
                           tr->nroot && opt->locate_events ? tr->nroot : 0, gd_tr_cv_psetup,
-                          cv_psolve, tr, tr, &LS, &flag);
+                          gd_tr_cv_psolve, tr, tr, &LS, &flag);
     if (!mem || flag) {
         st = gd_error_set(err, GD_ENUMERIC, "", 0, 0, "", "", "CVODE set-up failed (%d) %s", flag,
                           tr->msg);
@@ -557,6 +562,12 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
         for (; ks < opt->nsample_times && opt->sample_times[ks] <= tk; ks++)
             store_sample(tr, res, records, ks, t, yd);
     }
+    /* samples after the last record time (its rounding), and the end itself */
+    for (; ks < opt->nsample_times; ks++) {
+        if ((st = advance(tr, &w, opt, &t, opt->sample_times[ks], err))) goto done;
+        store_sample(tr, res, records, ks, t, yd);
+    }
+    if ((st = advance(tr, &w, opt, &t, opt->t_end, err))) goto done;
     for (int i = 0; i < tr->nmesh; i++)
         account(&res->contacts[i], tr->mesh[i].state, track[i].since, opt->t_end, from);
     gd_tr_fill(tr, opt->t_end, yd, res->q_end, res->v_end, NULL);

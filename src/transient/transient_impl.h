@@ -77,6 +77,7 @@ struct gd_transient {
     /* workspaces (n each) */
     double *q, *v, *acc, *r, *w1, *w2;
     char msg[256]; /* last solver message */
+    void *mono;    /* gd_transient_monodromy's workspace while it runs */
 };
 
 /* Fills q, v, acc (length n) at time t from the state y: free DOFs from y, prescribed
@@ -117,6 +118,10 @@ void *gd_tr_cvode_new(SUNContext ctx, const gd_transient_options *opt, double t0
 /* CVODE preconditioner set-up of the problem (user data: the gd_transient). */
 int gd_tr_cv_psetup(sunrealtype t, N_Vector y, N_Vector fy, sunbooleantype jok,
                     sunbooleantype *jcur, sunrealtype gamma, void *ud);
+/* CVODE preconditioner solve (user data: the gd_transient): the problem's preconditioner
+ * on every block of 2 nf of the vector (one for a run; 1 + 2 nf for the monodromy). */
+int gd_tr_cv_psolve(sunrealtype t, N_Vector y, N_Vector fy, N_Vector r, N_Vector z,
+                    sunrealtype gamma, sunrealtype delta, int lr, void *ud);
 /* CVODE error handler writing to the problem's msg (user data: the gd_transient). */
 void gd_tr_cv_err(int code, const char *module, const char *function, char *msg, void *ud);
 
