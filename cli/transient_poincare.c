@@ -130,7 +130,7 @@ void gd_cli_poincare_classify(const double *values, int nrec, int n, const doubl
         if (!found) rep[(*distinct)++] = k;
     }
     /* a slow drift passes the shift test but spreads the points: not settled */
-    if (*distinct > *period) *period = 0;
+    if (*distinct != *period) *period = 0;
     free(rep);
     free(tol);
 }

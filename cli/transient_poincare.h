@@ -29,7 +29,7 @@ int gd_cli_poincare_times(const gd_cli_poincare *p, double speed, double from, d
 /* Periodicity of n points (record r, point k: values[r * n + k]) with scale[r] the
  * record's peak-to-peak: the number of distinct points (greedy clustering: a point
  * joins the first cluster whose first point it equals) and the smallest p <= n / 2 with
- * point k + p = point k for every k and at most p distinct points (0 when none:
+ * point k + p = point k for every k and exactly p distinct points (0 when none:
  * quasi-periodic, chaotic, or a drift not settled within the settling time). */
 void gd_cli_poincare_classify(const double *values, int nrec, int n, const double *scale,
                               int *period, int *distinct);
