@@ -19,8 +19,9 @@
  *
  * Prescribed DOFs are removed from the unknowns: their q, q', q'' come from their law,
  * and their inertia, damping and stiffness couplings act on the free DOFs as forces.
- * Tables and lift laws are borrowed: they must outlive the problem. One run at a time per
- * problem (it holds the run's contact states); separate problems may run in parallel.
+ * Tables and lift laws are borrowed: they must outlive the problem. One run (or
+ * monodromy) at a time per problem (it holds the run's contact states); separate problems
+ * may run in parallel.
  *
  * Ownership and threads: gd_transient_new returns a problem the caller frees with
  * gd_transient_free; the system, the spec's arrays and its tables are borrowed and must
