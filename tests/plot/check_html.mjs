@@ -4,6 +4,8 @@
 // screenshot of each page next to it (FILE.png, kept as a CI artefact).
 //   node check_html.mjs FILE.html:PLOTS ...   (PLOTS: the plot elements expected)
 import { chromium } from 'playwright-core';
+import { resolve } from 'node:path';
+import { pathToFileURL } from 'node:url';
 
 const browser = await chromium.launch({
   executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
@@ -23,10 +25,11 @@ try {
   page.on('request', r => { if (!r.url().startsWith('file:') && !r.url().startsWith('blob:') &&
                                 !r.url().startsWith('data:')) errors.push('request ' + r.url()); });
   for (const arg of process.argv.slice(2)) {
-    const [file, want] = arg.split(':');
+    const [name, want] = arg.split(':');
+    const file = resolve(name);
     errors = [];
     const t0 = Date.now();
-    await page.goto('file://' + file, { waitUntil: 'load' });
+    await page.goto(pathToFileURL(file).href, { waitUntil: 'load' });
     await page.waitForFunction(() => [...document.querySelectorAll('div.plot')]
       .every(d => d.classList.contains('js-plotly-plot') && d._fullLayout), null, { timeout: 30000 })
       .catch(() => errors.push('plots not drawn within 30 s'));
