@@ -272,6 +272,7 @@ static int plot_tvms(const ms_args *a, const gd_gear_pair_geometry *g, const gd_
                      const gd_tvms_result *res, const char *mesh)
 {
     const gd_tvms_result *rs[MAX_COMPARE + 1] = {res};
+    gd_tvms_result *own[MAX_COMPARE + 1] = {NULL};
     char label[MAX_COMPARE + 1][48];
     const char *labels[MAX_COMPARE + 1];
     int n = 1, rc = GD_EXIT_OK;
@@ -298,6 +299,7 @@ static int plot_tvms(const ms_args *a, const gd_gear_pair_geometry *g, const gd_
         } else {
             snprintf(label[n], sizeof label[n], "helix %.4g deg", h.helix_angle * 180 / M_PI);
             labels[n] = label[n];
+            own[n] = r;
             rs[n++] = r;
         }
     }
@@ -307,7 +309,7 @@ static int plot_tvms(const ms_args *a, const gd_gear_pair_geometry *g, const gd_
         rc = gd_cli_plot_finish(st, p, &err, a->plot);
     }
     for (int k = 1; k < n; k++)
-        gd_tvms_free((gd_tvms_result *)rs[k]);
+        gd_tvms_free(own[k]);
     return rc;
 }
 

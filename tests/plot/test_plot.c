@@ -83,6 +83,35 @@ static int same(double a, double b)
     return fabs(a - b) <= EXACT * fmax(fabs(b), 1e-300);
 }
 
+/* One geardyn run whose --plot is an SVG in the scratch folder: its exit code, its
+ * --json output and the parsed SVG. args has one %s: the SVG's path. */
+typedef struct plot_run {
+    run_result r;
+    cJSON *json;
+    svg s;
+} plot_run;
+
+static void plot_start(gd_test_state *gd_ts_, plot_run *pr, scratch *d, const char *args)
+{
+    char path[256], cmd[1024];
+    snprintf(path, sizeof path, "%s/plot.svg", d->dir);
+    snprintf(cmd, sizeof cmd, args, path);
+    run(d, &pr->r, "%s", cmd);
+    CHECK(pr->r.code == 0);
+    if (pr->r.code) show(&pr->r);
+    pr->json = cJSON_Parse(pr->r.out);
+    CHECK(pr->json != NULL);
+    memset(&pr->s, 0, sizeof pr->s);
+    CHECK(svg_open(&pr->s, path));
+}
+
+static void plot_end(plot_run *pr)
+{
+    svg_close(&pr->s);
+    cJSON_Delete(pr->json);
+    run_free(&pr->r);
+}
+
 #define TRACE(panel, name)                                                                         \
     "//s:g[@class='panel'][starts-with(@data-title,'" panel                                        \
     "')]/s:g[@class='trace'][@data-name='" name "']"
@@ -91,30 +120,25 @@ TEST(campbell_plot_matches_json)
 {
     scratch d;
     REQUIRE(scratch_open(&d));
-    run_result r;
-    run(&d, &r,
-        "campbell examples/kumar2011_coupled.yaml --speeds 0:3000rpm:4 --modes 6 --json "
-        "--plot %s/c.svg",
-        d.dir);
-    CHECK(r.code == 0);
-    cJSON *j = cJSON_Parse(r.out);
-    char path[256];
-    snprintf(path, sizeof path, "%s/c.svg", d.dir);
-    svg s = {0};
-    CHECK(svg_open(&s, path));
-    if (j && s.ctx) {
+    plot_run pr;
+    plot_start(gd_ts_, &pr, &d,
+               "campbell examples/kumar2011_coupled.yaml --speeds 0:3000rpm:4 --modes 6 --json "
+               "--plot %s");
+    svg *s = &pr.s;
+    cJSON *j = pr.json;
+    if (j && s->ctx) {
         const cJSON *modes = cJSON_GetObjectItem(j, "modes"),
                     *rpm = cJSON_GetObjectItem(j, "speeds_rpm");
         int nt = cJSON_GetArraySize(modes),
             ncrit = cJSON_GetArraySize(cJSON_GetObjectItem(j, "critical_speeds"));
         CHECK(nt == 6);
         /* one curve per tracked mode in both panels, the critical speeds as markers */
-        CHECK(count(&s, "//s:g[@class='panel'][starts-with(@data-title,'modes by whirl')]/"
-                        "s:g[@class='trace'][starts-with(@data-name,'mode ')]") == nt);
-        CHECK(count(&s, "//s:g[@class='panel'][starts-with(@data-title,'stability')]/"
-                        "s:g[@class='trace'][starts-with(@data-name,'mode ')]") == nt);
+        CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'modes by whirl')]/"
+                       "s:g[@class='trace'][starts-with(@data-name,'mode ')]") == nt);
+        CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'stability')]/"
+                       "s:g[@class='trace'][starts-with(@data-name,'mode ')]") == nt);
         CHECK(ncrit > 0);
-        CHECK(count(&s, TRACE("modes by whirl", "critical speeds") "/*[@class='marker']") == ncrit);
+        CHECK(count(s, TRACE("modes by whirl", "critical speeds") "/*[@class='marker']") == ncrit);
         for (int t = 0; t < nt; t++) {
             const cJSON *m = cJSON_GetArrayItem(modes, t);
             char xp[400];
@@ -123,8 +147,8 @@ TEST(campbell_plot_matches_json)
                      "s:g[@class='trace'][starts-with(@data-name,'mode %d (')]",
                      (int)jnum(m, "id"));
             double y[16], x[16];
-            int n = trace_numbers(&s, xp, "data-y", y, 16);
-            CHECK(n == 4 && trace_numbers(&s, xp, "data-x", x, 16) == 4);
+            int n = trace_numbers(s, xp, "data-y", y, 16);
+            CHECK(n == 4 && trace_numbers(s, xp, "data-x", x, 16) == 4);
             for (int k = 0; k < n && k < 4; k++) {
                 CHECK(same(y[k], jat(cJSON_GetObjectItem(m, "frequency_hz"), k)));
                 CHECK(same(x[k], jat(rpm, k)));
@@ -133,17 +157,15 @@ TEST(campbell_plot_matches_json)
                      "//s:g[@class='panel'][starts-with(@data-title,'stability')]/"
                      "s:g[@class='trace'][starts-with(@data-name,'mode %d (')]",
                      (int)jnum(m, "id"));
-            n = trace_numbers(&s, xp, "data-y", y, 16);
+            n = trace_numbers(s, xp, "data-y", y, 16);
             CHECK(n == 4);
             for (int k = 0; k < n && k < 4; k++)
                 CHECK(same(y[k], jat(cJSON_GetObjectItem(m, "log_decrement"), k)));
         }
         /* the critical-speed table lists them all */
-        CHECK(count(&s, "//s:g[@class='table'][@data-rows='%d']", ncrit) >= 1);
+        CHECK(count(s, "//s:g[@class='table'][@data-rows='%d']", ncrit) >= 1);
     }
-    svg_close(&s);
-    cJSON_Delete(j);
-    run_free(&r);
+    plot_end(&pr);
     scratch_close(&d);
 }
 
@@ -151,27 +173,22 @@ TEST(frf_plot_matches_json)
 {
     scratch d;
     REQUIRE(scratch_open(&d));
-    run_result r;
-    run(&d, &r,
-        "frf examples/kumar2011_coupled.yaml --input torque:motor --output mesh:mesh "
-        "--output pinion.y --freq 100:26000:20 --json --plot %s/f.svg",
-        d.dir);
-    CHECK(r.code == 0);
-    cJSON *j = cJSON_Parse(r.out);
-    char path[256];
-    snprintf(path, sizeof path, "%s/f.svg", d.dir);
-    svg s = {0};
-    CHECK(svg_open(&s, path));
-    if (j && s.ctx) {
+    plot_run pr;
+    plot_start(gd_ts_, &pr, &d,
+               "frf examples/kumar2011_coupled.yaml --input torque:motor --output mesh:mesh "
+               "--output pinion.y --freq 100:26000:20 --json --plot %s");
+    svg *s = &pr.s;
+    cJSON *j = pr.json;
+    if (j && s->ctx) {
         /* magnitude, phase, Nyquist: two curves each */
-        CHECK(count(&s, "//s:g[@class='panel']") == 3);
-        CHECK(count(&s, "//s:g[@class='panel']/s:g[@class='trace']") == 6);
+        CHECK(count(s, "//s:g[@class='panel']") == 3);
+        CHECK(count(s, "//s:g[@class='panel']/s:g[@class='trace']") == 6);
         const cJSON *outs = cJSON_GetObjectItem(j, "outputs");
         CHECK(cJSON_GetArraySize(outs) == 2);
         double y[32], x[32], re[32];
-        int n = trace_numbers(&s, TRACE("FRF: magnitude", "mesh:mesh (N/N m)"), "data-y", y, 32);
+        int n = trace_numbers(s, TRACE("FRF: magnitude", "mesh:mesh (N/N m)"), "data-y", y, 32);
         CHECK(n == 20);
-        CHECK(trace_numbers(&s, TRACE("FRF: magnitude", "mesh:mesh (N/N m)"), "data-x", x, 32) ==
+        CHECK(trace_numbers(s, TRACE("FRF: magnitude", "mesh:mesh (N/N m)"), "data-x", x, 32) ==
               20);
         const cJSON *o = cJSON_GetArrayItem(outs, 0);
         for (int k = 0; k < n && k < 20; k++) {
@@ -180,21 +197,19 @@ TEST(frf_plot_matches_json)
                   fabs(x[k] * 2 * PI / jat(cJSON_GetObjectItem(o, "frequency_rad_s"), k) - 1) <
                       1e-15);
         }
-        n = trace_numbers(&s, TRACE("FRF: phase", "pinion.y (m/N m)"), "data-y", y, 32);
+        n = trace_numbers(s, TRACE("FRF: phase", "pinion.y (m/N m)"), "data-y", y, 32);
         CHECK(n == 20);
         o = cJSON_GetArrayItem(outs, 1);
         for (int k = 0; k < n && k < 20; k++)
             CHECK(same(y[k], jat(cJSON_GetObjectItem(o, "phase_deg"), k)));
-        n = trace_numbers(&s, TRACE("FRF: Nyquist", "pinion.y (m/N m)"), "data-x", re, 32);
+        n = trace_numbers(s, TRACE("FRF: Nyquist", "pinion.y (m/N m)"), "data-x", re, 32);
         CHECK(n == 20);
         for (int k = 0; k < n && k < 20; k++)
             CHECK(same(re[k], jat(cJSON_GetObjectItem(o, "real"), k)));
         /* Nyquist points are markers on the curve */
-        CHECK(count(&s, TRACE("FRF: Nyquist", "pinion.y (m/N m)") "/*[@class='marker']") == 20);
+        CHECK(count(s, TRACE("FRF: Nyquist", "pinion.y (m/N m)") "/*[@class='marker']") == 20);
     }
-    svg_close(&s);
-    cJSON_Delete(j);
-    run_free(&r);
+    plot_end(&pr);
     scratch_close(&d);
 }
 
@@ -202,24 +217,19 @@ TEST(unbalance_plot_matches_json)
 {
     scratch d;
     REQUIRE(scratch_open(&d));
-    run_result r;
-    run(&d, &r,
-        "unbalance examples/chen1998_gear_pair.yaml --speeds 100:6000:8 --json --plot %s/u.svg",
-        d.dir);
-    CHECK(r.code == 0);
-    cJSON *j = cJSON_Parse(r.out);
-    char path[256];
-    snprintf(path, sizeof path, "%s/u.svg", d.dir);
-    svg s = {0};
-    CHECK(svg_open(&s, path));
-    if (j && s.ctx) {
+    plot_run pr;
+    plot_start(gd_ts_, &pr, &d,
+               "unbalance examples/chen1998_gear_pair.yaml --speeds 100:6000:8 --json --plot %s");
+    svg *s = &pr.s;
+    cJSON *j = pr.json;
+    if (j && s->ctx) {
         const cJSON *outs = cJSON_GetObjectItem(j, "outputs");
         int no = cJSON_GetArraySize(outs),
             nh = cJSON_GetArraySize(cJSON_GetObjectItem(j, "harmonics"));
         CHECK(nh == 1 && no > 0);
         CHECK(
             count(
-                &s,
+                s,
                 "//s:g[@class='panel'][@data-title='amplitude: magnitude']/s:g[@class='trace']") ==
             no);
         for (int o = 0; o < no; o++) {
@@ -230,7 +240,7 @@ TEST(unbalance_plot_matches_json)
                      "[starts-with(@data-name,'%s (')]",
                      jstr(ser, "name"));
             double y[16];
-            int n = trace_numbers(&s, xp, "data-y", y, 16);
+            int n = trace_numbers(s, xp, "data-y", y, 16);
             CHECK(n == 8);
             for (int k = 0; k < n && k < 8; k++)
                 CHECK(same(y[k], jat(cJSON_GetObjectItem(ser, "magnitude"), k)));
@@ -238,12 +248,10 @@ TEST(unbalance_plot_matches_json)
         /* one orbit (an ellipse of 73 points) per orbit node */
         int norb = cJSON_GetArraySize(cJSON_GetObjectItem(j, "orbits"));
         CHECK(norb > 0);
-        CHECK(count(&s, "//s:g[@class='panel'][starts-with(@data-title,'orbits at')]/"
-                        "s:g[@class='trace'][@data-n='73']") == norb);
+        CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'orbits at')]/"
+                       "s:g[@class='trace'][@data-n='73']") == norb);
     }
-    svg_close(&s);
-    cJSON_Delete(j);
-    run_free(&r);
+    plot_end(&pr);
     scratch_close(&d);
 }
 
@@ -263,26 +271,21 @@ TEST(mesh_stiffness_plot_matches_json)
 {
     scratch d;
     REQUIRE(scratch_open(&d));
-    run_result r;
-    run(&d, &r,
-        "mesh-stiffness examples/rig2018_pair.yaml --cycles 2 --points 90 --json --plot %s/k.svg "
-        "--compare-helix 10deg,20deg",
-        d.dir);
-    CHECK(r.code == 0);
-    cJSON *j = cJSON_Parse(r.out);
-    char path[256];
-    snprintf(path, sizeof path, "%s/k.svg", d.dir);
-    svg s = {0};
-    CHECK(svg_open(&s, path));
-    if (j && s.ctx) {
+    plot_run pr;
+    plot_start(gd_ts_, &pr, &d,
+               "mesh-stiffness examples/rig2018_pair.yaml --cycles 2 --points 90 --json --plot %s "
+               "--compare-helix 10deg,20deg");
+    svg *s = &pr.s;
+    cJSON *j = pr.json;
+    if (j && s->ctx) {
         const cJSON *k = cJSON_GetObjectItem(j, "stiffness"),
                     *a = cJSON_GetObjectItem(j, "angle_rad");
         int n = cJSON_GetArraySize(k);
         CHECK(n == 180);
         static double y[400], x[400];
         const char *xp = TRACE("time-varying mesh stiffness", "k (normal plane)");
-        CHECK(trace_numbers(&s, xp, "data-y", y, 400) == n);
-        CHECK(trace_numbers(&s, xp, "data-x", x, 400) == n);
+        CHECK(trace_numbers(s, xp, "data-y", y, 400) == n);
+        CHECK(trace_numbers(s, xp, "data-x", x, 400) == n);
         for (int i = 0; i < n; i++) {
             CHECK(same(y[i], jat(k, i)));
             CHECK(same(x[i], jat(a, i) * 180 / PI));
@@ -292,19 +295,17 @@ TEST(mesh_stiffness_plot_matches_json)
         const cJSON *pairs = cJSON_GetObjectItem(j, "pairs_in_contact");
         int n1 = zone_runs(pairs, 1), n2 = zone_runs(pairs, 2);
         CHECK(n1 >= 2 && n2 >= 2);
-        CHECK(count(&s, TRACE("time-varying mesh stiffness", "single-pair contact") "/s:polygon") ==
+        CHECK(count(s, TRACE("time-varying mesh stiffness", "single-pair contact") "/s:polygon") ==
               n1);
-        CHECK(count(&s, TRACE("time-varying mesh stiffness", "double-pair contact") "/s:polygon") ==
+        CHECK(count(s, TRACE("time-varying mesh stiffness", "double-pair contact") "/s:polygon") ==
               n2);
         /* the comparison: this pair and two other helix angles */
-        CHECK(count(&s, "//s:g[@class='panel'][starts-with(@data-title,'comparison')]/"
-                        "s:g[@class='trace']") == 3);
-        CHECK(count(&s, TRACE("Fourier harmonics", "amplitude") "/*[@class='marker']") ==
+        CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'comparison')]/"
+                       "s:g[@class='trace']") == 3);
+        CHECK(count(s, TRACE("Fourier harmonics", "amplitude") "/*[@class='marker']") ==
               cJSON_GetArraySize(cJSON_GetObjectItem(j, "harmonics")));
     }
-    svg_close(&s);
-    cJSON_Delete(j);
-    run_free(&r);
+    plot_end(&pr);
     scratch_close(&d);
 }
 
@@ -312,15 +313,11 @@ TEST(modal_and_transient_plots)
 {
     scratch d;
     REQUIRE(scratch_open(&d));
-    run_result r;
-    run(&d, &r, "modal examples/chen1998_gear_pair.yaml --json --plot %s/m.svg", d.dir);
-    CHECK(r.code == 0);
-    cJSON *j = cJSON_Parse(r.out);
-    char path[256];
-    snprintf(path, sizeof path, "%s/m.svg", d.dir);
-    svg s = {0};
-    CHECK(svg_open(&s, path));
-    if (j && s.ctx) {
+    plot_run pr;
+    plot_start(gd_ts_, &pr, &d, "modal examples/chen1998_gear_pair.yaml --json --plot %s");
+    svg *s = &pr.s;
+    cJSON *j = pr.json;
+    if (j && s->ctx) {
         const cJSON *modes = cJSON_GetObjectItem(j, "modes");
         int elastic = 0;
         for (int k = 0; k < cJSON_GetArraySize(modes); k++)
@@ -328,36 +325,31 @@ TEST(modal_and_transient_plots)
                 !cJSON_IsTrue(cJSON_GetObjectItem(cJSON_GetArrayItem(modes, k), "rigid_body"));
         CHECK(elastic == 6);
         /* a shape panel per elastic mode (titled with its frequency), the energy table */
-        CHECK(count(&s, "//s:g[@class='panel'][starts-with(@data-title,'mode ')]") == elastic);
+        CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'mode ')]") == elastic);
         char title[200];
         snprintf(title, sizeof title,
                  "//s:g[@class='panel'][starts-with(@data-title,'mode 1: %.6g Hz')]",
                  jnum(cJSON_GetArrayItem(modes, 0), "frequency_hz"));
-        CHECK(count(&s, "%s", title) == 1);
-        CHECK(count(&s, "//s:g[@class='table'][@data-rows='%d']", elastic) == 1);
+        CHECK(count(s, "%s", title) == 1);
+        CHECK(count(s, "//s:g[@class='table'][@data-rows='%d']", elastic) == 1);
     }
-    svg_close(&s);
-    cJSON_Delete(j);
-    run_free(&r);
+    plot_end(&pr);
 
-    run(&d, &r,
-        "transient examples/ducati_timing_geartrain.yaml --revolutions 0.2 --quiet --json --plot "
-        "%s/t.svg",
-        d.dir);
-    CHECK(r.code == 0);
-    j = cJSON_Parse(r.out);
-    snprintf(path, sizeof path, "%s/t.svg", d.dir);
-    CHECK(svg_open(&s, path));
-    if (j && s.ctx) {
+    plot_start(gd_ts_, &pr, &d,
+               "transient examples/ducati_timing_geartrain.yaml --revolutions 0.2 --quiet --json "
+               "--plot %s");
+    s = &pr.s;
+    j = pr.json;
+    if (j && s->ctx) {
         const cJSON *recs = cJSON_GetObjectItem(j, "records");
         int nr = cJSON_GetArraySize(recs), ns = (int)jnum(j, "samples");
-        CHECK(count(&s, "//s:g[@class='panel'][contains(@data-title,'time "
-                        "history')]/s:g[@class='trace']") == nr);
+        CHECK(count(s, "//s:g[@class='panel'][contains(@data-title,'time "
+                       "history')]/s:g[@class='trace']") == nr);
         /* each record's curve: its samples, with the --json statistics */
         xmlXPathObjectPtr o = xmlXPathEvalExpression(
             BAD_CAST
             "//s:g[@class='panel'][contains(@data-title,'time history')]/s:g[@class='trace']",
-            s.ctx);
+            s->ctx);
         static double y[4096];
         for (int k = 0; o && o->nodesetval && k < o->nodesetval->nodeNr && k < nr; k++) {
             xmlChar *v = xmlGetProp(o->nodesetval->nodeTab[k], BAD_CAST "data-y");
@@ -378,12 +370,10 @@ TEST(modal_and_transient_plots)
         }
         xmlXPathFreeObject(o);
         /* contact states of the backlash meshes get their own panel, no spectrum */
-        CHECK(count(&s, "//s:g[@class='panel'][starts-with(@data-title,'contact state')]") == 1);
-        CHECK(count(&s, "//s:g[@class='panel'][contains(@data-title,'spectrum')]") >= 1);
+        CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'contact state')]") == 1);
+        CHECK(count(s, "//s:g[@class='panel'][contains(@data-title,'spectrum')]") >= 1);
     }
-    svg_close(&s);
-    cJSON_Delete(j);
-    run_free(&r);
+    plot_end(&pr);
     scratch_close(&d);
 }
 
