@@ -76,7 +76,8 @@ GD_API gd_status gd_plot_modal(const gd_system *sys, const gd_modal_result *r, g
                                gd_error *err);
 
 /* Campbell diagram: damped natural frequency (Hz) over speed (rpm) of each tracked mode,
- * coloured by whirl (forward blue, backward red, mixed purple, none grey), the
+ * coloured by whirl (forward blue, backward red, mixed purple, none grey; each point
+ * by its whirl at that speed, the line by the mode's most frequent whirl), the
  * excitation orders (1x of each shaft, user orders, tooth-mesh orders) as lines, the
  * critical speeds marked and listed, and a log-decrement panel with the instability
  * onset. GD_EINPUT when no mode was tracked. */

@@ -200,6 +200,7 @@ static void free_panel(pl_panel *pn)
             for (int i = 0; i < tr->n; i++)
                 free(tr->text[i]);
         free(tr->text);
+        free(tr->marker_color);
     }
     free(pn->traces);
     if (pn->cells)

@@ -70,8 +70,15 @@ static void trace_json(FILE *f, const pl_trace *t)
     else
         fprintf(f, ",\"line\":{\"color\":\"%s\",\"width\":1.8,\"dash\":\"%s\"}", t->color,
                 t->dash ? "dash" : "solid");
-    fprintf(f, ",\"marker\":{\"color\":\"%s\",\"size\":8,\"symbol\":\"%s\"}", t->color,
-            symbol_name(t->symbol));
+    if (t->marker_color) {
+        fputs(",\"marker\":{\"color\":[", f);
+        for (int i = 0; i < t->n; i++)
+            fprintf(f, "%s\"%s\"", i ? "," : "", t->marker_color[i]);
+        fprintf(f, "],\"size\":8,\"symbol\":\"%s\"}", symbol_name(t->symbol));
+    } else {
+        fprintf(f, ",\"marker\":{\"color\":\"%s\",\"size\":8,\"symbol\":\"%s\"}", t->color,
+                symbol_name(t->symbol));
+    }
     if (t->text) {
         fputs(",\"text\":[", f);
         for (int i = 0; i < t->n; i++) {

@@ -56,10 +56,15 @@ gd_status gd_plot_campbell(const gd_campbell_result *r, gd_plot **out, gd_error 
         pl_trace *f = pl_trace_add(p, fp, name, ns, x, NULL, PL_LINES_MARKERS, c);
         pl_trace *l = pl_trace_add(p, lp, name, ns, x, NULL, PL_LINES_MARKERS, c);
         if (!f || !l) break;
+        /* a mode may change whirl with speed: each point in the colour of its own */
+        f->marker_color = calloc((size_t)ns, sizeof *f->marker_color);
+        if (!f->marker_color) p->nomem = 1;
         for (int k = 0; k < ns; k++) {
             const gd_mode *md = &r->modes[(size_t)t * ns + k];
             int ex = md->rigid_body >= 0;
             f->y[k] = ex ? md->omega_d / (2 * PI) : NAN;
+            if (f->marker_color)
+                f->marker_color[k] = pl_whirl_color(ex ? md->whirl : GD_WHIRL_NONE);
             l->y[k] = ex ? md->log_decrement : NAN;
             if (isfinite(f->y[k]) && f->y[k] > fmax) fmax = f->y[k];
             pl_trace_text(p, f, k, "mode %d, %s whirl: %.6g Hz at %.6g rpm", r->tracks[t].id,

@@ -26,10 +26,11 @@ typedef struct pl_trace {
     int frame; /* 3-D panel: which mode this trace belongs to */
     pl_mode mode;
     pl_symbol symbol;
-    const char *color; /* CSS colour */
-    int dash;          /* dashed line */
-    int legend;        /* shown in the legend */
-    char **text;       /* n hover labels, or NULL */
+    const char *color;         /* CSS colour */
+    const char **marker_color; /* n colours of the markers (static strings), or NULL */
+    int dash;                  /* dashed line */
+    int legend;                /* shown in the legend */
+    char **text;               /* n hover labels, or NULL */
 } pl_trace;
 
 typedef enum pl_kind { PL_XY, PL_TABLE, PL_MODE3D } pl_kind;

@@ -241,7 +241,7 @@ static void xy_panel(FILE *f, const pl_panel *pn, double y, double h, int id)
             for (int i = 0; i < c->n; i++) {
                 double a = px(&fr, c->x[i]), b = py(&fr, c->y[i]);
                 if (!isfinite(a) || !isfinite(b)) continue;
-                marker(f, c->symbol, a, b, c->color);
+                marker(f, c->symbol, a, b, c->marker_color ? c->marker_color[i] : c->color);
                 fputc('\n', f);
             }
         fputs("</g>\n", f);

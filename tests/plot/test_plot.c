@@ -122,7 +122,7 @@ TEST(campbell_plot_matches_json)
     REQUIRE(scratch_open(&d));
     plot_run pr;
     plot_start(gd_ts_, &pr, &d,
-               "campbell examples/kumar2011_coupled.yaml --speeds 0:3000rpm:4 --modes 6 --json "
+               "campbell tests/plot/study.yaml --speeds 0:6000rpm:4 --modes 6 --json "
                "--plot %s");
     svg *s = &pr.s;
     cJSON *j = pr.json;
@@ -162,6 +162,24 @@ TEST(campbell_plot_matches_json)
             for (int k = 0; k < n && k < 4; k++)
                 CHECK(same(y[k], jat(cJSON_GetObjectItem(m, "log_decrement"), k)));
         }
+        /* each point in the colour of its whirl at that speed (forward #1f4fd6, backward
+         * #d62728) */
+        int fwd = 0, bwd = 0;
+        for (int t = 0; t < nt; t++) {
+            const cJSON *w = cJSON_GetObjectItem(cJSON_GetArrayItem(modes, t), "whirl_by_speed");
+            for (int k = 0; k < cJSON_GetArraySize(w); k++) {
+                const char *v = cJSON_GetStringValue(cJSON_GetArrayItem(w, k));
+                fwd += v && !strcmp(v, "forward");
+                bwd += v && !strcmp(v, "backward");
+            }
+        }
+        CHECK(fwd > 0 && bwd > 0);
+        CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'modes by whirl')]/"
+                       "s:g[@class='trace'][starts-with(@data-name,'mode ')]/"
+                       "*[@class='marker'][@fill='#1f4fd6']") == fwd);
+        CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'modes by whirl')]/"
+                       "s:g[@class='trace'][starts-with(@data-name,'mode ')]/"
+                       "*[@class='marker'][@fill='#d62728']") == bwd);
         /* the critical-speed table lists them all */
         CHECK(count(s, "//s:g[@class='table'][@data-rows='%d']", ncrit) >= 1);
     }
