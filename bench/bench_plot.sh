@@ -23,4 +23,4 @@ html=$(best $m --plot "$tmp/m.html")
 echo "modal of the rig (170 DOFs, 12 modes): $floor s; with --plot .svg $svg s ($(echo "$svg / $floor" | bc -l | cut -c1-4)x), .html $html s ($(echo "$html / $floor" | bc -l | cut -c1-4)x)"
 echo "  sizes: svg $(stat -c %s "$tmp/m.svg") B, html $(stat -c %s "$tmp/m.html") B"
 r=$(best report examples/rig2018.yaml --out "$tmp/r.html")
-echo "report of the rig (modes, Campbell 41 speeds, FRF 400 points): $r s, $(stat -c %s "$tmp/r.html") B (plotly.js $(stat -c %s node_modules/plotly.js-dist-min/plotly.min.js) B of it)"
+echo "report of the rig (modes, Campbell 41 speeds, FRF 400 points): $r s, $(stat -c %s "$tmp/r.html") B (plotly.js $(stat -c %s node_modules/plotly.js-gl3d-dist-min/plotly-gl3d.min.js) B of it)"
