@@ -14,6 +14,9 @@ all: build
 
 deps:
 	@bash scripts/install-deps.sh
+	@# plotly.js (inlined into HTML plots, installed with the library) and playwright-core
+	@# (the browser tests), pinned by package-lock.json; again only when the lock changed
+	@[ node_modules/.package-lock.json -nt package-lock.json ] || npm ci --no-audit --no-fund --loglevel=error
 
 build: deps
 	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release >/dev/null
@@ -27,6 +30,9 @@ demo: build
 	./$(BUILD)/geardyn check examples/rig2018.yaml
 	@echo
 	./$(BUILD)/geardyn modal examples/rig2018.yaml --speed 3000rpm --modes 12
+	@echo
+	@./$(BUILD)/geardyn report examples/rig2018.yaml --out $(BUILD)/rig2018_report.html >/dev/null
+	@echo "report (open it in a browser, it works offline): $(CURDIR)/$(BUILD)/rig2018_report.html"
 
 # Every test: the normal build, then AddressSanitizer + UndefinedBehaviorSanitizer,
 # then valgrind on the normal build.
@@ -74,14 +80,18 @@ memcheck: build
 	            "transient examples/ducati_timing_geartrain.yaml --revolutions 0.2 --quiet --json" \
 	            "transient examples/rig2018.yaml --set shafts.*.elements_per_section=1 --duration 1ms --output-interval 20us --method galpha --reduce 5kHz --quiet" \
 	            "transient examples/chen1998_gear_pair.yaml --speed 1500 --duration 20ms --poincare shaft_a --quiet --json" \
-	            "transient examples/chen1998_gear_pair.yaml --sweep-speeds 1000:2000:2 --poincare shaft_a --settle 5rev --points 4 --both-directions --quiet --out $$out/sw"; do \
+	            "transient examples/chen1998_gear_pair.yaml --sweep-speeds 1000:2000:2 --poincare shaft_a --settle 5rev --points 4 --both-directions --quiet --out $$out/sw" \
+	            "modal examples/chen1998_gear_pair.yaml --plot $$out/modes.svg" \
+	            "report tests/plot/study.yaml --speeds 0:3000rpm:3 --freq-points 20 --out $$out/report.html"; do \
 	    echo "valgrind geardyn $$args"; OPENBLAS_NUM_THREADS=1 $(VALGRIND) $(BUILD)/geardyn $$args >/dev/null; done; \
 	for args in "modal examples/missing.yaml" "modal examples/rig2018.yaml --speed fast" \
 	            "check examples/helical_pair1.yaml" \
 	            "check examples/rig2018.yaml --set bearings.*.k=-1" \
 	            "check examples/rig2018.yaml --set shafts.nope.name=x" \
 	            "matrices examples/rig2018.yaml --out $$out/bad --set disks.0.mass=-1" \
-	            "transient examples/chen1998_gear_pair.yaml --sweep-speeds 1000:2000:3 --poincare nope"; do \
+	            "transient examples/chen1998_gear_pair.yaml --sweep-speeds 1000:2000:3 --poincare nope" \
+	            "modal examples/chen1998_gear_pair.yaml --plot $$out/modes.png" \
+	            "modal examples/kumar2011_torsional.yaml --modes 1 --plot $$out/rigid.svg"; do \
 	    echo "valgrind geardyn $$args (must fail with exit 2)"; \
 	    rc=0; OPENBLAS_NUM_THREADS=1 $(VALGRIND) $(BUILD)/geardyn $$args >/dev/null 2>&1 || rc=$$?; \
 	    [ $$rc -eq 2 ] || { echo "exit $$rc, expected 2"; exit 1; }; done; \

@@ -123,3 +123,24 @@ int gd_cmd_matrices(int argc, char **argv);
 
 /* ---- time integration (cmd_transient.c) ---- */
 int gd_cmd_transient(int argc, char **argv);
+
+/* ---- plots (cli_plot.c): --plot FILE.svg|FILE.html on the analysis commands ---- */
+#include "geardyn/plot.h"
+
+enum { GD_CLI_OPT_PLOT = 0x9107 };
+#define GD_CLI_PLOT_OPTION                                                                         \
+    {                                                                                              \
+        "plot", required_argument, 0, GD_CLI_OPT_PLOT                                              \
+    }
+#define GD_CLI_PLOT_HELP                                                                           \
+    "  --plot FILE       the standard figure: FILE.svg (static) or FILE.html (interactive,\n"      \
+    "                    self-contained; docs/plots.md)\n"
+/* Before any computing: path has a known extension and a writable folder (and for HTML
+ * plotly.js is there). 0, or the exit code after reporting. */
+int gd_cli_plot_check(const char *path);
+/* The figure built (st, p, err from a gd_plot_<analysis> call) written to path and freed.
+ * 0, or the exit code after reporting (nothing written). */
+int gd_cli_plot_finish(gd_status st, gd_plot *p, gd_error *err, const char *path);
+
+/* ---- the study report (cmd_report.c) ---- */
+int gd_cmd_report(int argc, char **argv);

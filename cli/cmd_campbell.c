@@ -14,7 +14,7 @@ static const char USAGE[] =
     "usage: geardyn campbell MODEL.yaml --speeds FROM:TO:COUNT [--modes N|all] [--orders LIST]\n"
     "                        [--no-shaft-orders] [--no-mesh-orders] [--method auto|dense|sparse]\n"
     "                        [--undamped] [--shift VALUE] [--threads N] [--coupling LEVEL]\n"
-    "                        [--set PATH=VALUE]... [--json] [--out DIR]\n\n"
+    "                        [--set PATH=VALUE]... [--json] [--out DIR] [--plot FILE]\n\n"
     "Damped modes at every speed, tracked across speeds by mode shape (MAC), with whirl\n"
     "direction, dominant motion and log decrement; critical speeds where a mode meets an\n"
     "excitation order (1x of each shaft, --orders, tooth-mesh orders); instability onset.\n\n"
@@ -31,7 +31,8 @@ static const char USAGE[] =
     "  --set PATH=VALUE    change a value of the model file, e.g.\n"
     "                      --set meshes.mesh.stiffness=3e8N/m (repeatable; docs/model-format.md)\n"
     "  --json              one JSON object on stdout instead of the tables\n"
-    "  --out DIR           write DIR/campbell.csv (long form) and DIR/critical_speeds.csv\n";
+    "  --out DIR           write DIR/campbell.csv (long form) and "
+    "DIR/critical_speeds.csv\n" GD_CLI_PLOT_HELP;
 
 #define PI 3.14159265358979323846
 
@@ -221,9 +222,10 @@ int gd_cmd_campbell(int argc, char **argv)
                                          {"out", required_argument, 0, 'o'},
                                          GD_CLI_SET_OPTION,
                                          {"help", no_argument, 0, 'h'},
+                                         GD_CLI_PLOT_OPTION,
                                          {0, 0, 0, 0}};
     const char *cmd = "campbell", *speeds = NULL, *coupling = NULL, *out = NULL, *orders = NULL,
-               *shift = NULL;
+               *shift = NULL, *plot = NULL;
     gd_campbell_options opt;
     gd_campbell_options_init(&opt);
     int json = 0, c;
@@ -278,6 +280,9 @@ int gd_cmd_campbell(int argc, char **argv)
         case 'o':
             out = optarg;
             break;
+        case GD_CLI_OPT_PLOT:
+            plot = optarg;
+            break;
         case 'h':
             fputs(USAGE, stdout);
             return GD_EXIT_OK;
@@ -310,7 +315,7 @@ int gd_cmd_campbell(int argc, char **argv)
     opt.speeds = sp;
     gd_error oerr;
     gd_error_clear(&oerr);
-    if (out && gd_outdir_check(out, &oerr)) {
+    if ((out && gd_outdir_check(out, &oerr)) || (plot && gd_plot_check_path(plot, NULL, &oerr))) {
         free(ord);
         free(sp);
         return gd_cli_report(&oerr);
@@ -330,7 +335,12 @@ int gd_cmd_campbell(int argc, char **argv)
     if (gd_campbell(s, &opt, &r, &err)) {
         rc = gd_cli_report(&err);
     } else {
-        if (out) rc = write_csv(r, out);
+        if (plot) {
+            gd_plot *p = NULL;
+            gd_status pst = gd_plot_campbell(r, &p, &err);
+            rc = gd_cli_plot_finish(pst, p, &err, plot);
+        }
+        if (out && rc == GD_EXIT_OK) rc = write_csv(r, out);
         if (rc == GD_EXIT_OK) {
             if (json) {
                 cJSON *o = result_json(s, r);

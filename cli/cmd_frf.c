@@ -14,7 +14,7 @@ static const char USAGE[] =
     "                   --freq FROM:TO:COUNT [--speed VALUE] [--method direct|modal]\n"
     "                   [--modes N|all] [--type receptance|mobility|accelerance]\n"
     "                   [--threads N] [--coupling LEVEL] [--set PATH=VALUE]... [--json]\n"
-    "                   [--out DIR]\n\n"
+    "                   [--out DIR] [--plot FILE.svg|FILE.html]\n\n"
     "Response to a unit harmonic force or moment. Inputs:\n"
     "  NODE.DOF, node:NODE.DOF  force (x, y, z) or moment (rx, ry, rz) at a node, e.g. pinion.y\n"
     "  torque:NODE              torque about the shaft axis (= NODE.rz)\n"
@@ -34,22 +34,29 @@ static const char USAGE[] =
     "  --set PATH=VALUE  change a value of the model file, e.g.\n"
     "                    --set meshes.mesh.stiffness=3e8N/m (repeatable; docs/model-format.md)\n"
     "  --json            one JSON object on stdout\n"
-    "  --out DIR         write DIR/frf.csv (long form)\n";
+    "  --out DIR         write DIR/frf.csv (long form)\n" GD_CLI_PLOT_HELP;
 
 #define MAXOUT 16
 
 int gd_cmd_frf(int argc, char **argv)
 {
-    static const struct option opts[] = {
-        {"input", required_argument, 0, 'i'},    {"output", required_argument, 0, 'O'},
-        {"freq", required_argument, 0, 'F'},     {"speed", required_argument, 0, 's'},
-        {"method", required_argument, 0, 'm'},   {"modes", required_argument, 0, 'n'},
-        {"type", required_argument, 0, 'T'},     {"threads", required_argument, 0, 't'},
-        {"coupling", required_argument, 0, 'c'}, GD_CLI_SET_OPTION,
-        {"json", no_argument, 0, 'j'},           {"out", required_argument, 0, 'o'},
-        {"help", no_argument, 0, 'h'},           {0, 0, 0, 0}};
+    static const struct option opts[] = {{"input", required_argument, 0, 'i'},
+                                         {"output", required_argument, 0, 'O'},
+                                         {"freq", required_argument, 0, 'F'},
+                                         {"speed", required_argument, 0, 's'},
+                                         {"method", required_argument, 0, 'm'},
+                                         {"modes", required_argument, 0, 'n'},
+                                         {"type", required_argument, 0, 'T'},
+                                         {"threads", required_argument, 0, 't'},
+                                         {"coupling", required_argument, 0, 'c'},
+                                         GD_CLI_SET_OPTION,
+                                         {"json", no_argument, 0, 'j'},
+                                         {"out", required_argument, 0, 'o'},
+                                         {"help", no_argument, 0, 'h'},
+                                         GD_CLI_PLOT_OPTION,
+                                         {0, 0, 0, 0}};
     const char *cmd = "frf", *input = NULL, *freq = NULL, *speed = NULL, *coupling = NULL,
-               *out = NULL, *outs[MAXOUT];
+               *out = NULL, *outs[MAXOUT], *plot = NULL;
     int nouts = 0, json = 0, c;
     gd_cli_sets sets = {0};
     long nm;
@@ -115,6 +122,9 @@ int gd_cmd_frf(int argc, char **argv)
         case 'o':
             out = optarg;
             break;
+        case GD_CLI_OPT_PLOT:
+            plot = optarg;
+            break;
         case 'h':
             fputs(USAGE, stdout);
             return GD_EXIT_OK;
@@ -132,7 +142,7 @@ int gd_cmd_frf(int argc, char **argv)
     opt.freqs = fr;
     gd_error err;
     gd_error_clear(&err);
-    if (out && gd_outdir_check(out, &err)) {
+    if ((out && gd_outdir_check(out, &err)) || (plot && gd_plot_check_path(plot, NULL, &err))) {
         free(fr);
         return gd_cli_report(&err);
     }
@@ -212,6 +222,11 @@ int gd_cmd_frf(int argc, char **argv)
                 "geardyn frf: note: %d frequenc%s hit a singular dynamic stiffness (a rigid-body "
                 "mode at 0 rad/s or an undamped resonance); values there are null/nan\n",
                 r->nsingular, r->nsingular == 1 ? "y" : "ies");
+    if (plot) {
+        gd_plot *p = NULL;
+        gd_status pst = gd_plot_frf(s, &opt, r, &p, &err);
+        if ((rc = gd_cli_plot_finish(pst, p, &err, plot))) goto done;
+    }
     nser = xy ? 2 * nouts : np;
     ser = calloc((size_t)nser, sizeof *ser);
     dirbuf = xy ? malloc((size_t)4 * nouts * opt.nfreq * sizeof *dirbuf) : NULL;

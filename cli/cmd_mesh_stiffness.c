@@ -13,7 +13,7 @@
 static const char USAGE[] =
     "usage: geardyn mesh-stiffness FILE [--mesh NAME] [--method M] [--points N] [--cycles N]\n"
     "                              [--slices N] [--helix-angle VALUE] [--set PATH=VALUE]...\n"
-    "                              [--json] [--out DIR]\n\n"
+    "                              [--json] [--out DIR] [--plot FILE] [--compare-helix LIST]\n\n"
     "Computes, from the geometry of a gear pair (a mesh entry with a `geometry:` map, in a\n"
     "model file or a stand-alone file with `meshes:`), the transverse, face and total\n"
     "contact ratios, base pitch, mesh period and the time-varying mesh stiffness k(angle)\n"
@@ -29,11 +29,14 @@ static const char USAGE[] =
     "                       --set meshes.pair1.geometry.face_width=30mm (repeatable;\n"
     "                       docs/model-format.md, \"Overrides (--set)\")\n"
     "  --json               print everything as one JSON object\n"
-    "  --out DIR            write DIR/mesh_stiffness.csv and DIR/summary.json\n\n"
+    "  --out DIR            write DIR/mesh_stiffness.csv and DIR/summary.json\n"
+    "  --plot FILE          TVMS with single/double contact zones, pair stiffnesses and\n"
+    "                       harmonics: FILE.svg or FILE.html (docs/plots.md)\n"
+    "  --compare-helix LIST the plot also compares these helix angles, e.g. 0,10deg,20deg\n\n"
     "Exit status: 0 ok, 2 bad input or usage, 1 numerical failure.\n";
 
 typedef struct ms_args {
-    const char *file, *mesh, *out;
+    const char *file, *mesh, *out, *plot, *compare;
     int json, has_method, has_helix;
     gd_tvms_method method;
     long points, cycles, slices; /* 0 = not given */
@@ -53,6 +56,8 @@ static int parse_args(int argc, char **argv, ms_args *a)
                                          {"out", required_argument, 0, 'o'},
                                          GD_CLI_SET_OPTION,
                                          {"help", no_argument, 0, 'h'},
+                                         GD_CLI_PLOT_OPTION,
+                                         {"compare-helix", required_argument, 0, 'H'},
                                          {0, 0, 0, 0}};
     const char *cmd = "mesh-stiffness";
     int c;
@@ -103,6 +108,12 @@ static int parse_args(int argc, char **argv, ms_args *a)
         case 'o':
             a->out = optarg;
             break;
+        case GD_CLI_OPT_PLOT:
+            a->plot = optarg;
+            break;
+        case 'H':
+            a->compare = optarg;
+            break;
         case 'h':
             fputs(USAGE, stdout);
             return -1;
@@ -111,6 +122,7 @@ static int parse_args(int argc, char **argv, ms_args *a)
         }
     }
     if (optind != argc - 1) return gd_cli_usage_error(cmd, "give exactly one FILE");
+    if (a->compare && !a->plot) return gd_cli_usage_error(cmd, "--compare-helix goes with --plot");
     a->file = argv[optind];
     return 0;
 }
@@ -253,6 +265,54 @@ fail:
     return gd_cli_report(&err);
 }
 
+enum { MAX_COMPARE = 8 };
+
+/* The figure, with the pair recomputed at the --compare-helix angles. */
+static int plot_tvms(const ms_args *a, const gd_gear_pair_geometry *g, const gd_tvms_options *opt,
+                     const gd_tvms_result *res, const char *mesh)
+{
+    const gd_tvms_result *rs[MAX_COMPARE + 1] = {res};
+    gd_tvms_result *own[MAX_COMPARE + 1] = {NULL};
+    char label[MAX_COMPARE + 1][48];
+    const char *labels[MAX_COMPARE + 1];
+    int n = 1, rc = GD_EXIT_OK;
+    gd_error err;
+    gd_error_clear(&err);
+    snprintf(label[0], sizeof label[0], "helix %.4g deg", g->helix_angle * 180 / M_PI);
+    labels[0] = label[0];
+    char buf[512];
+    snprintf(buf, sizeof buf, "%s", a->compare ? a->compare : "");
+    for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok && rc == GD_EXIT_OK;
+         tok = strtok_r(NULL, ",", &save)) {
+        gd_gear_pair_geometry h = *g;
+        gd_error why;
+        gd_tvms_result *r = NULL;
+        if (n > MAX_COMPARE)
+            rc = gd_cli_usage_error("mesh-stiffness", "--compare-helix: at most %d angles",
+                                    MAX_COMPARE);
+        else if (gd_parse_quantity(tok, GD_QTY_ANGLE, &h.helix_angle, &why))
+            rc = gd_cli_usage_error("mesh-stiffness", "--compare-helix: %s (e.g. 0,10deg,20deg)",
+                                    why.message);
+        else if (gd_tvms_compute(&h, opt, &r, &err)) {
+            snprintf(err.field, sizeof err.field, "--compare-helix");
+            rc = gd_cli_report(&err);
+        } else {
+            snprintf(label[n], sizeof label[n], "helix %.4g deg", h.helix_angle * 180 / M_PI);
+            labels[n] = label[n];
+            own[n] = r;
+            rs[n++] = r;
+        }
+    }
+    if (rc == GD_EXIT_OK) {
+        gd_plot *p = NULL;
+        gd_status st = gd_plot_tvms(rs, labels, n, mesh, &p, &err);
+        rc = gd_cli_plot_finish(st, p, &err, a->plot);
+    }
+    for (int k = 1; k < n; k++)
+        gd_tvms_free(own[k]);
+    return rc;
+}
+
 int gd_cmd_mesh_stiffness(int argc, char **argv)
 {
     ms_args a;
@@ -267,6 +327,7 @@ int gd_cmd_mesh_stiffness(int argc, char **argv)
     gd_tvms_result *res = NULL;
     char mesh_name[GD_NODE_NAME_MAX];
     gd_load_options lo = gd_cli_load_options(&a.sets);
+    if (a.plot && (rc = gd_cli_plot_check(a.plot))) return rc;
     if (gd_gear_pair_load(a.file, a.mesh, &lo, &g, &opt, mesh_name, sizeof mesh_name, &err))
         return gd_cli_report(&err);
     if (a.has_method) opt.method = a.method;
@@ -283,6 +344,10 @@ int gd_cmd_mesh_stiffness(int argc, char **argv)
         return gd_cli_report(&err);
     }
     rc = GD_EXIT_OK;
+    if (a.plot && (rc = plot_tvms(&a, &g, &opt, res, mesh_name))) {
+        gd_tvms_free(res);
+        return rc;
+    }
     if (a.out) {
         cJSON *summary = make_json(res, &g, a.file, mesh_name, 0);
         rc = write_out(a.out, res, summary);

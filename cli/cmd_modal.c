@@ -10,7 +10,7 @@
 static const char USAGE[] =
     "usage: geardyn modal MODEL.yaml [--speed VALUE] [--modes N|all] [--undamped | --damped]\n"
     "                     [--coupling LEVEL] [--method auto|dense|sparse] [--set PATH=VALUE]...\n"
-    "                     [--json] [--out DIR]\n\n"
+    "                     [--json] [--out DIR] [--plot FILE.svg|FILE.html]\n\n"
     "Natural frequencies, damping, whirl direction and modal strain energy of each mode.\n"
     "Damped/gyroscopic modes (state space, left and right eigenvectors) are computed when\n"
     "the model has damping or gyroscopic terms at the speed; otherwise undamped modes.\n\n"
@@ -27,7 +27,7 @@ static const char USAGE[] =
     "                    --set meshes.mesh.stiffness=3e8N/m (repeatable; docs/model-format.md)\n"
     "  --json            print one JSON object on stdout instead of the table\n"
     "  --out DIR         write DIR/modes.csv and DIR/mode_shapes.csv (every active DOF of\n"
-    "                    every mode, complex)\n";
+    "                    every mode, complex)\n" GD_CLI_PLOT_HELP;
 
 static double share(const gd_mode *md, int k)
 {
@@ -171,13 +171,14 @@ int gd_cmd_modal(int argc, char **argv)
                                          {"json", no_argument, 0, 'j'},
                                          {"out", required_argument, 0, 'o'},
                                          {"help", no_argument, 0, 'h'},
+                                         GD_CLI_PLOT_OPTION,
                                          {0, 0, 0, 0}};
     gd_modal_options opt;
     gd_modal_options_init(&opt);
     opt.want_left = 0;
-    const char *coupling = NULL, *out = NULL, *speed = NULL;
+    const char *coupling = NULL, *out = NULL, *speed = NULL, *plot = NULL;
     gd_cli_sets sets = {0};
-    int json = 0, c, all = 0;
+    int json = 0, c, all = 0, rc;
     long nmodes = -1;
     optind = 1;
     opterr = 0;
@@ -218,6 +219,9 @@ int gd_cmd_modal(int argc, char **argv)
         case 'o':
             out = optarg;
             break;
+        case GD_CLI_OPT_PLOT:
+            plot = optarg;
+            break;
         case 'h':
             fputs(USAGE, stdout);
             return GD_EXIT_OK;
@@ -229,9 +233,10 @@ int gd_cmd_modal(int argc, char **argv)
     gd_error oerr;
     gd_error_clear(&oerr);
     if (out && gd_outdir_check(out, &oerr)) return gd_cli_report(&oerr);
+    if (plot && (rc = gd_cli_plot_check(plot))) return rc;
     gd_model *m;
     gd_system *s;
-    int rc = gd_cli_load(argv[optind], &sets, coupling, &m, &s);
+    rc = gd_cli_load(argv[optind], &sets, coupling, &m, &s);
     if (rc) return rc;
     opt.speed = m->speed;
     if (speed && gd_cli_parse_speed("modal", speed, &opt.speed)) {
@@ -246,7 +251,12 @@ int gd_cmd_modal(int argc, char **argv)
     if (gd_modal_solve(s, &opt, &r, &err)) {
         rc = gd_cli_report(&err);
     } else {
-        if (out) rc = write_csv(s, r, out);
+        if (plot) {
+            gd_plot *p = NULL;
+            gd_status pst = gd_plot_modal(s, r, &p, &err);
+            rc = gd_cli_plot_finish(pst, p, &err, plot);
+        }
+        if (out && rc == GD_EXIT_OK) rc = write_csv(s, r, out);
         if (rc == GD_EXIT_OK) {
             if (json) {
                 cJSON *o = result_json(s, r);

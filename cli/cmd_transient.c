@@ -26,7 +26,7 @@ static const char USAGE[] =
     "                         [--rho-inf R] [--reduce F] [--start rest|static]\n"
     "                         [--spectrum] [--window hann|rect] [--unbalance-scale F]\n"
     "                         [--coupling LEVEL] [--set PATH=VALUE]... [--json] [--out DIR]\n"
-    "                         [--quiet]\n\n"
+    "                         [--quiet] [--plot FILE.svg|FILE.html]\n\n"
     "Integrates the equations of motion at a constant reference speed with the model's\n"
     "nonlinear and time-varying laws (mesh TVMS, transmission error, backlash, squeeze\n"
     "film dampers, loads, prescribed motions, cam torques, unbalances), then prints\n"
@@ -72,7 +72,9 @@ static const char USAGE[] =
     "  --json               one JSON object on stdout\n"
     "  --out DIR            DIR/records.csv (time and one column per record),\n"
     "                       DIR/summary.json, DIR/spectrum.csv with --spectrum\n"
-    "  --quiet              no progress bar (it is shown on stderr only on a terminal)\n";
+    "  --quiet              no progress bar (it is shown on stderr only on a terminal)\n"
+    "  --plot FILE          time histories, spectra, orbits, contact states: FILE.svg or\n"
+    "                       FILE.html (interactive, self-contained; docs/plots.md)\n";
 
 /* (split: C99 guarantees string literals of 4095 characters only) */
 static const char USAGE_POINCARE[] =
@@ -379,7 +381,8 @@ fail:
 }
 
 typedef struct cli_opts {
-    const char *duration, *revolutions, *speed, *from, *interval, *coupling, *out, *step, *reduce;
+    const char *duration, *revolutions, *speed, *from, *interval, *coupling, *out, *step, *reduce,
+        *plot;
     const char *poincare, *settle, *sweep;
     long points;
     int direction, direction_given;
@@ -422,6 +425,7 @@ static int parse_args(int argc, char **argv, cli_opts *o)
                                          {"both-directions", no_argument, 0, 'B'},
                                          GD_CLI_SET_OPTION,
                                          {"help", no_argument, 0, 'h'},
+                                         GD_CLI_PLOT_OPTION,
                                          {0, 0, 0, 0}};
     memset(o, 0, sizeof *o);
     o->rtol = 1e-6;
@@ -522,6 +526,9 @@ static int parse_args(int argc, char **argv, cli_opts *o)
         case 'o':
             o->out = optarg;
             break;
+        case GD_CLI_OPT_PLOT:
+            o->plot = optarg;
+            break;
         case 'q':
             o->quiet = 1;
             break;
@@ -569,6 +576,7 @@ static int parse_args(int argc, char **argv, cli_opts *o)
                             : o->reduce                    ? "--reduce"
                             : o->step                      ? "--step"
                             : o->method == GD_TR_GEN_ALPHA ? "--method galpha"
+                            : o->plot                      ? "--plot"
                                                            : NULL;
         if (clash)
             return gd_cli_usage_error(
@@ -734,7 +742,9 @@ int gd_cmd_transient(int argc, char **argv)
     if (rc) return rc < 0 ? GD_EXIT_OK : rc;
     gd_error err;
     gd_error_clear(&err);
-    if (o.out && gd_outdir_check_writable(o.out, &err)) return gd_cli_report(&err);
+    if ((o.out && gd_outdir_check_writable(o.out, &err)) ||
+        (o.plot && gd_plot_check_path(o.plot, NULL, &err)))
+        return gd_cli_report(&err);
     gd_model *m = NULL;
     gd_system *s = NULL;
     gd_transient_model *tm = NULL;
@@ -848,6 +858,11 @@ int gd_cmd_transient(int argc, char **argv)
                 goto done;
             }
         }
+    }
+    if (o.plot) {
+        gd_plot *p = NULL;
+        gd_status pst = gd_plot_transient(s, res, &p, &err);
+        if ((rc = gd_cli_plot_finish(pst, p, &err, o.plot))) goto done;
     }
     int nfree = gd_transient_nstates(tr) / 2;
     summary = summary_json(s, tm, &recs, res, spec, &ri, nfree);

@@ -12,7 +12,7 @@
 static const char USAGE[] =
     "usage: geardyn unbalance MODEL.yaml --speeds FROM:TO:COUNT [--output WHAT ...]\n"
     "                         [--threads N] [--coupling LEVEL] [--set PATH=VALUE]...\n"
-    "                         [--json] [--out DIR]\n\n"
+    "                         [--json] [--out DIR] [--plot FILE] [--orbit-speed VALUE]\n\n"
     "Steady response to the unbalances of the model, each turning with its own shaft.\n"
     "Shafts with different |speed ratio| give different harmonics (order = |ratio| of the\n"
     "reference speed); each output is reported per harmonic.\n\n"
@@ -26,7 +26,9 @@ static const char USAGE[] =
     "  --set PATH=VALUE  change a value of the model file, e.g.\n"
     "                    --set meshes.mesh.stiffness=3e8N/m (repeatable; docs/model-format.md)\n"
     "  --json            one JSON object on stdout\n"
-    "  --out DIR         write DIR/unbalance.csv and DIR/orbits.csv (long form)\n";
+    "  --out DIR         write DIR/unbalance.csv and DIR/orbits.csv (long form)\n" GD_CLI_PLOT_HELP
+    "  --orbit-speed V   the plot's orbits at the nearest speed to V (default: where the\n"
+    "                    largest orbit is largest)\n";
 
 #define PI 3.14159265358979323846
 #define MAXOUT 64
@@ -77,8 +79,11 @@ int gd_cmd_unbalance(int argc, char **argv)
                                          {"out", required_argument, 0, 'o'},
                                          GD_CLI_SET_OPTION,
                                          {"help", no_argument, 0, 'h'},
+                                         GD_CLI_PLOT_OPTION,
+                                         {"orbit-speed", required_argument, 0, 'B'},
                                          {0, 0, 0, 0}};
-    const char *cmd = "unbalance", *speeds = NULL, *coupling = NULL, *out = NULL, *outs[MAXOUT];
+    const char *cmd = "unbalance", *speeds = NULL, *coupling = NULL, *out = NULL, *outs[MAXOUT],
+               *plot = NULL, *orbit_speed = NULL;
     int nouts = 0, json = 0, c;
     gd_cli_sets sets = {0};
     gd_unbalance_options opt;
@@ -109,6 +114,12 @@ int gd_cmd_unbalance(int argc, char **argv)
         case 'o':
             out = optarg;
             break;
+        case GD_CLI_OPT_PLOT:
+            plot = optarg;
+            break;
+        case 'B':
+            orbit_speed = optarg;
+            break;
         case 'h':
             fputs(USAGE, stdout);
             return GD_EXIT_OK;
@@ -124,7 +135,12 @@ int gd_cmd_unbalance(int argc, char **argv)
     opt.speeds = sp;
     gd_error err;
     gd_error_clear(&err);
-    if (out && gd_outdir_check(out, &err)) {
+    double at = 0;
+    if (orbit_speed && gd_cli_parse_speed(cmd, orbit_speed, &at)) {
+        free(sp);
+        return GD_EXIT_INPUT;
+    }
+    if ((out && gd_outdir_check(out, &err)) || (plot && gd_plot_check_path(plot, NULL, &err))) {
         free(sp);
         return gd_cli_report(&err);
     }
@@ -164,6 +180,11 @@ int gd_cmd_unbalance(int argc, char **argv)
     if (gd_unbalance_response(s, &opt, &r, &err)) {
         rc = gd_cli_report(&err);
         goto done;
+    }
+    if (plot) {
+        gd_plot *p = NULL;
+        gd_status pst = gd_plot_unbalance(s, &opt, r, at, &p, &err);
+        if ((rc = gd_cli_plot_finish(pst, p, &err, plot))) goto done;
     }
     int nh = r->nharmonics, ns = r->nspeeds;
     ser = calloc((size_t)(nh * np > 0 ? nh * np : 1), sizeof *ser);

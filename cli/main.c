@@ -33,6 +33,8 @@ static const command COMMANDS[] = {
      "time integration: TVMS, backlash, dampers, cams; records, contact losses, spectra"},
     {"mesh-stiffness", gd_cmd_mesh_stiffness,
      "contact ratios and time-varying mesh stiffness from gear geometry"},
+    {"report", gd_cmd_report,
+     "one self-contained HTML report: model drawing, modes, Campbell, FRFs, unbalance, TVMS"},
     {"version", cmd_version, "print the version"},
 };
 

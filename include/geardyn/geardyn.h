@@ -12,6 +12,8 @@
  *               mesh_stiffness.h (from gear geometry alone), spectrum.h (of records)
  *   output      result structures (gd_modal_result, gd_campbell_result, ...); printing,
  *               JSON and CSV are the command-line program's
+ *   plots       plot.h: the figure of each result as SVG or self-contained HTML;
+ *               report.h: a whole study in one file
  * Errors: every call that can fail returns a gd_status and fills a caller-owned
  * gd_error (error.h).
  *
@@ -51,5 +53,7 @@
 #include "geardyn/transient.h"
 #include "geardyn/transient_model.h"
 #include "geardyn/spectrum.h"
+#include "geardyn/plot.h"
+#include "geardyn/report.h"
 
 #endif

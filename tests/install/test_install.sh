@@ -2,7 +2,8 @@
 # The installed library, used as another program would (ctest: test_install).
 #   1. cmake --install of this build tree into a temporary prefix (nothing is built);
 #   2. every installed header compiles on its own, and none includes a private header;
-#   3. the installed CLI runs and finds the installed libgeardyn.so (RPATH $ORIGIN/..);
+#   3. the installed CLI runs and finds the installed libgeardyn.so (RPATH $ORIGIN/..),
+#      and writes an HTML plot with the installed plotly.js (share/geardyn);
 #   4. tests/install/consumer.c built with `pkg-config --cflags --libs geardyn` only
 #      (shared), then with `pkg-config --static` against libgeardyn.a;
 #   5. the same program built by tests/install/cmake_consumer (find_package(geardyn)),
@@ -80,6 +81,15 @@ echo "3. installed CLI"
 out=$(env -u LD_LIBRARY_PATH "$prefix/bin/geardyn" --version)
 [ "$out" = "geardyn $version" ] || fail "geardyn --version printed '$out'"
 echo "  $out"
+# HTML plots inline the installed plotly.js (share/geardyn), found beside the library:
+# a marked copy there must be the one in the page
+js=$prefix/share/geardyn/plotly.min.js
+[ -s "$js" ] || fail "not installed: share/geardyn/plotly.min.js"
+cp "$js" "$tmp/plotly.js" && echo '/* the installed copy */' >>"$js"
+env -u LD_LIBRARY_PATH -u GEARDYN_PLOTLY_JS "$prefix/bin/geardyn" mesh-stiffness \
+    examples/rig2018_pair.yaml --plot "$tmp/k.html" >/dev/null || fail "installed CLI: --plot k.html"
+grep -q 'the installed copy' "$tmp/k.html" || fail "the HTML plot did not inline the installed plotly.js"
+echo "  --plot k.html inlines $js"
 
 echo "4a. pkg-config --cflags --libs geardyn"
 flags=$("$pkgconfig" --cflags --libs geardyn)

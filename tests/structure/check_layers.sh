@@ -16,7 +16,9 @@ declare -A level=(
     [system]=5
     [modal]=6
     [campbell]=7 [response]=7 [transient]=7
-    [api]=9
+    [plot]=9
+    [report]=10
+    [api]=11
 )
 # public header -> module
 declare -A header=(
@@ -29,6 +31,7 @@ declare -A header=(
     [modal.h]=modal
     [campbell.h]=campbell [probe.h]=response [frf.h]=response [unbalance.h]=response
     [transient.h]=transient [transient_model.h]=transient
+    [plot.h]=plot [report.h]=report
     [geardyn.h]=api
 )
 

@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Timing of plots and reports (docs/plots.md): the cost of --plot over the analysis it
+# draws (floor: the same command without --plot, in the same run), and the report of
+# the rig with its size. Best of 3 wall-clock runs. Prints figures only.
+# usage: bench/bench_plot.sh [BUILD_DIR]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+B=${1:-build}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+best() { # best wall time in s of 3 runs of "geardyn ARGS"
+    local b=999 s e t
+    for _ in 1 2 3; do
+        s=$(date +%s.%N); "$B/geardyn" "$@" >/dev/null; e=$(date +%s.%N)
+        t=$(echo "$e - $s" | bc -l); (($(echo "$t < $b" | bc -l))) && b=$t
+    done
+    printf '%.3f' "$b"
+}
+m="modal examples/rig2018.yaml --speed 3000rpm --modes 12"
+floor=$(best $m)
+svg=$(best $m --plot "$tmp/m.svg")
+html=$(best $m --plot "$tmp/m.html")
+echo "modal of the rig (170 DOFs, 12 modes): $floor s; with --plot .svg $svg s ($(echo "$svg / $floor" | bc -l | cut -c1-4)x), .html $html s ($(echo "$html / $floor" | bc -l | cut -c1-4)x)"
+echo "  sizes: svg $(stat -c %s "$tmp/m.svg") B, html $(stat -c %s "$tmp/m.html") B"
+r=$(best report examples/rig2018.yaml --out "$tmp/r.html")
+echo "report of the rig (modes, Campbell 41 speeds, FRF 400 points): $r s, $(stat -c %s "$tmp/r.html") B (plotly.js $(stat -c %s node_modules/plotly.js-gl3d-dist-min/plotly-gl3d.min.js) B of it)"

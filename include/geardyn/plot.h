@@ -1,0 +1,120 @@
+/* Plots: the standard figure of each analysis, built from its result struct and written
+ * as static SVG (drawn by geardyn itself, for papers and CI artefacts) or as one
+ * self-contained interactive HTML file (plotly.js inlined, opens offline) with the
+ * numbers behind every plot downloadable as CSV from the page. docs/plots.md.
+ *
+ * A gd_plot is a document: one or more sections (a title, panels of curves, tables, a
+ * CSV of its numbers). Each gd_plot_<analysis> builds one section; gd_plot_append moves
+ * the sections of one document to the end of another (the report is made this way). A
+ * new analysis gets its figure by one more gd_plot_<analysis> function.
+ *
+ * Writing: the format follows the file name (".svg" or ".html"); the file is written to
+ * a temporary name beside it and renamed into place, so a failure leaves nothing.
+ * HTML needs plotly.min.js, found in this order: gd_plot_write_options.plotly_js, the
+ * environment variable GEARDYN_PLOTLY_JS, the installed copy (DATADIR/geardyn/
+ * plotly.min.js beside the library or program, `make install` puts it there), and the
+ * source tree's node_modules (an uninstalled build).
+ *
+ * Ownership and threads: every gd_plot_<analysis> returns a document the caller frees
+ * with gd_plot_free; the results, systems and options passed in are only read, during
+ * the call (the document keeps copies of the numbers it plots). Distinct documents may
+ * be built and written from different threads at once.
+ */
+#ifndef GEARDYN_PLOT_H
+#define GEARDYN_PLOT_H
+#include "geardyn/export.h"
+#include "geardyn/campbell.h"
+#include "geardyn/error.h"
+#include "geardyn/frf.h"
+#include "geardyn/mesh_stiffness.h"
+#include "geardyn/modal.h"
+#include "geardyn/system.h"
+#include "geardyn/transient.h"
+#include "geardyn/unbalance.h"
+
+typedef struct gd_plot gd_plot;
+
+typedef enum gd_plot_format { GD_PLOT_SVG, GD_PLOT_HTML } gd_plot_format;
+
+/* The format of a file name by its extension (".svg", ".html" or ".htm", any case).
+ * GD_EINPUT naming the known extensions otherwise. */
+GD_API gd_status gd_plot_format_of(const char *path, gd_plot_format *fmt, gd_error *err);
+/* Checks, before any computing, that path has a known extension and that its folder
+ * exists and can be written into; for HTML also that plotly.js can be found (opts may
+ * be NULL). Writes nothing. */
+typedef struct gd_plot_write_options {
+    const char *plotly_js; /* path of plotly.min.js; NULL: look for it (see top) */
+} gd_plot_write_options;
+GD_API void gd_plot_write_options_init(gd_plot_write_options *opt);
+GD_API gd_status gd_plot_check_path(const char *path, const gd_plot_write_options *opt,
+                                    gd_error *err);
+/* Writes the document to path (format by extension). Nothing is left at path on
+ * failure. */
+GD_API gd_status gd_plot_write(const gd_plot *p, const char *path, const gd_plot_write_options *opt,
+                               gd_error *err);
+/* The plotly.min.js that would be inlined (see top), or GD_EIO listing where it looked. */
+GD_API gd_status gd_plot_find_plotly(const gd_plot_write_options *opt, char *path, size_t size,
+                                     gd_error *err);
+
+/* An empty document with a title (the page title of the HTML). */
+GD_API gd_status gd_plot_new(const char *title, gd_plot **out, gd_error *err);
+/* Appends a section holding only a title and a paragraph. */
+GD_API gd_status gd_plot_add_note(gd_plot *p, const char *title, const char *text, gd_error *err);
+/* Moves every section of src to the end of dst and frees src. */
+GD_API gd_status gd_plot_append(gd_plot *dst, gd_plot *src, gd_error *err);
+/* Sections and plotted curves (traces) of a document, for tests and callers. */
+GD_API int gd_plot_nsections(const gd_plot *p);
+GD_API int gd_plot_npanels(const gd_plot *p, int section);
+GD_API int gd_plot_ntraces(const gd_plot *p, int section, int panel);
+GD_API void gd_plot_free(gd_plot *p);
+
+/* Modes: the shape of each elastic mode along each shaft (lateral x and y, axial,
+ * torsion; gears and bearings drawn on the axis), an animated 3-D view of the whirl (HTML
+ * only) and the strain-energy table by motion type and by component (002 Tables 4-7).
+ * GD_EINPUT when every mode is a rigid-body mode (nothing to plot). */
+GD_API gd_status gd_plot_modal(const gd_system *sys, const gd_modal_result *r, gd_plot **out,
+                               gd_error *err);
+
+/* Campbell diagram: damped natural frequency (Hz) over speed (rpm) of each tracked mode,
+ * coloured by whirl (forward blue, backward red, mixed purple, none grey; each point
+ * by its whirl at that speed, the line by the mode's most frequent whirl), the
+ * excitation orders (1x of each shaft, user orders, tooth-mesh orders) as lines, the
+ * critical speeds marked and listed, and a log-decrement panel with the instability
+ * onset. GD_EINPUT when no mode was tracked. */
+GD_API gd_status gd_plot_campbell(const gd_campbell_result *r, gd_plot **out, gd_error *err);
+
+/* Frequency response: Bode (magnitude, log scale; phase) over frequency (Hz) and
+ * Nyquist (real vs imaginary) of every output; with a directional input (ninputs == 2,
+ * outputs in x, y pairs) the forward and backward FRFs (gd_frf_directional) instead.
+ * opt is the one the result was computed with (its outputs name the curves). */
+GD_API gd_status gd_plot_frf(const gd_system *sys, const gd_frf_options *opt,
+                             const gd_frf_result *r, gd_plot **out, gd_error *err);
+
+/* Unbalance response: amplitude (log) and phase of every output and harmonic over speed
+ * (rpm), polar plot, and the orbits of the orbit nodes at orbit_speed (rad/s; <= 0:
+ * the speed where the largest orbit is largest). */
+GD_API gd_status gd_plot_unbalance(const gd_system *sys, const gd_unbalance_options *opt,
+                                   const gd_unbalance_result *r, double orbit_speed, gd_plot **out,
+                                   gd_error *err);
+
+/* Transient: time history of every record (grouped by quantity), orbits of nodes whose
+ * x and y displacements are both recorded, the amplitude spectrum of each record
+ * (FFTW, Hann window) and the contact state of each recorded mesh (drive / separated /
+ * coast). GD_EINPUT when there is no record or fewer than 4 samples. */
+GD_API gd_status gd_plot_transient(const gd_system *sys, const gd_transient_result *r,
+                                   gd_plot **out, gd_error *err);
+
+/* Time-varying mesh stiffness over the sampled mesh cycles (driver angle, deg) with
+ * the single- and double-contact zones shaded, the stiffness of each tooth pair in
+ * contact (its load share x k), the ISO 6336 values and the Fourier harmonics. With
+ * n > 1 results (e.g. other helix angles) a comparison panel over the mesh cycle
+ * overlays them; labels (may be NULL) name them. name: the mesh's name (may be NULL). */
+GD_API gd_status gd_plot_tvms(const gd_tvms_result *const *r, const char *const *labels, int n,
+                              const char *name, gd_plot **out, gd_error *err);
+
+/* The model drawn to scale in a side view: shaft sections, gears (pitch diameters),
+ * disks, bearings, meshes, with a summary table of shafts, bearings and meshes. Shafts
+ * joined by a mesh are placed one centre distance apart. */
+GD_API gd_status gd_plot_model(const gd_model *m, gd_plot **out, gd_error *err);
+
+#endif

@@ -1,0 +1,208 @@
+/* The model drawn to scale (side view, metres on both axes) and summarised in tables.
+ * Each shaft lies along its own axis line; a mesh puts the driven shaft one centre
+ * distance (sum of the pitch radii, r = r_b / cos alpha) below its driver. */
+#include <math.h>
+#include <stdlib.h>
+
+#include "plot/plot_impl.h"
+
+#define PI 3.14159265358979323846
+
+typedef struct poly {
+    double *x, *y;
+    int n, cap;
+} poly;
+
+static void rect(gd_plot *p, poly *q, double x0, double x1, double y0, double y1)
+{
+    if (q->n + 6 > q->cap) {
+        int cap = q->cap ? 2 * q->cap : 64;
+        double *x = realloc(q->x, (size_t)cap * sizeof *x);
+        if (x) q->x = x;
+        double *y = x ? realloc(q->y, (size_t)cap * sizeof *y) : NULL;
+        if (y) q->y = y;
+        if (!x || !y) {
+            p->nomem = 1;
+            return;
+        }
+        q->cap = cap;
+    }
+    double px[6] = {x0, x1, x1, x0, x0, NAN}, py[6] = {y0, y0, y1, y1, y0, NAN};
+    for (int k = 0; k < 6; k++)
+        q->x[q->n] = px[k], q->y[q->n++] = py[k];
+}
+
+static void flush(gd_plot *p, pl_panel *pn, poly *q, const char *name, const char *color)
+{
+    if (q->n > 1) pl_trace_add(p, pn, name, q->n - 1, q->x, q->y, PL_FILL, color);
+    free(q->x);
+    free(q->y);
+    *q = (poly){0};
+}
+
+static double pitch_radius(const gd_mesh *g, int side)
+{
+    double c = cos(g->pressure_angle);
+    return g->base_radius[side] > 0 && c > 0 ? g->base_radius[side] / c : 0;
+}
+
+static double shaft_od(const gd_shaft *sh)
+{
+    double od = 0;
+    for (int k = 0; k < sh->nsections; k++)
+        od = fmax(od, sh->sections[k].outer_diameter);
+    return od;
+}
+
+gd_status gd_plot_model(const gd_model *m, gd_plot **out, gd_error *err)
+{
+    if (m->nshafts == 0)
+        return gd_error_set(err, GD_EINPUT, m->file, 0, 0, "shafts", "",
+                            "nothing to draw: no shaft");
+    gd_plot *p;
+    gd_status st = gd_plot_new("geardyn model", &p, err);
+    if (st) return st;
+    pl_section *s = pl_section_add(p, "Model");
+    pl_note(p, s,
+            "%s: %d shafts, %d nodes, %d disks, %d bearings, %d meshes, %d unbalances. Side view "
+            "to scale; meshed shafts one centre distance apart.",
+            m->file, m->nshafts, m->nnodes, m->ndisks, m->nbearings, m->nmeshes, m->nunbalances);
+    if (s) snprintf(s->csv_name, sizeof s->csv_name, "model_nodes.csv");
+    double *off = malloc((size_t)m->nshafts * sizeof *off);
+    int *placed = calloc((size_t)m->nshafts, sizeof *placed);
+    if (!off || !placed) p->nomem = 1;
+    double maxod = 0;
+    for (int h = 0; h < m->nshafts; h++)
+        maxod = fmax(maxod, shaft_od(&m->shafts[h]));
+    /* place shafts: along meshes from each unplaced one, below what is placed so far */
+    double bottom = 0;
+    for (int h0 = 0; off && placed && h0 < m->nshafts; h0++) {
+        if (placed[h0]) continue;
+        off[h0] = h0 ? bottom - 3 * maxod : 0;
+        placed[h0] = 1;
+        for (int changed = 1; changed;) {
+            changed = 0;
+            for (int g = 0; g < m->nmeshes; g++) {
+                const gd_mesh *ms = &m->meshes[g];
+                int a = m->nodes[ms->driver].shaft, b = m->nodes[ms->driven].shaft;
+                double cd = pitch_radius(ms, 0) + pitch_radius(ms, 1);
+                if (!(cd > 0)) cd = 3 * maxod;
+                if (placed[a] && !placed[b])
+                    off[b] = off[a] - cd, placed[b] = changed = 1;
+                else if (placed[b] && !placed[a])
+                    off[a] = off[b] + cd, placed[a] = changed = 1;
+            }
+        }
+        for (int h = 0; h < m->nshafts; h++)
+            if (placed[h]) bottom = fmin(bottom, off[h]);
+    }
+    pl_panel *pn = pl_panel_add(p, s, PL_XY, "the model to scale (side view)", "axial position (m)",
+                                "radial position (m)");
+    if (pn) pn->equal = 1;
+    poly shafts = {0}, gears = {0}, disks = {0};
+    pl_csv(p, s, "node,shaft,position_m,axis_offset_m\n");
+    for (int h = 0; off && h < m->nshafts; h++) {
+        const gd_shaft *sh = &m->shafts[h];
+        double x = m->nodes[sh->first_node].position;
+        for (int k = 0; k < sh->nsections; k++) {
+            const gd_section *sc = &sh->sections[k];
+            rect(p, &shafts, x, x + sc->length, off[h] - sc->outer_diameter / 2,
+                 off[h] + sc->outer_diameter / 2);
+            x += sc->length;
+        }
+        for (int k = 0; k < sh->nnodes; k++)
+            pl_csv(p, s, "\"%s\",\"%s\",%.10g,%.10g\n", m->nodes[sh->first_node + k].name, sh->name,
+                   m->nodes[sh->first_node + k].position, off[h]);
+    }
+    for (int g = 0; off && g < m->nmeshes; g++) {
+        const gd_mesh *ms = &m->meshes[g];
+        for (int side = 0; side < 2; side++) {
+            int node = side ? ms->driven : ms->driver;
+            double rp = pitch_radius(ms, side), x = m->nodes[node].position;
+            if (!(rp > 0)) continue;
+            double w = fmax(0.25 * rp, 0.5 * maxod) / 2;
+            rect(p, &gears, x - w, x + w, off[m->nodes[node].shaft] - rp,
+                 off[m->nodes[node].shaft] + rp);
+        }
+    }
+    for (int d = 0; off && d < m->ndisks; d++) {
+        const gd_disk *dk = &m->disks[d];
+        int geared = 0;
+        for (int g = 0; g < m->nmeshes; g++)
+            geared |= m->meshes[g].driver == dk->node || m->meshes[g].driven == dk->node;
+        if (geared || !(dk->mass > 0) || !(dk->polar_inertia > 0)) continue;
+        double rr = sqrt(2 * dk->polar_inertia / dk->mass),
+               x = m->nodes[dk->node].position; /* solid disk */
+        double w = fmax(0.2 * rr, 0.5 * maxod) / 2;
+        rect(p, &disks, x - w, x + w, off[m->nodes[dk->node].shaft] - rr,
+             off[m->nodes[dk->node].shaft] + rr);
+    }
+    flush(p, pn, &shafts, "shafts (outer diameter)", "#555");
+    flush(p, pn, &gears, "gears (pitch diameter)", "#1f77b4");
+    flush(p, pn, &disks, "disks (solid-disk radius from J and m)", "#2ca02c");
+    pl_trace *bt = off && m->nbearings ? pl_trace_add(p, pn, "bearings", m->nbearings, NULL, NULL,
+                                                      PL_MARKERS, "#d62728")
+                                       : NULL;
+    for (int b = 0; bt && b < m->nbearings; b++) {
+        int node = m->bearings[b].node, h = m->nodes[node].shaft;
+        bt->x[b] = m->nodes[node].position;
+        bt->y[b] = off[h] - shaft_od(&m->shafts[h]) / 2;
+        pl_trace_text(p, bt, b, "bearing %s at %s", m->bearings[b].name, m->nodes[node].name);
+    }
+    if (bt) bt->symbol = PL_TRIANGLE;
+    /* tables */
+    pl_panel *t = pl_panel_add(p, s, PL_TABLE, "shafts", NULL, NULL);
+    pl_table_init(p, t, m->nshafts, 6);
+    const char *hs[6] = {"shaft", "length (m)", "mass (kg)", "polar inertia (kg m^2)",
+                         "nodes", "speed ratio"};
+    for (int c = 0; c < 6; c++)
+        pl_cell(p, t, 0, c, "%s", hs[c]);
+    for (int h = 0; h < m->nshafts; h++) {
+        gd_shaft_summary sum;
+        gd_model_shaft_summary(m, h, &sum);
+        pl_cell(p, t, h + 1, 0, "%s", m->shafts[h].name);
+        pl_cell(p, t, h + 1, 1, "%.4g", sum.length);
+        pl_cell(p, t, h + 1, 2, "%.4g", sum.mass);
+        pl_cell(p, t, h + 1, 3, "%.4g", sum.polar_inertia);
+        pl_cell(p, t, h + 1, 4, "%d", sum.nnodes);
+        pl_cell(p, t, h + 1, 5, "%.6g", m->shafts[h].speed_ratio);
+    }
+    if (m->nbearings) {
+        t = pl_panel_add(p, s, PL_TABLE, "bearings", NULL, NULL);
+        pl_table_init(p, t, m->nbearings, 6);
+        const char *hb[6] = {"bearing",   "node",        "kxx (N/m)",
+                             "kyy (N/m)", "cxx (N s/m)", "speed table"};
+        for (int c = 0; c < 6; c++)
+            pl_cell(p, t, 0, c, "%s", hb[c]);
+        for (int b = 0; b < m->nbearings; b++) {
+            const gd_bearing *br = &m->bearings[b];
+            pl_cell(p, t, b + 1, 0, "%s", br->name);
+            pl_cell(p, t, b + 1, 1, "%s", m->nodes[br->node].name);
+            pl_cell(p, t, b + 1, 2, "%.4g", br->coeffs.kxx);
+            pl_cell(p, t, b + 1, 3, "%.4g", br->coeffs.kyy);
+            pl_cell(p, t, b + 1, 4, "%.4g", br->coeffs.cxx);
+            pl_cell(p, t, b + 1, 5, "%s", br->ntable ? "yes" : "no");
+        }
+    }
+    if (m->nmeshes) {
+        t = pl_panel_add(p, s, PL_TABLE, "gear meshes", NULL, NULL);
+        pl_table_init(p, t, m->nmeshes, 7);
+        const char *hm[7] = {"mesh",    "driver",      "driven",        "teeth",
+                             "k (N/m)", "helix (deg)", "stiffness from"};
+        for (int c = 0; c < 7; c++)
+            pl_cell(p, t, 0, c, "%s", hm[c]);
+        for (int g = 0; g < m->nmeshes; g++) {
+            const gd_mesh *ms = &m->meshes[g];
+            pl_cell(p, t, g + 1, 0, "%s", ms->name);
+            pl_cell(p, t, g + 1, 1, "%s", m->nodes[ms->driver].name);
+            pl_cell(p, t, g + 1, 2, "%s", m->nodes[ms->driven].name);
+            pl_cell(p, t, g + 1, 3, "%d/%d", ms->teeth[0], ms->teeth[1]);
+            pl_cell(p, t, g + 1, 4, "%.4g", ms->stiffness);
+            pl_cell(p, t, g + 1, 5, "%.4g", ms->helix_angle * 180 / PI);
+            pl_cell(p, t, g + 1, 6, "%s", ms->tvms ? "geometry" : "given");
+        }
+    }
+    free(off);
+    free(placed);
+    return pl_done(p, out, err);
+}

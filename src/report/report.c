@@ -1,0 +1,225 @@
+/* The study report: every analysis of a model run with report defaults and its figure
+ * appended to one document (geardyn/report.h). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "geardyn/report.h"
+
+#define PI 3.14159265358979323846
+enum { MAX_PROBES = 32 };
+
+void gd_report_options_init(gd_report_options *opt)
+{
+    memset(opt, 0, sizeof *opt);
+    opt->speed = -1;
+    opt->nmodes = 8;
+    opt->nfreq = 400;
+}
+
+static int add_probe(gd_probe *pr, int *n, gd_probe_kind kind, int index, gd_dof dir,
+                     const char *name, const char *suffix)
+{
+    if (*n == MAX_PROBES) return 0;
+    pr[*n] = (gd_probe){.kind = kind, .index = index, .dir = dir};
+    snprintf(pr[*n].name, sizeof pr[*n].name, "%s%s", name, suffix);
+    (*n)++;
+    return 1;
+}
+
+/* Mesh forces and the lateral forces of every bearing. */
+static void force_probes(const gd_system *sys, gd_probe *pr, int *n)
+{
+    const gd_model *m = sys->model;
+    char name[160];
+    for (int g = 0; g < m->nmeshes; g++) {
+        snprintf(name, sizeof name, "mesh:%s", m->meshes[g].name);
+        add_probe(pr, n, GD_PROBE_MESH, g, GD_X, name, "");
+    }
+    for (int b = 0; b < m->nbearings; b++)
+        for (int d = GD_X; d <= GD_Y; d++)
+            if (gd_system_dof(sys, m->bearings[b].node, (gd_dof)d) >= 0) {
+                snprintf(name, sizeof name, "bearing:%s.", m->bearings[b].name);
+                add_probe(pr, n, GD_PROBE_BEARING, b, (gd_dof)d, name, gd_dof_names[d]);
+            }
+}
+
+/* The FRF input: the torque on the first mesh's driver, else a lateral force on the
+ * first disk, else the first DOF. */
+static int frf_input(const gd_system *sys)
+{
+    const gd_model *m = sys->model;
+    int i = m->nmeshes ? gd_system_dof(sys, m->meshes[0].driver, GD_RZ) : -1;
+    if (i < 0 && m->ndisks) i = gd_system_dof(sys, m->disks[0].node, GD_X);
+    return i < 0 ? 0 : i;
+}
+
+static gd_status add_modes(gd_plot *doc, const gd_system *sys, double speed, double *wtop,
+                           gd_error *err)
+{
+    gd_modal_options mo;
+    gd_modal_options_init(&mo);
+    mo.speed = speed;
+    mo.nmodes = sys->ndof <= 30 ? 0 : 12;
+    mo.want_left = 0;
+    gd_modal_result *r;
+    gd_status st = gd_modal_solve(sys, &mo, &r, err);
+    if (st) return st;
+    *wtop = 0;
+    for (int j = 0; j < r->nmodes; j++)
+        if (isfinite(r->modes[j].omega_n)) *wtop = fmax(*wtop, r->modes[j].omega_n);
+    gd_plot *p;
+    st = gd_plot_modal(sys, r, &p, err);
+    gd_modal_free(r);
+    return st ? st : gd_plot_append(doc, p, err);
+}
+
+static gd_status add_campbell(gd_plot *doc, const gd_system *sys, const gd_report_options *opt,
+                              const double *speeds, int ns, gd_error *err)
+{
+    gd_campbell_options co;
+    gd_campbell_options_init(&co);
+    co.speeds = speeds;
+    co.nspeeds = ns;
+    co.nmodes = opt->nmodes;
+    co.nthreads = opt->nthreads;
+    gd_campbell_result *r;
+    gd_status st = gd_campbell(sys, &co, &r, err);
+    if (st) return st;
+    gd_plot *p;
+    st = gd_plot_campbell(r, &p, err);
+    gd_campbell_free(r);
+    return st ? st : gd_plot_append(doc, p, err);
+}
+
+static gd_status add_frf(gd_plot *doc, const gd_system *sys, const gd_report_options *opt,
+                         double speed, double wmax, gd_error *err)
+{
+    gd_probe pr[MAX_PROBES];
+    int np = 0;
+    force_probes(sys, pr, &np);
+    if (!np) return GD_OK;
+    int nf = opt->nfreq > 1 ? opt->nfreq : 400, in = frf_input(sys);
+    double *w = malloc((size_t)nf * sizeof *w);
+    if (!w) return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
+    if (!(wmax > 0)) wmax = 2 * PI * 1000;
+    for (int k = 0; k < nf; k++) /* from one step above 0: rigid-body modes are singular there */
+        w[k] = 1.3 * wmax * (k + 1) / nf;
+    gd_frf_options fo;
+    gd_frf_options_init(&fo);
+    fo.freqs = w;
+    fo.nfreq = nf;
+    fo.speed = speed;
+    fo.inputs = &in;
+    fo.ninputs = 1;
+    fo.outputs = pr;
+    fo.noutputs = np;
+    fo.nthreads = opt->nthreads;
+    gd_frf_result *r;
+    gd_status st = gd_frf(sys, &fo, &r, err);
+    if (!st) {
+        gd_plot *p;
+        st = gd_plot_frf(sys, &fo, r, &p, err);
+        if (!st) st = gd_plot_append(doc, p, err);
+        gd_frf_free(r);
+    }
+    free(w);
+    return st;
+}
+
+static gd_status add_unbalance(gd_plot *doc, const gd_system *sys, const gd_report_options *opt,
+                               const double *speeds, int ns, gd_error *err)
+{
+    const gd_model *m = sys->model;
+    gd_probe pr[MAX_PROBES];
+    int orb[MAX_PROBES], np = 0, nb = 0;
+    for (int u = 0; u < m->nunbalances; u++) {
+        int node = m->unbalances[u].node, x = gd_system_dof(sys, node, GD_X),
+            y = gd_system_dof(sys, node, GD_Y), seen = 0;
+        for (int k = 0; k < nb; k++)
+            seen |= orb[k] == node;
+        if (seen || x < 0 || y < 0 || nb == MAX_PROBES) continue;
+        orb[nb++] = node;
+        add_probe(pr, &np, GD_PROBE_DOF, x, GD_X, m->nodes[node].name, ".x");
+        add_probe(pr, &np, GD_PROBE_DOF, y, GD_Y, m->nodes[node].name, ".y");
+    }
+    force_probes(sys, pr, &np);
+    gd_unbalance_options uo;
+    gd_unbalance_options_init(&uo);
+    uo.speeds = speeds;
+    uo.nspeeds = ns;
+    uo.outputs = pr;
+    uo.noutputs = np;
+    uo.orbit_nodes = orb;
+    uo.norbits = nb;
+    uo.nthreads = opt->nthreads;
+    gd_unbalance_result *r;
+    gd_status st = gd_unbalance_response(sys, &uo, &r, err);
+    if (st) return st;
+    gd_plot *p;
+    st = gd_plot_unbalance(sys, &uo, r, 0, &p, err);
+    gd_unbalance_free(r);
+    return st ? st : gd_plot_append(doc, p, err);
+}
+
+gd_status gd_report_build(const gd_system *sys, const gd_report_options *opt, gd_plot **out,
+                          gd_error *err)
+{
+    const gd_model *m = sys->model;
+    gd_report_options def;
+    if (!opt) {
+        gd_report_options_init(&def);
+        opt = &def;
+    }
+    double speed = opt->speed >= 0 ? opt->speed : m->speed;
+    int ns = opt->nspeeds;
+    double *own = NULL;
+    const double *speeds = opt->speeds;
+    if (ns <= 0 || !speeds) {
+        ns = 41;
+        own = malloc((size_t)ns * sizeof *own);
+        if (!own) return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
+        double top = m->speed > 0 ? 2 * m->speed : 10000 * PI / 30;
+        for (int k = 0; k < ns; k++)
+            own[k] = top * k / (ns - 1);
+        speeds = own;
+    }
+    char title[400];
+    snprintf(title, sizeof title, "geardyn report: %s", m->file);
+    gd_plot *doc, *p;
+    gd_status st = gd_plot_new(title, &doc, err);
+    double wmax = 0;
+    if (!st && !(st = gd_plot_model(m, &p, err))) st = gd_plot_append(doc, p, err);
+    if (!st) st = add_modes(doc, sys, speed, &wmax, err);
+    if (!st) st = add_campbell(doc, sys, opt, speeds, ns, err);
+    if (!st) st = add_frf(doc, sys, opt, speed, wmax, err);
+    if (!st && m->nunbalances)
+        st = add_unbalance(doc, sys, opt, speeds, ns, err);
+    else if (!st)
+        st = gd_plot_add_note(doc, "Unbalance response",
+                              "None: the model has no unbalance (add `unbalances:` to the model "
+                              "file, docs/model-format.md).",
+                              err);
+    int ngeo = 0;
+    for (int g = 0; g < m->nmeshes; g++)
+        ngeo += m->meshes[g].tvms != NULL;
+    if (!st && !ngeo)
+        st = gd_plot_add_note(doc, "Mesh stiffness",
+                              "None: no mesh takes its stiffness from its geometry (`stiffness: "
+                              "{from: geometry}`, docs/mesh-stiffness.md).",
+                              err);
+    for (int g = 0; !st && g < m->nmeshes; g++) {
+        if (!m->meshes[g].tvms) continue;
+        const gd_tvms_result *r = m->meshes[g].tvms;
+        if (!(st = gd_plot_tvms(&r, NULL, 1, m->meshes[g].name, &p, err)))
+            st = gd_plot_append(doc, p, err);
+    }
+    free(own);
+    if (st) {
+        gd_plot_free(doc);
+        return st;
+    }
+    *out = doc;
+    return GD_OK;
+}

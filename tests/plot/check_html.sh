@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# The HTML plots in a real browser: writes the --plot FILE.html of every analysis and a
+# report into BUILD/plot-artefacts, then opens them all in one headless Chromium session
+# (check_html.mjs, playwright-core from package.json driving Debian's /usr/bin/chromium):
+# no console errors, every plot drawn with its traces, a screenshot FILE.png beside each
+# page (the CI artefacts).   usage: check_html.sh BUILD_DIR GEARDYN
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+build=$1 geardyn=$2
+out=$build/plot-artefacts
+[ -x "${CHROMIUM:-/usr/bin/chromium}" ] || { echo "chromium is missing: run 'make deps'"; exit 1; }
+[ -d node_modules/playwright-core ] || { echo "node_modules is missing: run 'make deps' (npm ci)"; exit 1; }
+rm -rf "$out" && mkdir -p "$out"
+out=$(cd "$out" && pwd)
+g() { "$geardyn" "$@" >/dev/null; }
+g modal examples/chen1998_gear_pair.yaml --plot "$out/modal.html"
+g campbell examples/kumar2011_coupled.yaml --speeds 0:3000rpm:4 --modes 6 --plot "$out/campbell.html"
+g frf examples/chen1998_gear_pair.yaml --input gear_a.xy --output gear_b.xy --freq 100:6000:60 \
+  --plot "$out/frf_directional.html"
+g unbalance examples/chen1998_gear_pair.yaml --speeds 100:6000:30 --plot "$out/unbalance.html"
+g transient examples/ducati_timing_geartrain.yaml --revolutions 0.2 --quiet --plot "$out/transient.html"
+g mesh-stiffness examples/rig2018_pair.yaml --cycles 2 --compare-helix 10deg,20deg --plot "$out/mesh_stiffness.html"
+g report tests/plot/study.yaml --speeds 0:6000rpm:9 --freq-points 100 --out "$out/report.html"
+# FILE:PLOTS, the plot elements each page must draw (the 3-D view counts as one)
+exec node tests/plot/check_html.mjs "$out/modal.html:7" "$out/campbell.html:2" \
+  "$out/frf_directional.html:3" "$out/unbalance.html:4" "$out/transient.html:3" \
+  "$out/mesh_stiffness.html:4" "$out/report.html:25"

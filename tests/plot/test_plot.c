@@ -1,0 +1,509 @@
+/* --plot and geardyn report: the SVG is valid XML (parsed by libxml2), holds the expected
+ * curves and markers, and plots exactly the numbers the same run prints with --json;
+ * the HTML is self-contained; bad plot requests fail with exit 2 and write nothing.
+ * (The HTML pages are opened in headless Chromium by tests/plot/check_html.sh.) */
+#include <libxml/parser.h>
+#include <libxml/xpath.h>
+#include <libxml/xpathInternals.h>
+
+#include "cli_support.h"
+#include "harness.h"
+
+#define PI 3.14159265358979323846
+/* The SVG carries each plotted number in shortest round-trip form (%.17g) and the
+ * plotted value is the same expression of the result as the --json value: equal to a
+ * few ulps (1e-13 relative). */
+#define EXACT 1e-13
+
+typedef struct svg {
+    xmlDocPtr doc;
+    xmlXPathContextPtr ctx;
+} svg;
+
+static int svg_open(svg *s, const char *path)
+{
+    s->doc = xmlReadFile(path, NULL, XML_PARSE_NONET | XML_PARSE_NOWARNING | XML_PARSE_NOERROR);
+    s->ctx = s->doc ? xmlXPathNewContext(s->doc) : NULL;
+    if (s->ctx) xmlXPathRegisterNs(s->ctx, BAD_CAST "s", BAD_CAST "http://www.w3.org/2000/svg");
+    return s->ctx != NULL;
+}
+
+static void svg_close(svg *s)
+{
+    if (s->ctx) xmlXPathFreeContext(s->ctx);
+    if (s->doc) xmlFreeDoc(s->doc);
+}
+
+/* Number of nodes matching an XPath expression (printf-style). */
+static int count(svg *s, const char *fmt, ...)
+{
+    char xp[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(xp, sizeof xp, fmt, ap);
+    va_end(ap);
+    xmlXPathObjectPtr o = xmlXPathEvalExpression(BAD_CAST xp, s->ctx);
+    int n = o && o->nodesetval ? o->nodesetval->nodeNr : -1;
+    xmlXPathFreeObject(o);
+    return n;
+}
+
+/* The numbers of attribute attr ("data-x", "data-y") of the first trace matching xpath;
+ * returns how many (nan for "nan"), -1 if there is no such trace. */
+static int trace_numbers(svg *s, const char *xpath, const char *attr, double *out, int max)
+{
+    xmlXPathObjectPtr o = xmlXPathEvalExpression(BAD_CAST xpath, s->ctx);
+    int n = -1;
+    if (o && o->nodesetval && o->nodesetval->nodeNr > 0) {
+        xmlChar *v = xmlGetProp(o->nodesetval->nodeTab[0], BAD_CAST attr);
+        n = 0;
+        for (char *p = (char *)v, *end; p && *p && n < max; p = end) {
+            while (*p == ' ')
+                p++;
+            if (!*p) break;
+            out[n++] = strtod(p, &end);
+            if (end == p) break;
+        }
+        xmlFree(v);
+    }
+    xmlXPathFreeObject(o);
+    return n;
+}
+
+/* JSON array item k as a number (null: NaN). */
+static double jat(const cJSON *arr, int k)
+{
+    const cJSON *v = cJSON_GetArrayItem(arr, k);
+    return cJSON_IsNumber(v) ? v->valuedouble : NAN;
+}
+
+static int same(double a, double b)
+{
+    if (isnan(a) || isnan(b)) return isnan(a) && isnan(b);
+    return fabs(a - b) <= EXACT * fmax(fabs(b), 1e-300);
+}
+
+/* One geardyn run whose --plot is an SVG in the scratch folder: its exit code, its
+ * --json output and the parsed SVG. args has one %s: the SVG's path. */
+typedef struct plot_run {
+    run_result r;
+    cJSON *json;
+    svg s;
+} plot_run;
+
+static void plot_start(gd_test_state *gd_ts_, plot_run *pr, scratch *d, const char *args)
+{
+    char path[256], cmd[1024];
+    snprintf(path, sizeof path, "%s/plot.svg", d->dir);
+    snprintf(cmd, sizeof cmd, args, path);
+    run(d, &pr->r, "%s", cmd);
+    CHECK(pr->r.code == 0);
+    if (pr->r.code) show(&pr->r);
+    pr->json = cJSON_Parse(pr->r.out);
+    CHECK(pr->json != NULL);
+    memset(&pr->s, 0, sizeof pr->s);
+    CHECK(svg_open(&pr->s, path));
+}
+
+static void plot_end(plot_run *pr)
+{
+    svg_close(&pr->s);
+    cJSON_Delete(pr->json);
+    run_free(&pr->r);
+}
+
+#define TRACE(panel, name)                                                                         \
+    "//s:g[@class='panel'][starts-with(@data-title,'" panel                                        \
+    "')]/s:g[@class='trace'][@data-name='" name "']"
+
+TEST(campbell_plot_matches_json)
+{
+    scratch d;
+    REQUIRE(scratch_open(&d));
+    plot_run pr;
+    plot_start(gd_ts_, &pr, &d,
+               "campbell tests/plot/study.yaml --speeds 0:6000rpm:4 --modes 6 --json "
+               "--plot %s");
+    svg *s = &pr.s;
+    cJSON *j = pr.json;
+    if (j && s->ctx) {
+        const cJSON *modes = cJSON_GetObjectItem(j, "modes"),
+                    *rpm = cJSON_GetObjectItem(j, "speeds_rpm");
+        int nt = cJSON_GetArraySize(modes),
+            ncrit = cJSON_GetArraySize(cJSON_GetObjectItem(j, "critical_speeds"));
+        CHECK(nt == 6);
+        /* one curve per tracked mode in both panels, the critical speeds as markers */
+        CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'modes by whirl')]/"
+                       "s:g[@class='trace'][starts-with(@data-name,'mode ')]") == nt);
+        CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'stability')]/"
+                       "s:g[@class='trace'][starts-with(@data-name,'mode ')]") == nt);
+        CHECK(ncrit > 0);
+        CHECK(count(s, TRACE("modes by whirl", "critical speeds") "/*[@class='marker']") == ncrit);
+        for (int t = 0; t < nt; t++) {
+            const cJSON *m = cJSON_GetArrayItem(modes, t);
+            char xp[400];
+            snprintf(xp, sizeof xp,
+                     "//s:g[@class='panel'][starts-with(@data-title,'modes by whirl')]/"
+                     "s:g[@class='trace'][starts-with(@data-name,'mode %d (')]",
+                     (int)jnum(m, "id"));
+            double y[16], x[16];
+            int n = trace_numbers(s, xp, "data-y", y, 16);
+            CHECK(n == 4 && trace_numbers(s, xp, "data-x", x, 16) == 4);
+            for (int k = 0; k < n && k < 4; k++) {
+                CHECK(same(y[k], jat(cJSON_GetObjectItem(m, "frequency_hz"), k)));
+                CHECK(same(x[k], jat(rpm, k)));
+            }
+            snprintf(xp, sizeof xp,
+                     "//s:g[@class='panel'][starts-with(@data-title,'stability')]/"
+                     "s:g[@class='trace'][starts-with(@data-name,'mode %d (')]",
+                     (int)jnum(m, "id"));
+            n = trace_numbers(s, xp, "data-y", y, 16);
+            CHECK(n == 4);
+            for (int k = 0; k < n && k < 4; k++)
+                CHECK(same(y[k], jat(cJSON_GetObjectItem(m, "log_decrement"), k)));
+        }
+        /* each point in the colour of its whirl at that speed (forward #1f4fd6, backward
+         * #d62728) */
+        int fwd = 0, bwd = 0;
+        for (int t = 0; t < nt; t++) {
+            const cJSON *w = cJSON_GetObjectItem(cJSON_GetArrayItem(modes, t), "whirl_by_speed");
+            for (int k = 0; k < cJSON_GetArraySize(w); k++) {
+                const char *v = cJSON_GetStringValue(cJSON_GetArrayItem(w, k));
+                fwd += v && !strcmp(v, "forward");
+                bwd += v && !strcmp(v, "backward");
+            }
+        }
+        CHECK(fwd > 0 && bwd > 0);
+        CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'modes by whirl')]/"
+                       "s:g[@class='trace'][starts-with(@data-name,'mode ')]/"
+                       "*[@class='marker'][@fill='#1f4fd6']") == fwd);
+        CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'modes by whirl')]/"
+                       "s:g[@class='trace'][starts-with(@data-name,'mode ')]/"
+                       "*[@class='marker'][@fill='#d62728']") == bwd);
+        /* the critical-speed table lists them all */
+        CHECK(count(s, "//s:g[@class='table'][@data-rows='%d']", ncrit) >= 1);
+    }
+    plot_end(&pr);
+    scratch_close(&d);
+}
+
+TEST(frf_plot_matches_json)
+{
+    scratch d;
+    REQUIRE(scratch_open(&d));
+    plot_run pr;
+    plot_start(gd_ts_, &pr, &d,
+               "frf examples/kumar2011_coupled.yaml --input torque:motor --output mesh:mesh "
+               "--output pinion.y --freq 100:26000:20 --json --plot %s");
+    svg *s = &pr.s;
+    cJSON *j = pr.json;
+    if (j && s->ctx) {
+        /* magnitude, phase, Nyquist: two curves each */
+        CHECK(count(s, "//s:g[@class='panel']") == 3);
+        CHECK(count(s, "//s:g[@class='panel']/s:g[@class='trace']") == 6);
+        const cJSON *outs = cJSON_GetObjectItem(j, "outputs");
+        CHECK(cJSON_GetArraySize(outs) == 2);
+        double y[32], x[32], re[32];
+        int n = trace_numbers(s, TRACE("FRF: magnitude", "mesh:mesh (N/N m)"), "data-y", y, 32);
+        CHECK(n == 20);
+        CHECK(trace_numbers(s, TRACE("FRF: magnitude", "mesh:mesh (N/N m)"), "data-x", x, 32) ==
+              20);
+        const cJSON *o = cJSON_GetArrayItem(outs, 0);
+        for (int k = 0; k < n && k < 20; k++) {
+            CHECK(same(y[k], jat(cJSON_GetObjectItem(o, "magnitude"), k)));
+            CHECK(same(x[k] * 2 * PI, jat(cJSON_GetObjectItem(o, "frequency_rad_s"), k)) ||
+                  fabs(x[k] * 2 * PI / jat(cJSON_GetObjectItem(o, "frequency_rad_s"), k) - 1) <
+                      1e-15);
+        }
+        n = trace_numbers(s, TRACE("FRF: phase", "pinion.y (m/N m)"), "data-y", y, 32);
+        CHECK(n == 20);
+        o = cJSON_GetArrayItem(outs, 1);
+        for (int k = 0; k < n && k < 20; k++)
+            CHECK(same(y[k], jat(cJSON_GetObjectItem(o, "phase_deg"), k)));
+        n = trace_numbers(s, TRACE("FRF: Nyquist", "pinion.y (m/N m)"), "data-x", re, 32);
+        CHECK(n == 20);
+        for (int k = 0; k < n && k < 20; k++)
+            CHECK(same(re[k], jat(cJSON_GetObjectItem(o, "real"), k)));
+        /* Nyquist points are markers on the curve */
+        CHECK(count(s, TRACE("FRF: Nyquist", "pinion.y (m/N m)") "/*[@class='marker']") == 20);
+    }
+    plot_end(&pr);
+    scratch_close(&d);
+}
+
+TEST(unbalance_plot_matches_json)
+{
+    scratch d;
+    REQUIRE(scratch_open(&d));
+    plot_run pr;
+    plot_start(gd_ts_, &pr, &d,
+               "unbalance examples/chen1998_gear_pair.yaml --speeds 100:6000:8 --json --plot %s");
+    svg *s = &pr.s;
+    cJSON *j = pr.json;
+    if (j && s->ctx) {
+        const cJSON *outs = cJSON_GetObjectItem(j, "outputs");
+        int no = cJSON_GetArraySize(outs),
+            nh = cJSON_GetArraySize(cJSON_GetObjectItem(j, "harmonics"));
+        CHECK(nh == 1 && no > 0);
+        CHECK(
+            count(
+                s,
+                "//s:g[@class='panel'][@data-title='amplitude: magnitude']/s:g[@class='trace']") ==
+            no);
+        for (int o = 0; o < no; o++) {
+            const cJSON *ser = cJSON_GetArrayItem(outs, o);
+            char xp[400];
+            snprintf(xp, sizeof xp,
+                     "//s:g[@class='panel'][@data-title='amplitude: magnitude']/s:g[@class='trace']"
+                     "[starts-with(@data-name,'%s (')]",
+                     jstr(ser, "name"));
+            double y[16];
+            int n = trace_numbers(s, xp, "data-y", y, 16);
+            CHECK(n == 8);
+            for (int k = 0; k < n && k < 8; k++)
+                CHECK(same(y[k], jat(cJSON_GetObjectItem(ser, "magnitude"), k)));
+        }
+        /* one orbit (an ellipse of 73 points) per orbit node */
+        int norb = cJSON_GetArraySize(cJSON_GetObjectItem(j, "orbits"));
+        CHECK(norb > 0);
+        CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'orbits at')]/"
+                       "s:g[@class='trace'][@data-n='73']") == norb);
+    }
+    plot_end(&pr);
+    scratch_close(&d);
+}
+
+/* Runs of equal pair counts (1, or >= 2) in the JSON: the shaded zones. */
+static int zone_runs(const cJSON *pairs, int want)
+{
+    int n = cJSON_GetArraySize(pairs), runs = 0, prev = 0;
+    for (int i = 0; i < n; i++) {
+        int p = (int)jat(pairs, i), in = want == 1 ? p == 1 : p >= 2;
+        runs += in && !prev;
+        prev = in;
+    }
+    return runs;
+}
+
+TEST(mesh_stiffness_plot_matches_json)
+{
+    scratch d;
+    REQUIRE(scratch_open(&d));
+    plot_run pr;
+    plot_start(gd_ts_, &pr, &d,
+               "mesh-stiffness examples/rig2018_pair.yaml --cycles 2 --points 90 --json --plot %s "
+               "--compare-helix 10deg,20deg");
+    svg *s = &pr.s;
+    cJSON *j = pr.json;
+    if (j && s->ctx) {
+        const cJSON *k = cJSON_GetObjectItem(j, "stiffness"),
+                    *a = cJSON_GetObjectItem(j, "angle_rad");
+        int n = cJSON_GetArraySize(k);
+        CHECK(n == 180);
+        static double y[400], x[400];
+        const char *xp = TRACE("time-varying mesh stiffness", "k (normal plane)");
+        CHECK(trace_numbers(s, xp, "data-y", y, 400) == n);
+        CHECK(trace_numbers(s, xp, "data-x", x, 400) == n);
+        for (int i = 0; i < n; i++) {
+            CHECK(same(y[i], jat(k, i)));
+            CHECK(same(x[i], jat(a, i) * 180 / PI));
+        }
+        /* a spur pair of contact ratio 1.7: alternating single and double contact, one
+         * shaded polygon per run of each */
+        const cJSON *pairs = cJSON_GetObjectItem(j, "pairs_in_contact");
+        int n1 = zone_runs(pairs, 1), n2 = zone_runs(pairs, 2);
+        CHECK(n1 >= 2 && n2 >= 2);
+        CHECK(count(s, TRACE("time-varying mesh stiffness", "single-pair contact") "/s:polygon") ==
+              n1);
+        CHECK(count(s, TRACE("time-varying mesh stiffness", "double-pair contact") "/s:polygon") ==
+              n2);
+        /* the comparison: this pair and two other helix angles */
+        CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'comparison')]/"
+                       "s:g[@class='trace']") == 3);
+        CHECK(count(s, TRACE("Fourier harmonics", "amplitude") "/*[@class='marker']") ==
+              cJSON_GetArraySize(cJSON_GetObjectItem(j, "harmonics")));
+    }
+    plot_end(&pr);
+    scratch_close(&d);
+}
+
+TEST(modal_and_transient_plots)
+{
+    scratch d;
+    REQUIRE(scratch_open(&d));
+    plot_run pr;
+    plot_start(gd_ts_, &pr, &d, "modal examples/chen1998_gear_pair.yaml --json --plot %s");
+    svg *s = &pr.s;
+    cJSON *j = pr.json;
+    if (j && s->ctx) {
+        const cJSON *modes = cJSON_GetObjectItem(j, "modes");
+        int elastic = 0;
+        for (int k = 0; k < cJSON_GetArraySize(modes); k++)
+            elastic +=
+                !cJSON_IsTrue(cJSON_GetObjectItem(cJSON_GetArrayItem(modes, k), "rigid_body"));
+        CHECK(elastic == 6);
+        /* a shape panel per elastic mode (titled with its frequency), the energy table */
+        CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'mode ')]") == elastic);
+        char title[200];
+        snprintf(title, sizeof title,
+                 "//s:g[@class='panel'][starts-with(@data-title,'mode 1: %.6g Hz')]",
+                 jnum(cJSON_GetArrayItem(modes, 0), "frequency_hz"));
+        CHECK(count(s, "%s", title) == 1);
+        CHECK(count(s, "//s:g[@class='table'][@data-rows='%d']", elastic) == 1);
+    }
+    plot_end(&pr);
+
+    plot_start(gd_ts_, &pr, &d,
+               "transient examples/ducati_timing_geartrain.yaml --revolutions 0.2 --quiet --json "
+               "--plot %s");
+    s = &pr.s;
+    j = pr.json;
+    if (j && s->ctx) {
+        const cJSON *recs = cJSON_GetObjectItem(j, "records");
+        int nr = cJSON_GetArraySize(recs), ns = (int)jnum(j, "samples");
+        CHECK(count(s, "//s:g[@class='panel'][contains(@data-title,'time "
+                       "history')]/s:g[@class='trace']") == nr);
+        /* each record's curve: its samples, with the --json statistics */
+        xmlXPathObjectPtr o = xmlXPathEvalExpression(
+            BAD_CAST
+            "//s:g[@class='panel'][contains(@data-title,'time history')]/s:g[@class='trace']",
+            s->ctx);
+        static double y[4096];
+        for (int k = 0; o && o->nodesetval && k < o->nodesetval->nodeNr && k < nr; k++) {
+            xmlChar *v = xmlGetProp(o->nodesetval->nodeTab[k], BAD_CAST "data-y");
+            int n = 0;
+            double mx = -INFINITY;
+            for (char *p = (char *)v, *end; p && *p && n < 4096; p = end) {
+                y[n] = strtod(p, &end);
+                if (end == p) break;
+                mx = fmax(mx, y[n++]);
+            }
+            xmlFree(v);
+            CHECK(n == ns);
+            /* the panels group records by quantity: find this curve's record by maximum */
+            int found = 0;
+            for (int q = 0; q < nr; q++)
+                found |= same(mx, jnum(cJSON_GetArrayItem(recs, q), "max"));
+            CHECK(found);
+        }
+        xmlXPathFreeObject(o);
+        /* contact states of the backlash meshes get their own panel, no spectrum */
+        CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'contact state')]") == 1);
+        CHECK(count(s, "//s:g[@class='panel'][contains(@data-title,'spectrum')]") >= 1);
+    }
+    plot_end(&pr);
+    scratch_close(&d);
+}
+
+TEST(report_has_every_section)
+{
+    scratch d;
+    REQUIRE(scratch_open(&d));
+    run_result r;
+    run(&d, &r, "report tests/plot/study.yaml --speeds 0:6000rpm:5 --freq-points 40 --out %s/r.svg",
+        d.dir);
+    CHECK(r.code == 0);
+    char path[256];
+    snprintf(path, sizeof path, "%s/r.svg", d.dir);
+    CHECK(contains(r.out, path));
+    svg s = {0};
+    CHECK(svg_open(&s, path));
+    run_result k;
+    run(&d, &k, "mesh-stiffness tests/plot/study.yaml --json");
+    cJSON *j = cJSON_Parse(k.out);
+    if (s.ctx && j) {
+        /* model, modes, Campbell, FRF, unbalance (one harmonic), mesh stiffness */
+        CHECK(count(&s, "//s:g[@class='section']") == 6);
+        CHECK(count(&s, "//s:g[@class='panel'][@data-title='the model to scale (side view)']/"
+                        "s:g[@class='trace']") == 3); /* shafts, gears, bearings */
+        CHECK(count(&s, TRACE("the model to scale", "bearings") "/*[@class='marker']") == 4);
+        CHECK(
+            count(&s, "//s:g[@class='panel'][@data-title='FRF: magnitude']/s:g[@class='trace']") ==
+            9); /* the mesh force and x, y of four bearings */
+        static double y[200];
+        const cJSON *kk = cJSON_GetObjectItem(j, "stiffness");
+        int n = trace_numbers(&s, TRACE("time-varying mesh stiffness", "k (normal plane)"),
+                              "data-y", y, 200);
+        CHECK(n == 60 && cJSON_GetArraySize(kk) == 60);
+        for (int i = 0; i < n && i < 60; i++)
+            CHECK(same(y[i], jat(kk, i)));
+    }
+    cJSON_Delete(j);
+    run_free(&k);
+    svg_close(&s);
+    run_free(&r);
+    scratch_close(&d);
+}
+
+TEST(html_is_self_contained)
+{
+    scratch d;
+    REQUIRE(scratch_open(&d));
+    run_result r;
+    run(&d, &r,
+        "campbell examples/kumar2011_coupled.yaml --speeds 0:3000rpm:3 --modes 3 --plot %s/c.html",
+        d.dir);
+    CHECK(r.code == 0);
+    char path[256];
+    snprintf(path, sizeof path, "%s/c.html", d.dir);
+    char *html = read_file(path);
+    CHECK(html != NULL);
+    if (html) {
+        CHECK(contains(html, "plotly.js (gl3d - minified) v4.1.1")); /* inlined, as pinned */
+        CHECK(contains(html, "Plotly.newPlot"));
+        CHECK(!contains(html, "<script src")); /* nothing fetched */
+        CHECK(contains(html, "a class=\"csv\""));
+    }
+    free(html);
+    run_free(&r);
+    scratch_close(&d);
+}
+
+/* exit 2, the message, and nothing in the scratch folder */
+static void check_refused(gd_test_state *gd_ts_, scratch *d, const char *args, const char *msg)
+{
+    run_result r;
+    run(d, &r, "%s", args);
+    CHECK(r.code == 2);
+    CHECK(contains(r.err, msg));
+    if (r.code != 2 || !contains(r.err, msg)) show(&r);
+    CHECK(count_entries(d->dir) == 2); /* stdout.txt and stderr.txt of the run only */
+    run_free(&r);
+}
+
+TEST(bad_plot_requests_write_nothing)
+{
+    scratch d;
+    REQUIRE(scratch_open(&d));
+    char args[512];
+    snprintf(args, sizeof args, "modal examples/chen1998_gear_pair.yaml --plot %s/m.png", d.dir);
+    check_refused(gd_ts_, &d, args, "unknown plot format '.png'");
+    snprintf(args, sizeof args,
+             "frf examples/kumar2011_coupled.yaml --input torque:motor --output "
+             "mesh:mesh --freq 100:200:3 --plot %s/plot",
+             d.dir);
+    check_refused(gd_ts_, &d, args, "FILE.svg (static) or FILE.html");
+    snprintf(args, sizeof args,
+             "campbell examples/kumar2011_coupled.yaml --speeds 0:100:2 --plot %s/no/c.svg", d.dir);
+    check_refused(gd_ts_, &d, args, "does not exist");
+    /* a folder that refuses the file (even to root): found when writing, after computing */
+    check_refused(gd_ts_, &d, "mesh-stiffness examples/rig2018_pair.yaml --plot /proc/k.svg",
+                  "/proc/k.svg");
+    /* nothing to plot: the only mode asked for is the rigid-body one */
+    snprintf(args, sizeof args,
+             "modal examples/kumar2011_torsional.yaml --modes 1 --plot %s/m.svg --out %s/o", d.dir,
+             d.dir);
+    check_refused(gd_ts_, &d, args, "nothing to plot");
+    /* HTML without plotly.js */
+    setenv("GEARDYN_PLOTLY_JS", "/nonexistent/plotly.min.js", 1);
+    snprintf(args, sizeof args, "report tests/plot/study.yaml --out %s/r.html", d.dir);
+    check_refused(gd_ts_, &d, args, "GEARDYN_PLOTLY_JS");
+    unsetenv("GEARDYN_PLOTLY_JS");
+    check_refused(gd_ts_, &d, "report tests/plot/study.yaml", "--out FILE.html is required");
+    scratch_close(&d);
+}
+
+RUN_TESTS(T(campbell_plot_matches_json), T(frf_plot_matches_json), T(unbalance_plot_matches_json),
+          T(mesh_stiffness_plot_matches_json), T(modal_and_transient_plots),
+          T(report_has_every_section), T(html_is_self_contained),
+          T(bad_plot_requests_write_nothing))
