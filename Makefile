@@ -8,7 +8,8 @@ VALGRIND    = valgrind --quiet --error-exitcode=1 --leak-check=full \
               --trace-children=yes \
               --trace-children-skip='/bin/*,/usr/bin/*'
 
-.PHONY: all deps build install demo test test-unit test-asan memcheck bench format clean
+.PHONY: all deps build install demo test test-unit test-asan memcheck bench format clean \
+        fuzz fuzz-build fuzz-smoke
 
 all: build
 
@@ -30,7 +31,7 @@ demo: build
 
 # Every test: the normal build, then AddressSanitizer + UndefinedBehaviorSanitizer,
 # then valgrind on the normal build.
-test: test-unit test-asan memcheck
+test: test-unit test-asan memcheck fuzz-smoke
 
 test-unit: build
 	cd $(BUILD) && ctest --output-on-failure -j$(JOBS)
@@ -75,6 +76,35 @@ memcheck: build
 	    [ $$rc -eq 2 ] || { echo "exit $$rc, expected 2"; exit 1; }; done; \
 	rm -rf $$out; echo "valgrind: all test programs and CLI runs clean"
 
+# libFuzzer over the model reader and the system build (fuzz/fuzz_model.c, clang):
+# `make fuzz FUZZ_SECONDS=600` grows $(FUZZ_BUILD)/corpus from examples/ and the hostile
+# inputs; a crash is written to $(FUZZ_BUILD)/crash-* (replay: fuzz_model FILE). `make
+# test` runs FUZZ_RUNS inputs from a fixed seed (a few seconds), writing nothing here.
+FUZZ_BUILD   ?= build-fuzz
+FUZZ_SECONDS ?= 60
+FUZZ_RUNS    ?= 20000
+FUZZ_FLAGS    = -dict=fuzz/model.dict -max_len=8192 -timeout=20 -rss_limit_mb=2048 \
+                -artifact_prefix=$(FUZZ_BUILD)/ -print_final_stats=1
+FUZZ_SEEDS    = examples tests/model_file/hostile
+FUZZ_ENV      = OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 \
+                UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+fuzz-build: deps
+	@CC=clang cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGD_FUZZ=ON \
+	    -DGD_BUILD_TESTS=OFF -DGD_BUILD_SHARED=OFF >/dev/null
+	@cmake --build $(FUZZ_BUILD) -j$(JOBS) --target fuzz_model
+
+fuzz: fuzz-build
+	@mkdir -p $(FUZZ_BUILD)/corpus
+	$(FUZZ_ENV) $(FUZZ_BUILD)/fuzz_model $(FUZZ_FLAGS) -max_total_time=$(FUZZ_SECONDS) \
+	    $(FUZZ_BUILD)/corpus $(FUZZ_SEEDS)
+
+fuzz-smoke: fuzz-build
+	@out=$$(mktemp -d); rc=0; \
+	$(FUZZ_ENV) $(FUZZ_BUILD)/fuzz_model $(FUZZ_FLAGS) -runs=$(FUZZ_RUNS) -seed=1 \
+	    $$out $(FUZZ_SEEDS) 2>$$out.log || rc=$$?; \
+	grep -E "^(stat::number_of_executed_units|INFO: seed)" $$out.log; \
+	[ $$rc -eq 0 ] || cat $$out.log; rm -rf $$out $$out.log; exit $$rc
+
 bench: build
 	bash bench/run.sh $(BUILD)
 
@@ -82,4 +112,4 @@ format:
 	clang-format -i $$(git ls-files "*.c" "*.h")
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD)
+	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD)

@@ -5,6 +5,7 @@ set -euo pipefail
 pkgs=(build-essential cmake pkg-config libyaml-dev libcjson-dev liblapacke-dev
       libopenblas-dev libsuitesparse-dev libsundials-dev libfftw3-dev
       valgrind)
+pkgs+=(clang libclang-rt-dev libomp-dev)  # make fuzz: libFuzzer harness (fuzz/fuzz_model.c)
 missing=()
 for p in "${pkgs[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -275,6 +275,19 @@ gd_status gd_model_set_reference_shaft(gd_model *m, const char *shaft, int rotat
     return GD_OK;
 }
 
+gd_status gd_model_set_max_nodes(gd_model *m, long max_nodes, gd_loc loc, gd_error *err)
+{
+    gd_status st;
+    if ((st = gd_build_open(m, err))) return st;
+    if (max_nodes < 1)
+        return gd_build_fail(m, err, loc, "limits.max_nodes", "limits.max_nodes",
+                             "give a whole number of 1 or more", "%ld nodes is out of range",
+                             max_nodes);
+    m->build->max_nodes = max_nodes;
+    m->build->max_nodes_loc = loc;
+    return GD_OK;
+}
+
 gd_status gd_model_set_speed(gd_model *m, double speed, gd_error *err)
 {
     gd_status st;

@@ -172,25 +172,68 @@ static gd_status discretise(gd_model *m, int index, int *node_cap, int *elem_cap
     return st;
 }
 
+static int cmp_node_name(const void *a, const void *b)
+{
+    const gd_node *x = *(const gd_node *const *)a, *y = *(const gd_node *const *)b;
+    int c = strcmp(x->name, y->name);
+    return c ? c : (x > y) - (x < y);
+}
+
+/* Sorted by name (not all pairs: a model may have 1e5 nodes); the first repeated name
+ * in that order is reported. */
 static gd_status check_unique_node_names(gd_model *m, gd_error *err)
 {
+    if (m->nnodes < 2) return GD_OK;
+    const gd_node **by_name = malloc((size_t)m->nnodes * sizeof *by_name);
+    if (!by_name) return gd_build_oom(m, err);
     for (int i = 0; i < m->nnodes; i++)
-        for (int j = 0; j < i; j++)
-            if (!strcmp(m->nodes[i].name, m->nodes[j].name)) {
-                /* the later of the two, by its place in the file */
-                const gd_node *n =
-                    m->nodes[i].loc.line >= m->nodes[j].loc.line ? &m->nodes[i] : &m->nodes[j];
-                const gd_node *o = n == &m->nodes[i] ? &m->nodes[j] : &m->nodes[i];
-                const gd_bshaft *bs = &m->build->shafts[n->shaft];
-                char field[240];
-                if (n->list_index >= 0)
-                    gd_build_path(field, sizeof field, bs->stations[n->list_index].path, "name");
-                else
-                    gd_build_path(field, sizeof field, bs->path, "name");
-                return gd_build_fail(m, err, n->loc, NULL, field, "give every node its own name",
-                                     "node name '%s' is used twice (also on line %d)", n->name,
-                                     o->loc.line);
-            }
+        by_name[i] = &m->nodes[i];
+    qsort(by_name, (size_t)m->nnodes, sizeof *by_name, cmp_node_name);
+    const gd_node *a = NULL, *b = NULL;
+    for (int i = 1; i < m->nnodes && !a; i++)
+        if (!strcmp(by_name[i - 1]->name, by_name[i]->name)) {
+            a = by_name[i - 1];
+            b = by_name[i];
+        }
+    free(by_name);
+    if (!a) return GD_OK;
+    /* the later of the two, by its place in the file */
+    const gd_node *n = a->loc.line >= b->loc.line ? a : b;
+    const gd_node *o = n == a ? b : a;
+    const gd_bshaft *bs = &m->build->shafts[n->shaft];
+    char field[240];
+    if (n->list_index >= 0)
+        gd_build_path(field, sizeof field, bs->stations[n->list_index].path, "name");
+    else
+        gd_build_path(field, sizeof field, bs->path, "name");
+    return gd_build_fail(m, err, n->loc, NULL, field, "give every node its own name",
+                         "node name '%s' is used twice (also on line %d)", n->name, o->loc.line);
+}
+
+/* The model's size bound (gd_model_set_max_nodes), checked on an upper bound of the
+ * node count before any node is allocated: every element adds a node, every station
+ * at most one more. Counted in double: 2e9 nodes must not wrap an int. */
+static gd_status check_size(gd_model *m, gd_error *err)
+{
+    long limit = m->build->max_nodes > 0 ? m->build->max_nodes : GD_MAX_NODES_DEFAULT;
+    double nodes = 0;
+    for (int i = 0; i < m->nshafts; i++) {
+        const gd_shaft *sh = &m->shafts[i];
+        const gd_bshaft *bs = &m->build->shafts[i];
+        nodes += 1.0 + bs->nstations;
+        for (int k = 0; k < sh->nsections; k++)
+            nodes += sh->sections[k].elements;
+        if (nodes > (double)limit)
+            return gd_build_fail(
+                m, err, sh->loc, NULL, bs->path,
+                "coarsen the shafts (fewer elements, a longer max_element_length), or raise the "
+                "limit with `limits: {max_nodes: N}` in the model (or --set 'limits={max_nodes: "
+                "N}')",
+                "the shafts up to and including '%s' would have %.0f nodes (%.0f DOFs), more than "
+                "the limit "
+                "of %ld nodes",
+                sh->name, nodes, 6 * nodes, limit);
+    }
     return GD_OK;
 }
 
@@ -198,6 +241,7 @@ gd_status gd_build_discretise_shafts(gd_model *m, gd_error *err)
 {
     int node_cap = 0, elem_cap = 0;
     gd_status st;
+    if ((st = check_size(m, err))) return st;
     for (int i = 0; i < m->nshafts; i++) {
         if ((st = gd_build_component_name(m, err, "shaft", i, m->shafts[i].loc,
                                           m->build->shafts[i].path)) ||

@@ -13,10 +13,10 @@
 #include "model_file/yaml_doc_impl.h"
 
 static const char *const TOP_KEYS[] = {
-    "title",           "description", "materials",  "dofs",        "shafts",
-    "disks",           "bearings",    "springs",    "meshes",      "speed",
-    "reference_shaft", "rotation",    "unbalances", "excitations", "prescribed",
-    "cam_torques",     NULL};
+    "title",      "description", "materials",  "dofs",        "shafts",          "disks",
+    "bearings",   "springs",     "meshes",     "speed",       "reference_shaft", "rotation",
+    "unbalances", "excitations", "prescribed", "cam_torques", "limits",          NULL};
+static const char *const LIMIT_KEYS[] = {"max_nodes", NULL};
 static const char *const ROTATIONS[] = {"ccw", "cw", NULL};
 
 gd_status gd_mp_oom(gd_mparser *p)
@@ -168,6 +168,19 @@ static gd_status parse_globals(gd_mparser *p)
         }
         if (!mask) return gd_yfail(r, dofs, "dofs", "list at least one DOF, e.g. [rz]", "no DOFs");
         if ((st = gd_model_set_dofs(m, mask, r->err))) return st;
+    }
+    const gd_ynode *limits = gd_ymap_get(p->root, "limits");
+    if (limits) {
+        long max_nodes = 0;
+        int has = 0;
+        if ((st = gd_yexpect(r, limits, GD_Y_MAP, "limits")) ||
+            (st = gd_ycheck_keys(r, limits, "limits", LIMIT_KEYS)) ||
+            (st =
+                 gd_yread_int(r, limits, "max_nodes", "limits", 1, 100000000, 0, &max_nodes, &has)))
+            return st;
+        if (has && (st = gd_model_set_max_nodes(
+                        m, max_nodes, gd_mp_loc(gd_ymap_get(limits, "max_nodes")), r->err)))
+            return st;
     }
     double speed = 0;
     if ((st = gd_yread_qty(r, p->root, "speed", "", GD_QTY_ANGULAR_SPEED, GD_YNONNEG, &speed,
