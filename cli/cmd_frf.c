@@ -13,7 +13,8 @@ static const char USAGE[] =
     "usage: geardyn frf MODEL.yaml --input WHAT --output WHAT [--output WHAT ...]\n"
     "                   --freq FROM:TO:COUNT [--speed VALUE] [--method direct|modal]\n"
     "                   [--modes N|all] [--type receptance|mobility|accelerance]\n"
-    "                   [--threads N] [--coupling LEVEL] [--set PATH=VALUE]... [--json]\n"
+    "                   [--threads N] [--coupling LEVEL] [--dofs LIST]\n"
+    "                   [--set PATH=VALUE]... [--json]\n"
     "                   [--out DIR]\n\n"
     "Response to a unit harmonic force or moment. Inputs:\n"
     "  NODE.DOF, node:NODE.DOF  force (x, y, z) or moment (rx, ry, rz) at a node, e.g. pinion.y\n"
@@ -30,7 +31,8 @@ static const char USAGE[] =
     "  --modes N|all     modes summed by --method modal (default all; fewer truncates)\n"
     "  --type T          receptance (default), mobility or accelerance (DOF outputs)\n"
     "  --threads N       parallel threads over frequencies (default: all cores)\n"
-    "  --coupling LEVEL  torsional | lateral-torsional | full\n"
+    "  --coupling LEVEL  torsional | lateral-torsional | full: every mesh's level\n"
+    "  --dofs LIST       keep only these node DOFs, e.g. x,y,rz\n"
     "  --set PATH=VALUE  change a value of the model file, e.g.\n"
     "                    --set meshes.mesh.stiffness=3e8N/m (repeatable; docs/model-format.md)\n"
     "  --json            one JSON object on stdout\n"
@@ -40,14 +42,21 @@ static const char USAGE[] =
 
 int gd_cmd_frf(int argc, char **argv)
 {
-    static const struct option opts[] = {
-        {"input", required_argument, 0, 'i'},    {"output", required_argument, 0, 'O'},
-        {"freq", required_argument, 0, 'F'},     {"speed", required_argument, 0, 's'},
-        {"method", required_argument, 0, 'm'},   {"modes", required_argument, 0, 'n'},
-        {"type", required_argument, 0, 'T'},     {"threads", required_argument, 0, 't'},
-        {"coupling", required_argument, 0, 'c'}, GD_CLI_SET_OPTION,
-        {"json", no_argument, 0, 'j'},           {"out", required_argument, 0, 'o'},
-        {"help", no_argument, 0, 'h'},           {0, 0, 0, 0}};
+    static const struct option opts[] = {{"input", required_argument, 0, 'i'},
+                                         {"output", required_argument, 0, 'O'},
+                                         {"freq", required_argument, 0, 'F'},
+                                         {"speed", required_argument, 0, 's'},
+                                         {"method", required_argument, 0, 'm'},
+                                         {"modes", required_argument, 0, 'n'},
+                                         {"type", required_argument, 0, 'T'},
+                                         {"threads", required_argument, 0, 't'},
+                                         {"coupling", required_argument, 0, 'c'},
+                                         GD_CLI_SET_OPTION,
+                                         GD_CLI_DOFS_OPTION,
+                                         {"json", no_argument, 0, 'j'},
+                                         {"out", required_argument, 0, 'o'},
+                                         {"help", no_argument, 0, 'h'},
+                                         {0, 0, 0, 0}};
     const char *cmd = "frf", *input = NULL, *freq = NULL, *speed = NULL, *coupling = NULL,
                *out = NULL, *outs[MAXOUT];
     int nouts = 0, json = 0, c;
@@ -108,6 +117,9 @@ int gd_cmd_frf(int argc, char **argv)
             break;
         case GD_CLI_OPT_SET:
             if (gd_cli_add_set(cmd, &sets, optarg)) return GD_EXIT_INPUT;
+            break;
+        case GD_CLI_OPT_DOFS:
+            sets.dofs = optarg;
             break;
         case 'j':
             json = 1;

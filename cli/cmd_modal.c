@@ -9,7 +9,8 @@
 
 static const char USAGE[] =
     "usage: geardyn modal MODEL.yaml [--speed VALUE] [--modes N|all] [--undamped | --damped]\n"
-    "                     [--coupling LEVEL] [--set PATH=VALUE]... [--json] [--out DIR]\n\n"
+    "                     [--coupling LEVEL] [--dofs LIST] [--set PATH=VALUE]...\n"
+    "                     [--json] [--out DIR]\n\n"
     "Natural frequencies, damping, whirl direction and modal strain energy of each mode.\n"
     "Damped/gyroscopic modes (state space, left and right eigenvectors) are computed when\n"
     "the model has damping or gyroscopic terms at the speed; otherwise undamped modes.\n\n"
@@ -17,8 +18,8 @@ static const char USAGE[] =
     "  --modes N|all     number of lowest modes (default: all up to 30 DOFs, else 20)\n"
     "  --undamped        drop damping and gyroscopic terms (symmetric eigenproblem)\n"
     "  --damped          always use the state-space (damped) eigenproblem\n"
-    "  --coupling LEVEL  torsional | lateral-torsional | full: override every mesh and\n"
-    "                    keep only the DOFs that level uses\n"
+    "  --coupling LEVEL  torsional | lateral-torsional | full: every mesh's level\n"
+    "  --dofs LIST       keep only these node DOFs, e.g. x,y,rz\n"
     "  --set PATH=VALUE  change a value of the model file, e.g.\n"
     "                    --set meshes.mesh.stiffness=3e8N/m (repeatable; docs/model-format.md)\n"
     "  --json            print one JSON object on stdout instead of the table\n"
@@ -155,12 +156,17 @@ fail:
 
 int gd_cmd_modal(int argc, char **argv)
 {
-    static const struct option opts[] = {
-        {"speed", required_argument, 0, 's'},    {"modes", required_argument, 0, 'n'},
-        {"undamped", no_argument, 0, 'u'},       {"damped", no_argument, 0, 'd'},
-        {"coupling", required_argument, 0, 'c'}, GD_CLI_SET_OPTION,
-        {"json", no_argument, 0, 'j'},           {"out", required_argument, 0, 'o'},
-        {"help", no_argument, 0, 'h'},           {0, 0, 0, 0}};
+    static const struct option opts[] = {{"speed", required_argument, 0, 's'},
+                                         {"modes", required_argument, 0, 'n'},
+                                         {"undamped", no_argument, 0, 'u'},
+                                         {"damped", no_argument, 0, 'd'},
+                                         {"coupling", required_argument, 0, 'c'},
+                                         GD_CLI_SET_OPTION,
+                                         GD_CLI_DOFS_OPTION,
+                                         {"json", no_argument, 0, 'j'},
+                                         {"out", required_argument, 0, 'o'},
+                                         {"help", no_argument, 0, 'h'},
+                                         {0, 0, 0, 0}};
     gd_modal_options opt;
     gd_modal_options_init(&opt);
     opt.want_left = 0;
@@ -197,6 +203,9 @@ int gd_cmd_modal(int argc, char **argv)
             break;
         case GD_CLI_OPT_SET:
             if (gd_cli_add_set("modal", &sets, optarg)) return GD_EXIT_INPUT;
+            break;
+        case GD_CLI_OPT_DOFS:
+            sets.dofs = optarg;
             break;
         case 'j':
             json = 1;
