@@ -6,11 +6,12 @@
 
 #include "cli.h"
 #include "geardyn/modal.h"
+#include "modal_groups.h"
 
 static const char USAGE[] =
     "usage: geardyn modal MODEL.yaml [--speed VALUE] [--modes N|all] [--undamped | --damped]\n"
     "                     [--coupling LEVEL] [--dofs LIST] [--set PATH=VALUE]...\n"
-    "                     [--json] [--out DIR]\n\n"
+    "                     [--group shaft] [--json] [--out DIR]\n\n"
     "Natural frequencies, damping, whirl direction and modal strain energy of each mode.\n"
     "Damped/gyroscopic modes (state space, left and right eigenvectors) are computed when\n"
     "the model has damping or gyroscopic terms at the speed; otherwise undamped modes.\n\n"
@@ -22,6 +23,9 @@ static const char USAGE[] =
     "  --dofs LIST       keep only these node DOFs, e.g. x,y,rz\n"
     "  --set PATH=VALUE  change a value of the model file, e.g.\n"
     "                    --set meshes.mesh.stiffness=3e8N/m (repeatable; docs/model-format.md)\n"
+    "  --group shaft     also the strain energy per shaft with its gears, bearings and\n"
+    "                    meshes (half of one between two shafts), and each shaft's by\n"
+    "                    motion type (002 Tables 4-7); default: by component\n"
     "  --json            print one JSON object on stdout instead of the table\n"
     "  --out DIR         write DIR/modes.csv and DIR/mode_shapes.csv (every active DOF of\n"
     "                    every mode, complex)\n";
@@ -165,6 +169,7 @@ int gd_cmd_modal(int argc, char **argv)
                                          GD_CLI_DOFS_OPTION,
                                          {"json", no_argument, 0, 'j'},
                                          {"out", required_argument, 0, 'o'},
+                                         {"group", required_argument, 0, 'g'},
                                          {"help", no_argument, 0, 'h'},
                                          {0, 0, 0, 0}};
     gd_modal_options opt;
@@ -172,7 +177,7 @@ int gd_cmd_modal(int argc, char **argv)
     opt.want_left = 0;
     const char *coupling = NULL, *out = NULL, *speed = NULL;
     gd_cli_sets sets = {0};
-    int json = 0, c, all = 0;
+    int json = 0, c, all = 0, by_shaft = 0;
     long nmodes = -1;
     optind = 1;
     opterr = 0;
@@ -213,6 +218,12 @@ int gd_cmd_modal(int argc, char **argv)
         case 'o':
             out = optarg;
             break;
+        case 'g':
+            if (strcmp(optarg, "shaft") && strcmp(optarg, "component"))
+                return gd_cli_usage_error("modal", "--group: '%s' is not shaft or component",
+                                          optarg);
+            by_shaft = !strcmp(optarg, "shaft");
+            break;
         case 'h':
             fputs(USAGE, stdout);
             return GD_EXIT_OK;
@@ -245,10 +256,13 @@ int gd_cmd_modal(int argc, char **argv)
         if (rc == GD_EXIT_OK) {
             if (json) {
                 cJSON *o = result_json(s, r);
-                gd_cli_print_json(stdout, o);
+                if (by_shaft)
+                    rc = gd_cli_shaft_json(cJSON_GetObjectItemCaseSensitive(o, "modes"), s, r);
+                if (!rc) gd_cli_print_json(stdout, o);
                 cJSON_Delete(o);
             } else {
                 print_table(s, r);
+                if (by_shaft) rc = gd_cli_print_shaft_tables(stdout, s, r);
             }
         }
         gd_modal_free(r);

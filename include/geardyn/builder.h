@@ -361,6 +361,15 @@ GD_API gd_status gd_model_set_reference_shaft(gd_model *m, const char *shaft, in
  * gd_model_finish fails, before allocating them, on a model that would have more.
  * max_nodes >= 1; loc locates errors about it. */
 GD_API gd_status gd_model_set_max_nodes(gd_model *m, long max_nodes, gd_loc loc, gd_error *err);
+/* Rayleigh damping C += alpha M + beta K (alpha 1/s, beta s, both finite and >= 0;
+ * default 0) with K the constant stiffness: elements, bearings without speed tables,
+ * mean mesh stiffness. */
+GD_API gd_status gd_model_set_rayleigh(gd_model *m, double alpha, double beta, gd_error *err);
+/* alpha and beta that give the damping ratios z1, z2 at the angular frequencies w1 !=
+ * w2 (rad/s, > 0): z = alpha / (2 w) + beta w / 2 at each (002_..., Rayleigh). GD_EINPUT
+ * when w1 = w2 or the ratios need a negative alpha or beta. */
+GD_API gd_status gd_rayleigh_from_ratios(double z1, double z2, double w1, double w2, double *alpha,
+                                         double *beta, gd_error *err);
 /* The reference speed, rad/s, >= 0 (default 0). */
 GD_API gd_status gd_model_set_speed(gd_model *m, double speed, gd_error *err);
 

@@ -63,6 +63,14 @@ GD_API void gd_modal_options_init(gd_modal_options *opt);
 GD_API gd_status gd_modal_solve(const gd_system *sys, const gd_modal_options *opt,
                                 gd_modal_result **out, gd_error *err);
 GD_API void gd_modal_free(gd_modal_result *res);
+/* Strain energy of mode `mode` of r (solved on sys) per shaft and motion type, 002_...
+ * Tables 4-7: table[s * GD_NMOTIONS + k] (model->nshafts x GD_NMOTIONS, filled by the
+ * caller's array) is the fraction of the mode's strain energy in shaft s (its elements,
+ * and the bearings, springs and meshes at its nodes, half of one between two shafts)
+ * and motion type k; the fractions sum to 1 (all 0 for a rigid-body mode). A shaft's
+ * share is its row's sum (Table 4); its row over that sum is Table 7. */
+GD_API gd_status gd_modal_energy_by_shaft(const gd_system *sys, const gd_modal_result *r, int mode,
+                                          double *table, gd_error *err);
 
 /* Lowest opt->nmodes (> 0) modes by shift-invert Krylov-Schur on the sparse
  * first-order system, real shift sigma = -shift (rad/s; <= 0: automatic). Same result

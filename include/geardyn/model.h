@@ -219,6 +219,9 @@ typedef struct gd_model {
     unsigned dof_mask;   /* active node DOFs (GD_DOF_BIT) */
     int reference_shaft; /* shaft whose speed is the reference speed */
     double speed;        /* reference speed, rad/s (0 unless given) */
+    /* Rayleigh damping C += alpha M + beta K (002_...; 0 unless given), K the constant
+       stiffness (speed tables of bearings not included) */
+    double rayleigh_alpha, rayleigh_beta; /* 1/s, s */
     /* builder state while the model is built (include/geardyn/builder.h); NULL once
        gd_model_finish has succeeded */
     struct gd_model_build *build;
