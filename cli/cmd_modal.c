@@ -6,12 +6,13 @@
 
 #include "cli.h"
 #include "geardyn/modal.h"
+#include "modal_directional.h"
 #include "modal_groups.h"
 
 static const char USAGE[] =
     "usage: geardyn modal MODEL.yaml [--speed VALUE] [--modes N|all] [--undamped | --damped]\n"
     "                     [--coupling LEVEL] [--dofs LIST] [--set PATH=VALUE]...\n"
-    "                     [--group shaft] [--json] [--out DIR]\n\n"
+    "                     [--group shaft] [--directional] [--json] [--out DIR]\n\n"
     "Natural frequencies, damping, whirl direction and modal strain energy of each mode.\n"
     "Damped/gyroscopic modes (state space, left and right eigenvectors) are computed when\n"
     "the model has damping or gyroscopic terms at the speed; otherwise undamped modes.\n\n"
@@ -26,6 +27,8 @@ static const char USAGE[] =
     "  --group shaft     also the strain energy per shaft with its gears, bearings and\n"
     "                    meshes (half of one between two shafts), and each shaft's by\n"
     "                    motion type (002 Tables 4-7); default: by component\n"
+    "  --directional     also the directional eigenvalues of the complex coordinates\n"
+    "                    r = x + i y (000): one per mode, Im > 0 forward, < 0 backward\n"
     "  --json            print one JSON object on stdout instead of the table\n"
     "  --out DIR         write DIR/modes.csv and DIR/mode_shapes.csv (every active DOF of\n"
     "                    every mode, complex)\n";
@@ -170,6 +173,7 @@ int gd_cmd_modal(int argc, char **argv)
                                          {"json", no_argument, 0, 'j'},
                                          {"out", required_argument, 0, 'o'},
                                          {"group", required_argument, 0, 'g'},
+                                         {"directional", no_argument, 0, 'D'},
                                          {"help", no_argument, 0, 'h'},
                                          {0, 0, 0, 0}};
     gd_modal_options opt;
@@ -177,7 +181,7 @@ int gd_cmd_modal(int argc, char **argv)
     opt.want_left = 0;
     const char *coupling = NULL, *out = NULL, *speed = NULL;
     gd_cli_sets sets = {0};
-    int json = 0, c, all = 0, by_shaft = 0;
+    int json = 0, c, all = 0, by_shaft = 0, directional = 0;
     long nmodes = -1;
     optind = 1;
     opterr = 0;
@@ -224,6 +228,9 @@ int gd_cmd_modal(int argc, char **argv)
                                           optarg);
             by_shaft = !strcmp(optarg, "shaft");
             break;
+        case 'D':
+            directional = 1;
+            break;
         case 'h':
             fputs(USAGE, stdout);
             return GD_EXIT_OK;
@@ -246,10 +253,13 @@ int gd_cmd_modal(int argc, char **argv)
         return GD_EXIT_INPUT;
     }
     opt.nmodes = all ? 0 : nmodes > 0 ? (int)nmodes : (s->ndof <= 30 ? 0 : 20);
-    gd_modal_result *r;
+    gd_modal_result *r = NULL;
     gd_error err;
     gd_error_clear(&err);
-    if (gd_modal_solve(s, &opt, &r, &err)) {
+    gd_directional_result *dr = NULL;
+    if (gd_modal_solve(s, &opt, &r, &err) ||
+        (directional && gd_modal_directional(s, &opt, &dr, &err))) {
+        if (r) gd_modal_free(r);
         rc = gd_cli_report(&err);
     } else {
         if (out) rc = write_csv(s, r, out);
@@ -258,15 +268,18 @@ int gd_cmd_modal(int argc, char **argv)
                 cJSON *o = result_json(s, r);
                 if (by_shaft)
                     rc = gd_cli_shaft_json(cJSON_GetObjectItemCaseSensitive(o, "modes"), s, r);
+                if (dr) cJSON_AddItemToObject(o, "directional", gd_cli_directional_json(dr));
                 if (!rc) gd_cli_print_json(stdout, o);
                 cJSON_Delete(o);
             } else {
                 print_table(s, r);
                 if (by_shaft) rc = gd_cli_print_shaft_tables(stdout, s, r);
+                if (dr) gd_cli_print_directional(stdout, dr);
             }
         }
         gd_modal_free(r);
     }
+    gd_directional_free(dr);
     gd_system_free(s);
     gd_model_free(m);
     return rc;
