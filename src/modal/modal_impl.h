@@ -24,6 +24,13 @@ int gd_null_space(const double *A, int n, double tol, double **basis);
  * then axial, lateral, tilt (a vector belongs to a type when over half its kinetic
  * energy, by the diagonal of M, is in it). Independence is kept. */
 void gd_rigid_separate(const gd_system *sys, double *U, int r);
+/* The null space of K (values k on a's pattern) from r0 starting vectors U (n x r0,
+ * e.g. an eigensolver's rigid-body vectors, however mixed): three steps of block
+ * inverse iteration with (K + sigma M)^-1 M, M-orthonormalised, keeping the vectors
+ * with |K u| <= tol |M u|. They replace the first r columns of U; returns r, or -1 when
+ * out of memory or K + sigma M is singular. */
+int gd_rigid_null_sparse(const gd_dynmat *a, const gd_splu_symbolic *sym, const double *k,
+                         double sigma, double tol, double *U, int r0);
 
 gd_status gd_modal_undamped(const gd_system *sys, const gd_modal_options *opt, const gd_condense *c,
                             const double *M, const double *K, gd_modal_result **out, gd_error *err);

@@ -136,3 +136,85 @@ done:
     free(w);
     free(tmp);
 }
+
+/* y = S x for values s on the pattern */
+static void pattern_mul(const gd_pattern *p, const double *s, const double *x, double *y)
+{
+    memset(y, 0, (size_t)p->n * sizeof *y);
+    for (int j = 0; j < p->n; j++)
+        for (int q = p->colptr[j]; q < p->colptr[j + 1]; q++)
+            y[p->rowind[q]] += s[q] * x[j];
+}
+
+int gd_rigid_null_sparse(const gd_dynmat *a, const gd_splu_symbolic *sym, const double *k,
+                         double sigma, double tol, double *U, int r0)
+{
+    int n = a->pat.n, nnz = a->pat.nnz, r = -1;
+    double *x = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof *x);
+    double *Z = malloc((size_t)n * r0 * sizeof *Z), *y = malloc((size_t)n * sizeof *y);
+    gd_splu lu = {0};
+    if (!x || !Z || !y) goto out;
+    for (int q = 0; q < nnz; q++)
+        x[q] = k[q] + sigma * a->m[q];
+    if (gd_splu_factor(&lu, &a->pat, sym, x, 0, 1) != 0) goto out;
+    int m = r0;
+    for (int it = 0; it < 3; it++) {
+        /* U <- (K + sigma M)^-1 M U: the null space of K by 1/sigma, a mode at w by
+           1/(sigma + w^2) */
+        for (int j = 0; j < m; j++)
+            pattern_mul(&a->pat, a->m, U + (size_t)j * n, Z + (size_t)j * n);
+        gd_splu_solve(&lu, sym, n, m, Z);
+        /* M-orthonormal, dropping what is dependent on the columns before it */
+        int kept = 0;
+        for (int j = 0; j < m; j++) {
+            double *z = Z + (size_t)j * n;
+            double n0 = 0;
+            for (int i = 0; i < n; i++)
+                n0 += z[i] * z[i];
+            for (int pass = 0; pass < 2; pass++)
+                for (int c = 0; c < kept; c++) {
+                    const double *u = U + (size_t)c * n;
+                    pattern_mul(&a->pat, a->m, u, y);
+                    double d = 0;
+                    for (int i = 0; i < n; i++)
+                        d += z[i] * y[i];
+                    for (int i = 0; i < n; i++)
+                        z[i] -= d * u[i];
+                }
+            pattern_mul(&a->pat, a->m, z, y);
+            double mm = 0, nz = 0;
+            for (int i = 0; i < n; i++) {
+                mm += z[i] * y[i];
+                nz += z[i] * z[i];
+            }
+            if (!(mm > 0) || nz <= 1e-16 * n0) continue;
+            double sc = 1 / sqrt(mm);
+            for (int i = 0; i < n; i++)
+                U[i + (size_t)kept * n] = z[i] * sc;
+            kept++;
+        }
+        m = kept;
+    }
+    /* the null space: |K u| <= tol |M u| (tol = the rigid |lambda|^2) */
+    r = 0;
+    for (int j = 0; j < m; j++) {
+        const double *u = U + (size_t)j * n;
+        double kn = 0, mn = 0;
+        pattern_mul(&a->pat, k, u, y);
+        for (int i = 0; i < n; i++)
+            kn += y[i] * y[i];
+        pattern_mul(&a->pat, a->m, u, y);
+        for (int i = 0; i < n; i++)
+            mn += y[i] * y[i];
+        if (sqrt(kn) <= tol * sqrt(mn)) {
+            if (r != j) memcpy(U + (size_t)r * n, u, (size_t)n * sizeof *U);
+            r++;
+        }
+    }
+out:
+    gd_splu_free(&lu);
+    free(x);
+    free(Z);
+    free(y);
+    return r;
+}
