@@ -47,11 +47,19 @@ test-asan: deps
 # The two Campbell sweeps over many speeds take minutes under valgrind; they run in the
 # normal and sanitizer builds.
 VALGRIND_SKIP_test_campbell = -threads_and_methods_agree,critical_speeds
+# The 10000-section model and the gyroscopic rotor at two speeds: sanitizers cover them;
+# tests that only run the CLI (valgrind does not follow it through /bin/sh).
+VALGRIND_SKIP_test_hostile_input = -model_size_is_bounded_with_the_limit_named,unusable_out_fails_before_writing
+VALGRIND_SKIP_test_directional = -isotropic_rotor_splits_forward_and_backward_with_speed,cli_directional
+VALGRIND_SKIP_test_shaft_energy = -cli_group_shaft
 memcheck: build
 	@set -e; for t in $(BUILD)/test_*; do \
 	    [ -f $$t ] && [ -x $$t ] && [ "$$(head -c 4 $$t | tail -c 3)" = ELF ] || continue; \
 	    name=$$(basename $$t); skip=""; \
 	    [ "$$name" = test_campbell ] && skip="$(VALGRIND_SKIP_test_campbell)"; \
+	    [ "$$name" = test_hostile_input ] && skip="$(VALGRIND_SKIP_test_hostile_input)"; \
+	    [ "$$name" = test_directional ] && skip="$(VALGRIND_SKIP_test_directional)"; \
+	    [ "$$name" = test_shaft_energy ] && skip="$(VALGRIND_SKIP_test_shaft_energy)"; \
 	    echo "valgrind $$t $$skip"; OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=2 $(VALGRIND) $$t $$skip >/dev/null; done; \
 	out=$$(mktemp -d); \
 	for args in "check examples/rig2018.yaml" "modal examples/rig2018.yaml --speed 3000rpm --json" \
@@ -64,13 +72,15 @@ memcheck: build
 	            "campbell examples/kumar2011_coupled.yaml --speeds 0:3000rpm:4 --json" \
 	            "frf examples/kumar2011_coupled.yaml --input torque:motor --output mesh:mesh --freq 100:26000:20 --json" \
 	            "unbalance examples/chen1998_gear_pair.yaml --speeds 100:6000:8 --json" \
-	            "transient examples/ducati_timing_geartrain.yaml --revolutions 0.2 --quiet --json"; do \
+	            "transient examples/ducati_timing_geartrain.yaml --revolutions 0.2 --quiet --json" \
+	            "modal examples/kumar2011_coupled.yaml --directional --group shaft --dofs x,y,rz --json"; do \
 	    echo "valgrind geardyn $$args"; OPENBLAS_NUM_THREADS=1 $(VALGRIND) $(BUILD)/geardyn $$args >/dev/null; done; \
 	for args in "modal examples/missing.yaml" "modal examples/rig2018.yaml --speed fast" \
 	            "check examples/helical_pair1.yaml" \
 	            "check examples/rig2018.yaml --set bearings.*.k=-1" \
 	            "check examples/rig2018.yaml --set shafts.nope.name=x" \
-	            "matrices examples/rig2018.yaml --out $$out/bad --set disks.0.mass=-1"; do \
+	            "matrices examples/rig2018.yaml --out $$out/bad --set disks.0.mass=-1" \
+	            "check examples" "check tests/model_file/hostile/element_length_1e-9.yaml"; do \
 	    echo "valgrind geardyn $$args (must fail with exit 2)"; \
 	    rc=0; OPENBLAS_NUM_THREADS=1 $(VALGRIND) $(BUILD)/geardyn $$args >/dev/null 2>&1 || rc=$$?; \
 	    [ $$rc -eq 2 ] || { echo "exit $$rc, expected 2"; exit 1; }; done; \

@@ -24,6 +24,9 @@ int gd_null_space(const double *A, int n, double tol, double **basis);
  * then axial, lateral, tilt (a vector belongs to a type when over half its kinetic
  * energy, by the diagonal of M, is in it). Independence is kept. */
 void gd_rigid_separate(const gd_system *sys, double *U, int r);
+/* Modes 0 .. kr-1 of res are the rigid-body modes U (ndof x kr): shapes, labels. */
+void gd_rigid_modes_fill(const gd_system *sys, double speed, gd_modal_result *res, const double *U,
+                         int kr);
 /* The null space of K (values k on a's pattern) from r0 starting vectors U (n x r0,
  * e.g. an eigensolver's rigid-body vectors, however mixed): three steps of block
  * inverse iteration with (K + sigma M)^-1 M, M-orthonormalised, keeping the vectors

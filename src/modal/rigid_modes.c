@@ -5,6 +5,7 @@
  * vectors are numerically arbitrary there, even (nearly) parallel. The basis is then
  * rotated so that each vector moves in one motion type where the model allows it
  * (spin, axial, lateral, tilt), which is how the modes are labelled (gd_mode_finish). */
+#include <cblas.h>
 #include <lapacke.h>
 #include <math.h>
 #include <stdlib.h>
@@ -53,13 +54,7 @@ out:
 /* C (r x m) <- C X for an m x m X, through tmp (r x m). */
 static void times(double *C, int r, int m, const double *X, double *tmp)
 {
-    for (int j = 0; j < m; j++)
-        for (int i = 0; i < r; i++) {
-            double s = 0;
-            for (int k = 0; k < m; k++)
-                s += C[i + (size_t)k * r] * X[k + (size_t)j * m];
-            tmp[i + (size_t)j * r] = s;
-        }
+    cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, r, m, m, 1.0, C, r, X, m, 0.0, tmp, r);
     memcpy(C, tmp, (size_t)r * m * sizeof *C);
 }
 
@@ -118,15 +113,7 @@ void gd_rigid_separate(const gd_system *sys, double *U, int r)
     }
     for (int j = 0; j < m; j++)
         memcpy(out + (size_t)done_cols++ * r, C + (size_t)j * r, (size_t)r * sizeof *C);
-    /* U <- U out */
-    for (int j = 0; j < r; j++)
-        for (int i = 0; i < N; i++) {
-            double s = 0;
-            for (int k = 0; k < r; k++)
-                s += U[i + (size_t)k * N] * out[k + (size_t)j * r];
-            tmp[i + (size_t)j * N] = s;
-        }
-    memcpy(U, tmp, (size_t)N * r * sizeof *U);
+    times(U, N, r, out, tmp);
 done:
     free(E);
     free(C);
@@ -217,4 +204,19 @@ out:
     free(Z);
     free(y);
     return r;
+}
+
+void gd_rigid_modes_fill(const gd_system *sys, double speed, gd_modal_result *res, const double *U,
+                         int kr)
+{
+    int N = sys->ndof;
+    for (int m = 0; m < kr; m++) {
+        gd_mode *md = &res->modes[m];
+        double *re = res->shape_re + (size_t)m * N, *im = res->shape_im + (size_t)m * N;
+        md->rigid_body = 1;
+        memcpy(re, U + (size_t)m * N, (size_t)N * sizeof *re);
+        gd_normalise_max(re, im, N);
+        gd_mode_finish(sys, speed, md, re, im,
+                       res->energy_by_component + (size_t)m * sys->ncomponents);
+    }
 }

@@ -180,15 +180,7 @@ gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
     if (!res) goto nomem;
     res->damped = any_d || opt->kind == GD_MODAL_DAMPED;
     res->speed = opt->speed;
-    for (int j = 0; j < kr; j++) {
-        gd_mode *md = &res->modes[j];
-        double *re = res->shape_re + (size_t)j * n, *im = res->shape_im + (size_t)j * n;
-        md->rigid_body = 1;
-        memcpy(re, RU + (size_t)j * n, (size_t)n * sizeof *re);
-        gd_normalise_max(re, im, n);
-        gd_mode_finish(sys, opt->speed, md, re, im,
-                       res->energy_by_component + (size_t)j * sys->ncomponents);
-    }
+    gd_rigid_modes_fill(sys, opt->speed, res, RU, kr);
     for (int j = kr; j < km; j++) {
         gd_mode *md = &res->modes[j];
         const cand *c = &cs[j - kr];

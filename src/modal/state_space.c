@@ -337,15 +337,7 @@ gd_status gd_modal_state_space(const gd_system *sys, const gd_modal_options *opt
             gd_condense_expand(c, vr, RU + (size_t)j * N, 0, work);
         }
         gd_rigid_separate(sys, RU, r);
-        for (int m = 0; m < kr; m++) {
-            gd_mode *md = &res->modes[m];
-            double *re = res->shape_re + (size_t)m * N, *im = res->shape_im + (size_t)m * N;
-            md->rigid_body = 1;
-            memcpy(re, RU + (size_t)m * N, (size_t)N * sizeof *re);
-            gd_normalise_max(re, im, N);
-            gd_mode_finish(sys, opt->speed, md, re, im,
-                           res->energy_by_component + (size_t)m * sys->ncomponents);
-        }
+        gd_rigid_modes_fill(sys, opt->speed, res, RU, kr);
     }
     for (int mi = 0; mi < ke; mi++) {
         const candidate *cd = &cs[mi];
