@@ -12,6 +12,7 @@
 
 #include "cli_support.h"
 #include "geardyn/builder.h"
+#include "geardyn/mesh_stiffness.h"
 #include "geardyn/model.h"
 #include "geardyn/model_file.h"
 #include "geardyn/system.h"
@@ -33,10 +34,10 @@ TEST(teeth_beyond_int_is_a_located_error)
                       "  - {name: m, driver: ga, driven: gb, teeth: [1e20, 37],\n" /* 7 */
                       "     module: 2 mm, stiffness: 1e8}\n",                      /* 8 */
                       7, "meshes[0].teeth", "1e+20", "100000");
-    EXPECT_LOAD_ERROR("shafts:\n"                                                   /* 1 */
-                      "  - {name: a, nodes: [{name: ga}]}\n"                        /* 2 */
-                      "  - {name: b, nodes: [{name: gb}]}\n"                        /* 3 */
-                      "meshes:\n"                                                   /* 4 */
+    EXPECT_LOAD_ERROR("shafts:\n"                                                  /* 1 */
+                      "  - {name: a, nodes: [{name: ga}]}\n"                       /* 2 */
+                      "  - {name: b, nodes: [{name: gb}]}\n"                       /* 3 */
+                      "meshes:\n"                                                  /* 4 */
                       "  - {name: m, driver: ga, driven: gb, teeth: [17, 3e9]}\n", /* 5 */
                       5, "meshes[0].teeth", "3e+09", "3 to 100000");
 }
@@ -105,6 +106,39 @@ TEST(model_size_is_bounded_with_the_limit_named)
     EXPECT_LOAD_ERROR(STEEL "limits: {max_nodes: 0}\n"
                             "shafts: [{name: s, nodes: [{name: a}]}]\n",
                       2, "limits.max_nodes", "out of range", "whole number");
+}
+
+/* A stiffness table of points x cycles (each bounded alone) could ask for 1e10 samples
+ * (hundreds of GB), and points x slices for 1e11 contact evaluations (hours): both
+ * are bounded, located in the file, and in gd_tvms_compute for callers of the API. */
+TEST(stiffness_table_work_is_bounded)
+{
+    static const char *const sets[][2] = {
+        {"meshes.0.stiffness.points=1000000", "meshes.0.stiffness.cycles=10000"},
+        {"meshes.0.stiffness.points=100000", "meshes.0.stiffness.slices=1000"}};
+    static const char *const words[] = {"points x cycles = 1e+10", "points x slices = 1e+08"};
+    gd_gear_pair_geometry g;
+    gd_tvms_options o;
+    gd_error e;
+    for (int k = 0; k < 2; k++) {
+        gd_load_options lo;
+        gd_load_options_init(&lo);
+        lo.nset = 2;
+        lo.set = sets[k];
+        gd_error_clear(&e);
+        gd_status st = gd_gear_pair_load(GD_SOURCE_DIR "/examples/helical_pair1.yaml", NULL, &lo,
+                                         &g, &o, NULL, 0, &e);
+        CHECK(st == GD_EINPUT);
+        CHECK(e.line == 24 && strstr(e.message, words[k]) && strstr(e.hint, "lower points"));
+        if (st != GD_EINPUT || e.line != 24) show_error(&e, st);
+    }
+    REQUIRE(gd_gear_pair_load(GD_SOURCE_DIR "/examples/helical_pair1.yaml", NULL, NULL, &g, &o,
+                              NULL, 0, &e) == GD_OK);
+    o.points = 1000000;
+    o.cycles = 10000;
+    gd_tvms_result *r = NULL;
+    CHECK(gd_tvms_compute(&g, &o, &r, &e) == GD_EINPUT && r == NULL);
+    CHECK(strstr(e.message, "1e+07") != NULL);
 }
 
 /* Overrides of one field of a model that loads; bad values in every kind of numeric
@@ -341,7 +375,7 @@ TEST(hostile_inputs_replay)
 }
 
 RUN_TESTS(T(teeth_beyond_int_is_a_located_error), T(element_count_beyond_int_is_a_located_error),
-          T(too_fine_elements_fail_before_allocation),
+          T(too_fine_elements_fail_before_allocation), T(stiffness_table_work_is_bounded),
           T(model_size_is_bounded_with_the_limit_named),
           T(non_finite_and_denormal_values_are_refused_in_every_field_kind),
           T(unknown_units_name_the_unit), T(alias_bomb_fails_at_the_first_alias),
