@@ -8,7 +8,8 @@ VALGRIND    = valgrind --quiet --error-exitcode=1 --leak-check=full \
               --trace-children=yes \
               --trace-children-skip='/bin/*,/usr/bin/*'
 
-.PHONY: all deps build install demo test test-unit test-asan memcheck bench format clean
+.PHONY: all deps build install demo test test-unit test-asan memcheck bench format clean \
+        fuzz fuzz-build fuzz-smoke
 
 all: build
 
@@ -36,7 +37,7 @@ demo: build
 
 # Every test: the normal build, then AddressSanitizer + UndefinedBehaviorSanitizer,
 # then valgrind on the normal build.
-test: test-unit test-asan memcheck
+test: test-unit test-asan memcheck fuzz-smoke
 
 test-unit: build
 	cd $(BUILD) && ctest --output-on-failure -j$(JOBS)
@@ -57,6 +58,11 @@ VALGRIND_SKIP_test_campbell = -threads_and_methods_agree,critical_speeds
 VALGRIND_SKIP_test_modal_method = -auto_picks_sparse_for_the_rig
 VALGRIND_SKIP_test_gen_alpha = -linear_unbalance_run_up_matches_tight_cvode,backlash_pair_matches_cvode_with_located_events
 VALGRIND_SKIP_test_reduce = -reduced_unbalance_response_matches_the_full_model
+# The 10000-section model and the gyroscopic rotor at two speeds: sanitizers cover them;
+# tests that only run the CLI (valgrind does not follow it through /bin/sh).
+VALGRIND_SKIP_test_hostile_input = -model_size_is_bounded_with_the_limit_named,unusable_out_fails_before_writing
+VALGRIND_SKIP_test_directional = -isotropic_rotor_splits_forward_and_backward_with_speed,cli_directional
+VALGRIND_SKIP_test_shaft_energy = -cli_group_shaft
 memcheck: build
 	@set -e; for t in $(BUILD)/test_*; do \
 	    [ -f $$t ] && [ -x $$t ] && [ "$$(head -c 4 $$t | tail -c 3)" = ELF ] || continue; \
@@ -65,6 +71,9 @@ memcheck: build
 	    [ "$$name" = test_modal_method ] && skip="$(VALGRIND_SKIP_test_modal_method)"; \
 	    [ "$$name" = test_gen_alpha ] && skip="$(VALGRIND_SKIP_test_gen_alpha)"; \
 	    [ "$$name" = test_reduce ] && skip="$(VALGRIND_SKIP_test_reduce)"; \
+	    [ "$$name" = test_hostile_input ] && skip="$(VALGRIND_SKIP_test_hostile_input)"; \
+	    [ "$$name" = test_directional ] && skip="$(VALGRIND_SKIP_test_directional)"; \
+	    [ "$$name" = test_shaft_energy ] && skip="$(VALGRIND_SKIP_test_shaft_energy)"; \
 	    echo "valgrind $$t $$skip"; OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=2 $(VALGRIND) $$t $$skip >/dev/null; done; \
 	out=$$(mktemp -d); \
 	for args in "check examples/rig2018.yaml" "modal examples/rig2018.yaml --speed 3000rpm --json" \
@@ -82,7 +91,8 @@ memcheck: build
 	            "transient examples/chen1998_gear_pair.yaml --speed 1500 --duration 20ms --poincare shaft_a --quiet --json" \
 	            "transient examples/chen1998_gear_pair.yaml --sweep-speeds 1000:2000:2 --poincare shaft_a --settle 5rev --points 4 --both-directions --quiet --out $$out/sw" \
 	            "modal examples/chen1998_gear_pair.yaml --plot $$out/modes.svg" \
-	            "report tests/plot/study.yaml --speeds 0:3000rpm:3 --freq-points 20 --out $$out/report.html"; do \
+	            "report tests/plot/study.yaml --speeds 0:3000rpm:3 --freq-points 20 --out $$out/report.html" \
+	            "modal examples/kumar2011_coupled.yaml --directional --group shaft --dofs x,y,rz --json"; do \
 	    echo "valgrind geardyn $$args"; OPENBLAS_NUM_THREADS=1 $(VALGRIND) $(BUILD)/geardyn $$args >/dev/null; done; \
 	for args in "modal examples/missing.yaml" "modal examples/rig2018.yaml --speed fast" \
 	            "check examples/helical_pair1.yaml" \
@@ -91,11 +101,41 @@ memcheck: build
 	            "matrices examples/rig2018.yaml --out $$out/bad --set disks.0.mass=-1" \
 	            "transient examples/chen1998_gear_pair.yaml --sweep-speeds 1000:2000:3 --poincare nope" \
 	            "modal examples/chen1998_gear_pair.yaml --plot $$out/modes.png" \
-	            "modal examples/kumar2011_torsional.yaml --modes 1 --plot $$out/rigid.svg"; do \
+	            "modal examples/kumar2011_torsional.yaml --modes 1 --plot $$out/rigid.svg" \
+	            "check examples" "check tests/model_file/hostile/element_length_1e-9.yaml"; do \
 	    echo "valgrind geardyn $$args (must fail with exit 2)"; \
 	    rc=0; OPENBLAS_NUM_THREADS=1 $(VALGRIND) $(BUILD)/geardyn $$args >/dev/null 2>&1 || rc=$$?; \
 	    [ $$rc -eq 2 ] || { echo "exit $$rc, expected 2"; exit 1; }; done; \
 	rm -rf $$out; echo "valgrind: all test programs and CLI runs clean"
+
+# libFuzzer over the model reader and the system build (fuzz/fuzz_model.c, clang):
+# `make fuzz FUZZ_SECONDS=600` grows $(FUZZ_BUILD)/corpus from examples/ and the hostile
+# inputs; a crash is written to $(FUZZ_BUILD)/crash-* (replay: fuzz_model FILE). `make
+# test` runs FUZZ_RUNS inputs from a fixed seed (a few seconds), writing nothing here.
+FUZZ_BUILD   ?= build-fuzz
+FUZZ_SECONDS ?= 60
+FUZZ_RUNS    ?= 20000
+FUZZ_FLAGS    = -dict=fuzz/model.dict -max_len=8192 -timeout=20 -rss_limit_mb=2048 \
+                -artifact_prefix=$(FUZZ_BUILD)/ -print_final_stats=1
+FUZZ_SEEDS    = examples tests/model_file/hostile
+FUZZ_ENV      = OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 \
+                UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+fuzz-build: deps
+	@CC=clang cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGD_FUZZ=ON \
+	    -DGD_BUILD_TESTS=OFF -DGD_BUILD_SHARED=OFF >/dev/null
+	@cmake --build $(FUZZ_BUILD) -j$(JOBS) --target fuzz_model
+
+fuzz: fuzz-build
+	@mkdir -p $(FUZZ_BUILD)/corpus
+	$(FUZZ_ENV) $(FUZZ_BUILD)/fuzz_model $(FUZZ_FLAGS) -max_total_time=$(FUZZ_SECONDS) \
+	    $(FUZZ_BUILD)/corpus $(FUZZ_SEEDS)
+
+fuzz-smoke: fuzz-build
+	@out=$$(mktemp -d); rc=0; \
+	$(FUZZ_ENV) $(FUZZ_BUILD)/fuzz_model $(FUZZ_FLAGS) -runs=$(FUZZ_RUNS) -seed=1 \
+	    $$out $(FUZZ_SEEDS) 2>$$out.log || rc=$$?; \
+	grep -E "^(stat::number_of_executed_units|INFO: seed)" $$out.log; \
+	[ $$rc -eq 0 ] || cat $$out.log; rm -rf $$out $$out.log; exit $$rc
 
 bench: build
 	bash bench/run.sh $(BUILD)
@@ -104,4 +144,4 @@ format:
 	clang-format -i $$(git ls-files "*.c" "*.h")
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD)
+	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD)

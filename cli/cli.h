@@ -67,14 +67,21 @@ void gd_outdir_abort(gd_outdir *od);
 /* --set PATH=VALUE, repeatable (docs/model-format.md, "Overrides (--set)"): each
  * command lists GD_CLI_SET_OPTION in its getopt_long table and passes the value of
  * GD_CLI_OPT_SET to gd_cli_add_set. The strings are argv's. */
-enum { GD_CLI_OPT_SET = 0x5e7, GD_CLI_MAX_SET = 64 };
+enum { GD_CLI_OPT_SET = 0x5e7, GD_CLI_OPT_DOFS = 0x5e8, GD_CLI_MAX_SET = 64 };
 #define GD_CLI_SET_OPTION                                                                          \
     {                                                                                              \
         "set", required_argument, 0, GD_CLI_OPT_SET                                                \
     }
+/* --dofs LIST (GD_CLI_DOFS_OPTION, value GD_CLI_OPT_DOFS into sets.dofs): keep only
+ * these node DOFs of the model's (the old meaning of --coupling). */
+#define GD_CLI_DOFS_OPTION                                                                         \
+    {                                                                                              \
+        "dofs", required_argument, 0, GD_CLI_OPT_DOFS                                              \
+    }
 typedef struct gd_cli_sets {
     int nset;
     const char *set[GD_CLI_MAX_SET];
+    const char *dofs; /* --dofs LIST, or NULL */
 } gd_cli_sets;
 /* Adds one --set value; 0, or a usage error (2) past GD_CLI_MAX_SET. */
 int gd_cli_add_set(const char *cmd, gd_cli_sets *sets, const char *arg);
@@ -82,7 +89,8 @@ int gd_cli_add_set(const char *cmd, gd_cli_sets *sets, const char *arg);
 gd_load_options gd_cli_load_options(const gd_cli_sets *sets);
 
 /* Loads MODEL with the --set overrides (sets may be NULL), applies --coupling LEVEL
- * (NULL: keep the model's) and builds the system. On failure reports the error and
+ * (every mesh's level; NULL: keep the model's) and --dofs (sets->dofs) and builds the
+ * system. On failure reports the error and
  * returns the exit code (non-zero). */
 int gd_cli_load(const char *path, const gd_cli_sets *sets, const char *coupling, gd_model **model,
                 gd_system **sys);

@@ -23,6 +23,30 @@ gd_load_options gd_cli_load_options(const gd_cli_sets *sets)
     return lo;
 }
 
+/* "x,y,rz" into a GD_DOF_BIT mask. */
+static int parse_dofs(const char *list, unsigned *mask, gd_error *err)
+{
+    *mask = 0;
+    const char *p = list;
+    while (*p) {
+        size_t len = strcspn(p, ", ");
+        int found = -1;
+        for (int k = 0; k < GD_NODE_DOFS && len; k++)
+            if (strlen(gd_dof_names[k]) == len && !strncmp(p, gd_dof_names[k], len)) found = k;
+        if (len && found < 0)
+            return gd_error_set(err, GD_EINPUT, "", 0, 0, "--dofs",
+                                "list DOFs from x, y, z, rx, ry, rz, e.g. --dofs x,y,rz",
+                                "unknown DOF '%.*s'", (int)len, p);
+        if (found >= 0) *mask |= GD_DOF_BIT(found);
+        p += len;
+        p += strspn(p, ", ");
+    }
+    if (!*mask)
+        return gd_error_set(err, GD_EINPUT, "", 0, 0, "--dofs", "e.g. --dofs x,y,rz",
+                            "no DOFs listed");
+    return 0;
+}
+
 int gd_cli_load(const char *path, const gd_cli_sets *sets, const char *coupling, gd_model **model,
                 gd_system **sys)
 {
@@ -44,6 +68,13 @@ int gd_cli_load(const char *path, const gd_cli_sets *sets, const char *coupling,
     gd_load_options lo = gd_cli_load_options(sets);
     if (gd_model_load_opts(path, &lo, model, &err)) return gd_cli_report(&err);
     if (level >= 0) gd_model_set_coupling(*model, (gd_coupling)level);
+    unsigned mask = 0;
+    if (sets && sets->dofs &&
+        (parse_dofs(sets->dofs, &mask, &err) || gd_model_restrict_dofs(*model, mask, &err))) {
+        gd_model_free(*model);
+        *model = NULL;
+        return gd_cli_report(&err);
+    }
     if (gd_system_build(*model, sys, &err)) {
         gd_model_free(*model);
         *model = NULL;

@@ -14,7 +14,8 @@ static const char USAGE[] =
     "usage: geardyn campbell MODEL.yaml --speeds FROM:TO:COUNT [--modes N|all] [--orders LIST]\n"
     "                        [--no-shaft-orders] [--no-mesh-orders] [--method auto|dense|sparse]\n"
     "                        [--undamped] [--shift VALUE] [--threads N] [--coupling LEVEL]\n"
-    "                        [--set PATH=VALUE]... [--json] [--out DIR] [--plot FILE]\n\n"
+    "                        [--dofs LIST] [--set PATH=VALUE]... [--json] [--out DIR] [--plot "
+    "FILE]\n\n"
     "Damped modes at every speed, tracked across speeds by mode shape (MAC), with whirl\n"
     "direction, dominant motion and log decrement; critical speeds where a mode meets an\n"
     "excitation order (1x of each shaft, --orders, tooth-mesh orders); instability onset.\n\n"
@@ -27,7 +28,8 @@ static const char USAGE[] =
     "  --undamped          drop damping (gyroscopic terms stay)\n"
     "  --shift VALUE       sparse shift below zero, e.g. 10Hz (default: automatic)\n"
     "  --threads N         parallel threads over speeds (default: all cores)\n"
-    "  --coupling LEVEL    torsional | lateral-torsional | full\n"
+    "  --coupling LEVEL    torsional | lateral-torsional | full: every mesh's level\n"
+    "  --dofs LIST         keep only these node DOFs, e.g. x,y,rz\n"
     "  --set PATH=VALUE    change a value of the model file, e.g.\n"
     "                      --set meshes.mesh.stiffness=3e8N/m (repeatable; docs/model-format.md)\n"
     "  --json              one JSON object on stdout instead of the tables\n"
@@ -221,6 +223,7 @@ int gd_cmd_campbell(int argc, char **argv)
                                          {"json", no_argument, 0, 'j'},
                                          {"out", required_argument, 0, 'o'},
                                          GD_CLI_SET_OPTION,
+                                         GD_CLI_DOFS_OPTION,
                                          {"help", no_argument, 0, 'h'},
                                          GD_CLI_PLOT_OPTION,
                                          {0, 0, 0, 0}};
@@ -273,6 +276,9 @@ int gd_cmd_campbell(int argc, char **argv)
             break;
         case GD_CLI_OPT_SET:
             if (gd_cli_add_set(cmd, &sets, optarg)) return GD_EXIT_INPUT;
+            break;
+        case GD_CLI_OPT_DOFS:
+            sets.dofs = optarg;
             break;
         case 'j':
             json = 1;

@@ -7,10 +7,12 @@
 #include "cli.h"
 
 static const char USAGE[] =
-    "usage: geardyn check MODEL.yaml [--coupling LEVEL] [--set PATH=VALUE]... [--json]\n\n"
+    "usage: geardyn check MODEL.yaml [--coupling LEVEL] [--dofs LIST] [--set PATH=VALUE]...\n"
+    "                     [--json]\n\n"
     "Validates a model and prints a summary: nodes, DOFs, elements, meshes, and the mass\n"
     "and polar inertia of each shaft with everything on it.\n\n"
-    "  --coupling LEVEL  torsional | lateral-torsional | full: override every mesh\n"
+    "  --coupling LEVEL  torsional | lateral-torsional | full: every mesh's level\n"
+    "  --dofs LIST       keep only these node DOFs, e.g. x,y,rz\n"
     "  --set PATH=VALUE  change a value of the file before checking, e.g.\n"
     "                    --set meshes.mesh.stiffness=3e8N/m (repeatable; docs/model-format.md)\n"
     "  --json            print the summary as one JSON object\n";
@@ -98,6 +100,7 @@ int gd_cmd_check(int argc, char **argv)
 {
     static const struct option opts[] = {{"coupling", required_argument, 0, 'c'},
                                          GD_CLI_SET_OPTION,
+                                         GD_CLI_DOFS_OPTION,
                                          {"json", no_argument, 0, 'j'},
                                          {"help", no_argument, 0, 'h'},
                                          {0, 0, 0, 0}};
@@ -113,6 +116,9 @@ int gd_cmd_check(int argc, char **argv)
             break;
         case GD_CLI_OPT_SET:
             if (gd_cli_add_set("check", &sets, optarg)) return GD_EXIT_INPUT;
+            break;
+        case GD_CLI_OPT_DOFS:
+            sets.dofs = optarg;
             break;
         case 'j':
             json = 1;

@@ -13,8 +13,8 @@ static const char USAGE[] =
     "usage: geardyn frf MODEL.yaml --input WHAT --output WHAT [--output WHAT ...]\n"
     "                   --freq FROM:TO:COUNT [--speed VALUE] [--method direct|modal]\n"
     "                   [--modes N|all] [--type receptance|mobility|accelerance]\n"
-    "                   [--threads N] [--coupling LEVEL] [--set PATH=VALUE]... [--json]\n"
-    "                   [--out DIR] [--plot FILE.svg|FILE.html]\n\n"
+    "                   [--threads N] [--coupling LEVEL] [--dofs LIST] [--set PATH=VALUE]...\n"
+    "                   [--json] [--out DIR] [--plot FILE.svg|FILE.html]\n\n"
     "Response to a unit harmonic force or moment. Inputs:\n"
     "  NODE.DOF, node:NODE.DOF  force (x, y, z) or moment (rx, ry, rz) at a node, e.g. pinion.y\n"
     "  torque:NODE              torque about the shaft axis (= NODE.rz)\n"
@@ -30,7 +30,8 @@ static const char USAGE[] =
     "  --modes N|all     modes summed by --method modal (default all; fewer truncates)\n"
     "  --type T          receptance (default), mobility or accelerance (DOF outputs)\n"
     "  --threads N       parallel threads over frequencies (default: all cores)\n"
-    "  --coupling LEVEL  torsional | lateral-torsional | full\n"
+    "  --coupling LEVEL  torsional | lateral-torsional | full: every mesh's level\n"
+    "  --dofs LIST       keep only these node DOFs, e.g. x,y,rz\n"
     "  --set PATH=VALUE  change a value of the model file, e.g.\n"
     "                    --set meshes.mesh.stiffness=3e8N/m (repeatable; docs/model-format.md)\n"
     "  --json            one JSON object on stdout\n"
@@ -50,6 +51,7 @@ int gd_cmd_frf(int argc, char **argv)
                                          {"threads", required_argument, 0, 't'},
                                          {"coupling", required_argument, 0, 'c'},
                                          GD_CLI_SET_OPTION,
+                                         GD_CLI_DOFS_OPTION,
                                          {"json", no_argument, 0, 'j'},
                                          {"out", required_argument, 0, 'o'},
                                          {"help", no_argument, 0, 'h'},
@@ -115,6 +117,9 @@ int gd_cmd_frf(int argc, char **argv)
             break;
         case GD_CLI_OPT_SET:
             if (gd_cli_add_set(cmd, &sets, optarg)) return GD_EXIT_INPUT;
+            break;
+        case GD_CLI_OPT_DOFS:
+            sets.dofs = optarg;
             break;
         case 'j':
             json = 1;

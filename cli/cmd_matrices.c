@@ -10,7 +10,7 @@
 
 static const char USAGE[] =
     "usage: geardyn matrices MODEL.yaml --out DIR [--speed VALUE] [--format mtx|json]\n"
-    "                        [--coupling LEVEL] [--set PATH=VALUE]...\n\n"
+    "                        [--coupling LEVEL] [--dofs LIST] [--set PATH=VALUE]...\n\n"
     "Writes the matrices of the equation of motion at reference speed W over the active\n"
     "DOFs,  M q'' + (C(W) + W G) q' + K(W) q = f:  the mass M, the stiffness\n"
     "K(W) = K + K_b(W) and the damping C(W) = C + C_b(W) with the speed-table bearings at\n"
@@ -21,7 +21,8 @@ static const char USAGE[] =
     "  --speed VALUE     reference speed W, e.g. 3000rpm or 314 (rad/s); default 0\n"
     "  --format F        mtx (default) or json: DIR/matrices.json (the DOFs and each\n"
     "                    matrix as 1-based rows, cols, values) in place of the .mtx files\n"
-    "  --coupling LEVEL  torsional | lateral-torsional | full\n"
+    "  --coupling LEVEL  torsional | lateral-torsional | full: every mesh's level\n"
+    "  --dofs LIST       keep only these node DOFs, e.g. x,y,rz\n"
     "  --set PATH=VALUE  change a value of the model file, e.g.\n"
     "                    --set meshes.mesh.stiffness=3e8N/m (repeatable; docs/model-format.md)\n\n"
     "Exit status: 0 ok, 2 bad input or usage, 1 numerical failure.\n";
@@ -52,6 +53,7 @@ static int parse_args(int argc, char **argv, mx_args *a)
                                          {"format", required_argument, 0, 'f'},
                                          {"coupling", required_argument, 0, 'c'},
                                          GD_CLI_SET_OPTION,
+                                         GD_CLI_DOFS_OPTION,
                                          {"help", no_argument, 0, 'h'},
                                          {0, 0, 0, 0}};
     const char *cmd = "matrices";
@@ -76,6 +78,9 @@ static int parse_args(int argc, char **argv, mx_args *a)
             break;
         case GD_CLI_OPT_SET:
             if (gd_cli_add_set(cmd, &a->sets, optarg)) return GD_EXIT_INPUT;
+            break;
+        case GD_CLI_OPT_DOFS:
+            a->sets.dofs = optarg;
             break;
         case 'h':
             fputs(USAGE, stdout);

@@ -6,11 +6,14 @@
 
 #include "cli.h"
 #include "geardyn/modal.h"
+#include "modal_directional.h"
+#include "modal_groups.h"
 
 static const char USAGE[] =
     "usage: geardyn modal MODEL.yaml [--speed VALUE] [--modes N|all] [--undamped | --damped]\n"
-    "                     [--coupling LEVEL] [--method auto|dense|sparse] [--set PATH=VALUE]...\n"
-    "                     [--json] [--out DIR] [--plot FILE.svg|FILE.html]\n\n"
+    "                     [--coupling LEVEL] [--dofs LIST] [--method auto|dense|sparse]\n"
+    "                     [--set PATH=VALUE]... [--group shaft] [--directional] [--json]\n"
+    "                     [--out DIR] [--plot FILE.svg|FILE.html]\n\n"
     "Natural frequencies, damping, whirl direction and modal strain energy of each mode.\n"
     "Damped/gyroscopic modes (state space, left and right eigenvectors) are computed when\n"
     "the model has damping or gyroscopic terms at the speed; otherwise undamped modes.\n\n"
@@ -21,10 +24,15 @@ static const char USAGE[] =
     "  --method M        auto (default): the cheaper of the two by a measured cost model;\n"
     "                    dense: LAPACK (all modes); sparse: shift-invert Krylov-Schur\n"
     "                    with a sparse LU (the lowest N modes, needs mass on every DOF)\n"
-    "  --coupling LEVEL  torsional | lateral-torsional | full: override every mesh and\n"
-    "                    keep only the DOFs that level uses\n"
+    "  --coupling LEVEL  torsional | lateral-torsional | full: every mesh's level\n"
+    "  --dofs LIST       keep only these node DOFs, e.g. x,y,rz\n"
     "  --set PATH=VALUE  change a value of the model file, e.g.\n"
     "                    --set meshes.mesh.stiffness=3e8N/m (repeatable; docs/model-format.md)\n"
+    "  --group shaft     also the strain energy per shaft with its gears, bearings and\n"
+    "                    meshes (half of one between two shafts), and each shaft's by\n"
+    "                    motion type (002 Tables 4-7); default: by component\n"
+    "  --directional     also the directional eigenvalues of the complex coordinates\n"
+    "                    r = x + i y (000): one per mode, Im > 0 forward, < 0 backward\n"
     "  --json            print one JSON object on stdout instead of the table\n"
     "  --out DIR         write DIR/modes.csv and DIR/mode_shapes.csv (every active DOF of\n"
     "                    every mode, complex)\n" GD_CLI_PLOT_HELP;
@@ -168,8 +176,11 @@ int gd_cmd_modal(int argc, char **argv)
                                          {"coupling", required_argument, 0, 'c'},
                                          GD_CLI_SET_OPTION,
                                          {"method", required_argument, 0, 'm'},
+                                         GD_CLI_DOFS_OPTION,
                                          {"json", no_argument, 0, 'j'},
                                          {"out", required_argument, 0, 'o'},
+                                         {"group", required_argument, 0, 'g'},
+                                         {"directional", no_argument, 0, 'D'},
                                          {"help", no_argument, 0, 'h'},
                                          GD_CLI_PLOT_OPTION,
                                          {0, 0, 0, 0}};
@@ -178,7 +189,7 @@ int gd_cmd_modal(int argc, char **argv)
     opt.want_left = 0;
     const char *coupling = NULL, *out = NULL, *speed = NULL, *plot = NULL;
     gd_cli_sets sets = {0};
-    int json = 0, c, all = 0, rc;
+    int json = 0, c, all = 0, rc, by_shaft = 0, directional = 0;
     long nmodes = -1;
     optind = 1;
     opterr = 0;
@@ -213,6 +224,9 @@ int gd_cmd_modal(int argc, char **argv)
         case 'm':
             if (gd_cli_parse_eig_method("modal", optarg, &opt.method)) return GD_EXIT_INPUT;
             break;
+        case GD_CLI_OPT_DOFS:
+            sets.dofs = optarg;
+            break;
         case 'j':
             json = 1;
             break;
@@ -221,6 +235,15 @@ int gd_cmd_modal(int argc, char **argv)
             break;
         case GD_CLI_OPT_PLOT:
             plot = optarg;
+            break;
+        case 'g':
+            if (strcmp(optarg, "shaft") && strcmp(optarg, "component"))
+                return gd_cli_usage_error("modal", "--group: '%s' is not shaft or component",
+                                          optarg);
+            by_shaft = !strcmp(optarg, "shaft");
+            break;
+        case 'D':
+            directional = 1;
             break;
         case 'h':
             fputs(USAGE, stdout);
@@ -245,10 +268,13 @@ int gd_cmd_modal(int argc, char **argv)
         return GD_EXIT_INPUT;
     }
     opt.nmodes = all ? 0 : nmodes > 0 ? (int)nmodes : (s->ndof <= 30 ? 0 : 20);
-    gd_modal_result *r;
+    gd_modal_result *r = NULL;
     gd_error err;
     gd_error_clear(&err);
-    if (gd_modal_solve(s, &opt, &r, &err)) {
+    gd_directional_result *dr = NULL;
+    if (gd_modal_solve(s, &opt, &r, &err) ||
+        (directional && gd_modal_directional(s, &opt, &dr, &err))) {
+        if (r) gd_modal_free(r);
         rc = gd_cli_report(&err);
     } else {
         if (plot) {
@@ -260,14 +286,20 @@ int gd_cmd_modal(int argc, char **argv)
         if (rc == GD_EXIT_OK) {
             if (json) {
                 cJSON *o = result_json(s, r);
-                gd_cli_print_json(stdout, o);
+                if (by_shaft)
+                    rc = gd_cli_shaft_json(cJSON_GetObjectItemCaseSensitive(o, "modes"), s, r);
+                if (dr) cJSON_AddItemToObject(o, "directional", gd_cli_directional_json(dr));
+                if (!rc) gd_cli_print_json(stdout, o);
                 cJSON_Delete(o);
             } else {
                 print_table(s, r);
+                if (by_shaft) rc = gd_cli_print_shaft_tables(stdout, s, r);
+                if (dr) gd_cli_print_directional(stdout, dr);
             }
         }
         gd_modal_free(r);
     }
+    gd_directional_free(dr);
     gd_system_free(s);
     gd_model_free(m);
     return rc;

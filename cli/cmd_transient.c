@@ -25,8 +25,8 @@ static const char USAGE[] =
     "                         [--rtol R] [--method bdf|adams|galpha] [--step T]\n"
     "                         [--rho-inf R] [--reduce F] [--start rest|static]\n"
     "                         [--spectrum] [--window hann|rect] [--unbalance-scale F]\n"
-    "                         [--coupling LEVEL] [--set PATH=VALUE]... [--json] [--out DIR]\n"
-    "                         [--quiet] [--plot FILE.svg|FILE.html]\n\n"
+    "                         [--coupling LEVEL] [--dofs LIST] [--set PATH=VALUE]... [--json]\n"
+    "                         [--out DIR] [--quiet] [--plot FILE.svg|FILE.html]\n\n"
     "Integrates the equations of motion at a constant reference speed with the model's\n"
     "nonlinear and time-varying laws (mesh TVMS, transmission error, backlash, squeeze\n"
     "film dampers, loads, prescribed motions, cam torques, unbalances), then prints\n"
@@ -65,7 +65,8 @@ static const char USAGE[] =
     "                       reference speed; with --out, DIR/spectrum.csv\n"
     "  --window W           hann (default) or rect\n"
     "  --unbalance-scale F  multiplies every unbalance of the model (F >= 0)\n"
-    "  --coupling LEVEL     torsional | lateral-torsional | full (as in modal)\n"
+    "  --coupling LEVEL     torsional | lateral-torsional | full: every mesh's level\n"
+    "  --dofs LIST          keep only these node DOFs, e.g. x,y,rz\n"
     "  --set PATH=VALUE     change a value of the model file, e.g.\n"
     "                       --set meshes.mesh.stiffness=3e8N/m (repeatable;\n"
     "                       docs/model-format.md)\n"
@@ -424,6 +425,7 @@ static int parse_args(int argc, char **argv, cli_opts *o)
                                          {"run-down", no_argument, 0, 'D'},
                                          {"both-directions", no_argument, 0, 'B'},
                                          GD_CLI_SET_OPTION,
+                                         GD_CLI_DOFS_OPTION,
                                          {"help", no_argument, 0, 'h'},
                                          GD_CLI_PLOT_OPTION,
                                          {0, 0, 0, 0}};
@@ -519,6 +521,9 @@ static int parse_args(int argc, char **argv, cli_opts *o)
             break;
         case GD_CLI_OPT_SET:
             if (gd_cli_add_set(CMD, &o->sets, optarg)) return GD_EXIT_INPUT;
+            break;
+        case GD_CLI_OPT_DOFS:
+            o->sets.dofs = optarg;
             break;
         case 'j':
             o->json = 1;

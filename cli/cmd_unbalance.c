@@ -11,7 +11,8 @@
 
 static const char USAGE[] =
     "usage: geardyn unbalance MODEL.yaml --speeds FROM:TO:COUNT [--output WHAT ...]\n"
-    "                         [--threads N] [--coupling LEVEL] [--set PATH=VALUE]...\n"
+    "                         [--threads N] [--coupling LEVEL] [--dofs LIST] [--set "
+    "PATH=VALUE]...\n"
     "                         [--json] [--out DIR] [--plot FILE] [--orbit-speed VALUE]\n\n"
     "Steady response to the unbalances of the model, each turning with its own shaft.\n"
     "Shafts with different |speed ratio| give different harmonics (order = |ratio| of the\n"
@@ -22,7 +23,8 @@ static const char USAGE[] =
     "                    bearing:NAME.DIR (bearing force). Default: x, y, rz and the orbit\n"
     "                    of every unbalanced node, every mesh force, x and y of every bearing\n"
     "  --threads N       parallel threads over speeds (default: all cores)\n"
-    "  --coupling LEVEL  torsional | lateral-torsional | full\n"
+    "  --coupling LEVEL  torsional | lateral-torsional | full: every mesh's level\n"
+    "  --dofs LIST       keep only these node DOFs, e.g. x,y,rz\n"
     "  --set PATH=VALUE  change a value of the model file, e.g.\n"
     "                    --set meshes.mesh.stiffness=3e8N/m (repeatable; docs/model-format.md)\n"
     "  --json            one JSON object on stdout\n"
@@ -78,6 +80,7 @@ int gd_cmd_unbalance(int argc, char **argv)
                                          {"json", no_argument, 0, 'j'},
                                          {"out", required_argument, 0, 'o'},
                                          GD_CLI_SET_OPTION,
+                                         GD_CLI_DOFS_OPTION,
                                          {"help", no_argument, 0, 'h'},
                                          GD_CLI_PLOT_OPTION,
                                          {"orbit-speed", required_argument, 0, 'B'},
@@ -107,6 +110,9 @@ int gd_cmd_unbalance(int argc, char **argv)
             break;
         case GD_CLI_OPT_SET:
             if (gd_cli_add_set(cmd, &sets, optarg)) return GD_EXIT_INPUT;
+            break;
+        case GD_CLI_OPT_DOFS:
+            sets.dofs = optarg;
             break;
         case 'j':
             json = 1;

@@ -108,6 +108,13 @@ typedef struct gd_shaft_spec {
     gd_loc speed_ratio_loc; /* where speed_ratio was written (errors about it) */
     const char *path;       /* NULL: "shafts[<index>]" */
 } gd_shaft_spec;
+/* Model size limits: elements in one section (given, per section, or from
+ * max_element_length), and nodes in the whole model (6 DOFs each) unless
+ * gd_model_set_max_nodes (the file's `limits: {max_nodes: N}`) raises it. Checked
+ * before anything is allocated for the elements. */
+#define GD_MAX_SECTION_ELEMENTS 10000
+#define GD_MAX_NODES_DEFAULT 100000
+
 /* Defaults: all zero (NULL names: the shaft's material; elements: the shaft's rule). */
 GD_API void gd_section_spec_init(gd_section_spec *s);
 /* Defaults: all zero. */
@@ -350,6 +357,19 @@ GD_API gd_status gd_model_set_dofs(gd_model *m, unsigned dof_mask, gd_error *err
  * errors about an unknown name. */
 GD_API gd_status gd_model_set_reference_shaft(gd_model *m, const char *shaft, int rotation,
                                               gd_loc loc, gd_error *err);
+/* The most nodes the shafts may be discretised into (default GD_MAX_NODES_DEFAULT);
+ * gd_model_finish fails, before allocating them, on a model that would have more.
+ * max_nodes >= 1; loc locates errors about it. */
+GD_API gd_status gd_model_set_max_nodes(gd_model *m, long max_nodes, gd_loc loc, gd_error *err);
+/* Rayleigh damping C += alpha M + beta K (alpha 1/s, beta s, both finite and >= 0;
+ * default 0) with K the constant stiffness: elements, bearings without speed tables,
+ * mean mesh stiffness. */
+GD_API gd_status gd_model_set_rayleigh(gd_model *m, double alpha, double beta, gd_error *err);
+/* alpha and beta that give the damping ratios z1, z2 at the angular frequencies w1 !=
+ * w2 (rad/s, > 0): z = alpha / (2 w) + beta w / 2 at each (002_..., Rayleigh). GD_EINPUT
+ * when w1 = w2 or the ratios need a negative alpha or beta. */
+GD_API gd_status gd_rayleigh_from_ratios(double z1, double z2, double w1, double w2, double *alpha,
+                                         double *beta, gd_error *err);
 /* The reference speed, rad/s, >= 0 (default 0). */
 GD_API gd_status gd_model_set_speed(gd_model *m, double speed, gd_error *err);
 

@@ -101,11 +101,18 @@ GD_API const char *gd_tvms_method_name(gd_tvms_method m);
  * NULL). */
 GD_API gd_status gd_tvms_method_parse(const char *name, gd_tvms_method *m, gd_error *err);
 
+/* Work bounds of one stiffness table (gd_tvms_compute refuses more): samples stored,
+ * and slice contact evaluations (defaults 360 x 50 = 18000). */
+#define GD_TVMS_MAX_SAMPLES 1e7
+#define GD_TVMS_MAX_SLICE_EVALS 2e7
+
 typedef struct gd_tvms_options {
     gd_tvms_method method;
     int points;          /* samples per mesh cycle, default 360 */
     int cycles;          /* mesh cycles sampled, default 1 */
-    int slices;          /* face-width slices (helical), default 50; spur needs 1 */
+    int slices;          /* face-width slices (helical), default 50; spur needs 1;
+                            at most GD_TVMS_MAX_SAMPLES points x cycles and
+                            GD_TVMS_MAX_SLICE_EVALS points x slices */
     int body_compliance; /* 1: gear bodies in series (003_... Eq. 6), default 0 */
     int harmonics;       /* Fourier harmonics reported, default 5 */
     double quad_tol;     /* relative tolerance of the energy integrals, default 1e-10 */

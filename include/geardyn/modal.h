@@ -75,6 +75,36 @@ GD_API void gd_modal_options_init(gd_modal_options *opt);
 GD_API gd_status gd_modal_solve(const gd_system *sys, const gd_modal_options *opt,
                                 gd_modal_result **out, gd_error *err);
 GD_API void gd_modal_free(gd_modal_result *res);
+/* Directional modes (000_..., complex variable approach): the eigenvalues of the
+ * equation of motion written for p = x + i y and pbar = x - i y at every node, one per
+ * physical mode, signed by its whirl: Im lambda > 0 forward, < 0 backward (about each
+ * shaft's own sense of rotation). |lambda| and |Im lambda| equal a damped mode of
+ * gd_modal_solve. opt: speed, kind (GD_MODAL_UNDAMPED drops D = C + W G; otherwise it is
+ * kept) and nmodes (lowest |lambda|; 0 all). Rigid-body roots are left out. */
+typedef struct gd_directional_mode {
+    double lambda_re, lambda_im; /* Im > 0: forward whirl at Im; Im < 0: backward */
+    double forward_fraction;     /* |p|^2 / (|p|^2 + |pbar|^2) over the lateral DOFs; NAN
+                                    with no lateral motion */
+    gd_whirl whirl;              /* forward, backward, or none (straight-line orbits or
+                                    no lateral motion: then Im >= 0) */
+} gd_directional_mode;
+typedef struct gd_directional_result {
+    int nmodes;
+    double speed;
+    gd_directional_mode *modes; /* ascending |lambda| */
+} gd_directional_result;
+GD_API gd_status gd_modal_directional(const gd_system *sys, const gd_modal_options *opt,
+                                      gd_directional_result **out, gd_error *err);
+GD_API void gd_directional_free(gd_directional_result *res);
+
+/* Strain energy of mode `mode` of r (solved on sys) per shaft and motion type, 002_...
+ * Tables 4-7: table[s * GD_NMOTIONS + k] (model->nshafts x GD_NMOTIONS, filled by the
+ * caller's array) is the fraction of the mode's strain energy in shaft s (its elements,
+ * and the bearings, springs and meshes at its nodes, half of one between two shafts)
+ * and motion type k; the fractions sum to 1 (all 0 for a rigid-body mode). A shaft's
+ * share is its row's sum (Table 4); its row over that sum is Table 7. */
+GD_API gd_status gd_modal_energy_by_shaft(const gd_system *sys, const gd_modal_result *r, int mode,
+                                          double *table, gd_error *err);
 
 /* Lowest opt->nmodes (> 0) modes by shift-invert Krylov-Schur on the sparse
  * first-order system, real shift sigma = -shift (rad/s; <= 0: automatic). Same result

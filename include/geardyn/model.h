@@ -7,8 +7,8 @@
  * (model_file.h has the variants with overrides) or gd_model_new + gd_model_finish
  * (builder.h), and freed by gd_model_free; it owns every array and table it points to.
  * A finished model is read-only for the rest of the library: systems, analyses and
- * several threads may read one model at once. gd_model_set_coupling changes it: call it
- * before building a system from it.
+ * several threads may read one model at once. gd_model_set_coupling and
+ * gd_model_restrict_dofs change it: call them before building a system from it.
  */
 #ifndef GEARDYN_MODEL_H
 #define GEARDYN_MODEL_H
@@ -219,6 +219,9 @@ typedef struct gd_model {
     unsigned dof_mask;   /* active node DOFs (GD_DOF_BIT) */
     int reference_shaft; /* shaft whose speed is the reference speed */
     double speed;        /* reference speed, rad/s (0 unless given) */
+    /* Rayleigh damping C += alpha M + beta K (002_...; 0 unless given), K the constant
+       stiffness (speed tables of bearings not included) */
+    double rayleigh_alpha, rayleigh_beta; /* 1/s, s */
     /* builder state while the model is built (include/geardyn/builder.h); NULL once
        gd_model_finish has succeeded */
     struct gd_model_build *build;
@@ -230,9 +233,13 @@ GD_API gd_status gd_model_load_string(const char *yaml, const char *name, gd_mod
                                       gd_error *err);
 GD_API void gd_model_free(gd_model *model);
 
-/* Overrides every mesh's coupling level and restricts the active DOFs to the level's
- * (as `--coupling` does on the command line). */
+/* Overrides every mesh's coupling level (as `--coupling` does on the command line). The
+ * shafts keep all their DOFs: a lower level only couples fewer DOFs through the meshes
+ * (seed 002's lateral-torsional model); gd_model_restrict_dofs removes DOFs. */
 GD_API void gd_model_set_coupling(gd_model *model, gd_coupling level);
+/* Keeps only the active DOFs also in dof_mask (GD_DOF_BIT; `--dofs` on the command
+ * line). GD_EINPUT, model unchanged, when none would be left. */
+GD_API gd_status gd_model_restrict_dofs(gd_model *model, unsigned dof_mask, gd_error *err);
 
 /* The damping the linear analyses use for a mesh: its constant damping plus the part
  * proportional to stiffness at the mean stiffness (c + c_per_k * k_mean). */

@@ -2,6 +2,7 @@
 
 #include <ctype.h>
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -128,6 +129,23 @@ static int parse_unit_expr(const char *s, double *factor, dims *d, char *why, si
     return 0;
 }
 
+/* Finite and not below DBL_MIN: an underflow (1e-400) or a denormal (1e-310) is
+ * refused rather than computed with, since its reciprocal (a stiffness from a length)
+ * overflows to inf. 0 when v is fine. */
+static int representable(double v, const char *text, char *why, size_t why_size)
+{
+    if (!isfinite(v) || fabs(v) > DBL_MAX) {
+        snprintf(why, why_size, "'%s' is not a finite number (the largest is 1.8e308)", text);
+        return 1;
+    }
+    if (v != 0 && fabs(v) < DBL_MIN) {
+        snprintf(why, why_size, "'%s' is too small to compute with (the smallest is 2.2e-308)",
+                 text);
+        return 1;
+    }
+    return 0;
+}
+
 static int parse_quantity(const char *text, gd_qty qty, double *value, char *why, size_t why_size)
 {
     why[0] = '\0';
@@ -144,10 +162,8 @@ static int parse_quantity(const char *text, gd_qty qty, double *value, char *why
         snprintf(why, why_size, "'%s' is not a number (with an optional unit)", text);
         return 1;
     }
-    if (errno == ERANGE || !isfinite(x)) {
-        snprintf(why, why_size, "'%s' is not a finite number", text);
-        return 1;
-    }
+    if (errno == ERANGE && fabs(x) <= 1) x = DBL_MIN / 2; /* checked as a denormal below */
+    if (representable(x, text, why, why_size)) return 1;
     char unit[96];
     size_t n = strlen(end);
     while (n > 0 && isspace((unsigned char)end[n - 1]))
@@ -176,6 +192,7 @@ static int parse_quantity(const char *text, gd_qty qty, double *value, char *why
                  qty == GD_QTY_DIMLESS ? "dimensionless" : "matching", QTY[qty].si);
         return 1;
     }
+    if (representable(x * f, text, why, why_size)) return 1;
     *value = x * f;
     return 0;
 }

@@ -91,6 +91,20 @@ static gd_status check_options(const gd_tvms_options *o, gd_error *err)
         f = "harmonics";
         h = "give from 0 to 100 harmonics";
         snprintf(msg, sizeof msg, "%d harmonics is out of range", o->harmonics);
+    } else if ((double)o->points * o->cycles > GD_TVMS_MAX_SAMPLES) {
+        /* each bound alone allows 1e10 samples (hundreds of GB) */
+        f = "points";
+        h = "lower points or cycles";
+        snprintf(msg, sizeof msg,
+                 "points x cycles = %.3g samples, more than the limit of %.0e per table",
+                 (double)o->points * o->cycles, GD_TVMS_MAX_SAMPLES);
+    } else if ((double)o->points * o->slices > GD_TVMS_MAX_SLICE_EVALS) {
+        /* each contact evaluation integrates the tooth: 1e11 of them take hours */
+        f = "slices";
+        h = "lower points or slices";
+        snprintf(msg, sizeof msg,
+                 "points x slices = %.3g contact evaluations, more than the limit of %.0e",
+                 (double)o->points * o->slices, GD_TVMS_MAX_SLICE_EVALS);
     } else if (!(o->quad_tol > 0 && o->quad_tol <= 1e-3)) {
         f = "quad_tol";
         h = "give a relative tolerance in (0, 1e-3]";

@@ -11,6 +11,30 @@ void gd_mode_finish(const gd_system *sys, double speed, gd_mode *md, const doubl
                     const double *im, double *comp_share);
 double complex gd_normalise_max(double *re, double *im, int n);
 
+/* ---- rigid_modes.c ---- */
+/* The motion type a DOF's motion counts as (rz torsional, z axial, rx/ry tilt, else
+ * lateral). */
+gd_motion gd_dof_motion(gd_dof d);
+/* An orthonormal basis (n x r, malloc'd into *basis) of the right null space of the
+ * n x n matrix A: the singular values <= tol. Returns r (0: none, *basis NULL), or -1
+ * when out of memory or the SVD fails. */
+int gd_null_space(const double *A, int n, double tol, double **basis);
+/* Replaces the r full shapes U (ndof x r, independent rigid-body motions) by
+ * combinations that each move in one motion type where the span allows: spin first,
+ * then axial, lateral, tilt (a vector belongs to a type when over half its kinetic
+ * energy, by the diagonal of M, is in it). Independence is kept. */
+void gd_rigid_separate(const gd_system *sys, double *U, int r);
+/* Modes 0 .. kr-1 of res are the rigid-body modes U (ndof x kr): shapes, labels. */
+void gd_rigid_modes_fill(const gd_system *sys, double speed, gd_modal_result *res, const double *U,
+                         int kr);
+/* The null space of K (values k on a's pattern) from r0 starting vectors U (n x r0,
+ * e.g. an eigensolver's rigid-body vectors, however mixed): three steps of block
+ * inverse iteration with (K + sigma M)^-1 M, M-orthonormalised, keeping the vectors
+ * with |K u| <= tol |M u|. They replace the first r columns of U; returns r, or -1 when
+ * out of memory or K + sigma M is singular. */
+int gd_rigid_null_sparse(const gd_dynmat *a, const gd_splu_symbolic *sym, const double *k,
+                         double sigma, double tol, double *U, int r0);
+
 gd_status gd_modal_undamped(const gd_system *sys, const gd_modal_options *opt, const gd_condense *c,
                             const double *M, const double *K, gd_modal_result **out, gd_error *err);
 gd_status gd_modal_state_space(const gd_system *sys, const gd_modal_options *opt,

@@ -68,11 +68,7 @@ void gd_mode_finish(const gd_system *sys, double speed, gd_mode *md, const doubl
         double ke[GD_NMOTIONS] = {0};
         for (int i = 0; i < sys->ndof; i++) {
             double a = re[i] * re[i] + (im ? im[i] * im[i] : 0);
-            gd_dof d = sys->dof_type[i];
-            int mo = d == GD_RZ                   ? GD_MOTION_TORSIONAL
-                     : d == GD_Z                  ? GD_MOTION_AXIAL
-                     : (d == GD_RX || d == GD_RY) ? GD_MOTION_TILT
-                                                  : GD_MOTION_LATERAL;
+            gd_motion mo = gd_dof_motion(sys->dof_type[i]);
             for (int k = sys->M.colptr[i]; k < sys->M.colptr[i + 1]; k++)
                 if (sys->M.rowind[k] == i) ke[mo] += sys->M.values[k] * a;
         }

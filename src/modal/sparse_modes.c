@@ -114,6 +114,7 @@ gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
     gd_shift_invert op = {0};
     gd_ks_result ks = {0};
     cand *cd = NULL;
+    double *RU = NULL; /* rigid-body shapes */
     double *ure = NULL, *uim = NULL;
     gd_modal_result *res = NULL;
     gd_dynmat_at(a, opt->speed, k, d);
@@ -162,15 +163,36 @@ gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
         cd[nc++] = (cand){i, lr, li, rigid};
     }
     qsort(cd, (size_t)nc, sizeof *cd, cmp_cand);
-    int km = nc < want ? nc : want;
+    /* rigid-body modes: the Krylov vectors of the defective zero cluster are refined
+       into the null space of K (rigid_modes.c) and separated by motion type; when that
+       fails (r <= 0) the Ritz vectors are kept */
+    int nrig = 0, r = 0;
+    while (nrig < nc && cd[nrig].rigid)
+        nrig++;
+    if (nrig > 0) {
+        if (!(RU = malloc((size_t)n * 2 * nrig * sizeof *RU))) goto nomem;
+        for (int q = 0; q < nrig; q++) {
+            memcpy(RU + (size_t)2 * q * n, ks.vec_re + (size_t)cd[q].idx * n,
+                   (size_t)n * sizeof *RU);
+            memcpy(RU + (size_t)(2 * q + 1) * n, ks.vec_im + (size_t)cd[q].idx * n,
+                   (size_t)n * sizeof *RU);
+        }
+        r = gd_rigid_null_sparse(a, sym, k, s * s, rtol * rtol, RU, 2 * nrig);
+        if (r > 0) gd_rigid_separate(sys, RU, r);
+        if (r < 0) r = 0;
+    }
+    const cand *cs = r > 0 ? cd + nrig : cd;
+    int ncs = r > 0 ? nc - nrig : nc;
+    int km = r + ncs < want ? r + ncs : want, kr = r < km ? r : km;
     res = gd_modal_result_new(sys, km, 0);
     if (!res) goto nomem;
     res->damped = any_d || opt->kind == GD_MODAL_DAMPED || !conservative;
     res->sparse = 1;
     res->speed = opt->speed;
-    for (int j = 0; j < km; j++) {
+    gd_rigid_modes_fill(sys, opt->speed, res, RU, kr);
+    for (int j = kr; j < km; j++) {
         gd_mode *md = &res->modes[j];
-        const cand *c = &cd[j];
+        const cand *c = &cs[j - kr];
         md->rigid_body = c->rigid;
         double mag = hypot(c->re, c->im);
         if (!c->rigid) {
@@ -199,6 +221,7 @@ nomem:
     st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory in the sparse eigensolver");
 done:
     gd_modal_free(res);
+    free(RU);
     free(cd);
     free(ure);
     free(uim);

@@ -239,6 +239,7 @@ gd_status gd_modal_state_space(const gd_system *sys, const gd_modal_options *opt
     double *vr = malloc((size_t)n * sizeof *vr), *vi = malloc((size_t)n * sizeof *vi);
     double *work = malloc((size_t)(N + 8) * sizeof *work);
     double complex *Z = NULL, *W = NULL;
+    double *R = NULL, *RU = NULL; /* rigid-body modes: null basis, full shapes */
     gd_modal_result *res = NULL;
     if (!L || !Kt || !Dt || !A || !e.wr || !e.wi || !e.vcol || !cand || !want || !vr || !vi ||
         !work)
@@ -285,29 +286,39 @@ gd_status gd_modal_state_space(const gd_system *sys, const gd_modal_options *opt
         cand[ncand++] = (candidate){j, e.wr[j], e.wi[j], rigid};
     }
     qsort(cand, (size_t)ncand, sizeof *cand, cmp_candidate);
-    int k = opt->nmodes > 0 && opt->nmodes < ncand ? opt->nmodes : ncand;
+    /* rigid-body modes: the null space of K~ (rigid_modes.c), in place of the
+       vectors of the defective zero cluster; r = 0 (none found) keeps the
+       eigensolver's. |lambda| <= rtol for a rigid root is K~'s |sigma| <= rtol^2. */
+    int nrc = 0, r = 0;
+    while (nrc < ncand && cand[nrc].rigid)
+        nrc++;
+    if (nrc > 0 && (r = gd_null_space(Kt, n, rtol * rtol, &R)) < 0) goto nomem;
+    const candidate *cs = r > 0 ? cand + nrc : cand;
+    int ncs = r > 0 ? ncand - nrc : ncand;
+    int k = opt->nmodes > 0 && opt->nmodes < r + ncs ? opt->nmodes : r + ncs;
+    int kr = k < r ? k : r, ke = k - kr;
     if (few) {
-        for (int m = 0; m < k; m++)
-            want[cand[m].col] = 1;
+        for (int m = 0; m < ke; m++)
+            want[cs[m].col] = 1;
         info = eig_selected(&e, &h, want, opt->want_left);
         if (info == -1000) goto nomem;
         if (info != 0) goto noconv;
     }
-    Z = malloc((size_t)k * n2 * sizeof *Z);
-    W = opt->want_left ? malloc((size_t)k * n2 * sizeof *W) : NULL;
+    Z = malloc(((size_t)ke * n2 + 1) * sizeof *Z);
+    W = opt->want_left ? malloc(((size_t)ke * n2 + 1) * sizeof *W) : NULL;
     res = gd_modal_result_new(sys, k, opt->want_left);
     if (!Z || (opt->want_left && !W) || !res) goto nomem;
-    for (int m = 0; m < k; m++) {
-        eigvec(&e, e.VR, cand[m].col, Z + (size_t)m * n2);
+    for (int m = 0; m < ke; m++) {
+        eigvec(&e, e.VR, cs[m].col, Z + (size_t)m * n2);
         if (opt->want_left) {
             /* w = conj(y): LAPACK's left vectors satisfy y^H A = lambda y^H */
             double complex *w = W + (size_t)m * n2;
-            eigvec(&e, e.VL, cand[m].col, w);
+            eigvec(&e, e.VL, cs[m].col, w);
             for (int i = 0; i < n2; i++)
                 w[i] = conj(w[i]);
         }
     }
-    if (opt->want_left && bi_orthonormalise(Z, W, cand, k, n2, lmax)) {
+    if (opt->want_left && bi_orthonormalise(Z, W, cs, ke, n2, lmax)) {
         st = gd_error_set(err, GD_ENUMERIC, sys->model->file, 0, 0, "",
                           "the model may have defective (repeated, coupled) modes",
                           "left and right eigenvectors could not be bi-orthonormalised");
@@ -315,8 +326,22 @@ gd_status gd_modal_state_space(const gd_system *sys, const gd_modal_options *opt
     }
     res->damped = 1;
     res->speed = opt->speed;
-    for (int m = 0; m < k; m++) {
-        const candidate *cd = &cand[m];
+    if (r > 0) {
+        /* u = L^-T p of each null vector, expanded, separated by motion type; the
+           first kr of them are reported */
+        RU = malloc((size_t)N * r * sizeof *RU);
+        if (!RU) goto nomem;
+        for (int j = 0; j < r; j++) {
+            memcpy(vr, R + (size_t)j * n, (size_t)n * sizeof *vr);
+            cblas_dtrsv(CblasColMajor, CblasLower, CblasTrans, CblasNonUnit, n, L, n, vr, 1);
+            gd_condense_expand(c, vr, RU + (size_t)j * N, 0, work);
+        }
+        gd_rigid_separate(sys, RU, r);
+        gd_rigid_modes_fill(sys, opt->speed, res, RU, kr);
+    }
+    for (int mi = 0; mi < ke; mi++) {
+        const candidate *cd = &cs[mi];
+        int m = kr + mi;
         gd_mode *md = &res->modes[m];
         int pair = cd->im > 0;
         md->rigid_body = cd->rigid;
@@ -334,7 +359,7 @@ gd_status gd_modal_state_space(const gd_system *sys, const gd_modal_options *opt
             md->log_decrement = pair && fabs(z) < 1 ? 2 * PI * z / sqrt(1 - z * z) : NAN;
         }
         double *re = res->shape_re + (size_t)m * N, *im = res->shape_im + (size_t)m * N;
-        physical(L, n, Z + (size_t)m * n2, vr, vi); /* top half of z is p */
+        physical(L, n, Z + (size_t)mi * n2, vr, vi); /* top half of z is p */
         gd_condense_expand(c, vr, re, 0, work);
         gd_condense_expand(c, vi, im, 0, work);
         double complex alpha = gd_normalise_max(re, im, N);
@@ -342,7 +367,7 @@ gd_status gd_modal_state_space(const gd_system *sys, const gd_modal_options *opt
                        res->energy_by_component + (size_t)m * sys->ncomponents);
         if (opt->want_left && !md->rigid_body) {
             /* v = L^-T pv from the bottom half of w, scaled with u */
-            physical(L, n, W + (size_t)m * n2 + n, vr, vi);
+            physical(L, n, W + (size_t)mi * n2 + n, vr, vi);
             double *lre = res->left_re + (size_t)m * N, *lim = res->left_im + (size_t)m * N;
             gd_condense_expand(c, vr, lre, 1, work);
             gd_condense_expand(c, vi, lim, 1, work);
@@ -380,5 +405,7 @@ done:
     free(work);
     free(Z);
     free(W);
+    free(R);
+    free(RU);
     return st;
 }

@@ -60,10 +60,23 @@ gd_status gd_modal_undamped(const gd_system *sys, const gd_modal_options *opt, c
     }
     res->damped = 0;
     res->speed = opt->speed;
+    /* the rigid-body modes (contiguous: ascending eigenvalues) are any M-orthonormal
+       basis of the null space of K: rotated so that each moves one way */
+    double tol = 1e-12 * wscale2;
+    int r0 = 0, nrigid = 0;
+    while (r0 < k && w[r0] < -tol)
+        r0++;
+    while (r0 + nrigid < k && fabs(w[r0 + nrigid]) <= tol)
+        nrigid++;
+    for (int j = r0; j < r0 + nrigid; j++) {
+        memcpy(um, Z + (size_t)j * n, (size_t)n * sizeof *um);
+        gd_condense_expand(c, um, res->shape_re + (size_t)j * N, 0, work);
+    }
+    gd_rigid_separate(sys, res->shape_re + (size_t)r0 * N, nrigid);
     for (int j = 0; j < k; j++) {
         gd_mode *md = &res->modes[j];
-        double lam = w[j], tol = 1e-12 * wscale2;
-        md->rigid_body = fabs(lam) <= tol;
+        double lam = w[j];
+        md->rigid_body = j >= r0 && j < r0 + nrigid;
         double om = md->rigid_body ? 0.0 : sqrt(fabs(lam));
         md->omega_n = om;
         md->frequency_hz = om / (2.0 * 3.14159265358979323846);
@@ -80,8 +93,10 @@ gd_status gd_modal_undamped(const gd_system *sys, const gd_modal_options *opt, c
             md->lambda_im = md->omega_d = om;
         }
         double *re = res->shape_re + (size_t)j * N, *im = res->shape_im + (size_t)j * N;
-        memcpy(um, Z + (size_t)j * n, (size_t)n * sizeof *um);
-        gd_condense_expand(c, um, re, 0, work);
+        if (!md->rigid_body) {
+            memcpy(um, Z + (size_t)j * n, (size_t)n * sizeof *um);
+            gd_condense_expand(c, um, re, 0, work);
+        }
         gd_normalise_max(re, im, N);
         gd_mode_finish(sys, opt->speed, md, re, im,
                        res->energy_by_component + (size_t)j * sys->ncomponents);

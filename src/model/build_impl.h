@@ -68,6 +68,8 @@ typedef struct gd_model_build {
     char *reference_shaft;
     int rotation;
     gd_loc reference_loc;
+    long max_nodes; /* 0: GD_MAX_NODES_DEFAULT */
+    gd_loc max_nodes_loc;
     int failed; /* gd_model_finish failed: the model can only be freed */
 } gd_model_build;
 

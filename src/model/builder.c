@@ -275,6 +275,56 @@ gd_status gd_model_set_reference_shaft(gd_model *m, const char *shaft, int rotat
     return GD_OK;
 }
 
+gd_status gd_model_set_max_nodes(gd_model *m, long max_nodes, gd_loc loc, gd_error *err)
+{
+    gd_status st;
+    if ((st = gd_build_open(m, err))) return st;
+    if (max_nodes < 1)
+        return gd_build_fail(m, err, loc, "limits.max_nodes", "limits.max_nodes",
+                             "give a whole number of 1 or more", "%ld nodes is out of range",
+                             max_nodes);
+    m->build->max_nodes = max_nodes;
+    m->build->max_nodes_loc = loc;
+    return GD_OK;
+}
+
+gd_status gd_model_set_rayleigh(gd_model *m, double alpha, double beta, gd_error *err)
+{
+    gd_status st;
+    gd_loc none = {0, 0};
+    if ((st = gd_build_open(m, err))) return st;
+    if (!(alpha < INFINITY) || !(beta < INFINITY))
+        return gd_build_fail(m, err, none, "damping.rayleigh", "damping.rayleigh",
+                             "give finite values", "alpha %g, beta %g are not finite", alpha, beta);
+    if ((st = gd_build_positive(m, err, none, "damping.rayleigh", "alpha", alpha, 1)) ||
+        (st = gd_build_positive(m, err, none, "damping.rayleigh", "beta", beta, 1)))
+        return st;
+    m->rayleigh_alpha = alpha;
+    m->rayleigh_beta = beta;
+    return GD_OK;
+}
+
+gd_status gd_rayleigh_from_ratios(double z1, double z2, double w1, double w2, double *alpha,
+                                  double *beta, gd_error *err)
+{
+    if (!(w1 > 0) || !(w2 > 0) || w1 == w2 || !isfinite(w1) || !isfinite(w2))
+        return gd_error_set(err, GD_EINPUT, "", 0, 0, "damping.rayleigh.frequencies",
+                            "give two different positive frequencies",
+                            "frequencies %g and %g rad/s do not fix alpha and beta", w1, w2);
+    /* z_i = alpha / (2 w_i) + beta w_i / 2, two equations */
+    double d = w2 * w2 - w1 * w1;
+    double a = 2 * w1 * w2 * (z1 * w2 - z2 * w1) / d, b = 2 * (z2 * w2 - z1 * w1) / d;
+    if (!(a >= 0) || !(b >= 0))
+        return gd_error_set(err, GD_EINPUT, "", 0, 0, "damping.rayleigh.ratios",
+                            "Rayleigh damping rises with frequency above sqrt(alpha/beta) and "
+                            "falls below it: choose ratios it can give",
+                            "ratios %g and %g at %g and %g rad/s need alpha %g, beta %g (negative)",
+                            z1, z2, w1, w2, a, b);
+    *alpha = a;
+    *beta = b;
+    return GD_OK;
+}
+
 gd_status gd_model_set_speed(gd_model *m, double speed, gd_error *err)
 {
     gd_status st;

@@ -106,7 +106,7 @@ gd_status gd_model_add_shaft(gd_model *m, const gd_shaft_spec *s, int *index, gd
     sh.speed_ratio = s->has_speed_ratio ? s->speed_ratio : 1.0;
     sh.speed_ratio_given = s->has_speed_ratio != 0;
     sh.speed_ratio_loc = s->speed_ratio_loc;
-    if (s->elements_per_section < 0 || s->elements_per_section > 10000)
+    if (s->elements_per_section < 0 || s->elements_per_section > GD_MAX_SECTION_ELEMENTS)
         return gd_build_fail(m, err, s->loc,
                              gd_build_path(q, sizeof q, path, "elements_per_section"), q,
                              "give a whole number from 1 to 10000",
@@ -143,11 +143,25 @@ gd_status gd_model_add_shaft(gd_model *m, const gd_shaft_spec *s, int *index, gd
             return gd_build_fail(m, err, c->loc, NULL, sp,
                                  "give `material:` on the section or on the shaft",
                                  "section has no material");
-        if (c->elements < 0 || c->elements > 10000) {
+        if (c->elements < 0 || c->elements > GD_MAX_SECTION_ELEMENTS) {
             char fp[240];
             gd_build_path(fp, sizeof fp, sp, "elements");
             return gd_build_fail(m, err, c->loc, fp, fp, "give a whole number from 1 to 10000",
                                  "%d elements is out of range", c->elements);
+        }
+        /* the count max_element_length asks for, checked as a double before it becomes
+           an int (1 m at 1e-9 m would be 1e9 elements, 1e72 m overflows an int) */
+        double want = max_len > 0 && !c->elements ? ceil(c->length / max_len - 1e-9) : 0;
+        if (!(want <= GD_MAX_SECTION_ELEMENTS)) {
+            char fp[200];
+            gd_build_path(fp, sizeof fp, path, "max_element_length");
+            return gd_build_fail(
+                m, err, c->loc, NULL, sp,
+                "use a longer max_element_length, give the section `elements:`, or split it "
+                "into shorter sections",
+                "a section of %g m with max_element_length %g m would have %.3g elements, more "
+                "than the limit of %d per section",
+                c->length, max_len, want, GD_MAX_SECTION_ELEMENTS);
         }
         total += c->length;
     }

@@ -1,4 +1,5 @@
 /* Model queries and edits that do not involve parsing. */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -26,7 +27,25 @@ void gd_model_set_coupling(gd_model *model, gd_coupling level)
 {
     for (int i = 0; i < model->nmeshes; i++)
         model->meshes[i].coupling = level;
-    model->dof_mask &= gd_coupling_dof_mask(level);
+}
+
+gd_status gd_model_restrict_dofs(gd_model *model, unsigned dof_mask, gd_error *err)
+{
+    unsigned keep = model->dof_mask & dof_mask;
+    if (!keep) {
+        char have[64] = "";
+        for (int k = 0; k < GD_NODE_DOFS; k++)
+            if (model->dof_mask & GD_DOF_BIT(k))
+                snprintf(have + strlen(have), sizeof have - strlen(have), "%s%s",
+                         have[0] ? "," : "", gd_dof_names[k]);
+        return gd_error_set(err, GD_EINPUT, model->file, 0, 0, "--dofs",
+                            "list some of the model's DOFs",
+                            "none of these DOFs is active (the "
+                            "model has %s)",
+                            have);
+    }
+    model->dof_mask = keep;
+    return GD_OK;
 }
 
 void gd_model_free(gd_model *model)

@@ -141,6 +141,16 @@ static gd_status read_options(gd_yreader *r, const gd_ynode *s, const char *path
     if (present) opt->harmonics = (int)v;
     if ((st = gd_yread_bool(r, s, "body_compliance", path, 0, &opt->body_compliance, NULL)))
         return st;
+    /* the table's work bounds (gd_tvms_compute's), located here */
+    double samples = (double)opt->points * opt->cycles, evals = (double)opt->points * opt->slices;
+    if (samples > GD_TVMS_MAX_SAMPLES)
+        return gd_yfail(r, s, path, "lower points or cycles",
+                        "points x cycles = %.3g samples, more than the limit of %.0e per table",
+                        samples, GD_TVMS_MAX_SAMPLES);
+    if (evals > GD_TVMS_MAX_SLICE_EVALS)
+        return gd_yfail(r, s, path, "lower points or slices",
+                        "points x slices = %.3g contact evaluations, more than the limit of %.0e",
+                        evals, GD_TVMS_MAX_SLICE_EVALS);
     return GD_OK;
 }
 

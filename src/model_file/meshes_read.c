@@ -80,10 +80,12 @@ static gd_status read_mesh_keys(gd_mparser *p, const gd_ynode *mm, const char *q
         return st;
     if (has_teeth)
         for (int i = 0; i < 2; i++) {
-            if (teeth[i] != floor(teeth[i]) || teeth[i] < 3)
+            /* range-checked before the conversion to int (a double beyond INT_MAX
+               would be undefined behaviour); 100000 as for `geometry.teeth` */
+            if (!(teeth[i] >= 3 && teeth[i] <= 100000) || teeth[i] != floor(teeth[i]))
                 return gd_yfail(r, gd_ymap_get(mm, "teeth"),
                                 gd_ypath_key(fp, sizeof fp, q, "teeth"),
-                                "teeth numbers are whole numbers of 3 or more",
+                                "teeth numbers are whole numbers from 3 to 100000",
                                 "invalid teeth number %g", teeth[i]);
             g->teeth[i] = (int)teeth[i];
         }

@@ -16,7 +16,10 @@ static const char *const TOP_KEYS[] = {
     "title",           "description", "materials",  "dofs",        "shafts",
     "disks",           "bearings",    "springs",    "meshes",      "speed",
     "reference_shaft", "rotation",    "unbalances", "excitations", "prescribed",
-    "cam_torques",     NULL};
+    "cam_torques",     "limits",      "damping",    NULL};
+static const char *const LIMIT_KEYS[] = {"max_nodes", NULL};
+static const char *const DAMPING_KEYS[] = {"rayleigh", NULL};
+static const char *const RAYLEIGH_KEYS[] = {"alpha", "beta", "ratios", "frequencies", NULL};
 static const char *const ROTATIONS[] = {"ccw", "cw", NULL};
 
 gd_status gd_mp_oom(gd_mparser *p)
@@ -144,6 +147,65 @@ static int locate_geometry(void *ctx, const char *mesh_path, gd_error *err)
 
 /* ---- top level ---- */
 
+/* A list of exactly two quantities at map.key. */
+static gd_status read_two(gd_mparser *p, const gd_ynode *map, const char *key, const char *path,
+                          gd_qty qty, int flags, double out[2])
+{
+    char q[200], ip[220];
+    const gd_ynode *v = gd_ymap_get(map, key);
+    gd_ypath_key(q, sizeof q, path, key);
+    gd_status st = gd_yexpect(&p->r, v, GD_Y_SEQ, q);
+    if (st) return st;
+    if (v->n != 2)
+        return gd_yfail(&p->r, v, q, "give two values, e.g. [0.02, 0.05]",
+                        "expected 2 values, found %zu", v->n);
+    for (size_t i = 0; i < 2; i++)
+        if ((st = gd_yread_node_qty(&p->r, v->items[i], gd_ypath_index(ip, sizeof ip, q, i), qty,
+                                    flags, &out[i])))
+            return st;
+    return GD_OK;
+}
+
+/* damping: {rayleigh: {alpha, beta} | {ratios: [z1, z2], frequencies: [w1, w2]}} */
+static gd_status parse_damping(gd_mparser *p)
+{
+    gd_yreader *r = &p->r;
+    const gd_ynode *dm = gd_ymap_get(p->root, "damping");
+    if (!dm) return GD_OK;
+    const char *rp = "damping.rayleigh";
+    gd_status st;
+    if ((st = gd_yexpect(r, dm, GD_Y_MAP, "damping")) ||
+        (st = gd_ycheck_keys(r, dm, "damping", DAMPING_KEYS)))
+        return st;
+    const gd_ynode *rm = gd_ymap_get(dm, "rayleigh");
+    if (!rm) return GD_OK;
+    if ((st = gd_yexpect(r, rm, GD_Y_MAP, rp)) || (st = gd_ycheck_keys(r, rm, rp, RAYLEIGH_KEYS)))
+        return st;
+    double alpha = 0, beta = 0;
+    int has_a = 0, has_b = 0, by_ratios = gd_ymap_get(rm, "ratios") != NULL;
+    if ((st = gd_yread_qty(r, rm, "alpha", rp, GD_QTY_ANGULAR_SPEED, GD_YNONNEG, &alpha, &has_a)) ||
+        (st = gd_yread_qty(r, rm, "beta", rp, GD_QTY_TIME, GD_YNONNEG, &beta, &has_b)))
+        return st;
+    if (by_ratios == (has_a || has_b))
+        return gd_yfail(r, rm, rp,
+                        "give `alpha:` and `beta:`, or `ratios: [z1, z2]` with "
+                        "`frequencies: [w1, w2]`",
+                        by_ratios ? "both alpha/beta and ratios given"
+                                  : "neither alpha/beta nor ratios given");
+    if (by_ratios) {
+        double z[2], w[2];
+        if ((st = read_two(p, rm, "ratios", rp, GD_QTY_DIMLESS, GD_YNONNEG, z)) ||
+            (st = read_two(p, rm, "frequencies", rp, GD_QTY_ANGULAR_SPEED, GD_YPOS, w)))
+            return st;
+        if ((st = gd_rayleigh_from_ratios(z[0], z[1], w[0], w[1], &alpha, &beta, r->err))) {
+            gd_ylocate(r->err, r->file, gd_ymap_get(rm, w[0] == w[1] ? "frequencies" : "ratios"));
+            return st;
+        }
+    }
+    if ((st = gd_model_set_rayleigh(p->m, alpha, beta, r->err))) gd_ylocate(r->err, r->file, rm);
+    return st;
+}
+
 static gd_status parse_globals(gd_mparser *p)
 {
     gd_yreader *r = &p->r;
@@ -168,6 +230,19 @@ static gd_status parse_globals(gd_mparser *p)
         }
         if (!mask) return gd_yfail(r, dofs, "dofs", "list at least one DOF, e.g. [rz]", "no DOFs");
         if ((st = gd_model_set_dofs(m, mask, r->err))) return st;
+    }
+    const gd_ynode *limits = gd_ymap_get(p->root, "limits");
+    if (limits) {
+        long max_nodes = 0;
+        int has = 0;
+        if ((st = gd_yexpect(r, limits, GD_Y_MAP, "limits")) ||
+            (st = gd_ycheck_keys(r, limits, "limits", LIMIT_KEYS)) ||
+            (st =
+                 gd_yread_int(r, limits, "max_nodes", "limits", 1, 100000000, 0, &max_nodes, &has)))
+            return st;
+        if (has && (st = gd_model_set_max_nodes(
+                        m, max_nodes, gd_mp_loc(gd_ymap_get(limits, "max_nodes")), r->err)))
+            return st;
     }
     double speed = 0;
     if ((st = gd_yread_qty(r, p->root, "speed", "", GD_QTY_ANGULAR_SPEED, GD_YNONNEG, &speed,
@@ -199,8 +274,9 @@ static gd_status parse(gd_mparser *p)
     if ((st = gd_yread_str(&p->r, p->root, "title", "", NULL, 0, &s, NULL, NULL)) ||
         (st = gd_yread_str(&p->r, p->root, "description", "", NULL, 0, &s, NULL, NULL)) ||
         (st = gd_mp_materials(p)) || (st = gd_mp_shafts(p)) || (st = parse_globals(p)) ||
-        (st = gd_mp_disks(p)) || (st = gd_mp_bearings(p)) || (st = gd_mp_springs(p)) ||
-        (st = gd_mp_meshes(p)) || (st = gd_mp_unbalances(p)) || (st = gd_mp_dynamics(p)))
+        (st = parse_damping(p)) || (st = gd_mp_disks(p)) || (st = gd_mp_bearings(p)) ||
+        (st = gd_mp_springs(p)) || (st = gd_mp_meshes(p)) || (st = gd_mp_unbalances(p)) ||
+        (st = gd_mp_dynamics(p)))
         return st;
     return gd_model_finish(p->m, p->r.err);
 }

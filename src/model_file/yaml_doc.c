@@ -4,18 +4,27 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <yaml.h>
 
 /* libyaml's problem, and where the unfinished construct began when it knows. */
 static gd_status syntax_error(yaml_parser_t *p, const char *file, gd_error *err)
 {
+    const char *problem = p->problem ? p->problem : "unknown problem";
+    if (p->error == YAML_READER_ERROR && !strcmp(problem, "input error"))
+        return gd_error_set(err, GD_EIO, file, 0, 0, "", "check the path and permissions",
+                            "cannot read file");
     char ctx[160] = "";
     if (p->context && p->context_mark.line < p->problem_mark.line)
         snprintf(ctx, sizeof ctx, " (%s on line %d)", p->context, (int)p->context_mark.line + 1);
-    return gd_error_set(
-        err, GD_EINPUT, file, (int)p->problem_mark.line + 1, (int)p->problem_mark.column + 1, "",
-        "check indentation, colons, quotes and brackets near this point", "YAML syntax error: %s%s",
-        p->problem ? p->problem : "unknown problem", ctx);
+    /* libyaml's words for a tab where indentation is expected */
+    const char *hint = strstr(problem, "cannot start any token")
+                           ? "YAML indents with spaces, never tabs; or remove a stray character "
+                             "(@, `) that cannot start a value"
+                           : "check indentation, colons, quotes and brackets near this point";
+    return gd_error_set(err, GD_EINPUT, file, (int)p->problem_mark.line + 1,
+                        (int)p->problem_mark.column + 1, "", hint, "YAML syntax error: %s%s",
+                        problem, ctx);
 }
 
 static gd_ynode *node_new(gd_ykind kind, const yaml_mark_t *mark)
@@ -200,6 +209,15 @@ gd_status gd_ydoc_load_file(const char *path, gd_ydoc **out, gd_error *err)
     if (!f)
         return gd_error_set(err, GD_EIO, path, 0, 0, "", "check the path and permissions",
                             "cannot open file: %s", strerror(errno));
+    /* fopen opens a folder too; libyaml would then report a bare "input error" */
+    struct stat sb;
+    if (fstat(fileno(f), &sb) == 0 && !S_ISREG(sb.st_mode) && !S_ISFIFO(sb.st_mode) &&
+        !S_ISCHR(sb.st_mode)) {
+        fclose(f);
+        return gd_error_set(err, GD_EIO, path, 0, 0, "", "give the path of a model file (.yaml)",
+                            S_ISDIR(sb.st_mode) ? "is a folder, not a model file"
+                                                : "is not a regular file");
+    }
     yaml_parser_t p;
     if (!yaml_parser_initialize(&p)) {
         fclose(f);

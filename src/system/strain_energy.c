@@ -30,8 +30,10 @@ static double split_by_dof(const double *K, int n, const double *re, const doubl
     return total;
 }
 
-double gd_system_strain_energy(const gd_system *s, double speed, const double *re, const double *im,
-                               double *by_motion, double *by_component)
+/* The energies by motion, by component (may be NULL) and by both (table, may be NULL:
+ * ncomponents x GD_NMOTIONS, row c). */
+static double energies(const gd_system *s, double speed, const double *re, const double *im,
+                       double *by_motion, double *by_component, double *table)
 {
     const gd_model *m = s->model;
     double total = 0;
@@ -40,6 +42,7 @@ double gd_system_strain_energy(const gd_system *s, double speed, const double *r
     if (by_component)
         for (int c = 0; c < s->ncomponents; c++)
             by_component[c] = 0;
+    if (table) memset(table, 0, (size_t)s->ncomponents * GD_NMOTIONS * sizeof *table);
     for (int e = 0; e < s->ninstances; e++) {
         const gd_element_instance *in = &s->instances[e];
         if (in->component < 0) continue;
@@ -57,10 +60,62 @@ double gd_system_strain_energy(const gd_system *s, double speed, const double *r
             t->matrices(m, in->index, speed, NULL, Kl, NULL, NULL);
             K = Kl;
         }
-        double en = t->strain_energy ? t->strain_energy(m, in->index, K, ur, ui, by_motion)
-                                     : split_by_dof(K, n, ur, ui, t->motion, by_motion);
+        double mo[GD_NMOTIONS] = {0};
+        double en = t->strain_energy ? t->strain_energy(m, in->index, K, ur, ui, mo)
+                                     : split_by_dof(K, n, ur, ui, t->motion, mo);
+        for (int k = 0; k < GD_NMOTIONS; k++) {
+            by_motion[k] += mo[k];
+            if (table) table[(size_t)in->component * GD_NMOTIONS + k] += mo[k];
+        }
         total += en;
         if (by_component) by_component[in->component] += en;
     }
     return total;
+}
+
+double gd_system_strain_energy(const gd_system *s, double speed, const double *re, const double *im,
+                               double *by_motion, double *by_component)
+{
+    return energies(s, speed, re, im, by_motion, by_component, NULL);
+}
+
+double gd_system_strain_energy_table(const gd_system *s, double speed, const double *re,
+                                     const double *im, double *table)
+{
+    double by_motion[GD_NMOTIONS];
+    return energies(s, speed, re, im, by_motion, NULL, table);
+}
+
+int gd_system_component_shafts(const gd_system *s, int c, int shafts[2], double weights[2])
+{
+    const gd_model *m = s->model;
+    int index, nodes[2] = {-1, -1};
+    const char *name;
+    switch (gd_system_component(s, c, &index, &name)) {
+    case GD_COMP_SHAFT:
+        shafts[0] = index;
+        weights[0] = 1;
+        return 1;
+    case GD_COMP_BEARING:
+        nodes[0] = m->bearings[index].node;
+        nodes[1] = m->bearings[index].node2;
+        break;
+    case GD_COMP_SPRING:
+        nodes[0] = m->springs[index].node1;
+        nodes[1] = m->springs[index].node2;
+        break;
+    case GD_COMP_MESH:
+        nodes[0] = m->meshes[index].driver;
+        nodes[1] = m->meshes[index].driven;
+        break;
+    default:
+        return 0;
+    }
+    int n = 0;
+    for (int k = 0; k < 2; k++)
+        if (nodes[k] >= 0) shafts[n++] = m->nodes[nodes[k]].shaft;
+    if (n == 2 && shafts[0] == shafts[1]) n = 1;
+    for (int k = 0; k < n; k++)
+        weights[k] = 1.0 / n;
+    return n;
 }

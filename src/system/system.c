@@ -36,6 +36,19 @@ static void scatter(assembler *as, gd_trip *t, const double *local, int n, const
     }
 }
 
+/* Rayleigh damping (002_...): C += alpha M + beta K on the assembled terms. 0 ok, 1 out
+ * of memory. */
+static int rayleigh(assembler *as)
+{
+    double a = as->m->rayleigh_alpha, b = as->m->rayleigh_beta;
+    int nm = as->M.n, nk = as->K.n;
+    for (int k = 0; k < nm && a != 0; k++)
+        if (gd_trip_add(&as->C, as->M.i[k], as->M.j[k], a * as->M.x[k])) return 1;
+    for (int k = 0; k < nk && b != 0; k++)
+        if (gd_trip_add(&as->C, as->K.i[k], as->K.j[k], b * as->K.x[k])) return 1;
+    return 0;
+}
+
 /* Raw DOF indices (6 x node + dof) of an element's local DOFs; -1 for ground. */
 static int raw_dofs(const gd_element_type *t, const gd_model *m, int i, int *idx)
 {
@@ -152,7 +165,7 @@ gd_status gd_system_build(const gd_model *m, gd_system **out, gd_error *err)
     if (!as.used || !s || !map) goto nomem;
     s->model = m;
     assemble(&as, &s->has_speed_dependent);
-    if (as.fail) goto nomem;
+    if (as.fail || rayleigh(&as)) goto nomem;
 
     int n = 0;
     for (int r = 0; r < raw; r++)

@@ -182,8 +182,8 @@ TEST(check_json)
     cJSON_Delete(o);
     run_free(&r);
 
-    /* --coupling torsional keeps only rz */
-    run(&s, &r, "check " KUMAR_COUPLED " --json --coupling torsional");
+    /* --coupling torsional with --dofs rz: the 4-DOF torsional model */
+    run(&s, &r, "check " KUMAR_COUPLED " --json --coupling torsional --dofs rz");
     CHECK(r.code == 0);
     o = cJSON_Parse(r.out);
     REQUIRE(o);
@@ -418,7 +418,8 @@ TEST(modal_coupling_torsional_matches_torsional_model)
     scratch s;
     REQUIRE(scratch_open(&s));
     double wc[8], wt[8];
-    CHECK(json_omegas(&s, wc, 8, "modal " KUMAR_COUPLED " --json --coupling torsional") == 4);
+    CHECK(json_omegas(&s, wc, 8, "modal " KUMAR_COUPLED " --json --coupling torsional --dofs rz") ==
+          4);
     CHECK(json_omegas(&s, wt, 8, "modal " KUMAR_TORSIONAL " --json") == 4);
     CHECK_ABS(wc[0], 0.0, 1e-6);
     for (int i = 1; i < 4; i++)
@@ -428,8 +429,55 @@ TEST(modal_coupling_torsional_matches_torsional_model)
     CHECK_REL(wt[2], 309.7, 0.01);
     CHECK_REL(wt[3], 25727.92, 0.01);
     run_result r;
-    run(&s, &r, "modal " KUMAR_COUPLED " --coupling torsional");
+    run(&s, &r, "modal " KUMAR_COUPLED " --coupling torsional --dofs rz");
     CHECK(contains(r.out, "4 DOFs"));
+    run_free(&r);
+    scratch_close(&s);
+}
+
+/* --coupling sets the meshes' level only (seed 002: the shafts keep every DOF, the
+ * mesh couples fewer); before, lateral-torsional also dropped z of every node. It
+ * gives what the same level written in the file gives. --dofs removes DOFs. */
+TEST(coupling_keeps_the_dofs_and_dofs_removes_them)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    const char *six = " --set 'dofs=[x, y, z, rx, ry, rz]' --set bearings.*.kzz=1e8";
+    double wc[210], wf[210];
+    char args[512];
+    snprintf(args, sizeof args, "modal " RIG " --json --modes all --coupling lateral-torsional%s",
+             six);
+    int n = json_omegas(&s, wc, 210, args);
+    CHECK(n == 204); /* 34 nodes x 6 */
+    snprintf(args, sizeof args,
+             "modal " RIG " --json --modes all --set meshes.*.coupling=lateral-torsional%s", six);
+    CHECK(json_omegas(&s, wf, 210, args) == 204);
+    for (int i = 0; i < n && i < 204; i++)
+        CHECK_REL(wc[i], wf[i], 1e-12); /* the same model: identical up to rounding */
+    run_result r;
+    run(&s, &r, "check " RIG " --json --coupling torsional%s", six);
+    CHECK(r.code == 0);
+    cJSON *o = cJSON_Parse(r.out);
+    REQUIRE(o);
+    CHECK(jnum(o, "dofs") == 204);
+    cJSON_Delete(o);
+    run_free(&r);
+    run(&s, &r, "check " RIG " --json --dofs x,y,rz%s", six);
+    o = cJSON_Parse(r.out);
+    REQUIRE(o);
+    CHECK(jnum(o, "dofs") == 102);
+    cJSON_Delete(o);
+    run_free(&r);
+    /* errors: an unknown DOF, none of the model's */
+    CHECK(run(&s, &r, "check " KUMAR_COUPLED " --dofs x,q") == 2);
+    CHECK(contains(r.err, "unknown DOF 'q'") && contains(r.err, "--dofs"));
+    CHECK(r.out[0] == '\0');
+    run_free(&r);
+    CHECK(run(&s, &r, "modal " KUMAR_COUPLED " --dofs z,rx") == 2);
+    CHECK(contains(r.err, "none of these DOFs") && contains(r.err, "x,y,rz"));
+    run_free(&r);
+    CHECK(run(&s, &r, "modal " KUMAR_COUPLED " --dofs ,") == 2);
+    CHECK(contains(r.err, "no DOFs listed"));
     run_free(&r);
     scratch_close(&s);
 }
@@ -777,7 +825,8 @@ TEST(error_run_writes_nothing_into_out)
 RUN_TESTS(T(help_lists_commands), T(unknown_command), T(check_every_example), T(check_json),
           T(modal_table_kumar_coupled), T(modal_json_kumar_coupled_matches_paper),
           T(modal_speed_with_units), T(modal_modes_count), T(modal_undamped_and_damped),
-          T(modal_coupling_torsional_matches_torsional_model), T(modal_out_writes_csv),
+          T(modal_coupling_torsional_matches_torsional_model),
+          T(coupling_keeps_the_dofs_and_dofs_removes_them), T(modal_out_writes_csv),
           T(error_missing_file), T(error_bad_model_names_file_and_line),
           T(error_unknown_option_and_missing_argument), T(error_bad_speed), T(error_bad_modes),
           T(error_bad_coupling), T(modal_method_option), T(error_undamped_with_damped),

@@ -307,7 +307,7 @@ TEST(unbalance_errors)
         const char *model, *args, *msg;
     } cases[] = {
         {RIG, "--speeds 0:100:3", "no unbalances"},
-        {KUMAR_COUPLED, "--speeds 0:100:3 --coupling torsional", "not active"},
+        {KUMAR_COUPLED, "--speeds 0:100:3 --dofs rz", "not active"},
         {KUMAR_COUPLED, "--speeds 0:100:0", "COUNT is 0"},
         {KUMAR_COUPLED, "--speeds 0:100:3 --output orbit:nobody", "unknown node"},
         {KUMAR_COUPLED, "--speeds 0:100:3 --output mesh:none", "unknown mesh"},

@@ -404,9 +404,9 @@ TEST(option_errors)
     expect_error(gd_ts_, &s, "cannot open", NULL, "transient examples/none.yaml --duration 1ms");
     expect_error(gd_ts_, &s, "unknown coupling level", NULL,
                  "transient " CHEN " --duration 1ms --coupling x");
-    /* --coupling torsional drops x, y: the damper has nothing to act on */
+    /* --dofs rz drops x, y: the damper has nothing to act on */
     expect_error(gd_ts_, &s, "support_a", "no active x and y",
-                 "transient " CHEN " --duration 1ms --coupling torsional");
+                 "transient " CHEN " --duration 1ms --dofs rz");
     /* a static start needs every free DOF held */
     expect_error(gd_ts_, &s, "singular", NULL, "transient " KUMAR " --duration 1ms --start static");
     /* --out naming a file */

@@ -220,6 +220,7 @@ TEST(errors)
     fx_free(&f);
     REQUIRE(load(&f, "examples/kumar2011_coupled.yaml", NULL));
     gd_model_set_coupling(f.m, GD_COUPLING_TORSIONAL);
+    REQUIRE(gd_model_restrict_dofs(f.m, GD_DOF_BIT(GD_RZ), &err) == GD_OK);
     gd_system_free(f.s);
     REQUIRE(gd_system_build(f.m, &f.s, &err) == GD_OK);
     CHECK(gd_unbalance_response(f.s, &o, &r, &err) == GD_EINPUT);
