@@ -73,12 +73,12 @@ static const char USAGE[] =
     "  --json               one JSON object on stdout\n"
     "  --out DIR            DIR/records.csv (time and one column per record),\n"
     "                       DIR/summary.json, DIR/spectrum.csv with --spectrum\n"
-    "  --quiet              no progress bar (it is shown on stderr only on a terminal)\n"
-    "  --plot FILE          time histories, spectra, orbits, contact states: FILE.svg or\n"
-    "                       FILE.html (interactive, self-contained; docs/plots.md)\n";
+    "  --quiet              no progress bar (it is shown on stderr only on a terminal)\n";
 
 /* (split: C99 guarantees string literals of 4095 characters only) */
 static const char USAGE_POINCARE[] =
+    "  --plot FILE          time histories, spectra, orbits, contact states: FILE.svg or\n"
+    "                       FILE.html (interactive, self-contained; docs/plots.md)\n"
     "  --poincare SRC       stroboscopic (Poincare) samples of the records once per\n"
     "                       revolution of shaft SRC or per tooth-mesh cycle of mesh SRC\n"
     "                       (shaft:NAME or mesh:NAME when a name is both), at the exact\n"
