@@ -33,6 +33,7 @@ static const command COMMANDS[] = {
      "time integration: TVMS, backlash, dampers, cams; records, contact losses, spectra"},
     {"mesh-stiffness", gd_cmd_mesh_stiffness,
      "contact ratios and time-varying mesh stiffness from gear geometry"},
+    {"study", gd_cmd_study, "parameter study: many cases, OpenMP, MPI, shards; CSV and HDF5 table"},
     {"version", cmd_version, "print the version"},
 };
 

@@ -5,6 +5,7 @@ set -euo pipefail
 pkgs=(build-essential cmake pkg-config libyaml-dev libcjson-dev liblapacke-dev
       libopenblas-dev libsuitesparse-dev libsundials-dev libfftw3-dev
       valgrind)
+pkgs+=(libhdf5-dev libopenmpi-dev openmpi-bin)  # geardyn study: results.h5, mpirun (geardyn-mpi)
 missing=()
 for p in "${pkgs[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

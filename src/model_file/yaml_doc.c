@@ -290,6 +290,48 @@ gd_ynode *gd_ynode_copy(const gd_ynode *n, const char *origin)
     return c;
 }
 
+/* A copy that keeps the lines and columns (and the origin of override nodes). */
+static gd_ynode *clone_node(const gd_ynode *n)
+{
+    const char *origin = gd_ynode_origin(n);
+    gd_ynode *c = origin ? over_new(n->kind, n->text, origin) : calloc(1, sizeof *c);
+    if (!c) return NULL;
+    if (!origin) {
+        c->kind = n->kind;
+        c->line = n->line;
+        c->column = n->column;
+        if (n->text && !(c->text = strdup(n->text))) {
+            free(c);
+            return NULL;
+        }
+    }
+    c->quoted = n->quoted;
+    for (size_t i = 0; i < n->n; i++) {
+        gd_ynode *k = n->kind == GD_Y_MAP ? clone_node(n->keys[i]) : NULL;
+        gd_ynode *v = clone_node(n->items[i]);
+        if (!v || (n->kind == GD_Y_MAP && !k) || node_push(c, k, v)) {
+            node_free(k);
+            node_free(v);
+            node_free(c);
+            return NULL;
+        }
+    }
+    return c;
+}
+
+gd_ydoc *gd_ydoc_clone(const gd_ydoc *doc)
+{
+    gd_ydoc *c = calloc(1, sizeof *c);
+    if (!c) return NULL;
+    c->file = strdup(doc->file ? doc->file : "");
+    c->root = doc->root ? clone_node(doc->root) : NULL;
+    if (!c->file || (doc->root && !c->root)) {
+        gd_ydoc_free(c);
+        return NULL;
+    }
+    return c;
+}
+
 int gd_ynode_map_append(gd_ynode *map, gd_ynode *key, gd_ynode *value)
 {
     return node_push(map, key, value);

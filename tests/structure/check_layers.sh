@@ -16,7 +16,8 @@ declare -A level=(
     [system]=5
     [modal]=6
     [campbell]=7 [response]=7 [transient]=7
-    [api]=9
+    [study]=10
+    [api]=11
 )
 # public header -> module
 declare -A header=(
@@ -29,6 +30,7 @@ declare -A header=(
     [modal.h]=modal
     [campbell.h]=campbell [probe.h]=response [frf.h]=response [unbalance.h]=response
     [transient.h]=transient [transient_model.h]=transient
+    [study.h]=study
     [geardyn.h]=api
 )
 
