@@ -91,7 +91,7 @@ static int exec_mpi(char **argv)
 #endif
 
 int gd_study_run_local(const gd_study *s, const char *out, size_t shard, size_t nshards, int resume,
-                     int progress, int nthreads)
+                       int progress, int nthreads)
 {
     gd_study_out o;
     int rc = gd_study_out_open(&o, s, out, shard, nshards, resume, progress);
@@ -112,14 +112,11 @@ int gd_study_run_local(const gd_study *s, const char *out, size_t shard, size_t 
 
 static int study_main(int argc, char **argv)
 {
-    static const struct option opts[] = {{"out", required_argument, 0, 'o'},
-                                         {"resume", no_argument, 0, 'r'},
-                                         {"shard", required_argument, 0, 's'},
-                                         {"merge", required_argument, 0, 'm'},
-                                         {"threads", required_argument, 0, 't'},
-                                         {"quiet", no_argument, 0, 'q'},
-                                         {"help", no_argument, 0, 'h'},
-                                         {0, 0, 0, 0}};
+    static const struct option opts[] = {
+        {"out", required_argument, 0, 'o'},     {"resume", no_argument, 0, 'r'},
+        {"shard", required_argument, 0, 's'},   {"merge", required_argument, 0, 'm'},
+        {"threads", required_argument, 0, 't'}, {"quiet", no_argument, 0, 'q'},
+        {"help", no_argument, 0, 'h'},          {0, 0, 0, 0}};
     const char *cmd = "study", *out = NULL, *merge = NULL;
     int resume = 0, quiet = 0, nthreads = 0, c;
     size_t shard = 0, nshards = 1;
@@ -127,22 +124,34 @@ static int study_main(int argc, char **argv)
     opterr = 0;
     while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
         switch (c) {
-        case 'o': out = optarg; break;
-        case 'r': resume = 1; break;
-        case 'm': merge = optarg; break;
-        case 'q': quiet = 1; break;
+        case 'o':
+            out = optarg;
+            break;
+        case 'r':
+            resume = 1;
+            break;
+        case 'm':
+            merge = optarg;
+            break;
+        case 'q':
+            quiet = 1;
+            break;
         case 's':
             if (parse_shard(optarg, &shard, &nshards)) return GD_EXIT_INPUT;
             break;
         case 't':
             if (gd_cli_parse_threads(cmd, optarg, &nthreads)) return GD_EXIT_INPUT;
             break;
-        case 'h': fputs(USAGE, stdout); return GD_EXIT_OK;
-        default: return gd_cli_option_error(cmd, c, argv, optind);
+        case 'h':
+            fputs(USAGE, stdout);
+            return GD_EXIT_OK;
+        default:
+            return gd_cli_option_error(cmd, c, argv, optind);
         }
     }
     if (optind != argc - 1)
-        return gd_cli_usage_error(cmd, optind >= argc ? "give one STUDY.yaml" : "give one STUDY.yaml, not several");
+        return gd_cli_usage_error(cmd, optind >= argc ? "give one STUDY.yaml"
+                                                      : "give one STUDY.yaml, not several");
     if (merge && (out || resume || nshards > 1))
         return gd_cli_usage_error(cmd, "--merge DIR takes no --out, --resume or --shard");
     const char *file = argv[optind];
@@ -164,8 +173,7 @@ static int study_main(int argc, char **argv)
     openblas_set_num_threads(1);
     int progress = !quiet && isatty(STDERR_FILENO);
     int rc;
-    if (merge)
-        rc = gd_study_merge(s, merge);
+    if (merge) rc = gd_study_merge(s, merge);
 #ifdef GD_WITH_MPI
     else
         rc = gd_study_mpi(s, out, shard, nshards, resume, progress, nthreads);

@@ -13,13 +13,13 @@
 typedef struct gd_study_out {
     const gd_study *s;
     char dir[1024];
-    int fd;               /* journal, O_APPEND */
-    unsigned char *done;  /* per case: in the journal */
+    int fd;                /* journal, O_APPEND */
+    unsigned char *done;   /* per case: in the journal */
     size_t shard, nshards; /* this run does the cases c with c % nshards == shard */
     size_t total, ndone, nfailed, resumed;
-    int progress;          /* draw the progress bar (stderr is a terminal) */
+    int progress; /* draw the progress bar (stderr is a terminal) */
     double t0, last_draw;
-    char *line;            /* scratch for one row */
+    char *line; /* scratch for one row */
     size_t line_size;
 } gd_study_out;
 
@@ -47,8 +47,8 @@ int gd_study_write_hdf5(const gd_study *s, const char *path, char *const *lines,
                         size_t why_size);
 
 /* The cases of this run (shard) over nthreads OpenMP threads; exit code. */
-int gd_study_run_local(const gd_study *s, const char *dir, size_t shard, size_t nshards,
-                       int resume, int progress, int nthreads);
+int gd_study_run_local(const gd_study *s, const char *dir, size_t shard, size_t nshards, int resume,
+                       int progress, int nthreads);
 
 /* The MPI driver (study_mpi.c): rank 0 keeps the folder and hands out cases, the
  * other ranks run them. Exit code. */

@@ -176,11 +176,11 @@ int gd_study_out_open(gd_study_out *o, const gd_study *s, const char *dir, size_
         char why[2048];
         size_t valid = 0;
         unsigned char *failed = calloc(n ? n : 1, 1);
-        if (!lines || !failed ||
-            read_journal(s, journal, lines, &valid, failed, why, sizeof why)) {
+        if (!lines || !failed || read_journal(s, journal, lines, &valid, failed, why, sizeof why)) {
             free(failed);
             free_lines(lines, n);
-            return fail(journal, "start the study again in a new --out", lines ? why : "out of memory");
+            return fail(journal, "start the study again in a new --out",
+                        lines ? why : "out of memory");
         }
         for (size_t c = 0; c < n; c++)
             if (lines[c] && c % nshards == shard) {
@@ -235,7 +235,8 @@ static void draw(gd_study_out *o, int final)
     size_t new_done = o->ndone - o->resumed, left = o->total - o->ndone;
     double rate = t > o->t0 ? (double)new_done / (t - o->t0) : 0;
     double eta = rate > 0 ? (double)left / rate : 0;
-    int width = 30, fill = o->total ? (int)((double)width * (double)o->ndone / (double)o->total) : width;
+    int width = 30,
+        fill = o->total ? (int)((double)width * (double)o->ndone / (double)o->total) : width;
     char bar[64];
     for (int i = 0; i < width; i++)
         bar[i] = i < fill ? '#' : '.';
@@ -314,7 +315,8 @@ int gd_study_out_finish(gd_study_out *o)
     int rc = gd_study_write_results(o->s, o->dir, lines);
     free_lines(lines, n);
     if (!rc)
-        fprintf(stderr, "geardyn study: %zu cases (%zu failed), results in %s/results.csv and .h5\n",
+        fprintf(stderr,
+                "geardyn study: %zu cases (%zu failed), results in %s/results.csv and .h5\n",
                 o->ndone, o->nfailed, o->dir);
     return rc;
 }
@@ -372,7 +374,9 @@ int gd_study_merge(const gd_study *s, const char *dir)
         nfound++;
     }
     closedir(d);
-    if (!rc && !nshards) rc = fail(dir, "run the shards with --shard I/N --out DIR first", "no shard-I-of-N folders here");
+    if (!rc && !nshards)
+        rc = fail(dir, "run the shards with --shard I/N --out DIR first",
+                  "no shard-I-of-N folders here");
     if (!rc && nfound != nshards) {
         char msg[256];
         size_t first = 0;
@@ -390,8 +394,8 @@ int gd_study_merge(const gd_study *s, const char *dir)
         size_t c = 0;
         while (lines[c])
             c++;
-        snprintf(msg, sizeof msg, "%zu cases not finished (the first: case %zu, shard %zu)", missing,
-                 c, c % nshards);
+        snprintf(msg, sizeof msg, "%zu cases not finished (the first: case %zu, shard %zu)",
+                 missing, c, c % nshards);
         rc = fail(dir, "--resume the unfinished shards, then merge", msg);
     }
     if (!rc) {
@@ -402,7 +406,10 @@ int gd_study_merge(const gd_study *s, const char *dir)
             rc = fail(dir, "check the folder's permissions", strerror(errno));
     }
     if (!rc) rc = gd_study_write_results(s, dir, lines);
-    if (!rc) fprintf(stderr, "geardyn study: merged %zu shards, %zu cases, into %s/results.csv and .h5\n", nshards, n, dir);
+    if (!rc)
+        fprintf(stderr,
+                "geardyn study: merged %zu shards, %zu cases, into %s/results.csv and .h5\n",
+                nshards, n, dir);
     free(seen);
     free_lines(lines, n);
     return rc;

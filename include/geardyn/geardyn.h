@@ -51,5 +51,6 @@
 #include "geardyn/transient.h"
 #include "geardyn/transient_model.h"
 #include "geardyn/spectrum.h"
+#include "geardyn/study.h"
 
 #endif

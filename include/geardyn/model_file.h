@@ -67,15 +67,15 @@ GD_API gd_status gd_model_source_model(const gd_model_source *src, const gd_load
                                        gd_model **out, gd_error *err);
 /* As gd_gear_pair_load on the source's file. */
 GD_API gd_status gd_model_source_gear_pair(const gd_model_source *src, const char *mesh_name,
-                                           const gd_load_options *opt,
-                                           gd_gear_pair_geometry *geom, gd_tvms_options *tvms,
-                                           char *mesh_name_out, size_t size, gd_error *err);
+                                           const gd_load_options *opt, gd_gear_pair_geometry *geom,
+                                           gd_tvms_options *tvms, char *mesh_name_out, size_t size,
+                                           gd_error *err);
 /* Whether the override path (PATH of "PATH=VALUE") reaches something in the file:
  * GD_OK, with *adds set when it only names a missing last key that an override would
  * add; or GD_EINPUT naming the part of the path that failed, with what is there as the
  * hint (err->file is "--set PATH"). */
-GD_API gd_status gd_model_source_check_path(const gd_model_source *src, const char *path,
-                                            int *adds, gd_error *err);
+GD_API gd_status gd_model_source_check_path(const gd_model_source *src, const char *path, int *adds,
+                                            gd_error *err);
 /* The file the source was read from. */
 GD_API const char *gd_model_source_file(const gd_model_source *src);
 GD_API void gd_model_source_free(gd_model_source *src);

@@ -11,13 +11,13 @@
 #include "study/study_impl.h"
 
 const gd_study_runner *const gd_study_analysis_table[] = {
-    &gd_study_modal, &gd_study_campbell,       &gd_study_frf,
+    &gd_study_modal,     &gd_study_campbell,       &gd_study_frf,
     &gd_study_unbalance, &gd_study_mesh_stiffness, NULL};
 
 static const char *const *names(void)
 {
-    static const char *const list[] = {"modal", "campbell", "frf", "unbalance", "mesh-stiffness",
-                                       NULL};
+    static const char *const list[] = {"modal",     "campbell",       "frf",
+                                       "unbalance", "mesh-stiffness", NULL};
     return list;
 }
 
@@ -56,8 +56,8 @@ gd_status gd_study_read_sweep(gd_yreader *r, const gd_ynode *map, const char *ke
         gd_yread_int(r, n, "count", path, 1, 1000000, GD_YREQ, &out->count, NULL))
         return GD_EINPUT;
     if (out->count > 1 && !(out->to > out->from))
-        return gd_yfail(r, n, path, "give from < to", "empty range: from %g to %g rad/s",
-                        out->from, out->to);
+        return gd_yfail(r, n, path, "give from < to", "empty range: from %g to %g rad/s", out->from,
+                        out->to);
     return GD_OK;
 }
 
@@ -65,8 +65,9 @@ double *gd_study_sweep_values(const gd_study_sweep *sw)
 {
     double *v = malloc((size_t)sw->count * sizeof *v);
     for (long i = 0; v && i < sw->count; i++)
-        v[i] = sw->count == 1 ? sw->from
-                              : sw->from + (sw->to - sw->from) * (double)i / (double)(sw->count - 1);
+        v[i] = sw->count == 1
+                   ? sw->from
+                   : sw->from + (sw->to - sw->from) * (double)i / (double)(sw->count - 1);
     return v;
 }
 
@@ -94,7 +95,9 @@ gd_status gd_study_probe(const gd_system *sys, const char *text, gd_probe *probe
     } else {
         const char *t = strncmp(text, "node:", 5) ? text : text + 5;
         const char *dot = strrchr(t, '.');
-        if (!dot) return gd_error_set(err, GD_EINPUT, m->file, 0, 0, text, hint, "not a probe: '%s'", text);
+        if (!dot)
+            return gd_error_set(err, GD_EINPUT, m->file, 0, 0, text, hint, "not a probe: '%s'",
+                                text);
         snprintf(node, sizeof node, "%.*s", (int)(dot - t), t);
         dofname = dot + 1;
     }

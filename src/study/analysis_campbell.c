@@ -59,10 +59,18 @@ static gd_status run(const gd_study_input *in, const void *opts, const gd_study_
         const gd_critical_speed *c = k >= 1 && k <= res->ncritical ? &res->critical[k - 1] : NULL;
         double v = NAN;
         switch (req[i].def) {
-        case CRIT_RPM: v = c ? c->speed_rpm : NAN; break;
-        case CRIT_HZ: v = c ? c->frequency_hz : NAN; break;
-        case NCRIT: v = res->ncritical; break;
-        case ONSET: v = res->instability_onset * 30 / M_PI; break;
+        case CRIT_RPM:
+            v = c ? c->speed_rpm : NAN;
+            break;
+        case CRIT_HZ:
+            v = c ? c->frequency_hz : NAN;
+            break;
+        case NCRIT:
+            v = res->ncritical;
+            break;
+        case ONSET:
+            v = res->instability_onset * 30 / M_PI;
+            break;
         }
         values[i] = v;
     }

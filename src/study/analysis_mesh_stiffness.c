@@ -70,15 +70,33 @@ static gd_status run(const gd_study_input *in, const void *opts, const gd_study_
     for (int i = 0; i < nreq; i++) {
         double v = NAN;
         switch (req[i].def) {
-        case MEAN: v = res->mean; break;
-        case MAX: v = res->max; break;
-        case MIN: v = res->min; break;
-        case P2P: v = res->peak_to_peak; break;
-        case CR_T: v = res->geom.contact_ratio_transverse; break;
-        case CR_F: v = res->geom.contact_ratio_face; break;
-        case CR_TOT: v = res->geom.contact_ratio_total; break;
-        case HARM: v = gd_study_kth(res->harmonic_amplitude, res->harmonics, req[i].k); break;
-        case ISO: v = res->iso_mesh_stiffness_alpha; break;
+        case MEAN:
+            v = res->mean;
+            break;
+        case MAX:
+            v = res->max;
+            break;
+        case MIN:
+            v = res->min;
+            break;
+        case P2P:
+            v = res->peak_to_peak;
+            break;
+        case CR_T:
+            v = res->geom.contact_ratio_transverse;
+            break;
+        case CR_F:
+            v = res->geom.contact_ratio_face;
+            break;
+        case CR_TOT:
+            v = res->geom.contact_ratio_total;
+            break;
+        case HARM:
+            v = gd_study_kth(res->harmonic_amplitude, res->harmonics, req[i].k);
+            break;
+        case ISO:
+            v = res->iso_mesh_stiffness_alpha;
+            break;
         }
         values[i] = v;
     }
@@ -86,6 +104,11 @@ static gd_status run(const gd_study_input *in, const void *opts, const gd_study_
     return GD_OK;
 }
 
-const gd_study_runner gd_study_mesh_stiffness = {
-    "mesh-stiffness", 1, KEYS, options, mesh_name, OUTPUTS, sizeof OUTPUTS / sizeof OUTPUTS[0],
-    run};
+const gd_study_runner gd_study_mesh_stiffness = {"mesh-stiffness",
+                                                 1,
+                                                 KEYS,
+                                                 options,
+                                                 mesh_name,
+                                                 OUTPUTS,
+                                                 sizeof OUTPUTS / sizeof OUTPUTS[0],
+                                                 run};

@@ -50,12 +50,24 @@ static gd_status run(const gd_study_input *in, const void *opts, const gd_study_
         const gd_mode *md = k >= 1 && k <= res->nmodes ? &res->modes[k - 1] : NULL;
         double v = NAN;
         switch (req[i].def) {
-        case F_HZ: v = md ? md->frequency_hz : NAN; break;
-        case W_N: v = md ? md->omega_n : NAN; break;
-        case W_D: v = md ? md->omega_d : NAN; break;
-        case ZETA: v = md ? md->damping_ratio : NAN; break;
-        case LOGDEC: v = md ? md->log_decrement : NAN; break;
-        case NMODES: v = res->nmodes; break;
+        case F_HZ:
+            v = md ? md->frequency_hz : NAN;
+            break;
+        case W_N:
+            v = md ? md->omega_n : NAN;
+            break;
+        case W_D:
+            v = md ? md->omega_d : NAN;
+            break;
+        case ZETA:
+            v = md ? md->damping_ratio : NAN;
+            break;
+        case LOGDEC:
+            v = md ? md->log_decrement : NAN;
+            break;
+        case NMODES:
+            v = res->nmodes;
+            break;
         }
         values[i] = v;
     }

@@ -11,15 +11,42 @@
 
 #include "study/study_impl.h"
 
-size_t gd_study_ncases(const gd_study *s) { return s->ncases; }
-int gd_study_nparams(const gd_study *s) { return s->nparams; }
-int gd_study_noutputs(const gd_study *s) { return s->noutputs; }
-const char *gd_study_param_name(const gd_study *s, int p) { return s->params[p].name; }
-const char *gd_study_output_name(const gd_study *s, int o) { return s->out_names[o]; }
-int gd_study_param_numeric(const gd_study *s, int p) { return s->params[p].numeric; }
-const char *gd_study_analysis(const gd_study *s) { return s->analysis->name; }
-const char *gd_study_model_file(const gd_study *s) { return gd_model_source_file(s->src); }
-const char *gd_study_text(const gd_study *s) { return s->text; }
+size_t gd_study_ncases(const gd_study *s)
+{
+    return s->ncases;
+}
+int gd_study_nparams(const gd_study *s)
+{
+    return s->nparams;
+}
+int gd_study_noutputs(const gd_study *s)
+{
+    return s->noutputs;
+}
+const char *gd_study_param_name(const gd_study *s, int p)
+{
+    return s->params[p].name;
+}
+const char *gd_study_output_name(const gd_study *s, int o)
+{
+    return s->out_names[o];
+}
+int gd_study_param_numeric(const gd_study *s, int p)
+{
+    return s->params[p].numeric;
+}
+const char *gd_study_analysis(const gd_study *s)
+{
+    return s->analysis->name;
+}
+const char *gd_study_model_file(const gd_study *s)
+{
+    return gd_model_source_file(s->src);
+}
+const char *gd_study_text(const gd_study *s)
+{
+    return s->text;
+}
 
 gd_status gd_study_row_init(const gd_study *s, gd_study_row *row, gd_error *err)
 {
@@ -44,11 +71,13 @@ const char *gd_study_status_text(gd_status st)
 #if defined(__GNUC__)
 __attribute__((format(printf, 4, 5)))
 #endif
-static void put(char *buf, size_t size, size_t *n, const char *fmt, ...)
+static void
+put(char *buf, size_t size, size_t *n, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    int w = vsnprintf(buf && *n < size ? buf + *n : NULL, buf && *n < size ? size - *n : 0, fmt, ap);
+    int w =
+        vsnprintf(buf && *n < size ? buf + *n : NULL, buf && *n < size ? size - *n : 0, fmt, ap);
     va_end(ap);
     if (w > 0) *n += (size_t)w;
 }
@@ -140,8 +169,7 @@ static gd_status bad(gd_error *err, const char *why)
                         "bad results row: %s", why);
 }
 
-gd_status gd_study_parse_row(const gd_study *s, const char *line, gd_study_row *row,
-                             gd_error *err)
+gd_status gd_study_parse_row(const gd_study *s, const char *line, gd_study_row *row, gd_error *err)
 {
     char f[1100];
     int last = 0;

@@ -38,8 +38,8 @@ static gd_status run_analysis(const gd_study *s, const gd_load_options *opt, dou
     if (a->gear_pair) {
         gd_gear_pair_geometry g;
         gd_tvms_options t;
-        gd_status st = gd_model_source_gear_pair(s->src, a->mesh_name ? a->mesh_name(s->opts) : NULL,
-                                                 opt, &g, &t, NULL, 0, err);
+        gd_status st = gd_model_source_gear_pair(
+            s->src, a->mesh_name ? a->mesh_name(s->opts) : NULL, opt, &g, &t, NULL, 0, err);
         if (st) return st;
         in.geom = &g;
         in.tvms = &t;
@@ -116,7 +116,7 @@ gd_status gd_study_run(const gd_study *s, const size_t *cases, size_t n, int nth
             stopped = stop;
             if (!ok || stopped) continue;
             gd_study_run_case(s, cases[i], &row);
-#pragma omp critical(gd_study_sink)
+#pragma omp critical
             {
                 int again;
 #pragma omp atomic read

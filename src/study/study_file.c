@@ -10,8 +10,8 @@
 
 #include "study/study_impl.h"
 
-static const char *const TOP_KEYS[] = {"title",   "model",  "analysis", "parameters",
-                                       "design",  "samples", "seed",    "outputs", NULL};
+static const char *const TOP_KEYS[] = {"title",   "model", "analysis", "parameters", "design",
+                                       "samples", "seed",  "outputs",  NULL};
 static const char *const PARAM_KEYS[] = {"name", "path", "values", "range", "scale", "unit", NULL};
 static const char *const RANGE_KEYS[] = {"from", "to", "count", "spacing", NULL};
 static const char *const DESIGNS[] = {"factorial", "zip", "random", "latin-hypercube", NULL};
@@ -40,8 +40,10 @@ static char *read_text(const char *path, gd_error *err)
         buf = more;
     }
     fclose(f);
-    if (!buf) gd_error_set(err, GD_ENOMEM, path, 0, 0, "", "", "out of memory");
-    else buf[n] = '\0';
+    if (!buf)
+        gd_error_set(err, GD_ENOMEM, path, 0, 0, "", "", "out of memory");
+    else
+        buf[n] = '\0';
     return buf;
 }
 
@@ -58,8 +60,8 @@ static gd_status plain_number(gd_yreader *r, const gd_ynode *n, const char *fiel
     return GD_OK;
 }
 
-static gd_status read_range(gd_yreader *r, const gd_ynode *map, const char *path,
-                            gd_study_param *p, int sampled)
+static gd_status read_range(gd_yreader *r, const gd_ynode *map, const char *path, gd_study_param *p,
+                            int sampled)
 {
     char f[256];
     if (gd_yexpect(r, map, GD_Y_MAP, path) || gd_ycheck_keys(r, map, path, RANGE_KEYS))
@@ -79,8 +81,7 @@ static gd_status read_range(gd_yreader *r, const gd_ynode *map, const char *path
                         "log range from %g to %g", p->from, p->to);
     long count = 0;
     int has_count = 0;
-    if (gd_yread_int(r, map, "count", path, 0, 100000000L, 0, &count, &has_count))
-        return GD_EINPUT;
+    if (gd_yread_int(r, map, "count", path, 0, 100000000L, 0, &count, &has_count)) return GD_EINPUT;
     if (sampled) {
         if (has_count)
             return gd_yfail(r, gd_ymap_get(map, "count"), gd_ypath_key(f, sizeof f, path, "count"),
@@ -88,8 +89,8 @@ static gd_status read_range(gd_yreader *r, const gd_ynode *map, const char *path
                             "`count`",
                             "count given in a sampled design");
         if (!(p->to > p->from))
-            return gd_yfail(r, map, path, "give from < to", "empty range: from %g, to %g",
-                            p->from, p->to);
+            return gd_yfail(r, map, path, "give from < to", "empty range: from %g, to %g", p->from,
+                            p->to);
         return GD_OK;
     }
     if (!has_count)
@@ -109,7 +110,8 @@ static gd_status read_values(gd_yreader *r, const gd_ynode *list, const char *pa
                              gd_study_param *p)
 {
     if (gd_yexpect(r, list, GD_Y_SEQ, path)) return GD_EINPUT;
-    if (list->n == 0) return gd_yfail(r, list, path, "list at least one value", "empty list of values");
+    if (list->n == 0)
+        return gd_yfail(r, list, path, "list at least one value", "empty list of values");
     p->nvalues = list->n;
     p->values = calloc(list->n, sizeof *p->values);
     if (!p->values) return oom(r);
@@ -197,8 +199,9 @@ static gd_status read_output(gd_yreader *r, gd_study *s, const gd_ynode *n, cons
         char hint[320] = "";
         for (int i = 0; i < a->noutputs; i++) {
             size_t u = strlen(hint);
-            snprintf(hint + u, sizeof hint - u, "%s%s%s", i ? ", " : "outputs of this analysis: ",
-                     a->outputs[i].name, a->outputs[i].indexed ? "[k]" : "");
+            snprintf(hint + u, sizeof hint - u, "%s%s%s",
+                     i ? ", " : "outputs of this analysis: ", a->outputs[i].name,
+                     a->outputs[i].indexed ? "[k]" : "");
         }
         return gd_yfail(r, n, path, hint, "unknown output '%s' of %s", name, a->name);
     }
@@ -315,12 +318,13 @@ static gd_status trial_load(gd_yreader *r, gd_study *s, const gd_ynode *plist, i
         gd_model_free(m);
     }
     if (st != GD_EINPUT || e.line != 0 || strncmp(e.file, "--set", 5)) return GD_OK;
-    char f[64], msg[1024];
-    gd_error_format(&e, msg, sizeof msg);
+    char f[64], g[96], hint[320];
+    snprintf(hint, sizeof hint, "%s", e.hint[0] ? e.hint : "check the path against the model file");
     const gd_ynode *pn = gd_ymap_get(plist->items[p], "path");
-    return gd_yfail(r, pn, gd_ypath_key(f, sizeof f, gd_ypath_index(f, sizeof f, "parameters", p), "path"),
-                    "check the path against the model file (docs/model-format.md)",
-                    "the model does not accept '%s': %s", s->params[p].path, msg);
+    return gd_yfail(
+        r, pn,
+        gd_ypath_key(g, sizeof g, gd_ypath_index(f, sizeof f, "parameters", (size_t)p), "path"),
+        hint, "the model does not accept '%s': %s: %s", s->params[p].path, e.field, e.message);
 }
 
 static gd_status parse(gd_yreader *r, gd_study *s, const gd_ydoc *doc)
@@ -374,7 +378,8 @@ static gd_status parse(gd_yreader *r, gd_study *s, const gd_ydoc *doc)
         for (int i = 1; i < s->nparams; i++)
             if (s->params[i].nvalues != s->params[0].nvalues) {
                 char path[64];
-                return gd_yfail(r, plist->items[i], gd_ypath_index(path, sizeof path, "parameters", (size_t)i),
+                return gd_yfail(r, plist->items[i],
+                                gd_ypath_index(path, sizeof path, "parameters", (size_t)i),
                                 "a zip design takes value i of every parameter: give them all the "
                                 "same number of values, or use `design: factorial`",
                                 "%zu values where parameters[0] has %zu", s->params[i].nvalues,
@@ -386,8 +391,7 @@ static gd_status parse(gd_yreader *r, gd_study *s, const gd_ydoc *doc)
         return gd_yfail(r, root, "outputs", "add `outputs: [...]` naming what to keep",
                         "missing key 'outputs'");
     if (gd_yexpect(r, outs, GD_Y_SEQ, "outputs")) return GD_EINPUT;
-    if (outs->n == 0)
-        return gd_yfail(r, outs, "outputs", "name at least one output", "no outputs");
+    if (outs->n == 0) return gd_yfail(r, outs, "outputs", "name at least one output", "no outputs");
     for (size_t i = 0; i < outs->n; i++) {
         char path[64];
         if (read_output(r, s, outs->items[i], gd_ypath_index(path, sizeof path, "outputs", i)))
@@ -417,10 +421,13 @@ gd_status gd_study_load(const char *path, gd_study **out, gd_error *err)
     *out = NULL;
     gd_study *s = calloc(1, sizeof *s);
     if (!s) return gd_error_set(err, GD_ENOMEM, path, 0, 0, "", "", "out of memory");
+    gd_error local;
+    if (!err) err = &local;
+    gd_error_clear(err);
     gd_status st = GD_ENOMEM;
     gd_ydoc *doc = NULL;
     if (!(s->file = strdup(path)) || !(s->text = read_text(path, err))) {
-        st = s->file ? err && err->status ? err->status : GD_EIO : GD_ENOMEM;
+        st = s->file ? err->status : GD_ENOMEM;
     } else if (!(st = gd_ydoc_load_string(s->text, path, &doc, err))) {
         gd_yreader r = {path, err};
         st = parse(&r, s, doc);

@@ -61,8 +61,8 @@ typedef struct gd_study_runner {
 extern const gd_study_runner *const gd_study_analysis_table[];
 const gd_study_runner *gd_study_find_analysis(const char *name);
 
-extern const gd_study_runner gd_study_modal, gd_study_campbell, gd_study_frf,
-    gd_study_unbalance, gd_study_mesh_stiffness;
+extern const gd_study_runner gd_study_modal, gd_study_campbell, gd_study_frf, gd_study_unbalance,
+    gd_study_mesh_stiffness;
 
 /* k-th of n values (k from 1), NaN past the end. */
 double gd_study_kth(const double *v, int n, int k);

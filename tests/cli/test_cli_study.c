@@ -1,0 +1,250 @@
+/* geardyn study: the same table (byte for byte) with 1 and 2 threads, with mpirun -n 1
+ * and -n 3, and from three shards merged; a run killed halfway and resumed; every error
+ * path exits 2 with a located message and writes nothing. */
+#include <signal.h>
+#include <sys/stat.h>
+#include <time.h>
+
+#include "cli_support.h"
+#include "harness.h"
+
+#define CHEN "examples/studies/chen1998_mesh_stiffness.yaml"
+#define MPIRUN "mpirun --allow-run-as-root --oversubscribe -x OMP_NUM_THREADS=1"
+
+/* Runs a shell command from the source folder; its exit status. */
+static int sh(const char *fmt, ...)
+{
+    char cmd[4096];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(cmd, sizeof cmd, fmt, ap);
+    va_end(ap);
+    char full[4300];
+    snprintf(full, sizeof full, "cd '%s' && %s", GD_SOURCE_DIR, cmd);
+    int st = system(full);
+    return st != -1 && WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+static char *file_in(const scratch *s, const char *name)
+{
+    char p[1024];
+    snprintf(p, sizeof p, "%s/%s", s->dir, name);
+    return read_file(p);
+}
+
+static int same_file(const scratch *s, const char *a, const char *b)
+{
+    char *x = file_in(s, a), *y = file_in(s, b);
+    int same = x && y && !strcmp(x, y);
+    free(x);
+    free(y);
+    return same;
+}
+
+TEST(threads_shards_and_mpi_give_the_same_table)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    run_result r;
+    CHECK(run(&s, &r, "study " CHEN " --out %s/t1 --threads 1", s.dir) == 0);
+    CHECK(contains(r.err, "200 cases (0 failed)"));
+    run_free(&r);
+    char *csv = file_in(&s, "t1/results.csv");
+    REQUIRE(csv);
+    CHECK(count_lines(csv) == 201);
+    CHECK(contains(csv, "case,km_over_ka,omega_n[1],"));
+    free(csv);
+    /* beside the table: the study file as run, the version, the HDF5 file */
+    char *copy = file_in(&s, "t1/study.yaml"), *orig = read_file(GD_SOURCE_DIR "/" CHEN);
+    CHECK(copy && orig && !strcmp(copy, orig));
+    free(copy);
+    free(orig);
+    char *version = file_in(&s, "t1/version.txt");
+    CHECK(version && !strncmp(version, "geardyn ", 8));
+    free(version);
+    char *h5 = file_in(&s, "t1/results.h5");
+    CHECK(h5 && !memcmp(h5, "\x89HDF\r\n\x1a\n", 8));
+    free(h5);
+
+    CHECK(run(&s, &r, "study " CHEN " --out %s/t2 --threads 2", s.dir) == 0);
+    run_free(&r);
+    CHECK(same_file(&s, "t1/results.csv", "t2/results.csv"));
+
+    for (int i = 0; i < 3; i++) {
+        CHECK(run(&s, &r, "study " CHEN " --out %s/sh --shard %d/3 --quiet", s.dir, i) == 0);
+        run_free(&r);
+    }
+    CHECK(run(&s, &r, "study " CHEN " --merge %s/sh", s.dir) == 0);
+    CHECK(contains(r.err, "merged 3 shards, 200 cases"));
+    run_free(&r);
+    CHECK(same_file(&s, "t1/results.csv", "sh/results.csv"));
+
+    CHECK(sh(MPIRUN " -n 1 '%s' study " CHEN " --out %s/m1 >/dev/null 2>&1", GD_CLI_PATH, s.dir) ==
+          0);
+    CHECK(same_file(&s, "t1/results.csv", "m1/results.csv"));
+    CHECK(sh(MPIRUN " -n 3 '%s' study " CHEN " --out %s/m3 >/dev/null 2>&1", GD_CLI_PATH, s.dir) ==
+          0);
+    CHECK(same_file(&s, "t1/results.csv", "m3/results.csv"));
+    scratch_close(&s);
+}
+
+/* The CI test: two ranks on loopback. */
+TEST(mpirun_two_ranks)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    CHECK(sh(MPIRUN " -n 2 --mca btl self,tcp --mca btl_tcp_if_include lo '%s' study "
+                    "examples/studies/rig2018_convergence.yaml --out %s/m2 >/dev/null 2>&1",
+             GD_CLI_PATH, s.dir) == 0);
+    run_result r;
+    CHECK(run(&s, &r, "study examples/studies/rig2018_convergence.yaml --out %s/one", s.dir) == 0);
+    run_free(&r);
+    CHECK(same_file(&s, "one/results.csv", "m2/results.csv"));
+    char *csv = file_in(&s, "m2/results.csv");
+    CHECK(csv && count_lines(csv) == 11);
+    free(csv);
+    scratch_close(&s);
+}
+
+static int journal_rows(const scratch *s, const char *dir)
+{
+    char *j = file_in(s, dir);
+    int n = j ? count_lines(j) - 1 : 0;
+    free(j);
+    return n;
+}
+
+TEST(killed_halfway_and_resumed)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    /* 24 damped modal analyses of the rig (~30 ms each): slow enough to kill in the
+     * middle */
+    char study[512];
+    snprintf(study, sizeof study, "%s/slow.yaml", s.dir);
+    char text[1024];
+    snprintf(text, sizeof text,
+             "model: %s/examples/rig2018.yaml\n"
+             "analysis: {type: modal, kind: damped, speed: 3000 rpm}\n"
+             "parameters:\n  - {path: bearings.*.k, range: {from: 5e7, to: 2e8, count: 24}}\n"
+             "outputs: [\"omega_d[2:4]\", \"zeta[2]\"]\n",
+             GD_SOURCE_DIR);
+    write_file(study, text);
+    run_result r;
+    CHECK(run(&s, &r, "study %s --out %s/whole --threads 2", study, s.dir) == 0);
+    run_free(&r);
+
+    char cmd[2048];
+    snprintf(cmd, sizeof cmd, "cd '%s' && exec '%s' study %s --out %s/cut --threads 1 2>/dev/null",
+             GD_SOURCE_DIR, GD_CLI_PATH, study, s.dir);
+    pid_t pid = fork();
+    REQUIRE(pid >= 0);
+    if (pid == 0) {
+        execl("/bin/sh", "sh", "-c", cmd, (char *)NULL);
+        _exit(127);
+    }
+    char journal[512];
+    snprintf(journal, sizeof journal, "cut/journal.csv");
+    for (int i = 0; i < 20000 && journal_rows(&s, journal) < 4; i++)
+        nanosleep(&(struct timespec){0, 1000000}, NULL);
+    kill(pid, SIGKILL);
+    int st;
+    waitpid(pid, &st, 0);
+    int done = journal_rows(&s, journal);
+    CHECK(WIFSIGNALED(st)); /* killed, not finished */
+    CHECK(done >= 4 && done < 24);
+    char *res = file_in(&s, "cut/results.csv");
+    CHECK(res == NULL); /* no table of a run that did not finish */
+    free(res);
+    /* a line cut by the kill at the end of the journal is dropped on resume */
+    char jp[512];
+    snprintf(jp, sizeof jp, "%s/cut/journal.csv", s.dir);
+    FILE *f = fopen(jp, "a");
+    if (f) {
+        fputs("23,2e8,3,12", f);
+        fclose(f);
+    }
+    CHECK(run(&s, &r, "study %s --out %s/cut --resume --threads 2", study, s.dir) == 0);
+    CHECK(contains(r.err, "24 cases (0 failed)"));
+    run_free(&r);
+    CHECK(same_file(&s, "whole/results.csv", "cut/results.csv"));
+    CHECK(journal_rows(&s, journal) == 24); /* the finished cases were not run again */
+    scratch_close(&s);
+}
+
+/* Exit 2, the words in stderr, and (when dir is given) nothing created there. */
+static void fails(gd_test_state *gd_ts_, scratch *s, const char *dir, const char *words,
+                  const char *args)
+{
+    run_result r;
+    int code = run(s, &r, "%s", args);
+    if (code != 2 || !contains(r.err, words)) {
+        fprintf(stderr, "  geardyn %s: exit %d, expected 2 with '%s'\n%s", args, code, words,
+                r.err);
+        gd_ts_->checks_failed++;
+    }
+    if (dir) {
+        struct stat sb;
+        CHECK(stat(dir, &sb) != 0);
+    }
+    run_free(&r);
+}
+
+TEST(error_paths)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    char out[256], args[1024], bad[512];
+    snprintf(out, sizeof out, "%s/never", s.dir);
+    snprintf(bad, sizeof bad, "%s/bad.yaml", s.dir);
+    write_file(bad, "model: " GD_SOURCE_DIR "/examples/chen1998_gear_pair.yaml\nanalysis: modal\n"
+                    "parameters:\n  - {path: meshes.mesh.stiffnes, values: [1e7]}\n"
+                    "outputs: [nmodes]\n");
+    snprintf(args, sizeof args, "study %s --out %s", bad, out);
+    fails(gd_ts_, &s, out, "bad.yaml:4:", args);
+    write_file(bad,
+               "model: " GD_SOURCE_DIR "/examples/chen1998_gear_pair.yaml\nanalysis: modal\n"
+               "parameters:\n  - {path: meshes.mesh.stiffness, range: {from: 1, to: 2, count: 0}}\n"
+               "outputs: [nmodes]\n");
+    fails(gd_ts_, &s, out, "empty range", args);
+    write_file(bad, "model: " GD_SOURCE_DIR "/examples/chen1998_gear_pair.yaml\nanalysis: modal\n"
+                    "parameters:\n  - {path: meshes.mesh.stiffness, values: [1e7]}\n"
+                    "outputs: [max_force]\n");
+    fails(gd_ts_, &s, out, "unknown output 'max_force'", args);
+    snprintf(args, sizeof args, "study %s/missing.yaml --out %s", s.dir, out);
+    fails(gd_ts_, &s, out, "cannot open study file", args);
+    snprintf(args, sizeof args, "study " CHEN " --out %s --shard 3/3", out);
+    fails(gd_ts_, &s, out, "--shard: '3/3'", args);
+    snprintf(args, sizeof args, "study " CHEN " --out %s --shard slurm", out);
+    fails(gd_ts_, &s, out, "SLURM_ARRAY_TASK_ID", args);
+    snprintf(args, sizeof args, "study " CHEN " --out %s --resume", out);
+    fails(gd_ts_, &s, NULL, "no journal.csv", args);
+    fails(gd_ts_, &s, NULL, "give one STUDY.yaml", "study");
+    snprintf(args, sizeof args, "study " CHEN " --merge %s --out %s", s.dir, out);
+    fails(gd_ts_, &s, out, "--merge DIR takes no", args);
+    snprintf(args, sizeof args, "study " CHEN " --merge %s", s.dir);
+    fails(gd_ts_, &s, NULL, "no shard-I-of-N folders", args);
+    snprintf(args, sizeof args, "study " CHEN " --out %s/bad.yaml", s.dir);
+    fails(gd_ts_, &s, NULL, "not a folder", args);
+
+    /* a finished run: run again without --resume is refused; a changed study on resume
+     * too; a merge with a shard missing names it */
+    run_result r;
+    CHECK(run(&s, &r, "study " CHEN " --out %s/done --shard 1/2", s.dir) == 0);
+    run_free(&r);
+    snprintf(args, sizeof args, "study " CHEN " --out %s/done --shard 1/2", s.dir);
+    fails(gd_ts_, &s, NULL, "holds a study run already", args);
+    snprintf(args, sizeof args,
+             "study examples/studies/rig2018_convergence.yaml --out %s/done --shard 1/2 --resume",
+             s.dir);
+    fails(gd_ts_, &s, NULL, "study file changed", args);
+    snprintf(args, sizeof args, "study " CHEN " --merge %s/done", s.dir);
+    fails(gd_ts_, &s, NULL, "shard-0-of-2 is missing", args);
+    char *merged = file_in(&s, "done/results.csv");
+    CHECK(merged == NULL); /* nothing written by the failed merge */
+    free(merged);
+    scratch_close(&s);
+}
+
+RUN_TESTS(T(threads_shards_and_mpi_give_the_same_table), T(mpirun_two_ranks),
+          T(killed_halfway_and_resumed), T(error_paths))
