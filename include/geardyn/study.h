@@ -43,8 +43,8 @@ GD_API const char *gd_study_case_text(const gd_study *s, size_t c, int p, char *
 GD_API const char *gd_study_analysis(const gd_study *s);
 GD_API const char *gd_study_model_file(const gd_study *s);
 GD_API const char *gd_study_text(const gd_study *s);
-/* The analyses a study can run, NULL-terminated. */
-GD_API const char *const *gd_study_analyses(void);
+/* The name of analysis i (from 0) that a study can run; NULL past the last. */
+GD_API const char *gd_study_analysis_name(int i);
 
 /* One row of the results: a case's outputs, or why it failed. */
 typedef struct gd_study_row {

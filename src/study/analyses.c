@@ -11,19 +11,14 @@
 #include "study/study_impl.h"
 
 const gd_study_runner *const gd_study_analysis_table[] = {
-    &gd_study_modal,     &gd_study_campbell,       &gd_study_frf,
-    &gd_study_unbalance, &gd_study_mesh_stiffness, NULL};
+    &gd_study_modal,     &gd_study_campbell,  &gd_study_frf,
+    &gd_study_unbalance, &gd_study_transient, &gd_study_mesh_stiffness,
+    NULL};
 
-static const char *const *names(void)
+const char *gd_study_analysis_name(int i)
 {
-    static const char *const list[] = {"modal",     "campbell",       "frf",
-                                       "unbalance", "mesh-stiffness", NULL};
-    return list;
-}
-
-const char *const *gd_study_analyses(void)
-{
-    return names();
+    int n = (int)(sizeof gd_study_analysis_table / sizeof gd_study_analysis_table[0]) - 1;
+    return i >= 0 && i < n ? gd_study_analysis_table[i]->name : NULL;
 }
 
 const gd_study_runner *gd_study_find_analysis(const char *name)
@@ -82,7 +77,7 @@ gd_status gd_study_probe(const gd_system *sys, const char *text, gd_probe *probe
     if (!strncmp(text, "mesh:", 5)) {
         int k = gd_model_find_mesh(m, text + 5);
         if (k < 0)
-            return gd_error_set(err, GD_EINPUT, m->file, 0, 0, text, hint, "no mesh named '%s'",
+            return gd_error_set(err, GD_EINPUT, m->file, 0, 0, "", hint, "no mesh named '%s'",
                                 text + 5);
         probe->kind = GD_PROBE_MESH;
         probe->index = k;
@@ -96,18 +91,17 @@ gd_status gd_study_probe(const gd_system *sys, const char *text, gd_probe *probe
         const char *t = strncmp(text, "node:", 5) ? text : text + 5;
         const char *dot = strrchr(t, '.');
         if (!dot)
-            return gd_error_set(err, GD_EINPUT, m->file, 0, 0, text, hint, "not a probe: '%s'",
-                                text);
+            return gd_error_set(err, GD_EINPUT, m->file, 0, 0, "", hint, "not a probe: '%s'", text);
         snprintf(node, sizeof node, "%.*s", (int)(dot - t), t);
         dofname = dot + 1;
     }
     int n = gd_model_find_node(m, node);
     if (n < 0)
-        return gd_error_set(err, GD_EINPUT, m->file, 0, 0, text, hint, "no node named '%s'", node);
+        return gd_error_set(err, GD_EINPUT, m->file, 0, 0, "", hint, "no node named '%s'", node);
     for (int d = 0; d < GD_NODE_DOFS; d++)
         if (!strcmp(dofname, gd_dof_names[d])) *dof = gd_system_dof(sys, n, (gd_dof)d);
     if (*dof < 0)
-        return gd_error_set(err, GD_EINPUT, m->file, 0, 0, text, hint,
+        return gd_error_set(err, GD_EINPUT, m->file, 0, 0, "", hint,
                             "'%s' is not an active DOF of the model", text);
     probe->kind = GD_PROBE_DOF;
     probe->index = *dof;

@@ -43,17 +43,33 @@ static gd_status options(gd_yreader *r, const gd_ynode *map, void **out)
     return GD_OK;
 }
 
+static gd_status probes(const gd_system *sys, const frf_opts *o, gd_probe *pout, int *din,
+                        gd_error *err)
+{
+    gd_probe pin;
+    int dout;
+    gd_status st = gd_study_probe(sys, o->input, &pin, din, err);
+    if (!st && *din < 0)
+        st = gd_error_set(err, GD_EINPUT, "", 0, 0, "analysis.input",
+                          "an input is NODE.DOF or torque:NODE", "'%s' is not a DOF", o->input);
+    if (!st) st = gd_study_probe(sys, o->output, pout, &dout, err);
+    return st;
+}
+
+static gd_status check(const gd_system *sys, const void *opts, gd_error *err)
+{
+    gd_probe pout;
+    int din;
+    return probes(sys, opts, &pout, &din, err);
+}
+
 static gd_status run(const gd_study_input *in, const void *opts, const gd_study_request *req,
                      int nreq, double *values, gd_error *err)
 {
     const frf_opts *o = opts;
-    gd_probe pin, pout;
-    int din, dout;
-    gd_status st = gd_study_probe(in->sys, o->input, &pin, &din, err);
-    if (!st && din < 0)
-        st = gd_error_set(err, GD_EINPUT, "", 0, 0, "analysis.input",
-                          "an input is NODE.DOF or torque:NODE", "'%s' is not a DOF", o->input);
-    if (!st) st = gd_study_probe(in->sys, o->output, &pout, &dout, err);
+    gd_probe pout;
+    int din;
+    gd_status st = probes(in->sys, o, &pout, &din, err);
     if (st) return st;
     double *f = gd_study_sweep_values(&o->freqs);
     if (!f) return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
@@ -89,5 +105,12 @@ static gd_status run(const gd_study_input *in, const void *opts, const gd_study_
     return GD_OK;
 }
 
-const gd_study_runner gd_study_frf = {
-    "frf", 0, KEYS, options, NULL, OUTPUTS, sizeof OUTPUTS / sizeof OUTPUTS[0], run};
+const gd_study_runner gd_study_frf = {.name = "frf",
+                                      .gear_pair = 0,
+                                      .keys = KEYS,
+                                      .options = options,
+                                      .mesh_name = NULL,
+                                      .check = check,
+                                      .outputs = OUTPUTS,
+                                      .noutputs = sizeof OUTPUTS / sizeof OUTPUTS[0],
+                                      .run = run};

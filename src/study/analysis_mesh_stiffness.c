@@ -104,11 +104,12 @@ static gd_status run(const gd_study_input *in, const void *opts, const gd_study_
     return GD_OK;
 }
 
-const gd_study_runner gd_study_mesh_stiffness = {"mesh-stiffness",
-                                                 1,
-                                                 KEYS,
-                                                 options,
-                                                 mesh_name,
-                                                 OUTPUTS,
-                                                 sizeof OUTPUTS / sizeof OUTPUTS[0],
-                                                 run};
+const gd_study_runner gd_study_mesh_stiffness = {.name = "mesh-stiffness",
+                                                 .gear_pair = 1,
+                                                 .keys = KEYS,
+                                                 .options = options,
+                                                 .mesh_name = mesh_name,
+                                                 .check = NULL,
+                                                 .outputs = OUTPUTS,
+                                                 .noutputs = sizeof OUTPUTS / sizeof OUTPUTS[0],
+                                                 .run = run};

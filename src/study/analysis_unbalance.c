@@ -35,6 +35,14 @@ static gd_status options(gd_yreader *r, const gd_ynode *map, void **out)
     return GD_OK;
 }
 
+static gd_status check(const gd_system *sys, const void *opts, gd_error *err)
+{
+    const ub_opts *o = opts;
+    gd_probe p;
+    int dof;
+    return gd_study_probe(sys, o->output, &p, &dof, err);
+}
+
 static gd_status run(const gd_study_input *in, const void *opts, const gd_study_request *req,
                      int nreq, double *values, gd_error *err)
 {
@@ -75,5 +83,12 @@ static gd_status run(const gd_study_input *in, const void *opts, const gd_study_
     return GD_OK;
 }
 
-const gd_study_runner gd_study_unbalance = {
-    "unbalance", 0, KEYS, options, NULL, OUTPUTS, sizeof OUTPUTS / sizeof OUTPUTS[0], run};
+const gd_study_runner gd_study_unbalance = {.name = "unbalance",
+                                            .gear_pair = 0,
+                                            .keys = KEYS,
+                                            .options = options,
+                                            .mesh_name = NULL,
+                                            .check = check,
+                                            .outputs = OUTPUTS,
+                                            .noutputs = sizeof OUTPUTS / sizeof OUTPUTS[0],
+                                            .run = run};

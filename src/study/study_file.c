@@ -327,6 +327,29 @@ static gd_status trial_load(gd_yreader *r, gd_study *s, const gd_ynode *plist, i
         hint, "the model does not accept '%s': %s: %s", s->params[p].path, e.field, e.message);
 }
 
+/* The analysis's options against the model as the file gives it (names of meshes,
+ * nodes): a wrong name would fail every case. */
+static gd_status check_analysis(gd_yreader *r, gd_study *s, const gd_ynode *root)
+{
+    if (!s->analysis->check) return GD_OK;
+    gd_model *m = NULL;
+    gd_system *sys = NULL;
+    gd_error e;
+    gd_status st = gd_model_source_model(s->src, NULL, &m, &e);
+    if (!st) st = gd_system_build(m, &sys, &e);
+    if (st) { /* the model itself is wrong: its own located error */
+        *r->err = e;
+    } else if ((st = s->analysis->check(sys, s->opts, &e))) {
+        char hint[320];
+        snprintf(hint, sizeof hint, "%s", e.hint);
+        st = gd_yfail(r, gd_ymap_get(root, "analysis"), e.field[0] ? e.field : "analysis", hint,
+                      "%s", e.message);
+    }
+    gd_system_free(sys);
+    gd_model_free(m);
+    return st;
+}
+
 static gd_status parse(gd_yreader *r, gd_study *s, const gd_ydoc *doc)
 {
     const gd_ynode *root = doc->root;
@@ -407,6 +430,7 @@ static gd_status parse(gd_yreader *r, gd_study *s, const gd_ydoc *doc)
                 return gd_yfail(r, outs, "outputs", "rename the parameter (`name:`)",
                                 "'%s' is both a parameter and an output", s->out_names[i]);
     }
+    if (check_analysis(r, s, root)) return GD_EINPUT;
     gd_status st = gd_study_make_cases(s, (uint64_t)seed, r->err);
     for (int p = 0; !st && p < s->nparams; p++) {
         int adds = 0;

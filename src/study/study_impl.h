@@ -51,6 +51,9 @@ typedef struct gd_study_runner {
     gd_status (*options)(gd_yreader *r, const gd_ynode *map, void **opts);
     /* The mesh name of a gear-pair analysis's options (NULL: the first with geometry). */
     const char *(*mesh_name)(const void *opts);
+    /* Optional: checks the options against the model as the file gives it (names of
+     * meshes and nodes), before any case runs. */
+    gd_status (*check)(const gd_system *sys, const void *opts, gd_error *err);
     const gd_study_output_def *outputs;
     int noutputs;
     /* Fills values[i] for each request (NaN where it does not exist). */
@@ -62,7 +65,7 @@ extern const gd_study_runner *const gd_study_analysis_table[];
 const gd_study_runner *gd_study_find_analysis(const char *name);
 
 extern const gd_study_runner gd_study_modal, gd_study_campbell, gd_study_frf, gd_study_unbalance,
-    gd_study_mesh_stiffness;
+    gd_study_transient, gd_study_mesh_stiffness;
 
 /* k-th of n values (k from 1), NaN past the end. */
 double gd_study_kth(const double *v, int n, int k);

@@ -190,6 +190,92 @@ TEST(failed_case_is_a_row_and_rows_round_trip)
     gd_study_free(s);
 }
 
+/* Runs case c of the study text into out (n outputs); the case must succeed. */
+static int run_one(gd_test_state *gd_ts_, const char *text, size_t c, double *out, int n)
+{
+    gd_study *s;
+    gd_error err;
+    if (load_text(text, &s, &err)) {
+        char buf[2048];
+        gd_error_format(&err, buf, sizeof buf);
+        fprintf(stderr, "  %s\n", buf);
+        gd_ts_->checks_failed++;
+        return 1;
+    }
+    gd_study_row row;
+    gd_study_row_init(s, &row, &err);
+    gd_study_run_case(s, c, &row);
+    if (row.status) fprintf(stderr, "  case failed: %s\n", row.message);
+    CHECK(row.status == GD_OK && gd_study_noutputs(s) == n);
+    for (int i = 0; i < n; i++)
+        out[i] = row.outputs[i];
+    gd_study_row_free(&row);
+    gd_study_free(s);
+    return 0;
+}
+
+TEST(every_analysis_gives_the_papers_numbers)
+{
+    double v[4];
+    /* Campbell of the MMT 2018 rig: the first critical speed is the 48x tooth-mesh order
+     * crossing the first elastic mode, 126.5 Hz (Table 4): 48 rpm/60 = 126.5 Hz within
+     * the sweep's interpolation (1%) */
+    if (!run_one(gd_ts_,
+                 "model: ../rig2018.yaml\nanalysis: {type: campbell, speeds: {from: 0, to: "
+                 "1200 rpm, count: 25}, modes: 4}\nparameters:\n  - {path: bearings.A1.k, "
+                 "values: [1e8]}\noutputs: [\"critical_speed_rpm[1]\", "
+                 "\"critical_frequency_hz[1]\", ncritical]\n",
+                 0, v, 3)) {
+        CHECK_REL(v[0] * 48 / 60, 126.5, 0.01);
+        CHECK_REL(v[1], 126.5, 0.01);
+        CHECK(v[2] >= 1);
+    }
+    /* FRF of Kumar & Rao 2011 (coupled): the mesh force per motor torque peaks at the
+     * lateral-torsional mesh mode, 23288.5 rad/s = 3706.5 Hz, within the grid spacing
+     * (25000/399 rad/s = 10 Hz) */
+    if (!run_one(gd_ts_,
+                 "model: ../kumar2011_coupled.yaml\nanalysis: {type: frf, input: \"torque:motor\", "
+                 "output: \"mesh:mesh\", frequencies: {from: 1000, to: 26000, count: 400}}\n"
+                 "parameters:\n  - {path: meshes.mesh.damping, values: [0]}\n"
+                 "outputs: [peak_magnitude, peak_frequency_hz]\n",
+                 0, v, 2)) {
+        CHECK_ABS(v[1], 3706.47, 10.1);
+        CHECK(v[0] > 0);
+    }
+    /* Unbalance of Chen 1998 (gear a): the response of gear a across the line of action
+     * peaks at the 1071.6 rad/s mode (Fig. 3 list), within the grid spacing 19.7 rad/s
+     * and the damped shift */
+    if (!run_one(gd_ts_,
+                 "model: ../chen1998_gear_pair.yaml\nanalysis: {type: unbalance, output: gear_a.y, "
+                 "speeds: {from: 100, to: 6000, count: 300}}\nparameters:\n  - {path: "
+                 "meshes.mesh.stiffness, values: [34.098e6]}\noutputs: [peak_amplitude, "
+                 "peak_speed_rpm]\n",
+                 0, v, 2)) {
+        CHECK_ABS(v[1] * M_PI / 30, 1071.6, 25);
+    }
+    /* Transient of the Ducati timing train with m01's backlash 15 um (the example's own
+     * value): the numbers `geardyn transient --revolutions 0.2` prints for m01 (2 contact
+     * losses, 1.74443e-4 s separated, to its 6 digits) */
+    if (!run_one(gd_ts_,
+                 "model: ../ducati_timing_geartrain.yaml\nanalysis: {type: transient, revolutions: "
+                 "0.2, mesh: m01}\nparameters:\n  - {path: meshes.m01.backlash.gap, values: "
+                 "[15 um]}\noutputs: [contact_losses, separated_time, mesh_force_max]\n",
+                 0, v, 3)) {
+        CHECK(v[0] == 2);
+        CHECK_REL(v[1], 1.74443e-4, 1e-5);
+        CHECK(v[2] > 0);
+    }
+    /* Mesh stiffness of 002's pair 1 at 20 deg: the contact ratios of Table 1 */
+    if (!run_one(gd_ts_,
+                 "model: ../helical_pair1.yaml\nanalysis: {type: mesh-stiffness, points: 60, "
+                 "slices: 20}\nparameters:\n  - {path: meshes.pair1.geometry.helix_angle, unit: "
+                 "deg, values: [20]}\noutputs: [contact_ratio_transverse, contact_ratio_face]\n",
+                 0, v, 2)) {
+        CHECK_ABS(v[0], 1.6268, 5e-5);
+        CHECK_ABS(v[1], 1.2442, 5e-5);
+    }
+}
+
 /* Each bad study: GD_EINPUT at the line and field given, with the words expected. */
 static void bad(gd_test_state *gd_ts_, const char *text, int line, const char *field,
                 const char *words)
@@ -263,10 +349,14 @@ TEST(errors_are_located_in_the_study_file)
              "outputs: [nmodes]\nsampels: 3\n",
              h);
     bad(gd_ts_, t, 6, "sampels", "unknown key");
+    snprintf(t, sizeof t, "model: ../chen1998_gear_pair.yaml\nanalysis: {type: frf, input: \"torque:gear_a\",\n"
+                          "  output: \"mesh:nope\", frequencies: {from: 1, to: 2, count: 2}}\n"
+                          "parameters:\n  - {path: meshes.mesh.stiffness, values: [1e7]}\noutputs: [peak_magnitude]\n");
+    bad(gd_ts_, t, 2, "analysis", "no mesh named 'nope'");
     snprintf(t, sizeof t, "model: ../missing.yaml\nanalysis: modal\nparameters: []\noutputs: []\n");
     bad(gd_ts_, t, 1, "model", "cannot read model");
 }
 
-RUN_TESTS(T(chen_fig4_cases_and_one_case_equal_a_direct_load),
+RUN_TESTS(T(chen_fig4_cases_and_one_case_equal_a_direct_load), T(every_analysis_gives_the_papers_numbers),
           T(factorial_zip_random_and_latin_hypercube), T(failed_case_is_a_row_and_rows_round_trip),
           T(errors_are_located_in_the_study_file))
