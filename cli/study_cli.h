@@ -42,7 +42,8 @@ int gd_study_merge(const gd_study *s, const char *dir);
  * DIR/results.csv and DIR/results.h5, each written to a temporary name and renamed.
  * Exit code. */
 int gd_study_write_results(const gd_study *s, const char *dir, char *const *lines);
-/* results.h5: the table as one compound dataset (study_hdf5.c). 0 or -1. */
+/* results.h5: the table as one compound dataset (study_hdf5.c, built as the plugin
+ * geardyn-hdf5.so that study_output.c loads). 0 or -1 with why set. */
 int gd_study_write_hdf5(const gd_study *s, const char *path, char *const *lines, char *why,
                         size_t why_size);
 

@@ -2,8 +2,10 @@
  * and the geardyn version beside the results, a journal of finished cases for
  * --resume, and the table as CSV and HDF5 written at the end. */
 #include <dirent.h>
+#include <dlfcn.h>
 #include <errno.h>
 #include <fcntl.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -271,6 +273,41 @@ int gd_study_out_sink(void *user, const gd_study_row *row)
     return 0;
 }
 
+/* results.h5 through the plugin geardyn-hdf5.so (study_hdf5.c), found beside the
+ * program (build tree) or in LIBDIR/geardyn (installed): loaded only here, so that
+ * HDF5 and the ~40 libraries it pulls in do not slow down every geardyn command. */
+static int write_hdf5(const gd_study *s, const char *path, char *const *lines, char *why,
+                      size_t why_size)
+{
+    char self[PATH_MAX], plugin[PATH_MAX + 64];
+    ssize_t k = readlink("/proc/self/exe", self, sizeof self - 1);
+    if (k <= 0) {
+        snprintf(why, why_size, "cannot find the program's folder");
+        return -1;
+    }
+    self[k] = '\0';
+    char *slash = strrchr(self, '/');
+    if (slash) *slash = '\0';
+    void *h = NULL;
+    const char *const where[] = {"geardyn-hdf5.so", GD_HDF5_PLUGIN};
+    for (size_t i = 0; !h && i < sizeof where / sizeof where[0]; i++) {
+        snprintf(plugin, sizeof plugin, "%s/%s", self, where[i]);
+        /* never closed: HDF5 registers exit handlers */
+        h = dlopen(plugin, RTLD_NOW | RTLD_LOCAL);
+    }
+    if (!h) {
+        snprintf(why, why_size, "cannot load the HDF5 writer %.900s: %.900s", plugin, dlerror());
+        return -1;
+    }
+    int (*write)(const gd_study *, const char *, char *const *, char *, size_t);
+    *(void **)&write = dlsym(h, "gd_study_write_hdf5");
+    if (!write) {
+        snprintf(why, why_size, "%.900s has no gd_study_write_hdf5", plugin);
+        return -1;
+    }
+    return write(s, path, lines, why, why_size);
+}
+
 int gd_study_write_results(const gd_study *s, const char *dir, char *const *lines)
 {
     size_t n = gd_study_ncases(s), hsize = gd_study_format_header(s, NULL, 0) + 1, len = hsize;
@@ -293,7 +330,7 @@ int gd_study_write_results(const gd_study *s, const char *dir, char *const *line
     char path[1200], tmp[1300], why[2048];
     snprintf(path, sizeof path, "%s/results.h5", dir);
     snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    if (gd_study_write_hdf5(s, tmp, lines, why, sizeof why) || rename(tmp, path)) {
+    if (write_hdf5(s, tmp, lines, why, sizeof why) || rename(tmp, path)) {
         remove(tmp);
         return fail(path, "check the folder's permissions and free space", why);
     }
