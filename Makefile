@@ -46,11 +46,17 @@ test-asan: deps
 # The two Campbell sweeps over many speeds take minutes under valgrind; they run in the
 # normal and sanitizer builds.
 VALGRIND_SKIP_test_campbell = -threads_and_methods_agree,critical_speeds
+# The study tests run the analyses of five models (the sweeps take minutes under valgrind)
+# and the CLI through /bin/sh (not followed); the study CLI runs below instead.
+VALGRIND_SKIP_test_study = -every_analysis_gives_the_papers_numbers
+VALGRIND_SKIP_test_cli_study = -threads_shards_and_mpi_give_the_same_table,mpirun_two_ranks,killed_halfway_and_resumed,error_paths
 memcheck: build
 	@set -e; for t in $(BUILD)/test_*; do \
 	    [ -f $$t ] && [ -x $$t ] && [ "$$(head -c 4 $$t | tail -c 3)" = ELF ] || continue; \
 	    name=$$(basename $$t); skip=""; \
 	    [ "$$name" = test_campbell ] && skip="$(VALGRIND_SKIP_test_campbell)"; \
+	    [ "$$name" = test_study ] && skip="$(VALGRIND_SKIP_test_study)"; \
+	    [ "$$name" = test_cli_study ] && skip="$(VALGRIND_SKIP_test_cli_study)"; \
 	    echo "valgrind $$t $$skip"; OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=2 $(VALGRIND) $$t $$skip >/dev/null; done; \
 	out=$$(mktemp -d); \
 	for args in "check examples/rig2018.yaml" "modal examples/rig2018.yaml --speed 3000rpm --json" \
@@ -63,13 +69,16 @@ memcheck: build
 	            "campbell examples/kumar2011_coupled.yaml --speeds 0:3000rpm:4 --json" \
 	            "frf examples/kumar2011_coupled.yaml --input torque:motor --output mesh:mesh --freq 100:26000:20 --json" \
 	            "unbalance examples/chen1998_gear_pair.yaml --speeds 100:6000:8 --json" \
-	            "transient examples/ducati_timing_geartrain.yaml --revolutions 0.2 --quiet --json"; do \
+	            "transient examples/ducati_timing_geartrain.yaml --revolutions 0.2 --quiet --json" \
+	            "study examples/studies/chen1998_mesh_stiffness.yaml --out $$out/st --shard 1/4 --threads 2" \
+	            "study examples/studies/chen1998_mesh_stiffness.yaml --out $$out/st --shard 1/4 --resume"; do \
 	    echo "valgrind geardyn $$args"; OPENBLAS_NUM_THREADS=1 $(VALGRIND) $(BUILD)/geardyn $$args >/dev/null; done; \
 	for args in "modal examples/missing.yaml" "modal examples/rig2018.yaml --speed fast" \
 	            "check examples/helical_pair1.yaml" \
 	            "check examples/rig2018.yaml --set bearings.*.k=-1" \
 	            "check examples/rig2018.yaml --set shafts.nope.name=x" \
-	            "matrices examples/rig2018.yaml --out $$out/bad --set disks.0.mass=-1"; do \
+	            "matrices examples/rig2018.yaml --out $$out/bad --set disks.0.mass=-1" \
+	            "study examples/rig2018.yaml --out $$out/badstudy"; do \
 	    echo "valgrind geardyn $$args (must fail with exit 2)"; \
 	    rc=0; OPENBLAS_NUM_THREADS=1 $(VALGRIND) $(BUILD)/geardyn $$args >/dev/null 2>&1 || rc=$$?; \
 	    [ $$rc -eq 2 ] || { echo "exit $$rc, expected 2"; exit 1; }; done; \

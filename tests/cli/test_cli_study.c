@@ -170,16 +170,16 @@ TEST(killed_halfway_and_resumed)
 {
     scratch s;
     REQUIRE(scratch_open(&s));
-    /* 24 damped modal analyses of the rig (~30 ms each): slow enough to kill in the
-     * middle */
+    /* 60 Campbell sweeps of the gear pair over 300 speeds (~15 ms each): slow enough to
+     * kill in the middle */
     char study[512];
     snprintf(study, sizeof study, "%s/slow.yaml", s.dir);
     char text[1024];
     snprintf(text, sizeof text,
-             "model: %s/examples/rig2018.yaml\n"
-             "analysis: {type: modal, kind: damped, speed: 3000 rpm}\n"
-             "parameters:\n  - {path: bearings.*.k, range: {from: 5e7, to: 2e8, count: 24}}\n"
-             "outputs: [\"omega_d[2:4]\", \"zeta[2]\"]\n",
+             "model: %s/examples/chen1998_gear_pair.yaml\n"
+             "analysis: {type: campbell, speeds: {from: 0, to: 60000 rpm, count: 300}, modes: 6}\n"
+             "parameters:\n  - {path: bearings.*.k, range: {from: 5e6, to: 2e7, count: 60}}\n"
+             "outputs: [ncritical, \"critical_speed_rpm[1:2]\"]\n",
              GD_SOURCE_DIR);
     write_file(study, text);
     run_result r;
@@ -204,7 +204,7 @@ TEST(killed_halfway_and_resumed)
     waitpid(pid, &st, 0);
     int done = journal_rows(&s, journal);
     CHECK(WIFSIGNALED(st)); /* killed, not finished */
-    CHECK(done >= 4 && done < 24);
+    CHECK(done >= 4 && done < 60);
     char *res = file_in(&s, "cut/results.csv");
     CHECK(res == NULL); /* no table of a run that did not finish */
     free(res);
@@ -213,14 +213,14 @@ TEST(killed_halfway_and_resumed)
     snprintf(jp, sizeof jp, "%s/cut/journal.csv", s.dir);
     FILE *f = fopen(jp, "a");
     if (f) {
-        fputs("23,2e8,3,12", f);
+        fputs("59,2e7,3,12", f);
         fclose(f);
     }
     CHECK(run(&s, &r, "study %s --out %s/cut --resume --threads 2", study, s.dir) == 0);
-    CHECK(contains(r.err, "24 cases (0 failed)"));
+    CHECK(contains(r.err, "60 cases (0 failed)"));
     run_free(&r);
     CHECK(same_file(&s, "whole/results.csv", "cut/results.csv"));
-    CHECK(journal_rows(&s, journal) == 24); /* the finished cases were not run again */
+    CHECK(journal_rows(&s, journal) == 60); /* the finished cases were not run again */
     scratch_close(&s);
 }
 

@@ -222,7 +222,7 @@ TEST(every_analysis_gives_the_papers_numbers)
      * the sweep's interpolation (1%) */
     if (!run_one(gd_ts_,
                  "model: ../rig2018.yaml\nanalysis: {type: campbell, speeds: {from: 0, to: "
-                 "1200 rpm, count: 25}, modes: 4}\nparameters:\n  - {path: bearings.A1.k, "
+                 "1200 rpm, count: 13}, modes: 4}\nparameters:\n  - {path: bearings.A1.k, "
                  "values: [1e8]}\noutputs: [\"critical_speed_rpm[1]\", "
                  "\"critical_frequency_hz[1]\", ncritical]\n",
                  0, v, 3)) {
@@ -349,14 +349,16 @@ TEST(errors_are_located_in_the_study_file)
              "outputs: [nmodes]\nsampels: 3\n",
              h);
     bad(gd_ts_, t, 6, "sampels", "unknown key");
-    snprintf(t, sizeof t, "model: ../chen1998_gear_pair.yaml\nanalysis: {type: frf, input: \"torque:gear_a\",\n"
-                          "  output: \"mesh:nope\", frequencies: {from: 1, to: 2, count: 2}}\n"
-                          "parameters:\n  - {path: meshes.mesh.stiffness, values: [1e7]}\noutputs: [peak_magnitude]\n");
+    snprintf(t, sizeof t,
+             "model: ../chen1998_gear_pair.yaml\nanalysis: {type: frf, input: \"torque:gear_a\",\n"
+             "  output: \"mesh:nope\", frequencies: {from: 1, to: 2, count: 2}}\n"
+             "parameters:\n  - {path: meshes.mesh.stiffness, values: [1e7]}\noutputs: "
+             "[peak_magnitude]\n");
     bad(gd_ts_, t, 2, "analysis", "no mesh named 'nope'");
     snprintf(t, sizeof t, "model: ../missing.yaml\nanalysis: modal\nparameters: []\noutputs: []\n");
     bad(gd_ts_, t, 1, "model", "cannot read model");
 }
 
-RUN_TESTS(T(chen_fig4_cases_and_one_case_equal_a_direct_load), T(every_analysis_gives_the_papers_numbers),
-          T(factorial_zip_random_and_latin_hypercube), T(failed_case_is_a_row_and_rows_round_trip),
-          T(errors_are_located_in_the_study_file))
+RUN_TESTS(T(chen_fig4_cases_and_one_case_equal_a_direct_load),
+          T(every_analysis_gives_the_papers_numbers), T(factorial_zip_random_and_latin_hypercube),
+          T(failed_case_is_a_row_and_rows_round_trip), T(errors_are_located_in_the_study_file))
