@@ -11,9 +11,8 @@
 #include "study/study_impl.h"
 
 const gd_study_runner *const gd_study_analysis_table[] = {
-    &gd_study_modal,     &gd_study_campbell,  &gd_study_frf,
-    &gd_study_unbalance, &gd_study_transient, &gd_study_mesh_stiffness,
-    NULL};
+    &gd_study_modal,     &gd_study_campbell,       &gd_study_frf, &gd_study_unbalance,
+    &gd_study_transient, &gd_study_mesh_stiffness, NULL};
 
 const char *gd_study_analysis_name(int i)
 {
@@ -26,6 +25,20 @@ const gd_study_runner *gd_study_find_analysis(const char *name)
     for (int i = 0; gd_study_analysis_table[i]; i++)
         if (!strcmp(gd_study_analysis_table[i]->name, name)) return gd_study_analysis_table[i];
     return NULL;
+}
+
+long gd_study_peak(const double *re, const double *im, size_t n, double *peak)
+{
+    long at = -1;
+    *peak = NAN;
+    for (size_t k = 0; k < n; k++) {
+        double mag = hypot(re[k], im[k]);
+        if (at < 0 ? !isnan(mag) : mag > *peak) {
+            *peak = mag;
+            at = (long)k;
+        }
+    }
+    return at;
 }
 
 double gd_study_kth(const double *v, int n, int k)

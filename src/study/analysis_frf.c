@@ -90,26 +90,19 @@ static gd_status run(const gd_study_input *in, const void *opts, const gd_study_
         free(f);
         return st;
     }
-    double peak = -1, at = NAN;
-    for (int k = 0; k < res->nfreq; k++) {
-        double mag = hypot(res->re[k], res->im[k]);
-        if (mag > peak) {
-            peak = mag;
-            at = f[k] / (2 * M_PI);
-        }
-    }
+    double peak;
+    long k = gd_study_peak(res->re, res->im, (size_t)res->nfreq, &peak);
+    double at = k >= 0 ? f[k] / (2 * M_PI) : NAN;
     for (int i = 0; i < nreq; i++)
-        values[i] = req[i].def == PEAK ? (peak >= 0 ? peak : NAN) : at;
+        values[i] = req[i].def == PEAK ? peak : at;
     gd_frf_free(res);
     free(f);
     return GD_OK;
 }
 
 const gd_study_runner gd_study_frf = {.name = "frf",
-                                      .gear_pair = 0,
                                       .keys = KEYS,
                                       .options = options,
-                                      .mesh_name = NULL,
                                       .check = check,
                                       .outputs = OUTPUTS,
                                       .noutputs = sizeof OUTPUTS / sizeof OUTPUTS[0],

@@ -109,7 +109,6 @@ const gd_study_runner gd_study_mesh_stiffness = {.name = "mesh-stiffness",
                                                  .keys = KEYS,
                                                  .options = options,
                                                  .mesh_name = mesh_name,
-                                                 .check = NULL,
                                                  .outputs = OUTPUTS,
                                                  .noutputs = sizeof OUTPUTS / sizeof OUTPUTS[0],
                                                  .run = run};

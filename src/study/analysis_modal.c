@@ -76,11 +76,8 @@ static gd_status run(const gd_study_input *in, const void *opts, const gd_study_
 }
 
 const gd_study_runner gd_study_modal = {.name = "modal",
-                                        .gear_pair = 0,
                                         .keys = KEYS,
                                         .options = options,
-                                        .mesh_name = NULL,
-                                        .check = NULL,
                                         .outputs = OUTPUTS,
                                         .noutputs = sizeof OUTPUTS / sizeof OUTPUTS[0],
                                         .run = run};

@@ -66,28 +66,20 @@ static gd_status run(const gd_study_input *in, const void *opts, const gd_study_
         free(sp);
         return st;
     }
-    double peak = -1, at = NAN;
-    for (int h = 0; h < res->nharmonics; h++)
-        for (int k = 0; k < res->nspeeds; k++) {
-            size_t i = (size_t)h * (size_t)res->nspeeds + (size_t)k;
-            double a = hypot(res->re[i], res->im[i]);
-            if (a > peak) {
-                peak = a;
-                at = sp[k] * 30 / M_PI;
-            }
-        }
+    /* one output: the responses are harmonic-major, [h * nspeeds + s] */
+    double peak;
+    long k = gd_study_peak(res->re, res->im, (size_t)res->nharmonics * (size_t)res->nspeeds, &peak);
+    double at = k >= 0 ? sp[k % res->nspeeds] * 30 / M_PI : NAN;
     for (int i = 0; i < nreq; i++)
-        values[i] = req[i].def == PEAK ? (peak >= 0 ? peak : NAN) : at;
+        values[i] = req[i].def == PEAK ? peak : at;
     gd_unbalance_free(res);
     free(sp);
     return GD_OK;
 }
 
 const gd_study_runner gd_study_unbalance = {.name = "unbalance",
-                                            .gear_pair = 0,
                                             .keys = KEYS,
                                             .options = options,
-                                            .mesh_name = NULL,
                                             .check = check,
                                             .outputs = OUTPUTS,
                                             .noutputs = sizeof OUTPUTS / sizeof OUTPUTS[0],

@@ -67,6 +67,9 @@ const gd_study_runner *gd_study_find_analysis(const char *name);
 extern const gd_study_runner gd_study_modal, gd_study_campbell, gd_study_frf, gd_study_unbalance,
     gd_study_transient, gd_study_mesh_stiffness;
 
+/* The largest |re[k] + i im[k]| of n values into *peak and its k (-1, NaN when all are
+ * NaN). */
+long gd_study_peak(const double *re, const double *im, size_t n, double *peak);
 /* k-th of n values (k from 1), NaN past the end. */
 double gd_study_kth(const double *v, int n, int k);
 

@@ -14,6 +14,16 @@
 
 #define EX GD_SOURCE_DIR "/examples/"
 
+static char *read_text_file(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    char *buf = calloc(1, 1 << 16);
+    if (buf) buf[fread(buf, 1, (1 << 16) - 1, f)] = '\0';
+    fclose(f);
+    return buf;
+}
+
 /* Writes a study next to the examples (its model path is relative to it). */
 static const char *study_file(const char *text)
 {
@@ -188,6 +198,39 @@ TEST(failed_case_is_a_row_and_rows_round_trip)
     gd_study_row_free(&row);
     gd_study_row_free(&back);
     gd_study_free(s);
+
+    /* an error in the model file itself, found in every case, keeps its place in the
+     * file: the parsed document's clone keeps lines and columns */
+    char *model = read_text_file(EX "chen1998_gear_pair.yaml");
+    REQUIRE(model);
+    char *at = strstr(model, "k: 25.5735 MN/m");
+    REQUIRE(at);
+    memcpy(at, "k: -5.5735 MN/m", 15);
+    char mpath[256];
+    snprintf(mpath, sizeof mpath, "%s/examples/studies/.test_model_%d.yaml", GD_SOURCE_DIR,
+             (int)getpid());
+    FILE *f = fopen(mpath, "w");
+    REQUIRE(f);
+    fputs(model, f);
+    fclose(f);
+    free(model);
+    char text[512];
+    snprintf(text, sizeof text,
+             "model: .test_model_%d.yaml\nanalysis: modal\nparameters:\n"
+             "  - {path: meshes.mesh.stiffness, values: [3e7]}\noutputs: [nmodes]\n",
+             (int)getpid());
+    gd_status st = load_text(text, &s, &err);
+    CHECK(st == GD_OK);
+    if (!st) {
+        gd_study_row_init(s, &row, &err);
+        gd_study_run_case(s, 0, &row);
+        CHECK(row.status == GD_EINPUT);
+        CHECK(strstr(row.message, ".test_model_") && strstr(row.message, ".yaml:24:"));
+        if (!strstr(row.message, ".yaml:24:")) fprintf(stderr, "  %s\n", row.message);
+        gd_study_row_free(&row);
+        gd_study_free(s);
+    }
+    remove(mpath);
 }
 
 /* Runs case c of the study text into out (n outputs); the case must succeed. */
