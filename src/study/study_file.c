@@ -396,6 +396,10 @@ static gd_status parse(gd_yreader *r, gd_study *s, const gd_ydoc *doc)
             if (!strcmp(s->params[j].name, s->params[i].name))
                 return gd_yfail(r, plist->items[i], path, "give each parameter its own `name:`",
                                 "two parameters are named '%s'", s->params[i].name);
+        const char *name = s->params[i].name;
+        if (!strcmp(name, "case") || !strcmp(name, "status") || !strcmp(name, "message"))
+            return gd_yfail(r, plist->items[i], path, "give the parameter another `name:`",
+                            "'%s' is a column of the table itself", name);
     }
     if (s->design == GD_DESIGN_ZIP)
         for (int i = 1; i < s->nparams; i++)

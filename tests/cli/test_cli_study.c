@@ -11,7 +11,13 @@
 #include "harness.h"
 
 #define CHEN "examples/studies/chen1998_mesh_stiffness.yaml"
-#define MPIRUN "mpirun --allow-run-as-root --oversubscribe -x OMP_NUM_THREADS=1"
+/* Under the sanitizer build, OpenMPI's own allocations at MPI_Init (freed by nobody, in
+ * plugins it unloads at MPI_Finalize, so LeakSanitizer cannot even name them) would fail
+ * every rank: leak detection is off for the MPI runs only; address and undefined-behaviour
+ * checks stay on. The same study code runs leak-checked without MPI above. */
+#define MPIRUN                                                                                     \
+    "ASAN_OPTIONS=\"${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0\" mpirun --allow-run-as-root "   \
+    "--oversubscribe -x OMP_NUM_THREADS=1 -x ASAN_OPTIONS"
 
 /* Runs a shell command from the source folder; its exit status. */
 static int sh(const char *fmt, ...)
@@ -170,16 +176,18 @@ TEST(killed_halfway_and_resumed)
 {
     scratch s;
     REQUIRE(scratch_open(&s));
-    /* 60 Campbell sweeps of the gear pair over 300 speeds (~15 ms each): slow enough to
-     * kill in the middle */
+    /* Cases in order on one thread: six cheap ones (one element per shaft section), then
+     * 14 damped modal analyses of the rig with 8 (~30 ms each): the kill after 4 rows
+     * lands with 0.4 s of work still to do, whatever the machine's speed */
     char study[512];
     snprintf(study, sizeof study, "%s/slow.yaml", s.dir);
     char text[1024];
     snprintf(text, sizeof text,
-             "model: %s/examples/chen1998_gear_pair.yaml\n"
-             "analysis: {type: campbell, speeds: {from: 0, to: 60000 rpm, count: 300}, modes: 6}\n"
-             "parameters:\n  - {path: bearings.*.k, range: {from: 5e6, to: 2e7, count: 60}}\n"
-             "outputs: [ncritical, \"critical_speed_rpm[1:2]\"]\n",
+             "model: %s/examples/rig2018.yaml\n"
+             "analysis: {type: modal, kind: damped, speed: 3000 rpm}\n"
+             "parameters:\n  - {path: \"shafts.*.elements_per_section\",\n"
+             "     values: [1, 1, 1, 1, 1, 1, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8]}\n"
+             "outputs: [\"omega_d[2:3]\"]\n",
              GD_SOURCE_DIR);
     write_file(study, text);
     run_result r;
@@ -204,7 +212,7 @@ TEST(killed_halfway_and_resumed)
     waitpid(pid, &st, 0);
     int done = journal_rows(&s, journal);
     CHECK(WIFSIGNALED(st)); /* killed, not finished */
-    CHECK(done >= 4 && done < 60);
+    CHECK(done >= 4 && done < 20);
     char *res = file_in(&s, "cut/results.csv");
     CHECK(res == NULL); /* no table of a run that did not finish */
     free(res);
@@ -213,14 +221,14 @@ TEST(killed_halfway_and_resumed)
     snprintf(jp, sizeof jp, "%s/cut/journal.csv", s.dir);
     FILE *f = fopen(jp, "a");
     if (f) {
-        fputs("59,2e7,3,12", f);
+        fputs("19,8,1234.5", f);
         fclose(f);
     }
     CHECK(run(&s, &r, "study %s --out %s/cut --resume --threads 2", study, s.dir) == 0);
-    CHECK(contains(r.err, "60 cases (0 failed)"));
+    CHECK(contains(r.err, "20 cases (0 failed)"));
     run_free(&r);
     CHECK(same_file(&s, "whole/results.csv", "cut/results.csv"));
-    CHECK(journal_rows(&s, journal) == 60); /* the finished cases were not run again */
+    CHECK(journal_rows(&s, journal) == 20); /* the finished cases were not run again */
     scratch_close(&s);
 }
 
