@@ -217,6 +217,7 @@ int gd_study_out_open(gd_study_out *o, const gd_study *s, const char *dir, size_
     o->fd = open(journal, O_WRONLY | O_APPEND);
     if (o->fd < 0) return fail(journal, "check the folder's permissions", strerror(errno));
     o->t0 = now();
+    gd_hdf5_plugin_start(&o->plugin); /* while the cases run */
     return GD_EXIT_OK;
 }
 
@@ -274,42 +275,71 @@ int gd_study_out_sink(void *user, const gd_study_row *row)
 }
 
 /* results.h5 through the plugin geardyn-hdf5.so (study_hdf5.c), found beside the
- * program (build tree) or in LIBDIR/geardyn (installed): loaded only here, so that
- * HDF5 and the ~40 libraries it pulls in do not slow down every geardyn command. */
-static int write_hdf5(const gd_study *s, const char *path, char *const *lines, char *why,
-                      size_t why_size)
+ * program (build tree) or in LIBDIR/geardyn (installed): loaded only for a study, so
+ * that HDF5 and the ~40 libraries it pulls in do not slow down every geardyn command. */
+static void *load_plugin(void *arg)
 {
-    char self[PATH_MAX], plugin[PATH_MAX + 64];
+    gd_hdf5_plugin *p = arg;
+    char self[PATH_MAX], plugin[PATH_MAX + 64] = "geardyn-hdf5.so";
     ssize_t k = readlink("/proc/self/exe", self, sizeof self - 1);
     if (k <= 0) {
-        snprintf(why, why_size, "cannot find the program's folder");
-        return -1;
+        snprintf(p->why, sizeof p->why, "cannot find the program's folder");
+        return NULL;
     }
     self[k] = '\0';
     char *slash = strrchr(self, '/');
     if (slash) *slash = '\0';
-    void *h = NULL;
     const char *const where[] = {"geardyn-hdf5.so", GD_HDF5_PLUGIN};
-    for (size_t i = 0; !h && i < sizeof where / sizeof where[0]; i++) {
+    for (size_t i = 0; !p->handle && i < sizeof where / sizeof where[0]; i++) {
         snprintf(plugin, sizeof plugin, "%s/%s", self, where[i]);
         /* never closed: HDF5 registers exit handlers */
-        h = dlopen(plugin, RTLD_NOW | RTLD_LOCAL);
+        p->handle = dlopen(plugin, RTLD_NOW | RTLD_LOCAL);
     }
-    if (!h) {
-        snprintf(why, why_size, "cannot load the HDF5 writer %.900s: %.900s", plugin, dlerror());
+    if (!p->handle)
+        snprintf(p->why, sizeof p->why, "cannot load the HDF5 writer %.400s: %.400s", plugin,
+                 dlerror());
+    return NULL;
+}
+
+void gd_hdf5_plugin_start(gd_hdf5_plugin *p)
+{
+    memset(p, 0, sizeof *p);
+    p->started = pthread_create(&p->thread, NULL, load_plugin, p) == 0;
+}
+
+/* Waits for (or does) the loading; the handle or NULL. */
+static void *plugin_wait(gd_hdf5_plugin *p)
+{
+    if (p->started) {
+        pthread_join(p->thread, NULL);
+        p->started = 0;
+    } else if (!p->handle && !p->why[0]) {
+        load_plugin(p);
+    }
+    return p->handle;
+}
+
+static int write_hdf5(gd_hdf5_plugin *p, const gd_study *s, const char *path, char *const *lines,
+                      char *why, size_t why_size)
+{
+    if (!plugin_wait(p)) {
+        snprintf(why, why_size, "%s", p->why);
         return -1;
     }
     int (*write)(const gd_study *, const char *, char *const *, char *, size_t);
-    *(void **)&write = dlsym(h, "gd_study_write_hdf5");
+    *(void **)&write = dlsym(p->handle, "gd_study_write_hdf5");
     if (!write) {
-        snprintf(why, why_size, "%.900s has no gd_study_write_hdf5", plugin);
+        snprintf(why, why_size, "the HDF5 writer has no gd_study_write_hdf5");
         return -1;
     }
     return write(s, path, lines, why, why_size);
 }
 
-int gd_study_write_results(const gd_study *s, const char *dir, char *const *lines)
+int gd_study_write_results(const gd_study *s, const char *dir, char *const *lines,
+                           gd_hdf5_plugin *plugin)
 {
+    gd_hdf5_plugin local = {0};
+    if (!plugin) plugin = &local;
     size_t n = gd_study_ncases(s), hsize = gd_study_format_header(s, NULL, 0) + 1, len = hsize;
     for (size_t c = 0; c < n; c++)
         if (lines[c]) len += strlen(lines[c]);
@@ -330,7 +360,7 @@ int gd_study_write_results(const gd_study *s, const char *dir, char *const *line
     char path[1200], tmp[1300], why[2048];
     snprintf(path, sizeof path, "%s/results.h5", dir);
     snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    if (write_hdf5(s, tmp, lines, why, sizeof why) || rename(tmp, path)) {
+    if (write_hdf5(plugin, s, tmp, lines, why, sizeof why) || rename(tmp, path)) {
         remove(tmp);
         return fail(path, "check the folder's permissions and free space", why);
     }
@@ -349,7 +379,7 @@ int gd_study_out_finish(gd_study_out *o)
         free_lines(lines, n);
         return fail(journal, "", lines ? why : "out of memory");
     }
-    int rc = gd_study_write_results(o->s, o->dir, lines);
+    int rc = gd_study_write_results(o->s, o->dir, lines, &o->plugin);
     free_lines(lines, n);
     if (!rc)
         fprintf(stderr,
@@ -360,6 +390,8 @@ int gd_study_out_finish(gd_study_out *o)
 
 void gd_study_out_close(gd_study_out *o)
 {
+    if (o->plugin.started) pthread_join(o->plugin.thread, NULL);
+    o->plugin.started = 0;
     if (o->fd >= 0) close(o->fd);
     free(o->done);
     free(o->line);
@@ -442,7 +474,7 @@ int gd_study_merge(const gd_study *s, const char *dir)
             write_atomic(dir, "version.txt", version))
             rc = fail(dir, "check the folder's permissions", strerror(errno));
     }
-    if (!rc) rc = gd_study_write_results(s, dir, lines);
+    if (!rc) rc = gd_study_write_results(s, dir, lines, NULL);
     if (!rc)
         fprintf(stderr,
                 "geardyn study: merged %zu shards, %zu cases, into %s/results.csv and .h5\n",
