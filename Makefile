@@ -63,6 +63,10 @@ VALGRIND_SKIP_test_reduce = -reduced_unbalance_response_matches_the_full_model
 VALGRIND_SKIP_test_hostile_input = -model_size_is_bounded_with_the_limit_named,unusable_out_fails_before_writing
 VALGRIND_SKIP_test_directional = -isotropic_rotor_splits_forward_and_backward_with_speed,cli_directional
 VALGRIND_SKIP_test_shaft_energy = -cli_group_shaft
+# The study tests run the analyses of five models (the sweeps take minutes under valgrind)
+# and the CLI through /bin/sh (not followed); the study CLI runs below instead.
+VALGRIND_SKIP_test_study = -every_analysis_gives_the_papers_numbers
+VALGRIND_SKIP_test_cli_study = -threads_shards_and_mpi_give_the_same_table,mpirun_two_ranks,killed_halfway_and_resumed,error_paths
 memcheck: build
 	@set -e; for t in $(BUILD)/test_*; do \
 	    [ -f $$t ] && [ -x $$t ] && [ "$$(head -c 4 $$t | tail -c 3)" = ELF ] || continue; \
@@ -74,6 +78,8 @@ memcheck: build
 	    [ "$$name" = test_hostile_input ] && skip="$(VALGRIND_SKIP_test_hostile_input)"; \
 	    [ "$$name" = test_directional ] && skip="$(VALGRIND_SKIP_test_directional)"; \
 	    [ "$$name" = test_shaft_energy ] && skip="$(VALGRIND_SKIP_test_shaft_energy)"; \
+	    [ "$$name" = test_study ] && skip="$(VALGRIND_SKIP_test_study)"; \
+	    [ "$$name" = test_cli_study ] && skip="$(VALGRIND_SKIP_test_cli_study)"; \
 	    echo "valgrind $$t $$skip"; OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=2 $(VALGRIND) $$t $$skip >/dev/null; done; \
 	out=$$(mktemp -d); \
 	for args in "check examples/rig2018.yaml" "modal examples/rig2018.yaml --speed 3000rpm --json" \
@@ -92,7 +98,9 @@ memcheck: build
 	            "transient examples/chen1998_gear_pair.yaml --sweep-speeds 1000:2000:2 --poincare shaft_a --settle 5rev --points 4 --both-directions --quiet --out $$out/sw" \
 	            "modal examples/chen1998_gear_pair.yaml --plot $$out/modes.svg" \
 	            "report tests/plot/study.yaml --speeds 0:3000rpm:3 --freq-points 20 --out $$out/report.html" \
-	            "modal examples/kumar2011_coupled.yaml --directional --group shaft --dofs x,y,rz --json"; do \
+	            "modal examples/kumar2011_coupled.yaml --directional --group shaft --dofs x,y,rz --json" \
+	            "study examples/studies/chen1998_mesh_stiffness.yaml --out $$out/st --shard 1/4 --threads 2" \
+	            "study examples/studies/chen1998_mesh_stiffness.yaml --out $$out/st --shard 1/4 --resume"; do \
 	    echo "valgrind geardyn $$args"; OPENBLAS_NUM_THREADS=1 $(VALGRIND) $(BUILD)/geardyn $$args >/dev/null; done; \
 	for args in "modal examples/missing.yaml" "modal examples/rig2018.yaml --speed fast" \
 	            "check examples/helical_pair1.yaml" \
@@ -102,7 +110,8 @@ memcheck: build
 	            "transient examples/chen1998_gear_pair.yaml --sweep-speeds 1000:2000:3 --poincare nope" \
 	            "modal examples/chen1998_gear_pair.yaml --plot $$out/modes.png" \
 	            "modal examples/kumar2011_torsional.yaml --modes 1 --plot $$out/rigid.svg" \
-	            "check examples" "check tests/model_file/hostile/element_length_1e-9.yaml"; do \
+	            "check examples" "check tests/model_file/hostile/element_length_1e-9.yaml" \
+	            "study examples/rig2018.yaml --out $$out/badstudy"; do \
 	    echo "valgrind geardyn $$args (must fail with exit 2)"; \
 	    rc=0; OPENBLAS_NUM_THREADS=1 $(VALGRIND) $(BUILD)/geardyn $$args >/dev/null 2>&1 || rc=$$?; \
 	    [ $$rc -eq 2 ] || { echo "exit $$rc, expected 2"; exit 1; }; done; \

@@ -13,6 +13,7 @@ enum { GD_EXIT_OK = 0, GD_EXIT_FAIL = 1, GD_EXIT_INPUT = 2 };
 int gd_cmd_check(int argc, char **argv);
 int gd_cmd_modal(int argc, char **argv);
 int gd_cmd_mesh_stiffness(int argc, char **argv);
+int gd_cmd_study(int argc, char **argv);
 
 /* Prints "geardyn: error: ..." to stderr and returns the exit code for err. */
 int gd_cli_report(const gd_error *err);

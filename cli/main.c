@@ -35,6 +35,7 @@ static const command COMMANDS[] = {
      "contact ratios and time-varying mesh stiffness from gear geometry"},
     {"report", gd_cmd_report,
      "one self-contained HTML report: model drawing, modes, Campbell, FRFs, unbalance, TVMS"},
+    {"study", gd_cmd_study, "parameter study: many cases, OpenMP, MPI, shards; CSV and HDF5 table"},
     {"version", cmd_version, "print the version"},
 };
 

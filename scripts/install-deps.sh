@@ -7,6 +7,7 @@ pkgs=(build-essential cmake pkg-config libyaml-dev libcjson-dev liblapacke-dev
       valgrind)
 pkgs+=(nodejs chromium libxml2-dev); command -v npm >/dev/null || pkgs+=(npm)  # plots: npm installs plotly.js (package.json), Chromium runs the HTML tests, libxml2 parses the SVG in tests; the machine's Node.js may bring its own npm
 pkgs+=(clang libclang-rt-dev libomp-dev)  # make fuzz: libFuzzer harness (fuzz/fuzz_model.c)
+pkgs+=(libhdf5-dev libopenmpi-dev openmpi-bin)  # geardyn study: results.h5, mpirun (geardyn-mpi)
 missing=()
 for p in "${pkgs[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -55,5 +55,6 @@
 #include "geardyn/spectrum.h"
 #include "geardyn/plot.h"
 #include "geardyn/report.h"
+#include "geardyn/study.h"
 
 #endif

@@ -54,4 +54,30 @@ GD_API gd_status gd_gear_pair_load(const char *path, const char *mesh_name,
                                    gd_tvms_options *tvms, char *mesh_name_out, size_t size,
                                    gd_error *err);
 
+/* A model file read and parsed once, then loaded many times with different overrides
+ * (parameter studies, geardyn/study.h): each load works on its own copy of the parsed
+ * document, so the file is not read again and the source is never changed. Threads:
+ * once made, a source is only read; many threads may load from one source at once.
+ * Free it with gd_model_source_free after the last load. */
+typedef struct gd_model_source gd_model_source;
+
+GD_API gd_status gd_model_source_load(const char *path, gd_model_source **out, gd_error *err);
+/* As gd_model_load_opts on the source's file. */
+GD_API gd_status gd_model_source_model(const gd_model_source *src, const gd_load_options *opt,
+                                       gd_model **out, gd_error *err);
+/* As gd_gear_pair_load on the source's file. */
+GD_API gd_status gd_model_source_gear_pair(const gd_model_source *src, const char *mesh_name,
+                                           const gd_load_options *opt, gd_gear_pair_geometry *geom,
+                                           gd_tvms_options *tvms, char *mesh_name_out, size_t size,
+                                           gd_error *err);
+/* Whether the override path (PATH of "PATH=VALUE") reaches something in the file:
+ * GD_OK, with *adds set when it only names a missing last key that an override would
+ * add; or GD_EINPUT naming the part of the path that failed, with what is there as the
+ * hint (err->file is "--set PATH"). */
+GD_API gd_status gd_model_source_check_path(const gd_model_source *src, const char *path, int *adds,
+                                            gd_error *err);
+/* The file the source was read from. */
+GD_API const char *gd_model_source_file(const gd_model_source *src);
+GD_API void gd_model_source_free(gd_model_source *src);
+
 #endif

@@ -7,6 +7,7 @@
 
 #include "geardyn/model_file.h"
 #include "model_file/mesh_geometry_read_impl.h"
+#include "model_file/model_file_impl.h"
 #include "model_file/overrides_impl.h"
 
 /* The mesh entry to use: by name, else the first with a geometry. path receives its
@@ -73,8 +74,16 @@ gd_status gd_gear_pair_load(const char *path, const char *mesh_name, const gd_lo
     gd_ydoc *doc;
     gd_status st = gd_ydoc_load_file(path, &doc, err);
     if (st) return st;
+    return gd_gear_pair_from_ydoc(doc, mesh_name, opt, geom, tvms, mesh_name_out, size, err);
+}
+
+gd_status gd_gear_pair_from_ydoc(gd_ydoc *doc, const char *mesh_name, const gd_load_options *opt,
+                                 gd_gear_pair_geometry *geom, gd_tvms_options *tvms,
+                                 char *mesh_name_out, size_t size, gd_error *err)
+{
+    if (mesh_name_out && size) mesh_name_out[0] = '\0';
     gd_yreader r = {doc->file, err};
-    st = gd_ydoc_apply(doc, opt, err);
+    gd_status st = gd_ydoc_apply(doc, opt, err);
     if (!st) st = read_pair(&r, doc->root, mesh_name, geom, tvms, mesh_name_out, size);
     gd_ydoc_free(doc);
     return st;

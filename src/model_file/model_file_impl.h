@@ -11,6 +11,7 @@
 #define GD_MODEL_PARSE_INTERNAL_H
 #include "geardyn/builder.h"
 #include "geardyn/model.h"
+#include "geardyn/model_file.h"
 #include "model_file/yaml_doc_impl.h"
 
 typedef struct gd_mparser {
@@ -75,5 +76,10 @@ gd_status gd_mp_dynamics(gd_mparser *p);
 
 /* The model described by a loaded YAML document; name stands for the file in messages. */
 gd_status gd_model_from_ydoc(const gd_ydoc *doc, const char *name, gd_model **out, gd_error *err);
+
+/* gd_gear_pair_load on a loaded document, which it takes (frees, whatever happens). */
+gd_status gd_gear_pair_from_ydoc(gd_ydoc *doc, const char *mesh_name, const gd_load_options *opt,
+                                 gd_gear_pair_geometry *geom, gd_tvms_options *tvms,
+                                 char *mesh_name_out, size_t size, gd_error *err);
 
 #endif

@@ -290,20 +290,48 @@ gd_ynode *gd_ynode_new_scalar(const char *text, const char *origin)
     return over_new(GD_Y_SCALAR, text, origin);
 }
 
-gd_ynode *gd_ynode_copy(const gd_ynode *n, const char *origin)
+/* A deep copy of n. With an origin, every node is an override node of that origin;
+ * without, each keeps its own place: its line and column, or its override. */
+static gd_ynode *copy_tree(const gd_ynode *n, const char *origin)
 {
-    gd_ynode *c = over_new(n->kind, n->text, origin);
+    const char *o = origin ? origin : gd_ynode_origin(n);
+    gd_ynode *c = o ? over_new(n->kind, n->text, o) : calloc(1, sizeof *c);
     if (!c) return NULL;
+    if (!o) {
+        *c = (gd_ynode){.kind = n->kind, .line = n->line, .column = n->column};
+        if (n->text && !(c->text = strdup(n->text))) {
+            free(c);
+            return NULL;
+        }
+    }
     c->quoted = n->quoted;
     for (size_t i = 0; i < n->n; i++) {
-        gd_ynode *k = n->kind == GD_Y_MAP ? gd_ynode_copy(n->keys[i], origin) : NULL;
-        gd_ynode *v = gd_ynode_copy(n->items[i], origin);
+        gd_ynode *k = n->kind == GD_Y_MAP ? copy_tree(n->keys[i], origin) : NULL;
+        gd_ynode *v = copy_tree(n->items[i], origin);
         if (!v || (n->kind == GD_Y_MAP && !k) || node_push(c, k, v)) {
             node_free(k);
             node_free(v);
             node_free(c);
             return NULL;
         }
+    }
+    return c;
+}
+
+gd_ynode *gd_ynode_copy(const gd_ynode *n, const char *origin)
+{
+    return copy_tree(n, origin);
+}
+
+gd_ydoc *gd_ydoc_clone(const gd_ydoc *doc)
+{
+    gd_ydoc *c = calloc(1, sizeof *c);
+    if (!c) return NULL;
+    c->file = strdup(doc->file ? doc->file : "");
+    c->root = doc->root ? copy_tree(doc->root, NULL) : NULL;
+    if (!c->file || (doc->root && !c->root)) {
+        gd_ydoc_free(c);
+        return NULL;
     }
     return c;
 }

@@ -36,6 +36,10 @@ gd_status gd_ydoc_load_file(const char *path, gd_ydoc **out, gd_error *err);
 /* name is used in error messages in place of a file name. */
 gd_status gd_ydoc_load_string(const char *text, const char *name, gd_ydoc **out, gd_error *err);
 void gd_ydoc_free(gd_ydoc *doc);
+/* A deep copy with the same lines and columns, for many changed copies of one parsed
+ * document (gd_model_source). Override nodes keep pointing to doc's origins, so a doc
+ * with overrides must outlive its clones. NULL if out of memory. */
+gd_ydoc *gd_ydoc_clone(const gd_ydoc *doc);
 
 /* ---- building and changing nodes (overrides.c) ---- */
 

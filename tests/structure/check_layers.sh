@@ -18,6 +18,7 @@ declare -A level=(
     [campbell]=7 [response]=7 [transient]=7
     [plot]=9
     [report]=10
+    [study]=10
     [api]=11
 )
 # public header -> module
@@ -32,6 +33,7 @@ declare -A header=(
     [campbell.h]=campbell [probe.h]=response [frf.h]=response [unbalance.h]=response
     [transient.h]=transient [transient_model.h]=transient
     [plot.h]=plot [report.h]=report
+    [study.h]=study
     [geardyn.h]=api
 )
 

@@ -1,0 +1,205 @@
+/* geardyn study STUDY.yaml: a parameter study (docs/studies.md), over the OpenMP threads
+ * of one machine, over MPI ranks (geardyn-mpi, which `geardyn` starts in its place under
+ * mpirun), or as one shard of a batch array, joined later by --merge. */
+#include <errno.h>
+#include <getopt.h>
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "cli.h"
+#include "study_cli.h"
+
+void openblas_set_num_threads(int n);
+
+static const char USAGE[] =
+    "usage: geardyn study STUDY.yaml [--out DIR] [--resume] [--shard I/N|slurm]\n"
+    "                               [--threads N] [--quiet]\n"
+    "       geardyn study STUDY.yaml --merge DIR\n"
+    "       mpirun -n N geardyn study STUDY.yaml [--out DIR] [--resume]\n\n"
+    "Runs the cases of a parameter study: the model with each case's parameter values\n"
+    "(--set paths), the analysis, the named scalar outputs. Writes DIR/results.csv and\n"
+    "DIR/results.h5 (one row per case: parameters, outputs, status, message), with\n"
+    "DIR/study.yaml and DIR/version.txt beside them. A failed case is a row with its\n"
+    "error; it never stops the study. Study file format: docs/studies.md.\n\n"
+    "  --out DIR        the run's folder (default: STUDY's name without .yaml, + .out)\n"
+    "  --resume         continue a run that was stopped: finished cases are kept\n"
+    "  --shard I/N      run only the cases c with c mod N = I (0 <= I < N), into\n"
+    "                   DIR/shard-I-of-N; `slurm` takes I and N from\n"
+    "                   SLURM_ARRAY_TASK_ID / SLURM_ARRAY_TASK_COUNT (and _MIN)\n"
+    "  --merge DIR      join DIR/shard-*-of-N into DIR/results.csv and .h5\n"
+    "  --threads N      OpenMP threads (default: all cores; 1 per rank under MPI)\n"
+    "  --quiet          no progress bar (it is drawn only when stderr is a terminal)\n\n"
+    "Exit status: 0 the study ran (failed cases are in the table), 2 bad input or usage,\n"
+    "1 the run itself failed.\n";
+
+static int parse_shard(const char *text, size_t *i, size_t *n)
+{
+    char buf[64];
+    if (!strcmp(text, "slurm")) {
+        const char *id = getenv("SLURM_ARRAY_TASK_ID"), *cnt = getenv("SLURM_ARRAY_TASK_COUNT");
+        const char *min = getenv("SLURM_ARRAY_TASK_MIN");
+        if (!id || !cnt)
+            return gd_cli_usage_error("study", "--shard slurm: SLURM_ARRAY_TASK_ID and "
+                                               "SLURM_ARRAY_TASK_COUNT are not set (not in a job "
+                                               "array?)");
+        snprintf(buf, sizeof buf, "%ld/%s", atol(id) - (min ? atol(min) : 0), cnt);
+        text = buf;
+    }
+    long a, b;
+    char tail;
+    if (sscanf(text, "%ld/%ld%c", &a, &b, &tail) != 2 || b < 1 || a < 0 || a >= b)
+        return gd_cli_usage_error("study", "--shard: '%s' is not I/N with 0 <= I < N", text);
+    *i = (size_t)a;
+    *n = (size_t)b;
+    return 0;
+}
+
+/* Under mpirun (or srun) the plain binary starts geardyn-mpi from its own folder, so
+ * that `mpirun -n N geardyn study ...` works while `geardyn` itself does not load MPI. */
+#ifndef GD_WITH_MPI
+static int under_mpi(void)
+{
+    return getenv("OMPI_COMM_WORLD_SIZE") || getenv("PMI_SIZE") || getenv("PMIX_RANK");
+}
+
+static int exec_mpi(char **argv)
+{
+    char self[PATH_MAX], path[PATH_MAX + 16];
+    ssize_t k = readlink("/proc/self/exe", self, sizeof self - 1);
+    if (k > 0) {
+        self[k] = '\0';
+        char *slash = strrchr(self, '/');
+        if (slash) *slash = '\0';
+        snprintf(path, sizeof path, "%s/geardyn-mpi", self);
+        char *args[256];
+        int n = 0;
+        args[n++] = path;
+        for (char **a = argv; *a && n < 255; a++)
+            args[n++] = *a;
+        args[n] = NULL;
+        execv(path, args);
+    }
+    fprintf(stderr,
+            "geardyn study: running under MPI, but geardyn-mpi was not found beside geardyn (%s)\n"
+            "  build with MPI (libopenmpi-dev) or run without mpirun\n",
+            strerror(errno));
+    return GD_EXIT_INPUT;
+}
+#endif
+
+int gd_study_run_local(const gd_study *s, const char *out, size_t shard, size_t nshards, int resume,
+                       int progress, int nthreads)
+{
+    gd_study_out o;
+    int rc = gd_study_out_open(&o, s, out, shard, nshards, resume, progress);
+    size_t n = 0, *todo = rc ? NULL : gd_study_out_todo(&o, &n);
+    if (!rc && !todo) rc = GD_EXIT_FAIL;
+    gd_error err;
+    if (!rc && gd_study_run(s, todo, n, nthreads, gd_study_out_sink, &o, &err))
+        rc = gd_cli_report(&err);
+    if (!rc && o.ndone != o.total) {
+        fprintf(stderr, "geardyn study: the journal could not be written; --resume later\n");
+        rc = GD_EXIT_FAIL;
+    }
+    if (!rc) rc = gd_study_out_finish(&o);
+    free(todo);
+    gd_study_out_close(&o);
+    return rc;
+}
+
+static int study_main(int argc, char **argv)
+{
+    static const struct option opts[] = {
+        {"out", required_argument, 0, 'o'},     {"resume", no_argument, 0, 'r'},
+        {"shard", required_argument, 0, 's'},   {"merge", required_argument, 0, 'm'},
+        {"threads", required_argument, 0, 't'}, {"quiet", no_argument, 0, 'q'},
+        {"help", no_argument, 0, 'h'},          {0, 0, 0, 0}};
+    const char *cmd = "study", *out = NULL, *merge = NULL;
+    int resume = 0, quiet = 0, nthreads = 0, c;
+    size_t shard = 0, nshards = 1;
+    optind = 1;
+    opterr = 0;
+    while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
+        switch (c) {
+        case 'o':
+            out = optarg;
+            break;
+        case 'r':
+            resume = 1;
+            break;
+        case 'm':
+            merge = optarg;
+            break;
+        case 'q':
+            quiet = 1;
+            break;
+        case 's':
+            if (parse_shard(optarg, &shard, &nshards)) return GD_EXIT_INPUT;
+            break;
+        case 't':
+            if (gd_cli_parse_threads(cmd, optarg, &nthreads)) return GD_EXIT_INPUT;
+            break;
+        case 'h':
+            fputs(USAGE, stdout);
+            return GD_EXIT_OK;
+        default:
+            return gd_cli_option_error(cmd, c, argv, optind);
+        }
+    }
+    if (optind != argc - 1)
+        return gd_cli_usage_error(cmd, optind >= argc ? "give one STUDY.yaml"
+                                                      : "give one STUDY.yaml, not several");
+    if (merge && (out || resume || nshards > 1))
+        return gd_cli_usage_error(cmd, "--merge DIR takes no --out, --resume or --shard");
+    const char *file = argv[optind];
+    char defout[1024];
+    if (!out && !merge) {
+        const char *base = strrchr(file, '/');
+        base = base ? base + 1 : file;
+        size_t len = strlen(base);
+        if (len > 5 && !strcmp(base + len - 5, ".yaml")) len -= 5;
+        snprintf(defout, sizeof defout, "%.*s.out", (int)len, base);
+        out = defout;
+    }
+    gd_error err;
+    gd_error_clear(&err);
+    if (out && gd_outdir_check(out, &err)) return gd_cli_report(&err);
+    gd_study *s;
+    if (gd_study_load(file, &s, &err)) return gd_cli_report(&err);
+    /* each case is single-threaded: the study is parallel over cases */
+    openblas_set_num_threads(1);
+    int progress = !quiet && isatty(STDERR_FILENO);
+    int rc;
+    if (merge) rc = gd_study_merge(s, merge);
+#ifdef GD_WITH_MPI
+    else
+        rc = gd_study_mpi(s, out, shard, nshards, resume, progress, nthreads);
+#else
+    else
+        rc = gd_study_run_local(s, out, shard, nshards, resume, progress, nthreads);
+#endif
+    gd_study_free(s);
+    return rc;
+}
+
+#ifdef GD_WITH_MPI
+int gd_cmd_study(int argc, char **argv)
+{
+    int rank = gd_study_mpi_init();
+    if (rank > 0) { /* rank 0 speaks for all */
+        if (!freopen("/dev/null", "w", stderr) || !freopen("/dev/null", "w", stdout)) return 1;
+    }
+    int rc = study_main(argc, argv);
+    gd_study_mpi_finalize();
+    return rc;
+}
+#else
+int gd_cmd_study(int argc, char **argv)
+{
+    if (under_mpi()) return exec_mpi(argv);
+    return study_main(argc, argv);
+}
+#endif
