@@ -5,6 +5,7 @@ set -euo pipefail
 pkgs=(build-essential cmake pkg-config libyaml-dev libcjson-dev liblapacke-dev
       libopenblas-dev libsuitesparse-dev libsundials-dev libfftw3-dev
       valgrind)
+pkgs+=(python3 python3-dev python3-cffi python3-setuptools python3-numpy python3-scipy python3-pandas python3-pytest)  # Python package (python/, make python, issue 13)
 missing=()
 for p in "${pkgs[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
