@@ -6,6 +6,8 @@ ffi.gc(pointer, gd_X_free): the numpy arrays handed out are views of the C memor
 keep that owner alive, so the C result is freed when the last of them (and the Python
 result object) is collected.
 """
+import math
+
 import numpy as np
 
 from ._native import ffi, lib
@@ -124,8 +126,8 @@ def view(owner, pointer, shape, dtype=np.float64, order="C", writable=False):
     """numpy array of the C memory at pointer (no copy), of the given shape and dtype,
     row-major ("C") or column-major ("F"); owner is kept alive by the array."""
     dtype = np.dtype(dtype)
-    shape = tuple(int(s) for s in np.atleast_1d(shape))
-    count = int(np.prod(shape)) if shape else 1
+    shape = (int(shape),) if isinstance(shape, int) else tuple(int(s) for s in shape)
+    count = math.prod(shape)
     if pointer == ffi.NULL or count == 0:
         return np.zeros(shape, dtype=dtype, order=order)
     address = int(ffi.cast("uintptr_t", pointer))

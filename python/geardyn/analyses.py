@@ -7,6 +7,7 @@ arrays; the *_re/*_im attributes are those views, and the complex properties (sh
 left, H, response) are made from them (a copy: numpy complex arrays interleave).
 """
 import math
+import threading
 
 import numpy as np
 
@@ -65,6 +66,8 @@ def _speed(sysobj, speed):
 class _Result:
     """Base: holds the owner (the ffi.gc'd C result) and the system."""
 
+    __slots__ = ("system", "_owner", "__dict__")
+
     def __init__(self, system, owner):
         self.system = system
         self._owner = owner
@@ -73,9 +76,30 @@ class _Result:
         return _core.view(self._owner, ptr, shape, dtype, order)
 
 
+class _ReImResult(_Result):
+    """A result whose values are complex, stored by the library as separate re and im
+    arrays of shape _shape: the two views, and the complex array made from them (a copy:
+    numpy complex arrays interleave)."""
+
+    @property
+    def re(self):
+        return self._view(self._owner.re, self._shape)
+
+    @property
+    def im(self):
+        return self._view(self._owner.im, self._shape)
+
+    def _complex(self):
+        return self.re + 1j * self.im
+
+
 # ---------------------------------------------------------------- modal
 
-_KINDS = {"auto": "GD_MODAL_AUTO", "undamped": "GD_MODAL_UNDAMPED", "damped": "GD_MODAL_DAMPED"}
+_KINDS = {"auto": lib.GD_MODAL_AUTO, "undamped": lib.GD_MODAL_UNDAMPED,
+          "damped": lib.GD_MODAL_DAMPED}
+# Per-thread argument structs for modal(), reused call after call: the solve of a small
+# model takes a few microseconds, and three allocations per call would be a tenth of it.
+_tls = threading.local()
 
 
 def modal(system, speed=None, modes=None, kind="auto", left=False):
@@ -83,21 +107,25 @@ def modal(system, speed=None, modes=None, kind="auto", left=False):
     modes, "all" or 0 for all; None as the CLI: all up to 30 DOFs, else 20. kind:
     "auto" (damped when the model has damping or gyroscopics), "undamped", "damped".
     left: also the bi-orthonormal left eigenvectors (damped modes)."""
-    opt = ffi.new("gd_modal_options *")
+    try:
+        opt, out, err = _tls.modal
+    except AttributeError:
+        opt, out, err = _tls.modal = (ffi.new("gd_modal_options *"),
+                                      ffi.new("gd_modal_result **"), new_error())
     lib.gd_modal_options_init(opt)
-    opt.speed = _speed(system, speed)
+    opt.speed = system._model_handle.speed if speed is None else \
+        quantity(speed, "speed", "speed")
     if modes is None:
         opt.nmodes = 0 if system.ndof <= 30 else 20
     else:
         opt.nmodes = 0 if modes == "all" else int(modes)
     try:
-        opt.kind = getattr(lib, _KINDS[kind])
+        opt.kind = _KINDS[kind]
     except KeyError:
         raise model_error("kind", "unknown kind '%s'" % kind, "use auto, undamped or damped")
     opt.want_left = 1 if left else 0
-    out = ffi.new("gd_modal_result **")
-    err = new_error()
-    check(lib.gd_modal_solve(system._handle, opt, out, err), err)
+    if lib.gd_modal_solve(system._handle, opt, out, err) != lib.GD_OK:
+        check(err.status, err)
     return ModalResult(system, ffi.gc(out[0], lib.gd_modal_free))
 
 
@@ -108,16 +136,25 @@ class ModalResult(_Result):
     dominant_component. Shapes: shape_re, shape_im (ndof x nmodes views), shapes
     (complex), left (complex or None); energy_by_component (ncomponents x nmodes)."""
 
+    __slots__ = ("_modes",)
+
     def __init__(self, system, owner):
-        super().__init__(system, owner)
-        r = owner
-        self.ndof, self.nmodes = int(r.ndof), int(r.nmodes)
-        self.damped, self.speed = bool(r.damped), float(r.speed)
+        self.system = system
+        self._owner = owner
+        self._modes = None
+
+    ndof = property(lambda self: self._owner.ndof)
+    nmodes = property(lambda self: self._owner.nmodes)
+    damped = property(lambda self: bool(self._owner.damped))
+    speed = property(lambda self: self._owner.speed)
 
     @property
     def modes(self):
-        """Structured array viewing the C gd_mode records (no copy)."""
-        return _core.struct_view(self._owner, self._owner.modes, self.nmodes, _core.MODE_DTYPE)
+        """Structured array viewing the C gd_mode records (no copy), made on first use."""
+        if self._modes is None:
+            self._modes = _core.struct_view(self._owner, self._owner.modes, self.nmodes,
+                                            _core.MODE_DTYPE)
+        return self._modes
 
     def __getattr__(self, name):
         if name in _core.MODE_DTYPE.names:
@@ -227,7 +264,7 @@ def campbell(system, speeds, modes=None, orders=(), shaft_orders=True, mesh_orde
     opt.method = getattr(lib, _METHODS[method])
     if kind not in ("auto", "undamped", "damped"):
         raise model_error("kind", "unknown kind '%s'" % kind, "use auto, undamped or damped")
-    opt.kind = getattr(lib, _KINDS[kind])
+    opt.kind = _KINDS[kind]
     if shift is not None:
         opt.shift = quantity(shift, "speed", "shift")
     if mac_min is not None:
@@ -457,7 +494,7 @@ def frf(system, input, outputs, freqs, speed=None, method="direct", modes=None,
     return res
 
 
-class FrfResult(_Result):
+class FrfResult(_ReImResult):
     """Frequency response (C gd_frf_result). freqs (rad/s); re, im (noutputs x ninputs
     x nfreq views) and H (complex); singular (per frequency). With a directional input:
     forward and backward (noutputs x nfreq complex). series(): the CLI's named outputs."""
@@ -471,6 +508,7 @@ class FrfResult(_Result):
         self.directional = directional
         self.is_force = is_force
         self.nfreq, self.ninputs, self.noutputs = int(r.nfreq), int(r.ninputs), int(r.noutputs)
+        self._shape = (self.noutputs, self.ninputs, self.nfreq)
         self.nsingular, self.modes_summed, self.rigid_body_modes = \
             int(r.nsingular), int(r.nmodes_used), int(r.nrigid)
         if directional:
@@ -487,17 +525,7 @@ class FrfResult(_Result):
     def freqs(self):
         return self._view(self._owner.freqs, self.nfreq)
 
-    @property
-    def re(self):
-        return self._view(self._owner.re, (self.noutputs, self.ninputs, self.nfreq))
-
-    @property
-    def im(self):
-        return self._view(self._owner.im, (self.noutputs, self.ninputs, self.nfreq))
-
-    @property
-    def H(self):
-        return self.re + 1j * self.im
+    H = property(_ReImResult._complex)
 
     @property
     def singular(self):
@@ -599,7 +627,7 @@ def unbalance(system, speeds, outputs=None, orbits=None, threads=0):
                            [system.model.nodes[n] for n in orb])
 
 
-class UnbalanceResult(_Result):
+class UnbalanceResult(_ReImResult):
     """Unbalance response (C gd_unbalance_result). speeds (rad/s); harmonics (list of
     dicts: order, unbalances); re, im (nharmonics x noutputs x nspeeds views) and
     response (complex; x = Re(X e^{i w t})); orbits (nharmonics x norbits x nspeeds
@@ -611,6 +639,7 @@ class UnbalanceResult(_Result):
         self.outputs, self.orbit_nodes = outputs, orbit_nodes
         self.nspeeds, self.noutputs = int(r.nspeeds), int(r.noutputs)
         self.norbits, self.nharmonics = int(r.norbits), int(r.nharmonics)
+        self._shape = (self.nharmonics, self.noutputs, self.nspeeds)
         self.harmonics = [{"order": float(r.harmonics[h].order),
                            "unbalances": int(r.harmonics[h].nunbalances)}
                           for h in range(self.nharmonics)]
@@ -619,17 +648,7 @@ class UnbalanceResult(_Result):
     def speeds(self):
         return self._view(self._owner.speeds, self.nspeeds)
 
-    @property
-    def re(self):
-        return self._view(self._owner.re, (self.nharmonics, self.noutputs, self.nspeeds))
-
-    @property
-    def im(self):
-        return self._view(self._owner.im, (self.nharmonics, self.noutputs, self.nspeeds))
-
-    @property
-    def response(self):
-        return self.re + 1j * self.im
+    response = property(_ReImResult._complex)
 
     @property
     def orbits(self):

@@ -43,6 +43,19 @@ def _keys(item, known, path):
                               "known keys: " + ", ".join(known))
 
 
+def _spec(ctx, kind, d, path, keys):
+    """A gd_<kind>_spec filled by its _init, after checking d's keys, with the name,
+    path and node references (node, to, driver, driven) the spec has."""
+    _keys(d, keys, path)
+    s = ffi.new("gd_%s_spec *" % kind)
+    getattr(lib, "gd_%s_spec_init" % kind)(s)
+    s.path = ctx.s(path, path)
+    for ref in ("name", "node", "to", "driver", "driven"):
+        if ref in keys:
+            setattr(s, ref, ctx.s(d.get(ref), "%s.%s" % (path, ref)))
+    return s
+
+
 def _list(spec, key):
     v = spec.get(key) or []
     if not isinstance(v, list):
@@ -58,10 +71,8 @@ def _pair(value, kind, field):
 
 def _material(m, ctx, name, d):
     path = "materials.%s" % name
-    _keys(d, ("density", "E", "G", "poisson"), path)
-    s = ffi.new("gd_material_spec *")
-    lib.gd_material_spec_init(s)
-    s.name, s.path = ctx.s(name, path), ctx.s(path, path)
+    s = _spec(ctx, "material", d, path, ("density", "E", "G", "poisson"))
+    s.name = ctx.s(name, path)
     s.density = quantity(d.get("density", 0), "density", path + ".density")
     s.E = quantity(d.get("E", 0), "pressure", path + ".E")
     s.G = quantity(d.get("G", 0), "pressure", path + ".G")
@@ -75,7 +86,7 @@ _SHAFT_KEYS = ("name", "material", "sections", "nodes", "elements_per_section",
 
 def _shaft(m, ctx, i, d):
     path = "shafts[%d]" % i
-    _keys(d, _SHAFT_KEYS, path)
+    s = _spec(ctx, "shaft", d, path, _SHAFT_KEYS)
     secs = d.get("sections") or []
     nodes = d.get("nodes") or []
     sec = ffi.new("gd_section_spec[]", max(len(secs), 1))
@@ -98,10 +109,7 @@ def _shaft(m, ctx, i, d):
         st[k].name = ctx.s(x.get("name"), p + ".name")
         st[k].at = quantity(x.get("at", 0), "length", p + ".at")
     ctx.keep += [sec, st]
-    s = ffi.new("gd_shaft_spec *")
-    lib.gd_shaft_spec_init(s)
-    s.name, s.material, s.path = ctx.s(d.get("name"), path), ctx.s(d.get("material"), path), \
-        ctx.s(path, path)
+    s.material = ctx.s(d.get("material"), path + ".material")
     s.nsections, s.sections, s.nstations, s.stations = len(secs), sec, len(nodes), st
     s.elements_per_section = int(d.get("elements_per_section", 0))
     s.max_element_length = quantity(d.get("max_element_length", 0), "length",
@@ -114,11 +122,8 @@ def _shaft(m, ctx, i, d):
 
 def _disk(m, ctx, i, d):
     path = "disks[%d]" % i
-    _keys(d, ("name", "node", "mass", "polar_inertia", "diametral_inertia", "geometry"), path)
-    s = ffi.new("gd_disk_spec *")
-    lib.gd_disk_spec_init(s)
-    s.name, s.node, s.path = ctx.s(d.get("name"), path), ctx.s(d.get("node"), path), \
-        ctx.s(path, path)
+    s = _spec(ctx, "disk", d, path,
+              ("name", "node", "mass", "polar_inertia", "diametral_inertia", "geometry"))
     s.mass = quantity(d.get("mass", 0), "mass", path + ".mass")
     s.polar_inertia = quantity(d.get("polar_inertia", 0), "inertia", path + ".polar_inertia")
     if "diametral_inertia" in d:
@@ -150,15 +155,11 @@ _BEARING = {
 
 def _bearing(m, ctx, i, d):
     path = "bearings[%d]" % i
-    _keys(d, ("name", "node", "to") + tuple(_BEARING), path)
+    s = _spec(ctx, "bearing", d, path, ("name", "node", "to") + tuple(_BEARING))
     for short, longs in (("k", ("kxx", "kyy")), ("c", ("cxx", "cyy"))):
         if short in d and any(k in d for k in longs):
             raise model_error("%s.%s" % (path, short), "'%s' is kxx = kyy: not with %s"
                               % (short, " or ".join(longs)), "give one or the other")
-    s = ffi.new("gd_bearing_spec *")
-    lib.gd_bearing_spec_init(s)
-    s.name, s.node, s.to, s.path = ctx.s(d.get("name"), path), ctx.s(d.get("node"), path), \
-        ctx.s(d.get("to"), path), ctx.s(path, path)
     for key, (fields, kind) in _BEARING.items():
         if key in d:
             v = quantity(d[key], kind, "%s.%s" % (path, key))
@@ -169,11 +170,7 @@ def _bearing(m, ctx, i, d):
 
 def _spring(m, ctx, i, d):
     path = "springs[%d]" % i
-    _keys(d, ("name", "node", "to", "dof", "stiffness", "damping"), path)
-    s = ffi.new("gd_spring_spec *")
-    lib.gd_spring_spec_init(s)
-    s.name, s.node, s.to, s.path = ctx.s(d.get("name"), path), ctx.s(d.get("node"), path), \
-        ctx.s(d.get("to"), path), ctx.s(path, path)
+    s = _spec(ctx, "spring", d, path, ("name", "node", "to", "dof", "stiffness", "damping"))
     dof = d.get("dof", "rz")
     if dof not in _core.DOF_NAMES:
         raise model_error(path + ".dof", "unknown DOF '%s'" % dof, "use x, y, z, rx, ry or rz")
@@ -193,11 +190,7 @@ _MESH_KEYS = ("name", "driver", "driven", "teeth", "base_radius", "pitch_radius"
 
 def _mesh(m, ctx, i, d):
     path = "meshes[%d]" % i
-    _keys(d, _MESH_KEYS, path)
-    s = ffi.new("gd_mesh_spec *")
-    lib.gd_mesh_spec_init(s)
-    s.name, s.path = ctx.s(d.get("name"), path), ctx.s(path, path)
-    s.driver, s.driven = ctx.s(d.get("driver"), path), ctx.s(d.get("driven"), path)
+    s = _spec(ctx, "mesh", d, path, _MESH_KEYS)
     if "teeth" in d:
         t = d["teeth"]
         if not isinstance(t, (list, tuple)) or len(t) != 2:
@@ -225,11 +218,8 @@ def _mesh(m, ctx, i, d):
 
 def _unbalance(m, ctx, i, d):
     path = "unbalances[%d]" % i
-    _keys(d, ("name", "node", "amount", "mass", "eccentricity", "phase"), path)
-    s = ffi.new("gd_unbalance_spec *")
-    lib.gd_unbalance_spec_init(s)
-    s.name, s.node, s.path = ctx.s(d.get("name"), path), ctx.s(d.get("node"), path), \
-        ctx.s(path, path)
+    s = _spec(ctx, "unbalance", d, path, ("name", "node", "amount", "mass", "eccentricity",
+                                          "phase"))
     if "amount" in d:
         if "mass" in d or "eccentricity" in d:
             raise model_error(path + ".amount", "give amount, or mass and eccentricity")

@@ -7,6 +7,8 @@ import os
 import numpy as np
 
 from . import _core
+from . import analyses as _analyses
+from . import transient as _transient
 from ._core import ffi, lib, check, new_error, cstr, quantity, model_error
 
 __all__ = ["Model", "System", "Matrices", "load", "loads"]
@@ -294,23 +296,24 @@ class System:
             out.append(sp.csc_matrix((values, rowind, colptr), shape=(n, n), copy=False))
         return Matrices(*out, dofs=list(self.dofs))
 
-    # analyses: implemented in analyses.py
+    # the analyses (analyses.py, transient.py), each documented there
     def modal(self, speed=None, modes=None, kind="auto", left=False):
-        from .analyses import modal
-        return modal(self, speed, modes, kind, left)
+        return _analyses.modal(self, speed, modes, kind, left)
 
     def campbell(self, speeds, **kw):
-        from .analyses import campbell
-        return campbell(self, speeds, **kw)
+        return _analyses.campbell(self, speeds, **kw)
 
     def frf(self, input, outputs, freqs, **kw):
-        from .analyses import frf
-        return frf(self, input, outputs, freqs, **kw)
+        return _analyses.frf(self, input, outputs, freqs, **kw)
 
     def unbalance(self, speeds, **kw):
-        from .analyses import unbalance
-        return unbalance(self, speeds, **kw)
+        return _analyses.unbalance(self, speeds, **kw)
 
     def transient(self, **kw):
-        from .transient import transient
-        return transient(self, **kw)
+        return _transient.transient(self, **kw)
+
+    modal.__doc__ = _analyses.modal.__doc__
+    campbell.__doc__ = _analyses.campbell.__doc__
+    frf.__doc__ = _analyses.frf.__doc__
+    unbalance.__doc__ = _analyses.unbalance.__doc__
+    transient.__doc__ = _transient.transient.__doc__

@@ -21,6 +21,18 @@ _DOF_UNIT = {"disp": ("m", "rad"), "vel": ("m/s", "rad/s"), "angle": ("m", "rad"
              "speed": ("m/s", "rad/s")}
 
 
+def _pick(item, name, names, what, plural):
+    """Indices of the item's NAME among names ('*': all)."""
+    if not names:
+        raise model_error("record", "'%s': the model has no %s" % (item, what))
+    if name == "*":
+        return range(len(names))
+    if name in names:
+        return [names.index(name)]
+    raise model_error("record", "'%s': unknown %s '%s'" % (item, what, name),
+                      "%s: %s" % (plural, ", ".join(names)))
+
+
 def _parse_record(system, tm, item):
     """One record item of `--record` (transient_record.h): NODE.DOF[:disp|vel|angle|speed],
     ratio:A/B, mesh:NAME[:what] ('*': every mesh), sfd:BEARING[:fx|fy|ecc]. Returns
@@ -48,15 +60,7 @@ def _parse_record(system, tm, item):
                               "use force, state, deflection or stiffness")
         kind, unit = _MESH_WHAT[what]
         meshes = m.meshes
-        if name == "*":
-            if not meshes:
-                raise model_error("record", "'%s': the model has no mesh" % item)
-            idx = range(len(meshes))
-        elif name in meshes:
-            idx = [meshes.index(name)]
-        else:
-            raise model_error("record", "'%s': unknown mesh '%s'" % (item, name),
-                              "meshes: " + (", ".join(meshes) or "none"))
+        idx = _pick(item, name, meshes, "mesh", "meshes")
         return [(kind, i, 0, "mesh:%s:%s" % (meshes[i], what), unit) for i in idx]
     if item.startswith("sfd:"):
         name, _c, what = item[4:].partition(":")
@@ -66,15 +70,7 @@ def _parse_record(system, tm, item):
                               "use fx, fy or ecc")
         kind, unit = _SFD_WHAT[what]
         dampers = [m.bearings[tm.sfd_bearing[s]] for s in range(tm.spec.nsfds)]
-        if not dampers:
-            raise model_error("record", "'%s': the model has no squeeze film damper" % item)
-        if name == "*":
-            idx = range(len(dampers))
-        elif name in dampers:
-            idx = [dampers.index(name)]
-        else:
-            raise model_error("record", "'%s': no squeeze film damper '%s'" % (item, name),
-                              "dampers: " + ", ".join(dampers))
+        idx = _pick(item, name, dampers, "squeeze film damper", "dampers")
         return [(kind, s, 0, "sfd:%s:%s" % (dampers[s], what), unit) for s in idx]
     spec = item[5:] if item.startswith("node:") else item
     base, colon, what = spec.rpartition(":")

@@ -75,3 +75,16 @@ def test_flexible_shafts_and_set_on_dict(geardyn):
     _same_matrices(m.matrices(), y.matrices())
     assert m.modal(speed=0, modes=4).omega_n.sum() > f0.sum() * 1.01
     assert spec["bearings"][0]["k"] == 1e7  # the caller's dict is untouched
+
+
+def test_example_script_tables():
+    """python/examples/kumar_tables.py (run by `make demo`) prints both tables."""
+    import os
+    import subprocess
+    import sys
+    from conftest import ROOT
+    out = subprocess.run([sys.executable, "python/examples/kumar_tables.py", "--table-only"],
+                         cwd=ROOT, check=True, capture_output=True, text=True,
+                         env=dict(os.environ, PYTHONPATH="python")).stdout
+    assert "Table 3.1" in out and "Table 3.2" in out and "23446.05" not in out
+    assert "2.329e+04" in out and "2.345e+04" in out  # geardyn's and the paper's mode 4
