@@ -32,7 +32,7 @@ def table(title, model, paper):
     with np.errstate(divide="ignore", invalid="ignore"):
         df.insert(2, "deviation_%", 100 * (df["omega_n_rad_s"] / df["paper_rad_s"] - 1))
     print("%s (%s, %d DOFs)" % (title, os.path.basename(model.file), r.ndof))
-    print(df.to_string(float_format=lambda x: "%.4g" % x))
+    print(df.to_string(float_format=lambda x: "%.6g" % x))
     print()
     return r
 
