@@ -111,15 +111,33 @@ def names(array, count):
 
 
 class _Memory:
-    """A block of C memory exposed to numpy through the array interface; it keeps the
-    owner (the ffi.gc'd C result) alive as long as any array viewing it lives."""
+    """C memory exposed to numpy through the array interface (bytes, or a strided array
+    of one type); it keeps the owner (the ffi.gc'd C result) alive as long as any array
+    viewing it lives."""
 
     __slots__ = ("__array_interface__", "_owner")
 
-    def __init__(self, owner, address, nbytes, writable):
+    def __init__(self, owner, address, nbytes, writable, typestr="|u1", shape=None,
+                 strides=None):
         self._owner = owner
-        self.__array_interface__ = {"data": (address, not writable), "shape": (nbytes,),
-                                    "typestr": "|u1", "version": 3}
+        self.__array_interface__ = {"data": (address, not writable),
+                                    "shape": shape or (nbytes,), "typestr": typestr,
+                                    "strides": strides, "version": 3}
+
+
+def field_view(owner, pointer, count, struct, name):
+    """numpy array of one field of an array of count C structs laid out as the
+    structured dtype `struct` (struct_dtype): a strided view, no copy. A field that is
+    itself an array (energy_share) gives count x its shape."""
+    ftype, offset = struct.fields[name][:2]
+    base, sub = ftype.base, ftype.shape
+    if pointer == ffi.NULL or count == 0:
+        return np.zeros((count,) + sub, dtype=base)
+    address = int(ffi.cast("uintptr_t", pointer)) + offset
+    shape = (count,) + sub
+    strides = (struct.itemsize,) + tuple(base.itemsize * math.prod(sub[k + 1:])
+                                         for k in range(len(sub)))
+    return np.asarray(_Memory(owner, address, 0, False, base.str, shape, strides))
 
 
 def view(owner, pointer, shape, dtype=np.float64, order="C", writable=False):

@@ -157,8 +157,10 @@ class ModalResult(_Result):
         return self._modes
 
     def __getattr__(self, name):
+        # one field of the C records as a strided view (cheaper than through `modes`)
         if name in _core.MODE_DTYPE.names:
-            return self.modes[name]
+            return _core.field_view(self._owner, self._owner.modes, self._owner.nmodes,
+                                    _core.MODE_DTYPE, name)
         raise AttributeError(name)
 
     @property
