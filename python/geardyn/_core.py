@@ -142,16 +142,22 @@ def field_view(owner, pointer, count, struct, name):
 
 def view(owner, pointer, shape, dtype=np.float64, order="C", writable=False):
     """numpy array of the C memory at pointer (no copy), of the given shape and dtype,
-    row-major ("C") or column-major ("F"); owner is kept alive by the array."""
+    row-major ("C") or column-major ("F"); owner is kept alive by the array. The array
+    interface describes the final array directly (not bytes viewed as dtype), so its
+    base has its size: scipy copies arrays that view a base twice their size."""
     dtype = np.dtype(dtype)
     shape = (int(shape),) if isinstance(shape, int) else tuple(int(s) for s in shape)
     count = math.prod(shape)
     if pointer == ffi.NULL or count == 0:
         return np.zeros(shape, dtype=dtype, order=order)
     address = int(ffi.cast("uintptr_t", pointer))
-    raw = np.asarray(_Memory(owner, address, count * dtype.itemsize, writable))
-    flat = raw.view(dtype)
-    return flat.reshape(shape[::-1]).T if order == "F" else flat.reshape(shape)
+    if dtype.fields is not None:  # structured: bytes viewed as the records
+        raw = np.asarray(_Memory(owner, address, count * dtype.itemsize, writable))
+        return raw.view(dtype).reshape(shape)
+    strides = None
+    if order == "F":
+        strides = tuple(dtype.itemsize * math.prod(shape[:k]) for k in range(len(shape)))
+    return np.asarray(_Memory(owner, address, 0, writable, dtype.str, shape, strides))
 
 
 def struct_dtype(ctype, fields):
