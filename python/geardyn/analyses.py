@@ -412,8 +412,7 @@ def _probe(system, text, what="output"):
             raise model_error(what, "unknown bearing '%s'" % b, "bearings: " + ", ".join(names))
         if d not in _core.DOF_NAMES:
             raise model_error(what, "unknown direction '%s'" % d, "use x, y, z, rx, ry or rz")
-        p.kind, p.index, p.dir = lib.GD_PROBE_BEARING, len(names) - 1 - names[::-1].index(b), \
-            _core.DOF_NAMES.index(d)
+        p.kind, p.index, p.dir = lib.GD_PROBE_BEARING, names.index(b), _core.DOF_NAMES.index(d)
     else:
         p.kind = lib.GD_PROBE_DOF
         p.index = _dof_of(system, text[5:] if text.startswith("node:") else text, what)
