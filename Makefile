@@ -9,7 +9,7 @@ VALGRIND    = valgrind --quiet --error-exitcode=1 --leak-check=full \
               --trace-children-skip='/bin/*,/usr/bin/*'
 
 .PHONY: all deps build install demo test test-unit test-asan memcheck bench format clean \
-        fuzz fuzz-build fuzz-smoke
+        fuzz fuzz-build fuzz-smoke python test-python
 
 all: build
 
@@ -27,17 +27,28 @@ build: deps
 install: build
 	cmake --install $(BUILD) --prefix $(PREFIX)
 
-demo: build
+demo: build python
 	./$(BUILD)/geardyn check examples/rig2018.yaml
 	@echo
 	./$(BUILD)/geardyn modal examples/rig2018.yaml --speed 3000rpm --modes 12
 	@echo
+	PYTHONPATH=python $(PYTHON) python/examples/kumar_tables.py --table-only
+	@echo
 	@./$(BUILD)/geardyn report examples/rig2018.yaml --out $(BUILD)/rig2018_report.html >/dev/null
 	@echo "report (open it in a browser, it works offline): $(CURDIR)/$(BUILD)/rig2018_report.html"
 
+# The Python package (python/, docs/python.md): the cffi extension module over
+# $(BUILD)/libgeardyn.so, built with Debian's Python (no download).
+PYTHON ?= /usr/bin/python3
+python: build
+	@$(PYTHON) python/build_ffi.py --libdir $(BUILD)
+
+test-python: python
+	cd python && OPENBLAS_NUM_THREADS=1 GEARDYN_BUILD=../$(BUILD) $(PYTHON) -m pytest -q -p no:cacheprovider tests
+
 # Every test: the normal build, then AddressSanitizer + UndefinedBehaviorSanitizer,
-# then valgrind on the normal build.
-test: test-unit test-asan memcheck fuzz-smoke
+# then valgrind on the normal build, the fuzz smoke run and the Python tests.
+test: test-unit test-asan memcheck fuzz-smoke test-python
 
 test-unit: build
 	cd $(BUILD) && ctest --output-on-failure -j$(JOBS)

@@ -1,0 +1,351 @@
+"""Builds geardyn._native, the cffi extension module over the C library.
+
+cffi in API (out-of-line) mode: the declarations below are compiled against the public
+headers (include/geardyn/geardyn.h), so the C compiler checks every struct layout and
+enum value (`...` leaves the rest of a struct to the compiler); no download, only
+Debian's python3-cffi, python3-dev and the C compiler. The module links the shared
+library (-lgeardyn) and records where it is (rpath), so `import geardyn` needs no
+environment variable.
+
+usage: python3 python/build_ffi.py [--include DIR] [--libdir DIR]
+       (defaults: the checkout's include/ and build/; `make python` passes BUILD)
+"""
+import argparse
+import os
+import sys
+import tempfile
+
+import cffi
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+
+CDEF = r"""
+typedef enum { GD_OK, GD_EINPUT, GD_ENUMERIC, GD_ENOMEM, GD_EIO, ... } gd_status;
+typedef struct gd_error {
+    gd_status status;
+    char file[...];
+    int line, column;
+    char field[...];
+    char message[...];
+    char hint[...];
+} gd_error;
+void gd_error_clear(gd_error *err);
+const char *gd_status_name(gd_status status);
+const char *gd_version(void);
+
+typedef enum { GD_QTY_DIMLESS, GD_QTY_LENGTH, GD_QTY_MASS, GD_QTY_TIME, GD_QTY_ANGLE,
+               GD_QTY_ANGULAR_SPEED, GD_QTY_FORCE, GD_QTY_TORQUE, GD_QTY_STIFFNESS,
+               GD_QTY_DAMPING, GD_QTY_ROT_STIFFNESS, GD_QTY_ROT_DAMPING, GD_QTY_INERTIA,
+               GD_QTY_DENSITY, GD_QTY_PRESSURE, GD_QTY_VISCOSITY, GD_QTY_MASS_LENGTH,
+               ... } gd_qty;
+gd_status gd_parse_quantity(const char *text, gd_qty qty, double *value, gd_error *err);
+
+/* ---- model ---- */
+typedef enum { GD_X, GD_Y, GD_Z, GD_RX, GD_RY, GD_RZ, GD_NODE_DOFS, ... } gd_dof;
+typedef enum { GD_COUPLING_TORSIONAL, GD_COUPLING_LATERAL_TORSIONAL, GD_COUPLING_FULL,
+               ... } gd_coupling;
+extern const char *const gd_dof_names[];
+extern const char *const gd_coupling_names[3];
+unsigned gd_coupling_dof_mask(gd_coupling level);
+typedef struct { int line, column; } gd_loc;
+typedef struct { char name[...]; int shaft; double position; int named; ...; } gd_node;
+typedef struct { char name[...]; double speed_ratio; ...; } gd_shaft;
+typedef struct { char name[...]; int node, node2; ...; } gd_bearing;
+typedef struct { char name[...]; int driver, driven; int teeth[2]; double stiffness;
+                 ...; } gd_mesh;
+typedef struct { char name[...]; int node; double amount, phase; ...; } gd_unbalance;
+typedef struct gd_model {
+    char file[...];
+    int nshafts; gd_shaft *shafts;
+    int nnodes; gd_node *nodes;
+    int nbearings; gd_bearing *bearings;
+    int nmeshes; gd_mesh *meshes;
+    int nunbalances; gd_unbalance *unbalances;
+    double speed;
+    ...;
+} gd_model;
+gd_status gd_model_load(const char *path, gd_model **out, gd_error *err);
+void gd_model_free(gd_model *model);
+void gd_model_set_coupling(gd_model *model, gd_coupling level);
+int gd_model_find_node(const gd_model *model, const char *name);
+int gd_model_find_mesh(const gd_model *model, const char *name);
+
+typedef struct { int nset; const char *const *set; } gd_load_options;
+void gd_load_options_init(gd_load_options *opt);
+gd_status gd_model_load_opts(const char *path, const gd_load_options *opt, gd_model **out,
+                             gd_error *err);
+gd_status gd_model_load_string_opts(const char *yaml, const char *name,
+                                    const gd_load_options *opt, gd_model **out, gd_error *err);
+
+/* ---- builder ---- */
+typedef enum { GD_INTERP_LINEAR, GD_INTERP_SPLINE, ... } gd_interp;
+typedef struct { double kxx, kxy, kyx, kyy, kzz, ktilt, ktorsion;
+                 double cxx, cxy, cyx, cyy, czz, ctilt, ctorsion; } gd_bearing_coeffs;
+typedef struct { const char *name; double density, E, G, poisson; gd_loc loc;
+                 const char *path; ...; } gd_material_spec;
+typedef struct { double length, outer_diameter, inner_diameter; const char *material;
+                 int elements; gd_loc loc; ...; } gd_section_spec;
+typedef struct { const char *name; double at; gd_loc loc; ...; } gd_station_spec;
+typedef struct { const char *name; const char *material; int nsections;
+                 const gd_section_spec *sections; int nstations;
+                 const gd_station_spec *stations; int elements_per_section;
+                 double max_element_length; int has_speed_ratio; double speed_ratio;
+                 gd_loc loc; const char *path; ...; } gd_shaft_spec;
+typedef struct { const char *name; const char *node; double mass, polar_inertia,
+                 diametral_inertia; int from_geometry; double outer_diameter,
+                 inner_diameter, width; const char *material; gd_loc loc;
+                 const char *path; ...; } gd_disk_spec;
+typedef struct { const char *name; const char *node; const char *to;
+                 gd_bearing_coeffs coeffs; int ntable; const double *table_speed;
+                 const gd_bearing_coeffs *table; gd_loc loc; const char *path;
+                 ...; } gd_bearing_spec;
+typedef struct { const char *name; const char *node; const char *to; gd_dof dof;
+                 double stiffness, damping; gd_loc loc; const char *path; ...; } gd_spring_spec;
+typedef struct { const char *name; const char *driver; const char *driven; int teeth[2];
+                 double base_radius[2]; double pitch_radius[2]; double module;
+                 double pressure_angle; double helix_angle; int hand;
+                 double line_of_centres; int driver_rotation; double stiffness;
+                 double damping; gd_coupling coupling; gd_loc loc; const char *path;
+                 ...; } gd_mesh_spec;
+typedef struct { const char *name; const char *node; double amount, phase; gd_loc loc;
+                 const char *path; ...; } gd_unbalance_spec;
+gd_status gd_model_new(const char *name, gd_model **out, gd_error *err);
+gd_status gd_model_finish(gd_model *m, gd_error *err);
+void gd_material_spec_init(gd_material_spec *s);
+void gd_section_spec_init(gd_section_spec *s);
+void gd_station_spec_init(gd_station_spec *s);
+void gd_shaft_spec_init(gd_shaft_spec *s);
+void gd_disk_spec_init(gd_disk_spec *s);
+void gd_bearing_spec_init(gd_bearing_spec *s);
+void gd_spring_spec_init(gd_spring_spec *s);
+void gd_mesh_spec_init(gd_mesh_spec *s);
+void gd_unbalance_spec_init(gd_unbalance_spec *s);
+gd_status gd_model_add_material(gd_model *m, const gd_material_spec *s, int *index, gd_error *err);
+gd_status gd_model_add_shaft(gd_model *m, const gd_shaft_spec *s, int *index, gd_error *err);
+gd_status gd_model_add_disk(gd_model *m, const gd_disk_spec *s, int *index, gd_error *err);
+gd_status gd_model_add_bearing(gd_model *m, const gd_bearing_spec *s, int *index, gd_error *err);
+gd_status gd_model_add_spring(gd_model *m, const gd_spring_spec *s, int *index, gd_error *err);
+gd_status gd_model_add_mesh(gd_model *m, const gd_mesh_spec *s, int *index, gd_error *err);
+gd_status gd_model_add_unbalance(gd_model *m, const gd_unbalance_spec *s, int *index,
+                                 gd_error *err);
+gd_status gd_model_set_dofs(gd_model *m, unsigned dof_mask, gd_error *err);
+gd_status gd_model_set_reference_shaft(gd_model *m, const char *shaft, int rotation,
+                                       gd_loc loc, gd_error *err);
+gd_status gd_model_set_speed(gd_model *m, double speed, gd_error *err);
+
+/* ---- system ---- */
+typedef struct { int n; int *colptr; int *rowind; double *values; } gd_csc;
+void gd_csc_free(gd_csc *a);
+typedef enum { GD_COMP_SHAFT, GD_COMP_BEARING, GD_COMP_SPRING, GD_COMP_MESH, GD_COMP_NONE,
+               ... } gd_component_kind;
+typedef enum { GD_MOTION_LATERAL, GD_MOTION_TORSIONAL, GD_MOTION_AXIAL, GD_MOTION_TILT,
+               GD_NMOTIONS, ... } gd_motion;
+extern const char *const gd_motion_names[];
+typedef struct gd_system {
+    const gd_model *model;
+    int ndof;
+    int *dof_node;
+    gd_dof *dof_type;
+    int nmassless;
+    int ncomponents;
+    ...;
+} gd_system;
+gd_status gd_system_build(const gd_model *model, gd_system **out, gd_error *err);
+void gd_system_free(gd_system *sys);
+int gd_system_dof(const gd_system *sys, int node, gd_dof dof);
+gd_status gd_system_matrices(const gd_system *sys, double speed, gd_csc *M, gd_csc *K,
+                             gd_csc *C, gd_csc *G, gd_error *err);
+gd_component_kind gd_system_component(const gd_system *sys, int c, int *index,
+                                      const char **name);
+
+/* ---- modal ---- */
+typedef enum { GD_WHIRL_NONE, GD_WHIRL_FORWARD, GD_WHIRL_BACKWARD, GD_WHIRL_MIXED,
+               ... } gd_whirl;
+extern const char *const gd_whirl_names[4];
+typedef enum { GD_MODAL_AUTO, GD_MODAL_UNDAMPED, GD_MODAL_DAMPED, ... } gd_modal_kind;
+typedef struct { double speed; int nmodes; gd_modal_kind kind; int want_left;
+                 ...; } gd_modal_options;
+typedef struct {
+    double lambda_re, lambda_im, omega_n, omega_d, frequency_hz, damping_ratio,
+        log_decrement;
+    int rigid_body, overdamped, unstable;
+    gd_whirl whirl;
+    double energy_share[...];
+    gd_motion dominant_motion;
+    int dominant_component;
+    ...;
+} gd_mode;
+typedef struct {
+    int ndof, nmodes, ncomponents;
+    int damped;
+    double speed;
+    gd_mode *modes;
+    double *shape_re, *shape_im;
+    double *left_re, *left_im;
+    double *energy_by_component;
+    ...;
+} gd_modal_result;
+void gd_modal_options_init(gd_modal_options *opt);
+gd_status gd_modal_solve(const gd_system *sys, const gd_modal_options *opt,
+                         gd_modal_result **out, gd_error *err);
+void gd_modal_free(gd_modal_result *res);
+
+/* ---- campbell ---- */
+typedef enum { GD_EIG_AUTO, GD_EIG_DENSE, GD_EIG_SPARSE, ... } gd_eig_method;
+typedef enum { GD_ORDER_SHAFT, GD_ORDER_USER, GD_ORDER_MESH, ... } gd_order_kind;
+typedef struct { gd_order_kind kind; double order; char label[...]; ...; } gd_order;
+typedef struct { int nspeeds; const double *speeds; int nmodes; gd_modal_kind kind;
+                 gd_eig_method method; double shift; int norders; const double *orders;
+                 int shaft_orders; int mesh_orders; double mac_min; int nthreads;
+                 ...; } gd_campbell_options;
+typedef struct { int mode; int order; double speed; double speed_rpm; double frequency_hz;
+                 ...; } gd_critical_speed;
+typedef struct { int id; gd_whirl whirl; gd_motion dominant_motion; ...; } gd_campbell_track;
+typedef struct { int nspeeds, ntracks, ndof; double *speeds; gd_campbell_track *tracks;
+                 gd_mode *modes; int norders; gd_order *orders; int ncritical;
+                 gd_critical_speed *critical; double instability_onset;
+                 int instability_track; int nrigid; int sparse; ...; } gd_campbell_result;
+void gd_campbell_options_init(gd_campbell_options *opt);
+gd_status gd_campbell(const gd_system *sys, const gd_campbell_options *opt,
+                      gd_campbell_result **out, gd_error *err);
+void gd_campbell_free(gd_campbell_result *r);
+
+/* ---- probes, frf, unbalance ---- */
+typedef enum { GD_PROBE_DOF, GD_PROBE_MESH, GD_PROBE_BEARING, ... } gd_probe_kind;
+typedef struct { gd_probe_kind kind; int index; gd_dof dir; char name[...]; ...; } gd_probe;
+typedef enum { GD_FRF_RECEPTANCE, GD_FRF_MOBILITY, GD_FRF_ACCELERANCE, ... } gd_frf_quantity;
+extern const char *const gd_frf_quantity_names[3];
+typedef enum { GD_FRF_DIRECT, GD_FRF_MODAL, ... } gd_frf_method;
+typedef struct { int nfreq; const double *freqs; double speed; int ninputs;
+                 const int *inputs; int noutputs; const gd_probe *outputs;
+                 gd_frf_quantity quantity; gd_frf_method method; int nmodes; int nthreads;
+                 ...; } gd_frf_options;
+typedef struct { int nfreq, ninputs, noutputs; double *freqs; double *re, *im;
+                 int *singular; int nsingular; int nmodes_used; int nrigid;
+                 ...; } gd_frf_result;
+void gd_frf_options_init(gd_frf_options *opt);
+gd_status gd_frf(const gd_system *sys, const gd_frf_options *opt, gd_frf_result **out,
+                 gd_error *err);
+void gd_frf_free(gd_frf_result *r);
+void gd_frf_directional(const gd_frf_result *r, int out_x, int out_y, double *fwd_re,
+                        double *fwd_im, double *bwd_re, double *bwd_im);
+
+typedef struct { int nspeeds; const double *speeds; int noutputs; const gd_probe *outputs;
+                 int norbits; const int *orbit_nodes; int nthreads; ...; } gd_unbalance_options;
+typedef struct { double major, minor; double angle; gd_whirl whirl; ...; } gd_orbit;
+typedef struct { double order; int nunbalances; ...; } gd_unbalance_harmonic;
+typedef struct { int nspeeds, noutputs, norbits, nharmonics; double *speeds;
+                 gd_unbalance_harmonic *harmonics; double *re, *im; gd_orbit *orbits;
+                 int *singular; ...; } gd_unbalance_result;
+void gd_unbalance_options_init(gd_unbalance_options *opt);
+gd_status gd_unbalance_response(const gd_system *sys, const gd_unbalance_options *opt,
+                                gd_unbalance_result **out, gd_error *err);
+void gd_unbalance_free(gd_unbalance_result *r);
+
+/* ---- transient ---- */
+typedef struct { int mesh; int backlash; ...; } gd_tr_mesh;
+typedef struct { int nmeshes; int nsfds; ...; } gd_transient_spec;
+typedef struct gd_transient gd_transient;
+typedef enum { GD_TR_BDF, GD_TR_ADAMS, ... } gd_tr_method;
+typedef enum { GD_TR_INIT_REST, GD_TR_INIT_STATIC, GD_TR_INIT_GIVEN, ... } gd_tr_init;
+typedef struct { double t_start, t_end; double output_interval; double record_from;
+                 double rtol; double atol_q, atol_v; gd_tr_method method; gd_tr_init init;
+                 const double *q0, *v0; double max_step; long max_steps; int max_order;
+                 int locate_events; ...; } gd_transient_options;
+typedef enum { GD_REC_DISP, GD_REC_VEL, GD_REC_ANGLE, GD_REC_SPEED, GD_REC_SPEED_RATIO,
+               GD_REC_MESH_FORCE, GD_REC_MESH_DEFLECTION, GD_REC_MESH_STATE,
+               GD_REC_MESH_STIFFNESS, GD_REC_SFD_FX, GD_REC_SFD_FY,
+               GD_REC_SFD_ECCENTRICITY, ... } gd_tr_record_kind;
+typedef struct { gd_tr_record_kind kind; int index, index2; } gd_tr_record;
+typedef struct { double min, max, mean, rms, peak_to_peak, std; } gd_tr_stats;
+typedef struct { int contact_losses; int coast_impacts; int drive_impacts;
+                 double separated_time, coast_time, drive_time; } gd_tr_contact_stats;
+typedef struct { int nout; double *t; int nrecords; gd_tr_record *records; double *values;
+                 gd_tr_stats *stats; int nmeshes; gd_tr_contact_stats *contacts; int ndof;
+                 double *q_end, *v_end; long steps, rhs_evals, lin_iters, prec_setups,
+                 events, reinits; double cpu_seconds; ...; } gd_transient_result;
+typedef struct { gd_transient_spec spec; gd_tr_mesh *meshes; int *sfd_bearing;
+                 ...; } gd_transient_model;
+gd_status gd_transient_model_build(const gd_system *sys, gd_transient_model **out,
+                                   gd_error *err);
+void gd_transient_model_free(gd_transient_model *tm);
+gd_status gd_transient_new(const gd_system *sys, const gd_transient_spec *spec, double speed,
+                           gd_transient **out, gd_error *err);
+void gd_transient_free(gd_transient *tr);
+int gd_transient_nstates(const gd_transient *tr);
+void gd_transient_options_init(gd_transient_options *opt);
+gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
+                           const gd_tr_record *records, int nrecords,
+                           gd_transient_result **out, gd_error *err);
+void gd_transient_result_free(gd_transient_result *r);
+
+/* ---- mesh stiffness ---- */
+typedef enum { GD_TVMS_ENERGY, GD_TVMS_ISO6336, GD_TVMS_SINGLE_PAIR, GD_TVMS_SQUARE,
+               ... } gd_tvms_method;
+typedef struct { int teeth; ...; } gd_gear_geometry;
+typedef struct { gd_gear_geometry gear[2]; double normal_module; double helix_angle;
+                 ...; } gd_gear_pair_geometry;
+typedef struct { gd_tvms_method method; int points; int cycles; int slices;
+                 int body_compliance; int harmonics; double quad_tol; ...; } gd_tvms_options;
+typedef struct {
+    double transverse_pressure_angle, working_pressure_angle, base_helix_angle;
+    double center_distance;
+    double pitch_radius[2], base_radius[2], tip_radius[2], root_radius[2], bore_radius[2];
+    double base_pitch_transverse, base_pitch_normal;
+    double contact_ratio_transverse, contact_ratio_face, contact_ratio_total;
+    ...;
+} gd_gear_pair_derived;
+typedef struct {
+    gd_tvms_method method; gd_gear_pair_derived geom; double mesh_period_rad;
+    size_t n; size_t points; double *angle_rad; double *stiffness; int *pairs_in_contact;
+    int max_pairs; double *load_share; double mean, max, min, peak_to_peak;
+    double transverse_factor; int harmonics; double *harmonic_amplitude, *harmonic_phase;
+    double iso_single_stiffness, iso_mesh_stiffness_alpha, iso_mesh_stiffness_beta;
+    double body_stiffness; int slices; ...;
+} gd_tvms_result;
+const char *gd_tvms_method_name(gd_tvms_method m);
+gd_status gd_tvms_method_parse(const char *name, gd_tvms_method *m, gd_error *err);
+gd_status gd_tvms_compute(const gd_gear_pair_geometry *g, const gd_tvms_options *opt,
+                          gd_tvms_result **out, gd_error *err);
+void gd_tvms_free(gd_tvms_result *r);
+gd_status gd_gear_pair_load(const char *path, const char *mesh_name,
+                            const gd_load_options *opt, gd_gear_pair_geometry *geom,
+                            gd_tvms_options *tvms, char *mesh_name_out, size_t size,
+                            gd_error *err);
+"""
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--include", default=os.path.join(ROOT, "include"))
+    ap.add_argument("--libdir", default=os.path.join(ROOT, "build"))
+    a = ap.parse_args()
+    include = os.path.abspath(a.include)
+    libdir = os.path.abspath(a.libdir)
+    if not os.path.exists(os.path.join(include, "geardyn", "geardyn.h")):
+        sys.exit("build_ffi: no geardyn/geardyn.h under %s (give --include)" % include)
+    if not any(f.startswith("libgeardyn.so") for f in os.listdir(libdir)):
+        sys.exit("build_ffi: no libgeardyn.so in %s: build the library first (make build)"
+                 % libdir)
+    ffi = cffi.FFI()
+    ffi.cdef(CDEF)
+    # The configured version.h lives in the build tree; the other headers in include/.
+    ffi.set_source(
+        "geardyn._native",
+        '#include "geardyn/geardyn.h"\n#include "geardyn/transient_model.h"\n',
+        include_dirs=[include, os.path.join(libdir, "include")],
+        library_dirs=[libdir],
+        libraries=["geardyn"],
+        extra_compile_args=["-O2", "-Wno-unused-parameter"],
+        extra_link_args=["-Wl,-rpath," + libdir],
+    )
+    with tempfile.TemporaryDirectory() as tmp:
+        so = ffi.compile(tmpdir=tmp, verbose=False)
+        dest = os.path.join(HERE, "geardyn", os.path.basename(so))
+        os.replace(so, dest)
+    print("build_ffi: %s (links %s/libgeardyn.so)" % (os.path.relpath(dest, ROOT), libdir))
+
+
+if __name__ == "__main__":
+    main()

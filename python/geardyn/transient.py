@@ -1,0 +1,265 @@
+"""Time integration (docs/transient.md): gd_transient_model_build, gd_transient_new,
+gd_transient_run, with the record specs and the defaults of `geardyn transient`."""
+import math
+
+import numpy as np
+
+from . import _core
+from ._core import ffi, lib, check, new_error, cstr, quantity, model_error
+from .analyses import _Result, _pandas
+
+__all__ = ["transient", "TransientResult"]
+
+_MESH_WHAT = {"force": (lib.GD_REC_MESH_FORCE, "N"), "state": (lib.GD_REC_MESH_STATE, "-"),
+              "deflection": (lib.GD_REC_MESH_DEFLECTION, "m"),
+              "stiffness": (lib.GD_REC_MESH_STIFFNESS, "N/m")}
+_SFD_WHAT = {"fx": (lib.GD_REC_SFD_FX, "N"), "fy": (lib.GD_REC_SFD_FY, "N"),
+             "ecc": (lib.GD_REC_SFD_ECCENTRICITY, "-")}
+_DOF_WHAT = {"disp": lib.GD_REC_DISP, "vel": lib.GD_REC_VEL, "angle": lib.GD_REC_ANGLE,
+             "speed": lib.GD_REC_SPEED}
+_DOF_UNIT = {"disp": ("m", "rad"), "vel": ("m/s", "rad/s"), "angle": ("m", "rad"),
+             "speed": ("m/s", "rad/s")}
+
+
+def _pick(item, name, names, what, plural):
+    """Indices of the item's NAME among names ('*': all)."""
+    if not names:
+        raise model_error("record", "'%s': the model has no %s" % (item, what))
+    if name == "*":
+        return range(len(names))
+    if name in names:
+        return [names.index(name)]
+    raise model_error("record", "'%s': unknown %s '%s'" % (item, what, name),
+                      "%s: %s" % (plural, ", ".join(names)))
+
+
+def _parse_record(system, tm, item):
+    """One record item of `--record` (transient_record.h): NODE.DOF[:disp|vel|angle|speed],
+    ratio:A/B, mesh:NAME[:what] ('*': every mesh), sfd:BEARING[:fx|fy|ecc]. Returns
+    [(kind, index, index2, name, unit)]."""
+    m = system.model
+    if item.startswith("ratio:"):
+        a, slash, b = item[6:].partition("/")
+        if not slash or not a or not b:
+            raise model_error("record", "'%s': expected ratio:NODE_A/NODE_B" % item)
+        dofs = []
+        for n in (a, b):
+            if n not in m.nodes:
+                raise model_error("record", "'%s': unknown node '%s'" % (item, n),
+                                  "nodes: " + ", ".join(m.nodes))
+            d = system.dof(n, "rz")
+            if d < 0:
+                raise model_error("record", "'%s': node '%s' has no active rz DOF" % (item, n))
+            dofs.append(d)
+        return [(lib.GD_REC_SPEED_RATIO, dofs[0], dofs[1], "ratio:%s/%s" % (a, b), "-")]
+    if item.startswith("mesh:"):
+        name, _c, what = item[5:].partition(":")
+        what = what or "force"
+        if what not in _MESH_WHAT:
+            raise model_error("record", "'%s': unknown mesh quantity '%s'" % (item, what),
+                              "use force, state, deflection or stiffness")
+        kind, unit = _MESH_WHAT[what]
+        meshes = m.meshes
+        idx = _pick(item, name, meshes, "mesh", "meshes")
+        return [(kind, i, 0, "mesh:%s:%s" % (meshes[i], what), unit) for i in idx]
+    if item.startswith("sfd:"):
+        name, _c, what = item[4:].partition(":")
+        what = what or "ecc"
+        if what not in _SFD_WHAT:
+            raise model_error("record", "'%s': unknown damper quantity '%s'" % (item, what),
+                              "use fx, fy or ecc")
+        kind, unit = _SFD_WHAT[what]
+        dampers = [m.bearings[tm.sfd_bearing[s]] for s in range(tm.spec.nsfds)]
+        idx = _pick(item, name, dampers, "squeeze film damper", "dampers")
+        return [(kind, s, 0, "sfd:%s:%s" % (dampers[s], what), unit) for s in idx]
+    spec = item[5:] if item.startswith("node:") else item
+    base, colon, what = spec.rpartition(":")
+    if not colon:
+        base, what = spec, "disp"
+    if what not in _DOF_WHAT:
+        raise model_error("record", "'%s': unknown DOF quantity '%s'" % (item, what),
+                          "use disp, vel, angle or speed")
+    node, dot, d = base.rpartition(".")
+    if not dot or not node or not d:
+        raise model_error("record", "'%s': expected NODE.DOF[:disp|vel|angle|speed], "
+                          "ratio:A/B, mesh:NAME[:what] or sfd:BEARING[:what]" % item)
+    if node not in m.nodes:
+        raise model_error("record", "'%s': unknown node '%s'" % (item, node),
+                          "nodes: " + ", ".join(m.nodes))
+    if d not in _core.DOF_NAMES:
+        raise model_error("record", "'%s': unknown DOF '%s'" % (item, d),
+                          "use x, y, z, rx, ry or rz")
+    i = system.dof(node, d)
+    if i < 0:
+        raise model_error("record", "'%s': %s is not an active DOF" % (item, base))
+    unit = _DOF_UNIT[what][1 if d.startswith("r") else 0]
+    return [(_DOF_WHAT[what], i, 0, "%s:%s" % (base, what), unit)]
+
+
+def _default_records(system, tm):
+    """The CLI's records when none is given: every nonlinear mesh's force (and contact
+    state with backlash), every damper's fx and fy; else the total speed of every rz
+    DOF; else every DOF's displacement (at most 64)."""
+    m = system.model
+    recs = []
+    for i in range(tm.spec.nmeshes):
+        name = m.meshes[tm.meshes[i].mesh]
+        recs.append((lib.GD_REC_MESH_FORCE, tm.meshes[i].mesh, 0, "mesh:%s:force" % name, "N"))
+        if tm.meshes[i].backlash:
+            recs.append((lib.GD_REC_MESH_STATE, tm.meshes[i].mesh, 0, "mesh:%s:state" % name,
+                         "-"))
+    for s in range(tm.spec.nsfds):
+        name = m.bearings[tm.sfd_bearing[s]]
+        recs += [(lib.GD_REC_SFD_FX, s, 0, "sfd:%s:fx" % name, "N"),
+                 (lib.GD_REC_SFD_FY, s, 0, "sfd:%s:fy" % name, "N")]
+    if recs:
+        return recs
+    rz = [i for i in range(system.ndof) if system.dof_type[i] == lib.GD_RZ]
+    if rz:
+        return [(lib.GD_REC_SPEED, i, 0, system.dofs[i] + ":speed", "rad/s") for i in rz]
+    return [(lib.GD_REC_DISP, i, 0, system.dofs[i] + ":disp",
+             "rad" if system.dof_type[i] >= lib.GD_RX else "m")
+            for i in range(min(system.ndof, 64))]
+
+
+def _times(duration, revolutions, speed, record_from, output_interval):
+    """t_end, record_from, output interval as `geardyn transient` resolves them."""
+    if (duration is None) == (revolutions is None):
+        raise model_error("duration", "give duration or revolutions (not both)")
+    if duration is not None:
+        t_end = quantity(duration, "time", "duration")
+        if not t_end > 0:
+            raise model_error("duration", "give a time > 0")
+    else:
+        n = float(revolutions)
+        if not n > 0:
+            raise model_error("revolutions", "give a positive number")
+        if not speed > 0:
+            raise model_error("revolutions", "revolutions need a reference speed > 0",
+                              "give speed= or 'speed:' in the model, or use duration=")
+        t_end = 2 * math.pi * n / speed
+    frm = 0.5 * t_end
+    if record_from is not None:
+        frm = quantity(record_from, "time", "record_from")
+        if frm < 0 or frm >= t_end:
+            raise model_error("record_from", "give a time in [0, %g s)" % t_end)
+    dt = (t_end - frm) / 2000.0
+    if speed > 0 and 2 * math.pi / speed / 32 < dt:
+        dt = max(2 * math.pi / speed / 32, (t_end - frm) / 2e6)
+    if output_interval is not None:
+        dt = quantity(output_interval, "time", "output_interval")
+        if not dt > 0:
+            raise model_error("output_interval", "give a time > 0")
+    return t_end, frm, dt
+
+
+def transient(system, duration=None, revolutions=None, speed=None, records=None,
+              record_from=None, output_interval=None, rtol=1e-6, method="bdf", start="rest"):
+    """Time integration at a constant reference speed (default: the model's), for
+    `duration` (s or "12 ms") or `revolutions` of the reference shaft. records: list of
+    record specs (NODE.DOF[:disp|vel|angle|speed], ratio:A/B, mesh:NAME[:force|state|
+    deflection|stiffness], sfd:BEARING[:fx|fy|ecc]); None: the CLI's defaults. Samples
+    from record_from (default half-way) every output_interval (default: 2000 samples,
+    at least 32 per revolution). method "bdf" or "adams"; start "rest" or "static"."""
+    w = system.model.speed if speed is None else quantity(speed, "speed", "speed")
+    t_end, frm, dt = _times(duration, revolutions, w, record_from, output_interval)
+    if method not in ("bdf", "adams"):
+        raise model_error("method", "unknown method '%s'" % method, "use bdf or adams")
+    if start not in ("rest", "static"):
+        raise model_error("start", "unknown start '%s'" % start, "use rest or static")
+    err = new_error()
+    tmp = ffi.new("gd_transient_model **")
+    check(lib.gd_transient_model_build(system._handle, tmp, err), err)
+    tm = ffi.gc(tmp[0], lib.gd_transient_model_free)
+    if records is None:
+        recs = _default_records(system, tm)
+    else:
+        recs = []
+        for text in ([records] if isinstance(records, str) else records):
+            for item in text.split(","):
+                item = item.strip()
+                if not item:
+                    raise model_error("record", "'%s': empty item" % text)
+                recs += _parse_record(system, tm, item)
+    trp = ffi.new("gd_transient **")
+    check(lib.gd_transient_new(system._handle, ffi.addressof(tm.spec), w, trp, err), err)
+    tr = ffi.gc(trp[0], lib.gd_transient_free)
+    opt = ffi.new("gd_transient_options *")
+    lib.gd_transient_options_init(opt)
+    opt.t_end, opt.record_from, opt.output_interval, opt.rtol = t_end, frm, dt, float(rtol)
+    opt.method = lib.GD_TR_ADAMS if method == "adams" else lib.GD_TR_BDF
+    opt.init = lib.GD_TR_INIT_STATIC if start == "static" else lib.GD_TR_INIT_REST
+    rr = ffi.new("gd_tr_record[]", max(len(recs), 1))
+    for k, (kind, i, i2, _n, _u) in enumerate(recs):
+        rr[k].kind, rr[k].index, rr[k].index2 = kind, i, i2
+    out = ffi.new("gd_transient_result **")
+    check(lib.gd_transient_run(tr, opt, rr, len(recs), out, err), err)
+    res = TransientResult(system, ffi.gc(out[0], lib.gd_transient_result_free),
+                          [r[3] for r in recs], [r[4] for r in recs],
+                          [system.model.meshes[tm.meshes[i].mesh] for i in range(tm.spec.nmeshes)],
+                          [bool(tm.meshes[i].backlash) for i in range(tm.spec.nmeshes)])
+    res.speed, res.t_end, res.record_from, res.output_interval = w, t_end, frm, dt
+    res.method, res.start = method, start
+    res.free_dofs = lib.gd_transient_nstates(tr) // 2
+    del tr, tm  # the problem borrows the spec: free it first
+    return res
+
+
+STATS_DTYPE = _core.struct_dtype("gd_tr_stats", {k: "f8" for k in (
+    "min", "max", "mean", "rms", "peak_to_peak", "std")})
+CONTACT_DTYPE = _core.struct_dtype("gd_tr_contact_stats", {
+    "contact_losses": "i4", "coast_impacts": "i4", "drive_impacts": "i4",
+    "separated_time": "f8", "coast_time": "f8", "drive_time": "f8"})
+
+
+class TransientResult(_Result):
+    """Time integration result (C gd_transient_result). t (samples), values (nrecords x
+    nsamples view), names and units of the records, stats (structured: min, max, mean,
+    rms, peak_to_peak, std per record), contacts (per nonlinear mesh), q_end, v_end, and
+    the solver's counters (steps, rhs_evals, ...)."""
+
+    def __init__(self, system, owner, names, units, meshes, backlash):
+        super().__init__(system, owner)
+        r = owner
+        self.names, self.units, self.meshes, self.backlash = names, units, meshes, backlash
+        self.nout, self.nrecords = int(r.nout), int(r.nrecords)
+        self.steps, self.rhs_evals, self.lin_iters = int(r.steps), int(r.rhs_evals), \
+            int(r.lin_iters)
+        self.prec_setups, self.events, self.reinits = int(r.prec_setups), int(r.events), \
+            int(r.reinits)
+        self.cpu_seconds = float(r.cpu_seconds)
+
+    @property
+    def t(self):
+        return self._view(self._owner.t, self.nout)
+
+    @property
+    def values(self):
+        return self._view(self._owner.values, (self.nrecords, self.nout))
+
+    def __getitem__(self, name):
+        """The samples of the record called name (e.g. "mesh:m01:force")."""
+        return self.values[self.names.index(name)]
+
+    @property
+    def stats(self):
+        return _core.struct_view(self._owner, self._owner.stats, self.nrecords, STATS_DTYPE)
+
+    @property
+    def contacts(self):
+        return _core.struct_view(self._owner, self._owner.contacts, int(self._owner.nmeshes),
+                                 CONTACT_DTYPE)
+
+    @property
+    def q_end(self):
+        return self._view(self._owner.q_end, int(self._owner.ndof))
+
+    @property
+    def v_end(self):
+        return self._view(self._owner.v_end, int(self._owner.ndof))
+
+    def to_pandas(self):
+        """The records, one column each, indexed by time (records.csv)."""
+        pd = _pandas()
+        return pd.DataFrame(self.values.T, index=pd.Index(self.t, name="time_s"),
+                            columns=self.names)

@@ -1,0 +1,208 @@
+"""Every analysis from Python gives the same numbers as the CLI's --json on the
+examples: both call the same library function on the same model, so the numbers must be
+identical (compared bit for bit, see conftest.same)."""
+import math
+
+import numpy as np
+import pytest
+
+from conftest import example, run_cli, nums, same
+
+RIG = example("rig2018")
+KUMAR = example("kumar2011_coupled")
+KUMAR_T = example("kumar2011_torsional")
+CHEN = example("chen1998_gear_pair")
+DUCATI = example("ducati_timing_geartrain")
+
+
+@pytest.mark.parametrize("path,args,kw", [
+    (KUMAR, [], {}),
+    (KUMAR_T, [], {}),
+    (CHEN, [], {}),
+    (RIG, ["--speed", "3000rpm", "--modes", "12"], {"speed": "3000rpm", "modes": 12}),
+    (CHEN, ["--damped", "--set", "meshes.mesh.stiffness=5e7"], {"kind": "damped"}),
+])
+def test_modal(geardyn, path, args, kw):
+    j = run_cli("modal", path, *args)
+    sets = [a for k, a in enumerate(args) if k and args[k - 1] == "--set"]
+    m = geardyn.load(path, sets=sets)
+    r = m.modal(**kw)
+    assert r.nmodes == len(j["modes"]) and r.ndof == j["dofs"] and r.damped == j["damped"]
+    assert same(r.speed, j["speed_rad_s"])
+    jm = j["modes"]
+    for key, col in [("omega_n_rad_s", "omega_n"), ("frequency_hz", "frequency_hz"),
+                     ("omega_d_rad_s", "omega_d"), ("damping_ratio", "damping_ratio"),
+                     ("log_decrement", "log_decrement"), ("eigenvalue_real", "lambda_re"),
+                     ("eigenvalue_imag", "lambda_im")]:
+        assert same(getattr(r, col), nums([x[key] for x in jm])), key
+    assert r.whirl == [x["whirl"] for x in jm]
+    assert r.dominant_motion_names == [x["dominant_motion"] for x in jm]
+    comps = m.system.components
+    for k, x in enumerate(jm):
+        assert bool(r.rigid_body[k]) == x["rigid_body"] and bool(r.unstable[k]) == x["unstable"]
+        assert same(r.energy_share[k], nums(x["energy_share"].values()))
+        assert same(r.energy_by_component[:, k], nums(x["energy_by_component"].values()))
+        assert list(x["energy_by_component"]) == comps
+    df = r.to_pandas()
+    assert same(df["damped_frequency_hz"], nums([x["damped_frequency_hz"] for x in jm]))
+
+
+@pytest.mark.parametrize("path,speeds", [(KUMAR, "0:3000rpm:4"), (CHEN, "0:6000rpm:7")])
+def test_campbell(geardyn, path, speeds):
+    j = run_cli("campbell", path, "--speeds", speeds, "--orders", "2,0.5")
+    r = geardyn.load(path).campbell(speeds, orders=[2, 0.5])
+    assert same(r.speeds, j["speeds_rad_s"]) and same(r.speeds_rpm, j["speeds_rpm"])
+    assert r.ntracks == len(j["modes"])
+    for t, jt in enumerate(j["modes"]):
+        assert r.tracks[t]["id"] == jt["id"] and r.tracks[t]["whirl"] == jt["whirl"]
+        assert r.tracks[t]["dominant_motion"] == jt["dominant_motion"]
+        assert same(r.frequency_hz[t], nums(jt["frequency_hz"]))
+        assert same(r.natural_frequency_hz[t], nums(jt["natural_frequency_hz"]))
+        assert same(r.damping_ratio[t], nums(jt["damping_ratio"]))
+        assert same(r.log_decrement[t], nums(jt["log_decrement"]))
+    assert len(r.critical_speeds) == len(j["critical_speeds"]) > 0
+    for c, jc in zip(r.critical_speeds, j["critical_speeds"]):
+        assert c["mode"] == jc["mode"] and c["order"] == jc["order"]
+        assert same([c["order_value"], c["speed_rpm"], c["frequency_hz"]],
+                    [jc["order_value"], jc["speed_rpm"], jc["frequency_hz"]])
+    assert same(r.instability_onset * 30 / math.pi, nums([j["instability_onset_rpm"]])[0])
+    assert len(r.to_pandas()) == int(np.sum(r.exists))
+
+
+def _check_series(res, j):
+    ser = res.series()
+    assert len(ser) == len(j["outputs"])
+    for (name, q, h), jo in zip(ser, j["outputs"]):
+        assert name == jo["name"] and q == jo["quantity"]
+        assert same(res.freqs, jo["frequency_rad_s"])
+        assert same(h.real, nums(jo["real"])) and same(h.imag, nums(jo["imag"]))
+        assert same(np.hypot(h.real, h.imag), nums(jo["magnitude"]))
+
+
+@pytest.mark.parametrize("path,args,kw", [
+    (KUMAR, ["--input", "torque:motor", "--output", "mesh:mesh", "--output", "gear.rz",
+             "--freq", "100:26000:20"],
+     dict(input="torque:motor", outputs=["mesh:mesh", "gear.rz"], freqs="100:26000:20")),
+    (KUMAR, ["--input", "torque:motor", "--output", "pinion.y", "--freq", "100:26000:9",
+             "--method", "modal", "--type", "mobility"],
+     dict(input="torque:motor", outputs=["pinion.y"], freqs="100:26000:9", method="modal",
+          quantity="mobility")),
+    (CHEN, ["--input", "gear_a.xy", "--output", "gear_b.xy", "--freq", "10:6000:15",
+            "--speed", "3000rpm"],
+     dict(input="gear_a.xy", outputs=["gear_b.xy"], freqs="10:6000:15", speed="3000rpm")),
+    (CHEN, ["--input", "gear_a.x", "--output", "bearing:support_b.y", "--freq", "1Hz:1000Hz:7"],
+     dict(input="gear_a.x", outputs="bearing:support_b.y", freqs="1Hz:1000Hz:7")),
+])
+def test_frf(geardyn, path, args, kw):
+    j = run_cli("frf", path, *args)
+    r = geardyn.load(path).frf(**kw)
+    assert same(r.speed, j["speed_rad_s"]) and r.method == j["method"]
+    if r.method == "modal":
+        assert r.modes_summed == j["modes_summed"]
+    _check_series(r, j)
+    assert len(r.to_pandas()) == len(j["outputs"]) * r.nfreq
+
+
+@pytest.mark.parametrize("path,args,kw", [
+    (CHEN, [], {}),
+    (KUMAR, ["--output", "pinion.y", "--output", "orbit:gear", "--output", "mesh:mesh"],
+     {"outputs": ["pinion.y", "orbit:gear", "mesh:mesh"]}),
+])
+def test_unbalance(geardyn, path, args, kw):
+    j = run_cli("unbalance", path, "--speeds", "100:6000:8", *args)
+    r = geardyn.load(path).unbalance("100:6000:8", **kw)
+    assert same([h["order"] for h in r.harmonics], [h["order"] for h in j["harmonics"]])
+    X = r.response
+    k = 0
+    for h in range(r.nharmonics):
+        for o, name in enumerate(r.outputs):
+            jo = j["outputs"][k]
+            k += 1
+            assert jo["name"] == name and same(jo["harmonic_order"], r.harmonics[h]["order"])
+            assert same(r.speeds, jo["speed_rad_s"])
+            assert same(X[h, o].real, nums(jo["real"])) and same(X[h, o].imag, nums(jo["imag"]))
+    assert k == len(j["outputs"]) > 0
+    ob = r.orbits
+    k = 0
+    for h in range(r.nharmonics):
+        for b, node in enumerate(r.orbit_nodes):
+            jb = j["orbits"][k]
+            k += 1
+            assert jb["node"] == node
+            assert same(ob[h, b]["major"], nums(jb["major"]))
+            assert same(ob[h, b]["minor"], nums(jb["minor"]))
+            assert same(np.degrees(ob[h, b]["angle"]), nums(jb["angle_deg"]))
+    assert k == len(j["orbits"]) > 0
+    assert len(r.to_pandas()) == r.nharmonics * r.noutputs * r.nspeeds
+
+
+@pytest.mark.parametrize("path,args,kw", [
+    (DUCATI, ["--revolutions", "0.2"], {"revolutions": 0.2}),
+    (KUMAR_T, ["--duration", "20ms", "--speed", "1000rpm", "--record",
+               "mesh:mesh:deflection,ratio:motor/load", "--record", "gear.rz:speed"],
+     {"duration": "20ms", "speed": "1000rpm",
+      "records": ["mesh:mesh:deflection,ratio:motor/load", "gear.rz:speed"]}),
+])
+def test_transient(geardyn, path, args, kw):
+    j = run_cli("transient", path, "--quiet", *args)
+    r = geardyn.load(path).transient(**kw)
+    assert same([r.speed, r.t_end, r.record_from, r.output_interval],
+                [j["speed_rad_s"], j["t_end_s"], j["record_from_s"], j["output_interval_s"]])
+    assert r.nout == j["samples"] and r.free_dofs == j["free_dofs"]
+    assert (r.steps, r.rhs_evals, r.events) == (j["steps"], j["rhs_evaluations"], j["events"])
+    assert r.names == [x["name"] for x in j["records"]]
+    assert r.units == [x["unit"] for x in j["records"]]
+    st = r.stats
+    for k, x in enumerate(j["records"]):
+        for f in ("min", "max", "mean", "rms", "peak_to_peak", "std"):
+            assert same(st[k][f], nums([x[f]])[0]), (x["name"], f)
+    assert r.meshes == [x["name"] for x in j["meshes"]]
+    for c, x in zip(r.contacts, j["meshes"]):
+        assert (c["contact_losses"], c["coast_impacts"], c["drive_impacts"]) == \
+            (x["contact_losses"], x["coast_impacts"], x["drive_impacts"])
+        assert same([c["separated_time"], c["drive_time"]], [x["separated_time_s"],
+                                                             x["drive_time_s"]])
+    df = r.to_pandas()
+    assert df.shape == (r.nout, r.nrecords) and same(df.iloc[:, 0], r.values[0])
+
+
+@pytest.mark.parametrize("name,args,kw", [
+    ("helical_pair1", [], {}),
+    ("helical_pair2", ["--method", "iso6336", "--points", "64"],
+     {"method": "iso6336", "points": 64}),
+])
+def test_mesh_stiffness(geardyn, name, args, kw):
+    j = run_cli("mesh-stiffness", example(name), *args)
+    r = geardyn.mesh_stiffness(example(name), **kw)
+    assert r.mesh == j["mesh"] and r.method == j["method"] and list(r.teeth) == j["teeth"]
+    assert same(r.angle_rad, j["angle_rad"]) and same(r.stiffness, j["stiffness"])
+    assert list(r.pairs_in_contact) == j["pairs_in_contact"]
+    assert same(r.load_share, np.array(j["load_share"]))
+    for k in ("contact_ratio_transverse", "contact_ratio_face", "contact_ratio_total",
+              "mesh_period_rad", "body_stiffness"):
+        assert same(getattr(r, k), j[k]), k
+    for k in ("mean", "max", "min", "peak_to_peak"):
+        assert same(getattr(r, k), j["stiffness_" + k]), k
+    assert same([h["amplitude"] for h in r.harmonics], [h["amplitude"] for h in j["harmonics"]])
+    assert len(r.to_pandas()) == r.n
+
+
+@pytest.mark.parametrize("path,speed", [(RIG, "3000rpm"), (CHEN, "0")])
+def test_matrices(geardyn, path, speed, tmp_path):
+    import json
+    import subprocess
+    from conftest import BUILD, ROOT
+    subprocess.run([BUILD + "/geardyn", "matrices", path, "--format", "json", "--speed", speed,
+                    "--out", str(tmp_path / "m")], check=True, cwd=ROOT, capture_output=True)
+    j = json.load(open(tmp_path / "m" / "matrices.json"))
+    mats = geardyn.load(path).matrices(speed)
+    assert mats.dofs == ["%s.%s" % (d["node"], d["dof"]) for d in j["dofs"]]
+    for name in "MKCG":
+        csc = getattr(mats, name)
+        # scipy keeps the C library's arrays (no copy)
+        assert csc.nnz == 0 or not (csc.data.flags.owndata or csc.indices.flags.owndata
+                                    or csc.indptr.flags.owndata), name
+        a, jm = csc.tocoo(), j[name]
+        assert a.shape == (jm["size"], jm["size"]) and a.nnz == jm["nnz"]
+        assert list(a.row + 1) == jm["rows"] and list(a.col + 1) == jm["cols"], name
+        assert same(a.data, jm["values"]), name
