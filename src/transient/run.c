@@ -67,8 +67,8 @@ static void cv_err(int code, const char *module, const char *function, char *msg
 }
 
 /* Record value r at time t with full q, v. */
-static double record_value(gd_transient *tr, const gd_tr_record *rec, double t, const double *q,
-                           const double *v)
+double gd_tr_record_value(gd_transient *tr, const gd_tr_record *rec, double t, const double *q,
+                          const double *v)
 {
     const gd_model *model = tr->sys->model;
     int i = rec->index;
@@ -491,7 +491,8 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
         res->t[k] = tk;
         gd_tr_fill(tr, tk, yd, tr->q, tr->v, NULL);
         for (int r = 0; r < nrecords; r++)
-            res->values[(size_t)r * nout + k] = record_value(tr, &records[r], tk, tr->q, tr->v);
+            res->values[(size_t)r * nout + k] =
+                gd_tr_record_value(tr, &records[r], tk, tr->q, tr->v);
     }
     for (int i = 0; i < tr->nmesh; i++)
         account(&res->contacts[i], tr->mesh[i].state, track[i].since, opt->t_end, from);

@@ -75,6 +75,8 @@ struct gd_transient {
     /* workspaces (n each) */
     double *q, *v, *acc, *r, *w1, *w2;
     char msg[256]; /* last solver message */
+    int nterm;     /* local force terms (local_forces.c), built on first use; -1 unsupported */
+    gd_tr_term *term;
 };
 
 /* Fills q, v, acc (length n) at time t from the state y: free DOFs from y, prescribed
@@ -85,6 +87,16 @@ void gd_tr_fill(gd_transient *tr, double t, const double *y, double *q, double *
 double gd_tr_mesh_force(const gd_transient *tr, const tr_mesh *m, gd_contact state, double t,
                         const double *q, const double *v, double *d, double *dd, double *k,
                         double *de);
+/* The mesh law itself (one implementation for the integrator, the local forces and the
+ * frequency-domain solvers): the force as gd_tr_mesh_force, and grad (may be NULL) =
+ * dF/dd, dF/dd', dF/dq_drv, dF/dq_drv' (the driver's torsion enters through the angle of
+ * k(theta) and e(theta)). */
+double gd_tr_mesh_law(const tr_mesh *m, gd_contact state, double t, const double *q,
+                      const double *v, double *d, double *dd, double *k, double *de,
+                      double grad[4]);
+/* Value of a record at (t, q, v) (full DOF vectors) with the current contact states. */
+double gd_tr_record_value(gd_transient *tr, const gd_tr_record *rec, double t, const double *q,
+                          const double *v);
 /* Net generalised force r (length n) at (t, q, v, acc) with the current contact states,
  * without the inertia of the free DOFs; mu receives the cam inertias (if not NULL). */
 void gd_tr_residual(gd_transient *tr, double t, const double *q, const double *v, const double *acc,

@@ -16,6 +16,7 @@ declare -A level=(
     [system]=5
     [modal]=6
     [campbell]=7 [response]=7 [transient]=7
+    [periodic]=8
     [api]=9
 )
 # public header -> module
@@ -29,6 +30,7 @@ declare -A header=(
     [modal.h]=modal
     [campbell.h]=campbell [probe.h]=response [frf.h]=response [unbalance.h]=response
     [transient.h]=transient [transient_model.h]=transient
+    [periodic.h]=periodic
     [geardyn.h]=api
 )
 
