@@ -10,6 +10,7 @@
 #include "geardyn/spectrum.h"
 #include "geardyn/transient_model.h"
 #include "geardyn/units.h"
+#include "transient_poincare.h"
 #include "transient_record.h"
 
 #ifndef M_PI
@@ -63,6 +64,25 @@ static const char USAGE[] =
     "                       DIR/summary.json, DIR/spectrum.csv with --spectrum\n"
     "  --quiet              no progress bar (it is shown on stderr only on a terminal)\n";
 
+/* (split: C99 guarantees string literals of 4095 characters only) */
+static const char USAGE_POINCARE[] =
+    "  --poincare SRC       stroboscopic (Poincare) samples of the records once per\n"
+    "                       revolution of shaft SRC or per tooth-mesh cycle of mesh SRC\n"
+    "                       (shaft:NAME or mesh:NAME when a name is both), at the exact\n"
+    "                       times k T from --settle on: the points, their period (period-1,\n"
+    "                       period-2, ... or many) and, with --out, DIR/poincare.csv\n"
+    "  --settle S           settling time before the Poincare samples: a time (20ms) or\n"
+    "                       revolutions of the reference shaft (200rev); default: --from\n"
+    "                       for one run, 100rev for a sweep\n"
+    "  --sweep-speeds R     bifurcation diagram: FROM:TO:COUNT speeds (e.g.\n"
+    "                       500:3000rpm:26); each run starts from the previous speed's end\n"
+    "                       state, settles, then takes --points Poincare samples (needs\n"
+    "                       --poincare; replaces --duration, --revolutions, --speed);\n"
+    "                       with --out, DIR/sweep.csv, DIR/poincare.csv, DIR/summary.json\n"
+    "  --points N           Poincare points per speed in a sweep (default 64)\n"
+    "  --run-down           sweep from TO down to FROM\n"
+    "  --both-directions    sweep up, then down again\n";
+
 enum { NPEAKS = 6 };
 
 typedef struct progress {
@@ -104,6 +124,30 @@ static int parse_positive(const char *opt, const char *text, double *out)
     if (end == text || *end || !isfinite(v) || v <= 0)
         return gd_cli_usage_error(CMD, "%s: '%s' is not a positive number", opt, text);
     *out = v;
+    return 0;
+}
+
+/* --settle T|Nrev: a time, or revolutions of the reference shaft ("200rev"). */
+static int parse_settle(const char *text, double *time, double *revs)
+{
+    *time = *revs = 0;
+    size_t l = strlen(text);
+    if (l > 3 && !strcmp(text + l - 3, "rev")) {
+        char buf[64];
+        if (l - 3 >= sizeof buf) return gd_cli_usage_error(CMD, "--settle: value too long");
+        memcpy(buf, text, l - 3);
+        buf[l - 3] = 0;
+        char *end;
+        *revs = strtod(buf, &end);
+        if (end == buf || *end || !isfinite(*revs) || *revs < 0)
+            return gd_cli_usage_error(CMD,
+                                      "--settle: '%s' is not a number of revolutions >= 0 "
+                                      "(e.g. 200rev)",
+                                      text);
+        return 0;
+    }
+    if (parse_time("--settle", text, time)) return GD_EXIT_INPUT;
+    if (*time < 0) return gd_cli_usage_error(CMD, "--settle: give a time >= 0");
     return 0;
 }
 
@@ -256,7 +300,7 @@ static void print_text(const gd_system *sys, const gd_transient_model *tm,
 
 static int write_outputs(const char *dir, const gd_cli_records *recs,
                          const gd_transient_result *res, gd_spectrum *const *spec,
-                         const cJSON *summary, double speed)
+                         const cJSON *summary, double speed, int poincare)
 {
     gd_error err;
     gd_error_clear(&err);
@@ -291,6 +335,21 @@ static int write_outputs(const char *dir, const gd_cli_records *recs,
         }
         if (gd_outdir_close(&od, f, "spectrum.csv", &err)) goto fail;
     }
+    if (poincare) {
+        f = gd_outdir_open(&od, "poincare.csv", &err);
+        if (!f) goto fail;
+        fprintf(f, "point,time_s");
+        for (int r = 0; r < recs->n; r++)
+            fprintf(f, ",%s", recs->r[r].name);
+        fprintf(f, "\n");
+        for (int k = 0; k < res->nsamples; k++) {
+            fprintf(f, "%d,%.12g", k, res->sample_t[k]);
+            for (int r = 0; r < recs->n; r++)
+                fprintf(f, ",%.10g", res->sample_values[(size_t)r * res->nsamples + k]);
+            fprintf(f, "\n");
+        }
+        if (gd_outdir_close(&od, f, "poincare.csv", &err)) goto fail;
+    }
     f = gd_outdir_open(&od, "summary.json", &err);
     if (!f) goto fail;
     gd_cli_print_json(f, summary);
@@ -304,6 +363,9 @@ fail:
 
 typedef struct cli_opts {
     const char *duration, *revolutions, *speed, *from, *interval, *coupling, *out;
+    const char *poincare, *settle, *sweep;
+    long points;
+    int direction, direction_given;
     const char *records[64];
     int nrecords;
     gd_cli_sets sets;
@@ -332,6 +394,12 @@ static int parse_args(int argc, char **argv, cli_opts *o)
                                          {"json", no_argument, 0, 'j'},
                                          {"out", required_argument, 0, 'o'},
                                          {"quiet", no_argument, 0, 'q'},
+                                         {"poincare", required_argument, 0, 'P'},
+                                         {"settle", required_argument, 0, 'E'},
+                                         {"sweep-speeds", required_argument, 0, 'W'},
+                                         {"points", required_argument, 0, 'N'},
+                                         {"run-down", no_argument, 0, 'D'},
+                                         {"both-directions", no_argument, 0, 'B'},
                                          GD_CLI_SET_OPTION,
                                          {"help", no_argument, 0, 'h'},
                                          {0, 0, 0, 0}};
@@ -419,14 +487,63 @@ static int parse_args(int argc, char **argv, cli_opts *o)
         case 'q':
             o->quiet = 1;
             break;
+        case 'P':
+            o->poincare = optarg;
+            break;
+        case 'E':
+            o->settle = optarg;
+            break;
+        case 'W':
+            o->sweep = optarg;
+            break;
+        case 'N':
+            if (gd_cli_parse_count(optarg, 2, 1000000, &o->points))
+                return gd_cli_usage_error(CMD, "--points: '%s' is not a whole number from 2",
+                                          optarg);
+            break;
+        case 'D':
+        case 'B':
+            if (o->direction_given && o->direction != (c == 'D' ? 1 : 2))
+                return gd_cli_usage_error(CMD,
+                                          "--run-down and --both-directions exclude each other");
+            o->direction = c == 'D' ? 1 : 2;
+            o->direction_given = 1;
+            break;
         case 'h':
             fputs(USAGE, stdout);
+            fputs(USAGE_POINCARE, stdout);
             return -1;
         default:
             return gd_cli_option_error(CMD, c, argv, optind);
         }
     }
     if (optind != argc - 1) return gd_cli_usage_error(CMD, "give exactly one model file");
+    if (o->sweep) {
+        if (!o->poincare)
+            return gd_cli_usage_error(CMD, "--sweep-speeds needs --poincare SHAFT|MESH (what to "
+                                           "sample at each speed)");
+        const char *clash = o->duration      ? "--duration"
+                            : o->revolutions ? "--revolutions"
+                            : o->speed       ? "--speed"
+                            : o->from        ? "--from"
+                            : o->interval    ? "--output-interval"
+                            : o->spectrum    ? "--spectrum"
+                                             : NULL;
+        if (clash)
+            return gd_cli_usage_error(
+                CMD,
+                "%s does not apply to --sweep-speeds (each run lasts --settle "
+                "plus --points Poincare periods)",
+                clash);
+        return 0;
+    }
+    if (o->points || o->direction_given)
+        return gd_cli_usage_error(CMD, "%s applies to --sweep-speeds only",
+                                  o->points           ? "--points"
+                                  : o->direction == 1 ? "--run-down"
+                                                      : "--both-directions");
+    if (o->settle && !o->poincare)
+        return gd_cli_usage_error(CMD, "--settle applies to --poincare only");
     if (o->duration && o->revolutions)
         return gd_cli_usage_error(CMD, "--duration and --revolutions exclude each other");
     if (!o->duration && !o->revolutions)
@@ -473,6 +590,102 @@ static int resolve_times(const cli_opts *o, double speed, run_info *ri)
     return 0;
 }
 
+/* The Poincare sample times of one run: from --settle (default --from) to the end. */
+static int poincare_times(const cli_opts *o, const gd_cli_poincare *pc, const run_info *ri,
+                          double **times, int *n)
+{
+    *times = NULL;
+    *n = 0;
+    if (!(ri->speed > 0))
+        return gd_cli_usage_error(CMD, "--poincare needs a reference speed > 0 (--speed or "
+                                       "'speed:' in the model): the period is undefined at 0");
+    double settle = ri->from, st = 0, revs = 0;
+    if (o->settle) {
+        if (parse_settle(o->settle, &st, &revs)) return GD_EXIT_INPUT;
+        settle = revs > 0 ? revs * 2 * M_PI / ri->speed : st;
+    }
+    if (settle >= ri->t_end)
+        return gd_cli_usage_error(CMD, "--settle: %g s is not before the end of the run (%g s)",
+                                  settle, ri->t_end);
+    *n = gd_cli_poincare_times(pc, ri->speed, settle, ri->t_end, times);
+    if (*n < 2) {
+        free(*times);
+        *times = NULL;
+        return gd_cli_usage_error(CMD,
+                                  "--poincare: %d sample(s) between --settle (%g s) and the end "
+                                  "(%g s), one every %g s: run longer or settle less",
+                                  *n, settle, ri->t_end, pc->angle / ri->speed);
+    }
+    return 0;
+}
+
+static void print_poincare(const gd_cli_poincare *pc, const gd_cli_records *recs,
+                           const gd_transient_result *res, double speed, int period, int distinct)
+{
+    char cls[32];
+    gd_cli_poincare_class_name(period, cls, sizeof cls);
+    printf("\nPoincare section (%s, every %g s): %d points from %g s, %s, %d distinct (same "
+           "within %g of each record's peak-to-peak)\n",
+           pc->name, pc->angle / speed, res->nsamples, res->sample_t[0], cls, distinct,
+           GD_CLI_POINCARE_TOL);
+    int show = period > 0 ? period : (res->nsamples < 8 ? res->nsamples : 8);
+    for (int r = 0; r < recs->n; r++) {
+        printf("  %s:", recs->r[r].name);
+        for (int k = 0; k < show; k++)
+            printf(" %.6g",
+                   res->sample_values[(size_t)r * res->nsamples + res->nsamples - show + k]);
+        printf("%s\n", period > 0 ? "" : " ...");
+    }
+}
+
+/* --sweep-speeds: the bifurcation diagram (transient_sweep.c). */
+static int sweep(const cli_opts *o, gd_model *m, gd_system *s)
+{
+    gd_cli_sweep sw;
+    memset(&sw, 0, sizeof sw);
+    double *speeds = NULL;
+    gd_transient_model *tm = NULL;
+    gd_cli_records recs = {0, 0, NULL};
+    gd_cli_poincare pc;
+    gd_error err;
+    int rc = gd_cli_parse_range(CMD, "--sweep-speeds", o->sweep, &speeds, &sw.nspeeds);
+    if (rc) return rc;
+    if (!(speeds[0] > 0)) {
+        rc = gd_cli_usage_error(CMD, "--sweep-speeds: FROM must be > 0 (the Poincare period is "
+                                     "undefined at speed 0)");
+        goto done;
+    }
+    sw.speeds = speeds;
+    sw.settle_revs = 100;
+    if (o->settle && (rc = parse_settle(o->settle, &sw.settle_time, &sw.settle_revs))) goto done;
+    sw.points = o->points > 0 ? (int)o->points : 64;
+    sw.direction = o->direction;
+    gd_transient_options_init(&sw.base);
+    sw.base.rtol = o->rtol;
+    sw.base.method = o->method;
+    sw.base.init = o->init;
+    sw.json = o->json;
+    sw.quiet = o->quiet;
+    sw.out = o->out;
+    if ((rc = gd_cli_poincare_parse(CMD, m, o->poincare, &pc))) goto done;
+    for (int i = 0; i < m->nunbalances; i++)
+        m->unbalances[i].amount *= o->unbalance_scale;
+    gd_error_clear(&err);
+    if (gd_transient_model_build(s, &tm, &err)) {
+        rc = gd_cli_report(&err);
+        goto done;
+    }
+    for (int k = 0; k < o->nrecords; k++)
+        if ((rc = gd_cli_parse_records(CMD, s, tm, o->records[k], &recs))) goto done;
+    if (!o->nrecords && (rc = gd_cli_default_records(s, tm, &recs))) goto done;
+    rc = gd_cli_transient_sweep(s, tm, &recs, &pc, &sw);
+done:
+    free(speeds);
+    gd_cli_records_free(&recs);
+    gd_transient_model_free(tm);
+    return rc;
+}
+
 int gd_cmd_transient(int argc, char **argv)
 {
     cli_opts o;
@@ -480,7 +693,7 @@ int gd_cmd_transient(int argc, char **argv)
     if (rc) return rc < 0 ? GD_EXIT_OK : rc;
     gd_error err;
     gd_error_clear(&err);
-    if (o.out && gd_outdir_check(o.out, &err)) return gd_cli_report(&err);
+    if (o.out && gd_outdir_check_writable(o.out, &err)) return gd_cli_report(&err);
     gd_model *m = NULL;
     gd_system *s = NULL;
     gd_transient_model *tm = NULL;
@@ -501,7 +714,16 @@ int gd_cmd_transient(int argc, char **argv)
         rc = GD_EXIT_INPUT;
         goto done;
     }
+    gd_cli_poincare pc;
+    if (o.poincare && (rc = gd_cli_poincare_parse(CMD, m, o.poincare, &pc))) goto done;
+    if (o.sweep) {
+        rc = sweep(&o, m, s);
+        goto done;
+    }
     if ((rc = resolve_times(&o, ri.speed, &ri))) goto done;
+    double *ptimes = NULL;
+    int npt = 0;
+    if (o.poincare && (rc = poincare_times(&o, &pc, &ri, &ptimes, &npt))) goto done;
     for (int i = 0; i < m->nunbalances; i++)
         m->unbalances[i].amount *= o.unbalance_scale;
     if (gd_transient_model_build(s, &tm, &err)) {
@@ -523,6 +745,8 @@ int gd_cmd_transient(int argc, char **argv)
     opt.rtol = o.rtol;
     opt.method = o.method;
     opt.init = o.init;
+    opt.sample_times = ptimes;
+    opt.nsample_times = npt;
     progress pg = {-1, 0};
     if (!o.quiet && isatty(2)) {
         opt.progress = progress_cb;
@@ -538,6 +762,7 @@ int gd_cmd_transient(int argc, char **argv)
         rr[r] = recs.r[r].rec;
     gd_status st = gd_transient_run(tr, &opt, rr, recs.n, &res, &err);
     free(rr);
+    free(ptimes);
     if (pg.drawn) fprintf(stderr, "\r%60s\r", "");
     if (st) {
         rc = gd_cli_report(&err);
@@ -561,11 +786,31 @@ int gd_cmd_transient(int argc, char **argv)
     }
     int nfree = gd_transient_nstates(tr) / 2;
     summary = summary_json(s, tm, &recs, res, spec, &ri, nfree);
-    if (o.out && (rc = write_outputs(o.out, &recs, res, spec, summary, ri.speed))) goto done;
+    int pperiod = 0, pdistinct = 0;
+    if (o.poincare) {
+        double *scale = malloc((size_t)(recs.n > 0 ? recs.n : 1) * sizeof *scale);
+        if (!scale) {
+            rc = GD_EXIT_FAIL;
+            goto done;
+        }
+        for (int r = 0; r < recs.n; r++)
+            scale[r] = res->stats[r].peak_to_peak;
+        gd_cli_poincare_classify(res->sample_values, recs.n, res->nsamples, scale, &pperiod,
+                                 &pdistinct);
+        free(scale);
+        cJSON_AddItemToObject(summary, "poincare",
+                              gd_cli_poincare_json(&pc, pc.angle / ri.speed, &recs, res->sample_t,
+                                                   res->sample_values, res->nsamples, pperiod,
+                                                   pdistinct));
+    }
+    if (o.out &&
+        (rc = write_outputs(o.out, &recs, res, spec, summary, ri.speed, o.poincare != NULL)))
+        goto done;
     if (o.json)
         gd_cli_print_json(stdout, summary);
     else
         print_text(s, tm, &recs, res, spec, &ri, nfree);
+    if (!o.json && o.poincare) print_poincare(&pc, &recs, res, ri.speed, pperiod, pdistinct);
     rc = GD_EXIT_OK;
 done:
     cJSON_Delete(summary);

@@ -172,6 +172,12 @@ typedef struct gd_transient_options {
      * prints nothing itself. */
     void (*progress)(double t, double t_start, double t_end, void *data);
     void *progress_data;
+    /* Stroboscopic (Poincare) samples (NULL/0: none): the records and the state at these
+     * times (increasing, within [t_start, t_end]), each reached as an output time of
+     * CVODE (its interpolant at the order of the step), not read off the fixed-interval
+     * samples. Borrowed for the run. */
+    const double *sample_times;
+    int nsample_times;
 } gd_transient_options;
 GD_API void gd_transient_options_init(gd_transient_options *opt);
 
@@ -224,6 +230,10 @@ typedef struct gd_transient_result {
     gd_tr_contact_stats *contacts;
     int ndof;
     double *q_end, *v_end; /* ndof, at t_end (prescribed DOFs from their law) */
+    /* Poincare samples (options.sample_times): times, records (record r, sample k:
+     * sample_values[r * nsamples + k]) and full q, v (sample k: sample_q[k * ndof + i]) */
+    int nsamples;
+    double *sample_t, *sample_values, *sample_q, *sample_v;
     /* solver statistics over the whole run */
     long steps, rhs_evals, lin_iters, prec_setups, events, reinits;
     double cpu_seconds;
@@ -233,5 +243,22 @@ GD_API gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *
                                   const gd_tr_record *records, int nrecords,
                                   gd_transient_result **out, gd_error *err);
 GD_API void gd_transient_result_free(gd_transient_result *r);
+
+/* Monodromy matrix of the variational equations about the motion that starts from
+ * state y0 (length gd_transient_nstates, layout [q_f; q_f']) at time t0, over one
+ * period T: phi (nstates x nstates, column-major) = d y(t0 + T) / d y0, integrated
+ * with CVODE at opt's tolerances (contact states updated along the orbit); y_end
+ * (may be NULL) receives y(t0 + T).
+ * The variational equations Phi' = J Phi are integrated with the state as one system;
+ * J v is a central directional difference of the right-hand side (contact states frozen;
+ * step eps^(1/3) of each state's scale |y_i| + atol_i / rtol: error ~1e-11 relative),
+ * and Phi jumps by the saltation matrix at every contact change of a backlash mesh.
+ * Uses opt's rtol, atol_q, atol_v (also for Phi, scaled per column), method, max_step,
+ * max_steps, max_order, locate_events; the other options are ignored. Cost: 1 + 2
+ * nstates right-hand sides per evaluation of the augmented system of nstates (nstates
+ * + 1) unknowns. Errors: GD_EINPUT (period <= 0, tolerances), GD_ENUMERIC (CVODE). */
+GD_API gd_status gd_transient_monodromy(gd_transient *tr, double t0, double period,
+                                        const double *y0, const gd_transient_options *opt,
+                                        double *phi, double *y_end, gd_error *err);
 
 #endif

@@ -304,3 +304,20 @@ void gd_tr_prec_solve(gd_transient *tr, const double *r, double *z)
     for (int i = 0; i < nf; i++)
         z[i] = rq[i] + g * z[nf + i];
 }
+
+gd_contact gd_tr_root_state(gd_contact cur, int r0, int r1)
+{
+    if (r1 < 0) return GD_CONTACT_COAST;
+    if (r0 > 0) return GD_CONTACT_DRIVE;
+    if (r0 < 0 || r1 > 0) return GD_CONTACT_SEPARATED;
+    return cur;
+}
+
+gd_contact gd_tr_missed_state(gd_transient *tr, const tr_mesh *m, double t)
+{
+    double de;
+    gd_tr_mesh_force(tr, m, m->state, t, tr->q, tr->v, NULL, NULL, NULL, &de);
+    gd_contact ns = gd_backlash_state(de, m->spec.gap);
+    double tol = 1e-6 * m->spec.gap + 1e-15;
+    return ns != m->state && fabs(fabs(de) - m->spec.gap) > tol ? ns : m->state;
+}

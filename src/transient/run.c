@@ -2,9 +2,7 @@
  * GMRES preconditioned by the exact inverse of the linear part, root-finding on the
  * contact changes of backlash meshes with the contact state frozen between events and a
  * restart at every event; fixed-interval records and summary statistics. */
-#include <cvode/cvode.h>
 #include <math.h>
-#include <nvector/nvector_serial.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sunlinsol/sunlinsol_spgmr.h>
@@ -35,8 +33,8 @@ static int cv_root(sunrealtype t, N_Vector y, sunrealtype *g, void *ud)
     return 0;
 }
 
-static int cv_psetup(sunrealtype t, N_Vector y, N_Vector fy, sunbooleantype jok,
-                     sunbooleantype *jcur, sunrealtype gamma, void *ud)
+int gd_tr_cv_psetup(sunrealtype t, N_Vector y, N_Vector fy, sunbooleantype jok,
+                    sunbooleantype *jcur, sunrealtype gamma, void *ud)
 {
     (void)t;
     (void)y;
@@ -46,8 +44,8 @@ static int cv_psetup(sunrealtype t, N_Vector y, N_Vector fy, sunbooleantype jok,
     return gd_tr_prec_setup(ud, gamma) ? 1 : 0; /* > 0: recoverable */
 }
 
-static int cv_psolve(sunrealtype t, N_Vector y, N_Vector fy, N_Vector r, N_Vector z,
-                     sunrealtype gamma, sunrealtype delta, int lr, void *ud)
+int gd_tr_cv_psolve(sunrealtype t, N_Vector y, N_Vector fy, N_Vector r, N_Vector z,
+                    sunrealtype gamma, sunrealtype delta, int lr, void *ud)
 {
     (void)t;
     (void)y;
@@ -55,15 +53,52 @@ static int cv_psolve(sunrealtype t, N_Vector y, N_Vector fy, N_Vector r, N_Vecto
     (void)gamma;
     (void)delta;
     (void)lr;
-    gd_tr_prec_solve(ud, N_VGetArrayPointer(r), N_VGetArrayPointer(z));
+    gd_transient *tr = ud;
+    const double *rd = N_VGetArrayPointer(r);
+    double *zd = N_VGetArrayPointer(z);
+    const sunindextype N = 2 * tr->nf, nb = N > 0 ? N_VGetLength(r) / N : 0;
+    for (sunindextype j = 0; j < nb; j++)
+        gd_tr_prec_solve(tr, rd + N * j, zd + N * j);
     return 0;
 }
 
-static void cv_err(int code, const char *module, const char *function, char *msg, void *ud)
+void gd_tr_cv_err(int code, const char *module, const char *function, char *msg, void *ud)
 {
     (void)module;
     gd_transient *tr = ud;
     if (code < 0) snprintf(tr->msg, sizeof tr->msg, "%s: %s", function, msg);
+}
+
+void *gd_tr_cvode_new(SUNContext ctx, const gd_transient_options *opt, double t0, double t_stop,
+                      N_Vector y, N_Vector atol, CVRhsFn rhs, CVRootFn root, int nroot,
+                      CVLsPrecSetupFn psetup, CVLsPrecSolveFn psolve, void *ud, gd_transient *tr,
+                      SUNLinearSolver *LS, int *flag)
+{
+    *LS = NULL;
+    void *mem = CVodeCreate(opt->method == GD_TR_ADAMS ? CV_ADAMS : CV_BDF, ctx);
+    if (!mem) {
+        *flag = -1;
+        return NULL;
+    }
+    CVodeSetErrHandlerFn(mem, gd_tr_cv_err, tr);
+    int f = CVodeInit(mem, rhs, t0, y);
+    if (!f) f = CVodeSVtolerances(mem, opt->rtol, atol);
+    if (!f) f = CVodeSetUserData(mem, ud);
+    *LS = SUNLinSol_SPGMR(y, SUN_PREC_LEFT, 20, ctx);
+    if (!*LS) f = -1;
+    if (!f) f = CVodeSetLinearSolver(mem, *LS, NULL);
+    if (!f) f = CVodeSetPreconditioner(mem, psetup, psolve);
+    if (!f) f = CVodeSetMaxNumSteps(mem, opt->max_steps > 0 ? opt->max_steps : 50000000L);
+    if (!f && opt->max_step > 0) f = CVodeSetMaxStep(mem, opt->max_step);
+    if (!f) f = CVodeSetStopTime(mem, t_stop);
+    if (!f && opt->method == GD_TR_BDF) f = CVodeSetStabLimDet(mem, SUNTRUE);
+    if (!f && opt->max_order > 0) f = CVodeSetMaxOrd(mem, opt->max_order);
+    if (!f && nroot) {
+        f = CVodeRootInit(mem, nroot, root);
+        if (!f) f = CVodeSetNoInactiveRootWarn(mem);
+    }
+    *flag = f;
+    return mem;
 }
 
 /* Record value r at time t with full q, v. */
@@ -259,6 +294,10 @@ void gd_transient_result_free(gd_transient_result *r)
     free(r->contacts);
     free(r->q_end);
     free(r->v_end);
+    free(r->sample_t);
+    free(r->sample_values);
+    free(r->sample_q);
+    free(r->sample_v);
     free(r);
 }
 
@@ -305,6 +344,91 @@ static void change_state(gd_transient *tr, int i, gd_contact ns, double t, doubl
     m->state = ns;
 }
 
+/* Poincare sample ks at time t (the integrator's output there): records and state. */
+static void store_sample(gd_transient *tr, gd_transient_result *res, const gd_tr_record *records,
+                         int ks, double t, const double *yd)
+{
+    const int ns = res->nsamples, n = tr->n;
+    double *q = res->sample_q + (size_t)ks * n, *v = res->sample_v + (size_t)ks * n;
+    res->sample_t[ks] = t;
+    gd_tr_fill(tr, t, yd, q, v, NULL);
+    for (int r = 0; r < res->nrecords; r++)
+        res->sample_values[(size_t)r * ns + ks] = gd_tr_record_value(tr, &records[r], t, q, v);
+}
+
+/* The integration state of a run, shared by its output loop and advance(). */
+typedef struct run_work {
+    void *mem;
+    N_Vector y;
+    int *rootsfound;
+    gd_transient_result *res;
+    contact_track *track;
+    double from;
+} run_work;
+
+/* Integrates from *t to tk (CVODE's output at tk), handling the contact events on the
+ * way. */
+static gd_status advance(gd_transient *tr, run_work *w, const gd_transient_options *opt, double *t,
+                         double tk, gd_error *err)
+{
+    while (*t < tk) {
+        /* with a progress report, the stretch before record_from is split (CVODE
+         * interpolates at the intermediate times; its steps are the same) */
+        double tout = tk, chunk = (opt->t_end - opt->t_start) / 200.0;
+        if (opt->progress && tk - *t > 1.5 * chunk) tout = *t + chunk;
+        int flag = CVode(w->mem, tout, w->y, t, CV_NORMAL);
+        if (opt->progress) opt->progress(*t, opt->t_start, opt->t_end, opt->progress_data);
+        if (flag == CV_ROOT_RETURN) {
+            CVodeGetRootInfo(w->mem, w->rootsfound);
+            int changed = 0, kr = 0;
+            for (int i = 0; i < tr->nmesh; i++) {
+                tr_mesh *m = &tr->mesh[i];
+                if (!m->spec.backlash) continue;
+                int r0 = w->rootsfound[kr++], r1 = w->rootsfound[kr++];
+                gd_contact ns = gd_tr_root_state(m->state, r0, r1);
+                if (ns != m->state) {
+                    change_state(tr, i, ns, *t, w->from, w->res->contacts, w->track);
+                    changed = 1;
+                }
+                if (r0 || r1) w->res->events++;
+            }
+            if (changed) {
+                add_counters(w->mem, w->res);
+                CVodeReInit(w->mem, *t, w->y);
+                w->res->reinits++;
+            }
+            continue;
+        }
+        if (flag < 0) {
+            return gd_error_set(err, GD_ENUMERIC, "", 0, 0, "",
+                                "tighten or loosen the "
+                                "tolerances, or limit the step",
+                                "CVODE failed at t = %g s (flag %d): %s", *t, flag, tr->msg);
+        }
+        /* a contact change the root-finding missed (two crossings in one step) */
+        if (tr->nroot) {
+            gd_tr_fill(tr, *t, N_VGetArrayPointer(w->y), tr->q, tr->v, NULL);
+            int changed = 0;
+            for (int i = 0; i < tr->nmesh; i++) {
+                tr_mesh *m = &tr->mesh[i];
+                if (!m->spec.backlash) continue;
+                gd_contact ns = gd_tr_missed_state(tr, m, *t);
+                if (ns != m->state) {
+                    change_state(tr, i, ns, *t, w->from, w->res->contacts, w->track);
+                    changed = 1;
+                    w->res->events++;
+                }
+            }
+            if (changed) {
+                add_counters(w->mem, w->res);
+                CVodeReInit(w->mem, *t, w->y);
+                w->res->reinits++;
+            }
+        }
+    }
+    return GD_OK;
+}
+
 gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
                            const gd_tr_record *records, int nrecords, gd_transient_result **out,
                            gd_error *err)
@@ -322,6 +446,16 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
     for (int r = 0; r < nrecords; r++) {
         gd_status st = check_record(tr, &records[r], err);
         if (st) return st;
+    }
+    if (opt->nsample_times < 0 || (opt->nsample_times > 0 && !opt->sample_times))
+        return gd_error_set(err, GD_EINPUT, "", 0, 0, "options.sample_times", "",
+                            "sample times missing");
+    for (int k = 0; k < opt->nsample_times; k++) {
+        double ts = opt->sample_times[k];
+        if (!(ts >= opt->t_start && ts <= opt->t_end) || (k && !(ts > opt->sample_times[k - 1])))
+            return gd_error_set(err, GD_EINPUT, "", 0, 0, "options.sample_times",
+                                "give increasing times within [t_start, t_end]",
+                                "sample time %d (%g s) is out of order or outside the run", k, ts);
     }
     double dt = opt->output_interval > 0 ? opt->output_interval : (opt->t_end - from) / 1000.0;
     if (!(dt > 0)) dt = opt->t_end - opt->t_start;
@@ -344,10 +478,18 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
     res->contacts = calloc((size_t)(tr->nmesh > 0 ? tr->nmesh : 1), sizeof *res->contacts);
     res->q_end = calloc((size_t)n, sizeof *res->q_end);
     res->v_end = calloc((size_t)n, sizeof *res->v_end);
+    int ns = opt->nsample_times;
+    res->nsamples = ns;
+    res->sample_t = calloc((size_t)(ns > 0 ? ns : 1), sizeof *res->sample_t);
+    res->sample_values = calloc((size_t)(ns > 0 ? ns : 1) * (nrecords > 0 ? nrecords : 1),
+                                sizeof *res->sample_values);
+    res->sample_q = calloc((size_t)(ns > 0 ? ns : 1) * n, sizeof *res->sample_q);
+    res->sample_v = calloc((size_t)(ns > 0 ? ns : 1) * n, sizeof *res->sample_v);
     contact_track *track = calloc((size_t)(tr->nmesh > 0 ? tr->nmesh : 1), sizeof *track);
     int *rootsfound = calloc((size_t)(tr->nroot > 0 ? tr->nroot : 1), sizeof *rootsfound);
     if (!res->t || !res->records || !res->values || !res->stats || !res->contacts || !res->q_end ||
-        !res->v_end || !track || !rootsfound) {
+        !res->v_end || !res->sample_t || !res->sample_values || !res->sample_q || !res->sample_v ||
+        !track || !rootsfound) {
         free(track);
         free(rootsfound);
         gd_transient_result_free(res);
@@ -356,6 +498,7 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
     if (nrecords) memcpy(res->records, records, (size_t)nrecords * sizeof *records);
 
     gd_status st = GD_OK;
+    int flag = 0;
     SUNContext ctx = NULL;
     N_Vector y = NULL, atol = NULL;
     SUNLinearSolver LS = NULL;
@@ -391,109 +534,41 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
     for (int i = 0; i < tr->nmesh; i++)
         track[i].since = opt->t_start;
 
-    mem = CVodeCreate(opt->method == GD_TR_ADAMS ? CV_ADAMS : CV_BDF, ctx);
-    if (!mem) {
-        st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "CVODE");
-        goto done;
-    }
-    CVodeSetErrHandlerFn(mem, cv_err, tr);
-    int flag = CVodeInit(mem, cv_rhs, opt->t_start, y);
-    if (!flag) flag = CVodeSVtolerances(mem, opt->rtol, atol);
-    if (!flag) flag = CVodeSetUserData(mem, tr);
-    LS = SUNLinSol_SPGMR(y, SUN_PREC_LEFT, 20, ctx);
-    if (!LS) flag = -1;
-    if (!flag) flag = CVodeSetLinearSolver(mem, LS, NULL);
-    if (!flag) flag = CVodeSetPreconditioner(mem, cv_psetup, cv_psolve);
-    if (!flag) flag = CVodeSetMaxNumSteps(mem, opt->max_steps > 0 ? opt->max_steps : 50000000L);
-    if (!flag && opt->max_step > 0) flag = CVodeSetMaxStep(mem, opt->max_step);
-    if (!flag) flag = CVodeSetStopTime(mem, opt->t_end);
-    if (!flag && opt->method == GD_TR_BDF) flag = CVodeSetStabLimDet(mem, SUNTRUE);
-    if (!flag && opt->max_order > 0) flag = CVodeSetMaxOrd(mem, opt->max_order);
-    if (!flag && tr->nroot && opt->locate_events) {
-        flag = CVodeRootInit(mem, tr->nroot, cv_root);
-        if (!flag) flag = CVodeSetNoInactiveRootWarn(mem);
-    }
-    if (flag) {
+    mem = gd_tr_cvode_new(ctx, opt, opt->t_start, opt->t_end, y, atol, cv_rhs, cv_root,
+                          tr->nroot && opt->locate_events ? tr->nroot : 0, gd_tr_cv_psetup,
+                          gd_tr_cv_psolve, tr, tr, &LS, &flag);
+    if (!mem || flag) {
         st = gd_error_set(err, GD_ENUMERIC, "", 0, 0, "", "", "CVODE set-up failed (%d) %s", flag,
                           tr->msg);
         goto done;
     }
 
+    run_work w = {mem, y, rootsfound, res, track, from};
     double t = opt->t_start;
+    int ks = 0;
     for (int k = 0; k < nout; k++) {
         double tk = from + k * dt;
         if (tk > opt->t_end || k == nout - 1) tk = fmin(tk, opt->t_end);
-        while (t < tk) {
-            /* with a progress report, the stretch before record_from is split (CVODE
-             * interpolates at the intermediate times; its steps are the same) */
-            double tout = tk, chunk = (opt->t_end - opt->t_start) / 200.0;
-            if (opt->progress && tk - t > 1.5 * chunk) tout = t + chunk;
-            flag = CVode(mem, tout, y, &t, CV_NORMAL);
-            if (opt->progress) opt->progress(t, opt->t_start, opt->t_end, opt->progress_data);
-            if (flag == CV_ROOT_RETURN) {
-                CVodeGetRootInfo(mem, rootsfound);
-                int changed = 0, kr = 0;
-                for (int i = 0; i < tr->nmesh; i++) {
-                    tr_mesh *m = &tr->mesh[i];
-                    if (!m->spec.backlash) continue;
-                    int r0 = rootsfound[kr++], r1 = rootsfound[kr++];
-                    gd_contact ns = m->state;
-                    if (r1 < 0)
-                        ns = GD_CONTACT_COAST;
-                    else if (r0 > 0)
-                        ns = GD_CONTACT_DRIVE;
-                    else if (r0 < 0 || r1 > 0)
-                        ns = GD_CONTACT_SEPARATED;
-                    if (ns != m->state) {
-                        change_state(tr, i, ns, t, from, res->contacts, track);
-                        changed = 1;
-                    }
-                    if (r0 || r1) res->events++;
-                }
-                if (changed) {
-                    add_counters(mem, res);
-                    CVodeReInit(mem, t, y);
-                    res->reinits++;
-                }
-                continue;
-            }
-            if (flag < 0) {
-                st = gd_error_set(err, GD_ENUMERIC, "", 0, 0, "",
-                                  "tighten or loosen the "
-                                  "tolerances, or limit the step",
-                                  "CVODE failed at t = %g s (flag %d): %s", t, flag, tr->msg);
-                goto done;
-            }
-            /* a contact change the root-finding missed (two crossings in one step) */
-            if (tr->nroot) {
-                gd_tr_fill(tr, t, yd, tr->q, tr->v, NULL);
-                int changed = 0;
-                for (int i = 0; i < tr->nmesh; i++) {
-                    tr_mesh *m = &tr->mesh[i];
-                    if (!m->spec.backlash) continue;
-                    double de;
-                    gd_tr_mesh_force(tr, m, m->state, t, tr->q, tr->v, NULL, NULL, NULL, &de);
-                    gd_contact ns = gd_backlash_state(de, m->spec.gap);
-                    double tol = 1e-6 * m->spec.gap + 1e-15;
-                    if (ns != m->state && fabs(fabs(de) - m->spec.gap) > tol) {
-                        change_state(tr, i, ns, t, from, res->contacts, track);
-                        changed = 1;
-                        res->events++;
-                    }
-                }
-                if (changed) {
-                    add_counters(mem, res);
-                    CVodeReInit(mem, t, y);
-                    res->reinits++;
-                }
-            }
+        /* Poincare samples before tk, then tk itself, then samples at tk */
+        for (; ks < opt->nsample_times && opt->sample_times[ks] < tk; ks++) {
+            if ((st = advance(tr, &w, opt, &t, opt->sample_times[ks], err))) goto done;
+            store_sample(tr, res, records, ks, t, yd);
         }
+        if ((st = advance(tr, &w, opt, &t, tk, err))) goto done;
         res->t[k] = tk;
         gd_tr_fill(tr, tk, yd, tr->q, tr->v, NULL);
         for (int r = 0; r < nrecords; r++)
             res->values[(size_t)r * nout + k] =
                 gd_tr_record_value(tr, &records[r], tk, tr->q, tr->v);
+        for (; ks < opt->nsample_times && opt->sample_times[ks] <= tk; ks++)
+            store_sample(tr, res, records, ks, t, yd);
     }
+    /* samples after the last record time (its rounding), and the end itself */
+    for (; ks < opt->nsample_times; ks++) {
+        if ((st = advance(tr, &w, opt, &t, opt->sample_times[ks], err))) goto done;
+        store_sample(tr, res, records, ks, t, yd);
+    }
+    if ((st = advance(tr, &w, opt, &t, opt->t_end, err))) goto done;
     for (int i = 0; i < tr->nmesh; i++)
         account(&res->contacts[i], tr->mesh[i].state, track[i].since, opt->t_end, from);
     gd_tr_fill(tr, opt->t_end, yd, res->q_end, res->v_end, NULL);

@@ -2,6 +2,8 @@
 #ifndef GD_TRANSIENT_INTERNAL_H
 #define GD_TRANSIENT_INTERNAL_H
 #include <cs.h>
+#include <cvode/cvode.h>
+#include <nvector/nvector_serial.h>
 
 #include "geardyn/transient.h"
 
@@ -77,6 +79,7 @@ struct gd_transient {
     char msg[256]; /* last solver message */
     int nterm;     /* local force terms (local_forces.c), built on first use; -1 unsupported */
     gd_tr_term *term;
+    void *mono;    /* gd_transient_monodromy's workspace while it runs */
 };
 
 /* Fills q, v, acc (length n) at time t from the state y: free DOFs from y, prescribed
@@ -105,8 +108,33 @@ void gd_tr_residual(gd_transient *tr, double t, const double *q, const double *v
 void gd_tr_mass_solve(gd_transient *tr, double *b, double *x);
 /* Root functions d_e - b, d_e + b of every backlash mesh. */
 void gd_tr_roots(gd_transient *tr, double t, const double *y, double *g);
+/* New contact state of a backlash mesh from the root directions CVODE reports (r0 on
+ * d_e - b, r1 on d_e + b; 0: no root). */
+gd_contact gd_tr_root_state(gd_contact cur, int r0, int r1);
+/* With tr->q, tr->v filled at t: the state of backlash mesh m when its deformation is
+ * clearly outside its current state's range (two crossings in one step the root-finding
+ * missed), else its current state. */
+gd_contact gd_tr_missed_state(gd_transient *tr, const tr_mesh *m, double t);
 /* Preconditioner set-up (sparse LU of M + g D + g^2 K) and solve. 0 ok. */
 int gd_tr_prec_setup(gd_transient *tr, double gamma);
 void gd_tr_prec_solve(gd_transient *tr, const double *r, double *z);
+
+/* CVODE for the problem (user data ud): method, tolerances (rtol, vector atol), step
+ * limits and stop time from opt, SPGMR with left preconditioning by psetup/psolve, and
+ * nroot root functions (0: none). *flag != 0 or NULL on failure; the caller frees the
+ * memory and *LS. Messages go to tr->msg. */
+void *gd_tr_cvode_new(SUNContext ctx, const gd_transient_options *opt, double t0, double t_stop,
+                      N_Vector y, N_Vector atol, CVRhsFn rhs, CVRootFn root, int nroot,
+                      CVLsPrecSetupFn psetup, CVLsPrecSolveFn psolve, void *ud, gd_transient *tr,
+                      SUNLinearSolver *LS, int *flag);
+/* CVODE preconditioner set-up of the problem (user data: the gd_transient). */
+int gd_tr_cv_psetup(sunrealtype t, N_Vector y, N_Vector fy, sunbooleantype jok,
+                    sunbooleantype *jcur, sunrealtype gamma, void *ud);
+/* CVODE preconditioner solve (user data: the gd_transient): the problem's preconditioner
+ * on every block of 2 nf of the vector (one for a run; 1 + 2 nf for the monodromy). */
+int gd_tr_cv_psolve(sunrealtype t, N_Vector y, N_Vector fy, N_Vector r, N_Vector z,
+                    sunrealtype gamma, sunrealtype delta, int lr, void *ud);
+/* CVODE error handler writing to the problem's msg (user data: the gd_transient). */
+void gd_tr_cv_err(int code, const char *module, const char *function, char *msg, void *ud);
 
 #endif

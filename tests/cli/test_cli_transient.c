@@ -457,7 +457,215 @@ TEST(model_errors)
     scratch_close(&s);
 }
 
+/* ---- Poincare sections and the bifurcation sweep ---- */
+
+static const cJSON *jitem(const cJSON *o, const char *key)
+{
+    return cJSON_GetObjectItemCaseSensitive(o, key);
+}
+
+/* One run with --poincare: the samples sit at the multiples of the shaft period from
+ * --settle on, equal CVODE's fixed-interval output at the same times, and a settled Chen
+ * pair at 1500 rad/s is period-1; a mesh source samples once per tooth-mesh cycle. */
+TEST(poincare_single_run)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    char out[256];
+    snprintf(out, sizeof out, "%s/p", s.dir);
+    const double W = 1500, P = 2 * M_PI / W;
+    cJSON *o = run_json(gd_ts_, &s,
+                        "transient " CHEN " --speed 1500 --duration 0.4 --from 0.3 --poincare "
+                        "shaft_a --settle 0.3 --record gear_a.x,gear_a.y --out '%s'",
+                        out);
+    REQUIRE(o);
+    const cJSON *pc = jitem(o, "poincare");
+    REQUIRE(pc);
+    CHECK_STR(jstr(pc, "source"), "shaft:shaft_a");
+    CHECK_REL(jnum(pc, "period_s"), P, 1e-12);
+    int k0 = (int)ceil(0.3 / P), k1 = (int)floor(0.4 / P), n = k1 - k0 + 1;
+    CHECK(jnum(pc, "points") == n);
+    CHECK_STR(jstr(pc, "class"), "period-1");
+    CHECK(jnum(pc, "distinct_points") == 1);
+    const cJSON *ts = jitem(pc, "times_s");
+    CHECK(cJSON_GetArraySize(ts) == n);
+    CHECK_REL(cJSON_GetArrayItem(ts, 0)->valuedouble, k0 * P, 1e-12);
+    CHECK_REL(cJSON_GetArrayItem(ts, n - 1)->valuedouble, k1 * P, 1e-12);
+    const cJSON *x = cJSON_GetArrayItem(jitem(pc, "records"), 0);
+    CHECK_STR(jstr(x, "name"), "gear_a.x:disp");
+    double x0 = cJSON_GetArrayItem(jitem(x, "values"), 0)->valuedouble;
+    char *csv = NULL;
+    char path[300];
+    snprintf(path, sizeof path, "%s/poincare.csv", out);
+    csv = read_file(path);
+    REQUIRE(csv);
+    CHECK(count_lines(csv) == n + 1);
+    CHECK(contains(csv, "point,time_s,gear_a.x:disp,gear_a.y:disp"));
+    free(csv);
+    cJSON_Delete(o);
+    /* the same instant as the first fixed-interval record of a run from k0 P: the two runs
+     * differ in their first step (CVODE sizes it from the first output time), so they
+     * agree to the integration tolerance (10 rtol; the fixed-interval records are
+     * stroboscopic here, their peak-to-peak is the drift of the period-1 point) */
+    char out2[256];
+    snprintf(out2, sizeof out2, "%s/r", s.dir);
+    o = run_json(gd_ts_, &s,
+                 "transient " CHEN " --speed 1500 --duration 0.4 --from %.17g --output-interval "
+                 "%.17g --record gear_a.x --out '%s'",
+                 k0 * P, P, out2);
+    REQUIRE(o);
+    double p2p = jnum(record_named(o, "gear_a.x:disp"), "peak_to_peak");
+    snprintf(path, sizeof path, "%s/records.csv", out2);
+    csv = read_file(path);
+    REQUIRE(csv);
+    double t_r = 0, x_r = 0;
+    CHECK(sscanf(strchr(csv, '\n') + 1, "%lf,%lf", &t_r, &x_r) == 2);
+    CHECK_REL(t_r, k0 * P, 1e-11);
+    CHECK_REL(x_r, x0, 1e-5);
+    printf("     Poincare sample %.10g vs fixed-interval record %.10g (peak-to-peak %.3g)\n", x0,
+           x_r, p2p);
+    free(csv);
+    cJSON_Delete(o);
+    /* a mesh: once per tooth-mesh cycle of the crank pinion (30 teeth, 10000 rpm) */
+    o = run_json(gd_ts_, &s, "transient " DUCATI " --revolutions 0.2 --poincare mesh:m01");
+    REQUIRE(o);
+    pc = jitem(o, "poincare");
+    REQUIRE(pc);
+    CHECK_REL(jnum(pc, "period_s"), 2 * M_PI / (30 * 10000 * M_PI / 30), 1e-12);
+    CHECK(jnum(pc, "points") == 4); /* 0.6 .. 1.2 ms every 0.2 ms */
+    cJSON_Delete(o);
+    /* text */
+    run_result r;
+    run(&s, &r,
+        "transient " CHEN " --speed 1500 --duration 0.4 --poincare shaft_a --settle 75rev "
+        "--record gear_a.x");
+    CHECK(r.code == 0);
+    CHECK(contains(r.out, "Poincare section (shaft:shaft_a"));
+    CHECK(contains(r.out, "period-1"));
+    run_free(&r);
+    scratch_close(&s);
+}
+
+/* The sweep carries the state: run-up then run-down, every run starting where the
+ * nominal angles W t of the previous one ended; CSV and JSON agree. */
+TEST(poincare_sweep)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    char out[256], path[300];
+    snprintf(out, sizeof out, "%s/sw", s.dir);
+    cJSON *o = run_json(gd_ts_, &s,
+                        "transient " CHEN " --sweep-speeds 1000:2000:3 --poincare shaft_a --settle "
+                        "40rev --points 6 --both-directions --record gear_a.x --out '%s'",
+                        out);
+    REQUIRE(o);
+    const cJSON *sp = jitem(o, "speeds");
+    REQUIRE(cJSON_GetArraySize(sp) == 6);
+    const double W[6] = {1000, 1500, 2000, 2000, 1500, 1000};
+    double prev_end = 0, prev_w = 0;
+    for (int i = 0; i < 6; i++) {
+        const cJSON *e = cJSON_GetArrayItem(sp, i);
+        CHECK_REL(jnum(e, "speed_rad_s"), W[i], 1e-12);
+        CHECK_STR(jstr(e, "direction"), i < 3 ? "up" : "down");
+        if (i) CHECK_REL(jnum(e, "t_start_s") * W[i], prev_end * prev_w, 1e-12);
+        /* 40 revolutions of settling to the next sample, then 6 points: 45 to 46 revs */
+        double revs = (jnum(e, "t_end_s") - jnum(e, "t_start_s")) * W[i] / (2 * M_PI);
+        CHECK(revs > 45 - 1e-9 && revs < 46 + 1e-9);
+        const cJSON *rec = cJSON_GetArrayItem(jitem(e, "records"), 0);
+        CHECK(cJSON_GetArraySize(jitem(rec, "values")) == 6);
+        CHECK_STR(jstr(e, "class"), "period-1");
+        prev_end = jnum(e, "t_end_s");
+        prev_w = W[i];
+    }
+    snprintf(path, sizeof path, "%s/sweep.csv", out);
+    char *csv = read_file(path);
+    REQUIRE(csv);
+    CHECK(count_lines(csv) == 7);
+    CHECK(contains(csv, "direction,speed_rad_s,speed_rpm,class,period,distinct_points,cpu_s,"
+                        "gear_a.x:disp_min,gear_a.x:disp_max"));
+    free(csv);
+    snprintf(path, sizeof path, "%s/poincare.csv", out);
+    csv = read_file(path);
+    REQUIRE(csv);
+    CHECK(count_lines(csv) == 6 * 6 + 1);
+    free(csv);
+    cJSON_Delete(o);
+    /* run-down only: speeds in decreasing order */
+    o = run_json(gd_ts_, &s,
+                 "transient " CHEN " --sweep-speeds 1000:2000:2 --poincare shaft_a --settle 5ms "
+                 "--points 3 --run-down");
+    REQUIRE(o);
+    CHECK_REL(jnum(cJSON_GetArrayItem(jitem(o, "speeds"), 0), "speed_rad_s"), 2000, 1e-12);
+    CHECK_REL(jnum(o, "settle_s"), 5e-3, 1e-12);
+    cJSON_Delete(o);
+    run_result r;
+    run(&s, &r,
+        "transient " CHEN " --sweep-speeds 1000:2000:2 --poincare shaft_a --settle 5ms "
+        "--points 3");
+    CHECK(r.code == 0);
+    CHECK(contains(r.out, "bifurcation sweep, 2 runs"));
+    run_free(&r);
+    scratch_close(&s);
+}
+
+TEST(poincare_errors)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    expect_error(gd_ts_, &s, "'nope' is no shaft (shaft_a, shaft_b) or mesh (mesh)", NULL,
+                 "transient " CHEN " --speed 1500 --duration 0.1 --poincare nope");
+    expect_error(gd_ts_, &s, "'mesh' has no tooth numbers", NULL,
+                 "transient " CHEN " --speed 1500 --duration 0.1 --poincare mesh:mesh");
+    expect_error(gd_ts_, &s, "'m99' is no shaft", NULL,
+                 "transient " DUCATI " --duration 1ms --poincare mesh:m99");
+    expect_error(gd_ts_, &s, "--settle: 0.2 s is not before the end of the run (0.1 s)", NULL,
+                 "transient " CHEN " --speed 1500 --duration 0.1 --poincare shaft_a --settle 0.2");
+    expect_error(gd_ts_, &s, "--settle", "revolutions",
+                 "transient " CHEN " --speed 1500 --duration 0.1 --poincare shaft_a --settle xrev");
+    expect_error(gd_ts_, &s, "sample(s) between --settle", "run longer",
+                 "transient " CHEN " --speed 1500 --duration 5ms --poincare shaft_a --settle 2ms");
+    expect_error(gd_ts_, &s, "reference speed > 0", NULL,
+                 "transient " CHEN " --duration 5ms --poincare shaft_a");
+    expect_error(gd_ts_, &s, "--settle applies to --poincare only", NULL,
+                 "transient " CHEN " --speed 1500 --duration 5ms --settle 1ms");
+    expect_error(gd_ts_, &s, "COUNT is 0", NULL,
+                 "transient " CHEN " --sweep-speeds 1000:2000:0 --poincare shaft_a");
+    expect_error(gd_ts_, &s, "FROM must be > 0", NULL,
+                 "transient " CHEN " --sweep-speeds 0:2000:3 --poincare shaft_a");
+    expect_error(gd_ts_, &s, "--sweep-speeds needs --poincare", NULL,
+                 "transient " CHEN " --sweep-speeds 1000:2000:3");
+    expect_error(gd_ts_, &s, "--duration does not apply to --sweep-speeds", NULL,
+                 "transient " CHEN " --sweep-speeds 1000:2000:3 --poincare shaft_a --duration 1");
+    expect_error(gd_ts_, &s, "--points applies to --sweep-speeds only", NULL,
+                 "transient " CHEN " --speed 1500 --duration 5ms --points 4");
+    expect_error(gd_ts_, &s, "--points", "whole number",
+                 "transient " CHEN " --sweep-speeds 1000:2000:3 --poincare shaft_a --points 1");
+    expect_error(gd_ts_, &s, "exclude each other", NULL,
+                 "transient " CHEN " --sweep-speeds 1000:2000:3 --poincare shaft_a --run-down "
+                 "--both-directions");
+    expect_error(gd_ts_, &s, "'x' is no shaft", NULL,
+                 "transient " CHEN " --sweep-speeds 1000:2000:3 --poincare x");
+    /* an --out that cannot be created: exit 2 before computing, nothing written */
+    run_result r;
+    run(&s, &r,
+        "transient " CHEN " --sweep-speeds 1000:2000:2 --poincare shaft_a --out "
+        "/proc/no/such/dir");
+    CHECK(r.code == 2);
+    CHECK(!r.out[0]);
+    run_free(&r);
+    run(&s, &r,
+        "transient " CHEN " --speed 1500 --duration 5ms --poincare shaft_a --out "
+        "/proc/no/such/dir");
+    CHECK(r.code == 2);
+    CHECK(!r.out[0]);
+    run_free(&r);
+    run(&s, &r, "transient --help");
+    CHECK(contains(r.out, "--sweep-speeds R"));
+    run_free(&r);
+    scratch_close(&s);
+}
+
 RUN_TESTS(T(ducati_speed_ratios_and_contact_losses), T(ducati_text_static_start_and_wildcards),
           T(outputs_and_spectrum_files), T(chen_sfd_orbits), T(chen_sfd_spectrum_high_unbalance),
           T(chen_sfd_subsynchronous_near_the_mesh_mode), T(record_errors), T(option_errors),
-          T(model_errors))
+          T(model_errors), T(poincare_single_run), T(poincare_sweep), T(poincare_errors))

@@ -1,0 +1,62 @@
+/* `geardyn transient --poincare SHAFT|MESH`: stroboscopic (Poincare) samples once per
+ * revolution of a shaft or once per tooth-mesh cycle of a mesh, their periodicity, and
+ * the bifurcation-diagram sweep over speeds (transient_sweep.c; docs/transient.md). */
+#ifndef GD_TRANSIENT_POINCARE_H
+#define GD_TRANSIENT_POINCARE_H
+#include <cjson/cJSON.h>
+
+#include "geardyn/transient_model.h"
+#include "transient_record.h"
+
+/* The sampling period is angle / W at reference speed W. */
+typedef struct gd_cli_poincare {
+    char name[160]; /* "shaft:NAME" or "mesh:NAME" */
+    double angle;   /* rad of the reference shaft per sample */
+} gd_cli_poincare;
+
+/* Relative tolerance of the periodicity test: two Poincare points are the same when every
+ * record differs by at most this fraction of its peak-to-peak over the recorded part. */
+#define GD_CLI_POINCARE_TOL 1e-3
+
+/* Parses SHAFT|MESH: a shaft or mesh name, or shaft:NAME / mesh:NAME when a name is both.
+ * 0, or 2 after a usage error naming the known shafts and meshes. */
+int gd_cli_poincare_parse(const char *cmd, const gd_model *m, const char *text, gd_cli_poincare *p);
+/* The sample times k P (P = angle / speed; nominal angles at t = 0 are the phase origin)
+ * within [from, t_end]: count, times malloc'd (*times NULL when 0 or out of memory). */
+int gd_cli_poincare_times(const gd_cli_poincare *p, double speed, double from, double t_end,
+                          double **times);
+
+/* Periodicity of n points (record r, point k: values[r * n + k]) with scale[r] the
+ * record's peak-to-peak: the smallest p <= n / 2 with point k + p = point k for every k
+ * (0 when none: non-periodic over the samples, or not settled), and the number of
+ * distinct points (greedy clustering with the same tolerance). */
+void gd_cli_poincare_classify(const double *values, int nrec, int n, const double *scale,
+                              int *period, int *distinct);
+/* "period-P", or "many" when period is 0. */
+void gd_cli_poincare_class_name(int period, char *buf, size_t size);
+
+/* JSON of n points: {"source", "period_s", "points", "period", "distinct_points",
+ * "class", "tolerance", "times_s", "records": [{"name", "values"}]}. */
+cJSON *gd_cli_poincare_json(const gd_cli_poincare *p, double period_s, const gd_cli_records *recs,
+                            const double *t, const double *values, int n, int period, int distinct);
+
+/* The bifurcation-diagram sweep (transient_sweep.c): at every speed the problem is rebuilt
+ * and started from the previous speed's end state, at the time where every nominal angle
+ * (all proportional to W t) continues; the settling time is integrated, then `points`
+ * Poincare periods are sampled. */
+typedef struct gd_cli_sweep {
+    const double *speeds; /* rad/s, increasing */
+    int nspeeds;
+    int direction;                   /* 0 up, 1 down, 2 up then down */
+    double settle_time, settle_revs; /* one > 0: s, or revolutions of the reference shaft */
+    int points;                      /* Poincare points per speed */
+    gd_transient_options base;       /* rtol, method, init of the first speed */
+    int json, quiet;
+    const char *out;
+} gd_cli_sweep;
+
+int gd_cli_transient_sweep(const gd_system *sys, const gd_transient_model *tm,
+                           const gd_cli_records *recs, const gd_cli_poincare *p,
+                           const gd_cli_sweep *sw);
+
+#endif
