@@ -78,6 +78,7 @@ typedef struct ctx {
     int nrec;
     int dir;
     int steps;
+    double mu_a, mu_b; /* max |mu| at the two steps being examined */
 } ctx;
 
 static void stage_clear(stage *s)
@@ -586,9 +587,13 @@ static int locate(ctx *c, gd_bifurcation_type type, int k, const double *Xa, dou
     }
     double s0 = 0.0, s1 = 1.0, g0 = ra - 1.0, g1 = rb - 1.0, lam = la + 0.5 * (lb - la);
     double best_re = NAN, best_im = NAN;
+    if (!isfinite(g0) || !isfinite(g1)) { /* the category forms on the way: use max |mu| */
+        g0 = c->mu_a - 1.0;
+        g1 = c->mu_b - 1.0;
+    }
     int ok = isfinite(g0) && isfinite(g1) && g0 != g1;
     double sig = ok ? -g0 / (g1 - g0) : 0.5;
-    for (int it = 0; it < 6 && ok; it++) {
+    for (int it = 0; it < 30 && ok; it++) {
         if (!(sig > 0 && sig < 1)) sig = 0.5;
         if (point_between(c, Xa, la, Xb, lb, tan, sig, X, &lam)) break;
         int stable, out[3];
@@ -596,11 +601,12 @@ static int locate(ctx *c, gd_bifurcation_type type, int k, const double *Xa, dou
         floquet(c, X, lam, mre, mim, &stable, &mu_max);
         if (stable < 0) break;
         categorise(c, mre, mim, out, rho);
-        double g = rho[k] - 1.0;
+        double g = (isfinite(ra) && isfinite(rb) ? rho[k] : mu_max) - 1.0;
         if (!isfinite(g)) break;
         for (int i = 0; i < 2 * c->nf; i++) {
             int cat = fabs(mim[i]) > 1e-9 * hypot(mre[i], mim[i]) ? 2 : mre[i] >= 0 ? 0 : 1;
-            if (cat == k && fabs(hypot(mre[i], mim[i]) - rho[k]) < 1e-12 * rho[k]) {
+            double a = hypot(mre[i], mim[i]), ref = isfinite(rho[k]) ? rho[k] : mu_max;
+            if (cat == k && fabs(a - ref) <= 1e-12 * ref) {
                 best_re = mre[i];
                 best_im = fabs(mim[i]);
             }
@@ -732,6 +738,7 @@ static int run_branch(ctx *c, const double *vals, int nv)
     int stable, out[3], out1[3];
     double mu_max, rho[3], rho1[3];
     floquet(c, X, lam, mre, mim, &stable, &mu_max);
+    double mu_prev = mu_max;
     int have_mu = stable >= 0;
     if (have_mu) categorise(c, mre, mim, out, rho);
     double ds = 1.0 / (nv - 1), dsmax = 2.0 / (nv - 1), dsmin = 1e-7;
@@ -801,12 +808,15 @@ static int run_branch(ctx *c, const double *vals, int nv)
         if (have_mu && stable1 >= 0) {
             static const gd_bifurcation_type type[3] = {GD_BIF_BRANCH_POINT, GD_BIF_PERIOD_DOUBLING,
                                                         GD_BIF_NEIMARK_SACKER};
+            c->mu_a = mu_prev;
+            c->mu_b = mu_max;
             for (int k = 0; k < 3; k++) {
                 if (out[k] == out1[k] || (k == 0 && fold)) continue;
                 if (locate(c, type[k], k, X, lam, rho[k], X1, l1, rho1[k], t)) goto done;
             }
             memcpy(out, out1, sizeof out);
             memcpy(rho, rho1, sizeof rho);
+            mu_prev = mu_max;
         }
         have_mu = have_mu && stable1 >= 0;
         memcpy(X, X1, (size_t)n * sizeof *X);

@@ -2,6 +2,7 @@
  * damped Mathieu tongue of a TVMS pair against its closed form, Floquet multipliers
  * against the integrated monodromy, and backlash / SFD steady states against time
  * integration. */
+#include <lapacke.h>
 #include <math.h>
 #include <stdlib.h>
 
@@ -120,4 +121,192 @@ TEST(linear_equals_unbalance)
     fx_free(&f);
 }
 
-RUN_TESTS(T(linear_equals_unbalance))
+/* ------------------------------------------------------------------ damped Mathieu */
+
+/* Gear b (I = 5e-3 kg m^2, base radius 50 mm) meshing with a driver turning exactly at its
+ * nominal speed (prescribed), k(theta) = k0 (1 + e cos(z theta)), z = 20: the torsion
+ * obeys I q'' + c r^2 q' + k(t) r^2 q = T, a damped Mathieu equation with
+ * w_n^2 = k0 r^2 / I = 5e7 (w_n = 7071 rad/s), zeta = c r^2 / (2 I w_n), parametric
+ * frequency W_m = z W. The constant torque T gives a non-trivial periodic response. */
+static char *mathieu_yaml(double e, double zeta)
+{
+    const double k0 = 1e8, r = 0.05, inertia = 5e-3, wn = sqrt(k0 * r * r / inertia);
+    const double c = 2.0 * zeta * wn * inertia / (r * r);
+    const int z = 20, np = 96;
+    size_t cap = 16384;
+    char *y = malloc(cap);
+    int n = snprintf(y, cap,
+                     "dofs: [rz]\n"
+                     "shafts:\n"
+                     "  - {name: a, nodes: [{name: gear_a}]}\n"
+                     "  - {name: b, nodes: [{name: gear_b}]}\n"
+                     "disks:\n"
+                     "  - {node: gear_a, polar_inertia: 1e-2}\n"
+                     "  - {node: gear_b, polar_inertia: %.17g}\n"
+                     "meshes:\n"
+                     "  - name: m\n"
+                     "    driver: gear_a\n"
+                     "    driven: gear_b\n"
+                     "    base_radius: [25 mm, 50 mm]\n"
+                     "    teeth: [%d, 40]\n"
+                     "    pressure_angle: 20 deg\n"
+                     "    damping: %.17g\n"
+                     "    tvms:\n"
+                     "      interpolation: spline\n"
+                     "      angle: [",
+                     inertia, z, c);
+    for (int j = 0; j < np; j++)
+        n += snprintf(y + n, cap - (size_t)n, "%s%.17g", j ? ", " : "", 2 * M_PI / z * j / np);
+    n += snprintf(y + n, cap - (size_t)n, "]\n      stiffness: [");
+    for (int j = 0; j < np; j++)
+        n += snprintf(y + n, cap - (size_t)n, "%s%.17g", j ? ", " : "",
+                      k0 * (1 + e * cos(2 * M_PI * j / np)));
+    snprintf(y + n, cap - (size_t)n,
+             "]\n"
+             "prescribed:\n"
+             "  - {node: gear_a, motion: nominal}\n"
+             "excitations:\n"
+             "  loads: [{node: gear_b, value: 20}]\n");
+    return y;
+}
+
+/* Transition curves of u'' + 2 mu u' + (delta + 2 eps cos 2 tau) u = 0 near delta = 1
+ * (Nayfeh & Mook, Nonlinear Oscillations, 1979, Sec. 5.4, to first order in eps):
+ * (delta - 1)^2 = eps^2 - 4 mu^2. In the gear's terms, tau = W_m t / 2: delta =
+ * 4 w_n^2 / W_m^2, eps = e delta / 2, mu = 2 zeta w_n / W_m. Returns g(W_m). */
+static double tongue_g(double wm, double wn, double e, double zeta)
+{
+    double d = 4 * wn * wn / (wm * wm), eps = e * d / 2, mu = 2 * zeta * wn / wm;
+    return (d - 1) * (d - 1) - (eps * eps - 4 * mu * mu);
+}
+
+static double bisect_tongue(double lo, double hi, double wn, double e, double zeta)
+{
+    for (int i = 0; i < 200; i++) {
+        double m = 0.5 * (lo + hi);
+        if ((tongue_g(m, wn, e, zeta) > 0) == (tongue_g(lo, wn, e, zeta) > 0))
+            lo = m;
+        else
+            hi = m;
+    }
+    return 0.5 * (lo + hi);
+}
+
+TEST(mathieu_tongue_period_doubling)
+{
+    const double e = 0.05, zeta = 0.005, wn = sqrt(5e7), z = 20;
+    char *yaml = mathieu_yaml(e, zeta);
+    fx f;
+    int ok = load(&f, NULL, yaml);
+    free(yaml);
+    REQUIRE(ok);
+    gd_transient_model *tm = NULL;
+    gd_error err;
+    REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
+    gd_periodic_options o;
+    gd_periodic_options_init(&o);
+    o.harmonics = 6;
+    /* speeds spanning the primary tongue W_m = 2 w_n (+-1.2 %) */
+    double w0 = 2 * wn / z * 0.96, w1 = 2 * wn / z * 1.04;
+    gd_periodic_result *r = run_speeds(&f, &tm->spec, w0, w1, 41, &o, NULL, 0);
+    REQUIRE(r);
+    double lo = bisect_tongue(2 * wn * 0.95, 2 * wn, wn, e, zeta) / z;
+    double hi = bisect_tongue(2 * wn, 2 * wn * 1.05, wn, e, zeta) / z;
+    int npd = 0;
+    double found[2] = {0, 0};
+    for (int i = 0; i < r->nbifurcations; i++) {
+        const gd_bifurcation *b = &r->bifurcations[i];
+        printf("  %s at W = %.6f rad/s, multiplier %.9f%+.3gi\n", gd_bifurcation_name(b->type),
+               b->speed, b->mu_re, b->mu_im);
+        if (b->type == GD_BIF_PERIOD_DOUBLING && npd < 2) found[npd++] = b->speed;
+        if (b->type == GD_BIF_PERIOD_DOUBLING) CHECK_ABS(b->mu_re, -1.0, 1e-6);
+    }
+    REQUIRE(npd == 2);
+    printf("  tongue: HB/Floquet [%.4f, %.4f], closed form [%.4f, %.4f] rad/s (width %.4f vs "
+           "%.4f)\n",
+           found[0], found[1], lo, hi, found[1] - found[0], hi - lo);
+    /* first-order theory: the boundaries carry O(eps^2) = 6.25e-4 relative errors */
+    double eps = e / 2;
+    CHECK_REL(found[0], lo, eps * eps);
+    CHECK_REL(found[1], hi, eps * eps);
+    CHECK_REL(found[1] - found[0], hi - lo, 0.05);
+    /* the points inside are unstable, those outside stable */
+    int bad = 0;
+    for (int i = 0; i < r->npoints; i++) {
+        const gd_periodic_point *p = &r->points[i];
+        int inside = p->speed > found[0] && p->speed < found[1];
+        if (!p->converged || p->stable != !inside) bad++;
+    }
+    CHECK(bad == 0);
+    gd_transient_model_free(tm);
+    gd_periodic_result_free(r);
+    fx_free(&f);
+}
+
+/* Floquet multipliers of HB points against gd_transient_monodromy (CVODE on the
+ * variational equations from the HB state at t = 0): a stable point outside the tongue and
+ * an unstable one inside, to 1e-6 (both integrate to ~1e-9; the HB orbit itself is exact
+ * to the residual 1e-10). */
+TEST(floquet_against_monodromy)
+{
+    const double e = 0.05, zeta = 0.005, wn = sqrt(5e7), z = 20;
+    char *yaml = mathieu_yaml(e, zeta);
+    fx f;
+    int ok = load(&f, NULL, yaml);
+    free(yaml);
+    REQUIRE(ok);
+    gd_transient_model *tm = NULL;
+    gd_error err;
+    REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
+    gd_periodic_options o;
+    gd_periodic_options_init(&o);
+    o.harmonics = 8;
+    o.monodromy_steps = 2048;
+    const double W[2] = {2 * wn / z * 0.97, 2 * wn / z};
+    for (int c = 0; c < 2; c++) {
+        gd_periodic_result *r = run_speeds(&f, &tm->spec, W[c], W[c], 1, &o, NULL, 0);
+        REQUIRE(r && r->npoints == 1 && r->points[0].converged);
+        const gd_periodic_point *p = &r->points[0];
+        CHECK(p->stable == (c == 0));
+        gd_transient *tr = NULL;
+        REQUIRE(gd_transient_new(f.s, &tm->spec, W[c], &tr, &err) == GD_OK);
+        int nf = p->nfree, ns = 2 * nf;
+        double *y0 = calloc((size_t)ns, sizeof *y0), *phi = malloc((size_t)ns * ns * sizeof *phi);
+        for (int k = 0; k <= p->harmonics; k++)
+            for (int i = 0; i < nf; i++) {
+                y0[i] += p->coef[(k ? 2 * k - 1 : 0) * nf + i];
+                if (k) y0[nf + i] += p->omega * k * p->coef[2 * k * nf + i];
+            }
+        gd_transient_options to;
+        gd_transient_options_init(&to);
+        to.rtol = 1e-11;
+        to.atol_q = 1e-16;
+        to.atol_v = 1e-13;
+        REQUIRE(gd_transient_monodromy(tr, 0.0, 2 * M_PI / p->omega, y0, &to, phi, NULL, &err) ==
+                GD_OK);
+        double wr[8], wi[8], dummy[1];
+        REQUIRE(LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', ns, phi, ns, wr, wi, dummy, 1, dummy,
+                              1) == 0);
+        double worst = 0.0;
+        for (int a = 0; a < ns; a++) {
+            double best = INFINITY;
+            for (int b = 0; b < ns; b++) {
+                double d = hypot(p->mu_re[a] - wr[b], p->mu_im[a] - wi[b]);
+                best = d < best ? d : best;
+            }
+            worst = best > worst ? best : worst;
+        }
+        printf("  W = %.3f: |mu|max HB %.9f, max distance to the integrated multipliers %.3g\n",
+               W[c], p->mu_max, worst);
+        CHECK(worst <= 1e-6);
+        free(y0);
+        free(phi);
+        gd_transient_free(tr);
+        gd_periodic_result_free(r);
+    }
+    gd_transient_model_free(tm);
+    fx_free(&f);
+}
+
+RUN_TESTS(T(linear_equals_unbalance), T(mathieu_tongue_period_doubling),
+          T(floquet_against_monodromy))
