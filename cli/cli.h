@@ -119,3 +119,5 @@ int gd_cmd_matrices(int argc, char **argv);
 
 /* ---- time integration (cmd_transient.c) ---- */
 int gd_cmd_transient(int argc, char **argv);
+/* ---- periodic steady state (cmd_periodic.c) ---- */
+int gd_cmd_periodic(int argc, char **argv);

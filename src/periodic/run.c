@@ -821,6 +821,22 @@ static int run_branch(ctx *c, const double *vals, int nv)
         have_mu = have_mu && stable1 >= 0;
         memcpy(X, X1, (size_t)n * sizeof *X);
         memcpy(t, t1, (size_t)(n + 1) * sizeof *t);
+        {
+            /* rescale X to its present size, so that a growing resonance does not eat the
+             * arclength: re-express the tangent in the new scale */
+            double sx2 = inf_norm(X, n);
+            if (sx2 > 0) {
+                double nt = 0.0;
+                for (int i = 0; i < n; i++) {
+                    t[i] *= c->sx / sx2;
+                    nt += t[i] * t[i];
+                }
+                nt = sqrt(nt + t[n] * t[n]);
+                for (int i = 0; i <= n; i++)
+                    t[i] /= nt;
+                c->sx = sx2;
+            }
+        }
         lam = l1;
         if (sign * (lam - reached) > 0) reached = lam;
         if (it <= 3) ds = ds * 1.6 < dsmax ? ds * 1.6 : dsmax;
