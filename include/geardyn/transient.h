@@ -200,6 +200,12 @@ typedef struct gd_tr_record {
     gd_tr_record_kind kind;
     int index, index2;
 } gd_tr_record;
+/* Contact homotopy for frequency-domain solvers: with hold = h in (0, 1], every backlash
+ * mesh's force off the drive flank becomes (1 - h) F(state) + h F(drive), so h = 1 is the
+ * smooth problem with the teeth always in contact and h = 0 (the default, and what the
+ * integrator always uses) the backlash law itself. Affects gd_transient_local and
+ * gd_transient_record_value only. */
+GD_API void gd_transient_hold_drive(gd_transient *tr, double hold);
 /* Value of a record at (t, y = [q_f; q_f']) with the contact states from y (the local
  * form above; for frequency-domain solutions). */
 GD_API double gd_transient_record_value(gd_transient *tr, const gd_tr_record *rec, double t,

@@ -253,9 +253,26 @@ static int newton(ctx *c, double *X, double *lam, const double *tan, const doubl
             R[i] = -R[i];
         R[n] = -g;
         gd_hb_solve(h, R);
+        if (tan) {
+            for (int i = 0; i < n; i++)
+                X[i] += R[i];
+            *lam += R[n];
+            continue;
+        }
+        /* fixed value: backtracking on |R| (contact laws make the residual only piecewise
+         * smooth, and a full step from a poor start can overshoot) */
+        double alpha = 1.0;
         for (int i = 0; i < n; i++)
             X[i] += R[i];
-        if (tan) *lam += R[n];
+        for (int ls = 0; ls < 12; ls++) {
+            double sc;
+            if (!gd_hb_residual(h, s->tr, s->w, X, R2, 0, &sc) &&
+                norm2(R2, n) < (1.0 - 1e-4 * alpha) * rn)
+                break;
+            alpha *= 0.5; /* X = start + alpha step */
+            for (int i = 0; i < n; i++)
+                X[i] -= alpha * R[i];
+        }
     }
     snprintf(c->reason, sizeof c->reason,
              "Newton did not converge in %d iterations (relative residual %.3g > tol %.3g)",
@@ -641,11 +658,51 @@ static double inf_norm(const double *x, int n)
     return m;
 }
 
-/* Fixed-value Newton with adaptive H; X grows with H (t too, if given). */
-static int solve_fixed(ctx *c, double **X, double **t, double lam, int *it, double *res)
+/* Newton from rest through a contact homotopy: every backlash mesh first held on its
+ * drive flank (h = 1: smooth), then released step by step to the backlash law (h = 0),
+ * each Newton starting from the last solution; a failed release halves the step. Without
+ * backlash meshes h changes nothing and the first solve is the answer. */
+static int solve_from_rest(ctx *c, double *X, double lam, int *it, double *res)
+{
+    stage *s = get_stage(c, lam);
+    if (!s) return 1;
+    const int n = c->h.n;
+    double *Xok = malloc((size_t)n * sizeof *Xok);
+    if (!Xok) return 1;
+    double h = 1.0, step = 0.5;
+    int rc = 1;
+    gd_transient_hold_drive(s->tr, h);
+    if (newton(c, X, &lam, NULL, NULL, it, res)) goto done;
+    memcpy(Xok, X, (size_t)n * sizeof *X);
+    while (h > 0) {
+        double h2 = h - step < 1e-3 ? 0.0 : h - step;
+        gd_transient_hold_drive(s->tr, h2);
+        if (newton(c, X, &lam, NULL, NULL, it, res)) {
+            memcpy(X, Xok, (size_t)n * sizeof *X);
+            step *= 0.5;
+            if (step < 1e-3) goto done;
+            continue;
+        }
+        memcpy(Xok, X, (size_t)n * sizeof *X);
+        h = h2;
+        step = step * 2 < 0.5 ? step * 2 : 0.5;
+    }
+    rc = 0;
+done:
+    gd_transient_hold_drive(s->tr, 0.0);
+    if (rc)
+        snprintf(c->reason + strlen(c->reason), sizeof c->reason - strlen(c->reason),
+                 " (releasing the contacts from the drive flank)");
+    free(Xok);
+    return rc;
+}
+
+/* Fixed-value Newton with adaptive H; X grows with H (t too, if given). rest: X is zero. */
+static int solve_fixed(ctx *c, double **X, double **t, double lam, int *it, double *res, int rest)
 {
     for (;;) {
-        if (newton(c, *X, &lam, NULL, NULL, it, res)) return 1;
+        if (rest ? solve_from_rest(c, *X, lam, it, res) : newton(c, *X, &lam, NULL, NULL, it, res))
+            return 1;
         if (!c->opt->adaptive || top_share(c, *X) <= c->opt->harmonic_tol ||
             c->H >= c->opt->max_harmonics)
             return 0;
@@ -666,7 +723,7 @@ static int run_branch(ctx *c, const double *vals, int nv)
     for (i0 = 0; i0 < nv; i0++) {
         lam = vals[i0];
         memset(X, 0, (size_t)(c->h.n + 1) * sizeof *X);
-        if (!get_stage(c, lam) || solve_fixed(c, &X, NULL, lam, &it, &res)) {
+        if (!get_stage(c, lam) || solve_fixed(c, &X, NULL, lam, &it, &res, 1)) {
             if (fail_point(c, lam, c->reason)) goto done;
             continue;
         }
@@ -683,7 +740,7 @@ static int run_branch(ctx *c, const double *vals, int nv)
             if (!Xs) goto done;
             memcpy(Xs, X, (size_t)(c->h.n + 1) * sizeof *Xs);
             c->steps++;
-            if (!get_stage(c, vals[i]) || solve_fixed(c, &Xs, NULL, vals[i], &it, &res)) {
+            if (!get_stage(c, vals[i]) || solve_fixed(c, &Xs, NULL, vals[i], &it, &res, 0)) {
                 free(Xs);
                 if (fail_point(c, vals[i], c->reason)) goto done;
                 continue;
@@ -766,7 +823,7 @@ static int run_branch(ctx *c, const double *vals, int nv)
             if (H2 > c->opt->max_harmonics) H2 = c->opt->max_harmonics;
             if (grow(c, &X, &t, H2)) goto done;
             ALLOC_ALL();
-            if (solve_fixed(c, &X, &t, lam, &it, &res)) goto stop;
+            if (solve_fixed(c, &X, &t, lam, &it, &res, 0)) goto stop;
             continue;
         }
         if (tangent(c, X1, l1, t, sign, t1)) {

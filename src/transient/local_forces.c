@@ -182,3 +182,9 @@ double gd_transient_record_value(gd_transient *tr, const gd_tr_record *rec, doub
     gd_transient_local(tr, t, y, NULL, NULL, NULL);
     return gd_tr_record_value(tr, rec, t, tr->q, tr->v);
 }
+
+void gd_transient_hold_drive(gd_transient *tr, double hold)
+{
+    for (int i = 0; i < tr->nmesh; i++)
+        tr->mesh[i].hold = hold > 0 ? (hold < 1 ? hold : 1.0) : 0.0;
+}

@@ -59,21 +59,30 @@ double gd_tr_mesh_law(const tr_mesh *m, gd_contact state, double t, const double
     p.c_drive = c;
     p.c_coast = s->damping + s->damping_per_k * p.k_coast;
     p.c_free = s->damping_free;
+    gd_contact st = s->backlash ? state : GD_CONTACT_DRIVE;
+    /* contact homotopy (frequency-domain starts only): blend with the drive flank */
+    double h = st != GD_CONTACT_DRIVE ? m->hold : 0.0;
     if (grad) {
         /* chain rule through the state's k(theta), c(theta) and the STE e(theta) */
-        gd_contact st = s->backlash ? state : GD_CONTACT_DRIVE;
-        double g[4];
-        gd_backlash_force_grad(&p, st, d, dd, g);
-        double dks = st == GD_CONTACT_COAST ? s->coast_scale * dk : dk;
-        double dcs = st == GD_CONTACT_SEPARATED ? 0.0 : s->damping_per_k * dks;
-        double dth = g[2] * dks + g[3] * dcs - g[0] * e1 - g[1] * e2 * thd;
-        grad[0] = g[0];
-        grad[1] = g[1];
-        grad[2] = m->drv_dof >= 0 ? m->sense * dth : 0.0;
-        grad[3] = m->drv_dof >= 0 ? -m->sense * g[1] * e1 : 0.0;
+        for (int b = 0; b < 4; b++)
+            grad[b] = 0.0;
+        for (int pass = 0; pass < (h > 0 ? 2 : 1); pass++) {
+            gd_contact sp = pass ? GD_CONTACT_DRIVE : st;
+            double wgt = pass ? h : 1.0 - h, g[4];
+            gd_backlash_force_grad(&p, sp, d, dd, g);
+            double dks = sp == GD_CONTACT_COAST ? s->coast_scale * dk : dk;
+            double dcs = sp == GD_CONTACT_SEPARATED ? 0.0 : s->damping_per_k * dks;
+            double dth = g[2] * dks + g[3] * dcs - g[0] * e1 - g[1] * e2 * thd;
+            grad[0] += wgt * g[0];
+            grad[1] += wgt * g[1];
+            grad[2] += m->drv_dof >= 0 ? wgt * m->sense * dth : 0.0;
+            grad[3] += m->drv_dof >= 0 ? -wgt * m->sense * g[1] * e1 : 0.0;
+        }
     }
     if (!s->backlash) return k * d + c * dd;
-    return gd_backlash_force(&p, state, d, dd);
+    double F = gd_backlash_force(&p, state, d, dd);
+    if (h > 0) F = (1.0 - h) * F + h * gd_backlash_force(&p, GD_CONTACT_DRIVE, d, dd);
+    return F;
 }
 
 double gd_tr_mesh_force(const gd_transient *tr, const tr_mesh *m, gd_contact state, double t,

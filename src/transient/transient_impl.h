@@ -16,6 +16,7 @@ typedef struct tr_mesh {
     double drv_rate;     /* driver's nominal speed about +z (ratio W) */
     int sense;           /* +1 driver turns about +z */
     gd_contact state;    /* current contact state (frozen between events) */
+    double hold;         /* contact homotopy (gd_transient_hold_drive); 0 in integration */
 } tr_mesh;
 
 typedef struct tr_sfd {
@@ -79,7 +80,7 @@ struct gd_transient {
     char msg[256]; /* last solver message */
     int nterm;     /* local force terms (local_forces.c), built on first use; -1 unsupported */
     gd_tr_term *term;
-    void *mono;    /* gd_transient_monodromy's workspace while it runs */
+    void *mono; /* gd_transient_monodromy's workspace while it runs */
 };
 
 /* Fills q, v, acc (length n) at time t from the state y: free DOFs from y, prescribed
