@@ -1,5 +1,6 @@
 /* geardyn periodic MODEL --speeds FROM:TO:COUNT: periodic steady state by harmonic
  * balance with continuation and Floquet stability (docs/periodic.md). */
+#include <cblas.h>
 #include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
@@ -378,6 +379,7 @@ int gd_cmd_periodic(int argc, char **argv)
         }
     }
     gd_load_options lo = gd_cli_load_options(&sets);
+    openblas_set_num_threads(1); /* small dense blocks: threads cost more than they give */
     gd_periodic_param prm = {argv[optind], &lo, ppath, "", sp[0]};
     if (gd_periodic_run(s, &tm->spec, pv ? &prm : NULL, pv ? pv : sp, pv ? npv : nsp, &opt, rv,
                         recs.n, &r, &err)) {

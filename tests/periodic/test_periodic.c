@@ -2,6 +2,7 @@
  * damped Mathieu tongue of a TVMS pair against its closed form, Floquet multipliers
  * against the integrated monodromy, and backlash / SFD steady states against time
  * integration. */
+#include <cblas.h>
 #include <lapacke.h>
 #include <math.h>
 #include <stdlib.h>
@@ -43,6 +44,7 @@ static gd_periodic_result *run_speeds(const fx *f, const gd_transient_spec *spec
                                       double w1, int count, const gd_periodic_options *o,
                                       const gd_tr_record *rec, int nrec)
 {
+    openblas_set_num_threads(1); /* tiny dense blocks */
     double *v = malloc((size_t)count * sizeof *v);
     for (int i = 0; i < count; i++)
         v[i] = count > 1 ? w0 + (w1 - w0) * i / (count - 1) : w0;
