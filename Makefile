@@ -46,11 +46,13 @@ test-asan: deps
 # The two Campbell sweeps over many speeds take minutes under valgrind; they run in the
 # normal and sanitizer builds.
 VALGRIND_SKIP_test_campbell = -threads_and_methods_agree,critical_speeds
+VALGRIND_SKIP_test_periodic = -backlash_against_transient,sfd_pair_against_transient
 memcheck: build
 	@set -e; for t in $(BUILD)/test_*; do \
 	    [ -f $$t ] && [ -x $$t ] && [ "$$(head -c 4 $$t | tail -c 3)" = ELF ] || continue; \
 	    name=$$(basename $$t); skip=""; \
 	    [ "$$name" = test_campbell ] && skip="$(VALGRIND_SKIP_test_campbell)"; \
+	    [ "$$name" = test_periodic ] && skip="$(VALGRIND_SKIP_test_periodic)"; \
 	    echo "valgrind $$t $$skip"; OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=2 $(VALGRIND) $$t $$skip >/dev/null; done; \
 	out=$$(mktemp -d); \
 	for args in "check examples/rig2018.yaml" "modal examples/rig2018.yaml --speed 3000rpm --json" \
@@ -63,13 +65,15 @@ memcheck: build
 	            "campbell examples/kumar2011_coupled.yaml --speeds 0:3000rpm:4 --json" \
 	            "frf examples/kumar2011_coupled.yaml --input torque:motor --output mesh:mesh --freq 100:26000:20 --json" \
 	            "unbalance examples/chen1998_gear_pair.yaml --speeds 100:6000:8 --json" \
-	            "transient examples/ducati_timing_geartrain.yaml --revolutions 0.2 --quiet --json"; do \
+	            "transient examples/ducati_timing_geartrain.yaml --revolutions 0.2 --quiet --json" \
+	            "periodic examples/chen1998_gear_pair.yaml --speeds 500:700:2 --harmonics 3 --json --out $$out/p"; do \
 	    echo "valgrind geardyn $$args"; OPENBLAS_NUM_THREADS=1 $(VALGRIND) $(BUILD)/geardyn $$args >/dev/null; done; \
 	for args in "modal examples/missing.yaml" "modal examples/rig2018.yaml --speed fast" \
 	            "check examples/helical_pair1.yaml" \
 	            "check examples/rig2018.yaml --set bearings.*.k=-1" \
 	            "check examples/rig2018.yaml --set shafts.nope.name=x" \
-	            "matrices examples/rig2018.yaml --out $$out/bad --set disks.0.mass=-1"; do \
+	            "matrices examples/rig2018.yaml --out $$out/bad --set disks.0.mass=-1" \
+	            "periodic examples/chen1998_gear_pair.yaml --speeds 1:2:3 --subharmonic 0"; do \
 	    echo "valgrind geardyn $$args (must fail with exit 2)"; \
 	    rc=0; OPENBLAS_NUM_THREADS=1 $(VALGRIND) $(BUILD)/geardyn $$args >/dev/null 2>&1 || rc=$$?; \
 	    [ $$rc -eq 2 ] || { echo "exit $$rc, expected 2"; exit 1; }; done; \
