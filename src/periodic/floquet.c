@@ -107,8 +107,20 @@ static void build_A(fq_work *w, const hb *h, gd_transient *tr, double om, const 
     }
 }
 
+/* The contact states of the backlash meshes at phase tau, as one number. */
+static long contact_code(const hb *h, gd_transient *tr, double om, const double *X, double tau,
+                         const gd_tr_record *bl, int nbl, double *y)
+{
+    long code = 0;
+    if (!nbl) return 0;
+    gd_hb_eval(h, om, X, tau, y, y + h->nf);
+    for (int i = 0; i < nbl; i++)
+        code = 3 * code + 1 + (long)gd_transient_record_value(tr, &bl[i], tau / om, y);
+    return code;
+}
+
 int gd_hb_floquet(const hb *h, gd_transient *tr, double om, const double *X, int steps,
-                  double *mu_re, double *mu_im)
+                  const gd_tr_record *bl, int nbl, double *mu_re, double *mu_im)
 {
     const int nf = h->nf, n2 = 2 * nf;
     size_t nn = (size_t)n2 * n2, ff = (size_t)nf * nf;
@@ -145,23 +157,43 @@ int gd_hb_floquet(const hb *h, gd_transient *tr, double om, const double *X, int
     for (int i = 0; i < n2; i++)
         Phi[(size_t)i * n2 + i] = 1.0;
     const double g1 = 0.5 - sqrt(3.0) / 6.0, g2 = 0.5 + sqrt(3.0) / 6.0;
-    const double period = TWO_PI / om, dt = period / steps;
     for (int k = 0; k < steps; k++) {
-        double tau0 = TWO_PI * k / steps, dtau = TWO_PI / steps;
-        build_A(&w, h, tr, om, X, tau0 + g1 * dtau, A1);
-        build_A(&w, h, tr, om, X, tau0 + g2 * dtau, A2);
-        /* Omega = dt/2 (A1 + A2) + sqrt(3)/12 dt^2 (A2 A1 - A1 A2) */
-        cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n2, n2, n2, 1.0, A2, n2, A1, n2, 0.0,
-                    Om, n2);
-        cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n2, n2, n2, -1.0, A1, n2, A2, n2,
-                    1.0, Om, n2);
-        double c2 = sqrt(3.0) / 12.0 * dt * dt;
-        for (size_t m = 0; m < nn; m++)
-            Om[m] = 0.5 * dt * (A1[m] + A2[m]) + c2 * Om[m];
-        if (expm(n2, Om, Ex, W, ipiv)) goto done;
-        cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n2, n2, n2, 1.0, Ex, n2, Phi, n2,
-                    0.0, T, n2);
-        memcpy(Phi, T, nn * sizeof *Phi);
+        /* one step, split at every contact change of a backlash mesh (located by
+         * bisection on the states along the orbit) so no Gauss point straddles a jump
+         * of A(t) */
+        double a = TWO_PI * k / steps, b = TWO_PI * (k + 1) / steps;
+        long sa = contact_code(h, tr, om, X, a, bl, nbl, w.y);
+        while (a < b) {
+            double e = b;
+            if (nbl && contact_code(h, tr, om, X, b, bl, nbl, w.y) != sa) {
+                double lo = a, hi = b;
+                for (int it = 0; it < 60 && hi - lo > 1e-15 * TWO_PI; it++) {
+                    double mid = 0.5 * (lo + hi);
+                    if (contact_code(h, tr, om, X, mid, bl, nbl, w.y) == sa)
+                        lo = mid;
+                    else
+                        hi = mid;
+                }
+                e = hi;
+            }
+            double dtau = e - a, dt = dtau / om;
+            build_A(&w, h, tr, om, X, a + g1 * dtau, A1);
+            build_A(&w, h, tr, om, X, a + g2 * dtau, A2);
+            /* Omega = dt/2 (A1 + A2) + sqrt(3)/12 dt^2 (A2 A1 - A1 A2) */
+            cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n2, n2, n2, 1.0, A2, n2, A1, n2,
+                        0.0, Om, n2);
+            cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n2, n2, n2, -1.0, A1, n2, A2, n2,
+                        1.0, Om, n2);
+            double c2 = sqrt(3.0) / 12.0 * dt * dt;
+            for (size_t m = 0; m < nn; m++)
+                Om[m] = 0.5 * dt * (A1[m] + A2[m]) + c2 * Om[m];
+            if (expm(n2, Om, Ex, W, ipiv)) goto done;
+            cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n2, n2, n2, 1.0, Ex, n2, Phi, n2,
+                        0.0, T, n2);
+            memcpy(Phi, T, nn * sizeof *Phi);
+            if (e < b) sa = contact_code(h, tr, om, X, e, bl, nbl, w.y);
+            a = e;
+        }
     }
     {
         double *dummy = T;

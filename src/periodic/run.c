@@ -407,7 +407,13 @@ static void floquet(ctx *c, const double *X, double lam, double *mre, double *mi
     if (!s) return;
     int steps = c->opt->monodromy_steps > 0 ? c->opt->monodromy_steps : 8 * c->h.N;
     if (steps < 512 && c->opt->monodromy_steps <= 0) steps = 512;
-    if (gd_hb_floquet(&c->h, s->tr, s->w, X, steps, mre, mim)) return;
+    const gd_transient_spec *spec = c->param ? &s->tm->spec : c->spec;
+    gd_tr_record bl[64];
+    int nbl = 0;
+    for (int i = 0; i < spec->nmeshes && nbl < 64; i++)
+        if (spec->meshes[i].backlash)
+            bl[nbl++] = (gd_tr_record){GD_REC_MESH_STATE, spec->meshes[i].mesh, 0};
+    if (gd_hb_floquet(&c->h, s->tr, s->w, X, steps, bl, nbl, mre, mim)) return;
     double m = 0.0;
     for (int i = 0; i < 2 * c->nf; i++) {
         double a = hypot(mre[i], mim[i]);
@@ -796,7 +802,7 @@ static int run_branch(ctx *c, const double *vals, int nv)
     double mu_max, rho[3], rho1[3];
     floquet(c, X, lam, mre, mim, &stable, &mu_max);
     double mu_prev = mu_max;
-    int have_mu = stable >= 0;
+    int have_mu = stable >= 0, fold_prev = 0;
     if (have_mu) categorise(c, mre, mim, out, rho);
     double ds = 1.0 / (nv - 1), dsmax = 2.0 / (nv - 1), dsmin = 1e-7;
     if (ds > 0.05) ds = 0.05;
@@ -848,7 +854,13 @@ static int run_branch(ctx *c, const double *vals, int nv)
                 Xg[k] = (1 - sig) * X[k] + sig * X1[k];
             int itg;
             double resg;
-            if (newton(c, Xg, &v, NULL, NULL, &itg, &resg)) {
+            int bad = newton(c, Xg, &v, NULL, NULL, &itg, &resg);
+            for (int end = 0; bad && end < 2; end++) { /* near a fold: from either step */
+                memcpy(Xg, end ? X1 : X, (size_t)n * sizeof *Xg);
+                v = vals[i];
+                bad = newton(c, Xg, &v, NULL, NULL, &itg, &resg);
+            }
+            if (bad) {
                 if (fail_point(c, v, c->reason)) goto done;
             } else if (emit_point(c, Xg, v, itg, resg)) {
                 goto done;
@@ -868,7 +880,8 @@ static int run_branch(ctx *c, const double *vals, int nv)
             c->mu_a = mu_prev;
             c->mu_b = mu_max;
             for (int k = 0; k < 3; k++) {
-                if (out[k] == out1[k] || (k == 0 && fold)) continue;
+                /* a real multiplier through +1 at a fold is the fold itself */
+                if (out[k] == out1[k] || (k == 0 && (fold || fold_prev))) continue;
                 if (locate(c, type[k], k, X, lam, rho[k], X1, l1, rho1[k], t)) goto done;
             }
             memcpy(out, out1, sizeof out);
@@ -876,6 +889,7 @@ static int run_branch(ctx *c, const double *vals, int nv)
             mu_prev = mu_max;
         }
         have_mu = have_mu && stable1 >= 0;
+        fold_prev = fold;
         memcpy(X, X1, (size_t)n * sizeof *X);
         memcpy(t, t1, (size_t)(n + 1) * sizeof *t);
         {
@@ -899,7 +913,7 @@ static int run_branch(ctx *c, const double *vals, int nv)
         if (it <= 3) ds = ds * 1.6 < dsmax ? ds * 1.6 : dsmax;
         if (it > 6) ds *= 0.6;
         if (sign * (lam - lend) >= 0) break;
-        if (sign * (lam - lstart) < -0.05 * c->sl) {
+        if (sign * (lam - lstart) < -0.5 * c->sl || (!c->param && lam <= 0)) {
             snprintf(c->reason, sizeof c->reason, "the branch turned back out of the range");
             goto stop;
         }
