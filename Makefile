@@ -66,6 +66,8 @@ memcheck: build
 	            "frf examples/kumar2011_coupled.yaml --input torque:motor --output mesh:mesh --freq 100:26000:20 --json" \
 	            "unbalance examples/chen1998_gear_pair.yaml --speeds 100:6000:8 --json" \
 	            "transient examples/ducati_timing_geartrain.yaml --revolutions 0.2 --quiet --json" \
+	            "transient examples/chen1998_gear_pair.yaml --speed 1500 --duration 20ms --poincare shaft_a --quiet --json" \
+	            "transient examples/chen1998_gear_pair.yaml --sweep-speeds 1000:2000:2 --poincare shaft_a --settle 5rev --points 4 --both-directions --quiet --out $$out/sw" \
 	            "periodic examples/chen1998_gear_pair.yaml --speeds 500:700:2 --harmonics 3 --json --out $$out/p"; do \
 	    echo "valgrind geardyn $$args"; OPENBLAS_NUM_THREADS=1 $(VALGRIND) $(BUILD)/geardyn $$args >/dev/null; done; \
 	for args in "modal examples/missing.yaml" "modal examples/rig2018.yaml --speed fast" \
@@ -73,6 +75,7 @@ memcheck: build
 	            "check examples/rig2018.yaml --set bearings.*.k=-1" \
 	            "check examples/rig2018.yaml --set shafts.nope.name=x" \
 	            "matrices examples/rig2018.yaml --out $$out/bad --set disks.0.mass=-1" \
+	            "transient examples/chen1998_gear_pair.yaml --sweep-speeds 1000:2000:3 --poincare nope"; do \
 	            "periodic examples/chen1998_gear_pair.yaml --speeds 1:2:3 --subharmonic 0"; do \
 	    echo "valgrind geardyn $$args (must fail with exit 2)"; \
 	    rc=0; OPENBLAS_NUM_THREADS=1 $(VALGRIND) $(BUILD)/geardyn $$args >/dev/null 2>&1 || rc=$$?; \

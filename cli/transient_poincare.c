@@ -129,6 +129,8 @@ void gd_cli_poincare_classify(const double *values, int nrec, int n, const doubl
             found = same(values, nr, n, tol, rep[c], k);
         if (!found) rep[(*distinct)++] = k;
     }
+    /* a slow drift passes the shift test but spreads the points: not settled */
+    if (*distinct != *period) *period = 0;
     free(rep);
     free(tol);
 }

@@ -27,9 +27,10 @@ int gd_cli_poincare_times(const gd_cli_poincare *p, double speed, double from, d
                           double **times);
 
 /* Periodicity of n points (record r, point k: values[r * n + k]) with scale[r] the
- * record's peak-to-peak: the smallest p <= n / 2 with point k + p = point k for every k
- * (0 when none: non-periodic over the samples, or not settled), and the number of
- * distinct points (greedy clustering with the same tolerance). */
+ * record's peak-to-peak: the number of distinct points (greedy clustering: a point
+ * joins the first cluster whose first point it equals) and the smallest p <= n / 2 with
+ * point k + p = point k for every k and exactly p distinct points (0 when none:
+ * quasi-periodic, chaotic, or a drift not settled within the settling time). */
 void gd_cli_poincare_classify(const double *values, int nrec, int n, const double *scale,
                               int *period, int *distinct);
 /* "period-P", or "many" when period is 0. */
