@@ -2,7 +2,8 @@
  * requested point of `geardyn periodic` on a model, with and without the Floquet
  * multipliers, against a floor measured in the same run: the local force evaluation
  * over one period's AFT samples (the least any HB iteration must do).
- * usage: bench_periodic MODEL FROM TO COUNT H [STABILITY 0|1] [--set PATH=VALUE]... */
+ * usage: bench_periodic MODEL FROM TO COUNT H [STABILITY 0|1] [SOLVER 0|1|2] [PATH=VALUE]...
+ * (SOLVER: 0 automatic, 1 whole sparse LU, 2 low-rank condensation). */
 #include <cblas.h>
 #include <math.h>
 #include <stdio.h>
@@ -22,13 +23,14 @@ static double cpu(void)
 int main(int argc, char **argv)
 {
     if (argc < 6) {
-        fprintf(stderr, "usage: bench_periodic MODEL FROM TO COUNT H [STAB] [PATH=VALUE]...\n");
+        fprintf(stderr, "usage: bench_periodic MODEL FROM TO COUNT H [STAB] [SOLVER] [PATH=VALUE]...\n");
         return 2;
     }
     openblas_set_num_threads(1);
     double from = atof(argv[2]), to = atof(argv[3]);
     int count = atoi(argv[4]), H = atoi(argv[5]), stab = argc > 6 ? atoi(argv[6]) : 1;
-    gd_load_options lo = {argc > 7 ? argc - 7 : 0, (const char *const *)(argv + 7)};
+    int solver = argc > 7 ? atoi(argv[7]) : 0;
+    gd_load_options lo = {argc > 8 ? argc - 8 : 0, (const char *const *)(argv + 8)};
     gd_model *m = NULL;
     gd_system *s = NULL;
     gd_transient_model *tm = NULL;
@@ -45,6 +47,7 @@ int main(int argc, char **argv)
     gd_periodic_options_init(&o);
     o.harmonics = H;
     o.stability = stab;
+    o.solver = solver;
     gd_periodic_result *r = NULL;
     double t0 = cpu();
     if (gd_periodic_run(s, &tm->spec, NULL, v, count, &o, NULL, 0, &r, &err)) {
@@ -70,11 +73,16 @@ int main(int argc, char **argv)
         reps++;
     } while ((tf = cpu() - f0) < 0.2);
     double floor_s = tf / reps;
-    printf("model %s: %d free DOFs, H = %d (%d unknowns), %s\n", argv[1], ns / 2, H,
-           ns / 2 * (2 * H + 1), stab ? "Floquet on" : "Floquet off");
+    printf("model %s: %d free DOFs, H = %d (%d unknowns), %s, solver %s\n", argv[1], ns / 2, H,
+           ns / 2 * (2 * H + 1), stab ? "Floquet on" : "Floquet off",
+           solver == 1 ? "sparse LU" : solver == 2 ? "low-rank" : "automatic");
     printf("  %d requested values, %d points (%d converged), %d continuation steps, %d "
            "bifurcations\n",
            count, r->npoints, conv, r->steps, r->nbifurcations);
+    if (r->npoints && r->points[r->npoints - 1].converged)
+        printf("  last point: X[0..2] = %.12g %.12g %.12g, residual %.2e\n",
+               r->points[r->npoints - 1].coef[0], r->points[r->npoints - 1].coef[1],
+               r->points[r->npoints - 1].coef[2], r->points[r->npoints - 1].residual);
     printf("  total %.3f s CPU; per continuation step %.3f ms; per point %.3f ms\n", t,
            1e3 * t / (r->steps > 0 ? r->steps : 1), 1e3 * t / (r->npoints ? r->npoints : 1));
     printf("  floor (local forces at the %d AFT samples): %.4f ms; step / floor = %.0f\n", N,

@@ -52,6 +52,10 @@ typedef struct gd_periodic_options {
     gd_per_method method;
     int both_directions; /* 1: also the run from the end back to the start */
     int max_steps;       /* continuation steps per direction; 0: 50 x count + 200 */
+    int solver;          /* Newton's linear solver: 0 automatic (low-rank for 2000+
+                            unknowns whose nonlinear rank is a quarter or less), 1 sparse
+                            LU of the whole coupled system (KLU), 2 low-rank: the linear
+                            DOFs condensed onto the nonlinear laws (Woodbury) */
 } gd_periodic_options;
 GD_API void gd_periodic_options_init(gd_periodic_options *opt);
 

@@ -32,8 +32,7 @@ int gd_hb_init(hb *h, int nf, int H, int N)
     h->f = malloc((size_t)nf * sizeof *h->f);
     h->E = malloc((size_t)N * h->nh * sizeof *h->E);
     h->Ed = malloc((size_t)N * h->nh * sizeof *h->Ed);
-    h->G = malloc((size_t)h->nh * h->nh * sizeof *h->G);
-    if (!h->tq || !h->tv || !h->tf || !h->y || !h->f || !h->E || !h->Ed || !h->G) return 1;
+    if (!h->tq || !h->tv || !h->tf || !h->y || !h->f || !h->E || !h->Ed) return 1;
     int kind_f = FFTW_R2HC, kind_i = FFTW_HC2R;
     h->fwd_f = fftw_plan_many_r2r(1, &N, nf, h->tf, NULL, 1, N, h->tf, NULL, 1, N,
                                   (const fftw_r2r_kind *)&kind_f, FFTW_ESTIMATE);
@@ -69,7 +68,8 @@ void gd_hb_free(hb *h)
     free(h->f);
     free(h->E);
     free(h->Ed);
-    free(h->G);
+    free(h->Gall);
+    gd_hb_lowrank_free(h);
     free(h->Ap);
     free(h->Ai);
     free(h->Ax);
@@ -232,6 +232,39 @@ static int trip_add(hb *h, int i, int j)
     return 0;
 }
 
+int gd_hb_couplings(hb *h, double w)
+{
+    const int nh = h->nh, N = h->N;
+    size_t need = (size_t)(h->nterm > 0 ? h->nterm : 1) * nh * nh;
+    if (h->nGall < need) {
+        free(h->Gall);
+        h->Gall = malloc(need * sizeof *h->Gall);
+        h->nGall = h->Gall ? need : 0;
+        if (!h->Gall) return 1;
+    }
+    double *B = malloc((size_t)N * nh * sizeof *B), *Ew = malloc((size_t)N * nh * sizeof *Ew);
+    if (!B || !Ew) {
+        free(B);
+        free(Ew);
+        return 1;
+    }
+    for (int a = 0; a < nh; a++)
+        for (int j = 0; j < N; j++)
+            Ew[(size_t)a * N + j] = h->E[(size_t)a * N + j] * (a ? 2.0 : 1.0) / N;
+    for (int t = 0; t < h->nterm; t++) {
+        const double *sq = h->sq + (size_t)t * N, *sv = h->sv + (size_t)t * N;
+        for (int b = 0; b < nh; b++)
+            for (int j = 0; j < N; j++)
+                B[(size_t)b * N + j] =
+                    sq[j] * h->E[(size_t)b * N + j] + w * sv[j] * h->Ed[(size_t)b * N + j];
+        cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, nh, nh, N, 1.0, Ew, N, B, N, 0.0,
+                    h->Gall + (size_t)t * nh * nh, nh);
+    }
+    free(B);
+    free(Ew);
+    return 0;
+}
+
 /* mode 0: collect the pattern; 1: add val at (i, j) */
 static void emit(hb *h, int mode, int i, int j, double val)
 {
@@ -258,7 +291,7 @@ static void emit(hb *h, int mode, int i, int j, double val)
 static void assemble(hb *h, int mode, gd_transient *tr, double w, const double *dRdp,
                      const double *row)
 {
-    const int nf = h->nf, nh = h->nh, N = h->N, n = h->n;
+    const int nf = h->nf, nh = h->nh, n = h->n;
     gd_csc M, D, K;
     gd_transient_matrices(tr, &M, &D, &K);
     for (int hh = 0; hh < nh; hh++) {
@@ -277,41 +310,23 @@ static void assemble(hb *h, int mode, gd_transient *tr, double w, const double *
         }
     }
     /* nonlinear terms: - u w^T (x) G */
-    double *B = mode ? malloc((size_t)N * nh * sizeof *B) : NULL;
-    double *Ew = mode ? malloc((size_t)N * nh * sizeof *Ew) : NULL;
-    if (mode && (!B || !Ew)) {
+    if (mode && gd_hb_couplings(h, w)) {
         h->miss = 2;
-        free(B);
-        free(Ew);
         return;
     }
-    if (mode)
-        for (int a = 0; a < nh; a++)
-            for (int j = 0; j < N; j++)
-                Ew[(size_t)a * N + j] = h->E[(size_t)a * N + j] * (a ? 2.0 : 1.0) / N;
     for (int t = 0; t < h->nterm; t++) {
         const gd_tr_term *tm = &h->term[t];
         if (!tm->nu || !tm->nw) continue;
-        if (mode) {
-            const double *sq = h->sq + (size_t)t * N, *sv = h->sv + (size_t)t * N;
-            for (int b = 0; b < nh; b++)
-                for (int j = 0; j < N; j++)
-                    B[(size_t)b * N + j] =
-                        sq[j] * h->E[(size_t)b * N + j] + w * sv[j] * h->Ed[(size_t)b * N + j];
-            cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, nh, nh, N, 1.0, Ew, N, B, N, 0.0,
-                        h->G, nh);
-        }
+        const double *G = mode ? h->Gall + (size_t)t * nh * nh : NULL;
         for (int b = 0; b < nh; b++)
             for (int a = 0; a < nh; a++) {
-                double g = mode ? h->G[(size_t)b * nh + a] : 0.0;
+                double g = mode ? G[(size_t)b * nh + a] : 0.0;
                 for (int jw = 0; jw < tm->nw; jw++)
                     for (int iu = 0; iu < tm->nu; iu++)
                         emit(h, mode, a * nf + tm->u_idx[iu], b * nf + tm->w_idx[jw],
                              -tm->u[iu] * tm->w[jw] * g);
             }
     }
-    free(B);
-    free(Ew);
     for (int i = 0; i < n; i++) {
         emit(h, mode, i, n, dRdp ? dRdp[i] : 0.0);
         emit(h, mode, n, i, row[i]);
@@ -361,8 +376,16 @@ static int build_pattern(hb *h)
     return h->Ax ? 0 : 1;
 }
 
+int gd_hb_use_lowrank(const hb *h)
+{
+    if (h->solver == 1) return 0;
+    if (h->solver == 2) return 1;
+    return h->n >= 2000 && 4 * h->nterm * h->nh <= h->n;
+}
+
 int gd_hb_factor(hb *h, gd_transient *tr, double w, const double *dRdp, const double *row)
 {
+    if (gd_hb_use_lowrank(h)) return gd_hb_lowrank_factor(h, tr, w, dRdp, row);
     for (int attempt = 0; attempt < 2; attempt++) {
         if (!h->sym) {
             h->ntrip = 0;
@@ -390,5 +413,9 @@ int gd_hb_factor(hb *h, gd_transient *tr, double w, const double *dRdp, const do
 
 void gd_hb_solve(hb *h, double *b)
 {
+    if (gd_hb_use_lowrank(h)) {
+        gd_hb_lowrank_solve(h, b);
+        return;
+    }
     klu_solve(h->sym, h->num, h->n + 1, 1, b, &h->com);
 }

@@ -15,7 +15,6 @@ typedef struct hb {
     double *sq, *sv;      /* nterm x N term derivatives */
     double *y, *f;        /* 2 nf, nf: one sample */
     double *E, *Ed;       /* N x nh basis and its derivative in the phase, E[h * N + j] */
-    double *G;            /* nh x nh harmonic coupling of one term */
     fftw_plan fwd_f, inv_q, inv_v;
     int nterm;
     const gd_tr_term *term;
@@ -30,7 +29,34 @@ typedef struct hb {
     /* pattern collection */
     int ntrip, captrip;
     int *ti, *tj;
+    /* low-rank path (lowrank.c): J = L - U C W^T with L block diagonal per harmonic */
+    int solver;   /* 0 automatic, 1 sparse LU of the whole system, 2 low-rank */
+    int r;        /* rank nterm x nh */
+    double *Gall; /* nterm x nh x nh: the terms' harmonic couplings G_t */
+    size_t nGall;
+    int *Lp, *Li;   /* CSC pattern of a 2 nf harmonic block (cos, sin) */
+    double *Lx;     /* values of one block */
+    int *L0p, *L0i; /* pattern of the mean block (nf) */
+    double *L0x;
+    klu_symbolic *Lsym, *L0sym;
+    klu_numeric **Lnum; /* H + 1 */
+    double *P;          /* n x r: L^-1 U */
+    double *S;          /* r x r capacitance I - W^T P C, LU factors */
+    int *Spiv;
+    double *xc;      /* n: J^-1 dRdp */
+    double *brow;    /* n + 1: the bordering row */
+    double denom;    /* d - row . J^-1 c */
+    double *wr, *wz; /* r workspaces */
 } hb;
+
+/* The low-rank (Woodbury) factorisation of the bordered system and its solve, used by
+ * gd_hb_factor / gd_hb_solve when solver is 2, or 0 with a large system whose nonlinear
+ * rank is small. */
+int gd_hb_lowrank_factor(hb *h, gd_transient *tr, double w, const double *dRdp, const double *row);
+void gd_hb_lowrank_solve(hb *h, double *b);
+void gd_hb_lowrank_solve_J(hb *h, double *x);
+int gd_hb_use_lowrank(const hb *h);
+void gd_hb_lowrank_free(hb *h);
 
 int gd_hb_init(hb *h, int nf, int H, int N);
 void gd_hb_free(hb *h);
@@ -38,6 +64,8 @@ void gd_hb_free(hb *h);
  * derivatives when jac. Returns 0, or 1 if a force is not finite. */
 int gd_hb_residual(hb *h, gd_transient *tr, double w, const double *X, double *R, int jac,
                    double *scale);
+/* G_t of every term from the last residual's samples (jac = 1) at w, into Gall. 0 ok. */
+int gd_hb_couplings(hb *h, double w);
 /* Fills the bordered matrix: the Jacobian of the last residual (jac = 1) at w, column
  * dRdp (NULL: zeros) and the last row (row, length n + 1). Rebuilds the pattern and the
  * symbolic analysis when needed; factors. 0 ok, 1 singular. */

@@ -348,7 +348,9 @@ static int hb_setup(ctx *c, int H)
     c->H = H;
     int N = samples_for(c->opt, H);
     if (N < 2 * H + 2) N = 2 * H + 2;
-    return gd_hb_init(&c->h, c->nf, H, N);
+    int rc = gd_hb_init(&c->h, c->nf, H, N);
+    c->h.solver = c->opt->solver;
+    return rc;
 }
 
 /* Share of the top quarter of the harmonics (k >= 1) in the response norm. */
