@@ -23,7 +23,8 @@ static double cpu(void)
 int main(int argc, char **argv)
 {
     if (argc < 6) {
-        fprintf(stderr, "usage: bench_periodic MODEL FROM TO COUNT H [STAB] [SOLVER] [PATH=VALUE]...\n");
+        fprintf(stderr,
+                "usage: bench_periodic MODEL FROM TO COUNT H [STAB] [SOLVER] [PATH=VALUE]...\n");
         return 2;
     }
     openblas_set_num_threads(1);
@@ -75,7 +76,9 @@ int main(int argc, char **argv)
     double floor_s = tf / reps;
     printf("model %s: %d free DOFs, H = %d (%d unknowns), %s, solver %s\n", argv[1], ns / 2, H,
            ns / 2 * (2 * H + 1), stab ? "Floquet on" : "Floquet off",
-           solver == 1 ? "sparse LU" : solver == 2 ? "low-rank" : "automatic");
+           solver == 1   ? "sparse LU"
+           : solver == 2 ? "low-rank"
+                         : "automatic");
     printf("  %d requested values, %d points (%d converged), %d continuation steps, %d "
            "bifurcations\n",
            count, r->npoints, conv, r->steps, r->nbifurcations);

@@ -50,6 +50,7 @@
 #include "geardyn/unbalance.h"
 #include "geardyn/transient.h"
 #include "geardyn/transient_model.h"
+#include "geardyn/periodic.h"
 #include "geardyn/spectrum.h"
 
 #endif
