@@ -56,6 +56,20 @@ static gd_periodic_result *run_speeds(const fx *f, const gd_transient_spec *spec
     return r;
 }
 
+/* Loads the model text (freed here) and its transient spec; 1 on success. */
+static int load_spec(fx *f, char *yaml, gd_transient_model **tm)
+{
+    gd_error err;
+    int ok = load(f, NULL, yaml);
+    free(yaml);
+    *tm = NULL;
+    if (ok && gd_transient_model_build(f->s, tm, &err)) {
+        fprintf(stderr, "  spec: %s\n", err.message);
+        ok = 0;
+    }
+    return ok;
+}
+
 /* Linear, constant stiffness: HB equals the unbalance response (two shafts at different
  * speeds: harmonics 1 and r_a/r_b of gear a's speed... both multiples of the common
  * fundamental). Tolerance 1e-9: both solve the same linear equations, the difference is
@@ -197,14 +211,9 @@ static double bisect_tongue(double lo, double hi, double wn, double e, double ze
 TEST(mathieu_tongue_period_doubling)
 {
     const double e = 0.05, zeta = 0.005, wn = sqrt(5e7), z = 20;
-    char *yaml = mathieu_yaml(e, zeta);
     fx f;
-    int ok = load(&f, NULL, yaml);
-    free(yaml);
-    REQUIRE(ok);
     gd_transient_model *tm = NULL;
-    gd_error err;
-    REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
+    REQUIRE(load_spec(&f, mathieu_yaml(e, zeta), &tm));
     gd_periodic_options o;
     gd_periodic_options_init(&o);
     o.harmonics = 6;
@@ -252,14 +261,10 @@ TEST(mathieu_tongue_period_doubling)
 TEST(floquet_against_monodromy)
 {
     const double e = 0.05, zeta = 0.005, wn = sqrt(5e7), z = 20;
-    char *yaml = mathieu_yaml(e, zeta);
     fx f;
-    int ok = load(&f, NULL, yaml);
-    free(yaml);
-    REQUIRE(ok);
     gd_transient_model *tm = NULL;
     gd_error err;
-    REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
+    REQUIRE(load_spec(&f, mathieu_yaml(e, zeta), &tm));
     gd_periodic_options o;
     gd_periodic_options_init(&o);
     o.harmonics = 8;
@@ -537,14 +542,10 @@ static char *backlash_yaml(void)
  * against gd_transient_monodromy (CVODE from the HB state): see the tolerance below. */
 TEST(backlash_folds_traced_through_unstable_branch)
 {
-    char *yaml = backlash_yaml();
     fx f;
-    int ok = load(&f, NULL, yaml);
-    free(yaml);
-    REQUIRE(ok);
     gd_transient_model *tm = NULL;
     gd_error err;
-    REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
+    REQUIRE(load_spec(&f, backlash_yaml(), &tm));
     gd_periodic_options o;
     gd_periodic_options_init(&o);
     o.harmonics = 20;
