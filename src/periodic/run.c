@@ -78,7 +78,7 @@ typedef struct ctx {
     int nrec;
     int dir;
     int steps;
-    double mu_a, mu_b; /* max |mu| at the two steps being examined */
+    int near_fold; /* a fold on this step or the last: a real multiplier at +1 is it */
 } ctx;
 
 static void stage_clear(stage *s)
@@ -561,6 +561,19 @@ static void categorise(const ctx *c, const double *mre, const double *mim, int o
 static int add_bif(ctx *c, gd_bifurcation_type type, double lam, double mre, double mim)
 {
     gd_periodic_result *r = c->res;
+    /* a real multiplier through +1 next to a fold is the fold itself (located a step
+     * apart when the fold falls near a step end) */
+    const double near = 1e-3 * (c->sl > 0 ? c->sl : 1.0);
+    for (int i = r->nbifurcations - 1; i >= 0 && i >= r->nbifurcations - 3; i--) {
+        gd_bifurcation *b = &r->bifurcations[i];
+        if (b->direction != c->dir || fabs((c->param ? b->parameter : b->speed) - lam) > near)
+            continue;
+        if (type == GD_BIF_BRANCH_POINT && b->type == GD_BIF_FOLD) return 0;
+        if (type == GD_BIF_FOLD && b->type == GD_BIF_BRANCH_POINT) {
+            *b = r->bifurcations[--r->nbifurcations]; /* replace it by the fold */
+            break;
+        }
+    }
     if (r->nbifurcations == c->cap_bif) {
         int cap = c->cap_bif ? 2 * c->cap_bif : 16;
         gd_bifurcation *b = realloc(r->bifurcations, (size_t)cap * sizeof *b);
@@ -596,9 +609,30 @@ static int point_between(ctx *c, const double *Xa, double la, const double *Xb, 
     return rc;
 }
 
-/* Secant on rho_k(sig) - 1 between two steps; reports the bifurcation. */
-static int locate(ctx *c, gd_bifurcation_type type, int k, const double *Xa, double la, double ra,
-                  const double *Xb, double lb, double rb, const double *tan)
+/* The m-th largest multiplier modulus (m >= 1) and its index. */
+static double ranked(const ctx *c, const double *mre, const double *mim, int m, int *at)
+{
+    int nm = 2 * c->nf, used[512] = {0};
+    double v = NAN;
+    *at = -1;
+    for (int r = 0; r < m && r < nm && nm <= 512; r++) {
+        int bi = -1;
+        for (int i = 0; i < nm; i++)
+            if (!used[i] && (bi < 0 || hypot(mre[i], mim[i]) > hypot(mre[bi], mim[bi]))) bi = i;
+        used[bi] = 1;
+        v = hypot(mre[bi], mim[bi]);
+        *at = bi;
+    }
+    return v;
+}
+
+/* A multiplier crossed the unit circle between two steps (m - 1 outside on one side, m on
+ * the other): regula falsi (Illinois) on |mu|_(m) - 1, the m-th largest modulus, over
+ * points of the branch between the steps; the type from the crossing multiplier at the
+ * located point: real > 0 branch point (a fold is reported by its tangent), real < 0
+ * period doubling, complex Neimark-Sacker. */
+static int locate(ctx *c, int m, const double *Xa, double la, double ga, const double *Xb,
+                  double lb, double gb, const double *tan, const double *mre_b, const double *mim_b)
 {
     const int n = c->h.n;
     double *X = malloc((size_t)(n + 1) * sizeof *X);
@@ -610,34 +644,25 @@ static int locate(ctx *c, gd_bifurcation_type type, int k, const double *Xa, dou
         free(mim);
         return 1;
     }
-    double s0 = 0.0, s1 = 1.0, g0 = ra - 1.0, g1 = rb - 1.0, lam = la + 0.5 * (lb - la);
-    double best_re = NAN, best_im = NAN;
-    if (!isfinite(g0) || !isfinite(g1)) { /* the category forms on the way: use max |mu| */
-        g0 = c->mu_a - 1.0;
-        g1 = c->mu_b - 1.0;
-    }
-    int ok = isfinite(g0) && isfinite(g1) && g0 != g1;
+    double s0 = 0.0, s1 = 1.0, g0 = ga, g1 = gb, lam = la + 0.5 * (lb - la);
+    int at;
+    ranked(c, mre_b, mim_b, m, &at);
+    double best_re = at >= 0 ? mre_b[at] : NAN, best_im = at >= 0 ? fabs(mim_b[at]) : NAN;
+    int ok = isfinite(g0) && isfinite(g1) && g0 != g1, found = 0;
     double sig = ok ? -g0 / (g1 - g0) : 0.5;
     for (int it = 0; it < 30 && ok; it++) {
         if (!(sig > 0 && sig < 1)) sig = 0.5;
         if (point_between(c, Xa, la, Xb, lb, tan, sig, X, &lam)) break;
-        int stable, out[3];
-        double mu_max, rho[3];
+        int stable;
+        double mu_max;
         floquet(c, X, lam, mre, mim, &stable, &mu_max);
         if (stable < 0) break;
-        categorise(c, mre, mim, out, rho);
-        double g = (isfinite(ra) && isfinite(rb) ? rho[k] : mu_max) - 1.0;
-        if (!isfinite(g)) break;
-        for (int i = 0; i < 2 * c->nf; i++) {
-            int cat = fabs(mim[i]) > 1e-9 * hypot(mre[i], mim[i]) ? 2 : mre[i] >= 0 ? 0 : 1;
-            double a = hypot(mre[i], mim[i]), ref = isfinite(rho[k]) ? rho[k] : mu_max;
-            if (cat == k && fabs(a - ref) <= 1e-12 * ref) {
-                best_re = mre[i];
-                best_im = fabs(mim[i]);
-            }
-        }
+        double g = ranked(c, mre, mim, m, &at) - 1.0;
+        if (!isfinite(g) || at < 0) break;
+        best_re = mre[at];
+        best_im = fabs(mim[at]);
+        found = 1;
         if (fabs(g) < 1e-10) break;
-        /* keep the bracket (regula falsi, Illinois) */
         if ((g < 0) == (g0 < 0)) {
             s0 = sig;
             g0 = g;
@@ -649,7 +674,19 @@ static int locate(ctx *c, gd_bifurcation_type type, int k, const double *Xa, dou
         }
         sig = s0 - g0 * (s1 - s0) / (g1 - g0);
     }
-    int rc = add_bif(c, type, lam, best_re, best_im);
+    if (!found || !(lam >= fmin(la, lb) && lam <= fmax(la, lb)))
+        /* the search left the step (a branch nearby): interpolate between the steps */
+        lam = gb != ga ? la + (lb - la) * (-ga / (gb - ga)) : 0.5 * (la + lb);
+    double a = hypot(best_re, best_im);
+    gd_bifurcation_type type = best_im > 1e-9 * a ? GD_BIF_NEIMARK_SACKER
+                               : best_re < 0      ? GD_BIF_PERIOD_DOUBLING
+                                                  : GD_BIF_BRANCH_POINT;
+    int rc = 0;
+    /* reported only when located (the critical multiplier on the circle to 1e-4): a
+     * search that cannot close in on it (several multipliers moving at once) says
+     * nothing rather than something wrong */
+    if (!(type == GD_BIF_BRANCH_POINT && c->near_fold) && found && fabs(a - 1.0) < 1e-4)
+        rc = add_bif(c, type, lam, best_re, best_im);
     free(X);
     free(mre);
     free(mim);
@@ -678,7 +715,14 @@ static int solve_from_rest(ctx *c, double *X, double lam, int *it, double *res)
     double *Xok = malloc((size_t)n * sizeof *Xok);
     if (!Xok) return 1;
     double h = 1.0, step = 0.5;
-    int rc = 1;
+    int rc = 1, nbl = 0;
+    const gd_transient_spec *spec = c->param ? &s->tm->spec : c->spec;
+    for (int i = 0; i < spec->nmeshes; i++)
+        nbl += spec->meshes[i].backlash != 0;
+    if (!nbl) {
+        free(Xok);
+        return newton(c, X, &lam, NULL, NULL, it, res);
+    }
     gd_transient_hold_drive(s->tr, h);
     if (newton(c, X, &lam, NULL, NULL, it, res)) goto done;
     memcpy(Xok, X, (size_t)n * sizeof *X);
@@ -698,9 +742,9 @@ static int solve_from_rest(ctx *c, double *X, double lam, int *it, double *res)
     rc = 0;
 done:
     gd_transient_hold_drive(s->tr, 0.0);
-    if (rc)
+    if (rc && h < 1.0)
         snprintf(c->reason + strlen(c->reason), sizeof c->reason - strlen(c->reason),
-                 " (releasing the contacts from the drive flank)");
+                 " (releasing the backlash contacts from the drive flank, at %.3g)", h);
     free(Xok);
     return rc;
 }
@@ -802,8 +846,9 @@ static int run_branch(ctx *c, const double *vals, int nv)
     }
     int stable, out[3], out1[3];
     double mu_max, rho[3], rho1[3];
+    (void)rho;
+    (void)rho1;
     floquet(c, X, lam, mre, mim, &stable, &mu_max);
-    double mu_prev = mu_max;
     int have_mu = stable >= 0, fold_prev = 0;
     if (have_mu) categorise(c, mre, mim, out, rho);
     double ds = 1.0 / (nv - 1), dsmax = 2.0 / (nv - 1), dsmin = 1e-7;
@@ -838,6 +883,22 @@ static int run_branch(ctx *c, const double *vals, int nv)
             ds *= 0.5;
             if (ds < dsmin) goto stop;
             continue;
+        }
+        {
+            /* step control by the turn of the tangent and the chord's direction: a step
+             * that turned more than ~25 deg, or whose corrector fell back behind the
+             * start (retracing a branch past a fold), is retried shorter */
+            double tt = 0.0, tc = 0.0;
+            for (int i = 0; i < n; i++) {
+                tt += t[i] * t1[i];
+                tc += t[i] * (X1[i] - X[i]) / c->sx;
+            }
+            tt += t[n] * t1[n];
+            tc += t[n] * (l1 - lam) / c->sl;
+            if ((tt < 0.9 || tc <= 0.0) && ds > 16 * dsmin) {
+                ds *= 0.5;
+                continue;
+            }
         }
         int stable1 = -1;
         if (have_mu) {
@@ -877,18 +938,19 @@ static int run_branch(ctx *c, const double *vals, int nv)
             if (add_bif(c, GD_BIF_FOLD, lf, NAN, NAN)) goto done;
         }
         if (have_mu && stable1 >= 0) {
-            static const gd_bifurcation_type type[3] = {GD_BIF_BRANCH_POINT, GD_BIF_PERIOD_DOUBLING,
-                                                        GD_BIF_NEIMARK_SACKER};
-            c->mu_a = mu_prev;
-            c->mu_b = mu_max;
-            for (int k = 0; k < 3; k++) {
-                /* a real multiplier through +1 at a fold is the fold itself */
-                if (out[k] == out1[k] || (k == 0 && (fold || fold_prev))) continue;
-                if (locate(c, type[k], k, X, lam, rho[k], X1, l1, rho1[k], t)) goto done;
+            int tot = out[0] + out[1] + out[2], tot1 = out1[0] + out1[1] + out1[2];
+            if (tot != tot1) {
+                /* a multiplier crossed the circle (two meeting on the real axis only move
+                 * between categories); a real one through +1 at a fold is the fold */
+                int m = tot < tot1 ? tot1 : tot, ia, ib;
+                double ga = ranked(c, mre, mim, m, &ia) - 1.0;
+                double gb = ranked(c, mre1, mim1, m, &ib) - 1.0;
+                c->near_fold = fold || fold_prev;
+                if (locate(c, m, X, lam, ga, X1, l1, gb, t, mre1, mim1)) goto done;
             }
             memcpy(out, out1, sizeof out);
-            memcpy(rho, rho1, sizeof rho);
-            mu_prev = mu_max;
+            memcpy(mre, mre1, 2 * (size_t)c->nf * sizeof *mre);
+            memcpy(mim, mim1, 2 * (size_t)c->nf * sizeof *mim);
         }
         have_mu = have_mu && stable1 >= 0;
         fold_prev = fold;
