@@ -497,7 +497,7 @@ TEST(sfd_pair_against_transient)
 static char *backlash_yaml(void)
 {
     const int np = 48;
-    size_t cap = 16384;
+    size_t cap = 4 * 4096 + 4096; /* four lists and the text around them */
     char *y = malloc(cap), ang[4096] = "", k[4096] = "", e[4096] = "";
     int na = 0, nk = 0, ne = 0;
     for (int j = 0; j < np; j++) {
