@@ -48,7 +48,7 @@ typedef struct gd_periodic_options {
     double tol;          /* Newton: relative residual (default 1e-10) */
     int max_iter;        /* Newton iterations per point (default 30) */
     int stability;       /* 1 (default): Floquet multipliers and bifurcations */
-    int monodromy_steps; /* Magnus steps per period; 0: 8 x samples, at least 512 */
+    int monodromy_steps; /* Magnus steps per period; 0: 4 x samples, at least 256 */
     gd_per_method method;
     int both_directions; /* 1: also the run from the end back to the start */
     int max_steps;       /* continuation steps per direction; 0: 50 x count + 200 */

@@ -137,6 +137,7 @@ int gd_hb_lowrank_factor(hb *h, gd_transient *tr, double w, const double *dRdp, 
     if (gd_hb_couplings(h, w)) return 1;
     if (!h->Lnum || h->r != r) {
         gd_hb_lowrank_free(h);
+        h->L_id = 0;
         h->r = r;
         h->Lnum = calloc((size_t)h->H + 1, sizeof *h->Lnum);
         h->P = malloc((size_t)(r > 0 ? r : 1) * bw * sizeof *h->P);
@@ -149,10 +150,18 @@ int gd_hb_lowrank_factor(hb *h, gd_transient *tr, double w, const double *dRdp, 
         if (!h->Lnum || !h->P || !h->S || !h->Spiv || !h->xc || !h->brow || !h->wr || !h->wz)
             return 1;
     }
-    for (int k = 0; k <= h->H; k++)
-        if (factor_block(h, tr, w, k)) return 1;
+    /* L and P depend only on the problem and the frequency: a fixed-value Newton (and
+     * the requested points) reuses them, only the capacitance follows the iterate */
+    int fresh = !(h->L_id == h->stage_id && h->L_w == w && h->stage_id > 0);
+    for (int k = 0; fresh && k <= h->H; k++)
+        if (factor_block(h, tr, w, k)) {
+            h->L_id = 0;
+            return 1;
+        }
+    h->L_id = h->stage_id;
+    h->L_w = w;
     /* P = L^-1 U, column (t, a) held inside its block (length bw) */
-    for (int t = 0; t < nt; t++) {
+    for (int t = 0; fresh && t < nt; t++) {
         const gd_tr_term *tm = &h->term[t];
         for (int a = 0; a < nh; a++) {
             int k, off;

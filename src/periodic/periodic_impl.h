@@ -47,6 +47,9 @@ typedef struct hb {
     double *brow;    /* n + 1: the bordering row */
     double denom;    /* d - row . J^-1 c */
     double *wr, *wz; /* r workspaces */
+    long stage_id;   /* set by the caller: the problem the next factorisation is of */
+    long L_id;       /* the problem and frequency L and P were made for */
+    double L_w;
 } hb;
 
 /* The low-rank (Woodbury) factorisation of the bordered system and its solve, used by

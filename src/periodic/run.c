@@ -48,6 +48,7 @@ const char *gd_bifurcation_name(gd_bifurcation_type t)
 
 typedef struct stage {
     int valid;
+    long id; /* distinct for every problem made (factorisation reuse) */
     double key;
     gd_model *m;
     gd_system *s;
@@ -79,6 +80,7 @@ typedef struct ctx {
     int dir;
     int steps;
     int near_fold; /* a fold on this step or the last: a real multiplier at +1 is it */
+    long serial;   /* stages made */
 } ctx;
 
 static void stage_clear(stage *s)
@@ -174,6 +176,7 @@ static stage *get_stage(ctx *c, double key)
     stage *s = &c->st[c->next];
     c->next ^= 1;
     stage_clear(s);
+    s->id = ++c->serial;
     if (make_stage(c, s, key)) {
         snprintf(c->reason, sizeof c->reason, "%.300s", s->msg);
         return NULL;
@@ -245,6 +248,7 @@ static int newton(ctx *c, double *X, double *lam, const double *tan, const doubl
             memset(row, 0, (size_t)n * sizeof *row);
             row[n] = 1.0;
         }
+        h->stage_id = s->id;
         if (gd_hb_factor(h, s->tr, s->w, tan ? R2 : NULL, row) || h->com.status != KLU_OK) {
             snprintf(c->reason, sizeof c->reason, "singular harmonic balance Jacobian");
             goto done;
@@ -307,6 +311,7 @@ static int tangent(ctx *c, const double *X, double lam, const double *prev, doub
         row[i] = prev ? prev[i] / c->sx : 0.0;
     }
     row[n] = prev ? prev[n] / c->sl : 1.0;
+    h->stage_id = s->id;
     if (gd_hb_factor(h, s->tr, s->w, R2, row) || h->com.status != KLU_OK) goto done;
     memset(t, 0, (size_t)(n + 1) * sizeof *t);
     t[n] = 1.0;
@@ -407,8 +412,8 @@ static void floquet(ctx *c, const double *X, double lam, double *mre, double *mi
     if (!c->opt->stability) return;
     stage *s = get_stage(c, lam);
     if (!s) return;
-    int steps = c->opt->monodromy_steps > 0 ? c->opt->monodromy_steps : 8 * c->h.N;
-    if (steps < 512 && c->opt->monodromy_steps <= 0) steps = 512;
+    int steps = c->opt->monodromy_steps > 0 ? c->opt->monodromy_steps : 4 * c->h.N;
+    if (steps < 256 && c->opt->monodromy_steps <= 0) steps = 256;
     const gd_transient_spec *spec = c->param ? &s->tm->spec : c->spec;
     gd_tr_record bl[64];
     int nbl = 0;
@@ -464,32 +469,38 @@ static int fail_point(ctx *c, double lam, const char *why)
 /* Record statistics over one period sampled at Nr points. */
 static int record_stats(ctx *c, stage *s, const double *X, gd_periodic_point *p)
 {
-    const int nf = c->nf, H = c->H;
+    const int nf = c->nf, H = c->H, nr = c->nrec;
     int Nr = 256;
     while (Nr < 8 * (H + 1))
         Nr *= 2;
-    p->records = calloc((size_t)(c->nrec > 0 ? c->nrec : 1), sizeof *p->records);
+    p->records = calloc((size_t)(nr > 0 ? nr : 1), sizeof *p->records);
+    double *vals = malloc((size_t)(nr > 0 ? nr : 1) * Nr * sizeof *vals);
     double *buf = fftw_malloc((size_t)Nr * sizeof *buf),
            *out = fftw_malloc((size_t)Nr * sizeof *out);
     double *y = malloc(2 * (size_t)nf * sizeof *y);
-    if (!p->records || !buf || !out || !y) {
+    if (!p->records || !vals || !buf || !out || !y) {
+        free(vals);
         fftw_free(buf);
         fftw_free(out);
         free(y);
         return 1;
     }
+    /* the state once per sample, every record from it */
+    for (int j = 0; j < Nr && nr; j++) {
+        double tau = TWO_PI * j / Nr;
+        gd_hb_eval(&c->h, s->w, X, tau, y, y + nf);
+        for (int r = 0; r < nr; r++)
+            vals[(size_t)r * Nr + j] = gd_transient_record_value(s->tr, &c->rec[r], tau / s->w, y);
+    }
     fftw_plan plan = fftw_plan_r2r_1d(Nr, buf, out, FFTW_R2HC, FFTW_ESTIMATE);
-    for (int r = 0; r < c->nrec; r++) {
+    for (int r = 0; r < nr; r++) {
         gd_per_record_stats *st = &p->records[r];
         st->amplitude = calloc((size_t)H + 1, sizeof *st->amplitude);
         st->phase_deg = calloc((size_t)H + 1, sizeof *st->phase_deg);
         if (!st->amplitude || !st->phase_deg) continue;
         double mn = INFINITY, mx = -INFINITY, sum = 0.0, sq = 0.0;
         for (int j = 0; j < Nr; j++) {
-            double tau = TWO_PI * j / Nr;
-            gd_hb_eval(&c->h, s->w, X, tau, y, y + nf);
-            double v = gd_transient_record_value(s->tr, &c->rec[r], tau / s->w, y);
-            buf[j] = v;
+            double v = buf[j] = vals[(size_t)r * Nr + j];
             mn = v < mn ? v : mn;
             mx = v > mx ? v : mx;
             sum += v;
@@ -507,6 +518,7 @@ static int record_stats(ctx *c, stage *s, const double *X, gd_periodic_point *p)
         }
     }
     fftw_destroy_plan(plan);
+    free(vals);
     fftw_free(buf);
     fftw_free(out);
     free(y);
