@@ -75,7 +75,7 @@ memcheck: build
 	            "check examples/rig2018.yaml --set bearings.*.k=-1" \
 	            "check examples/rig2018.yaml --set shafts.nope.name=x" \
 	            "matrices examples/rig2018.yaml --out $$out/bad --set disks.0.mass=-1" \
-	            "transient examples/chen1998_gear_pair.yaml --sweep-speeds 1000:2000:3 --poincare nope"; do \
+	            "transient examples/chen1998_gear_pair.yaml --sweep-speeds 1000:2000:3 --poincare nope" \
 	            "periodic examples/chen1998_gear_pair.yaml --speeds 1:2:3 --subharmonic 0"; do \
 	    echo "valgrind geardyn $$args (must fail with exit 2)"; \
 	    rc=0; OPENBLAS_NUM_THREADS=1 $(VALGRIND) $(BUILD)/geardyn $$args >/dev/null 2>&1 || rc=$$?; \
