@@ -550,6 +550,7 @@ TEST(backlash_folds_traced_through_unstable_branch)
     gd_periodic_options o;
     gd_periodic_options_init(&o);
     o.harmonics = 20;
+    o.monodromy_steps = 128; /* split at every contact change anyway */
     gd_periodic_result *r = run_speeds(&f, &tm->spec, 300, 800, 26, &o, NULL, 0);
     REQUIRE(r);
     /* the four turning points of the two loops, and nothing else: near 478 rad/s the
@@ -647,6 +648,7 @@ TEST(chen_sfd_neimark_sacker_matches_transient)
     gd_periodic_options o;
     gd_periodic_options_init(&o);
     o.harmonics = 12;
+    o.monodromy_steps = 128; /* smooth laws: ample for a 2 rad/s location */
     /* from rest Newton needs a start away from the resonance: 5350 rad/s (at 5560 it
      * fails; the arclength then carries the solution) */
     gd_periodic_result *r = run_speeds(&f, &tm->spec, 5350, 5800, 46, &o, NULL, 0);
