@@ -78,6 +78,7 @@ VALGRIND_SKIP_test_shaft_energy = -cli_group_shaft
 # and the CLI through /bin/sh (not followed); the study CLI runs below instead.
 VALGRIND_SKIP_test_study = -every_analysis_gives_the_papers_numbers
 VALGRIND_SKIP_test_cli_study = -threads_shards_and_mpi_give_the_same_table,mpirun_two_ranks,killed_halfway_and_resumed,error_paths
+VALGRIND_SKIP_test_periodic = -backlash_against_transient,sfd_pair_against_transient,backlash_folds_traced_through_unstable_branch,chen_sfd_neimark_sacker_matches_transient
 memcheck: build
 	@set -e; for t in $(BUILD)/test_*; do \
 	    [ -f $$t ] && [ -x $$t ] && [ "$$(head -c 4 $$t | tail -c 3)" = ELF ] || continue; \
@@ -91,6 +92,7 @@ memcheck: build
 	    [ "$$name" = test_shaft_energy ] && skip="$(VALGRIND_SKIP_test_shaft_energy)"; \
 	    [ "$$name" = test_study ] && skip="$(VALGRIND_SKIP_test_study)"; \
 	    [ "$$name" = test_cli_study ] && skip="$(VALGRIND_SKIP_test_cli_study)"; \
+	    [ "$$name" = test_periodic ] && skip="$(VALGRIND_SKIP_test_periodic)"; \
 	    echo "valgrind $$t $$skip"; OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=2 $(VALGRIND) $$t $$skip >/dev/null; done; \
 	out=$$(mktemp -d); \
 	for args in "check examples/rig2018.yaml" "modal examples/rig2018.yaml --speed 3000rpm --json" \
@@ -111,7 +113,8 @@ memcheck: build
 	            "report tests/plot/study.yaml --speeds 0:3000rpm:3 --freq-points 20 --out $$out/report.html" \
 	            "modal examples/kumar2011_coupled.yaml --directional --group shaft --dofs x,y,rz --json" \
 	            "study examples/studies/chen1998_mesh_stiffness.yaml --out $$out/st --shard 1/4 --threads 2" \
-	            "study examples/studies/chen1998_mesh_stiffness.yaml --out $$out/st --shard 1/4 --resume"; do \
+	            "study examples/studies/chen1998_mesh_stiffness.yaml --out $$out/st --shard 1/4 --resume" \
+	            "periodic examples/chen1998_gear_pair.yaml --speeds 500:700:2 --harmonics 3 --json --out $$out/p"; do \
 	    echo "valgrind geardyn $$args"; OPENBLAS_NUM_THREADS=1 $(VALGRIND) $(BUILD)/geardyn $$args >/dev/null; done; \
 	for args in "modal examples/missing.yaml" "modal examples/rig2018.yaml --speed fast" \
 	            "check examples/helical_pair1.yaml" \
@@ -122,7 +125,8 @@ memcheck: build
 	            "modal examples/chen1998_gear_pair.yaml --plot $$out/modes.png" \
 	            "modal examples/kumar2011_torsional.yaml --modes 1 --plot $$out/rigid.svg" \
 	            "check examples" "check tests/model_file/hostile/element_length_1e-9.yaml" \
-	            "study examples/rig2018.yaml --out $$out/badstudy"; do \
+	            "study examples/rig2018.yaml --out $$out/badstudy" \
+	            "periodic examples/chen1998_gear_pair.yaml --speeds 1:2:3 --subharmonic 0"; do \
 	    echo "valgrind geardyn $$args (must fail with exit 2)"; \
 	    rc=0; OPENBLAS_NUM_THREADS=1 $(VALGRIND) $(BUILD)/geardyn $$args >/dev/null 2>&1 || rc=$$?; \
 	    [ $$rc -eq 2 ] || { echo "exit $$rc, expected 2"; exit 1; }; done; \

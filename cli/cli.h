@@ -153,3 +153,5 @@ int gd_cli_plot_finish(gd_status st, gd_plot *p, gd_error *err, const char *path
 
 /* ---- the study report (cmd_report.c) ---- */
 int gd_cmd_report(int argc, char **argv);
+/* ---- periodic steady state (cmd_periodic.c) ---- */
+int gd_cmd_periodic(int argc, char **argv);

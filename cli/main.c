@@ -31,6 +31,8 @@ static const command COMMANDS[] = {
      "write the system matrices M, K, C, G at a speed (Matrix Market)"},
     {"transient", gd_cmd_transient,
      "time integration: TVMS, backlash, dampers, cams; records, contact losses, spectra"},
+    {"periodic", gd_cmd_periodic,
+     "periodic steady state: harmonic balance, continuation, Floquet stability, bifurcations"},
     {"mesh-stiffness", gd_cmd_mesh_stiffness,
      "contact ratios and time-varying mesh stiffness from gear geometry"},
     {"report", gd_cmd_report,

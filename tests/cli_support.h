@@ -148,4 +148,34 @@ static inline const char *jstr(const cJSON *o, const char *key)
     return cJSON_IsString(v) ? v->valuestring : "";
 }
 
+/* Runs "geardyn ARGS --json" and parses stdout; NULL (the run shown on stderr) unless it
+ * exits 0 with JSON. */
+static inline cJSON *run_json_args(scratch *s, const char *args)
+{
+    run_result r;
+    run(s, &r, "%s --json", args);
+    cJSON *o = r.code == 0 ? cJSON_Parse(r.out) : NULL;
+    if (!o) show(&r);
+    run_free(&r);
+    return o;
+}
+
+/* An error run with "--out DIR" appended: 1 when it exits 2 with w1 (and w2, may be NULL)
+ * on stderr, nothing on stdout and nothing in DIR. */
+static inline int run_fails_cleanly(scratch *s, const char *args, const char *w1, const char *w2)
+{
+    char out[256];
+    snprintf(out, sizeof out, "%s/err_out", s->dir);
+    run_result r;
+    run(s, &r, "%s --out '%s'", args, out);
+    int ok = r.code == 2 && contains(r.err, w1) && (!w2 || contains(r.err, w2)) && !r.out[0] &&
+             count_entries(out) <= 0;
+    if (!ok) {
+        fprintf(stderr, "  args: %s\n", args);
+        show(&r);
+    }
+    run_free(&r);
+    return ok;
+}
+
 #endif

@@ -52,6 +52,7 @@
 #include "geardyn/unbalance.h"
 #include "geardyn/transient.h"
 #include "geardyn/transient_model.h"
+#include "geardyn/periodic.h"
 #include "geardyn/spectrum.h"
 #include "geardyn/plot.h"
 #include "geardyn/report.h"

@@ -96,6 +96,12 @@ GD_API double gd_backlash_force(const gd_backlash_params *p, gd_contact state, d
 /* The same with the state from d (written to *state if not NULL). */
 GD_API double gd_backlash_force_auto(const gd_backlash_params *p, double d, double dd,
                                      gd_contact *state);
+/* Partial derivatives of gd_backlash_force in the given state (for Newton and variational
+ * equations): g[0] = dF/dd, g[1] = dF/dd', g[2] = dF/dk and g[3] = dF/dc, where k, c are
+ * the stiffness and damping of that state (k_drive/c_drive, k_coast/c_coast; while
+ * separated k does not act and c is c_free). */
+GD_API void gd_backlash_force_grad(const gd_backlash_params *p, gd_contact state, double d,
+                                   double dd, double g[4]);
 /* Mesh damping: constant plus proportional to the instantaneous stiffness,
  * c = c_const + c_per_k * k (c_per_k in s). */
 GD_API double gd_mesh_damping(double c_const, double c_per_k, double k);
@@ -140,6 +146,13 @@ GD_API void gd_sfd_force_polar(const gd_sfd_params *p, double e, double edot, do
 GD_API void gd_sfd_force(const gd_sfd_params *p, double x, double y, double vx, double vy,
                          double *fx, double *fy);
 
+/* Jacobian of gd_sfd_force: jq[2 i + j] = d f_i / d x_j and jv[2 i + j] = d f_i / d v_j
+ * (i, j: 0 x, 1 y), by central differences of gd_sfd_force (steps 1e-6 of the clearance
+ * and of the clearance times the velocity scale |v| / c, so that one force law serves the
+ * integrator and the frequency-domain solvers). fx, fy receive the forces. */
+GD_API void gd_sfd_force_jacobian(const gd_sfd_params *p, double x, double y, double vx, double vy,
+                                  double *fx, double *fy, double jq[4], double jv[4]);
+
 /* ---------------------------------------------------------------- cam inertial torque */
 
 typedef enum gd_lift_kind { GD_LIFT_TABLE = 0, GD_LIFT_HARMONIC = 1 } gd_lift_kind;
@@ -178,6 +191,8 @@ typedef struct gd_load_law {
 
 /* Value (N or N m) at time t and total DOF angle (rad; nominal rotation plus torsion). */
 GD_API double gd_load_eval(const gd_load_law *law, double t, double angle);
+/* The same, with d value / d angle in *dangle (may be NULL). */
+GD_API double gd_load_eval_grad(const gd_load_law *law, double t, double angle, double *dangle);
 
 /* ---------------------------------------------------------------- prescribed motion */
 

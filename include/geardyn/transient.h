@@ -32,6 +32,7 @@
 #include "geardyn/export.h"
 #include "geardyn/error.h"
 #include "geardyn/laws.h"
+#include "geardyn/sparse.h"
 #include "geardyn/system.h"
 
 /* A mesh with a nonlinear or time-varying law. Its linear k a a^T and c a a^T are taken
@@ -128,6 +129,34 @@ GD_API void gd_transient_rhs(gd_transient *tr, double t, const double *y, double
 /* Sets every backlash mesh's contact state from the deformation in y at time t. */
 GD_API void gd_transient_set_contacts(gd_transient *tr, double t, const double *y);
 
+/* ---- Local form of the forces (harmonic balance, variational equations) ----
+ * With each backlash mesh's contact state taken from its deformation (not frozen), the
+ * equations of the free DOFs are
+ *   M_ff q'' + D_ff q' + K_ff q = f(t, q, q')
+ * with M_ff, D_ff = C + W G, K_ff the linear matrices at the speed (meshes' model
+ * stiffness and damping included) and f everything else: loads, unbalances, dampers, cam
+ * torques, each described mesh's law minus its linear terms, the prescribed DOFs'
+ * couplings. Its derivatives are sums of rank-one terms fixed when the problem is built,
+ *   df/dq = sum_k sq_k(t) u_k w_k^T,   df/dq' = sum_k sv_k(t) u_k w_k^T,
+ * u_k, w_k sparse over the free DOFs (a mesh: a a^T and a e_driver^T; a damper: its four
+ * x-y pairs; a cam or an angle-dependent load: e e^T). Every law is the one the
+ * integrator uses (gd_tr_mesh_law, gd_sfd_force_jacobian, gd_load_eval_grad). */
+typedef struct gd_tr_term {
+    int nu, nw;
+    int u_idx[12], w_idx[12]; /* free DOF indices */
+    double u[12], w[12];
+} gd_tr_term;
+/* The terms (owned by the problem). Not thread-safe on one problem. */
+GD_API int gd_transient_terms(gd_transient *tr, const gd_tr_term **terms);
+/* Views (borrowed, valid while tr lives) of M_ff, D_ff, K_ff (nfree x nfree). */
+GD_API void gd_transient_matrices(const gd_transient *tr, gd_csc *M, gd_csc *D, gd_csc *K);
+/* f (nfree) at (t, y = [q_f; q_f']) and the term derivatives sq, sv (gd_transient_terms'
+ * count; either may be NULL). Sets the contact states from y (do not call during a run).
+ * Cam torques with include_acceleration are not represented (the returned count of
+ * gd_transient_terms is -1 then). */
+GD_API void gd_transient_local(gd_transient *tr, double t, const double *y, double *f, double *sq,
+                               double *sv);
+
 typedef enum gd_tr_method {
     GD_TR_BDF = 0,
     GD_TR_ADAMS = 1,
@@ -195,6 +224,16 @@ typedef struct gd_tr_record {
     gd_tr_record_kind kind;
     int index, index2;
 } gd_tr_record;
+/* Contact homotopy for frequency-domain solvers: with hold = h in (0, 1], every backlash
+ * mesh's force off the drive flank becomes (1 - h) F(state) + h F(drive), so h = 1 is the
+ * smooth problem with the teeth always in contact and h = 0 (the default, and what the
+ * integrator always uses) the backlash law itself. Affects gd_transient_local and
+ * gd_transient_record_value only. */
+GD_API void gd_transient_hold_drive(gd_transient *tr, double hold);
+/* Value of a record at (t, y = [q_f; q_f']) with the contact states from y (the local
+ * form above; for frequency-domain solutions). */
+GD_API double gd_transient_record_value(gd_transient *tr, const gd_tr_record *rec, double t,
+                                        const double *y);
 
 /* min, max, mean, rms (root mean square of the value), peak-to-peak, standard deviation
  * over the recorded samples. */

@@ -21,6 +21,22 @@ double gd_backlash_force(const gd_backlash_params *p, gd_contact state, double d
     }
 }
 
+void gd_backlash_force_grad(const gd_backlash_params *p, gd_contact state, double d, double dd,
+                            double g[4])
+{
+    switch (state) {
+    case GD_CONTACT_DRIVE:
+        g[0] = p->k_drive, g[1] = p->c_drive, g[2] = d - p->b, g[3] = dd;
+        break;
+    case GD_CONTACT_COAST:
+        g[0] = p->k_coast, g[1] = p->c_coast, g[2] = d + p->b, g[3] = dd;
+        break;
+    default:
+        g[0] = 0.0, g[1] = p->c_free, g[2] = 0.0, g[3] = dd;
+        break;
+    }
+}
+
 double gd_backlash_force_auto(const gd_backlash_params *p, double d, double dd, gd_contact *state)
 {
     gd_contact s = gd_backlash_state(d, p->b);

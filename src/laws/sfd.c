@@ -127,3 +127,25 @@ void gd_sfd_force(const gd_sfd_params *p, double x, double y, double vx, double 
     *fx = fr * cphi - ft * sphi;
     *fy = fr * sphi + ft * cphi;
 }
+
+void gd_sfd_force_jacobian(const gd_sfd_params *p, double x, double y, double vx, double vy,
+                           double *fx, double *fy, double jq[4], double jv[4])
+{
+    double u[4] = {x, y, vx, vy};
+    double c = p->clearance, vs = hypot(vx, vy);
+    double h[4] = {1e-6 * c, 1e-6 * c, 1e-6 * (vs > 0 ? vs : c), 1e-6 * (vs > 0 ? vs : c)};
+    gd_sfd_force(p, x, y, vx, vy, fx, fy);
+    for (int j = 0; j < 4; j++) {
+        double up[4], um[4], fp[2], fm[2];
+        for (int k = 0; k < 4; k++)
+            up[k] = um[k] = u[k];
+        up[j] += h[j];
+        um[j] -= h[j];
+        gd_sfd_force(p, up[0], up[1], up[2], up[3], &fp[0], &fp[1]);
+        gd_sfd_force(p, um[0], um[1], um[2], um[3], &fm[0], &fm[1]);
+        double *J = j < 2 ? jq : jv;
+        int col = j & 1;
+        for (int i = 0; i < 2; i++)
+            J[2 * i + col] = (fp[i] - fm[i]) / (2.0 * h[j]);
+    }
+}

@@ -415,6 +415,7 @@ void gd_transient_free(gd_transient *tr)
     free(tr->r);
     free(tr->w1);
     free(tr->w2);
+    free(tr->term);
     free(tr);
 }
 

@@ -24,9 +24,9 @@ void gd_tr_fill(gd_transient *tr, double t, const double *y, double *q, double *
     }
 }
 
-double gd_tr_mesh_force(const gd_transient *tr, const tr_mesh *m, gd_contact state, double t,
-                        const double *q, const double *v, double *d_out, double *dd_out,
-                        double *k_out, double *de_out)
+double gd_tr_mesh_law(const tr_mesh *m, gd_contact state, double t, const double *q,
+                      const double *v, double *d_out, double *dd_out, double *k_out, double *de_out,
+                      double grad[4])
 {
     double d = 0.0, dd = 0.0;
     for (int j = 0; j < m->a.n; j++) {
@@ -36,33 +36,61 @@ double gd_tr_mesh_force(const gd_transient *tr, const tr_mesh *m, gd_contact sta
     if (d_out) *d_out = d;
     if (dd_out) *dd_out = dd;
     const gd_tr_mesh *s = &m->spec;
-    double k = s->stiffness;
+    double k = s->stiffness, dk = 0.0, e1 = 0.0, e2 = 0.0, thd = 0.0;
     if (s->tvms || s->ste) {
         double qd = m->drv_dof >= 0 ? q[m->drv_dof] : 0.0;
         double vd = m->drv_dof >= 0 ? v[m->drv_dof] : 0.0;
         double th = s->angle_offset + m->sense * (m->drv_rate * t + qd);
-        double thd = m->sense * (m->drv_rate + vd);
-        if (s->tvms) k = gd_table_eval(s->tvms, th, NULL, NULL);
+        thd = m->sense * (m->drv_rate + vd);
+        if (s->tvms) k = gd_table_eval(s->tvms, th, &dk, NULL);
         if (s->ste) {
-            double de;
-            double e = gd_table_eval(s->ste, th, &de, NULL);
+            double e = gd_table_eval(s->ste, th, &e1, &e2);
             d -= e;
-            dd -= de * thd;
+            dd -= e1 * thd;
         }
     }
-    (void)tr;
     if (k_out) *k_out = k;
     if (de_out) *de_out = d;
     double c = s->damping + s->damping_per_k * k;
-    if (!s->backlash) return k * d + c * dd;
     gd_backlash_params p;
-    p.b = s->gap;
+    p.b = s->backlash ? s->gap : 0.0;
     p.k_drive = k;
     p.k_coast = s->coast_scale * k;
     p.c_drive = c;
     p.c_coast = s->damping + s->damping_per_k * p.k_coast;
     p.c_free = s->damping_free;
-    return gd_backlash_force(&p, state, d, dd);
+    gd_contact st = s->backlash ? state : GD_CONTACT_DRIVE;
+    /* contact homotopy (frequency-domain starts only): blend with the drive flank */
+    double h = st != GD_CONTACT_DRIVE ? m->hold : 0.0;
+    if (grad) {
+        /* chain rule through the state's k(theta), c(theta) and the STE e(theta) */
+        for (int b = 0; b < 4; b++)
+            grad[b] = 0.0;
+        for (int pass = 0; pass < (h > 0 ? 2 : 1); pass++) {
+            gd_contact sp = pass ? GD_CONTACT_DRIVE : st;
+            double wgt = pass ? h : 1.0 - h, g[4];
+            gd_backlash_force_grad(&p, sp, d, dd, g);
+            double dks = sp == GD_CONTACT_COAST ? s->coast_scale * dk : dk;
+            double dcs = sp == GD_CONTACT_SEPARATED ? 0.0 : s->damping_per_k * dks;
+            double dth = g[2] * dks + g[3] * dcs - g[0] * e1 - g[1] * e2 * thd;
+            grad[0] += wgt * g[0];
+            grad[1] += wgt * g[1];
+            grad[2] += m->drv_dof >= 0 ? wgt * m->sense * dth : 0.0;
+            grad[3] += m->drv_dof >= 0 ? -wgt * m->sense * g[1] * e1 : 0.0;
+        }
+    }
+    if (!s->backlash) return k * d + c * dd;
+    double F = gd_backlash_force(&p, state, d, dd);
+    if (h > 0) F = (1.0 - h) * F + h * gd_backlash_force(&p, GD_CONTACT_DRIVE, d, dd);
+    return F;
+}
+
+double gd_tr_mesh_force(const gd_transient *tr, const tr_mesh *m, gd_contact state, double t,
+                        const double *q, const double *v, double *d_out, double *dd_out,
+                        double *k_out, double *de_out)
+{
+    (void)tr;
+    return gd_tr_mesh_law(m, state, t, q, v, d_out, dd_out, k_out, de_out, NULL);
 }
 
 /* r -= A x over the whole matrix */

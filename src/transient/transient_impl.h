@@ -16,6 +16,7 @@ typedef struct tr_mesh {
     double drv_rate;     /* driver's nominal speed about +z (ratio W) */
     int sense;           /* +1 driver turns about +z */
     gd_contact state;    /* current contact state (frozen between events) */
+    double hold;         /* contact homotopy (gd_transient_hold_drive); 0 in integration */
 } tr_mesh;
 
 typedef struct tr_sfd {
@@ -90,6 +91,8 @@ struct gd_transient {
     char msg[256];        /* last solver message */
     void *mono;           /* gd_transient_monodromy's workspace while it runs */
     gd_tr_reduction *red; /* NULL: the physical DOFs */
+    int nterm; /* local force terms (local_forces.c), built on first use; -1 unsupported */
+    gd_tr_term *term;
 };
 
 /* Fills q, v, acc (length n) at time t from the state y: free DOFs from y, prescribed
@@ -100,6 +103,16 @@ void gd_tr_fill(gd_transient *tr, double t, const double *y, double *q, double *
 double gd_tr_mesh_force(const gd_transient *tr, const tr_mesh *m, gd_contact state, double t,
                         const double *q, const double *v, double *d, double *dd, double *k,
                         double *de);
+/* The mesh law itself (one implementation for the integrator, the local forces and the
+ * frequency-domain solvers): the force as gd_tr_mesh_force, and grad (may be NULL) =
+ * dF/dd, dF/dd', dF/dq_drv, dF/dq_drv' (the driver's torsion enters through the angle of
+ * k(theta) and e(theta)). */
+double gd_tr_mesh_law(const tr_mesh *m, gd_contact state, double t, const double *q,
+                      const double *v, double *d, double *dd, double *k, double *de,
+                      double grad[4]);
+/* Value of a record at (t, q, v) (full DOF vectors) with the current contact states. */
+double gd_tr_record_value(gd_transient *tr, const gd_tr_record *rec, double t, const double *q,
+                          const double *v);
 /* Net generalised force r (length n) at (t, q, v, acc) with the current contact states,
  * without the inertia of the free DOFs; mu receives the cam inertias (if not NULL). */
 void gd_tr_residual(gd_transient *tr, double t, const double *q, const double *v, const double *acc,

@@ -16,6 +16,7 @@ declare -A level=(
     [system]=5
     [modal]=6
     [campbell]=7 [response]=7 [transient]=7
+    [periodic]=8
     [plot]=9
     [report]=10
     [study]=10
@@ -32,6 +33,7 @@ declare -A header=(
     [modal.h]=modal
     [campbell.h]=campbell [probe.h]=response [frf.h]=response [unbalance.h]=response
     [transient.h]=transient [transient_model.h]=transient
+    [periodic.h]=periodic
     [plot.h]=plot [report.h]=report
     [study.h]=study
     [geardyn.h]=api

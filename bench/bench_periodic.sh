@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Harmonic balance (geardyn periodic): CPU per continuation step on the Chen SFD gear pair
+# with H = 15 (issue 10 goal: < 5 ms), and on the 378-DOF two-stage helical system of
+# seed 002 with both meshes' TVMS (H = 36: mesh 1 is harmonic 36 of the common period),
+# whose Figs. 11-13 set is 10 curves x 300 speeds (goal: < 60 s on one core): the
+# whole sparse LU against the low-rank condensation, and one curve of 30 speeds in
+# sequential and in arclength mode, from which the set is extrapolated.
+# usage: bench_periodic.sh BUILD
+set -euo pipefail
+cd "$(dirname "$0")/.."
+B=${1:-build}
+H2=examples/helical_two_stage.yaml
+echo "-- Chen SFD pair, 400..1500 rad/s, 111 speeds, H = 15, without and with Floquet"
+"$B/bench_periodic" examples/chen1998_gear_pair.yaml 400 1500 111 15 0
+"$B/bench_periodic" examples/chen1998_gear_pair.yaml 400 1500 111 15 1
+echo "-- seed 002 helical system (378 DOFs), 2990..3010 rpm, 3 speeds, H = 36, no Floquet:"
+echo "   whole sparse LU (1) against the low-rank condensation (2)"
+"$B/bench_periodic" "$H2" 313.11 315.21 3 36 0 1
+"$B/bench_periodic" "$H2" 313.11 315.21 3 36 0 2
+echo "-- seed 002, one curve: 1000..10000 rpm, 30 speeds, gear 1 y and both mesh forces, sequential"
+OPENBLAS_NUM_THREADS=1 "$B/geardyn" periodic "$H2" --speeds 1000rpm:10000rpm:30 --harmonics 36 \
+    --no-stability --sequential --record gear1.y --record mesh:pair1:force \
+    --record mesh:pair2:force | tail -1
+echo "   (the set is 10 curves x 300 speeds: 100 times this)"
+echo "-- the same model by arclength, 1000..2000 rpm, 4 speeds"
+OPENBLAS_NUM_THREADS=1 "$B/geardyn" periodic "$H2" --speeds 1000rpm:2000rpm:4 --harmonics 36 \
+    --no-stability --record gear1.y | tail -1

@@ -1,0 +1,409 @@
+/* geardyn periodic MODEL --speeds FROM:TO:COUNT: periodic steady state by harmonic
+ * balance with continuation and Floquet stability (docs/periodic.md). */
+#include <cblas.h>
+#include <getopt.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "geardyn/periodic.h"
+#include "transient_record.h"
+
+static const char *CMD = "periodic";
+
+static const char USAGE[] =
+    "usage: geardyn periodic MODEL.yaml --speeds FROM:TO:COUNT [--harmonics H|auto]\n"
+    "                        [--subharmonic N] [--record WHAT]... [--parameter "
+    "PATH=FROM:TO:COUNT]\n"
+    "                        [--both-directions] [--sequential] [--no-stability] [--tol TOL]\n"
+    "                        [--samples N] [--coupling LEVEL] [--set PATH=VALUE]... [--json]\n"
+    "                        [--out DIR]\n\n"
+    "Periodic steady state by harmonic balance (alternating frequency-time on every\n"
+    "nonlinear and time-varying law of `transient`), continued by pseudo-arclength over\n"
+    "the speed (through folds: a hysteresis loop gives several points per speed), with\n"
+    "Floquet multipliers and the bifurcations found on the way.\n\n"
+    "  --speeds FROM:TO:COUNT  reference speeds, units allowed (required); each requested\n"
+    "                    speed is solved exactly wherever the branch crosses it\n"
+    "  --harmonics H     harmonics of the period (default 10); 'auto' raises H from 10\n"
+    "                    until the top quarter carries < --harmonic-tol (1e-6) of the response\n"
+    "  --subharmonic N   solutions of period N times the fundamental (default 1)\n"
+    "  --record WHAT     as for transient: NODE.DOF[:disp|vel|speed], ratio:A/B,\n"
+    "                    mesh:NAME[:force|deflection|stiffness|state], sfd:BEARING[:fx|fy|ecc]\n"
+    "  --parameter PATH=FROM:TO:COUNT  continue in a model value (SI numbers, the --set\n"
+    "                    path syntax) at the first speed of --speeds instead of the speed\n"
+    "  --both-directions also the run from the end back to the start\n"
+    "  --sequential      no arclength: one solution per speed from the previous one (jumps\n"
+    "                    at folds, as a slow run-up)\n"
+    "  --no-stability    skip the Floquet multipliers (and bifurcations)\n"
+    "  --tol TOL         Newton's relative residual (default 1e-10)\n"
+    "  --samples N       AFT time samples per period (default 4 (H + 1), power of 2)\n"
+    "  --coupling LEVEL  torsional | lateral-torsional | full\n"
+    "  --set PATH=VALUE  change a value of the model file (repeatable)\n"
+    "  --json            one JSON object on stdout: points, bifurcations\n"
+    "  --out DIR         DIR/periodic.csv, DIR/harmonics.csv, DIR/bifurcations.csv\n";
+
+#define PI 3.14159265358979323846
+
+/* PATH=FROM:TO:COUNT */
+static int parse_param(const char *text, char *path, size_t psize, double **vals, int *count)
+{
+    const char *eq = strrchr(text, '=');
+    if (!eq || eq == text || (size_t)(eq - text) >= psize)
+        return gd_cli_usage_error(CMD, "--parameter: expected PATH=FROM:TO:COUNT, got '%s'", text);
+    memcpy(path, text, (size_t)(eq - text));
+    path[eq - text] = 0;
+    char *end;
+    double a = strtod(eq + 1, &end);
+    if (*end != ':') goto bad;
+    double b = strtod(end + 1, &end);
+    if (*end != ':') goto bad;
+    long n = strtol(end + 1, &end, 10);
+    if (*end || n < 1 || n > 100000 || !isfinite(a) || !isfinite(b)) goto bad;
+    *vals = malloc((size_t)n * sizeof **vals);
+    if (!*vals) return GD_EXIT_FAIL;
+    for (long i = 0; i < n; i++)
+        (*vals)[i] = n > 1 ? a + (b - a) * (double)i / (double)(n - 1) : a;
+    *count = (int)n;
+    return 0;
+bad:
+    return gd_cli_usage_error(CMD,
+                              "--parameter: expected PATH=FROM:TO:COUNT with SI numbers and a "
+                              "whole COUNT >= 1, got '%s'",
+                              text);
+}
+
+static cJSON *num_array(const double *v, int n)
+{
+    cJSON *a = cJSON_CreateArray();
+    for (int i = 0; i < n; i++)
+        cJSON_AddItemToArray(a, gd_cli_json_number(v[i]));
+    return a;
+}
+
+static cJSON *to_json(const gd_periodic_result *r, const gd_cli_records *recs, int param)
+{
+    cJSON *root = cJSON_CreateObject(), *pts = cJSON_AddArrayToObject(root, "points");
+    for (int i = 0; i < r->npoints; i++) {
+        const gd_periodic_point *p = &r->points[i];
+        cJSON *o = cJSON_CreateObject();
+        cJSON_AddItemToObject(o, "speed_rad_s", gd_cli_json_number(p->speed));
+        if (param) cJSON_AddItemToObject(o, "parameter", gd_cli_json_number(p->parameter));
+        cJSON_AddNumberToObject(o, "direction", p->direction);
+        cJSON_AddBoolToObject(o, "converged", p->converged);
+        if (!p->converged) cJSON_AddStringToObject(o, "reason", p->reason);
+        if (p->stable >= 0)
+            cJSON_AddBoolToObject(o, "stable", p->stable);
+        else
+            cJSON_AddNullToObject(o, "stable");
+        cJSON_AddItemToObject(o, "floquet_multiplier_max_abs", gd_cli_json_number(p->mu_max));
+        cJSON_AddNumberToObject(o, "harmonics", p->harmonics);
+        cJSON_AddItemToObject(o, "residual", gd_cli_json_number(p->residual));
+        if (p->converged) {
+            cJSON_AddItemToObject(o, "omega_rad_s", gd_cli_json_number(p->omega));
+            cJSON_AddNumberToObject(o, "iterations", p->iterations);
+            if (p->nmult) {
+                cJSON_AddItemToObject(o, "floquet_re", num_array(p->mu_re, p->nmult));
+                cJSON_AddItemToObject(o, "floquet_im", num_array(p->mu_im, p->nmult));
+            }
+            cJSON *rs = cJSON_AddObjectToObject(o, "records");
+            for (int k = 0; k < recs->n; k++) {
+                const gd_per_record_stats *s = &p->records[k];
+                cJSON *x = cJSON_AddObjectToObject(rs, recs->r[k].name);
+                cJSON_AddItemToObject(x, "mean", gd_cli_json_number(s->mean));
+                cJSON_AddItemToObject(x, "rms", gd_cli_json_number(s->rms));
+                cJSON_AddItemToObject(x, "peak_to_peak", gd_cli_json_number(s->peak_to_peak));
+                cJSON_AddItemToObject(x, "amplitudes", num_array(s->amplitude, p->harmonics + 1));
+                cJSON_AddItemToObject(x, "phases_deg", num_array(s->phase_deg, p->harmonics + 1));
+            }
+        }
+        cJSON_AddItemToArray(pts, o);
+    }
+    cJSON *bif = cJSON_AddArrayToObject(root, "bifurcations");
+    for (int i = 0; i < r->nbifurcations; i++) {
+        const gd_bifurcation *b = &r->bifurcations[i];
+        cJSON *o = cJSON_CreateObject();
+        cJSON_AddStringToObject(o, "type", gd_bifurcation_name(b->type));
+        cJSON_AddItemToObject(o, "speed_rad_s", gd_cli_json_number(b->speed));
+        cJSON_AddItemToObject(o, "parameter", gd_cli_json_number(b->parameter));
+        cJSON_AddNumberToObject(o, "direction", b->direction);
+        cJSON_AddItemToObject(o, "multiplier_re", gd_cli_json_number(b->mu_re));
+        cJSON_AddItemToObject(o, "multiplier_im", gd_cli_json_number(b->mu_im));
+        cJSON_AddItemToArray(bif, o);
+    }
+    cJSON_AddNumberToObject(root, "continuation_steps", r->steps);
+    cJSON_AddNumberToObject(root, "cpu_seconds", r->cpu_seconds);
+    return root;
+}
+
+static void print_table(const gd_periodic_result *r, const gd_cli_records *recs, int param)
+{
+    printf("%3s %14s %12s%s %3s %9s %6s %10s", "dir", "speed_rad_s", "speed_rpm",
+           param ? "      parameter" : "", "H", "residual", "stable", "|mu|max");
+    for (int k = 0; k < recs->n; k++)
+        printf("  %s rms,p2p", recs->r[k].name);
+    printf("\n");
+    for (int i = 0; i < r->npoints; i++) {
+        const gd_periodic_point *p = &r->points[i];
+        printf("%3s %14.6f %12.3f", p->direction > 0 ? "+" : "-", p->speed, p->speed * 30 / PI);
+        if (param) printf(" %14.6g", p->parameter);
+        if (!p->converged) {
+            printf("  not converged: %s\n", p->reason);
+            continue;
+        }
+        printf(" %3d %9.2e %6s %10.6f", p->harmonics, p->residual,
+               p->stable < 0 ? "-"
+               : p->stable   ? "yes"
+                             : "no",
+               p->mu_max);
+        for (int k = 0; k < recs->n; k++)
+            printf("  %.6g,%.6g", p->records[k].rms, p->records[k].peak_to_peak);
+        printf("\n");
+    }
+    if (r->nbifurcations) printf("\nbifurcations:\n");
+    for (int i = 0; i < r->nbifurcations; i++) {
+        const gd_bifurcation *b = &r->bifurcations[i];
+        printf("  %-16s speed %.6f rad/s", gd_bifurcation_name(b->type), b->speed);
+        if (param) printf("  parameter %.9g", b->parameter);
+        if (isfinite(b->mu_re)) printf("  multiplier %.6f%+.6fi", b->mu_re, b->mu_im);
+        printf("\n");
+    }
+    printf("\n%d continuation steps, %.3f s\n", r->steps, r->cpu_seconds);
+}
+
+static int write_out(const char *dir, const gd_periodic_result *r, const gd_cli_records *recs)
+{
+    gd_error err;
+    gd_outdir od;
+    if (gd_outdir_begin(&od, dir, &err)) return gd_cli_report(&err);
+    FILE *f = gd_outdir_open(&od, "periodic.csv", &err);
+    if (!f) goto fail;
+    fprintf(f, "point,direction,speed_rad_s,parameter,converged,harmonics,residual,stable,"
+               "floquet_multiplier_max_abs,record,mean,rms,peak_to_peak\n");
+    for (int i = 0; i < r->npoints; i++) {
+        const gd_periodic_point *p = &r->points[i];
+        for (int k = 0; k < (p->converged ? recs->n : 1); k++)
+            fprintf(f, "%d,%d,%.10g,%.10g,%d,%d,%.6g,%d,%.10g,%s,%.10g,%.10g,%.10g\n", i,
+                    p->direction, p->speed, p->parameter, p->converged, p->harmonics, p->residual,
+                    p->stable, p->mu_max, p->converged ? recs->r[k].name : "",
+                    p->converged ? p->records[k].mean : NAN, p->converged ? p->records[k].rms : NAN,
+                    p->converged ? p->records[k].peak_to_peak : NAN);
+    }
+    if (gd_outdir_close(&od, f, "periodic.csv", &err)) goto fail;
+    if (!(f = gd_outdir_open(&od, "harmonics.csv", &err))) goto fail;
+    fprintf(f, "point,speed_rad_s,parameter,record,harmonic,amplitude,phase_deg\n");
+    for (int i = 0; i < r->npoints; i++) {
+        const gd_periodic_point *p = &r->points[i];
+        if (!p->converged) continue;
+        for (int k = 0; k < recs->n; k++)
+            for (int h = 0; h <= p->harmonics; h++)
+                fprintf(f, "%d,%.10g,%.10g,%s,%d,%.10g,%.10g\n", i, p->speed, p->parameter,
+                        recs->r[k].name, h, p->records[k].amplitude[h], p->records[k].phase_deg[h]);
+    }
+    if (gd_outdir_close(&od, f, "harmonics.csv", &err)) goto fail;
+    if (!(f = gd_outdir_open(&od, "bifurcations.csv", &err))) goto fail;
+    fprintf(f, "type,direction,speed_rad_s,parameter,multiplier_re,multiplier_im\n");
+    for (int i = 0; i < r->nbifurcations; i++) {
+        const gd_bifurcation *b = &r->bifurcations[i];
+        fprintf(f, "%s,%d,%.10g,%.10g,%.10g,%.10g\n", gd_bifurcation_name(b->type), b->direction,
+                b->speed, b->parameter, b->mu_re, b->mu_im);
+    }
+    if (gd_outdir_close(&od, f, "bifurcations.csv", &err)) goto fail;
+    if (gd_outdir_commit(&od, &err)) return gd_cli_report(&err);
+    return GD_EXIT_OK;
+fail:
+    gd_outdir_abort(&od);
+    return gd_cli_report(&err);
+}
+
+enum { OPT_BOTH = 0x700, OPT_SEQ, OPT_NOSTAB, OPT_TOL, OPT_SAMPLES, OPT_PARAM, OPT_HTOL };
+
+int gd_cmd_periodic(int argc, char **argv)
+{
+    static const struct option opts[] = {{"speeds", required_argument, 0, 's'},
+                                         {"harmonics", required_argument, 0, 'H'},
+                                         {"subharmonic", required_argument, 0, 'N'},
+                                         {"record", required_argument, 0, 'r'},
+                                         {"parameter", required_argument, 0, OPT_PARAM},
+                                         {"both-directions", no_argument, 0, OPT_BOTH},
+                                         {"sequential", no_argument, 0, OPT_SEQ},
+                                         {"no-stability", no_argument, 0, OPT_NOSTAB},
+                                         {"tol", required_argument, 0, OPT_TOL},
+                                         {"harmonic-tol", required_argument, 0, OPT_HTOL},
+                                         {"samples", required_argument, 0, OPT_SAMPLES},
+                                         {"coupling", required_argument, 0, 'c'},
+                                         {"json", no_argument, 0, 'j'},
+                                         {"out", required_argument, 0, 'o'},
+                                         GD_CLI_SET_OPTION,
+                                         {"help", no_argument, 0, 'h'},
+                                         {0, 0, 0, 0}};
+    const char *speeds = NULL, *coupling = NULL, *out = NULL, *param_text = NULL;
+    const char *records[64];
+    int nrec = 0, json = 0, c;
+    long lv;
+    gd_cli_sets sets = {0};
+    gd_periodic_options opt;
+    gd_periodic_options_init(&opt);
+    optind = 1;
+    opterr = 0;
+    while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
+        switch (c) {
+        case 's':
+            speeds = optarg;
+            break;
+        case 'H':
+            if (!strcmp(optarg, "auto")) {
+                opt.adaptive = 1;
+                break;
+            }
+            if (gd_cli_parse_count(optarg, 1, 1000, &lv))
+                return gd_cli_usage_error(CMD, "--harmonics: expected 1..1000 or auto, got '%s'",
+                                          optarg);
+            opt.harmonics = (int)lv;
+            break;
+        case 'N':
+            if (gd_cli_parse_count(optarg, 1, 1000, &lv))
+                return gd_cli_usage_error(
+                    CMD, "--subharmonic: expected a whole number 1..1000 (period N T), got '%s'",
+                    optarg);
+            opt.subharmonic = (int)lv;
+            break;
+        case 'r':
+            if (nrec == 64) return gd_cli_usage_error(CMD, "at most 64 --record options");
+            records[nrec++] = optarg;
+            break;
+        case OPT_PARAM:
+            param_text = optarg;
+            break;
+        case OPT_BOTH:
+            opt.both_directions = 1;
+            break;
+        case OPT_SEQ:
+            opt.method = GD_PER_SEQUENTIAL;
+            break;
+        case OPT_NOSTAB:
+            opt.stability = 0;
+            break;
+        case OPT_TOL:
+        case OPT_HTOL: {
+            char *end;
+            double v = strtod(optarg, &end);
+            if (*end || !(v >= 1e-15 && v < 1))
+                return gd_cli_usage_error(CMD,
+                                          "%s: expected a number in [1e-15, 1) (a tolerance "
+                                          "below 1e-15 is unreachable in double precision), "
+                                          "got '%s'",
+                                          c == OPT_TOL ? "--tol" : "--harmonic-tol", optarg);
+            if (c == OPT_TOL)
+                opt.tol = v;
+            else
+                opt.harmonic_tol = v;
+            break;
+        }
+        case OPT_SAMPLES:
+            if (gd_cli_parse_count(optarg, 4, 1 << 20, &lv))
+                return gd_cli_usage_error(CMD, "--samples: expected a whole number >= 4, got '%s'",
+                                          optarg);
+            opt.samples = (int)lv;
+            break;
+        case 'c':
+            coupling = optarg;
+            break;
+        case GD_CLI_OPT_SET:
+            if (gd_cli_add_set(CMD, &sets, optarg)) return GD_EXIT_INPUT;
+            break;
+        case 'j':
+            json = 1;
+            break;
+        case 'o':
+            out = optarg;
+            break;
+        case 'h':
+            fputs(USAGE, stdout);
+            return GD_EXIT_OK;
+        default:
+            return gd_cli_option_error(CMD, c, argv, optind);
+        }
+    }
+    if (optind != argc - 1) return gd_cli_usage_error(CMD, "give exactly one model file");
+    if (!speeds) return gd_cli_usage_error(CMD, "--speeds FROM:TO:COUNT is required");
+    if (opt.samples && opt.samples < 2 * opt.harmonics + 2)
+        return gd_cli_usage_error(CMD, "--samples %d cannot resolve %d harmonics (give >= %d)",
+                                  opt.samples, opt.harmonics, 2 * opt.harmonics + 2);
+    if (param_text && coupling)
+        return gd_cli_usage_error(CMD, "--parameter reloads the model: give the coupling "
+                                       "with --set instead of --coupling");
+    double *sp = NULL, *pv = NULL;
+    int nsp = 0, npv = 0, rc;
+    char ppath[256];
+    if ((rc = gd_cli_parse_range(CMD, "--speeds", speeds, &sp, &nsp))) return rc;
+    if (param_text && (rc = parse_param(param_text, ppath, sizeof ppath, &pv, &npv))) {
+        free(sp);
+        return rc;
+    }
+    gd_error err;
+    gd_error_clear(&err);
+    if (out && gd_outdir_check_writable(out, &err)) {
+        free(sp);
+        free(pv);
+        return gd_cli_report(&err);
+    }
+    gd_model *m = NULL;
+    gd_system *s = NULL;
+    gd_transient_model *tm = NULL;
+    gd_periodic_result *r = NULL;
+    gd_cli_records recs = {0};
+    if ((rc = gd_cli_load(argv[optind], &sets, coupling, &m, &s))) goto done;
+    if (gd_transient_model_build(s, &tm, &err)) {
+        rc = gd_cli_report(&err);
+        goto done;
+    }
+    for (int k = 0; k < nrec; k++)
+        if ((rc = gd_cli_parse_records(CMD, s, tm, records[k], &recs))) goto done;
+    if (!nrec && (rc = gd_cli_default_records(s, tm, &recs))) goto done;
+    gd_tr_record *rv = malloc((size_t)(recs.n > 0 ? recs.n : 1) * sizeof *rv);
+    if (!rv) {
+        rc = GD_EXIT_FAIL;
+        goto done;
+    }
+    for (int k = 0; k < recs.n; k++) {
+        rv[k] = recs.r[k].rec;
+        if (rv[k].kind == GD_REC_ANGLE) {
+            free(rv);
+            rc = gd_cli_usage_error(CMD,
+                                    "--record %s: a total angle grows with time and has no "
+                                    "periodic steady state; record the DOF's displacement "
+                                    "(its perturbation) or its speed",
+                                    recs.r[k].name);
+            goto done;
+        }
+    }
+    gd_load_options lo = gd_cli_load_options(&sets);
+    openblas_set_num_threads(1); /* small dense blocks: threads cost more than they give */
+    gd_periodic_param prm = {argv[optind], &lo, ppath, "", sp[0]};
+    if (gd_periodic_run(s, &tm->spec, pv ? &prm : NULL, pv ? pv : sp, pv ? npv : nsp, &opt, rv,
+                        recs.n, &r, &err)) {
+        free(rv);
+        rc = gd_cli_report(&err);
+        goto done;
+    }
+    free(rv);
+    if (out && (rc = write_out(out, r, &recs))) goto done;
+    if (json) {
+        cJSON *j = to_json(r, &recs, pv != NULL);
+        gd_cli_print_json(stdout, j);
+        cJSON_Delete(j);
+    } else {
+        print_table(r, &recs, pv != NULL);
+    }
+    rc = GD_EXIT_OK;
+done:
+    gd_periodic_result_free(r);
+    gd_cli_records_free(&recs);
+    gd_transient_model_free(tm);
+    gd_system_free(s);
+    gd_model_free(m);
+    free(sp);
+    free(pv);
+    return rc;
+}

@@ -1,0 +1,145 @@
+/* Periodic steady state by harmonic balance (docs/periodic.md): the response of the
+ * transient problem (transient.h: every nonlinear and time-varying law, evaluated by the
+ * integrator's own code through gd_transient_local) as a truncated Fourier series
+ *
+ *   q(t) = Q_0 + sum_{k=1..H} Q_ck cos(k w t) + Q_sk sin(k w t),   w = w_0 / N,
+ *
+ * w_0 the fundamental frequency of the model's excitations (shaft speeds through the gear
+ * ratios, tooth-mesh frequencies, fixed-frequency loads) and N the subharmonic order.
+ * The nonlinear forces' Fourier coefficients and their Jacobian come from the
+ * alternating frequency-time scheme (FFTW half-complex transforms over the samples of
+ * one period); Newton's linear systems are factored sparsely with KLU, the symbolic
+ * analysis once per branch (and harmonic count). Continuation: pseudo-arclength in the
+ * reference speed or in a model parameter (a `--set` path, the model rebuilt per value),
+ * with step control, through folds. Stability: Floquet multipliers, the eigenvalues of
+ * the monodromy matrix of the variational equations linearised about the HB solution
+ * (fourth-order Magnus steps, exact for constant coefficients), and bifurcations located
+ * along the branch (fold, period doubling, Neimark-Sacker, branch point).
+ *
+ * Ownership and threads: gd_periodic_run returns a result the caller frees with
+ * gd_periodic_result_free; the system, spec and records are borrowed for the call. A run
+ * allocates its own problems and workspaces, so separate runs may go in parallel on one
+ * system (never with a transient run on a shared gd_transient: none is shared).
+ */
+#ifndef GEARDYN_PERIODIC_H
+#define GEARDYN_PERIODIC_H
+#include "geardyn/export.h"
+#include "geardyn/error.h"
+#include "geardyn/model_file.h"
+#include "geardyn/system.h"
+#include "geardyn/transient.h"
+
+typedef enum gd_per_method {
+    GD_PER_ARCLENGTH = 0, /* pseudo-arclength: follows folds, reports every crossing of a
+                             requested speed (several on a hysteresis loop) */
+    GD_PER_SEQUENTIAL = 1 /* natural parameter: one solution per speed, each from the last
+                             (a run-up; jumps at folds) */
+} gd_per_method;
+
+typedef struct gd_periodic_options {
+    int harmonics;       /* H >= 1 (default 10) */
+    int adaptive;        /* 1: raise H while the top harmonics carry more than harmonic_tol */
+    double harmonic_tol; /* share of the top quarter of the harmonics in the response
+                            norm (default 1e-6) */
+    int max_harmonics;   /* cap for adaptive H (default 80) */
+    int subharmonic;     /* N >= 1: solutions of period N T_0 (default 1) */
+    int samples;         /* AFT samples per period; 0: 4 (H + 1) rounded up to 2^k,
+                            at least 16 */
+    double tol;          /* Newton: relative residual (default 1e-10) */
+    int max_iter;        /* Newton iterations per point (default 30) */
+    int stability;       /* 1 (default): Floquet multipliers and bifurcations */
+    int monodromy_steps; /* Magnus steps per period; 0: 4 x samples, at least 256 */
+    gd_per_method method;
+    int both_directions; /* 1: also the run from the end back to the start */
+    int max_steps;       /* continuation steps per direction; 0: 50 x count + 200 */
+    int solver;          /* Newton's linear solver: 0 automatic (low-rank for 2000+
+                            unknowns whose nonlinear rank is a quarter or less), 1 sparse
+                            LU of the whole coupled system (KLU), 2 low-rank: the linear
+                            DOFs condensed onto the nonlinear laws (Woodbury) */
+} gd_periodic_options;
+GD_API void gd_periodic_options_init(gd_periodic_options *opt);
+
+/* Continuation in a model parameter instead of the speed: the model file at model_path
+ * is loaded with base's overrides and "path=VALUE unit" for each value (model_file.h),
+ * its system and transient spec rebuilt, at the fixed reference speed. */
+typedef struct gd_periodic_param {
+    const char *model_path;
+    const gd_load_options *base; /* may be NULL */
+    const char *path;            /* e.g. "bearings.support_a.sfd.clearance" */
+    const char *unit;            /* appended to each value ("" or NULL: SI number) */
+    double speed;                /* rad/s */
+} gd_periodic_param;
+
+typedef struct gd_per_record_stats {
+    double mean, rms, peak_to_peak;
+    double *amplitude, *phase_deg; /* H + 1 each: harmonic k of w (k = 0: mean, phase 0);
+                                      x = sum_k A_k cos(k w t + phase_k) */
+} gd_per_record_stats;
+
+typedef struct gd_periodic_point {
+    double speed;     /* reference speed, rad/s */
+    double parameter; /* continuation parameter value (NaN when continuing in speed) */
+    int direction;    /* +1 from the start, -1 the return run (both_directions) */
+    int converged;
+    char reason[256]; /* why not converged */
+    int harmonics;    /* H used */
+    double omega;     /* w, rad/s (period 2 pi / w) */
+    double residual;  /* relative residual |R| / max(|L X|, |F|) */
+    int iterations;
+    int stable;    /* 1 stable, 0 unstable, -1 not computed */
+    double mu_max; /* max |Floquet multiplier| (NaN if not computed) */
+    int nmult;     /* 2 nfree (0 if not computed) */
+    double *mu_re, *mu_im;
+    int nfree;    /* coefficients: coef[h * nfree + i], h = 0 mean, 2k-1 cos k, 2k sin k */
+    double *coef; /* over the free DOFs of gd_transient (increasing DOF order) */
+    gd_per_record_stats *records; /* nrecords */
+} gd_periodic_point;
+
+typedef enum gd_bifurcation_type {
+    GD_BIF_FOLD = 0,
+    GD_BIF_PERIOD_DOUBLING = 1,
+    GD_BIF_NEIMARK_SACKER = 2,
+    GD_BIF_BRANCH_POINT = 3
+} gd_bifurcation_type;
+GD_API const char *gd_bifurcation_name(gd_bifurcation_type t);
+
+typedef struct gd_bifurcation {
+    gd_bifurcation_type type;
+    double speed, parameter; /* located value (parameter NaN when continuing in speed) */
+    int direction;
+    double mu_re, mu_im; /* the critical multiplier at the located point (fold: NaN) */
+} gd_bifurcation;
+
+typedef struct gd_periodic_result {
+    int npoints;
+    gd_periodic_point *points; /* one per crossing of a requested value, branch order */
+    int nbifurcations;
+    gd_bifurcation *bifurcations;
+    int nrecords;
+    int steps;          /* continuation steps taken */
+    double cpu_seconds; /* of the whole run */
+} gd_periodic_result;
+
+/* Speeds: nvalues requested reference speeds (rad/s), in increasing or decreasing order;
+ * the branch runs from values[0] to values[nvalues - 1]. param (may be NULL): continue in
+ * that parameter over values instead (the speed is param->speed). Records are evaluated
+ * over one period (GD_REC_ANGLE is not periodic: GD_EINPUT). sys and spec are the
+ * problem for speed continuation (ignored with param). Errors: GD_EINPUT for bad options
+ * or records, a model without excitations whose period is undefined only makes the
+ * points' converged 0 with the reason. */
+GD_API gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
+                                 const gd_periodic_param *param, const double *values, int nvalues,
+                                 const gd_periodic_options *opt, const gd_tr_record *records,
+                                 int nrecords, gd_periodic_result **out, gd_error *err);
+GD_API void gd_periodic_result_free(gd_periodic_result *r);
+
+/* Fundamental frequency w_0 (rad/s) of the problem's excitations at reference speed W:
+ * the largest w_0 of which every excitation frequency is a whole multiple (at most 10000);
+ * max_order (may be NULL) receives the highest multiple (an excitation harmonic balance
+ * must resolve: H >= max_order x subharmonic).
+ * GD_EINPUT with the reason when the period is undefined (no excitation, incommensurate
+ * frequencies, a prescribed motion that is not periodic). */
+GD_API gd_status gd_periodic_fundamental(const gd_system *sys, const gd_transient_spec *spec,
+                                         double speed, double *w0, int *max_order, gd_error *err);
+
+#endif

@@ -1,0 +1,209 @@
+/* Floquet multipliers of a harmonic balance solution: the monodromy matrix of the
+ * variational equations linearised about q(t),
+ *   dz/dt = A(t) z,   A = [0, I; M^-1 (J_q(t) - K), M^-1 (J_v(t) - D)],
+ * J_q, J_v the local force derivatives of gd_transient_local along the HB orbit
+ * (evaluated at any t from the coefficients, not only at the AFT samples), integrated over
+ * one period by the fourth-order Magnus method with two Gauss points (Iserles & Norsett
+ * 1999; Blanes, Casas, Oteo & Ros 2009, Eq. 4.3):
+ *   Omega = h/2 (A1 + A2) + sqrt(3)/12 h^2 [A2, A1],   Phi <- exp(Omega) Phi,
+ * exact for constant A however stiff, and the matrix exponential by scaling and squaring
+ * with a diagonal Pade approximant of degree 8 (Higham 2005, Table 2.3: ample for
+ * |Omega| / 2^s <= 1/2). The multipliers are the eigenvalues of Phi (LAPACK dgeev). */
+#include <cblas.h>
+#include <lapacke.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "periodic/periodic_impl.h"
+
+#define TWO_PI 6.28318530717958647692
+
+/* E = exp(A), n x n column-major; W: 6 n^2 workspace, ipiv: n. 0 ok. */
+static int expm(int n, const double *A, double *E, double *W, int *ipiv)
+{
+    const int p = 8;
+    size_t nn = (size_t)n * n;
+    double *X = W, *Nm = W + nn, *Dm = W + 2 * nn, *T = W + 3 * nn, *S = W + 4 * nn;
+    double norm = 0.0;
+    for (int j = 0; j < n; j++) {
+        double c = 0.0;
+        for (int i = 0; i < n; i++)
+            c += fabs(A[(size_t)j * n + i]);
+        norm = c > norm ? c : norm;
+    }
+    int s = norm > 0.5 ? (int)ceil(log2(norm / 0.5)) : 0;
+    double scale = ldexp(1.0, -s);
+    for (size_t k = 0; k < nn; k++)
+        S[k] = A[k] * scale;
+    memset(Nm, 0, nn * sizeof *Nm);
+    memset(Dm, 0, nn * sizeof *Dm);
+    memset(X, 0, nn * sizeof *X);
+    for (int i = 0; i < n; i++)
+        Nm[(size_t)i * n + i] = Dm[(size_t)i * n + i] = X[(size_t)i * n + i] = 1.0;
+    double c = 1.0;
+    for (int k = 1; k <= p; k++) {
+        c *= (double)(p - k + 1) / (double)(k * (2 * p - k + 1));
+        cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n, n, n, 1.0, S, n, X, n, 0.0, T, n);
+        memcpy(X, T, nn * sizeof *X);
+        double sg = (k & 1) ? -c : c;
+        for (size_t m = 0; m < nn; m++) {
+            Nm[m] += c * X[m];
+            Dm[m] += sg * X[m];
+        }
+    }
+    if (LAPACKE_dgesv(LAPACK_COL_MAJOR, n, n, Dm, n, ipiv, Nm, n)) return 1;
+    for (int k = 0; k < s; k++) {
+        cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n, n, n, 1.0, Nm, n, Nm, n, 0.0, T,
+                    n);
+        memcpy(Nm, T, nn * sizeof *Nm);
+    }
+    memcpy(E, Nm, nn * sizeof *E);
+    return 0;
+}
+
+typedef struct fq_work {
+    int nf, n2, nterm;
+    const gd_tr_term *term;
+    double *Minv, *Kd, *Dd; /* nf x nf dense */
+    double *J, *P;          /* nf x nf */
+    double *sq, *sv, *y;
+} fq_work;
+
+static void dense_from(const gd_csc *A, int n, double *out)
+{
+    memset(out, 0, (size_t)n * n * sizeof *out);
+    for (int j = 0; j < A->n; j++)
+        for (int p = A->colptr[j]; p < A->colptr[j + 1]; p++)
+            out[(size_t)j * n + A->rowind[p]] += A->values[p];
+}
+
+/* A(t) (n2 x n2) at phase tau of the solution */
+static void build_A(fq_work *w, const hb *h, gd_transient *tr, double om, const double *X,
+                    double tau, double *A)
+{
+    const int nf = w->nf, n2 = w->n2;
+    gd_hb_eval(h, om, X, tau, w->y, w->y + nf);
+    gd_transient_local(tr, tau / om, w->y, NULL, w->sq, w->sv);
+    memset(A, 0, (size_t)n2 * n2 * sizeof *A);
+    for (int i = 0; i < nf; i++)
+        A[(size_t)(nf + i) * n2 + i] = 1.0;
+    for (int part = 0; part < 2; part++) {
+        const double *L = part ? w->Dd : w->Kd, *s = part ? w->sv : w->sq;
+        for (size_t k = 0; k < (size_t)nf * nf; k++)
+            w->J[k] = -L[k];
+        for (int t = 0; t < w->nterm; t++) {
+            const gd_tr_term *tm = &w->term[t];
+            if (s[t] == 0.0) continue;
+            for (int b = 0; b < tm->nw; b++)
+                for (int a = 0; a < tm->nu; a++)
+                    w->J[(size_t)tm->w_idx[b] * nf + tm->u_idx[a]] += s[t] * tm->u[a] * tm->w[b];
+        }
+        cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, nf, nf, nf, 1.0, w->Minv, nf, w->J,
+                    nf, 0.0, w->P, nf);
+        for (int j = 0; j < nf; j++)
+            for (int i = 0; i < nf; i++)
+                A[(size_t)(j + part * nf) * n2 + nf + i] = w->P[(size_t)j * nf + i];
+    }
+}
+
+/* The contact states of the backlash meshes at phase tau, as one number. */
+static long contact_code(const hb *h, gd_transient *tr, double om, const double *X, double tau,
+                         const gd_tr_record *bl, int nbl, double *y)
+{
+    long code = 0;
+    if (!nbl) return 0;
+    gd_hb_eval(h, om, X, tau, y, y + h->nf);
+    for (int i = 0; i < nbl; i++)
+        code = 3 * code + 1 + (long)gd_transient_record_value(tr, &bl[i], tau / om, y);
+    return code;
+}
+
+int gd_hb_floquet(const hb *h, gd_transient *tr, double om, const double *X, int steps,
+                  const gd_tr_record *bl, int nbl, double *mu_re, double *mu_im)
+{
+    const int nf = h->nf, n2 = 2 * nf;
+    size_t nn = (size_t)n2 * n2, ff = (size_t)nf * nf;
+    fq_work w = {0};
+    w.nf = nf;
+    w.n2 = n2;
+    w.nterm = gd_transient_terms(tr, &w.term);
+    if (w.nterm < 0) return 1;
+    int rc = 1;
+    double *buf =
+        malloc((5 * ff + 11 * nn + 2 * (size_t)(w.nterm + 1) + 2 * (size_t)nf) * sizeof *buf);
+    int *ipiv = malloc((size_t)n2 * sizeof *ipiv);
+    if (!buf || !ipiv) goto done;
+    w.Minv = buf;
+    w.Kd = w.Minv + ff;
+    w.Dd = w.Kd + ff;
+    w.J = w.Dd + ff;
+    w.P = w.J + ff;
+    double *A1 = w.P + ff, *A2 = A1 + nn, *Om = A2 + nn, *Ex = Om + nn, *Phi = Ex + nn,
+           *T = Phi + nn, *W = T + nn; /* W: the 5 nn of expm */
+    w.sq = buf + 5 * ff + 11 * nn;
+    w.sv = w.sq + w.nterm + 1;
+    w.y = w.sv + w.nterm + 1;
+    gd_csc M, D, K;
+    gd_transient_matrices(tr, &M, &D, &K);
+    dense_from(&K, nf, w.Kd);
+    dense_from(&D, nf, w.Dd);
+    dense_from(&M, nf, w.J);
+    memset(w.Minv, 0, ff * sizeof *w.Minv);
+    for (int i = 0; i < nf; i++)
+        w.Minv[(size_t)i * nf + i] = 1.0;
+    if (LAPACKE_dgesv(LAPACK_COL_MAJOR, nf, nf, w.J, nf, ipiv, w.Minv, nf)) goto done;
+    memset(Phi, 0, nn * sizeof *Phi);
+    for (int i = 0; i < n2; i++)
+        Phi[(size_t)i * n2 + i] = 1.0;
+    const double g1 = 0.5 - sqrt(3.0) / 6.0, g2 = 0.5 + sqrt(3.0) / 6.0;
+    for (int k = 0; k < steps; k++) {
+        /* one step, split at every contact change of a backlash mesh (located by
+         * bisection on the states along the orbit) so no Gauss point straddles a jump
+         * of A(t) */
+        double a = TWO_PI * k / steps, b = TWO_PI * (k + 1) / steps;
+        long sa = contact_code(h, tr, om, X, a, bl, nbl, w.y);
+        while (a < b) {
+            double e = b;
+            if (nbl && contact_code(h, tr, om, X, b, bl, nbl, w.y) != sa) {
+                double lo = a, hi = b;
+                for (int it = 0; it < 60 && hi - lo > 1e-15 * TWO_PI; it++) {
+                    double mid = 0.5 * (lo + hi);
+                    if (contact_code(h, tr, om, X, mid, bl, nbl, w.y) == sa)
+                        lo = mid;
+                    else
+                        hi = mid;
+                }
+                e = hi;
+            }
+            double dtau = e - a, dt = dtau / om;
+            build_A(&w, h, tr, om, X, a + g1 * dtau, A1);
+            build_A(&w, h, tr, om, X, a + g2 * dtau, A2);
+            /* Omega = dt/2 (A1 + A2) + sqrt(3)/12 dt^2 (A2 A1 - A1 A2) */
+            cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n2, n2, n2, 1.0, A2, n2, A1, n2,
+                        0.0, Om, n2);
+            cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n2, n2, n2, -1.0, A1, n2, A2, n2,
+                        1.0, Om, n2);
+            double c2 = sqrt(3.0) / 12.0 * dt * dt;
+            for (size_t m = 0; m < nn; m++)
+                Om[m] = 0.5 * dt * (A1[m] + A2[m]) + c2 * Om[m];
+            if (expm(n2, Om, Ex, W, ipiv)) goto done;
+            cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n2, n2, n2, 1.0, Ex, n2, Phi, n2,
+                        0.0, T, n2);
+            memcpy(Phi, T, nn * sizeof *Phi);
+            if (e < b) sa = contact_code(h, tr, om, X, e, bl, nbl, w.y);
+            a = e;
+        }
+    }
+    {
+        double *dummy = T;
+        if (LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', n2, Phi, n2, mu_re, mu_im, dummy, 1, dummy,
+                          1))
+            goto done;
+    }
+    rc = 0;
+done:
+    free(buf);
+    free(ipiv);
+    return rc;
+}

@@ -1,0 +1,124 @@
+/* The fundamental frequency of a problem's excitations: every frequency the laws impose
+ * (shaft speeds through the gear ratios for unbalances, cams and angle-dependent loads;
+ * tooth-mesh frequencies of TVMS and STE tables; fixed-frequency loads and prescribed
+ * harmonic motions) must be a whole multiple of it. Found by Euclid's algorithm on the
+ * real frequencies with a relative tolerance. */
+#include <math.h>
+#include <stdio.h>
+
+#include "geardyn/periodic.h"
+
+#define MAXF 256
+#define TWO_PI 6.28318530717958647692
+
+static gd_status undefined(gd_error *err, const char *field, const char *msg)
+{
+    return gd_error_set(err, GD_EINPUT, "", 0, 0, field,
+                        "give the model a periodic excitation (unbalance, TVMS, load) and a "
+                        "non-zero speed",
+                        "the period is undefined: %s", msg);
+}
+
+static double shaft_rate(const gd_system *sys, int node, double speed)
+{
+    const gd_model *m = sys->model;
+    return fabs(m->shafts[m->nodes[node].shaft].speed_ratio * speed);
+}
+
+static double dof_rate(const gd_system *sys, int dof, double speed)
+{
+    if (sys->dof_type[dof] != GD_RZ) return 0.0;
+    return shaft_rate(sys, sys->dof_node[dof], speed);
+}
+
+static void push(double *f, int *n, double v)
+{
+    if (v > 0 && isfinite(v) && *n < MAXF) f[(*n)++] = v;
+}
+
+/* gcd of two positive reals to relative tolerance tol of the larger scale */
+static double real_gcd(double a, double b, double tol)
+{
+    while (b > tol) {
+        double r = fmod(a, b);
+        if (r > b - tol) r = 0.0;
+        a = b;
+        b = r;
+    }
+    return a;
+}
+
+gd_status gd_periodic_fundamental(const gd_system *sys, const gd_transient_spec *spec, double speed,
+                                  double *w0, int *max_order, gd_error *err)
+{
+    if (max_order) *max_order = 0;
+    const gd_model *m = sys->model;
+    double f[MAXF];
+    int n = 0;
+    *w0 = 0.0;
+    if (!isfinite(speed)) return undefined(err, "speed", "the speed is not finite");
+    if (spec->unbalances)
+        for (int i = 0; i < m->nunbalances; i++)
+            push(f, &n, shaft_rate(sys, m->unbalances[i].node, speed));
+    for (int i = 0; i < spec->nmeshes; i++) {
+        const gd_tr_mesh *g = &spec->meshes[i];
+        double r = shaft_rate(sys, m->meshes[g->mesh].driver, speed);
+        const gd_table *t[2] = {g->tvms, g->ste};
+        for (int k = 0; k < 2; k++) {
+            if (!t[k]) continue;
+            if (!(t[k]->period > 0))
+                return undefined(err, "meshes", "a mesh stiffness or error table is not periodic");
+            push(f, &n, TWO_PI / t[k]->period * r);
+        }
+    }
+    for (int i = 0; i < spec->nloads; i++) {
+        const gd_load_law *l = &spec->loads[i].law;
+        double r = dof_rate(sys, spec->loads[i].dof, speed);
+        if (l->kind == GD_LOAD_HARMONIC_TIME) push(f, &n, fabs(l->frequency));
+        if (l->kind == GD_LOAD_HARMONIC_ANGLE) push(f, &n, fabs(l->frequency) * r);
+        if (l->kind == GD_LOAD_TABLE_ANGLE) {
+            if (!(l->table->period > 0))
+                return undefined(err, "excitations.loads", "a load table is not periodic");
+            if (r == 0.0 && sys->dof_type[spec->loads[i].dof] == GD_RZ)
+                return undefined(err, "excitations.loads", "a load table on a shaft at rest");
+            push(f, &n, TWO_PI / l->table->period * r);
+        }
+    }
+    for (int i = 0; i < spec->ncams; i++)
+        push(f, &n, dof_rate(sys, spec->cams[i].dof, speed));
+    for (int i = 0; i < spec->nprescribed; i++) {
+        const gd_prescribed_law *p = &spec->prescribed[i].law;
+        double r =
+            sys->dof_type[spec->prescribed[i].dof] == GD_RZ
+                ? m->shafts[m->nodes[sys->dof_node[spec->prescribed[i].dof]].shaft].speed_ratio *
+                      speed
+                : 0.0;
+        if (p->kind == GD_PRESCRIBED_HARMONIC) push(f, &n, fabs(p->frequency));
+        if (p->kind == GD_PRESCRIBED_TABLE)
+            return undefined(err, "prescribed", "a prescribed table motion is not periodic");
+        if (p->kind == GD_PRESCRIBED_SPEED && fabs(p->speed - r) > 1e-12 * fabs(r) + 1e-300)
+            return undefined(err, "prescribed",
+                             "a prescribed speed differs from the shaft's nominal speed");
+    }
+    if (n == 0)
+        return undefined(err, "speed",
+                         speed == 0.0 ? "no excitation turns at speed 0"
+                                      : "the model has no periodic excitation");
+    double fmax = 0.0;
+    for (int i = 0; i < n; i++)
+        fmax = fmax > f[i] ? fmax : f[i];
+    double tol = 1e-9 * fmax, g = f[0];
+    for (int i = 1; i < n; i++)
+        g = real_gcd(g > f[i] ? g : f[i], g > f[i] ? f[i] : g, tol);
+    if (!(g > 0) || fmax / g > 10000.5) {
+        char msg[160];
+        snprintf(msg, sizeof msg,
+                 "the excitation frequencies have no common period (highest %.6g rad/s is "
+                 "not a whole multiple of a fundamental above %.3g rad/s)",
+                 fmax, fmax / 10000);
+        return undefined(err, "speed", msg);
+    }
+    *w0 = g;
+    if (max_order) *max_order = (int)lround(fmax / g);
+    return GD_OK;
+}

@@ -1,0 +1,190 @@
+/* The local form of the forces, f(t, q, q') = M_ff q'' + D_ff q' + K_ff q, with its
+ * derivatives as rank-one terms (transient.h): what harmonic balance evaluates in the
+ * time domain (alternating frequency-time) and what the variational equations need. The
+ * forces are the integrator's own (gd_tr_residual); only the contact state is taken from
+ * the deformation instead of being frozen between located events. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "transient/transient_impl.h"
+
+/* Appends the free part of coef * e_dof to a term vector. */
+static void vec_add(int *n, int *idx, double *val, const gd_transient *tr, int dof, double coef)
+{
+    if (dof < 0 || tr->fidx[dof] < 0 || coef == 0.0) return;
+    int f = tr->fidx[dof];
+    for (int k = 0; k < *n; k++)
+        if (idx[k] == f) {
+            val[k] += coef;
+            return;
+        }
+    idx[*n] = f;
+    val[*n] = coef;
+    (*n)++;
+}
+
+static void term_u(gd_tr_term *t, const gd_transient *tr, int dof, double coef)
+{
+    vec_add(&t->nu, t->u_idx, t->u, tr, dof, coef);
+}
+
+static void term_w(gd_tr_term *t, const gd_transient *tr, int dof, double coef)
+{
+    vec_add(&t->nw, t->w_idx, t->w, tr, dof, coef);
+}
+
+static int build_terms(gd_transient *tr)
+{
+    if (tr->cam_acc && tr->ncd) return -1;
+    int cap = 2 * tr->nmesh + 4 * tr->nsfd + tr->ncam + tr->nload;
+    tr->term = calloc((size_t)(cap > 0 ? cap : 1), sizeof *tr->term);
+    if (!tr->term) return -2;
+    int n = 0;
+    for (int i = 0; i < tr->nmesh; i++) {
+        const tr_mesh *m = &tr->mesh[i];
+        gd_tr_term *a = &tr->term[n++], *b = &tr->term[n++];
+        for (int j = 0; j < m->a.n; j++) {
+            term_u(a, tr, m->a.dof[j], m->a.a[j]);
+            term_w(a, tr, m->a.dof[j], m->a.a[j]);
+            term_u(b, tr, m->a.dof[j], m->a.a[j]);
+        }
+        term_w(b, tr, m->drv_dof, 1.0);
+    }
+    for (int i = 0; i < tr->nsfd; i++) {
+        const tr_sfd *s = &tr->sfd[i];
+        int o[2] = {s->dx, s->dy}, o2[2] = {s->dx2, s->dy2};
+        for (int r = 0; r < 2; r++)
+            for (int c = 0; c < 2; c++) {
+                gd_tr_term *t = &tr->term[n++];
+                term_u(t, tr, o[r], 1.0);
+                term_u(t, tr, o2[r], -1.0);
+                term_w(t, tr, o[c], 1.0);
+                term_w(t, tr, o2[c], -1.0);
+            }
+    }
+    for (int i = 0; i < tr->ncam; i++) {
+        gd_tr_term *t = &tr->term[n++];
+        term_u(t, tr, tr->cam[i].spec.dof, 1.0);
+        term_w(t, tr, tr->cam[i].spec.dof, 1.0);
+    }
+    for (int i = 0; i < tr->nload; i++) {
+        gd_tr_term *t = &tr->term[n++];
+        term_u(t, tr, tr->load[i].dof, 1.0);
+        term_w(t, tr, tr->load[i].dof, 1.0);
+    }
+    return n;
+}
+
+int gd_transient_terms(gd_transient *tr, const gd_tr_term **terms)
+{
+    if (!tr->term && tr->nterm == 0) tr->nterm = build_terms(tr);
+    if (terms) *terms = tr->term;
+    return tr->nterm;
+}
+
+static gd_csc csc_view(const cs *A)
+{
+    gd_csc v = {A->n, A->p, A->i, A->x};
+    return v;
+}
+
+void gd_transient_matrices(const gd_transient *tr, gd_csc *M, gd_csc *D, gd_csc *K)
+{
+    if (M) *M = csc_view(tr->Mff);
+    if (D) *D = csc_view(tr->Dff);
+    if (K) *K = csc_view(tr->Kff);
+}
+
+/* y += A x over the free block */
+static void add_mul(const cs *A, const double *x, double *y)
+{
+    for (int j = 0; j < A->n; j++)
+        for (int p = A->p[j]; p < A->p[j + 1]; p++)
+            y[A->i[p]] += A->x[p] * x[j];
+}
+
+void gd_transient_local(gd_transient *tr, double t, const double *y, double *f, double *sq,
+                        double *sv)
+{
+    const int nf = tr->nf;
+    gd_tr_fill(tr, t, y, tr->q, tr->v, tr->acc);
+    for (int i = 0; i < tr->nmesh; i++) {
+        tr_mesh *m = &tr->mesh[i];
+        double de;
+        gd_tr_mesh_law(m, m->state, t, tr->q, tr->v, NULL, NULL, NULL, &de, NULL);
+        m->state = m->spec.backlash ? gd_backlash_state(de, m->spec.gap) : GD_CONTACT_DRIVE;
+    }
+    if (f) {
+        gd_tr_residual(tr, t, tr->q, tr->v, tr->acc, tr->r);
+        for (int i = 0; i < nf; i++)
+            f[i] = tr->r[tr->free_dof[i]];
+        add_mul(tr->Kff, y, f);
+        add_mul(tr->Dff, y + nf, f);
+    }
+    if (!sq && !sv) return;
+    if (gd_transient_terms(tr, NULL) < 0) return;
+    int n = 0;
+    double dq[2], dv[2];
+    for (int i = 0; i < tr->nmesh; i++) {
+        const tr_mesh *m = &tr->mesh[i];
+        double g[4];
+        gd_tr_mesh_law(m, m->state, t, tr->q, tr->v, NULL, NULL, NULL, NULL, g);
+        /* f -= a (F - k_lin d - c_lin d') */
+        dq[0] = -(g[0] - m->k_lin);
+        dv[0] = -(g[1] - m->c_lin);
+        dq[1] = -g[2];
+        dv[1] = -g[3];
+        for (int k = 0; k < 2; k++, n++) {
+            if (sq) sq[n] = dq[k];
+            if (sv) sv[n] = dv[k];
+        }
+    }
+    for (int i = 0; i < tr->nsfd; i++) {
+        const tr_sfd *s = &tr->sfd[i];
+        const double *q = tr->q, *v = tr->v;
+        double x = q[s->dx], yy = q[s->dy], vx = v[s->dx], vy = v[s->dy];
+        if (s->dx2 >= 0) x -= q[s->dx2], vx -= v[s->dx2];
+        if (s->dy2 >= 0) yy -= q[s->dy2], vy -= v[s->dy2];
+        double fx, fy, jq[4], jv[4];
+        gd_sfd_force_jacobian(&s->p, x, yy, vx, vy, &fx, &fy, jq, jv);
+        for (int k = 0; k < 4; k++, n++) {
+            if (sq) sq[n] = jq[k];
+            if (sv) sv[n] = jv[k];
+        }
+    }
+    for (int i = 0; i < tr->ncam; i++, n++) {
+        const tr_cam *c = &tr->cam[i];
+        int d = c->spec.dof;
+        double th = c->sense * (c->rate * t + tr->q[d]) - c->spec.phase;
+        double w = c->sense * (c->rate + tr->v[d]);
+        double s1, s2, s1p, s2p, s1m, s2m, h = 1e-6;
+        gd_lift_eval(c->spec.law, th, &s1, &s2);
+        gd_lift_eval(c->spec.law, th + h, &s1p, &s2p);
+        gd_lift_eval(c->spec.law, th - h, &s1m, &s2m);
+        double dss = (s1p * s2p - s1m * s2m) / (2.0 * h); /* d(s' s'')/d theta */
+        /* r -= sense m s' s'' W^2, theta = sense (rate t + q), W = sense (rate + q') */
+        if (sq) sq[n] = -c->spec.mass * dss * w * w;
+        if (sv) sv[n] = -2.0 * c->spec.mass * s1 * s2 * w;
+    }
+    for (int i = 0; i < tr->nload; i++, n++) {
+        int d = tr->load[i].dof;
+        double da;
+        gd_load_eval_grad(&tr->load[i].law, t, tr->rate[d] * t + tr->q[d], &da);
+        if (sq) sq[n] = da;
+        if (sv) sv[n] = 0.0;
+    }
+}
+
+double gd_transient_record_value(gd_transient *tr, const gd_tr_record *rec, double t,
+                                 const double *y)
+{
+    gd_transient_local(tr, t, y, NULL, NULL, NULL);
+    return gd_tr_record_value(tr, rec, t, tr->q, tr->v);
+}
+
+void gd_transient_hold_drive(gd_transient *tr, double hold)
+{
+    for (int i = 0; i < tr->nmesh; i++)
+        tr->mesh[i].hold = hold > 0 ? (hold < 1 ? hold : 1.0) : 0.0;
+}

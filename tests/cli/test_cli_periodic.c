@@ -1,0 +1,327 @@
+/* geardyn periodic, run as a program (GD_CLI_PATH) from the source folder: every option
+ * and error path, the JSON names of the issue, the CSV files, and the Chen gear pair
+ * with its squeeze film damper and a damped-Mathieu TVMS pair written to the scratch
+ * folder. Each run takes well under a second. */
+#include <cjson/cJSON.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli_support.h"
+#include "harness.h"
+
+#define CHEN "examples/chen1998_gear_pair.yaml"
+
+static const cJSON *point(const cJSON *o, int i)
+{
+    return cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(o, "points"), i);
+}
+
+static int npoints(const cJSON *o)
+{
+    return cJSON_GetArraySize(cJSON_GetObjectItemCaseSensitive(o, "points"));
+}
+
+static const cJSON *rec(const cJSON *p, const char *name)
+{
+    return cJSON_GetObjectItemCaseSensitive(cJSON_GetObjectItemCaseSensitive(p, "records"), name);
+}
+
+static double amp(const cJSON *r, int k)
+{
+    return cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(r, "amplitudes"), k)->valuedouble;
+}
+
+/* Chen pair with its damper over 400..1500 rad/s: every point converged and stable, the
+ * issue's field names, the record statistics; the arclength points equal the sequential
+ * (natural-parameter) ones at the same speeds (both converge to the residual 1e-10). */
+TEST(chen_sfd_sweep_json)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    cJSON *a = run_json_args(&s, "periodic " CHEN " --speeds 400:1500:12 --harmonics 8 "
+                                 "--record gear_a.x --record sfd:support_a:fx,mesh:mesh:force");
+    cJSON *b = run_json_args(&s, "periodic " CHEN " --speeds 400:1500:12 --harmonics 8 "
+                                 "--record gear_a.x --record sfd:support_a:fx,mesh:mesh:force "
+                                 "--sequential");
+    REQUIRE(a && b);
+    REQUIRE(npoints(a) == 12 && npoints(b) == 12);
+    CHECK(cJSON_GetArraySize(cJSON_GetObjectItemCaseSensitive(a, "bifurcations")) == 0);
+    for (int i = 0; i < 12; i++) {
+        const cJSON *p = point(a, i), *q = point(b, i);
+        CHECK_REL(jnum(p, "speed_rad_s"), 400 + 100 * i, 1e-12);
+        CHECK(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(p, "converged")));
+        CHECK(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(p, "stable")));
+        CHECK(jnum(p, "floquet_multiplier_max_abs") < 1.0);
+        CHECK(jnum(p, "harmonics") == 8);
+        CHECK(jnum(p, "residual") < 1e-10);
+        const cJSON *x = rec(p, "gear_a.x:disp"), *y = rec(q, "gear_a.x:disp");
+        REQUIRE(x && y && rec(p, "sfd:support_a:fx") && rec(p, "mesh:mesh:force"));
+        CHECK(cJSON_GetArraySize(cJSON_GetObjectItemCaseSensitive(x, "amplitudes")) == 9);
+        CHECK(cJSON_GetArraySize(cJSON_GetObjectItemCaseSensitive(x, "phases_deg")) == 9);
+        CHECK_REL(amp(x, 1), amp(y, 1), 1e-8);
+        CHECK(jnum(x, "rms") > 0 && jnum(x, "peak_to_peak") > 2 * amp(x, 1) * 0.9);
+        CHECK(fabs(jnum(x, "mean")) < 1e-3 * amp(x, 1)); /* no static load on x */
+    }
+    /* the damped resonance near 1000 rad/s (Chen et al. Fig. 7 region): larger there */
+    CHECK(amp(rec(point(a, 6), "gear_a.x:disp"), 1) >
+          1.5 * amp(rec(point(a, 0), "gear_a.x:disp"), 1));
+    cJSON_Delete(a);
+    cJSON_Delete(b);
+    scratch_close(&s);
+}
+
+/* --out: three CSV files, complete, with one row per point and record. */
+TEST(out_files_and_table)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    char dir[256], path[320];
+    snprintf(dir, sizeof dir, "%s/res", s.dir);
+    run_result r;
+    run(&s, &r, "periodic " CHEN " --speeds 500:900:3 --harmonics 4 --record gear_a.x --out '%s'",
+        dir);
+    CHECK(r.code == 0);
+    CHECK(contains(r.out, "speed_rad_s") && contains(r.out, "|mu|max") &&
+          contains(r.out, "continuation steps"));
+    run_free(&r);
+    snprintf(path, sizeof path, "%s/periodic.csv", dir);
+    char *t = read_file(path);
+    CHECK(t && count_lines(t) == 1 + 3);
+    CHECK(contains(t, "point,direction,speed_rad_s,parameter,converged,harmonics,residual"));
+    free(t);
+    snprintf(path, sizeof path, "%s/harmonics.csv", dir);
+    t = read_file(path);
+    CHECK(t && count_lines(t) == 1 + 3 * 5);
+    free(t);
+    snprintf(path, sizeof path, "%s/bifurcations.csv", dir);
+    t = read_file(path);
+    CHECK(t && count_lines(t) == 1);
+    free(t);
+    CHECK(count_entries(dir) == 3);
+    scratch_close(&s);
+}
+
+static void write_mathieu(const char *path)
+{
+    /* gear b on a prescribed driver, k = 1e8 (1 + 0.05 cos 20 theta), zeta = 0.005:
+     * the primary tongue lies at W = 698.97 .. 715.17 rad/s (test_periodic) */
+    FILE *f = fopen(path, "w");
+    if (!f) return;
+    fprintf(f, "dofs: [rz]\nshafts:\n  - {name: a, nodes: [{name: gear_a}]}\n"
+               "  - {name: b, nodes: [{name: gear_b}]}\n"
+               "disks:\n  - {node: gear_a, polar_inertia: 1e-2}\n"
+               "  - {node: gear_b, polar_inertia: 5e-3}\n"
+               "meshes:\n  - name: m\n    driver: gear_a\n    driven: gear_b\n"
+               "    base_radius: [25 mm, 50 mm]\n    teeth: [20, 40]\n"
+               "    pressure_angle: 20 deg\n    damping: 141.42135623730951\n"
+               "    tvms:\n      interpolation: spline\n      angle: [");
+    for (int j = 0; j < 48; j++)
+        fprintf(f, "%s%.17g", j ? ", " : "", 2 * M_PI / 20 * j / 48);
+    fprintf(f, "]\n      stiffness: [");
+    for (int j = 0; j < 48; j++)
+        fprintf(f, "%s%.17g", j ? ", " : "", 1e8 * (1 + 0.05 * cos(2 * M_PI * j / 48)));
+    fprintf(f, "]\nprescribed:\n  - {node: gear_a, motion: nominal}\n"
+               "excitations:\n  loads: [{node: gear_b, value: 20}]\n");
+    fclose(f);
+}
+
+/* Period doubling at both tongue boundaries, in both directions; --no-stability has
+ * stable null and no bifurcations; --subharmonic 2 doubles the period. */
+TEST(mathieu_bifurcations_directions_subharmonic)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    char model[256], args[512];
+    snprintf(model, sizeof model, "%s/mathieu.yaml", s.dir);
+    write_mathieu(model);
+    snprintf(args, sizeof args,
+             "periodic '%s' --speeds 680:730:11 --harmonics 4 --both-directions --record "
+             "mesh:m:force",
+             model);
+    cJSON *o = run_json_args(&s, args);
+    REQUIRE(o);
+    CHECK(npoints(o) == 22);
+    const cJSON *bif = cJSON_GetObjectItemCaseSensitive(o, "bifurcations"), *b;
+    int up = 0, down = 0;
+    cJSON_ArrayForEach(b, bif)
+    {
+        CHECK_STR(jstr(b, "type"), "period_doubling");
+        double w = jnum(b, "speed_rad_s");
+        CHECK(fabs(w - 698.97) < 0.05 || fabs(w - 715.17) < 0.05);
+        CHECK(cJSON_IsNull(cJSON_GetObjectItemCaseSensitive(b, "parameter")));
+        *(jnum(b, "direction") > 0 ? &up : &down) += 1;
+    }
+    CHECK(up == 2 && down == 2);
+    CHECK(cJSON_IsFalse(cJSON_GetObjectItemCaseSensitive(point(o, 5), "stable"))); /* 705 */
+    CHECK(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(point(o, 0), "stable")));  /* 680 */
+    CHECK(jnum(point(o, 11), "direction") == -1 && jnum(point(o, 11), "speed_rad_s") == 730);
+    cJSON_Delete(o);
+    snprintf(args, sizeof args, "periodic '%s' --speeds 700:700:1 --no-stability", model);
+    o = run_json_args(&s, args);
+    REQUIRE(o);
+    CHECK(cJSON_IsNull(cJSON_GetObjectItemCaseSensitive(point(o, 0), "stable")));
+    CHECK(cJSON_GetArraySize(cJSON_GetObjectItemCaseSensitive(o, "bifurcations")) == 0);
+    double w1 = jnum(point(o, 0), "omega_rad_s");
+    cJSON_Delete(o);
+    snprintf(args, sizeof args, "periodic '%s' --speeds 700:700:1 --subharmonic 2 --harmonics 8",
+             model);
+    o = run_json_args(&s, args);
+    REQUIRE(o);
+    CHECK_REL(jnum(point(o, 0), "omega_rad_s"), w1 / 2, 1e-12);
+    CHECK_REL(w1, 20 * 700.0, 1e-12); /* the tooth-mesh frequency */
+    cJSON_Delete(o);
+    scratch_close(&s);
+}
+
+/* --parameter: continuation in the damper clearance at one speed equals a run with that
+ * clearance set (to 1e-8: both converge to the residual 1e-10); --harmonics auto. */
+TEST(parameter_continuation_and_auto_harmonics)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    cJSON *o = run_json_args(&s, "periodic " CHEN " --speeds 1000:1000:1 --harmonics 6 "
+                                 "--parameter bearings.support_a.sfd.clearance=60e-6:100e-6:5 "
+                                 "--record sfd:support_a:ecc");
+    cJSON *q = run_json_args(&s, "periodic " CHEN " --speeds 1000:1000:1 --harmonics 6 "
+                                 "--set bearings.support_a.sfd.clearance=80e-6 "
+                                 "--record sfd:support_a:ecc");
+    REQUIRE(o && q);
+    REQUIRE(npoints(o) == 5);
+    for (int i = 0; i < 5; i++) {
+        const cJSON *p = point(o, i);
+        CHECK_REL(jnum(p, "parameter"), 60e-6 + 10e-6 * i, 1e-12);
+        CHECK(jnum(p, "speed_rad_s") == 1000);
+        CHECK(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(p, "converged")));
+    }
+    CHECK_REL(jnum(rec(point(o, 2), "sfd:support_a:ecc"), "rms"),
+              jnum(rec(point(q, 0), "sfd:support_a:ecc"), "rms"), 1e-8);
+    CHECK(cJSON_IsNull(cJSON_GetObjectItemCaseSensitive(point(q, 0), "parameter")) ||
+          !cJSON_GetObjectItemCaseSensitive(point(q, 0), "parameter"));
+    cJSON_Delete(o);
+    cJSON_Delete(q);
+    o = run_json_args(&s, "periodic " CHEN " --speeds 1000:1000:1 --harmonics auto "
+                          "--harmonic-tol 1e-4");
+    REQUIRE(o);
+    CHECK(jnum(point(o, 0), "harmonics") >= 10);
+    CHECK(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(point(o, 0), "converged")));
+    cJSON_Delete(o);
+    scratch_close(&s);
+}
+
+/* A speed where the period is undefined: that point converged false with the reason. */
+TEST(undefined_period_point)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    cJSON *o = run_json_args(&s, "periodic " CHEN " --speeds 0:500:2 --harmonics 4");
+    REQUIRE(o);
+    REQUIRE(npoints(o) == 2);
+    CHECK(cJSON_IsFalse(cJSON_GetObjectItemCaseSensitive(point(o, 0), "converged")));
+    CHECK(contains(jstr(point(o, 0), "reason"), "period is undefined"));
+    CHECK(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(point(o, 1), "converged")));
+    cJSON_Delete(o);
+    scratch_close(&s);
+}
+
+/* Seed 002's two-stage helical system (378 DOFs, TVMS from geometry on both meshes,
+ * H = 36: mesh 1 is harmonic 36 of the common period) at helix angle 0: the full and the
+ * lateral-torsional coupling give the same response (to 1e-9: the axial and swing
+ * couplings vanish at 0 deg), and the mean mesh forces carry the 50 N m load
+ * (235.6 and 538.9 N; time integration gives 235 and 539 N). */
+TEST(helical_couplings_identical_at_zero_helix)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    const char *base = "periodic examples/helical_two_stage.yaml --speeds 3000rpm:3000rpm:1 "
+                       "--harmonics 36 --no-stability --record mesh:pair1:force "
+                       "--record mesh:pair2:force,gear1.y "
+                       "--set meshes.pair1.geometry.helix_angle=0deg "
+                       "--set meshes.pair2.geometry.helix_angle=0deg";
+    char args[1024];
+    cJSON *o[2];
+    const char *cpl[2] = {"full", "lateral-torsional"};
+    for (int k = 0; k < 2; k++) {
+        snprintf(args, sizeof args,
+                 "%s --set meshes.pair1.coupling=%s --set meshes.pair2.coupling=%s", base, cpl[k],
+                 cpl[k]);
+        o[k] = run_json_args(&s, args);
+    }
+    REQUIRE(o[0] && o[1]);
+    const cJSON *p = point(o[0], 0), *q = point(o[1], 0);
+    CHECK(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(p, "converged")));
+    CHECK(jnum(p, "harmonics") == 36);
+    const char *names[3] = {"mesh:pair1:force", "mesh:pair2:force", "gear1.y:disp"};
+    for (int r = 0; r < 3; r++) {
+        CHECK_REL(jnum(rec(p, names[r]), "mean"), jnum(rec(q, names[r]), "mean"), 1e-9);
+        CHECK_REL(amp(rec(p, names[r]), 36), amp(rec(q, names[r]), 36), 1e-9);
+    }
+    CHECK_REL(jnum(rec(p, "mesh:pair1:force"), "mean"), 235.6, 1e-3);
+    CHECK_REL(jnum(rec(p, "mesh:pair2:force"), "mean"), 538.9, 1e-3);
+    cJSON_Delete(o[0]);
+    cJSON_Delete(o[1]);
+    scratch_close(&s);
+}
+
+TEST(error_paths)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    CHECK(run_fails_cleanly(&s, "periodic " CHEN, "--speeds", NULL));
+    CHECK(run_fails_cleanly(&s, "periodic --speeds 1:2:3", "one model file", NULL));
+    CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds fast", "--speeds", NULL));
+    CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --harmonics 0", "--harmonics",
+                            "auto"));
+    CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --harmonics x", "--harmonics",
+                            NULL));
+    CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --subharmonic 0", "--subharmonic",
+                            "1..1000"));
+    CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --tol 1e-20", "--tol",
+                            "unreachable"));
+    CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --harmonic-tol 2",
+                            "--harmonic-tol", NULL));
+    CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --samples 8", "--samples",
+                            "harmonics"));
+    CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --record nowhere.x", "nowhere",
+                            NULL));
+    CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --record gear_a.rz:angle",
+                            "total angle", NULL));
+    CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --parameter clearance",
+                            "PATH=FROM:TO:COUNT", NULL));
+    CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --parameter a=1:2:0",
+                            "--parameter", NULL));
+    CHECK(run_fails_cleanly(&s,
+                            "periodic " CHEN " --speeds 500:500:1 --parameter "
+                            "bearings.nope.k=1:2:2",
+                            "nope", NULL));
+    CHECK(run_fails_cleanly(&s,
+                            "periodic " CHEN " --speeds 1:2:3 --parameter a=1:2:2 "
+                            "--coupling full",
+                            "--coupling", NULL));
+    CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --bogus", "bogus", NULL));
+    CHECK(run_fails_cleanly(&s, "periodic examples/missing.yaml --speeds 1:2:3", "missing", NULL));
+    CHECK(
+        run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --set bearings.*.k=-1", "k", NULL));
+    /* --out naming a file */
+    char file[256], args[512];
+    snprintf(file, sizeof file, "%s/plain", s.dir);
+    write_file(file, "x");
+    run_result r;
+    snprintf(args, sizeof args, "periodic " CHEN " --speeds 500:600:2 --out '%s'", file);
+    run(&s, &r, "%s", args);
+    CHECK(r.code == 2 && !r.out[0]);
+    run_free(&r);
+    run(&s, &r, "periodic --help");
+    CHECK(r.code == 0 && contains(r.out, "--subharmonic") && contains(r.out, "--parameter"));
+    run_free(&r);
+    run(&s, &r, "--help");
+    CHECK(r.code == 0 && contains(r.out, "periodic"));
+    run_free(&r);
+    scratch_close(&s);
+}
+
+RUN_TESTS(T(chen_sfd_sweep_json), T(out_files_and_table),
+          T(mathieu_bifurcations_directions_subharmonic),
+          T(parameter_continuation_and_auto_harmonics), T(undefined_period_point),
+          T(helical_couplings_identical_at_zero_helix), T(error_paths))
