@@ -6,7 +6,7 @@ import numpy as np
 from . import _core
 from ._core import ffi, lib, check, new_error, cstr, model_error
 from .analyses import _Result, _pandas, sweep
-from .transient import _parse_record, _default_records
+from .transient import _records, _record_array
 
 __all__ = ["periodic", "PeriodicResult"]
 
@@ -51,24 +51,13 @@ def periodic(system, speeds, harmonics=10, subharmonic=1, records=None,
     tmp = ffi.new("gd_transient_model **")
     check(lib.gd_transient_model_build(system._handle, tmp, err), err)
     tm = ffi.gc(tmp[0], lib.gd_transient_model_free)
-    if records is None:
-        recs = _default_records(system, tm)
-    else:
-        recs = []
-        for text in ([records] if isinstance(records, str) else records):
-            for item in text.split(","):
-                item = item.strip()
-                if not item:
-                    raise model_error("record", "'%s': empty item" % text)
-                recs += _parse_record(system, tm, item)
+    recs = _records(system, tm, records)
     for kind, _i, _j, name, _u in recs:
         if kind == lib.GD_REC_ANGLE:
             raise model_error("record", "'%s': a total angle grows with time and has no "
                               "periodic steady state" % name,
                               "record the DOF's displacement (its perturbation) or its speed")
-    rr = ffi.new("gd_tr_record[]", max(len(recs), 1))
-    for k, (kind, i, i2, _n, _u) in enumerate(recs):
-        rr[k].kind, rr[k].index, rr[k].index2 = kind, i, i2
+    rr = _record_array(recs)
     values = ffi.new("double[]", [float(x) for x in w])
     out = ffi.new("gd_periodic_result **")
     check(lib.gd_periodic_run(system._handle, ffi.addressof(tm.spec), ffi.NULL, values, len(w),

@@ -582,6 +582,16 @@ TEST(bad_plot_requests_write_nothing)
              "modal examples/kumar2011_torsional.yaml --modes 1 --plot %s/m.svg --out %s/o", d.dir,
              d.dir);
     check_refused(gd_ts_, &d, args, "nothing to plot");
+    /* periodic: the plot file is checked before the harmonic balance runs; a branch with
+     * no converged point (speed 0: the period is undefined) has nothing to plot */
+    snprintf(args, sizeof args,
+             "periodic tests/plot/mathieu_pair.yaml --speeds 700:700:1 --plot %s/p.png", d.dir);
+    check_refused(gd_ts_, &d, args, "unknown plot format '.png'");
+    snprintf(args, sizeof args,
+             "periodic examples/chen1998_gear_pair.yaml --speeds 0:0:1 --harmonics 2 --plot "
+             "%s/p.svg --out %s/o",
+             d.dir, d.dir);
+    check_refused(gd_ts_, &d, args, "nothing to plot: no point converged");
     /* HTML without plotly.js */
     setenv("GEARDYN_PLOTLY_JS", "/nonexistent/plotly.min.js", 1);
     snprintf(args, sizeof args, "report tests/plot/study.yaml --out %s/r.html", d.dir);
