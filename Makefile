@@ -76,7 +76,7 @@ VALGRIND_SKIP_test_directional = -isotropic_rotor_splits_forward_and_backward_wi
 VALGRIND_SKIP_test_shaft_energy = -cli_group_shaft
 # The study tests run the analyses of five models (the sweeps take minutes under valgrind)
 # and the CLI through /bin/sh (not followed); the study CLI runs below instead.
-VALGRIND_SKIP_test_study = -every_analysis_gives_the_papers_numbers
+VALGRIND_SKIP_test_study = -every_analysis_gives_the_papers_numbers,periodic_summarises_the_branch
 VALGRIND_SKIP_test_cli_study = -threads_shards_and_mpi_give_the_same_table,mpirun_two_ranks,killed_halfway_and_resumed,error_paths
 VALGRIND_SKIP_test_periodic = -backlash_against_transient,sfd_pair_against_transient,backlash_folds_traced_through_unstable_branch,chen_sfd_neimark_sacker_matches_transient
 memcheck: build
@@ -114,6 +114,7 @@ memcheck: build
 	            "modal examples/kumar2011_coupled.yaml --directional --group shaft --dofs x,y,rz --json" \
 	            "study examples/studies/chen1998_mesh_stiffness.yaml --out $$out/st --shard 1/4 --threads 2" \
 	            "study examples/studies/chen1998_mesh_stiffness.yaml --out $$out/st --shard 1/4 --resume" \
+	            "periodic tests/plot/mathieu_pair.yaml --speeds 695:705:2 --harmonics 2 --plot $$out/periodic.svg" \
 	            "periodic examples/chen1998_gear_pair.yaml --speeds 500:700:2 --harmonics 3 --json --out $$out/p"; do \
 	    echo "valgrind geardyn $$args"; OPENBLAS_NUM_THREADS=1 $(VALGRIND) $(BUILD)/geardyn $$args >/dev/null; done; \
 	for args in "modal examples/missing.yaml" "modal examples/rig2018.yaml --speed fast" \

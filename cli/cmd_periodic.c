@@ -18,7 +18,7 @@ static const char USAGE[] =
     "PATH=FROM:TO:COUNT]\n"
     "                        [--both-directions] [--sequential] [--no-stability] [--tol TOL]\n"
     "                        [--samples N] [--coupling LEVEL] [--set PATH=VALUE]... [--json]\n"
-    "                        [--out DIR]\n\n"
+    "                        [--out DIR] [--plot FILE.svg|FILE.html]\n\n"
     "Periodic steady state by harmonic balance (alternating frequency-time on every\n"
     "nonlinear and time-varying law of `transient`), continued by pseudo-arclength over\n"
     "the speed (through folds: a hysteresis loop gives several points per speed), with\n"
@@ -41,7 +41,10 @@ static const char USAGE[] =
     "  --coupling LEVEL  torsional | lateral-torsional | full\n"
     "  --set PATH=VALUE  change a value of the model file (repeatable)\n"
     "  --json            one JSON object on stdout: points, bifurcations\n"
-    "  --out DIR         DIR/periodic.csv, DIR/harmonics.csv, DIR/bifurcations.csv\n";
+    "  --out DIR         DIR/periodic.csv, DIR/harmonics.csv, DIR/bifurcations.csv\n"
+    "  --plot FILE       peak-to-peak and harmonics of each record over the branch (stable\n"
+    "                    solid, unstable dashed), bifurcations marked, Floquet multipliers:\n"
+    "                    FILE.svg or FILE.html (interactive, self-contained; docs/plots.md)\n";
 
 #define PI 3.14159265358979323846
 
@@ -235,9 +238,10 @@ int gd_cmd_periodic(int argc, char **argv)
                                          {"json", no_argument, 0, 'j'},
                                          {"out", required_argument, 0, 'o'},
                                          GD_CLI_SET_OPTION,
+                                         GD_CLI_PLOT_OPTION,
                                          {"help", no_argument, 0, 'h'},
                                          {0, 0, 0, 0}};
-    const char *speeds = NULL, *coupling = NULL, *out = NULL, *param_text = NULL;
+    const char *speeds = NULL, *coupling = NULL, *out = NULL, *param_text = NULL, *plot = NULL;
     const char *records[64];
     int nrec = 0, json = 0, c;
     long lv;
@@ -318,6 +322,9 @@ int gd_cmd_periodic(int argc, char **argv)
         case 'o':
             out = optarg;
             break;
+        case GD_CLI_OPT_PLOT:
+            plot = optarg;
+            break;
         case 'h':
             fputs(USAGE, stdout);
             return GD_EXIT_OK;
@@ -343,7 +350,8 @@ int gd_cmd_periodic(int argc, char **argv)
     }
     gd_error err;
     gd_error_clear(&err);
-    if (out && gd_outdir_check_writable(out, &err)) {
+    if ((out && gd_outdir_check_writable(out, &err)) ||
+        (plot && gd_plot_check_path(plot, NULL, &err))) {
         free(sp);
         free(pv);
         return gd_cli_report(&err);
@@ -386,6 +394,14 @@ int gd_cmd_periodic(int argc, char **argv)
         free(rv);
         rc = gd_cli_report(&err);
         goto done;
+    }
+    if (plot) {
+        gd_plot *p = NULL;
+        gd_status pst = gd_plot_periodic(s, r, rv, &p, &err);
+        if ((rc = gd_cli_plot_finish(pst, p, &err, plot))) {
+            free(rv);
+            goto done;
+        }
     }
     free(rv);
     if (out && (rc = write_out(out, r, &recs))) goto done;

@@ -280,6 +280,35 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
                            gd_transient_result **out, gd_error *err);
 void gd_transient_result_free(gd_transient_result *r);
 
+/* ---- periodic (harmonic balance) ---- */
+typedef enum { GD_PER_ARCLENGTH, GD_PER_SEQUENTIAL, ... } gd_per_method;
+typedef struct { int harmonics; int adaptive; double harmonic_tol; int max_harmonics;
+                 int subharmonic; int samples; double tol; int max_iter; int stability;
+                 int monodromy_steps; gd_per_method method; int both_directions;
+                 int max_steps; int solver; ...; } gd_periodic_options;
+typedef struct { double mean, rms, peak_to_peak; double *amplitude, *phase_deg;
+                 ...; } gd_per_record_stats;
+typedef struct { double speed; double parameter; int direction; int converged;
+                 char reason[...]; int harmonics; double omega; double residual;
+                 int iterations; int stable; double mu_max; int nmult; double *mu_re, *mu_im;
+                 int nfree; double *coef; gd_per_record_stats *records;
+                 ...; } gd_periodic_point;
+typedef enum { GD_BIF_FOLD, GD_BIF_PERIOD_DOUBLING, GD_BIF_NEIMARK_SACKER,
+               GD_BIF_BRANCH_POINT, ... } gd_bifurcation_type;
+typedef struct { gd_bifurcation_type type; double speed, parameter; int direction;
+                 double mu_re, mu_im; ...; } gd_bifurcation;
+typedef struct { int npoints; gd_periodic_point *points; int nbifurcations;
+                 gd_bifurcation *bifurcations; int nrecords; int steps; double cpu_seconds;
+                 ...; } gd_periodic_result;
+typedef struct gd_periodic_param gd_periodic_param;
+void gd_periodic_options_init(gd_periodic_options *opt);
+const char *gd_bifurcation_name(gd_bifurcation_type t);
+gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
+                          const gd_periodic_param *param, const double *values, int nvalues,
+                          const gd_periodic_options *opt, const gd_tr_record *records,
+                          int nrecords, gd_periodic_result **out, gd_error *err);
+void gd_periodic_result_free(gd_periodic_result *r);
+
 /* ---- mesh stiffness ---- */
 typedef enum { GD_TVMS_ENERGY, GD_TVMS_ISO6336, GD_TVMS_SINGLE_PAIR, GD_TVMS_SQUARE,
                ... } gd_tvms_method;

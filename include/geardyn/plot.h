@@ -28,6 +28,7 @@
 #include "geardyn/frf.h"
 #include "geardyn/mesh_stiffness.h"
 #include "geardyn/modal.h"
+#include "geardyn/periodic.h"
 #include "geardyn/system.h"
 #include "geardyn/transient.h"
 #include "geardyn/unbalance.h"
@@ -116,5 +117,16 @@ GD_API gd_status gd_plot_tvms(const gd_tvms_result *const *r, const char *const 
  * disks, bearings, meshes, with a summary table of shafts, bearings and meshes. Shafts
  * joined by a mesh are placed one centre distance apart. */
 GD_API gd_status gd_plot_model(const gd_model *m, gd_plot **out, gd_error *err);
+
+/* Periodic steady state (harmonic balance): per record, the peak-to-peak value and the
+ * amplitudes of the first harmonics over the speed (rpm), or over the continuation
+ * parameter (gd_periodic_param), along the branch: stable stretches solid, unstable ones
+ * dashed red, the return run (both_directions) as its own curves; the bifurcations
+ * marked by type (fold, period doubling, Neimark-Sacker, branch point) and listed in a
+ * table; the largest Floquet multiplier modulus with the line |mu| = 1. records: the
+ * r->nrecords records the run was given (they name the curves). GD_EINPUT when no point
+ * converged or there is no record. */
+GD_API gd_status gd_plot_periodic(const gd_system *sys, const gd_periodic_result *r,
+                                  const gd_tr_record *records, gd_plot **out, gd_error *err);
 
 #endif

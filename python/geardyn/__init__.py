@@ -14,11 +14,12 @@ from .model import Model, System, Matrices, load, loads
 from .builder import build
 from .analyses import (ModalResult, CampbellResult, FrfResult, UnbalanceResult, sweep)
 from .transient import TransientResult
+from .periodic import PeriodicResult
 from .mesh_stiffness import mesh_stiffness, MeshStiffnessResult
 
 __all__ = ["GeardynError", "ModelError", "SolverError", "Model", "System", "Matrices", "load",
            "loads", "build", "sweep", "mesh_stiffness", "ModalResult", "CampbellResult",
-           "FrfResult", "UnbalanceResult", "TransientResult", "MeshStiffnessResult",
+           "FrfResult", "UnbalanceResult", "TransientResult", "PeriodicResult", "MeshStiffnessResult",
            "version", "__version__"]
 
 

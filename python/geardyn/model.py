@@ -9,6 +9,7 @@ import numpy as np
 from . import _core
 from . import analyses as _analyses
 from . import transient as _transient
+from . import periodic as _periodic
 from ._core import ffi, lib, check, new_error, cstr, quantity, model_error
 
 __all__ = ["Model", "System", "Matrices", "load", "loads"]
@@ -72,8 +73,8 @@ class Model:
     """A validated model (C gd_model). Make one with load(), loads() or build().
 
     The model's analyses run on its system (built once, on first use): modal(),
-    campbell(), frf(), unbalance(), transient(), and matrices(). set() changes a value
-    the way `--set PATH=VALUE` does and rebuilds the model."""
+    campbell(), frf(), unbalance(), transient(), periodic() and matrices(). set() changes
+    a value the way `--set PATH=VALUE` does and rebuilds the model."""
 
     def __init__(self, handle, source):
         self._handle = handle  # ffi.gc'd gd_model *
@@ -184,6 +185,9 @@ class Model:
 
     def transient(self, **kw):
         return self.system.transient(**kw)
+
+    def periodic(self, speeds, **kw):
+        return self.system.periodic(speeds, **kw)
 
 
 def _set_in_dict(spec, path, value):
@@ -312,8 +316,12 @@ class System:
     def transient(self, **kw):
         return _transient.transient(self, **kw)
 
+    def periodic(self, speeds, **kw):
+        return _periodic.periodic(self, speeds, **kw)
+
     modal.__doc__ = _analyses.modal.__doc__
     campbell.__doc__ = _analyses.campbell.__doc__
     frf.__doc__ = _analyses.frf.__doc__
     unbalance.__doc__ = _analyses.unbalance.__doc__
     transient.__doc__ = _transient.transient.__doc__
+    periodic.__doc__ = _periodic.periodic.__doc__

@@ -122,6 +122,29 @@ def _default_records(system, tm):
             for i in range(min(system.ndof, 64))]
 
 
+def _records(system, tm, records):
+    """The records of a spec list (comma-separated items allowed), or the CLI's defaults
+    (None), as [(kind, index, index2, name, unit)]."""
+    if records is None:
+        return _default_records(system, tm)
+    recs = []
+    for text in ([records] if isinstance(records, str) else records):
+        for item in text.split(","):
+            item = item.strip()
+            if not item:
+                raise model_error("record", "'%s': empty item" % text)
+            recs += _parse_record(system, tm, item)
+    return recs
+
+
+def _record_array(recs):
+    """The gd_tr_record array of _records' list."""
+    rr = ffi.new("gd_tr_record[]", max(len(recs), 1))
+    for k, (kind, i, i2, _n, _u) in enumerate(recs):
+        rr[k].kind, rr[k].index, rr[k].index2 = kind, i, i2
+    return rr
+
+
 def _times(duration, revolutions, speed, record_from, output_interval):
     """t_end, record_from, output interval as `geardyn transient` resolves them."""
     if (duration is None) == (revolutions is None):
@@ -171,16 +194,7 @@ def transient(system, duration=None, revolutions=None, speed=None, records=None,
     tmp = ffi.new("gd_transient_model **")
     check(lib.gd_transient_model_build(system._handle, tmp, err), err)
     tm = ffi.gc(tmp[0], lib.gd_transient_model_free)
-    if records is None:
-        recs = _default_records(system, tm)
-    else:
-        recs = []
-        for text in ([records] if isinstance(records, str) else records):
-            for item in text.split(","):
-                item = item.strip()
-                if not item:
-                    raise model_error("record", "'%s': empty item" % text)
-                recs += _parse_record(system, tm, item)
+    recs = _records(system, tm, records)
     trp = ffi.new("gd_transient **")
     check(lib.gd_transient_new(system._handle, ffi.addressof(tm.spec), w, trp, err), err)
     tr = ffi.gc(trp[0], lib.gd_transient_free)
@@ -189,9 +203,7 @@ def transient(system, duration=None, revolutions=None, speed=None, records=None,
     opt.t_end, opt.record_from, opt.output_interval, opt.rtol = t_end, frm, dt, float(rtol)
     opt.method = lib.GD_TR_ADAMS if method == "adams" else lib.GD_TR_BDF
     opt.init = lib.GD_TR_INIT_STATIC if start == "static" else lib.GD_TR_INIT_REST
-    rr = ffi.new("gd_tr_record[]", max(len(recs), 1))
-    for k, (kind, i, i2, _n, _u) in enumerate(recs):
-        rr[k].kind, rr[k].index, rr[k].index2 = kind, i, i2
+    rr = _record_array(recs)
     out = ffi.new("gd_transient_result **")
     check(lib.gd_transient_run(tr, opt, rr, len(recs), out, err), err)
     res = TransientResult(system, ffi.gc(out[0], lib.gd_transient_result_free),

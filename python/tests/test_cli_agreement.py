@@ -2,6 +2,7 @@
 examples: both call the same library function on the same model, so the numbers must be
 identical (compared bit for bit, see conftest.same)."""
 import math
+import os
 
 import numpy as np
 import pytest
@@ -164,6 +165,58 @@ def test_transient(geardyn, path, args, kw):
                                                              x["drive_time_s"]])
     df = r.to_pandas()
     assert df.shape == (r.nout, r.nrecords) and same(df.iloc[:, 0], r.values[0])
+
+
+MATHIEU = os.path.join(os.path.dirname(os.path.dirname(CHEN)), "tests", "plot",
+                       "mathieu_pair.yaml")
+
+
+@pytest.mark.parametrize("path,args,kw", [
+    # the Chen pair with its damper: stable throughout, two records
+    (CHEN, ["--speeds", "600:1400:5", "--harmonics", "5", "--record", "gear_a.x,mesh:mesh:force"],
+     {"speeds": "600:1400:5", "harmonics": 5, "records": "gear_a.x,mesh:mesh:force"}),
+    # a damped Mathieu pair across its tongue, both directions: unstable points and four
+    # period doublings
+    (MATHIEU, ["--speeds", "680:730:11", "--harmonics", "4", "--both-directions"],
+     {"speeds": "680:730:11", "harmonics": 4, "both_directions": True}),
+])
+def test_periodic(geardyn, path, args, kw):
+    j = run_cli("periodic", path, *args)
+    r = geardyn.load(path).periodic(**kw)
+    jp = j["points"]
+    assert r.npoints == len(jp) and r.steps == j["continuation_steps"]
+    assert same(r.speed, nums([p["speed_rad_s"] for p in jp]))
+    assert list(r.direction) == [p["direction"] for p in jp]
+    assert list(r.converged) == [int(p["converged"]) for p in jp]
+    assert list(r.stable) == [-1 if p["stable"] is None else int(p["stable"]) for p in jp]
+    assert list(r.harmonics) == [p["harmonics"] for p in jp]
+    assert list(r.iterations) == [p["iterations"] for p in jp]
+    for key, col in [("floquet_multiplier_max_abs", "mu_max"), ("residual", "residual"),
+                     ("omega_rad_s", "omega")]:
+        assert same(getattr(r, col), nums([p[key] for p in jp])), key
+    for i, p in enumerate(jp):
+        mu = r.multipliers(i)
+        assert same(mu.real, nums(p["floquet_re"])) and same(mu.imag, nums(p["floquet_im"]))
+        assert list(p["records"]) == r.names
+        for k, name in enumerate(r.names):
+            x = p["records"][name]
+            assert same([r.mean[i, k], r.rms[i, k], r.peak_to_peak[i, k]],
+                        [x["mean"], x["rms"], x["peak_to_peak"]]), name
+            assert same(r.amplitudes[i, k], nums(x["amplitudes"]))
+            assert same(r.phases_deg[i, k], nums(x["phases_deg"]))
+    jb = j["bifurcations"]
+    assert [b["type"] for b in r.bifurcations] == [b["type"] for b in jb]
+    for b, x in zip(r.bifurcations, jb):
+        assert b["direction"] == x["direction"]
+        assert same([b["speed"], b["parameter"], b["multiplier"].real, b["multiplier"].imag],
+                    nums([x["speed_rad_s"], x["parameter"], x["multiplier_re"],
+                          x["multiplier_im"]]))
+    if path == MATHIEU:  # the tongue: 4 unstable points each way, 2 period doublings each
+        assert (r.stable == 0).sum() == 8 and len(jb) == 4
+    df = r.to_pandas()
+    assert len(df) == r.npoints * len(r.names)
+    assert same(df["peak_to_peak"], r.peak_to_peak.ravel())
+    assert same(df["speed_rad_s"], np.repeat(r.speed, len(r.names)))
 
 
 @pytest.mark.parametrize("name,args,kw", [

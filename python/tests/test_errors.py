@@ -64,6 +64,13 @@ def test_bad_options(geardyn):
     assert e.value.field == "speed"
     with pytest.raises(geardyn.ModelError, match="unknown mesh quantity"):
         m.transient(duration=0.01, records="mesh:mesh:torque")
+    # periodic: a total angle has no periodic steady state; options checked as the CLI
+    with pytest.raises(geardyn.ModelError, match="no periodic steady state"):
+        m.periodic("100:200:2", records="gear.rz:angle")
+    with pytest.raises(geardyn.ModelError, match="unknown method"):
+        m.periodic("100:200:2", method="newton")
+    with pytest.raises(geardyn.ModelError, match="cannot resolve"):
+        m.periodic("100:200:2", harmonics=10, samples=8)
 
 
 def test_builder_errors(geardyn):

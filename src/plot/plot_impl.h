@@ -100,6 +100,11 @@ void pl_csv(gd_plot *p, pl_section *s, const char *fmt, ...)
 gd_status pl_done(gd_plot *p, gd_plot **out, gd_error *err);
 char *pl_strdup(gd_plot *p, const char *s);
 
+/* a record's curve name (e.g. "gear_a.x", "mesh force"), quantity and unit
+ * (record_label.c) */
+void pl_record_describe(const gd_system *sys, const gd_tr_record *rec, char *name, size_t n,
+                        const char **quantity, const char **unit);
+
 /* colours: a palette for curves, and the whirl colours */
 const char *pl_color(int i);
 const char *pl_whirl_color(gd_whirl w);

@@ -1,6 +1,6 @@
-/* The analyses a study can run, one entry each (analysis_<name>.c). Adding one, e.g.
- * the periodic steady state: write analysis_periodic.c defining
- * `const gd_study_runner gd_study_periodic` (options, outputs, run) and list it here
+/* The analyses a study can run, one entry each (analysis_<name>.c). Adding one: write
+ * analysis_<name>.c defining `const gd_study_runner gd_study_<name>` (options, outputs,
+ * run) and list it here
  * (and its extern in study_impl.h); the study file, the table, MPI and shards need no
  * other change. */
 #include <math.h>
@@ -11,8 +11,8 @@
 #include "study/study_impl.h"
 
 const gd_study_runner *const gd_study_analysis_table[] = {
-    &gd_study_modal,     &gd_study_campbell,       &gd_study_frf, &gd_study_unbalance,
-    &gd_study_transient, &gd_study_mesh_stiffness, NULL};
+    &gd_study_modal,     &gd_study_campbell,       &gd_study_frf,      &gd_study_unbalance,
+    &gd_study_transient, &gd_study_mesh_stiffness, &gd_study_periodic, NULL};
 
 const char *gd_study_analysis_name(int i)
 {

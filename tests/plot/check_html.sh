@@ -20,8 +20,10 @@ g frf examples/chen1998_gear_pair.yaml --input gear_a.xy --output gear_b.xy --fr
 g unbalance examples/chen1998_gear_pair.yaml --speeds 100:6000:30 --plot "$out/unbalance.html"
 g transient examples/ducati_timing_geartrain.yaml --revolutions 0.2 --quiet --plot "$out/transient.html"
 g mesh-stiffness examples/rig2018_pair.yaml --cycles 2 --compare-helix 10deg,20deg --plot "$out/mesh_stiffness.html"
+g periodic tests/plot/mathieu_pair.yaml --speeds 680:730:11 --harmonics 4 --both-directions \
+  --record mesh:m:force --plot "$out/periodic.html"
 g report tests/plot/study.yaml --speeds 0:6000rpm:9 --freq-points 100 --out "$out/report.html"
 # FILE:PLOTS, the plot elements each page must draw (the 3-D view counts as one)
 exec node tests/plot/check_html.mjs "$out/modal.html:7" "$out/campbell.html:2" \
   "$out/frf_directional.html:3" "$out/unbalance.html:4" "$out/transient.html:3" \
-  "$out/mesh_stiffness.html:4" "$out/report.html:25"
+  "$out/mesh_stiffness.html:4" "$out/periodic.html:3" "$out/report.html:25"

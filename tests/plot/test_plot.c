@@ -435,6 +435,94 @@ TEST(report_has_every_section)
     scratch_close(&d);
 }
 
+/* value of a JSON point's record statistic */
+static double prec(const cJSON *pt, const char *rec, const char *field)
+{
+    return jnum(cJSON_GetObjectItem(cJSON_GetObjectItem(pt, "records"), rec), field);
+}
+
+/* The damped-Mathieu pair (tests/plot/mathieu_pair.yaml, one DOF) across its primary
+ * tongue: period doubling at 698.97 and 715.17 rad/s, the four points inside unstable.
+ * Stable peak-to-peak solid, unstable dashed (with the stable neighbours that join
+ * them), both equal to the --json numbers; the bifurcation markers sit on the dashed
+ * curve (interpolated between the bracketing points); harmonic 1 and |mu| max as in
+ * --json. */
+TEST(periodic_plot_matches_json)
+{
+    scratch d;
+    REQUIRE(scratch_open(&d));
+    plot_run pr;
+    plot_start(gd_ts_, &pr, &d,
+               "periodic tests/plot/mathieu_pair.yaml --speeds 680:730:11 --harmonics 4 --record "
+               "mesh:m:force --json --plot %s");
+    svg *s = &pr.s;
+    cJSON *j = pr.json;
+    if (j && s->ctx) {
+        const cJSON *pts = cJSON_GetObjectItem(j, "points"),
+                    *bif = cJSON_GetObjectItem(j, "bifurcations");
+        REQUIRE(cJSON_GetArraySize(pts) == 11 && cJSON_GetArraySize(bif) == 2);
+        CHECK(count(s, "//s:g[@class='panel']") == 3);
+        CHECK(count(s, "//s:g[@class='table'][@data-rows='2']") == 1);
+#define P2P "peak-to-peak: m force"
+        double ys[16], yu[16], x[16], h1[16], mu[16];
+        CHECK(trace_numbers(s, TRACE(P2P, "stable"), "data-y", ys, 16) == 11);
+        CHECK(trace_numbers(s, TRACE(P2P, "unstable"), "data-y", yu, 16) == 11);
+        CHECK(trace_numbers(s, TRACE(P2P, "stable"), "data-x", x, 16) == 11);
+        CHECK(trace_numbers(s, TRACE("harmonic amplitudes", "harmonic 1"), "data-y", h1, 16) == 11);
+        CHECK(trace_numbers(s, TRACE("stability", "|mu| max"), "data-y", mu, 16) == 11);
+        int nst = 0, nun = 0, joined = 0;
+        for (int i = 0; i < 11; i++) {
+            const cJSON *pt = cJSON_GetArrayItem(pts, i);
+            int st = cJSON_IsTrue(cJSON_GetObjectItem(pt, "stable"));
+            int near =
+                !st ||
+                (i > 0 &&
+                 !cJSON_IsTrue(cJSON_GetObjectItem(cJSON_GetArrayItem(pts, i - 1), "stable"))) ||
+                (i < 10 &&
+                 !cJSON_IsTrue(cJSON_GetObjectItem(cJSON_GetArrayItem(pts, i + 1), "stable")));
+            double v = prec(pt, "mesh:m:force", "peak_to_peak");
+            nst += st;
+            nun += !st;
+            joined += near;
+            CHECK(same(ys[i], st ? v : NAN));
+            CHECK(same(yu[i], near ? v : NAN));
+            CHECK(fabs(x[i] * PI / 30 / jnum(pt, "speed_rad_s") - 1) < EXACT);
+            CHECK(same(h1[i], jat(cJSON_GetObjectItem(
+                                      cJSON_GetObjectItem(cJSON_GetObjectItem(pt, "records"),
+                                                          "mesh:m:force"),
+                                      "amplitudes"),
+                                  1)));
+            CHECK(same(mu[i], jnum(pt, "floquet_multiplier_max_abs")));
+        }
+        CHECK(nst == 7 && nun == 4 && joined == 6); /* 700..715 inside the tongue */
+        CHECK(count(s, TRACE(P2P, "stable") "/*[@class='marker']") == nst);
+        CHECK(count(s, TRACE(P2P, "unstable") "/*[@class='marker']") == joined);
+        CHECK(count(s, TRACE(P2P, "unstable") "/*[@stroke-dasharray]") >= 1);
+        CHECK(count(s, TRACE(P2P, "stable") "/*[@stroke-dasharray]") == 0);
+        /* the two period doublings, at their located speeds, on the p2p line between the
+         * bracketing points 695|700 and 715|720 rad/s */
+        double bx[4], by[4];
+        CHECK(trace_numbers(s, TRACE(P2P, "period_doubling"), "data-x", bx, 4) == 2);
+        CHECK(trace_numbers(s, TRACE(P2P, "period_doubling"), "data-y", by, 4) == 2);
+        CHECK(count(s, TRACE(P2P, "period_doubling") "/*[@class='marker']") == 2);
+        for (int b = 0; b < 2; b++) {
+            double w = jnum(cJSON_GetArrayItem(bif, b), "speed_rad_s");
+            CHECK(fabs(bx[b] * PI / 30 / w - 1) < EXACT);
+            int lo = (int)floor((w - 680) / 5); /* the bracketing points lo, lo + 1 */
+            const cJSON *a = cJSON_GetArrayItem(pts, lo), *c = cJSON_GetArrayItem(pts, lo + 1);
+            double wa = jnum(a, "speed_rad_s"), wc = jnum(c, "speed_rad_s");
+            double ya = prec(a, "mesh:m:force", "peak_to_peak"),
+                   yc = prec(c, "mesh:m:force", "peak_to_peak");
+            /* rpm vs rad/s interpolation weights agree to rounding: 1e-12 */
+            CHECK_REL(by[b], ya + (yc - ya) * (w - wa) / (wc - wa), 1e-12);
+        }
+        CHECK(count(s, TRACE("stability", "period_doubling") "/*[@class='marker']") == 2);
+#undef P2P
+    }
+    plot_end(&pr);
+    scratch_close(&d);
+}
+
 TEST(html_is_self_contained)
 {
     scratch d;
@@ -494,6 +582,16 @@ TEST(bad_plot_requests_write_nothing)
              "modal examples/kumar2011_torsional.yaml --modes 1 --plot %s/m.svg --out %s/o", d.dir,
              d.dir);
     check_refused(gd_ts_, &d, args, "nothing to plot");
+    /* periodic: the plot file is checked before the harmonic balance runs; a branch with
+     * no converged point (speed 0: the period is undefined) has nothing to plot */
+    snprintf(args, sizeof args,
+             "periodic tests/plot/mathieu_pair.yaml --speeds 700:700:1 --plot %s/p.png", d.dir);
+    check_refused(gd_ts_, &d, args, "unknown plot format '.png'");
+    snprintf(args, sizeof args,
+             "periodic examples/chen1998_gear_pair.yaml --speeds 0:0:1 --harmonics 2 --plot "
+             "%s/p.svg --out %s/o",
+             d.dir, d.dir);
+    check_refused(gd_ts_, &d, args, "nothing to plot: no point converged");
     /* HTML without plotly.js */
     setenv("GEARDYN_PLOTLY_JS", "/nonexistent/plotly.min.js", 1);
     snprintf(args, sizeof args, "report tests/plot/study.yaml --out %s/r.html", d.dir);
@@ -505,5 +603,5 @@ TEST(bad_plot_requests_write_nothing)
 
 RUN_TESTS(T(campbell_plot_matches_json), T(frf_plot_matches_json), T(unbalance_plot_matches_json),
           T(mesh_stiffness_plot_matches_json), T(modal_and_transient_plots),
-          T(report_has_every_section), T(html_is_self_contained),
+          T(periodic_plot_matches_json), T(report_has_every_section), T(html_is_self_contained),
           T(bad_plot_requests_write_nothing))

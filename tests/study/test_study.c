@@ -321,6 +321,43 @@ TEST(every_analysis_gives_the_papers_numbers)
     }
 }
 
+/* Periodic steady state of the damped-Mathieu pair (tests/plot/mathieu_pair.yaml) across
+ * its primary tongue, 680..730 rad/s: period doubling at both boundaries, 698.97 and
+ * 715.17 rad/s (first-order transition curves, Nayfeh & Mook 1979 Sec. 5.4, as
+ * test_periodic: within 0.05 rad/s), the four points inside unstable, and the numbers
+ * `geardyn periodic ... --speeds 680:730:11 --harmonics 4 --record mesh:m:force` prints
+ * (its 6 digits: p2p 54.7927 N at 680 rad/s, |mu| max 1.022790 at 705 rad/s). */
+TEST(periodic_summarises_the_branch)
+{
+    double v[12];
+    if (run_one(gd_ts_,
+                "model: ../../tests/plot/mathieu_pair.yaml\nanalysis: {type: periodic, speeds: "
+                "{from: 680, to: 730, count: 11}, harmonics: 4, output: \"mesh:m\"}\n"
+                "parameters:\n  - {path: meshes.m.damping, values: [141.42135623730951]}\n"
+                "outputs: [p2p_max, p2p_max_speed_rpm, floquet_max, unstable_points, "
+                "converged_points, nbifurcations, nperiod_doublings, nfolds, nneimark_sacker, "
+                "first_bifurcation_rpm, \"harmonic_amplitude_max[1:2]\"]\n",
+                0, v, 12))
+        return;
+    CHECK_REL(v[0], 54.7927, 1e-5);
+    CHECK_REL(v[1] * M_PI / 30, 680, 1e-12);
+    CHECK_REL(v[2], 1.022790, 1e-6);
+    CHECK(v[3] == 4 && v[4] == 11 && v[5] == 2 && v[6] == 2 && v[7] == 0 && v[8] == 0);
+    CHECK_ABS(v[9] * M_PI / 30, 698.97, 0.05);
+    /* harmonic 1 carries most of the fluctuation: 2 A_1 close to the peak-to-peak */
+    CHECK(v[10] > 0.4 * v[0] && v[10] < 0.5 * v[0] * 1.01 && v[11] < 0.1 * v[10]);
+    /* an output this analysis does not have is refused before any case runs */
+    gd_study *s = NULL;
+    gd_error err;
+    CHECK(load_text("model: ../../tests/plot/mathieu_pair.yaml\nanalysis: {type: periodic, "
+                    "speeds: {from: 680, to: 730, count: 3}, output: \"mesh:nope\"}\n"
+                    "parameters:\n  - {path: meshes.m.damping, values: [100]}\n"
+                    "outputs: [p2p_max]\n",
+                    &s, &err) == GD_EINPUT);
+    CHECK(s == NULL && strstr(err.message, "no mesh named 'nope'"));
+    gd_study_free(s);
+}
+
 /* Each bad study: GD_EINPUT at the line and field given, with the words expected. */
 static void bad(gd_test_state *gd_ts_, const char *text, int line, const char *field,
                 const char *words)
@@ -409,6 +446,6 @@ TEST(errors_are_located_in_the_study_file)
     bad(gd_ts_, t, 1, "model", "cannot read model");
 }
 
-RUN_TESTS(T(chen_fig4_cases_and_one_case_equal_a_direct_load),
+RUN_TESTS(T(chen_fig4_cases_and_one_case_equal_a_direct_load), T(periodic_summarises_the_branch),
           T(every_analysis_gives_the_papers_numbers), T(factorial_zip_random_and_latin_hypercube),
           T(failed_case_is_a_row_and_rows_round_trip), T(errors_are_located_in_the_study_file))

@@ -1,0 +1,166 @@
+"""Periodic steady state by harmonic balance (docs/periodic.md): gd_periodic_run over a
+speed range with pseudo-arclength continuation, Floquet stability and bifurcations, with
+the record specs and the defaults of `geardyn periodic`."""
+import numpy as np
+
+from . import _core
+from ._core import ffi, lib, check, new_error, cstr, model_error
+from .analyses import _Result, _pandas, sweep
+from .transient import _records, _record_array
+
+__all__ = ["periodic", "PeriodicResult"]
+
+_METHODS = {"arclength": lib.GD_PER_ARCLENGTH, "sequential": lib.GD_PER_SEQUENTIAL}
+
+
+def periodic(system, speeds, harmonics=10, subharmonic=1, records=None,
+             method="arclength", both_directions=False, stability=True, tol=1e-10,
+             samples=0):
+    """Periodic steady state over the reference speeds `speeds` (rad/s array or
+    "FROM:TO:COUNT" with units), as `geardyn periodic`: harmonics H (or "auto": raised
+    from 10 until the top quarter carries < 1e-6 of the response), subharmonic N,
+    records as for transient() (NODE.DOF[:disp|vel|speed], ratio:A/B, mesh:NAME[:what],
+    sfd:BEARING[:what]; None: the CLI's defaults; a total angle has no periodic steady
+    state), method "arclength" (through folds: several points per speed on a hysteresis
+    loop) or "sequential" (a run-up), both_directions (also the run back), stability
+    (Floquet multipliers and bifurcations), tol (Newton's relative residual), samples
+    (AFT samples per period; 0: automatic)."""
+    w = sweep(speeds, "speed", "speeds")
+    if method not in _METHODS:
+        raise model_error("method", "unknown method '%s'" % method, "use arclength or sequential")
+    opt = ffi.new("gd_periodic_options *")
+    lib.gd_periodic_options_init(opt)
+    if harmonics == "auto":
+        opt.adaptive = 1
+    else:
+        h = int(harmonics)
+        if not 1 <= h <= 1000:
+            raise model_error("harmonics", "expected 1..1000 or 'auto', got %r" % harmonics)
+        opt.harmonics = h
+    if not 1 <= int(subharmonic) <= 1000:
+        raise model_error("subharmonic", "expected a whole number 1..1000, got %r" % subharmonic)
+    if not 1e-15 <= float(tol) < 1:
+        raise model_error("tol", "expected a number in [1e-15, 1), got %r" % tol)
+    if samples and int(samples) < 2 * opt.harmonics + 2:
+        raise model_error("samples", "%d samples cannot resolve %d harmonics (give >= %d)"
+                          % (int(samples), opt.harmonics, 2 * opt.harmonics + 2))
+    opt.subharmonic, opt.tol, opt.samples = int(subharmonic), float(tol), int(samples)
+    opt.method, opt.both_directions = _METHODS[method], int(bool(both_directions))
+    opt.stability = int(bool(stability))
+    err = new_error()
+    tmp = ffi.new("gd_transient_model **")
+    check(lib.gd_transient_model_build(system._handle, tmp, err), err)
+    tm = ffi.gc(tmp[0], lib.gd_transient_model_free)
+    recs = _records(system, tm, records)
+    for kind, _i, _j, name, _u in recs:
+        if kind == lib.GD_REC_ANGLE:
+            raise model_error("record", "'%s': a total angle grows with time and has no "
+                              "periodic steady state" % name,
+                              "record the DOF's displacement (its perturbation) or its speed")
+    rr = _record_array(recs)
+    values = ffi.new("double[]", [float(x) for x in w])
+    out = ffi.new("gd_periodic_result **")
+    check(lib.gd_periodic_run(system._handle, ffi.addressof(tm.spec), ffi.NULL, values, len(w),
+                              opt, rr, len(recs), out, err), err)
+    del tm  # the result owns copies of everything it reports
+    return PeriodicResult(system, ffi.gc(out[0], lib.gd_periodic_result_free),
+                          [r[3] for r in recs], [r[4] for r in recs])
+
+
+POINT_DTYPE = _core.struct_dtype("gd_periodic_point", {
+    "speed": "f8", "parameter": "f8", "direction": "i4", "converged": "i4", "harmonics": "i4",
+    "omega": "f8", "residual": "f8", "iterations": "i4", "stable": "i4", "mu_max": "f8",
+    "nmult": "i4"})
+
+
+class PeriodicResult(_Result):
+    """Periodic steady state (C gd_periodic_result), one point per crossing of a
+    requested speed in branch order. points (structured view of the C points: speed,
+    parameter, direction, converged, harmonics, omega, residual, iterations, stable (1, 0,
+    -1 not computed), mu_max, nmult) and its columns as arrays (speed, direction, stable,
+    converged, mu_max, ...); per record (npoints x nrecords, NaN where a point did not
+    converge): mean, rms, peak_to_peak; amplitudes and phases_deg (npoints x nrecords x
+    H + 1, NaN-padded); multipliers(i) (complex Floquet multipliers of point i);
+    bifurcations (list of dicts: type, speed, parameter, direction, multiplier); reasons
+    (why a point did not converge); names and units of the records; steps, cpu_seconds."""
+
+    def __init__(self, system, owner, names, units):
+        super().__init__(system, owner)
+        r = owner
+        self.names, self.units = names, units
+        self.npoints, self.nrecords = int(r.npoints), int(r.nrecords)
+        self.steps, self.cpu_seconds = int(r.steps), float(r.cpu_seconds)
+        self.bifurcations = []
+        for i in range(int(r.nbifurcations)):
+            b = r.bifurcations[i]
+            self.bifurcations.append({
+                "type": cstr(lib.gd_bifurcation_name(b.type)), "speed": float(b.speed),
+                "parameter": float(b.parameter), "direction": int(b.direction),
+                "multiplier": complex(b.mu_re, b.mu_im)})
+        self.reasons = [cstr(r.points[i].reason) if not r.points[i].converged else ""
+                        for i in range(self.npoints)]
+        # per record statistics, copied out of the per-point arrays of the C result
+        shape = (self.npoints, self.nrecords)
+        self.mean, self.rms, self.peak_to_peak = (np.full(shape, np.nan) for _ in range(3))
+        hmax = max([int(r.points[i].harmonics) for i in range(self.npoints)] + [0])
+        self.amplitudes = np.full(shape + (hmax + 1,), np.nan)
+        self.phases_deg = np.full(shape + (hmax + 1,), np.nan)
+        for i in range(self.npoints):
+            p = r.points[i]
+            if not p.converged:
+                continue
+            h = int(p.harmonics) + 1
+            for k in range(self.nrecords):
+                s = p.records[k]
+                self.mean[i, k], self.rms[i, k], self.peak_to_peak[i, k] = \
+                    s.mean, s.rms, s.peak_to_peak
+                self.amplitudes[i, k, :h] = ffi.unpack(s.amplitude, h)
+                self.phases_deg[i, k, :h] = ffi.unpack(s.phase_deg, h)
+
+    @property
+    def points(self):
+        return _core.struct_view(self._owner, self._owner.points, self.npoints, POINT_DTYPE)
+
+    def __getattr__(self, name):
+        # the point columns: speed, parameter, direction, converged, stable, mu_max, ...
+        if name in POINT_DTYPE.names:
+            return self.points[name]
+        raise AttributeError(name)
+
+    @property
+    def speed_rpm(self):
+        return self.points["speed"] * 30 / np.pi
+
+    def multipliers(self, i):
+        """The Floquet multipliers of point i (complex; empty when not computed)."""
+        p = self._owner.points[i]
+        n = int(p.nmult)
+        if n == 0:
+            return np.zeros(0, complex)
+        return (np.array(ffi.unpack(p.mu_re, n)) + 1j * np.array(ffi.unpack(p.mu_im, n)))
+
+    def __getitem__(self, name):
+        """Peak-to-peak of the record called name over the points."""
+        return self.peak_to_peak[:, self.names.index(name)]
+
+    def to_pandas(self):
+        """The rows of periodic.csv (`geardyn periodic --out`): one per point and record
+        (one per point that did not converge)."""
+        pd = _pandas()
+        pts = self.points
+        rows = []
+        for i in range(self.npoints):
+            p = pts[i]
+            base = [i, int(p["direction"]), float(p["speed"]), float(p["parameter"]),
+                    int(p["converged"]), int(p["harmonics"]), float(p["residual"]),
+                    int(p["stable"]), float(p["mu_max"])]
+            if not p["converged"]:
+                rows.append(base + ["", np.nan, np.nan, np.nan])
+                continue
+            for k, name in enumerate(self.names):
+                rows.append(base + [name, self.mean[i, k], self.rms[i, k],
+                                    self.peak_to_peak[i, k]])
+        return pd.DataFrame(rows, columns=[
+            "point", "direction", "speed_rad_s", "parameter", "converged", "harmonics",
+            "residual", "stable", "floquet_multiplier_max_abs", "record", "mean", "rms",
+            "peak_to_peak"])
