@@ -13,6 +13,10 @@
 # super-harmonics of mesh 1 (and k <= 9 of mesh 2, harmonic 11 k). With H = 36 the
 # TVMS acts only through its fundamental and the dynamic mesh force is ~2.6x too large
 # at 350 rpm (measured, docs/periodic.md).
+# Why 100-8000 rpm: the OCR text of the paper has lost the figures' speed axes; this
+# range holds mesh-1 k = 1 of every mode of this model up to 6.9 kHz, among them the
+# modes with 10-37 % of their strain energy in the meshes (4.7-7.2 kHz, 5400-8000 rpm),
+# and their k = 2, 3 super-harmonics (1800-4100 rpm), with a 26.4 rpm grid.
 # Why --sequential: TVMS is the only law here (teeth never separate at 50 N m), the
 # response has no folds, and the arclength winds through the narrow super-harmonic
 # peaks at many steps per requested speed (docs/periodic.md).
