@@ -12,7 +12,9 @@
  * well-separated problem stops without any restart. Before a restart the Rayleigh
  * quotient is still Hessenberg, and a check needs only its eigenvalues (Hessenberg QR)
  * and the wanted eigenvectors (inverse iteration, dhsein); the full Schur form is
- * computed only to restart. */
+ * computed only to restart. A deflated check after convergence finds the further
+ * copies of repeated eigenvalues, which one start vector cannot see (see "Repeated
+ * eigenvalues" below). */
 #include <lapacke.h>
 #include <math.h>
 #include <stdlib.h>
@@ -403,30 +405,22 @@ static gd_status ritz_output(gd_ks_work *ws, int n, int nout, int m, int ngrp, i
     return GD_OK;
 }
 
-gd_status gd_krylov_schur(gd_op_fn op, void *ctx, int n, int nout, int nev, int ncv, double tol,
-                          int maxit, gd_ks_work *ws, gd_ks_result *out)
+/* The Krylov-Schur iteration proper, from the start vector of the given seed. On
+ * GD_OK the nev largest Ritz values (*nsel_out with conjugates) of the *m-vector
+ * decomposition in ws have converged, their vectors in ws->S; GD_ENUMERIC: not within maxit
+ * restarts. */
+static gd_status ks_iterate(gd_op_fn op, void *ctx, int n, int nev, int ncv, double tol, int maxit,
+                            unsigned seed, gd_ks_work *ws, int *m_out, int *nsel_out,
+                            int *schur_valid, int *iterations)
 {
-    memset(out, 0, sizeof *out);
-    if (ncv > n) ncv = n;
-    if (nev > ncv - 2) nev = ncv - 2;
-    if (nout > n) nout = n;
-    gd_status st = GD_OK;
-    gd_ks_work local = {0};
-    if (!ws) {
-        if (gd_ks_work_init(&local, n, ncv)) return GD_ENOMEM;
-        ws = &local;
-    }
-    if (ws->n != n || ws->ncv < ncv) {
-        gd_ks_work_free(&local);
-        return GD_ENOMEM;
-    }
     int ldh = ws->ncv + 1;
     double *V = ws->V, *H = ws->H, *T = ws->T, *Q = ws->Q, *wr = ws->wr, *wi = ws->wi;
     double *h = ws->h, *h2 = ws->h2, *b = ws->b, *res = ws->res, *Z = ws->Z;
     lapack_logical *sel = ws->sel;
     mag_index *order = ws->order;
+    gd_status st;
     memset(H, 0, (size_t)ldh * ncv * sizeof *H);
-    start_vector(V, n, 1u);
+    start_vector(V, n, seed);
     double nv = nrm2(V, n);
     for (int i = 0; i < n; i++)
         V[i] /= nv;
@@ -458,18 +452,19 @@ gd_status gd_krylov_schur(gd_op_fn op, void *ctx, int n, int nout, int nev, int 
         k = m;
         double beta = H[m + (size_t)(m - 1) * ldh];
         int ngrp = 0, nsel = 0;
-        if ((st = ritz_pairs(ws, m, nev, !restarted, beta, &ngrp, &nsel))) goto done;
+        if ((st = ritz_pairs(ws, m, nev, !restarted, beta, &ngrp, &nsel))) return st;
         /* the nev largest must have converged */
         double worst = 0;
         for (int g = 0; g < ngrp; g++)
             worst = res[g] > worst || isnan(res[g]) ? res[g] : worst;
-        int converged = worst <= tol;
-        out->iterations = it;
-        if (converged || (it == maxit && m == ncv)) {
-            if ((st = ritz_output(ws, n, nout, m, ngrp, nsel, out))) goto done;
-            if (!converged) st = GD_ENUMERIC;
-            goto done;
+        *iterations = it;
+        if (worst <= tol) {
+            *m_out = m;
+            *nsel_out = nsel;
+            *schur_valid = restarted; /* ritz_pairs left T, Q = the Schur form of H */
+            return GD_OK;
         }
+        if (it == maxit && m == ncv) return GD_ENUMERIC;
         if (m < ncv) { /* grow the same Arnoldi decomposition */
             int next = next_check(m, worst, prev_m, prev_worst, nev, tol);
             prev_m = m;
@@ -482,7 +477,7 @@ gd_status gd_krylov_schur(gd_op_fn op, void *ctx, int n, int nout, int nev, int 
          * H = [T_pp; b^T] */
         int keep = nev + (m - nev) / 2;
         if (keep > m - 2) keep = m - 2;
-        if (!restarted && (st = schur_form(ws, m))) goto done;
+        if (!restarted && (st = schur_form(ws, m))) return st;
         select_largest(wr, wi, m, keep, sel, order);
         lapack_int msel = 0;
         double sep, s;
@@ -490,10 +485,8 @@ gd_status gd_krylov_schur(gd_op_fn op, void *ctx, int n, int nout, int nev, int 
          * which LAPACKE_dtrsen passes as NULL */
         lapack_int iwork[1];
         if (LAPACKE_dtrsen_work(LAPACK_COL_MAJOR, 'N', 'V', sel, m, T, m, Q, m, wr, wi, &msel, &s,
-                                &sep, h2, m, iwork, 1)) {
-            st = GD_ENUMERIC;
-            goto done;
-        }
+                                &sep, h2, m, iwork, 1))
+            return GD_ENUMERIC;
         int p = (int)msel;
         for (int i = 0; i < p; i++)
             b[i] = beta * Q[(m - 1) + (size_t)i * m];
@@ -511,7 +504,321 @@ gd_status gd_krylov_schur(gd_op_fn op, void *ctx, int n, int nout, int nev, int 
         restarted = 1;
         it++;
     }
+    return GD_ENUMERIC;
+}
+
+/* ritz_output for the converged state ks_iterate leaves (ritz_pairs' selection; dhsein
+ * and dtrevc have cleared the second member of each selected pair). */
+static gd_status ritz_output_converged(gd_ks_work *ws, int n, int nout, int m, gd_ks_result *out)
+{
+    int ngrp = 0, nsel = 0;
+    for (int j = 0; j < m; j++)
+        if (ws->sel[j] && ws->wi[j] >= 0) {
+            ngrp++;
+            nsel += ws->wi[j] > 0 ? 2 : 1;
+        }
+    return ritz_output(ws, n, nout, m, ngrp, nsel, out);
+}
+
+/* Repeated eigenvalues. A single start vector v0 meets an eigenspace of dimension > 1
+ * only in the direction of v0's own component, so its Krylov space holds one copy of a
+ * multiple eigenvalue (exactly so for the double lateral pairs of an isotropic rotor
+ * at rest) and the iteration converges with the next distinct value in the other
+ * copy's place. Remedy, a deflated restart: lock the converged Schur vectors L
+ * (Op L = L T_L), then run a check on the deflated operator (I - L L^T) Op (whose
+ * spectrum is that of Op without T_L's eigenvalues, L being its null space) from a new
+ * start vector; if its largest eigenvalue is larger than the smallest accepted one, it
+ * is a value the first pass missed: lock it too (T_L grows by [G; T_new], G = L^T Op Y)
+ * and check again, so a triple value takes two checks. Preferred to a block start of
+ * fixed width because it finds any multiplicity and costs one small check (about
+ * first_check(1) operator steps) when there is none.
+ *
+ * The eigenvectors come from the locked Schur form (dtrevc on T_L). A copy's Schur
+ * vector y is orthogonal to L and, the eigenvalue being repeated, already an
+ * eigenvector of Op (the eigenspace meets L's complement); its coupling G is then
+ * rounding noise at the tolerance level, and dividing that by the ~0 gap between the
+ * copies would turn y into a duplicate of the locked copy. So a coupling below the
+ * convergence tolerance is set to zero: y keeps a residual within the tolerance. */
+/* The check: a basis of at most GD_KS_CHECK_NCV vectors (measured on rig366, 6 to 24
+ * modes: 20 settles in one pass or one restart, 30 costs the same), converged to
+ * GD_KS_CHECK_TOL first; a largest value below the accepted ones by more than
+ * GD_KS_CHECK_MARGIN (10 times that residual) is decided there, anything closer is
+ * converged to the full tolerance before it is compared. */
+#define GD_KS_CHECK_NCV 20
+#define GD_KS_CHECK_TOL 1e-4
+#define GD_KS_CHECK_MARGIN 1e-3
+
+typedef struct locked {
+    int n, cap, nl;  /* basis rows, capacity, locked count */
+    double *L, *TL;  /* n x cap basis; cap x cap quasi-triangular T_L */
+    double *lr, *li; /* eigenvalues of T_L */
+    double *y;       /* n scratch */
+} locked;
+
+typedef struct deflated {
+    gd_op_fn op;
+    void *ctx;
+    locked *lk;
+    double *h, *h2;
+} deflated;
+
+/* y = (I - L L^T) Op x */
+static void deflated_apply(void *c, const double *x, double *y)
+{
+    deflated *d = c;
+    d->op(d->ctx, x, y);
+    orthogonalise(d->lk->L, d->lk->n, d->lk->nl, y, d->h, d->h2);
+}
+
+/* Schur vectors of the p converged Ritz values of the m-vector decomposition in ws,
+ * from their coefficient vectors S (ritz_pairs): S = Qs R (QR), B = Qs^T H Qs = W T W^T
+ * (real Schur form), so V Qs W spans the same invariant subspace with Rayleigh quotient
+ * T. A p x p Schur form instead of the m x m one (dhseqr dominated the cost of a
+ * lock: measured 15 % of the whole solve for 12 modes of rig366). Writes Qs W into X
+ * (m x p), T into T (p x p) and the eigenvalues into wr, wi. Returns 1 when the vectors
+ * are nearly dependent (a defective cluster such as the rigid-body zero), for the full
+ * Schur route instead (T and Q untouched), -1 on failure. */
+static int small_schur(gd_ks_work *ws, int m, int p)
+{
+    int ldh = ws->ncv + 1;
+    double *A = ws->X, *HQ = ws->Z, *tau = ws->b;
+    lapack_int lw = (lapack_int)((m + 3) * m);
+    for (int c = 0; c < p; c++) { /* unit columns: R's diagonal measures the angles */
+        double *a = A + (size_t)c * m, nr = nrm2(ws->S + (size_t)c * m, m);
+        if (!(nr > 0)) return 1;
+        for (int i = 0; i < m; i++)
+            a[i] = ws->S[i + (size_t)c * m] / nr;
+    }
+    if (LAPACKE_dgeqrf_work(LAPACK_COL_MAJOR, m, p, A, m, tau, ws->work, lw)) return 1;
+    /* the difference of two vectors at an angle a is accurate to ~eps / a^2: a
+     * defective value (the rigid-body zero), whose Ritz vectors meet at ~sqrt(tol),
+     * takes the full route */
+    for (int c = 0; c < p; c++)
+        if (!(fabs(A[c + (size_t)c * m]) > 1e-3)) return 1;
+    if (LAPACKE_dorgqr_work(LAPACK_COL_MAJOR, m, p, p, A, m, tau, ws->work, lw)) return 1;
+    for (int c = 0; c < p; c++) /* HQ = H Qs (not Hessenberg after a restart) */
+        for (int i = 0; i < m; i++) {
+            double sum = 0;
+            for (int q = 0; q < m; q++)
+                sum += ws->H[i + (size_t)q * ldh] * A[q + (size_t)c * m];
+            HQ[i + (size_t)c * m] = sum;
+        }
+    for (int c = 0; c < p; c++)
+        for (int i = 0; i < p; i++)
+            ws->T[i + (size_t)c * p] = dot(A + (size_t)i * m, HQ + (size_t)c * m, m);
+    lapack_int sdim = 0;
+    memset(ws->Q, 0, (size_t)p * p * sizeof *ws->Q);
+    if (LAPACKE_dgees(LAPACK_COL_MAJOR, 'V', 'N', NULL, p, ws->T, p, &sdim, ws->wr, ws->wi, ws->Q,
+                      p))
+        return -1;
+    for (int c = 0; c < p; c++) /* HQ = Qs W */
+        for (int i = 0; i < m; i++)
+            HQ[i + (size_t)c * m] = dot_strided(A + i, m, ws->Q + (size_t)c * p, p);
+    memcpy(A, HQ, (size_t)m * p * sizeof *A);
+    return 0;
+}
+
+/* Locks the Schur vectors of the nsel converged Ritz values (the nev largest) of the
+ * m-vector decomposition in ws; returns the count locked, < 0 on failure. */
+static int lock_converged(gd_op_fn op, void *ctx, gd_ks_work *ws, int m, int nev, int nsel,
+                          int schur_valid, double tol, locked *lk)
+{
+    int n = lk->n, cap = lk->cap, nl = lk->nl, p = nsel, ldt = nsel;
+    const double *X = ws->X;
+    int rc = small_schur(ws, m, nsel);
+    if (rc < 0) return -1;
+    if (rc > 0) { /* the full Schur form, wanted values to the front */
+        if (!schur_valid && schur_form(ws, m)) return -1;
+        select_largest(ws->wr, ws->wi, m, nev, ws->sel, ws->order);
+        lapack_int msel = 0, iwork[1];
+        double sep, s;
+        if (LAPACKE_dtrsen_work(LAPACK_COL_MAJOR, 'N', 'V', ws->sel, m, ws->T, m, ws->Q, m, ws->wr,
+                                ws->wi, &msel, &s, &sep, ws->h2, m, iwork, 1))
+            return -1;
+        p = (int)msel;
+        ldt = m;
+        X = ws->Q;
+    }
+    const double *T = ws->T;
+    if (nl + p > cap) return 0;
+    double *Y = lk->L + (size_t)nl * n;
+    basis_times(ws->V, n, n, m, X, p, Y);
+    double tn = 0, gn = 0;
+    for (int j = 0; j < p; j++) {
+        for (int i = 0; i < p; i++) {
+            double t = T[i + (size_t)j * ldt];
+            lk->TL[nl + i + (size_t)(nl + j) * cap] = t;
+            tn += t * t;
+        }
+        /* G = L^T Op y: the coupling to the earlier locked vectors */
+        double *g = lk->TL + (size_t)(nl + j) * cap;
+        if (nl > 0) {
+            op(ctx, Y + (size_t)j * n, lk->y);
+            dots(lk->L, n, nl, lk->y, g);
+            gn += dot(g, g, nl);
+        }
+        lk->lr[nl + j] = ws->wr[j];
+        lk->li[nl + j] = ws->wi[j];
+    }
+    if (gn <= tol * tol * tn) /* noise (see above) */
+        for (int j = 0; j < p; j++)
+            memset(lk->TL + (size_t)(nl + j) * cap, 0, (size_t)nl * sizeof *lk->TL);
+    lk->nl = nl + p;
+    return p;
+}
+
+/* Appends the values nl0..nl-1 locked by a check and their eigenvectors (first nout
+ * rows, unit norm as in ritz_output) to out: x = the vectors of T_L for them (dtrevc;
+ * zero on the earlier locked vectors when the coupling was noise), L x. */
+static gd_status append_locked(gd_ks_work *ws, const locked *lk, int nl0, int nout,
+                               gd_ks_result *out)
+{
+    int n = lk->n, nl = lk->nl, q = nl - nl0, nc = out->nconv;
+    for (int j = 0; j < nl; j++) {
+        memcpy(ws->T + (size_t)j * nl, lk->TL + (size_t)j * lk->cap, (size_t)nl * sizeof *ws->T);
+        ws->sel[j] = j >= nl0;
+    }
+    lapack_int used = 0;
+    memset(ws->X, 0, (size_t)nl * q * sizeof *ws->X);
+    if (LAPACKE_dtrevc_work(LAPACK_COL_MAJOR, 'R', 'S', ws->sel, nl, ws->T, nl, NULL, 1, ws->X, nl,
+                            q, &used, ws->work))
+        return GD_ENUMERIC;
+    basis_times(lk->L, n, nout, nl, ws->X, q, ws->Z);
+    double *a = realloc(out->mu_re, (size_t)(nc + q) * sizeof *a);
+    if (a) out->mu_re = a;
+    double *b = realloc(out->mu_im, (size_t)(nc + q) * sizeof *b);
+    if (b) out->mu_im = b;
+    double *c = realloc(out->vec_re, (size_t)nout * (nc + q) * sizeof *c);
+    if (c) out->vec_re = c;
+    double *d = realloc(out->vec_im, (size_t)nout * (nc + q) * sizeof *d);
+    if (d) out->vec_im = d;
+    if (!a || !b || !c || !d) return GD_ENOMEM;
+    for (int k = 0; k < q;) {
+        int pair = lk->li[nl0 + k] != 0;
+        const double *yr = ws->Z + (size_t)k * nout, *yi = pair ? yr + nout : NULL;
+        double ny = sqrt(dot(yr, yr, nout) + (pair ? dot(yi, yi, nout) : 0));
+        double inv = ny > 0 ? 1.0 / ny : 1.0;
+        for (int member = 0; member < (pair ? 2 : 1); member++, k++, nc++) {
+            double sg = member ? -1.0 : 1.0;
+            double *vr = out->vec_re + (size_t)nc * nout, *vi = out->vec_im + (size_t)nc * nout;
+            for (int i = 0; i < nout; i++) {
+                vr[i] = yr[i] * inv;
+                vi[i] = pair ? sg * inv * yi[i] : 0;
+            }
+            out->mu_re[nc] = lk->lr[nl0 + k - member];
+            out->mu_im[nc] = sg * fabs(lk->li[nl0 + k - member]);
+        }
+    }
+    out->nconv = nc;
+    return GD_OK;
+}
+
+/* Keeps the nev largest values of out (conjugate pairs together), in their order. */
+static void keep_largest(gd_ks_work *ws, int nout, int nev, gd_ks_result *out)
+{
+    select_largest(out->mu_re, out->mu_im, out->nconv, nev, ws->sel, ws->order);
+    int c = 0;
+    for (int j = 0; j < out->nconv; j++) {
+        if (!ws->sel[j]) continue;
+        out->mu_re[c] = out->mu_re[j];
+        out->mu_im[c] = out->mu_im[j];
+        memmove(out->vec_re + (size_t)c * nout, out->vec_re + (size_t)j * nout,
+                (size_t)nout * sizeof *out->vec_re);
+        memmove(out->vec_im + (size_t)c * nout, out->vec_im + (size_t)j * nout,
+                (size_t)nout * sizeof *out->vec_im);
+        c++;
+    }
+    out->nconv = c;
+}
+
+/* Magnitude of the smallest of the nev largest locked values. */
+static double nev_th_magnitude(const locked *lk, int nev, gd_ks_work *ws)
+{
+    select_largest(lk->lr, lk->li, lk->nl, nev, ws->sel, ws->order);
+    double mn = INFINITY;
+    for (int j = 0; j < lk->nl; j++)
+        if (ws->sel[j] && hypot(lk->lr[j], lk->li[j]) < mn) mn = hypot(lk->lr[j], lk->li[j]);
+    return mn;
+}
+
+gd_status gd_krylov_schur(gd_op_fn op, void *ctx, int n, int nout, int nev, int ncv, double tol,
+                          int maxit, gd_ks_work *ws, gd_ks_result *out)
+{
+    memset(out, 0, sizeof *out);
+    if (ncv > n) ncv = n;
+    if (nev > ncv - 2) nev = ncv - 2;
+    if (nout > n) nout = n;
+    gd_status st = GD_OK;
+    gd_ks_work local = {0};
+    locked lk = {0};
+    if (!ws) {
+        if (gd_ks_work_init(&local, n, ncv)) return GD_ENOMEM;
+        ws = &local;
+    }
+    if (ws->n != n || ws->ncv < ncv) {
+        gd_ks_work_free(&local);
+        return GD_ENOMEM;
+    }
+    int m = 0, its = 0, nsel = 0, valid = 0, added = 0;
+    if ((st = ks_iterate(op, ctx, n, nev, ncv, tol, maxit, 1u, ws, &m, &nsel, &valid, &its)))
+        goto done;
+    /* the first run's Ritz pairs as they are (dhsein or dtrevc on the full Rayleigh
+     * quotient separate the vectors of a cluster better than the locked form) */
+    if ((st = ritz_output_converged(ws, n, nout, m, out))) goto done;
+    out->iterations = its;
+    /* the deflated checks (see above) */
+    lk.n = n;
+    lk.cap = ncv;
+    lk.L = malloc((size_t)n * ncv * sizeof *lk.L);
+    lk.TL = calloc((size_t)ncv * ncv, sizeof *lk.TL);
+    lk.lr = malloc((size_t)ncv * sizeof *lk.lr);
+    lk.li = malloc((size_t)ncv * sizeof *lk.li);
+    lk.y = malloc((size_t)n * sizeof *lk.y);
+    double *hh = malloc((size_t)2 * (ncv + 1) * sizeof *hh);
+    if (!lk.L || !lk.TL || !lk.lr || !lk.li || !lk.y || !hh) {
+        free(hh);
+        st = GD_ENOMEM;
+        goto done;
+    }
+    if (lock_converged(op, ctx, ws, m, nev, nsel, valid, tol, &lk) <= 0) {
+        free(hh);
+        st = GD_ENUMERIC;
+        goto done;
+    }
+    deflated dop = {op, ctx, &lk, hh, hh + ncv + 1};
+    for (unsigned round = 0;; round++) {
+        /* a check basis of 9 (first_check(1)) to GD_KS_CHECK_NCV vectors in the
+         * complement of L; none when the first basis spanned the whole space */
+        int nc = n - lk.nl - 1 < GD_KS_CHECK_NCV ? n - lk.nl - 1 : GD_KS_CHECK_NCV, mc = 0;
+        if (m >= n || nc < 3 || lk.nl + 2 > lk.cap) break;
+        double thr = nev_th_magnitude(&lk, nev, ws), top = 0;
+        /* first to a loose tolerance, which decides when the largest value is clearly
+         * below the accepted ones; to tol when it is not */
+        for (double ctol = tol > GD_KS_CHECK_TOL ? tol : GD_KS_CHECK_TOL;; ctol = tol) {
+            if (ks_iterate(deflated_apply, &dop, n, 1, nc, ctol, maxit, 2u + round, ws, &mc, &nsel,
+                           &valid, &its)) {
+                top = 0; /* the check did not settle: keep what converged */
+                break;
+            }
+            top = 0;
+            for (int j = 0; j < mc; j++)
+                top = hypot(ws->wr[j], ws->wi[j]) > top ? hypot(ws->wr[j], ws->wi[j]) : top;
+            if (ctol == tol || top < thr * (1 - GD_KS_CHECK_MARGIN)) break;
+        }
+        if (!(top > thr)) break;
+        int nl0 = lk.nl;
+        if (lock_converged(op, ctx, ws, mc, 1, nsel, valid, tol, &lk) <= 0) break;
+        if ((st = append_locked(ws, &lk, nl0, nout, out))) break;
+        added = 1;
+    }
+    free(hh);
+    if (!st && added) keep_largest(ws, nout, nev, out);
 done:
+    free(lk.L);
+    free(lk.TL);
+    free(lk.lr);
+    free(lk.li);
+    free(lk.y);
     gd_ks_work_free(&local);
     if (st) gd_ks_result_free(out);
     return st;

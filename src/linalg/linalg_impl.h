@@ -109,9 +109,10 @@ int gd_ks_work_init(gd_ks_work *w, int n, int ncv); /* 0 ok, 1 out of memory */
 void gd_ks_work_free(gd_ks_work *w);
 /* nev wanted eigenvalues of largest magnitude of the n x n operator (both members of
  * a conjugate pair count), basis size at most ncv (> nev + 2), relative residual tol;
- * the eigenvectors' first nout rows (unit 2-norm over them). Deterministic: a fixed
- * start vector. Returns GD_OK, GD_ENUMERIC (no convergence within maxit restarts) or
- * GD_ENOMEM. */
+ * the eigenvectors' first nout rows (unit 2-norm over them). Repeated eigenvalues come
+ * with every copy (deflated checks from further start vectors, krylov_schur.c).
+ * Deterministic: fixed start vectors. iterations counts the first run's restarts.
+ * Returns GD_OK, GD_ENUMERIC (no convergence within maxit restarts) or GD_ENOMEM. */
 gd_status gd_krylov_schur(gd_op_fn op, void *ctx, int n, int nout, int nev, int ncv, double tol,
                           int maxit, gd_ks_work *ws, gd_ks_result *out); /* ws may be NULL */
 void gd_ks_result_free(gd_ks_result *r);

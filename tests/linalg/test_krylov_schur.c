@@ -151,4 +151,75 @@ TEST(no_convergence_is_reported)
     CHECK(r.nconv == 0 && r.mu_re == NULL && r.vec_re == NULL);
 }
 
-RUN_TESTS(T(first_pass_converges), T(restarts_give_the_same_answer), T(no_convergence_is_reported))
+/* Exactly repeated eigenvalues among the wanted ones: blocks 0 and 1 the same pair
+ * (a double conjugate pair of magnitude 1), block 2 two equal reals 0.9 and block 5 a
+ * third 0.9 (a triple). A single start vector meets each repeated eigenspace in one
+ * direction only, so before the deflated checks one copy of each was returned and the
+ * next values took their places. Every copy must come back, with independent vectors
+ * (Gram determinant of the unit vectors of each value > 0.5; 1 when orthogonal). */
+TEST(repeated_eigenvalues_are_all_found)
+{
+    blocks B;
+    make(&B);
+    B.a[2] = B.a[0];
+    B.b[2] = B.b[0];
+    B.a[4] = 0.9;
+    B.r2[4] = 0.9;
+    B.a[10] = 0.9;
+    gd_ks_result r;
+    /* 4 (double pair) + 3 (triple) + 2 + 2 (the pairs of blocks 3 and 4) */
+    REQUIRE(gd_krylov_schur(apply, &B, N, N, 11, 2 * 11 + 12, 1e-11, 200, NULL, &r) == GD_OK);
+    CHECK(r.nconv == 11);
+    int npair = 0, ntriple = 0, ipair[4], itriple[3];
+    for (int c = 0; c < r.nconv; c++) {
+        if (hypot(r.mu_re[c] - B.a[0], r.mu_im[c] - B.b[0]) < 1e-10 && npair < 4)
+            ipair[npair++] = c;
+        if (hypot(r.mu_re[c] - 0.9, r.mu_im[c]) < 1e-10 && ntriple < 3) itriple[ntriple++] = c;
+    }
+    CHECK(npair == 2); /* + i b: twice (and - i b twice, not counted) */
+    CHECK(ntriple == 3);
+    CHECK(smallest_magnitude(&r) >= pow(0.93, 4) * (1 - 1e-12));
+    if (ntriple == 3) { /* the 3 x 3 Gram matrix of real unit vectors */
+        double g[3][3];
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++) {
+                const double *x = r.vec_re + (size_t)itriple[i] * N,
+                             *y = r.vec_re + (size_t)itriple[j] * N;
+                double s = 0;
+                for (int k = 0; k < N; k++)
+                    s += x[k] * y[k];
+                g[i][j] = s;
+            }
+        double det = g[0][0] * (g[1][1] * g[2][2] - g[1][2] * g[2][1]) -
+                     g[0][1] * (g[1][0] * g[2][2] - g[1][2] * g[2][0]) +
+                     g[0][2] * (g[1][0] * g[2][1] - g[1][1] * g[2][0]);
+        CHECK(det > 0.5);
+    }
+    if (npair == 2) { /* |<x, y>|^2 of the two complex unit vectors */
+        const double *xr = r.vec_re + (size_t)ipair[0] * N, *xi = r.vec_im + (size_t)ipair[0] * N;
+        const double *yr = r.vec_re + (size_t)ipair[1] * N, *yi = r.vec_im + (size_t)ipair[1] * N;
+        double sr = 0, si = 0;
+        for (int k = 0; k < N; k++) {
+            sr += xr[k] * yr[k] + xi[k] * yi[k];
+            si += xr[k] * yi[k] - xi[k] * yr[k];
+        }
+        CHECK(1 - (sr * sr + si * si) > 0.5);
+    }
+    /* residuals |A v - mu v| of every returned pair */
+    for (int c = 0; c < r.nconv; c++) {
+        double vr[N], vi[N], ar[N], ai[N], res = 0, mr = r.mu_re[c], mi = r.mu_im[c];
+        memcpy(vr, r.vec_re + (size_t)c * N, sizeof vr);
+        memcpy(vi, r.vec_im + (size_t)c * N, sizeof vi);
+        apply(&B, vr, ar);
+        apply(&B, vi, ai);
+        for (int i = 0; i < N; i++) {
+            double er = ar[i] - (mr * vr[i] - mi * vi[i]), ei = ai[i] - (mr * vi[i] + mi * vr[i]);
+            res += er * er + ei * ei;
+        }
+        CHECK_ABS(sqrt(res), 0, 1e-9);
+    }
+    gd_ks_result_free(&r);
+}
+
+RUN_TESTS(T(first_pass_converges), T(restarts_give_the_same_answer), T(no_convergence_is_reported),
+          T(repeated_eigenvalues_are_all_found))

@@ -148,6 +148,70 @@ TEST(auto_is_dense_where_sparse_cannot_serve)
     fx_free(&f);
 }
 
+/* Sparse and dense on a loaded model at rest: the same modes, the same eigenvalues to
+ * 1e-8 relative (as check_model), and `copies` of them within 0.01 Hz of f_rep (the
+ * next distinct mode is 30 Hz or more away). */
+static void check_repeated(gd_test_state *gd_ts_, gd_model *m, gd_system *s, int nmodes,
+                           double f_rep, int copies)
+{
+    fx f = {m, s};
+    gd_modal_result *d = solve(&f, 0.0, nmodes, GD_EIG_DENSE),
+                    *sp = solve(&f, 0.0, nmodes, GD_EIG_SPARSE);
+    REQUIRE(d && sp);
+    CHECK(sp->sparse && sp->nmodes == nmodes && d->nmodes == nmodes);
+    double share, dev = deviation(sp, d, &share);
+    CHECK_ABS(dev, 0.0, 1e-8);
+    int nd = 0, ns = 0;
+    for (int j = 0; j < nmodes; j++) {
+        nd += fabs(d->modes[j].frequency_hz - f_rep) < 0.01;
+        ns += fabs(sp->modes[j].frequency_hz - f_rep) < 0.01;
+    }
+    CHECK(nd == copies);
+    CHECK(ns == copies);
+    gd_modal_free(d);
+    gd_modal_free(sp);
+}
+
+/* An isotropic rotor at rest has exact double lateral pairs; a single Krylov start
+ * vector meets each double eigenspace in one direction only, and the sparse solver
+ * used to return one copy of 745.32 Hz and the next mode in the other's place. */
+TEST(sparse_finds_the_double_pairs_of_a_rotor_at_rest)
+{
+    fx f;
+    gd_error err;
+    REQUIRE(gd_model_load("tests/plot/study.yaml", &f.m, &err) == GD_OK);
+    REQUIRE(gd_system_build(f.m, &f.s, &err) == GD_OK);
+    check_repeated(gd_ts_, f.m, f.s, 7, 745.32, 2); /* modes 6 and 7 (1: rigid body) */
+    fx_free(&f);
+}
+
+/* Three identical decoupled torsional oscillators (a triple eigenvalue: 3000 N m/rad on
+ * 0.02 kg m^2, omega_n / 2 pi = 61.64 Hz) below ten stiffer distinct ones; damped, so
+ * the state-space form is used. */
+TEST(sparse_finds_a_triple_eigenvalue)
+{
+    char yaml[4096];
+    int len = snprintf(yaml, sizeof yaml, "dofs: [rz]\nshafts: [{name: s, nodes: [");
+    for (int i = 0; i < 13; i++)
+        len += snprintf(yaml + len, sizeof yaml - len, "%s{name: n%d}", i ? ", " : "", i);
+    len += snprintf(yaml + len, sizeof yaml - len, "]}]\ndisks:\n");
+    for (int i = 0; i < 13; i++)
+        len += snprintf(yaml + len, sizeof yaml - len, "  - {node: n%d, polar_inertia: 0.02}\n", i);
+    len += snprintf(yaml + len, sizeof yaml - len, "springs:\n");
+    for (int i = 0; i < 13; i++)
+        len += snprintf(yaml + len, sizeof yaml - len,
+                        "  - {node: n%d, dof: rz, stiffness: %g, damping: 0.01}\n", i,
+                        i < 3 ? 3000.0 : 3000.0 * (1.5 + 0.25 * i));
+    REQUIRE(len < (int)sizeof yaml);
+    fx f;
+    gd_error err;
+    REQUIRE(gd_model_load_string(yaml, "triple.yaml", &f.m, &err) == GD_OK);
+    REQUIRE(gd_system_build(f.m, &f.s, &err) == GD_OK);
+    check_repeated(gd_ts_, f.m, f.s, 6, sqrt(3000 / 0.02) / (2 * 3.14159265358979), 3);
+    fx_free(&f);
+}
+
 RUN_TESTS(T(auto_picks_dense_for_a_small_undamped_model),
           T(auto_picks_sparse_for_a_small_damped_model), T(auto_picks_sparse_for_the_rig),
-          T(auto_is_dense_where_sparse_cannot_serve))
+          T(auto_is_dense_where_sparse_cannot_serve),
+          T(sparse_finds_the_double_pairs_of_a_rotor_at_rest), T(sparse_finds_a_triple_eigenvalue))
