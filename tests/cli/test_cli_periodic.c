@@ -279,36 +279,40 @@ TEST(helical_mesh2_resonance_same_for_both_couplings_at_zero_helix)
     scratch s;
     REQUIRE(scratch_open(&s));
     const char *cpl[2] = {"full", "lateral-torsional"};
-    cJSON *o[2];
-    char args[1024];
-    for (int k = 0; k < 2; k++) {
-        snprintf(args, sizeof args,
-                 "periodic examples/helical_two_stage.yaml --speeds 1810rpm:1820rpm:3 "
-                 "--harmonics 36 --sequential --no-stability --coupling %s "
-                 "--set meshes.pair1.geometry.helix_angle=0deg "
-                 "--set meshes.pair2.geometry.helix_angle=0deg "
-                 "--record mesh:pair2:force,gear1.x",
-                 cpl[k]);
-        o[k] = run_json_args(&s, args);
-    }
-    REQUIRE(o[0] && o[1] && npoints(o[0]) == 3 && npoints(o[1]) == 3);
-    double p2p[3];
+    const char *names[2] = {"mesh:pair2:force", "gear1.x:disp"};
+    const int rpm[3] = {1810, 1815, 1820};
+    double p2p[3], a11 = 0.0;
+    /* one run per speed, each from rest: stepping from one speed to the next across a
+     * peak this sharp takes 16-27 Newton iterations instead of 3-5 */
     for (int i = 0; i < 3; i++) {
-        const cJSON *p = point(o[0], i), *q = point(o[1], i);
+        cJSON *o[2];
+        char args[1024];
+        for (int k = 0; k < 2; k++) {
+            snprintf(args, sizeof args,
+                     "periodic examples/helical_two_stage.yaml --speeds %drpm:%drpm:1 "
+                     "--harmonics 36 --no-stability --coupling %s "
+                     "--set meshes.pair1.geometry.helix_angle=0deg "
+                     "--set meshes.pair2.geometry.helix_angle=0deg "
+                     "--record mesh:pair2:force,gear1.x",
+                     rpm[i], rpm[i], cpl[k]);
+            o[k] = run_json_args(&s, args);
+        }
+        REQUIRE(o[0] && o[1] && npoints(o[0]) == 1 && npoints(o[1]) == 1);
+        const cJSON *p = point(o[0], 0), *q = point(o[1], 0);
         CHECK(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(p, "converged")));
         CHECK(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(q, "converged")));
-        const char *names[2] = {"mesh:pair2:force", "gear1.x:disp"};
         for (int r = 0; r < 2; r++) {
             CHECK_REL(jnum(rec(p, names[r]), "peak_to_peak"),
                       jnum(rec(q, names[r]), "peak_to_peak"), 1e-9);
             CHECK_REL(amp(rec(p, names[r]), 11), amp(rec(q, names[r]), 11), 1e-9);
         }
         p2p[i] = jnum(rec(p, "mesh:pair2:force"), "peak_to_peak");
+        if (i == 1) a11 = amp(rec(p, "mesh:pair2:force"), 11);
+        cJSON_Delete(o[0]);
+        cJSON_Delete(o[1]);
     }
     CHECK(p2p[1] > 2 * p2p[0] && p2p[1] > 2 * p2p[2]);
-    CHECK(amp(rec(point(o[0], 1), "mesh:pair2:force"), 11) > 0.35 * p2p[1]);
-    cJSON_Delete(o[0]);
-    cJSON_Delete(o[1]);
+    CHECK(a11 > 0.35 * p2p[1]);
     scratch_close(&s);
 }
 
