@@ -109,26 +109,30 @@ static size_t edit_distance(const char *a, const char *b)
     return row[lb];
 }
 
+static int key_allowed(const char *k, const char *const *allowed)
+{
+    for (const char *const *a = allowed; *a; a++)
+        if (strcmp(*a, k) == 0) return 1;
+    return 0;
+}
+
 gd_status gd_ycheck_keys(gd_yreader *r, const gd_ynode *map, const char *path,
                          const char *const *allowed)
 {
     for (size_t i = 0; i < map->n; i++) {
         const char *k = map->keys[i]->text;
-        int ok = 0;
+        if (key_allowed(k, allowed)) continue;
+        /* an unknown key: only now the nearest known one (the check runs per case of a
+         * study, where every key is known) */
         const char *best = NULL;
         size_t best_d = 99;
         for (const char *const *a = allowed; *a; a++) {
-            if (strcmp(*a, k) == 0) {
-                ok = 1;
-                break;
-            }
             size_t d = edit_distance(*a, k);
             if (d < best_d) {
                 best_d = d;
                 best = *a;
             }
         }
-        if (ok) continue;
         char hint[320], list[256] = "";
         for (const char *const *a = allowed; *a; a++) {
             size_t used = strlen(list);
