@@ -5,6 +5,7 @@
  * factors and two products with the pattern per Krylov vector, and the
  * orthogonalisation of a basis of ncv vectors of length 2n. */
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "modal/modal_impl.h"
@@ -99,6 +100,24 @@ gd_status gd_modal_solve(const gd_system *sys, const gd_modal_options *opt, gd_m
             return gd_error_set(err, GD_EINPUT, sys->model->file, 0, 0, "method",
                                 "use the dense method (or ask for a number of modes)",
                                 "the sparse eigensolver computes the lowest modes, not all");
+        if (sys->nmassless > 0)
+            return gd_error_set(err, GD_EINPUT, sys->model->file, 0, 0, "method",
+                                "use the dense method (or auto)",
+                                "the sparse eigensolver needs mass or inertia on every DOF; "
+                                "this model has %d massless DOFs",
+                                sys->nmassless);
+        /* the Krylov basis (2 ncv <= 2n states) must hold the 2 N wanted values and as many
+         * more for the restarts: N <= (n - 1) / 2 (gd_sparse_ks_sizes) */
+        if (2 * opt->nmodes + 1 > sys->ndof) {
+            char hint[96];
+            snprintf(hint, sizeof hint,
+                     "use the dense method (or auto), or ask for at most %d modes",
+                     (sys->ndof - 1) / 2);
+            return gd_error_set(err, GD_EINPUT, sys->model->file, 0, 0, "method", hint,
+                                "the sparse eigensolver computes at most (DOFs - 1) / 2 modes: "
+                                "%d modes of a %d-DOF model",
+                                opt->nmodes, sys->ndof);
+        }
         return gd_modal_solve_sparse(sys, opt, 0, out, err);
     }
     if (opt->method == GD_EIG_DENSE || !sparse_ok) return gd_modal_solve_dense(sys, opt, out, err);

@@ -137,7 +137,7 @@ gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
     if (st == GD_ENOMEM) goto nomem;
     if (st) {
         st = gd_error_set(err, GD_ENUMERIC, sys->model->file, 0, 0, "",
-                          "use the dense solver (--modes all) or fewer modes",
+                          "use the dense solver (--method dense) or fewer modes",
                           "the sparse eigensolver did not converge at speed %g rad/s", opt->speed);
         goto done;
     }

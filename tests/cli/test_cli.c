@@ -701,6 +701,13 @@ TEST(modal_method_option)
     CHECK(contains(r.err, "lowest modes, not all"));
     CHECK(r.out[0] == '\0');
     run_free(&r);
+    /* 4 modes of the 8-DOF Kumar pair: the Krylov space would span the whole problem */
+    run(&s, &r, "modal examples/kumar2011_coupled.yaml --method sparse --modes 4");
+    CHECK(r.code == 2);
+    CHECK(contains(r.err, "at most (DOFs - 1) / 2 modes: 4 modes of a 8-DOF model"));
+    CHECK(contains(r.err, "ask for at most 3 modes"));
+    CHECK(r.out[0] == '\0');
+    run_free(&r);
     double f[2][6];
     const char *m[2] = {"dense", "sparse"};
     for (int k = 0; k < 2; k++) {
