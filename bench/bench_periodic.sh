@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
 # Harmonic balance (geardyn periodic): CPU per continuation step on the Chen SFD gear pair
-# with H = 15 (issue 10 goal: < 5 ms), and on the 378-DOF two-stage helical system of
-# seed 002 with both meshes' TVMS (H = 36: mesh 1 is harmonic 36 of the common period),
-# whose Figs. 11-13 set is 10 curves x 300 speeds (goal: < 60 s on one core): the
-# whole sparse LU against the low-rank condensation, and one curve of 30 speeds in
-# sequential and in arclength mode, from which the set is extrapolated.
-# usage: bench_periodic.sh BUILD
+# with H = 15 (issue 10 goal: < 5 ms); on the 378-DOF two-stage helical system of seed 002
+# with both meshes' TVMS, the whole sparse LU against the low-rank condensation (H = 36,
+# the ratio), one curve of 30 speeds and 4 speeds by arclength; and the Figs. 11-13 set
+# itself, 10 curves x 300 speeds at H = 108 (goal: < 60 s CPU on one core), one curve at
+# a time. Each bench_periodic line prints its floor (the local forces at the AFT samples)
+# and the step / floor ratio.
+# usage: bench_periodic.sh BUILD [--no-set]   (--no-set: skip the 1-minute set)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 B=${1:-build}
+SET=${2:-}
 H2=examples/helical_two_stage.yaml
 echo "-- Chen SFD pair, 400..1500 rad/s, 111 speeds, H = 15, without and with Floquet"
 "$B/bench_periodic" examples/chen1998_gear_pair.yaml 400 1500 111 15 0
@@ -21,7 +23,13 @@ echo "-- seed 002, one curve: 1000..10000 rpm, 30 speeds, gear 1 y and both mesh
 OPENBLAS_NUM_THREADS=1 "$B/geardyn" periodic "$H2" --speeds 1000rpm:10000rpm:30 --harmonics 36 \
     --no-stability --sequential --record gear1.y --record mesh:pair1:force \
     --record mesh:pair2:force | tail -1
-echo "   (the set is 10 curves x 300 speeds: 100 times this)"
+echo "   (H = 36 holds only the fundamental of mesh 1: the set below needs H = 108)"
 echo "-- the same model by arclength, 1000..2000 rpm, 4 speeds"
 OPENBLAS_NUM_THREADS=1 "$B/geardyn" periodic "$H2" --speeds 1000rpm:2000rpm:4 --harmonics 36 \
     --no-stability --record gear1.y | tail -1
+if [ "$SET" != "--no-set" ]; then
+    echo "-- seed 002, the Figs. 11-13 set: 10 curves x 300 speeds, H = 108, one curve at a time"
+    OPENBLAS_NUM_THREADS=1 JOBS=1 GEARDYN="$B/geardyn" examples/seed002/figs11_13.sh \
+        "$B/bench-seed002" | tail -1
+    echo "   (goal: < 60 s CPU on one core; 557 s before the condensation's rework)"
+fi

@@ -234,6 +234,16 @@ GD_API void gd_transient_hold_drive(gd_transient *tr, double hold);
  * form above; for frequency-domain solutions). */
 GD_API double gd_transient_record_value(gd_transient *tr, const gd_tr_record *rec, double t,
                                         const double *y);
+/* The values of nrec records at one state (one evaluation of the state for all; out of
+ * length nrec). */
+GD_API void gd_transient_record_values(gd_transient *tr, const gd_tr_record *rec, int nrec,
+                                       double t, const double *y, double *out);
+/* The free DOFs (indices into q_f) that gd_transient_record_value reads for rec, appended
+ * to idx (at most cap; repeats possible): the DOF itself, a mesh's DOFs and its driver
+ * angle, a damper's DOFs. Returns their count, or -1 when it cannot say (a reduced model,
+ * whose recovered DOFs read every modal coordinate, or more than cap). Thread-safe. */
+GD_API int gd_transient_record_dofs(const gd_transient *tr, const gd_tr_record *rec, int *idx,
+                                    int cap);
 
 /* min, max, mean, rms (root mean square of the value), peak-to-peak, standard deviation
  * over the recorded samples. */

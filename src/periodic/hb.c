@@ -7,17 +7,18 @@
  * and each rank-one term s(t) u w^T of df/dq (df/dq') couples harmonics a, b through
  *   G_ab = c_a / N sum_j phi_a(t_j) [s_q(t_j) phi_b(t_j) + w s_v(t_j) phi_b'(t_j)],
  * c_0 = 1, c_a = 2, phi the basis (1, cos k tau, sin k tau). */
-#include <cblas.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "periodic/periodic_impl.h"
+#include "signal/fft_planner_impl.h"
 
 #define TWO_PI 6.28318530717958647692
 
 int gd_hb_init(hb *h, int nf, int H, int N)
 {
+    gd_fft_planner_init(); /* every plan of a run is made after its first hb_init */
     memset(h, 0, sizeof *h);
     h->nf = nf;
     h->H = H;
@@ -29,28 +30,22 @@ int gd_hb_init(hb *h, int nf, int H, int N)
     h->tv = fftw_malloc(sz * sizeof(double));
     h->tf = fftw_malloc(sz * sizeof(double));
     h->y = malloc(2 * (size_t)nf * sizeof *h->y);
-    h->f = malloc((size_t)nf * sizeof *h->f);
-    h->E = malloc((size_t)N * h->nh * sizeof *h->E);
-    h->Ed = malloc((size_t)N * h->nh * sizeof *h->Ed);
-    if (!h->tq || !h->tv || !h->tf || !h->y || !h->f || !h->E || !h->Ed) return 1;
+    if (!h->tq || !h->tv || !h->tf || !h->y) return 1;
     int kind_f = FFTW_R2HC, kind_i = FFTW_HC2R;
-    h->fwd_f = fftw_plan_many_r2r(1, &N, nf, h->tf, NULL, 1, N, h->tf, NULL, 1, N,
+    /* samples are sample-major (x[j * nf + i]: one state per row, what the force
+     * evaluation reads and writes), spectra DOF-major (c[i * N + k]) */
+    h->fwd_f = fftw_plan_many_r2r(1, &N, nf, h->tv, NULL, nf, 1, h->tf, NULL, 1, N,
                                   (const fftw_r2r_kind *)&kind_f, FFTW_ESTIMATE);
-    h->inv_q = fftw_plan_many_r2r(1, &N, nf, h->tv, NULL, 1, N, h->tq, NULL, 1, N,
+    h->inv_q = fftw_plan_many_r2r(1, &N, nf, h->tv, NULL, 1, N, h->tq, NULL, nf, 1,
                                   (const fftw_r2r_kind *)&kind_i, FFTW_ESTIMATE);
-    if (!h->fwd_f || !h->inv_q) return 1;
-    for (int j = 0; j < N; j++) {
-        double tau = TWO_PI * j / N;
-        h->E[j] = 1.0;
-        h->Ed[j] = 0.0;
-        for (int k = 1; k <= H; k++) {
-            double c = cos(k * tau), s = sin(k * tau);
-            h->E[(size_t)(2 * k - 1) * N + j] = c;
-            h->E[(size_t)(2 * k) * N + j] = s;
-            h->Ed[(size_t)(2 * k - 1) * N + j] = -k * s;
-            h->Ed[(size_t)(2 * k) * N + j] = k * c;
-        }
-    }
+    h->rowbuf = fftw_malloc(2 * (size_t)N * sizeof *h->rowbuf);
+    if (!h->fwd_f || !h->inv_q || !h->rowbuf) return 1;
+    /* single rows (the support path): unaligned, rows of tf start anywhere */
+    h->row_fwd =
+        fftw_plan_r2r_1d(N, h->rowbuf, h->rowbuf + N, FFTW_R2HC, FFTW_ESTIMATE | FFTW_UNALIGNED);
+    h->row_inv =
+        fftw_plan_r2r_1d(N, h->rowbuf, h->rowbuf + N, FFTW_HC2R, FFTW_ESTIMATE | FFTW_UNALIGNED);
+    if (!h->row_fwd || !h->row_inv) return 1;
     klu_defaults(&h->com);
     return 0;
 }
@@ -59,16 +54,28 @@ void gd_hb_free(hb *h)
 {
     if (h->fwd_f) fftw_destroy_plan(h->fwd_f);
     if (h->inv_q) fftw_destroy_plan(h->inv_q);
+    if (h->row_fwd) fftw_destroy_plan(h->row_fwd);
+    if (h->row_inv) fftw_destroy_plan(h->row_inv);
+    fftw_free(h->rowbuf);
+    free(h->win);
+    free(h->win2);
+    free(h->rowmark);
     fftw_free(h->tq);
     fftw_free(h->tv);
     fftw_free(h->tf);
+    fftw_free(h->smp);
+    free(h->umark);
+    free(h->Up);
+    free(h->Uq);
+    free(h->Ui);
+    free(h->Ui2);
+    free(h->UK);
     free(h->sq);
     free(h->sv);
     free(h->y);
-    free(h->f);
-    free(h->E);
-    free(h->Ed);
     free(h->Gall);
+    free(h->tactive);
+    free(h->Fh);
     gd_hb_lowrank_free(h);
     free(h->Ap);
     free(h->Ai);
@@ -80,17 +87,15 @@ void gd_hb_free(hb *h)
     memset(h, 0, sizeof *h);
 }
 
-/* Samples (DOF-major, out[i * N + j]) of sum_h X_h phi_h (deriv: of its phase
- * derivative) through a half-complex inverse transform. */
-static void synth(hb *h, const double *X, int deriv, double *out)
+/* Half-complex spectra (DOF-major, hc[i * N + j], N > 2 H) of sum_h X_h phi_h (deriv: of
+ * its phase derivative), for a half-complex inverse transform to sample. */
+static void fill_spectra(int nf, int H, int N, const double *X, int deriv, double *hc)
 {
-    const int nf = h->nf, N = h->N;
-    double *hc = h->tv; /* the inverse plan's input buffer */
     memset(hc, 0, (size_t)nf * N * sizeof *hc);
     for (int i = 0; i < nf; i++) {
         double *b = hc + (size_t)i * N;
         if (!deriv) b[0] = X[i];
-        for (int k = 1; k <= h->H; k++) {
+        for (int k = 1; k <= H; k++) {
             double c = X[(2 * k - 1) * nf + i], s = X[2 * k * nf + i];
             if (deriv) { /* d/dtau: cos coefficient k s, sin coefficient -k c */
                 double c2 = k * s, s2 = -k * c;
@@ -101,7 +106,66 @@ static void synth(hb *h, const double *X, int deriv, double *out)
             b[N - k] = -0.5 * s;
         }
     }
+}
+
+/* Samples (sample-major, out[j * nf + i]) at the solver's N points. */
+static void synth(hb *h, const double *X, int deriv, double *out)
+{
+    double *hc = h->tv; /* the inverse plan's input buffer */
+    fill_spectra(h->nf, h->H, h->N, X, deriv, hc);
     fftw_execute_r2r(h->inv_q, hc, out);
+}
+
+int gd_hb_samples(hb *h, double w, const double *X, int N, const int *dofs, int nd, double **q,
+                  double **v)
+{
+    const int nf = h->nf, H = h->H;
+    if (N < 2 * H + 2) return 1;
+    if (!dofs) nd = nf;
+    /* spectra (every DOF) or one row and its samples (a few), then q and v */
+    size_t sz = (size_t)nd * N, hsz = dofs ? 2 * (size_t)N : sz, need = hsz + 2 * sz;
+    if (h->nsmp < need) { /* kept: a fresh buffer per point costs its page faults */
+        fftw_free(h->smp);
+        h->smp = fftw_malloc(need * sizeof *h->smp);
+        h->nsmp = h->smp ? need : 0;
+        if (!h->smp) return 1;
+    }
+    double *hc = h->smp, *qs = hc + hsz, *vs = qs + sz;
+    if (!dofs) { /* every DOF: two batched transforms */
+        int kind = FFTW_HC2R;
+        fftw_plan p = fftw_plan_many_r2r(1, &N, nf, hc, NULL, 1, N, qs, NULL, nf, 1,
+                                         (const fftw_r2r_kind *)&kind, FFTW_ESTIMATE);
+        if (!p) return 1;
+        fill_spectra(nf, H, N, X, 0, hc);
+        fftw_execute_r2r(p, hc, qs);
+        fill_spectra(nf, H, N, X, 1, hc);
+        fftw_execute_r2r(p, hc, vs);
+        fftw_destroy_plan(p);
+    } else { /* a few DOFs: one row transform each, hc holds the row and its samples */
+        fftw_plan p = fftw_plan_r2r_1d(N, hc, hc + N, FFTW_HC2R, FFTW_ESTIMATE);
+        if (!p) return 1;
+        for (int m = 0; m < nd; m++)
+            for (int deriv = 0; deriv < 2; deriv++) {
+                int i = dofs[m];
+                double *b = hc, *out = deriv ? vs : qs;
+                memset(b, 0, (size_t)N * sizeof *b);
+                if (!deriv) b[0] = X[i];
+                for (int k = 1; k <= H; k++) {
+                    double c = X[(size_t)(2 * k - 1) * nf + i], sn = X[(size_t)2 * k * nf + i];
+                    b[k] = 0.5 * (deriv ? k * sn : c);
+                    b[N - k] = -0.5 * (deriv ? -k * c : sn);
+                }
+                fftw_execute(p);
+                for (int j = 0; j < N; j++)
+                    out[(size_t)j * nd + m] = hc[N + j];
+            }
+        fftw_destroy_plan(p);
+    }
+    for (size_t i = 0; i < sz; i++)
+        vs[i] *= w;
+    *q = qs;
+    *v = vs;
+    return 0;
 }
 
 void gd_hb_eval(const hb *h, double w, const double *X, double tau, double *q, double *v)
@@ -121,14 +185,142 @@ void gd_hb_eval(const hb *h, double w, const double *X, double tau, double *q, d
     }
 }
 
-/* y += alpha A x */
-static void spmv(const gd_csc *A, double alpha, const double *x, double *y)
+/* The union pattern of K, M and D (sorted CSC over the nf free DOFs) with each matrix's
+ * values on it (UK, UM, UD): the harmonic blocks K - (k w)^2 M -+ k w D in one pass. The
+ * pattern id changes only when the pattern does (the low-rank path keeps its symbolic
+ * analysis while it holds). 0 ok, 1 out of memory. */
+int gd_hb_linear_union(hb *h, gd_transient *tr)
 {
-    for (int j = 0; j < A->n; j++) {
-        double xj = alpha * x[j];
-        if (xj == 0.0) continue;
-        for (int p = A->colptr[j]; p < A->colptr[j + 1]; p++)
-            y[A->rowind[p]] += A->values[p] * xj;
+    const int nf = h->nf;
+    gd_csc A[3];
+    gd_transient_matrices(tr, &A[1], &A[2], &A[0]); /* M, D, K -> A = {K, M, D} */
+    size_t cap = (size_t)A[0].colptr[nf] + A[1].colptr[nf] + A[2].colptr[nf];
+    if (!h->umark) {
+        h->umark = malloc((size_t)(nf > 0 ? nf : 1) * sizeof *h->umark);
+        h->Up = malloc((size_t)(nf + 1) * sizeof *h->Up);
+        h->Uq = malloc((size_t)(nf + 1) * sizeof *h->Uq);
+        if (!h->umark || !h->Up || !h->Uq) return 1;
+    }
+    if (h->ucap < cap) {
+        free(h->Ui);
+        free(h->Ui2);
+        free(h->UK);
+        h->ucap = 0;
+        h->Ui = malloc((cap ? cap : 1) * sizeof *h->Ui);
+        h->Ui2 = malloc((cap ? cap : 1) * sizeof *h->Ui2);
+        h->UK = malloc(3 * (cap ? cap : 1) * sizeof *h->UK);
+        if (!h->Ui || !h->Ui2 || !h->UK) return 1;
+        h->ucap = cap;
+        h->Unz = -1; /* no pattern held */
+    }
+    /* the pattern into Uq / Ui2, compared with the held Up / Ui */
+    int *mark = h->umark, nz = 0;
+    for (int i = 0; i < nf; i++)
+        mark[i] = -1;
+    h->Uq[0] = 0;
+    for (int j = 0; j < nf; j++) {
+        for (int m = 0; m < 3; m++)
+            for (int q = A[m].colptr[j]; q < A[m].colptr[j + 1]; q++) {
+                int i = A[m].rowind[q];
+                if (mark[i] == j) continue;
+                mark[i] = j;
+                int at = nz++; /* insertion keeps the column sorted (columns are short) */
+                while (at > h->Uq[j] && h->Ui2[at - 1] > i) {
+                    h->Ui2[at] = h->Ui2[at - 1];
+                    at--;
+                }
+                h->Ui2[at] = i;
+            }
+        h->Uq[j + 1] = nz;
+    }
+    if (nz != h->Unz || memcmp(h->Up, h->Uq, (size_t)(nf + 1) * sizeof *h->Up) ||
+        memcmp(h->Ui, h->Ui2, (size_t)nz * sizeof *h->Ui)) {
+        int *t = h->Up;
+        h->Up = h->Uq;
+        h->Uq = t;
+        t = h->Ui;
+        h->Ui = h->Ui2;
+        h->Ui2 = t;
+        h->Unz = nz;
+        h->Upat_id++;
+    }
+    h->UM = h->UK + nz;
+    h->UD = h->UM + nz;
+    memset(h->UK, 0, 3 * (size_t)nz * sizeof *h->UK);
+    double *U[3] = {h->UK, h->UM, h->UD};
+    for (int m = 0; m < 3; m++)
+        for (int j = 0; j < nf; j++)
+            for (int q = A[m].colptr[j]; q < A[m].colptr[j + 1]; q++) {
+                int lo = h->Up[j], hi = h->Up[j + 1] - 1, i = A[m].rowind[q];
+                while (lo < hi) { /* the row is in the column: binary search */
+                    int mid = (lo + hi) / 2;
+                    if (h->Ui[mid] < i)
+                        lo = mid + 1;
+                    else
+                        hi = mid;
+                }
+                U[m][lo] += A[m].values[q];
+            }
+    return 0;
+}
+
+/* The free DOFs the local forces read (the union of the terms' w vectors: every law
+ * states its dependence there, which is what Newton's Jacobian rests on), sorted, into
+ * h->win; nin = -1 when unknown or not worth it (every DOF is sampled). Made anew each
+ * call (a few dozen entries); a change clears the samples, whose other DOFs then stay
+ * zero (the forces do not read them). 0 ok, 1 out of memory. */
+static int input_support(hb *h, gd_transient *tr)
+{
+    const int nf = h->nf;
+    const gd_tr_term *term;
+    int nt = gd_transient_terms(tr, &term);
+    if (!h->win) {
+        h->win = malloc((size_t)(nf > 0 ? nf : 1) * sizeof *h->win);
+        h->win2 = malloc((size_t)(nf > 0 ? nf : 1) * sizeof *h->win2);
+        h->rowmark = calloc((size_t)(nf > 0 ? nf : 1), sizeof *h->rowmark);
+        if (!h->win || !h->win2 || !h->rowmark) return 1;
+        h->nin = -2; /* none yet */
+    }
+    int n = -1;
+    if (nt >= 0) {
+        for (int t = 0; t < nt; t++)
+            for (int j = 0; j < term[t].nw; j++)
+                h->rowmark[term[t].w_idx[j]] = 1;
+        n = 0;
+        for (int i = 0; i < nf; i++)
+            if (h->rowmark[i]) h->win2[n++] = i;
+        for (int q = 0; q < n; q++)
+            h->rowmark[h->win2[q]] = 0;
+        if (4 * n >= nf) n = -1; /* a quarter of the DOFs or more: batched transforms */
+    }
+    if (n == h->nin && (n < 0 || !memcmp(h->win, h->win2, (size_t)n * sizeof *h->win))) return 0;
+    int *t = h->win;
+    h->win = h->win2;
+    h->win2 = t;
+    h->nin = n;
+    memset(h->tq, 0, (size_t)nf * h->N * sizeof *h->tq);
+    memset(h->tf, 0, (size_t)nf * h->N * sizeof *h->tf);
+    memset(h->y, 0, 2 * (size_t)nf * sizeof *h->y);
+    return 0;
+}
+
+/* Samples (sample-major) of the DOFs in win only, one row transform each. */
+static void synth_support(hb *h, const double *X, int deriv, double *out)
+{
+    const int nf = h->nf, N = h->N, H = h->H;
+    double *b = h->rowbuf, *o = h->rowbuf + N;
+    for (int q = 0; q < h->nin; q++) {
+        int i = h->win[q];
+        memset(b, 0, (size_t)N * sizeof *b);
+        if (!deriv) b[0] = X[i];
+        for (int k = 1; k <= H; k++) {
+            double c = X[(size_t)(2 * k - 1) * nf + i], sn = X[(size_t)2 * k * nf + i];
+            b[k] = 0.5 * (deriv ? k * sn : c);
+            b[N - k] = -0.5 * (deriv ? -k * c : sn);
+        }
+        fftw_execute_r2r(h->row_inv, b, o);
+        for (int j = 0; j < N; j++)
+            out[(size_t)j * nf + i] = o[j];
     }
 }
 
@@ -148,23 +340,43 @@ int gd_hb_residual(hb *h, gd_transient *tr, double w, const double *X, double *R
             if (!h->sq || !h->sv) return 1;
         }
     }
-    /* time samples: tv holds q' first (synth overwrites its input buffer) */
+    /* time samples: q' into tf first (synth overwrites its input buffer tv), the
+     * forces then into tv, sample-major, and their spectra into tf. With a small input
+     * support only its DOFs are sampled, and only the rows where a force is non-zero
+     * are transformed back (the 378-DOF helical pair: 26 and 38 of 377) */
+    if (input_support(h, tr)) return 1;
+    const int sup = h->nin >= 0;
     double *qs = h->tq, *vs = h->tf;
-    synth(h, X, 1, vs);
-    synth(h, X, 0, qs);
+    if (sup) {
+        synth_support(h, X, 1, vs);
+        synth_support(h, X, 0, qs);
+    } else {
+        synth(h, X, 1, vs);
+        synth(h, X, 0, qs);
+    }
     double *st = jac ? malloc((size_t)(h->nterm > 0 ? h->nterm : 1) * 2 * sizeof *st) : NULL;
     if (jac && !st) return 1;
     int bad = 0;
+    unsigned char *nz = h->rowmark;
     for (int j = 0; j < N; j++) {
         double t = TWO_PI * j / N / w;
-        for (int i = 0; i < nf; i++) {
-            h->y[i] = qs[(size_t)i * N + j];
-            h->y[nf + i] = w * vs[(size_t)i * N + j];
+        const double *qj = qs + (size_t)j * nf, *vj = vs + (size_t)j * nf;
+        double *fj = h->tv + (size_t)j * nf;
+        if (sup) { /* the other entries of y stay zero (set when the support changed) */
+            for (int q = 0; q < h->nin; q++) {
+                int i = h->win[q];
+                h->y[i] = qj[i];
+                h->y[nf + i] = w * vj[i];
+            }
+        } else {
+            memcpy(h->y, qj, (size_t)nf * sizeof *h->y);
+            for (int i = 0; i < nf; i++)
+                h->y[nf + i] = w * vj[i];
         }
-        gd_transient_local(tr, t, h->y, h->f, jac ? st : NULL, jac ? st + h->nterm : NULL);
+        gd_transient_local(tr, t, h->y, fj, jac ? st : NULL, jac ? st + h->nterm : NULL);
         for (int i = 0; i < nf; i++) {
-            if (!isfinite(h->f[i])) bad = 1;
-            h->tv[(size_t)i * N + j] = h->f[i];
+            if (!isfinite(fj[i])) bad = 1;
+            nz[i] |= fj[i] != 0.0;
         }
         if (jac)
             for (int k = 0; k < h->nterm; k++) {
@@ -173,39 +385,63 @@ int gd_hb_residual(hb *h, gd_transient *tr, double w, const double *X, double *R
             }
     }
     free(st);
-    /* forward transform of the forces (tv -> tf, through the in-place plan on tf) */
-    memcpy(h->tf, h->tv, (size_t)nf * N * sizeof *h->tf);
-    fftw_execute(h->fwd_f);
-    gd_csc M, D, K;
-    gd_transient_matrices(tr, &M, &D, &K);
+    if (sup) {
+        for (int i = 0; i < nf; i++) {
+            if (!nz[i]) continue;
+            for (int j = 0; j < N; j++)
+                h->rowbuf[j] = h->tv[(size_t)j * nf + i];
+            fftw_execute_r2r(h->row_fwd, h->rowbuf, h->tf + (size_t)i * N);
+        }
+    } else {
+        fftw_execute(h->fwd_f);
+        memset(nz, 1, (size_t)nf);
+    }
     double nl = 0.0, nf2 = 0.0;
-    for (int i = 0; i < h->n; i++)
-        R[i] = 0.0;
-    for (int hh = 0; hh < h->nh; hh++) {
-        int k = (hh + 1) / 2;
-        double *r = R + (size_t)hh * nf;
-        const double *x = X + (size_t)hh * nf;
-        spmv(&K, 1.0, x, r);
-        if (k) {
-            spmv(&M, -(k * w) * (k * w), x, r);
-            if (hh & 1)
-                spmv(&D, k * w, X + (size_t)(hh + 1) * nf, r);
-            else
-                spmv(&D, -k * w, X + (size_t)(hh - 1) * nf, r);
+    if (gd_hb_linear_union(h, tr)) return 1;
+    memset(R, 0, (size_t)h->n * sizeof *R);
+    /* the linear part per harmonic block: mean K X_0; cos/sin pair k, with
+     * A = K - (k w)^2 M: A Q_c + k w D Q_s and A Q_s - k w D Q_c */
+    for (int j = 0; j < nf; j++)
+        for (int p = h->Up[j]; p < h->Up[j + 1]; p++)
+            R[h->Ui[p]] += h->UK[p] * X[j];
+    for (int k = 1; k <= H; k++) {
+        const double kw = k * w, kw2 = kw * kw;
+        const double *xc = X + (size_t)(2 * k - 1) * nf, *xs = xc + nf;
+        double *rc = R + (size_t)(2 * k - 1) * nf, *rs = rc + nf;
+        for (int j = 0; j < nf; j++) {
+            double c = xc[j], sn = xs[j];
+            for (int p = h->Up[j]; p < h->Up[j + 1]; p++) {
+                double a = h->UK[p] - kw2 * h->UM[p], d = kw * h->UD[p];
+                int i = h->Ui[p];
+                rc[i] += a * c + d * sn;
+                rs[i] += a * sn - d * c;
+            }
         }
     }
     for (int i = 0; i < h->n; i++)
         nl += R[i] * R[i];
+    /* the force coefficients are kept (Fh) for gd_hb_solve_newton */
+    if (!h->Fh) h->Fh = malloc((size_t)h->n * sizeof *h->Fh);
+    double *Fh = h->Fh;
+    if (Fh) memset(Fh, 0, (size_t)h->n * sizeof *Fh);
+    h->Fh_ok = Fh != NULL;
     for (int i = 0; i < nf; i++) {
+        if (!nz[i]) continue; /* a zero force in every sample */
+        nz[i] = 0;
         const double *c = h->tf + (size_t)i * N;
         double F = c[0] / N;
         R[i] -= F;
         nf2 += F * F;
+        if (Fh) Fh[i] = F;
         for (int k = 1; k <= H; k++) {
             double fc = 2.0 * c[k] / N, fs = -2.0 * c[N - k] / N;
             R[(size_t)(2 * k - 1) * nf + i] -= fc;
             R[(size_t)2 * k * nf + i] -= fs;
             nf2 += fc * fc + fs * fs;
+            if (Fh) {
+                Fh[(size_t)(2 * k - 1) * nf + i] = fc;
+                Fh[(size_t)2 * k * nf + i] = fs;
+            }
         }
     }
     if (scale) *scale = sqrt(nl > nf2 ? nl : nf2);
@@ -232,9 +468,40 @@ static int trip_add(hb *h, int i, int j)
     return 0;
 }
 
+/* Moments (1/N) sum_j s_j cos(p tau_j) and sin, p = 0..2H, from the half-complex DFT
+ * of the samples (p reduced modulo N, so the sums equal the sampled ones exactly). */
+static void trig_moments(const hb *h, const double *hc, double *C, double *S)
+{
+    const int N = h->N;
+    for (int p = 0; p <= 2 * h->H; p++) {
+        int q = p % N, sg = 1;
+        if (q > N / 2) {
+            q = N - q;
+            sg = -1;
+        }
+        C[p] = hc[q] / N;
+        S[p] = (q == 0 || 2 * q == N) ? 0.0 : -sg * hc[N - q] / N;
+    }
+}
+
+/* (1/N) sum_j s_j f_a(ka tau_j) f_b(kb tau_j), f = cos (0) or sin (1), by the product
+ * formulas: only the moments of s at ka - kb and ka + kb enter. */
+static double product_moment(const double *C, const double *S, int fa, int ka, int fb, int kb)
+{
+    int dm = ka - kb, dp = ka + kb;
+    double cm = C[dm < 0 ? -dm : dm], sm = dm < 0 ? -S[-dm] : S[dm];
+    if (!fa && !fb) return 0.5 * (cm + C[dp]);
+    if (fa && fb) return 0.5 * (cm - C[dp]);
+    if (fa) return 0.5 * (S[dp] + sm);
+    return 0.5 * (S[dp] - sm);
+}
+
+/* G_ab from the Fourier moments of s_q and s_v (O(N log N + nh^2) per term instead of
+ * the O(N nh^2) sample sum): the product of two basis functions is a sum of two
+ * harmonics, so G is Toeplitz-plus-Hankel in the harmonic index. */
 int gd_hb_couplings(hb *h, double w)
 {
-    const int nh = h->nh, N = h->N;
+    const int nh = h->nh, N = h->N, H = h->H;
     size_t need = (size_t)(h->nterm > 0 ? h->nterm : 1) * nh * nh;
     if (h->nGall < need) {
         free(h->Gall);
@@ -242,26 +509,56 @@ int gd_hb_couplings(hb *h, double w)
         h->nGall = h->Gall ? need : 0;
         if (!h->Gall) return 1;
     }
-    double *B = malloc((size_t)N * nh * sizeof *B), *Ew = malloc((size_t)N * nh * sizeof *Ew);
-    if (!B || !Ew) {
-        free(B);
-        free(Ew);
+    /* the moments through the single-row plan (unaligned: any two buffers of N) */
+    double *buf = malloc((size_t)2 * N * sizeof *buf), *hc = buf ? buf + N : NULL;
+    double *mom = malloc((size_t)4 * (2 * H + 1) * sizeof *mom);
+    if (!buf || !mom) {
+        free(buf);
+        free(mom);
         return 1;
     }
-    for (int a = 0; a < nh; a++)
-        for (int j = 0; j < N; j++)
-            Ew[(size_t)a * N + j] = h->E[(size_t)a * N + j] * (a ? 2.0 : 1.0) / N;
-    for (int t = 0; t < h->nterm; t++) {
-        const double *sq = h->sq + (size_t)t * N, *sv = h->sv + (size_t)t * N;
-        for (int b = 0; b < nh; b++)
-            for (int j = 0; j < N; j++)
-                B[(size_t)b * N + j] =
-                    sq[j] * h->E[(size_t)b * N + j] + w * sv[j] * h->Ed[(size_t)b * N + j];
-        cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, nh, nh, N, 1.0, Ew, N, B, N, 0.0,
-                    h->Gall + (size_t)t * nh * nh, nh);
+    double *Cq = mom, *Sq = Cq + 2 * H + 1, *Cv = Sq + 2 * H + 1, *Sv = Cv + 2 * H + 1;
+    free(h->tactive);
+    h->tactive = malloc((size_t)(h->nterm > 0 ? h->nterm : 1) * sizeof *h->tactive);
+    if (!h->tactive) {
+        free(buf);
+        free(mom);
+        return 1;
     }
-    free(B);
-    free(Ew);
+    for (int t = 0; t < h->nterm; t++) {
+        /* a term that is zero in every sample (a constant load's) has G = 0: the low-rank
+         * path leaves it out of the rank */
+        const double *sq = h->sq + (size_t)t * N, *sv = h->sv + (size_t)t * N;
+        int on = 0;
+        for (int j = 0; j < N && !on; j++)
+            on = sq[j] != 0.0 || sv[j] != 0.0;
+        h->tactive[t] = (unsigned char)on;
+        double *G = h->Gall + (size_t)t * nh * nh;
+        if (!on) {
+            memset(G, 0, (size_t)nh * nh * sizeof *G);
+            continue;
+        }
+        memcpy(buf, h->sq + (size_t)t * N, (size_t)N * sizeof *buf);
+        fftw_execute_r2r(h->row_fwd, buf, hc);
+        trig_moments(h, hc, Cq, Sq);
+        memcpy(buf, h->sv + (size_t)t * N, (size_t)N * sizeof *buf);
+        fftw_execute_r2r(h->row_fwd, buf, hc);
+        trig_moments(h, hc, Cv, Sv);
+        for (int b = 0; b < nh; b++) {
+            int kb = (b + 1) / 2, fb = b && !(b & 1);
+            /* phi_b' = -kb sin (cos basis) or kb cos (sin basis) */
+            int fd = !fb;
+            double cd = fb ? kb : -kb;
+            for (int a = 0; a < nh; a++) {
+                int ka = (a + 1) / 2, fa = a && !(a & 1);
+                double g = product_moment(Cq, Sq, fa, ka, fb, kb);
+                if (kb) g += w * cd * product_moment(Cv, Sv, fa, ka, fd, kb);
+                G[(size_t)b * nh + a] = (a ? 2.0 : 1.0) * g;
+            }
+        }
+    }
+    free(buf);
+    free(mom);
     return 0;
 }
 
@@ -380,7 +677,7 @@ int gd_hb_use_lowrank(const hb *h)
 {
     if (h->solver == 1) return 0;
     if (h->solver == 2) return 1;
-    return h->n >= 2000 && 4 * h->nterm * h->nh <= h->n;
+    return h->n >= 2000 && 4 * gd_hb_term_groups(h, NULL, NULL) * h->nh <= h->n;
 }
 
 int gd_hb_factor(hb *h, gd_transient *tr, double w, const double *dRdp, const double *row)
@@ -409,6 +706,14 @@ int gd_hb_factor(hb *h, gd_transient *tr, double w, const double *dRdp, const do
         return h->num ? 0 : 1;
     }
     return 1;
+}
+
+void gd_hb_solve_newton(hb *h, const double *X, double *b)
+{
+    if (gd_hb_use_lowrank(h))
+        gd_hb_lowrank_solve_newton(h, X, b);
+    else
+        gd_hb_solve(h, b);
 }
 
 void gd_hb_solve(hb *h, double *b)

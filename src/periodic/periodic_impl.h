@@ -11,11 +11,23 @@
  * has one more row (continuation constraint) and column (derivative in the parameter). */
 typedef struct hb {
     int nf, H, nh, N, n;
-    double *tq, *tv, *tf; /* nf x N samples, DOF-major (tq[i * N + j]) */
+    double *tq, *tv, *tf; /* nf x N samples (tq[j * nf + i]) or spectra (tf[i * N + k]) */
     double *sq, *sv;      /* nterm x N term derivatives */
-    double *y, *f;        /* 2 nf, nf: one sample */
-    double *E, *Ed;       /* N x nh basis and its derivative in the phase, E[h * N + j] */
-    fftw_plan fwd_f, inv_q, inv_v;
+    double *y;            /* 2 nf: one sample */
+    double *smp;          /* gd_hb_samples' spectra and samples, 3 x nsmp */
+    /* union pattern of K, M, D (gd_hb_linear_union) */
+    int *Up, *Ui, Unz;    /* sorted CSC, nf columns */
+    double *UK, *UM, *UD; /* values on it (one allocation, UK first) */
+    long Upat_id;         /* changes with the pattern */
+    int *Uq, *Ui2, *umark;
+    size_t ucap;
+    size_t nsmp;
+    fftw_plan fwd_f, inv_q;
+    fftw_plan row_fwd, row_inv; /* one row of N (rowbuf -> rowbuf + N) */
+    double *rowbuf;             /* 2 N */
+    int *win, nin;              /* input support: the DOFs the forces read (nin -1: all) */
+    int *win2;                  /* the next one, compared with it */
+    unsigned char *rowmark;     /* nf: rows with a non-zero force sample */
     int nterm;
     const gd_tr_term *term;
     /* bordered Jacobian, CSC with sorted rows */
@@ -29,17 +41,24 @@ typedef struct hb {
     /* pattern collection */
     int ntrip, captrip;
     int *ti, *tj;
-    /* low-rank path (lowrank.c): J = L - U C W^T with L block diagonal per harmonic */
-    int solver;   /* 0 automatic, 1 sparse LU of the whole system, 2 low-rank */
-    int r;        /* rank nterm x nh */
-    double *Gall; /* nterm x nh x nh: the terms' harmonic couplings G_t */
+    /* low-rank path (lowrank.c): J = L - U Y with L block diagonal per harmonic */
+    int solver;             /* 0 automatic, 1 sparse LU of the whole system, 2 low-rank */
+    int r;                  /* rank ngroup x nh */
+    int ngroup;             /* terms grouped by their force direction u (lowrank.c) */
+    int *tgroup;            /* nterm: the group of each term */
+    int *grep;              /* ngroup: a term of each group (its u) */
+    double *Gall;           /* nterm x nh x nh: the terms' harmonic couplings G_t */
+    unsigned char *tactive; /* nterm: the term is non-zero in some sample (its G too) */
+    double *Fh;             /* n: the force coefficients F(X) of the last residual */
+    int Fh_ok;
     size_t nGall;
-    int *Lp, *Li;   /* CSC pattern of a 2 nf harmonic block (cos, sin) */
-    double *Lx;     /* values of one block */
-    int *L0p, *L0i; /* pattern of the mean block (nf) */
-    double *L0x;
-    klu_symbolic *Lsym, *L0sym;
+    double *Lx; /* values of one block on the union pattern (complex for k > 0) */
+    size_t nLx;
+    long Lsym_pat;      /* the union pattern id Lsym was made for */
+    double *zb;         /* 2 nf: one complex right-hand side */
+    klu_symbolic *Lsym; /* one analysis for the real mean and the complex harmonics */
     klu_numeric **Lnum; /* H + 1 */
+    double *Lrcond;     /* H + 1: KLU's rcond at each block's last pivoting factorization */
     double *P;          /* n x r: L^-1 U */
     double *S;          /* r x r capacitance I - W^T P C, LU factors */
     int *Spiv;
@@ -47,8 +66,16 @@ typedef struct hb {
     double *brow;    /* n + 1: the bordering row */
     double denom;    /* d - row . J^-1 c */
     double *wr, *wz; /* r workspaces */
-    long stage_id;   /* set by the caller: the problem the next factorisation is of */
-    long L_id;       /* the problem and frequency L and P were made for */
+    /* Newton solves at one L (lowrank.c): L^-1 F(X) = L^-1 F(X0) + P dPhi, the force
+     * change dF = U dPhi lying along the groups' directions */
+    double *Z0, *F0; /* n: L^-1 F(X0) and F(X0) at the first solve with this L */
+    int base_ok;
+    int *urow, nur; /* the DOFs of the groups' u vectors; urow_of: inverse (nf, -1) */
+    int *urow_of;
+    double *Umat;  /* nur x ngroup, column-major */
+    double *fitw;  /* ngroup x (ngroup + nh) workspace */
+    long stage_id; /* set by the caller: the problem the next factorisation is of */
+    long L_id;     /* the problem and frequency L and P were made for */
     double L_w;
 } hb;
 
@@ -59,9 +86,15 @@ int gd_hb_lowrank_factor(hb *h, gd_transient *tr, double w, const double *dRdp, 
 void gd_hb_lowrank_solve(hb *h, double *b);
 void gd_hb_lowrank_solve_J(hb *h, double *x);
 int gd_hb_use_lowrank(const hb *h);
+/* Groups the terms by equal u: tgroup[t] (nterm) and a representative term per group
+ * grep[g]; either may be NULL (then only the count). Returns the number of groups. */
+int gd_hb_term_groups(const hb *h, int *tgroup, int *grep);
 void gd_hb_lowrank_free(hb *h);
 
 int gd_hb_init(hb *h, int nf, int H, int N);
+/* The union pattern of the problem's K, M, D with their values on it (Up, Ui, UK, UM,
+ * UD); Upat_id changes when the pattern does. 0 ok, 1 out of memory. */
+int gd_hb_linear_union(hb *h, gd_transient *tr);
 void gd_hb_free(hb *h);
 /* R = L(w) X - F(X) with the problem tr at angular frequency w; also the samples' term
  * derivatives when jac. Returns 0, or 1 if a force is not finite. */
@@ -75,6 +108,16 @@ int gd_hb_couplings(hb *h, double w);
 int gd_hb_factor(hb *h, gd_transient *tr, double w, const double *dRdp, const double *row);
 /* Solves the factored bordered system in place (b of length n + 1). */
 void gd_hb_solve(hb *h, double *b);
+/* The same for Newton's right-hand side b = -R(X) (bordered), X the point of the last
+ * gd_hb_residual: the low-rank path then needs no block solves after the first at a
+ * factorization (the forces change only along the laws' directions). */
+void gd_hb_solve_newton(hb *h, const double *X, double *b);
+void gd_hb_lowrank_solve_newton(hb *h, const double *X, double *b);
+/* q and q' at N equally spaced phases of one period, sample-major (q[j * nd + m] for DOF
+ * dofs[m]; dofs NULL: every DOF, nd = nf, by batched transforms), into the workspace's
+ * buffers (*q, *v; valid until the next call). 0 ok; 1 if N <= 2 H or no memory. */
+int gd_hb_samples(hb *h, double w, const double *X, int N, const int *dofs, int nd, double **q,
+                  double **v);
 /* q(t), q'(t) (nf each) from the coefficients at phase tau = w t. */
 void gd_hb_eval(const hb *h, double w, const double *X, double tau, double *q, double *v);
 

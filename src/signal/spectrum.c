@@ -1,5 +1,6 @@
 /* Amplitude spectra with FFTW3 (r2c, FFTW_ESTIMATE, plan local to the call). */
 #include "geardyn/spectrum.h"
+#include "signal/fft_planner_impl.h"
 
 #include <fftw3.h>
 #include <math.h>
@@ -48,6 +49,7 @@ gd_status gd_spectrum_compute(const double *x, int nsamples, double dt, gd_windo
         s->amplitude = malloc((size_t)nb * sizeof *s->amplitude);
     }
     fftw_plan plan = NULL;
+    gd_fft_planner_init();
     if (s && in && X && s->freq && s->amplitude)
         plan = fftw_plan_dft_r2c_1d(nsamples, in, X, FFTW_ESTIMATE);
     if (!plan) {

@@ -96,14 +96,6 @@ void gd_transient_matrices(const gd_transient *tr, gd_csc *M, gd_csc *D, gd_csc 
     if (K) *K = csc_view(tr->Kff);
 }
 
-/* y += A x over the free block */
-static void add_mul(const cs *A, const double *x, double *y)
-{
-    for (int j = 0; j < A->n; j++)
-        for (int p = A->p[j]; p < A->p[j + 1]; p++)
-            y[A->i[p]] += A->x[p] * x[j];
-}
-
 void gd_transient_local(gd_transient *tr, double t, const double *y, double *f, double *sq,
                         double *sv)
 {
@@ -116,11 +108,9 @@ void gd_transient_local(gd_transient *tr, double t, const double *y, double *f, 
         m->state = m->spec.backlash ? gd_backlash_state(de, m->spec.gap) : GD_CONTACT_DRIVE;
     }
     if (f) {
-        gd_tr_residual(tr, t, tr->q, tr->v, tr->acc, tr->r);
+        gd_tr_forces(tr, t, tr->q, tr->v, tr->acc, tr->r, 1);
         for (int i = 0; i < nf; i++)
             f[i] = tr->r[tr->free_dof[i]];
-        add_mul(tr->Kff, y, f);
-        add_mul(tr->Dff, y + nf, f);
     }
     if (!sq && !sv) return;
     if (gd_transient_terms(tr, NULL) < 0) return;
@@ -179,8 +169,66 @@ void gd_transient_local(gd_transient *tr, double t, const double *y, double *f, 
 double gd_transient_record_value(gd_transient *tr, const gd_tr_record *rec, double t,
                                  const double *y)
 {
+    double v;
+    gd_transient_record_values(tr, rec, 1, t, y, &v);
+    return v;
+}
+
+void gd_transient_record_values(gd_transient *tr, const gd_tr_record *rec, int nrec, double t,
+                                const double *y, double *out)
+{
     gd_transient_local(tr, t, y, NULL, NULL, NULL);
-    return gd_tr_record_value(tr, rec, t, tr->q, tr->v);
+    for (int r = 0; r < nrec; r++)
+        out[r] = gd_tr_record_value(tr, &rec[r], t, tr->q, tr->v);
+}
+
+/* Appends the free index of full DOF d (if free). 0 ok, 1 full. */
+static int put_dof(const gd_transient *tr, int d, int *idx, int cap, int *n)
+{
+    if (d < 0 || tr->fidx[d] < 0) return 0;
+    if (*n >= cap) return 1;
+    idx[(*n)++] = tr->fidx[d];
+    return 0;
+}
+
+int gd_transient_record_dofs(const gd_transient *tr, const gd_tr_record *rec, int *idx, int cap)
+{
+    if (tr->red) return -1;
+    int n = 0, full = 0, i = rec->index;
+    switch (rec->kind) {
+    case GD_REC_SPEED_RATIO:
+        full |= put_dof(tr, rec->index2, idx, cap, &n);
+        /* fall through */
+    case GD_REC_DISP:
+    case GD_REC_VEL:
+    case GD_REC_ANGLE:
+    case GD_REC_SPEED:
+        full |= put_dof(tr, i, idx, cap, &n);
+        break;
+    case GD_REC_MESH_FORCE:
+    case GD_REC_MESH_DEFLECTION:
+    case GD_REC_MESH_STATE:
+    case GD_REC_MESH_STIFFNESS: {
+        int nl = tr->nl_of_mesh[i];
+        const gd_mesh_vector *a = nl >= 0 ? &tr->mesh[nl].a : &tr->model_a[i];
+        for (int j = 0; j < a->n; j++)
+            full |= put_dof(tr, a->dof[j], idx, cap, &n);
+        if (nl >= 0) full |= put_dof(tr, tr->mesh[nl].drv_dof, idx, cap, &n);
+        break;
+    }
+    case GD_REC_SFD_FX:
+    case GD_REC_SFD_FY:
+    case GD_REC_SFD_ECCENTRICITY: {
+        const tr_sfd *s = &tr->sfd[i];
+        const int d[4] = {s->dx, s->dy, s->dx2, s->dy2};
+        for (int j = 0; j < 4; j++)
+            full |= put_dof(tr, d[j], idx, cap, &n);
+        break;
+    }
+    default:
+        return -1;
+    }
+    return full ? -1 : n;
 }
 
 void gd_transient_hold_drive(gd_transient *tr, double hold)

@@ -7,14 +7,12 @@
 
 void gd_tr_fill(gd_transient *tr, double t, const double *y, double *q, double *v, double *acc)
 {
-    const int n = tr->n, nf = tr->nf;
-    for (int i = 0; i < n; i++) {
-        int f = tr->fidx[i];
-        if (f >= 0) {
-            q[i] = y[f];
-            v[i] = y[nf + f];
-            if (acc) acc[i] = 0.0;
-        }
+    const int nf = tr->nf;
+    for (int f = 0; f < nf; f++) {
+        int i = tr->free_dof[f];
+        q[i] = y[f];
+        v[i] = y[nf + f];
+        if (acc) acc[i] = 0.0;
     }
     for (int k = 0; k < tr->np; k++) {
         int d = tr->pres[k].dof;
@@ -104,8 +102,27 @@ static void sub_mul(const cs *A, const double *x, double *r)
     }
 }
 
+/* r -= A x over the columns of the prescribed DOFs (the others are fixed at zero or
+ * free) */
+static void sub_mul_prescribed(const gd_transient *tr, const cs *A, const double *x, double *r)
+{
+    for (int k = 0; k < tr->np; k++) {
+        int j = tr->pres[k].dof;
+        double xj = x[j];
+        if (xj == 0.0) continue;
+        for (int p = A->p[j]; p < A->p[j + 1]; p++)
+            r[A->i[p]] -= A->x[p] * xj;
+    }
+}
+
 void gd_tr_residual(gd_transient *tr, double t, const double *q, const double *v, const double *acc,
                     double *r)
+{
+    gd_tr_forces(tr, t, q, v, acc, r, 0);
+}
+
+void gd_tr_forces(gd_transient *tr, double t, const double *q, const double *v, const double *acc,
+                  double *r, int skip_free_linear)
 {
     const int n = tr->n;
     memset(r, 0, (size_t)n * sizeof *r);
@@ -154,9 +171,15 @@ void gd_tr_residual(gd_transient *tr, double t, const double *q, const double *v
             tr->mu[c->slot] += m * s1 * s1;
         }
     }
-    sub_mul(tr->K, q, r);
-    sub_mul(tr->D, v, r);
-    if (tr->np) sub_mul(tr->M, acc, r);
+    if (skip_free_linear) {
+        sub_mul_prescribed(tr, tr->K, q, r);
+        sub_mul_prescribed(tr, tr->D, v, r);
+        sub_mul_prescribed(tr, tr->M, acc, r);
+    } else {
+        sub_mul(tr->K, q, r);
+        sub_mul(tr->D, v, r);
+        if (tr->np) sub_mul(tr->M, acc, r);
+    }
     for (int i = 0; i < tr->nmesh; i++) {
         const tr_mesh *m = &tr->mesh[i];
         double d, dd;

@@ -117,6 +117,10 @@ double gd_tr_record_value(gd_transient *tr, const gd_tr_record *rec, double t, c
  * without the inertia of the free DOFs; mu receives the cam inertias (if not NULL). */
 void gd_tr_residual(gd_transient *tr, double t, const double *q, const double *v, const double *acc,
                     double *r);
+/* gd_tr_residual without the free-free linear part K_ff q_f + D_ff q_f' when
+ * skip_free_linear (the local form: what the frequency domain does not already hold). */
+void gd_tr_forces(gd_transient *tr, double t, const double *q, const double *v, const double *acc,
+                  double *r, int skip_free_linear);
 /* x = M_ff^-1 b (b, x of length nf; b is overwritten). */
 void gd_tr_mass_solve(gd_transient *tr, double *b, double *x);
 /* Root functions d_e - b, d_e + b of every backlash mesh. */
