@@ -514,9 +514,10 @@ static int record_stats(ctx *c, stage *s, const double *X, gd_periodic_point *p)
             }
         if (k < 0) nd = -1;
     }
+    const int listed = dofs && seen && tmp;
     free(seen);
     free(tmp);
-    int ok = p->records && vals && buf && out && y && dofs && rv &&
+    int ok = p->records && vals && buf && out && y && listed && rv &&
              (!nr || !gd_hb_samples(&c->h, s->w, X, Nr, nd >= 0 ? dofs : NULL, nd, &qs, &vs));
     const int all = nd < 0; /* a record that reads every DOF: all sampled, in order */
     if (all) nd = nf;

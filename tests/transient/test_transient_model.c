@@ -469,5 +469,53 @@ TEST(sfd_bearing)
     unload(&f);
 }
 
+/* gd_transient_record_dofs: the free DOFs a record reads (what harmonic balance samples
+ * for --record); gd_transient_record_values: every record from one state, the values
+ * gd_transient_record_value gives one at a time. */
+TEST(record_dofs_and_values)
+{
+    fx f;
+    REQUIRE(load(&f, PAIR));
+    f.m->meshes[0].dyn.tvms = tvms20(); /* a law: the mesh also reads its driver's angle */
+    gd_error err;
+    gd_transient_model *tm = NULL;
+    REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
+    gd_transient *tr = NULL;
+    REQUIRE(gd_transient_new(f.s, &tm->spec, 300, &tr, &err) == GD_OK);
+    /* nothing prescribed: the free index of a DOF is the DOF */
+    const int p = gd_system_dof(f.s, 0, GD_RZ), g = gd_system_dof(f.s, 1, GD_RZ),
+              l = gd_system_dof(f.s, 2, GD_RZ);
+    gd_tr_record rec[3] = {
+        {GD_REC_DISP, l, 0}, {GD_REC_MESH_FORCE, 0, 0}, {GD_REC_SPEED_RATIO, g, p}};
+    int idx[8];
+    int n = gd_transient_record_dofs(tr, &rec[0], idx, 8);
+    CHECK(n == 1 && idx[0] == l);
+    n = gd_transient_record_dofs(tr, &rec[1], idx, 8);
+    int np = 0, ng = 0, other = 0;
+    for (int i = 0; i < n; i++) {
+        np += idx[i] == p;
+        ng += idx[i] == g;
+        other += idx[i] != p && idx[i] != g;
+    }
+    CHECK(n == 3 && np == 2 && ng == 1 && other == 0);          /* p as a mesh DOF and as driver */
+    CHECK(gd_transient_record_dofs(tr, &rec[1], idx, 2) == -1); /* more than cap */
+    n = gd_transient_record_dofs(tr, &rec[2], idx, 8);
+    CHECK(n == 2 && ((idx[0] == p && idx[1] == g) || (idx[0] == g && idx[1] == p)));
+    const int ns = gd_transient_nstates(tr), nf = ns / 2;
+    REQUIRE(ns == 6);
+    double y[6], v[3];
+    for (int i = 0; i < ns; i++)
+        y[i] = (i + 1) * (i < nf ? 1e-6 : 1e-3);
+    gd_transient_record_values(tr, rec, 3, 0.01, y, v);
+    for (int r = 0; r < 3; r++)
+        CHECK(v[r] == gd_transient_record_value(tr, &rec[r], 0.01, y));
+    CHECK(v[0] == y[l]);
+    /* the speed ratio (W_g + q_g') / (W_p + q_p') at 300 rad/s on the pinion, 20:40 */
+    CHECK_REL(v[2], (-150 + y[nf + g]) / (300 + y[nf + p]), 1e-12);
+    gd_transient_free(tr);
+    gd_transient_model_free(tm);
+    unload(&f);
+}
+
 RUN_TESTS(T(mesh_laws), T(geometry_tvms), T(loads_prescribed_cams), T(errors), T(run_static_brake),
-          T(run_cam), T(sfd_bearing))
+          T(run_cam), T(sfd_bearing), T(record_dofs_and_values))
