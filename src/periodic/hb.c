@@ -87,25 +87,25 @@ void gd_hb_free(hb *h)
     memset(h, 0, sizeof *h);
 }
 
-/* Half-complex spectra (DOF-major, hc[i * N + j], N > 2 H) of sum_h X_h phi_h (deriv: of
- * its phase derivative), for a half-complex inverse transform to sample. */
+/* Half-complex spectrum (length N > 2 H) of DOF i of sum_h X_h phi_h (deriv: of its
+ * phase derivative), for a half-complex inverse transform to sample. */
+static void fill_row(int nf, int H, int N, const double *X, int i, int deriv, double *b)
+{
+    memset(b, 0, (size_t)N * sizeof *b);
+    if (!deriv) b[0] = X[i];
+    for (int k = 1; k <= H; k++) {
+        double c = X[(size_t)(2 * k - 1) * nf + i], sn = X[(size_t)2 * k * nf + i];
+        /* d/dtau: cos coefficient k sn, sin coefficient -k c */
+        b[k] = 0.5 * (deriv ? k * sn : c);
+        b[N - k] = -0.5 * (deriv ? -k * c : sn);
+    }
+}
+
+/* The spectra of every DOF, DOF-major (hc[i * N + j]). */
 static void fill_spectra(int nf, int H, int N, const double *X, int deriv, double *hc)
 {
-    memset(hc, 0, (size_t)nf * N * sizeof *hc);
-    for (int i = 0; i < nf; i++) {
-        double *b = hc + (size_t)i * N;
-        if (!deriv) b[0] = X[i];
-        for (int k = 1; k <= H; k++) {
-            double c = X[(2 * k - 1) * nf + i], s = X[2 * k * nf + i];
-            if (deriv) { /* d/dtau: cos coefficient k s, sin coefficient -k c */
-                double c2 = k * s, s2 = -k * c;
-                c = c2;
-                s = s2;
-            }
-            b[k] = 0.5 * c;
-            b[N - k] = -0.5 * s;
-        }
-    }
+    for (int i = 0; i < nf; i++)
+        fill_row(nf, H, N, X, i, deriv, hc + (size_t)i * N);
 }
 
 /* Samples (sample-major, out[j * nf + i]) at the solver's N points. */
@@ -146,15 +146,8 @@ int gd_hb_samples(hb *h, double w, const double *X, int N, const int *dofs, int 
         if (!p) return 1;
         for (int m = 0; m < nd; m++)
             for (int deriv = 0; deriv < 2; deriv++) {
-                int i = dofs[m];
-                double *b = hc, *out = deriv ? vs : qs;
-                memset(b, 0, (size_t)N * sizeof *b);
-                if (!deriv) b[0] = X[i];
-                for (int k = 1; k <= H; k++) {
-                    double c = X[(size_t)(2 * k - 1) * nf + i], sn = X[(size_t)2 * k * nf + i];
-                    b[k] = 0.5 * (deriv ? k * sn : c);
-                    b[N - k] = -0.5 * (deriv ? -k * c : sn);
-                }
+                double *out = deriv ? vs : qs;
+                fill_row(nf, H, N, X, dofs[m], deriv, hc);
                 fftw_execute(p);
                 for (int j = 0; j < N; j++)
                     out[(size_t)j * nd + m] = hc[N + j];
@@ -311,13 +304,7 @@ static void synth_support(hb *h, const double *X, int deriv, double *out)
     double *b = h->rowbuf, *o = h->rowbuf + N;
     for (int q = 0; q < h->nin; q++) {
         int i = h->win[q];
-        memset(b, 0, (size_t)N * sizeof *b);
-        if (!deriv) b[0] = X[i];
-        for (int k = 1; k <= H; k++) {
-            double c = X[(size_t)(2 * k - 1) * nf + i], sn = X[(size_t)2 * k * nf + i];
-            b[k] = 0.5 * (deriv ? k * sn : c);
-            b[N - k] = -0.5 * (deriv ? -k * c : sn);
-        }
+        fill_row(nf, H, N, X, i, deriv, b);
         fftw_execute_r2r(h->row_inv, b, o);
         for (int j = 0; j < N; j++)
             out[(size_t)j * nf + i] = o[j];

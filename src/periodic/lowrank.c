@@ -52,6 +52,7 @@ void gd_hb_lowrank_free(hb *h)
     h->tgroup = h->grep = h->urow = h->urow_of = NULL;
     h->Z0 = h->F0 = h->Umat = h->fitw = NULL;
     h->base_ok = 0;
+    h->ugram_ok = 0;
     h->nur = 0;
     h->Lnum = NULL;
     h->Spiv = NULL;
@@ -399,6 +400,16 @@ static int make_umat(hb *h)
         for (int j = 0; j < tm->nu; j++)
             h->Umat[(size_t)g * h->nur + h->urow_of[tm->u_idx[j]]] = tm->u[j];
     }
+    /* U^T U and its Cholesky factor, once per grouping (ugram_ok 0: directions dependent) */
+    double *A = h->fitw;
+    for (int g = 0; g < ng; g++)
+        for (int g2 = 0; g2 < ng; g2++) {
+            double m = 0.0;
+            for (int q = 0; q < h->nur; q++)
+                m += h->Umat[(size_t)g * h->nur + q] * h->Umat[(size_t)g2 * h->nur + q];
+            A[(size_t)g2 * ng + g] = m;
+        }
+    h->ugram_ok = ng > 0 && !LAPACKE_dpotrf_work(LAPACK_COL_MAJOR, 'U', ng, A, ng);
     return 0;
 }
 
@@ -409,19 +420,13 @@ static int make_umat(hb *h)
 static int solve_L_from_base(hb *h, const double *X, double *b)
 {
     const int nf = h->nf, nh = h->nh, ng = h->ngroup, n = h->n, nur = h->nur;
-    if (!h->base_ok || !h->Fh_ok || !ng) return 0;
+    if (!h->base_ok || !h->Fh_ok || !h->ugram_ok) return 0;
     double bn = 0.0;
     for (int i = 0; i < n; i++)
         bn += b[i] * b[i];
     /* normal equations: (U^T U) dPhi_a = U^T dF_a for every slot a at once */
-    double *A = h->fitw, *B = h->fitw + (size_t)ng * ng;
-    for (int g = 0; g < ng; g++)
-        for (int g2 = 0; g2 < ng; g2++) {
-            double m = 0.0;
-            for (int q = 0; q < nur; q++)
-                m += h->Umat[(size_t)g * nur + q] * h->Umat[(size_t)g2 * nur + q];
-            A[(size_t)g2 * ng + g] = m;
-        }
+    const double *A = h->fitw;
+    double *B = h->fitw + (size_t)ng * ng;
     for (int a = 0; a < nh; a++)
         for (int g = 0; g < ng; g++) {
             double m = 0.0;
@@ -431,7 +436,7 @@ static int solve_L_from_base(hb *h, const double *X, double *b)
             }
             B[(size_t)a * ng + g] = m;
         }
-    if (LAPACKE_dposv_work(LAPACK_COL_MAJOR, 'U', ng, nh, A, ng, B, ng)) return 0;
+    if (LAPACKE_dpotrs_work(LAPACK_COL_MAJOR, 'U', ng, nh, A, ng, B, ng)) return 0;
     /* what the fit leaves: every entry of dF - U dPhi */
     double miss = 0.0;
     for (int a = 0; a < nh; a++)

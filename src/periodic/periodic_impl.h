@@ -73,7 +73,8 @@ typedef struct hb {
     int *urow, nur; /* the DOFs of the groups' u vectors; urow_of: inverse (nf, -1) */
     int *urow_of;
     double *Umat;  /* nur x ngroup, column-major */
-    double *fitw;  /* ngroup x (ngroup + nh) workspace */
+    double *fitw;  /* ngroup x ngroup: Cholesky factor of U^T U; then ngroup x nh */
+    int ugram_ok;  /* that factor exists (independent directions) */
     long stage_id; /* set by the caller: the problem the next factorisation is of */
     long L_id;     /* the problem and frequency L and P were made for */
     double L_w;

@@ -91,28 +91,28 @@ double gd_tr_mesh_force(const gd_transient *tr, const tr_mesh *m, gd_contact sta
     return gd_tr_mesh_law(m, state, t, q, v, d_out, dd_out, k_out, de_out, NULL);
 }
 
+/* r -= A[:, j] x_j */
+static void sub_col(const cs *A, int j, const double *x, double *r)
+{
+    double xj = x[j];
+    if (xj == 0.0) return;
+    for (int p = A->p[j]; p < A->p[j + 1]; p++)
+        r[A->i[p]] -= A->x[p] * xj;
+}
+
 /* r -= A x over the whole matrix */
 static void sub_mul(const cs *A, const double *x, double *r)
 {
-    for (int j = 0; j < A->n; j++) {
-        double xj = x[j];
-        if (xj == 0.0) continue;
-        for (int p = A->p[j]; p < A->p[j + 1]; p++)
-            r[A->i[p]] -= A->x[p] * xj;
-    }
+    for (int j = 0; j < A->n; j++)
+        sub_col(A, j, x, r);
 }
 
 /* r -= A x over the columns of the prescribed DOFs (the others are fixed at zero or
  * free) */
 static void sub_mul_prescribed(const gd_transient *tr, const cs *A, const double *x, double *r)
 {
-    for (int k = 0; k < tr->np; k++) {
-        int j = tr->pres[k].dof;
-        double xj = x[j];
-        if (xj == 0.0) continue;
-        for (int p = A->p[j]; p < A->p[j + 1]; p++)
-            r[A->i[p]] -= A->x[p] * xj;
-    }
+    for (int k = 0; k < tr->np; k++)
+        sub_col(A, tr->pres[k].dof, x, r);
 }
 
 void gd_tr_residual(gd_transient *tr, double t, const double *q, const double *v, const double *acc,
