@@ -249,6 +249,61 @@ static int parse_sfd(const gd_system *sys, const gd_transient_model *tm, const c
                               buf, list);
 }
 
+/* law:NAME[:RECORD]: a record of a law of the model's `laws:` list (its first record by
+ * default; law:* every law) */
+static int push_law(const gd_law *L, int i, int w, gd_cli_records *recs)
+{
+    char tail[48];
+    snprintf(tail, sizeof tail, ":%s", L->type->records[w].name);
+    return push(recs, GD_REC_LAW, i, w, L->type->records[w].unit, "law:", L->name, tail);
+}
+
+static int parse_law(const gd_transient_model *tm, const char *cmd, const char *item,
+                     gd_cli_records *recs)
+{
+    const gd_transient_spec *sp = &tm->spec;
+    char buf[256];
+    snprintf(buf, sizeof buf, "%s", item + 4);
+    char *colon = strchr(buf, ':');
+    const char *what = colon ? colon + 1 : NULL;
+    if (colon) *colon = 0;
+    if (!sp->nlaws)
+        return gd_cli_usage_error(cmd, "--record '%s': the model has no law (a `laws:` list)",
+                                  item);
+    int all = !strcmp(buf, "*"), found = 0;
+    for (int i = 0; i < sp->nlaws; i++) {
+        const gd_law *L = &sp->laws[i];
+        if (!all && strcmp(L->name, buf)) continue;
+        found = 1;
+        if (!L->type->nrecords)
+            return gd_cli_usage_error(cmd, "--record '%s': law '%s' (%s) has no records", item,
+                                      L->name, L->type->name);
+        int w = what ? gd_law_record_index(L->type, what) : 0;
+        if (w < 0) {
+            char list[200] = "";
+            size_t len = 0;
+            for (int k = 0; k < L->type->nrecords && len + 40 < sizeof list; k++) {
+                int wr = snprintf(list + len, sizeof list - len, "%s%s", k ? ", " : "",
+                                  L->type->records[k].name);
+                if (wr > 0) len += (size_t)wr;
+            }
+            return gd_cli_usage_error(cmd,
+                                      "--record '%s': law '%s' (%s) has no record '%s' (use %s)",
+                                      item, L->name, L->type->name, what, list);
+        }
+        int rc = push_law(L, i, w, recs);
+        if (rc) return rc;
+    }
+    if (found) return 0;
+    char list[400] = "";
+    size_t len = 0;
+    for (int i = 0; i < sp->nlaws && len + 70 < sizeof list; i++) {
+        int wr = snprintf(list + len, sizeof list - len, "%s%s", i ? ", " : "", sp->laws[i].name);
+        if (wr > 0) len += (size_t)wr;
+    }
+    return gd_cli_usage_error(cmd, "--record '%s': no law '%s' (laws: %s)", item, buf, list);
+}
+
 static const char *const DOF_WHAT[] = {"disp", "vel", "angle", "speed"};
 static const gd_tr_record_kind DOF_KIND[] = {GD_REC_DISP, GD_REC_VEL, GD_REC_ANGLE, GD_REC_SPEED};
 
@@ -285,6 +340,7 @@ static int parse_item(const gd_system *sys, const gd_transient_model *tm, const 
     if (!strncmp(item, "ratio:", 6)) return parse_ratio(sys, cmd, item, recs);
     if (!strncmp(item, "mesh:", 5)) return parse_mesh(sys, cmd, item, recs);
     if (!strncmp(item, "sfd:", 4)) return parse_sfd(sys, tm, cmd, item, recs);
+    if (!strncmp(item, "law:", 4)) return parse_law(tm, cmd, item, recs);
     return parse_dof(sys, cmd, item, recs);
 }
 
@@ -325,6 +381,8 @@ int gd_cli_default_records(const gd_system *sys, const gd_transient_model *tm, g
         rc = push_sfd(m, tm, s, 0, recs);
         if (!rc) rc = push_sfd(m, tm, s, 1, recs);
     }
+    for (int i = 0; i < tm->spec.nlaws && !rc; i++)
+        if (tm->spec.laws[i].type->nrecords) rc = push_law(&tm->spec.laws[i], i, 0, recs);
     if (rc || recs->n) return rc;
     for (int i = 0; i < sys->ndof && !rc; i++)
         if (sys->dof_type[i] == GD_RZ) {

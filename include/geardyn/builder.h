@@ -348,6 +348,29 @@ GD_API void gd_cam_spec_init(gd_cam_spec *s);
  * (all 0). */
 GD_API gd_status gd_model_add_cam(gd_model *m, const gd_cam_spec *s, int *index, gd_error *err);
 
+/* A law of the registry (include/geardyn/law_type.h): a squeeze film damper, a
+ * polynomial spring, friction, or a user's own type, on `node` (and `node2`, the other
+ * side, for two-node types; NULL: ground). A type without directions of its own acts
+ * in `dof`. values[k] is parameter k of the type's table in SI (NAN: its default);
+ * NULL: every default. The type is borrowed: it must outlive the model. */
+typedef struct gd_law_spec {
+    const char *name;        /* NULL: "<type><index + 1>" */
+    const gd_law_type *type; /* required */
+    const char *node;        /* required */
+    const char *node2;       /* two-node types; NULL: ground */
+    gd_dof dof;              /* types with ndirs = 0; default GD_X */
+    const double *values;    /* type->nparams values, or NULL */
+    gd_loc loc;
+    const char *path; /* NULL: "laws[<index>]" */
+} gd_law_spec;
+/* Defaults: all zero (dof GD_X, every parameter at its default). */
+GD_API void gd_law_spec_init(gd_law_spec *s);
+/* *index: the law's index. Errors: no type or an invalid type table, node2 on a
+ * one-node type, a parameter missing, not finite or out of its bounds (the field names
+ * it); at finish an unknown node. Whether the DOFs are active is checked where a
+ * problem is made from the model (gd_transient_model_build). */
+GD_API gd_status gd_model_add_law(gd_model *m, const gd_law_spec *s, int *index, gd_error *err);
+
 /* ---- globals ---- */
 
 /* The active node DOFs (GD_DOF_BIT mask, not 0; default GD_DOFS_ALL). */

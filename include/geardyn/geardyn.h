@@ -37,6 +37,7 @@
 #include "geardyn/error.h"
 #include "geardyn/units.h"
 #include "geardyn/material.h"
+#include "geardyn/law_type.h"
 #include "geardyn/laws.h"
 #include "geardyn/model.h"
 #include "geardyn/builder.h"

@@ -20,6 +20,7 @@
 #define GEARDYN_NONLINEAR_H
 #include "geardyn/export.h"
 #include "geardyn/error.h"
+#include "geardyn/law_type.h"
 #include "geardyn/mesh_stiffness.h"
 
 /* ---------------------------------------------------------------- tables */
@@ -152,6 +153,11 @@ GD_API void gd_sfd_force(const gd_sfd_params *p, double x, double y, double vx, 
  * integrator and the frequency-domain solvers). fx, fy receive the forces. */
 GD_API void gd_sfd_force_jacobian(const gd_sfd_params *p, double x, double y, double vx, double vy,
                                   double *fx, double *fy, double jq[4], double jv[4]);
+
+/* The damper as a law instance (gd_law_sfd, law_type.h): its parameters from a law's
+ * values, and a law's values from parameters. */
+GD_API void gd_sfd_params_of_law(const gd_law *law, gd_sfd_params *p);
+GD_API void gd_sfd_law_values(const gd_sfd_params *p, gd_law *law);
 
 /* ---------------------------------------------------------------- cam inertial torque */
 

@@ -188,6 +188,18 @@ typedef struct gd_cam {
     gd_loc loc;
 } gd_cam;
 
+/* A law of the registry (include/geardyn/law_type.h) acting on a node's DOFs: the
+ * type's directions at node, then at node2 (-1: ground), or one direction `dof` for a
+ * type with no directions of its own. */
+typedef struct gd_model_law {
+    char name[GD_NAME_MAX];
+    const gd_law_type *type;
+    int node, node2;
+    gd_dof dof;
+    double value[GD_LAW_MAX_PARAMS]; /* SI, in the type's parameter order */
+    gd_loc loc;
+} gd_model_law;
+
 typedef struct gd_model {
     char file[256];
     int nmaterials;
@@ -216,6 +228,8 @@ typedef struct gd_model {
     gd_prescription *prescribed;
     int ncams;
     gd_cam *cams;
+    int nlaws;
+    gd_model_law *laws;
     unsigned dof_mask;   /* active node DOFs (GD_DOF_BIT) */
     int reference_shaft; /* shaft whose speed is the reference speed */
     double speed;        /* reference speed, rad/s (0 unless given) */

@@ -31,6 +31,7 @@
 #define GEARDYN_TRANSIENT_H
 #include "geardyn/export.h"
 #include "geardyn/error.h"
+#include "geardyn/law_type.h"
 #include "geardyn/laws.h"
 #include "geardyn/sparse.h"
 #include "geardyn/system.h"
@@ -97,12 +98,25 @@ typedef struct gd_transient_spec {
     int ncams;
     const gd_tr_prescribed *prescribed;
     int nprescribed;
+    /* Laws of the registry (include/geardyn/law_type.h): user laws and the laws a
+     * model's `laws:` list declares, with system DOF indices. The dampers and loads
+     * above are laws too (gd_law_sfd, gd_law_load): the problem makes their instances
+     * itself (gd_transient_spec_laws). */
+    const gd_law *laws;
+    int nlaws;
     int unbalances;       /* 1: the model's unbalances, at their shafts' nominal speeds */
     int cam_acceleration; /* 1: keep the m_eq s'^2 dW/dt term of Eq. 10 (an angle-
                              dependent inertia, solved exactly by a low-rank update) */
 } gd_transient_spec;
 
 typedef struct gd_transient gd_transient;
+
+/* Every law of a spec as registry instances, in the problem's order: one gd_law_sfd per
+ * damper, one gd_law_load per load, then spec->laws; their nominal rates set at the
+ * reference speed (rad/s), every instance checked (gd_law_check). *out (length *n, NULL
+ * when 0) is the caller's to free(). Errors: GD_EINPUT naming the law and field. */
+GD_API gd_status gd_transient_spec_laws(const gd_system *sys, const gd_transient_spec *spec,
+                                        double speed, gd_law **out, int *n, gd_error *err);
 
 /* Builds the problem at reference speed W (rad/s). */
 GD_API gd_status gd_transient_new(const gd_system *sys, const gd_transient_spec *spec, double speed,
@@ -217,7 +231,8 @@ typedef enum gd_tr_record_kind {
     GD_REC_MESH_STIFFNESS,  /* k(theta), N/m */
     GD_REC_SFD_FX,          /* force on the journal of damper index (spec order), N */
     GD_REC_SFD_FY,
-    GD_REC_SFD_ECCENTRICITY /* e / c */
+    GD_REC_SFD_ECCENTRICITY, /* e / c */
+    GD_REC_LAW               /* record index2 (gd_law_type.records) of spec.laws[index] */
 } gd_tr_record_kind;
 
 typedef struct gd_tr_record {

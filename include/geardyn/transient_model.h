@@ -25,6 +25,7 @@ typedef struct gd_transient_model {
     gd_tr_load *loads;
     gd_tr_prescribed *prescribed;
     gd_tr_cam *cams;  /* one per valve */
+    gd_law *laws;     /* spec.nlaws: the model's laws, in its order */
     int *sfd_bearing; /* spec.nsfds: model bearing index of each damper */
     int *cam_of;      /* spec.ncams: model cam index of each valve train */
     int nowned;       /* tables made here */

@@ -149,3 +149,154 @@ void gd_sfd_force_jacobian(const gd_sfd_params *p, double x, double y, double vx
             J[2 * i + col] = (fp[i] - fm[i]) / (2.0 * h[j]);
     }
 }
+
+/* ---- the squeeze film damper as a law (include/geardyn/law_type.h) ----
+ * Local DOFs [x, y] of the journal node, then [x, y] of the housing node (absent:
+ * ground). value[]: viscosity, diameter, length, clearance, film (0 pi, 1 2pi),
+ * correction (0 auto, < 0 none, > 0 factor), max_eccentricity (0: 0.995). */
+#include <stdio.h>
+
+#include "geardyn/law_type.h"
+
+enum { SFD_MU, SFD_D, SFD_L, SFD_C, SFD_FILM, SFD_CORR, SFD_EMAX, SFD_NPARAMS };
+
+static const gd_law_param sfd_params[SFD_NPARAMS] = {
+    {"viscosity", GD_QTY_VISCOSITY, NAN, GD_LAW_POSITIVE, "the oil's dynamic viscosity, Pa s"},
+    {"diameter", GD_QTY_LENGTH, NAN, GD_LAW_POSITIVE, "the journal diameter D"},
+    {"length", GD_QTY_LENGTH, NAN, GD_LAW_POSITIVE, "the land length L"},
+    {"clearance", GD_QTY_LENGTH, NAN, GD_LAW_POSITIVE, "the radial clearance c"},
+    {"film", GD_QTY_DIMLESS, 0.0, GD_LAW_NONNEG, "0: pi (cavitated) film, 1: 2pi film"},
+    {"correction", GD_QTY_DIMLESS, 0.0, GD_LAW_ANY,
+     "finite-length factor: 0 auto, negative none, positive this factor"},
+    {"max_eccentricity", GD_QTY_DIMLESS, 0.0, GD_LAW_NONNEG,
+     "cap of the eccentricity ratio, below 1 (0: 0.995)"},
+};
+
+void gd_sfd_params_of_law(const gd_law *law, gd_sfd_params *p)
+{
+    const double *v = law->value;
+    p->viscosity = v[SFD_MU];
+    p->radius = 0.5 * v[SFD_D];
+    p->length = v[SFD_L];
+    p->clearance = v[SFD_C];
+    p->film = v[SFD_FILM] != 0.0 ? GD_SFD_2PI_FILM : GD_SFD_PI_FILM;
+    p->correction = v[SFD_CORR];
+    p->max_eccentricity = v[SFD_EMAX];
+}
+
+void gd_sfd_law_values(const gd_sfd_params *p, gd_law *law)
+{
+    double *v = law->value;
+    v[SFD_MU] = p->viscosity;
+    v[SFD_D] = 2.0 * p->radius;
+    v[SFD_L] = p->length;
+    v[SFD_C] = p->clearance;
+    v[SFD_FILM] = p->film == GD_SFD_2PI_FILM ? 1.0 : 0.0;
+    v[SFD_CORR] = p->correction;
+    v[SFD_EMAX] = p->max_eccentricity;
+}
+
+static int sfd_check(const gd_law *law, const char **field, char *msg, size_t cap)
+{
+    if (law->value[SFD_FILM] != 0.0 && law->value[SFD_FILM] != 1.0) {
+        *field = "film";
+        snprintf(msg, cap, "film is 0 (pi film) or 1 (2pi film), not %g", law->value[SFD_FILM]);
+        return 1;
+    }
+    if (!(law->value[SFD_EMAX] < 1.0)) {
+        *field = "max_eccentricity";
+        snprintf(msg, cap, "the eccentricity cap must be below 1 (got %g)", law->value[SFD_EMAX]);
+        return 1;
+    }
+    return 0;
+}
+
+/* term 2 r + c: u = e_r(node) - e_r(node2), w = e_c(node) - e_c(node2) */
+static void sfd_term(const gd_law *law, int k, double *u, double *w)
+{
+    (void)law;
+    int r = k / 2, c = k % 2;
+    u[r] = 1.0;
+    u[2 + r] = -1.0;
+    w[c] = 1.0;
+    w[2 + c] = -1.0;
+}
+
+static void sfd_relative(const gd_law_point *x, double rel[4])
+{
+    rel[0] = x->q[0] - x->q[2];
+    rel[1] = x->q[1] - x->q[3];
+    rel[2] = x->v[0] - x->v[2];
+    rel[3] = x->v[1] - x->v[3];
+}
+
+static void sfd_force(const gd_law *law, const gd_law_point *x, double *f, double *jq, double *jv)
+{
+    gd_sfd_params p;
+    gd_sfd_params_of_law(law, &p);
+    double r[4], fx, fy;
+    sfd_relative(x, r);
+    if (jq || jv) {
+        double a[4], b[4];
+        gd_sfd_force_jacobian(&p, r[0], r[1], r[2], r[3], &fx, &fy, a, b);
+        for (int k = 0; k < 4; k++) {
+            if (jq) jq[k] = a[k];
+            if (jv) jv[k] = b[k];
+        }
+    } else {
+        gd_sfd_force(&p, r[0], r[1], r[2], r[3], &fx, &fy);
+    }
+    f[0] += fx;
+    f[1] += fy;
+    f[2] -= fx;
+    f[3] -= fy;
+}
+
+static const gd_law_record sfd_records[] = {{"fx", "N"}, {"fy", "N"}, {"ecc", "-"}};
+
+static double sfd_record(const gd_law *law, int k, const gd_law_point *x)
+{
+    gd_sfd_params p;
+    gd_sfd_params_of_law(law, &p);
+    double r[4], fx, fy;
+    sfd_relative(x, r);
+    if (k == 2) return hypot(r[0], r[1]) / p.clearance;
+    gd_sfd_force(&p, r[0], r[1], r[2], r[3], &fx, &fy);
+    return k == 0 ? fx : fy;
+}
+
+static void sfd_linearize(const gd_law *law, const gd_law_point *x, double *K, double *C)
+{
+    double jq[4], jv[4], f[4] = {0};
+    sfd_force(law, x, f, jq, jv);
+    for (int k = 0; k < 4; k++) {
+        double u[4] = {0}, w[4] = {0};
+        sfd_term(law, k, u, w);
+        for (int i = 0; i < 4; i++)
+            for (int j = 0; j < 4; j++) {
+                K[i + 4 * j] -= jq[k] * u[i] * w[j];
+                C[i + 4 * j] -= jv[k] * u[i] * w[j];
+            }
+    }
+}
+
+static const int sfd_dirs[] = {0, 1};
+
+const gd_law_type gd_law_sfd = {
+    .name = "sfd",
+    .summary = "squeeze film damper, short-bearing theory with a finite-length correction",
+    .flags = GD_LAW_SMOOTH,
+    .params = sfd_params,
+    .nparams = SFD_NPARAMS,
+    .dirs = sfd_dirs,
+    .ndirs = 2,
+    .two_nodes = 1,
+    .check = sfd_check,
+    .nterms = 4,
+    .term = sfd_term,
+    .force = sfd_force,
+    .records = sfd_records,
+    .nrecords = 3,
+    .record = sfd_record,
+    .linearize = sfd_linearize,
+};

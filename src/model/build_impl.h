@@ -62,7 +62,7 @@ typedef struct gd_model_build {
     gd_field_locator locator;
     char **material_path;
     gd_bshaft *shafts;
-    gd_bitem *disks, *bearings, *springs, *unbalances, *excitations, *prescribed, *cams;
+    gd_bitem *disks, *bearings, *springs, *unbalances, *excitations, *prescribed, *cams, *laws;
     gd_bmesh *meshes;
     gd_btable *excitation_tables, *prescribed_tables, *cam_tables;
     char *reference_shaft;
@@ -130,5 +130,6 @@ gd_status gd_build_mesh_from_geometry(gd_model *m, int k, gd_error *err);
 gd_status gd_build_propagate_speeds(gd_model *m, gd_error *err); /* speed_propagation.c */
 /* unbalances, loads, prescribed motions, cams (builder_dynamics.c) */
 gd_status gd_build_resolve_dynamics(gd_model *m, gd_error *err);
+gd_status gd_build_resolve_laws(gd_model *m, gd_error *err); /* builder_laws.c */
 
 #endif

@@ -169,6 +169,7 @@ void gd_model_build_free(gd_model *m)
     free_items(b->excitations, m->nexcitations);
     free_items(b->prescribed, m->nprescribed);
     free_items(b->cams, m->ncams);
+    free_items(b->laws, m->nlaws);
     for (int i = 0; i < m->nmeshes && b->meshes; i++) {
         gd_bmesh *g = &b->meshes[i];
         free(g->path);
@@ -383,7 +384,7 @@ gd_status gd_model_finish(gd_model *m, gd_error *err)
     if ((st = gd_build_discretise_shafts(m, err)) || (st = finish_reference(m, err)) ||
         (st = gd_build_resolve_disks(m, err)) || (st = gd_build_resolve_supports(m, err)) ||
         (st = gd_build_resolve_meshes(m, err)) || (st = gd_build_propagate_speeds(m, err)) ||
-        (st = gd_build_resolve_dynamics(m, err)))
+        (st = gd_build_resolve_dynamics(m, err)) || (st = gd_build_resolve_laws(m, err)))
         return st;
     gd_model_build_free(m);
     return GD_OK;

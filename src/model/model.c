@@ -82,6 +82,7 @@ void gd_model_free(gd_model *model)
     free(model->excitations);
     free(model->prescribed);
     free(model->cams);
+    free(model->laws);
     free(model->meshes);
     free(model->unbalances);
     free(model);

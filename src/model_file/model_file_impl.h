@@ -73,6 +73,8 @@ gd_status gd_mp_mesh_dynamics(gd_mparser *p, const gd_ynode *mesh_map, const cha
 gd_status gd_mp_bearing_sfd(gd_mparser *p, const gd_ynode *bearing_map, const char *path,
                             gd_bearing_spec *b);
 gd_status gd_mp_dynamics(gd_mparser *p);
+/* The `laws:` list (laws_read.c). */
+gd_status gd_mp_laws(gd_mparser *p);
 
 /* The model described by a loaded YAML document; name stands for the file in messages. */
 gd_status gd_model_from_ydoc(const gd_ydoc *doc, const char *name, gd_model **out, gd_error *err);

@@ -16,7 +16,7 @@ static const char *const TOP_KEYS[] = {
     "title",           "description", "materials",  "dofs",        "shafts",
     "disks",           "bearings",    "springs",    "meshes",      "speed",
     "reference_shaft", "rotation",    "unbalances", "excitations", "prescribed",
-    "cam_torques",     "limits",      "damping",    NULL};
+    "cam_torques",     "limits",      "damping",    "laws",        NULL};
 static const char *const LIMIT_KEYS[] = {"max_nodes", NULL};
 static const char *const DAMPING_KEYS[] = {"rayleigh", NULL};
 static const char *const RAYLEIGH_KEYS[] = {"alpha", "beta", "ratios", "frequencies", NULL};
@@ -276,7 +276,7 @@ static gd_status parse(gd_mparser *p)
         (st = gd_mp_materials(p)) || (st = gd_mp_shafts(p)) || (st = parse_globals(p)) ||
         (st = parse_damping(p)) || (st = gd_mp_disks(p)) || (st = gd_mp_bearings(p)) ||
         (st = gd_mp_springs(p)) || (st = gd_mp_meshes(p)) || (st = gd_mp_unbalances(p)) ||
-        (st = gd_mp_dynamics(p)))
+        (st = gd_mp_dynamics(p)) || (st = gd_mp_laws(p)))
         return st;
     return gd_model_finish(p->m, p->r.err);
 }

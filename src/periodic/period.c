@@ -5,6 +5,7 @@
  * real frequencies with a relative tolerance. */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "geardyn/periodic.h"
 
@@ -71,19 +72,27 @@ gd_status gd_periodic_fundamental(const gd_system *sys, const gd_transient_spec 
             push(f, &n, TWO_PI / t[k]->period * r);
         }
     }
-    for (int i = 0; i < spec->nloads; i++) {
-        const gd_load_law *l = &spec->loads[i].law;
-        double r = dof_rate(sys, spec->loads[i].dof, speed);
-        if (l->kind == GD_LOAD_HARMONIC_TIME) push(f, &n, fabs(l->frequency));
-        if (l->kind == GD_LOAD_HARMONIC_ANGLE) push(f, &n, fabs(l->frequency) * r);
-        if (l->kind == GD_LOAD_TABLE_ANGLE) {
-            if (!(l->table->period > 0))
-                return undefined(err, "excitations.loads", "a load table is not periodic");
-            if (r == 0.0 && sys->dof_type[spec->loads[i].dof] == GD_RZ)
-                return undefined(err, "excitations.loads", "a load table on a shaft at rest");
-            push(f, &n, TWO_PI / l->table->period * r);
+    /* every law of the registry names its own excitation frequencies */
+    gd_law *laws = NULL;
+    int nlaws = 0;
+    gd_status st = gd_transient_spec_laws(sys, spec, speed, &laws, &nlaws, err);
+    if (st) return st;
+    for (int i = 0; i < nlaws; i++) {
+        const gd_law *L = &laws[i];
+        if (!L->type->frequencies) continue;
+        double w[16];
+        char msg[200] = "";
+        int nw = L->type->frequencies(L, w, 16, msg, sizeof msg);
+        if (nw < 0) {
+            char field[GD_LAW_NAME_MAX + 8];
+            snprintf(field, sizeof field, "%s", L->name);
+            free(laws);
+            return undefined(err, field, msg);
         }
+        for (int k = 0; k < nw; k++)
+            push(f, &n, w[k]);
     }
+    free(laws);
     for (int i = 0; i < spec->ncams; i++)
         push(f, &n, dof_rate(sys, spec->cams[i].dof, speed));
     for (int i = 0; i < spec->nprescribed; i++) {

@@ -62,6 +62,17 @@ void pl_record_describe(const gd_system *sys, const gd_tr_record *rec, char *nam
         *quantity = "damper force", *unit = "N";
         snprintf(name, n, "damper %d %s", rec->index, rec->kind == GD_REC_SFD_FX ? "Fx" : "Fy");
         break;
+    case GD_REC_LAW: {
+        /* a law of the model's `laws:` list and one of its type's records */
+        const gd_model_law *L =
+            rec->index >= 0 && rec->index < m->nlaws ? &m->laws[rec->index] : NULL;
+        const gd_law_record *r = L && rec->index2 >= 0 && rec->index2 < L->type->nrecords
+                                     ? &L->type->records[rec->index2]
+                                     : NULL;
+        *quantity = r ? r->name : "law record", *unit = r ? r->unit : "";
+        snprintf(name, n, "%s %s", L ? L->name : "law", r ? r->name : "");
+        break;
+    }
     default:
         *quantity = "damper eccentricity", *unit = "e/c";
         snprintf(name, n, "damper %d eccentricity", rec->index);

@@ -73,14 +73,16 @@ static int ga_alloc(ga *g, gd_transient *tr)
     g->R = g->a1 + nf;
     g->x = g->R + nf;
     /* meshes whose law may differ from the assembled k a a^T, c a a^T */
-    g->linear = tr->nsfd == 0 && tr->nload == 0 && tr->ncam == 0;
-    /* piecewise linear: affine in (q, q') within each contact state (loads of time only,
-     * mesh laws whose angle is the driver's nominal or prescribed motion) */
-    g->piecewise = tr->nsfd == 0 && tr->ncam == 0;
-    for (int i = 0; i < tr->nload; i++)
-        if (tr->load[i].law.kind != GD_LOAD_CONSTANT &&
-            tr->load[i].law.kind != GD_LOAD_HARMONIC_TIME)
-            g->piecewise = 0;
+    g->linear = tr->nlaw == 0 && tr->ncam == 0;
+    /* piecewise linear: affine in (q, q') within each contact state (laws of time only,
+     * such as loads of time; mesh laws whose angle is the driver's nominal or prescribed
+     * motion) */
+    g->piecewise = tr->ncam == 0;
+    for (int i = 0; i < tr->nlaw; i++) {
+        const gd_law *L = &tr->law[i];
+        unsigned f = L->type->instance_flags ? L->type->instance_flags(L) : L->type->flags;
+        if (!(f & GD_LAW_TIME_ONLY)) g->piecewise = 0;
+    }
     for (int i = 0; i < tr->nmesh; i++) {
         const tr_mesh *m = &tr->mesh[i];
         const gd_tr_mesh *s = &m->spec;

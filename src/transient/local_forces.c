@@ -37,7 +37,9 @@ static void term_w(gd_tr_term *t, const gd_transient *tr, int dof, double coef)
 static int build_terms(gd_transient *tr)
 {
     if (tr->cam_acc && tr->ncd) return -1;
-    int cap = 2 * tr->nmesh + 4 * tr->nsfd + tr->ncam + tr->nload;
+    int cap = 2 * tr->nmesh + tr->ncam;
+    for (int i = 0; i < tr->nlaw; i++)
+        cap += tr->law[i].type->nterms;
     tr->term = calloc((size_t)(cap > 0 ? cap : 1), sizeof *tr->term);
     if (!tr->term) return -2;
     int n = 0;
@@ -51,27 +53,22 @@ static int build_terms(gd_transient *tr)
         }
         term_w(b, tr, m->drv_dof, 1.0);
     }
-    for (int i = 0; i < tr->nsfd; i++) {
-        const tr_sfd *s = &tr->sfd[i];
-        int o[2] = {s->dx, s->dy}, o2[2] = {s->dx2, s->dy2};
-        for (int r = 0; r < 2; r++)
-            for (int c = 0; c < 2; c++) {
-                gd_tr_term *t = &tr->term[n++];
-                term_u(t, tr, o[r], 1.0);
-                term_u(t, tr, o2[r], -1.0);
-                term_w(t, tr, o[c], 1.0);
-                term_w(t, tr, o2[c], -1.0);
-            }
-    }
     for (int i = 0; i < tr->ncam; i++) {
         gd_tr_term *t = &tr->term[n++];
         term_u(t, tr, tr->cam[i].spec.dof, 1.0);
         term_w(t, tr, tr->cam[i].spec.dof, 1.0);
     }
-    for (int i = 0; i < tr->nload; i++) {
-        gd_tr_term *t = &tr->term[n++];
-        term_u(t, tr, tr->load[i].dof, 1.0);
-        term_w(t, tr, tr->load[i].dof, 1.0);
+    for (int i = 0; i < tr->nlaw; i++) {
+        const gd_law *L = &tr->law[i];
+        for (int k = 0; k < L->type->nterms; k++) {
+            double u[GD_LAW_MAX_DOFS] = {0}, w[GD_LAW_MAX_DOFS] = {0};
+            L->type->term(L, k, u, w);
+            gd_tr_term *t = &tr->term[n++];
+            for (int j = 0; j < L->ndofs; j++) {
+                term_u(t, tr, L->dof[j], u[j]);
+                term_w(t, tr, L->dof[j], w[j]);
+            }
+        }
     }
     return n;
 }
@@ -130,19 +127,6 @@ void gd_transient_local(gd_transient *tr, double t, const double *y, double *f, 
             if (sv) sv[n] = dv[k];
         }
     }
-    for (int i = 0; i < tr->nsfd; i++) {
-        const tr_sfd *s = &tr->sfd[i];
-        const double *q = tr->q, *v = tr->v;
-        double x = q[s->dx], yy = q[s->dy], vx = v[s->dx], vy = v[s->dy];
-        if (s->dx2 >= 0) x -= q[s->dx2], vx -= v[s->dx2];
-        if (s->dy2 >= 0) yy -= q[s->dy2], vy -= v[s->dy2];
-        double fx, fy, jq[4], jv[4];
-        gd_sfd_force_jacobian(&s->p, x, yy, vx, vy, &fx, &fy, jq, jv);
-        for (int k = 0; k < 4; k++, n++) {
-            if (sq) sq[n] = jq[k];
-            if (sv) sv[n] = jv[k];
-        }
-    }
     for (int i = 0; i < tr->ncam; i++, n++) {
         const tr_cam *c = &tr->cam[i];
         int d = c->spec.dof;
@@ -157,12 +141,18 @@ void gd_transient_local(gd_transient *tr, double t, const double *y, double *f, 
         if (sq) sq[n] = -c->spec.mass * dss * w * w;
         if (sv) sv[n] = -2.0 * c->spec.mass * s1 * s2 * w;
     }
-    for (int i = 0; i < tr->nload; i++, n++) {
-        int d = tr->load[i].dof;
-        double da;
-        gd_load_eval_grad(&tr->load[i].law, t, tr->rate[d] * t + tr->q[d], &da);
-        if (sq) sq[n] = da;
-        if (sv) sv[n] = 0.0;
+    for (int i = 0; i < tr->nlaw; i++) {
+        const gd_law *L = &tr->law[i];
+        int nt = L->type->nterms;
+        double jq[GD_LAW_MAX_TERMS], jv[GD_LAW_MAX_TERMS];
+        gd_law_point x;
+        gd_tr_law_point(L, t, tr->q, tr->v, tr->lq, tr->lv, &x);
+        memset(tr->lf, 0, (size_t)L->ndofs * sizeof *tr->lf);
+        L->type->force(L, &x, tr->lf, jq, jv);
+        for (int k = 0; k < nt; k++, n++) {
+            if (sq) sq[n] = jq[k];
+            if (sv) sv[n] = jv[k];
+        }
     }
 }
 
@@ -218,11 +208,11 @@ int gd_transient_record_dofs(const gd_transient *tr, const gd_tr_record *rec, in
     }
     case GD_REC_SFD_FX:
     case GD_REC_SFD_FY:
-    case GD_REC_SFD_ECCENTRICITY: {
-        const tr_sfd *s = &tr->sfd[i];
-        const int d[4] = {s->dx, s->dy, s->dx2, s->dy2};
-        for (int j = 0; j < 4; j++)
-            full |= put_dof(tr, d[j], idx, cap, &n);
+    case GD_REC_SFD_ECCENTRICITY:
+    case GD_REC_LAW: {
+        const gd_law *L = &tr->law[rec->kind == GD_REC_LAW ? tr->law_spec0 + i : i];
+        for (int j = 0; j < L->ndofs; j++)
+            full |= put_dof(tr, L->dof[j], idx, cap, &n);
         break;
     }
     default:

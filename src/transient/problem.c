@@ -280,27 +280,11 @@ gd_status gd_transient_new(const gd_system *sys, const gd_transient_spec *spec, 
         tr->nl_of_mesh[m->model_mesh] = i;
         if (m->spec.backlash) tr->nroot += 2;
     }
-    /* dampers */
-    tr->nsfd = spec->nsfds;
-    if (tr->nsfd) {
-        tr->sfd = calloc((size_t)tr->nsfd, sizeof *tr->sfd);
-        if (!tr->sfd) goto fail;
-    }
-    for (int i = 0; i < tr->nsfd; i++) {
-        const gd_tr_sfd *s = &spec->sfds[i];
-        tr->sfd[i].p = s->params;
-        tr->sfd[i].dx = gd_system_dof(sys, s->node, GD_X);
-        tr->sfd[i].dy = gd_system_dof(sys, s->node, GD_Y);
-        tr->sfd[i].dx2 = s->node2 >= 0 ? gd_system_dof(sys, s->node2, GD_X) : -1;
-        tr->sfd[i].dy2 = s->node2 >= 0 ? gd_system_dof(sys, s->node2, GD_Y) : -1;
-    }
-    /* loads */
-    tr->nload = spec->nloads;
-    if (tr->nload) {
-        tr->load = malloc((size_t)tr->nload * sizeof *tr->load);
-        if (!tr->load) goto fail;
-        memcpy(tr->load, spec->loads, (size_t)tr->nload * sizeof *tr->load);
-    }
+    /* the laws of the registry: dampers, loads, the spec's laws */
+    if ((st = gd_transient_spec_laws(sys, spec, speed, &tr->law, &tr->nlaw, err))) goto fail;
+    st = GD_ENOMEM;
+    tr->nsfd_law = spec->nsfds;
+    tr->law_spec0 = spec->nsfds + spec->nloads;
     /* unbalances */
     if (spec->unbalances && model->nunbalances) {
         tr->unb = calloc((size_t)model->nunbalances, sizeof *tr->unb);
@@ -399,8 +383,7 @@ void gd_transient_free(gd_transient *tr)
     free(tr->mesh);
     free(tr->model_a);
     free(tr->nl_of_mesh);
-    free(tr->sfd);
-    free(tr->load);
+    free(tr->law);
     free(tr->unb);
     free(tr->cam);
     free(tr->cd_free);

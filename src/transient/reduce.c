@@ -275,14 +275,9 @@ static gd_status reduce(gd_transient *tr, double cutoff, gd_error *err)
             keep(flag, tr->model_a[k].dof[j]);
     for (int k = 0; k < tr->nmesh; k++)
         keep(flag, tr->mesh[k].drv_dof);
-    for (int k = 0; k < tr->nsfd; k++) {
-        keep(flag, tr->sfd[k].dx);
-        keep(flag, tr->sfd[k].dy);
-        keep(flag, tr->sfd[k].dx2);
-        keep(flag, tr->sfd[k].dy2);
-    }
-    for (int k = 0; k < tr->nload; k++)
-        keep(flag, tr->load[k].dof);
+    for (int k = 0; k < tr->nlaw; k++)
+        for (int j = 0; j < tr->law[k].ndofs; j++)
+            keep(flag, tr->law[k].dof[j]);
     for (int k = 0; k < tr->nunb; k++) {
         keep(flag, tr->unb[k].dx);
         keep(flag, tr->unb[k].dy);
@@ -402,15 +397,9 @@ static gd_status reduce(gd_transient *tr, double cutoff, gd_error *err)
         m->a = tr->model_a[m->model_mesh];
         if (m->drv_dof >= 0) m->drv_dof = bmap[m->drv_dof];
     }
-    for (int k = 0; k < tr->nsfd; k++) {
-        tr_sfd *s = &tr->sfd[k];
-        s->dx = bmap[s->dx];
-        s->dy = bmap[s->dy];
-        if (s->dx2 >= 0) s->dx2 = bmap[s->dx2];
-        if (s->dy2 >= 0) s->dy2 = bmap[s->dy2];
-    }
-    for (int k = 0; k < tr->nload; k++)
-        tr->load[k].dof = bmap[tr->load[k].dof];
+    for (int k = 0; k < tr->nlaw; k++)
+        for (int j = 0; j < tr->law[k].ndofs; j++)
+            if (tr->law[k].dof[j] >= 0) tr->law[k].dof[j] = bmap[tr->law[k].dof[j]];
     for (int k = 0; k < tr->nunb; k++) {
         if (tr->unb[k].dx >= 0) tr->unb[k].dx = bmap[tr->unb[k].dx];
         if (tr->unb[k].dy >= 0) tr->unb[k].dy = bmap[tr->unb[k].dy];

@@ -22,6 +22,19 @@ void gd_tr_fill(gd_transient *tr, double t, const double *y, double *q, double *
     }
 }
 
+void gd_tr_law_point(const gd_law *L, double t, const double *q, const double *v, double *lq,
+                     double *lv, gd_law_point *x)
+{
+    for (int j = 0; j < L->ndofs; j++) {
+        int d = L->dof[j];
+        lq[j] = d >= 0 ? q[d] : 0.0;
+        lv[j] = d >= 0 ? v[d] : 0.0;
+    }
+    x->t = t;
+    x->q = lq;
+    x->v = lv;
+}
+
 double gd_tr_mesh_law(const tr_mesh *m, gd_contact state, double t, const double *q,
                       const double *v, double *d_out, double *dd_out, double *k_out, double *de_out,
                       double grad[4])
@@ -126,33 +139,20 @@ void gd_tr_forces(gd_transient *tr, double t, const double *q, const double *v, 
 {
     const int n = tr->n;
     memset(r, 0, (size_t)n * sizeof *r);
-    for (int i = 0; i < tr->nload; i++) {
-        int d = tr->load[i].dof;
-        r[d] += gd_load_eval(&tr->load[i].law, t, tr->rate[d] * t + q[d]);
+    for (int i = 0; i < tr->nlaw; i++) {
+        const gd_law *L = &tr->law[i];
+        gd_law_point x;
+        gd_tr_law_point(L, t, q, v, tr->lq, tr->lv, &x);
+        memset(tr->lf, 0, (size_t)L->ndofs * sizeof *tr->lf);
+        L->type->force(L, &x, tr->lf, NULL, NULL);
+        for (int j = 0; j < L->ndofs; j++)
+            if (L->dof[j] >= 0) r[L->dof[j]] += tr->lf[j];
     }
     for (int i = 0; i < tr->nunb; i++) {
         const tr_unb *u = &tr->unb[i];
         double psi = u->omega * t + u->phase;
         if (u->dx >= 0) r[u->dx] += u->force * cos(psi);
         if (u->dy >= 0) r[u->dy] += u->force * sin(psi);
-    }
-    for (int i = 0; i < tr->nsfd; i++) {
-        const tr_sfd *s = &tr->sfd[i];
-        double x = q[s->dx], y = q[s->dy], vx = v[s->dx], vy = v[s->dy];
-        if (s->dx2 >= 0) {
-            x -= q[s->dx2];
-            vx -= v[s->dx2];
-        }
-        if (s->dy2 >= 0) {
-            y -= q[s->dy2];
-            vy -= v[s->dy2];
-        }
-        double fx, fy;
-        gd_sfd_force(&s->p, x, y, vx, vy, &fx, &fy);
-        r[s->dx] += fx;
-        r[s->dy] += fy;
-        if (s->dx2 >= 0) r[s->dx2] -= fx;
-        if (s->dy2 >= 0) r[s->dy2] -= fy;
     }
     if (tr->ncd) memset(tr->mu, 0, (size_t)tr->ncd * sizeof *tr->mu);
     for (int i = 0; i < tr->ncam; i++) {

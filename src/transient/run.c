@@ -150,16 +150,14 @@ double gd_tr_record_value(gd_transient *tr, const gd_tr_record *rec, double t, c
     }
     case GD_REC_SFD_FX:
     case GD_REC_SFD_FY:
-    case GD_REC_SFD_ECCENTRICITY: {
-        const tr_sfd *s = &tr->sfd[i];
-        double x = q[s->dx] - (s->dx2 >= 0 ? q[s->dx2] : 0.0);
-        double y = q[s->dy] - (s->dy2 >= 0 ? q[s->dy2] : 0.0);
-        double vx = v[s->dx] - (s->dx2 >= 0 ? v[s->dx2] : 0.0);
-        double vy = v[s->dy] - (s->dy2 >= 0 ? v[s->dy2] : 0.0);
-        if (rec->kind == GD_REC_SFD_ECCENTRICITY) return hypot(x, y) / s->p.clearance;
-        double fx, fy;
-        gd_sfd_force(&s->p, x, y, vx, vy, &fx, &fy);
-        return rec->kind == GD_REC_SFD_FX ? fx : fy;
+    case GD_REC_SFD_ECCENTRICITY:
+    case GD_REC_LAW: {
+        /* a damper's records are its law's fx, fy, ecc */
+        int which = rec->kind == GD_REC_LAW ? rec->index2 : (int)(rec->kind - GD_REC_SFD_FX);
+        const gd_law *L = &tr->law[rec->kind == GD_REC_LAW ? tr->law_spec0 + i : i];
+        gd_law_point x;
+        gd_tr_law_point(L, t, q, v, tr->lq, tr->lv, &x);
+        return L->type->record(L, which, &x);
     }
     }
     return 0.0;
@@ -187,7 +185,11 @@ static gd_status check_record(const gd_transient *tr, const gd_tr_record *r, gd_
     case GD_REC_SFD_FX:
     case GD_REC_SFD_FY:
     case GD_REC_SFD_ECCENTRICITY:
-        ok = r->index >= 0 && r->index < tr->nsfd;
+        ok = r->index >= 0 && r->index < tr->nsfd_law;
+        break;
+    case GD_REC_LAW:
+        ok = r->index >= 0 && r->index < tr->nlaw - tr->law_spec0 && r->index2 >= 0 &&
+             r->index2 < tr->law[tr->law_spec0 + r->index].type->nrecords;
         break;
     default:
         ok = 0;

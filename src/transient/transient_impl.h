@@ -19,11 +19,6 @@ typedef struct tr_mesh {
     double hold;         /* contact homotopy (gd_transient_hold_drive); 0 in integration */
 } tr_mesh;
 
-typedef struct tr_sfd {
-    gd_sfd_params p;
-    int dx, dy, dx2, dy2; /* -1 where absent */
-} tr_sfd;
-
 typedef struct tr_unb {
     int dx, dy;
     double force; /* U omega^2 */
@@ -71,10 +66,13 @@ struct gd_transient {
     int nmodel_mesh;
     gd_mesh_vector *model_a; /* every model mesh, for records */
     int *nl_of_mesh;         /* model mesh -> index in mesh[], or -1 */
-    int nsfd;
-    tr_sfd *sfd;
-    int nload;
-    gd_tr_load *load;
+    /* the laws of the registry (gd_transient_spec_laws): the spec's dampers, its loads,
+     * then spec.laws; dofs are the problem's (remapped by a reduction) */
+    int nlaw;
+    gd_law *law;
+    int nsfd_law;  /* law[0 .. nsfd_law - 1]: the spec's dampers (GD_REC_SFD_*) */
+    int law_spec0; /* law[law_spec0 + i]: spec.laws[i] (GD_REC_LAW) */
+    double lq[GD_LAW_MAX_DOFS], lv[GD_LAW_MAX_DOFS], lf[GD_LAW_MAX_DOFS]; /* workspaces */
     int nunb;
     tr_unb *unb;
     int ncam;
@@ -110,6 +108,9 @@ double gd_tr_mesh_force(const gd_transient *tr, const tr_mesh *m, gd_contact sta
 double gd_tr_mesh_law(const tr_mesh *m, gd_contact state, double t, const double *q,
                       const double *v, double *d, double *dd, double *k, double *de,
                       double grad[4]);
+/* Law L's local view of (t, q, v) (full DOF vectors) in lq, lv (length L->ndofs). */
+void gd_tr_law_point(const gd_law *L, double t, const double *q, const double *v, double *lq,
+                     double *lv, gd_law_point *x);
 /* Value of a record at (t, q, v) (full DOF vectors) with the current contact states. */
 double gd_tr_record_value(gd_transient *tr, const gd_tr_record *rec, double t, const double *q,
                           const double *v);

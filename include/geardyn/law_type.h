@@ -1,0 +1,156 @@
+/* The nonlinear-law registry: one law, one file (docs/architecture.md, "Laws").
+ *
+ * A law is a force on a few DOFs that is not the linear k a a^T and c a a^T the system
+ * assembles: a squeeze film damper, an applied load, a polynomial spring, regularised
+ * friction, a user's own law. Each kind is one constant gd_law_type in one file under
+ * src/laws/ (as an element kind is one gd_element_type): its parameters (names,
+ * quantities, defaults, bounds: the model reader and the builder read and check them
+ * from this table), the DOFs it acts on, its force and the rank-one structure of its
+ * Jacobian, its excitation frequencies, its records and its linearisation. The time
+ * integrators, the Craig-Bampton reduction, harmonic balance, the periodic fundamental,
+ * the record parser of the CLI and the Python package loop over the table and never
+ * switch on the kind.
+ *
+ * Local DOFs. An instance acts on ndofs DOFs dof[0..ndofs-1] (system DOF indices, -1: a
+ * DOF that is absent or grounded, whose motion is zero). The type's `dirs` give the
+ * direction of each local DOF at the instance's node and then at its second node (a
+ * law between two nodes: [dirs at node, dirs at node2]); a type with ndirs = 0 acts in
+ * one direction chosen per instance (`dir`). The law sees its local motion only: q and
+ * q' of its local DOFs, and `rate`, their nominal speeds (a torsional DOF's total angle
+ * is rate t + q).
+ *
+ * Jacobian. The generalised force f (added to the equations of motion's right-hand
+ * side) has derivatives that are sums of rank-one terms with a structure fixed per
+ * instance, df/dq = sum_k jq_k u_k w_k^T and df/dq' = sum_k jv_k u_k w_k^T, u_k and w_k
+ * local vectors from `term`, jq_k and jv_k computed with the force. Harmonic balance
+ * and Newton use exactly these (src/periodic/lowrank.c groups terms with one u).
+ *
+ * Ownership and threads: types are constants; an instance (gd_law) is a plain value the
+ * caller owns (its `data` and `user` pointers are borrowed: they must outlive every
+ * problem made from it). Every op is a pure function of its arguments (a law keeps
+ * no state between calls), so one instance may be evaluated from any number of threads.
+ */
+#ifndef GEARDYN_LAW_TYPE_H
+#define GEARDYN_LAW_TYPE_H
+#include <stddef.h>
+
+#include "geardyn/error.h"
+#include "geardyn/export.h"
+#include "geardyn/units.h"
+
+#define GD_LAW_MAX_DOFS 12
+#define GD_LAW_MAX_PARAMS 12
+#define GD_LAW_MAX_TERMS 8
+#define GD_LAW_NAME_MAX 48
+
+/* Flags of a type (gd_law_type.flags) or of one instance (gd_law_type.instance_flags). */
+enum {
+    /* the force is continuously differentiable in q and q' */
+    GD_LAW_SMOOTH = 1u << 0,
+    /* the force depends on time only, not on q or q' (a load of time): the
+     * generalized-alpha integrator solves such steps without iterating */
+    GD_LAW_TIME_ONLY = 1u << 1
+};
+
+/* Bounds of a parameter. */
+typedef enum gd_law_bound {
+    GD_LAW_ANY = 0,     /* any finite value */
+    GD_LAW_NONNEG = 1,  /* >= 0 */
+    GD_LAW_POSITIVE = 2 /* > 0 */
+} gd_law_bound;
+
+/* One scalar parameter: its key in model files, its quantity (units accepted there),
+ * its default (NAN: required) and its bound. */
+typedef struct gd_law_param {
+    const char *name;
+    gd_qty qty;
+    double def;
+    gd_law_bound bound;
+    const char *help; /* one line, for errors and docs */
+} gd_law_param;
+
+/* One output quantity of an instance (recorded by transient and periodic). */
+typedef struct gd_law_record {
+    const char *name; /* "force", "ecc": --record LAW:NAME */
+    const char *unit; /* SI unit ("N", "m", "-") */
+} gd_law_record;
+
+typedef struct gd_law_type gd_law_type;
+
+/* An instance of a law. */
+typedef struct gd_law {
+    const gd_law_type *type;
+    char name[GD_LAW_NAME_MAX]; /* for records and messages */
+    int ndofs;
+    int dof[GD_LAW_MAX_DOFS];        /* system DOF indices; -1: absent or ground */
+    double rate[GD_LAW_MAX_DOFS];    /* nominal speed of each local DOF, rad/s (set by the
+                                        problem from its reference speed) */
+    double value[GD_LAW_MAX_PARAMS]; /* SI, in the order of type->params */
+    const void *data;                /* typed parameters of laws made in code (a load law with its
+                                        table); borrowed */
+    void *user; /* user laws: the user's pointer, passed back through the ops */
+} gd_law;
+
+/* The motion a law sees: time and its local q, q' (length ndofs). */
+typedef struct gd_law_point {
+    double t;
+    const double *q, *v;
+} gd_law_point;
+
+struct gd_law_type {
+    const char *name;    /* model-file `type:` and the registry key */
+    const char *summary; /* one line */
+    unsigned flags;      /* GD_LAW_* of every instance */
+    /* flags of one instance (NULL: flags) */
+    unsigned (*instance_flags)(const gd_law *law);
+    const gd_law_param *params;
+    int nparams;
+    /* directions (gd_dof: 0 x .. 5 rz) of the local DOFs at each node; ndirs = 0: one
+     * direction per instance */
+    const int *dirs;
+    int ndirs;
+    int two_nodes; /* 1: the law acts between a node and node2 (or ground) */
+    /* Checks beyond the parameters' bounds (NULL: none): 0 ok, else writes the
+     * offending parameter's name to *field and a message (what and the fix) to msg. */
+    int (*check)(const gd_law *law, const char **field, char *msg, size_t cap);
+    /* The rank-one structure: nterms terms, term k's local vectors u and w (length
+     * ndofs, zeroed by the caller). */
+    int nterms;
+    void (*term)(const gd_law *law, int k, double *u, double *w);
+    /* Adds the generalised force at x to f (length ndofs); jq, jv (length nterms, may
+     * be NULL) receive the term coefficients of df/dq and df/dq'. */
+    void (*force)(const gd_law *law, const gd_law_point *x, double *f, double *jq, double *jv);
+    /* Excitation frequencies (rad/s, > 0) the instance imposes by itself at its
+     * nominal rates, written to w (at most cap); returns their count, or -1 with a
+     * message in msg when it has none that is periodic (a table that is not). NULL:
+     * none (an autonomous law). */
+    int (*frequencies)(const gd_law *law, double *w, int cap, char *msg, size_t cap_msg);
+    const gd_law_record *records;
+    int nrecords;
+    double (*record)(const gd_law *law, int k, const gd_law_point *x);
+    /* Linearisation about x (velocities usually zero): K = -df/dq, C = -df/dq' (ndofs x
+     * ndofs, column-major, zeroed by the caller). NULL: none. */
+    void (*linearize)(const gd_law *law, const gd_law_point *x, double *K, double *C);
+};
+
+/* The built-in types, in registry order. */
+GD_API extern const gd_law_type *const gd_law_types[];
+GD_API extern const int gd_nlaw_types;
+GD_API extern const gd_law_type gd_law_sfd, gd_law_load, gd_law_polynomial_spring, gd_law_friction;
+/* The built-in type named name, or NULL. */
+GD_API const gd_law_type *gd_law_type_find(const char *name);
+
+/* An instance of type with its parameters at their defaults (required ones NAN), no
+ * DOFs (every dof -1, ndofs = the type's count) and name. */
+GD_API void gd_law_init(gd_law *law, const gd_law_type *type, const char *name);
+/* Checks a type's table (a user type before use: names, counts within the limits, ops
+ * present) and an instance's parameters (finite, within bounds, the type's check).
+ * GD_EINPUT names the parameter (field) and the fix. */
+GD_API gd_status gd_law_type_validate(const gd_law_type *type, gd_error *err);
+GD_API gd_status gd_law_check(const gd_law *law, gd_error *err);
+/* Index of parameter name in the type's table, or -1. */
+GD_API int gd_law_param_index(const gd_law_type *type, const char *name);
+/* Index of record name, or -1. */
+GD_API int gd_law_record_index(const gd_law_type *type, const char *name);
+
+#endif
