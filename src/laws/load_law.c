@@ -48,7 +48,9 @@ static int load_check(const gd_law *law, const char **field, char *msg, size_t c
     const gd_load_law *l = law->data;
     *field = "data";
     if (!l) {
-        snprintf(msg, cap, "a load law needs its gd_load_law in data");
+        snprintf(msg, cap,
+                 "a load law needs its gd_load_law in data (in model files loads are given under "
+                 "excitations.loads)");
         return 1;
     }
     if (l->kind == GD_LOAD_TABLE_ANGLE && !l->table) {

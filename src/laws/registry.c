@@ -106,8 +106,9 @@ gd_status gd_law_check(const gd_law *law, gd_error *err)
         const char *field = "";
         char msg[256] = "";
         if (t->check(law, &field, msg, sizeof msg))
-            return gd_error_set(err, GD_EINPUT, "", 0, 0, field ? field : "", "",
-                                "law '%s' (%s): %s", law->name, t->name, msg);
+            return gd_error_set(err, GD_EINPUT, "", 0, 0, field ? field : "",
+                                "see the law's parameters in docs/laws.md", "law '%s' (%s): %s",
+                                law->name, t->name, msg);
     }
     return GD_OK;
 }
