@@ -34,6 +34,12 @@ static const char USAGE[] =
     "  --out DIR         write DIR/static_nodes.csv, static_bearings.csv, static_meshes.csv\n"
     "                    and static_holds.csv\n" GD_CLI_PLOT_HELP;
 
+/* no "-0" in the tables */
+static double nz(double v)
+{
+    return v == 0 ? 0.0 : v;
+}
+
 static const char *node_name(const gd_model *m, int node)
 {
     return m->nodes[node].name;
@@ -78,8 +84,9 @@ static void print_tables(const gd_system *s, const gd_static_result *r)
         for (int b = 0; b < m->nbearings; b++) {
             const gd_static_reaction *re = &r->bearings[b];
             printf("%-12.12s %-14.14s %12.6g %12.6g %12.6g %12.6g %12.6g %12.6g\n",
-                   m->bearings[b].name, node_name(m, m->bearings[b].node), re->force[0],
-                   re->force[1], re->force[2], re->moment[0], re->moment[1], re->moment[2]);
+                   m->bearings[b].name, node_name(m, m->bearings[b].node), nz(re->force[0]),
+                   nz(re->force[1]), nz(re->force[2]), nz(re->moment[0]), nz(re->moment[1]),
+                   nz(re->moment[2]));
         }
     }
     if (m->nsprings) {

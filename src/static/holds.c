@@ -1,8 +1,9 @@
 /* Held DOFs of the static analysis. The prescribed DOFs of the model are held at 0 (a
  * motor holding the input at its speed reacts whatever torque it must). What is still
  * free to move as a rigid body is the null space of the stiffness over the other DOFs:
- * found by the SVD of the Jacobi-scaled stiffness D K D (D = diag(K)^(-1/2), so N/m and
- * N m/rad entries compare), singular values below 1e-10 of the largest. A gear train
+ * found from the Jacobi-scaled stiffness D K D (D = diag(K)^(-1/2), so N/m and N m/rad
+ * entries compare), eigenvalues (symmetric K) or singular values (a cross-coupled
+ * bearing) below 1e-10 of the largest. A gear train
  * turning as a whole in its ratios moves only torsion DOFs: the torque balance holds it
  * at one torsion DOF per free train, where the train's net torque is reacted (the input
  * torque by the output, or the loads by the input). Any free motion with a lateral,
@@ -122,24 +123,44 @@ gd_status gd_st_holds(const gd_system *sys, const double *K, const gd_static_opt
             double da = kaa > 0 ? 1 / sqrt(kaa) : 1, db = kbb > 0 ? 1 / sqrt(kbb) : 1;
             A[a + (size_t)b * nf] = da * K[fr[a] + (size_t)fr[b] * n] * db;
         }
-    if (LAPACKE_dgesvd(LAPACK_COL_MAJOR, 'N', 'A', nf, nf, A, nf, s, NULL, 1, vt, nf, sup) != 0) {
-        st = gd_error_set(err, GD_ENUMERIC, "", 0, 0, "", "", "SVD of the stiffness failed");
-        goto out;
-    }
+    /* symmetric (no cross-coupled bearing): the eigenvectors of the smallest |lambda|,
+       by dsyevd (several times faster than the SVD); otherwise the SVD */
+    int sym = 1;
+    for (int b = 0; b < nf && sym; b++)
+        for (int a = b + 1; a < nf; a++)
+            if (fabs(A[a + (size_t)b * nf] - A[b + (size_t)a * nf]) > 1e-13) {
+                sym = 0;
+                break;
+            }
     int r = 0;
-    for (int i = 0; i < nf; i++)
-        if (s[i] <= 1e-10 * s[0]) r++;
+    if (sym) {
+        if (LAPACKE_dsyevd(LAPACK_COL_MAJOR, 'V', 'L', nf, A, nf, s) != 0) goto numeric;
+        double top = fmax(fabs(s[0]), fabs(s[nf - 1]));
+        /* ascending: the null vectors come first, as columns of A */
+        for (int i = 0; i < nf; i++)
+            if (fabs(s[i]) <= 1e-10 * top) r++;
+    } else {
+        if (LAPACKE_dgesvd(LAPACK_COL_MAJOR, 'N', 'A', nf, nf, A, nf, s, NULL, 1, vt, nf, sup))
+            goto numeric;
+        for (int i = 0; i < nf; i++)
+            if (s[i] <= 1e-10 * s[0]) r++;
+    }
     if (r == 0) goto out;
-    /* the null vectors (scaled coordinates), as columns: the last r rows of V^T */
+    /* the null vectors (scaled coordinates), as columns */
     if (!(Z = malloc((size_t)nf * r * sizeof *Z))) goto oom;
     double zmax = 0, nt = 0;
-    for (int j = 0; j < r; j++)
+    int nnull = 0;
+    for (int j = 0; j < nf; j++) {
+        if (sym && !(fabs(s[j]) <= 1e-10 * fmax(fabs(s[0]), fabs(s[nf - 1])))) continue;
+        if (!sym && j < nf - r) continue;
         for (int i = 0; i < nf; i++) {
-            double v = vt[(nf - r + j) + (size_t)i * nf];
-            Z[i + (size_t)j * nf] = v;
+            double v = sym ? A[i + (size_t)j * nf] : vt[j + (size_t)i * nf];
+            Z[i + (size_t)nnull * nf] = v;
             zmax = fmax(zmax, fabs(v));
             if (sys->dof_type[fr[i]] != GD_RZ) nt = fmax(nt, fabs(v));
         }
+        nnull++;
+    }
     if (nt > 1e-6 * zmax) {
         st = name_free_motion(sys, fr, nf, Z, r, err);
         goto out;
@@ -189,6 +210,9 @@ gd_status gd_st_holds(const gd_system *sys, const double *K, const gd_static_opt
         st = gd_error_set(err, GD_ENUMERIC, m->file, 0, 0, "", "prescribe the torsion of a node",
                           "could not choose torsion DOFs to hold the %d free gear train%s", r,
                           r == 1 ? "" : "s");
+    goto out;
+numeric:
+    st = gd_error_set(err, GD_ENUMERIC, "", 0, 0, "", "", "eigen/SVD of the stiffness failed");
     goto out;
 oom:
     st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
