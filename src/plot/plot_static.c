@@ -8,7 +8,7 @@
 
 /* One trace per shaft of node DOF d along the shaft (position m), scaled. */
 static void along(gd_plot *p, pl_panel *pn, const gd_system *sys, const gd_static_result *r,
-                  gd_dof d, double scale, const char *suffix)
+                  gd_dof d, double scale, const char *suffix, int second)
 {
     const gd_model *m = sys->model;
     for (int s = 0; s < m->nshafts; s++) {
@@ -17,6 +17,7 @@ static void along(gd_plot *p, pl_panel *pn, const gd_system *sys, const gd_stati
         snprintf(nm, sizeof nm, "%s %s", sh->name, suffix);
         pl_trace *t =
             pl_trace_add(p, pn, nm, sh->nnodes, NULL, NULL, PL_LINES_MARKERS, pl_color(s));
+        if (t) t->dash = second; /* the second quantity of a panel dashed */
         for (int i = 0; t && i < sh->nnodes; i++) {
             int node = sh->first_node + i;
             t->x[i] = m->nodes[node].position;
@@ -25,7 +26,7 @@ static void along(gd_plot *p, pl_panel *pn, const gd_system *sys, const gd_stati
         }
     }
     /* the bearings: markers on the axis, labelled with their reaction */
-    if (m->nbearings > 0) {
+    if (m->nbearings > 0 && !second) {
         pl_trace *t = pl_trace_add(p, pn, "bearings", m->nbearings, NULL, NULL, PL_MARKERS, "#000");
         if (t) t->symbol = PL_TRIANGLE;
         for (int b = 0; t && b < m->nbearings; b++) {
@@ -57,14 +58,14 @@ gd_status gd_plot_static(const gd_system *sys, const gd_static_result *r, gd_plo
     if (s) snprintf(s->csv_name, sizeof s->csv_name, "static_nodes.csv");
     pl_panel *px =
         pl_panel_add(p, s, PL_XY, "deflection x", "position along the shaft (m)", "x (um)");
-    along(p, px, sys, r, GD_X, 1e6, "x");
+    along(p, px, sys, r, GD_X, 1e6, "x", 0);
     pl_panel *py =
         pl_panel_add(p, s, PL_XY, "deflection y", "position along the shaft (m)", "y (um)");
-    along(p, py, sys, r, GD_Y, 1e6, "y");
+    along(p, py, sys, r, GD_Y, 1e6, "y", 0);
     pl_panel *pt = pl_panel_add(p, s, PL_XY, "slope (section rotation)",
                                 "position along the shaft (m)", "rotation (mrad)");
-    along(p, pt, sys, r, GD_RX, 1e3, "rx");
-    along(p, pt, sys, r, GD_RY, 1e3, "ry");
+    along(p, pt, sys, r, GD_RX, 1e3, "rx", 0);
+    along(p, pt, sys, r, GD_RY, 1e3, "ry (dashed)", 1);
     if (m->nbearings > 0) {
         pl_panel *tb = pl_panel_add(p, s, PL_TABLE, "bearing reactions (on the shaft)", "", "");
         pl_table_init(p, tb, m->nbearings, 7);
@@ -76,17 +77,17 @@ gd_status gd_plot_static(const gd_system *sys, const gd_static_result *r, gd_plo
             const gd_static_reaction *re = &r->bearings[b];
             pl_cell(p, tb, b + 1, 0, "%s", m->bearings[b].name);
             for (int k = 0; k < 3; k++) {
-                pl_cell(p, tb, b + 1, 1 + k, "%.5g", re->force[k]);
-                pl_cell(p, tb, b + 1, 4 + k, "%.5g", re->moment[k]);
+                pl_cell(p, tb, b + 1, 1 + k, "%.5g", re->force[k] == 0 ? 0.0 : re->force[k]);
+                pl_cell(p, tb, b + 1, 4 + k, "%.5g", re->moment[k] == 0 ? 0.0 : re->moment[k]);
             }
         }
     }
     if (m->nmeshes > 0) {
         pl_panel *tm = pl_panel_add(p, s, PL_TABLE, "meshes: force and misalignment", "", "");
         pl_table_init(p, tm, m->nmeshes, 7);
-        const char *hd[7] = {
-            "mesh",      "F normal (N)", "F axial (N)", "tilt in plane (urad)", "tilt out (urad)",
-            "f_sh (um)", "F_beta_x (um)"};
+        const char *hd[7] = {"mesh",           "F normal (N)",    "F axial (N)",
+                             "tilt in (urad)", "tilt out (urad)", "f_sh (um)",
+                             "F_beta_x (um)"};
         for (int c = 0; c < 7; c++)
             pl_cell(p, tm, 0, c, "%s", hd[c]);
         for (int k = 0; k < m->nmeshes; k++) {
