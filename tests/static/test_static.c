@@ -308,6 +308,9 @@ TEST(helical_at_zero_equals_spur)
     CHECK_REL(fabs(c->meshes[0].on_driver[GD_Z]), c->meshes[0].force * sin(bb), 1e-12);
     CHECK_REL(c->bearings[0].force[2] + c->bearings[1].force[2], -c->meshes[0].on_driver[GD_Z],
               1e-9);
+    /* the axial force at the base radius tilts the gear: |M| = rb1 F sin(bb) */
+    CHECK_REL(hypot(c->meshes[0].on_driver[GD_RX], c->meshes[0].on_driver[GD_RY]),
+              0.05 * c->meshes[0].force * sin(bb), 1e-12);
     gd_static_free(c);
     fx_free(&sp);
     fx_free(&he);
