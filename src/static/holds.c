@@ -114,9 +114,7 @@ gd_status gd_st_holds(const gd_system *sys, const double *K, const gd_static_opt
     if (nf == 0) goto out;
     A = malloc((size_t)nf * nf * sizeof *A);
     s = malloc((size_t)nf * sizeof *s);
-    vt = malloc((size_t)nf * nf * sizeof *vt);
-    sup = malloc((size_t)nf * sizeof *sup);
-    if (!A || !s || !vt || !sup) goto oom;
+    if (!A || !s) goto oom;
     for (int b = 0; b < nf; b++)
         for (int a = 0; a < nf; a++) {
             double kaa = K[fr[a] + (size_t)fr[a] * n], kbb = K[fr[b] + (size_t)fr[b] * n];
@@ -133,26 +131,29 @@ gd_status gd_st_holds(const gd_system *sys, const double *K, const gd_static_opt
                 break;
             }
     int r = 0;
+    double tol;
     if (sym) {
+        /* ascending eigenvalues, the eigenvectors as columns of A */
         if (LAPACKE_dsyevd(LAPACK_COL_MAJOR, 'V', 'L', nf, A, nf, s) != 0) goto numeric;
-        double top = fmax(fabs(s[0]), fabs(s[nf - 1]));
-        /* ascending: the null vectors come first, as columns of A */
-        for (int i = 0; i < nf; i++)
-            if (fabs(s[i]) <= 1e-10 * top) r++;
+        tol = 1e-10 * fmax(fabs(s[0]), fabs(s[nf - 1]));
     } else {
+        /* descending singular values, the right vectors as rows of vt */
+        vt = malloc((size_t)nf * nf * sizeof *vt);
+        sup = malloc((size_t)nf * sizeof *sup);
+        if (!vt || !sup) goto oom;
         if (LAPACKE_dgesvd(LAPACK_COL_MAJOR, 'N', 'A', nf, nf, A, nf, s, NULL, 1, vt, nf, sup))
             goto numeric;
-        for (int i = 0; i < nf; i++)
-            if (s[i] <= 1e-10 * s[0]) r++;
+        tol = 1e-10 * s[0];
     }
+    for (int i = 0; i < nf; i++)
+        if (fabs(s[i]) <= tol) r++;
     if (r == 0) goto out;
     /* the null vectors (scaled coordinates), as columns */
     if (!(Z = malloc((size_t)nf * r * sizeof *Z))) goto oom;
     double zmax = 0, nt = 0;
     int nnull = 0;
     for (int j = 0; j < nf; j++) {
-        if (sym && !(fabs(s[j]) <= 1e-10 * fmax(fabs(s[0]), fabs(s[nf - 1])))) continue;
-        if (!sym && j < nf - r) continue;
+        if (!(fabs(s[j]) <= tol)) continue;
         for (int i = 0; i < nf; i++) {
             double v = sym ? A[i + (size_t)j * nf] : vt[j + (size_t)i * nf];
             Z[i + (size_t)nnull * nf] = v;
@@ -167,7 +168,6 @@ gd_status gd_st_holds(const gd_system *sys, const double *K, const gd_static_opt
     }
     /* one torsion DOF per free train: rows of Z taken greedily in order of preference
        while they add rank (Gram-Schmidt against the rows taken) */
-    int *pos = fr; /* reuse: position of each DOF among the free ones, -1 */
     int *where = malloc((size_t)n * sizeof *where);
     cand = malloc((size_t)(m->nnodes + m->nshafts + 2) * sizeof *cand);
     basis = calloc((size_t)r * r, sizeof *basis);
@@ -178,7 +178,7 @@ gd_status gd_st_holds(const gd_system *sys, const double *K, const gd_static_opt
     for (int i = 0; i < n; i++)
         where[i] = -1;
     for (int i = 0; i < nf; i++)
-        where[pos[i]] = i;
+        where[fr[i]] = i; /* position among the free DOFs, -1 */
     int nc = candidates(m, opt, cand), taken = 0;
     for (int c = 0; c < nc && taken < r; c++) {
         int dof = gd_system_dof(sys, cand[c], GD_RZ);

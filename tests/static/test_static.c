@@ -317,6 +317,37 @@ TEST(helical_at_zero_equals_spur)
     fx_free(&h15);
 }
 
+/* Cross-coupled bearings (kxy != kyx) make K unsymmetric: the free train is found by
+ * the SVD path, and the torque and force balances still hold. */
+TEST(cross_coupled_bearings)
+{
+    fx f;
+    REQUIRE(load_pair(&f, "", ", kxy: 3e7, kyx: -3e7", "full", ""));
+    gd_error err;
+    gd_static_result *r = run(&f, 100.0, "g1", &err);
+    REQUIRE(r);
+    CHECK_REL(r->meshes[0].force, 100.0 / 0.05, 1e-12);
+    REQUIRE(r->nholds == 1);
+    CHECK(r->holds[0].node == gd_model_find_node(f.m, "b2"));
+    for (int s = 0; s < 2; s++) {
+        double b[6], scale;
+        shaft_balance(&f, r, s, b, &scale);
+        for (int k = 0; k < 6; k++)
+            CHECK(fabs(b[k]) <= 1e-9 * scale);
+    }
+    /* the reactions are statically determinate (P b / L), but the cross terms turn the
+       bearing's displacement away from its force: R = -K u with K = [[kxx, kxy], [kyx,
+       kyy]] */
+    double Px = r->meshes[0].on_driver[GD_X], Py = r->meshes[0].on_driver[GD_Y];
+    CHECK_REL(r->bearings[0].force[0], -Px * 0.6, 1e-9);
+    CHECK_REL(r->bearings[0].force[1], -Py * 0.6, 1e-9);
+    double ux = node_u(&f, r, "a1", GD_X), uy = node_u(&f, r, "a1", GD_Y);
+    CHECK_REL(r->bearings[0].force[0], -(2e8 * ux + 3e7 * uy), 1e-9);
+    CHECK_REL(r->bearings[0].force[1], -(-3e7 * ux + 2e8 * uy), 1e-9);
+    gd_static_free(r);
+    fx_free(&f);
+}
+
 TEST(free_shaft_is_named)
 {
     /* no axial bearing stiffness with z active: the driven shaft floats axially */
@@ -358,4 +389,5 @@ TEST(gravity_key_errors)
 }
 
 RUN_TESTS(T(spur_shaft_against_timoshenko), T(gravity_against_uniform_load), T(examples_balance),
-          T(helical_at_zero_equals_spur), T(free_shaft_is_named), T(gravity_key_errors))
+          T(helical_at_zero_equals_spur), T(cross_coupled_bearings), T(free_shaft_is_named),
+          T(gravity_key_errors))
