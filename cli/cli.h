@@ -12,6 +12,7 @@ enum { GD_EXIT_OK = 0, GD_EXIT_FAIL = 1, GD_EXIT_INPUT = 2 };
 /* Each subcommand: argv[0] is the subcommand name. */
 int gd_cmd_check(int argc, char **argv);
 int gd_cmd_modal(int argc, char **argv);
+int gd_cmd_static(int argc, char **argv);
 int gd_cmd_mesh_stiffness(int argc, char **argv);
 int gd_cmd_study(int argc, char **argv);
 

@@ -23,6 +23,7 @@ static const command COMMANDS[] = {
     /* {name, function, one-line summary}: keep in the order shown by --help */
     {"check", gd_cmd_check, "validate a model and summarise it"},
     {"modal", gd_cmd_modal, "natural frequencies, damping, whirl and energy of the modes"},
+    {"static", gd_cmd_static, "static deflection, bearing reactions, mesh forces and misalignment"},
     {"campbell", gd_cmd_campbell, "Campbell diagram: modes over speed, critical speeds, stability"},
     {"frf", gd_cmd_frf,
      "frequency response (direct or modal), mesh and bearing forces, directional"},

@@ -50,7 +50,7 @@ extern const char *const gd_coupling_names[3];
 unsigned gd_coupling_dof_mask(gd_coupling level);
 typedef struct { int line, column; } gd_loc;
 typedef struct { char name[...]; int shaft; double position; int named; ...; } gd_node;
-typedef struct { char name[...]; double speed_ratio; ...; } gd_shaft;
+typedef struct { char name[...]; int first_node, nnodes; double speed_ratio; ...; } gd_shaft;
 typedef struct { char name[...]; int node, node2; ...; } gd_bearing;
 typedef struct { char name[...]; int driver, driven; int teeth[2]; double stiffness;
                  ...; } gd_mesh;
@@ -190,6 +190,23 @@ void gd_modal_options_init(gd_modal_options *opt);
 gd_status gd_modal_solve(const gd_system *sys, const gd_modal_options *opt,
                          gd_modal_result **out, gd_error *err);
 void gd_modal_free(gd_modal_result *res);
+
+/* ---- static (static.h) ---- */
+typedef struct { double speed; double input_torque; int input_node; int hold_node;
+                 int loads; int gravity; ...; } gd_static_options;
+typedef struct { double force[3]; double moment[3]; } gd_static_reaction;
+typedef struct { int node; gd_dof dof; int prescribed; double reaction; ...; } gd_static_hold;
+typedef struct { double force; double on_driver[6]; double on_driven[6];
+                 double tangential, radial, axial, tilt_in_plane, tilt_out_of_plane,
+                 face_width, f_sh, f_beta_x; ...; } gd_static_mesh;
+typedef struct { int ndof, nnodes, nbearings, nsprings, nmeshes, nholds; double speed;
+                 double *q; double *f; double *u; gd_static_reaction *bearings;
+                 double *springs; gd_static_mesh *meshes; gd_static_hold *holds;
+                 ...; } gd_static_result;
+void gd_static_options_init(gd_static_options *opt);
+gd_status gd_static_run(const gd_system *sys, const gd_static_options *opt,
+                        gd_static_result **out, gd_error *err);
+void gd_static_free(gd_static_result *res);
 
 /* ---- campbell ---- */
 typedef enum { GD_EIG_AUTO, GD_EIG_DENSE, GD_EIG_SPARSE, ... } gd_eig_method;

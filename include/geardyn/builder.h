@@ -242,6 +242,7 @@ typedef struct gd_mesh_spec {
     double stiffness;     /* N/m along the contact normal, > 0; 0: from the tvms table or the
                              geometry (required otherwise) */
     double damping;       /* N s/m, >= 0 */
+    double face_width;    /* m, >= 0; 0: unknown, or from the geometry (not both) */
     gd_coupling coupling; /* default GD_COUPLING_FULL */
     /* time integration (docs/transient.md) */
     double damping_per_stiffness;     /* s, >= 0 */
@@ -393,6 +394,11 @@ GD_API gd_status gd_model_set_rayleigh(gd_model *m, double alpha, double beta, g
  * when w1 = w2 or the ratios need a negative alpha or beta. */
 GD_API gd_status gd_rayleigh_from_ratios(double z1, double z2, double w1, double w2, double *alpha,
                                          double *beta, gd_error *err);
+/* Gravity: acceleration g (m/s^2, finite, >= 0) along direction (three finite values,
+ * not all zero; normalised here), in the model's axes (shafts along z). Default none.
+ * Errors are located at loc, field "gravity". */
+GD_API gd_status gd_model_set_gravity(gd_model *m, const double direction[3], double g, gd_loc loc,
+                                      gd_error *err);
 /* The reference speed, rad/s, >= 0 (default 0). */
 GD_API gd_status gd_model_set_speed(gd_model *m, double speed, gd_error *err);
 

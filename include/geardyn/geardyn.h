@@ -8,7 +8,7 @@
  *               (model.h, material.h, laws.h)
  *   system      gd_system: DOF numbering and sparse matrices, built once per model
  *               (system.h, sparse.h, probe.h)
- *   analyses    modal.h, campbell.h, frf.h, unbalance.h, transient.h, transient_model.h,
+ *   analyses    modal.h, static.h, campbell.h, frf.h, unbalance.h, transient.h, transient_model.h,
  *               mesh_stiffness.h (from gear geometry alone), spectrum.h (of records)
  *   output      result structures (gd_modal_result, gd_campbell_result, ...); printing,
  *               JSON and CSV are the command-line program's
@@ -47,6 +47,7 @@
 #include "geardyn/sparse.h"
 #include "geardyn/mesh_stiffness.h"
 #include "geardyn/modal.h"
+#include "geardyn/static.h"
 #include "geardyn/campbell.h"
 #include "geardyn/probe.h"
 #include "geardyn/frf.h"

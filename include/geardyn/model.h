@@ -145,6 +145,7 @@ typedef struct gd_mesh {
     /* stiffness: {from: geometry}: k(driver angle) over a mesh cycle, owned; stiffness
      * above is its mean (linear analyses). NULL for a constant stiffness. */
     struct gd_tvms_result *tvms;
+    double face_width; /* b, m: from `geometry:` or the `face_width` key; 0 unknown */
     gd_mesh_dynamics dyn;
     gd_loc loc;
 } gd_mesh;
@@ -236,6 +237,9 @@ typedef struct gd_model {
     /* Rayleigh damping C += alpha M + beta K (002_...; 0 unless given), K the constant
        stiffness (speed tables of bearings not included) */
     double rayleigh_alpha, rayleigh_beta; /* 1/s, s */
+    /* gravitational acceleration, m/s^2, in the model's axes (`gravity:`; zero unless
+       given): the static analysis (geardyn/static.h) loads the masses with it */
+    double gravity[3];
     /* builder state while the model is built (include/geardyn/builder.h); NULL once
        gd_model_finish has succeeded */
     struct gd_model_build *build;

@@ -29,6 +29,7 @@
 #include "geardyn/mesh_stiffness.h"
 #include "geardyn/modal.h"
 #include "geardyn/periodic.h"
+#include "geardyn/static.h"
 #include "geardyn/system.h"
 #include "geardyn/transient.h"
 #include "geardyn/unbalance.h"
@@ -128,5 +129,11 @@ GD_API gd_status gd_plot_model(const gd_model *m, gd_plot **out, gd_error *err);
  * converged or there is no record. */
 GD_API gd_status gd_plot_periodic(const gd_system *sys, const gd_periodic_result *r,
                                   const gd_tr_record *records, gd_plot **out, gd_error *err);
+
+/* Static analysis: x and y deflection and the slopes (rx, ry) along every shaft, the
+ * bearings marked (hover: their reactions), and tables of the bearing reactions and of
+ * each mesh's force and misalignment (docs/static.md). GD_EINPUT without shafts. */
+GD_API gd_status gd_plot_static(const gd_system *sys, const gd_static_result *r, gd_plot **out,
+                                gd_error *err);
 
 #endif

@@ -15,11 +15,13 @@ from .builder import build
 from .analyses import (ModalResult, CampbellResult, FrfResult, UnbalanceResult, sweep)
 from .transient import TransientResult
 from .periodic import PeriodicResult
+from .static import StaticResult
 from .mesh_stiffness import mesh_stiffness, MeshStiffnessResult
 
 __all__ = ["GeardynError", "ModelError", "SolverError", "Model", "System", "Matrices", "load",
            "loads", "build", "sweep", "mesh_stiffness", "ModalResult", "CampbellResult",
-           "FrfResult", "UnbalanceResult", "TransientResult", "PeriodicResult", "MeshStiffnessResult",
+           "FrfResult", "UnbalanceResult", "TransientResult", "PeriodicResult", "StaticResult",
+           "MeshStiffnessResult",
            "version", "__version__"]
 
 

@@ -10,6 +10,7 @@ from . import _core
 from . import analyses as _analyses
 from . import transient as _transient
 from . import periodic as _periodic
+from . import static as _static
 from ._core import ffi, lib, check, new_error, cstr, quantity, model_error
 
 __all__ = ["Model", "System", "Matrices", "load", "loads"]
@@ -177,6 +178,9 @@ class Model:
     def campbell(self, speeds, **kw):
         return self.system.campbell(speeds, **kw)
 
+    def static(self, **kw):
+        return self.system.static(**kw)
+
     def frf(self, input, outputs, freqs, **kw):
         return self.system.frf(input, outputs, freqs, **kw)
 
@@ -307,6 +311,9 @@ class System:
     def campbell(self, speeds, **kw):
         return _analyses.campbell(self, speeds, **kw)
 
+    def static(self, **kw):
+        return _static.static(self, **kw)
+
     def frf(self, input, outputs, freqs, **kw):
         return _analyses.frf(self, input, outputs, freqs, **kw)
 
@@ -321,6 +328,7 @@ class System:
 
     modal.__doc__ = _analyses.modal.__doc__
     campbell.__doc__ = _analyses.campbell.__doc__
+    static.__doc__ = _static.static.__doc__
     frf.__doc__ = _analyses.frf.__doc__
     unbalance.__doc__ = _analyses.unbalance.__doc__
     transient.__doc__ = _transient.transient.__doc__

@@ -326,6 +326,33 @@ gd_status gd_rayleigh_from_ratios(double z1, double z2, double w1, double w2, do
     return GD_OK;
 }
 
+gd_status gd_model_set_gravity(gd_model *m, const double direction[3], double g, gd_loc loc,
+                               gd_error *err)
+{
+    gd_status st;
+    if ((st = gd_build_open(m, err))) return st;
+    double n = 0;
+    for (int i = 0; i < 3; i++) {
+        if (!isfinite(direction[i]))
+            return gd_build_fail(m, err, loc, "gravity.direction", "gravity.direction",
+                                 "give three finite numbers, e.g. [0, -1, 0]",
+                                 "direction component %d is not finite", i);
+        n += direction[i] * direction[i];
+    }
+    if (!(n > 0))
+        return gd_build_fail(m, err, loc, "gravity.direction", "gravity.direction",
+                             "give the direction gravity pulls in, e.g. [0, -1, 0]",
+                             "gravity direction is zero");
+    if (!isfinite(g) || g < 0)
+        return gd_build_fail(m, err, loc, "gravity.g", "gravity.g",
+                             "give g >= 0 in m/s^2, e.g. 9.81", "g = %g is not a finite value >= 0",
+                             g);
+    n = sqrt(n);
+    for (int i = 0; i < 3; i++)
+        m->gravity[i] = g * direction[i] / n;
+    return GD_OK;
+}
+
 gd_status gd_model_set_speed(gd_model *m, double speed, gd_error *err)
 {
     gd_status st;

@@ -74,6 +74,12 @@ static gd_status mesh_size(const gd_model *m, gd_error *err, const gd_mesh_spec 
         return gd_build_fail(m, err, s->loc, gd_build_path(fp, sizeof fp, path, "teeth"), fp,
                              "with `geometry:` the teeth and angles come from it; remove this key",
                              "'teeth' given together with `geometry:`");
+    if ((st = gd_build_positive(m, err, s->loc, path, "face_width", s->face_width, 1))) return st;
+    if (has_geom && s->face_width > 0)
+        return gd_build_fail(m, err, s->loc, gd_build_path(fp, sizeof fp, path, "face_width"), fp,
+                             "with `geometry:` the face width comes from it; remove this key",
+                             "'face_width' given together with `geometry:`");
+    g->face_width = s->face_width;
     int ngiven = has_rb + has_rp + has_mod + has_geom;
     if (ngiven != 1)
         return gd_build_fail(m, err, s->loc, NULL, path,

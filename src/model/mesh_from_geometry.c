@@ -52,6 +52,7 @@ gd_status gd_build_mesh_from_geometry(gd_model *m, int k, gd_error *err)
         g->helix_angle = bm->geometry.helix_angle;
         g->base_helix_angle = der.base_helix_angle;
         g->hand = bm->geometry.hand;
+        g->face_width = bm->geometry.face_width;
         if (bm->from_geometry) {
             if ((st = gd_tvms_compute(&bm->geometry, &bm->options, &g->tvms, err)))
                 return locate_geometry_error(m, g, bm->path, st, err);

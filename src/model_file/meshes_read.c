@@ -24,6 +24,7 @@ static const char *const MESH_KEYS[] = {"name",
                                         "driver_rotation",
                                         "stiffness",
                                         "damping",
+                                        "face_width",
                                         "coupling",
                                         "geometry",
                                         "tvms",
@@ -75,6 +76,8 @@ static gd_status read_mesh_keys(gd_mparser *p, const gd_ynode *mm, const char *q
                            &has_pa)) ||
         (st = gd_yread_qty(r, mm, "helix_angle", q, GD_QTY_ANGLE, GD_YNONNEG, &g->helix_angle,
                            &has_helix)) ||
+        (st = gd_yread_qty(r, mm, "face_width", q, GD_QTY_LENGTH, GD_YNONNEG, &g->face_width,
+                           NULL)) ||
         (st =
              gd_yread_qty(r, mm, "line_of_centres", q, GD_QTY_ANGLE, 0, &g->line_of_centres, NULL)))
         return st;

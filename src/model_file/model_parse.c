@@ -13,10 +13,11 @@
 #include "model_file/yaml_doc_impl.h"
 
 static const char *const TOP_KEYS[] = {
-    "title",           "description", "materials",  "dofs",        "shafts",
-    "disks",           "bearings",    "springs",    "meshes",      "speed",
-    "reference_shaft", "rotation",    "unbalances", "excitations", "prescribed",
-    "cam_torques",     "limits",      "damping",    "laws",        NULL};
+    "title",      "description", "materials",  "dofs",        "shafts",          "disks",
+    "bearings",   "springs",     "meshes",     "speed",       "reference_shaft", "rotation",
+    "unbalances", "excitations", "prescribed", "cam_torques", "limits",          "damping",
+    "gravity",    "laws",        NULL};
+static const char *const GRAVITY_KEYS[] = {"direction", "g", NULL};
 static const char *const LIMIT_KEYS[] = {"max_nodes", NULL};
 static const char *const DAMPING_KEYS[] = {"rayleigh", NULL};
 static const char *const RAYLEIGH_KEYS[] = {"alpha", "beta", "ratios", "frequencies", NULL};
@@ -206,6 +207,37 @@ static gd_status parse_damping(gd_mparser *p)
     return st;
 }
 
+/* gravity: {direction: [x, y, z], g: 9.81}: g in m/s^2, default standard gravity */
+static gd_status parse_gravity(gd_mparser *p)
+{
+    gd_yreader *r = &p->r;
+    const gd_ynode *gm = gd_ymap_get(p->root, "gravity");
+    if (!gm) return GD_OK;
+    gd_status st;
+    if ((st = gd_yexpect(r, gm, GD_Y_MAP, "gravity")) ||
+        (st = gd_ycheck_keys(r, gm, "gravity", GRAVITY_KEYS)))
+        return st;
+    const gd_ynode *dn = gd_ymap_get(gm, "direction");
+    if (!dn)
+        return gd_yfail(r, gm, "gravity.direction", "add `direction: [0, -1, 0]` (model axes)",
+                        "gravity without a direction");
+    if (dn->kind != GD_Y_SEQ || dn->n != 3)
+        return gd_yfail(r, dn, "gravity.direction", "write three numbers, e.g. [0, -1, 0]",
+                        "expected a list of three values");
+    double dir[3], g = 9.80665;
+    for (size_t i = 0; i < 3; i++) {
+        char ip[64];
+        if ((st = gd_yread_node_qty(r, dn->items[i],
+                                    gd_ypath_index(ip, sizeof ip, "gravity.direction", i),
+                                    GD_QTY_DIMLESS, 0, &dir[i])))
+            return st;
+    }
+    if ((st = gd_yread_qty(r, gm, "g", "gravity", GD_QTY_DIMLESS, GD_YNONNEG, &g, NULL))) return st;
+    if ((st = gd_model_set_gravity(p->m, dir, g, gd_mp_loc(gm), r->err)))
+        gd_ylocate(r->err, r->file, dn);
+    return st;
+}
+
 static gd_status parse_globals(gd_mparser *p)
 {
     gd_yreader *r = &p->r;
@@ -274,9 +306,9 @@ static gd_status parse(gd_mparser *p)
     if ((st = gd_yread_str(&p->r, p->root, "title", "", NULL, 0, &s, NULL, NULL)) ||
         (st = gd_yread_str(&p->r, p->root, "description", "", NULL, 0, &s, NULL, NULL)) ||
         (st = gd_mp_materials(p)) || (st = gd_mp_shafts(p)) || (st = parse_globals(p)) ||
-        (st = parse_damping(p)) || (st = gd_mp_disks(p)) || (st = gd_mp_bearings(p)) ||
-        (st = gd_mp_springs(p)) || (st = gd_mp_meshes(p)) || (st = gd_mp_unbalances(p)) ||
-        (st = gd_mp_dynamics(p)) || (st = gd_mp_laws(p)))
+        (st = parse_damping(p)) || (st = parse_gravity(p)) || (st = gd_mp_disks(p)) ||
+        (st = gd_mp_bearings(p)) || (st = gd_mp_springs(p)) || (st = gd_mp_meshes(p)) ||
+        (st = gd_mp_unbalances(p)) || (st = gd_mp_dynamics(p)) || (st = gd_mp_laws(p)))
         return st;
     return gd_model_finish(p->m, p->r.err);
 }

@@ -14,7 +14,7 @@ declare -A level=(
     [model]=3
     [model_file]=4 [elements]=4
     [system]=5
-    [modal]=6
+    [modal]=6 [static]=6
     [campbell]=7 [response]=7 [transient]=7
     [periodic]=8
     [plot]=9
@@ -30,7 +30,7 @@ declare -A header=(
     [model.h]=model [material.h]=model [builder.h]=model
     [model_file.h]=model_file [elements.h]=elements
     [system.h]=system
-    [modal.h]=modal
+    [modal.h]=modal [static.h]=static
     [campbell.h]=campbell [probe.h]=response [frf.h]=response [unbalance.h]=response
     [transient.h]=transient [transient_model.h]=transient
     [periodic.h]=periodic

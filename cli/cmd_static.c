@@ -1,0 +1,366 @@
+/* geardyn static MODEL: equilibrium under the mean loads and gravity (docs/static.md). */
+#include <getopt.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "geardyn/static.h"
+#include "geardyn/units.h"
+
+static const char USAGE[] =
+    "usage: geardyn static MODEL.yaml [--torque VALUE] [--input NODE] [--hold NODE]\n"
+    "                      [--speed VALUE] [--no-gravity] [--no-loads] [--coupling LEVEL]\n"
+    "                      [--dofs LIST] [--set PATH=VALUE]... [--json] [--out DIR]\n"
+    "                      [--plot FILE.svg|FILE.html]\n\n"
+    "Static equilibrium K q = f under the model's mean loads (excitation loads at their\n"
+    "mean), an input torque and gravity (`gravity:`): deflection and slope along every\n"
+    "shaft, bearing reactions, the force of every mesh and its misalignment (relative tilt\n"
+    "in and out of the plane of action, ISO 6336-1 f_sh = b x tilt). Prescribed DOFs are\n"
+    "held; a gear train free to turn is held at one torsion DOF (the torque balance).\n\n"
+    "  --torque VALUE    input torque, N m (units allowed: 20N*m), in the input shaft's\n"
+    "                    sense of rotation; default none\n"
+    "  --input NODE      node the input torque acts on (default: the reference shaft's\n"
+    "                    first node)\n"
+    "  --hold NODE       hold the torsion of NODE's train there (default: the output, the\n"
+    "                    last node of the last shaft, with --torque; the input without)\n"
+    "  --speed VALUE     reference speed for bearing speed tables (default: model's)\n"
+    "  --no-gravity      leave out the model's gravity\n"
+    "  --no-loads        leave out the model's excitation loads\n"
+    "  --coupling LEVEL  torsional | lateral-torsional | full: every mesh's level\n"
+    "  --dofs LIST       keep only these node DOFs, e.g. x,y,rx,ry,rz\n"
+    "  --set PATH=VALUE  change a value of the model file (repeatable; docs/model-format.md)\n"
+    "  --json            print one JSON object on stdout instead of the tables\n"
+    "  --out DIR         write DIR/static_nodes.csv, static_bearings.csv, static_meshes.csv\n"
+    "                    and static_holds.csv\n" GD_CLI_PLOT_HELP;
+
+/* no "-0" in the tables */
+static double nz(double v)
+{
+    return v == 0 ? 0.0 : v;
+}
+
+static const char *node_name(const gd_model *m, int node)
+{
+    return m->nodes[node].name;
+}
+
+static void print_tables(const gd_system *s, const gd_static_result *r)
+{
+    const gd_model *m = s->model;
+    printf("%s: %d DOFs, speed %g rad/s; %d held DOF%s\n", m->file, r->ndof, r->speed, r->nholds,
+           r->nholds == 1 ? "" : "s");
+    if (r->nholds) {
+        printf("\nheld DOFs (reaction applied to hold them)\n%-20s %4s %-10s %14s\n", "node", "dof",
+               "kind", "reaction");
+        for (int h = 0; h < r->nholds; h++) {
+            const gd_static_hold *ho = &r->holds[h];
+            printf("%-20s %4s %-10s %14.6g %s\n", node_name(m, ho->node), gd_dof_names[ho->dof],
+                   ho->prescribed ? "prescribed" : "torque", ho->reaction,
+                   ho->dof >= GD_RX ? "N m" : "N");
+        }
+    }
+    if (m->nmeshes) {
+        printf("\nmeshes (force on the drive flank; tilt driver - driven; f_sh = b x tilt in "
+               "plane)\n%-12s %12s %12s %12s %12s %12s %12s %8s %10s %10s\n",
+               "mesh", "F(N)", "Ft(N)", "Fr(N)", "Fa(N)", "tilt_in(ur)", "tilt_out(ur)", "b(mm)",
+               "f_sh(um)", "Fbx(um)");
+        for (int k = 0; k < m->nmeshes; k++) {
+            const gd_static_mesh *g = &r->meshes[k];
+            printf("%-12.12s %12.6g %12.6g %12.6g %12.6g %12.5g %12.5g", m->meshes[k].name,
+                   g->force, g->tangential, g->radial, g->axial, g->tilt_in_plane * 1e6,
+                   g->tilt_out_of_plane * 1e6);
+            if (isfinite(g->f_sh))
+                printf(" %8.4g %10.4g %10.4g\n", g->face_width * 1e3, g->f_sh * 1e6,
+                       g->f_beta_x * 1e6);
+            else
+                printf(" %8s %10s %10s\n", "-", "-", "-");
+        }
+    }
+    if (m->nbearings) {
+        printf("\nbearing reactions (force and moment on the shaft)\n%-12s %-14s %12s %12s %12s "
+               "%12s %12s %12s\n",
+               "bearing", "node", "Fx(N)", "Fy(N)", "Fz(N)", "Mx(N m)", "My(N m)", "Mz(N m)");
+        for (int b = 0; b < m->nbearings; b++) {
+            const gd_static_reaction *re = &r->bearings[b];
+            printf("%-12.12s %-14.14s %12.6g %12.6g %12.6g %12.6g %12.6g %12.6g\n",
+                   m->bearings[b].name, node_name(m, m->bearings[b].node), nz(re->force[0]),
+                   nz(re->force[1]), nz(re->force[2]), nz(re->moment[0]), nz(re->moment[1]),
+                   nz(re->moment[2]));
+        }
+    }
+    if (m->nsprings) {
+        printf("\nsprings (force or torque on node1 along the DOF)\n");
+        for (int k = 0; k < m->nsprings; k++)
+            printf("%-12.12s %-4s %14.6g\n", m->springs[k].name, gd_dof_names[m->springs[k].dof],
+                   r->springs[k]);
+    }
+    printf("\nnodes (displacement um, rotation mrad)\n%-12s %-16s %9s %11s %11s %11s %10s %10s "
+           "%10s\n",
+           "shaft", "node", "z(m)", "x", "y", "axial", "rx", "ry", "rz");
+    for (int sh = 0; sh < m->nshafts; sh++)
+        for (int i = 0; i < m->shafts[sh].nnodes; i++) {
+            int node = m->shafts[sh].first_node + i;
+            const double *u = r->u + (size_t)node * GD_NODE_DOFS;
+            printf("%-12.12s %-16.16s %9.4g %11.5g %11.5g %11.5g %10.5g %10.5g %10.5g\n",
+                   m->shafts[sh].name, node_name(m, node), m->nodes[node].position, u[0] * 1e6,
+                   u[1] * 1e6, u[2] * 1e6, u[3] * 1e3, u[4] * 1e3, u[5] * 1e3);
+        }
+}
+
+static void add_num(cJSON *o, const char *k, double v)
+{
+    cJSON_AddItemToObject(o, k, gd_cli_json_number(v));
+}
+
+static cJSON *num_array(const double *v, int n)
+{
+    cJSON *a = cJSON_CreateArray();
+    for (int i = 0; i < n; i++)
+        cJSON_AddItemToArray(a, gd_cli_json_number(v[i]));
+    return a;
+}
+
+static cJSON *result_json(const gd_system *s, const gd_static_result *r)
+{
+    const gd_model *m = s->model;
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "model", m->file);
+    cJSON_AddNumberToObject(o, "dofs", r->ndof);
+    cJSON_AddNumberToObject(o, "speed_rad_s", r->speed);
+    cJSON *hs = cJSON_AddArrayToObject(o, "holds");
+    for (int h = 0; h < r->nholds; h++) {
+        cJSON *j = cJSON_CreateObject();
+        cJSON_AddStringToObject(j, "node", node_name(m, r->holds[h].node));
+        cJSON_AddStringToObject(j, "dof", gd_dof_names[r->holds[h].dof]);
+        cJSON_AddStringToObject(j, "kind", r->holds[h].prescribed ? "prescribed" : "torque");
+        add_num(j, "reaction", r->holds[h].reaction);
+        cJSON_AddItemToArray(hs, j);
+    }
+    cJSON *ms = cJSON_AddArrayToObject(o, "meshes");
+    for (int k = 0; k < m->nmeshes; k++) {
+        const gd_static_mesh *g = &r->meshes[k];
+        cJSON *j = cJSON_CreateObject();
+        cJSON_AddStringToObject(j, "name", m->meshes[k].name);
+        add_num(j, "force_N", g->force);
+        add_num(j, "tangential_N", g->tangential);
+        add_num(j, "radial_N", g->radial);
+        add_num(j, "axial_N", g->axial);
+        cJSON_AddItemToObject(j, "on_driver", num_array(g->on_driver, 6));
+        cJSON_AddItemToObject(j, "on_driven", num_array(g->on_driven, 6));
+        add_num(j, "tilt_in_plane_rad", g->tilt_in_plane);
+        add_num(j, "tilt_out_of_plane_rad", g->tilt_out_of_plane);
+        add_num(j, "face_width_m", g->face_width);
+        add_num(j, "f_sh_m", g->f_sh);
+        add_num(j, "F_beta_x_m", g->f_beta_x);
+        cJSON_AddItemToArray(ms, j);
+    }
+    cJSON *bs = cJSON_AddArrayToObject(o, "bearings");
+    for (int b = 0; b < m->nbearings; b++) {
+        cJSON *j = cJSON_CreateObject();
+        cJSON_AddStringToObject(j, "name", m->bearings[b].name);
+        cJSON_AddStringToObject(j, "node", node_name(m, m->bearings[b].node));
+        cJSON_AddItemToObject(j, "force_N", num_array(r->bearings[b].force, 3));
+        cJSON_AddItemToObject(j, "moment_N_m", num_array(r->bearings[b].moment, 3));
+        cJSON_AddItemToArray(bs, j);
+    }
+    cJSON *ss = cJSON_AddArrayToObject(o, "springs");
+    for (int k = 0; k < m->nsprings; k++) {
+        cJSON *j = cJSON_CreateObject();
+        cJSON_AddStringToObject(j, "name", m->springs[k].name);
+        cJSON_AddStringToObject(j, "dof", gd_dof_names[m->springs[k].dof]);
+        add_num(j, "force", r->springs[k]);
+        cJSON_AddItemToArray(ss, j);
+    }
+    cJSON *ns = cJSON_AddArrayToObject(o, "nodes");
+    for (int sh = 0; sh < m->nshafts; sh++)
+        for (int i = 0; i < m->shafts[sh].nnodes; i++) {
+            int node = m->shafts[sh].first_node + i;
+            cJSON *j = cJSON_CreateObject();
+            cJSON_AddStringToObject(j, "shaft", m->shafts[sh].name);
+            cJSON_AddStringToObject(j, "node", node_name(m, node));
+            add_num(j, "position_m", m->nodes[node].position);
+            const double *u = r->u + (size_t)node * GD_NODE_DOFS;
+            for (int d = 0; d < GD_NODE_DOFS; d++)
+                add_num(j, gd_dof_names[d], u[d]);
+            cJSON_AddItemToArray(ns, j);
+        }
+    return o;
+}
+
+static int write_csv(const gd_system *s, const gd_static_result *r, const char *dir)
+{
+    const gd_model *m = s->model;
+    gd_error err;
+    gd_error_clear(&err);
+    gd_outdir od;
+    if (gd_outdir_begin(&od, dir, &err)) return gd_cli_report(&err);
+    FILE *f = gd_outdir_open(&od, "static_nodes.csv", &err);
+    if (!f) goto fail;
+    fprintf(f, "shaft,node,position_m,x_m,y_m,z_m,rx_rad,ry_rad,rz_rad\n");
+    for (int sh = 0; sh < m->nshafts; sh++)
+        for (int i = 0; i < m->shafts[sh].nnodes; i++) {
+            int node = m->shafts[sh].first_node + i;
+            const double *u = r->u + (size_t)node * GD_NODE_DOFS;
+            fprintf(f, "%s,%s,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n", m->shafts[sh].name,
+                    node_name(m, node), m->nodes[node].position, u[0], u[1], u[2], u[3], u[4],
+                    u[5]);
+        }
+    if (gd_outdir_close(&od, f, "static_nodes.csv", &err)) goto fail;
+    if (!(f = gd_outdir_open(&od, "static_bearings.csv", &err))) goto fail;
+    fprintf(f, "bearing,node,Fx_N,Fy_N,Fz_N,Mx_N_m,My_N_m,Mz_N_m\n");
+    for (int b = 0; b < m->nbearings; b++) {
+        const gd_static_reaction *re = &r->bearings[b];
+        fprintf(f, "%s,%s,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n", m->bearings[b].name,
+                node_name(m, m->bearings[b].node), re->force[0], re->force[1], re->force[2],
+                re->moment[0], re->moment[1], re->moment[2]);
+    }
+    if (gd_outdir_close(&od, f, "static_bearings.csv", &err)) goto fail;
+    if (!(f = gd_outdir_open(&od, "static_meshes.csv", &err))) goto fail;
+    fprintf(f, "mesh,force_N,tangential_N,radial_N,axial_N,tilt_in_plane_rad,"
+               "tilt_out_of_plane_rad,face_width_m,f_sh_m,F_beta_x_m\n");
+    for (int k = 0; k < m->nmeshes; k++) {
+        const gd_static_mesh *g = &r->meshes[k];
+        fprintf(f, "%s,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n", m->meshes[k].name,
+                g->force, g->tangential, g->radial, g->axial, g->tilt_in_plane,
+                g->tilt_out_of_plane, g->face_width, g->f_sh, g->f_beta_x);
+    }
+    if (gd_outdir_close(&od, f, "static_meshes.csv", &err)) goto fail;
+    if (!(f = gd_outdir_open(&od, "static_holds.csv", &err))) goto fail;
+    fprintf(f, "node,dof,kind,reaction\n");
+    for (int h = 0; h < r->nholds; h++)
+        fprintf(f, "%s,%s,%s,%.10g\n", node_name(m, r->holds[h].node),
+                gd_dof_names[r->holds[h].dof], r->holds[h].prescribed ? "prescribed" : "torque",
+                r->holds[h].reaction);
+    if (gd_outdir_close(&od, f, "static_holds.csv", &err)) goto fail;
+    if (gd_outdir_commit(&od, &err)) return gd_cli_report(&err);
+    return GD_EXIT_OK;
+fail:
+    gd_outdir_abort(&od);
+    return gd_cli_report(&err);
+}
+
+/* A node by name for --input / --hold; -1 after a usage error. */
+static int find_node(const gd_model *m, const char *opt, const char *name)
+{
+    int node = gd_model_find_node(m, name);
+    if (node < 0) gd_cli_usage_error("static", "%s: no node named '%s' in the model", opt, name);
+    return node;
+}
+
+int gd_cmd_static(int argc, char **argv)
+{
+    static const struct option opts[] = {{"torque", required_argument, 0, 't'},
+                                         {"input", required_argument, 0, 'i'},
+                                         {"hold", required_argument, 0, 'H'},
+                                         {"speed", required_argument, 0, 's'},
+                                         {"no-gravity", no_argument, 0, 'G'},
+                                         {"no-loads", no_argument, 0, 'L'},
+                                         {"coupling", required_argument, 0, 'c'},
+                                         GD_CLI_SET_OPTION,
+                                         GD_CLI_DOFS_OPTION,
+                                         {"json", no_argument, 0, 'j'},
+                                         {"out", required_argument, 0, 'o'},
+                                         {"help", no_argument, 0, 'h'},
+                                         GD_CLI_PLOT_OPTION,
+                                         {0, 0, 0, 0}};
+    gd_static_options opt;
+    gd_static_options_init(&opt);
+    const char *coupling = NULL, *out = NULL, *speed = NULL, *plot = NULL, *input = NULL,
+               *hold = NULL;
+    gd_cli_sets sets = {0};
+    int json = 0, c, rc;
+    optind = 1;
+    opterr = 0;
+    while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
+        switch (c) {
+        case 't': {
+            gd_error why;
+            if (gd_parse_quantity(optarg, GD_QTY_TORQUE, &opt.input_torque, &why))
+                return gd_cli_usage_error("static", "--torque: %s (e.g. --torque 20N*m)",
+                                          why.message);
+            break;
+        }
+        case 'i':
+            input = optarg;
+            break;
+        case 'H':
+            hold = optarg;
+            break;
+        case 's':
+            speed = optarg;
+            break;
+        case 'G':
+            opt.gravity = 0;
+            break;
+        case 'L':
+            opt.loads = 0;
+            break;
+        case 'c':
+            coupling = optarg;
+            break;
+        case GD_CLI_OPT_SET:
+            if (gd_cli_add_set("static", &sets, optarg)) return GD_EXIT_INPUT;
+            break;
+        case GD_CLI_OPT_DOFS:
+            sets.dofs = optarg;
+            break;
+        case 'j':
+            json = 1;
+            break;
+        case 'o':
+            out = optarg;
+            break;
+        case GD_CLI_OPT_PLOT:
+            plot = optarg;
+            break;
+        case 'h':
+            fputs(USAGE, stdout);
+            return GD_EXIT_OK;
+        default:
+            return gd_cli_option_error("static", c, argv, optind);
+        }
+    }
+    if (optind != argc - 1) return gd_cli_usage_error("static", "give exactly one model file");
+    gd_error oerr;
+    gd_error_clear(&oerr);
+    if (out && gd_outdir_check(out, &oerr)) return gd_cli_report(&oerr);
+    if (plot && (rc = gd_cli_plot_check(plot))) return rc;
+    gd_model *m;
+    gd_system *s;
+    rc = gd_cli_load(argv[optind], &sets, coupling, &m, &s);
+    if (rc) return rc;
+    if ((speed && gd_cli_parse_speed("static", speed, &opt.speed)) ||
+        (input && (opt.input_node = find_node(m, "--input", input)) < 0) ||
+        (hold && (opt.hold_node = find_node(m, "--hold", hold)) < 0)) {
+        gd_system_free(s);
+        gd_model_free(m);
+        return GD_EXIT_INPUT;
+    }
+    gd_static_result *r = NULL;
+    gd_error err;
+    gd_error_clear(&err);
+    if (gd_static_run(s, &opt, &r, &err)) {
+        rc = gd_cli_report(&err);
+    } else {
+        if (plot) {
+            gd_plot *p = NULL;
+            gd_status pst = gd_plot_static(s, r, &p, &err);
+            rc = gd_cli_plot_finish(pst, p, &err, plot);
+        }
+        if (out && rc == GD_EXIT_OK) rc = write_csv(s, r, out);
+        if (rc == GD_EXIT_OK) {
+            if (json) {
+                cJSON *o = result_json(s, r);
+                gd_cli_print_json(stdout, o);
+                cJSON_Delete(o);
+            } else {
+                print_tables(s, r);
+            }
+        }
+        gd_static_free(r);
+    }
+    gd_system_free(s);
+    gd_model_free(m);
+    return rc;
+}

@@ -1,0 +1,89 @@
+/* Static analysis: the equilibrium K q = f of a model under its mean loads
+ * (docs/static.md). The loads are the model's excitation loads at their mean value, an
+ * optional input torque, and gravity (`gravity:`) on every mass; K is the system's
+ * stiffness at the reference speed (speed tables of bearings at that speed). Held DOFs
+ * (q = 0) are the model's prescribed DOFs, and, for each gear train left free to turn
+ * as a rigid body, one torsion DOF (the torque balance: the train's net torque is
+ * reacted there). Any other free rigid-body motion (a shaft with no bearing) is an
+ * input error naming it.
+ *
+ * Results: the displacement of every node, the reactions of the bearings, springs and
+ * held DOFs, the force of every mesh and its misalignment: the relative tilt of the two
+ * gears in and out of the plane of action and the ISO 6336-1 mesh misalignment f_sh
+ * (the tilt in the plane of action times the face width).
+ *
+ * Ownership and threads: gd_static_run returns a result the caller frees with
+ * gd_static_free; it owns every array. The system (and its model) is only read: several
+ * runs may use one system at once from different threads. No global state.
+ */
+#ifndef GEARDYN_STATIC_H
+#define GEARDYN_STATIC_H
+#include "geardyn/export.h"
+#include "geardyn/system.h"
+
+typedef struct gd_static_options {
+    double speed;        /* reference speed for the bearings' speed tables, rad/s; < 0 (the
+                            default): the model's speed */
+    double input_torque; /* N m, about the input node's shaft in its sense of rotation
+                            (positive drives the train); 0: none (the default) */
+    int input_node;      /* node the input torque acts on (rz); -1: the reference shaft's
+                            first node */
+    int hold_node;       /* node whose torsion holds its free train; -1: automatic: the
+                            input when no input torque is given, else the last node of the
+                            last shaft of the train (the output) */
+    int loads;           /* 1 (default): the model's excitation loads at their mean */
+    int gravity;         /* 1 (default): the model's gravity, if any */
+} gd_static_options;
+
+/* Reaction of a bearing or spring on the shaft at its node (the force it exerts on the
+ * node; for a support between two nodes the other node receives the opposite). */
+typedef struct gd_static_reaction {
+    double force[3];  /* x, y, z: N */
+    double moment[3]; /* about x, y, z: N m */
+} gd_static_reaction;
+
+/* One held DOF: the force (N) or torque (N m) the hold applies to keep it at 0. */
+typedef struct gd_static_hold {
+    int node;
+    gd_dof dof;
+    int prescribed; /* 1: a prescribed DOF of the model; 0: a torque-balance hold */
+    double reaction;
+} gd_static_hold;
+
+typedef struct gd_static_mesh {
+    double force;             /* along the contact normal, N (> 0: drive flanks loaded) */
+    double on_driver[6];      /* force (N) and moment (N m) on the driver gear's node: F a */
+    double on_driven[6];      /* the same on the driven gear */
+    double tangential;        /* F cos(beta_b) cos(alpha_wt): circumferential, N */
+    double radial;            /* F cos(beta_b) sin(alpha_wt), N */
+    double axial;             /* F sin(beta_b), N */
+    double tilt_in_plane;     /* relative tilt driver - driven turning the axes within the
+                                 plane of action (rad): the one that misaligns the flanks */
+    double tilt_out_of_plane; /* relative tilt out of the plane of action, rad */
+    double face_width;        /* b, m; 0: unknown */
+    double f_sh;              /* b tilt_in_plane: mesh misalignment from the deformations
+                                 (ISO 6336-1 f_sh, signed), m; NAN when b is unknown */
+    double f_beta_x;          /* ISO 6336-1 equivalent misalignment |f_sh| (no
+                                 manufacturing part f_ma), m; NAN when b is unknown */
+} gd_static_mesh;
+
+typedef struct gd_static_result {
+    int ndof, nnodes, nbearings, nsprings, nmeshes, nholds;
+    double speed;
+    double *q; /* ndof: displacement of the active DOFs (m, rad) */
+    double *f; /* ndof: the applied loads (N, N m) */
+    double *u; /* nnodes x 6 (x, y, z, rx, ry, rz): node displacements (0 inactive) */
+    gd_static_reaction *bearings; /* nbearings */
+    double *springs;              /* nsprings: force or torque on node1 along its DOF */
+    gd_static_mesh *meshes;       /* nmeshes */
+    gd_static_hold *holds;        /* nholds */
+} gd_static_result;
+
+GD_API void gd_static_options_init(gd_static_options *opt);
+/* GD_EINPUT: a free rigid-body motion other than a train's torsion (named in the
+ * message), or bad options (node out of range). */
+GD_API gd_status gd_static_run(const gd_system *sys, const gd_static_options *opt,
+                               gd_static_result **out, gd_error *err);
+GD_API void gd_static_free(gd_static_result *res);
+
+#endif
