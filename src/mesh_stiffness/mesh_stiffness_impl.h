@@ -157,6 +157,13 @@ int gd_ms_mods_any(const gd_gear_pair_geometry *g);
 gd_status gd_ms_mods_check(const gd_gear_pair_geometry *g, const gd_gear_pair_derived *d,
                            gd_error *err);
 
+/* ---- loaded_tvms.c: a model mesh from the contact analysis ---- */
+/* The TVMS result of g with the loaded stiffness k_L(theta) of gd_ltca_compute at
+ * opt->load_torque, and ste (points values over the first cycle, malloc'd) the
+ * transmission error delta - F0 / k_L the dynamics subtract from the deformation. */
+gd_status gd_ms_loaded_tvms(const gd_gear_pair_geometry *g, const gd_tvms_options *opt,
+                            gd_tvms_result **tvms, double **ste, gd_error *err);
+
 /* ---- body_compliance.c: 003_... Eq. 6 ---- */
 /* Torsional stiffness of gear body i (N m/rad), or 0 when rigid. */
 double gd_ms_body_torsional_stiffness(const gd_gear_pair_geometry *g, const gd_gear_pair_derived *d,
