@@ -31,25 +31,15 @@ gd_status gd_ms_loaded_tvms(const gd_gear_pair_geometry *g, const gd_tvms_option
         return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
     }
     const size_t P = (size_t)r->max_pairs;
-    double sum = 0, mx = -HUGE_VAL, mn = HUGE_VAL;
     for (size_t i = 0; i < r->n; i++) {
-        double k = l->stiffness[i];
-        r->stiffness[i] = k;
+        r->stiffness[i] = l->stiffness[i];
         r->pairs_in_contact[i] = l->pairs_in_contact[i];
         for (size_t j = 0; j < P; j++)
             r->load_share[i * P + j] = l->pair_load[i * P + j] / l->force;
-        if (i < r->points) {
-            e[i] = l->ste[i] - l->force / k;
-            sum += k;
-            if (k > mx) mx = k;
-            if (k < mn) mn = k;
-        }
     }
-    r->mean = sum / (double)r->points;
-    r->max = mx;
-    r->min = mn;
-    r->peak_to_peak = mx - mn;
-    gd_ms_fourier(r->stiffness, r->points, r->harmonics, r->harmonic_amplitude, r->harmonic_phase);
+    for (size_t i = 0; i < r->points; i++)
+        e[i] = l->ste[i] - l->force / l->stiffness[i];
+    gd_ms_tvms_summarise(r);
     gd_ltca_free(l);
     *tvms = r;
     *ste = e;

@@ -178,6 +178,8 @@ void gd_ms_fourier(const double *x, size_t n, int H, double *amp, double *phase)
 /* ---- tvms.c: where gear-pair errors point ---- */
 /* The ranges and work bounds of the options; errors name the option. */
 gd_status gd_ms_check_options(const gd_tvms_options *o, gd_error *err);
+/* mean, max, min, peak_to_peak and the harmonics of r's first cycle. */
+void gd_ms_tvms_summarise(gd_tvms_result *r);
 /* gd_gear_pair_derive and gd_tvms_compute name a field relative to the mesh's `geometry`
  * map (the options: its `stiffness` map). Prefixes err->field with mesh_path and that
  * map's key, and returns the key. */

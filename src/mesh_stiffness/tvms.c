@@ -114,6 +114,22 @@ gd_status gd_ms_check_options(const gd_tvms_options *o, gd_error *err)
     return gd_error_set(err, GD_EINPUT, "", 0, 0, f, h, "%s", msg);
 }
 
+void gd_ms_tvms_summarise(gd_tvms_result *r)
+{
+    double sum = 0, mx = -HUGE_VAL, mn = HUGE_VAL;
+    for (size_t i = 0; i < r->points; i++) {
+        double k = r->stiffness[i];
+        sum += k;
+        if (k > mx) mx = k;
+        if (k < mn) mn = k;
+    }
+    r->mean = sum / (double)r->points;
+    r->max = mx;
+    r->min = mn;
+    r->peak_to_peak = mx - mn;
+    gd_ms_fourier(r->stiffness, r->points, r->harmonics, r->harmonic_amplitude, r->harmonic_phase);
+}
+
 gd_status gd_tvms_compute(const gd_gear_pair_geometry *g, const gd_tvms_options *opt,
                           gd_tvms_result **out, gd_error *err)
 {
@@ -182,23 +198,13 @@ gd_status gd_tvms_compute(const gd_gear_pair_geometry *g, const gd_tvms_options 
     if (have_law) gd_ms_pair_law_free(&law);
     free(pair_k);
 
-    double sum = 0, mx = -HUGE_VAL, mn = HUGE_VAL;
-    for (size_t i = 0; i < r->points; i++) {
-        double k = r->stiffness[i];
-        sum += k;
-        if (k > mx) mx = k;
-        if (k < mn) mn = k;
-    }
-    r->mean = sum / (double)r->points;
-    r->max = mx;
-    r->min = mn;
-    r->peak_to_peak = mx - mn;
-    if (!(mn > 0)) {
+    gd_ms_tvms_summarise(r);
+    if (!(r->min > 0)) {
+        double mn = r->min;
         gd_tvms_free(r);
         return gd_error_set(err, GD_ENUMERIC, "", 0, 0, "", "report this geometry as a bug",
                             "mesh stiffness is not positive at some angle (min %g N/m)", mn);
     }
-    gd_ms_fourier(r->stiffness, r->points, r->harmonics, r->harmonic_amplitude, r->harmonic_phase);
     *out = r;
     return GD_OK;
 oom:

@@ -28,7 +28,7 @@
     "      face_width: 20 mm\n"                                                                    \
     "      driver: {teeth: 48, material: steel, bore_radius: 12.7 mm}\n"
 
-/* line 18 of PAIR is the driven gear */
+/* line 18: the driven gear, 19: the stiffness */
 #define DRIVEN "      driven: {teeth: 32, material: steel, bore_radius: 12.7 mm}\n"
 #define RELIEVED                                                                                   \
     "      driven:\n"                                                                              \
@@ -158,6 +158,10 @@ TEST(located_errors)
                  PAIR DRIVEN
                  "    stiffness: {from: contact_analysis, load: 5 N m, method: iso6336}\n",
                  19, "meshes[0].stiffness", "stiffness law");
+    /* the contact analysis gives the transmission error: no table besides */
+    expect_error(gd_ts_,
+                 PAIR DRIVEN LTCA "    transmission_error: {angle: [0, 0.1], error: [0, 1e-6]}\n",
+                 20, "meshes[0].transmission_error", "contact analysis");
 }
 
 RUN_TESTS(T(unmodified_is_the_tvms), T(relieved_mesh_carries_its_load_at_the_loaded_te),
