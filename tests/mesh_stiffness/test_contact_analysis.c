@@ -8,6 +8,7 @@
 
 #include "geardyn/mesh_stiffness.h"
 #include "harness.h"
+#include "mesh_stiffness/mesh_stiffness_impl.h"
 
 static const double DEG = 3.14159265358979323846 / 180.0;
 
@@ -356,6 +357,66 @@ TEST(bad_input_errors)
     CHECK_STR(err.field, "load");
 }
 
-RUN_TESTS(T(unmodified_equals_tvms), T(harris_map_tip_relief_sized_for_design_load),
-          T(face_load_factor_spur_against_iso6336), T(face_load_factor_helical_against_iso6336),
-          T(edge_contact_flagged_never_nan), T(crowning_load_distribution), T(bad_input_errors))
+/* The separation of each modification at points where its value is known (exact to
+ * rounding, 1e-12): linear and parabolic reliefs at mid zone and at their ends, a root
+ * relief at the form circle, start by diameter = start by roll angle, crowning, end
+ * relief, helix slope and misalignment signs (docs/mesh-stiffness.md, "Micro-geometry"). */
+TEST(separation_of_each_modification)
+{
+    gd_gear_pair_geometry g;
+    spur_pair(&g);
+    gd_gear_pair_derived d;
+    gd_error err;
+    REQUIRE(gd_gear_pair_derive(&g, &d, &err) == GD_OK);
+    const double rb1 = d.base_radius[0], rb2 = d.base_radius[1], L = d.line_of_action;
+    const double rho_a1 = d.contact_end, rho_a2 = sqrt(pow(d.tip_radius[1], 2) - rb2 * rb2);
+    const double b = g.face_width, A = 10e-6;
+    /* driver tip relief from roll 17 mm, linear; alone, then a driven root relief from
+     * roll 8 mm, parabolic, alone (a driver tip contact meets the driven root) */
+    double rs = 17e-3, rr = 8e-3, rf2 = d.form_roll[1];
+    gd_gear_pair_geometry gr = g;
+    g.gear[0].mod.tip_relief = (gd_profile_relief){A, 2 * sqrt(rb1 * rb1 + rs * rs), 0, 0};
+    gr.gear[1].mod.root_relief = (gd_profile_relief){A, 0, rr / rb2, GD_RELIEF_PARABOLIC};
+    REQUIRE(gd_gear_pair_derive(&g, &d, &err) == GD_OK);
+    REQUIRE(gd_gear_pair_derive(&gr, &d, &err) == GD_OK);
+    gd_ms_mods m;
+    gd_ms_mods_init(&m, &g, &d, 0);
+    double y = 0.5 * b;
+    CHECK_ABS(gd_ms_mods_separation(&m, rs, y), 0, 1e-18);
+    CHECK_REL(gd_ms_mods_separation(&m, 0.5 * (rs + rho_a1), y), 0.5 * A, 1e-12);
+    CHECK_REL(gd_ms_mods_separation(&m, rho_a1, y), A, 1e-12);
+    CHECK_ABS(gd_ms_mods_separation(&m, d.contact_start, y), 0, 1e-18);
+    /* driven root: roll N1N2 - s; at mid zone (parabolic) A/4, at the form circle A */
+    gd_ms_mods mr;
+    gd_ms_mods_init(&mr, &gr, &d, 0);
+    CHECK_REL(gd_ms_mods_separation(&mr, L - 0.5 * (rr + rf2), y), 0.25 * A, 1e-12);
+    CHECK_REL(gd_ms_mods_separation(&mr, L - rf2, y), A, 1e-12);
+    CHECK_ABS(gd_ms_mods_separation(&mr, L - rr, y), 0, 1e-18);
+    CHECK_ABS(gd_ms_mods_separation(&mr, L - rho_a2, y), 0, 1e-18);
+    /* the same tip relief by roll angle */
+    gd_gear_pair_geometry h = g;
+    h.gear[0].mod.tip_relief.start_diameter = 0;
+    h.gear[0].mod.tip_relief.start_roll_angle = rs / rb1;
+    gd_ms_mods mh;
+    gd_ms_mods_init(&mh, &h, &d, 0);
+    CHECK_REL(gd_ms_mods_separation(&mh, 0.5 * (rs + rho_a1), y),
+              gd_ms_mods_separation(&m, 0.5 * (rs + rho_a1), y), 1e-12);
+    /* lead: crowning 2 + 1 um, end relief 4 um over 2 mm (linear) on the driver, slope
+     * +3 um on the driven gear and misalignment -1 um: at a pitch-point contact */
+    spur_pair(&g);
+    g.gear[0].mod.crowning = 2e-6, g.gear[1].mod.crowning = 1e-6;
+    g.gear[0].mod.end_relief = 4e-6, g.gear[0].mod.end_relief_length = 2e-3;
+    g.gear[1].mod.helix_slope_deviation = 3e-6;
+    REQUIRE(gd_gear_pair_derive(&g, &d, &err) == GD_OK);
+    gd_ms_mods_init(&m, &g, &d, -1e-6);
+    double sp = rb1 * tan(d.working_pressure_angle);
+    CHECK_ABS(gd_ms_mods_separation(&m, sp, 0.5 * b), 0, 1e-18);
+    CHECK_REL(gd_ms_mods_separation(&m, sp, 0), 3e-6 + 4e-6 - 1e-6, 1e-12);
+    CHECK_REL(gd_ms_mods_separation(&m, sp, b), 3e-6 + 4e-6 + 1e-6, 1e-12);
+    CHECK_REL(gd_ms_mods_separation(&m, sp, 1e-3), 3e-6 * 0.81 + 2e-6 + 2e-6 * (0.05 - 0.5), 1e-12);
+}
+
+RUN_TESTS(T(separation_of_each_modification), T(unmodified_equals_tvms),
+          T(harris_map_tip_relief_sized_for_design_load), T(face_load_factor_spur_against_iso6336),
+          T(face_load_factor_helical_against_iso6336), T(edge_contact_flagged_never_nan),
+          T(crowning_load_distribution), T(bad_input_errors))
