@@ -400,6 +400,10 @@ int gd_cmd_mesh_stiffness(int argc, char **argv)
     if (a.cycles) opt.cycles = (int)a.cycles;
     if (a.slices) opt.slices = (int)a.slices;
     if (a.has_helix) g.helix_angle = a.helix;
+    if (a.has_misalignment && !a.has_load && !a.range_count && !opt.contact_analysis)
+        return gd_cli_usage_error("mesh-stiffness",
+                                  "--misalignment goes with --load or --load-range (the unloaded "
+                                  "TVMS does not depend on it)");
     if (a.has_misalignment) opt.misalignment = a.misalignment;
     if (a.has_load) opt.load_torque = a.load;
     if (a.has_load || a.range_count || (opt.contact_analysis && !a.plot)) {

@@ -410,6 +410,7 @@ TEST(contact_analysis_out_and_errors)
         {"--misalignment 3deg", "--misalignment"},
         {"--load 5Nm --method iso6336", "stiffness law"},
         {"--load 5Nm --plot x.svg", "--plot"},
+        {"--misalignment 5um", "goes with --load"},
     };
     for (size_t i = 0; i < sizeof BAD / sizeof BAD[0]; i++) {
         snprintf(args, sizeof args, "examples/rig2018_pair.yaml %s --out '%s/bad'", BAD[i][0],
