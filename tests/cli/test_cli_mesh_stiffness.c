@@ -370,6 +370,26 @@ TEST(contact_analysis_load_and_harris_map)
     cJSON_Delete(o);
 }
 
+/* The example with tip relief sized for 100 N m: the Harris map's smallest
+ * peak-to-peak TE lies within +-15 % of the design load (110 N m on this grid). */
+TEST(harris_map_of_the_relief_example)
+{
+    REQUIRE(run("examples/rig2018_pair_relief.yaml --load-range 20Nm:200Nm:19 --json") == 0);
+    cJSON *o = cJSON_Parse(out_text);
+    REQUIRE(o);
+    int best = 0;
+    for (int l = 1; l < 19; l++)
+        if (item(o, "ste_peak_to_peak", l)->valuedouble <
+            item(o, "ste_peak_to_peak", best)->valuedouble)
+            best = l;
+    double T = item(o, "torque_N_m", best)->valuedouble;
+    CHECK(T >= 85 && T <= 115);
+    CHECK(item(o, "ste_peak_to_peak", best)->valuedouble < 0.8e-6);
+    cJSON_Delete(o);
+    REQUIRE(run("examples/rig2018_pair_relief.yaml --load-range 20Nm:200Nm:19") == 0);
+    CHECK(strstr(out_text, "smallest p-p TE  0.58778 um at 110 N m") != NULL);
+}
+
 TEST(contact_analysis_out_and_errors)
 {
     REQUIRE(run("--help") == 0);
@@ -441,6 +461,7 @@ static gd_test_case CASES[] = {T(help_and_usage),
                                T(non_physical_geometry_writes_nothing),
                                T(out_dir),
                                T(contact_analysis_load_and_harris_map),
+                               T(harris_map_of_the_relief_example),
                                T(contact_analysis_out_and_errors)};
 
 int main(int argc, char **argv)
