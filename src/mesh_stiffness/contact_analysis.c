@@ -146,7 +146,8 @@ fail:
 }
 
 /* One position under normal load F. pair_load (max_pairs) and line_load (slices) may be
- * NULL; *flags gets the GD_LTCA_* bits when line_load is given. */
+ * NULL; *npairs counts the loaded pairs when pair_load is given, *flags gets the
+ * GD_LTCA_* bits when line_load is given. */
 static void solve(const ltca_set *s, size_t p, double F, double *ste, double *k, int *npairs,
                   double *pair_load, double *line_load, int *flags)
 {
@@ -178,16 +179,16 @@ static void solve(const ltca_set *s, size_t p, double F, double *ste, double *k,
         *ste += F / s->kbody;
         *k = 1 / (1 / kc + 1 / s->kbody);
     }
-    if (!pair_load && !line_load && !npairs) return;
-    unsigned long seen = 0; /* slots carrying load (max_pairs <= 64 in practice) */
+    if (!pair_load && !line_load) return;
     for (size_t j = 0; j < a; j++) {
         double w = sp[j].k * (delta - sp[j].e);
         if (!(w > 0)) continue;
         if (pair_load) pair_load[sp[j].slot] += w;
         if (line_load) line_load[sp[j].slice] += w;
-        if (sp[j].slot < 64) seen |= 1UL << sp[j].slot;
     }
-    if (npairs) *npairs = __builtin_popcountl(seen);
+    if (npairs && pair_load)
+        for (int j = 0; j < s->max_pairs; j++)
+            *npairs += pair_load[j] > 0;
     if (!line_load) return;
     const double db = s->b / s->slices;
     int *geo = s->geo_slices, loaded = 0, partial = 0;
