@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "mesh_contact.h"
 #include "geardyn/mesh_stiffness.h"
 #include "geardyn/model_file.h"
 #include "geardyn/units.h"
@@ -13,7 +14,9 @@
 static const char USAGE[] =
     "usage: geardyn mesh-stiffness FILE [--mesh NAME] [--method M] [--points N] [--cycles N]\n"
     "                              [--slices N] [--helix-angle VALUE] [--set PATH=VALUE]...\n"
-    "                              [--json] [--out DIR] [--plot FILE] [--compare-helix LIST]\n\n"
+    "                              [--json] [--out DIR] [--plot FILE] [--compare-helix LIST]\n"
+    "                              [--load TORQUE | --load-range FROM:TO:COUNT]\n"
+    "                              [--misalignment LENGTH]\n\n"
     "Computes, from the geometry of a gear pair (a mesh entry with a `geometry:` map, in a\n"
     "model file or a stand-alone file with `meshes:`), the transverse, face and total\n"
     "contact ratios, base pitch, mesh period and the time-varying mesh stiffness k(angle)\n"
@@ -32,7 +35,16 @@ static const char USAGE[] =
     "  --out DIR            write DIR/mesh_stiffness.csv and DIR/summary.json\n"
     "  --plot FILE          TVMS with single/double contact zones, pair stiffnesses and\n"
     "                       harmonics: FILE.svg or FILE.html (docs/plots.md)\n"
-    "  --compare-helix LIST the plot also compares these helix angles, e.g. 0,10deg,20deg\n\n"
+    "  --compare-helix LIST the plot also compares these helix angles, e.g. 0,10deg,20deg\n"
+    "  --load TORQUE        loaded tooth contact analysis at this driver torque, e.g.\n"
+    "                       \"200 N m\": loaded transmission error, stiffness at that load,\n"
+    "                       load per tooth pair and across the face, face load factor (the\n"
+    "                       tooth modifications of the file count; default: the file's\n"
+    "                       `stiffness: {from: contact_analysis, load: ...}`)\n"
+    "  --load-range F:T:N   Harris map: peak-to-peak transmission error at N driver torques\n"
+    "                       from F to T, e.g. 50Nm:500Nm:20\n"
+    "  --misalignment L     relative tilt in the plane of action as the separation at the\n"
+    "                       back face minus the front face, e.g. \"10 um\"\n\n"
     "Exit status: 0 ok, 2 bad input or usage, 1 numerical failure.\n";
 
 typedef struct ms_args {
@@ -41,8 +53,33 @@ typedef struct ms_args {
     gd_tvms_method method;
     long points, cycles, slices; /* 0 = not given */
     double helix;
+    double load, range_from, range_to, misalignment; /* N m, N m, N m, m */
+    long range_count;                                /* 0 = no --load-range */
+    int has_load, has_misalignment;
     gd_cli_sets sets;
 } ms_args;
+
+/* FROM:TO:COUNT, torques with units, 2 <= COUNT <= 1000, 0 < FROM < TO. */
+static int parse_range(const char *text, ms_args *a)
+{
+    const char *cmd = "mesh-stiffness";
+    char buf[200];
+    snprintf(buf, sizeof buf, "%s", text);
+    char *c1 = strchr(buf, ':'), *c2 = c1 ? strchr(c1 + 1, ':') : NULL;
+    if (!c2)
+        return gd_cli_usage_error(cmd, "--load-range: write FROM:TO:COUNT, e.g. 50Nm:500Nm:20");
+    *c1 = *c2 = '\0';
+    gd_error why;
+    if (gd_parse_quantity(buf, GD_QTY_TORQUE, &a->range_from, &why) ||
+        gd_parse_quantity(c1 + 1, GD_QTY_TORQUE, &a->range_to, &why))
+        return gd_cli_usage_error(cmd, "--load-range: %s (e.g. 50Nm:500Nm:20)", why.message);
+    if (gd_cli_parse_count(c2 + 1, 2, 1000, &a->range_count))
+        return gd_cli_usage_error(
+            cmd, "--load-range: count '%s' is not a whole number from 2 to 1000", c2 + 1);
+    if (!(a->range_from > 0 && a->range_to > a->range_from))
+        return gd_cli_usage_error(cmd, "--load-range: give 0 < FROM < TO (driver torques)");
+    return 0;
+}
 
 static int parse_args(int argc, char **argv, ms_args *a)
 {
@@ -58,6 +95,9 @@ static int parse_args(int argc, char **argv, ms_args *a)
                                          {"help", no_argument, 0, 'h'},
                                          GD_CLI_PLOT_OPTION,
                                          {"compare-helix", required_argument, 0, 'H'},
+                                         {"load", required_argument, 0, 'L'},
+                                         {"load-range", required_argument, 0, 'R'},
+                                         {"misalignment", required_argument, 0, 'a'},
                                          {0, 0, 0, 0}};
     const char *cmd = "mesh-stiffness";
     int c;
@@ -114,6 +154,26 @@ static int parse_args(int argc, char **argv, ms_args *a)
         case 'H':
             a->compare = optarg;
             break;
+        case 'L': {
+            gd_error why;
+            if (gd_parse_quantity(optarg, GD_QTY_TORQUE, &a->load, &why))
+                return gd_cli_usage_error(cmd, "--load: %s (write e.g. \"200 N m\")", why.message);
+            if (!(a->load > 0))
+                return gd_cli_usage_error(cmd, "--load: the driver torque must be positive");
+            a->has_load = 1;
+            break;
+        }
+        case 'R':
+            if (parse_range(optarg, a)) return GD_EXIT_INPUT;
+            break;
+        case 'a': {
+            gd_error why;
+            if (gd_parse_quantity(optarg, GD_QTY_LENGTH, &a->misalignment, &why))
+                return gd_cli_usage_error(cmd, "--misalignment: %s (write e.g. \"10 um\")",
+                                          why.message);
+            a->has_misalignment = 1;
+            break;
+        }
         case 'h':
             fputs(USAGE, stdout);
             return -1;
@@ -123,6 +183,11 @@ static int parse_args(int argc, char **argv, ms_args *a)
     }
     if (optind != argc - 1) return gd_cli_usage_error(cmd, "give exactly one FILE");
     if (a->compare && !a->plot) return gd_cli_usage_error(cmd, "--compare-helix goes with --plot");
+    if (a->has_load && a->range_count)
+        return gd_cli_usage_error(cmd, "give --load or --load-range, not both");
+    if (a->plot && (a->has_load || a->range_count))
+        return gd_cli_usage_error(cmd, "--plot draws the unloaded TVMS: leave out --load and "
+                                       "--load-range");
     a->file = argv[optind];
     return 0;
 }
@@ -335,6 +400,26 @@ int gd_cmd_mesh_stiffness(int argc, char **argv)
     if (a.cycles) opt.cycles = (int)a.cycles;
     if (a.slices) opt.slices = (int)a.slices;
     if (a.has_helix) g.helix_angle = a.helix;
+    if (a.has_misalignment && !a.has_load && !a.range_count && !opt.contact_analysis)
+        return gd_cli_usage_error("mesh-stiffness",
+                                  "--misalignment goes with --load or --load-range (the unloaded "
+                                  "TVMS does not depend on it)");
+    if (a.has_misalignment) opt.misalignment = a.misalignment;
+    if (a.has_load) opt.load_torque = a.load;
+    if (a.has_load || a.range_count || (opt.contact_analysis && !a.plot)) {
+        /* the loaded contact analysis (the file's load unless --load) or the Harris map */
+        double *loads = NULL;
+        int nl = (int)a.range_count;
+        if (nl) {
+            loads = malloc((size_t)nl * sizeof *loads);
+            if (!loads) return gd_cli_usage_error("mesh-stiffness", "out of memory");
+            for (int l = 0; l < nl; l++)
+                loads[l] = a.range_from + (a.range_to - a.range_from) * l / (nl - 1);
+        }
+        rc = gd_cli_mesh_contact(a.file, mesh_name, &g, &opt, loads, nl, a.json, a.out);
+        free(loads);
+        return rc;
+    }
     if (gd_tvms_compute(&g, &opt, &res, &err)) {
         /* the file's geometry and options were checked when loading: what fails now
          * comes from the options given here */

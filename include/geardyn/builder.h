@@ -238,7 +238,10 @@ typedef struct gd_mesh_spec {
     /* geometry (docs/mesh-stiffness.md): the teeth, angles and hand come from it */
     const gd_gear_pair_geometry *geometry; /* NULL: none */
     int stiffness_from_geometry;           /* 1: k(angle) by gd_tvms_compute (needs geometry) */
-    gd_tvms_options tvms_options;          /* for stiffness_from_geometry (defaults) */
+    /* for stiffness_from_geometry (defaults); with tvms_options.contact_analysis the loaded
+       stiffness of gd_ltca_compute at load_torque, and the transmission error
+       delta - F0 / k_L (docs/mesh-stiffness.md, "Loaded contact analysis") */
+    gd_tvms_options tvms_options;
     double stiffness;     /* N/m along the contact normal, > 0; 0: from the tvms table or the
                              geometry (required otherwise) */
     double damping;       /* N s/m, >= 0 */
@@ -264,7 +267,8 @@ GD_API void gd_mesh_spec_init(gd_mesh_spec *s);
  * a module without teeth; radii and teeth of different ratios; teeth with geometry;
  * stiffness from geometry without geometry; a tvms or transmission_error table without
  * the driver's teeth, with fewer than two points, or (tvms) with a value not
- * positive, or given with stiffness from geometry; no stiffness at all. At finish:
+ * positive, or given with stiffness from geometry, or (transmission_error) given with the
+ * contact analysis; no stiffness at all. At finish:
  * unknown nodes, both gears on one shaft, the geometry invalid (gd_gear_pair_derive,
  * gd_tvms_compute), a table outside one mesh period, a name already used, a loop of
  * meshes whose ratios disagree, driver_rotation against the train. With

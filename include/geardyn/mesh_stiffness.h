@@ -18,7 +18,8 @@
  *    both are the same.
  *
  * Ownership and threads: gd_tvms_compute returns a result the caller frees with
- * gd_tvms_free; geometry and options are plain value structs. Every function is
+ * gd_tvms_free (gd_ltca_compute / gd_ltca_free, gd_ltca_map_compute / gd_ltca_map_free
+ * likewise); geometry and options are plain value structs. Every function is
  * reentrant and safe from any number of threads.
  */
 #ifndef GEARDYN_MESH_STIFFNESS_H
@@ -27,6 +28,40 @@
 #include <stddef.h>
 
 #include "geardyn/error.h"
+
+/* ---- tooth micro-geometry (docs/mesh-stiffness.md, "Micro-geometry") ----
+ * Every amount is material removed from the flank, in m, measured along the contact
+ * normal (normal plane, the direction of k), so it adds directly to the initial
+ * separation of a contact. Zero everywhere (gd_gear_pair_geometry_init) is the perfect
+ * involute. */
+typedef enum gd_relief_shape {
+    GD_RELIEF_LINEAR = 0,   /* grows linearly with the roll length (or face position) */
+    GD_RELIEF_PARABOLIC = 1 /* grows with its square: tangent to the flank at the start */
+} gd_relief_shape;
+
+/* A tip or root relief: 0 at the start, `amount` at the tip circle (tip relief) or at
+ * the form circle (root relief), following the shape in the roll length
+ * rho = sqrt(r^2 - r_b^2). The start is a diameter, or a roll angle rho/r_b when the
+ * diameter is 0. */
+typedef struct gd_profile_relief {
+    double amount;           /* m, >= 0; 0 = none */
+    double start_diameter;   /* m */
+    double start_roll_angle; /* rad, used when start_diameter is 0 */
+    gd_relief_shape shape;
+} gd_profile_relief;
+
+/* Lead modifications. The face coordinate y runs from the front face (y = 0, where a
+ * helical contact line enters first) to the back face (y = b), the same for both gears. */
+typedef struct gd_tooth_modifications {
+    gd_profile_relief tip_relief, root_relief;
+    double crowning;          /* C_b, m >= 0: C_b (2y/b - 1)^2, 0 at mid face */
+    double end_relief;        /* m >= 0 at each face end, 0 at end_relief_length inside */
+    double end_relief_length; /* m, in (0, b/2] when end_relief > 0 */
+    gd_relief_shape end_relief_shape;
+    /* f_Hb, m: the flank at the back face lies this much behind the one at the front
+     * face (signed): f_Hb (y/b - 1/2) */
+    double helix_slope_deviation;
+} gd_tooth_modifications;
 
 /* One gear of a pair. Coefficients are in units of the normal module. */
 typedef struct gd_gear_geometry {
@@ -44,6 +79,7 @@ typedef struct gd_gear_geometry {
     double web_thickness;            /* m; 0 = solid body */
     double web_inner_radius;         /* m; 0 = bore radius */
     double web_outer_radius;         /* m; 0 = root radius - 2 m_n */
+    gd_tooth_modifications mod;      /* micro-geometry; all 0 = none */
 } gd_gear_geometry;
 
 typedef struct gd_gear_pair_geometry {
@@ -82,8 +118,11 @@ typedef struct gd_gear_pair_derived {
     double ratio;       /* z2 / z1 */
 } gd_gear_pair_derived;
 
-/* Derives and validates. On bad geometry returns GD_EINPUT with err->field set to the
- * offending key relative to the geometry map (e.g. "driver.profile_shift"). */
+/* Derives and validates (the modifications too: a tip relief starting below the reference
+ * circle - longer than the addendum -, a root relief starting above it or below the form
+ * circle, negative crowning, amounts above a tenth of the module, ...). On bad geometry returns
+ * GD_EINPUT with err->field set to the offending key relative to the geometry map (e.g.
+ * "driver.profile_shift"). */
 GD_API gd_status gd_gear_pair_derive(const gd_gear_pair_geometry *g, gd_gear_pair_derived *d,
                                      gd_error *err);
 
@@ -116,6 +155,12 @@ typedef struct gd_tvms_options {
     int body_compliance; /* 1: gear bodies in series (003_... Eq. 6), default 0 */
     int harmonics;       /* Fourier harmonics reported, default 5 */
     double quad_tol;     /* relative tolerance of the energy integrals, default 1e-10 */
+    /* loaded tooth contact analysis (gd_ltca_compute; a model's `stiffness:
+     * {from: contact_analysis}` sets contact_analysis = 1) */
+    int contact_analysis;
+    double load_torque;  /* N m on the driver, > 0 for a contact analysis */
+    double misalignment; /* m, f_ma: relative tilt in the plane of action as the
+                            separation at the back face minus the front face */
 } gd_tvms_options;
 
 GD_API void gd_tvms_options_init(gd_tvms_options *opt);
@@ -153,5 +198,74 @@ GD_API void gd_tvms_free(gd_tvms_result *r);
 
 /* k at any driver angle (rad), by periodic linear interpolation of the first cycle. */
 GD_API double gd_tvms_eval(const gd_tvms_result *r, double driver_angle);
+
+/* ---- loaded tooth contact analysis (contact_analysis.c) ----
+ * At each driver angle the face-width slices of every tooth pair in contact are springs
+ * k_i (the slice stiffness of the chosen law, normal plane) with an initial separation
+ * e_i from both gears' modifications and the misalignment; the approach delta solves
+ * sum_i k_i max(0, delta - e_i) = F, F = T / (r_b1 cos beta_b) the normal load.
+ * Solved exactly (piecewise linear, springs sorted by e_i). Method iso6336 has no slice
+ * law and is refused. Spur pairs are sliced too (opt->slices) for lead modifications. */
+
+/* Per-position flags. */
+#define GD_LTCA_PARTIAL_FACE 1 /* an axial slice with a contact carries no load */
+#define GD_LTCA_EDGE_CONTACT 2 /* load on at most two slices: edge contact, not resolved */
+#define GD_LTCA_NO_CONTACT 4   /* no contact at all (not expected: eps_gamma >= 1) */
+
+typedef struct gd_ltca_result {
+    gd_tvms_method method;
+    gd_gear_pair_derived geom;
+    double torque;       /* N m on the driver */
+    double force;        /* normal load T / (r_b1 cos beta_b), N */
+    double misalignment; /* m */
+    double mesh_period_rad;
+    size_t n, points; /* samples and samples per cycle, as gd_tvms_result */
+    int slices, max_pairs;
+    double slice_width;    /* b / slices, m */
+    double body_stiffness; /* series body stiffness, N/m; 0 if not used */
+    double *angle_rad;     /* driver angle, as gd_tvms_result */
+    /* loaded static transmission error: the approach of the two gears along the contact
+     * normal, m (divide by r_b1 cos beta_b for the driver's rotation lag) */
+    double *ste;
+    double *ste_unloaded;     /* no-load transmission error: the smallest separation, m */
+    double *stiffness;        /* dF/d(delta) at the load, N/m along the contact normal */
+    int *pairs_in_contact;    /* tooth pairs carrying load */
+    double *pair_load;        /* n x max_pairs, N, columns as gd_tvms_result.load_share */
+    double *line_load;        /* n x slices: load per unit face width of each slice, N/m */
+    double *face_load_factor; /* n: max line load / (F / b), instantaneous */
+    int *flags;               /* n: GD_LTCA_* bits */
+    double *line_load_mean;   /* slices: line load averaged over the first cycle, N/m */
+    /* K_Hbeta: max of line_load_mean / (F / b), the face load factor of ISO 6336-1 */
+    double face_load_factor_cycle;
+    double ste_mean, ste_peak_to_peak;                   /* m, over the first cycle */
+    double stiffness_mean, stiffness_min, stiffness_max; /* N/m, first cycle */
+    int flagged;                                         /* positions with a flag */
+} gd_ltca_result;
+
+/* Contact analysis at opt->load_torque (> 0) and opt->misalignment with the method,
+ * points, cycles, slices, body_compliance and quad_tol of opt. Errors name the option
+ * ("load", "method", ...) or the geometry field. */
+GD_API gd_status gd_ltca_compute(const gd_gear_pair_geometry *g, const gd_tvms_options *opt,
+                                 gd_ltca_result **out, gd_error *err);
+GD_API void gd_ltca_free(gd_ltca_result *r);
+
+/* Harris map: the contact analysis at nloads torques (each > 0), sharing the slice set. */
+typedef struct gd_ltca_map {
+    int nloads;
+    size_t points;                  /* samples per cycle (the first cycle is used) */
+    double *torque;                 /* nloads, N m */
+    double *ste_peak_to_peak;       /* nloads, m */
+    double *ste_mean;               /* nloads, m */
+    double *stiffness_mean;         /* nloads, N/m */
+    double *face_load_factor_cycle; /* nloads */
+    int *flagged;                   /* nloads: positions with a flag */
+    double *ste;                    /* nloads x points, m */
+    double *ste_unloaded;           /* points, m */
+} gd_ltca_map;
+
+GD_API gd_status gd_ltca_map_compute(const gd_gear_pair_geometry *g, const gd_tvms_options *opt,
+                                     const double *torques, int nloads, gd_ltca_map **out,
+                                     gd_error *err);
+GD_API void gd_ltca_map_free(gd_ltca_map *m);
 
 #endif

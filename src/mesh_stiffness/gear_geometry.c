@@ -311,5 +311,5 @@ gd_status gd_gear_pair_derive(const gd_gear_pair_geometry *g, gd_gear_pair_deriv
                     "raise the addendum coefficients or tip radii, or the face width / helix angle",
                     msg);
     }
-    return GD_OK;
+    return gd_ms_mods_check(g, d, err);
 }

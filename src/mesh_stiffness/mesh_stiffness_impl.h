@@ -68,6 +68,18 @@ typedef struct gd_ms_slicing {
 /* Transverse stiffness at driver angle theta; per-pair parts into pair_k[nslots]
  * (may be NULL); returns the sum. *npairs = tooth pairs with contact. */
 double gd_ms_slicing_eval(const gd_ms_slicing *sl, double theta, double *pair_k, int *npairs);
+/* One slice in contact: position s on the transverse line of action, axial position y
+ * (middle of its active width, from the front face), transverse stiffness k. */
+typedef struct gd_ms_contact {
+    double s, y, width, k;
+    int slot, slice;
+} gd_ms_contact;
+/* Most contacts gd_ms_slicing_contacts can list at any angle. */
+int gd_ms_slicing_capacity(const gd_ms_slicing *sl);
+/* gd_ms_slicing_eval that also lists the contacts into out (capacity entries, may be
+ * NULL), *nout their count. A spur pair (no overlap) is cut into sl->slices slices too. */
+double gd_ms_slicing_contacts(const gd_ms_slicing *sl, double theta, gd_ms_contact *out, int *nout,
+                              double *pair_k, int *npairs);
 
 /* ---- energy_law.c: tooth-pair compliance by the potential energy method ---- */
 typedef struct gd_ms_energy_law {
@@ -107,6 +119,51 @@ double gd_ms_cai_law_eval(double s, const void *ctx);
 /* ---- square_wave.c: constant stiffness per tooth pair ---- */
 double gd_ms_square_law_eval(double s, const void *ctx); /* ctx: const double *c_single */
 
+/* ---- pair_law.c: the stiffness law of a method, set up for slicing ---- */
+typedef struct gd_ms_pair_law {
+    gd_ms_iso iso;
+    gd_ms_cai_law cai;
+    gd_ms_energy_law energy;
+    int have_energy;
+    gd_ms_law_fn fn;
+    const void *ctx; /* points into this struct: do not move it after init */
+} gd_ms_pair_law;
+/* Returns 0, or -1 when out of memory. */
+int gd_ms_pair_law_init(gd_ms_pair_law *p, const gd_gear_pair_geometry *g,
+                        const gd_gear_pair_derived *d, gd_tvms_method method, double rtol);
+void gd_ms_pair_law_free(gd_ms_pair_law *p);
+
+/* ---- micro_geometry.c: initial separation from modifications and misalignment ---- */
+typedef struct gd_ms_relief {
+    double amount, from, to; /* roll lengths: 0 at `from`, amount at `to` */
+    int shape;
+} gd_ms_relief;
+typedef struct gd_ms_mods {
+    double line_of_action, face_width;
+    gd_ms_relief tip[2], root[2]; /* per gear, in its own roll length */
+    double crowning;              /* both gears summed */
+    double end_amount[2], end_length[2];
+    int end_shape[2];
+    double slope; /* helix slope deviations and misalignment summed */
+} gd_ms_mods;
+void gd_ms_mods_init(gd_ms_mods *m, const gd_gear_pair_geometry *g, const gd_gear_pair_derived *d,
+                     double misalignment);
+/* Initial separation (m, normal plane) of a contact at s on the line of action, face
+ * position y. */
+double gd_ms_mods_separation(const gd_ms_mods *m, double s, double y);
+/* 1 when any gear has a modification. */
+int gd_ms_mods_any(const gd_gear_pair_geometry *g);
+/* Validates the modifications against the derived geometry (gd_gear_pair_derive). */
+gd_status gd_ms_mods_check(const gd_gear_pair_geometry *g, const gd_gear_pair_derived *d,
+                           gd_error *err);
+
+/* ---- loaded_tvms.c: a model mesh from the contact analysis ---- */
+/* The TVMS result of g with the loaded stiffness k_L(theta) of gd_ltca_compute at
+ * opt->load_torque, and ste (points values over the first cycle, malloc'd) the
+ * transmission error delta - F0 / k_L the dynamics subtract from the deformation. */
+gd_status gd_ms_loaded_tvms(const gd_gear_pair_geometry *g, const gd_tvms_options *opt,
+                            gd_tvms_result **tvms, double **ste, gd_error *err);
+
 /* ---- body_compliance.c: 003_... Eq. 6 ---- */
 /* Torsional stiffness of gear body i (N m/rad), or 0 when rigid. */
 double gd_ms_body_torsional_stiffness(const gd_gear_pair_geometry *g, const gd_gear_pair_derived *d,
@@ -119,6 +176,10 @@ double gd_ms_body_stiffness(const gd_gear_pair_geometry *g, const gd_gear_pair_d
 void gd_ms_fourier(const double *x, size_t n, int H, double *amp, double *phase);
 
 /* ---- tvms.c: where gear-pair errors point ---- */
+/* The ranges and work bounds of the options; errors name the option. */
+gd_status gd_ms_check_options(const gd_tvms_options *o, gd_error *err);
+/* mean, max, min, peak_to_peak and the harmonics of r's first cycle. */
+void gd_ms_tvms_summarise(gd_tvms_result *r);
 /* gd_gear_pair_derive and gd_tvms_compute name a field relative to the mesh's `geometry`
  * map (the options: its `stiffness` map). Prefixes err->field with mesh_path and that
  * map's key, and returns the key. */

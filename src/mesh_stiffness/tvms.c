@@ -30,8 +30,8 @@ gd_status gd_tvms_method_parse(const char *name, gd_tvms_method *m, gd_error *er
 
 const char *gd_gear_pair_error_prefix(gd_error *err, const char *mesh_path)
 {
-    static const char *const OPTION_FIELDS[] = {"method", "points",    "cycles",
-                                                "slices", "harmonics", NULL};
+    static const char *const OPTION_FIELDS[] = {"method",    "points", "cycles",       "slices",
+                                                "harmonics", "load",   "misalignment", NULL};
     const char *section = "geometry";
     for (int i = 0; OPTION_FIELDS[i]; i++)
         if (!strcmp(err->field, OPTION_FIELDS[i])) section = "stiffness";
@@ -67,7 +67,7 @@ void gd_tvms_free(gd_tvms_result *r)
     free(r);
 }
 
-static gd_status check_options(const gd_tvms_options *o, gd_error *err)
+gd_status gd_ms_check_options(const gd_tvms_options *o, gd_error *err)
 {
     const char *f = NULL, *h = NULL;
     char msg[200];
@@ -114,6 +114,22 @@ static gd_status check_options(const gd_tvms_options *o, gd_error *err)
     return gd_error_set(err, GD_EINPUT, "", 0, 0, f, h, "%s", msg);
 }
 
+void gd_ms_tvms_summarise(gd_tvms_result *r)
+{
+    double sum = 0, mx = -HUGE_VAL, mn = HUGE_VAL;
+    for (size_t i = 0; i < r->points; i++) {
+        double k = r->stiffness[i];
+        sum += k;
+        if (k > mx) mx = k;
+        if (k < mn) mn = k;
+    }
+    r->mean = sum / (double)r->points;
+    r->max = mx;
+    r->min = mn;
+    r->peak_to_peak = mx - mn;
+    gd_ms_fourier(r->stiffness, r->points, r->harmonics, r->harmonic_amplitude, r->harmonic_phase);
+}
+
 gd_status gd_tvms_compute(const gd_gear_pair_geometry *g, const gd_tvms_options *opt,
                           gd_tvms_result **out, gd_error *err)
 {
@@ -123,7 +139,7 @@ gd_status gd_tvms_compute(const gd_gear_pair_geometry *g, const gd_tvms_options 
         gd_tvms_options_init(&defaults);
         opt = &defaults;
     }
-    gd_status st = check_options(opt, err);
+    gd_status st = gd_ms_check_options(opt, err);
     if (st) return st;
     gd_gear_pair_derived d;
     if ((st = gd_gear_pair_derive(g, &d, err))) return st;
@@ -142,8 +158,9 @@ gd_status gd_tvms_compute(const gd_gear_pair_geometry *g, const gd_tvms_options 
     if (r->max_pairs < 1) r->max_pairs = 1;
     r->harmonics = opt->harmonics;
 
-    gd_ms_iso iso;
-    gd_ms_iso6336(g, &d, &iso);
+    gd_ms_pair_law law;
+    gd_ms_iso6336(g, &d, &law.iso);
+    const gd_ms_iso iso = law.iso;
     double b = g->face_width;
     r->iso_single_stiffness = iso.c_single * b / r->transverse_factor;
     r->iso_mesh_stiffness_alpha = iso.c_gamma_alpha * b / r->transverse_factor;
@@ -157,23 +174,14 @@ gd_status gd_tvms_compute(const gd_gear_pair_geometry *g, const gd_tvms_options 
     r->harmonic_amplitude = calloc((size_t)r->harmonics + 1, sizeof *r->harmonic_amplitude);
     r->harmonic_phase = calloc((size_t)r->harmonics + 1, sizeof *r->harmonic_phase);
     double *pair_k = calloc((size_t)r->max_pairs, sizeof *pair_k);
-    gd_ms_energy_law energy;
-    int have_energy = 0;
+    int have_law = 0;
     if (!r->angle_rad || !r->stiffness || !r->pairs_in_contact || !r->load_share ||
         !r->harmonic_amplitude || !r->harmonic_phase || !pair_k)
         goto oom;
 
-    gd_ms_slicing sl = {&d, b, r->slices, gd_ms_square_law_eval, &iso.c_single, r->max_pairs};
-    gd_ms_cai_law cai = {d.contact_start, d.contact_length, iso.c_single};
-    if (opt->method == GD_TVMS_ENERGY) {
-        if (gd_ms_energy_law_init(&energy, g, &d, opt->quad_tol)) goto oom;
-        have_energy = 1;
-        sl.law = gd_ms_energy_law_eval;
-        sl.law_ctx = &energy;
-    } else if (opt->method == GD_TVMS_SINGLE_PAIR) {
-        sl.law = gd_ms_cai_law_eval;
-        sl.law_ctx = &cai;
-    }
+    if (gd_ms_pair_law_init(&law, g, &d, opt->method, opt->quad_tol)) goto oom;
+    have_law = 1;
+    gd_ms_slicing sl = {&d, b, r->slices, law.fn, law.ctx, r->max_pairs};
     for (size_t i = 0; i < r->n; i++) {
         double th = d.mesh_period * (double)i / (double)opt->points;
         int np = 0;
@@ -187,26 +195,16 @@ gd_status gd_tvms_compute(const gd_gear_pair_geometry *g, const gd_tvms_options 
         for (int j = 0; j < r->max_pairs; j++)
             r->load_share[i * (size_t)r->max_pairs + j] = kt > 0 ? pair_k[j] / kt : 0;
     }
-    if (have_energy) gd_ms_energy_law_free(&energy);
+    if (have_law) gd_ms_pair_law_free(&law);
     free(pair_k);
 
-    double sum = 0, mx = -HUGE_VAL, mn = HUGE_VAL;
-    for (size_t i = 0; i < r->points; i++) {
-        double k = r->stiffness[i];
-        sum += k;
-        if (k > mx) mx = k;
-        if (k < mn) mn = k;
-    }
-    r->mean = sum / (double)r->points;
-    r->max = mx;
-    r->min = mn;
-    r->peak_to_peak = mx - mn;
-    if (!(mn > 0)) {
+    gd_ms_tvms_summarise(r);
+    if (!(r->min > 0)) {
+        double mn = r->min;
         gd_tvms_free(r);
         return gd_error_set(err, GD_ENUMERIC, "", 0, 0, "", "report this geometry as a bug",
                             "mesh stiffness is not positive at some angle (min %g N/m)", mn);
     }
-    gd_ms_fourier(r->stiffness, r->points, r->harmonics, r->harmonic_amplitude, r->harmonic_phase);
     *out = r;
     return GD_OK;
 oom:

@@ -144,6 +144,11 @@ static gd_status mesh_dynamics(const gd_model *m, gd_error *err, const gd_mesh_s
     }
     if (s->transmission_error.n) {
         gd_build_path(q, sizeof q, path, "transmission_error");
+        if (s->stiffness_from_geometry && s->tvms_options.contact_analysis)
+            return gd_build_fail(m, err, s->loc, q, q,
+                                 "keep one: the table, or `stiffness: {from: contact_analysis}`",
+                                 "transmission_error table given together with the contact "
+                                 "analysis, which gives the loaded transmission error");
         if (!(teeth > 0)) return gd_build_fail(m, err, s->loc, q, q, need, "%s", need_msg);
         if (s->transmission_error.n < 2 || !s->transmission_error.x || !s->transmission_error.y)
             return gd_build_fail(m, err, s->loc, q, q, "give two points or more", "only %d point%s",

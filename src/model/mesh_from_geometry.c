@@ -4,6 +4,7 @@
  * mesh's time-integration tables over its mesh period. */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "mesh_stiffness/mesh_stiffness_impl.h"
@@ -53,7 +54,17 @@ gd_status gd_build_mesh_from_geometry(gd_model *m, int k, gd_error *err)
         g->base_helix_angle = der.base_helix_angle;
         g->hand = bm->geometry.hand;
         g->face_width = bm->geometry.face_width;
-        if (bm->from_geometry) {
+        if (bm->from_geometry && bm->options.contact_analysis) {
+            /* the loaded stiffness and, as the mesh's error, delta - F0 / k_L */
+            double *e = NULL;
+            if ((st = gd_ms_loaded_tvms(&bm->geometry, &bm->options, &g->tvms, &e, err)))
+                return locate_geometry_error(m, g, bm->path, st, err);
+            st = gd_table_new((int)g->tvms->points, g->tvms->angle_rad, e, g->tvms->mesh_period_rad,
+                              GD_INTERP_LINEAR, &g->dyn.ste, err);
+            free(e);
+            if (st) return st;
+            g->stiffness = g->tvms->mean;
+        } else if (bm->from_geometry) {
             if ((st = gd_tvms_compute(&bm->geometry, &bm->options, &g->tvms, err)))
                 return locate_geometry_error(m, g, bm->path, st, err);
             g->stiffness = g->tvms->mean;

@@ -30,12 +30,75 @@ static const char *const GEAR_KEYS[] = {"teeth",
                                         "web_thickness",
                                         "web_inner_radius",
                                         "web_outer_radius",
+                                        "modifications",
                                         NULL};
-static const char *const STIFFNESS_KEYS[] = {"from",   "method",          "points",    "cycles",
-                                             "slices", "body_compliance", "harmonics", NULL};
+static const char *const MOD_KEYS[] = {"tip_relief", "root_relief",           "crowning",
+                                       "end_relief", "helix_slope_deviation", NULL};
+static const char *const RELIEF_KEYS[] = {"amount", "start_diameter", "start_roll_angle", "shape",
+                                          NULL};
+static const char *const END_KEYS[] = {"amount", "length", "shape", NULL};
+static const char *const SHAPES[] = {"linear", "parabolic", NULL};
+static const char *const STIFFNESS_KEYS[] = {
+    "from",      "method", "points",       "cycles", "slices", "body_compliance",
+    "harmonics", "load",   "misalignment", NULL};
 static const char *const HANDS[] = {"right", "left", NULL};
-static const char *const FROM[] = {"geometry", NULL};
+static const char *const FROM[] = {"geometry", "contact_analysis", NULL};
 static const char *const METHODS[] = {"energy", "iso6336", "single-pair-law", "square", NULL};
+
+/* A tip or root relief map. Amounts are read signed and checked (with the geometry) by
+ * gd_gear_pair_derive, which names the limits. */
+static gd_status read_relief(gd_yreader *r, const gd_ynode *m, const char *path, const char *key,
+                             gd_profile_relief *p)
+{
+    const gd_ynode *n = gd_ymap_get(m, key);
+    if (!n) return GD_OK;
+    char q[220];
+    gd_ypath_key(q, sizeof q, path, key);
+    gd_status st;
+    int has_d = 0, has_a = 0, shape = 0;
+    if ((st = gd_yexpect(r, n, GD_Y_MAP, q)) || (st = gd_ycheck_keys(r, n, q, RELIEF_KEYS)) ||
+        (st = gd_yread_qty(r, n, "amount", q, GD_QTY_LENGTH, GD_YREQ, &p->amount, NULL)) ||
+        (st = gd_yread_qty(r, n, "start_diameter", q, GD_QTY_LENGTH, GD_YPOS, &p->start_diameter,
+                           &has_d)) ||
+        (st = gd_yread_qty(r, n, "start_roll_angle", q, GD_QTY_ANGLE, GD_YPOS, &p->start_roll_angle,
+                           &has_a)) ||
+        (st = gd_yread_str(r, n, "shape", q, SHAPES, 0, NULL, &shape, NULL)))
+        return st;
+    if (has_d && has_a)
+        return gd_yfail(r, gd_ymap_get(n, "start_roll_angle"), q, "keep one of the two",
+                        "both start_diameter and start_roll_angle given");
+    p->shape = (gd_relief_shape)shape;
+    return GD_OK;
+}
+
+static gd_status read_modifications(gd_yreader *r, const gd_ynode *m, const char *path,
+                                    gd_tooth_modifications *t)
+{
+    const gd_ynode *n = gd_ymap_get(m, "modifications");
+    if (!n) return GD_OK;
+    char q[220], e[240];
+    gd_ypath_key(q, sizeof q, path, "modifications");
+    gd_status st;
+    if ((st = gd_yexpect(r, n, GD_Y_MAP, q)) || (st = gd_ycheck_keys(r, n, q, MOD_KEYS)) ||
+        (st = read_relief(r, n, q, "tip_relief", &t->tip_relief)) ||
+        (st = read_relief(r, n, q, "root_relief", &t->root_relief)) ||
+        (st = gd_yread_qty(r, n, "crowning", q, GD_QTY_LENGTH, 0, &t->crowning, NULL)) ||
+        (st = gd_yread_qty(r, n, "helix_slope_deviation", q, GD_QTY_LENGTH, 0,
+                           &t->helix_slope_deviation, NULL)))
+        return st;
+    const gd_ynode *er = gd_ymap_get(n, "end_relief");
+    if (!er) return GD_OK;
+    gd_ypath_key(e, sizeof e, q, "end_relief");
+    int shape = 0;
+    if ((st = gd_yexpect(r, er, GD_Y_MAP, e)) || (st = gd_ycheck_keys(r, er, e, END_KEYS)) ||
+        (st = gd_yread_qty(r, er, "amount", e, GD_QTY_LENGTH, GD_YREQ, &t->end_relief, NULL)) ||
+        (st = gd_yread_qty(r, er, "length", e, GD_QTY_LENGTH, GD_YREQ, &t->end_relief_length,
+                           NULL)) ||
+        (st = gd_yread_str(r, er, "shape", e, SHAPES, 0, NULL, &shape, NULL)))
+        return st;
+    t->end_relief_shape = (gd_relief_shape)shape;
+    return GD_OK;
+}
 
 static gd_status read_gear(gd_yreader *r, const gd_ynode *root, const gd_ynode *m, const char *path,
                            gd_gear_geometry *w)
@@ -81,7 +144,7 @@ static gd_status read_gear(gd_yreader *r, const gd_ynode *root, const gd_ynode *
         return st;
     w->E = mt.E;
     w->poisson = mt.poisson;
-    return GD_OK;
+    return read_modifications(r, m, path, &w->mod);
 }
 
 /* The node for a field path like "driver.profile_shift" under map, or the deepest map
@@ -125,11 +188,33 @@ static gd_status read_options(gd_yreader *r, const gd_ynode *s, const char *path
 {
     gd_status st;
     if ((st = gd_ycheck_keys(r, s, path, STIFFNESS_KEYS))) return st;
-    int idx = 0, present = 0;
-    if ((st = gd_yread_str(r, s, "from", path, FROM, GD_YREQ, NULL, &idx, NULL))) return st;
+    int idx = 0, present = 0, from = 0;
+    if ((st = gd_yread_str(r, s, "from", path, FROM, GD_YREQ, NULL, &from, NULL))) return st;
+    /* the load and misalignment of a contact analysis */
+    double load = 0, mis = 0;
+    int has_load = 0, has_mis = 0;
+    if ((st = gd_yread_qty(r, s, "load", path, GD_QTY_TORQUE, GD_YPOS, &load, &has_load)) ||
+        (st = gd_yread_qty(r, s, "misalignment", path, GD_QTY_LENGTH, 0, &mis, &has_mis)))
+        return st;
+    if (from == 1 && !has_load)
+        return gd_yfail(r, s, path, "add `load: <driver torque>`, e.g. `load: 200 N m`",
+                        "a contact analysis needs the load (driver torque)");
+    if (from == 0 && (has_load || has_mis))
+        return gd_yfail(r, gd_ymap_get(s, has_load ? "load" : "misalignment"), path,
+                        "write `from: contact_analysis` to use the loaded stiffness, or remove it",
+                        "'%s' goes with `from: contact_analysis`",
+                        has_load ? "load" : "misalignment");
     if (!opt) return GD_OK;
+    opt->contact_analysis = from == 1;
+    opt->load_torque = load;
+    opt->misalignment = mis;
     if ((st = gd_yread_str(r, s, "method", path, METHODS, 0, NULL, &idx, &present))) return st;
     if (present) opt->method = (gd_tvms_method)idx;
+    if (present && from == 1 && opt->method == GD_TVMS_ISO6336)
+        return gd_yfail(r, gd_ymap_get(s, "method"), path,
+                        "use energy (default), single-pair-law or square",
+                        "the contact analysis needs a stiffness law along the contact (iso6336 "
+                        "gives one constant)");
     long v;
     if ((st = gd_yread_int(r, s, "points", path, 8, 1000000, 0, &v, &present))) return st;
     if (present) opt->points = (int)v;

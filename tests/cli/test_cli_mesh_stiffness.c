@@ -303,6 +303,146 @@ TEST(out_dir)
     CHECK(strstr(err_text, "not a folder") != NULL);
 }
 
+static cJSON *item(const cJSON *o, const char *key, int i)
+{
+    return cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(o, key), i);
+}
+
+/* --load: the unmodified pair's loaded stiffness is the TVMS (1e-9) and its loaded TE
+ * F / k; --load-range: TE linear in the load for unmodified teeth, so the peak-to-peak
+ * grows with the load exactly (1e-9); --misalignment raises the face load factor. */
+TEST(contact_analysis_load_and_harris_map)
+{
+    REQUIRE(run("examples/rig2018_pair.yaml --points 16 --json") == 0);
+    cJSON *t = cJSON_Parse(out_text);
+    REQUIRE(t);
+    REQUIRE(run("examples/rig2018_pair.yaml --points 16 --slices 10 --load 100Nm --json") == 0);
+    cJSON *o = cJSON_Parse(out_text);
+    REQUIRE(o);
+    CHECK_REL(num(o, "stiffness_mean"), num(t, "stiffness_mean"), 1e-9);
+    double F = num(o, "normal_force_N");
+    CHECK_REL(F, 100 / 0.048 / cos(20 * M_PI / 180), 1e-12);
+    for (int i = 0; i < 16; i++) {
+        double k = item(t, "stiffness", i)->valuedouble;
+        CHECK_REL(item(o, "stiffness", i)->valuedouble, k, 1e-9);
+        CHECK_REL(item(o, "ste", i)->valuedouble, F / k, 1e-9);
+    }
+    CHECK_REL(num(o, "face_load_factor"), 1, 1e-9);
+    CHECK(cJSON_GetArraySize(cJSON_GetObjectItem(o, "line_load_mean")) == 10);
+    cJSON_Delete(o);
+    cJSON_Delete(t);
+    REQUIRE(run("examples/rig2018_pair.yaml --points 16 --slices 10 --load-range "
+                "'50 N m:150 N m:3' --json") == 0);
+    o = cJSON_Parse(out_text);
+    REQUIRE(o);
+    CHECK_REL(item(o, "torque_N_m", 1)->valuedouble, 100, 1e-12);
+    CHECK_REL(item(o, "ste_peak_to_peak", 2)->valuedouble,
+              3 * item(o, "ste_peak_to_peak", 0)->valuedouble, 1e-9);
+    cJSON_Delete(o);
+    REQUIRE(run("examples/rig2018_pair.yaml --points 16 --slices 10 --load 100Nm "
+                "--misalignment 5um") == 0);
+    CHECK(strstr(out_text, "misalignment     5 um") != NULL);
+    CHECK(strstr(out_text, "face load factor K_Hbeta 1.") != NULL);
+    CHECK(strstr(out_text, "K_Hbeta 1.0000") == NULL);
+    CHECK(strstr(out_text, "angle_rad,ste_m,ste_unloaded_m,stiffness_N_per_m") != NULL);
+    /* the file's own load: a stand-alone file with tip relief */
+    const char *path = write_file(
+        "relief.yaml",
+        "materials: {steel: {E: 2.0e11, poisson: 0.3}}\n"
+        "meshes:\n"
+        "  - name: pair\n"
+        "    geometry:\n"
+        "      normal_module: 2 mm\n"
+        "      face_width: 20 mm\n"
+        "      driver: {teeth: 48, material: steel, bore_radius: 12.7 mm,\n"
+        "               modifications: {tip_relief: {amount: 10 um, start_roll_angle: 21.5 deg}}}\n"
+        "      driven: {teeth: 32, material: steel, bore_radius: 12.7 mm}\n"
+        "    stiffness: {from: contact_analysis, load: 100 N m, points: 32, slices: 10}\n");
+    char args[700];
+    snprintf(args, sizeof args, "'%s' --json", path);
+    REQUIRE(run(args) == 0);
+    o = cJSON_Parse(out_text);
+    REQUIRE(o);
+    CHECK_REL(num(o, "torque_N_m"), 100, 1e-15);
+    CHECK(num(o, "ste_peak_to_peak") > 0);
+    /* single contact near the highest point is on the relief (roll 16.9 mm < 17.4 mm) */
+    CHECK(item(o, "ste_unloaded", 31)->valuedouble > 0);
+    cJSON_Delete(o);
+}
+
+/* The example with tip relief sized for 100 N m: the Harris map's smallest
+ * peak-to-peak TE lies within +-15 % of the design load (110 N m on this grid). */
+TEST(harris_map_of_the_relief_example)
+{
+    REQUIRE(run("examples/rig2018_pair_relief.yaml --load-range 20Nm:200Nm:19 --json") == 0);
+    cJSON *o = cJSON_Parse(out_text);
+    REQUIRE(o);
+    int best = 0;
+    for (int l = 1; l < 19; l++)
+        if (item(o, "ste_peak_to_peak", l)->valuedouble <
+            item(o, "ste_peak_to_peak", best)->valuedouble)
+            best = l;
+    double T = item(o, "torque_N_m", best)->valuedouble;
+    CHECK(T >= 85 && T <= 115);
+    CHECK(item(o, "ste_peak_to_peak", best)->valuedouble < 0.8e-6);
+    cJSON_Delete(o);
+    REQUIRE(run("examples/rig2018_pair_relief.yaml --load-range 20Nm:200Nm:19") == 0);
+    CHECK(strstr(out_text, "smallest p-p TE  0.58778 um at 110 N m") != NULL);
+}
+
+TEST(contact_analysis_out_and_errors)
+{
+    REQUIRE(run("--help") == 0);
+    CHECK(strstr(out_text, "--load-range") != NULL);
+    char args[700], p[500];
+    snprintf(args, sizeof args,
+             "examples/helical_pair1.yaml --points 16 --slices 10 --load 50Nm --out '%s/ca'",
+             tmpdir);
+    REQUIRE(run(args) == 0);
+    CHECK(strstr(out_text, "angle_rad,") == NULL);
+    snprintf(p, sizeof p, "%s/ca/contact_analysis.csv", tmpdir);
+    slurp(p, out_text, sizeof out_text);
+    CHECK(strncmp(out_text, "angle_rad,ste_m,ste_unloaded_m,stiffness_N_per_m,pairs_in_contact,",
+                  66) == 0);
+    snprintf(p, sizeof p, "%s/ca/line_load.csv", tmpdir);
+    CHECK(exists(p));
+    snprintf(p, sizeof p, "%s/ca/summary.json", tmpdir);
+    CHECK(exists(p));
+    snprintf(args, sizeof args,
+             "examples/helical_pair1.yaml --points 16 --slices 10 --load-range 10:100:4 --out "
+             "'%s/map'",
+             tmpdir);
+    REQUIRE(run(args) == 0);
+    snprintf(p, sizeof p, "%s/map/harris_map.csv", tmpdir);
+    slurp(p, out_text, sizeof out_text);
+    int lines = 0;
+    for (char *c = out_text; *c; c++)
+        lines += *c == '\n';
+    CHECK(lines == 5);
+    /* errors: exit 2, nothing written */
+    static const char *const BAD[][2] = {
+        {"--load -5Nm", "must be positive"},
+        {"--load 5kg", "--load"},
+        {"--load 5Nm --load-range 1:2:3", "not both"},
+        {"--load-range 5:1:3", "FROM < TO"},
+        {"--load-range 1:5", "FROM:TO:COUNT"},
+        {"--load-range 1:5:1", "from 2 to 1000"},
+        {"--misalignment 3deg", "--misalignment"},
+        {"--load 5Nm --method iso6336", "stiffness law"},
+        {"--load 5Nm --plot x.svg", "--plot"},
+        {"--misalignment 5um", "goes with --load"},
+    };
+    for (size_t i = 0; i < sizeof BAD / sizeof BAD[0]; i++) {
+        snprintf(args, sizeof args, "examples/rig2018_pair.yaml %s --out '%s/bad'", BAD[i][0],
+                 tmpdir);
+        CHECK(run(args) == 2);
+        CHECK(strstr(err_text, BAD[i][1]) != NULL);
+        if (!strstr(err_text, BAD[i][1])) fprintf(stderr, "  %s: %s", BAD[i][0], err_text);
+        snprintf(p, sizeof p, "%s/bad", tmpdir);
+        CHECK(!exists(p));
+    }
+}
+
 static void cleanup(void)
 {
     if (tmpdir[0]) {
@@ -319,7 +459,10 @@ static gd_test_case CASES[] = {T(help_and_usage),
                                T(bad_options),
                                T(model_file_and_mesh_pick),
                                T(non_physical_geometry_writes_nothing),
-                               T(out_dir)};
+                               T(out_dir),
+                               T(contact_analysis_load_and_harris_map),
+                               T(harris_map_of_the_relief_example),
+                               T(contact_analysis_out_and_errors)};
 
 int main(int argc, char **argv)
 {
