@@ -261,8 +261,12 @@ gd_status gd_unbalance_response(const gd_system *sys, const gd_unbalance_options
 void gd_unbalance_free(gd_unbalance_result *r);
 
 /* ---- transient ---- */
+typedef struct { const char *name; const char *unit; } gd_law_record;
+typedef struct { const char *name; const char *summary; int nparams; int nrecords;
+                 const gd_law_record *records; ...; } gd_law_type;
+typedef struct { const gd_law_type *type; char name[48]; int ndofs; ...; } gd_law;
 typedef struct { int mesh; int backlash; ...; } gd_tr_mesh;
-typedef struct { int nmeshes; int nsfds; ...; } gd_transient_spec;
+typedef struct { int nmeshes; int nsfds; const gd_law *laws; int nlaws; ...; } gd_transient_spec;
 typedef struct gd_transient gd_transient;
 typedef enum { GD_TR_BDF, GD_TR_ADAMS, ... } gd_tr_method;
 typedef enum { GD_TR_INIT_REST, GD_TR_INIT_STATIC, GD_TR_INIT_GIVEN, ... } gd_tr_init;
@@ -273,7 +277,7 @@ typedef struct { double t_start, t_end; double output_interval; double record_fr
 typedef enum { GD_REC_DISP, GD_REC_VEL, GD_REC_ANGLE, GD_REC_SPEED, GD_REC_SPEED_RATIO,
                GD_REC_MESH_FORCE, GD_REC_MESH_DEFLECTION, GD_REC_MESH_STATE,
                GD_REC_MESH_STIFFNESS, GD_REC_SFD_FX, GD_REC_SFD_FY,
-               GD_REC_SFD_ECCENTRICITY, ... } gd_tr_record_kind;
+               GD_REC_SFD_ECCENTRICITY, GD_REC_LAW, ... } gd_tr_record_kind;
 typedef struct { gd_tr_record_kind kind; int index, index2; } gd_tr_record;
 typedef struct { double min, max, mean, rms, peak_to_peak, std; } gd_tr_stats;
 typedef struct { int contact_losses; int coast_impacts; int drive_impacts;

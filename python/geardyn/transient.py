@@ -35,7 +35,8 @@ def _pick(item, name, names, what, plural):
 
 def _parse_record(system, tm, item):
     """One record item of `--record` (transient_record.h): NODE.DOF[:disp|vel|angle|speed],
-    ratio:A/B, mesh:NAME[:what] ('*': every mesh), sfd:BEARING[:fx|fy|ecc]. Returns
+    ratio:A/B, mesh:NAME[:what] ('*': every mesh), sfd:BEARING[:fx|fy|ecc],
+    law:NAME[:RECORD] (a law of the model's `laws:` list). Returns
     [(kind, index, index2, name, unit)]."""
     m = system.model
     if item.startswith("ratio:"):
@@ -72,6 +73,23 @@ def _parse_record(system, tm, item):
         dampers = [m.bearings[tm.sfd_bearing[s]] for s in range(tm.spec.nsfds)]
         idx = _pick(item, name, dampers, "squeeze film damper", "dampers")
         return [(kind, s, 0, "sfd:%s:%s" % (dampers[s], what), unit) for s in idx]
+    if item.startswith("law:"):
+        name, _c, what = item[4:].partition(":")
+        laws = [ffi.string(tm.spec.laws[i].name).decode() for i in range(tm.spec.nlaws)]
+        out = []
+        for i in _pick(item, name, laws, "law (a `laws:` list)", "laws"):
+            t = tm.spec.laws[i].type
+            recs = [ffi.string(t.records[k].name).decode() for k in range(t.nrecords)]
+            if not recs:
+                raise model_error("record", "'%s': law '%s' has no records" % (item, laws[i]))
+            w = what or recs[0]
+            if w not in recs:
+                raise model_error("record", "'%s': law '%s' has no record '%s'"
+                                  % (item, laws[i], w), "use " + ", ".join(recs))
+            k = recs.index(w)
+            out.append((lib.GD_REC_LAW, i, k, "law:%s:%s" % (laws[i], w),
+                        ffi.string(t.records[k].unit).decode()))
+        return out
     spec = item[5:] if item.startswith("node:") else item
     base, colon, what = spec.rpartition(":")
     if not colon:
@@ -112,6 +130,12 @@ def _default_records(system, tm):
         name = m.bearings[tm.sfd_bearing[s]]
         recs += [(lib.GD_REC_SFD_FX, s, 0, "sfd:%s:fx" % name, "N"),
                  (lib.GD_REC_SFD_FY, s, 0, "sfd:%s:fy" % name, "N")]
+    for i in range(tm.spec.nlaws):
+        t = tm.spec.laws[i].type
+        if t.nrecords:
+            name = ffi.string(tm.spec.laws[i].name).decode()
+            recs.append((lib.GD_REC_LAW, i, 0, "law:%s:%s" % (name, ffi.string(
+                t.records[0].name).decode()), ffi.string(t.records[0].unit).decode()))
     if recs:
         return recs
     rz = [i for i in range(system.ndof) if system.dof_type[i] == lib.GD_RZ]

@@ -13,6 +13,7 @@ RIG = example("rig2018")
 KUMAR = example("kumar2011_coupled")
 KUMAR_T = example("kumar2011_torsional")
 CHEN = example("chen1998_gear_pair")
+DUFFING = example("duffing")  # a law of the registry (docs/laws.md)
 DUCATI = example("ducati_timing_geartrain")
 
 
@@ -143,6 +144,10 @@ def test_unbalance(geardyn, path, args, kw):
                "mesh:mesh:deflection,ratio:motor/load", "--record", "gear.rz:speed"],
      {"duration": "20ms", "speed": "1000rpm",
       "records": ["mesh:mesh:deflection,ratio:motor/load", "gear.rz:speed"]}),
+    # its default records (the law's first) and a law record by name
+    (DUFFING, ["--duration", "40"], {"duration": 40}),
+    (DUFFING, ["--duration", "40", "--record", "law:cubic:deflection,m.x:vel"],
+     {"duration": 40, "records": "law:cubic:deflection,m.x:vel"}),
 ])
 def test_transient(geardyn, path, args, kw):
     j = run_cli("transient", path, "--quiet", *args)
@@ -179,6 +184,9 @@ MATHIEU = os.path.join(os.path.dirname(os.path.dirname(CHEN)), "tests", "plot",
     # period doublings
     (MATHIEU, ["--speeds", "680:730:11", "--harmonics", "4", "--both-directions"],
      {"speeds": "680:730:11", "harmonics": 4, "both_directions": True}),
+    # a polynomial spring law: its record and its Jacobian terms in Newton
+    (DUFFING, ["--speeds", "1:1:1", "--harmonics", "15", "--record", "m.x,law:cubic"],
+     {"speeds": "1:1:1", "harmonics": 15, "records": "m.x,law:cubic"}),
 ])
 def test_periodic(geardyn, path, args, kw):
     j = run_cli("periodic", path, *args)
