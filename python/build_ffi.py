@@ -262,9 +262,27 @@ void gd_unbalance_free(gd_unbalance_result *r);
 
 /* ---- transient ---- */
 typedef struct { const char *name; const char *unit; } gd_law_record;
-typedef struct { const char *name; const char *summary; int nparams; int nrecords;
-                 const gd_law_record *records; ...; } gd_law_type;
-typedef struct { const gd_law_type *type; char name[48]; int ndofs; ...; } gd_law;
+typedef struct gd_law gd_law;
+typedef struct { double t; const double *q, *v; } gd_law_point;
+typedef struct { const char *name; const char *summary; unsigned flags; int nparams;
+                 int ndirs; int two_nodes; int nterms;
+                 void (*term)(const gd_law *law, int k, double *u, double *w);
+                 void (*force)(const gd_law *law, const gd_law_point *x, double *f, double *jq,
+                               double *jv);
+                 int nrecords; const gd_law_record *records;
+                 double (*record)(const gd_law *law, int k, const gd_law_point *x);
+                 ...; } gd_law_type;
+struct gd_law { const gd_law_type *type; char name[48]; int ndofs; int dof[12];
+                void *user; ...; };
+enum { GD_LAW_SMOOTH = 1, GD_LAW_TIME_ONLY = 2 };
+void gd_law_init(gd_law *law, const gd_law_type *type, const char *name);
+gd_status gd_law_type_validate(const gd_law_type *type, gd_error *err);
+gd_status gd_law_check(const gd_law *law, gd_error *err);
+/* user laws written in Python (python/geardyn/laws.py): the type's ops call back */
+extern "Python" void gd_py_law_term(const gd_law *law, int k, double *u, double *w);
+extern "Python" void gd_py_law_force(const gd_law *law, const gd_law_point *x, double *f,
+                                     double *jq, double *jv);
+extern "Python" double gd_py_law_record(const gd_law *law, int k, const gd_law_point *x);
 typedef struct { int mesh; int backlash; ...; } gd_tr_mesh;
 typedef struct { int nmeshes; int nsfds; const gd_law *laws; int nlaws; ...; } gd_transient_spec;
 typedef struct gd_transient gd_transient;

@@ -17,11 +17,12 @@ from .transient import TransientResult
 from .periodic import PeriodicResult
 from .static import StaticResult
 from .mesh_stiffness import mesh_stiffness, MeshStiffnessResult
+from .laws import Law
 
 __all__ = ["GeardynError", "ModelError", "SolverError", "Model", "System", "Matrices", "load",
            "loads", "build", "sweep", "mesh_stiffness", "ModalResult", "CampbellResult",
            "FrfResult", "UnbalanceResult", "TransientResult", "PeriodicResult", "StaticResult",
-           "MeshStiffnessResult",
+           "MeshStiffnessResult", "Law",
            "version", "__version__"]
 
 

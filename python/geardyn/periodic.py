@@ -7,6 +7,7 @@ from . import _core
 from ._core import ffi, lib, check, new_error, cstr, model_error
 from .analyses import _Result, _pandas, sweep
 from .transient import _records, _record_array
+from .laws import with_laws
 
 __all__ = ["periodic", "PeriodicResult"]
 
@@ -15,7 +16,7 @@ _METHODS = {"arclength": lib.GD_PER_ARCLENGTH, "sequential": lib.GD_PER_SEQUENTI
 
 def periodic(system, speeds, harmonics=10, subharmonic=1, records=None,
              method="arclength", both_directions=False, stability=True, tol=1e-10,
-             samples=0):
+             samples=0, laws=None):
     """Periodic steady state over the reference speeds `speeds` (rad/s array or
     "FROM:TO:COUNT" with units), as `geardyn periodic`: harmonics H (or "auto": raised
     from 10 until the top quarter carries < 1e-6 of the response), subharmonic N,
@@ -24,7 +25,8 @@ def periodic(system, speeds, harmonics=10, subharmonic=1, records=None,
     state), method "arclength" (through folds: several points per speed on a hysteresis
     loop) or "sequential" (a run-up), both_directions (also the run back), stability
     (Floquet multipliers and bifurcations), tol (Newton's relative residual), samples
-    (AFT samples per period; 0: automatic)."""
+    (AFT samples per period; 0: automatic). laws: geardyn.Law objects (laws of your own
+    in Python) added to the model's."""
     w = sweep(speeds, "speed", "speeds")
     if method not in _METHODS:
         raise model_error("method", "unknown method '%s'" % method, "use arclength or sequential")
@@ -51,7 +53,8 @@ def periodic(system, speeds, harmonics=10, subharmonic=1, records=None,
     tmp = ffi.new("gd_transient_model **")
     check(lib.gd_transient_model_build(system._handle, tmp, err), err)
     tm = ffi.gc(tmp[0], lib.gd_transient_model_free)
-    recs = _records(system, tm, records)
+    spec, view, keep = with_laws(system, tm, laws)
+    recs = _records(system, view, records)
     for kind, _i, _j, name, _u in recs:
         if kind == lib.GD_REC_ANGLE:
             raise model_error("record", "'%s': a total angle grows with time and has no "
@@ -60,9 +63,12 @@ def periodic(system, speeds, harmonics=10, subharmonic=1, records=None,
     rr = _record_array(recs)
     values = ffi.new("double[]", [float(x) for x in w])
     out = ffi.new("gd_periodic_result **")
-    check(lib.gd_periodic_run(system._handle, ffi.addressof(tm.spec), ffi.NULL, values, len(w),
-                              opt, rr, len(recs), out, err), err)
-    del tm  # the result owns copies of everything it reports
+    st = lib.gd_periodic_run(system._handle, spec, ffi.NULL, values, len(w), opt, rr,
+                             len(recs), out, err)
+    for law in laws or []:
+        law.raise_pending()
+    check(st, err)
+    del tm, keep  # the result owns copies of everything it reports
     return PeriodicResult(system, ffi.gc(out[0], lib.gd_periodic_result_free),
                           [r[3] for r in recs], [r[4] for r in recs])
 

@@ -7,6 +7,7 @@ import numpy as np
 from . import _core
 from ._core import ffi, lib, check, new_error, cstr, quantity, model_error
 from .analyses import _Result, _pandas
+from .laws import with_laws
 
 __all__ = ["transient", "TransientResult"]
 
@@ -201,13 +202,15 @@ def _times(duration, revolutions, speed, record_from, output_interval):
 
 
 def transient(system, duration=None, revolutions=None, speed=None, records=None,
-              record_from=None, output_interval=None, rtol=1e-6, method="bdf", start="rest"):
+              record_from=None, output_interval=None, rtol=1e-6, method="bdf", start="rest",
+              laws=None):
     """Time integration at a constant reference speed (default: the model's), for
     `duration` (s or "12 ms") or `revolutions` of the reference shaft. records: list of
     record specs (NODE.DOF[:disp|vel|angle|speed], ratio:A/B, mesh:NAME[:force|state|
     deflection|stiffness], sfd:BEARING[:fx|fy|ecc]); None: the CLI's defaults. Samples
     from record_from (default half-way) every output_interval (default: 2000 samples,
-    at least 32 per revolution). method "bdf" or "adams"; start "rest" or "static"."""
+    at least 32 per revolution). method "bdf" or "adams"; start "rest" or "static".
+    laws: geardyn.Law objects (laws of your own in Python) added to the model's."""
     w = system.model.speed if speed is None else quantity(speed, "speed", "speed")
     t_end, frm, dt = _times(duration, revolutions, w, record_from, output_interval)
     if method not in ("bdf", "adams"):
@@ -218,9 +221,10 @@ def transient(system, duration=None, revolutions=None, speed=None, records=None,
     tmp = ffi.new("gd_transient_model **")
     check(lib.gd_transient_model_build(system._handle, tmp, err), err)
     tm = ffi.gc(tmp[0], lib.gd_transient_model_free)
-    recs = _records(system, tm, records)
+    spec, view, keep = with_laws(system, tm, laws)
+    recs = _records(system, view, records)
     trp = ffi.new("gd_transient **")
-    check(lib.gd_transient_new(system._handle, ffi.addressof(tm.spec), w, trp, err), err)
+    check(lib.gd_transient_new(system._handle, spec, w, trp, err), err)
     tr = ffi.gc(trp[0], lib.gd_transient_free)
     opt = ffi.new("gd_transient_options *")
     lib.gd_transient_options_init(opt)
@@ -229,7 +233,10 @@ def transient(system, duration=None, revolutions=None, speed=None, records=None,
     opt.init = lib.GD_TR_INIT_STATIC if start == "static" else lib.GD_TR_INIT_REST
     rr = _record_array(recs)
     out = ffi.new("gd_transient_result **")
-    check(lib.gd_transient_run(tr, opt, rr, len(recs), out, err), err)
+    st = lib.gd_transient_run(tr, opt, rr, len(recs), out, err)
+    for law in laws or []:
+        law.raise_pending()
+    check(st, err)
     res = TransientResult(system, ffi.gc(out[0], lib.gd_transient_result_free),
                           [r[3] for r in recs], [r[4] for r in recs],
                           [system.model.meshes[tm.meshes[i].mesh] for i in range(tm.spec.nmeshes)],
@@ -237,7 +244,7 @@ def transient(system, duration=None, revolutions=None, speed=None, records=None,
     res.speed, res.t_end, res.record_from, res.output_interval = w, t_end, frm, dt
     res.method, res.start = method, start
     res.free_dofs = lib.gd_transient_nstates(tr) // 2
-    del tr, tm  # the problem borrows the spec: free it first
+    del tr, tm, keep  # the problem borrows the spec: free it first
     return res
 
 
