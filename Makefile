@@ -78,6 +78,8 @@ VALGRIND_SKIP_test_shaft_energy = -cli_group_shaft
 # and the CLI through /bin/sh (not followed); the study CLI runs below instead.
 VALGRIND_SKIP_test_study = -every_analysis_gives_the_papers_numbers,periodic_summarises_the_branch
 VALGRIND_SKIP_test_cli_study = -threads_shards_and_mpi_give_the_same_table,mpirun_two_ranks,killed_halfway_and_resumed,error_paths
+# long integrations to periodicity (the same code runs in the other tests under valgrind)
+VALGRIND_SKIP_test_transient_laws = -duffing_harmonic_balance_against_time_integration,rolling_bearing_varying_compliance_at_ball_pass_frequency
 VALGRIND_SKIP_test_periodic = -backlash_against_transient,sfd_pair_against_transient,backlash_folds_traced_through_unstable_branch,chen_sfd_neimark_sacker_matches_transient
 memcheck: build
 	@set -e; for t in $(BUILD)/test_*; do \
@@ -93,6 +95,7 @@ memcheck: build
 	    [ "$$name" = test_study ] && skip="$(VALGRIND_SKIP_test_study)"; \
 	    [ "$$name" = test_cli_study ] && skip="$(VALGRIND_SKIP_test_cli_study)"; \
 	    [ "$$name" = test_periodic ] && skip="$(VALGRIND_SKIP_test_periodic)"; \
+	    [ "$$name" = test_transient_laws ] && skip="$(VALGRIND_SKIP_test_transient_laws)"; \
 	    echo "valgrind $$t $$skip"; OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=2 $(VALGRIND) $$t $$skip >/dev/null; done; \
 	out=$$(mktemp -d); \
 	for args in "check examples/rig2018.yaml" "modal examples/rig2018.yaml --speed 3000rpm --json" \

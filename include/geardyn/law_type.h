@@ -82,9 +82,11 @@ typedef struct gd_law {
     const gd_law_type *type;
     char name[GD_LAW_NAME_MAX]; /* for records and messages */
     int ndofs;
-    int dof[GD_LAW_MAX_DOFS];        /* system DOF indices; -1: absent or ground */
-    double rate[GD_LAW_MAX_DOFS];    /* nominal speed of each local DOF, rad/s (set by the
-                                        problem from its reference speed) */
+    int dof[GD_LAW_MAX_DOFS];     /* system DOF indices; -1: absent or ground */
+    double rate[GD_LAW_MAX_DOFS]; /* nominal speed of each local DOF, rad/s (set by the
+                                     problem from its reference speed) */
+    double spin[2]; /* nominal spin about +z of the shaft of node (and node2), rad/s: the
+                       first local DOF of each side tells the node (set by the problem) */
     double value[GD_LAW_MAX_PARAMS]; /* SI, in the order of type->params */
     const void *data;                /* typed parameters of laws made in code (a load law with its
                                         table); borrowed */
@@ -136,7 +138,8 @@ struct gd_law_type {
 /* The built-in types, in registry order. */
 GD_API extern const gd_law_type *const gd_law_types[];
 GD_API extern const int gd_nlaw_types;
-GD_API extern const gd_law_type gd_law_sfd, gd_law_load, gd_law_polynomial_spring, gd_law_friction;
+GD_API extern const gd_law_type gd_law_sfd, gd_law_load, gd_law_polynomial_spring, gd_law_friction,
+    gd_law_rolling_bearing;
 /* The built-in type named name, or NULL. */
 GD_API const gd_law_type *gd_law_type_find(const char *name);
 

@@ -71,6 +71,15 @@ gd_status gd_transient_spec_laws(const gd_system *sys, const gd_transient_spec *
         }
         for (int j = 0; j < L[k].ndofs; j++)
             L[k].rate[j] = dof_rate(sys, L[k].dof[j], speed);
+        /* the spin of each side's node: its shaft's nominal speed */
+        const gd_law_type *t = L[k].type;
+        int per = t->ndirs > 0 ? t->ndirs : 1;
+        for (int side = 0; side < (t->two_nodes ? 2 : 1); side++) {
+            int d = L[k].dof[side * per];
+            const gd_model *m = sys->model;
+            L[k].spin[side] =
+                d >= 0 ? m->shafts[m->nodes[sys->dof_node[d]].shaft].speed_ratio * speed : 0.0;
+        }
     }
     *out = L;
     *n = total;
