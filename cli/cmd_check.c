@@ -53,6 +53,25 @@ static void print_text(const gd_model *m, const gd_system *s)
                    g->stiffness, g->damping, gd_coupling_names[g->coupling]);
         }
     }
+    if (m->nlaws) {
+        /* laws of the registry: type, where, and the parameters that are not zero */
+        printf("\n%-16s %-18s %-24s %s\n", "law", "type", "node -> to", "parameters (SI)");
+        for (int i = 0; i < m->nlaws; i++) {
+            const gd_model_law *L = &m->laws[i];
+            char where[64], par[256] = "";
+            snprintf(where, sizeof where, "%.11s%s%s -> %.11s", m->nodes[L->node].name,
+                     L->type->ndirs ? "" : ".", L->type->ndirs ? "" : gd_dof_names[L->dof],
+                     L->node2 >= 0 ? m->nodes[L->node2].name : "ground");
+            size_t len = 0;
+            for (int k = 0; k < L->type->nparams && len + 40 < sizeof par; k++)
+                if (L->value[k] != 0.0) {
+                    int w = snprintf(par + len, sizeof par - len, "%s%s %.4g", len ? ", " : "",
+                                     L->type->params[k].name, L->value[k]);
+                    if (w > 0) len += (size_t)w;
+                }
+            printf("%-16s %-18s %-24s %s\n", L->name, L->type->name, where, par);
+        }
+    }
 }
 
 static cJSON *summary_json(const gd_model *m, const gd_system *s)
@@ -92,6 +111,20 @@ static cJSON *summary_json(const gd_model *m, const gd_system *s)
         cJSON_AddNumberToObject(j, "damping_N_s_per_m", g->damping);
         cJSON_AddStringToObject(j, "coupling", gd_coupling_names[g->coupling]);
         cJSON_AddItemToArray(meshes, j);
+    }
+    cJSON *laws = cJSON_AddArrayToObject(o, "laws");
+    for (int i = 0; i < m->nlaws; i++) {
+        const gd_model_law *L = &m->laws[i];
+        cJSON *j = cJSON_CreateObject();
+        cJSON_AddStringToObject(j, "name", L->name);
+        cJSON_AddStringToObject(j, "type", L->type->name);
+        cJSON_AddStringToObject(j, "node", m->nodes[L->node].name);
+        if (L->node2 >= 0) cJSON_AddStringToObject(j, "to", m->nodes[L->node2].name);
+        if (!L->type->ndirs) cJSON_AddStringToObject(j, "dof", gd_dof_names[L->dof]);
+        cJSON *p = cJSON_AddObjectToObject(j, "parameters");
+        for (int k = 0; k < L->type->nparams; k++)
+            cJSON_AddNumberToObject(p, L->type->params[k].name, L->value[k]);
+        cJSON_AddItemToArray(laws, j);
     }
     return o;
 }

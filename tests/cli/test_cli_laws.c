@@ -1,0 +1,78 @@
+/* Laws of the registry through the CLI (docs/laws.md): check lists them, transient and
+ * periodic record them by name, and every wrong record or law in a file exits 2 with a
+ * located message and nothing written. */
+#include "cli_support.h"
+#include "harness.h"
+
+#define DUFFING "examples/duffing.yaml"
+
+TEST(check_lists_the_laws)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    cJSON *o = run_json_args(&s, "check " DUFFING);
+    REQUIRE(o);
+    const cJSON *L = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(o, "laws"), 0);
+    REQUIRE(L);
+    CHECK_STR(jstr(L, "name"), "cubic");
+    CHECK_STR(jstr(L, "type"), "polynomial_spring");
+    CHECK_STR(jstr(L, "dof"), "x");
+    const cJSON *p = cJSON_GetObjectItemCaseSensitive(L, "parameters");
+    CHECK(jnum(p, "k3") == 0.1 && jnum(p, "damping") == 0.05 && jnum(p, "k1") == 0);
+    cJSON_Delete(o);
+    scratch_close(&s);
+}
+
+TEST(law_records_in_transient_and_periodic)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    /* the default records are each law's first */
+    cJSON *o = run_json_args(&s, "transient " DUFFING " --duration 20");
+    REQUIRE(o);
+    const cJSON *r = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(o, "records"), 0);
+    CHECK_STR(jstr(r, "name"), "law:cubic:force");
+    CHECK_STR(jstr(r, "unit"), "N");
+    cJSON_Delete(o);
+    /* harmonic balance: the cubic force k3 q^3 of the orbit (harmonics 1 and 3 only:
+     * the odd law of a symmetric orbit) */
+    o = run_json_args(&s, "periodic " DUFFING " --speeds 1:1:1 --harmonics 15 --record "
+                          "m.x,law:cubic:deflection");
+    REQUIRE(o);
+    const cJSON *pt = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(o, "points"), 0);
+    const cJSON *recs = cJSON_GetObjectItemCaseSensitive(pt, "records");
+    const cJSON *x = cJSON_GetObjectItemCaseSensitive(recs, "m.x:disp");
+    const cJSON *d = cJSON_GetObjectItemCaseSensitive(recs, "law:cubic:deflection");
+    REQUIRE(x && d);
+    /* the spring's deflection is the DOF's displacement (to ground) */
+    CHECK_REL(jnum(d, "rms"), jnum(x, "rms"), 1e-14);
+    CHECK(jnum(x, "rms") > 0.29 && jnum(x, "rms") < 0.3);
+    cJSON_Delete(o);
+    scratch_close(&s);
+}
+
+TEST(law_errors_exit_2)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    CHECK(run_fails_cleanly(&s, "transient " DUFFING " --duration 1 --record law:nothing",
+                            "no law 'nothing'", "laws: cubic"));
+    CHECK(run_fails_cleanly(&s, "transient " DUFFING " --duration 1 --record law:cubic:torque",
+                            "no record 'torque'", "force, deflection"));
+    CHECK(run_fails_cleanly(&s, "periodic " DUFFING " --speeds 1:1:1 --record law:cubic:x",
+                            "no record 'x'", NULL));
+    CHECK(run_fails_cleanly(&s, "transient examples/rig2018.yaml --duration 1 --record law:a",
+                            "has no law", NULL));
+    CHECK(run_fails_cleanly(&s, "transient " DUFFING " --duration 1 --set laws.cubic.k3=abc", "k3",
+                            NULL));
+    char path[600], args[700];
+    snprintf(path, sizeof path, "%s/bad.yaml", s.dir);
+    write_file(path, "dofs: [x]\nshafts:\n  - {name: s, nodes: [{name: m}]}\n"
+                     "disks:\n  - {name: m, node: m, mass: 1}\n"
+                     "laws:\n  - {type: friction, node: m, dof: x, force: 1}\n");
+    snprintf(args, sizeof args, "transient %s --duration 1", path);
+    CHECK(run_fails_cleanly(&s, args, "bad.yaml:7:", "velocity"));
+    scratch_close(&s);
+}
+
+RUN_TESTS(T(check_lists_the_laws), T(law_records_in_transient_and_periodic), T(law_errors_exit_2))
