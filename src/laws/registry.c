@@ -6,8 +6,12 @@
 
 #include "geardyn/law_type.h"
 
-const gd_law_type *const gd_law_types[] = {&gd_law_sfd, &gd_law_load, &gd_law_polynomial_spring,
-                                           &gd_law_friction, &gd_law_rolling_bearing};
+const gd_law_type *const gd_law_types[] = {&gd_law_sfd,
+                                           &gd_law_load,
+                                           &gd_law_polynomial_spring,
+                                           &gd_law_friction,
+                                           &gd_law_rolling_bearing,
+                                           &gd_law_journal_bearing};
 const int gd_nlaw_types = (int)(sizeof gd_law_types / sizeof gd_law_types[0]);
 
 const gd_law_type *gd_law_type_find(const char *name)

@@ -11,7 +11,7 @@
 
 TEST(registry_tables_are_valid)
 {
-    CHECK(gd_nlaw_types == 5);
+    CHECK(gd_nlaw_types == 6);
     for (int i = 0; i < gd_nlaw_types; i++) {
         const gd_law_type *t = gd_law_types[i];
         gd_error err;
@@ -49,6 +49,9 @@ static void sample_law(const gd_law_type *t, gd_law *L)
         L->value[0] = 2e6, L->value[1] = -3e9, L->value[2] = 4e13, L->value[3] = 35.0;
     } else if (t == &gd_law_friction) {
         L->value[0] = 40.0, L->value[1] = 0.02;
+    } else if (t == &gd_law_journal_bearing) {
+        L->value[0] = 0.02, L->value[1] = 0.05, L->value[2] = 0.02, L->value[3] = 1e-4;
+        L->spin[0] = 400.0;
     } else if (t == &gd_law_rolling_bearing) {
         /* 9 balls, clearance 10 um, cage turning: a few elements in contact */
         L->value[0] = 9, L->value[1] = 1e10, L->value[3] = 1e-5, L->value[4] = 0.05;
@@ -59,8 +62,9 @@ static void sample_law(const gd_law_type *t, gd_law *L)
 /* A motion point of the law's local DOFs at a scale that suits it. */
 static void sample_point(const gd_law *L, double *q, double *v)
 {
-    double sq = L->type == &gd_law_sfd ? 3e-5 : (L->type == &gd_law_load ? 0.3 : 1e-4);
-    double sv = L->type == &gd_law_sfd ? 2e-3 : (L->type == &gd_law_friction ? 0.015 : 0.05);
+    int film = L->type == &gd_law_sfd || L->type == &gd_law_journal_bearing;
+    double sq = film ? 3e-5 : (L->type == &gd_law_load ? 0.3 : 1e-4);
+    double sv = film ? 2e-3 : (L->type == &gd_law_friction ? 0.015 : 0.05);
     for (int j = 0; j < L->ndofs; j++) {
         q[j] = sq * (0.7 - 0.45 * j + 0.2 * j * j);
         v[j] = sv * (0.3 + 0.55 * j - 0.3 * j * j);
@@ -108,7 +112,7 @@ TEST(jacobian_terms_match_differences)
         }
         /* central differences, column by column; the damper's own Jacobian is itself a
          * difference (steps 1e-6 of its scales), hence its looser tolerance */
-        double tol = t == &gd_law_sfd ? 1e-5 : 1e-7;
+        double tol = t == &gd_law_sfd || t == &gd_law_journal_bearing ? 1e-5 : 1e-7;
         for (int b = 0; b < n; b++)
             for (int pass = 0; pass < 2; pass++) {
                 double *x0 = pass ? v : q, h = 1e-6 * (fabs(x0[b]) + 1e-3 * (pass ? 0.05 : 1e-4));
