@@ -128,4 +128,15 @@ void gd_hb_eval(const hb *h, double w, const double *X, double tau, double *q, d
 int gd_hb_floquet(const hb *h, gd_transient *tr, double w, const double *X, int steps,
                   const gd_tr_record *bl, int nbl, double *mu_re, double *mu_im);
 
+/* Truncation estimate (truncation.c): per record, the change of the peak-to-peak and of the
+ * harmonic amplitudes between the coarse solution (Hc) and the fine one (Hf), stored in
+ * fine's p2p_error / amp_error; the largest over the records in *p2p, *amp. */
+void gd_hb_truncation(const gd_per_record_stats *coarse, int Hc, gd_per_record_stats *fine, int Hf,
+                      int nrec, double *p2p, double *amp);
+/* |Xc - Xf| / |Xf| over the coefficients (Xc padded with zeros from nc to nfine). */
+double gd_hb_coef_change(const double *Xc, int nc, const double *Xf, int nfine);
+/* Bytes of one workspace (an estimate) and the limit of the options. */
+double gd_hb_memory(int nf, int H, int N, int nterm, int ngroup, long knz);
+double gd_hb_memory_limit(const gd_periodic_options *opt);
+
 #endif

@@ -415,12 +415,19 @@ TEST(backlash_against_transient)
     gd_transient_result *tr = steady_transient(f.s, &spec, W, T, 80, 1e-10, &rec, 1);
     REQUIRE(tr);
     CHECK(tr->contacts[0].contact_losses == 1 && tr->contacts[0].coast_impacts == 0);
-    double ref[3];
+    double ref[3], mn = INFINITY, mx = -INFINITY;
     tr_harmonics(tr, 0, 1024, ref);
+    for (int j = 0; j < 1024; j++) {
+        mn = fmin(mn, tr->values[j]);
+        mx = fmax(mx, tr->values[j]);
+    }
+    const double p2p_ref = mx - mn;
     const int Hs[4] = {5, 10, 20, 40};
-    double errH[4];
-    printf("  backlash pair at %.0f rad/s, mesh force vs transient (|error| / F0):\n"
-           "     H     mean      A1        A2\n",
+    double errH[4], ep[4], eh[4], ap[4], ah[4];
+    printf("  backlash pair at %.0f rad/s, mesh force vs transient (|error| / F0), and the\n"
+           "  truncation estimate (change from H to 2 H + 1) against the error of the\n"
+           "  peak-to-peak and of A1, A2 (relative to A1):\n"
+           "     H     mean      A1        A2     p2p err  estimate  A err  estimate\n",
            W);
     for (int h = 0; h < 4; h++) {
         gd_periodic_options o;
@@ -429,15 +436,31 @@ TEST(backlash_against_transient)
         o.stability = 0;
         gd_periodic_result *r = run_speeds(&f, &spec, W, W, 1, &o, &rec, 1);
         REQUIRE(r && r->npoints == 1 && r->points[0].converged);
-        const gd_per_record_stats *sr = &r->points[0].records[0];
+        const gd_periodic_point *pt = &r->points[0];
+        const gd_per_record_stats *sr = &pt->records[0];
         double e0 = fabs(sr->mean - ref[0]) / F0, e1 = fabs(sr->amplitude[1] - ref[1]) / F0,
                e2 = fabs(sr->amplitude[2] - ref[2]) / F0;
         errH[h] = fmax(e0, fmax(e1, e2));
-        printf("  %4d  %.2e  %.2e  %.2e\n", Hs[h], e0, e1, e2);
+        ap[h] = fabs(sr->peak_to_peak - p2p_ref) / p2p_ref;
+        ah[h] = fmax(fabs(sr->amplitude[1] - ref[1]), fabs(sr->amplitude[2] - ref[2])) / ref[1];
+        ep[h] = pt->harmonic_error_p2p;
+        eh[h] = pt->harmonic_error_amp;
+        CHECK(pt->harmonics_ref == 2 * Hs[h] + 1);
+        CHECK(sr->p2p_error == ep[h] && sr->amp_error == eh[h]); /* one record: the largest */
+        printf("  %4d  %.2e  %.2e  %.2e  %.2e  %.2e  %.2e  %.2e\n", Hs[h], e0, e1, e2, ap[h], ep[h],
+               ah[h], eh[h]);
         gd_periodic_result_free(r);
     }
     CHECK(errH[3] < 1e-4);
     CHECK(errH[3] < 0.1 * errH[0]);
+    /* the estimate is of the error's size (measured: peak-to-peak error / estimate 0.41,
+     * 4.3, 1.5, 0.98 for H = 5, 10, 20, 40; amplitudes 0.56, 1.26, 0.85, 0.81): within a
+     * factor 5 for the peak-to-peak (the kink at separation makes it converge unevenly)
+     * and 2 for the amplitudes */
+    for (int h = 0; h < 4; h++) {
+        CHECK(ep[h] > ap[h] / 5 && ep[h] < 5 * ap[h]);
+        CHECK(eh[h] > ah[h] / 2 && eh[h] < 2 * ah[h]);
+    }
     gd_transient_result_free(tr);
     gd_table_free(tv);
     gd_table_free(st);
