@@ -915,6 +915,120 @@ static int locate(ctx *c, int m, const double *Xa, double la, double ga, const d
     return rc;
 }
 
+/* A fold between steps a and b (the tangent's parameter component ta[n], tb[n] of
+ * opposite signs), located on the branch: Illinois iterations on that component over
+ * points of the branch between the steps (each a corrector on the hyperplane normal to
+ * the chord through its interpolate, then the tangent there), until the parameter stops
+ * moving (1e-11 of the range; near a fold it is quadratic in the position, so the
+ * located value does not depend on the grid). Confirmed only if the located parameter is
+ * an extremum beyond both steps on the side the tangent says: otherwise the sign change
+ * was not a fold (a corrector that jumped between sheets) and 1 is returned. 2: the
+ * refinement could not run (a corrector failed): *lf holds the cubic Hermite estimate. */
+static int locate_fold(ctx *c, const double *Xa, double la, const double *ta, const double *Xb,
+                       double lb, const double *tb, double ds, double *lf)
+{
+    const int n = c->h.n;
+    {
+        double s = ta[n] / (ta[n] - tb[n]), s2 = s * s, s3 = s2 * s;
+        *lf = (2 * s3 - 3 * s2 + 1) * la + (s3 - 2 * s2 + s) * ds * ta[n] * c->sl +
+              (-2 * s3 + 3 * s2) * lb + (s3 - s2) * ds * tb[n] * c->sl;
+    }
+    double *ch = malloc((size_t)(n + 1) * sizeof *ch), *X = malloc((size_t)(n + 1) * sizeof *X),
+           *tt = malloc((size_t)(n + 1) * sizeof *tt);
+    int rc = 2;
+    if (!ch || !X || !tt) goto done;
+    for (int i = 0; i < n; i++)
+        ch[i] = (Xb[i] - Xa[i]) / c->sx;
+    ch[n] = (lb - la) / c->sl;
+    double nc = norm2(ch, n + 1);
+    if (!(nc > 0)) goto done;
+    for (int i = 0; i <= n; i++)
+        ch[i] /= nc;
+    double s0 = 0.0, s1 = 1.0, g0 = ta[n], g1 = tb[n], sig = g0 / (g0 - g1), lprev = NAN;
+    double best = NAN;
+    int calm = 0;
+    for (int it = 0; it < 40; it++) {
+        if (!(sig > s0 && sig < s1)) sig = 0.5 * (s0 + s1);
+        double lam;
+        if (point_between(c, Xa, la, Xb, lb, ch, sig, X, &lam)) break;
+        if (tangent(c, X, lam, ta, 1.0, tt)) break;
+        best = lam;
+        double g = tt[n];
+        calm = fabs(lam - lprev) <= 1e-11 * c->sl ? calm + 1 : 0;
+        if (calm >= 2 || g == 0.0 || s1 - s0 < 1e-14) break;
+        lprev = lam;
+        if ((g < 0) == (g0 < 0)) {
+            s0 = sig;
+            g0 = g;
+            g1 *= 0.5;
+        } else {
+            s1 = sig;
+            g1 = g;
+            g0 *= 0.5;
+        }
+        sig = s0 - g0 * (s1 - s0) / (g1 - g0);
+    }
+    if (isnan(best)) goto done;
+    /* the fold is the parameter's extremum: beyond both steps, on the side the tangent
+     * at a heads to */
+    const double slack = 1e-12 * c->sl;
+    rc = ta[n] > 0 ? !(best >= fmax(la, lb) - slack) : !(best <= fmin(la, lb) + slack);
+    if (!rc) *lf = best;
+done:
+    free(ch);
+    free(X);
+    free(tt);
+    return rc;
+}
+
+/* Folds from nb0 on that come as a zigzag: consecutive folds less than 1 % of the range
+ * apart. With contact laws the sampled contact switches make the discretised residual
+ * only piecewise smooth, and where the branch is nearly vertical it can turn back and
+ * forth within a few rad/s (the backlash test near 478 rad/s: 479.36, 476.18, 477.37);
+ * an odd run is one turn of the branch, kept at its extreme value, an even run none. */
+static void merge_zigzags(ctx *c, int nb0)
+{
+    gd_periodic_result *r = c->res;
+    const double near = 0.01 * c->sl;
+    int i = nb0;
+    while (i < r->nbifurcations) {
+        gd_bifurcation *b = r->bifurcations;
+        if (b[i].type != GD_BIF_FOLD) {
+            i++;
+            continue;
+        }
+        int j = i + 1;
+        while (j < r->nbifurcations && b[j].type == GD_BIF_FOLD &&
+               fabs((c->param ? b[j].parameter - b[j - 1].parameter
+                              : b[j].speed - b[j - 1].speed)) < near)
+            j++;
+        int run = j - i;
+        if (run == 1) {
+            i++;
+            continue;
+        }
+#define VAL(k) (c->param ? b[k].parameter : b[k].speed)
+        int keep = -1;
+        if (run % 2) { /* the turn of the first: a maximum if it lies beyond the second */
+            int max = VAL(i) > VAL(i + 1);
+            keep = i;
+            for (int k = i; k < j; k += 2)
+                if (max ? VAL(k) > VAL(keep) : VAL(k) < VAL(keep)) keep = k;
+        }
+#undef VAL
+        gd_bifurcation kept;
+        if (keep >= 0) kept = b[keep];
+        memmove(b + i, b + j, (size_t)(r->nbifurcations - j) * sizeof *b);
+        r->nbifurcations -= run;
+        if (keep >= 0) {
+            memmove(b + i + 1, b + i, (size_t)(r->nbifurcations - i) * sizeof *b);
+            b[i] = kept;
+            r->nbifurcations++;
+            i++;
+        }
+    }
+}
+
 /* ---------------------------------------------------------------- branches */
 
 static double inf_norm(const double *x, int n)
@@ -989,6 +1103,7 @@ static int follow_H(ctx *c, double **X, double **t)
 static int run_branch(ctx *c, const double *vals, int nv)
 {
     int n = c->h.n, it = 0, rc = 1, i0;
+    const int nb0 = c->res->nbifurcations;
     double res = NAN, lam = 0.0, reached = 0.0, sign = 1.0;
     double *X = calloc((size_t)n + 1, sizeof *X), *t = NULL, *t1 = NULL, *X1 = NULL, *Xg = NULL,
            *yp = NULL;
@@ -1186,10 +1301,12 @@ static int run_branch(ctx *c, const double *vals, int nv)
         /* bifurcations between the two steps */
         int fold = t[n] * t1[n] < 0;
         if (fold) {
-            double s = t[n] / (t[n] - t1[n]), s2 = s * s, s3 = s2 * s;
-            double lf = (2 * s3 - 3 * s2 + 1) * lam + (s3 - 2 * s2 + s) * ds * t[n] * c->sl +
-                        (-2 * s3 + 3 * s2) * l1 + (s3 - s2) * ds * t1[n] * c->sl;
-            if (add_bif(c, GD_BIF_FOLD, lf, NAN, NAN)) goto done;
+            double lf;
+            int lr = locate_fold(c, X, lam, t, X1, l1, t1, ds, &lf);
+            if (lr == 1)
+                fold = 0; /* not an extremum of the parameter: no fold */
+            else if (add_bif(c, GD_BIF_FOLD, lf, NAN, NAN))
+                goto done;
         }
         if (have_mu && stable1 >= 0) {
             int tot = out[0] + out[1] + out[2], tot1 = out1[0] + out1[1] + out1[2];
@@ -1251,6 +1368,7 @@ stop:
     rc = 0;
 done:
 #undef ALLOC_ALL
+    if (!rc) merge_zigzags(c, nb0);
     free(X);
     free(t);
     free(t1);
