@@ -67,8 +67,9 @@ typedef struct gd_periodic_options {
     double memory_limit; /* bytes for one harmonic balance workspace (0: half of the
                             physical memory); H beyond it is refused or not tried */
     /* Called after every point is final (converged or not), in branch order, from the
-     * calling thread: p the point (valid until the result is freed), progress the share
-     * of the requested range (and directions) covered so far, 0..1. May be NULL. */
+     * calling thread: p the point (valid during the call only: the result's array grows),
+     * index its place in the result, progress the share of the requested range (and
+     * directions) covered so far, 0..1. May be NULL. */
     void (*on_point)(const struct gd_periodic_point *p, int index, double progress, void *user);
     void *user;
 } gd_periodic_options;

@@ -128,6 +128,12 @@ void gd_hb_eval(const hb *h, double w, const double *X, double tau, double *q, d
 int gd_hb_floquet(const hb *h, gd_transient *tr, double w, const double *X, int steps,
                   const gd_tr_record *bl, int nbl, double *mu_re, double *mu_im);
 
+/* Warm start (warmstart.c): the coefficients X (nf (2 H + 1)) of the last of `periods`
+ * periods (2 pi / w) of a transient from rest (static equilibrium with loads) of the
+ * problem at speed. 0 ok. */
+int gd_hb_warm_start(const gd_system *sys, const gd_transient_spec *spec, double speed, double w,
+                     int H, int periods, double *X);
+
 /* Truncation estimate (truncation.c): per record, the change of the peak-to-peak and of the
  * harmonic amplitudes between the coarse solution (Hc) and the fine one (Hf), stored in
  * fine's p2p_error / amp_error; the largest over the records in *p2p, *amp. */

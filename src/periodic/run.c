@@ -1085,6 +1085,26 @@ done:
     return rc;
 }
 
+/* Newton from a short transient's last period (warmstart.c), after Newton from rest
+ * failed: 0 converged. The reason of the first failure is kept, extended, otherwise. */
+static int solve_warm(ctx *c, double *X, double lam, int *it, double *res)
+{
+    enum { PERIODS = 60 };
+    stage *s = get_stage(c, lam);
+    if (!s) return 1;
+    char why[320];
+    snprintf(why, sizeof why, "%s", c->reason);
+    const gd_system *sys = c->param ? s->s : c->sys;
+    const gd_transient_spec *spec = c->param ? &s->tm->spec : c->spec;
+    double speed = c->param ? c->param->speed : lam;
+    if (!gd_hb_warm_start(sys, spec, speed, s->w, c->H, PERIODS, X) &&
+        !newton(c, X, &lam, NULL, NULL, it, res))
+        return 0;
+    snprintf(c->reason, sizeof c->reason, "%.230s (and from a transient of %d periods)", why,
+             PERIODS);
+    return 1;
+}
+
 /* Fixed-value Newton at the branch's H. rest: X is zero. */
 static int solve_fixed(ctx *c, double **X, double **t, double lam, int *it, double *res, int rest)
 {
@@ -1112,7 +1132,8 @@ static int run_branch(ctx *c, const double *vals, int nv)
     for (i0 = 0; i0 < nv; i0++) {
         lam = vals[i0];
         memset(X, 0, (size_t)(c->h.n + 1) * sizeof *X);
-        if (!get_stage(c, lam) || solve_fixed(c, &X, NULL, lam, &it, &res, 1)) {
+        if (!get_stage(c, lam) ||
+            (solve_fixed(c, &X, NULL, lam, &it, &res, 1) && solve_warm(c, X, lam, &it, &res))) {
             if (fail_point(c, lam, c->reason)) goto done;
             continue;
         }
