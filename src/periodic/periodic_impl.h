@@ -144,5 +144,9 @@ double gd_hb_coef_change(const double *Xc, int nc, const double *Xf, int nfine);
 /* Bytes of one workspace (an estimate) and the limit of the options. */
 double gd_hb_memory(int nf, int H, int N, int nterm, int ngroup, long knz);
 double gd_hb_memory_limit(const gd_periodic_options *opt);
+/* What gd_hb_memory needs of a problem (one transient problem built). 0 ok. */
+int gd_hb_memory_params(const gd_system *sys, const gd_transient_spec *spec, double speed, int *nf,
+                        int *nterm, int *ngroup, long *knz);
+int gd_hb_samples_for(int H); /* the default AFT samples: 4 (H + 1) up to 2^k, >= 16 */
 
 #endif

@@ -1501,25 +1501,31 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
         gd_error e2;
         if (opt->adaptive && s0 && !gd_periodic_fundamental(s0, sp0, sp, &w0, &order, &e2))
             H0 = order * opt->subharmonic > 0 ? order * opt->subharmonic : 1;
-        double lim = gd_hb_memory_limit(opt);
+        double lim = gd_hb_memory_limit(opt), need = 0.0;
         c.Hcap = opt->max_harmonics > 0 ? opt->max_harmonics : 1 << 20;
-        if (s0 && opt->max_harmonics <= 0) {
-            /* doubling up to the limit, then bisection: H whose workspace fits */
-            int lo = 1, hi = 2;
-            while (hi < (1 << 20) && gd_periodic_memory(s0, sp0, sp, hi) <= lim) {
-                lo = hi;
-                hi *= 2;
+        int mnf, mnt, mng;
+        long mknz;
+        if (s0 && !gd_hb_memory_params(s0, sp0, sp, &mnf, &mnt, &mng, &mknz)) {
+#define MEM(H) gd_hb_memory(mnf, (H), gd_hb_samples_for(H), mnt, mng, mknz)
+            if (opt->max_harmonics <= 0) {
+                /* doubling up to the limit, then bisection: H whose workspace fits */
+                int lo = 1, hi = 2;
+                while (hi < (1 << 20) && MEM(hi) <= lim) {
+                    lo = hi;
+                    hi *= 2;
+                }
+                while (hi - lo > 1) {
+                    int mid = lo + (hi - lo) / 2;
+                    if (MEM(mid) <= lim)
+                        lo = mid;
+                    else
+                        hi = mid;
+                }
+                c.Hcap = lo;
             }
-            while (hi - lo > 1) {
-                int mid = lo + (hi - lo) / 2;
-                if (gd_periodic_memory(s0, sp0, sp, mid) <= lim)
-                    lo = mid;
-                else
-                    hi = mid;
-            }
-            c.Hcap = lo;
+            need = MEM(H0);
+#undef MEM
         }
-        double need = s0 ? gd_periodic_memory(s0, sp0, sp, H0) : 0.0;
         stage_clear(&st0);
         if (H0 > c.Hcap) {
             gd_periodic_result_free(res);

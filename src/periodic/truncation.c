@@ -90,24 +90,40 @@ double gd_hb_memory_limit(const gd_periodic_options *opt)
     return 0.5 * (double)pages * (double)psize;
 }
 
-double gd_periodic_memory(const gd_system *sys, const gd_transient_spec *spec, double speed, int H)
+int gd_hb_memory_params(const gd_system *sys, const gd_transient_spec *spec, double speed, int *nf,
+                        int *nterm, int *ngroup, long *knz)
 {
     gd_transient *tr = NULL;
     gd_error err;
-    if (H < 1 || gd_transient_new(sys, spec, speed, &tr, &err)) return NAN;
+    if (gd_transient_new(sys, spec, speed, &tr, &err)) return 1;
     const gd_tr_term *term = NULL;
-    int nt = gd_transient_terms(tr, &term), nf = gd_transient_nstates(tr) / 2;
+    int nt = gd_transient_terms(tr, &term);
+    *nf = gd_transient_nstates(tr) / 2;
     hb h;
     memset(&h, 0, sizeof h);
     h.nterm = nt > 0 ? nt : 0;
     h.term = term;
-    int ng = gd_hb_term_groups(&h, NULL, NULL);
+    *nterm = h.nterm;
+    *ngroup = gd_hb_term_groups(&h, NULL, NULL);
     gd_csc M, D, K;
     gd_transient_matrices(tr, &M, &D, &K);
-    long knz = (long)K.colptr[K.n] + M.colptr[M.n] + D.colptr[D.n];
+    *knz = (long)K.colptr[K.n] + M.colptr[M.n] + D.colptr[D.n];
     gd_transient_free(tr);
+    return 0;
+}
+
+int gd_hb_samples_for(int H)
+{
     int N = 16;
     while (N < 4 * (H + 1))
         N *= 2;
-    return gd_hb_memory(nf, H, N, h.nterm, ng, knz);
+    return N;
+}
+
+double gd_periodic_memory(const gd_system *sys, const gd_transient_spec *spec, double speed, int H)
+{
+    int nf, nt, ng;
+    long knz;
+    if (H < 1 || gd_hb_memory_params(sys, spec, speed, &nf, &nt, &ng, &knz)) return NAN;
+    return gd_hb_memory(nf, H, gd_hb_samples_for(H), nt, ng, knz);
 }
