@@ -451,6 +451,7 @@ int gd_cmd_periodic(int argc, char **argv)
     double *sp = NULL, *pv = NULL;
     int nsp = 0, npv = 0, rc;
     char ppath[256], partial[1100] = "";
+    int made_dir = 0;
     if ((rc = gd_cli_parse_range(CMD, "--speeds", speeds, &sp, &nsp))) return rc;
     if (param_text && (rc = parse_param(param_text, ppath, sizeof ppath, &pv, &npv))) {
         free(sp);
@@ -502,7 +503,7 @@ int gd_cmd_periodic(int argc, char **argv)
     lv2.tty = !quiet && isatty(2);
     clock_gettime(CLOCK_MONOTONIC, &lv2.t0);
     if (out) {
-        mkdir(out, 0777); /* exists already, or made here: the partial file goes in it */
+        made_dir = mkdir(out, 0777) == 0; /* the partial file goes in it */
         snprintf(partial, sizeof partial, "%s/periodic.partial.csv", out);
         if ((lv2.csv = fopen(partial, "w"))) csv_header(lv2.csv);
     }
@@ -513,7 +514,6 @@ int gd_cmd_periodic(int argc, char **argv)
     if (lv2.drawn) fprintf(stderr, "\r%100s\r", "");
     if (lv2.csv) fclose(lv2.csv);
     if (pst0) {
-        if (lv2.csv) remove(partial);
         free(rv);
         rc = gd_cli_report(&err);
         goto done;
@@ -528,7 +528,6 @@ int gd_cmd_periodic(int argc, char **argv)
     }
     free(rv);
     if (out && (rc = write_out(out, r, &recs))) goto done;
-    if (out && lv2.csv) remove(partial);
     if (json) {
         cJSON *j = to_json(r, &recs, pv != NULL);
         gd_cli_print_json(stdout, j);
@@ -562,6 +561,10 @@ int gd_cmd_periodic(int argc, char **argv)
         }
     }
 done:
+    /* the partial file goes once the complete files are in place, and on an error (which
+     * writes nothing); only an interrupted run leaves it */
+    if (partial[0]) remove(partial);
+    if (made_dir && rc != GD_EXIT_OK && rc != GD_EXIT_FAIL) rmdir(out);
     gd_periodic_result_free(r);
     gd_cli_records_free(&recs);
     gd_transient_model_free(tm);
