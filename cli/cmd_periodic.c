@@ -538,11 +538,18 @@ int gd_cmd_periodic(int argc, char **argv)
     rc = GD_EXIT_OK;
     {
         /* a run in which requested points failed is not a success: say which */
-        int nf = 0, nt = 0;
+        int nf = 0, nt = 0, ne = 0;
         for (int i = 0; i < r->npoints; i++) {
             nf += !r->points[i].converged;
             nt += r->points[i].converged && r->points[i].harmonic_ok == 0;
+            ne += r->points[i].converged && r->points[i].harmonic_ok < 0 &&
+                  (opt.estimate || opt.adaptive);
         }
+        if (ne)
+            fprintf(stderr,
+                    "geardyn periodic: %d of %d points have no truncation estimate (the "
+                    "solution at 2 H + 1 failed or H is at its cap: see their note)\n",
+                    ne, r->npoints);
         if (nt)
             fprintf(stderr,
                     "geardyn periodic: %d of %d points do not meet the harmonic truncation "

@@ -381,6 +381,9 @@ TEST(error_paths)
                             "auto"));
     CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --harmonics x", "--harmonics",
                             NULL));
+    /* H is capped by the workspace's memory, not by a fixed 1000 */
+    CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --harmonics 200000", "harmonics",
+                            "GB"));
     CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --subharmonic 0", "--subharmonic",
                             "1..1000"));
     CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --tol 1e-20", "--tol",
