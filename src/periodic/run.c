@@ -641,7 +641,8 @@ done:
 /* Truncation estimate of point p (converged at p->harmonics): the records against a
  * solution at 2 H. Fixed H: p keeps its solution and gets the change as its estimate.
  * Adaptive H: H doubles until the change is within harmonic_tol, and p becomes the finer
- * solution of the last comparison. 0 ok, 1 out of memory. */
+ * solution of the last comparison. A refinement that fails (Newton, or memory) leaves p
+ * as it is with the reason. Returns 0. */
 static int estimate_point(ctx *c, gd_periodic_point *p, double lam)
 {
     const int adaptive = c->opt->adaptive, nrec = c->nrec;
@@ -665,7 +666,7 @@ static int estimate_point(ctx *c, gd_periodic_point *p, double lam)
             snprintf(p->reason, sizeof p->reason,
                      "harmonic truncation not estimated: the solution at H = %d failed: %.180s", Hf,
                      c->reason);
-            return c->H == 0; /* a failed allocation, not a failed Newton */
+            return 0; /* the point stands, without its estimate */
         }
         double ep, ea;
         if (nrec) {
