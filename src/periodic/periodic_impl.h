@@ -147,6 +147,7 @@ double gd_hb_memory_limit(const gd_periodic_options *opt);
 /* What gd_hb_memory needs of a problem (one transient problem built). 0 ok. */
 int gd_hb_memory_params(const gd_system *sys, const gd_transient_spec *spec, double speed, int *nf,
                         int *nterm, int *ngroup, long *knz);
+void gd_hb_memory_params_tr(gd_transient *tr, int *nf, int *nterm, int *ngroup, long *knz);
 int gd_hb_samples_for(int H); /* the default AFT samples: 4 (H + 1) up to 2^k, >= 16 */
 
 #endif

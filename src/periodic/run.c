@@ -1451,6 +1451,8 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
     if (!res) return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
     c.res = res;
     res->nrecords = nrecords;
+    int mnf = 0, mnt = 0, mng = 0, mem_ok = 0; /* what the workspace's memory depends on */
+    long mknz = 0;
     /* the number of free DOFs, from a problem at the first value */
     {
         gd_transient *tr = NULL;
@@ -1473,6 +1475,8 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
             }
             int nt = gd_transient_terms(tr, NULL);
             c.nf = gd_transient_nstates(tr) / 2;
+            gd_hb_memory_params_tr(tr, &mnf, &mnt, &mng, &mknz); /* the H cap, below */
+            mem_ok = 1;
             gd_transient_free(tr);
             if (nt < 0) {
                 gd_periodic_result_free(res);
@@ -1504,9 +1508,8 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
             H0 = order * opt->subharmonic > 0 ? order * opt->subharmonic : 1;
         double lim = gd_hb_memory_limit(opt), need = 0.0;
         c.Hcap = opt->max_harmonics > 0 ? opt->max_harmonics : 1 << 20;
-        int mnf, mnt, mng;
-        long mknz;
-        if (s0 && !gd_hb_memory_params(s0, sp0, sp, &mnf, &mnt, &mng, &mknz)) {
+        if (!mem_ok && s0) mem_ok = !gd_hb_memory_params(s0, sp0, sp, &mnf, &mnt, &mng, &mknz);
+        if (mem_ok) {
 #define MEM(H) gd_hb_memory(mnf, (H), gd_hb_samples_for(H), mnt, mng, mknz)
             if (opt->max_harmonics <= 0) {
                 /* doubling up to the limit, then bisection: H whose workspace fits */

@@ -90,12 +90,8 @@ double gd_hb_memory_limit(const gd_periodic_options *opt)
     return 0.5 * (double)pages * (double)psize;
 }
 
-int gd_hb_memory_params(const gd_system *sys, const gd_transient_spec *spec, double speed, int *nf,
-                        int *nterm, int *ngroup, long *knz)
+void gd_hb_memory_params_tr(gd_transient *tr, int *nf, int *nterm, int *ngroup, long *knz)
 {
-    gd_transient *tr = NULL;
-    gd_error err;
-    if (gd_transient_new(sys, spec, speed, &tr, &err)) return 1;
     const gd_tr_term *term = NULL;
     int nt = gd_transient_terms(tr, &term);
     *nf = gd_transient_nstates(tr) / 2;
@@ -108,6 +104,15 @@ int gd_hb_memory_params(const gd_system *sys, const gd_transient_spec *spec, dou
     gd_csc M, D, K;
     gd_transient_matrices(tr, &M, &D, &K);
     *knz = (long)K.colptr[K.n] + M.colptr[M.n] + D.colptr[D.n];
+}
+
+int gd_hb_memory_params(const gd_system *sys, const gd_transient_spec *spec, double speed, int *nf,
+                        int *nterm, int *ngroup, long *knz)
+{
+    gd_transient *tr = NULL;
+    gd_error err;
+    if (gd_transient_new(sys, spec, speed, &tr, &err)) return 1;
+    gd_hb_memory_params_tr(tr, nf, nterm, ngroup, knz);
     gd_transient_free(tr);
     return 0;
 }
