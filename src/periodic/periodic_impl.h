@@ -78,6 +78,8 @@ typedef struct hb {
     long stage_id; /* set by the caller: the problem the next factorisation is of */
     long L_id;     /* the problem and frequency L and P were made for */
     double L_w;
+    double alias; /* the last residual's aliasing floor: the force content in the top
+                     quarter below the Nyquist harmonic, relative to the residual's scale */
 } hb;
 
 /* The low-rank (Woodbury) factorisation of the bordered system and its solve, used by

@@ -475,16 +475,21 @@ TEST(backlash_against_transient)
                ah[h], eh[h]);
         gd_periodic_result_free(r);
     }
+    /* with a contact law the AFT takes at least 128 samples: the error of H = 5, 10, 20
+     * is then that of the samples (~1e-4 of F0, measured 1.2e-4, 8.8e-5, 8.6e-5), H = 40
+     * (256 samples) 1.5e-5 */
     CHECK(errH[3] < 1e-4);
-    CHECK(errH[3] < 0.1 * errH[0]);
-    /* the estimate is of the error's size (measured: peak-to-peak error / estimate 0.41,
-     * 4.3, 1.5, 0.98 for H = 5, 10, 20, 40; amplitudes 0.56, 1.26, 0.85, 0.81): within a
-     * factor 5 for the peak-to-peak (the kink at separation makes it converge unevenly)
-     * and 2 for the amplitudes */
-    for (int h = 0; h < 4; h++) {
-        CHECK(ep[h] > ap[h] / 5 && ep[h] < 5 * ap[h]);
-        CHECK(eh[h] > ah[h] / 2 && eh[h] < 2 * ah[h]);
-    }
+    CHECK(errH[3] < 0.2 * errH[0]);
+    /* the estimate is of the error's size: amplitudes' estimate / error 4.4, 0.85, 1.17,
+     * 1.23 for H = 5, 10, 20, 40 (never below half, at most 5x over); the peak-to-peak's
+     * 0.69 and 1.02 for H = 20, 40. For H = 5, 10 the peak-to-peak differs from the
+     * transient's by ~7e-4 whatever H: the records' 256 samples against 1024 catch the
+     * kink's peak differently, which the estimate (same record sampling at both H) does
+     * not see */
+    for (int h = 0; h < 4; h++)
+        CHECK(eh[h] > ah[h] / 2 && eh[h] < 5 * ah[h]);
+    for (int h = 2; h < 4; h++)
+        CHECK(ep[h] > ap[h] / 2 && ep[h] < 2 * ap[h]);
     gd_transient_result_free(tr);
     gd_table_free(tv);
     gd_table_free(st);
@@ -581,6 +586,55 @@ static char *backlash_yaml(void)
              "  loads: [{node: gear, value: 60}]\n",
              ang, k, ang, e);
     return y;
+}
+
+/* The same backlash pair with the default harmonics (auto: from H = 1, the branch at the
+ * coarse H that passed, points reported at the finer) and the AFT's minimum of 128
+ * samples for contact laws: every point converges and the four folds come out within
+ * 0.5 % of the H = 20 ones (the branch runs at H = 3: measured 2.3e-4, 8.5e-4, 9e-4,
+ * 1.5e-3). At 32 samples (H = 7) Newton cycled near grazing and the arclength stalled at
+ * the first fold for its 1500 steps. */
+TEST(backlash_branch_with_auto_harmonics)
+{
+    fx f;
+    gd_transient_model *tm = NULL;
+    REQUIRE(load_spec(&f, backlash_yaml(), &tm));
+    gd_periodic_options o;
+    gd_periodic_options_init(&o);
+    o.adaptive = 1;
+    o.stability = 0;
+    gd_tr_record rec = {GD_REC_MESH_FORCE, 0, 0};
+    gd_periodic_result *r = run_speeds(&f, &tm->spec, 300, 800, 26, &o, &rec, 1);
+    REQUIRE(r);
+    int bad = 0, folds = 0, near = 0, unest = 0;
+    for (int i = 0; i < r->npoints; i++) {
+        const gd_periodic_point *p = &r->points[i];
+        bad += !p->converged;
+        if (p->converged && p->harmonic_ok == 1) CHECK(p->harmonic_error_p2p <= 0.01);
+        /* next to a fold the refined branch may not reach the point (480 rad/s: the
+         * solution at H = 7 from the H = 3 one fails): it stands, not estimated, and
+         * says so */
+        if (p->converged && p->harmonic_ok < 0) {
+            unest++;
+            CHECK(strstr(p->reason, "not estimated") != NULL);
+        }
+        CHECK(p->harmonic_ok != 0);
+    }
+    CHECK(unest <= 1);
+    const double at[4] = {555.35, 353.52, 479.36, 369.18};
+    for (int i = 0; i < r->nbifurcations; i++) {
+        if (r->bifurcations[i].type != GD_BIF_FOLD) continue;
+        folds++;
+        for (int k = 0; k < 4; k++)
+            near += fabs(r->bifurcations[i].speed - at[k]) < 5e-3 * at[k];
+        printf("  fold at %.3f rad/s\n", r->bifurcations[i].speed);
+    }
+    printf("  %d points, %d steps, %d not converged\n", r->npoints, r->steps, bad);
+    CHECK(bad == 0 && r->npoints >= 56);
+    CHECK(folds == 4 && near == 4);
+    gd_periodic_result_free(r);
+    gd_transient_model_free(tm);
+    fx_free(&f);
 }
 
 /* Softening by tooth separation bends the mesh resonance to low speeds: over 300..800
@@ -837,4 +891,5 @@ TEST(lowrank_solver_equals_sparse_lu)
 RUN_TESTS(T(linear_equals_unbalance), T(mathieu_tongue_period_doubling),
           T(floquet_against_monodromy), T(backlash_against_transient),
           T(sfd_pair_against_transient), T(backlash_folds_traced_through_unstable_branch),
-          T(chen_sfd_neimark_sacker_matches_transient), T(lowrank_solver_equals_sparse_lu))
+          T(backlash_branch_with_auto_harmonics), T(chen_sfd_neimark_sacker_matches_transient),
+          T(lowrank_solver_equals_sparse_lu))
