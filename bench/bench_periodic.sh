@@ -21,15 +21,21 @@ echo "   whole sparse LU (1) against the low-rank condensation (2)"
 "$B/bench_periodic" "$H2" 313.11 315.21 3 36 0 2
 echo "-- seed 002, one curve: 1000..10000 rpm, 30 speeds, gear 1 y and both mesh forces, sequential"
 OPENBLAS_NUM_THREADS=1 "$B/geardyn" periodic "$H2" --speeds 1000rpm:10000rpm:30 --harmonics 36 \
-    --no-stability --sequential --record gear1.y --record mesh:pair1:force \
+    --no-stability --no-estimate --sequential --record gear1.y --record mesh:pair1:force \
     --record mesh:pair2:force | tail -1
 echo "   (H = 36 holds only the fundamental of mesh 1: the set below needs H = 108)"
 echo "-- the same model by arclength, 1000..2000 rpm, 4 speeds"
 OPENBLAS_NUM_THREADS=1 "$B/geardyn" periodic "$H2" --speeds 1000rpm:2000rpm:4 --harmonics 36 \
-    --no-stability --record gear1.y | tail -1
+    --no-stability --no-estimate --record gear1.y | tail -1
+echo "-- seed 002 at 2500 rpm, the default --harmonics auto (H doubled from 36 until the"
+echo "   records agree with 2 H + 1 to 1 %) and the fixed H = 108 with its estimate"
+OPENBLAS_NUM_THREADS=1 "$B/geardyn" periodic "$H2" --speeds 2500rpm:2500rpm:1 --no-stability \
+    --record mesh:pair2:force --quiet | sed -n '2p;$p'
+OPENBLAS_NUM_THREADS=1 "$B/geardyn" periodic "$H2" --speeds 2500rpm:2500rpm:1 --no-stability \
+    --harmonics 108 --record mesh:pair2:force --quiet 2>/dev/null | sed -n '2p;$p'
 if [ "$SET" != "--no-set" ]; then
     echo "-- seed 002, the Figs. 11-13 set: 10 curves x 300 speeds, H = 108, one curve at a time"
-    OPENBLAS_NUM_THREADS=1 JOBS=1 GEARDYN="$B/geardyn" examples/seed002/figs11_13.sh \
+    OPENBLAS_NUM_THREADS=1 JOBS=1 ESTIMATE=0 GEARDYN="$B/geardyn" examples/seed002/figs11_13.sh \
         "$B/bench-seed002" | tail -1
     echo "   (goal: < 60 s CPU on one core; 557 s before the condensation's rework)"
 fi

@@ -5,6 +5,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "cli.h"
 #include "geardyn/periodic.h"
@@ -17,16 +20,23 @@ static const char USAGE[] =
     "                        [--subharmonic N] [--record WHAT]... [--parameter "
     "PATH=FROM:TO:COUNT]\n"
     "                        [--both-directions] [--sequential] [--no-stability] [--tol TOL]\n"
+    "                        [--harmonic-tol TOL] [--max-harmonics H] [--no-estimate]\n"
     "                        [--samples N] [--coupling LEVEL] [--set PATH=VALUE]... [--json]\n"
-    "                        [--out DIR] [--plot FILE.svg|FILE.html]\n\n"
+    "                        [--out DIR] [--plot FILE.svg|FILE.html] [--quiet]\n\n"
     "Periodic steady state by harmonic balance (alternating frequency-time on every\n"
     "nonlinear and time-varying law of `transient`), continued by pseudo-arclength over\n"
     "the speed (through folds: a hysteresis loop gives several points per speed), with\n"
     "Floquet multipliers and the bifurcations found on the way.\n\n"
     "  --speeds FROM:TO:COUNT  reference speeds, units allowed (required); each requested\n"
     "                    speed is solved exactly wherever the branch crosses it\n"
-    "  --harmonics H     harmonics of the period (default 10); 'auto' raises H from 10\n"
-    "                    until the top quarter carries < --harmonic-tol (1e-6) of the response\n"
+    "  --harmonics H|auto  harmonics of the period; auto (default): from the least H that\n"
+    "                    holds every excitation, doubled per point until every record's\n"
+    "                    peak-to-peak and harmonic amplitudes agree with those at 2 H to\n"
+    "                    --harmonic-tol; a fixed H is checked against 2 H the same way\n"
+    "  --harmonic-tol TOL  truncation tolerance, relative (default 0.01)\n"
+    "  --max-harmonics H   cap of H (default: the largest whose workspace fits in half\n"
+    "                    the memory)\n"
+    "  --no-estimate     with a fixed H: no solution at 2 H, no truncation estimate\n"
     "  --subharmonic N   solutions of period N times the fundamental (default 1)\n"
     "  --record WHAT     as for transient: NODE.DOF[:disp|vel|speed], ratio:A/B,\n"
     "                    mesh:NAME[:force|deflection|stiffness|state], sfd:BEARING[:fx|fy|ecc],\n"
@@ -45,7 +55,10 @@ static const char USAGE[] =
     "  --out DIR         DIR/periodic.csv, DIR/harmonics.csv, DIR/bifurcations.csv\n"
     "  --plot FILE       peak-to-peak and harmonics of each record over the branch (stable\n"
     "                    solid, unstable dashed), bifurcations marked, Floquet multipliers:\n"
-    "                    FILE.svg or FILE.html (interactive, self-contained; docs/plots.md)\n";
+    "                    FILE.svg or FILE.html (interactive, self-contained; docs/plots.md)\n"
+    "  --quiet           no progress line (it is shown on stderr only on a terminal)\n\n"
+    "Exit status 1 when a requested point did not converge (after writing what did, with\n"
+    "a summary on stderr).\n";
 
 #define PI 3.14159265358979323846
 
@@ -104,6 +117,17 @@ static cJSON *to_json(const gd_periodic_result *r, const gd_cli_records *recs, i
         cJSON_AddNumberToObject(o, "harmonics", p->harmonics);
         cJSON_AddItemToObject(o, "residual", gd_cli_json_number(p->residual));
         if (p->converged) {
+            cJSON *t = cJSON_AddObjectToObject(o, "truncation");
+            cJSON_AddNumberToObject(t, "harmonics_compared", p->harmonics_ref);
+            cJSON_AddItemToObject(t, "peak_to_peak", gd_cli_json_number(p->harmonic_error_p2p));
+            cJSON_AddItemToObject(t, "amplitudes", gd_cli_json_number(p->harmonic_error_amp));
+            if (p->harmonic_ok >= 0)
+                cJSON_AddBoolToObject(t, "within_tolerance", p->harmonic_ok);
+            else
+                cJSON_AddNullToObject(t, "within_tolerance");
+            if (p->harmonic_ok != 1 && p->reason[0]) cJSON_AddStringToObject(t, "note", p->reason);
+        }
+        if (p->converged) {
             cJSON_AddItemToObject(o, "omega_rad_s", gd_cli_json_number(p->omega));
             cJSON_AddNumberToObject(o, "iterations", p->iterations);
             if (p->nmult) {
@@ -117,6 +141,8 @@ static cJSON *to_json(const gd_periodic_result *r, const gd_cli_records *recs, i
                 cJSON_AddItemToObject(x, "mean", gd_cli_json_number(s->mean));
                 cJSON_AddItemToObject(x, "rms", gd_cli_json_number(s->rms));
                 cJSON_AddItemToObject(x, "peak_to_peak", gd_cli_json_number(s->peak_to_peak));
+                cJSON_AddItemToObject(x, "peak_to_peak_error", gd_cli_json_number(s->p2p_error));
+                cJSON_AddItemToObject(x, "amplitudes_error", gd_cli_json_number(s->amp_error));
                 cJSON_AddItemToObject(x, "amplitudes", num_array(s->amplitude, p->harmonics + 1));
                 cJSON_AddItemToObject(x, "phases_deg", num_array(s->phase_deg, p->harmonics + 1));
             }
@@ -142,8 +168,9 @@ static cJSON *to_json(const gd_periodic_result *r, const gd_cli_records *recs, i
 
 static void print_table(const gd_periodic_result *r, const gd_cli_records *recs, int param)
 {
-    printf("%3s %14s %12s%s %3s %9s %6s %10s", "dir", "speed_rad_s", "speed_rpm",
-           param ? "      parameter" : "", "H", "residual", "stable", "|mu|max");
+    printf("%3s %14s %12s%s %4s %9s %8s %8s %6s %10s", "dir", "speed_rad_s", "speed_rpm",
+           param ? "      parameter" : "", "H", "residual", "err_p2p", "err_amp", "stable",
+           "|mu|max");
     for (int k = 0; k < recs->n; k++)
         printf("  %s rms,p2p", recs->r[k].name);
     printf("\n");
@@ -155,14 +182,15 @@ static void print_table(const gd_periodic_result *r, const gd_cli_records *recs,
             printf("  not converged: %s\n", p->reason);
             continue;
         }
-        printf(" %3d %9.2e %6s %10.6f", p->harmonics, p->residual,
+        printf(" %4d %9.2e %8.1e %8.1e %6s %10.6f", p->harmonics, p->residual,
+               p->harmonic_error_p2p, p->harmonic_error_amp,
                p->stable < 0 ? "-"
                : p->stable   ? "yes"
                              : "no",
                p->mu_max);
         for (int k = 0; k < recs->n; k++)
             printf("  %.6g,%.6g", p->records[k].rms, p->records[k].peak_to_peak);
-        printf("\n");
+        printf("%s\n", p->harmonic_ok == 0 ? "  (truncation not within tolerance)" : "");
     }
     if (r->nbifurcations) printf("\nbifurcations:\n");
     for (int i = 0; i < r->nbifurcations; i++) {
@@ -175,6 +203,25 @@ static void print_table(const gd_periodic_result *r, const gd_cli_records *recs,
     printf("\n%d continuation steps, %.3f s\n", r->steps, r->cpu_seconds);
 }
 
+static void csv_header(FILE *f)
+{
+    fprintf(f, "point,direction,speed_rad_s,parameter,converged,harmonics,residual,stable,"
+               "floquet_multiplier_max_abs,record,mean,rms,peak_to_peak,harmonics_compared,"
+               "peak_to_peak_error,amplitudes_error\n");
+}
+
+static void csv_rows(FILE *f, int i, const gd_periodic_point *p, const gd_cli_records *recs)
+{
+    for (int k = 0; k < (p->converged && recs->n ? recs->n : 1); k++) {
+        const gd_per_record_stats *s = p->converged && recs->n ? &p->records[k] : NULL;
+        fprintf(f, "%d,%d,%.10g,%.10g,%d,%d,%.6g,%d,%.10g,%s,%.10g,%.10g,%.10g,%d,%.4g,%.4g\n", i,
+                p->direction, p->speed, p->parameter, p->converged, p->harmonics, p->residual,
+                p->stable, p->mu_max, s ? recs->r[k].name : "", s ? s->mean : NAN, s ? s->rms : NAN,
+                s ? s->peak_to_peak : NAN, p->harmonics_ref,
+                s ? s->p2p_error : p->harmonic_error_p2p, s ? s->amp_error : p->harmonic_error_amp);
+    }
+}
+
 static int write_out(const char *dir, const gd_periodic_result *r, const gd_cli_records *recs)
 {
     gd_error err;
@@ -182,17 +229,9 @@ static int write_out(const char *dir, const gd_periodic_result *r, const gd_cli_
     if (gd_outdir_begin(&od, dir, &err)) return gd_cli_report(&err);
     FILE *f = gd_outdir_open(&od, "periodic.csv", &err);
     if (!f) goto fail;
-    fprintf(f, "point,direction,speed_rad_s,parameter,converged,harmonics,residual,stable,"
-               "floquet_multiplier_max_abs,record,mean,rms,peak_to_peak\n");
-    for (int i = 0; i < r->npoints; i++) {
-        const gd_periodic_point *p = &r->points[i];
-        for (int k = 0; k < (p->converged ? recs->n : 1); k++)
-            fprintf(f, "%d,%d,%.10g,%.10g,%d,%d,%.6g,%d,%.10g,%s,%.10g,%.10g,%.10g\n", i,
-                    p->direction, p->speed, p->parameter, p->converged, p->harmonics, p->residual,
-                    p->stable, p->mu_max, p->converged ? recs->r[k].name : "",
-                    p->converged ? p->records[k].mean : NAN, p->converged ? p->records[k].rms : NAN,
-                    p->converged ? p->records[k].peak_to_peak : NAN);
-    }
+    csv_header(f);
+    for (int i = 0; i < r->npoints; i++)
+        csv_rows(f, i, &r->points[i], recs);
     if (gd_outdir_close(&od, f, "periodic.csv", &err)) goto fail;
     if (!(f = gd_outdir_open(&od, "harmonics.csv", &err))) goto fail;
     fprintf(f, "point,speed_rad_s,parameter,record,harmonic,amplitude,phase_deg\n");
@@ -220,7 +259,53 @@ fail:
     return gd_cli_report(&err);
 }
 
-enum { OPT_BOTH = 0x700, OPT_SEQ, OPT_NOSTAB, OPT_TOL, OPT_SAMPLES, OPT_PARAM, OPT_HTOL };
+/* Points as they converge: appended to DIR/periodic.partial.csv (flushed per point, so an
+ * interrupted run keeps what it finished; removed once the complete files are in place)
+ * and a progress line with the estimated time left on a terminal. */
+typedef struct live {
+    FILE *csv;
+    const gd_cli_records *recs;
+    int tty, drawn, nfail;
+    struct timespec t0;
+} live;
+
+static void on_point(const gd_periodic_point *p, int index, double progress, void *user)
+{
+    live *l = user;
+    if (!p->converged) l->nfail++;
+    if (l->csv) {
+        csv_rows(l->csv, index, p, l->recs);
+        fflush(l->csv);
+    }
+    if (!l->tty) return;
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    double el = (double)(t.tv_sec - l->t0.tv_sec) + 1e-9 * (double)(t.tv_nsec - l->t0.tv_nsec);
+    char eta[32] = "?";
+    if (progress > 0.005) snprintf(eta, sizeof eta, "%.0f s", el * (1 - progress) / progress);
+    char bar[31];
+    int fill = (int)(progress * 30);
+    for (int i = 0; i < 30; i++)
+        bar[i] = i < fill ? '#' : '.';
+    bar[30] = 0;
+    fprintf(stderr, "\r[%s] %3d%%  %d points (%d failed)  %.1f rpm  H %d  left %s   ", bar,
+            (int)(100 * progress), index + 1, l->nfail, p->speed * 30 / PI, p->harmonics, eta);
+    fflush(stderr);
+    l->drawn = 1;
+}
+
+enum {
+    OPT_BOTH = 0x700,
+    OPT_SEQ,
+    OPT_NOSTAB,
+    OPT_TOL,
+    OPT_SAMPLES,
+    OPT_PARAM,
+    OPT_HTOL,
+    OPT_MAXH,
+    OPT_NOEST,
+    OPT_QUIET
+};
 
 int gd_cmd_periodic(int argc, char **argv)
 {
@@ -235,6 +320,9 @@ int gd_cmd_periodic(int argc, char **argv)
                                          {"tol", required_argument, 0, OPT_TOL},
                                          {"harmonic-tol", required_argument, 0, OPT_HTOL},
                                          {"samples", required_argument, 0, OPT_SAMPLES},
+                                         {"max-harmonics", required_argument, 0, OPT_MAXH},
+                                         {"no-estimate", no_argument, 0, OPT_NOEST},
+                                         {"quiet", no_argument, 0, OPT_QUIET},
                                          {"coupling", required_argument, 0, 'c'},
                                          {"json", no_argument, 0, 'j'},
                                          {"out", required_argument, 0, 'o'},
@@ -244,11 +332,12 @@ int gd_cmd_periodic(int argc, char **argv)
                                          {0, 0, 0, 0}};
     const char *speeds = NULL, *coupling = NULL, *out = NULL, *param_text = NULL, *plot = NULL;
     const char *records[64];
-    int nrec = 0, json = 0, c;
+    int nrec = 0, json = 0, c, quiet = 0, fixed_h = 0;
     long lv;
     gd_cli_sets sets = {0};
     gd_periodic_options opt;
     gd_periodic_options_init(&opt);
+    opt.adaptive = 1; /* the default: H from the excitations, raised until it holds */
     optind = 1;
     opterr = 0;
     while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
@@ -261,10 +350,26 @@ int gd_cmd_periodic(int argc, char **argv)
                 opt.adaptive = 1;
                 break;
             }
-            if (gd_cli_parse_count(optarg, 1, 1000, &lv))
-                return gd_cli_usage_error(CMD, "--harmonics: expected 1..1000 or auto, got '%s'",
+            if (gd_cli_parse_count(optarg, 1, 1 << 20, &lv))
+                return gd_cli_usage_error(CMD,
+                                          "--harmonics: expected a whole H >= 1 or auto, "
+                                          "got '%s'",
                                           optarg);
             opt.harmonics = (int)lv;
+            opt.adaptive = 0;
+            fixed_h = 1;
+            break;
+        case OPT_MAXH:
+            if (gd_cli_parse_count(optarg, 1, 1 << 20, &lv))
+                return gd_cli_usage_error(CMD, "--max-harmonics: expected a whole H >= 1, got '%s'",
+                                          optarg);
+            opt.max_harmonics = (int)lv;
+            break;
+        case OPT_NOEST:
+            opt.estimate = 0;
+            break;
+        case OPT_QUIET:
+            quiet = 1;
             break;
         case 'N':
             if (gd_cli_parse_count(optarg, 1, 1000, &lv))
@@ -334,6 +439,9 @@ int gd_cmd_periodic(int argc, char **argv)
         }
     }
     if (optind != argc - 1) return gd_cli_usage_error(CMD, "give exactly one model file");
+    if (!opt.estimate && !fixed_h)
+        return gd_cli_usage_error(CMD, "--no-estimate needs a fixed --harmonics H (auto always "
+                                       "compares H with 2 H)");
     if (!speeds) return gd_cli_usage_error(CMD, "--speeds FROM:TO:COUNT is required");
     if (opt.samples && opt.samples < 2 * opt.harmonics + 2)
         return gd_cli_usage_error(CMD, "--samples %d cannot resolve %d harmonics (give >= %d)",
@@ -343,7 +451,8 @@ int gd_cmd_periodic(int argc, char **argv)
                                        "with --set instead of --coupling");
     double *sp = NULL, *pv = NULL;
     int nsp = 0, npv = 0, rc;
-    char ppath[256];
+    char ppath[256], partial[1100] = "";
+    int made_dir = 0;
     if ((rc = gd_cli_parse_range(CMD, "--speeds", speeds, &sp, &nsp))) return rc;
     if (param_text && (rc = parse_param(param_text, ppath, sizeof ppath, &pv, &npv))) {
         free(sp);
@@ -390,8 +499,22 @@ int gd_cmd_periodic(int argc, char **argv)
     gd_load_options lo = gd_cli_load_options(&sets);
     openblas_set_num_threads(1); /* small dense blocks: threads cost more than they give */
     gd_periodic_param prm = {argv[optind], &lo, ppath, "", sp[0]};
-    if (gd_periodic_run(s, &tm->spec, pv ? &prm : NULL, pv ? pv : sp, pv ? npv : nsp, &opt, rv,
-                        recs.n, &r, &err)) {
+    live lv2 = {0};
+    lv2.recs = &recs;
+    lv2.tty = !quiet && isatty(2);
+    clock_gettime(CLOCK_MONOTONIC, &lv2.t0);
+    if (out) {
+        made_dir = mkdir(out, 0777) == 0; /* the partial file goes in it */
+        snprintf(partial, sizeof partial, "%s/periodic.partial.csv", out);
+        if ((lv2.csv = fopen(partial, "w"))) csv_header(lv2.csv);
+    }
+    opt.on_point = on_point;
+    opt.user = &lv2;
+    gd_status pst0 = gd_periodic_run(s, &tm->spec, pv ? &prm : NULL, pv ? pv : sp, pv ? npv : nsp,
+                                     &opt, rv, recs.n, &r, &err);
+    if (lv2.drawn) fprintf(stderr, "\r%100s\r", "");
+    if (lv2.csv) fclose(lv2.csv);
+    if (pst0) {
         free(rv);
         rc = gd_cli_report(&err);
         goto done;
@@ -414,7 +537,42 @@ int gd_cmd_periodic(int argc, char **argv)
         print_table(r, &recs, pv != NULL);
     }
     rc = GD_EXIT_OK;
+    {
+        /* a run in which requested points failed is not a success: say which */
+        int nf = 0, nt = 0, ne = 0;
+        for (int i = 0; i < r->npoints; i++) {
+            nf += !r->points[i].converged;
+            nt += r->points[i].converged && r->points[i].harmonic_ok == 0;
+            ne += r->points[i].converged && r->points[i].harmonic_ok < 0 &&
+                  (opt.estimate || opt.adaptive);
+        }
+        if (ne)
+            fprintf(stderr,
+                    "geardyn periodic: %d of %d points have no truncation estimate (the "
+                    "solution at 2 H + 1 failed or H is at its cap: see their note)\n",
+                    ne, r->npoints);
+        if (nt)
+            fprintf(stderr,
+                    "geardyn periodic: %d of %d points do not meet the harmonic truncation "
+                    "tolerance (their truncation estimate says by how much)\n",
+                    nt, r->npoints);
+        if (nf) {
+            fprintf(stderr, "geardyn periodic: %d of %d points did not converge:\n", nf,
+                    r->npoints);
+            for (int i = 0, shown = 0; i < r->npoints && shown < 5; i++)
+                if (!r->points[i].converged) {
+                    fprintf(stderr, "  %.6g rad/s: %s\n", r->points[i].speed, r->points[i].reason);
+                    shown++;
+                }
+            if (nf > 5) fprintf(stderr, "  ...\n");
+            rc = GD_EXIT_FAIL;
+        }
+    }
 done:
+    /* the partial file goes once the complete files are in place, and on an error (which
+     * writes nothing); only an interrupted run leaves it */
+    if (partial[0]) remove(partial);
+    if (made_dir && rc != GD_EXIT_OK && rc != GD_EXIT_FAIL) rmdir(out);
     gd_periodic_result_free(r);
     gd_cli_records_free(&recs);
     gd_transient_model_free(tm);

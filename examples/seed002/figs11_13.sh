@@ -6,13 +6,18 @@
 #
 # usage: examples/seed002/figs11_13.sh [OUTDIR]      (run from the repository root)
 # environment: H (harmonics, default 108), SPEEDS (default 100rpm:8000rpm:300),
-#              JOBS (curves run at once, default 1), GEARDYN (default ./build/geardyn)
+#              JOBS (curves run at once, default 1), GEARDYN (default ./build/geardyn),
+#              ESTIMATE (1, default: every point also solved at 2 H + 1 for its truncation
+#              estimate, the peak_to_peak_error column; 0: not, about 3x cheaper)
 #
 # Why H = 108: the HB period is 36 mesh-1 periods (teeth 52/72, 22/79: w0 = 52 W / 36),
 # so harmonic 36 k is k times the mesh-1 frequency; H = 108 keeps the k = 1, 2, 3
 # super-harmonics of mesh 1 (and k <= 9 of mesh 2, harmonic 11 k). With H = 36 the
 # TVMS acts only through its fundamental and the dynamic mesh force is ~2.6x too large
 # at 350 rpm (measured, docs/periodic.md).
+# H = 108 is not enough for the peak-to-peak forces off resonance (mesh 2 at 2500 rpm:
+# 43 % low against a long transient; the truncation estimate of each point, column
+# peak_to_peak_error of periodic.csv, says so): docs/periodic.md, "Harmonic truncation".
 # Why 100-8000 rpm: the OCR text of the paper has lost the figures' speed axes; this
 # range holds mesh-1 k = 1 of every mode of this model up to 6.9 kHz, among them the
 # modes with 10-37 % of their strain energy in the meshes (4.7-7.2 kHz, 5400-8000 rpm),
@@ -26,6 +31,9 @@ OUT=${1:-build/seed002}
 H=${H:-108}
 SPEEDS=${SPEEDS:-100rpm:8000rpm:300}
 JOBS=${JOBS:-1}
+ESTIMATE=${ESTIMATE:-1}
+NOEST=""
+[ "$ESTIMATE" = 0 ] && NOEST=--no-estimate
 GEARDYN=${GEARDYN:-./build/geardyn}
 MODEL=examples/helical_two_stage.yaml
 [ -x "$GEARDYN" ] || { echo "figs11_13.sh: $GEARDYN not built (make)" >&2; exit 2; }
@@ -36,7 +44,7 @@ run_curve() { # coupling helix_deg
     rm -rf "$dir"
     /usr/bin/time -f "%e %U %S" -o "$dir.time" \
         "$GEARDYN" periodic "$MODEL" --speeds "$SPEEDS" --harmonics "$H" \
-        --sequential --no-stability --coupling "$c" \
+        --sequential --no-stability $NOEST --quiet --coupling "$c" \
         --set "meshes.pair1.geometry.helix_angle=${b}deg" \
         --set "meshes.pair2.geometry.helix_angle=${b}deg" \
         --record gear1.x --record gear1.z --record gear1.ry --record gear1.rz \

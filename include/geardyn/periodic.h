@@ -36,12 +36,17 @@ typedef enum gd_per_method {
                              (a run-up; jumps at folds) */
 } gd_per_method;
 
+struct gd_periodic_point;
 typedef struct gd_periodic_options {
     int harmonics;       /* H >= 1 (default 10) */
-    int adaptive;        /* 1: raise H while the top harmonics carry more than harmonic_tol */
-    double harmonic_tol; /* share of the top quarter of the harmonics in the response
-                            norm (default 1e-6) */
-    int max_harmonics;   /* cap for adaptive H (default 80) */
+    int adaptive;        /* 1: H from the least that holds every excitation's fundamental,
+                            doubled at each point until the records agree with those at
+                            twice H to harmonic_tol (the point reports the finer solution) */
+    double harmonic_tol; /* truncation tolerance: the relative change of every record's
+                            peak-to-peak and of its harmonic amplitudes (relative to its
+                            largest) between H and 2 H (default 0.01) */
+    int max_harmonics;   /* cap of H (0, default: the largest whose workspace fits in
+                            memory_limit) */
     int subharmonic;     /* N >= 1: solutions of period N T_0 (default 1) */
     int samples;         /* AFT samples per period; 0: 4 (H + 1) rounded up to 2^k,
                             at least 16 */
@@ -56,6 +61,17 @@ typedef struct gd_periodic_options {
                             unknowns whose nonlinear rank is a quarter or less), 1 sparse
                             LU of the whole coupled system (KLU), 2 low-rank: the linear
                             DOFs condensed onto the nonlinear laws (Woodbury) */
+    int estimate;        /* 1 (default): every converged point is solved again at 2 H and carries
+                            the change of its records as its truncation error estimate (the
+                            harmonic_error_* fields); 0: not (adaptive H always estimates) */
+    double memory_limit; /* bytes for one harmonic balance workspace (0: half of the
+                            physical memory); H beyond it is refused or not tried */
+    /* Called after every point is final (converged or not), in branch order, from the
+     * calling thread: p the point (valid during the call only: the result's array grows),
+     * index its place in the result, progress the share of the requested range (and
+     * directions) covered so far, 0..1. May be NULL. */
+    void (*on_point)(const struct gd_periodic_point *p, int index, double progress, void *user);
+    void *user;
 } gd_periodic_options;
 GD_API void gd_periodic_options_init(gd_periodic_options *opt);
 
@@ -74,6 +90,10 @@ typedef struct gd_per_record_stats {
     double mean, rms, peak_to_peak;
     double *amplitude, *phase_deg; /* H + 1 each: harmonic k of w (k = 0: mean, phase 0);
                                       x = sum_k A_k cos(k w t + phase_k) */
+    /* truncation estimate (NaN when not estimated): |change| of the peak-to-peak between
+     * the two harmonic counts compared, relative to it; the largest change of a harmonic
+     * amplitude A_k (k >= 1), relative to the largest A_k */
+    double p2p_error, amp_error;
 } gd_per_record_stats;
 
 typedef struct gd_periodic_point {
@@ -93,6 +113,14 @@ typedef struct gd_periodic_point {
     int nfree;    /* coefficients: coef[h * nfree + i], h = 0 mean, 2k-1 cos k, 2k sin k */
     double *coef; /* over the free DOFs of gd_transient (increasing DOF order) */
     gd_per_record_stats *records; /* nrecords */
+    /* harmonic truncation: the point at H compared with the solution at harmonics_ref
+     * (2 H; with adaptive H the reported point is the finer one and harmonics_ref the
+     * coarser); the largest p2p_error / amp_error over the records (with no records: the
+     * change of the coefficients relative to their norm, in both); harmonic_ok 1 when
+     * both are within harmonic_tol, 0 when not (the reason says so), -1 not estimated */
+    int harmonics_ref;
+    double harmonic_error_p2p, harmonic_error_amp;
+    int harmonic_ok;
 } gd_periodic_point;
 
 typedef enum gd_bifurcation_type {
@@ -139,6 +167,12 @@ GD_API void gd_periodic_result_free(gd_periodic_result *r);
  * must resolve: H >= max_order x subharmonic).
  * GD_EINPUT with the reason when the period is undefined (no excitation, incommensurate
  * frequencies, a prescribed motion that is not periodic). */
+/* Bytes of one harmonic balance workspace with H harmonics for the problem of sys and
+ * spec at speed (an estimate, within a factor of about 2: the sample buffers, the
+ * terms' harmonic couplings, the low-rank capacitance or the sparse LU's fill). */
+GD_API double gd_periodic_memory(const gd_system *sys, const gd_transient_spec *spec, double speed,
+                                 int H);
+
 GD_API gd_status gd_periodic_fundamental(const gd_system *sys, const gd_transient_spec *spec,
                                          double speed, double *w0, int *max_order, gd_error *err);
 

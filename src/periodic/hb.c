@@ -409,7 +409,8 @@ int gd_hb_residual(hb *h, gd_transient *tr, double w, const double *X, double *R
         nl += R[i] * R[i];
     /* the force coefficients are kept (Fh) for gd_hb_solve_newton */
     if (!h->Fh) h->Fh = malloc((size_t)h->n * sizeof *h->Fh);
-    double *Fh = h->Fh;
+    double *Fh = h->Fh, tail = 0.0;
+    const int kt = H + 1 > 3 * N / 8 ? H + 1 : 3 * N / 8;
     if (Fh) memset(Fh, 0, (size_t)h->n * sizeof *Fh);
     h->Fh_ok = Fh != NULL;
     for (int i = 0; i < nf; i++) {
@@ -420,6 +421,12 @@ int gd_hb_residual(hb *h, gd_transient *tr, double w, const double *X, double *R
         R[i] -= F;
         nf2 += F * F;
         if (Fh) Fh[i] = F;
+        /* the force's content in the top quarter below the Nyquist harmonic: what lies
+         * beyond it folds back onto the harmonics kept (the aliasing floor, below) */
+        for (int k = kt; 2 * k < N; k++) {
+            double fc = 2.0 * c[k] / N, fs = 2.0 * c[N - k] / N;
+            tail += fc * fc + fs * fs;
+        }
         for (int k = 1; k <= H; k++) {
             double fc = 2.0 * c[k] / N, fs = -2.0 * c[N - k] / N;
             R[(size_t)(2 * k - 1) * nf + i] -= fc;
@@ -432,6 +439,10 @@ int gd_hb_residual(hb *h, gd_transient *tr, double w, const double *X, double *R
         }
     }
     if (scale) *scale = sqrt(nl > nf2 ? nl : nf2);
+    {
+        double sc = sqrt(nl > nf2 ? nl : nf2);
+        h->alias = sc > 0 ? sqrt(tail) / sc : 0.0;
+    }
     return bad;
 }
 

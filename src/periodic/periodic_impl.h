@@ -78,6 +78,8 @@ typedef struct hb {
     long stage_id; /* set by the caller: the problem the next factorisation is of */
     long L_id;     /* the problem and frequency L and P were made for */
     double L_w;
+    double alias; /* the last residual's aliasing floor: the force content in the top
+                     quarter below the Nyquist harmonic, relative to the residual's scale */
 } hb;
 
 /* The low-rank (Woodbury) factorisation of the bordered system and its solve, used by
@@ -127,5 +129,27 @@ void gd_hb_eval(const hb *h, double w, const double *X, double tau, double *q, d
  * backlash meshes (nbl), whose contact changes split the steps. 0 ok. */
 int gd_hb_floquet(const hb *h, gd_transient *tr, double w, const double *X, int steps,
                   const gd_tr_record *bl, int nbl, double *mu_re, double *mu_im);
+
+/* Warm start (warmstart.c): the coefficients X (nf (2 H + 1)) of the last of `periods`
+ * periods (2 pi / w) of a transient from rest (static equilibrium with loads) of the
+ * problem at speed. 0 ok. */
+int gd_hb_warm_start(const gd_system *sys, const gd_transient_spec *spec, double speed, double w,
+                     int H, int periods, double *X);
+
+/* Truncation estimate (truncation.c): per record, the change of the peak-to-peak and of the
+ * harmonic amplitudes between the coarse solution (Hc) and the fine one (Hf), stored in
+ * fine's p2p_error / amp_error; the largest over the records in *p2p, *amp. */
+void gd_hb_truncation(const gd_per_record_stats *coarse, int Hc, gd_per_record_stats *fine, int Hf,
+                      int nrec, double *p2p, double *amp);
+/* |Xc - Xf| / |Xf| over the coefficients (Xc padded with zeros from nc to nfine). */
+double gd_hb_coef_change(const double *Xc, int nc, const double *Xf, int nfine);
+/* Bytes of one workspace (an estimate) and the limit of the options. */
+double gd_hb_memory(int nf, int H, int N, int nterm, int ngroup, long knz);
+double gd_hb_memory_limit(const gd_periodic_options *opt);
+/* What gd_hb_memory needs of a problem (one transient problem built). 0 ok. */
+int gd_hb_memory_params(const gd_system *sys, const gd_transient_spec *spec, double speed, int *nf,
+                        int *nterm, int *ngroup, long *knz);
+void gd_hb_memory_params_tr(gd_transient *tr, int *nf, int *nterm, int *ngroup, long *knz);
+int gd_hb_samples_for(int H); /* the default AFT samples: 4 (H + 1) up to 2^k, >= 16 */
 
 #endif

@@ -90,6 +90,8 @@ TEST(out_files_and_table)
     char *t = read_file(path);
     CHECK(t && count_lines(t) == 1 + 3);
     CHECK(contains(t, "point,direction,speed_rad_s,parameter,converged,harmonics,residual"));
+    CHECK(contains(t, ",harmonics_compared,peak_to_peak_error,amplitudes_error\n"));
+    CHECK(contains(t, ",4,") && contains(t, ",9,")); /* H = 4, compared with 9 */
     free(t);
     snprintf(path, sizeof path, "%s/harmonics.csv", dir);
     t = read_file(path);
@@ -99,7 +101,7 @@ TEST(out_files_and_table)
     t = read_file(path);
     CHECK(t && count_lines(t) == 1);
     free(t);
-    CHECK(count_entries(dir) == 3);
+    CHECK(count_entries(dir) == 3); /* the per-point periodic.partial.csv is gone */
     scratch_close(&s);
 }
 
@@ -154,6 +156,23 @@ TEST(mathieu_bifurcations_directions_subharmonic)
         *(jnum(b, "direction") > 0 ? &up : &down) += 1;
     }
     CHECK(up == 2 && down == 2);
+    {
+        /* located on the branch, not on the grid: 51 speeds give the same period doublings
+         * to 1e-8 (measured 2e-11 and 1e-13) */
+        char a2[512];
+        snprintf(a2, sizeof a2,
+                 "periodic '%s' --speeds 680:730:51 --harmonics 4 --no-estimate --record "
+                 "mesh:m:force",
+                 model);
+        cJSON *o51 = run_json_args(&s, a2);
+        REQUIRE(o51);
+        const cJSON *b51 = cJSON_GetObjectItemCaseSensitive(o51, "bifurcations");
+        REQUIRE(cJSON_GetArraySize(b51) == 2);
+        for (int k = 0; k < 2; k++)
+            CHECK_REL(jnum(cJSON_GetArrayItem(b51, k), "speed_rad_s"),
+                      jnum(cJSON_GetArrayItem(bif, k), "speed_rad_s"), 1e-8);
+        cJSON_Delete(o51);
+    }
     CHECK(cJSON_IsFalse(cJSON_GetObjectItemCaseSensitive(point(o, 5), "stable"))); /* 705 */
     CHECK(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(point(o, 0), "stable")));  /* 680 */
     CHECK(jnum(point(o, 11), "direction") == -1 && jnum(point(o, 11), "speed_rad_s") == 730);
@@ -201,12 +220,57 @@ TEST(parameter_continuation_and_auto_harmonics)
           !cJSON_GetObjectItemCaseSensitive(point(q, 0), "parameter"));
     cJSON_Delete(o);
     cJSON_Delete(q);
+    /* auto H from the unbalances' order 1: 1, 3, 7, 15, ... until the records agree with
+     * those at 2 H + 1 to 1e-4 (measured: the peak-to-peak changes by 3.5e-3 from 3 to 7,
+     * 1.05e-4 from 7 to 15, 1.6e-6 from 15 to 31); the default (no --harmonics) is auto
+     * with 1 % (H = 7 against 3) */
     o = run_json_args(&s, "periodic " CHEN " --speeds 1000:1000:1 --harmonics auto "
-                          "--harmonic-tol 1e-4");
-    REQUIRE(o);
-    CHECK(jnum(point(o, 0), "harmonics") >= 10);
+                          "--harmonic-tol 1e-4 --record gear_a.x");
+    cJSON *d = run_json_args(&s, "periodic " CHEN " --speeds 1000:1000:1 --record gear_a.x");
+    REQUIRE(o && d);
+    const cJSON *t = cJSON_GetObjectItemCaseSensitive(point(o, 0), "truncation");
+    CHECK(jnum(point(o, 0), "harmonics") == 31);
+    CHECK(jnum(t, "harmonics_compared") == 15);
+    CHECK(jnum(t, "peak_to_peak") <= 1e-4 && jnum(t, "amplitudes") <= 1e-4);
+    CHECK(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(t, "within_tolerance")));
     CHECK(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(point(o, 0), "converged")));
+    CHECK(jnum(point(d, 0), "harmonics") == 7);
+    /* the estimate is honest: H = 7 is off the H = 31 peak-to-peak by less than its
+     * estimate (the change from 3 to 7; measured 1.07e-4 against 3.5e-3) */
+    double e7 = jnum(cJSON_GetObjectItemCaseSensitive(point(d, 0), "truncation"), "peak_to_peak");
+    double p7 = jnum(rec(point(d, 0), "gear_a.x:disp"), "peak_to_peak"),
+           p15 = jnum(rec(point(o, 0), "gear_a.x:disp"), "peak_to_peak");
+    CHECK(e7 <= 0.01 && fabs(p7 - p15) / p15 <= e7);
     cJSON_Delete(o);
+    cJSON_Delete(d);
+    scratch_close(&s);
+}
+
+/* Newton from rest fails on the Chen pair with e_u/C = 1/2 at 5560 rad/s (relative
+ * residual 0.13 after 30 iterations: the rest state is outside the basin of the large
+ * orbit); the warm start from 60 periods of a transient converges to the orbit the
+ * arclength reaches over the folds at 5549.1 and 5451.3 rad/s from 5350 rad/s (the same
+ * to 1e-8: both converge to the residual 1e-10), stable (|mu| 0.981). */
+TEST(warm_start_recovers_failure_from_rest)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    const char *base = "periodic " CHEN " --harmonics 12 --no-estimate --record gear_a.y "
+                       "--set unbalances.gear_a_unbalance.eccentricity=38.1um";
+    char args[512];
+    snprintf(args, sizeof args, "%s --speeds 5560:5560:1", base);
+    cJSON *o = run_json_args(&s, args);
+    snprintf(args, sizeof args, "%s --speeds 5350:5560:8 --no-stability", base);
+    cJSON *q = run_json_args(&s, args);
+    REQUIRE(o && q && npoints(o) == 1);
+    const cJSON *p = point(o, 0), *r = point(q, npoints(q) - 1);
+    CHECK(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(p, "converged")));
+    CHECK(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(p, "stable")));
+    CHECK(jnum(r, "speed_rad_s") == 5560);
+    CHECK_REL(jnum(rec(p, "gear_a.y:disp"), "rms"), jnum(rec(r, "gear_a.y:disp"), "rms"), 1e-8);
+    CHECK_REL(jnum(p, "floquet_multiplier_max_abs"), 0.981031, 1e-5);
+    cJSON_Delete(o);
+    cJSON_Delete(q);
     scratch_close(&s);
 }
 
@@ -215,7 +279,14 @@ TEST(undefined_period_point)
 {
     scratch s;
     REQUIRE(scratch_open(&s));
-    cJSON *o = run_json_args(&s, "periodic " CHEN " --speeds 0:500:2 --harmonics 4");
+    /* the run exits 1 (a requested point failed) with a summary on stderr, after printing
+     * every point */
+    run_result r;
+    run(&s, &r, "periodic " CHEN " --speeds 0:500:2 --harmonics 4 --json");
+    CHECK(r.code == 1);
+    CHECK(contains(r.err, "1 of 2 points did not converge") && contains(r.err, "undefined"));
+    cJSON *o = cJSON_Parse(r.out);
+    run_free(&r);
     REQUIRE(o);
     REQUIRE(npoints(o) == 2);
     CHECK(cJSON_IsFalse(cJSON_GetObjectItemCaseSensitive(point(o, 0), "converged")));
@@ -235,7 +306,7 @@ TEST(helical_couplings_identical_at_zero_helix)
     scratch s;
     REQUIRE(scratch_open(&s));
     const char *base = "periodic examples/helical_two_stage.yaml --speeds 3000rpm:3000rpm:1 "
-                       "--harmonics 36 --no-stability --record mesh:pair1:force "
+                       "--harmonics 36 --no-estimate --no-stability --record mesh:pair1:force "
                        "--record mesh:pair2:force,gear1.y "
                        "--set meshes.pair1.geometry.helix_angle=0deg "
                        "--set meshes.pair2.geometry.helix_angle=0deg";
@@ -290,7 +361,7 @@ TEST(helical_mesh2_resonance_same_for_both_couplings_at_zero_helix)
         for (int k = 0; k < 2; k++) {
             snprintf(args, sizeof args,
                      "periodic examples/helical_two_stage.yaml --speeds %drpm:%drpm:1 "
-                     "--harmonics 36 --no-stability --coupling %s "
+                     "--harmonics 36 --no-estimate --no-stability --coupling %s "
                      "--set meshes.pair1.geometry.helix_angle=0deg "
                      "--set meshes.pair2.geometry.helix_angle=0deg "
                      "--record mesh:pair2:force,gear1.x",
@@ -327,6 +398,9 @@ TEST(error_paths)
                             "auto"));
     CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --harmonics x", "--harmonics",
                             NULL));
+    /* H is capped by the workspace's memory, not by a fixed 1000 */
+    CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --harmonics 200000", "harmonics",
+                            "GB"));
     CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --subharmonic 0", "--subharmonic",
                             "1..1000"));
     CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --tol 1e-20", "--tol",
@@ -376,5 +450,5 @@ TEST(error_paths)
 RUN_TESTS(T(chen_sfd_sweep_json), T(out_files_and_table),
           T(mathieu_bifurcations_directions_subharmonic),
           T(parameter_continuation_and_auto_harmonics), T(undefined_period_point),
-          T(helical_couplings_identical_at_zero_helix),
+          T(warm_start_recovers_failure_from_rest), T(helical_couplings_identical_at_zero_helix),
           T(helical_mesh2_resonance_same_for_both_couplings_at_zero_helix), T(error_paths))
