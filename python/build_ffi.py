@@ -265,7 +265,7 @@ typedef struct { const char *name; const char *unit; } gd_law_record;
 typedef struct gd_law gd_law;
 typedef struct { double t; const double *q, *v; } gd_law_point;
 typedef struct { const char *name; const char *summary; unsigned flags; int nparams;
-                 int ndirs; int two_nodes; int nterms;
+                 const int *dirs; int ndirs; int two_nodes; int nterms;
                  void (*term)(const gd_law *law, int k, double *u, double *w);
                  void (*force)(const gd_law *law, const gd_law_point *x, double *f, double *jq,
                                double *jv);

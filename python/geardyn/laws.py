@@ -61,7 +61,11 @@ class Law:
         t.name = cs(name)
         t.summary = cs("a law written in Python")
         t.flags = lib.GD_LAW_SMOOTH if smooth else 0
-        t.ndirs, t.two_nodes = 0, 0
+        # the local DOFs are the user's list: one "direction" entry each (the problem
+        # reads only their count; the DOFs themselves are given per instance)
+        dirs = ffi.new("int[]", [0] * len(self.dofs))
+        keep.append(dirs)
+        t.dirs, t.ndirs, t.two_nodes = dirs, len(self.dofs), 0
         t.nterms = len(self.terms)
         t.term = lib.gd_py_law_term
         t.force = lib.gd_py_law_force

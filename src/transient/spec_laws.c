@@ -57,10 +57,12 @@ gd_status gd_transient_spec_laws(const gd_system *sys, const gd_transient_spec *
         }
         for (int j = 0; j < L[k].ndofs && j < GD_LAW_MAX_DOFS; j++)
             if (L[k].dof[j] < -1 || L[k].dof[j] >= sys->ndof) {
+                gd_status st =
+                    gd_error_set(err, GD_EINPUT, "", 0, 0, "laws", "use gd_system_dof",
+                                 "law '%s' acts on DOF %d, which the system does not have",
+                                 L[k].name, L[k].dof[j]);
                 free(L);
-                return gd_error_set(err, GD_EINPUT, "", 0, 0, "laws", "use gd_system_dof",
-                                    "law '%s' acts on DOF %d, which the system does not have",
-                                    L[k].name, L[k].dof[j]);
+                return st;
             }
     }
     for (k = 0; k < total; k++) {
