@@ -66,6 +66,11 @@ gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
  * DOF has both). The automatic shift is 1e-3 of it, far below the lowest elastic
  * mode of most models; the state scaling g is this frequency itself. */
 double gd_sparse_diag_frequency(const gd_dynmat *a, const double *k);
+/* The automatic shift s (sigma = -s), the state scaling g and the magnitude below
+ * which an eigenvalue counts as a rigid-body zero, for the values k on a's pattern:
+ * a tenth of the lowest Rayleigh quotient of the uniform motions of each DOF type,
+ * within [1e-6, 1e-3] of gd_sparse_diag_frequency (sparse_modes.c says why). */
+void gd_sparse_shift_auto(const gd_dynmat *a, const double *k, double *s, double *g, double *zero);
 /* Krylov sizes for nmodes modes of an n-DOF system: nev Ritz values (both members of
  * each conjugate pair) in a basis of at most ncv vectors. */
 void gd_sparse_ks_sizes(int n, int nmodes, int *nev, int *ncv);

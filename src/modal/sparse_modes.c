@@ -54,6 +54,47 @@ double gd_sparse_diag_frequency(const gd_dynmat *a, const double *k)
     return isfinite(best) ? sqrt(best) : 1e3;
 }
 
+void gd_sparse_shift_auto(const gd_dynmat *a, const double *k, double *s, double *g, double *zero)
+{
+    const gd_system *sys = a->sys;
+    double gd = gd_sparse_diag_frequency(a, k), gmax = 0;
+    double num[6] = {0}, den[6] = {0}, kdiag[6] = {0};
+    for (int j = 0; j < a->pat.n; j++) {
+        int tj = (int)sys->dof_type[j];
+        for (int q = a->pat.colptr[j]; q < a->pat.colptr[j + 1]; q++) {
+            int i = a->pat.rowind[q];
+            if ((int)sys->dof_type[i] != tj) continue;
+            num[tj] += k[q];
+            den[tj] += a->m[q];
+            if (i == j) {
+                kdiag[tj] += fabs(k[q]);
+                if (a->m[q] > 0 && k[q] / a->m[q] > gmax) gmax = k[q] / a->m[q];
+            }
+        }
+    }
+    gmax = sqrt(gmax);
+    /* Rayleigh quotients of the uniform motions, one per DOF type: upper bounds of the
+     * lowest frequency (Rayleigh), usually within a decade of it on a rotor (the rotor
+     * moving on its bearings). A motion whose quotient cancels to rounding is rigid. */
+    double wrq = INFINITY;
+    for (int t = 0; t < 6; t++)
+        if (den[t] > 0 && num[t] > 1e-9 * kdiag[t]) wrq = fmin(wrq, sqrt(num[t] / den[t]));
+    /* sqrt(min K_ii / M_ii) is an element's frequency, not the structure's: on a fine
+     * mesh (issue 23's 0.6 mm elements) it is 1e5 times the lowest mode, and a shift
+     * of 1e-3 of it puts every wanted mode at nearly the same distance from the shift
+     * (|mu| within 1e-5 of each other: hundreds of restarts) and costs the low modes
+     * the digits of (lambda / s)^2. A tenth of the Rayleigh bound sits below the
+     * lowest modes; the clamp keeps the rigid-body pivot of P(-s) (s^2 M against K's
+     * rounding) above rounding, and the old choice where it was already lower. */
+    double sv = 1e-3 * gd;
+    if (isfinite(wrq)) sv = fmax(fmin(0.1 * wrq, sv), 1e-6 * gd);
+    *s = sv;
+    *g = 1e3 * sv;
+    /* a defective double zero converges to ~sqrt(tol) s; and the rounding of K
+     * (entries up to gmax^2 M) leaves a rigid-body value at up to ~sqrt(eps) gmax */
+    *zero = fmax(1e-3 * sv, 1e-7 * (gmax > 0 ? gmax : gd));
+}
+
 /* Krylov sizes for nmodes modes of an n-DOF system: nev Ritz values (both members of
  * each conjugate pair) in a basis of at most ncv vectors (the first pass stops as soon
  * as they have converged, usually near 2 nev). */
@@ -124,7 +165,12 @@ gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
     else
         for (int i = 0; i < nnz; i++)
             any_d |= d[i] != 0;
-    double g = gd_sparse_diag_frequency(a, k), s = shift > 0 ? shift : 1e-3 * g;
+    double s, g, rtol;
+    gd_sparse_shift_auto(a, k, &s, &g, &rtol);
+    if (shift > 0) {
+        s = shift;
+        rtol = fmax(1e-3 * s, rtol);
+    }
     int rc = gd_shift_invert_setup(&op, &a->pat, a->m, sym, -s, g, k, d);
     if (rc < 0) goto nomem;
     if (rc > 0) {
@@ -144,7 +190,6 @@ gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
     cd = malloc((size_t)(ks.nconv > 0 ? ks.nconv : 1) * sizeof *cd);
     if (!cd) goto nomem;
     int nc = 0, nrigid_real = 0;
-    double rtol = 1e-3 * s; /* a defective double zero converges to ~sqrt(tol) */
     /* no damping and symmetric K: the eigenvalues solve lambda^2 = -omega^2 exactly
      * (imaginary, or real for a negative stiffness), as the dense symmetric solver
      * gives them; the Ritz values carry a real part of the order of the tolerance */
