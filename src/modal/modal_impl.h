@@ -54,7 +54,20 @@ gd_modal_result *gd_modal_result_new(const gd_system *sys, int nmodes, int with_
 typedef struct gd_sparse_ws {
     gd_ks_work ks;
     double *k, *d;
+    /* Warm start along a sweep (Campbell): with chain set, each solve leaves the sums
+     * w1 = sum (Re u + Im u) and w2 = sum (Re + Im)(lambda u) of its modes in warm
+     * (2 n, allocated on first use) and the next solve starts its Krylov space from
+     * [w1; w2 / g] (v0, 2 n), in the span of the previous speed's wanted vectors.
+     * warm_ok: warm holds a previous solve's sums (clear it to start cold). */
+    int chain, warm_ok;
+    double *warm, *v0;
 } gd_sparse_ws;
+/* Turns the warm start on for an n-DOF pattern (allocates warm, v0; warm_ok stays as
+ * it is). 0 ok, 1 out of memory. */
+int gd_sparse_ws_chain(gd_sparse_ws *ws, int n);
+/* Stores the warm-start sums of the modes of r (with their shapes) in ws->warm and
+ * sets warm_ok; nothing when warm is not allocated. */
+void gd_sparse_ws_remember(gd_sparse_ws *ws, const gd_modal_result *r);
 /* Workspace for nmodes modes of the pattern a (0 ok, 1 out of memory). */
 int gd_sparse_ws_init(gd_sparse_ws *w, const gd_dynmat *a, int nmodes);
 void gd_sparse_ws_free(gd_sparse_ws *w);

@@ -125,8 +125,36 @@ void gd_sparse_ws_free(gd_sparse_ws *w)
 {
     free(w->k);
     free(w->d);
+    free(w->warm);
+    free(w->v0);
     gd_ks_work_free(&w->ks);
     memset(w, 0, sizeof *w);
+}
+
+int gd_sparse_ws_chain(gd_sparse_ws *ws, int n)
+{
+    ws->chain = 1;
+    if (ws->warm) return 0;
+    ws->warm_ok = 0;
+    ws->warm = malloc((size_t)2 * n * sizeof *ws->warm);
+    ws->v0 = malloc((size_t)2 * n * sizeof *ws->v0);
+    return !ws->warm || !ws->v0;
+}
+
+void gd_sparse_ws_remember(gd_sparse_ws *ws, const gd_modal_result *r)
+{
+    int n = r->ndof;
+    if (!ws->warm || !r->shape_re || !r->shape_im) return;
+    memset(ws->warm, 0, (size_t)2 * n * sizeof *ws->warm);
+    for (int j = 0; j < r->nmodes; j++) {
+        const double *re = r->shape_re + (size_t)j * n, *im = r->shape_im + (size_t)j * n;
+        double lr = r->modes[j].lambda_re, li = r->modes[j].lambda_im;
+        for (int i = 0; i < n; i++) {
+            ws->warm[i] += re[i] + im[i];
+            ws->warm[n + i] += (lr * re[i] - li * im[i]) + (lr * im[i] + li * re[i]);
+        }
+    }
+    ws->warm_ok = 1;
 }
 
 gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
@@ -179,7 +207,18 @@ gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
         goto done;
     }
     si_ctx ctx = {&op, sym};
+    if (ws->chain && gd_sparse_ws_chain(ws, n)) goto nomem;
+    ws->ks.v0 = NULL;
+    if (ws->chain && ws->warm_ok) {
+        for (int i = 0; i < n; i++) {
+            ws->v0[i] = ws->warm[i];
+            ws->v0[n + i] = ws->warm[n + i] / g;
+        }
+        ws->ks.v0 = ws->v0;
+    }
     st = gd_krylov_schur(si_apply, &ctx, n2, n, nev, ncv, GD_SPARSE_TOL, 200, &ws->ks, &ks);
+    ws->ks.v0 = NULL;
+    if (ws->chain) ws->warm_ok = 0;
     if (st == GD_ENOMEM) goto nomem;
     if (st) {
         st = gd_error_set(err, GD_ENUMERIC, sys->model->file, 0, 0, "",
@@ -259,6 +298,7 @@ gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
         gd_mode_finish(sys, opt->speed, md, re, im,
                        res->energy_by_component + (size_t)j * sys->ncomponents);
     }
+    if (ws->chain) gd_sparse_ws_remember(ws, res);
     *out = res;
     res = NULL;
     goto done;
