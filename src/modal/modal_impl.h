@@ -75,9 +75,9 @@ void gd_sparse_ws_free(gd_sparse_ws *w);
 gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
                           const gd_modal_options *opt, double shift, gd_sparse_ws *ws,
                           gd_modal_result **out, gd_error *err);
-/* sqrt(min K_ii / M_ii): a frequency of the order of the lowest modes' (1 when no
- * DOF has both). The automatic shift is 1e-3 of it, far below the lowest elastic
- * mode of most models; the state scaling g is this frequency itself. */
+/* sqrt(min K_ii / M_ii) (1e3 when no DOF has both): an element's frequency, of the
+ * order of the lowest modes' only on a coarse mesh; bounds the automatic shift
+ * (gd_sparse_shift_auto). */
 double gd_sparse_diag_frequency(const gd_dynmat *a, const double *k);
 /* The automatic shift s (sigma = -s), the state scaling g and the magnitude below
  * which an eigenvalue counts as a rigid-body zero, for the values k on a's pattern:
