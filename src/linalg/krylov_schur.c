@@ -268,6 +268,13 @@ static int first_check(int nev, int ncv)
     return m < ncv ? m : ncv;
 }
 
+/* Basis size of the first check from a warm start vector. */
+static int warm_check(int nev, int ncv)
+{
+    int m = nev + 4;
+    return m < ncv ? m : ncv;
+}
+
 /* Basis size of the next check: the worst residual falls about geometrically with
  * the basis size, so extrapolate from the last two checks to the size where it reaches
  * tol (at least two more vectors); a fixed step after the first. */
@@ -420,12 +427,23 @@ static gd_status ks_iterate(gd_op_fn op, void *ctx, int n, int nev, int ncv, dou
     mag_index *order = ws->order;
     gd_status st;
     memset(H, 0, (size_t)ldh * ncv * sizeof *H);
-    start_vector(V, n, seed);
+    int warm = seed == 1u && ws->v0;
+    if (warm)
+        memcpy(V, ws->v0, (size_t)n * sizeof *V);
+    else
+        start_vector(V, n, seed);
     double nv = nrm2(V, n);
+    if (!(nv > 0) || !isfinite(nv)) { /* an unusable warm vector: the fixed one */
+        start_vector(V, n, seed);
+        nv = nrm2(V, n);
+        warm = 0;
+    }
     for (int i = 0; i < n; i++)
         V[i] /= nv;
-    /* the first pass grows to the check sizes; after a restart, to ncv at once */
-    int k = 0, m = first_check(nev, ncv), restarted = 0, prev_m = 0;
+    /* the first pass grows to the check sizes; after a restart, to ncv at once. A warm
+     * start vector lies nearly in the wanted invariant subspace, whose nev vectors the
+     * Krylov space holds after about nev steps: check there first */
+    int k = 0, m = warm ? warm_check(nev, ncv) : first_check(nev, ncv), restarted = 0, prev_m = 0;
     double prev_worst = 0;
     for (int it = 0; it <= maxit;) {
         for (int j = k; j < m; j++) {

@@ -101,6 +101,10 @@ typedef struct gd_ks_result {
 /* Workspace for an n x n operator and basis size ncv; reusable across calls. */
 typedef struct gd_ks_work {
     int n, ncv;
+    /* Borrowed, n entries, or NULL: the first run's start vector (e.g. the sum of a
+     * nearby problem's wanted eigenvectors, a warm start along a sweep) instead of the
+     * fixed pseudo-random one; gd_ks_work_init sets NULL. */
+    const double *v0;
     double *V, *H, *T, *Q, *X, *S, *work, *wr, *wr2, *wi, *h, *h2, *b, *res, *Z;
     int *sel, *grp, *ifail;
     struct mag_index *order;

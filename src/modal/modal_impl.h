@@ -54,7 +54,20 @@ gd_modal_result *gd_modal_result_new(const gd_system *sys, int nmodes, int with_
 typedef struct gd_sparse_ws {
     gd_ks_work ks;
     double *k, *d;
+    /* Warm start along a sweep (Campbell): with chain set, each solve leaves the sums
+     * w1 = sum (Re u + Im u) and w2 = sum (Re + Im)(lambda u) of its modes in warm
+     * (2 n, allocated on first use) and the next solve starts its Krylov space from
+     * [w1; w2 / g] (v0, 2 n), in the span of the previous speed's wanted vectors.
+     * warm_ok: warm holds a previous solve's sums (clear it to start cold). */
+    int chain, warm_ok;
+    double *warm, *v0;
 } gd_sparse_ws;
+/* Turns the warm start on for an n-DOF pattern (allocates warm, v0; warm_ok stays as
+ * it is). 0 ok, 1 out of memory. */
+int gd_sparse_ws_chain(gd_sparse_ws *ws, int n);
+/* Stores the warm-start sums of the modes of r (with their shapes) in ws->warm and
+ * sets warm_ok; nothing when warm is not allocated. */
+void gd_sparse_ws_remember(gd_sparse_ws *ws, const gd_modal_result *r);
 /* Workspace for nmodes modes of the pattern a (0 ok, 1 out of memory). */
 int gd_sparse_ws_init(gd_sparse_ws *w, const gd_dynmat *a, int nmodes);
 void gd_sparse_ws_free(gd_sparse_ws *w);
@@ -62,10 +75,15 @@ void gd_sparse_ws_free(gd_sparse_ws *w);
 gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
                           const gd_modal_options *opt, double shift, gd_sparse_ws *ws,
                           gd_modal_result **out, gd_error *err);
-/* sqrt(min K_ii / M_ii): a frequency of the order of the lowest modes' (1 when no
- * DOF has both). The automatic shift is 1e-3 of it, far below the lowest elastic
- * mode of most models; the state scaling g is this frequency itself. */
+/* sqrt(min K_ii / M_ii) (1e3 when no DOF has both): an element's frequency, of the
+ * order of the lowest modes' only on a coarse mesh; bounds the automatic shift
+ * (gd_sparse_shift_auto). */
 double gd_sparse_diag_frequency(const gd_dynmat *a, const double *k);
+/* The automatic shift s (sigma = -s), the state scaling g and the magnitude below
+ * which an eigenvalue counts as a rigid-body zero, for the values k on a's pattern:
+ * a tenth of the lowest Rayleigh quotient of the uniform motions of each DOF type,
+ * within [1e-6, 1e-3] of gd_sparse_diag_frequency (sparse_modes.c says why). */
+void gd_sparse_shift_auto(const gd_dynmat *a, const double *k, double *s, double *g, double *zero);
 /* Krylov sizes for nmodes modes of an n-DOF system: nev Ritz values (both members of
  * each conjugate pair) in a basis of at most ncv vectors. */
 void gd_sparse_ks_sizes(int n, int nmodes, int *nev, int *ncv);

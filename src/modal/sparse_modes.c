@@ -54,6 +54,49 @@ double gd_sparse_diag_frequency(const gd_dynmat *a, const double *k)
     return isfinite(best) ? sqrt(best) : 1e3;
 }
 
+void gd_sparse_shift_auto(const gd_dynmat *a, const double *k, double *s, double *g, double *zero)
+{
+    const gd_system *sys = a->sys;
+    double gd = gd_sparse_diag_frequency(a, k), gmax = 0;
+    double num[6] = {0}, den[6] = {0}, kdiag[6] = {0};
+    for (int j = 0; j < a->pat.n; j++) {
+        int tj = (int)sys->dof_type[j];
+        for (int q = a->pat.colptr[j]; q < a->pat.colptr[j + 1]; q++) {
+            int i = a->pat.rowind[q];
+            if ((int)sys->dof_type[i] != tj) continue;
+            num[tj] += k[q];
+            den[tj] += a->m[q];
+            if (i == j) {
+                kdiag[tj] += fabs(k[q]);
+                if (a->m[q] > 0 && k[q] / a->m[q] > gmax) gmax = k[q] / a->m[q];
+            }
+        }
+    }
+    gmax = sqrt(gmax);
+    /* Rayleigh quotients of the uniform motions, one per DOF type: upper bounds of the
+     * lowest frequency (Rayleigh), usually within a decade of it on a rotor (the rotor
+     * moving on its bearings). A motion whose quotient cancels to rounding is rigid. */
+    double wrq = INFINITY;
+    for (int t = 0; t < 6; t++)
+        if (den[t] > 0 && num[t] > 1e-9 * kdiag[t]) wrq = fmin(wrq, sqrt(num[t] / den[t]));
+    /* sqrt(min K_ii / M_ii) is an element's frequency, not the structure's: on a fine
+     * mesh (issue 23's 0.6 mm elements) it is 1e5 times the lowest mode, and a shift
+     * of 1e-3 of it puts every wanted mode at nearly the same distance from the shift
+     * (|mu| within 1e-5 of each other: hundreds of restarts) and costs the low modes
+     * the digits of (lambda / s)^2. A tenth of the Rayleigh bound sits below the
+     * lowest modes; the clamp keeps the rigid-body pivot of P(-s) (s^2 M against K's
+     * rounding) above rounding, and the old choice where it was already lower. */
+    double sv = 1e-3 * gd;
+    if (isfinite(wrq)) sv = fmax(fmin(0.1 * wrq, sv), 1e-6 * gd);
+    *s = sv;
+    *g = 1e3 * sv;
+    /* a defective double zero converges to ~sqrt(tol) s; and the rounding of K
+     * (entries up to gmax^2 M) leaves a rigid-body value at up to ~sqrt(eps) gmax
+     * (measured 5e-9 gmax on the 100k-DOF shaft, 3e-8 allowed): an elastic mode that
+     * low is not resolved by the mesh's arithmetic either */
+    *zero = fmax(1e-3 * sv, 3e-8 * (gmax > 0 ? gmax : gd));
+}
+
 /* Krylov sizes for nmodes modes of an n-DOF system: nev Ritz values (both members of
  * each conjugate pair) in a basis of at most ncv vectors (the first pass stops as soon
  * as they have converged, usually near 2 nev). */
@@ -84,8 +127,36 @@ void gd_sparse_ws_free(gd_sparse_ws *w)
 {
     free(w->k);
     free(w->d);
+    free(w->warm);
+    free(w->v0);
     gd_ks_work_free(&w->ks);
     memset(w, 0, sizeof *w);
+}
+
+int gd_sparse_ws_chain(gd_sparse_ws *ws, int n)
+{
+    ws->chain = 1;
+    if (ws->warm) return 0;
+    ws->warm_ok = 0;
+    ws->warm = malloc((size_t)2 * n * sizeof *ws->warm);
+    ws->v0 = malloc((size_t)2 * n * sizeof *ws->v0);
+    return !ws->warm || !ws->v0;
+}
+
+void gd_sparse_ws_remember(gd_sparse_ws *ws, const gd_modal_result *r)
+{
+    int n = r->ndof;
+    if (!ws->warm || !r->shape_re || !r->shape_im) return;
+    memset(ws->warm, 0, (size_t)2 * n * sizeof *ws->warm);
+    for (int j = 0; j < r->nmodes; j++) {
+        const double *re = r->shape_re + (size_t)j * n, *im = r->shape_im + (size_t)j * n;
+        double lr = r->modes[j].lambda_re, li = r->modes[j].lambda_im;
+        for (int i = 0; i < n; i++) {
+            ws->warm[i] += re[i] + im[i];
+            ws->warm[n + i] += (lr * re[i] - li * im[i]) + (lr * im[i] + li * re[i]);
+        }
+    }
+    ws->warm_ok = 1;
 }
 
 gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
@@ -124,7 +195,12 @@ gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
     else
         for (int i = 0; i < nnz; i++)
             any_d |= d[i] != 0;
-    double g = gd_sparse_diag_frequency(a, k), s = shift > 0 ? shift : 1e-3 * g;
+    double s, g, rtol;
+    gd_sparse_shift_auto(a, k, &s, &g, &rtol);
+    if (shift > 0) {
+        s = shift;
+        rtol = fmax(1e-3 * s, rtol);
+    }
     int rc = gd_shift_invert_setup(&op, &a->pat, a->m, sym, -s, g, k, d);
     if (rc < 0) goto nomem;
     if (rc > 0) {
@@ -133,7 +209,18 @@ gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
         goto done;
     }
     si_ctx ctx = {&op, sym};
+    if (ws->chain && gd_sparse_ws_chain(ws, n)) goto nomem;
+    ws->ks.v0 = NULL;
+    if (ws->chain && ws->warm_ok) {
+        for (int i = 0; i < n; i++) {
+            ws->v0[i] = ws->warm[i];
+            ws->v0[n + i] = ws->warm[n + i] / g;
+        }
+        ws->ks.v0 = ws->v0;
+    }
     st = gd_krylov_schur(si_apply, &ctx, n2, n, nev, ncv, GD_SPARSE_TOL, 200, &ws->ks, &ks);
+    ws->ks.v0 = NULL;
+    if (ws->chain) ws->warm_ok = 0;
     if (st == GD_ENOMEM) goto nomem;
     if (st) {
         st = gd_error_set(err, GD_ENUMERIC, sys->model->file, 0, 0, "",
@@ -144,7 +231,6 @@ gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
     cd = malloc((size_t)(ks.nconv > 0 ? ks.nconv : 1) * sizeof *cd);
     if (!cd) goto nomem;
     int nc = 0, nrigid_real = 0;
-    double rtol = 1e-3 * s; /* a defective double zero converges to ~sqrt(tol) */
     /* no damping and symmetric K: the eigenvalues solve lambda^2 = -omega^2 exactly
      * (imaginary, or real for a negative stiffness), as the dense symmetric solver
      * gives them; the Ritz values carry a real part of the order of the tolerance */
@@ -214,6 +300,7 @@ gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
         gd_mode_finish(sys, opt->speed, md, re, im,
                        res->energy_by_component + (size_t)j * sys->ncomponents);
     }
+    if (ws->chain) gd_sparse_ws_remember(ws, res);
     *out = res;
     res = NULL;
     goto done;
