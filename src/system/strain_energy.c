@@ -91,26 +91,18 @@ int gd_system_component_shafts(const gd_system *s, int c, int shafts[2], double 
     const gd_model *m = s->model;
     int index, nodes[2] = {-1, -1};
     const char *name;
-    switch (gd_system_component(s, c, &index, &name)) {
-    case GD_COMP_SHAFT:
+    gd_component_kind kind = gd_system_component(s, c, &index, &name);
+    if (kind == GD_COMP_SHAFT) {
         shafts[0] = index;
         weights[0] = 1;
         return 1;
-    case GD_COMP_BEARING:
-        nodes[0] = m->bearings[index].node;
-        nodes[1] = m->bearings[index].node2;
-        break;
-    case GD_COMP_SPRING:
-        nodes[0] = m->springs[index].node1;
-        nodes[1] = m->springs[index].node2;
-        break;
-    case GD_COMP_MESH:
-        nodes[0] = m->meshes[index].driver;
-        nodes[1] = m->meshes[index].driven;
-        break;
-    default:
-        return 0;
     }
+    /* any other component is one element: the shafts of its nodes, from its kind */
+    const gd_element_type *t = NULL;
+    for (int k = 0; k < gd_nelement_types && !t && kind != GD_COMP_NONE; k++)
+        if (gd_element_types[k]->component_kind == kind) t = gd_element_types[k];
+    if (!t || !t->nodes) return 0;
+    t->nodes(m, index, nodes);
     int n = 0;
     for (int k = 0; k < 2; k++)
         if (nodes[k] >= 0) shafts[n++] = m->nodes[nodes[k]].shaft;
