@@ -90,6 +90,41 @@ bad:
                               text);
 }
 
+/* --parameter: the problem at a value, the model file loaded with the command's
+ * overrides and "PATH=VALUE" (the analysis itself reads no files) */
+typedef struct rebuild_data {
+    const char *file;
+    const gd_load_options *base;
+    const char *path;
+} rebuild_data;
+
+static gd_status rebuild(double value, void *data, gd_model **m, gd_system **sys,
+                         gd_transient_model **tm, gd_error *err)
+{
+    const rebuild_data *d = data;
+    int nb = d->base ? d->base->nset : 0;
+    const char **sets = malloc((size_t)(nb + 1) * sizeof *sets);
+    if (!sets) return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
+    char assign[512];
+    snprintf(assign, sizeof assign, "%s=%.17g", d->path, value);
+    for (int i = 0; i < nb; i++)
+        sets[i] = d->base->set[i];
+    sets[nb] = assign;
+    gd_load_options lo = {nb + 1, sets};
+    *m = NULL, *sys = NULL, *tm = NULL;
+    gd_status st = gd_model_load_opts(d->file, &lo, m, err);
+    free(sets);
+    if (!st) st = gd_system_build(*m, sys, err);
+    if (!st) st = gd_transient_model_build(*sys, tm, err);
+    if (st) {
+        gd_transient_model_free(*tm);
+        gd_system_free(*sys);
+        gd_model_free(*m);
+        *m = NULL, *sys = NULL, *tm = NULL;
+    }
+    return st;
+}
+
 static cJSON *num_array(const double *v, int n)
 {
     cJSON *a = cJSON_CreateArray();
@@ -498,7 +533,8 @@ int gd_cmd_periodic(int argc, char **argv)
     }
     gd_load_options lo = gd_cli_load_options(&sets);
     openblas_set_num_threads(1); /* small dense blocks: threads cost more than they give */
-    gd_periodic_param prm = {argv[optind], &lo, ppath, "", sp[0]};
+    rebuild_data rd = {argv[optind], &lo, ppath};
+    gd_periodic_param prm = {rebuild, &rd, ppath, sp[0]};
     live lv2 = {0};
     lv2.recs = &recs;
     lv2.tty = !quiet && isatty(2);

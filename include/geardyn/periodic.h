@@ -25,9 +25,9 @@
 #define GEARDYN_PERIODIC_H
 #include "geardyn/export.h"
 #include "geardyn/error.h"
-#include "geardyn/model_file.h"
 #include "geardyn/system.h"
 #include "geardyn/transient.h"
+#include "geardyn/transient_model.h"
 
 typedef enum gd_per_method {
     GD_PER_ARCLENGTH = 0, /* pseudo-arclength: follows folds, reports every crossing of a
@@ -75,15 +75,19 @@ typedef struct gd_periodic_options {
 } gd_periodic_options;
 GD_API void gd_periodic_options_init(gd_periodic_options *opt);
 
-/* Continuation in a model parameter instead of the speed: the model file at model_path
- * is loaded with base's overrides and "path=VALUE unit" for each value (model_file.h),
- * its system and transient spec rebuilt, at the fixed reference speed. */
+/* Continuation in a model parameter instead of the speed. The analysis reads no files:
+ * the caller's rebuild makes the problem at each value (the CLI loads the model file
+ * with "PATH=VALUE" added to its overrides, model_file.h) and hands over a new model, its
+ * system and its transient spec, which gd_periodic_run frees (gd_transient_model_free,
+ * gd_system_free, gd_model_free). On failure rebuild returns the status with err filled
+ * and hands over nothing. It is called from the thread of gd_periodic_run. */
+typedef gd_status (*gd_periodic_rebuild)(double value, void *data, gd_model **model,
+                                         gd_system **sys, gd_transient_model **tm, gd_error *err);
 typedef struct gd_periodic_param {
-    const char *model_path;
-    const gd_load_options *base; /* may be NULL */
-    const char *path;            /* e.g. "bearings.support_a.sfd.clearance" */
-    const char *unit;            /* appended to each value ("" or NULL: SI number) */
-    double speed;                /* rad/s */
+    gd_periodic_rebuild rebuild;
+    void *data;       /* passed to rebuild */
+    const char *name; /* the parameter, for messages (e.g. "bearings.support_a.sfd.clearance") */
+    double speed;     /* the fixed reference speed, rad/s */
 } gd_periodic_param;
 
 typedef struct gd_per_record_stats {

@@ -111,23 +111,18 @@ static int make_stage(ctx *c, stage *s, double key)
     const gd_transient_spec *spec = c->spec;
     double speed = key;
     if (c->param) {
+        /* the caller rebuilds the problem at this value; the stage owns what it returns */
         const gd_periodic_param *p = c->param;
-        int nb = p->base ? p->base->nset : 0;
-        const char **sets = malloc((size_t)(nb + 1) * sizeof *sets);
-        char assign[512];
-        snprintf(assign, sizeof assign, "%s=%.17g%s", p->path, key, p->unit ? p->unit : "");
-        if (!sets) return 1;
-        for (int i = 0; i < nb; i++)
-            sets[i] = p->base->set[i];
-        sets[nb] = assign;
-        gd_load_options lo = {nb + 1, sets};
-        gd_status st = gd_model_load_opts(p->model_path, &lo, &s->m, &err);
-        free(sets);
-        if (!st) st = gd_system_build(s->m, &s->s, &err);
-        if (!st) st = gd_transient_model_build(s->s, &s->tm, &err);
+        gd_status st = p->rebuild ? p->rebuild(key, p->data, &s->m, &s->s, &s->tm, &err)
+                                  : gd_error_set(&err, GD_EINPUT, "", 0, 0, "param", "",
+                                                 "no rebuild function");
+        if (!st && (!s->m || !s->s || !s->tm))
+            st =
+                gd_error_set(&err, GD_EINPUT, "", 0, 0, "param", "", "rebuild returned no problem");
         if (st) {
             s->bad = 1;
-            snprintf(s->msg, sizeof s->msg, "%.60s at %.60s: %.180s", p->path, assign, err.message);
+            snprintf(s->msg, sizeof s->msg, "%.60s = %.10g: %.220s", p->name ? p->name : "value",
+                     key, err.message);
             return 1;
         }
         sys = s->s;
@@ -1471,7 +1466,8 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
             stage s = {0};
             c.opt = opt;
             if (make_stage(&c, &s, values[0]) && !s.tr) {
-                gd_error_set(err, GD_EINPUT, "", 0, 0, param->path, "", "%s", s.msg);
+                gd_error_set(err, GD_EINPUT, "", 0, 0, param->name ? param->name : "param", "",
+                             "%s", s.msg);
                 stage_clear(&s);
                 gd_periodic_result_free(res);
                 return GD_EINPUT;
