@@ -1,0 +1,279 @@
+/* Bifurcations between continuation steps (continuation_impl.h): the critical
+ * multiplier's modulus through 1 located by secant iterations on points of the branch
+ * (period doubling, Neimark-Sacker, branch point), folds at the zero of the tangent's
+ * parameter component, and close runs of folds merged into one turn. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "geardyn/transient_model.h"
+#include "periodic/continuation_impl.h"
+#include "periodic/periodic_impl.h"
+
+/* multiplier categories outside the unit circle: 0 real > 0, 1 real < 0, 2 complex;
+ * rho[k]: largest modulus in category k (NaN if none) */
+void gd_per_categorise(const ctx *c, const double *mre, const double *mim, int out[3],
+                       double rho[3])
+{
+    out[0] = out[1] = out[2] = 0;
+    rho[0] = rho[1] = rho[2] = NAN;
+    for (int i = 0; i < 2 * c->nf; i++) {
+        double a = hypot(mre[i], mim[i]);
+        int k = fabs(mim[i]) > 1e-9 * (a > 1e-300 ? a : 1) ? 2 : mre[i] >= 0 ? 0 : 1;
+        if (a > 1.0 + 1e-6) out[k]++;
+        if (!(rho[k] >= a)) rho[k] = a;
+    }
+}
+
+int gd_per_add_bif(ctx *c, gd_bifurcation_type type, double lam, double mre, double mim)
+{
+    gd_periodic_result *r = c->res;
+    /* a real multiplier through +1 next to a fold is the fold itself (located a step
+     * apart when the fold falls near a step end) */
+    const double near = 1e-3 * (c->sl > 0 ? c->sl : 1.0);
+    for (int i = r->nbifurcations - 1; i >= 0 && i >= r->nbifurcations - 3; i--) {
+        gd_bifurcation *b = &r->bifurcations[i];
+        if (b->direction != c->dir || fabs((c->param ? b->parameter : b->speed) - lam) > near)
+            continue;
+        if (type == GD_BIF_BRANCH_POINT && b->type == GD_BIF_FOLD) return 0;
+        if (type == GD_BIF_FOLD && b->type == GD_BIF_BRANCH_POINT) {
+            *b = r->bifurcations[--r->nbifurcations]; /* replace it by the fold */
+            break;
+        }
+    }
+    if (r->nbifurcations == c->cap_bif) {
+        int cap = c->cap_bif ? 2 * c->cap_bif : 16;
+        gd_bifurcation *b = realloc(r->bifurcations, (size_t)cap * sizeof *b);
+        if (!b) return 1;
+        r->bifurcations = b;
+        c->cap_bif = cap;
+    }
+    gd_bifurcation *b = &r->bifurcations[r->nbifurcations++];
+    b->type = type;
+    b->speed = c->param ? c->param->speed : lam;
+    b->parameter = c->param ? lam : NAN;
+    b->direction = c->dir;
+    b->mu_re = mre;
+    b->mu_im = mim;
+    return 0;
+}
+
+/* The branch point at fraction sig between a (Xa, la) and b (Xb, lb): Newton on the
+ * hyperplane normal to tan through the linear interpolate. X receives it. */
+static int point_between(ctx *c, const double *Xa, double la, const double *Xb, double lb,
+                         const double *tan, double sig, double *X, double *lam)
+{
+    const int n = c->h.n;
+    double *yp = malloc((size_t)(n + 1) * sizeof *yp);
+    if (!yp) return 1;
+    for (int i = 0; i < n; i++)
+        X[i] = yp[i] = (1 - sig) * Xa[i] + sig * Xb[i];
+    *lam = yp[n] = (1 - sig) * la + sig * lb;
+    int it;
+    double res;
+    int rc = gd_per_newton(c, X, lam, tan, yp, &it, &res);
+    free(yp);
+    return rc;
+}
+
+/* The m-th largest multiplier modulus (m >= 1) and its index. */
+double gd_per_ranked(const ctx *c, const double *mre, const double *mim, int m, int *at)
+{
+    int nm = 2 * c->nf, used[512] = {0};
+    double v = NAN;
+    *at = -1;
+    for (int r = 0; r < m && r < nm && nm <= 512; r++) {
+        int bi = -1;
+        for (int i = 0; i < nm; i++)
+            if (!used[i] && (bi < 0 || hypot(mre[i], mim[i]) > hypot(mre[bi], mim[bi]))) bi = i;
+        used[bi] = 1;
+        v = hypot(mre[bi], mim[bi]);
+        *at = bi;
+    }
+    return v;
+}
+
+/* A multiplier crossed the unit circle between two steps (m - 1 outside on one side, m on
+ * the other): regula falsi (Illinois) on |mu|_(m) - 1, the m-th largest modulus, over
+ * points of the branch between the steps; the type from the crossing multiplier at the
+ * located point: real > 0 branch point (a fold is reported by its tangent), real < 0
+ * period doubling, complex Neimark-Sacker. */
+int gd_per_locate(ctx *c, int m, const double *Xa, double la, double ga, const double *Xb,
+                  double lb, double gb, const double *tan, const double *mre_b, const double *mim_b)
+{
+    const int n = c->h.n;
+    double *X = malloc((size_t)(n + 1) * sizeof *X);
+    double *mre = malloc(2 * (size_t)c->nf * sizeof *mre),
+           *mim = malloc(2 * (size_t)c->nf * sizeof *mim);
+    if (!X || !mre || !mim) {
+        free(X);
+        free(mre);
+        free(mim);
+        return 1;
+    }
+    double s0 = 0.0, s1 = 1.0, g0 = ga, g1 = gb, lam = la + 0.5 * (lb - la);
+    int at;
+    gd_per_ranked(c, mre_b, mim_b, m, &at);
+    double best_re = at >= 0 ? mre_b[at] : NAN, best_im = at >= 0 ? fabs(mim_b[at]) : NAN;
+    int ok = isfinite(g0) && isfinite(g1) && g0 != g1, found = 0;
+    double sig = ok ? -g0 / (g1 - g0) : 0.5;
+    for (int it = 0; it < 30 && ok; it++) {
+        if (!(sig > 0 && sig < 1)) sig = 0.5;
+        if (point_between(c, Xa, la, Xb, lb, tan, sig, X, &lam)) break;
+        int stable;
+        double mu_max;
+        gd_per_floquet(c, X, lam, mre, mim, &stable, &mu_max);
+        if (stable < 0) break;
+        double g = gd_per_ranked(c, mre, mim, m, &at) - 1.0;
+        if (!isfinite(g) || at < 0) break;
+        best_re = mre[at];
+        best_im = fabs(mim[at]);
+        found = 1;
+        if (fabs(g) < 1e-10) break;
+        if ((g < 0) == (g0 < 0)) {
+            s0 = sig;
+            g0 = g;
+            g1 *= 0.5;
+        } else {
+            s1 = sig;
+            g1 = g;
+            g0 *= 0.5;
+        }
+        sig = s0 - g0 * (s1 - s0) / (g1 - g0);
+    }
+    if (!found || !(lam >= fmin(la, lb) && lam <= fmax(la, lb)))
+        /* the search left the step (a branch nearby): interpolate between the steps */
+        lam = gb != ga ? la + (lb - la) * (-ga / (gb - ga)) : 0.5 * (la + lb);
+    double a = hypot(best_re, best_im);
+    gd_bifurcation_type type = best_im > 1e-9 * a ? GD_BIF_NEIMARK_SACKER
+                               : best_re < 0      ? GD_BIF_PERIOD_DOUBLING
+                                                  : GD_BIF_BRANCH_POINT;
+    int rc = 0;
+    /* reported only when located (the critical multiplier on the circle to 1e-4): a
+     * search that cannot close in on it (several multipliers moving at once) says
+     * nothing rather than something wrong */
+    if (!(type == GD_BIF_BRANCH_POINT && c->near_fold) && found && fabs(a - 1.0) < 1e-4)
+        rc = gd_per_add_bif(c, type, lam, best_re, best_im);
+    free(X);
+    free(mre);
+    free(mim);
+    return rc;
+}
+
+/* A fold between steps a and b (the tangent's parameter component ta[n], tb[n] of
+ * opposite signs), located on the branch: Illinois iterations on that component over
+ * points of the branch between the steps (each a corrector on the hyperplane normal to
+ * the chord through its interpolate, then the tangent there), until the parameter stops
+ * moving (1e-11 of the range; near a fold it is quadratic in the position, so the
+ * located value does not depend on the grid). Confirmed only if the located parameter is
+ * an extremum beyond both steps on the side the tangent says: otherwise the sign change
+ * was not a fold (a corrector that jumped between sheets) and 1 is returned. 2: the
+ * refinement could not run (a corrector failed): *lf holds the cubic Hermite estimate. */
+int gd_per_locate_fold(ctx *c, const double *Xa, double la, const double *ta, const double *Xb,
+                       double lb, const double *tb, double ds, double *lf)
+{
+    const int n = c->h.n;
+    {
+        double s = ta[n] / (ta[n] - tb[n]), s2 = s * s, s3 = s2 * s;
+        *lf = (2 * s3 - 3 * s2 + 1) * la + (s3 - 2 * s2 + s) * ds * ta[n] * c->sl +
+              (-2 * s3 + 3 * s2) * lb + (s3 - s2) * ds * tb[n] * c->sl;
+    }
+    double *ch = malloc((size_t)(n + 1) * sizeof *ch), *X = malloc((size_t)(n + 1) * sizeof *X),
+           *tt = malloc((size_t)(n + 1) * sizeof *tt);
+    int rc = 2;
+    if (!ch || !X || !tt) goto done;
+    for (int i = 0; i < n; i++)
+        ch[i] = (Xb[i] - Xa[i]) / c->sx;
+    ch[n] = (lb - la) / c->sl;
+    double nc = gd_per_norm2(ch, n + 1);
+    if (!(nc > 0)) goto done;
+    for (int i = 0; i <= n; i++)
+        ch[i] /= nc;
+    double s0 = 0.0, s1 = 1.0, g0 = ta[n], g1 = tb[n], sig = g0 / (g0 - g1), lprev = NAN;
+    double best = NAN;
+    int calm = 0;
+    for (int it = 0; it < 40; it++) {
+        if (!(sig > s0 && sig < s1)) sig = 0.5 * (s0 + s1);
+        double lam;
+        if (point_between(c, Xa, la, Xb, lb, ch, sig, X, &lam)) break;
+        if (gd_per_tangent(c, X, lam, ta, 1.0, tt)) break;
+        best = lam;
+        double g = tt[n];
+        calm = fabs(lam - lprev) <= 1e-11 * c->sl ? calm + 1 : 0;
+        if (calm >= 2 || g == 0.0 || s1 - s0 < 1e-14) break;
+        lprev = lam;
+        if ((g < 0) == (g0 < 0)) {
+            s0 = sig;
+            g0 = g;
+            g1 *= 0.5;
+        } else {
+            s1 = sig;
+            g1 = g;
+            g0 *= 0.5;
+        }
+        sig = s0 - g0 * (s1 - s0) / (g1 - g0);
+    }
+    if (isnan(best)) goto done;
+    /* the fold is the parameter's extremum: beyond both steps, on the side the tangent
+     * at a heads to */
+    const double slack = 1e-12 * c->sl;
+    rc = ta[n] > 0 ? !(best >= fmax(la, lb) - slack) : !(best <= fmin(la, lb) + slack);
+    if (!rc) *lf = best;
+done:
+    free(ch);
+    free(X);
+    free(tt);
+    return rc;
+}
+
+/* Folds from nb0 on that come as a zigzag: consecutive folds less than 1 % of the range
+ * apart. With contact laws the sampled contact switches make the discretised residual
+ * only piecewise smooth, and where the branch is nearly vertical it can turn back and
+ * forth within a few rad/s (the backlash test near 478 rad/s: 479.36, 476.18, 477.37);
+ * an odd run is one turn of the branch, kept at its extreme value, an even run none. */
+void gd_per_merge_zigzags(ctx *c, int nb0)
+{
+    gd_periodic_result *r = c->res;
+    const double near = 0.01 * c->sl;
+    int i = nb0;
+    while (i < r->nbifurcations) {
+        gd_bifurcation *b = r->bifurcations;
+        if (b[i].type != GD_BIF_FOLD) {
+            i++;
+            continue;
+        }
+        int j = i + 1;
+        while (j < r->nbifurcations && b[j].type == GD_BIF_FOLD &&
+               fabs((c->param ? b[j].parameter - b[j - 1].parameter
+                              : b[j].speed - b[j - 1].speed)) < near)
+            j++;
+        int run = j - i;
+        if (run == 1) {
+            i++;
+            continue;
+        }
+#define VAL(k) (c->param ? b[k].parameter : b[k].speed)
+        int keep = -1;
+        if (run % 2) { /* the turn of the first: a maximum if it lies beyond the second */
+            int max = VAL(i) > VAL(i + 1);
+            keep = i;
+            for (int k = i; k < j; k += 2)
+                if (max ? VAL(k) > VAL(keep) : VAL(k) < VAL(keep)) keep = k;
+        }
+#undef VAL
+        gd_bifurcation kept;
+        if (keep >= 0) kept = b[keep];
+        memmove(b + i, b + j, (size_t)(r->nbifurcations - j) * sizeof *b);
+        r->nbifurcations -= run;
+        if (keep >= 0) {
+            memmove(b + i + 1, b + i, (size_t)(r->nbifurcations - i) * sizeof *b);
+            b[i] = kept;
+            r->nbifurcations++;
+            i++;
+        }
+    }
+}
+
+/* ---------------------------------------------------------------- branches */

@@ -1,0 +1,96 @@
+/* Internals of the continuation shared by run.c, stage.c, corrector.c, points.c,
+ * bifurcation.c and continuation.c: the problem per value (stage), the run's context and
+ * the functions each file offers the others. */
+#ifndef GD_PERIODIC_CONTINUATION_IMPL_H
+#define GD_PERIODIC_CONTINUATION_IMPL_H
+#include "geardyn/periodic.h"
+#include "geardyn/transient_model.h"
+#include "periodic/periodic_impl.h"
+
+#ifndef TWO_PI
+#define TWO_PI 6.28318530717958647692
+#endif
+
+typedef struct stage {
+    int valid;
+    long id; /* distinct for every problem made (factorisation reuse) */
+    double key;
+    gd_model *m;
+    gd_system *s;
+    gd_transient_model *tm;
+    gd_transient *tr;
+    double w; /* HB frequency */
+    int bad;  /* the problem could not be made: reason in msg */
+    char msg[320];
+} stage;
+
+typedef struct ctx {
+    const gd_system *sys;
+    const gd_transient_spec *spec;
+    const gd_periodic_param *param;
+    const gd_periodic_options *opt;
+    stage st[2];
+    int next;
+    int nf;
+    hb h;
+    int H;
+    double sx, sl; /* scales of X and of the parameter */
+    double rate0;  /* w / lambda of the branch (speed continuation), or w (parameter) */
+    int ratio_mode;
+    char reason[320];
+    gd_periodic_result *res;
+    int cap_points, cap_bif;
+    const gd_tr_record *rec;
+    int nrec;
+    int dir;
+    int steps;
+    int near_fold; /* a fold on this step or the last: a real multiplier at +1 is it */
+    long serial;   /* stages made */
+    hb hr;         /* the refined workspace (2 H) of the truncation estimate */
+    int Hr;        /* its H (0: none) */
+    int Hcap;      /* largest H allowed (memory or max_harmonics) */
+    int want_H;    /* adaptive H: the branch's H to follow */
+    double v0, v1; /* the requested range of this direction (progress) */
+    int ndir;
+    int min_samples; /* AFT samples at least (non-smooth laws: 128) */
+} ctx;
+
+typedef struct pstate {
+    double *X; /* n + 1 (parameter last unused) */
+    double lam;
+    int iters;
+    double resid;
+    int stable;
+    double mu_max;
+    double *mre, *mim;
+} pstate;
+
+void gd_per_stage_clear(stage *s);
+int gd_per_make_stage(ctx *c, stage *s, double key);
+stage *gd_per_get_stage(ctx *c, double key);
+double gd_per_norm2(const double *x, int n);
+int gd_per_newton(ctx *c, double *X, double *lam, const double *tan, const double *yp, int *iters,
+                  double *resid);
+int gd_per_tangent(ctx *c, const double *X, double lam, const double *prev, double sign, double *t);
+int gd_per_hb_setup(ctx *c, int H);
+void gd_per_floquet(ctx *c, const double *X, double lam, double *mre, double *mim, int *stable,
+                    double *mu_max);
+int gd_per_fail_point(ctx *c, double lam, const char *why);
+int gd_per_emit_point(ctx *c, const double *X, double lam, int iters, double resid);
+void gd_per_categorise(const ctx *c, const double *mre, const double *mim, int out[3],
+                       double rho[3]);
+int gd_per_add_bif(ctx *c, gd_bifurcation_type type, double lam, double mre, double mim);
+double gd_per_ranked(const ctx *c, const double *mre, const double *mim, int m, int *at);
+int gd_per_locate(ctx *c, int m, const double *Xa, double la, double ga, const double *Xb,
+                  double lb, double gb, const double *tan, const double *mre_b,
+                  const double *mim_b);
+int gd_per_locate_fold(ctx *c, const double *Xa, double la, const double *ta, const double *Xb,
+                       double lb, const double *tb, double ds, double *lf);
+void gd_per_merge_zigzags(ctx *c, int nb0);
+double gd_per_inf_norm(const double *x, int n);
+int gd_per_solve_warm(ctx *c, double *X, double lam, int *it, double *res);
+int gd_per_solve_fixed(ctx *c, double **X, double **t, double lam, int *it, double *res, int rest);
+int gd_per_follow_H(ctx *c, double **X, double **t);
+int gd_per_run_branch(ctx *c, const double *vals, int nv);
+
+#endif

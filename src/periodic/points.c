@@ -1,0 +1,360 @@
+/* The points of a branch (continuation_impl.h): Floquet multipliers, record
+ * statistics over one period, the truncation estimate (the point again at 2H + 1),
+ * progress, and the points emitted to the result and the caller's callback. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "geardyn/transient_model.h"
+#include "periodic/continuation_impl.h"
+#include "periodic/periodic_impl.h"
+
+static void announce(ctx *c, double lam);
+
+void gd_per_floquet(ctx *c, const double *X, double lam, double *mre, double *mim, int *stable,
+                    double *mu_max)
+{
+    *stable = -1;
+    *mu_max = NAN;
+    if (!c->opt->stability) return;
+    stage *s = gd_per_get_stage(c, lam);
+    if (!s) return;
+    int steps = c->opt->monodromy_steps > 0 ? c->opt->monodromy_steps : 4 * c->h.N;
+    if (steps < 256 && c->opt->monodromy_steps <= 0) steps = 256;
+    const gd_transient_spec *spec = c->param ? &s->tm->spec : c->spec;
+    gd_tr_record bl[64];
+    int nbl = 0;
+    for (int i = 0; i < spec->nmeshes && nbl < 64; i++)
+        if (spec->meshes[i].backlash)
+            bl[nbl++] = (gd_tr_record){GD_REC_MESH_STATE, spec->meshes[i].mesh, 0};
+    if (gd_hb_floquet(&c->h, s->tr, s->w, X, steps, bl, nbl, mre, mim)) return;
+    double m = 0.0;
+    for (int i = 0; i < 2 * c->nf; i++) {
+        double a = hypot(mre[i], mim[i]);
+        m = a > m ? a : m;
+    }
+    *mu_max = m;
+    *stable = m <= 1.0 + 1e-6;
+}
+
+static gd_periodic_point *new_point(ctx *c)
+{
+    gd_periodic_result *r = c->res;
+    if (r->npoints == c->cap_points) {
+        int cap = c->cap_points ? 2 * c->cap_points : 64;
+        gd_periodic_point *p = realloc(r->points, (size_t)cap * sizeof *p);
+        if (!p) return NULL;
+        r->points = p;
+        c->cap_points = cap;
+    }
+    gd_periodic_point *p = &r->points[r->npoints++];
+    memset(p, 0, sizeof *p);
+    p->direction = c->dir;
+    p->stable = -1;
+    p->mu_max = NAN;
+    p->residual = NAN;
+    p->harmonic_ok = -1;
+    p->harmonic_error_p2p = p->harmonic_error_amp = NAN;
+    return p;
+}
+
+static void set_value(const ctx *c, gd_periodic_point *p, double lam)
+{
+    p->speed = c->param ? c->param->speed : lam;
+    p->parameter = c->param ? lam : NAN;
+}
+
+int gd_per_fail_point(ctx *c, double lam, const char *why)
+{
+    gd_periodic_point *p = new_point(c);
+    if (!p) return 1;
+    set_value(c, p, lam);
+    p->converged = 0;
+    p->harmonics = c->H;
+    snprintf(p->reason, sizeof p->reason, "%.250s", why);
+    announce(c, lam);
+    return 0;
+}
+
+/* Record statistics over one period sampled at Nr points. */
+static int record_stats(ctx *c, stage *s, const double *X, gd_periodic_point *p)
+{
+    const int nf = c->nf, H = c->H, nr = c->nrec;
+    int Nr = 256;
+    while (Nr < 8 * (H + 1))
+        Nr *= 2;
+    p->records = calloc((size_t)(nr > 0 ? nr : 1), sizeof *p->records);
+    double *vals = malloc((size_t)(nr > 0 ? nr : 1) * Nr * sizeof *vals);
+    double *buf = fftw_malloc((size_t)Nr * sizeof *buf),
+           *out = fftw_malloc((size_t)Nr * sizeof *out);
+    double *y = calloc(2 * (size_t)nf, sizeof *y), *qs = NULL, *vs = NULL;
+    /* only the DOFs the records read are sampled (the others stay zero in y) */
+    int *dofs = malloc((size_t)(nf > 0 ? nf : 1) * sizeof *dofs), nd = 0;
+    double *rv = malloc((size_t)(nr > 0 ? nr : 1) * sizeof *rv);
+    unsigned char *seen = calloc((size_t)(nf > 0 ? nf : 1), 1);
+    int *tmp = malloc((size_t)(nf > 0 ? nf : 1) * sizeof *tmp);
+    for (int r = 0; r < nr && dofs && seen && tmp && nd >= 0; r++) {
+        int k = gd_transient_record_dofs(s->tr, &c->rec[r], tmp, nf);
+        for (int q = 0; q < k; q++)
+            if (!seen[tmp[q]]) {
+                seen[tmp[q]] = 1;
+                dofs[nd++] = tmp[q];
+            }
+        if (k < 0) nd = -1;
+    }
+    const int listed = dofs && seen && tmp;
+    free(seen);
+    free(tmp);
+    int ok = p->records && vals && buf && out && y && listed && rv &&
+             (!nr || !gd_hb_samples(&c->h, s->w, X, Nr, nd >= 0 ? dofs : NULL, nd, &qs, &vs));
+    const int all = nd < 0; /* a record that reads every DOF: all sampled, in order */
+    if (all) nd = nf;
+    if (!ok) {
+        free(vals);
+        fftw_free(buf);
+        fftw_free(out);
+        free(y);
+        free(dofs);
+        free(rv);
+        return 1;
+    }
+    /* the state once per sample, every record from it */
+    for (int j = 0; j < Nr && nr; j++) {
+        double tau = TWO_PI * j / Nr;
+        for (int m = 0; m < nd; m++) {
+            int i = all ? m : dofs[m];
+            y[i] = qs[(size_t)j * nd + m];
+            y[nf + i] = vs[(size_t)j * nd + m];
+        }
+        gd_transient_record_values(s->tr, c->rec, nr, tau / s->w, y, rv);
+        for (int r = 0; r < nr; r++)
+            vals[(size_t)r * Nr + j] = rv[r];
+    }
+    free(dofs);
+    free(rv);
+    fftw_plan plan = fftw_plan_r2r_1d(Nr, buf, out, FFTW_R2HC, FFTW_ESTIMATE);
+    for (int r = 0; r < nr; r++) {
+        gd_per_record_stats *st = &p->records[r];
+        st->amplitude = calloc((size_t)H + 1, sizeof *st->amplitude);
+        st->phase_deg = calloc((size_t)H + 1, sizeof *st->phase_deg);
+        st->p2p_error = st->amp_error = NAN;
+        if (!st->amplitude || !st->phase_deg) continue;
+        double mn = INFINITY, mx = -INFINITY, sum = 0.0, sq = 0.0;
+        for (int j = 0; j < Nr; j++) {
+            double v = buf[j] = vals[(size_t)r * Nr + j];
+            mn = v < mn ? v : mn;
+            mx = v > mx ? v : mx;
+            sum += v;
+            sq += v * v;
+        }
+        st->mean = sum / Nr;
+        st->rms = sqrt(sq / Nr);
+        st->peak_to_peak = mx - mn;
+        fftw_execute(plan);
+        st->amplitude[0] = out[0] / Nr;
+        for (int k = 1; k <= H && k < Nr / 2; k++) {
+            double a = 2.0 * out[k] / Nr, b = -2.0 * out[Nr - k] / Nr;
+            st->amplitude[k] = hypot(a, b);
+            st->phase_deg[k] = -atan2(b, a) * 360.0 / TWO_PI;
+        }
+    }
+    fftw_destroy_plan(plan);
+    free(vals);
+    fftw_free(buf);
+    fftw_free(out);
+    free(y);
+    return 0;
+}
+
+/* The main and the refined workspaces trade places (the Newton, the records and the
+ * multipliers work on c->h at c->H). */
+static void swap_ws(ctx *c)
+{
+    hb t = c->h;
+    c->h = c->hr;
+    c->hr = t;
+    int k = c->H;
+    c->H = c->Hr;
+    c->Hr = k;
+}
+
+static void free_point_data(gd_periodic_point *p, int nrec)
+{
+    free(p->coef);
+    free(p->mu_re);
+    free(p->mu_im);
+    if (p->records)
+        for (int k = 0; k < nrec; k++) {
+            free(p->records[k].amplitude);
+            free(p->records[k].phase_deg);
+        }
+    free(p->records);
+    p->coef = p->mu_re = p->mu_im = NULL;
+    p->records = NULL;
+}
+
+/* The point at lam solved at Hf from the coarse solution Xc (Hc harmonics) padded with
+ * zeros, in the refined workspace: coefficients and records into f. 0 ok. */
+static int solve_refined(ctx *c, const double *Xc, int Hc, int Hf, double lam, gd_periodic_point *f)
+{
+    const int nf = c->nf;
+    swap_ws(c);
+    int rc = 1;
+    if (c->H != Hf && gd_per_hb_setup(c, Hf)) {
+        snprintf(c->reason, sizeof c->reason, "out of memory at H = %d", Hf);
+        c->H = 0;
+        goto done;
+    }
+    size_t nfine = (size_t)nf * (2 * Hf + 1);
+    double *X = calloc(nfine + 1, sizeof *X);
+    if (!X) goto done;
+    memcpy(X, Xc, (size_t)nf * (2 * Hc + 1) * sizeof *X);
+    int it;
+    double res;
+    stage *s;
+    if (gd_per_newton(c, X, &lam, NULL, NULL, &it, &res) || !(s = gd_per_get_stage(c, lam))) {
+        free(X);
+        goto done;
+    }
+    f->converged = 1;
+    f->harmonics = Hf;
+    f->omega = s->w;
+    f->residual = res;
+    f->iterations = it;
+    f->nfree = nf;
+    f->coef = X;
+    rc = record_stats(c, s, X, f);
+done:
+    swap_ws(c);
+    return rc;
+}
+
+/* Truncation estimate of point p (converged at p->harmonics): the records against a
+ * solution at 2 H. Fixed H: p keeps its solution and gets the change as its estimate.
+ * Adaptive H: H doubles until the change is within harmonic_tol, and p becomes the finer
+ * solution of the last comparison. A refinement that fails (Newton, or memory) leaves p
+ * as it is with the reason. Returns 0. */
+static int estimate_point(ctx *c, gd_periodic_point *p, double lam)
+{
+    const int adaptive = c->opt->adaptive, nrec = c->nrec;
+    const double tol = c->opt->harmonic_tol;
+    for (;;) {
+        const int Hc = p->harmonics,
+                  Hf = 2 * Hc + 1; /* odd: a response with only odd harmonics (a symmetric law)
+                                      changes from H = 1 to 3, not 2 */
+        if (Hf > c->Hcap) {
+            if (adaptive || p->harmonic_ok < 0)
+                snprintf(p->reason, sizeof p->reason,
+                         "harmonic truncation %s: H = %d is the largest that fits in memory "
+                         "(or max_harmonics)",
+                         p->harmonic_ok == 0 ? "not within the tolerance" : "not estimated", Hc);
+            return 0;
+        }
+        gd_periodic_point f;
+        memset(&f, 0, sizeof f);
+        if (solve_refined(c, p->coef, Hc, Hf, lam, &f)) {
+            free_point_data(&f, nrec);
+            snprintf(p->reason, sizeof p->reason,
+                     "harmonic truncation not estimated: the solution at H = %d failed: %.180s", Hf,
+                     c->reason);
+            return 0; /* the point stands, without its estimate */
+        }
+        double ep, ea;
+        if (nrec) {
+            gd_hb_truncation(p->records, Hc, f.records, Hf, nrec, &ep, &ea);
+        } else {
+            ep = ea =
+                gd_hb_coef_change(p->coef, c->nf * (2 * Hc + 1), f.coef, c->nf * (2 * Hf + 1));
+        }
+        const int ok = ep <= tol && ea <= tol;
+        if (!adaptive) {
+            for (int r = 0; r < nrec; r++) {
+                p->records[r].p2p_error = f.records[r].p2p_error;
+                p->records[r].amp_error = f.records[r].amp_error;
+            }
+            p->harmonics_ref = Hf;
+            p->harmonic_error_p2p = ep;
+            p->harmonic_error_amp = ea;
+            p->harmonic_ok = ok;
+            if (!ok)
+                snprintf(p->reason, sizeof p->reason,
+                         "harmonic truncation: at H = %d the peak-to-peak changes by %.2g and "
+                         "the harmonic amplitudes by %.2g (tolerance %.2g): raise --harmonics",
+                         Hf, ep, ea, tol);
+            free_point_data(&f, nrec);
+            return 0;
+        }
+        /* adaptive: the finer solution replaces the point; the branch follows Hc */
+        f.speed = p->speed;
+        f.parameter = p->parameter;
+        f.direction = p->direction;
+        f.stable = -1;
+        f.mu_max = NAN;
+        f.harmonics_ref = Hc;
+        f.harmonic_error_p2p = ep;
+        f.harmonic_error_amp = ea;
+        f.harmonic_ok = ok;
+        free_point_data(p, nrec);
+        *p = f;
+        if (Hc > c->want_H) c->want_H = Hc;
+        if (ok) return 0;
+        snprintf(p->reason, sizeof p->reason,
+                 "harmonic truncation: between H = %d and %d the peak-to-peak changes by %.2g "
+                 "and the harmonic amplitudes by %.2g (tolerance %.2g)",
+                 Hc, Hf, ep, ea, tol);
+    }
+}
+
+static double progress(const ctx *c, double lam)
+{
+    double f = c->v1 != c->v0 ? (lam - c->v0) / (c->v1 - c->v0) : 1.0;
+    f = f < 0 ? 0 : f > 1 ? 1 : f;
+    return ((c->dir < 0 ? 1 : 0) + f) / c->ndir;
+}
+
+static void announce(ctx *c, double lam)
+{
+    if (c->opt->on_point)
+        c->opt->on_point(&c->res->points[c->res->npoints - 1], c->res->npoints - 1,
+                         progress(c, lam), c->opt->user);
+}
+
+int gd_per_emit_point(ctx *c, const double *X, double lam, int iters, double resid)
+{
+    stage *s = gd_per_get_stage(c, lam);
+    gd_periodic_point *p = new_point(c);
+    if (!p) return 1;
+    set_value(c, p, lam);
+    if (!s) {
+        snprintf(p->reason, sizeof p->reason, "%.250s", c->reason);
+        announce(c, lam);
+        return 0;
+    }
+    p->converged = 1;
+    p->harmonics = c->H;
+    p->omega = s->w;
+    p->residual = resid;
+    p->iterations = iters;
+    p->nfree = c->nf;
+    size_t n = (size_t)c->h.n;
+    p->coef = malloc(n * sizeof *p->coef);
+    if (!p->coef) return 1;
+    memcpy(p->coef, X, n * sizeof *X);
+    if (record_stats(c, s, X, p)) return 1;
+    if ((c->opt->estimate || c->opt->adaptive) && estimate_point(c, p, lam)) return 1;
+    p->mu_re = malloc(2 * (size_t)c->nf * sizeof *p->mu_re);
+    p->mu_im = malloc(2 * (size_t)c->nf * sizeof *p->mu_im);
+    if (!p->mu_re || !p->mu_im) return 1;
+    /* the multipliers of the reported solution, in its workspace */
+    const int fine = p->harmonics != c->H;
+    if (fine) swap_ws(c);
+    gd_per_floquet(c, p->coef, lam, p->mu_re, p->mu_im, &p->stable, &p->mu_max);
+    if (fine) swap_ws(c);
+    p->nmult = p->stable >= 0 ? 2 * c->nf : 0;
+    announce(c, lam);
+    return 0;
+}
+
+/* ---------------------------------------------------------------- bifurcations */
