@@ -142,8 +142,8 @@ enum { GD_CLI_OPT_PLOT = 0x9107 };
         "plot", required_argument, 0, GD_CLI_OPT_PLOT                                              \
     }
 #define GD_CLI_PLOT_HELP                                                                           \
-    "  --plot FILE       the standard figure: FILE.svg (static) or FILE.html (interactive,\n"      \
-    "                    self-contained; docs/plots.md)\n"
+    "  --plot FILE       the standard figure: FILE.svg, FILE.png, FILE.pdf (static) or\n"          \
+    "                    FILE.html (interactive, self-contained; docs/plots.md)\n"
 /* Before any computing: path has a known extension and a writable folder (and for HTML
  * plotly.js is there). 0, or the exit code after reporting. */
 int gd_cli_plot_check(const char *path);

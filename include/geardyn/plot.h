@@ -35,14 +35,17 @@
 
 typedef struct gd_plot gd_plot;
 
-typedef enum gd_plot_format { GD_PLOT_SVG, GD_PLOT_HTML } gd_plot_format;
+/* PNG and PDF are the SVG rendered by librsvg and cairo (one image; one PDF page per
+ * section, long sections split between panels), when the library was built with them. */
+typedef enum gd_plot_format { GD_PLOT_SVG, GD_PLOT_HTML, GD_PLOT_PNG, GD_PLOT_PDF } gd_plot_format;
 
-/* The format of a file name by its extension (".svg", ".html" or ".htm", any case).
- * GD_EINPUT naming the known extensions otherwise. */
+/* The format of a file name by its extension (".svg", ".html" or ".htm", ".png", ".pdf",
+ * any case). GD_EINPUT naming the known extensions otherwise. */
 GD_API gd_status gd_plot_format_of(const char *path, gd_plot_format *fmt, gd_error *err);
 /* Checks, before any computing, that path has a known extension and that its folder
- * exists and can be written into; for HTML also that plotly.js can be found (opts may
- * be NULL). Writes nothing. */
+ * exists and can be written into; for HTML also that plotly.js can be found, for PNG and
+ * PDF that this build can write them (GD_EINPUT naming the missing packages otherwise);
+ * opts may be NULL. Writes nothing. */
 typedef struct gd_plot_write_options {
     const char *plotly_js; /* path of plotly.min.js; NULL: look for it (see top) */
 } gd_plot_write_options;

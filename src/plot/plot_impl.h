@@ -117,6 +117,12 @@ void pl_range(const pl_panel *pn, int axis, double *lo, double *hi);
 /* writers */
 gd_status pl_write_svg(const gd_plot *p, FILE *f, gd_error *err);
 gd_status pl_write_html(const gd_plot *p, FILE *f, const char *plotly_path, gd_error *err);
+/* the height of a panel in the SVG (pixels) */
+double pl_svg_panel_height(const pl_panel *pn);
+/* PNG (pdf = 0) or PDF of the document's SVG through librsvg and cairo (raster.c) */
+gd_status pl_write_raster(const gd_plot *p, FILE *f, int pdf, gd_error *err);
+/* NULL when PNG and PDF can be written, else the packages this build lacks */
+const char *pl_raster_missing(void);
 /* text escaped for XML / HTML, and for a JSON string */
 void pl_xml_text(FILE *f, const char *s);
 void pl_json_text(FILE *f, const char *s);

@@ -41,7 +41,7 @@ static int note_lines(const char *s)
     return s ? (int)(strlen(s) / 140) + 1 : 0;
 }
 
-static double panel_height(const pl_panel *pn)
+double pl_svg_panel_height(const pl_panel *pn)
 {
     if (pn->kind == PL_TABLE) return 40 + 20.0 * (pn->nrows + 1);
     if (pn->kind == PL_MODE3D) return 36;
@@ -300,7 +300,7 @@ gd_status pl_write_svg(const gd_plot *p, FILE *f, gd_error *err)
         const pl_section *s = &p->sections[i];
         h += 48 + 16.0 * note_lines(s->note);
         for (int k = 0; k < s->npanels; k++)
-            h += panel_height(&s->panels[k]);
+            h += pl_svg_panel_height(&s->panels[k]);
     }
     fprintf(f,
             "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" "
@@ -332,7 +332,7 @@ gd_status pl_write_svg(const gd_plot *p, FILE *f, gd_error *err)
         y += 6;
         for (int k = 0; k < s->npanels; k++) {
             const pl_panel *pn = &s->panels[k];
-            double ph = panel_height(pn);
+            double ph = pl_svg_panel_height(pn);
             if (pn->kind == PL_XY)
                 xy_panel(f, pn, y, ph, id++);
             else if (pn->kind == PL_TABLE)

@@ -7,6 +7,7 @@
 #include <libxml/xpathInternals.h>
 
 #include "cli_support.h"
+#include "geardyn/plot.h"
 #include "harness.h"
 
 #define PI 3.14159265358979323846
@@ -564,13 +565,13 @@ TEST(bad_plot_requests_write_nothing)
     scratch d;
     REQUIRE(scratch_open(&d));
     char args[512];
-    snprintf(args, sizeof args, "modal examples/chen1998_gear_pair.yaml --plot %s/m.png", d.dir);
-    check_refused(gd_ts_, &d, args, "unknown plot format '.png'");
+    snprintf(args, sizeof args, "modal examples/chen1998_gear_pair.yaml --plot %s/m.gif", d.dir);
+    check_refused(gd_ts_, &d, args, "unknown plot format '.gif'");
     snprintf(args, sizeof args,
              "frf examples/kumar2011_coupled.yaml --input torque:motor --output "
              "mesh:mesh --freq 100:200:3 --plot %s/plot",
              d.dir);
-    check_refused(gd_ts_, &d, args, "FILE.svg (static) or FILE.html");
+    check_refused(gd_ts_, &d, args, "FILE.svg, FILE.png, FILE.pdf (static) or FILE.html");
     snprintf(args, sizeof args,
              "campbell examples/kumar2011_coupled.yaml --speeds 0:100:2 --plot %s/no/c.svg", d.dir);
     check_refused(gd_ts_, &d, args, "does not exist");
@@ -585,8 +586,8 @@ TEST(bad_plot_requests_write_nothing)
     /* periodic: the plot file is checked before the harmonic balance runs; a branch with
      * no converged point (speed 0: the period is undefined) has nothing to plot */
     snprintf(args, sizeof args,
-             "periodic tests/plot/mathieu_pair.yaml --speeds 700:700:1 --plot %s/p.png", d.dir);
-    check_refused(gd_ts_, &d, args, "unknown plot format '.png'");
+             "periodic tests/plot/mathieu_pair.yaml --speeds 700:700:1 --plot %s/p.jpg", d.dir);
+    check_refused(gd_ts_, &d, args, "unknown plot format '.jpg'");
     snprintf(args, sizeof args,
              "periodic examples/chen1998_gear_pair.yaml --speeds 0:0:1 --harmonics 2 --plot "
              "%s/p.svg --out %s/o",
@@ -601,7 +602,84 @@ TEST(bad_plot_requests_write_nothing)
     scratch_close(&d);
 }
 
+/* PNG: the signature and the IHDR width (the 960 px SVG drawn at twice its size) */
+static int png_width(const char *path)
+{
+    unsigned char h[24];
+    FILE *f = fopen(path, "rb");
+    size_t n = f ? fread(h, 1, sizeof h, f) : 0;
+    if (f) fclose(f);
+    static const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    if (n < 24 || memcmp(h, sig, 8) || memcmp(h + 12, "IHDR", 4)) return -1;
+    return (h[16] << 24) | (h[17] << 16) | (h[18] << 8) | h[19];
+}
+
+/* PDF: the page count poppler's pdfinfo reads, -1 if it cannot parse the file */
+static int pdf_pages(const char *path)
+{
+    char cmd[512], line[256];
+    snprintf(cmd, sizeof cmd, "pdfinfo '%s' 2>/dev/null", path);
+    FILE *f = popen(cmd, "r");
+    int pages = -1;
+    while (f && fgets(line, sizeof line, f))
+        sscanf(line, "Pages: %d", &pages);
+    if (f && pclose(f) != 0) pages = -1;
+    return pages;
+}
+
+/* PNG and PDF of every plot type: valid files (signature and size; pdfinfo parses the
+ * PDF), one PDF page per section at least. A build without librsvg/cairo refuses them
+ * with exit 2 naming the packages. */
+TEST(png_and_pdf_of_every_plot)
+{
+    scratch d;
+    REQUIRE(scratch_open(&d));
+    static const struct {
+        const char *args;
+        int sections;
+    } runs[] = {
+        {"modal examples/chen1998_gear_pair.yaml --plot %s", 1},
+        {"campbell examples/kumar2011_coupled.yaml --speeds 0:3000rpm:4 --modes 4 --plot %s", 1},
+        {"frf examples/kumar2011_coupled.yaml --input torque:motor --output mesh:mesh "
+         "--freq 100:26000:20 --plot %s",
+         1},
+        {"unbalance examples/chen1998_gear_pair.yaml --speeds 100:6000:8 --plot %s", 1},
+        {"transient examples/ducati_timing_geartrain.yaml --revolutions 0.2 --quiet --plot %s", 1},
+        {"mesh-stiffness examples/rig2018_pair.yaml --cycles 2 --points 90 --plot %s", 1},
+        {"periodic tests/plot/mathieu_pair.yaml --speeds 680:730:5 --harmonics 4 --record "
+         "mesh:m:force --plot %s",
+         1},
+        {"report tests/plot/study.yaml --speeds 0:6000rpm:5 --freq-points 40 --out %s", 6},
+    };
+    gd_error err;
+    gd_error_clear(&err);
+    int can = gd_plot_check_path("/tmp/x.png", NULL, &err) == GD_OK;
+    for (size_t k = 0; k < sizeof runs / sizeof runs[0]; k++)
+        for (int pdf = 0; pdf < 2; pdf++) {
+            char path[256], args[1024];
+            snprintf(path, sizeof path, "%s/fig%zu.%s", d.dir, k, pdf ? "pdf" : "png");
+            snprintf(args, sizeof args, runs[k].args, path);
+            run_result r;
+            run(&d, &r, "%s", args);
+            if (!can) {
+                CHECK(r.code == 2 && contains(r.err, "librsvg2-dev") && !file_exists(path));
+            } else if (pdf) {
+                CHECK(r.code == 0);
+                int n = pdf_pages(path);
+                CHECK(n >= runs[k].sections);
+                if (r.code || n < runs[k].sections)
+                    fprintf(stderr, "  %s: %d pages\n", args, n), show(&r);
+            } else {
+                CHECK(r.code == 0);
+                CHECK(png_width(path) == 1920);
+                if (r.code) show(&r);
+            }
+            run_free(&r);
+        }
+    scratch_close(&d);
+}
+
 RUN_TESTS(T(campbell_plot_matches_json), T(frf_plot_matches_json), T(unbalance_plot_matches_json),
           T(mesh_stiffness_plot_matches_json), T(modal_and_transient_plots),
           T(periodic_plot_matches_json), T(report_has_every_section), T(html_is_self_contained),
-          T(bad_plot_requests_write_nothing))
+          T(bad_plot_requests_write_nothing), T(png_and_pdf_of_every_plot))
