@@ -301,6 +301,7 @@ void pl_range(const pl_panel *pn, int axis, double *lo, double *hi)
     int logscale = axis ? pn->ylog : pn->xlog;
     double a = INFINITY, b = -INFINITY;
     for (int t = 0; t < pn->ntraces; t++) {
+        if (axis && pn->traces[t].y2 != (axis == 2)) continue;
         const double *v = axis ? pn->traces[t].y : pn->traces[t].x;
         for (int i = 0; i < pn->traces[t].n; i++) {
             if (!isfinite(v[i]) || (logscale && !(v[i] > 0))) continue;

@@ -31,6 +31,7 @@ typedef struct pl_trace {
     int dash;                  /* dashed line */
     int legend;                /* shown in the legend */
     char **text;               /* n hover labels, or NULL */
+    int y2;                    /* against the panel's right-hand axis (y2label) */
 } pl_trace;
 
 typedef enum pl_kind { PL_XY, PL_TABLE, PL_MODE3D } pl_kind;
@@ -38,6 +39,9 @@ typedef enum pl_kind { PL_XY, PL_TABLE, PL_MODE3D } pl_kind;
 typedef struct pl_panel {
     pl_kind kind;
     char title[200], xlabel[120], ylabel[120];
+    char y2label[120];        /* right-hand axis of the traces marked y2 */
+    char subtitle[400];       /* a line under the title (what was left out, ...) */
+    double ylim[2], y2lim[2]; /* fixed ranges of the y axes when lo < hi; else the data's */
     int xlog, ylog;
     int equal; /* equal scales on x and y (orbits, the model drawing) */
     int ntraces, cap;
@@ -111,7 +115,8 @@ const char *pl_whirl_color(gd_whirl w);
 
 /* axes: "nice" tick values for a range; returns the count (at most max) */
 int pl_ticks(double lo, double hi, int logscale, double *ticks, int max);
-/* data range of a panel's traces (finite values; positive ones on a log axis) */
+/* data range of a panel's traces (finite values; positive ones on a log axis); axis 0
+ * x, 1 y of the left-hand axis, 2 y of the traces on the right-hand one (y2) */
 void pl_range(const pl_panel *pn, int axis, double *lo, double *hi);
 
 /* writers */

@@ -52,7 +52,14 @@ double pl_svg_panel_height(const pl_panel *pn)
         double ph = (RIGHT - LEFT) * (yh - yl) / (xh - xl);
         return TOP + BOTTOM + (ph < 160 ? 160 : ph > 640 ? 640 : ph);
     }
-    return 330;
+    return 330 + (pn->subtitle[0] ? 16 : 0);
+}
+
+static int has_y2(const pl_panel *pn)
+{
+    for (int t = 0; t < pn->ntraces; t++)
+        if (pn->traces[t].y2) return 1;
+    return 0;
 }
 
 static void number(FILE *f, double v)
@@ -129,17 +136,22 @@ static void runs(FILE *f, const frame *fr, const pl_trace *t, const char *clip)
 
 static void xy_panel(FILE *f, const pl_panel *pn, double y, double h, int id)
 {
+    int two = has_y2(pn) && !pn->equal && !pn->ylog;
+    double top = TOP + (pn->subtitle[0] ? 16 : 0);
     frame fr = {.x0 = LEFT,
-                .y0 = y + TOP,
-                .pw = RIGHT - LEFT,
-                .ph = h - TOP - BOTTOM,
+                .y0 = y + top,
+                .pw = RIGHT - LEFT - (two ? 64 : 0),
+                .ph = h - top - BOTTOM,
                 .xlog = pn->xlog,
                 .ylog = pn->ylog,
                 .equal = pn->equal};
     double xl, xh, yl, yh;
     pl_range(pn, 0, &xl, &xh);
     pl_range(pn, 1, &yl, &yh);
-    if (!pn->equal && !pn->ylog) { /* a little room above and below the curves */
+    if (pn->ylim[0] < pn->ylim[1] && !pn->equal) {
+        yl = pn->ylim[0];
+        yh = pn->ylim[1];
+    } else if (!pn->equal && !pn->ylog) { /* a little room above and below the curves */
         double d = 0.04 * (yh - yl);
         yl -= d;
         yh += d;
@@ -156,6 +168,17 @@ static void xy_panel(FILE *f, const pl_panel *pn, double y, double h, int id)
         fr.offx = 0.5 * (fr.pw - (fr.xhi - fr.xlo) * fr.sx);
         fr.offy = 0.5 * (fr.ph - (fr.yhi - fr.ylo) * fr.sy);
     }
+    frame fr2 = fr; /* the right-hand axis: its own linear range */
+    double y2l = 0, y2h = 1;
+    if (two) {
+        pl_range(pn, 2, &y2l, &y2h);
+        double d = 0.04 * (y2h - y2l);
+        y2l -= d;
+        y2h += d;
+        if (pn->y2lim[0] < pn->y2lim[1]) y2l = pn->y2lim[0], y2h = pn->y2lim[1];
+        fr2.ylo = y2l;
+        fr2.yhi = y2h;
+    }
     char clip[32];
     snprintf(clip, sizeof clip, "clip%d", id);
     fprintf(f, "<g class=\"panel\" data-title=\"");
@@ -167,6 +190,11 @@ static void xy_panel(FILE *f, const pl_panel *pn, double y, double h, int id)
     fprintf(f, "<text x=\"%d\" y=\"%.1f\" font-size=\"14\" font-weight=\"bold\">", LEFT, y + 20);
     pl_xml_text(f, pn->title);
     fputs("</text>\n", f);
+    if (pn->subtitle[0]) {
+        fprintf(f, "<text class=\"subtitle\" x=\"%d\" y=\"%.1f\" font-size=\"11\">", LEFT, y + 37);
+        pl_xml_text(f, pn->subtitle);
+        fputs("</text>\n", f);
+    }
     fprintf(f,
             "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"none\" "
             "stroke=\"#444\"/>\n",
@@ -206,6 +234,24 @@ static void xy_panel(FILE *f, const pl_panel *pn, double y, double h, int id)
             }
         }
     }
+    if (two) {
+        int nt = pl_ticks(y2l, y2h, 0, ticks, 32);
+        for (int k = 0; k < nt; k++) {
+            double v = py(&fr2, ticks[k]);
+            if (v < fr.y0 - 0.5 || v > fr.y0 + fr.ph + 0.5) continue;
+            fmt_tick(lab, sizeof lab, ticks[k], 0);
+            fprintf(f,
+                    "<line x1=\"%.1f\" x2=\"%.1f\" y1=\"%.2f\" y2=\"%.2f\" stroke=\"#444\"/>"
+                    "<text x=\"%.1f\" y=\"%.2f\" font-size=\"11\">%s</text>\n",
+                    fr.x0 + fr.pw, fr.x0 + fr.pw + 4, v, v, fr.x0 + fr.pw + 6, v + 4, lab);
+        }
+        fprintf(f,
+                "<text transform=\"translate(%.1f,%.1f) rotate(90)\" font-size=\"12\" "
+                "text-anchor=\"middle\">",
+                fr.x0 + fr.pw + 44, fr.y0 + fr.ph / 2);
+        pl_xml_text(f, pn->y2label);
+        fputs("</text>\n", f);
+    }
     fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"12\" text-anchor=\"middle\">",
             fr.x0 + fr.pw / 2, fr.y0 + fr.ph + 36);
     pl_xml_text(f, pn->xlabel);
@@ -235,11 +281,12 @@ static void xy_panel(FILE *f, const pl_panel *pn, double y, double h, int id)
             if (i) fputc(' ', f);
             number(f, c->y[i]);
         }
-        fputs("\">\n", f);
-        if (c->mode != PL_MARKERS) runs(f, &fr, c, clip);
+        fputs(c->y2 ? "\" data-axis=\"y2\">\n" : "\">\n", f);
+        const frame *cf = c->y2 && two ? &fr2 : &fr;
+        if (c->mode != PL_MARKERS) runs(f, cf, c, clip);
         if (c->mode == PL_MARKERS || c->mode == PL_LINES_MARKERS)
             for (int i = 0; i < c->n; i++) {
-                double a = px(&fr, c->x[i]), b = py(&fr, c->y[i]);
+                double a = px(cf, c->x[i]), b = py(cf, c->y[i]);
                 if (!isfinite(a) || !isfinite(b)) continue;
                 marker(f, c->symbol, a, b, c->marker_color ? c->marker_color[i] : c->color);
                 fputc('\n', f);

@@ -343,13 +343,17 @@ TEST(modal_and_transient_plots)
             elastic +=
                 !cJSON_IsTrue(cJSON_GetObjectItem(cJSON_GetArrayItem(modes, k), "rigid_body"));
         CHECK(elastic == 6);
-        /* a shape panel per elastic mode (titled with its frequency), the energy table */
-        CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'mode ')]") == elastic);
+        /* shape panels titled with the mode's frequency (one per shaft that moves), whirl
+         * and zeta written out; the energy table */
+        for (int k = 1; k <= elastic; k++)
+            CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'mode %d: ')]", k) >= 1);
         char title[200];
         snprintf(title, sizeof title,
-                 "//s:g[@class='panel'][starts-with(@data-title,'mode 1: %.6g Hz')]",
+                 "//s:g[@class='panel'][starts-with(@data-title,'mode 1: %.6g Hz, ')]"
+                 "[contains(@data-title,'whirl: ')]",
                  jnum(cJSON_GetArrayItem(modes, 0), "frequency_hz"));
-        CHECK(count(s, "%s", title) == 1);
+        CHECK(count(s, "%s", title) >= 1);
+        CHECK(count(s, "//s:g[@class='panel'][contains(@data-title,' whirl,')]") == 0);
         CHECK(count(s, "//s:g[@class='table'][@data-rows='%d']", elastic) == 1);
     }
     plot_end(&pr);
@@ -602,6 +606,82 @@ TEST(bad_plot_requests_write_nothing)
     scratch_close(&d);
 }
 
+/* largest |y| of the traces of the panels of one mode whose names match (or not) a
+ * prefix; markers of gears and bearings (drawn on the axis) left aside */
+static double mode_trace_max(svg *s, int mode, const char *prefix, int matching, int *ntraces)
+{
+    char xp[300];
+    snprintf(xp, sizeof xp,
+             "//s:g[@class='panel'][starts-with(@data-title,'mode %d: ')]/s:g[@class='trace']"
+             "[@data-name!='gears and disks'][@data-name!='bearings']",
+             mode);
+    xmlXPathObjectPtr o = xmlXPathEvalExpression(BAD_CAST xp, s->ctx);
+    double mx = 0;
+    *ntraces = 0;
+    for (int k = 0; o && o->nodesetval && k < o->nodesetval->nodeNr; k++) {
+        xmlChar *name = xmlGetProp(o->nodesetval->nodeTab[k], BAD_CAST "data-name");
+        int is = name && !strncmp((const char *)name, prefix, strlen(prefix));
+        xmlFree(name);
+        if (is != matching) continue;
+        ++*ntraces;
+        xmlChar *v = xmlGetProp(o->nodesetval->nodeTab[k], BAD_CAST "data-y");
+        for (char *p = (char *)v, *end; p && *p; p = end) {
+            double y = strtod(p, &end);
+            if (end == p) break;
+            mx = fmax(mx, fabs(y));
+        }
+        xmlFree(v);
+    }
+    xmlXPathFreeObject(o);
+    return mx;
+}
+
+/* The motor of the two-stage gearbox tilts on its bearings alone (the coupling is
+ * torsional): those two modes are drawn as the motor's rx and ry, the largest 1, in
+ * one panel (the input shaft's, where the motor is coupled), and nothing else of the
+ * 30 DOF families (numerical noise, ~1e-7 of the motor's tilt) is drawn above 1 %. */
+TEST(pure_tilt_mode_drawn_alone)
+{
+    scratch d;
+    REQUIRE(scratch_open(&d));
+    plot_run pr;
+    plot_start(gd_ts_, &pr, &d,
+               "modal tests/plot/gearbox_two_stage.yaml --modes 12 --json --plot %s");
+    svg *s = &pr.s;
+    cJSON *j = pr.json;
+    int found = 0;
+    if (j && s->ctx) {
+        const cJSON *modes = cJSON_GetObjectItem(j, "modes");
+        for (int k = 0; k < cJSON_GetArraySize(modes); k++) {
+            const cJSON *md = cJSON_GetArrayItem(modes, k);
+            if (strcmp(jstr(md, "dominant_motion"), "tilt") ||
+                strcmp(jstr(md, "dominant_component"), "motor_bearings"))
+                continue;
+            found++;
+            int n = (int)jnum(md, "mode"), nm, no;
+            CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'mode %d: ')]", n) == 1);
+            CHECK(count(s,
+                        "//s:g[@class='panel'][starts-with(@data-title,'mode %d: ')]"
+                        "[contains(@data-title,'shaft shaft1 (with motor)')]",
+                        n) == 1);
+            double motor = mode_trace_max(s, n, "motor r", 1, &nm);
+            double other = mode_trace_max(s, n, "motor r", 0, &no);
+            CHECK(nm == 2); /* rx and ry */
+            CHECK(fabs(motor - 1) < 1e-12);
+            CHECK(other <= 0.01); /* nothing else above 1 % (none is drawn at all here) */
+            CHECK(no == 0);
+            /* whirl and zeta written readably: |zeta| < 1e-9 is shown as 0 */
+            CHECK(count(s,
+                        "//s:g[@class='panel'][starts-with(@data-title,'mode %d: ')]"
+                        "[contains(@data-title,'whirl: %s, zeta 0;')]",
+                        n, jstr(md, "whirl")) == 1);
+        }
+    }
+    CHECK(found == 2); /* the motor's tilt pair */
+    plot_end(&pr);
+    scratch_close(&d);
+}
+
 /* PNG: the signature and the IHDR width (the 960 px SVG drawn at twice its size) */
 static int png_width(const char *path)
 {
@@ -682,4 +762,5 @@ TEST(png_and_pdf_of_every_plot)
 RUN_TESTS(T(campbell_plot_matches_json), T(frf_plot_matches_json), T(unbalance_plot_matches_json),
           T(mesh_stiffness_plot_matches_json), T(modal_and_transient_plots),
           T(periodic_plot_matches_json), T(report_has_every_section), T(html_is_self_contained),
-          T(bad_plot_requests_write_nothing), T(png_and_pdf_of_every_plot))
+          T(bad_plot_requests_write_nothing), T(png_and_pdf_of_every_plot),
+          T(pure_tilt_mode_drawn_alone))
