@@ -15,7 +15,8 @@ static const char USAGE[] =
     "                        [--no-shaft-orders] [--no-mesh-orders] [--method auto|dense|sparse]\n"
     "                        [--undamped] [--shift VALUE] [--threads N] [--coupling LEVEL]\n"
     "                        [--dofs LIST] [--set PATH=VALUE]... [--json] [--out DIR] [--plot "
-    "FILE]\n\n"
+    "FILE]\n"
+    "                        [--max-frequency F] [--operating-range FROM:TO]\n\n"
     "Damped modes at every speed, tracked across speeds by mode shape (MAC), with whirl\n"
     "direction, dominant motion and log decrement; critical speeds where a mode meets an\n"
     "excitation order (1x of each shaft, --orders, tooth-mesh orders); instability onset.\n\n"
@@ -27,6 +28,10 @@ static const char USAGE[] =
     "  --method M          auto (the cheaper by a measured cost model), dense (LAPACK) or sparse\n"
     "  --undamped          drop damping (gyroscopic terms stay)\n"
     "  --shift VALUE       sparse shift below zero, e.g. 10Hz (default: automatic)\n"
+    "  --max-frequency F   the plot's frequency axis ends at F (Hz; or 5000rpm, rad/s): modes\n"
+    "                      and critical speeds wholly above it are left out of the plot\n"
+    "  --operating-range FROM:TO  shade this speed range on the plot and give each critical\n"
+    "                      speed's separation margin to it (e.g. 2500:3500rpm)\n"
     "  --threads N         parallel threads over speeds (default: all cores)\n"
     "  --coupling LEVEL    torsional | lateral-torsional | full: every mesh's level\n"
     "  --dofs LIST         keep only these node DOFs, e.g. x,y,rz\n"
@@ -208,6 +213,43 @@ static int parse_orders(const char *text, double **out, int *n)
     return 0;
 }
 
+/* --max-frequency: a plain number is in Hz (the plot's unit), else a quantity with units
+ * (Hz, rpm, rad/s). 0 on success. */
+static int plot_frequency(const char *text, double *hz)
+{
+    char *end;
+    double v = strtod(text, &end);
+    gd_error why;
+    if (end == text || *end) {
+        if (gd_parse_quantity(text, GD_QTY_ANGULAR_SPEED, &v, &why)) return 1;
+        v /= 2 * 3.14159265358979323846;
+    }
+    *hz = v;
+    return !(v > 0 && isfinite(v));
+}
+
+/* --operating-range FROM:TO, speeds with units (a unit on TO alone applies to FROM);
+ * rad/s out. 0 on success. */
+static int plot_speed_range(const char *text, double *lo, double *hi)
+{
+    const char *colon = strchr(text, ':');
+    if (!colon || strchr(colon + 1, ':')) return 1;
+    char a[64], b[64];
+    snprintf(a, sizeof a, "%.*s", (int)(colon - text < 63 ? colon - text : 63), text);
+    snprintf(b, sizeof b, "%.63s", colon + 1);
+    const char *unit = b;
+    while (*unit && (strchr("0123456789.+-eE ", *unit)))
+        unit++;
+    char *end;
+    strtod(a, &end);
+    if (end != a && !*end && *unit) strncat(a, unit, sizeof a - strlen(a) - 1);
+    gd_error why;
+    if (gd_parse_quantity(a, GD_QTY_ANGULAR_SPEED, lo, &why) ||
+        gd_parse_quantity(b, GD_QTY_ANGULAR_SPEED, hi, &why))
+        return 1;
+    return !(*lo >= 0 && *lo < *hi);
+}
+
 int gd_cmd_campbell(int argc, char **argv)
 {
     static const struct option opts[] = {{"speeds", required_argument, 0, 's'},
@@ -226,9 +268,11 @@ int gd_cmd_campbell(int argc, char **argv)
                                          GD_CLI_DOFS_OPTION,
                                          {"help", no_argument, 0, 'h'},
                                          GD_CLI_PLOT_OPTION,
+                                         {"max-frequency", required_argument, 0, 'X'},
+                                         {"operating-range", required_argument, 0, 'R'},
                                          {0, 0, 0, 0}};
     const char *cmd = "campbell", *speeds = NULL, *coupling = NULL, *out = NULL, *orders = NULL,
-               *shift = NULL, *plot = NULL;
+               *shift = NULL, *plot = NULL, *maxf = NULL, *oper = NULL;
     gd_campbell_options opt;
     gd_campbell_options_init(&opt);
     int json = 0, c;
@@ -289,6 +333,12 @@ int gd_cmd_campbell(int argc, char **argv)
         case GD_CLI_OPT_PLOT:
             plot = optarg;
             break;
+        case 'X':
+            maxf = optarg;
+            break;
+        case 'R':
+            oper = optarg;
+            break;
         case 'h':
             fputs(USAGE, stdout);
             return GD_EXIT_OK;
@@ -311,6 +361,22 @@ int gd_cmd_campbell(int argc, char **argv)
     if (shift && !(opt.shift > 0)) {
         free(ord);
         return gd_cli_usage_error(cmd, "--shift: give a value above zero");
+    }
+    gd_plot_campbell_options popt;
+    gd_plot_campbell_options_init(&popt);
+    if (maxf && plot_frequency(maxf, &popt.max_frequency_hz)) {
+        free(ord);
+        return gd_cli_usage_error(cmd,
+                                  "--max-frequency: '%s' is not a frequency above zero "
+                                  "(e.g. 2000 or 2000Hz, in Hz)",
+                                  maxf);
+    }
+    if (oper && plot_speed_range(oper, &popt.operating_lo, &popt.operating_hi)) {
+        free(ord);
+        return gd_cli_usage_error(cmd,
+                                  "--operating-range: '%s' is not FROM:TO with FROM < TO (e.g. "
+                                  "2500:3500rpm)",
+                                  oper);
     }
     double *sp = NULL;
     int rc = gd_cli_parse_range(cmd, "--speeds", speeds, &sp, &opt.nspeeds);
@@ -343,7 +409,7 @@ int gd_cmd_campbell(int argc, char **argv)
     } else {
         if (plot) {
             gd_plot *p = NULL;
-            gd_status pst = gd_plot_campbell(r, &p, &err);
+            gd_status pst = gd_plot_campbell_opt(r, &popt, &p, &err);
             rc = gd_cli_plot_finish(pst, p, &err, plot);
         }
         if (out && rc == GD_EXIT_OK) rc = write_csv(r, out);

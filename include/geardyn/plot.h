@@ -86,6 +86,20 @@ GD_API gd_status gd_plot_modal(const gd_system *sys, const gd_modal_result *r, g
  * critical speeds marked and listed, and a log-decrement panel with the instability
  * onset. GD_EINPUT when no mode was tracked. */
 GD_API gd_status gd_plot_campbell(const gd_campbell_result *r, gd_plot **out, gd_error *err);
+/* What gd_plot_campbell_opt draws beyond the defaults of gd_plot_campbell. */
+typedef struct gd_plot_campbell_options {
+    double max_frequency_hz;           /* > 0: the frequency axis ends here; modes wholly above
+                                          it and critical speeds above it are left out */
+    double operating_lo, operating_hi; /* rad/s; lo < hi: the operating range shaded and the
+                                          separation margin of each critical speed to it */
+} gd_plot_campbell_options;
+GD_API void gd_plot_campbell_options_init(gd_plot_campbell_options *opt);
+/* gd_plot_campbell with options (opt may be NULL: the defaults). The separation margin
+ * of a critical speed N to the range [lo, hi] is (lo - N) / lo below it, (N - hi) / hi
+ * above it, and 0 inside it (API 684 style). */
+GD_API gd_status gd_plot_campbell_opt(const gd_campbell_result *r,
+                                      const gd_plot_campbell_options *opt, gd_plot **out,
+                                      gd_error *err);
 
 /* Frequency response: Bode (magnitude, log scale; phase) over frequency (Hz) and
  * Nyquist (real vs imaginary) of every output; with a directional input (ninputs == 2,

@@ -62,7 +62,17 @@ static void trace_json(FILE *f, const pl_trace *t)
     fputs(",\"y\":", f);
     array(f, t->y, t->n);
     static const char *const modes[] = {"lines", "markers", "lines+markers", "lines"};
-    fprintf(f, ",\"mode\":\"%s\",\"showlegend\":%s", modes[t->mode], t->legend ? "true" : "false");
+    fprintf(f, ",\"mode\":\"%s%s\",\"showlegend\":%s", modes[t->mode],
+            t->label[0] && !t->text ? "+text" : "", t->legend ? "true" : "false");
+    if (t->label[0] && !t->text && t->n > 0) { /* written at the last point */
+        fputs(",\"text\":[", f);
+        for (int i = 0; i < t->n; i++) {
+            if (i) fputc(',', f);
+            pl_json_text(f, i == t->n - 1 ? t->label : "");
+        }
+        fprintf(f, "],\"textposition\":\"bottom left\",\"textfont\":{\"color\":\"%s\",\"size\":11}",
+                t->color);
+    }
     if (t->mode == PL_FILL)
         fprintf(f,
                 ",\"fill\":\"toself\",\"fillcolor\":\"%s\",\"opacity\":0.25,\"line\":{\"width\":0,"

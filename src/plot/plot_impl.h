@@ -32,6 +32,7 @@ typedef struct pl_trace {
     int legend;                /* shown in the legend */
     char **text;               /* n hover labels, or NULL */
     int y2;                    /* against the panel's right-hand axis (y2label) */
+    char label[64];            /* written on the plot at the trace's last point */
 } pl_trace;
 
 typedef enum pl_kind { PL_XY, PL_TABLE, PL_MODE3D } pl_kind;

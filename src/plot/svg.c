@@ -261,8 +261,10 @@ static void xy_panel(FILE *f, const pl_panel *pn, double y, double h, int id)
             fr.x0 - 62, fr.y0 + fr.ph / 2);
     pl_xml_text(f, pn->ylabel);
     fputs("</text>\n", f);
-    /* curves, then the legend */
-    int shown = 0;
+    /* curves, then the legend; labels written at curve ends step down out of each
+     * other's way */
+    int shown = 0, nlab = 0;
+    double labx[32], laby[32];
     for (int t = 0; t < pn->ntraces; t++) {
         const pl_trace *c = &pn->traces[t];
         fprintf(f, "<g class=\"trace\" data-name=\"");
@@ -291,6 +293,25 @@ static void xy_panel(FILE *f, const pl_panel *pn, double y, double h, int id)
                 marker(f, c->symbol, a, b, c->marker_color ? c->marker_color[i] : c->color);
                 fputc('\n', f);
             }
+        if (c->label[0] && c->n > 0) { /* at the last point shown, inside the frame */
+            double a = px(cf, c->x[c->n - 1]), b = py(cf, c->y[c->n - 1]);
+            if (isfinite(a) && isfinite(b)) {
+                if (b < fr.y0 + 12) b = fr.y0 + 12;
+                for (int again = 1; again;) {
+                    again = 0;
+                    for (int q = 0; q < nlab; q++)
+                        if (fabs(labx[q] - a) < 80 && fabs(laby[q] - b) < 11)
+                            b = laby[q] + 11, again = 1;
+                }
+                if (nlab < 32) labx[nlab] = a, laby[nlab++] = b;
+                fprintf(f,
+                        "<text class=\"label\" x=\"%.2f\" y=\"%.2f\" font-size=\"10\" "
+                        "text-anchor=\"end\" fill=\"%s\">",
+                        a - 3, b - 4, c->color);
+                pl_xml_text(f, c->label);
+                fputs("</text>\n", f);
+            }
+        }
         fputs("</g>\n", f);
         if (!c->legend) continue;
         if (shown < 16) {

@@ -721,6 +721,42 @@ TEST(campbell_pairs_stay_pairs)
     scratch_close(&d);
 }
 
+/* --max-frequency and --operating-range: the modes above the limit left out (Kumar:
+ * 2 of 7 below 120 Hz), each order line named on the plot, the critical speeds where
+ * --json puts them, with their separation margins to the range in the table. */
+TEST(campbell_limit_labels_margins)
+{
+    scratch d;
+    REQUIRE(scratch_open(&d));
+    plot_run pr;
+    plot_start(gd_ts_, &pr, &d,
+               "campbell examples/kumar2011_coupled.yaml --speeds 0:3000rpm:31 --max-frequency "
+               "120 --operating-range 1000:1400rpm --json --plot %s");
+    cJSON *j = pr.json;
+    svg *s = &pr.s;
+    if (j && s->ctx) {
+        CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'modes by whirl')]/"
+                       "s:g[@class='trace'][starts-with(@data-name,'mode ')]") == 2);
+        CHECK(count(s, "//s:text[@class='label'][.='1x input']") == 1);
+        CHECK(count(s, "//s:text[@class='label'][.='1x output']") == 1);
+        CHECK(count(s, "//s:g[@class='trace'][@data-name='operating range']") == 1);
+        const cJSON *cs = cJSON_GetObjectItem(j, "critical_speeds");
+        int n = cJSON_GetArraySize(cs);
+        CHECK(n == 3);
+        static double x[16];
+        int m = trace_numbers(s, TRACE("modes by whirl", "critical speeds"), "data-x", x, 16);
+        CHECK(m == n);
+        for (int k = 0; k < n && k < m; k++)
+            CHECK(same(x[k], jnum(cJSON_GetArrayItem(cs, k), "speed_rpm")));
+        /* two inside 1000-1400 rpm, 2941 rpm is (2941.32 - 1400) / 1400 = 110 % above */
+        CHECK(count(s, "//s:g[@class='table'][@data-rows='3'][@data-cols='5']") == 1);
+        CHECK(count(s, "//s:g[@class='table']/s:text[.='0 (inside)']") == 2);
+        CHECK(count(s, "//s:g[@class='table']/s:text[.='110']") == 1);
+    }
+    plot_end(&pr);
+    scratch_close(&d);
+}
+
 /* PNG: the signature and the IHDR width (the 960 px SVG drawn at twice its size) */
 static int png_width(const char *path)
 {
@@ -802,4 +838,5 @@ RUN_TESTS(T(campbell_plot_matches_json), T(frf_plot_matches_json), T(unbalance_p
           T(mesh_stiffness_plot_matches_json), T(modal_and_transient_plots),
           T(periodic_plot_matches_json), T(report_has_every_section), T(html_is_self_contained),
           T(bad_plot_requests_write_nothing), T(png_and_pdf_of_every_plot),
-          T(pure_tilt_mode_drawn_alone), T(campbell_pairs_stay_pairs))
+          T(pure_tilt_mode_drawn_alone), T(campbell_pairs_stay_pairs),
+          T(campbell_limit_labels_margins))
