@@ -29,7 +29,8 @@ static const char USAGE[] =
     "  --undamped          drop damping (gyroscopic terms stay)\n"
     "  --shift VALUE       sparse shift below zero, e.g. 10Hz (default: automatic)\n"
     "  --max-frequency F   the plot's frequency axis ends at F (Hz; or 5000rpm, rad/s): modes\n"
-    "                      and critical speeds wholly above it are left out of the plot\n"
+    "                      and critical speeds wholly above it are left out of the "
+    "plot\n" GD_CLI_UNITS_HELP
     "  --operating-range FROM:TO  shade this speed range on the plot and give each critical\n"
     "                      speed's separation margin to it (e.g. 2500:3500rpm)\n"
     "  --threads N         parallel threads over speeds (default: all cores)\n"
@@ -48,54 +49,57 @@ static double fd_hz(const gd_mode *md)
     return md->omega_d / (2 * PI);
 }
 
-static void print_tables(const gd_system *s, const gd_campbell_result *r)
+static void print_tables(const gd_system *s, const gd_campbell_result *r, const gd_cli_units *u)
 {
     int ns = r->nspeeds;
     printf("%s: %d DOFs, %d speeds, %d tracked modes (%s eigensolver), %d rigid-body mode(s) left "
            "out\n\n",
            s->model->file, s->ndof, ns, r->ntracks, r->sparse ? "sparse shift-invert" : "dense",
            r->nrigid);
-    printf("damped natural frequencies (Hz)\n%10s", "rpm");
+    printf("damped natural frequencies (%s)\n%10s", gd_cli_freq_unit(u), gd_cli_speed_unit(u));
     for (int t = 0; t < r->ntracks; t++)
         printf(" %10s%d", "mode", r->tracks[t].id);
     printf("\n");
     for (int k = 0; k < ns; k++) {
-        printf("%10.1f", r->speeds[k] * 30 / PI);
+        printf("%10.1f", gd_cli_speed_out(u, r->speeds[k]));
         for (int t = 0; t < r->ntracks; t++) {
             const gd_mode *md = &r->modes[(size_t)t * ns + k];
             if (md->rigid_body < 0)
                 printf(" %11s", "-");
             else
-                printf(" %11.5g", fd_hz(md));
+                printf(" %11.5g", gd_cli_freq_out(u, md->omega_d));
         }
         printf("\n");
     }
-    printf("\n%4s  %-9s %-10s %12s %12s %10s\n", "mode", "whirl", "dominant", "f_first(Hz)",
-           "f_last(Hz)", "min logdec");
+    char h0[32], h1[32];
+    snprintf(h0, sizeof h0, "f_first(%s)", gd_cli_freq_unit(u));
+    snprintf(h1, sizeof h1, "f_last(%s)", gd_cli_freq_unit(u));
+    printf("\n%4s  %-9s %-10s %12s %12s %10s\n", "mode", "whirl", "dominant", h0, h1, "min logdec");
     for (int t = 0; t < r->ntracks; t++) {
         double f0 = NAN, f1 = NAN, ld = INFINITY;
         for (int k = 0; k < ns; k++) {
             const gd_mode *md = &r->modes[(size_t)t * ns + k];
             if (md->rigid_body < 0) continue;
-            if (isnan(f0)) f0 = fd_hz(md);
-            f1 = fd_hz(md);
+            if (isnan(f0)) f0 = gd_cli_freq_out(u, md->omega_d);
+            f1 = gd_cli_freq_out(u, md->omega_d);
             if (!isnan(md->log_decrement) && md->log_decrement < ld) ld = md->log_decrement;
         }
         printf("%4d  %-9s %-10s %12.6g %12.6g %10.4g\n", r->tracks[t].id,
                gd_whirl_names[r->tracks[t].whirl], gd_motion_names[r->tracks[t].dominant_motion],
                f0, f1, isfinite(ld) ? ld : NAN);
     }
-    printf("\ncritical speeds\n%4s  %-32s %12s %12s\n", "mode", "order", "rpm", "f(Hz)");
+    snprintf(h0, sizeof h0, "f(%s)", gd_cli_freq_unit(u));
+    printf("\ncritical speeds\n%4s  %-32s %12s %12s\n", "mode", "order", gd_cli_speed_unit(u), h0);
     for (int c = 0; c < r->ncritical; c++)
         printf("%4d  %-32.32s %12.6g %12.6g\n", r->critical[c].mode,
-               r->orders[r->critical[c].order].label, r->critical[c].speed_rpm,
-               r->critical[c].frequency_hz);
+               r->orders[r->critical[c].order].label, gd_cli_speed_out(u, r->critical[c].speed),
+               gd_cli_freq_out(u, 2 * PI * r->critical[c].frequency_hz));
     if (!r->ncritical) printf("  (none in the speed range)\n");
     if (isnan(r->instability_onset))
         printf("\nstable over the whole speed range\n");
     else
-        printf("\nUNSTABLE from %.6g rpm (mode %d)\n", r->instability_onset * 30 / PI,
-               r->instability_track);
+        printf("\nUNSTABLE from %.6g %s (mode %d)\n", gd_cli_speed_out(u, r->instability_onset),
+               gd_cli_speed_unit(u), r->instability_track);
 }
 
 static cJSON *result_json(const gd_system *s, const gd_campbell_result *r)
@@ -270,9 +274,10 @@ int gd_cmd_campbell(int argc, char **argv)
                                          GD_CLI_PLOT_OPTION,
                                          {"max-frequency", required_argument, 0, 'X'},
                                          {"operating-range", required_argument, 0, 'R'},
+                                         {"units", required_argument, 0, 'U'},
                                          {0, 0, 0, 0}};
     const char *cmd = "campbell", *speeds = NULL, *coupling = NULL, *out = NULL, *orders = NULL,
-               *shift = NULL, *plot = NULL, *maxf = NULL, *oper = NULL;
+               *shift = NULL, *plot = NULL, *maxf = NULL, *oper = NULL, *units = NULL;
     gd_campbell_options opt;
     gd_campbell_options_init(&opt);
     int json = 0, c;
@@ -339,6 +344,9 @@ int gd_cmd_campbell(int argc, char **argv)
         case 'R':
             oper = optarg;
             break;
+        case 'U':
+            units = optarg;
+            break;
         case 'h':
             fputs(USAGE, stdout);
             return GD_EXIT_OK;
@@ -362,8 +370,15 @@ int gd_cmd_campbell(int argc, char **argv)
         free(ord);
         return gd_cli_usage_error(cmd, "--shift: give a value above zero");
     }
+    gd_cli_units u = {.speed_rpm = 1, .freq_hz = 1}; /* rpm and Hz unless rad/s is written */
+    if (gd_cli_units_parse(cmd, units, speeds, maxf, &u)) {
+        free(ord);
+        return GD_EXIT_INPUT;
+    }
     gd_plot_campbell_options popt;
     gd_plot_campbell_options_init(&popt);
+    popt.speed_rad_s = !u.speed_rpm;
+    popt.frequency_rad_s = !u.freq_hz;
     if (maxf && plot_frequency(maxf, &popt.max_frequency_hz)) {
         free(ord);
         return gd_cli_usage_error(cmd,
@@ -419,7 +434,7 @@ int gd_cmd_campbell(int argc, char **argv)
                 gd_cli_print_json(stdout, o);
                 cJSON_Delete(o);
             } else {
-                print_tables(s, r);
+                print_tables(s, r, &u);
             }
         }
         gd_campbell_free(r);

@@ -92,6 +92,8 @@ typedef struct gd_plot_campbell_options {
                                           it and critical speeds above it are left out */
     double operating_lo, operating_hi; /* rad/s; lo < hi: the operating range shaded and the
                                           separation margin of each critical speed to it */
+    int speed_rad_s;                   /* speed axis in rad/s (default rpm) */
+    int frequency_rad_s; /* frequency axis in rad/s (default Hz; max_frequency_hz stays Hz) */
 } gd_plot_campbell_options;
 GD_API void gd_plot_campbell_options_init(gd_plot_campbell_options *opt);
 /* gd_plot_campbell with options (opt may be NULL: the defaults). The separation margin

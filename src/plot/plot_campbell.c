@@ -46,7 +46,11 @@ gd_status gd_plot_campbell_opt(const gd_campbell_result *r, const gd_plot_campbe
     if (!opt) opt = &defaults;
     double fcap = opt->max_frequency_hz > 0 ? opt->max_frequency_hz : INFINITY;
     int oper = opt->operating_lo < opt->operating_hi && opt->operating_lo >= 0;
-    double olo = rpm(opt->operating_lo), ohi = rpm(opt->operating_hi);
+    /* axis units: speeds rpm or rad/s (sx per rad/s), frequencies Hz or rad/s (fy per Hz) */
+    double sx = opt->speed_rad_s ? 1 : 30 / PI, fy = opt->frequency_rad_s ? 2 * PI : 1;
+    const char *su = opt->speed_rad_s ? "rad/s" : "rpm",
+               *fu = opt->frequency_rad_s ? "rad/s" : "Hz";
+    double olo = sx * opt->operating_lo, ohi = sx * opt->operating_hi;
     if (r->ntracks == 0 || r->nspeeds == 0)
         return gd_error_set(err, GD_EINPUT, "", 0, 0, "--plot",
                             "ask for modes (--modes N) over a speed range (--speeds)",
@@ -70,16 +74,19 @@ gd_status gd_plot_campbell_opt(const gd_campbell_result *r, const gd_plot_campbe
                 rpm(r->instability_onset), r->instability_track);
     if (s) snprintf(s->csv_name, sizeof s->csv_name, "campbell.csv");
     pl_csv(p, s, "speed_rpm,mode,whirl,frequency_hz,log_decrement\n");
+    char xl[64], yl[64];
+    snprintf(xl, sizeof xl, "reference speed (%s)", su);
+    snprintf(yl, sizeof yl, "damped natural frequency (%s)", fu);
     pl_panel *fp = pl_panel_add(p, s, PL_XY,
                                 "modes by whirl (forward blue, backward red, mixed purple), "
                                 "orders, critical speeds",
-                                "reference speed (rpm)", "damped natural frequency (Hz)");
-    pl_panel *lp = pl_panel_add(p, s, PL_XY, "stability: log decrement of each mode",
-                                "reference speed (rpm)", "log decrement (-)");
+                                xl, yl);
+    pl_panel *lp =
+        pl_panel_add(p, s, PL_XY, "stability: log decrement of each mode", xl, "log decrement (-)");
     double *x = malloc((size_t)ns * sizeof *x);
     if (!x) p->nomem = 1;
     for (int k = 0; x && k < ns; k++)
-        x[k] = rpm(r->speeds[k]);
+        x[k] = sx * r->speeds[k];
     double fmax = 0;
     int above = 0;
     for (int t = 0; x && t < r->ntracks; t++) {
@@ -105,23 +112,23 @@ gd_status gd_plot_campbell_opt(const gd_campbell_result *r, const gd_plot_campbe
         for (int k = 0; k < ns; k++) {
             const gd_mode *md = &r->modes[(size_t)t * ns + k];
             int ex = md->rigid_body >= 0;
-            f->y[k] = ex ? md->omega_d / (2 * PI) : NAN;
+            f->y[k] = ex ? fy * md->omega_d / (2 * PI) : NAN;
             if (f->marker_color)
                 f->marker_color[k] = pl_whirl_color(ex ? md->whirl : GD_WHIRL_NONE);
             l->y[k] = ex ? md->log_decrement : NAN;
             if (isfinite(f->y[k]) && f->y[k] > fmax) fmax = f->y[k];
-            pl_trace_text(p, f, k, "mode %d, %s whirl: %.6g Hz at %.6g rpm", r->tracks[t].id,
-                          ex ? gd_whirl_names[md->whirl] : "-", f->y[k], x[k]);
+            pl_trace_text(p, f, k, "mode %d, whirl: %s: %.6g %s at %.6g %s", r->tracks[t].id,
+                          ex ? gd_whirl_names[md->whirl] : "-", f->y[k], fu, x[k], su);
             if (ex)
-                pl_csv(p, s, "%.10g,%d,%s,%.10g,%.10g\n", x[k], r->tracks[t].id,
-                       gd_whirl_names[md->whirl], f->y[k], l->y[k]);
+                pl_csv(p, s, "%.10g,%d,%s,%.10g,%.10g\n", rpm(r->speeds[k]), r->tracks[t].id,
+                       gd_whirl_names[md->whirl], md->omega_d / (2 * PI), l->y[k]);
         }
     }
     /* the frequency axis: up to the cap, else to a little above the highest mode */
-    double ytop = isfinite(fcap) ? fcap : 1.1 * fmax;
+    double ytop = isfinite(fcap) ? fy * fcap : 1.1 * fmax;
     if (fp && isfinite(fcap)) {
         fp->ylim[0] = 0;
-        fp->ylim[1] = fcap;
+        fp->ylim[1] = fy * fcap;
     }
     if (fp && x && oper) { /* the operating range, shaded under the curves */
         double bx[5] = {olo, ohi, ohi, olo, olo}, by[5] = {0, 0, ytop, ytop, 0};
@@ -135,10 +142,10 @@ gd_status gd_plot_campbell_opt(const gd_campbell_result *r, const gd_plot_campbe
     /* orders: f = order x speed / 2 pi, drawn up to the top of the frequency axis and
      * named at their end */
     for (int o = 0; x && o < r->norders; o++) {
-        double w1 = r->speeds[ns - 1], f1 = r->orders[o].order * w1 / (2 * PI);
-        if (ytop > 0 && f1 > ytop) w1 = ytop * 2 * PI / r->orders[o].order;
-        double ox[2] = {x[0], rpm(w1)}, oy[2] = {r->orders[o].order * r->speeds[0] / (2 * PI),
-                                                 r->orders[o].order * w1 / (2 * PI)};
+        double w1 = r->speeds[ns - 1], f1 = fy * r->orders[o].order * w1 / (2 * PI);
+        if (ytop > 0 && f1 > ytop) w1 = ytop / fy * 2 * PI / r->orders[o].order;
+        double ox[2] = {x[0], sx * w1}, oy[2] = {fy * r->orders[o].order * r->speeds[0] / (2 * PI),
+                                                 fy * r->orders[o].order * w1 / (2 * PI)};
         char label[96];
         order_label(&r->orders[o], label, sizeof label);
         pl_trace *t = pl_trace_add(p, fp, label, 2, ox, oy, PL_LINES,
@@ -157,20 +164,20 @@ gd_status gd_plot_campbell_opt(const gd_campbell_result *r, const gd_plot_campbe
     }
     for (int k = 0, i = 0; c && k < r->ncritical; k++) {
         if (r->critical[k].frequency_hz > fcap) continue;
-        c->x[i] = r->critical[k].speed_rpm;
-        c->y[i] = r->critical[k].frequency_hz;
+        c->x[i] = opt->speed_rad_s ? r->critical[k].speed : r->critical[k].speed_rpm;
+        c->y[i] = fy * r->critical[k].frequency_hz;
         char label[96];
         order_label(&r->orders[r->critical[k].order], label, sizeof label);
         if (oper) {
             double sm = margin(c->x[i], olo, ohi);
             if (c->marker_color) c->marker_color[i] = sm > 0 ? "#000" : "#d62728";
             pl_trace_text(p, c, i,
-                          "critical speed %.6g rpm: mode %d meets %s at %.6g Hz; separation "
+                          "critical speed %.6g %s: mode %d meets %s at %.6g %s; separation "
                           "margin %.3g %%",
-                          c->x[i], r->critical[k].mode, label, c->y[i], sm);
+                          c->x[i], su, r->critical[k].mode, label, c->y[i], fu, sm);
         } else {
-            pl_trace_text(p, c, i, "critical speed %.6g rpm: mode %d meets %s at %.6g Hz", c->x[i],
-                          r->critical[k].mode, label, c->y[i]);
+            pl_trace_text(p, c, i, "critical speed %.6g %s: mode %d meets %s at %.6g %s", c->x[i],
+                          su, r->critical[k].mode, label, c->y[i], fu);
         }
         i++;
     }
@@ -181,33 +188,38 @@ gd_status gd_plot_campbell_opt(const gd_campbell_result *r, const gd_plot_campbe
                 fcap, above, above == 1 ? "" : "s", r->ncritical - ncrit,
                 r->ncritical - ncrit == 1 ? "" : "s");
     if (!isnan(r->instability_onset)) {
-        double ox[1] = {rpm(r->instability_onset)}, oy[1] = {0};
+        double ox[1] = {sx * r->instability_onset}, oy[1] = {0};
         pl_trace *t = pl_trace_add(p, lp, "instability onset", 1, ox, oy, PL_MARKERS, "#d62728");
         if (t) t->symbol = PL_TRIANGLE;
     }
     char ttl[120];
     if (oper)
         snprintf(ttl, sizeof ttl,
-                 "critical speeds; separation margin to the operating range %.6g-%.6g rpm", olo,
-                 ohi);
+                 "critical speeds; separation margin to the operating range %.6g-%.6g %s", olo, ohi,
+                 su);
     else
         snprintf(ttl, sizeof ttl, "critical speeds");
     pl_panel *tb = pl_panel_add(p, s, PL_TABLE, ttl, NULL, NULL);
     int ncol = oper ? 5 : 4;
     pl_table_init(p, tb, ncrit, ncol);
-    const char *head[5] = {"mode", "order", "speed (rpm)", "frequency (Hz)", "margin (%)"};
     for (int k = 0; k < ncol; k++)
-        pl_cell(p, tb, 0, k, "%s", head[k]);
+        if (k == 2)
+            pl_cell(p, tb, 0, k, "speed (%s)", su);
+        else if (k == 3)
+            pl_cell(p, tb, 0, k, "frequency (%s)", fu);
+        else
+            pl_cell(p, tb, 0, k, "%s", k == 0 ? "mode" : k == 1 ? "order" : "margin (%)");
     for (int k = 0, row = 1; k < r->ncritical; k++) {
         if (r->critical[k].frequency_hz > fcap) continue;
         char label[96];
         order_label(&r->orders[r->critical[k].order], label, sizeof label);
         pl_cell(p, tb, row, 0, "%d", r->critical[k].mode);
         pl_cell(p, tb, row, 1, "%s", label);
-        pl_cell(p, tb, row, 2, "%.6g", r->critical[k].speed_rpm);
-        pl_cell(p, tb, row, 3, "%.6g", r->critical[k].frequency_hz);
+        double cs = opt->speed_rad_s ? r->critical[k].speed : r->critical[k].speed_rpm;
+        pl_cell(p, tb, row, 2, "%.6g", cs);
+        pl_cell(p, tb, row, 3, "%.6g", fy * r->critical[k].frequency_hz);
         if (oper) {
-            double sm = margin(r->critical[k].speed_rpm, olo, ohi);
+            double sm = margin(cs, olo, ohi);
             pl_cell(p, tb, row, 4, sm > 0 ? "%.3g" : "%.3g (inside)", sm);
         }
         row++;

@@ -757,6 +757,60 @@ TEST(campbell_limit_labels_margins)
     scratch_close(&d);
 }
 
+/* --units: by default the units written on the command line (--freq ...Hz gives a Hz
+ * table), else as asked; the Campbell axes follow (rad/s: the plotted speeds are the
+ * --json speeds_rad_s, the frequencies 2 pi x frequency_hz). */
+TEST(units_follow_the_command_line)
+{
+    scratch d;
+    REQUIRE(scratch_open(&d));
+    run_result r;
+    run(&d, &r,
+        "frf examples/kumar2011_coupled.yaml --input torque:motor --output mesh:mesh --freq "
+        "100:2000Hz:3");
+    CHECK(r.code == 0 && contains(r.out, "f(Hz)") && !contains(r.out, "w(rad/s)"));
+    CHECK(contains(r.out, "\n        1050 ")); /* the middle frequency, in Hz */
+    run_free(&r);
+    run(&d, &r,
+        "frf examples/kumar2011_coupled.yaml --input torque:motor --output mesh:mesh --freq "
+        "100:2000Hz:3 --units rad/s");
+    CHECK(r.code == 0 && contains(r.out, "w(rad/s)") && contains(r.out, "\n     628.319 "));
+    run_free(&r);
+    run(&d, &r, "unbalance examples/chen1998_gear_pair.yaml --speeds 100:600rad/s:2");
+    CHECK(r.code == 0 && contains(r.out, "\n       rad/s  ") && contains(r.out, "\n         600 "));
+    run_free(&r);
+    run(&d, &r, "campbell examples/kumar2011_coupled.yaml --speeds 0:300:3 --units rad/s");
+    CHECK(r.code == 0 && contains(r.out, "damped natural frequencies (rad/s)\n     rad/s "));
+    run_free(&r);
+    run(&d, &r, "campbell examples/kumar2011_coupled.yaml --speeds 0:300:3 --units kHz");
+    CHECK(r.code == 2 && contains(r.err, "--units: 'kHz' is not rpm, Hz or rad/s"));
+    run_free(&r);
+    plot_run pr;
+    plot_start(gd_ts_, &pr, &d,
+               "campbell examples/kumar2011_coupled.yaml --speeds 0:3000rpm:4 --units rad/s "
+               "--json --plot %s");
+    cJSON *j = pr.json;
+    svg *s = &pr.s;
+    if (j && s->ctx) {
+        static double x[8], y[8];
+        int n =
+            trace_numbers(s, TRACE("modes by whirl", "mode 1 (none, torsional)"), "data-x", x, 8);
+        int m =
+            trace_numbers(s, TRACE("modes by whirl", "mode 1 (none, torsional)"), "data-y", y, 8);
+        const cJSON *sp = cJSON_GetObjectItem(j, "speeds_rad_s");
+        const cJSON *f = cJSON_GetObjectItem(cJSON_GetArrayItem(cJSON_GetObjectItem(j, "modes"), 0),
+                                             "frequency_hz");
+        CHECK(n == 4 && m == 4);
+        for (int k = 0; k < n && k < 4; k++) {
+            CHECK(same(x[k], jat(sp, k)));
+            CHECK(fabs(y[k] - 2 * PI * jat(f, k)) <= 1e-12 * y[k]);
+        }
+        CHECK(count(s, "//s:text[.='reference speed (rad/s)']") == 2);
+    }
+    plot_end(&pr);
+    scratch_close(&d);
+}
+
 /* PNG: the signature and the IHDR width (the 960 px SVG drawn at twice its size) */
 static int png_width(const char *path)
 {
@@ -839,4 +893,4 @@ RUN_TESTS(T(campbell_plot_matches_json), T(frf_plot_matches_json), T(unbalance_p
           T(periodic_plot_matches_json), T(report_has_every_section), T(html_is_self_contained),
           T(bad_plot_requests_write_nothing), T(png_and_pdf_of_every_plot),
           T(pure_tilt_mode_drawn_alone), T(campbell_pairs_stay_pairs),
-          T(campbell_limit_labels_margins))
+          T(campbell_limit_labels_margins), T(units_follow_the_command_line))
