@@ -79,7 +79,13 @@ pl_panel *pl_panel_add(gd_plot *p, pl_section *s, pl_kind kind, const char *titl
                        const char *xlabel, const char *ylabel)
 {
     if (!s) return NULL;
-    pl_panel *pn = grow(p, s->panels, &s->cap, s->npanels + 1, sizeof *pn);
+    /* builders keep a panel's pointer while they add the next panels of the section:
+     * room for PANELS_STABLE from the start, so those pointers are not moved by a
+     * realloc (a builder that adds more refetches its pointers) */
+    enum { PANELS_STABLE = 256 };
+    pl_panel *pn =
+        grow(p, s->panels, &s->cap, s->npanels + 1 > PANELS_STABLE ? s->npanels + 1 : PANELS_STABLE,
+             sizeof *pn);
     if (!pn) return NULL;
     s->panels = pn;
     pn = &s->panels[s->npanels++];

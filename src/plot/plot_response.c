@@ -27,6 +27,11 @@ static void bode_panels(gd_plot *p, pl_section *s, bode *b, const char *what, co
     char x[120];
     snprintf(x, sizeof x, "real part (%s)", unit);
     b->polar = pl_panel_add(p, s, PL_XY, t, x, y);
+    /* adding a panel may move the section's panels: the three are its last ones */
+    if (b->mag && b->phase && b->polar) {
+        b->mag = &s->panels[s->npanels - 3];
+        b->phase = &s->panels[s->npanels - 2];
+    }
 }
 
 /* One complex curve over x into the three panels, and its rows into the CSV. */
@@ -50,16 +55,28 @@ static const char *dof_unit(gd_dof d)
     return d >= GD_RX ? "rad" : "m";
 }
 
+/* The unit of an FRF, output per input, written as a unit: "m/N", "1/m" (a mesh force
+ * per unit moment, N/(N m)), "rad/(N m s)", never "N/N m". */
 static void frf_unit(const gd_system *sys, const gd_frf_options *opt, const gd_probe *pr, char *buf,
                      size_t n)
 {
-    const char *in = sys->dof_type[opt->inputs[0]] >= GD_RX ? "N m" : "N";
+    int moment_in = sys->dof_type[opt->inputs[0]] >= GD_RX;
+    static const char *const rate[3] = {"", " s", " s^2"};
     if (pr->kind == GD_PROBE_DOF) {
-        static const char *const rate[3] = {"", "/s", "/s^2"};
-        snprintf(buf, n, "%s%s/%s", dof_unit(sys->dof_type[pr->index]), rate[opt->quantity], in);
+        int rot = sys->dof_type[pr->index] >= GD_RX;
+        const char *r = rate[opt->quantity];
+        if (!moment_in) /* m/N, m/(N s), rad/(N s^2) */
+            snprintf(buf, n, r[0] ? "%s/(N%s)" : "%s/N%s", rot ? "rad" : "m", r);
+        else if (rot) /* rad/(N m), rad/(N m s) */
+            snprintf(buf, n, "rad/(N m%s)", r);
+        else /* m/(N m) = 1/N */
+            snprintf(buf, n, r[0] ? "1/(N%s)" : "1/N%s", r);
     } else {
-        snprintf(buf, n, "%s/%s", pr->kind == GD_PROBE_BEARING && pr->dir >= GD_RX ? "N m" : "N",
-                 in);
+        int mom_out = pr->kind == GD_PROBE_BEARING && pr->dir >= GD_RX;
+        if (mom_out == moment_in)
+            snprintf(buf, n, "%s", mom_out ? "N m/(N m)" : "N/N");
+        else
+            snprintf(buf, n, "%s", mom_out ? "m" : "1/m"); /* N m/N, N/(N m) */
     }
 }
 
@@ -199,18 +216,30 @@ gd_status gd_plot_unbalance(const gd_system *sys, const gd_unbalance_options *op
                 r->harmonics[h].order, ns, x[0], x[ns - 1], x[at]);
         if (s) snprintf(s->csv_name, sizeof s->csv_name, "unbalance_h%d.csv", h + 1);
         pl_csv(p, s, "output,speed_rpm,magnitude,phase_deg,real,imag\n");
-        if (no) {
-            const char *unit = probe_unit(sys, &opt->outputs[0]);
-            int same = 1;
-            for (int o = 1; o < no; o++)
-                same &= !strcmp(unit, probe_unit(sys, &opt->outputs[o]));
+        /* one set of panels per physical quantity: displacements (m), angles (rad),
+         * forces (N), moments (N m) never share an axis */
+        static const char *const units[4] = {"m", "rad", "N", "N m"};
+        static const char *const what[4] = {"displacement", "angle", "force", "moment"};
+        int nused = 0;
+        for (int q = 0; q < 4; q++)
+            for (int o = 0; o < no; o++)
+                if (!strcmp(units[q], probe_unit(sys, &opt->outputs[o]))) {
+                    nused++;
+                    break;
+                }
+        for (int q = 0; q < 4 && no; q++) {
+            int any = 0;
+            for (int o = 0; o < no; o++)
+                any |= !strcmp(units[q], probe_unit(sys, &opt->outputs[o]));
+            if (!any) continue;
             bode b;
-            bode_panels(p, s, &b, "amplitude", "reference speed (rpm)",
-                        same ? unit : "m, rad or N: see each output");
+            char head[64];
+            snprintf(head, sizeof head, nused > 1 ? "%s amplitude" : "amplitude", what[q]);
+            bode_panels(p, s, &b, head, "reference speed (rpm)", units[q]);
             for (int o = 0; o < no; o++) {
+                if (strcmp(units[q], probe_unit(sys, &opt->outputs[o]))) continue;
                 char name[200];
-                snprintf(name, sizeof name, "%s (%s)", opt->outputs[o].name,
-                         probe_unit(sys, &opt->outputs[o]));
+                snprintf(name, sizeof name, "%s (%s)", opt->outputs[o].name, units[q]);
                 size_t off = ((size_t)h * no + o) * ns;
                 bode_curve(p, s, &b, name, ns, x, r->re + off, r->im + off, o);
             }

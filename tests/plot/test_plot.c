@@ -205,10 +205,9 @@ TEST(frf_plot_matches_json)
         const cJSON *outs = cJSON_GetObjectItem(j, "outputs");
         CHECK(cJSON_GetArraySize(outs) == 2);
         double y[32], x[32], re[32];
-        int n = trace_numbers(s, TRACE("FRF: magnitude", "mesh:mesh (N/N m)"), "data-y", y, 32);
+        int n = trace_numbers(s, TRACE("FRF: magnitude", "mesh:mesh (1/m)"), "data-y", y, 32);
         CHECK(n == 20);
-        CHECK(trace_numbers(s, TRACE("FRF: magnitude", "mesh:mesh (N/N m)"), "data-x", x, 32) ==
-              20);
+        CHECK(trace_numbers(s, TRACE("FRF: magnitude", "mesh:mesh (1/m)"), "data-x", x, 32) == 20);
         const cJSON *o = cJSON_GetArrayItem(outs, 0);
         for (int k = 0; k < n && k < 20; k++) {
             CHECK(same(y[k], jat(cJSON_GetObjectItem(o, "magnitude"), k)));
@@ -216,17 +215,17 @@ TEST(frf_plot_matches_json)
                   fabs(x[k] * 2 * PI / jat(cJSON_GetObjectItem(o, "frequency_rad_s"), k) - 1) <
                       1e-15);
         }
-        n = trace_numbers(s, TRACE("FRF: phase", "pinion.y (m/N m)"), "data-y", y, 32);
+        n = trace_numbers(s, TRACE("FRF: phase", "pinion.y (1/N)"), "data-y", y, 32);
         CHECK(n == 20);
         o = cJSON_GetArrayItem(outs, 1);
         for (int k = 0; k < n && k < 20; k++)
             CHECK(same(y[k], jat(cJSON_GetObjectItem(o, "phase_deg"), k)));
-        n = trace_numbers(s, TRACE("FRF: Nyquist", "pinion.y (m/N m)"), "data-x", re, 32);
+        n = trace_numbers(s, TRACE("FRF: Nyquist", "pinion.y (1/N)"), "data-x", re, 32);
         CHECK(n == 20);
         for (int k = 0; k < n && k < 20; k++)
             CHECK(same(re[k], jat(cJSON_GetObjectItem(o, "real"), k)));
         /* Nyquist points are markers on the curve */
-        CHECK(count(s, TRACE("FRF: Nyquist", "pinion.y (m/N m)") "/*[@class='marker']") == 20);
+        CHECK(count(s, TRACE("FRF: Nyquist", "pinion.y (1/N)") "/*[@class='marker']") == 20);
     }
     plot_end(&pr);
     scratch_close(&d);
@@ -246,17 +245,18 @@ TEST(unbalance_plot_matches_json)
         int no = cJSON_GetArraySize(outs),
             nh = cJSON_GetArraySize(cJSON_GetObjectItem(j, "harmonics"));
         CHECK(nh == 1 && no > 0);
-        CHECK(
-            count(
-                s,
-                "//s:g[@class='panel'][@data-title='amplitude: magnitude']/s:g[@class='trace']") ==
-            no);
+        CHECK(count(s, "//s:g[@class='panel'][contains(@data-title,'amplitude: "
+                       "magnitude')]/s:g[@class='trace']") == no);
+        /* one set of panels per quantity: m, rad and N (the chen pair's defaults) */
+        CHECK(count(s, "//s:g[@class='panel'][contains(@data-title,'amplitude: magnitude')]") == 3);
+        CHECK(count(s, "//s:g[@class='panel'][@data-title='force amplitude: magnitude']/"
+                       "s:g[@class='trace'][not(contains(@data-name,'(N)'))]") == 0);
         for (int o = 0; o < no; o++) {
             const cJSON *ser = cJSON_GetArrayItem(outs, o);
             char xp[400];
             snprintf(xp, sizeof xp,
-                     "//s:g[@class='panel'][@data-title='amplitude: magnitude']/s:g[@class='trace']"
-                     "[starts-with(@data-name,'%s (')]",
+                     "//s:g[@class='panel'][contains(@data-title,'amplitude: "
+                     "magnitude')]/s:g[@class='trace'][starts-with(@data-name,'%s (')]",
                      jstr(ser, "name"));
             double y[16];
             int n = trace_numbers(s, xp, "data-y", y, 16);
