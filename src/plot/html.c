@@ -146,6 +146,7 @@ static void xy_json(FILE *f, const pl_panel *pn, const char *id)
     pl_range(pn, 0, &lo, &hi);
     fputs("},\"xaxis\":", f);
     axis_json(f, pn->xlabel, pn->xlog, lo, hi);
+    if (pn->xint) fputs(",\"tick0\":0,\"dtick\":1", f);
     pl_range(pn, 1, &lo, &hi);
     fputs("},\"yaxis\":", f);
     axis_json(f, pn->ylabel, pn->ylog, lo, hi);

@@ -43,6 +43,7 @@ typedef struct pl_panel {
     char y2label[120];        /* right-hand axis of the traces marked y2 */
     char subtitle[400];       /* a line under the title (what was left out, ...) */
     double ylim[2], y2lim[2]; /* fixed ranges of the y axes when lo < hi; else the data's */
+    int xint;                 /* x ticks on whole numbers only (orders) */
     int xlog, ylog;
     int equal; /* equal scales on x and y (orbits, the model drawing) */
     int ntraces, cap;

@@ -213,6 +213,17 @@ static void xy_panel(FILE *f, const pl_panel *pn, double y, double h, int id)
             hi = pow(10, axis ? fr.yhi : fr.xhi);
         }
         int nt = pl_ticks(lo, hi, lg, ticks, 32);
+        if (!axis && pn->xint && !lg) { /* whole numbers only, a step of 1, 2, 5, 10... */
+            int m = 0;
+            for (int k = 0; k < nt; k++)
+                if (ticks[k] == floor(ticks[k])) ticks[m++] = ticks[k];
+            if (m < 2) {
+                m = 0;
+                for (double v = ceil(lo); v <= hi && m < 32; v++)
+                    ticks[m++] = v;
+            }
+            nt = m;
+        }
         for (int k = 0; k < nt; k++) {
             fmt_tick(lab, sizeof lab, ticks[k], lg);
             if (axis) {

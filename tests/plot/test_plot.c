@@ -279,7 +279,7 @@ static int zone_runs(const cJSON *pairs, int want)
 {
     int n = cJSON_GetArraySize(pairs), runs = 0, prev = 0;
     for (int i = 0; i < n; i++) {
-        int p = (int)jat(pairs, i), in = want == 1 ? p == 1 : p >= 2;
+        int p = (int)jat(pairs, i), in = p == want;
         runs += in && !prev;
         prev = in;
     }
@@ -314,15 +314,37 @@ TEST(mesh_stiffness_plot_matches_json)
         const cJSON *pairs = cJSON_GetObjectItem(j, "pairs_in_contact");
         int n1 = zone_runs(pairs, 1), n2 = zone_runs(pairs, 2);
         CHECK(n1 >= 2 && n2 >= 2);
-        CHECK(count(s, TRACE("time-varying mesh stiffness", "single-pair contact") "/s:polygon") ==
+        CHECK(count(s, TRACE("time-varying mesh stiffness", "1 pair in contact") "/s:polygon") ==
               n1);
-        CHECK(count(s, TRACE("time-varying mesh stiffness", "double-pair contact") "/s:polygon") ==
+        CHECK(count(s, TRACE("time-varying mesh stiffness", "2 pairs in contact") "/s:polygon") ==
               n2);
         /* the comparison: this pair and two other helix angles */
         CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'comparison')]/"
                        "s:g[@class='trace']") == 3);
         CHECK(count(s, TRACE("Fourier harmonics", "amplitude") "/*[@class='marker']") ==
               cJSON_GetArraySize(cJSON_GetObjectItem(j, "harmonics")));
+    }
+    plot_end(&pr);
+    /* a helical pair of total contact ratio 2.6 (Table 1 of 002): 2 and 3 pairs in
+     * contact, shaded as such, none as 1 pair; the y axis around the ripple */
+    plot_start(
+        gd_ts_, &pr, &d,
+        "mesh-stiffness examples/helical_pair1.yaml --cycles 2 --points 60 --json --plot %s");
+    s = &pr.s;
+    j = pr.json;
+    if (j && s->ctx) {
+        const cJSON *pairs = cJSON_GetObjectItem(j, "pairs_in_contact");
+        int n2 = zone_runs(pairs, 2), n3 = zone_runs(pairs, 3);
+        CHECK(n2 >= 2 && n3 >= 2 && zone_runs(pairs, 1) == 0);
+        CHECK(count(s, TRACE("time-varying mesh stiffness", "2 pairs in contact") "/s:polygon") ==
+              n2);
+        CHECK(count(s, TRACE("time-varying mesh stiffness", "3 pairs in contact") "/s:polygon") ==
+              n3);
+        CHECK(count(s, TRACE("time-varying mesh stiffness", "1 pair in contact")) == 0);
+        static double zy[64];
+        int nz = trace_numbers(s, TRACE("time-varying mesh stiffness", "2 pairs in contact"),
+                               "data-y", zy, 64);
+        CHECK(nz > 0 && zy[0] > 0.5 * jnum(j, "stiffness_min")); /* the axis does not start at 0 */
     }
     plot_end(&pr);
     scratch_close(&d);
