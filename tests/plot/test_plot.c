@@ -619,6 +619,14 @@ TEST(bad_plot_requests_write_nothing)
              "%s/p.svg --out %s/o",
              d.dir, d.dir);
     check_refused(gd_ts_, &d, args, "nothing to plot: no point converged");
+    /* ... and the table that says why is still printed */
+    {
+        run_result r;
+        run(&d, &r, "%s", args);
+        CHECK(r.code == 2 && contains(r.out, "converged"));
+        if (!contains(r.out, "converged")) show(&r);
+        run_free(&r);
+    }
     /* HTML without plotly.js */
     setenv("GEARDYN_PLOTLY_JS", "/nonexistent/plotly.min.js", 1);
     snprintf(args, sizeof args, "report tests/plot/study.yaml --out %s/r.html", d.dir);
