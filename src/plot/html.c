@@ -70,8 +70,8 @@ static void trace_json(FILE *f, const pl_trace *t)
             if (i) fputc(',', f);
             pl_json_text(f, i == t->n - 1 ? t->label : "");
         }
-        fprintf(f, "],\"textposition\":\"bottom left\",\"textfont\":{\"color\":\"%s\",\"size\":11}",
-                t->color);
+        fprintf(f, "],\"textposition\":\"%s\",\"textfont\":{\"color\":\"%s\",\"size\":11}",
+                t->label_right ? "bottom right" : "top left", t->color);
     }
     if (t->mode == PL_FILL)
         fprintf(f,
@@ -147,6 +147,7 @@ static void xy_json(FILE *f, const pl_panel *pn, const char *id)
     fputs("},\"xaxis\":", f);
     axis_json(f, pn->xlabel, pn->xlog, lo, hi);
     if (pn->xint) fputs(",\"tick0\":0,\"dtick\":1", f);
+    if (pn->xlim[0] < pn->xlim[1]) fprintf(f, ",\"range\":[%.10g,%.10g]", pn->xlim[0], pn->xlim[1]);
     pl_range(pn, 1, &lo, &hi);
     fputs("},\"yaxis\":", f);
     axis_json(f, pn->ylabel, pn->ylog, lo, hi);
@@ -161,10 +162,15 @@ static void xy_json(FILE *f, const pl_panel *pn, const char *id)
         if (pn->y2lim[0] < pn->y2lim[1])
             fprintf(f, ",\"range\":[%.6g,%.6g]", pn->y2lim[0], pn->y2lim[1]);
     }
+    int nleg = 0;
+    for (int t = 0; t < pn->ntraces; t++)
+        nleg += pn->traces[t].legend;
+    int height = pn->equal ? 520 : 440;
+    if (90 + 19 * nleg > height) height = 90 + 19 * nleg; /* the whole legend, no scrolling */
     fprintf(f,
             "},\"height\":%d,\"margin\":{\"t\":%d},\"hovermode\":\"closest\","
             "\"legend\":{\"x\":%s},\"modebar\":{\"orientation\":\"v\"}}}",
-            pn->equal ? 520 : 440, pn->subtitle[0] ? 80 : 60, two ? "1.1" : "1.04");
+            height, pn->subtitle[0] ? 80 : 60, two ? "1.1" : "1.04");
 }
 
 static void mode3d_json(FILE *f, const pl_panel *pn, const char *id)

@@ -126,6 +126,10 @@ gd_status gd_plot_campbell_opt(const gd_campbell_result *r, const gd_plot_campbe
     }
     /* the frequency axis: up to the cap, else to a little above the highest mode */
     double ytop = isfinite(fcap) ? fy * fcap : 1.1 * fmax;
+    if (fp && x) { /* the speed range, not widened for the order names */
+        fp->xlim[0] = x[0];
+        fp->xlim[1] = x[ns - 1];
+    }
     if (fp && isfinite(fcap)) {
         fp->ylim[0] = 0;
         fp->ylim[1] = fy * fcap;
@@ -153,6 +157,7 @@ gd_status gd_plot_campbell_opt(const gd_campbell_result *r, const gd_plot_campbe
         if (!t) continue;
         t->dash = 1;
         snprintf(t->label, sizeof t->label, "%.63s", label);
+        t->label_right = w1 < r->speeds[ns - 1]; /* ends at the top: name it to the right */
     }
     int ncrit = 0;
     for (int k = 0; k < r->ncritical; k++)

@@ -33,6 +33,7 @@ typedef struct pl_trace {
     char **text;               /* n hover labels, or NULL */
     int y2;                    /* against the panel's right-hand axis (y2label) */
     char label[64];            /* written on the plot at the trace's last point */
+    int label_right;           /* the label to the right of that point (else to its left) */
 } pl_trace;
 
 typedef enum pl_kind { PL_XY, PL_TABLE, PL_MODE3D } pl_kind;
@@ -44,6 +45,7 @@ typedef struct pl_panel {
     char subtitle[400];       /* a line under the title (what was left out, ...) */
     double ylim[2], y2lim[2]; /* fixed ranges of the y axes when lo < hi; else the data's */
     int xint;                 /* x ticks on whole numbers only (orders) */
+    double xlim[2];           /* fixed x range when lo < hi */
     int xlog, ylog;
     int equal; /* equal scales on x and y (orbits, the model drawing) */
     int ntraces, cap;

@@ -39,7 +39,12 @@ static int host_of(const gd_model *m, int h, double *pos)
             if (a < 0 || b < 0) continue;
             int other = m->nodes[a].shaft == h ? b : m->nodes[b].shaft == h ? a : -1;
             if (other < 0 || m->shafts[m->nodes[other].shaft].nsections == 0) continue;
-            *pos = m->nodes[other].position;
+            /* just outside the host's end it is coupled at, clear of the bearing there */
+            const gd_shaft *hs = &m->shafts[m->nodes[other].shaft];
+            double lo = m->nodes[hs->first_node].position,
+                   hi = m->nodes[hs->first_node + hs->nnodes - 1].position,
+                   x = m->nodes[other].position;
+            *pos = x + (x - lo < hi - x ? -0.04 : 0.04) * (hi - lo);
             return m->nodes[other].shaft;
         }
     }

@@ -148,6 +148,7 @@ static void xy_panel(FILE *f, const pl_panel *pn, double y, double h, int id)
     double xl, xh, yl, yh;
     pl_range(pn, 0, &xl, &xh);
     pl_range(pn, 1, &yl, &yh);
+    if (pn->xlim[0] < pn->xlim[1] && !pn->equal) xl = pn->xlim[0], xh = pn->xlim[1];
     if (pn->ylim[0] < pn->ylim[1] && !pn->equal) {
         yl = pn->ylim[0];
         yh = pn->ylim[1];
@@ -317,8 +318,9 @@ static void xy_panel(FILE *f, const pl_panel *pn, double y, double h, int id)
                 if (nlab < 32) labx[nlab] = a, laby[nlab++] = b;
                 fprintf(f,
                         "<text class=\"label\" x=\"%.2f\" y=\"%.2f\" font-size=\"10\" "
-                        "text-anchor=\"end\" fill=\"%s\">",
-                        a - 3, b - 4, c->color);
+                        "text-anchor=\"%s\" fill=\"%s\">",
+                        c->label_right ? a + 3 : a - 3, c->label_right ? b + 10 : b - 4,
+                        c->label_right ? "start" : "end", c->color);
                 pl_xml_text(f, c->label);
                 fputs("</text>\n", f);
             }
