@@ -4,7 +4,8 @@
  * when pasted into a report), less for very tall documents (cairo's 32767 px limit).
  * PDF: one page per section, a section taller than an A4-shaped page split between its
  * panels onto pages of their own, so a figure is never cut. Built only when librsvg and
- * cairo were found (GD_HAVE_RASTER); otherwise pl_raster_missing names the packages. */
+ * cairo were found (GD_HAVE_RASTER); otherwise pl_raster_missing names the packages.
+ * A document taller than 4000 SVG pixels (a report) is drawn at its own size. */
 #define _POSIX_C_SOURCE 200809L /* open_memstream */
 #include <stdio.h>
 #include <stdlib.h>
@@ -74,6 +75,8 @@ static cairo_status_t to_file(void *closure, const unsigned char *data, unsigned
                                                               : CAIRO_STATUS_WRITE_ERROR;
 }
 
+enum { TALL = 4000 }; /* SVG pixels */
+
 static gd_status write_png(const gd_plot *p, FILE *f, gd_error *err)
 {
     char *buf;
@@ -85,7 +88,9 @@ static gd_status write_png(const gd_plot *p, FILE *f, gd_error *err)
     RsvgHandle *hd = load(buf, len, &w, &h, &ge);
     free(buf);
     if (!hd) return rsvg_fail(ge, err);
-    double scale = 2;
+    /* twice the pixels for a figure; a long document (a report) at its own size, which
+     * keeps it to about 1 MB and a second */
+    double scale = h > TALL ? 1 : 2;
     if (h * scale > 32000) scale = 32000 / h;
     cairo_surface_t *sf = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, (int)(w * scale + 0.5),
                                                      (int)(h * scale + 0.5));
