@@ -71,7 +71,10 @@ static void trace_json(FILE *f, const pl_trace *t)
             pl_json_text(f, i == t->n - 1 ? t->label : "");
         }
         fprintf(f, "],\"textposition\":\"%s\",\"textfont\":{\"color\":\"%s\",\"size\":11}",
-                t->label_right ? "bottom right" : "top left", t->color);
+                t->label_right   ? "bottom right"
+                : t->label_below ? "bottom left"
+                                 : "top left",
+                t->color);
     }
     if (t->mode == PL_FILL)
         fprintf(f,

@@ -145,6 +145,7 @@ gd_status gd_plot_campbell_opt(const gd_campbell_result *r, const gd_plot_campbe
     }
     /* orders: f = order x speed / 2 pi, drawn up to the top of the frequency axis and
      * named at their end */
+    int nright = 0;
     for (int o = 0; x && o < r->norders; o++) {
         double w1 = r->speeds[ns - 1], f1 = fy * r->orders[o].order * w1 / (2 * PI);
         if (ytop > 0 && f1 > ytop) w1 = ytop / fy * 2 * PI / r->orders[o].order;
@@ -158,6 +159,7 @@ gd_status gd_plot_campbell_opt(const gd_campbell_result *r, const gd_plot_campbe
         t->dash = 1;
         snprintf(t->label, sizeof t->label, "%.63s", label);
         t->label_right = w1 < r->speeds[ns - 1]; /* ends at the top: name it to the right */
+        if (!t->label_right) t->label_below = nright++ % 2; /* right-edge names alternate */
     }
     int ncrit = 0;
     for (int k = 0; k < r->ncritical; k++)

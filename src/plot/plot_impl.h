@@ -34,6 +34,7 @@ typedef struct pl_trace {
     int y2;                    /* against the panel's right-hand axis (y2label) */
     char label[64];            /* written on the plot at the trace's last point */
     int label_right;           /* the label to the right of that point (else to its left) */
+    int label_below;           /* HTML: the label below the point (neighbours alternate) */
 } pl_trace;
 
 typedef enum pl_kind { PL_XY, PL_TABLE, PL_MODE3D } pl_kind;
