@@ -5,7 +5,7 @@
  * PDF: one page per section, a section taller than an A4-shaped page split between its
  * panels onto pages of their own, so a figure is never cut. Built only when librsvg and
  * cairo were found (GD_HAVE_RASTER); otherwise pl_raster_missing names the packages.
- * A document taller than 4000 SVG pixels (a report) is drawn at its own size. */
+ * A document taller than 8000 SVG pixels (a report) is drawn at its own size. */
 #define _POSIX_C_SOURCE 200809L /* open_memstream */
 #include <stdio.h>
 #include <stdlib.h>
@@ -75,7 +75,7 @@ static cairo_status_t to_file(void *closure, const unsigned char *data, unsigned
                                                               : CAIRO_STATUS_WRITE_ERROR;
 }
 
-enum { TALL = 4000 }; /* SVG pixels */
+enum { TALL = 8000 }; /* SVG pixels */
 
 static gd_status write_png(const gd_plot *p, FILE *f, gd_error *err)
 {

@@ -199,9 +199,12 @@ TEST(frf_plot_matches_json)
     svg *s = &pr.s;
     cJSON *j = pr.json;
     if (j && s->ctx) {
-        /* magnitude, phase, Nyquist: two curves each */
+        /* magnitude, phase, Nyquist: two curves each; the Nyquist curves refined around
+         * the peaks (no legend), the located peaks on the magnitude panel */
         CHECK(count(s, "//s:g[@class='panel']") == 3);
-        CHECK(count(s, "//s:g[@class='panel']/s:g[@class='trace']") == 6);
+        CHECK(count(s, "//s:g[@class='panel']/s:g[@class='trace'][not(contains(@data-name,'"
+                       "refined'))][@data-name!='peaks (located)']") == 6);
+        CHECK(count(s, TRACE("FRF: Nyquist", "pinion.y (1/N) (refined around the peaks)")) == 1);
         const cJSON *outs = cJSON_GetObjectItem(j, "outputs");
         CHECK(cJSON_GetArraySize(outs) == 2);
         double y[32], x[32], re[32];
@@ -445,9 +448,9 @@ TEST(report_has_every_section)
                     "//s:g[@class='panel'][@data-title='the model to scale (side view)']/"
                     "s:g[@class='trace'][@data-name!='nodes']") == 3); /* shafts, gears, bearings */
         CHECK(count(&s, TRACE("the model to scale", "bearings") "/*[@class='marker']") == 4);
-        CHECK(
-            count(&s, "//s:g[@class='panel'][@data-title='FRF: magnitude']/s:g[@class='trace']") ==
-            9); /* the mesh force and x, y of four bearings */
+        CHECK(count(&s, "//s:g[@class='panel'][@data-title='FRF: magnitude']/s:g[@class='trace']"
+                        "[@data-name!='peaks (located)']") ==
+              9); /* the mesh force and x, y of four bearings */
         static double y[200];
         const cJSON *kk = cJSON_GetObjectItem(j, "stiffness");
         int n = trace_numbers(&s, TRACE("time-varying mesh stiffness", "k (normal plane)"),
@@ -842,6 +845,46 @@ TEST(units_follow_the_command_line)
     scratch_close(&d);
 }
 
+/* The FRF's peaks are located, not sampled: on a 10 Hz grid the rig's mesh-force peaks
+ * fall within 1e-4 of damped natural frequencies from `modal` (measured: 126.53038 vs
+ * 126.5304 Hz, 1324.709 vs 1324.737 Hz, where the modes' damping ratio is 7e-4), and the
+ * Nyquist curve gets the points around them. */
+TEST(frf_peaks_located)
+{
+    scratch d;
+    REQUIRE(scratch_open(&d));
+    run_result k;
+    run(&d, &k, "modal examples/rig2018.yaml --speed 3000rpm --modes 20 --json");
+    cJSON *mj = cJSON_Parse(k.out);
+    plot_run pr;
+    plot_start(gd_ts_, &pr, &d,
+               "frf examples/rig2018.yaml --input torque:gear48 --output mesh:mesh --freq "
+               "10:3000Hz:300 --speed 3000rpm --json --plot %s");
+    svg *s = &pr.s;
+    if (mj && s->ctx) {
+        static double x[64], re[4096];
+        int n = trace_numbers(s, TRACE("FRF: magnitude", "peaks (located)"), "data-x", x, 64);
+        CHECK(n >= 3);
+        const cJSON *modes = cJSON_GetObjectItem(mj, "modes");
+        for (int i = 0; i < n; i++) {
+            double best = INFINITY;
+            for (int m = 0; m < cJSON_GetArraySize(modes); m++) {
+                double f = jnum(cJSON_GetArrayItem(modes, m), "damped_frequency_hz");
+                if (f > 0) best = fmin(best, fabs(x[i] / f - 1));
+            }
+            CHECK(best < 1e-4);
+            CHECK(fabs(x[i] / 10 - round(x[i] / 10)) > 1e-3); /* not a grid point */
+        }
+        int nr = trace_numbers(s, TRACE("FRF: Nyquist", "mesh:mesh (refined around the peaks)"),
+                               "data-x", re, 4096);
+        CHECK(nr == 300 + n * 61); /* the 300 given, 30 each side of each peak and the peak */
+    }
+    cJSON_Delete(mj);
+    run_free(&k);
+    plot_end(&pr);
+    scratch_close(&d);
+}
+
 /* PNG: the signature and the IHDR width */
 static int png_width(const char *path)
 {
@@ -911,7 +954,7 @@ TEST(png_and_pdf_of_every_plot)
                     fprintf(stderr, "  %s: %d pages\n", args, n), show(&r);
             } else {
                 CHECK(r.code == 0);
-                /* figures at twice the SVG's 960 px; a report (taller than 4000 px) at 1x */
+                /* figures at twice the SVG's 960 px; a report (taller than 8000 px) at 1x */
                 CHECK(png_width(path) == (runs[k].sections > 1 ? 960 : 1920));
                 if (r.code) show(&r);
             }
@@ -925,4 +968,4 @@ RUN_TESTS(T(campbell_plot_matches_json), T(frf_plot_matches_json), T(unbalance_p
           T(periodic_plot_matches_json), T(report_has_every_section), T(html_is_self_contained),
           T(bad_plot_requests_write_nothing), T(png_and_pdf_of_every_plot),
           T(pure_tilt_mode_drawn_alone), T(campbell_pairs_stay_pairs),
-          T(campbell_limit_labels_margins), T(units_follow_the_command_line))
+          T(campbell_limit_labels_margins), T(units_follow_the_command_line), T(frf_peaks_located))
