@@ -301,7 +301,9 @@ gd_status gd_plot_frf(const gd_system *sys, const gd_frf_options *opt, const gd_
                        color++);
         }
     }
-    if (!dir && r->ninputs == 1 && r->noutputs <= 64 && nf >= 3 && b.polar && b.mag && !p->nomem)
+    /* an undamped model's peaks are singular (|H| unbounded): nothing to refine */
+    if (!dir && r->ninputs == 1 && r->noutputs <= 64 && nf >= 3 && b.polar && b.mag && !p->nomem &&
+        sys->has_damping)
         refine_nyquist(p, &b, sys, opt, r, first);
     free(hz);
     return pl_done(p, out, err);
