@@ -176,18 +176,24 @@ static int shape_panels(gd_plot *p, pl_section *s, const gd_system *sys, const g
     for (int f = 0; f < nf; f++)
         keep[f] = size[f] > 0 && size[f] >= 0.01 * fmax_;
     double ca = cos(alpha), sa = sin(alpha);
+    /* the scale: the largest drawn value (the real part at the phase of the largest
+     * entry) is 1; when that phase shows a group only near its zero crossing (a whirl
+     * seen a quarter turn late), its largest amplitude is 1 instead, so noise is not
+     * blown up */
+    double tmod = 0, rmod = 0;
     for (int i = 0; i < sys->ndof; i++) {
         int h = m->nodes[sys->dof_node[i]].shaft;
         gd_dof d = sys->dof_type[i];
         if (!keep[h * GD_NODE_DOFS + d]) continue;
-        double a =
-            hypot(r->shape_re[i + (size_t)j * r->ndof], r->shape_im[i + (size_t)j * r->ndof]) *
-            fabs(referred(m, h, d));
+        double re = r->shape_re[i + (size_t)j * r->ndof], im = r->shape_im[i + (size_t)j * r->ndof];
+        double q = fabs(referred(m, h, d)), a = hypot(re, im) * q, v = fabs(re * ca + im * sa) * q;
         if (is_rotation(d))
-            rmax = fmax(rmax, a);
+            rmod = fmax(rmod, a), rmax = fmax(rmax, v);
         else
-            tmax = fmax(tmax, a);
+            tmod = fmax(tmod, a), tmax = fmax(tmax, v);
     }
+    if (tmax < 0.5 * tmod) tmax = tmod;
+    if (rmax < 0.5 * rmod) rmax = rmod;
     /* rotations on the right-hand axis when translations are drawn, else on the left */
     int rot_right = tmax > 0;
     /* what was left out, by shaft ("shaft2" when all of it, else its families) */
