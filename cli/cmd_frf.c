@@ -236,6 +236,9 @@ int gd_cmd_frf(int argc, char **argv)
     if (plot) {
         gd_plot *p = NULL;
         gd_status pst = gd_plot_frf(s, &opt, r, &p, &err);
+        /* the axis in rad/s when asked for or written (plain numbers keep Hz) */
+        if (!pst && !u.freq_hz && (units || strstr(freq, "rad/s")))
+            gd_plot_convert_x(p, "Hz", "rad/s", 2 * 3.14159265358979323846);
         if ((rc = gd_cli_plot_finish(pst, p, &err, plot))) goto done;
     }
     nser = xy ? 2 * nouts : np;

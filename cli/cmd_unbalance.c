@@ -197,6 +197,7 @@ int gd_cmd_unbalance(int argc, char **argv)
     if (plot) {
         gd_plot *p = NULL;
         gd_status pst = gd_plot_unbalance(s, &opt, r, at, &p, &err);
+        if (!pst && !u.speed_rpm) gd_plot_convert_x(p, "rpm", "rad/s", 3.14159265358979323846 / 30);
         if ((rc = gd_cli_plot_finish(pst, p, &err, plot))) goto done;
     }
     int nh = r->nharmonics, ns = r->nspeeds;

@@ -345,3 +345,28 @@ int pl_ticks(double lo, double hi, int logscale, double *ticks, int max)
         ticks[n++] = fabs(v) < 1e-12 * step ? 0 : v;
     return n;
 }
+
+int gd_plot_convert_x(gd_plot *p, const char *from, const char *to, double factor)
+{
+    char want[48], repl[48];
+    snprintf(want, sizeof want, "(%s)", from);
+    snprintf(repl, sizeof repl, "(%s)", to);
+    int n = 0;
+    for (int i = 0; p && i < p->nsections; i++)
+        for (int k = 0; k < p->sections[i].npanels; k++) {
+            pl_panel *pn = &p->sections[i].panels[k];
+            char *at = pn->kind == PL_XY ? strstr(pn->xlabel, want) : NULL;
+            if (!at) continue;
+            char label[sizeof pn->xlabel];
+            snprintf(label, sizeof label, "%.*s%s%s", (int)(at - pn->xlabel), pn->xlabel, repl,
+                     at + strlen(want));
+            snprintf(pn->xlabel, sizeof pn->xlabel, "%s", label);
+            for (int t = 0; t < pn->ntraces; t++)
+                for (int j = 0; j < pn->traces[t].n; j++)
+                    pn->traces[t].x[j] *= factor;
+            pn->xlim[0] *= factor;
+            pn->xlim[1] *= factor;
+            n++;
+        }
+    return n;
+}

@@ -843,6 +843,22 @@ TEST(units_follow_the_command_line)
         CHECK(count(s, "//s:text[.='reference speed (rad/s)']") == 2);
     }
     plot_end(&pr);
+    /* the FRF's frequency axis in rad/s when asked for: the --json frequencies */
+    plot_start(gd_ts_, &pr, &d,
+               "frf examples/kumar2011_coupled.yaml --input torque:motor --output mesh:mesh "
+               "--freq 100:2000Hz:3 --units rad/s --json --plot %s");
+    s = &pr.s;
+    j = pr.json;
+    if (j && s->ctx) {
+        static double x[8];
+        const cJSON *o = cJSON_GetArrayItem(cJSON_GetObjectItem(j, "outputs"), 0);
+        int n = trace_numbers(s, TRACE("FRF: magnitude", "mesh:mesh"), "data-x", x, 8);
+        CHECK(n == 3);
+        for (int k = 0; k < n; k++)
+            CHECK(fabs(x[k] / jat(cJSON_GetObjectItem(o, "frequency_rad_s"), k) - 1) < 1e-14);
+        CHECK(count(s, "//s:text[.='frequency (rad/s)']") == 2);
+    }
+    plot_end(&pr);
     scratch_close(&d);
 }
 
