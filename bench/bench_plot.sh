@@ -24,3 +24,10 @@ echo "modal of the rig (170 DOFs, 12 modes): $floor s; with --plot .svg $svg s (
 echo "  sizes: svg $(stat -c %s "$tmp/m.svg") B, html $(stat -c %s "$tmp/m.html") B"
 r=$(best report examples/rig2018.yaml --out "$tmp/r.html")
 echo "report of the rig (modes, Campbell 41 speeds, FRF 400 points): $r s, $(stat -c %s "$tmp/r.html") B (plotly.js $(stat -c %s node_modules/plotly.js-gl3d-dist-min/plotly-gl3d.min.js) B of it)"
+# PNG and PDF (librsvg + cairo rendering the SVG): their cost over the SVG report
+if "$B/geardyn" report examples/rig2018.yaml --out "$tmp/probe.png" >/dev/null 2>&1; then
+    rs=$(best report examples/rig2018.yaml --out "$tmp/r.svg")
+    rp=$(best report examples/rig2018.yaml --out "$tmp/r.png")
+    rd=$(best report examples/rig2018.yaml --out "$tmp/r.pdf")
+    echo "report of the rig as .svg $rs s, .png $rp s ($(echo "$rp / $rs" | bc -l | cut -c1-4)x, $(stat -c %s "$tmp/r.png") B), .pdf $rd s ($(echo "$rd / $rs" | bc -l | cut -c1-4)x, $(stat -c %s "$tmp/r.pdf") B)"
+fi

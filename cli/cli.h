@@ -134,6 +134,24 @@ int gd_cmd_matrices(int argc, char **argv);
 /* ---- time integration (cmd_transient.c) ---- */
 int gd_cmd_transient(int argc, char **argv);
 
+/* ---- units (cli_units.c): --units rpm|rad/s (speed), Hz|rad/s (frequency) ---- */
+typedef struct gd_cli_units {
+    int speed_rpm; /* speeds in rpm, else rad/s */
+    int freq_hz;   /* frequencies in Hz, else rad/s */
+} gd_cli_units;
+#define GD_CLI_UNITS_HELP                                                                          \
+    "  --units LIST      units of the tables and plot axes: rpm or rad/s for speed, Hz or\n"       \
+    "                    rad/s for frequency (e.g. rpm,Hz; default: the units you wrote)\n"
+/* Sets *u from what the user wrote in speed_text / freq_text (either may be NULL; *u
+ * holds the command's defaults on entry), then from --units (may be NULL). 0, or the
+ * exit code after reporting. */
+int gd_cli_units_parse(const char *cmd, const char *units, const char *speed_text,
+                       const char *freq_text, gd_cli_units *u);
+double gd_cli_speed_out(const gd_cli_units *u, double rad_s);
+double gd_cli_freq_out(const gd_cli_units *u, double rad_s);
+const char *gd_cli_speed_unit(const gd_cli_units *u);
+const char *gd_cli_freq_unit(const gd_cli_units *u);
+
 /* ---- plots (cli_plot.c): --plot FILE.svg|FILE.html on the analysis commands ---- */
 #include "geardyn/plot.h"
 
@@ -143,8 +161,8 @@ enum { GD_CLI_OPT_PLOT = 0x9107 };
         "plot", required_argument, 0, GD_CLI_OPT_PLOT                                              \
     }
 #define GD_CLI_PLOT_HELP                                                                           \
-    "  --plot FILE       the standard figure: FILE.svg (static) or FILE.html (interactive,\n"      \
-    "                    self-contained; docs/plots.md)\n"
+    "  --plot FILE       the standard figure: FILE.svg, FILE.png, FILE.pdf (static) or\n"          \
+    "                    FILE.html (interactive, self-contained; docs/plots.md)\n"
 /* Before any computing: path has a known extension and a writable folder (and for HTML
  * plotly.js is there). 0, or the exit code after reporting. */
 int gd_cli_plot_check(const char *path);

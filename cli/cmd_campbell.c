@@ -15,7 +15,8 @@ static const char USAGE[] =
     "                        [--no-shaft-orders] [--no-mesh-orders] [--method auto|dense|sparse]\n"
     "                        [--undamped] [--shift VALUE] [--threads N] [--coupling LEVEL]\n"
     "                        [--dofs LIST] [--set PATH=VALUE]... [--json] [--out DIR] [--plot "
-    "FILE]\n\n"
+    "FILE]\n"
+    "                        [--max-frequency F] [--operating-range FROM:TO]\n\n"
     "Damped modes at every speed, tracked across speeds by mode shape (MAC), with whirl\n"
     "direction, dominant motion and log decrement; critical speeds where a mode meets an\n"
     "excitation order (1x of each shaft, --orders, tooth-mesh orders); instability onset.\n\n"
@@ -27,6 +28,11 @@ static const char USAGE[] =
     "  --method M          auto (the cheaper by a measured cost model), dense (LAPACK) or sparse\n"
     "  --undamped          drop damping (gyroscopic terms stay)\n"
     "  --shift VALUE       sparse shift below zero, e.g. 10Hz (default: automatic)\n"
+    "  --max-frequency F   the plot's frequency axis ends at F (Hz; or 5000rpm, rad/s): modes\n"
+    "                      and critical speeds wholly above it are left out of the "
+    "plot\n" GD_CLI_UNITS_HELP
+    "  --operating-range FROM:TO  shade this speed range on the plot and give each critical\n"
+    "                      speed's separation margin to it (e.g. 2500:3500rpm)\n"
     "  --threads N         parallel threads over speeds (default: all cores)\n"
     "  --coupling LEVEL    torsional | lateral-torsional | full: every mesh's level\n"
     "  --dofs LIST         keep only these node DOFs, e.g. x,y,rz\n"
@@ -43,54 +49,57 @@ static double fd_hz(const gd_mode *md)
     return md->omega_d / (2 * PI);
 }
 
-static void print_tables(const gd_system *s, const gd_campbell_result *r)
+static void print_tables(const gd_system *s, const gd_campbell_result *r, const gd_cli_units *u)
 {
     int ns = r->nspeeds;
     printf("%s: %d DOFs, %d speeds, %d tracked modes (%s eigensolver), %d rigid-body mode(s) left "
            "out\n\n",
            s->model->file, s->ndof, ns, r->ntracks, r->sparse ? "sparse shift-invert" : "dense",
            r->nrigid);
-    printf("damped natural frequencies (Hz)\n%10s", "rpm");
+    printf("damped natural frequencies (%s)\n%10s", gd_cli_freq_unit(u), gd_cli_speed_unit(u));
     for (int t = 0; t < r->ntracks; t++)
         printf(" %10s%d", "mode", r->tracks[t].id);
     printf("\n");
     for (int k = 0; k < ns; k++) {
-        printf("%10.1f", r->speeds[k] * 30 / PI);
+        printf("%10.1f", gd_cli_speed_out(u, r->speeds[k]));
         for (int t = 0; t < r->ntracks; t++) {
             const gd_mode *md = &r->modes[(size_t)t * ns + k];
             if (md->rigid_body < 0)
                 printf(" %11s", "-");
             else
-                printf(" %11.5g", fd_hz(md));
+                printf(" %11.5g", gd_cli_freq_out(u, md->omega_d));
         }
         printf("\n");
     }
-    printf("\n%4s  %-9s %-10s %12s %12s %10s\n", "mode", "whirl", "dominant", "f_first(Hz)",
-           "f_last(Hz)", "min logdec");
+    char h0[32], h1[32];
+    snprintf(h0, sizeof h0, "f_first(%s)", gd_cli_freq_unit(u));
+    snprintf(h1, sizeof h1, "f_last(%s)", gd_cli_freq_unit(u));
+    printf("\n%4s  %-9s %-10s %12s %12s %10s\n", "mode", "whirl", "dominant", h0, h1, "min logdec");
     for (int t = 0; t < r->ntracks; t++) {
         double f0 = NAN, f1 = NAN, ld = INFINITY;
         for (int k = 0; k < ns; k++) {
             const gd_mode *md = &r->modes[(size_t)t * ns + k];
             if (md->rigid_body < 0) continue;
-            if (isnan(f0)) f0 = fd_hz(md);
-            f1 = fd_hz(md);
+            if (isnan(f0)) f0 = gd_cli_freq_out(u, md->omega_d);
+            f1 = gd_cli_freq_out(u, md->omega_d);
             if (!isnan(md->log_decrement) && md->log_decrement < ld) ld = md->log_decrement;
         }
         printf("%4d  %-9s %-10s %12.6g %12.6g %10.4g\n", r->tracks[t].id,
                gd_whirl_names[r->tracks[t].whirl], gd_motion_names[r->tracks[t].dominant_motion],
                f0, f1, isfinite(ld) ? ld : NAN);
     }
-    printf("\ncritical speeds\n%4s  %-32s %12s %12s\n", "mode", "order", "rpm", "f(Hz)");
+    snprintf(h0, sizeof h0, "f(%s)", gd_cli_freq_unit(u));
+    printf("\ncritical speeds\n%4s  %-32s %12s %12s\n", "mode", "order", gd_cli_speed_unit(u), h0);
     for (int c = 0; c < r->ncritical; c++)
         printf("%4d  %-32.32s %12.6g %12.6g\n", r->critical[c].mode,
-               r->orders[r->critical[c].order].label, r->critical[c].speed_rpm,
-               r->critical[c].frequency_hz);
+               r->orders[r->critical[c].order].label, gd_cli_speed_out(u, r->critical[c].speed),
+               gd_cli_freq_out(u, 2 * PI * r->critical[c].frequency_hz));
     if (!r->ncritical) printf("  (none in the speed range)\n");
     if (isnan(r->instability_onset))
         printf("\nstable over the whole speed range\n");
     else
-        printf("\nUNSTABLE from %.6g rpm (mode %d)\n", r->instability_onset * 30 / PI,
-               r->instability_track);
+        printf("\nUNSTABLE from %.6g %s (mode %d)\n", gd_cli_speed_out(u, r->instability_onset),
+               gd_cli_speed_unit(u), r->instability_track);
 }
 
 static cJSON *result_json(const gd_system *s, const gd_campbell_result *r)
@@ -208,6 +217,43 @@ static int parse_orders(const char *text, double **out, int *n)
     return 0;
 }
 
+/* --max-frequency: a plain number is in Hz (the plot's unit), else a quantity with units
+ * (Hz, rpm, rad/s). 0 on success. */
+static int plot_frequency(const char *text, double *hz)
+{
+    char *end;
+    double v = strtod(text, &end);
+    gd_error why;
+    if (end == text || *end) {
+        if (gd_parse_quantity(text, GD_QTY_ANGULAR_SPEED, &v, &why)) return 1;
+        v /= 2 * 3.14159265358979323846;
+    }
+    *hz = v;
+    return !(v > 0 && isfinite(v));
+}
+
+/* --operating-range FROM:TO, speeds with units (a unit on TO alone applies to FROM);
+ * rad/s out. 0 on success. */
+static int plot_speed_range(const char *text, double *lo, double *hi)
+{
+    const char *colon = strchr(text, ':');
+    if (!colon || strchr(colon + 1, ':')) return 1;
+    char a[64], b[64];
+    snprintf(a, sizeof a, "%.*s", (int)(colon - text < 63 ? colon - text : 63), text);
+    snprintf(b, sizeof b, "%.63s", colon + 1);
+    const char *unit = b;
+    while (*unit && (strchr("0123456789.+-eE ", *unit)))
+        unit++;
+    char *end;
+    strtod(a, &end);
+    if (end != a && !*end && *unit) strncat(a, unit, sizeof a - strlen(a) - 1);
+    gd_error why;
+    if (gd_parse_quantity(a, GD_QTY_ANGULAR_SPEED, lo, &why) ||
+        gd_parse_quantity(b, GD_QTY_ANGULAR_SPEED, hi, &why))
+        return 1;
+    return !(*lo >= 0 && *lo < *hi);
+}
+
 int gd_cmd_campbell(int argc, char **argv)
 {
     static const struct option opts[] = {{"speeds", required_argument, 0, 's'},
@@ -226,9 +272,12 @@ int gd_cmd_campbell(int argc, char **argv)
                                          GD_CLI_DOFS_OPTION,
                                          {"help", no_argument, 0, 'h'},
                                          GD_CLI_PLOT_OPTION,
+                                         {"max-frequency", required_argument, 0, 'X'},
+                                         {"operating-range", required_argument, 0, 'R'},
+                                         {"units", required_argument, 0, 'U'},
                                          {0, 0, 0, 0}};
     const char *cmd = "campbell", *speeds = NULL, *coupling = NULL, *out = NULL, *orders = NULL,
-               *shift = NULL, *plot = NULL;
+               *shift = NULL, *plot = NULL, *maxf = NULL, *oper = NULL, *units = NULL;
     gd_campbell_options opt;
     gd_campbell_options_init(&opt);
     int json = 0, c;
@@ -289,6 +338,15 @@ int gd_cmd_campbell(int argc, char **argv)
         case GD_CLI_OPT_PLOT:
             plot = optarg;
             break;
+        case 'X':
+            maxf = optarg;
+            break;
+        case 'R':
+            oper = optarg;
+            break;
+        case 'U':
+            units = optarg;
+            break;
         case 'h':
             fputs(USAGE, stdout);
             return GD_EXIT_OK;
@@ -311,6 +369,29 @@ int gd_cmd_campbell(int argc, char **argv)
     if (shift && !(opt.shift > 0)) {
         free(ord);
         return gd_cli_usage_error(cmd, "--shift: give a value above zero");
+    }
+    gd_cli_units u = {.speed_rpm = 1, .freq_hz = 1}; /* rpm and Hz unless rad/s is written */
+    if (gd_cli_units_parse(cmd, units, speeds, maxf, &u)) {
+        free(ord);
+        return GD_EXIT_INPUT;
+    }
+    gd_plot_campbell_options popt;
+    gd_plot_campbell_options_init(&popt);
+    popt.speed_rad_s = !u.speed_rpm;
+    popt.frequency_rad_s = !u.freq_hz;
+    if (maxf && plot_frequency(maxf, &popt.max_frequency_hz)) {
+        free(ord);
+        return gd_cli_usage_error(cmd,
+                                  "--max-frequency: '%s' is not a frequency above zero "
+                                  "(e.g. 2000 or 2000Hz, in Hz)",
+                                  maxf);
+    }
+    if (oper && plot_speed_range(oper, &popt.operating_lo, &popt.operating_hi)) {
+        free(ord);
+        return gd_cli_usage_error(cmd,
+                                  "--operating-range: '%s' is not FROM:TO with FROM < TO (e.g. "
+                                  "2500:3500rpm)",
+                                  oper);
     }
     double *sp = NULL;
     int rc = gd_cli_parse_range(cmd, "--speeds", speeds, &sp, &opt.nspeeds);
@@ -343,7 +424,7 @@ int gd_cmd_campbell(int argc, char **argv)
     } else {
         if (plot) {
             gd_plot *p = NULL;
-            gd_status pst = gd_plot_campbell(r, &p, &err);
+            gd_status pst = gd_plot_campbell_opt(r, &popt, &p, &err);
             rc = gd_cli_plot_finish(pst, p, &err, plot);
         }
         if (out && rc == GD_EXIT_OK) rc = write_csv(r, out);
@@ -353,7 +434,7 @@ int gd_cmd_campbell(int argc, char **argv)
                 gd_cli_print_json(stdout, o);
                 cJSON_Delete(o);
             } else {
-                print_tables(s, r);
+                print_tables(s, r, &u);
             }
         }
         gd_campbell_free(r);

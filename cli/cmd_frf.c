@@ -35,7 +35,7 @@ static const char USAGE[] =
     "  --set PATH=VALUE  change a value of the model file, e.g.\n"
     "                    --set meshes.mesh.stiffness=3e8N/m (repeatable; docs/model-format.md)\n"
     "  --json            one JSON object on stdout\n"
-    "  --out DIR         write DIR/frf.csv (long form)\n" GD_CLI_PLOT_HELP;
+    "  --out DIR         write DIR/frf.csv (long form)\n" GD_CLI_UNITS_HELP GD_CLI_PLOT_HELP;
 
 #define MAXOUT 16
 
@@ -56,9 +56,10 @@ int gd_cmd_frf(int argc, char **argv)
                                          {"out", required_argument, 0, 'o'},
                                          {"help", no_argument, 0, 'h'},
                                          GD_CLI_PLOT_OPTION,
+                                         {"units", required_argument, 0, 'U'},
                                          {0, 0, 0, 0}};
     const char *cmd = "frf", *input = NULL, *freq = NULL, *speed = NULL, *coupling = NULL,
-               *out = NULL, *outs[MAXOUT], *plot = NULL;
+               *out = NULL, *outs[MAXOUT], *plot = NULL, *units = NULL;
     int nouts = 0, json = 0, c;
     gd_cli_sets sets = {0};
     long nm;
@@ -130,6 +131,9 @@ int gd_cmd_frf(int argc, char **argv)
         case GD_CLI_OPT_PLOT:
             plot = optarg;
             break;
+        case 'U':
+            units = optarg;
+            break;
         case 'h':
             fputs(USAGE, stdout);
             return GD_EXIT_OK;
@@ -141,6 +145,8 @@ int gd_cmd_frf(int argc, char **argv)
     if (!input) return gd_cli_usage_error(cmd, "--input is required");
     if (!nouts) return gd_cli_usage_error(cmd, "give at least one --output");
     if (!freq) return gd_cli_usage_error(cmd, "--freq FROM:TO:COUNT is required");
+    gd_cli_units u = {.speed_rpm = 0, .freq_hz = 0}; /* rad/s unless rpm or Hz is written */
+    if (gd_cli_units_parse(cmd, units, speed, freq, &u)) return GD_EXIT_INPUT;
     double *fr = NULL;
     int rc = gd_cli_parse_range(cmd, "--freq", freq, &fr, &opt.nfreq);
     if (rc) return rc;
@@ -230,6 +236,9 @@ int gd_cmd_frf(int argc, char **argv)
     if (plot) {
         gd_plot *p = NULL;
         gd_status pst = gd_plot_frf(s, &opt, r, &p, &err);
+        /* the axis in rad/s when asked for or written (plain numbers keep Hz) */
+        if (!pst && !u.freq_hz && (units || strstr(freq, "rad/s")))
+            gd_plot_convert_x(p, "Hz", "rad/s", 2 * 3.14159265358979323846);
         if ((rc = gd_cli_plot_finish(pst, p, &err, plot))) goto done;
     }
     nser = xy ? 2 * nouts : np;
@@ -299,10 +308,12 @@ int gd_cmd_frf(int argc, char **argv)
         gd_cli_print_json(stdout, o);
         cJSON_Delete(o);
     } else {
-        printf("%s: FRF to a unit %s at %s, speed %g rad/s, %s method\n\n", m->file,
-               s->dof_type[inputs[0]] >= GD_RX ? "moment" : "force", inlabel, opt.speed,
+        printf("%s: FRF to a unit %s at %s, speed %g %s, %s method\n\n", m->file,
+               s->dof_type[inputs[0]] >= GD_RX ? "moment" : "force", inlabel,
+               gd_cli_speed_out(&u, opt.speed), gd_cli_speed_unit(&u),
                opt.method == GD_FRF_MODAL ? "modal" : "direct");
-        gd_series_table(stdout, ser, nser, "w(rad/s)", 1.0);
+        gd_series_table(stdout, ser, nser, u.freq_hz ? "f(Hz)" : "w(rad/s)",
+                        gd_cli_freq_out(&u, 1.0));
     }
 done:
     free(ser);

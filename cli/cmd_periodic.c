@@ -558,6 +558,21 @@ int gd_cmd_periodic(int argc, char **argv)
     if (plot) {
         gd_plot *p = NULL;
         gd_status pst = gd_plot_periodic(s, r, rv, &p, &err);
+        if (pst) {
+            /* nothing to plot (no point converged): no file, but the table that says
+             * why is still printed before the error */
+            free(rv);
+            if (json) {
+                cJSON *j = to_json(r, &recs, pv != NULL);
+                gd_cli_print_json(stdout, j);
+                cJSON_Delete(j);
+            } else {
+                print_table(r, &recs, pv != NULL);
+            }
+            fflush(stdout);
+            rc = gd_cli_report(&err);
+            goto done;
+        }
         if ((rc = gd_cli_plot_finish(pst, p, &err, plot))) {
             free(rv);
             goto done;

@@ -28,7 +28,8 @@ static const char USAGE[] =
     "  --set PATH=VALUE  change a value of the model file, e.g.\n"
     "                    --set meshes.mesh.stiffness=3e8N/m (repeatable; docs/model-format.md)\n"
     "  --json            one JSON object on stdout\n"
-    "  --out DIR         write DIR/unbalance.csv and DIR/orbits.csv (long form)\n" GD_CLI_PLOT_HELP
+    "  --out DIR         write DIR/unbalance.csv and DIR/orbits.csv (long form)\n" GD_CLI_UNITS_HELP
+        GD_CLI_PLOT_HELP
     "  --orbit-speed V   the plot's orbits at the nearest speed to V (default: where the\n"
     "                    largest orbit is largest)\n";
 
@@ -83,10 +84,11 @@ int gd_cmd_unbalance(int argc, char **argv)
                                          GD_CLI_DOFS_OPTION,
                                          {"help", no_argument, 0, 'h'},
                                          GD_CLI_PLOT_OPTION,
+                                         {"units", required_argument, 0, 'U'},
                                          {"orbit-speed", required_argument, 0, 'B'},
                                          {0, 0, 0, 0}};
     const char *cmd = "unbalance", *speeds = NULL, *coupling = NULL, *out = NULL, *outs[MAXOUT],
-               *plot = NULL, *orbit_speed = NULL;
+               *plot = NULL, *orbit_speed = NULL, *units = NULL;
     int nouts = 0, json = 0, c;
     gd_cli_sets sets = {0};
     gd_unbalance_options opt;
@@ -123,6 +125,9 @@ int gd_cmd_unbalance(int argc, char **argv)
         case GD_CLI_OPT_PLOT:
             plot = optarg;
             break;
+        case 'U':
+            units = optarg;
+            break;
         case 'B':
             orbit_speed = optarg;
             break;
@@ -136,6 +141,8 @@ int gd_cmd_unbalance(int argc, char **argv)
     if (optind != argc - 1) return gd_cli_usage_error(cmd, "give exactly one model file");
     if (!speeds) return gd_cli_usage_error(cmd, "--speeds FROM:TO:COUNT is required");
     double *sp = NULL;
+    gd_cli_units u = {.speed_rpm = 1, .freq_hz = 1}; /* rpm unless rad/s is written */
+    if (gd_cli_units_parse(cmd, units, speeds, NULL, &u)) return GD_EXIT_INPUT;
     int rc = gd_cli_parse_range(cmd, "--speeds", speeds, &sp, &opt.nspeeds);
     if (rc) return rc;
     opt.speeds = sp;
@@ -190,6 +197,7 @@ int gd_cmd_unbalance(int argc, char **argv)
     if (plot) {
         gd_plot *p = NULL;
         gd_status pst = gd_plot_unbalance(s, &opt, r, at, &p, &err);
+        if (!pst && !u.speed_rpm) gd_plot_convert_x(p, "rpm", "rad/s", 3.14159265358979323846 / 30);
         if ((rc = gd_cli_plot_finish(pst, p, &err, plot))) goto done;
     }
     int nh = r->nharmonics, ns = r->nspeeds;
@@ -285,14 +293,15 @@ written:
             printf("%s: unbalance response, harmonic %g x reference speed (%d unbalance%s)\n\n",
                    m->file, r->harmonics[h].order, r->harmonics[h].nunbalances,
                    r->harmonics[h].nunbalances == 1 ? "" : "s");
-            gd_series_table(stdout, ser + (size_t)h * np, np, "rpm", 30 / PI);
+            gd_series_table(stdout, ser + (size_t)h * np, np, gd_cli_speed_unit(&u),
+                            gd_cli_speed_out(&u, 1.0));
             for (int b = 0; b < nb; b++) {
-                printf("\norbit of %s\n%12s %12s %12s %10s  %s\n", m->nodes[orb[b]].name, "rpm",
-                       "major", "minor", "angle(deg)", "whirl");
+                printf("\norbit of %s\n%12s %12s %12s %10s  %s\n", m->nodes[orb[b]].name,
+                       gd_cli_speed_unit(&u), "major", "minor", "angle(deg)", "whirl");
                 for (int i = 0; i < ns; i++) {
                     const gd_orbit *ob = &r->orbits[((size_t)h * nb + b) * ns + i];
-                    printf("%12.6g %12.5g %12.5g %10.2f  %s\n", r->speeds[i] * 30 / PI, ob->major,
-                           ob->minor, ob->angle * 180 / PI, gd_whirl_names[ob->whirl]);
+                    printf("%12.6g %12.5g %12.5g %10.2f  %s\n", gd_cli_speed_out(&u, r->speeds[i]),
+                           ob->major, ob->minor, ob->angle * 180 / PI, gd_whirl_names[ob->whirl]);
                 }
             }
             printf("\n");

@@ -5,10 +5,10 @@ set -euo pipefail
 pkgs=(build-essential cmake pkg-config libyaml-dev libcjson-dev liblapacke-dev
       libopenblas-dev libsuitesparse-dev libsundials-dev libfftw3-dev
       valgrind)
-pkgs+=(nodejs chromium libxml2-dev); command -v npm >/dev/null || pkgs+=(npm)  # plots: npm installs plotly.js (package.json), Chromium runs the HTML tests, libxml2 parses the SVG in tests; the machine's Node.js may bring its own npm
+pkgs+=(nodejs chromium libxml2-dev librsvg2-dev libcairo2-dev poppler-utils); command -v npm >/dev/null || pkgs+=(npm)  # plots: npm installs plotly.js (package.json), Chromium runs the HTML tests, libxml2 parses the SVG in tests; librsvg + cairo write PNG and PDF plots, poppler-utils (pdfinfo) checks them in tests; the machine's Node.js may bring its own npm
 pkgs+=(clang libclang-rt-dev libomp-dev)  # make fuzz: libFuzzer harness (fuzz/fuzz_model.c)
 pkgs+=(libhdf5-dev libopenmpi-dev openmpi-bin)  # geardyn study: results.h5, mpirun (geardyn-mpi)
-pkgs+=(python3 python3-dev python3-cffi python3-setuptools python3-numpy python3-scipy python3-pandas python3-pytest)  # Python package (python/, make python, issue 13)
+pkgs+=(python3 python3-dev python3-cffi python3-setuptools python3-numpy python3-scipy python3-pandas python3-pytest python3-plotly)  # Python package (result.plot(): plotly) (python/, make python, issue 13)
 missing=()
 for p in "${pkgs[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -36,14 +36,17 @@
 
 typedef struct gd_plot gd_plot;
 
-typedef enum gd_plot_format { GD_PLOT_SVG, GD_PLOT_HTML } gd_plot_format;
+/* PNG and PDF are the SVG rendered by librsvg and cairo (one image; one PDF page per
+ * section, long sections split between panels), when the library was built with them. */
+typedef enum gd_plot_format { GD_PLOT_SVG, GD_PLOT_HTML, GD_PLOT_PNG, GD_PLOT_PDF } gd_plot_format;
 
-/* The format of a file name by its extension (".svg", ".html" or ".htm", any case).
- * GD_EINPUT naming the known extensions otherwise. */
+/* The format of a file name by its extension (".svg", ".html" or ".htm", ".png", ".pdf",
+ * any case). GD_EINPUT naming the known extensions otherwise. */
 GD_API gd_status gd_plot_format_of(const char *path, gd_plot_format *fmt, gd_error *err);
 /* Checks, before any computing, that path has a known extension and that its folder
- * exists and can be written into; for HTML also that plotly.js can be found (opts may
- * be NULL). Writes nothing. */
+ * exists and can be written into; for HTML also that plotly.js can be found, for PNG and
+ * PDF that this build can write them (GD_EINPUT naming the missing packages otherwise);
+ * opts may be NULL. Writes nothing. */
 typedef struct gd_plot_write_options {
     const char *plotly_js; /* path of plotly.min.js; NULL: look for it (see top) */
 } gd_plot_write_options;
@@ -64,6 +67,10 @@ GD_API gd_status gd_plot_new(const char *title, gd_plot **out, gd_error *err);
 GD_API gd_status gd_plot_add_note(gd_plot *p, const char *title, const char *text, gd_error *err);
 /* Moves every section of src to the end of dst and frees src. */
 GD_API gd_status gd_plot_append(gd_plot *dst, gd_plot *src, gd_error *err);
+/* Changes the unit of every x axis labelled "(from)" (e.g. "Hz") to "(to)" (e.g.
+ * "rad/s"): its values times factor, its label rewritten. For --units; returns the
+ * number of axes changed. Hover labels and the CSV keep their own units. */
+GD_API int gd_plot_convert_x(gd_plot *p, const char *from, const char *to, double factor);
 /* Sections and plotted curves (traces) of a document, for tests and callers. */
 GD_API int gd_plot_nsections(const gd_plot *p);
 GD_API int gd_plot_npanels(const gd_plot *p, int section);
@@ -84,6 +91,22 @@ GD_API gd_status gd_plot_modal(const gd_system *sys, const gd_modal_result *r, g
  * critical speeds marked and listed, and a log-decrement panel with the instability
  * onset. GD_EINPUT when no mode was tracked. */
 GD_API gd_status gd_plot_campbell(const gd_campbell_result *r, gd_plot **out, gd_error *err);
+/* What gd_plot_campbell_opt draws beyond the defaults of gd_plot_campbell. */
+typedef struct gd_plot_campbell_options {
+    double max_frequency_hz;           /* > 0: the frequency axis ends here; modes wholly above
+                                          it and critical speeds above it are left out */
+    double operating_lo, operating_hi; /* rad/s; lo < hi: the operating range shaded and the
+                                          separation margin of each critical speed to it */
+    int speed_rad_s;                   /* speed axis in rad/s (default rpm) */
+    int frequency_rad_s; /* frequency axis in rad/s (default Hz; max_frequency_hz stays Hz) */
+} gd_plot_campbell_options;
+GD_API void gd_plot_campbell_options_init(gd_plot_campbell_options *opt);
+/* gd_plot_campbell with options (opt may be NULL: the defaults). The separation margin
+ * of a critical speed N to the range [lo, hi] is (lo - N) / lo below it, (N - hi) / hi
+ * above it, and 0 inside it (API 684 style). */
+GD_API gd_status gd_plot_campbell_opt(const gd_campbell_result *r,
+                                      const gd_plot_campbell_options *opt, gd_plot **out,
+                                      gd_error *err);
 
 /* Frequency response: Bode (magnitude, log scale; phase) over frequency (Hz) and
  * Nyquist (real vs imaginary) of every output; with a directional input (ninputs == 2,

@@ -64,13 +64,35 @@ def _speed(sysobj, speed):
 
 
 class _Result:
-    """Base: holds the owner (the ffi.gc'd C result) and the system."""
+    """Base: holds the owner (the ffi.gc'd C result) and the system. Every result has
+    plot() (a plotly figure, geardyn/figures.py), shows that figure in a notebook
+    (_repr_html_, plotly.js inlined: no network) and says what it holds (repr, dir)."""
 
     __slots__ = ("system", "_owner", "__dict__")
+    _figure = None  # the figures.py function of the subclass
 
     def __init__(self, system, owner):
         self.system = system
         self._owner = owner
+
+    def plot(self, **kw):
+        """The result's figure as a plotly Figure (fig.show(), fig.write_html(...))."""
+        from . import figures
+        return getattr(figures, self._figure)(self, **kw)
+
+    def _repr_html_(self):
+        try:
+            return self.plot().to_html(full_html=False, include_plotlyjs=True)
+        except ImportError:
+            return None
+
+    def __repr__(self):
+        from . import figures
+        return figures.summary(self)
+
+    def __dir__(self):
+        from . import figures
+        return figures.public_names(self)
 
     def _view(self, ptr, shape, dtype=np.float64, order="C"):
         return _core.view(self._owner, ptr, shape, dtype, order)
@@ -135,6 +157,9 @@ class ModalResult(_Result):
     energy_share (nmodes x 4: lateral, torsional, axial, tilt), dominant_motion,
     dominant_component. Shapes: shape_re, shape_im (ndof x nmodes views), shapes
     (complex), left (complex or None); energy_by_component (ncomponents x nmodes)."""
+
+    _figure = "modal"
+    _FIELDS_DTYPE = _core.MODE_DTYPE  # served by __getattr__
 
     __slots__ = ("_modes",)
 
@@ -357,9 +382,14 @@ class CampbellResult(_Result):
             "dominant_motion": [_core.MOTION_NAMES[w] for w in m["dominant_motion"][t_idx, s_idx]],
         }).sort_values(["speed_rad_s", "mode"], kind="stable").reset_index(drop=True)
 
-    def plot(self, ax=None, orders=True):
-        """A Campbell diagram with matplotlib (if installed): damped frequency of every
-        track against speed (rpm) and the excitation order lines."""
+    def plot(self, ax=None, orders=True, max_frequency=None):
+        """The Campbell diagram as a plotly Figure (damped frequency of every track
+        over speed in rpm, order lines named at their ends, critical speeds;
+        max_frequency in Hz ends the axis). With ax (a matplotlib Axes): drawn there
+        with matplotlib instead, as before, and the Axes returned."""
+        if ax is None:
+            from . import figures
+            return figures.campbell(self, max_frequency=max_frequency)
         import matplotlib.pyplot as plt
         ax = ax or plt.gca()
         rpm = self.speeds_rpm
@@ -500,6 +530,8 @@ class FrfResult(_ReImResult):
     x nfreq views) and H (complex); singular (per frequency). With a directional input:
     forward and backward (noutputs x nfreq complex). series(): the CLI's named outputs."""
 
+    _figure = "frf"
+
     def __init__(self, system, owner, input, outputs, specs, is_force, quantity, method,
                  speed, directional):
         super().__init__(system, owner)
@@ -633,6 +665,8 @@ class UnbalanceResult(_ReImResult):
     dicts: order, unbalances); re, im (nharmonics x noutputs x nspeeds views) and
     response (complex; x = Re(X e^{i w t})); orbits (nharmonics x norbits x nspeeds
     structured view: major, minor, angle, whirl)."""
+
+    _figure = "unbalance"
 
     def __init__(self, system, owner, outputs, orbit_nodes):
         super().__init__(system, owner)

@@ -46,6 +46,8 @@ class MeshStiffnessResult(_Result):
     pairs_in_contact, load_share (samples x max_pairs) as views; mean, max, min,
     peak_to_peak; contact ratios and the derived geometry; harmonics; ISO 6336 values."""
 
+    _figure = "mesh_stiffness"
+
     _SCALARS = ("mean", "max", "min", "peak_to_peak", "transverse_factor",
                 "iso_single_stiffness", "iso_mesh_stiffness_alpha", "iso_mesh_stiffness_beta",
                 "body_stiffness", "mesh_period_rad")

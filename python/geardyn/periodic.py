@@ -90,6 +90,9 @@ class PeriodicResult(_Result):
     bifurcations (list of dicts: type, speed, parameter, direction, multiplier); reasons
     (why a point did not converge); names and units of the records; steps, cpu_seconds."""
 
+    _figure = "periodic"
+    _FIELDS_DTYPE = POINT_DTYPE  # served by __getattr__
+
     def __init__(self, system, owner, names, units):
         super().__init__(system, owner)
         r = owner

@@ -261,6 +261,8 @@ class TransientResult(_Result):
     rms, peak_to_peak, std per record), contacts (per nonlinear mesh), q_end, v_end, and
     the solver's counters (steps, rhs_evals, ...)."""
 
+    _figure = "transient"
+
     def __init__(self, system, owner, names, units, meshes, backlash):
         super().__init__(system, owner)
         r = owner

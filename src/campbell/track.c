@@ -121,6 +121,76 @@ int gd_hungarian(const double *cost, int n, int *col_of_row)
     return 0;
 }
 
+/* a^H b of complex vectors given as parts */
+static double complex dot(const double *are, const double *aim, const double *bre,
+                          const double *bim, int n)
+{
+    double r = 0, i = 0;
+#pragma omp simd reduction(+ : r, i)
+    for (int k = 0; k < n; k++) {
+        r += are[k] * bre[k] + aim[k] * bim[k];
+        i += are[k] * bim[k] - aim[k] * bre[k];
+    }
+    return r + I * i;
+}
+
+enum { SPAN_MAX = 8 }; /* the largest repeated group compared as a subspace */
+
+/* The MAC of c with the span of the g vectors P (a repeated eigenvalue's eigenspace):
+ * c^H P (P^H P)^-1 P^H c / c^H c, the share of c in that subspace. The eigensolver may
+ * return any basis of the eigenspace, even two nearly parallel vectors, so the sum of
+ * the separate MACs is not that share (it can be near 0 for a vector of the space). */
+static double span_mac(const double *const *pre, const double *const *pim, int g, const double *cre,
+                       const double *cim, int n)
+{
+    double complex G[SPAN_MAX][SPAN_MAX + 1];
+    double cc = creal(dot(cre, cim, cre, cim, n));
+    if (!(cc > 0)) return 0;
+    double gmax = 0;
+    for (int r = 0; r < g; r++) {
+        for (int c = 0; c < g; c++)
+            G[r][c] = dot(pre[r], pim[r], pre[c], pim[c], n);
+        G[r][g] = dot(pre[r], pim[r], cre, cim, n); /* P^H c */
+        gmax = fmax(gmax, creal(G[r][r]));
+    }
+    double complex b[SPAN_MAX], x[SPAN_MAX];
+    for (int r = 0; r < g; r++)
+        b[r] = G[r][g];
+    /* Gaussian elimination with partial pivoting; a direction the basis does not span
+     * (a pivot at rounding level) is dropped */
+    int keep[SPAN_MAX];
+    for (int k = 0; k < g; k++) {
+        int piv = k;
+        for (int r = k + 1; r < g; r++)
+            if (cabs(G[r][k]) > cabs(G[piv][k])) piv = r;
+        for (int c = 0; c <= g; c++) {
+            double complex t = G[k][c];
+            G[k][c] = G[piv][c];
+            G[piv][c] = t;
+        }
+        keep[k] = cabs(G[k][k]) > 1e-12 * gmax;
+        if (!keep[k]) continue;
+        for (int r = k + 1; r < g; r++) {
+            double complex f = G[r][k] / G[k][k];
+            for (int c = k; c <= g; c++)
+                G[r][c] -= f * G[k][c];
+        }
+    }
+    for (int k = g - 1; k >= 0; k--) {
+        x[k] = 0;
+        if (!keep[k]) continue;
+        double complex v = G[k][g];
+        for (int c = k + 1; c < g; c++)
+            v -= G[k][c] * x[c];
+        x[k] = v / G[k][k];
+    }
+    double complex bx = 0;
+    for (int r = 0; r < g; r++)
+        bx += conj(b[r]) * x[r];
+    double m = creal(bx) / cc;
+    return m < 0 ? 0 : m > 1 ? 1 : m;
+}
+
 int gd_campbell_track_step(const gd_modal_result *prev, const int *prev_elastic, int prev_nel,
                            const int *prev_track, const gd_modal_result *cur, const int *elastic,
                            int nel_cur, double mac_min, int *track, int *ntracks)
@@ -152,24 +222,44 @@ int gd_campbell_track_step(const gd_modal_result *prev, const int *prev_elastic,
             }
             mac[i + (size_t)j * N] = v;
         }
-    /* Repeated eigenvalues (e.g. the x/y pairs of an isotropic rotor at rest) have no
-     * preferred vectors: compare with their whole eigenspace (sum of the MACs over
-     * the group) and let ties keep the frequency order, so the tracks do not depend
-     * on which basis the eigensolver returned. */
+    /* Repeated eigenvalues (e.g. the x/y pairs of an isotropic rotor, at rest or on a
+     * lumped motor's bearings) have no preferred vectors: compare with their whole
+     * eigenspace (span_mac) and let ties keep the frequency order, so the tracks do
+     * not depend on which basis the eigensolver returned. */
+    double *zeros =
+        (!prev->shape_im || !cur->shape_im) ? calloc((size_t)n + 1, sizeof *zeros) : NULL;
+    if (!prev->shape_im || !cur->shape_im) {
+        if (!zeros) {
+            free(nrm);
+            free(cost);
+            free(mac);
+            free(col);
+            return -1;
+        }
+    }
     for (int i = 0; i < a; i++) {
         const gd_mode *mi = &prev->modes[prev_elastic[i]];
+        const double *pre[SPAN_MAX], *pim[SPAN_MAX];
+        int g = 0;
+        for (int k = 0; k < a; k++) {
+            const gd_mode *mk = &prev->modes[prev_elastic[k]];
+            if (hypot(mk->lambda_re - mi->lambda_re, mk->lambda_im - mi->lambda_im) <=
+                    1e-7 * mi->omega_n &&
+                g < SPAN_MAX) {
+                pre[g] = prev->shape_re + (size_t)prev_elastic[k] * n;
+                pim[g] = prev->shape_im ? prev->shape_im + (size_t)prev_elastic[k] * n : zeros;
+                g++;
+            }
+        }
         for (int j = 0; j < N; j++) {
             double v = mac[i + (size_t)j * N];
-            if (j < b)
-                for (int k = 0; k < a; k++) {
-                    const gd_mode *mk = &prev->modes[prev_elastic[k]];
-                    if (k != i && hypot(mk->lambda_re - mi->lambda_re,
-                                        mk->lambda_im - mi->lambda_im) <= 1e-7 * mi->omega_n)
-                        v += mac[k + (size_t)j * N];
-                }
+            if (j < b && g > 1)
+                v = span_mac(pre, pim, g, cur->shape_re + (size_t)elastic[j] * n,
+                             cur->shape_im ? cur->shape_im + (size_t)elastic[j] * n : zeros, n);
             cost[i + (size_t)j * N] = 1.0 - (v > 1 ? 1 : v) + 1e-9 * abs(i - j);
         }
     }
+    free(zeros);
     for (int i = a; i < N; i++)
         for (int j = 0; j < N; j++)
             cost[i + (size_t)j * N] = 1.0 + 1e-9 * abs(i - j);

@@ -79,7 +79,13 @@ pl_panel *pl_panel_add(gd_plot *p, pl_section *s, pl_kind kind, const char *titl
                        const char *xlabel, const char *ylabel)
 {
     if (!s) return NULL;
-    pl_panel *pn = grow(p, s->panels, &s->cap, s->npanels + 1, sizeof *pn);
+    /* builders keep a panel's pointer while they add the next panels of the section:
+     * room for PANELS_STABLE from the start, so those pointers are not moved by a
+     * realloc (a builder that adds more refetches its pointers) */
+    enum { PANELS_STABLE = 256 };
+    pl_panel *pn =
+        grow(p, s->panels, &s->cap, s->npanels + 1 > PANELS_STABLE ? s->npanels + 1 : PANELS_STABLE,
+             sizeof *pn);
     if (!pn) return NULL;
     s->panels = pn;
     pn = &s->panels[s->npanels++];
@@ -301,6 +307,7 @@ void pl_range(const pl_panel *pn, int axis, double *lo, double *hi)
     int logscale = axis ? pn->ylog : pn->xlog;
     double a = INFINITY, b = -INFINITY;
     for (int t = 0; t < pn->ntraces; t++) {
+        if (axis && pn->traces[t].y2 != (axis == 2)) continue;
         const double *v = axis ? pn->traces[t].y : pn->traces[t].x;
         for (int i = 0; i < pn->traces[t].n; i++) {
             if (!isfinite(v[i]) || (logscale && !(v[i] > 0))) continue;
@@ -336,5 +343,30 @@ int pl_ticks(double lo, double hi, int logscale, double *ticks, int max)
     double step = (f < 1.5 ? 1 : f < 3 ? 2 : f < 7 ? 5 : 10) * mag;
     for (double v = ceil(lo / step - 1e-9) * step; v <= hi + 1e-9 * step && n < max; v += step)
         ticks[n++] = fabs(v) < 1e-12 * step ? 0 : v;
+    return n;
+}
+
+int gd_plot_convert_x(gd_plot *p, const char *from, const char *to, double factor)
+{
+    char want[48], repl[48];
+    snprintf(want, sizeof want, "(%s)", from);
+    snprintf(repl, sizeof repl, "(%s)", to);
+    int n = 0;
+    for (int i = 0; p && i < p->nsections; i++)
+        for (int k = 0; k < p->sections[i].npanels; k++) {
+            pl_panel *pn = &p->sections[i].panels[k];
+            char *at = pn->kind == PL_XY ? strstr(pn->xlabel, want) : NULL;
+            if (!at) continue;
+            char label[sizeof pn->xlabel];
+            snprintf(label, sizeof label, "%.*s%s%s", (int)(at - pn->xlabel), pn->xlabel, repl,
+                     at + strlen(want));
+            snprintf(pn->xlabel, sizeof pn->xlabel, "%s", label);
+            for (int t = 0; t < pn->ntraces; t++)
+                for (int j = 0; j < pn->traces[t].n; j++)
+                    pn->traces[t].x[j] *= factor;
+            pn->xlim[0] *= factor;
+            pn->xlim[1] *= factor;
+            n++;
+        }
     return n;
 }

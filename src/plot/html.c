@@ -56,12 +56,26 @@ static void trace_json(FILE *f, const pl_trace *t)
 {
     fputs("{\"type\":\"scatter\",\"name\":", f);
     pl_json_text(f, t->name);
+    if (t->y2) fputs(",\"yaxis\":\"y2\"", f);
     fputs(",\"x\":", f);
     array(f, t->x, t->n);
     fputs(",\"y\":", f);
     array(f, t->y, t->n);
     static const char *const modes[] = {"lines", "markers", "lines+markers", "lines"};
-    fprintf(f, ",\"mode\":\"%s\",\"showlegend\":%s", modes[t->mode], t->legend ? "true" : "false");
+    fprintf(f, ",\"mode\":\"%s%s\",\"showlegend\":%s", modes[t->mode],
+            t->label[0] && !t->text ? "+text" : "", t->legend ? "true" : "false");
+    if (t->label[0] && !t->text && t->n > 0) { /* written at the last point */
+        fputs(",\"text\":[", f);
+        for (int i = 0; i < t->n; i++) {
+            if (i) fputc(',', f);
+            pl_json_text(f, i == t->n - 1 ? t->label : "");
+        }
+        fprintf(f, "],\"textposition\":\"%s\",\"textfont\":{\"color\":\"%s\",\"size\":11}",
+                t->label_right   ? "bottom right"
+                : t->label_below ? "bottom left"
+                                 : "top left",
+                t->color);
+    }
     if (t->mode == PL_FILL)
         fprintf(f,
                 ",\"fill\":\"toself\",\"fillcolor\":\"%s\",\"opacity\":0.25,\"line\":{\"width\":0,"
@@ -90,12 +104,23 @@ static void trace_json(FILE *f, const pl_trace *t)
     fputc('}', f);
 }
 
-static void axis_json(FILE *f, const char *label, int logscale)
+/* Tick labels: plain numbers on a linear axis whose values are neither tiny nor huge
+ * (plotly's exponent forms give "0.2e+4" for 2000), powers of ten otherwise. */
+static void axis_json(FILE *f, const char *label, int logscale, double lo, double hi)
 {
     fputs("{\"title\":{\"text\":", f);
     pl_json_text(f, label);
-    fprintf(f, "},\"type\":\"%s\",\"exponentformat\":\"e\",\"automargin\":true",
-            logscale ? "log" : "linear");
+    double big = fmax(fabs(lo), fabs(hi));
+    int plain = !logscale && big < 1e6 && big >= 1e-3;
+    fprintf(f, "},\"type\":\"%s\",\"exponentformat\":\"%s\",\"automargin\":true",
+            logscale ? "log" : "linear", plain ? "none" : "power");
+}
+
+static int has_y2(const pl_panel *pn)
+{
+    for (int t = 0; t < pn->ntraces; t++)
+        if (pn->traces[t].y2) return 1;
+    return 0;
 }
 
 static void xy_json(FILE *f, const pl_panel *pn, const char *id)
@@ -107,15 +132,48 @@ static void xy_json(FILE *f, const pl_panel *pn, const char *id)
         if (t) fputc(',', f);
         trace_json(f, &pn->traces[t]);
     }
-    fputs("],\"layout\":{\"title\":{\"text\":", f);
-    pl_json_text(f, pn->title);
+    /* the title at the left, the toolbar upright at the right: they never overlap */
+    fputs("],\"layout\":{\"title\":{\"x\":0,\"xanchor\":\"left\",\"xref\":\"paper\","
+          "\"font\":{\"size\":15},\"text\":",
+          f);
+    if (pn->subtitle[0]) {
+        size_t n = strlen(pn->title) + strlen(pn->subtitle) + 32;
+        char *t = malloc(n);
+        if (t) snprintf(t, n, "%s<br><sub>%s</sub>", pn->title, pn->subtitle);
+        pl_json_text(f, t ? t : pn->title);
+        free(t);
+    } else {
+        pl_json_text(f, pn->title);
+    }
+    double lo, hi;
+    pl_range(pn, 0, &lo, &hi);
     fputs("},\"xaxis\":", f);
-    axis_json(f, pn->xlabel, pn->xlog);
+    axis_json(f, pn->xlabel, pn->xlog, lo, hi);
+    if (pn->xint) fputs(",\"tick0\":0,\"dtick\":1", f);
+    if (pn->xlim[0] < pn->xlim[1]) fprintf(f, ",\"range\":[%.10g,%.10g]", pn->xlim[0], pn->xlim[1]);
+    pl_range(pn, 1, &lo, &hi);
     fputs("},\"yaxis\":", f);
-    axis_json(f, pn->ylabel, pn->ylog);
+    axis_json(f, pn->ylabel, pn->ylog, lo, hi);
+    if (pn->ylim[0] < pn->ylim[1]) fprintf(f, ",\"range\":[%.6g,%.6g]", pn->ylim[0], pn->ylim[1]);
     if (pn->equal) fputs(",\"scaleanchor\":\"x\",\"scaleratio\":1", f);
-    fprintf(f, "},\"height\":%d,\"margin\":{\"t\":50},\"hovermode\":\"closest\"}}",
-            pn->equal ? 520 : 440);
+    int two = has_y2(pn);
+    if (two) {
+        pl_range(pn, 2, &lo, &hi);
+        fputs("},\"yaxis2\":", f);
+        axis_json(f, pn->y2label, 0, lo, hi);
+        fputs(",\"overlaying\":\"y\",\"side\":\"right\",\"showgrid\":false", f);
+        if (pn->y2lim[0] < pn->y2lim[1])
+            fprintf(f, ",\"range\":[%.6g,%.6g]", pn->y2lim[0], pn->y2lim[1]);
+    }
+    int nleg = 0;
+    for (int t = 0; t < pn->ntraces; t++)
+        nleg += pn->traces[t].legend;
+    int height = pn->equal ? 520 : 440;
+    if (90 + 19 * nleg > height) height = 90 + 19 * nleg; /* the whole legend, no scrolling */
+    fprintf(f,
+            "},\"height\":%d,\"margin\":{\"t\":%d},\"hovermode\":\"closest\","
+            "\"legend\":{\"x\":%s},\"modebar\":{\"orientation\":\"v\"}}}",
+            height, pn->subtitle[0] ? 80 : 60, two ? "1.1" : "1.04");
 }
 
 static void mode3d_json(FILE *f, const pl_panel *pn, const char *id)

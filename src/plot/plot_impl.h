@@ -31,6 +31,10 @@ typedef struct pl_trace {
     int dash;                  /* dashed line */
     int legend;                /* shown in the legend */
     char **text;               /* n hover labels, or NULL */
+    int y2;                    /* against the panel's right-hand axis (y2label) */
+    char label[64];            /* written on the plot at the trace's last point */
+    int label_right;           /* the label to the right of that point (else to its left) */
+    int label_below;           /* HTML: the label below the point (neighbours alternate) */
 } pl_trace;
 
 typedef enum pl_kind { PL_XY, PL_TABLE, PL_MODE3D } pl_kind;
@@ -38,6 +42,11 @@ typedef enum pl_kind { PL_XY, PL_TABLE, PL_MODE3D } pl_kind;
 typedef struct pl_panel {
     pl_kind kind;
     char title[200], xlabel[120], ylabel[120];
+    char y2label[120];        /* right-hand axis of the traces marked y2 */
+    char subtitle[400];       /* a line under the title (what was left out, ...) */
+    double ylim[2], y2lim[2]; /* fixed ranges of the y axes when lo < hi; else the data's */
+    int xint;                 /* x ticks on whole numbers only (orders) */
+    double xlim[2];           /* fixed x range when lo < hi */
     int xlog, ylog;
     int equal; /* equal scales on x and y (orbits, the model drawing) */
     int ntraces, cap;
@@ -111,12 +120,19 @@ const char *pl_whirl_color(gd_whirl w);
 
 /* axes: "nice" tick values for a range; returns the count (at most max) */
 int pl_ticks(double lo, double hi, int logscale, double *ticks, int max);
-/* data range of a panel's traces (finite values; positive ones on a log axis) */
+/* data range of a panel's traces (finite values; positive ones on a log axis); axis 0
+ * x, 1 y of the left-hand axis, 2 y of the traces on the right-hand one (y2) */
 void pl_range(const pl_panel *pn, int axis, double *lo, double *hi);
 
 /* writers */
 gd_status pl_write_svg(const gd_plot *p, FILE *f, gd_error *err);
 gd_status pl_write_html(const gd_plot *p, FILE *f, const char *plotly_path, gd_error *err);
+/* the height of a panel in the SVG (pixels) */
+double pl_svg_panel_height(const pl_panel *pn);
+/* PNG (pdf = 0) or PDF of the document's SVG through librsvg and cairo (raster.c) */
+gd_status pl_write_raster(const gd_plot *p, FILE *f, int pdf, gd_error *err);
+/* NULL when PNG and PDF can be written, else the packages this build lacks */
+const char *pl_raster_missing(void);
 /* text escaped for XML / HTML, and for a JSON string */
 void pl_xml_text(FILE *f, const char *s);
 void pl_json_text(FILE *f, const char *s);

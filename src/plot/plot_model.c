@@ -54,6 +54,32 @@ static double shaft_od(const gd_shaft *sh)
     return od;
 }
 
+/* A lumped shaft (nodes only) joined by a spring or bearing to a node of an elastic
+ * shaft: that node, else -1. */
+static int coupling_node(const gd_model *m, int h)
+{
+    if (m->shafts[h].nsections > 0) return -1;
+    for (int pass = 0; pass < 2; pass++) {
+        int n = pass ? m->nbearings : m->nsprings;
+        for (int k = 0; k < n; k++) {
+            int a = pass ? m->bearings[k].node : m->springs[k].node1;
+            int b = pass ? m->bearings[k].node2 : m->springs[k].node2;
+            if (a < 0 || b < 0) continue;
+            int other = m->nodes[a].shaft == h ? b : m->nodes[b].shaft == h ? a : -1;
+            if (other >= 0 && m->shafts[m->nodes[other].shaft].nsections > 0) return other;
+        }
+    }
+    return -1;
+}
+
+/* the axial extent of an elastic shaft */
+static void shaft_span(const gd_model *m, int h, double *a, double *b)
+{
+    const gd_shaft *sh = &m->shafts[h];
+    *a = m->nodes[sh->first_node].position;
+    *b = m->nodes[sh->first_node + sh->nnodes - 1].position;
+}
+
 gd_status gd_plot_model(const gd_model *m, gd_plot **out, gd_error *err)
 {
     if (m->nshafts == 0)
@@ -96,6 +122,30 @@ gd_status gd_plot_model(const gd_model *m, gd_plot **out, gd_error *err)
         for (int h = 0; h < m->nshafts; h++)
             if (placed[h]) bottom = fmin(bottom, off[h]);
     }
+    /* where each node is drawn: its axial position; a lumped shaft coupled to an elastic
+     * one sits beside the coupling node, outside that shaft's end, on its axis */
+    double span = 0;
+    for (int h = 0; h < m->nshafts; h++) {
+        double a, b;
+        if (m->shafts[h].nsections > 0) shaft_span(m, h, &a, &b), span = fmax(span, b - a);
+    }
+    if (!(span > 0)) span = 1;
+    double *nx = malloc((size_t)m->nnodes * sizeof *nx);
+    if (!nx) p->nomem = 1;
+    for (int i = 0; nx && i < m->nnodes; i++)
+        nx[i] = m->nodes[i].position;
+    for (int h = 0; nx && off && h < m->nshafts; h++) {
+        int c = coupling_node(m, h);
+        if (c < 0) continue;
+        int host = m->nodes[c].shaft;
+        double a, b;
+        shaft_span(m, host, &a, &b);
+        double x = m->nodes[c].position, out_dir = x - a < b - x ? -1 : 1;
+        off[h] = off[host];
+        const gd_shaft *sh = &m->shafts[h];
+        for (int k = 0; k < sh->nnodes; k++)
+            nx[sh->first_node + k] = x + out_dir * 0.12 * span * (k + 1);
+    }
     pl_panel *pn = pl_panel_add(p, s, PL_XY, "the model to scale (side view)", "axial position (m)",
                                 "radial position (m)");
     if (pn) pn->equal = 1;
@@ -118,7 +168,7 @@ gd_status gd_plot_model(const gd_model *m, gd_plot **out, gd_error *err)
         const gd_mesh *ms = &m->meshes[g];
         for (int side = 0; side < 2; side++) {
             int node = side ? ms->driven : ms->driver;
-            double rp = pitch_radius(ms, side), x = m->nodes[node].position;
+            double rp = pitch_radius(ms, side), x = nx ? nx[node] : m->nodes[node].position;
             if (!(rp > 0)) continue;
             double w = fmax(0.25 * rp, 0.5 * maxod) / 2;
             rect(p, &gears, x - w, x + w, off[m->nodes[node].shaft] - rp,
@@ -132,7 +182,7 @@ gd_status gd_plot_model(const gd_model *m, gd_plot **out, gd_error *err)
             geared |= m->meshes[g].driver == dk->node || m->meshes[g].driven == dk->node;
         if (geared || !(dk->mass > 0) || !(dk->polar_inertia > 0)) continue;
         double rr = sqrt(2 * dk->polar_inertia / dk->mass),
-               x = m->nodes[dk->node].position; /* solid disk */
+               x = nx ? nx[dk->node] : m->nodes[dk->node].position; /* solid disk */
         double w = fmax(0.2 * rr, 0.5 * maxod) / 2;
         rect(p, &disks, x - w, x + w, off[m->nodes[dk->node].shaft] - rr,
              off[m->nodes[dk->node].shaft] + rr);
@@ -145,11 +195,45 @@ gd_status gd_plot_model(const gd_model *m, gd_plot **out, gd_error *err)
                                        : NULL;
     for (int b = 0; bt && b < m->nbearings; b++) {
         int node = m->bearings[b].node, h = m->nodes[node].shaft;
-        bt->x[b] = m->nodes[node].position;
+        bt->x[b] = nx ? nx[node] : m->nodes[node].position;
         bt->y[b] = off[h] - shaft_od(&m->shafts[h]) / 2;
         pl_trace_text(p, bt, b, "bearing %s at %s", m->bearings[b].name, m->nodes[node].name);
     }
     if (bt) bt->symbol = PL_TRIANGLE;
+    /* springs and couplings: a zigzag between their nodes (to ground: downwards) */
+    if (off && nx && m->nsprings) {
+        int cap = 12 * m->nsprings;
+        double *zx = malloc((size_t)cap * sizeof *zx), *zy = malloc((size_t)cap * sizeof *zy);
+        int k = 0;
+        for (int q = 0; zx && zy && q < m->nsprings; q++) {
+            const gd_spring *sp = &m->springs[q];
+            int a = sp->node1, b = sp->node2;
+            double x0 = nx[a], y0 = off[m->nodes[a].shaft];
+            double x1 = b >= 0 ? nx[b] : x0, y1 = b >= 0 ? off[m->nodes[b].shaft] : y0 - 2 * maxod;
+            if (b >= 0 && fabs(x1 - x0) < 1e-12 && fabs(y1 - y0) < 1e-12) x1 = x0 + 0.05 * span;
+            double amp = 0.35 * (maxod > 0 ? maxod : 0.02 * span);
+            for (int i = 0; i <= 8; i++) { /* 8 segments, the inner ones zigzag */
+                double t = i / 8.0, z = (i == 0 || i == 8) ? 0 : (i % 2 ? amp : -amp);
+                double dx = x1 - x0, dy = y1 - y0, l = hypot(dx, dy);
+                zx[k] = x0 + t * dx - (l > 0 ? z * dy / l : 0);
+                zy[k++] = y0 + t * dy + (l > 0 ? z * dx / l : 0);
+            }
+            zx[k] = zy[k] = NAN;
+            k++;
+        }
+        if (k > 1) pl_trace_add(p, pn, "springs and couplings", k - 1, zx, zy, PL_LINES, "#9467bd");
+        free(zx);
+        free(zy);
+    }
+    /* node names on hover */
+    pl_trace *nt =
+        off && nx ? pl_trace_add(p, pn, "nodes", m->nnodes, nx, NULL, PL_MARKERS, "#999") : NULL;
+    for (int i = 0; nt && i < m->nnodes; i++) {
+        nt->y[i] = off[m->nodes[i].shaft];
+        pl_trace_text(p, nt, i, "node %s (shaft %s) at %.4g m", m->nodes[i].name,
+                      m->shafts[m->nodes[i].shaft].name, m->nodes[i].position);
+    }
+    if (nt) nt->legend = 0;
     /* tables */
     pl_panel *t = pl_panel_add(p, s, PL_TABLE, "shafts", NULL, NULL);
     pl_table_init(p, t, m->nshafts, 6);
@@ -202,6 +286,7 @@ gd_status gd_plot_model(const gd_model *m, gd_plot **out, gd_error *err)
             pl_cell(p, t, g + 1, 6, "%s", ms->tvms ? "geometry" : "given");
         }
     }
+    free(nx);
     free(off);
     free(placed);
     return pl_done(p, out, err);

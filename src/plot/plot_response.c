@@ -27,6 +27,12 @@ static void bode_panels(gd_plot *p, pl_section *s, bode *b, const char *what, co
     char x[120];
     snprintf(x, sizeof x, "real part (%s)", unit);
     b->polar = pl_panel_add(p, s, PL_XY, t, x, y);
+    if (b->polar) b->polar->equal = 1; /* circles drawn as circles */
+    /* adding a panel may move the section's panels: the three are its last ones */
+    if (b->mag && b->phase && b->polar) {
+        b->mag = &s->panels[s->npanels - 3];
+        b->phase = &s->panels[s->npanels - 2];
+    }
 }
 
 /* One complex curve over x into the three panels, and its rows into the CSV. */
@@ -50,17 +56,175 @@ static const char *dof_unit(gd_dof d)
     return d >= GD_RX ? "rad" : "m";
 }
 
+/* The unit of an FRF, output per input, written as a unit: "m/N", "1/m" (a mesh force
+ * per unit moment, N/(N m)), "rad/(N m s)", never "N/N m". */
 static void frf_unit(const gd_system *sys, const gd_frf_options *opt, const gd_probe *pr, char *buf,
                      size_t n)
 {
-    const char *in = sys->dof_type[opt->inputs[0]] >= GD_RX ? "N m" : "N";
+    int moment_in = sys->dof_type[opt->inputs[0]] >= GD_RX;
+    static const char *const rate[3] = {"", " s", " s^2"};
     if (pr->kind == GD_PROBE_DOF) {
-        static const char *const rate[3] = {"", "/s", "/s^2"};
-        snprintf(buf, n, "%s%s/%s", dof_unit(sys->dof_type[pr->index]), rate[opt->quantity], in);
+        int rot = sys->dof_type[pr->index] >= GD_RX;
+        const char *r = rate[opt->quantity];
+        if (!moment_in) /* m/N, m/(N s), rad/(N s^2) */
+            snprintf(buf, n, r[0] ? "%s/(N%s)" : "%s/N%s", rot ? "rad" : "m", r);
+        else if (rot) /* rad/(N m), rad/(N m s) */
+            snprintf(buf, n, "rad/(N m%s)", r);
+        else /* m/(N m) = 1/N */
+            snprintf(buf, n, r[0] ? "1/(N%s)" : "1/N%s", r);
     } else {
-        snprintf(buf, n, "%s/%s", pr->kind == GD_PROBE_BEARING && pr->dir >= GD_RX ? "N m" : "N",
-                 in);
+        int mom_out = pr->kind == GD_PROBE_BEARING && pr->dir >= GD_RX;
+        if (mom_out == moment_in)
+            snprintf(buf, n, "%s", mom_out ? "N m/(N m)" : "N/N");
+        else
+            snprintf(buf, n, "%s", mom_out ? "m" : "1/m"); /* N m/N, N/(N m) */
     }
+}
+
+/* Refinement of the Nyquist curves: around each peak of |H| (the outputs' magnitudes,
+ * each over its own largest, summed), the peak located by a golden-section search on
+ * the bracket [w_{k-1}, w_{k+1}] of the sampled maximum, and PER_SIDE points on each
+ * side of it at distances shrinking geometrically from the bracket's end to 1e-6 of it:
+ * a resonance circle is then drawn as a circle whatever its damping (its half-power
+ * band, 2 zeta w, holds some of them), not as chords across the plane. */
+enum { MAX_PEAKS = 8, PER_SIDE = 30, PER_PEAK = 2 * PER_SIDE, GOLDEN_ITERS = 40 };
+
+static double peak_measure(const gd_frf_result *r, int f, const double *scale)
+{
+    double sum = 0;
+    for (int o = 0; o < r->noutputs; o++) {
+        double a = hypot(r->re[(size_t)o * r->nfreq + f], r->im[(size_t)o * r->nfreq + f]);
+        if (!isfinite(a)) return NAN;
+        sum += scale[o] > 0 ? a / scale[o] : 0;
+    }
+    return sum;
+}
+
+/* the FRF at n frequencies w (rad/s) with the options of the result */
+static gd_frf_result *frf_at(const gd_system *sys, const gd_frf_options *opt, const double *w,
+                             int n)
+{
+    gd_frf_options o = *opt;
+    o.freqs = w;
+    o.nfreq = n;
+    gd_frf_result *r = NULL;
+    gd_error e;
+    gd_error_clear(&e);
+    if (gd_frf(sys, &o, &r, &e)) return NULL;
+    return r;
+}
+
+static double measure_at(const gd_system *sys, const gd_frf_options *opt, double w,
+                         const double *scale)
+{
+    gd_frf_result *r = frf_at(sys, opt, &w, 1);
+    double v = r ? peak_measure(r, 0, scale) : NAN;
+    gd_frf_free(r);
+    return v;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Adds the refined Nyquist line of each output (no legend: the output's markers at the
+ * given frequencies carry it) and the located peaks on the magnitude panel. */
+static void refine_nyquist(gd_plot *p, const bode *b, const gd_system *sys,
+                           const gd_frf_options *opt, const gd_frf_result *r, const int *first)
+{
+    int nf = r->nfreq, no = r->noutputs;
+    double *scale = calloc((size_t)no, sizeof *scale), *meas = malloc((size_t)nf * sizeof *meas);
+    int pk[MAX_PEAKS], npk = 0;
+    double wpk[MAX_PEAKS];
+    if (!scale || !meas) goto out;
+    for (int o = 0; o < no; o++)
+        for (int f = 0; f < nf; f++) {
+            double a = hypot(r->re[(size_t)o * nf + f], r->im[(size_t)o * nf + f]);
+            if (isfinite(a)) scale[o] = fmax(scale[o], a);
+        }
+    for (int f = 0; f < nf; f++)
+        meas[f] = peak_measure(r, f, scale);
+    for (int f = 1; f + 1 < nf; f++) {
+        if (!(meas[f] > meas[f - 1] && meas[f] >= meas[f + 1])) continue;
+        if (npk < MAX_PEAKS)
+            pk[npk++] = f;
+        else { /* keep the highest */
+            int low = 0;
+            for (int q = 1; q < npk; q++)
+                if (meas[pk[q]] < meas[pk[low]]) low = q;
+            if (meas[f] > meas[pk[low]]) pk[low] = f;
+        }
+    }
+    if (!npk) goto out;
+    /* golden-section search for each peak inside its bracket */
+    const double g = 0.5 * (sqrt(5) - 1);
+    for (int q = 0; q < npk; q++) {
+        double a = r->freqs[pk[q] - 1], c = r->freqs[pk[q] + 1];
+        double x1 = c - g * (c - a), x2 = a + g * (c - a);
+        double f1 = measure_at(sys, opt, x1, scale), f2 = measure_at(sys, opt, x2, scale);
+        for (int it = 0; it < GOLDEN_ITERS && isfinite(f1) && isfinite(f2); it++) {
+            if (f1 > f2) {
+                c = x2, x2 = x1, f2 = f1;
+                x1 = c - g * (c - a);
+                f1 = measure_at(sys, opt, x1, scale);
+            } else {
+                a = x1, x1 = x2, f1 = f2;
+                x2 = a + g * (c - a);
+                f2 = measure_at(sys, opt, x2, scale);
+            }
+        }
+        wpk[q] = 0.5 * (a + c);
+    }
+    /* the given frequencies, PER_PEAK more across each bracket, and the peaks */
+    int nw = nf + npk * (PER_PEAK + 1);
+    double *w = malloc((size_t)nw * sizeof *w);
+    if (!w) goto out;
+    memcpy(w, r->freqs, (size_t)nf * sizeof *w);
+    int k = nf;
+    const double ratio = pow(1e-6, 1.0 / (PER_SIDE - 1));
+    for (int q = 0; q < npk; q++) {
+        double a = r->freqs[pk[q] - 1], c = r->freqs[pk[q] + 1], d = 1;
+        for (int i = 0; i < PER_SIDE; i++, d *= ratio) {
+            w[k++] = wpk[q] - (wpk[q] - a) * d;
+            w[k++] = wpk[q] + (c - wpk[q]) * d;
+        }
+        w[k++] = wpk[q];
+    }
+    qsort(w, (size_t)nw, sizeof *w, cmp_double);
+    gd_frf_result *d = frf_at(sys, opt, w, nw);
+    gd_frf_result *at = frf_at(sys, opt, wpk, npk);
+    if (d && at) {
+        for (int o = 0; o < no; o++) {
+            /* the markers at the given frequencies keep the name and the legend */
+            pl_trace *base = &b->polar->traces[first[o]];
+            base->mode = PL_MARKERS;
+            char name[200];
+            snprintf(name, sizeof name, "%.150s (refined around the peaks)", base->name);
+            const char *color = base->color;
+            pl_trace *t = pl_trace_add(p, b->polar, name, nw, d->re + (size_t)o * nw,
+                                       d->im + (size_t)o * nw, PL_LINES, color);
+            if (t) t->legend = 0;
+        }
+        pl_trace *m =
+            pl_trace_add(p, b->mag, "peaks (located)", npk * no, NULL, NULL, PL_MARKERS, "#000");
+        for (int o = 0; m && o < no; o++)
+            for (int q = 0; q < npk; q++) {
+                int i = o * npk + q;
+                m->x[i] = wpk[q] / (2 * PI);
+                m->y[i] = hypot(at->re[(size_t)o * npk + q], at->im[(size_t)o * npk + q]);
+                pl_trace_text(p, m, i, "%s: peak at %.6g Hz, |H| %.4g", opt->outputs[o].name,
+                              m->x[i], m->y[i]);
+            }
+        if (m) m->symbol = PL_TRIANGLE;
+    }
+    gd_frf_free(d);
+    gd_frf_free(at);
+    free(w);
+out:
+    free(scale);
+    free(meas);
 }
 
 gd_status gd_plot_frf(const gd_system *sys, const gd_frf_options *opt, const gd_frf_result *r,
@@ -107,6 +271,7 @@ gd_status gd_plot_frf(const gd_system *sys, const gd_frf_options *opt, const gd_
         frf_unit(sys, opt, &opt->outputs[o], u, sizeof u);
         same &= !strcmp(u, unit);
     }
+    int first[64] = {0}; /* each output's Nyquist trace */
     bode b;
     bode_panels(p, s, &b, dir ? "directional FRF" : "FRF", "frequency (Hz)",
                 same ? unit : "SI units of each output per unit input");
@@ -131,10 +296,15 @@ gd_status gd_plot_frf(const gd_system *sys, const gd_frf_options *opt, const gd_
                 frf_unit(sys, opt, &opt->outputs[o], u, sizeof u);
                 snprintf(name + strlen(name), sizeof name - strlen(name), " (%s)", u);
             }
+            if (b.polar && o < 64) first[o] = b.polar->ntraces;
             bode_curve(p, s, &b, name, nf, hz, r->re + (size_t)o * nf, r->im + (size_t)o * nf,
                        color++);
         }
     }
+    /* an undamped model's peaks are singular (|H| unbounded): nothing to refine */
+    if (!dir && r->ninputs == 1 && r->noutputs <= 64 && nf >= 3 && b.polar && b.mag && !p->nomem &&
+        sys->has_damping)
+        refine_nyquist(p, &b, sys, opt, r, first);
     free(hz);
     return pl_done(p, out, err);
 }
@@ -199,18 +369,30 @@ gd_status gd_plot_unbalance(const gd_system *sys, const gd_unbalance_options *op
                 r->harmonics[h].order, ns, x[0], x[ns - 1], x[at]);
         if (s) snprintf(s->csv_name, sizeof s->csv_name, "unbalance_h%d.csv", h + 1);
         pl_csv(p, s, "output,speed_rpm,magnitude,phase_deg,real,imag\n");
-        if (no) {
-            const char *unit = probe_unit(sys, &opt->outputs[0]);
-            int same = 1;
-            for (int o = 1; o < no; o++)
-                same &= !strcmp(unit, probe_unit(sys, &opt->outputs[o]));
+        /* one set of panels per physical quantity: displacements (m), angles (rad),
+         * forces (N), moments (N m) never share an axis */
+        static const char *const units[4] = {"m", "rad", "N", "N m"};
+        static const char *const what[4] = {"displacement", "angle", "force", "moment"};
+        int nused = 0;
+        for (int q = 0; q < 4; q++)
+            for (int o = 0; o < no; o++)
+                if (!strcmp(units[q], probe_unit(sys, &opt->outputs[o]))) {
+                    nused++;
+                    break;
+                }
+        for (int q = 0; q < 4 && no; q++) {
+            int any = 0;
+            for (int o = 0; o < no; o++)
+                any |= !strcmp(units[q], probe_unit(sys, &opt->outputs[o]));
+            if (!any) continue;
             bode b;
-            bode_panels(p, s, &b, "amplitude", "reference speed (rpm)",
-                        same ? unit : "m, rad or N: see each output");
+            char head[64];
+            snprintf(head, sizeof head, nused > 1 ? "%s amplitude" : "amplitude", what[q]);
+            bode_panels(p, s, &b, head, "reference speed (rpm)", units[q]);
             for (int o = 0; o < no; o++) {
+                if (strcmp(units[q], probe_unit(sys, &opt->outputs[o]))) continue;
                 char name[200];
-                snprintf(name, sizeof name, "%s (%s)", opt->outputs[o].name,
-                         probe_unit(sys, &opt->outputs[o]));
+                snprintf(name, sizeof name, "%s (%s)", opt->outputs[o].name, units[q]);
                 size_t off = ((size_t)h * no + o) * ns;
                 bode_curve(p, s, &b, name, ns, x, r->re + off, r->im + off, o);
             }

@@ -8,10 +8,11 @@
 
 #define PI 3.14159265358979323846
 
-/* Rectangles [x_i, x_{i+1}] x [0, top] over the samples where the pair count satisfies
- * want (1: one pair, 2: two or more), as one fill trace (NaN between rectangles). */
+/* Rectangles [x_i, x_{i+1}] x [lo, hi] over the samples where exactly `want` tooth pairs
+ * are in contact, as one fill trace (NaN between rectangles): with a contact ratio of
+ * 2.6 the zones are 2 and 3 pairs, not "single" and "double". */
 static void zones(gd_plot *p, pl_panel *pn, const gd_tvms_result *r, const double *x, int want,
-                  double top)
+                  double lo, double hi, const char *color)
 {
     size_t n = r->n, cap = 6 * n + 6, k = 0;
     double *zx = malloc(cap * sizeof *zx), *zy = malloc(cap * sizeof *zy);
@@ -24,24 +25,22 @@ static void zones(gd_plot *p, pl_panel *pn, const gd_tvms_result *r, const doubl
     double step = r->mesh_period_rad / (double)r->points * 180 / PI;
     size_t i = 0;
     while (i < n) {
-        int in = want == 1 ? r->pairs_in_contact[i] == 1 : r->pairs_in_contact[i] >= 2;
-        if (!in) {
+        if (r->pairs_in_contact[i] != want) {
             i++;
             continue;
         }
         size_t j = i;
-        while (j + 1 < n &&
-               (want == 1 ? r->pairs_in_contact[j + 1] == 1 : r->pairs_in_contact[j + 1] >= 2))
+        while (j + 1 < n && r->pairs_in_contact[j + 1] == want)
             j++;
         double a = x[i], b = x[j] + step;
-        double px[6] = {a, b, b, a, a, NAN}, py[6] = {0, 0, top, top, 0, NAN};
+        double px[6] = {a, b, b, a, a, NAN}, py[6] = {lo, lo, hi, hi, lo, NAN};
         for (int q = 0; q < 6; q++)
             zx[k] = px[q], zy[k++] = py[q];
         i = j + 1;
     }
-    if (k)
-        pl_trace_add(p, pn, want == 1 ? "single-pair contact" : "double-pair contact", (int)k - 1,
-                     zx, zy, PL_FILL, want == 1 ? "#ff7f0e" : "#1f77b4");
+    char name[48];
+    snprintf(name, sizeof name, "%d pair%s in contact", want, want == 1 ? "" : "s");
+    if (k) pl_trace_add(p, pn, name, (int)k - 1, zx, zy, PL_FILL, color);
     free(zx);
     free(zy);
 }
@@ -75,11 +74,24 @@ gd_status gd_plot_tvms(const gd_tvms_result *const *rs, const char *const *label
     for (int i = 0; x && i < n; i++)
         x[i] = r->angle_rad[i] * 180 / PI;
     pl_panel *k = pl_panel_add(
-        p, s, PL_XY, "time-varying mesh stiffness (shaded: single- and double-pair contact)",
+        p, s, PL_XY, "time-varying mesh stiffness (shaded by the number of tooth pairs in contact)",
         "driver angle (deg)", "mesh stiffness k (N/m)");
-    if (x) {
-        zones(p, k, r, x, 1, 1.05 * r->max);
-        zones(p, k, r, x, 2, 1.05 * r->max);
+    if (x && k) {
+        /* the y axis around the ripple (a 1.5-4.6 % ripple is invisible from 0), with
+         * the ISO and mean lines inside */
+        double lo = fmin(r->min, r->iso_mesh_stiffness_alpha),
+               hi = fmax(r->max, r->iso_mesh_stiffness_alpha);
+        double pad = 0.12 * (hi - lo > 0 ? hi - lo : 0.05 * fabs(hi));
+        k->ylim[0] = lo - pad;
+        k->ylim[1] = hi + pad;
+        int pmin = r->pairs_in_contact[0], pmax = pmin;
+        for (int i = 1; i < n; i++) {
+            if (r->pairs_in_contact[i] < pmin) pmin = r->pairs_in_contact[i];
+            if (r->pairs_in_contact[i] > pmax) pmax = r->pairs_in_contact[i];
+        }
+        static const char *const zc[4] = {"#ff7f0e", "#1f77b4", "#2ca02c", "#9467bd"};
+        for (int c = pmin; c <= pmax; c++)
+            if (c > 0) zones(p, k, r, x, c, k->ylim[0], k->ylim[1], zc[(c - pmin) % 4]);
         pl_trace_add(p, k, "k (normal plane)", n, x, r->stiffness, PL_LINES, "#000");
         double lx[2] = {x[0], x[n - 1]},
                ly[2] = {r->iso_mesh_stiffness_alpha, r->iso_mesh_stiffness_alpha};
@@ -106,6 +118,7 @@ gd_status gd_plot_tvms(const gd_tvms_result *const *rs, const char *const *label
         pl_panel *h =
             pl_panel_add(p, s, PL_XY, "Fourier harmonics of k (orders of the mesh frequency)",
                          "harmonic order", "amplitude (N/m)");
+        if (h) h->xint = 1; /* orders are whole numbers */
         pl_trace *t = pl_trace_add(p, h, "amplitude", r->harmonics, NULL, r->harmonic_amplitude,
                                    PL_MARKERS, "#1f77b4");
         for (int i = 0; t && i < r->harmonics; i++)

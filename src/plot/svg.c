@@ -41,7 +41,7 @@ static int note_lines(const char *s)
     return s ? (int)(strlen(s) / 140) + 1 : 0;
 }
 
-static double panel_height(const pl_panel *pn)
+double pl_svg_panel_height(const pl_panel *pn)
 {
     if (pn->kind == PL_TABLE) return 40 + 20.0 * (pn->nrows + 1);
     if (pn->kind == PL_MODE3D) return 36;
@@ -52,7 +52,14 @@ static double panel_height(const pl_panel *pn)
         double ph = (RIGHT - LEFT) * (yh - yl) / (xh - xl);
         return TOP + BOTTOM + (ph < 160 ? 160 : ph > 640 ? 640 : ph);
     }
-    return 330;
+    return 330 + (pn->subtitle[0] ? 16 : 0);
+}
+
+static int has_y2(const pl_panel *pn)
+{
+    for (int t = 0; t < pn->ntraces; t++)
+        if (pn->traces[t].y2) return 1;
+    return 0;
 }
 
 static void number(FILE *f, double v)
@@ -129,17 +136,23 @@ static void runs(FILE *f, const frame *fr, const pl_trace *t, const char *clip)
 
 static void xy_panel(FILE *f, const pl_panel *pn, double y, double h, int id)
 {
+    int two = has_y2(pn) && !pn->equal && !pn->ylog;
+    double top = TOP + (pn->subtitle[0] ? 16 : 0);
     frame fr = {.x0 = LEFT,
-                .y0 = y + TOP,
-                .pw = RIGHT - LEFT,
-                .ph = h - TOP - BOTTOM,
+                .y0 = y + top,
+                .pw = RIGHT - LEFT - (two ? 64 : 0),
+                .ph = h - top - BOTTOM,
                 .xlog = pn->xlog,
                 .ylog = pn->ylog,
                 .equal = pn->equal};
     double xl, xh, yl, yh;
     pl_range(pn, 0, &xl, &xh);
     pl_range(pn, 1, &yl, &yh);
-    if (!pn->equal && !pn->ylog) { /* a little room above and below the curves */
+    if (pn->xlim[0] < pn->xlim[1] && !pn->equal) xl = pn->xlim[0], xh = pn->xlim[1];
+    if (pn->ylim[0] < pn->ylim[1] && !pn->equal) {
+        yl = pn->ylim[0];
+        yh = pn->ylim[1];
+    } else if (!pn->equal && !pn->ylog) { /* a little room above and below the curves */
         double d = 0.04 * (yh - yl);
         yl -= d;
         yh += d;
@@ -156,6 +169,17 @@ static void xy_panel(FILE *f, const pl_panel *pn, double y, double h, int id)
         fr.offx = 0.5 * (fr.pw - (fr.xhi - fr.xlo) * fr.sx);
         fr.offy = 0.5 * (fr.ph - (fr.yhi - fr.ylo) * fr.sy);
     }
+    frame fr2 = fr; /* the right-hand axis: its own linear range */
+    double y2l = 0, y2h = 1;
+    if (two) {
+        pl_range(pn, 2, &y2l, &y2h);
+        double d = 0.04 * (y2h - y2l);
+        y2l -= d;
+        y2h += d;
+        if (pn->y2lim[0] < pn->y2lim[1]) y2l = pn->y2lim[0], y2h = pn->y2lim[1];
+        fr2.ylo = y2l;
+        fr2.yhi = y2h;
+    }
     char clip[32];
     snprintf(clip, sizeof clip, "clip%d", id);
     fprintf(f, "<g class=\"panel\" data-title=\"");
@@ -167,6 +191,11 @@ static void xy_panel(FILE *f, const pl_panel *pn, double y, double h, int id)
     fprintf(f, "<text x=\"%d\" y=\"%.1f\" font-size=\"14\" font-weight=\"bold\">", LEFT, y + 20);
     pl_xml_text(f, pn->title);
     fputs("</text>\n", f);
+    if (pn->subtitle[0]) {
+        fprintf(f, "<text class=\"subtitle\" x=\"%d\" y=\"%.1f\" font-size=\"11\">", LEFT, y + 37);
+        pl_xml_text(f, pn->subtitle);
+        fputs("</text>\n", f);
+    }
     fprintf(f,
             "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"none\" "
             "stroke=\"#444\"/>\n",
@@ -185,6 +214,17 @@ static void xy_panel(FILE *f, const pl_panel *pn, double y, double h, int id)
             hi = pow(10, axis ? fr.yhi : fr.xhi);
         }
         int nt = pl_ticks(lo, hi, lg, ticks, 32);
+        if (!axis && pn->xint && !lg) { /* whole numbers only, a step of 1, 2, 5, 10... */
+            int m = 0;
+            for (int k = 0; k < nt; k++)
+                if (ticks[k] == floor(ticks[k])) ticks[m++] = ticks[k];
+            if (m < 2) {
+                m = 0;
+                for (double v = ceil(lo); v <= hi && m < 32; v++)
+                    ticks[m++] = v;
+            }
+            nt = m;
+        }
         for (int k = 0; k < nt; k++) {
             fmt_tick(lab, sizeof lab, ticks[k], lg);
             if (axis) {
@@ -206,6 +246,24 @@ static void xy_panel(FILE *f, const pl_panel *pn, double y, double h, int id)
             }
         }
     }
+    if (two) {
+        int nt = pl_ticks(y2l, y2h, 0, ticks, 32);
+        for (int k = 0; k < nt; k++) {
+            double v = py(&fr2, ticks[k]);
+            if (v < fr.y0 - 0.5 || v > fr.y0 + fr.ph + 0.5) continue;
+            fmt_tick(lab, sizeof lab, ticks[k], 0);
+            fprintf(f,
+                    "<line x1=\"%.1f\" x2=\"%.1f\" y1=\"%.2f\" y2=\"%.2f\" stroke=\"#444\"/>"
+                    "<text x=\"%.1f\" y=\"%.2f\" font-size=\"11\">%s</text>\n",
+                    fr.x0 + fr.pw, fr.x0 + fr.pw + 4, v, v, fr.x0 + fr.pw + 6, v + 4, lab);
+        }
+        fprintf(f,
+                "<text transform=\"translate(%.1f,%.1f) rotate(90)\" font-size=\"12\" "
+                "text-anchor=\"middle\">",
+                fr.x0 + fr.pw + 44, fr.y0 + fr.ph / 2);
+        pl_xml_text(f, pn->y2label);
+        fputs("</text>\n", f);
+    }
     fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"12\" text-anchor=\"middle\">",
             fr.x0 + fr.pw / 2, fr.y0 + fr.ph + 36);
     pl_xml_text(f, pn->xlabel);
@@ -215,8 +273,10 @@ static void xy_panel(FILE *f, const pl_panel *pn, double y, double h, int id)
             fr.x0 - 62, fr.y0 + fr.ph / 2);
     pl_xml_text(f, pn->ylabel);
     fputs("</text>\n", f);
-    /* curves, then the legend */
-    int shown = 0;
+    /* curves, then the legend; labels written at curve ends step down out of each
+     * other's way */
+    int shown = 0, nlab = 0;
+    double labx[32], laby[32];
     for (int t = 0; t < pn->ntraces; t++) {
         const pl_trace *c = &pn->traces[t];
         fprintf(f, "<g class=\"trace\" data-name=\"");
@@ -235,15 +295,36 @@ static void xy_panel(FILE *f, const pl_panel *pn, double y, double h, int id)
             if (i) fputc(' ', f);
             number(f, c->y[i]);
         }
-        fputs("\">\n", f);
-        if (c->mode != PL_MARKERS) runs(f, &fr, c, clip);
+        fputs(c->y2 ? "\" data-axis=\"y2\">\n" : "\">\n", f);
+        const frame *cf = c->y2 && two ? &fr2 : &fr;
+        if (c->mode != PL_MARKERS) runs(f, cf, c, clip);
         if (c->mode == PL_MARKERS || c->mode == PL_LINES_MARKERS)
             for (int i = 0; i < c->n; i++) {
-                double a = px(&fr, c->x[i]), b = py(&fr, c->y[i]);
+                double a = px(cf, c->x[i]), b = py(cf, c->y[i]);
                 if (!isfinite(a) || !isfinite(b)) continue;
                 marker(f, c->symbol, a, b, c->marker_color ? c->marker_color[i] : c->color);
                 fputc('\n', f);
             }
+        if (c->label[0] && c->n > 0) { /* at the last point shown, inside the frame */
+            double a = px(cf, c->x[c->n - 1]), b = py(cf, c->y[c->n - 1]);
+            if (isfinite(a) && isfinite(b)) {
+                if (b < fr.y0 + 12) b = fr.y0 + 12;
+                for (int again = 1; again;) {
+                    again = 0;
+                    for (int q = 0; q < nlab; q++)
+                        if (fabs(labx[q] - a) < 80 && fabs(laby[q] - b) < 11)
+                            b = laby[q] + 11, again = 1;
+                }
+                if (nlab < 32) labx[nlab] = a, laby[nlab++] = b;
+                fprintf(f,
+                        "<text class=\"label\" x=\"%.2f\" y=\"%.2f\" font-size=\"10\" "
+                        "text-anchor=\"%s\" fill=\"%s\">",
+                        c->label_right ? a + 3 : a - 3, c->label_right ? b + 10 : b - 4,
+                        c->label_right ? "start" : "end", c->color);
+                pl_xml_text(f, c->label);
+                fputs("</text>\n", f);
+            }
+        }
         fputs("</g>\n", f);
         if (!c->legend) continue;
         if (shown < 16) {
@@ -300,7 +381,7 @@ gd_status pl_write_svg(const gd_plot *p, FILE *f, gd_error *err)
         const pl_section *s = &p->sections[i];
         h += 48 + 16.0 * note_lines(s->note);
         for (int k = 0; k < s->npanels; k++)
-            h += panel_height(&s->panels[k]);
+            h += pl_svg_panel_height(&s->panels[k]);
     }
     fprintf(f,
             "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" "
@@ -332,7 +413,7 @@ gd_status pl_write_svg(const gd_plot *p, FILE *f, gd_error *err)
         y += 6;
         for (int k = 0; k < s->npanels; k++) {
             const pl_panel *pn = &s->panels[k];
-            double ph = panel_height(pn);
+            double ph = pl_svg_panel_height(pn);
             if (pn->kind == PL_XY)
                 xy_panel(f, pn, y, ph, id++);
             else if (pn->kind == PL_TABLE)

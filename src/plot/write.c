@@ -3,6 +3,7 @@
  * into place so that a failure leaves nothing at the path. */
 #define _GNU_SOURCE /* dladdr */
 #include <dlfcn.h>
+#include <ctype.h>
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -30,10 +31,15 @@ gd_status gd_plot_format_of(const char *path, gd_plot_format *fmt, gd_error *err
             *fmt = GD_PLOT_HTML;
             return GD_OK;
         }
+        if (!strcasecmp(dot, ".png") || !strcasecmp(dot, ".pdf")) {
+            *fmt = tolower((unsigned char)dot[2]) == 'n' ? GD_PLOT_PNG : GD_PLOT_PDF;
+            return GD_OK;
+        }
     }
     return gd_error_set(
         err, GD_EINPUT, path, 0, 0, "--plot",
-        "name the file FILE.svg (static) or FILE.html (interactive, self-contained)",
+        "name the file FILE.svg, FILE.png, FILE.pdf (static) or FILE.html (interactive, "
+        "self-contained)",
         "unknown plot format '%s'", dot && (!slash || dot > slash) ? dot : "(no extension)");
 }
 
@@ -130,6 +136,11 @@ gd_status gd_plot_check_path(const char *path, const gd_plot_write_options *opt,
         char js[1024];
         if ((st = gd_plot_find_plotly(opt, js, sizeof js, err))) return st;
     }
+    if ((fmt == GD_PLOT_PNG || fmt == GD_PLOT_PDF) && pl_raster_missing())
+        return gd_error_set(err, GD_EINPUT, path, 0, 0, "--plot",
+                            "install them and rebuild geardyn, or write FILE.svg or FILE.html",
+                            "%s plots need %s, which this build of geardyn lacks",
+                            fmt == GD_PLOT_PNG ? "PNG" : "PDF", pl_raster_missing());
     return GD_OK;
 }
 
@@ -170,7 +181,9 @@ gd_status gd_plot_write(const gd_plot *p, const char *path, const gd_plot_write_
         return gd_error_set(err, GD_EIO, path, 0, 0, "--plot", "", "cannot open: %s",
                             strerror(errno));
     }
-    st = fmt == GD_PLOT_SVG ? pl_write_svg(p, f, err) : pl_write_html(p, f, js, err);
+    st = fmt == GD_PLOT_SVG    ? pl_write_svg(p, f, err)
+         : fmt == GD_PLOT_HTML ? pl_write_html(p, f, js, err)
+                               : pl_write_raster(p, f, fmt == GD_PLOT_PDF, err);
     if (fclose(f) != 0 && !st)
         st = gd_error_set(err, GD_EIO, path, 0, 0, "--plot", "check the free space",
                           "cannot write: %s", strerror(errno));

@@ -72,7 +72,16 @@ static gd_status add_modes(gd_plot *doc, const gd_system *sys, double speed, dou
     gd_plot *p;
     st = gd_plot_modal(sys, r, &p, err);
     gd_modal_free(r);
-    return st ? st : gd_plot_append(doc, p, err);
+    if (!st) st = gd_plot_append(doc, p, err);
+    if (!st && speed == 0)
+        st = gd_plot_add_note(
+            doc, "Modes at rest",
+            "The model gives no operating speed (`speed:` in the model file), so the modes "
+            "above are at 0 rpm, where no gyroscopic term acts and every whirl is none. Give "
+            "`speed:` in the model or `geardyn report --speed 3000rpm` for the modes and whirl "
+            "at the operating speed; the Campbell diagram below shows them over speed.",
+            err);
+    return st;
 }
 
 static gd_status add_campbell(gd_plot *doc, const gd_system *sys, const gd_report_options *opt,

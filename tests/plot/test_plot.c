@@ -7,6 +7,7 @@
 #include <libxml/xpathInternals.h>
 
 #include "cli_support.h"
+#include "geardyn/plot.h"
 #include "harness.h"
 
 #define PI 3.14159265358979323846
@@ -198,16 +199,19 @@ TEST(frf_plot_matches_json)
     svg *s = &pr.s;
     cJSON *j = pr.json;
     if (j && s->ctx) {
-        /* magnitude, phase, Nyquist: two curves each */
+        /* magnitude, phase, Nyquist: two curves each; no refinement of the Nyquist curves
+         * of this undamped pair (its peaks are singular; frf_peaks_located refines the
+         * damped rig's) */
         CHECK(count(s, "//s:g[@class='panel']") == 3);
-        CHECK(count(s, "//s:g[@class='panel']/s:g[@class='trace']") == 6);
+        CHECK(count(s, "//s:g[@class='panel']/s:g[@class='trace'][not(contains(@data-name,'"
+                       "refined'))][@data-name!='peaks (located)']") == 6);
+        CHECK(count(s, TRACE("FRF: Nyquist", "pinion.y (1/N) (refined around the peaks)")) == 0);
         const cJSON *outs = cJSON_GetObjectItem(j, "outputs");
         CHECK(cJSON_GetArraySize(outs) == 2);
         double y[32], x[32], re[32];
-        int n = trace_numbers(s, TRACE("FRF: magnitude", "mesh:mesh (N/N m)"), "data-y", y, 32);
+        int n = trace_numbers(s, TRACE("FRF: magnitude", "mesh:mesh (1/m)"), "data-y", y, 32);
         CHECK(n == 20);
-        CHECK(trace_numbers(s, TRACE("FRF: magnitude", "mesh:mesh (N/N m)"), "data-x", x, 32) ==
-              20);
+        CHECK(trace_numbers(s, TRACE("FRF: magnitude", "mesh:mesh (1/m)"), "data-x", x, 32) == 20);
         const cJSON *o = cJSON_GetArrayItem(outs, 0);
         for (int k = 0; k < n && k < 20; k++) {
             CHECK(same(y[k], jat(cJSON_GetObjectItem(o, "magnitude"), k)));
@@ -215,17 +219,17 @@ TEST(frf_plot_matches_json)
                   fabs(x[k] * 2 * PI / jat(cJSON_GetObjectItem(o, "frequency_rad_s"), k) - 1) <
                       1e-15);
         }
-        n = trace_numbers(s, TRACE("FRF: phase", "pinion.y (m/N m)"), "data-y", y, 32);
+        n = trace_numbers(s, TRACE("FRF: phase", "pinion.y (1/N)"), "data-y", y, 32);
         CHECK(n == 20);
         o = cJSON_GetArrayItem(outs, 1);
         for (int k = 0; k < n && k < 20; k++)
             CHECK(same(y[k], jat(cJSON_GetObjectItem(o, "phase_deg"), k)));
-        n = trace_numbers(s, TRACE("FRF: Nyquist", "pinion.y (m/N m)"), "data-x", re, 32);
+        n = trace_numbers(s, TRACE("FRF: Nyquist", "pinion.y (1/N)"), "data-x", re, 32);
         CHECK(n == 20);
         for (int k = 0; k < n && k < 20; k++)
             CHECK(same(re[k], jat(cJSON_GetObjectItem(o, "real"), k)));
         /* Nyquist points are markers on the curve */
-        CHECK(count(s, TRACE("FRF: Nyquist", "pinion.y (m/N m)") "/*[@class='marker']") == 20);
+        CHECK(count(s, TRACE("FRF: Nyquist", "pinion.y (1/N)") "/*[@class='marker']") == 20);
     }
     plot_end(&pr);
     scratch_close(&d);
@@ -245,17 +249,18 @@ TEST(unbalance_plot_matches_json)
         int no = cJSON_GetArraySize(outs),
             nh = cJSON_GetArraySize(cJSON_GetObjectItem(j, "harmonics"));
         CHECK(nh == 1 && no > 0);
-        CHECK(
-            count(
-                s,
-                "//s:g[@class='panel'][@data-title='amplitude: magnitude']/s:g[@class='trace']") ==
-            no);
+        CHECK(count(s, "//s:g[@class='panel'][contains(@data-title,'amplitude: "
+                       "magnitude')]/s:g[@class='trace']") == no);
+        /* one set of panels per quantity: m, rad and N (the chen pair's defaults) */
+        CHECK(count(s, "//s:g[@class='panel'][contains(@data-title,'amplitude: magnitude')]") == 3);
+        CHECK(count(s, "//s:g[@class='panel'][@data-title='force amplitude: magnitude']/"
+                       "s:g[@class='trace'][not(contains(@data-name,'(N)'))]") == 0);
         for (int o = 0; o < no; o++) {
             const cJSON *ser = cJSON_GetArrayItem(outs, o);
             char xp[400];
             snprintf(xp, sizeof xp,
-                     "//s:g[@class='panel'][@data-title='amplitude: magnitude']/s:g[@class='trace']"
-                     "[starts-with(@data-name,'%s (')]",
+                     "//s:g[@class='panel'][contains(@data-title,'amplitude: "
+                     "magnitude')]/s:g[@class='trace'][starts-with(@data-name,'%s (')]",
                      jstr(ser, "name"));
             double y[16];
             int n = trace_numbers(s, xp, "data-y", y, 16);
@@ -278,7 +283,7 @@ static int zone_runs(const cJSON *pairs, int want)
 {
     int n = cJSON_GetArraySize(pairs), runs = 0, prev = 0;
     for (int i = 0; i < n; i++) {
-        int p = (int)jat(pairs, i), in = want == 1 ? p == 1 : p >= 2;
+        int p = (int)jat(pairs, i), in = p == want;
         runs += in && !prev;
         prev = in;
     }
@@ -313,15 +318,37 @@ TEST(mesh_stiffness_plot_matches_json)
         const cJSON *pairs = cJSON_GetObjectItem(j, "pairs_in_contact");
         int n1 = zone_runs(pairs, 1), n2 = zone_runs(pairs, 2);
         CHECK(n1 >= 2 && n2 >= 2);
-        CHECK(count(s, TRACE("time-varying mesh stiffness", "single-pair contact") "/s:polygon") ==
+        CHECK(count(s, TRACE("time-varying mesh stiffness", "1 pair in contact") "/s:polygon") ==
               n1);
-        CHECK(count(s, TRACE("time-varying mesh stiffness", "double-pair contact") "/s:polygon") ==
+        CHECK(count(s, TRACE("time-varying mesh stiffness", "2 pairs in contact") "/s:polygon") ==
               n2);
         /* the comparison: this pair and two other helix angles */
         CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'comparison')]/"
                        "s:g[@class='trace']") == 3);
         CHECK(count(s, TRACE("Fourier harmonics", "amplitude") "/*[@class='marker']") ==
               cJSON_GetArraySize(cJSON_GetObjectItem(j, "harmonics")));
+    }
+    plot_end(&pr);
+    /* a helical pair of total contact ratio 2.6 (Table 1 of 002): 2 and 3 pairs in
+     * contact, shaded as such, none as 1 pair; the y axis around the ripple */
+    plot_start(
+        gd_ts_, &pr, &d,
+        "mesh-stiffness examples/helical_pair1.yaml --cycles 2 --points 60 --json --plot %s");
+    s = &pr.s;
+    j = pr.json;
+    if (j && s->ctx) {
+        const cJSON *pairs = cJSON_GetObjectItem(j, "pairs_in_contact");
+        int n2 = zone_runs(pairs, 2), n3 = zone_runs(pairs, 3);
+        CHECK(n2 >= 2 && n3 >= 2 && zone_runs(pairs, 1) == 0);
+        CHECK(count(s, TRACE("time-varying mesh stiffness", "2 pairs in contact") "/s:polygon") ==
+              n2);
+        CHECK(count(s, TRACE("time-varying mesh stiffness", "3 pairs in contact") "/s:polygon") ==
+              n3);
+        CHECK(count(s, TRACE("time-varying mesh stiffness", "1 pair in contact")) == 0);
+        static double zy[64];
+        int nz = trace_numbers(s, TRACE("time-varying mesh stiffness", "2 pairs in contact"),
+                               "data-y", zy, 64);
+        CHECK(nz > 0 && zy[0] > 0.5 * jnum(j, "stiffness_min")); /* the axis does not start at 0 */
     }
     plot_end(&pr);
     scratch_close(&d);
@@ -342,13 +369,17 @@ TEST(modal_and_transient_plots)
             elastic +=
                 !cJSON_IsTrue(cJSON_GetObjectItem(cJSON_GetArrayItem(modes, k), "rigid_body"));
         CHECK(elastic == 6);
-        /* a shape panel per elastic mode (titled with its frequency), the energy table */
-        CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'mode ')]") == elastic);
+        /* shape panels titled with the mode's frequency (one per shaft that moves), whirl
+         * and zeta written out; the energy table */
+        for (int k = 1; k <= elastic; k++)
+            CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'mode %d: ')]", k) >= 1);
         char title[200];
         snprintf(title, sizeof title,
-                 "//s:g[@class='panel'][starts-with(@data-title,'mode 1: %.6g Hz')]",
+                 "//s:g[@class='panel'][starts-with(@data-title,'mode 1: %.6g Hz, ')]"
+                 "[contains(@data-title,'whirl: ')]",
                  jnum(cJSON_GetArrayItem(modes, 0), "frequency_hz"));
-        CHECK(count(s, "%s", title) == 1);
+        CHECK(count(s, "%s", title) >= 1);
+        CHECK(count(s, "//s:g[@class='panel'][contains(@data-title,' whirl,')]") == 0);
         CHECK(count(s, "//s:g[@class='table'][@data-rows='%d']", elastic) == 1);
     }
     plot_end(&pr);
@@ -414,12 +445,13 @@ TEST(report_has_every_section)
     if (s.ctx && j) {
         /* model, modes, Campbell, FRF, unbalance (one harmonic), mesh stiffness */
         CHECK(count(&s, "//s:g[@class='section']") == 6);
-        CHECK(count(&s, "//s:g[@class='panel'][@data-title='the model to scale (side view)']/"
-                        "s:g[@class='trace']") == 3); /* shafts, gears, bearings */
+        CHECK(count(&s,
+                    "//s:g[@class='panel'][@data-title='the model to scale (side view)']/"
+                    "s:g[@class='trace'][@data-name!='nodes']") == 3); /* shafts, gears, bearings */
         CHECK(count(&s, TRACE("the model to scale", "bearings") "/*[@class='marker']") == 4);
-        CHECK(
-            count(&s, "//s:g[@class='panel'][@data-title='FRF: magnitude']/s:g[@class='trace']") ==
-            9); /* the mesh force and x, y of four bearings */
+        CHECK(count(&s, "//s:g[@class='panel'][@data-title='FRF: magnitude']/s:g[@class='trace']"
+                        "[@data-name!='peaks (located)']") ==
+              9); /* the mesh force and x, y of four bearings */
         static double y[200];
         const cJSON *kk = cJSON_GetObjectItem(j, "stiffness");
         int n = trace_numbers(&s, TRACE("time-varying mesh stiffness", "k (normal plane)"),
@@ -564,13 +596,13 @@ TEST(bad_plot_requests_write_nothing)
     scratch d;
     REQUIRE(scratch_open(&d));
     char args[512];
-    snprintf(args, sizeof args, "modal examples/chen1998_gear_pair.yaml --plot %s/m.png", d.dir);
-    check_refused(gd_ts_, &d, args, "unknown plot format '.png'");
+    snprintf(args, sizeof args, "modal examples/chen1998_gear_pair.yaml --plot %s/m.gif", d.dir);
+    check_refused(gd_ts_, &d, args, "unknown plot format '.gif'");
     snprintf(args, sizeof args,
              "frf examples/kumar2011_coupled.yaml --input torque:motor --output "
              "mesh:mesh --freq 100:200:3 --plot %s/plot",
              d.dir);
-    check_refused(gd_ts_, &d, args, "FILE.svg (static) or FILE.html");
+    check_refused(gd_ts_, &d, args, "FILE.svg, FILE.png, FILE.pdf (static) or FILE.html");
     snprintf(args, sizeof args,
              "campbell examples/kumar2011_coupled.yaml --speeds 0:100:2 --plot %s/no/c.svg", d.dir);
     check_refused(gd_ts_, &d, args, "does not exist");
@@ -585,13 +617,21 @@ TEST(bad_plot_requests_write_nothing)
     /* periodic: the plot file is checked before the harmonic balance runs; a branch with
      * no converged point (speed 0: the period is undefined) has nothing to plot */
     snprintf(args, sizeof args,
-             "periodic tests/plot/mathieu_pair.yaml --speeds 700:700:1 --plot %s/p.png", d.dir);
-    check_refused(gd_ts_, &d, args, "unknown plot format '.png'");
+             "periodic tests/plot/mathieu_pair.yaml --speeds 700:700:1 --plot %s/p.jpg", d.dir);
+    check_refused(gd_ts_, &d, args, "unknown plot format '.jpg'");
     snprintf(args, sizeof args,
              "periodic examples/chen1998_gear_pair.yaml --speeds 0:0:1 --harmonics 2 --plot "
              "%s/p.svg --out %s/o",
              d.dir, d.dir);
     check_refused(gd_ts_, &d, args, "nothing to plot: no point converged");
+    /* ... and the table that says why is still printed */
+    {
+        run_result r;
+        run(&d, &r, "%s", args);
+        CHECK(r.code == 2 && contains(r.out, "converged"));
+        if (!contains(r.out, "converged")) show(&r);
+        run_free(&r);
+    }
     /* HTML without plotly.js */
     setenv("GEARDYN_PLOTLY_JS", "/nonexistent/plotly.min.js", 1);
     snprintf(args, sizeof args, "report tests/plot/study.yaml --out %s/r.html", d.dir);
@@ -601,7 +641,348 @@ TEST(bad_plot_requests_write_nothing)
     scratch_close(&d);
 }
 
+/* largest |y| of the traces of the panels of one mode whose names match (or not) a
+ * prefix; markers of gears and bearings (drawn on the axis) left aside */
+static double mode_trace_max(svg *s, int mode, const char *prefix, int matching, int *ntraces)
+{
+    char xp[300];
+    snprintf(xp, sizeof xp,
+             "//s:g[@class='panel'][starts-with(@data-title,'mode %d: ')]/s:g[@class='trace']"
+             "[@data-name!='gears and disks'][@data-name!='bearings']",
+             mode);
+    xmlXPathObjectPtr o = xmlXPathEvalExpression(BAD_CAST xp, s->ctx);
+    double mx = 0;
+    *ntraces = 0;
+    for (int k = 0; o && o->nodesetval && k < o->nodesetval->nodeNr; k++) {
+        xmlChar *name = xmlGetProp(o->nodesetval->nodeTab[k], BAD_CAST "data-name");
+        int is = name && !strncmp((const char *)name, prefix, strlen(prefix));
+        xmlFree(name);
+        if (is != matching) continue;
+        ++*ntraces;
+        xmlChar *v = xmlGetProp(o->nodesetval->nodeTab[k], BAD_CAST "data-y");
+        for (char *p = (char *)v, *end; p && *p; p = end) {
+            double y = strtod(p, &end);
+            if (end == p) break;
+            mx = fmax(mx, fabs(y));
+        }
+        xmlFree(v);
+    }
+    xmlXPathFreeObject(o);
+    return mx;
+}
+
+/* The motor of the two-stage gearbox tilts on its bearings alone (the coupling is
+ * torsional): those two modes are drawn as the motor's rx and ry, the largest 1, in
+ * one panel (the input shaft's, where the motor is coupled), and nothing else of the
+ * 30 DOF families (numerical noise, ~1e-7 of the motor's tilt) is drawn above 1 %. */
+TEST(pure_tilt_mode_drawn_alone)
+{
+    scratch d;
+    REQUIRE(scratch_open(&d));
+    plot_run pr;
+    plot_start(gd_ts_, &pr, &d,
+               "modal tests/plot/gearbox_two_stage.yaml --modes 12 --json --plot %s");
+    svg *s = &pr.s;
+    cJSON *j = pr.json;
+    int found = 0;
+    if (j && s->ctx) {
+        const cJSON *modes = cJSON_GetObjectItem(j, "modes");
+        for (int k = 0; k < cJSON_GetArraySize(modes); k++) {
+            const cJSON *md = cJSON_GetArrayItem(modes, k);
+            if (strcmp(jstr(md, "dominant_motion"), "tilt") ||
+                strcmp(jstr(md, "dominant_component"), "motor_bearings"))
+                continue;
+            found++;
+            int n = (int)jnum(md, "mode"), nm, no;
+            CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'mode %d: ')]", n) == 1);
+            CHECK(count(s,
+                        "//s:g[@class='panel'][starts-with(@data-title,'mode %d: ')]"
+                        "[contains(@data-title,'shaft shaft1 (with motor)')]",
+                        n) == 1);
+            double motor = mode_trace_max(s, n, "motor r", 1, &nm);
+            double other = mode_trace_max(s, n, "motor r", 0, &no);
+            CHECK(nm == 2); /* rx and ry */
+            CHECK(fabs(motor - 1) < 1e-12);
+            CHECK(other <= 0.01); /* nothing else above 1 % (none is drawn at all here) */
+            CHECK(no == 0);
+            /* whirl and zeta written readably: |zeta| < 1e-9 is shown as 0 */
+            CHECK(count(s,
+                        "//s:g[@class='panel'][starts-with(@data-title,'mode %d: ')]"
+                        "[contains(@data-title,'whirl: %s, zeta 0;')]",
+                        n, jstr(md, "whirl")) == 1);
+        }
+    }
+    CHECK(found == 2); /* the motor's tilt pair */
+    plot_end(&pr);
+    scratch_close(&d);
+}
+
+/* The two-stage gearbox with its motor and brake has repeated pairs (the motor's and
+ * the brake's x/y on isotropic bearings, whose eigensolver basis changes from speed to
+ * speed, even to nearly parallel vectors): 16 modes asked for are 16 tracks, each
+ * present at every speed (the MAC with a pair's whole eigenspace keeps it a pair; the
+ * sum of the separate MACs had made 19-22 fragments). */
+TEST(campbell_pairs_stay_pairs)
+{
+    scratch d;
+    REQUIRE(scratch_open(&d));
+    plot_run pr;
+    plot_start(gd_ts_, &pr, &d,
+               "campbell tests/plot/gearbox_two_stage.yaml --speeds 0:6000rpm:31 --modes 16 "
+               "--json --plot %s");
+    cJSON *j = pr.json;
+    svg *s = &pr.s;
+    if (j && s->ctx) {
+        const cJSON *modes = cJSON_GetObjectItem(j, "modes");
+        CHECK(cJSON_GetArraySize(modes) == 16);
+        for (int k = 0; k < cJSON_GetArraySize(modes); k++) {
+            const cJSON *f = cJSON_GetObjectItem(cJSON_GetArrayItem(modes, k), "frequency_hz");
+            CHECK(cJSON_GetArraySize(f) == 31);
+            int gaps = 0;
+            double jump = 0;
+            for (int i = 0; i < cJSON_GetArraySize(f); i++) {
+                gaps += !isfinite(jat(f, i));
+                /* continuous: no step between speeds larger than 5 % (the fastest
+                 * track, a forward tilt whirl, moves 1.4 % a step) */
+                if (i) jump = fmax(jump, fabs(jat(f, i) - jat(f, i - 1)) / jat(f, i - 1));
+            }
+            CHECK(gaps == 0);
+            CHECK(jump < 0.05);
+        }
+        CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'modes by whirl')]/"
+                       "s:g[@class='trace'][starts-with(@data-name,'mode ')]") == 16);
+    }
+    plot_end(&pr);
+    scratch_close(&d);
+}
+
+/* --max-frequency and --operating-range: the modes above the limit left out (Kumar:
+ * 2 of 7 below 120 Hz), each order line named on the plot, the critical speeds where
+ * --json puts them, with their separation margins to the range in the table. */
+TEST(campbell_limit_labels_margins)
+{
+    scratch d;
+    REQUIRE(scratch_open(&d));
+    plot_run pr;
+    plot_start(gd_ts_, &pr, &d,
+               "campbell examples/kumar2011_coupled.yaml --speeds 0:3000rpm:31 --max-frequency "
+               "120 --operating-range 1000:1400rpm --json --plot %s");
+    cJSON *j = pr.json;
+    svg *s = &pr.s;
+    if (j && s->ctx) {
+        CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'modes by whirl')]/"
+                       "s:g[@class='trace'][starts-with(@data-name,'mode ')]") == 2);
+        CHECK(count(s, "//s:text[@class='label'][.='1x input']") == 1);
+        CHECK(count(s, "//s:text[@class='label'][.='1x output']") == 1);
+        CHECK(count(s, "//s:g[@class='trace'][@data-name='operating range']") == 1);
+        const cJSON *cs = cJSON_GetObjectItem(j, "critical_speeds");
+        int n = cJSON_GetArraySize(cs);
+        CHECK(n == 3);
+        static double x[16];
+        int m = trace_numbers(s, TRACE("modes by whirl", "critical speeds"), "data-x", x, 16);
+        CHECK(m == n);
+        for (int k = 0; k < n && k < m; k++)
+            CHECK(same(x[k], jnum(cJSON_GetArrayItem(cs, k), "speed_rpm")));
+        /* two inside 1000-1400 rpm, 2941 rpm is (2941.32 - 1400) / 1400 = 110 % above */
+        CHECK(count(s, "//s:g[@class='table'][@data-rows='3'][@data-cols='5']") == 1);
+        CHECK(count(s, "//s:g[@class='table']/s:text[.='0 (inside)']") == 2);
+        CHECK(count(s, "//s:g[@class='table']/s:text[.='110']") == 1);
+    }
+    plot_end(&pr);
+    scratch_close(&d);
+}
+
+/* --units: by default the units written on the command line (--freq ...Hz gives a Hz
+ * table), else as asked; the Campbell axes follow (rad/s: the plotted speeds are the
+ * --json speeds_rad_s, the frequencies 2 pi x frequency_hz). */
+TEST(units_follow_the_command_line)
+{
+    scratch d;
+    REQUIRE(scratch_open(&d));
+    run_result r;
+    run(&d, &r,
+        "frf examples/kumar2011_coupled.yaml --input torque:motor --output mesh:mesh --freq "
+        "100:2000Hz:3");
+    CHECK(r.code == 0 && contains(r.out, "f(Hz)") && !contains(r.out, "w(rad/s)"));
+    CHECK(contains(r.out, "\n        1050 ")); /* the middle frequency, in Hz */
+    run_free(&r);
+    run(&d, &r,
+        "frf examples/kumar2011_coupled.yaml --input torque:motor --output mesh:mesh --freq "
+        "100:2000Hz:3 --units rad/s");
+    CHECK(r.code == 0 && contains(r.out, "w(rad/s)") && contains(r.out, "\n     628.319 "));
+    run_free(&r);
+    run(&d, &r, "unbalance examples/chen1998_gear_pair.yaml --speeds 100:600rad/s:2");
+    CHECK(r.code == 0 && contains(r.out, "\n       rad/s  ") && contains(r.out, "\n         600 "));
+    run_free(&r);
+    run(&d, &r, "campbell examples/kumar2011_coupled.yaml --speeds 0:300:3 --units rad/s");
+    CHECK(r.code == 0 && contains(r.out, "damped natural frequencies (rad/s)\n     rad/s "));
+    run_free(&r);
+    run(&d, &r, "campbell examples/kumar2011_coupled.yaml --speeds 0:300:3 --units kHz");
+    CHECK(r.code == 2 && contains(r.err, "--units: 'kHz' is not rpm, Hz or rad/s"));
+    run_free(&r);
+    plot_run pr;
+    plot_start(gd_ts_, &pr, &d,
+               "campbell examples/kumar2011_coupled.yaml --speeds 0:3000rpm:4 --units rad/s "
+               "--json --plot %s");
+    cJSON *j = pr.json;
+    svg *s = &pr.s;
+    if (j && s->ctx) {
+        static double x[8], y[8];
+        int n =
+            trace_numbers(s, TRACE("modes by whirl", "mode 1 (none, torsional)"), "data-x", x, 8);
+        int m =
+            trace_numbers(s, TRACE("modes by whirl", "mode 1 (none, torsional)"), "data-y", y, 8);
+        const cJSON *sp = cJSON_GetObjectItem(j, "speeds_rad_s");
+        const cJSON *f = cJSON_GetObjectItem(cJSON_GetArrayItem(cJSON_GetObjectItem(j, "modes"), 0),
+                                             "frequency_hz");
+        CHECK(n == 4 && m == 4);
+        for (int k = 0; k < n && k < 4; k++) {
+            CHECK(same(x[k], jat(sp, k)));
+            CHECK(fabs(y[k] - 2 * PI * jat(f, k)) <= 1e-12 * y[k]);
+        }
+        CHECK(count(s, "//s:text[.='reference speed (rad/s)']") == 2);
+    }
+    plot_end(&pr);
+    /* the FRF's frequency axis in rad/s when asked for: the --json frequencies */
+    plot_start(gd_ts_, &pr, &d,
+               "frf examples/kumar2011_coupled.yaml --input torque:motor --output mesh:mesh "
+               "--freq 100:2000Hz:3 --units rad/s --json --plot %s");
+    s = &pr.s;
+    j = pr.json;
+    if (j && s->ctx) {
+        static double x[8];
+        const cJSON *o = cJSON_GetArrayItem(cJSON_GetObjectItem(j, "outputs"), 0);
+        int n = trace_numbers(s, TRACE("FRF: magnitude", "mesh:mesh"), "data-x", x, 8);
+        CHECK(n == 3);
+        for (int k = 0; k < n; k++)
+            CHECK(fabs(x[k] / jat(cJSON_GetObjectItem(o, "frequency_rad_s"), k) - 1) < 1e-14);
+        CHECK(count(s, "//s:text[.='frequency (rad/s)']") == 2);
+    }
+    plot_end(&pr);
+    scratch_close(&d);
+}
+
+/* The FRF's peaks are located, not sampled: on a 10 Hz grid the rig's mesh-force peaks
+ * fall within 1e-4 of damped natural frequencies from `modal` (measured: 126.53038 vs
+ * 126.5304 Hz, 1324.709 vs 1324.737 Hz, where the modes' damping ratio is 7e-4), and the
+ * Nyquist curve gets the points around them. */
+TEST(frf_peaks_located)
+{
+    scratch d;
+    REQUIRE(scratch_open(&d));
+    run_result k;
+    run(&d, &k, "modal examples/rig2018.yaml --speed 3000rpm --modes 20 --json");
+    cJSON *mj = cJSON_Parse(k.out);
+    plot_run pr;
+    plot_start(gd_ts_, &pr, &d,
+               "frf examples/rig2018.yaml --input torque:gear48 --output mesh:mesh --freq "
+               "10:3000Hz:300 --speed 3000rpm --json --plot %s");
+    svg *s = &pr.s;
+    if (mj && s->ctx) {
+        static double x[64], re[4096];
+        int n = trace_numbers(s, TRACE("FRF: magnitude", "peaks (located)"), "data-x", x, 64);
+        CHECK(n >= 3);
+        const cJSON *modes = cJSON_GetObjectItem(mj, "modes");
+        for (int i = 0; i < n; i++) {
+            double best = INFINITY;
+            for (int m = 0; m < cJSON_GetArraySize(modes); m++) {
+                double f = jnum(cJSON_GetArrayItem(modes, m), "damped_frequency_hz");
+                if (f > 0) best = fmin(best, fabs(x[i] / f - 1));
+            }
+            CHECK(best < 1e-4);
+            CHECK(fabs(x[i] / 10 - round(x[i] / 10)) > 1e-3); /* not a grid point */
+        }
+        int nr = trace_numbers(s, TRACE("FRF: Nyquist", "mesh:mesh (refined around the peaks)"),
+                               "data-x", re, 4096);
+        CHECK(nr == 300 + n * 61); /* the 300 given, 30 each side of each peak and the peak */
+    }
+    cJSON_Delete(mj);
+    run_free(&k);
+    plot_end(&pr);
+    scratch_close(&d);
+}
+
+/* PNG: the signature and the IHDR width */
+static int png_width(const char *path)
+{
+    unsigned char h[24];
+    FILE *f = fopen(path, "rb");
+    size_t n = f ? fread(h, 1, sizeof h, f) : 0;
+    if (f) fclose(f);
+    static const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    if (n < 24 || memcmp(h, sig, 8) || memcmp(h + 12, "IHDR", 4)) return -1;
+    return (h[16] << 24) | (h[17] << 16) | (h[18] << 8) | h[19];
+}
+
+/* PDF: the page count poppler's pdfinfo reads, -1 if it cannot parse the file */
+static int pdf_pages(const char *path)
+{
+    char cmd[512], line[256];
+    snprintf(cmd, sizeof cmd, "pdfinfo '%s' 2>/dev/null", path);
+    FILE *f = popen(cmd, "r");
+    int pages = -1;
+    while (f && fgets(line, sizeof line, f))
+        sscanf(line, "Pages: %d", &pages);
+    if (f && pclose(f) != 0) pages = -1;
+    return pages;
+}
+
+/* PNG and PDF of every plot type: valid files (signature and size; pdfinfo parses the
+ * PDF), one PDF page per section at least. A build without librsvg/cairo refuses them
+ * with exit 2 naming the packages. */
+TEST(png_and_pdf_of_every_plot)
+{
+    scratch d;
+    REQUIRE(scratch_open(&d));
+    static const struct {
+        const char *args;
+        int sections;
+    } runs[] = {
+        {"modal examples/chen1998_gear_pair.yaml --plot %s", 1},
+        {"campbell examples/kumar2011_coupled.yaml --speeds 0:3000rpm:4 --modes 4 --plot %s", 1},
+        {"frf examples/kumar2011_coupled.yaml --input torque:motor --output mesh:mesh "
+         "--freq 100:26000:20 --plot %s",
+         1},
+        {"unbalance examples/chen1998_gear_pair.yaml --speeds 100:6000:8 --plot %s", 1},
+        {"transient examples/ducati_timing_geartrain.yaml --revolutions 0.2 --quiet --plot %s", 1},
+        {"mesh-stiffness examples/rig2018_pair.yaml --cycles 2 --points 90 --plot %s", 1},
+        {"periodic tests/plot/mathieu_pair.yaml --speeds 680:730:5 --harmonics 4 --record "
+         "mesh:m:force --plot %s",
+         1},
+        {"report tests/plot/study.yaml --speeds 0:6000rpm:5 --freq-points 40 --out %s", 6},
+    };
+    gd_error err;
+    gd_error_clear(&err);
+    int can = gd_plot_check_path("/tmp/x.png", NULL, &err) == GD_OK;
+    for (size_t k = 0; k < sizeof runs / sizeof runs[0]; k++)
+        for (int pdf = 0; pdf < 2; pdf++) {
+            char path[256], args[1024];
+            snprintf(path, sizeof path, "%s/fig%zu.%s", d.dir, k, pdf ? "pdf" : "png");
+            snprintf(args, sizeof args, runs[k].args, path);
+            run_result r;
+            run(&d, &r, "%s", args);
+            if (!can) {
+                CHECK(r.code == 2 && contains(r.err, "librsvg2-dev") && !file_exists(path));
+            } else if (pdf) {
+                CHECK(r.code == 0);
+                int n = pdf_pages(path);
+                CHECK(n >= runs[k].sections);
+                if (r.code || n < runs[k].sections)
+                    fprintf(stderr, "  %s: %d pages\n", args, n), show(&r);
+            } else {
+                CHECK(r.code == 0);
+                /* figures at twice the SVG's 960 px; a report (taller than 8000 px) at 1x */
+                CHECK(png_width(path) == (runs[k].sections > 1 ? 960 : 1920));
+                if (r.code) show(&r);
+            }
+            run_free(&r);
+        }
+    scratch_close(&d);
+}
+
 RUN_TESTS(T(campbell_plot_matches_json), T(frf_plot_matches_json), T(unbalance_plot_matches_json),
           T(mesh_stiffness_plot_matches_json), T(modal_and_transient_plots),
           T(periodic_plot_matches_json), T(report_has_every_section), T(html_is_self_contained),
-          T(bad_plot_requests_write_nothing))
+          T(bad_plot_requests_write_nothing), T(png_and_pdf_of_every_plot),
+          T(pure_tilt_mode_drawn_alone), T(campbell_pairs_stay_pairs),
+          T(campbell_limit_labels_margins), T(units_follow_the_command_line), T(frf_peaks_located))
