@@ -94,7 +94,7 @@ static cJSON *to_json(const gd_periodic_result *r, const gd_cli_records *recs, i
         if (param) cJSON_AddItemToObject(o, "parameter", gd_cli_json_number(p->parameter));
         cJSON_AddNumberToObject(o, "direction", p->direction);
         cJSON_AddBoolToObject(o, "converged", p->converged);
-        if (!p->converged) cJSON_AddStringToObject(o, "reason", p->reason);
+        if (!p->converged || p->reason[0]) cJSON_AddStringToObject(o, "reason", p->reason);
         if (p->stable >= 0)
             cJSON_AddBoolToObject(o, "stable", p->stable);
         else
@@ -162,6 +162,7 @@ static void print_table(const gd_periodic_result *r, const gd_cli_records *recs,
         for (int k = 0; k < recs->n; k++)
             printf("  %.6g,%.6g", p->records[k].rms, p->records[k].peak_to_peak);
         printf("\n");
+        if (p->stable < 0 && p->reason[0]) printf("      %s\n", p->reason);
     }
     if (r->nbifurcations) printf("\nbifurcations:\n");
     for (int i = 0; i < r->nbifurcations; i++) {

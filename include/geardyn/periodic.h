@@ -81,7 +81,8 @@ typedef struct gd_periodic_point {
     double parameter; /* continuation parameter value (NaN when continuing in speed) */
     int direction;    /* +1 from the start, -1 the return run (both_directions) */
     int converged;
-    char reason[256]; /* why not converged */
+    char reason[256]; /* why not converged, or why a converged point has no
+                         multipliers (stable -1 with stability on) */
     int harmonics;    /* H used */
     double omega;     /* w, rad/s (period 2 pi / w) */
     double residual;  /* relative residual |R| / max(|L X|, |F|) */

@@ -73,6 +73,7 @@ typedef struct ctx {
     double rate0;  /* w / lambda of the branch (speed continuation), or w (parameter) */
     int ratio_mode;
     char reason[320];
+    char floquet_msg[200]; /* why the last Floquet multipliers were not computed */
     gd_periodic_result *res;
     int cap_points, cap_bif;
     const gd_tr_record *rec;
@@ -431,6 +432,7 @@ static void floquet(ctx *c, const double *X, double lam, double *mre, double *mi
 {
     *stable = -1;
     *mu_max = NAN;
+    c->floquet_msg[0] = '\0';
     if (!c->opt->stability) return;
     stage *s = get_stage(c, lam);
     if (!s) return;
@@ -442,7 +444,13 @@ static void floquet(ctx *c, const double *X, double lam, double *mre, double *mi
     for (int i = 0; i < spec->nmeshes && nbl < 64; i++)
         if (spec->meshes[i].backlash)
             bl[nbl++] = (gd_tr_record){GD_REC_MESH_STATE, spec->meshes[i].mesh, 0};
-    if (gd_hb_floquet(&c->h, s->tr, s->w, X, steps, bl, nbl, mre, mim)) return;
+    int rc = gd_hb_floquet(&c->h, s->tr, s->w, X, steps, bl, nbl, mre, mim);
+    if (rc == 2)
+        snprintf(c->floquet_msg, sizeof c->floquet_msg,
+                 "stability not computed: the monodromy matrix over the period %.3g s overflowed "
+                 "with %d Magnus steps (a long period needs more: monodromy_steps)",
+                 TWO_PI / s->w, steps);
+    if (rc) return;
     double m = 0.0;
     for (int i = 0; i < 2 * c->nf; i++) {
         double a = hypot(mre[i], mim[i]);
@@ -601,6 +609,8 @@ static int emit_point(ctx *c, const double *X, double lam, int iters, double res
     memcpy(p->coef, X, n * sizeof *X);
     floquet(c, X, lam, p->mu_re, p->mu_im, &p->stable, &p->mu_max);
     p->nmult = p->stable >= 0 ? 2 * c->nf : 0;
+    if (p->stable < 0 && c->floquet_msg[0])
+        snprintf(p->reason, sizeof p->reason, "%s", c->floquet_msg);
     s = get_stage(c, lam);
     return s ? record_stats(c, s, X, p) : 1;
 }
