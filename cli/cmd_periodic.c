@@ -306,9 +306,11 @@ int gd_cmd_periodic(int argc, char **argv)
             break;
         }
         case OPT_SAMPLES:
-            if (gd_cli_parse_count(optarg, 4, 1 << 20, &lv))
-                return gd_cli_usage_error(CMD, "--samples: expected a whole number >= 4, got '%s'",
-                                          optarg);
+            if (gd_cli_parse_count(optarg, 4, GD_PERIODIC_MAX_SAMPLES, &lv))
+                return gd_cli_usage_error(CMD,
+                                          "--samples: expected a whole number from 4 to %d "
+                                          "(2^20), got '%s'",
+                                          GD_PERIODIC_MAX_SAMPLES, optarg);
             opt.samples = (int)lv;
             break;
         case 'c':
