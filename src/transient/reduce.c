@@ -54,15 +54,21 @@ static void si_apply(void *ctx, const double *x, double *y)
     lu_solve(o, o->w, y);
 }
 
+/* 0 ok, 1 out of memory, 2 singular. */
 static int lu_setup(lu_op *o, const cs *A, const cs *M)
 {
     memset(o, 0, sizeof *o);
     o->n = A->n;
     o->M = M;
     o->S = cs_sqr(3, A, 0);
-    o->N = o->S ? cs_lu(A, o->S, 1e-3) : NULL;
     o->w = malloc((size_t)(A->n > 0 ? A->n : 1) * sizeof *o->w);
-    if (!o->N || !o->w) return 1;
+    if (!o->S || !o->w) return 1;
+    /* cs_lu returns NULL for an exactly zero pivot as well as for a failed allocation
+     * (its workspaces: a few n-vectors and the factors, small beside what was already
+     * allocated here): a zero pivot is by far the likelier, so it is reported as the
+     * singular matrix it is, not as memory (issue 23) */
+    o->N = cs_lu(A, o->S, 1e-3);
+    if (!o->N) return 2;
     /* a zero or tiny pivot: singular (CSparse divides by it without complaint) */
     double mx = 0, mn = INFINITY;
     const cs *U = o->N->U;
@@ -71,7 +77,7 @@ static int lu_setup(lu_op *o, const cs *A, const cs *M)
         mx = fmax(mx, d);
         mn = fmin(mn, d);
     }
-    return !(mn > 1e-13 * mx);
+    return mn > 1e-13 * mx ? 0 : 2;
 }
 
 static void lu_free(lu_op *o)
@@ -97,9 +103,10 @@ static gd_status interior_modes(const cs *K, const cs *M, double cutoff, double 
     cs_spfree(Ks);
     lu_op op;
     gd_status st = GD_OK;
-    if (!P || lu_setup(&op, P, M)) {
-        st = P ? fail(err, GD_ENUMERIC, "", "the shifted interior stiffness is singular")
-               : GD_ENOMEM;
+    int lr = P ? lu_setup(&op, P, M) : 1;
+    if (lr) {
+        st = lr == 2 ? fail(err, GD_ENUMERIC, "", "the shifted interior stiffness is singular")
+                     : GD_ENOMEM;
         if (P) lu_free(&op);
         cs_spfree(P);
         return st;
@@ -316,12 +323,13 @@ static gd_status reduce(gd_transient *tr, double cutoff, gd_error *err)
     int nr = nb + nphi;
     TI = calloc((size_t)ni * nr, sizeof *TI);
     if (!TI) goto done;
-    if (lu_setup(&kop, KII, MII)) {
-        st = kop.N ? fail(err, GD_EINPUT,
-                          "keep the full model, or support the free part (a bearing, a spring)",
-                          "cannot reduce: the DOFs without laws have a free rigid-body motion "
-                          "(their stiffness is singular)")
-                   : GD_ENOMEM;
+    int lr = lu_setup(&kop, KII, MII);
+    if (lr) {
+        st = lr == 2 ? fail(err, GD_EINPUT,
+                            "keep the full model, or support the free part (a bearing, a spring)",
+                            "cannot reduce: the DOFs without laws have a free rigid-body motion "
+                            "(their stiffness is singular)")
+                     : GD_ENOMEM;
         goto done;
     }
     double *col = malloc((size_t)ni * sizeof *col);
