@@ -237,7 +237,104 @@ TEST(study_write_failure_names_the_cause)
     scratch_close(&s);
 }
 
+static long inode_of(const char *path)
+{
+    struct stat sb;
+    return stat(path, &sb) == 0 ? (long)sb.st_ino : -1;
+}
+
+/* --out DIR is replaced as a whole (a new folder takes DIR's place: its inode changes),
+ * the folder's other entries are carried over, and stages and plot temporaries left by
+ * killed runs (a PID that no process has) are removed by the next run. Before, the
+ * files moved one by one into the same folder (a kill between moves mixed old and new)
+ * and the stages stayed. */
+TEST(out_folder_replaced_whole_and_stale_stages_removed)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    char dir[256], p[512];
+    snprintf(dir, sizeof dir, "%s/m", s.dir);
+    run_result r;
+    run(&s, &r, "modal " CHEN " --out '%s'", dir);
+    REQUIRE(r.code == 0);
+    run_free(&r);
+    long ino0 = inode_of(dir);
+    snprintf(p, sizeof p, "%s/mine.txt", dir);
+    write_file(p, "kept\n");
+    snprintf(p, sizeof p, "%s/sub", dir);
+    mkdir(p, 0777);
+    /* stages of a dead process (PID 999999999 is above any pid_max), beside DIR and in
+     * it, and an old unnamed one in DIR from two hours ago */
+    snprintf(p, sizeof p, "%s/.geardyn-stage-999999999-abcdef", s.dir);
+    mkdir(p, 0777);
+    snprintf(p, sizeof p, "%s/.geardyn-stage-999999999-abcdef/modes.csv", s.dir);
+    write_file(p, "half\n");
+    snprintf(p, sizeof p, "%s/.geardyn-stage-999999999-ghijkl", dir);
+    mkdir(p, 0777);
+    char cmd[1024];
+    snprintf(
+        cmd, sizeof cmd,
+        "mkdir '%s/.geardyn-stage-Qx81aZ' && touch -d '2 hours ago' '%s/.geardyn-stage-Qx81aZ'",
+        dir, dir);
+    CHECK(system(cmd) == 0);
+    snprintf(p, sizeof p, "%s/plot.svg.tmp-999999999-AbCdEf", s.dir);
+    write_file(p, "<svg");
+    run(&s, &r, "modal " CHEN " --out '%s' --plot '%s/plot.svg'", dir, s.dir);
+    CHECK(r.code == 0);
+    run_free(&r);
+    CHECK(inode_of(dir) != ino0);
+    snprintf(p, sizeof p, "%s/mine.txt", dir);
+    char *t = read_file(p);
+    CHECK(t && !strcmp(t, "kept\n"));
+    free(t);
+    snprintf(p, sizeof p, "%s/sub", dir);
+    CHECK(file_exists(p));
+    snprintf(p, sizeof p, "%s/modes.csv", dir);
+    CHECK(file_exists(p));
+    /* left: m/ and plot.svg (and the run's captured output) */
+    snprintf(p, sizeof p, "%s/.geardyn-stage-999999999-abcdef", s.dir);
+    CHECK(!file_exists(p));
+    snprintf(p, sizeof p, "%s/.geardyn-stage-999999999-ghijkl", dir);
+    CHECK(!file_exists(p));
+    snprintf(p, sizeof p, "%s/.geardyn-stage-Qx81aZ", dir);
+    CHECK(!file_exists(p));
+    snprintf(p, sizeof p, "%s/plot.svg.tmp-999999999-AbCdEf", s.dir);
+    CHECK(!file_exists(p));
+    snprintf(p, sizeof p, "%s/plot.svg", s.dir);
+    CHECK(file_exists(p));
+    /* the entries of DIR: the two outputs and the two carried over, nothing else */
+    CHECK(count_entries(dir) == 4);
+    scratch_close(&s);
+}
+
+/* report --out on a file that cannot be written: the option is --out (it said --plot)
+ * and the reason is given (it said only "cannot write the plot"); nothing is left. */
+TEST(report_write_failure_names_out_and_the_cause)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    char cmd[1024];
+    snprintf(
+        cmd, sizeof cmd,
+        "cd '%s' && sh -c \"trap '' XFSZ; ulimit -f 20; exec '%s' report tests/plot/study.yaml "
+        "--speeds 0:3000rpm:3 --freq-points 20 --out '%s/r.svg'\" >/dev/null 2>'%s/r.err'",
+        GD_SOURCE_DIR, GD_CLI_PATH, s.dir, s.dir);
+    int st = system(cmd);
+    int code = st != -1 && WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    char ep[256];
+    snprintf(ep, sizeof ep, "%s/r.err", s.dir);
+    char *err = read_file(ep);
+    CHECK(code == 2 && contains(err, "--out:") && !contains(err, "--plot") &&
+          contains(err, "File too large"));
+    if (code != 2) fprintf(stderr, "  exit %d: %s\n", code, err ? err : "");
+    free(err);
+    CHECK(count_entries(s.dir) == 1); /* r.err only */
+    scratch_close(&s);
+}
+
 RUN_TESTS(T(runs_that_cannot_finish_are_refused), T(study_case_over_the_step_limit_fails_alone),
           T(extreme_values_are_located_input_errors), T(periodic_bounds_and_overflowed_monodromy),
           T(reduce_names_the_free_rigid_body_motion), T(study_folder_is_locked_by_its_run),
-          T(study_write_failure_names_the_cause))
+          T(study_write_failure_names_the_cause),
+          T(out_folder_replaced_whole_and_stale_stages_removed),
+          T(report_write_failure_names_out_and_the_cause))
