@@ -263,6 +263,42 @@ void gd_tr_project(const gd_transient *tr, const double *full, double *x)
     }
 }
 
+/* Names the rigid motions of the interior DOFs with the boundary held: a uniform axial
+ * (z) or torsional (rz) displacement that K_II leaves without force. buf gets e.g.
+ * "axial (z) and torsional (rz)", or "" when neither. */
+static void free_motions(const gd_transient *tr, const cs *KII, const int *iidx, int ni, char *buf,
+                         size_t size)
+{
+    buf[0] = '\0';
+    const gd_system *sys = tr->sys;
+    if (tr->n != sys->ndof) return;
+    double *v = calloc((size_t)ni, sizeof *v), *y = calloc((size_t)ni, sizeof *y);
+    double kmax = 0;
+    for (int p = 0; p < KII->p[KII->n]; p++)
+        kmax = fmax(kmax, fabs(KII->x[p]));
+    static const gd_dof D[2] = {GD_Z, GD_RZ};
+    static const char *const NAME[2] = {"axial (z)", "torsional (rz)"};
+    for (int k = 0; v && y && k < 2; k++) {
+        int any = 0;
+        for (int i = 0; i < ni; i++) {
+            v[i] = sys->dof_type[iidx[i]] == D[k];
+            any |= v[i] != 0;
+            y[i] = 0;
+        }
+        if (!any) continue;
+        cs_gaxpy(KII, v, y);
+        double r = 0;
+        for (int i = 0; i < ni; i++)
+            r = fmax(r, fabs(y[i]));
+        if (r <= 1e-10 * kmax) {
+            size_t len = strlen(buf);
+            snprintf(buf + len, size - len, "%s%s", len ? " and " : "", NAME[k]);
+        }
+    }
+    free(v);
+    free(y);
+}
+
 static gd_status reduce(gd_transient *tr, double cutoff, gd_error *err)
 {
     const int n = tr->n;
@@ -324,14 +360,20 @@ static gd_status reduce(gd_transient *tr, double cutoff, gd_error *err)
     TI = calloc((size_t)ni * nr, sizeof *TI);
     if (!TI) goto done;
     int lr = lu_setup(&kop, KII, MII);
-    if (lr) {
-        st = lr == 2 ? fail(err, GD_EINPUT,
-                            "keep the full model, or support the free part (a bearing, a spring)",
-                            "cannot reduce: the DOFs without laws have a free rigid-body motion "
-                            "(their stiffness is singular)")
-                     : GD_ENOMEM;
+    if (lr == 2) {
+        char what[64], msg[200];
+        free_motions(tr, KII, iidx, ni, what, sizeof what);
+        snprintf(msg, sizeof msg,
+                 "cannot reduce: the DOFs without laws have a free rigid-body motion%s%s "
+                 "(their stiffness is singular)",
+                 what[0] ? ": " : "", what);
+        st = fail(err, GD_EINPUT,
+                  "keep the full model, or support the free part (a bearing, a spring, a "
+                  "prescribed motion)",
+                  msg);
         goto done;
     }
+    if (lr) goto done;
     double *col = malloc((size_t)ni * sizeof *col);
     if (!col) goto done;
     for (int c = 0; c < nb; c++) {

@@ -174,7 +174,8 @@ TEST(reduce_names_the_free_rigid_body_motion)
         write_file(path, text);
         run_result r;
         run(&s, &r, "transient '%s' --duration 1ms --reduce 5kHz --quiet", path);
-        CHECK(r.code == 2 && contains(r.err, "free rigid-body motion") &&
+        CHECK(r.code == 2 &&
+              contains(r.err, "free rigid-body motion: axial (z) and torsional (rz)") &&
               !contains(r.err, "memory"));
         if (r.code != 2) show(&r);
         run_free(&r);
