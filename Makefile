@@ -136,34 +136,46 @@ memcheck: build
 	    [ $$rc -eq 2 ] || { echo "exit $$rc, expected 2"; exit 1; }; done; \
 	rm -rf $$out; echo "valgrind: all test programs and CLI runs clean"
 
-# libFuzzer over the model reader and the system build (fuzz/fuzz_model.c, clang):
-# `make fuzz FUZZ_SECONDS=600` grows $(FUZZ_BUILD)/corpus from examples/ and the hostile
-# inputs; a crash is written to $(FUZZ_BUILD)/crash-* (replay: fuzz_model FILE). `make
-# test` runs FUZZ_RUNS inputs from a fixed seed (a few seconds), writing nothing here.
+# libFuzzer (clang): fuzz/fuzz_model.c over the model reader and the system build, and
+# fuzz/fuzz_inputs.c over study files, --set paths, gear-pair files and periodic options.
+# `make fuzz FUZZ_TARGET=fuzz_inputs FUZZ_SECONDS=600` grows $(FUZZ_BUILD)/corpus-TARGET
+# from the seeds; a crash is written to $(FUZZ_BUILD)/crash-* (replay: TARGET FILE).
+# `make test` runs FUZZ_RUNS inputs of each from a fixed seed (seconds), writing nothing here.
 FUZZ_BUILD   ?= build-fuzz
 FUZZ_SECONDS ?= 60
 FUZZ_RUNS    ?= 20000
-FUZZ_FLAGS    = -dict=fuzz/model.dict -max_len=8192 -timeout=20 -rss_limit_mb=2048 \
+# fuzz_inputs solves models and periodic branches (about 100 inputs/s): fewer
+FUZZ_RUNS_INPUTS ?= 2000
+FUZZ_TARGET  ?= fuzz_model
+FUZZ_FLAGS_COMMON = -max_len=8192 -timeout=20 -rss_limit_mb=2048 \
                 -artifact_prefix=$(FUZZ_BUILD)/ -print_final_stats=1
-FUZZ_SEEDS    = examples tests/model_file/hostile
+FUZZ_FLAGS_fuzz_model  = -dict=fuzz/model.dict $(FUZZ_FLAGS_COMMON)
+FUZZ_FLAGS_fuzz_inputs = -dict=fuzz/inputs.dict $(FUZZ_FLAGS_COMMON)
+FUZZ_SEEDS_fuzz_model  = examples tests/model_file/hostile
+FUZZ_SEEDS_fuzz_inputs = fuzz/seeds
 FUZZ_ENV      = OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 \
                 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 fuzz-build: deps
 	@CC=clang cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGD_FUZZ=ON \
 	    -DGD_BUILD_TESTS=OFF -DGD_BUILD_SHARED=OFF >/dev/null
-	@cmake --build $(FUZZ_BUILD) -j$(JOBS) --target fuzz_model
+	@cmake --build $(FUZZ_BUILD) -j$(JOBS) --target fuzz_model fuzz_inputs
 
 fuzz: fuzz-build
-	@mkdir -p $(FUZZ_BUILD)/corpus
-	$(FUZZ_ENV) $(FUZZ_BUILD)/fuzz_model $(FUZZ_FLAGS) -max_total_time=$(FUZZ_SECONDS) \
-	    $(FUZZ_BUILD)/corpus $(FUZZ_SEEDS)
+	@mkdir -p $(FUZZ_BUILD)/corpus-$(FUZZ_TARGET)
+	$(FUZZ_ENV) $(FUZZ_BUILD)/$(FUZZ_TARGET) $(FUZZ_FLAGS_$(FUZZ_TARGET)) \
+	    -max_total_time=$(FUZZ_SECONDS) $(FUZZ_BUILD)/corpus-$(FUZZ_TARGET) $(FUZZ_SEEDS_$(FUZZ_TARGET))
 
 fuzz-smoke: fuzz-build
-	@out=$$(mktemp -d); rc=0; \
-	$(FUZZ_ENV) $(FUZZ_BUILD)/fuzz_model $(FUZZ_FLAGS) -runs=$(FUZZ_RUNS) -seed=1 \
-	    $$out $(FUZZ_SEEDS) 2>$$out.log || rc=$$?; \
-	grep -E "^(stat::number_of_executed_units|INFO: seed)" $$out.log; \
-	[ $$rc -eq 0 ] || cat $$out.log; rm -rf $$out $$out.log; exit $$rc
+	@set -e; for t in fuzz_model fuzz_inputs; do \
+	    out=$$(mktemp -d); rc=0; \
+	    if [ $$t = fuzz_model ]; then flags="$(FUZZ_FLAGS_fuzz_model)"; seeds="$(FUZZ_SEEDS_fuzz_model)"; \
+	        runs=$(FUZZ_RUNS); \
+	    else flags="$(FUZZ_FLAGS_fuzz_inputs)"; seeds="$(FUZZ_SEEDS_fuzz_inputs)"; \
+	        runs=$(FUZZ_RUNS_INPUTS); fi; \
+	    $(FUZZ_ENV) $(FUZZ_BUILD)/$$t $$flags -runs=$$runs -seed=1 \
+	        $$out $$seeds 2>$$out.log || rc=$$?; \
+	    echo "$$t:"; grep -E "^(stat::number_of_executed_units|INFO: seed)" $$out.log; \
+	    [ $$rc -eq 0 ] || cat $$out.log; rm -rf $$out $$out.log; [ $$rc -eq 0 ]; done
 
 bench: build
 	bash bench/run.sh $(BUILD)

@@ -41,11 +41,14 @@ int gd_cli_parse_count(const char *text, long lo, long hi, long *out);
 /* Prints item as JSON (pretty) followed by a newline; frees nothing. */
 void gd_cli_print_json(FILE *f, const cJSON *item);
 
-/* Output files are first written into a staging folder inside DIR and moved into
- * place only when every file is complete, so a failure leaves nothing half-written. */
+/* --out DIR (outdir.c): the files are written into a staging folder beside DIR, which
+ * replaces DIR as a whole at commit (DIR's other entries carried over), so a reader or a
+ * kill sees the old folder or the new one, never a mix; a failure or SIGINT/SIGTERM
+ * leaves nothing, and stages of killed runs are removed by the next run. */
 typedef struct gd_outdir {
     char dir[1024];
     char stage[1100];
+    int inside;  /* fallback: stage inside DIR, files moved one by one */
     int created; /* dir was made by gd_outdir_begin (removed again on abort) */
     int nfiles;
     char names[16][64];
@@ -169,6 +172,10 @@ int gd_cli_plot_check(const char *path);
 /* The figure built (st, p, err from a gd_plot_<analysis> call) written to path and freed.
  * 0, or the exit code after reporting (nothing written). */
 int gd_cli_plot_finish(gd_status st, gd_plot *p, gd_error *err, const char *path);
+/* The same for a command whose option for the file is opt (report: --out). */
+int gd_cli_plot_check_as(const char *path, const char *opt);
+int gd_cli_plot_finish_as(gd_status st, gd_plot *p, gd_error *err, const char *path,
+                          const char *opt);
 
 /* ---- the study report (cmd_report.c) ---- */
 int gd_cmd_report(int argc, char **argv);

@@ -59,6 +59,13 @@ int gd_cli_parse_range(const char *cmd, const char *opt, const char *text, doubl
         return gd_cli_usage_error(cmd, "%s: FROM must be zero or more", opt);
     if (to < from)
         return gd_cli_usage_error(cmd, "%s: TO (%g rad/s) is below FROM (%g rad/s)", opt, to, from);
+    /* speeds: no rotor survives 1e6 rad/s (a 10 mm rim at 10 km/s), and the w^2 terms
+     * of the analyses overflow to inf and NaN long before the largest double */
+    if (strstr(opt, "speeds") && to > 1e6)
+        return gd_cli_usage_error(cmd,
+                                  "%s: TO (%g rad/s) is beyond any rotor: give speeds up to 1e6 "
+                                  "rad/s (9.5 million rpm)",
+                                  opt, to);
     if (n > 1 && to == from)
         return gd_cli_usage_error(cmd, "%s: FROM equals TO: give COUNT 1 or a wider range", opt);
     double *v = malloc((size_t)n * sizeof *v);

@@ -143,7 +143,7 @@ static cJSON *to_json(const gd_periodic_result *r, const gd_cli_records *recs, i
         if (param) cJSON_AddItemToObject(o, "parameter", gd_cli_json_number(p->parameter));
         cJSON_AddNumberToObject(o, "direction", p->direction);
         cJSON_AddBoolToObject(o, "converged", p->converged);
-        if (!p->converged) cJSON_AddStringToObject(o, "reason", p->reason);
+        if (!p->converged || p->reason[0]) cJSON_AddStringToObject(o, "reason", p->reason);
         if (p->stable >= 0)
             cJSON_AddBoolToObject(o, "stable", p->stable);
         else
@@ -226,6 +226,7 @@ static void print_table(const gd_periodic_result *r, const gd_cli_records *recs,
         for (int k = 0; k < recs->n; k++)
             printf("  %.6g,%.6g", p->records[k].rms, p->records[k].peak_to_peak);
         printf("%s\n", p->harmonic_ok == 0 ? "  (truncation not within tolerance)" : "");
+        if (p->stable < 0 && p->reason[0]) printf("      %s\n", p->reason);
     }
     if (r->nbifurcations) printf("\nbifurcations:\n");
     for (int i = 0; i < r->nbifurcations; i++) {
@@ -446,9 +447,11 @@ int gd_cmd_periodic(int argc, char **argv)
             break;
         }
         case OPT_SAMPLES:
-            if (gd_cli_parse_count(optarg, 4, 1 << 20, &lv))
-                return gd_cli_usage_error(CMD, "--samples: expected a whole number >= 4, got '%s'",
-                                          optarg);
+            if (gd_cli_parse_count(optarg, 4, GD_PERIODIC_MAX_SAMPLES, &lv))
+                return gd_cli_usage_error(CMD,
+                                          "--samples: expected a whole number from 4 to %d "
+                                          "(2^20), got '%s'",
+                                          GD_PERIODIC_MAX_SAMPLES, optarg);
             opt.samples = (int)lv;
             break;
         case 'c':

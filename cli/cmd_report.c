@@ -89,7 +89,7 @@ int gd_cmd_report(int argc, char **argv)
     }
     if (optind != argc - 1) return gd_cli_usage_error(cmd, "give exactly one model file");
     if (!out) return gd_cli_usage_error(cmd, "--out FILE.html is required");
-    int rc = gd_cli_plot_check(out);
+    int rc = gd_cli_plot_check_as(out, "--out");
     if (rc) return rc;
     double *sp = NULL;
     if (speeds && (rc = gd_cli_parse_range(cmd, "--speeds", speeds, &sp, &opt.nspeeds))) return rc;
@@ -108,7 +108,7 @@ int gd_cmd_report(int argc, char **argv)
         gd_error_clear(&err);
         gd_plot *p = NULL;
         gd_status st = gd_report_build(s, &opt, &p, &err);
-        rc = gd_cli_plot_finish(st, p, &err, out);
+        rc = gd_cli_plot_finish_as(st, p, &err, out, "--out");
         if (rc == GD_EXIT_OK) printf("%s\n", out);
     }
     gd_system_free(s);

@@ -23,7 +23,7 @@ static const char USAGE[] =
     "usage: geardyn transient MODEL.yaml [--duration T | --revolutions N] [--speed S]\n"
     "                         [--record WHAT]... [--from T] [--output-interval T]\n"
     "                         [--rtol R] [--method bdf|adams|galpha] [--step T]\n"
-    "                         [--rho-inf R] [--reduce F] [--start rest|static]\n"
+    "                         [--rho-inf R] [--max-steps N] [--reduce F] [--start rest|static]\n"
     "                         [--spectrum] [--window hann|rect] [--unbalance-scale F]\n"
     "                         [--coupling LEVEL] [--dofs LIST] [--set PATH=VALUE]... [--json]\n"
     "                         [--out DIR] [--quiet] [--plot FILE.svg|FILE.html]\n\n"
@@ -55,7 +55,11 @@ static const char USAGE[] =
     "                       contact changes resolved to the step\n"
     "  --step T             galpha: largest time step (default: output interval / 10)\n"
     "  --rho-inf R          galpha: spectral radius at infinite step, 0..1 (default 0.9):\n"
-    "                       below 1 damps the unresolved high modes\n"
+    "                       below 1 damps the unresolved high modes\n";
+static const char USAGE_LIMITS[] =
+    "  --max-steps N        step limit (default 50 million): a run that needs more (galpha:\n"
+    "                       duration / step; bdf, adams: the fastest shaft's revolutions)\n"
+    "                       is refused before it starts\n"
     "  --reduce F           modal reduction (Craig-Bampton): DOFs with laws stay physical,\n"
     "                       the rest become their modes below F (e.g. 5kHz) plus static\n"
     "                       constraint modes; any --method runs the reduced model\n"
@@ -392,6 +396,7 @@ typedef struct cli_opts {
     int nrecords;
     gd_cli_sets sets;
     double rtol, unbalance_scale, rho_inf;
+    long max_steps;
     int json, quiet, spectrum;
     gd_tr_method method;
     gd_tr_init init;
@@ -410,6 +415,7 @@ static int parse_args(int argc, char **argv, cli_opts *o)
                                          {"method", required_argument, 0, 'm'},
                                          {"step", required_argument, 0, 'H'},
                                          {"rho-inf", required_argument, 0, 'R'},
+                                         {"max-steps", required_argument, 0, 'X'},
                                          {"reduce", required_argument, 0, 'F'},
                                          {"start", required_argument, 0, 'a'},
                                          {"spectrum", no_argument, 0, 'S'},
@@ -482,6 +488,15 @@ static int parse_args(int argc, char **argv, cli_opts *o)
         case 'F':
             o->reduce = optarg;
             break;
+        case 'X': {
+            char *end;
+            double v = strtod(optarg, &end);
+            if (end == optarg || *end || !(v >= 1 && v <= 1e15) || v != floor(v))
+                return gd_cli_usage_error(
+                    CMD, "--max-steps: '%s' is not a whole number from 1 to 1e15", optarg);
+            o->max_steps = (long)v;
+            break;
+        }
         case 'R': {
             char *end;
             o->rho_inf = strtod(optarg, &end);
@@ -562,6 +577,7 @@ static int parse_args(int argc, char **argv, cli_opts *o)
             break;
         case 'h':
             fputs(USAGE, stdout);
+            fputs(USAGE_LIMITS, stdout);
             fputs(USAGE_POINCARE, stdout);
             return -1;
         default:
@@ -816,6 +832,7 @@ int gd_cmd_transient(int argc, char **argv)
     opt.method = o.method;
     opt.init = o.init;
     opt.rho_inf = o.rho_inf;
+    opt.max_steps = o.max_steps;
     if (o.step) {
         if (parse_time("--step", o.step, &opt.step)) {
             rc = GD_EXIT_INPUT;

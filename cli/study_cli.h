@@ -27,6 +27,7 @@ typedef struct gd_study_out {
     const gd_study *s;
     char dir[1024];
     int fd;                /* journal, O_APPEND */
+    int lock_fd;           /* DIR/.lock, flock'd for the run (-1: none) */
     unsigned char *done;   /* per case: in the journal */
     size_t shard, nshards; /* this run does the cases c with c % nshards == shard */
     size_t total, ndone, nfailed, resumed;

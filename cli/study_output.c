@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
@@ -22,6 +23,53 @@ static int fail(const char *file, const char *hint, const char *what)
     gd_error err;
     gd_error_set(&err, GD_EIO, file, 0, 0, "--out", hint, "%s", what);
     return gd_cli_report(&err);
+}
+
+/* A write that failed (no space, no permission): the run failed, exit 1
+ * (docs/studies.md), unlike the input errors above (exit 2). */
+static int fail_io(const char *file, const char *hint, const char *what)
+{
+    gd_error err;
+    gd_error_set(&err, GD_EIO, file, 0, 0, "--out", hint, "%s", what);
+    gd_cli_report(&err);
+    return GD_EXIT_FAIL;
+}
+
+/* All of buf, or -1 with errno set: a short write (a full disk, a file size limit) is
+ * retried so the next write reports the cause (ENOSPC, EFBIG) instead of leaving errno
+ * as it was ("Success"). */
+static int write_all(int fd, const char *buf, size_t len)
+{
+    while (len > 0) {
+        ssize_t k = write(fd, buf, len);
+        if (k < 0 && errno == EINTR) continue;
+        if (k < 0) return -1;
+        if (k == 0) {
+            errno = ENOSPC;
+            return -1;
+        }
+        buf += k;
+        len -= (size_t)k;
+    }
+    return 0;
+}
+
+/* The run's lock on its folder: DIR/.lock, held (flock) until the process ends, so a
+ * second run on the same folder (two --resume at once, or shards given the same
+ * --out) stops at once instead of redoing the same cases and sharing results.h5.tmp.
+ * 0, 1 another run holds it, -1 error (errno). */
+static int lock_folder(const char *dir, int *fd)
+{
+    char path[1200];
+    snprintf(path, sizeof path, "%s/.lock", dir);
+    *fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+    if (*fd < 0) return -1;
+    if (flock(*fd, LOCK_EX | LOCK_NB) == 0) return 0;
+    int e = errno;
+    close(*fd);
+    *fd = -1;
+    errno = e;
+    return e == EWOULDBLOCK ? 1 : -1;
 }
 
 static double now(void)
@@ -140,6 +188,7 @@ int gd_study_out_open(gd_study_out *o, const gd_study *s, const char *dir, size_
 {
     memset(o, 0, sizeof *o);
     o->fd = -1;
+    o->lock_fd = -1;
     o->s = s;
     o->shard = shard;
     o->nshards = nshards;
@@ -160,6 +209,20 @@ int gd_study_out_open(gd_study_out *o, const gd_study *s, const char *dir, size_
     snprintf(journal, sizeof journal, "%s/journal.csv", o->dir);
     snprintf(copy, sizeof copy, "%s/study.yaml", o->dir);
     struct stat sb;
+    if (!resume) {
+        char parent[1100];
+        snprintf(parent, sizeof parent, "%s", dir);
+        if ((mkdir(parent, 0777) && errno != EEXIST) || (mkdir(o->dir, 0777) && errno != EEXIST))
+            return fail(o->dir, "check that the parent folder exists and is writable",
+                        strerror(errno));
+    }
+    if (stat(o->dir, &sb) == 0) {
+        int lk = lock_folder(o->dir, &o->lock_fd);
+        if (lk == 1)
+            return fail(o->dir, "wait for the other run to end, or give another --out",
+                        "another geardyn study run holds this folder");
+        if (lk < 0) return fail_io(o->dir, "check the folder's permissions", strerror(errno));
+    }
     int exists = stat(journal, &sb) == 0;
     if (exists && !resume)
         return fail(o->dir, "add --resume to continue it, or give another --out",
@@ -195,13 +258,8 @@ int gd_study_out_open(gd_study_out *o, const gd_study *s, const char *dir, size_
         o->resumed = o->ndone;
         /* drop a line cut by the kill, so the next row starts on its own line */
         if (truncate(journal, (off_t)valid))
-            return fail(journal, "check the folder's permissions", strerror(errno));
+            return fail_io(journal, "check the folder's permissions", strerror(errno));
     } else {
-        char parent[1100];
-        snprintf(parent, sizeof parent, "%s", dir);
-        if ((mkdir(parent, 0777) && errno != EEXIST) || (mkdir(o->dir, 0777) && errno != EEXIST))
-            return fail(o->dir, "check that the parent folder exists and is writable",
-                        strerror(errno));
         char version[128];
         snprintf(version, sizeof version, "geardyn %s\n", gd_version());
         size_t hsize = gd_study_format_header(s, NULL, 0) + 1;
@@ -212,10 +270,12 @@ int gd_study_out_open(gd_study_out *o, const gd_study *s, const char *dir, size_
                   write_atomic(o->dir, "version.txt", version) ||
                   write_atomic(o->dir, "journal.csv", header);
         free(header);
-        if (bad) return fail(o->dir, "check the folder's permissions", strerror(errno));
+        if (bad)
+            return fail_io(o->dir, "check the folder's permissions and free space",
+                           strerror(errno));
     }
     o->fd = open(journal, O_WRONLY | O_APPEND);
-    if (o->fd < 0) return fail(journal, "check the folder's permissions", strerror(errno));
+    if (o->fd < 0) return fail_io(journal, "check the folder's permissions", strerror(errno));
     o->t0 = now();
     gd_hdf5_plugin_start(&o->plugin); /* while the cases run */
     return GD_EXIT_OK;
@@ -263,7 +323,7 @@ int gd_study_out_sink(void *user, const gd_study_row *row)
     }
     /* one write per row: a kill leaves whole rows and at most one cut last line */
     size_t len = strlen(o->line);
-    if (write(o->fd, o->line, len) != (ssize_t)len) {
+    if (write_all(o->fd, o->line, len)) {
         fprintf(stderr, "geardyn: error: %s/journal.csv: %s\n", o->dir, strerror(errno));
         return 1;
     }
@@ -356,13 +416,13 @@ int gd_study_write_results(const gd_study *s, const char *dir, char *const *line
     *p = '\0';
     int bad = write_atomic(dir, "results.csv", csv);
     free(csv);
-    if (bad) return fail(dir, "check the folder's permissions", strerror(errno));
+    if (bad) return fail_io(dir, "check the folder's permissions and free space", strerror(errno));
     char path[1200], tmp[1300], why[2048];
     snprintf(path, sizeof path, "%s/results.h5", dir);
     snprintf(tmp, sizeof tmp, "%s.tmp", path);
     if (write_hdf5(plugin, s, tmp, lines, why, sizeof why) || rename(tmp, path)) {
         remove(tmp);
-        return fail(path, "check the folder's permissions and free space", why);
+        return fail_io(path, "check the folder's permissions and free space", why);
     }
     return GD_EXIT_OK;
 }
@@ -393,6 +453,8 @@ void gd_study_out_close(gd_study_out *o)
     if (o->plugin.started) pthread_join(o->plugin.thread, NULL);
     o->plugin.started = 0;
     if (o->fd >= 0) close(o->fd);
+    if (o->lock_fd >= 0) close(o->lock_fd); /* releases the lock */
+    o->lock_fd = -1;
     free(o->done);
     free(o->line);
     o->fd = -1;

@@ -37,6 +37,11 @@ typedef enum gd_per_method {
 } gd_per_method;
 
 struct gd_periodic_point;
+/* The largest AFT sample count and Magnus step count per period (2^20): each sample
+ * holds the state and forces of every free DOF, so 2^31 samples would ask for about
+ * 100 GB; 2^20 resolves 500000 harmonics, far past the 1000 allowed. */
+#define GD_PERIODIC_MAX_SAMPLES (1 << 20)
+
 typedef struct gd_periodic_options {
     int harmonics;       /* H >= 1 (default 10) */
     int adaptive;        /* 1: H from the least that holds every excitation's fundamental,
@@ -49,11 +54,12 @@ typedef struct gd_periodic_options {
                             memory_limit) */
     int subharmonic;     /* N >= 1: solutions of period N T_0 (default 1) */
     int samples;         /* AFT samples per period; 0: 4 (H + 1) rounded up to 2^k,
-                            at least 16 */
+                            at least 16; at most GD_PERIODIC_MAX_SAMPLES */
     double tol;          /* Newton: relative residual (default 1e-10) */
     int max_iter;        /* Newton iterations per point (default 30) */
     int stability;       /* 1 (default): Floquet multipliers and bifurcations */
-    int monodromy_steps; /* Magnus steps per period; 0: 4 x samples, at least 256 */
+    int monodromy_steps; /* Magnus steps per period; 0: 4 x samples, at least 256; at
+                            most GD_PERIODIC_MAX_SAMPLES */
     gd_per_method method;
     int both_directions; /* 1: also the run from the end back to the start */
     int max_steps;       /* continuation steps per direction; 0: 50 x count + 200 */
@@ -105,7 +111,8 @@ typedef struct gd_periodic_point {
     double parameter; /* continuation parameter value (NaN when continuing in speed) */
     int direction;    /* +1 from the start, -1 the return run (both_directions) */
     int converged;
-    char reason[256]; /* why not converged */
+    char reason[256]; /* why not converged, or why a converged point has no
+                         multipliers (stable -1 with stability on) */
     int harmonics;    /* H used */
     double omega;     /* w, rad/s (period 2 pi / w) */
     double residual;  /* relative residual |R| / max(|L X|, |F|) */

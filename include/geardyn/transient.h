@@ -197,7 +197,9 @@ typedef struct gd_transient_options {
     gd_tr_init init;
     const double *q0, *v0;
     double max_step;   /* s; 0: none */
-    long max_steps;    /* 0: 50 million */
+    long max_steps;    /* step limit (0: 50 million): CVODE's per output interval, and
+                          a run that needs more (gen-alpha: span / step; BDF, Adams:
+                          revolutions of the fastest DOF) is GD_EINPUT before it starts */
     int max_order;     /* 0: CVODE's (5 BDF, 12 Adams); 2 makes BDF A-stable, which
                           suits lightly damped stiff modes */
     int locate_events; /* 1 (default): root-finding on contact changes */

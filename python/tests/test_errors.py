@@ -71,6 +71,10 @@ def test_bad_options(geardyn):
         m.periodic("100:200:2", method="newton")
     with pytest.raises(geardyn.ModelError, match="cannot resolve"):
         m.periodic("100:200:2", harmonics=10, samples=8)
+    # the library's bound (2^31 - 1 samples asked for about 100 GB), issue 23
+    with pytest.raises(geardyn.ModelError, match="1048576") as e:
+        m.periodic("100:200:2", harmonics=10, samples=2**31 - 1)
+    assert e.value.field == "samples"
 
 
 def test_builder_errors(geardyn):

@@ -169,6 +169,12 @@ double gd_table_eval(const gd_table *t, double x, double *dy, double *d2y)
 {
     const int n = t->n;
     const double *X = t->x, *Y = t->y;
+    /* NaN has no interval (and inf none in a period): never an index from it */
+    if (isnan(x) || (t->period > 0 && !isfinite(x))) {
+        if (dy) *dy = NAN;
+        if (d2y) *d2y = NAN;
+        return NAN;
+    }
     if (t->period > 0) {
         double u = fmod(x - X[0], t->period);
         if (u < 0) u += t->period;

@@ -58,6 +58,14 @@ static gd_status check_inputs(const gd_gear_pair_geometry *g, gd_error *err)
     if (!(g->normal_module > 0))
         return fail(err, "normal_module", "give the normal module, e.g. \"2 mm\"",
                     "normal module must be positive");
+    /* ship and mill gears reach 50 mm; past 1 m the lengths are not gears */
+    if (g->normal_module > 1.0) {
+        snprintf(msg, sizeof msg, "normal module %g m is over 1 m", g->normal_module);
+        return fail(err, "normal_module",
+                    "give the module in length units, e.g. \"2 mm\" (the largest gears have "
+                    "about 50 mm)",
+                    msg);
+    }
     if (!(g->normal_pressure_angle > 0 && g->normal_pressure_angle < 45 * deg)) {
         double a = g->normal_pressure_angle;
         if (a >= 1 && a <= 45)
@@ -82,6 +90,17 @@ static gd_status check_inputs(const gd_gear_pair_geometry *g, gd_error *err)
     if (!(g->face_width > 0))
         return fail(err, "face_width", "give the face width, e.g. \"20 mm\"",
                     "face width must be positive");
+    /* the widest gears are about 60 modules wide (ISO 6336 b/m_n); 1000 modules leaves
+     * room for any real face and keeps the slices and their stiffness sums finite (a
+     * face of 1e300 m made every slice's stiffness 0, issue 23) */
+    if (g->face_width > 1000 * g->normal_module) {
+        snprintf(msg, sizeof msg, "face width %g m is over 1000 normal modules (%g m)",
+                 g->face_width, 1000 * g->normal_module);
+        return fail(err, "face_width",
+                    "give the face width in length units (e.g. \"20 mm\"); real gears are up "
+                    "to about 60 modules wide",
+                    msg);
+    }
     if (g->hand != 1 && g->hand != -1)
         return fail(err, "hand", "use right or left", "hand must be right (+1) or left (-1)");
     if (!(g->center_distance >= 0))

@@ -170,6 +170,23 @@ gd_status gd_model_add_disk(gd_model *m, const gd_disk_spec *s, int *index, gd_e
             return gd_build_fail(m, err, s->loc, NULL, path,
                                  "give mass and polar_inertia (kg, kg*m^2), or `geometry:`",
                                  "disk has no mass or inertia");
+        /* a mass or inertia next to nothing is not a disk: beside the shafts' and
+         * bearings' values it leaves the mass matrix singular to working precision and
+         * every mode comes out 0 Hz or 1e300 Hz (issue 23); 0 is the massless node */
+        static const char *const MKEY[3] = {"mass", "polar_inertia", "diametral_inertia"};
+        static const char *const MUNIT[3] = {"kg", "kg*m^2", "kg*m^2"};
+        const double mv[3] = {s->mass, s->polar_inertia, s->diametral_inertia};
+        const double mlo[3] = {1e-9, 1e-15, 1e-15};
+        for (int k = 0; k < 3; k++)
+            if (mv[k] > 0 && mv[k] < mlo[k]) {
+                char fp[220];
+                gd_build_path(fp, sizeof fp, path, MKEY[k]);
+                return gd_build_fail(m, err, s->loc, fp, fp,
+                                     "give 0 (none) or at least the bound: smaller values make "
+                                     "the mass matrix singular to working precision",
+                                     "%s %g %s is below %g %s", MKEY[k], mv[k], MUNIT[k], mlo[k],
+                                     MUNIT[k]);
+            }
         d.mass = s->mass;
         d.polar_inertia = s->polar_inertia;
         /* a thin disk unless told otherwise */

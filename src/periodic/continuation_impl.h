@@ -38,6 +38,7 @@ typedef struct ctx {
     double rate0;  /* w / lambda of the branch (speed continuation), or w (parameter) */
     int ratio_mode;
     char reason[320];
+    char floquet_msg[200]; /* why the last Floquet multipliers were not computed */
     gd_periodic_result *res;
     int cap_points, cap_bif;
     const gd_tr_record *rec;

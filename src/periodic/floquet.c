@@ -32,6 +32,9 @@ static int expm(int n, const double *A, double *E, double *W, int *ipiv)
             c += fabs(A[(size_t)j * n + i]);
         norm = c > norm ? c : norm;
     }
+    /* a non-finite Omega (an overflowed step) has no exponential; a finite norm gives
+     * s <= 1025, so the cast cannot overflow */
+    if (!isfinite(norm)) return 1;
     int s = norm > 0.5 ? (int)ceil(log2(norm / 0.5)) : 0;
     double scale = ldexp(1.0, -s);
     for (size_t k = 0; k < nn; k++)
@@ -187,7 +190,10 @@ int gd_hb_floquet(const hb *h, gd_transient *tr, double om, const double *X, int
             double c2 = sqrt(3.0) / 12.0 * dt * dt;
             for (size_t m = 0; m < nn; m++)
                 Om[m] = 0.5 * dt * (A1[m] + A2[m]) + c2 * Om[m];
-            if (expm(n2, Om, Ex, W, ipiv)) goto done;
+            if (expm(n2, Om, Ex, W, ipiv)) {
+                rc = 2;
+                goto done;
+            }
             cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n2, n2, n2, 1.0, Ex, n2, Phi, n2,
                         0.0, T, n2);
             memcpy(Phi, T, nn * sizeof *Phi);
@@ -195,6 +201,13 @@ int gd_hb_floquet(const hb *h, gd_transient *tr, double om, const double *X, int
             a = e;
         }
     }
+    /* LAPACK's eigenvalue solvers are undefined on inf and NaN (dgeev wrote outside its
+     * arrays): steps too long for the orbit make Phi overflow */
+    for (size_t m = 0; m < nn; m++)
+        if (!isfinite(Phi[m])) {
+            rc = 2;
+            goto done;
+        }
     {
         double *dummy = T;
         if (LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', n2, Phi, n2, mu_re, mu_im, dummy, 1, dummy,

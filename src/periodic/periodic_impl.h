@@ -126,7 +126,8 @@ void gd_hb_eval(const hb *h, double w, const double *X, double tau, double *q, d
 
 /* Floquet multipliers of the variational equations about the solution X (nf free DOFs,
  * period 2 pi / w): mu_re, mu_im of length 2 nf. bl: GD_REC_MESH_STATE records of the
- * backlash meshes (nbl), whose contact changes split the steps. 0 ok. */
+ * backlash meshes (nbl), whose contact changes split the steps. 0 ok, 2 when the
+ * monodromy matrix is not finite (too few steps for the orbit), 1 other failures. */
 int gd_hb_floquet(const hb *h, gd_transient *tr, double w, const double *X, int steps,
                   const gd_tr_record *bl, int nbl, double *mu_re, double *mu_im);
 

@@ -18,6 +18,7 @@ void gd_per_floquet(ctx *c, const double *X, double lam, double *mre, double *mi
 {
     *stable = -1;
     *mu_max = NAN;
+    c->floquet_msg[0] = '\0';
     if (!c->opt->stability) return;
     stage *s = gd_per_get_stage(c, lam);
     if (!s) return;
@@ -29,7 +30,13 @@ void gd_per_floquet(ctx *c, const double *X, double lam, double *mre, double *mi
     for (int i = 0; i < spec->nmeshes && nbl < 64; i++)
         if (spec->meshes[i].backlash)
             bl[nbl++] = (gd_tr_record){GD_REC_MESH_STATE, spec->meshes[i].mesh, 0};
-    if (gd_hb_floquet(&c->h, s->tr, s->w, X, steps, bl, nbl, mre, mim)) return;
+    int rc = gd_hb_floquet(&c->h, s->tr, s->w, X, steps, bl, nbl, mre, mim);
+    if (rc == 2)
+        snprintf(c->floquet_msg, sizeof c->floquet_msg,
+                 "stability not computed: the monodromy matrix over the period %.3g s overflowed "
+                 "with %d Magnus steps (a long period needs more: monodromy_steps)",
+                 TWO_PI / s->w, steps);
+    if (rc) return;
     double m = 0.0;
     for (int i = 0; i < 2 * c->nf; i++) {
         double a = hypot(mre[i], mim[i]);
@@ -353,6 +360,8 @@ int gd_per_emit_point(ctx *c, const double *X, double lam, int iters, double res
     gd_per_floquet(c, p->coef, lam, p->mu_re, p->mu_im, &p->stable, &p->mu_max);
     if (fine) swap_ws(c);
     p->nmult = p->stable >= 0 ? 2 * c->nf : 0;
+    if (p->stable < 0 && c->floquet_msg[0])
+        snprintf(p->reason, sizeof p->reason, "%s", c->floquet_msg);
     announce(c, lam);
     return 0;
 }

@@ -69,13 +69,20 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
     if (opt->max_harmonics < 0 || opt->memory_limit < 0)
         BAD("max_harmonics", "give 0 (memory decides) or a positive cap",
             "max_harmonics and memory_limit must not be negative");
-    if (opt->subharmonic < 1)
-        BAD("subharmonic", "give N >= 1 (period N times the fundamental)",
-            "subharmonic order %d must be at least 1", opt->subharmonic);
+    if (opt->subharmonic < 1 || opt->subharmonic > 1000)
+        BAD("subharmonic", "give N from 1 to 1000 (period N times the fundamental)",
+            "subharmonic order %d is outside 1..1000", opt->subharmonic);
     if (!(opt->tol > 0) || opt->tol < 1e-15)
         BAD("tol", "give a tolerance in [1e-15, 1)",
             "tolerance %g is unreachable in double precision", opt->tol);
     if (opt->max_iter < 1) BAD("max_iter", "", "max_iter must be at least 1");
+    if (opt->samples < 0 || opt->samples > GD_PERIODIC_MAX_SAMPLES)
+        BAD("samples", "give 0 (automatic) or 4..1048576 (2^20)",
+            "%d AFT samples per period is outside 0..%d", opt->samples, GD_PERIODIC_MAX_SAMPLES);
+    if (opt->monodromy_steps < 0 || opt->monodromy_steps > GD_PERIODIC_MAX_SAMPLES)
+        BAD("monodromy_steps", "give 0 (automatic) or 1..1048576 (2^20)",
+            "%d Magnus steps per period is outside 0..%d", opt->monodromy_steps,
+            GD_PERIODIC_MAX_SAMPLES);
     if (opt->samples && opt->samples < 2 * opt->harmonics + 2)
         BAD("samples", "give at least 2 H + 2", "%d samples cannot resolve %d harmonics",
             opt->samples, opt->harmonics);

@@ -2,9 +2,11 @@
  * any computing, plotly.js located, and the file written beside its target and renamed
  * into place so that a failure leaves nothing at the path. */
 #define _GNU_SOURCE /* dladdr */
+#include <dirent.h>
 #include <dlfcn.h>
 #include <ctype.h>
 #include <errno.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -157,6 +159,33 @@ static mode_t process_umask(void)
     return (mode_t)mask;
 }
 
+/* Temporary files beside path that a process no longer running left (PATH.tmp-PID-XXXXXX:
+ * killed while writing). */
+static void remove_stale_tmp(const char *path)
+{
+    char dir[1024];
+    dir_of(path, dir, sizeof dir);
+    const char *base = strrchr(path, '/');
+    base = base ? base + 1 : path;
+    char prefix[600];
+    snprintf(prefix, sizeof prefix, "%s.tmp-", base);
+    size_t np = strlen(prefix);
+    DIR *d = opendir(dir);
+    if (!d) return;
+    struct dirent *e;
+    while ((e = readdir(d))) {
+        if (strncmp(e->d_name, prefix, np)) continue;
+        char *end;
+        long pid = strtol(e->d_name + np, &end, 10);
+        if (end == e->d_name + np || *end != '-' || pid <= 0) continue;
+        if (kill((pid_t)pid, 0) == 0 || errno != ESRCH) continue;
+        char full[1400];
+        snprintf(full, sizeof full, "%s/%s", dir, e->d_name);
+        unlink(full);
+    }
+    closedir(d);
+}
+
 gd_status gd_plot_write(const gd_plot *p, const char *path, const gd_plot_write_options *opt,
                         gd_error *err)
 {
@@ -168,8 +197,9 @@ gd_status gd_plot_write(const gd_plot *p, const char *path, const gd_plot_write_
     gd_plot_format_of(path, &fmt, err);
     char js[1024] = "";
     if (fmt == GD_PLOT_HTML && (st = gd_plot_find_plotly(opt, js, sizeof js, err))) return st;
+    remove_stale_tmp(path);
     char tmp[1200];
-    snprintf(tmp, sizeof tmp, "%s.tmpXXXXXX", path);
+    snprintf(tmp, sizeof tmp, "%s.tmp-%ld-XXXXXX", path, (long)getpid());
     int fd = mkstemp(tmp);
     if (fd < 0)
         return gd_error_set(err, GD_EIO, path, 0, 0, "--plot", "check the folder is writable",
@@ -181,12 +211,16 @@ gd_status gd_plot_write(const gd_plot *p, const char *path, const gd_plot_write_
         return gd_error_set(err, GD_EIO, path, 0, 0, "--plot", "", "cannot open: %s",
                             strerror(errno));
     }
+    errno = 0;
     st = fmt == GD_PLOT_SVG    ? pl_write_svg(p, f, err)
          : fmt == GD_PLOT_HTML ? pl_write_html(p, f, js, err)
                                : pl_write_raster(p, f, fmt == GD_PLOT_PDF, err);
-    if (fclose(f) != 0 && !st)
+    int werr = st || ferror(f) ? errno : 0; /* the write's own cause (ENOSPC, EFBIG) */
+    if (fclose(f) != 0 && !st) {
+        werr = errno;
         st = gd_error_set(err, GD_EIO, path, 0, 0, "--plot", "check the free space",
                           "cannot write: %s", strerror(errno));
+    }
     /* mkstemp makes the file 0600: give it the usual permissions */
     if (!st && chmod(tmp, 0666 & ~process_umask()) != 0)
         st = gd_error_set(err, GD_EIO, path, 0, 0, "--plot", "", "cannot chmod: %s",
@@ -197,7 +231,8 @@ gd_status gd_plot_write(const gd_plot *p, const char *path, const gd_plot_write_
     if (st) {
         unlink(tmp);
         if (!err || !err->file[0])
-            gd_error_set(err, st, path, 0, 0, "--plot", "", "cannot write the plot");
+            gd_error_set(err, st, path, 0, 0, "--plot", "check the free space",
+                         "cannot write the plot: %s", werr ? strerror(werr) : "the write failed");
     }
     return st;
 }

@@ -67,6 +67,15 @@ gd_status gd_unbalance_response(const gd_system *sys, const gd_unbalance_options
             return gd_error_set(
                 err, GD_EINPUT, "", 0, 0, "speeds", "give finite speeds of zero or more",
                 "speed %d (%g rad/s) is negative or not finite", s + 1, opt->speeds[s]);
+        /* the forces U w^2 and the dynamic stiffness K - w^2 M overflow to inf and NaN
+         * long before 1e154 rad/s; no rotor survives 1e6 rad/s (9.5 million rpm: a 10 mm
+         * rim at 10 km/s) */
+        else if (opt->speeds[s] > 1e6)
+            return gd_error_set(err, GD_EINPUT, "", 0, 0, "speeds",
+                                "give speeds up to 1e6 rad/s (9.5 million rpm)",
+                                "speed %d (%g rad/s) is beyond any rotor: no rim survives it, "
+                                "and w^2 terms overflow",
+                                s + 1, opt->speeds[s]);
     if (m->nunbalances == 0)
         return gd_error_set(err, GD_EINPUT, m->file, 0, 0, "unbalances",
                             "add an 'unbalances:' list to the model (docs/model-format.md)",

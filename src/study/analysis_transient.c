@@ -3,7 +3,9 @@
  * transient` runs it. Options: revolutions or duration (one required), speed (default
  * the model's), from (fraction of the run before statistics start, default 0.5, as the
  * CLI), mesh (the mesh whose force and contacts are kept; default the first), rtol,
- * method (bdf | adams), start (rest | static). Statistics are over the recorded window. */
+ * method (bdf | adams), start (rest | static), max_steps (the per-case step limit, default
+ * 50 million: a case that needs more fails with the reason before it runs, and the
+ * others go on). Statistics are over the recorded window. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -12,14 +14,15 @@
 #include "geardyn/transient_model.h"
 #include "study/study_impl.h"
 
-static const char *const KEYS[] = {"revolutions", "duration", "speed", "from", "mesh",
-                                   "rtol",        "method",   "start", NULL};
+static const char *const KEYS[] = {"revolutions", "duration", "speed", "from",      "mesh",
+                                   "rtol",        "method",   "start", "max_steps", NULL};
 static const char *const METHODS[] = {"bdf", "adams", NULL};
 static const char *const STARTS[] = {"rest", "static", NULL};
 
 typedef struct tr_opts {
     double revolutions, duration, speed, from, rtol;
     int has_speed, method, start;
+    long max_steps;
     char mesh[128];
 } tr_opts;
 
@@ -54,7 +57,8 @@ static gd_status options(gd_yreader *r, const gd_ynode *map, void **out)
         gd_yread_qty(r, map, "from", "analysis", GD_QTY_DIMLESS, GD_YNONNEG, &o->from, NULL) ||
         gd_yread_qty(r, map, "rtol", "analysis", GD_QTY_DIMLESS, GD_YPOS, &o->rtol, NULL) ||
         gd_yread_str(r, map, "method", "analysis", METHODS, 0, NULL, &o->method, NULL) ||
-        gd_yread_str(r, map, "start", "analysis", STARTS, 0, NULL, &o->start, NULL))
+        gd_yread_str(r, map, "start", "analysis", STARTS, 0, NULL, &o->start, NULL) ||
+        gd_yread_int(r, map, "max_steps", "analysis", 1, 2000000000, 0, &o->max_steps, NULL))
         return map ? GD_EINPUT
                    : gd_yfail(r, map, "analysis",
                               "e.g. `analysis: {type: transient, revolutions: 2}`",
@@ -121,6 +125,7 @@ static gd_status run(const gd_study_input *in, const void *opts, const gd_study_
         opt.rtol = o->rtol;
         opt.method = (gd_tr_method)o->method;
         opt.init = o->start ? GD_TR_INIT_STATIC : GD_TR_INIT_REST;
+        opt.max_steps = o->max_steps;
         gd_tr_record rec = {GD_REC_MESH_FORCE, mesh, 0};
         st = gd_transient_run(tr, &opt, &rec, 1, &res, err);
     }

@@ -54,15 +54,21 @@ static void si_apply(void *ctx, const double *x, double *y)
     lu_solve(o, o->w, y);
 }
 
+/* 0 ok, 1 out of memory, 2 singular. */
 static int lu_setup(lu_op *o, const cs *A, const cs *M)
 {
     memset(o, 0, sizeof *o);
     o->n = A->n;
     o->M = M;
     o->S = cs_sqr(3, A, 0);
-    o->N = o->S ? cs_lu(A, o->S, 1e-3) : NULL;
     o->w = malloc((size_t)(A->n > 0 ? A->n : 1) * sizeof *o->w);
-    if (!o->N || !o->w) return 1;
+    if (!o->S || !o->w) return 1;
+    /* cs_lu returns NULL for an exactly zero pivot as well as for a failed allocation
+     * (its workspaces: a few n-vectors and the factors, small beside what was already
+     * allocated here): a zero pivot is by far the likelier, so it is reported as the
+     * singular matrix it is, not as memory (issue 23) */
+    o->N = cs_lu(A, o->S, 1e-3);
+    if (!o->N) return 2;
     /* a zero or tiny pivot: singular (CSparse divides by it without complaint) */
     double mx = 0, mn = INFINITY;
     const cs *U = o->N->U;
@@ -71,7 +77,7 @@ static int lu_setup(lu_op *o, const cs *A, const cs *M)
         mx = fmax(mx, d);
         mn = fmin(mn, d);
     }
-    return !(mn > 1e-13 * mx);
+    return mn > 1e-13 * mx ? 0 : 2;
 }
 
 static void lu_free(lu_op *o)
@@ -97,9 +103,10 @@ static gd_status interior_modes(const cs *K, const cs *M, double cutoff, double 
     cs_spfree(Ks);
     lu_op op;
     gd_status st = GD_OK;
-    if (!P || lu_setup(&op, P, M)) {
-        st = P ? fail(err, GD_ENUMERIC, "", "the shifted interior stiffness is singular")
-               : GD_ENOMEM;
+    int lr = P ? lu_setup(&op, P, M) : 1;
+    if (lr) {
+        st = lr == 2 ? fail(err, GD_ENUMERIC, "", "the shifted interior stiffness is singular")
+                     : GD_ENOMEM;
         if (P) lu_free(&op);
         cs_spfree(P);
         return st;
@@ -256,6 +263,42 @@ void gd_tr_project(const gd_transient *tr, const double *full, double *x)
     }
 }
 
+/* Names the rigid motions of the interior DOFs with the boundary held: a uniform axial
+ * (z) or torsional (rz) displacement that K_II leaves without force. buf gets e.g.
+ * "axial (z) and torsional (rz)", or "" when neither. */
+static void free_motions(const gd_transient *tr, const cs *KII, const int *iidx, int ni, char *buf,
+                         size_t size)
+{
+    buf[0] = '\0';
+    const gd_system *sys = tr->sys;
+    if (tr->n != sys->ndof) return;
+    double *v = calloc((size_t)ni, sizeof *v), *y = calloc((size_t)ni, sizeof *y);
+    double kmax = 0;
+    for (int p = 0; p < KII->p[KII->n]; p++)
+        kmax = fmax(kmax, fabs(KII->x[p]));
+    static const gd_dof D[2] = {GD_Z, GD_RZ};
+    static const char *const NAME[2] = {"axial (z)", "torsional (rz)"};
+    for (int k = 0; v && y && k < 2; k++) {
+        int any = 0;
+        for (int i = 0; i < ni; i++) {
+            v[i] = sys->dof_type[iidx[i]] == D[k];
+            any |= v[i] != 0;
+            y[i] = 0;
+        }
+        if (!any) continue;
+        cs_gaxpy(KII, v, y);
+        double r = 0;
+        for (int i = 0; i < ni; i++)
+            r = fmax(r, fabs(y[i]));
+        if (r <= 1e-10 * kmax) {
+            size_t len = strlen(buf);
+            snprintf(buf + len, size - len, "%s%s", len ? " and " : "", NAME[k]);
+        }
+    }
+    free(v);
+    free(y);
+}
+
 static gd_status reduce(gd_transient *tr, double cutoff, gd_error *err)
 {
     const int n = tr->n;
@@ -311,14 +354,21 @@ static gd_status reduce(gd_transient *tr, double cutoff, gd_error *err)
     int nr = nb + nphi;
     TI = calloc((size_t)ni * nr, sizeof *TI);
     if (!TI) goto done;
-    if (lu_setup(&kop, KII, MII)) {
-        st = kop.N ? fail(err, GD_EINPUT,
-                          "keep the full model, or support the free part (a bearing, a spring)",
-                          "cannot reduce: the DOFs without laws have a free rigid-body motion "
-                          "(their stiffness is singular)")
-                   : GD_ENOMEM;
+    int lr = lu_setup(&kop, KII, MII);
+    if (lr == 2) {
+        char what[64], msg[200];
+        free_motions(tr, KII, iidx, ni, what, sizeof what);
+        snprintf(msg, sizeof msg,
+                 "cannot reduce: the DOFs without laws have a free rigid-body motion%s%s "
+                 "(their stiffness is singular)",
+                 what[0] ? ": " : "", what);
+        st = fail(err, GD_EINPUT,
+                  "keep the full model, or support the free part (a bearing, a spring, a "
+                  "prescribed motion)",
+                  msg);
         goto done;
     }
+    if (lr) goto done;
     double *col = malloc((size_t)ni * sizeof *col);
     if (!col) goto done;
     for (int c = 0; c < nb; c++) {

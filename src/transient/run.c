@@ -441,6 +441,43 @@ static gd_status advance(gd_transient *tr, run_work *w, const gd_transient_optio
     return GD_OK;
 }
 
+/* Refuses a run that cannot finish within the step limit (max_steps, default 50
+ * million) from a lower bound on its step count known before it starts: the fixed step
+ * of generalized-alpha (never longer than the output interval), and for CVODE the
+ * revolutions of the fastest DOF (each turn of a gear brings its mesh and unbalance
+ * forces round once: no accurate step spans a revolution). A run that would take days
+ * is an input error naming the limit, not a hang. */
+static gd_status check_step_count(const gd_transient *tr, const gd_transient_options *opt,
+                                  double dt, gd_error *err)
+{
+    const double span = opt->t_end - opt->t_start;
+    const double limit = opt->max_steps > 0 ? (double)opt->max_steps : 50e6;
+    if (opt->method == GD_TR_GEN_ALPHA) {
+        double h = opt->step > 0 ? fmin(opt->step, dt) : dt / 10.0;
+        double steps = span / h;
+        if (!(steps <= limit))
+            return gd_error_set(
+                err, GD_EINPUT, "", 0, 0, "step",
+                "give a longer step or a shorter run, or raise max_steps (transient --max-steps, "
+                "a study's max_steps) if it is meant",
+                "%.3g s in steps of %.3g s is %.3g steps, over the limit of %.0f", span, h, steps,
+                limit);
+        return GD_OK;
+    }
+    double wmax = 0.0;
+    for (int i = 0; i < tr->n; i++)
+        wmax = fmax(wmax, fabs(tr->rate[i]));
+    double turns = span * wmax / 6.28318530717958647692;
+    if (!(turns <= limit))
+        return gd_error_set(err, GD_EINPUT, "", 0, 0, "t_end",
+                            "shorten the run, or raise max_steps (transient --max-steps, a study's "
+                            "max_steps) if it is meant",
+                            "%.3g s at %.4g rad/s is %.3g revolutions, each needing steps: over "
+                            "the step limit of %.0f",
+                            span, wmax, turns, limit);
+    return GD_OK;
+}
+
 gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
                            const gd_tr_record *records, int nrecords, gd_transient_result **out,
                            gd_error *err)
@@ -448,10 +485,10 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
     *out = NULL;
     const int nf = tr->nf, n = tr->red ? tr->red->nfull : tr->n;
     double from = opt->record_from > opt->t_start ? opt->record_from : opt->t_start;
-    if (!(opt->t_end > opt->t_start) || !(from <= opt->t_end) || !(opt->rtol > 0) ||
-        !(opt->atol_q > 0) || !(opt->atol_v > 0))
+    if (!(opt->t_end > opt->t_start) || !isfinite(opt->t_end) || !isfinite(opt->t_start) ||
+        !(from <= opt->t_end) || !(opt->rtol > 0) || !(opt->atol_q > 0) || !(opt->atol_v > 0))
         return gd_error_set(err, GD_EINPUT, "", 0, 0, "options",
-                            "need t_end > t_start, record_from <= t_end, tolerances > 0",
+                            "need finite t_end > t_start, record_from <= t_end, tolerances > 0",
                             "invalid time span or tolerances");
     if (opt->init == GD_TR_INIT_GIVEN && (!opt->q0 || !opt->v0))
         return gd_error_set(err, GD_EINPUT, "", 0, 0, "options.q0", "", "initial state missing");
@@ -476,6 +513,10 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
         return gd_error_set(err, GD_EINPUT, "", 0, 0, "options.output_interval",
                             "use a longer output interval", "too many output samples");
     int nout = (int)nl;
+    {
+        gd_status st = check_step_count(tr, opt, dt, err);
+        if (st) return st;
+    }
 
     gd_transient_result *res = calloc(1, sizeof *res);
     if (!res) return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");

@@ -242,6 +242,34 @@ TEST(table_linear_periodic)
     CHECK(gd_table_new(2, x, y, 0, GD_INTERP_SPLINE, &t, &err) == GD_EINPUT);
 }
 
+/* A non-finite argument (an angle t / w at a speed of 5.3e-312 rad/s) has no interval:
+ * NaN out, never a NaN or inf converted to an index (undefined behaviour, caught by the
+ * sanitizer build's -fsanitize=float-cast-overflow). Issue 23. */
+TEST(table_non_finite_argument)
+{
+    double x[4] = {0.0, 1.0, 2.0, 3.0}, y[4] = {1.0, 3.0, 0.0, 2.0};
+    const double period[2] = {4.0, 0.0}, arg[3] = {NAN, INFINITY, -INFINITY};
+    for (int p = 0; p < 2; p++)
+        for (int it = 0; it < 2; it++) {
+            gd_table *t;
+            gd_error err;
+            REQUIRE(gd_table_new(4, x, y, period[p], it ? GD_INTERP_SPLINE : GD_INTERP_LINEAR, &t,
+                                 &err) == GD_OK);
+            for (int a = 0; a < 3; a++) {
+                double d = 0.0, d2 = 0.0;
+                double v = gd_table_eval(t, arg[a], &d, &d2);
+                /* periodic: no value at all; a table continued linearly by its end
+                 * slopes keeps the sign of inf */
+                if (p == 0 || a == 0)
+                    CHECK(isnan(v) && isnan(d));
+                else
+                    CHECK(isinf(v) || isnan(v));
+            }
+            CHECK_REL(gd_table_eval(t, 1.0, NULL, NULL), 3.0, 1e-15);
+            gd_table_free(t);
+        }
+}
+
 TEST(table_periodic_spline)
 {
     enum { N = 64 };
@@ -413,6 +441,6 @@ TEST(load_and_prescribed_laws)
 
 RUN_TESTS(T(backlash_branches), T(backlash_elastic_force_continuous), T(mesh_damping_laws),
           T(sfd_against_quadrature), T(sfd_classical_circular_orbit), T(sfd_integrals_any_interval),
-          T(sfd_finite_length_correction), T(table_linear_periodic), T(table_periodic_spline),
-          T(table_not_periodic), T(table_from_tvms_result), T(cam_torque_harmonic_law),
-          T(load_and_prescribed_laws))
+          T(sfd_finite_length_correction), T(table_linear_periodic), T(table_non_finite_argument),
+          T(table_periodic_spline), T(table_not_periodic), T(table_from_tvms_result),
+          T(cam_torque_harmonic_law), T(load_and_prescribed_laws))

@@ -888,8 +888,80 @@ TEST(lowrank_solver_equals_sparse_lu)
     }
 }
 
+/* Two or four Magnus steps per period of a subharmonic-3 Mathieu orbit: each step spans
+ * many natural periods, the step exponential overflows and the monodromy matrix is
+ * +-inf. The multipliers are then not computed (stable -1, no multipliers) with the
+ * reason and the fix, never an eigenvalue solve of non-finite numbers (which corrupted
+ * the heap inside LAPACK). Issue 23. */
+TEST(few_magnus_steps_leave_stability_undecided)
+{
+    fx f;
+    gd_transient_model *tm = NULL;
+    REQUIRE(load_spec(&f, mathieu_yaml(0.05, 0.005), &tm));
+    const int steps[2] = {2, 4};
+    for (int c = 0; c < 2; c++) {
+        gd_periodic_options o;
+        gd_periodic_options_init(&o);
+        o.harmonics = 4;
+        o.subharmonic = 3;
+        o.monodromy_steps = steps[c];
+        gd_periodic_result *r = run_speeds(&f, &tm->spec, 0.5, 10.0, 4, &o, NULL, 0);
+        REQUIRE(r);
+        int undecided = 0;
+        for (int i = 0; i < r->npoints; i++) {
+            const gd_periodic_point *p = &r->points[i];
+            if (!p->converged) continue;
+            if (p->stable < 0) {
+                undecided++;
+                CHECK(p->nmult == 0 && isnan(p->mu_max));
+                CHECK(strstr(p->reason, "monodromy") && strstr(p->reason, "monodromy_steps"));
+            } else {
+                CHECK(isfinite(p->mu_max));
+            }
+        }
+        printf("  %d Magnus steps: %d of %d points without multipliers\n", steps[c], undecided,
+               r->npoints);
+        CHECK(undecided > 0);
+        gd_periodic_result_free(r);
+    }
+    gd_transient_model_free(tm);
+    fx_free(&f);
+}
+
+/* Option bounds in the library (Python calls it directly): 2^31 - 1 AFT samples asked
+ * for about 100 GB; the limit 2^20 is named in the error, as are the Magnus step and
+ * subharmonic bounds. Issue 23. */
+TEST(option_bounds_named)
+{
+    fx f;
+    gd_transient_model *tm = NULL;
+    REQUIRE(load_spec(&f, mathieu_yaml(0.05, 0.005), &tm));
+    const double v[1] = {700.0};
+    for (int c = 0; c < 4; c++) {
+        gd_periodic_options o;
+        gd_periodic_options_init(&o);
+        o.harmonics = 4;
+        const char *field = c < 2 ? "samples" : c == 2 ? "monodromy_steps" : "subharmonic";
+        if (c == 0) o.samples = 2147483647;
+        if (c == 1) o.samples = -8;
+        if (c == 2) o.monodromy_steps = 2147483647;
+        if (c == 3) o.subharmonic = 2147483647;
+        gd_periodic_result *r = NULL;
+        gd_error err;
+        CHECK(gd_periodic_run(f.s, &tm->spec, NULL, v, 1, &o, NULL, 0, &r, &err) == GD_EINPUT);
+        CHECK(r == NULL);
+        CHECK_STR(err.field, field);
+        CHECK(c == 3 ? strstr(err.message, "1000") != NULL
+                     : strstr(err.message, "1048576") != NULL);
+        gd_periodic_result_free(r);
+    }
+    gd_transient_model_free(tm);
+    fx_free(&f);
+}
+
 RUN_TESTS(T(linear_equals_unbalance), T(mathieu_tongue_period_doubling),
           T(floquet_against_monodromy), T(backlash_against_transient),
           T(sfd_pair_against_transient), T(backlash_folds_traced_through_unstable_branch),
           T(backlash_branch_with_auto_harmonics), T(chen_sfd_neimark_sacker_matches_transient),
-          T(lowrank_solver_equals_sparse_lu))
+          T(lowrank_solver_equals_sparse_lu), T(few_magnus_steps_leave_stability_undecided),
+          T(option_bounds_named))
