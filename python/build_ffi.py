@@ -355,7 +355,9 @@ typedef struct { int teeth; ...; } gd_gear_geometry;
 typedef struct { gd_gear_geometry gear[2]; double normal_module; double helix_angle;
                  ...; } gd_gear_pair_geometry;
 typedef struct { gd_tvms_method method; int points; int cycles; int slices;
-                 int body_compliance; int harmonics; double quad_tol; ...; } gd_tvms_options;
+                 int body_compliance; int harmonics; double quad_tol;
+                 int contact_analysis; double load_torque; double misalignment;
+                 ...; } gd_tvms_options;
 typedef struct {
     double transverse_pressure_angle, working_pressure_angle, base_helix_angle;
     double center_distance;
@@ -381,6 +383,29 @@ gd_status gd_gear_pair_load(const char *path, const char *mesh_name,
                             const gd_load_options *opt, gd_gear_pair_geometry *geom,
                             gd_tvms_options *tvms, char *mesh_name_out, size_t size,
                             gd_error *err);
+#define GD_LTCA_PARTIAL_FACE ...
+#define GD_LTCA_EDGE_CONTACT ...
+#define GD_LTCA_NO_CONTACT ...
+typedef struct {
+    gd_tvms_method method; gd_gear_pair_derived geom;
+    double torque, force, misalignment, mesh_period_rad;
+    size_t n, points; int slices, max_pairs; double slice_width, body_stiffness;
+    double *angle_rad, *ste, *ste_unloaded, *stiffness; int *pairs_in_contact;
+    double *pair_load, *line_load, *face_load_factor; int *flags; double *line_load_mean;
+    double face_load_factor_cycle, ste_mean, ste_peak_to_peak;
+    double stiffness_mean, stiffness_min, stiffness_max; int flagged; ...;
+} gd_ltca_result;
+gd_status gd_ltca_compute(const gd_gear_pair_geometry *g, const gd_tvms_options *opt,
+                          gd_ltca_result **out, gd_error *err);
+void gd_ltca_free(gd_ltca_result *r);
+typedef struct {
+    int nloads; size_t points; double *torque, *ste_peak_to_peak, *ste_mean, *stiffness_mean;
+    double *face_load_factor_cycle; int *flagged; double *ste, *ste_unloaded; ...;
+} gd_ltca_map;
+gd_status gd_ltca_map_compute(const gd_gear_pair_geometry *g, const gd_tvms_options *opt,
+                              const double *torques, int nloads, gd_ltca_map **out,
+                              gd_error *err);
+void gd_ltca_map_free(gd_ltca_map *m);
 """
 
 

@@ -16,13 +16,15 @@ from .analyses import (ModalResult, CampbellResult, FrfResult, UnbalanceResult, 
 from .transient import TransientResult
 from .periodic import PeriodicResult
 from .static import StaticResult
-from .mesh_stiffness import mesh_stiffness, MeshStiffnessResult
+from .mesh_stiffness import (mesh_stiffness, MeshStiffnessResult, contact_analysis,
+                             ContactAnalysisResult, harris_map, HarrisMapResult)
 from .laws import Law
 
 __all__ = ["GeardynError", "ModelError", "SolverError", "Model", "System", "Matrices", "load",
            "loads", "build", "sweep", "mesh_stiffness", "ModalResult", "CampbellResult",
            "FrfResult", "UnbalanceResult", "TransientResult", "PeriodicResult", "StaticResult",
-           "MeshStiffnessResult", "Law",
+           "MeshStiffnessResult", "contact_analysis", "ContactAnalysisResult", "harris_map",
+           "HarrisMapResult", "Law",
            "version", "__version__"]
 
 

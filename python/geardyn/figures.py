@@ -145,6 +145,29 @@ def mesh_stiffness(r):
     return _layout(fig, "time-varying mesh stiffness" + (" of " + r.mesh if r.mesh else ""))
 
 
+def contact_analysis(r):
+    go, _ = _go()
+    deg = np.degrees(r.angle_rad)
+    fig = go.Figure()
+    fig.add_scatter(x=deg, y=np.asarray(r.ste) * 1e6, name="loaded TE")
+    fig.add_scatter(x=deg, y=np.asarray(r.ste_unloaded) * 1e6, name="no-load TE",
+                    line={"dash": "dot"})
+    fig.update_xaxes(title="driver angle (deg)")
+    fig.update_yaxes(title="transmission error along the contact normal (um)")
+    return _layout(fig, "loaded transmission error at %g N m" % r.torque
+                   + (" of " + r.mesh if r.mesh else ""))
+
+
+def harris_map(r):
+    go, _ = _go()
+    fig = go.Figure()
+    fig.add_scatter(x=r.torque, y=np.asarray(r.ste_peak_to_peak) * 1e6, mode="lines+markers",
+                    name="peak-to-peak TE")
+    fig.update_xaxes(title="driver torque (N m)")
+    fig.update_yaxes(title="peak-to-peak transmission error (um)")
+    return _layout(fig, "Harris map" + (" of " + r.mesh if r.mesh else ""))
+
+
 def transient(r):
     go, _ = _go()
     fig = go.Figure()
@@ -171,7 +194,7 @@ def summary(r):
     """One line on what a result holds (its class, sizes and the names it offers)."""
     sizes = []
     for k in ("nmodes", "ntracks", "nspeeds", "nfreq", "noutputs", "nrecords", "nout",
-              "npoints", "n"):
+              "npoints", "nloads", "n"):
         v = r.__dict__.get(k)
         if isinstance(v, int):
             sizes.append("%s=%d" % (k, v))

@@ -11,9 +11,11 @@
 #include "study/study_impl.h"
 
 const gd_study_runner *const gd_study_analysis_table[] = {
-    &gd_study_modal,     &gd_study_campbell,  &gd_study_frf,
-    &gd_study_unbalance, &gd_study_transient, &gd_study_mesh_stiffness,
-    &gd_study_periodic,  &gd_study_static,    NULL};
+    &gd_study_modal,     &gd_study_campbell,
+    &gd_study_frf,       &gd_study_unbalance,
+    &gd_study_transient, &gd_study_mesh_stiffness,
+    &gd_study_periodic,  &gd_study_static,
+    &gd_study_contact,   NULL};
 
 const char *gd_study_analysis_name(int i)
 {

@@ -65,7 +65,8 @@ extern const gd_study_runner *const gd_study_analysis_table[];
 const gd_study_runner *gd_study_find_analysis(const char *name);
 
 extern const gd_study_runner gd_study_modal, gd_study_campbell, gd_study_frf, gd_study_unbalance,
-    gd_study_transient, gd_study_mesh_stiffness, gd_study_periodic, gd_study_static;
+    gd_study_transient, gd_study_mesh_stiffness, gd_study_periodic, gd_study_static,
+    gd_study_contact;
 
 /* The largest |re[k] + i im[k]| of n values into *peak and its k (-1, NaN when all are
  * NaN). */
