@@ -15,9 +15,9 @@
  * shaft minus that of the bush node's (law->spin). Local DOFs [x, y] of the journal,
  * then [x, y] of the bush (absent: ground). */
 #include <math.h>
-#include <stdio.h>
 
 #include "geardyn/laws.h"
+#include "laws/laws_impl.h"
 
 enum { JB_MU, JB_D, JB_L, JB_C, JB_FILM, JB_EMAX, JB_NPARAMS };
 
@@ -45,27 +45,7 @@ static void jb_params_of(const gd_law *law, gd_sfd_params *p)
 
 static int jb_check(const gd_law *law, const char **field, char *msg, size_t cap)
 {
-    if (law->value[JB_FILM] != 0.0 && law->value[JB_FILM] != 1.0) {
-        *field = "film";
-        snprintf(msg, cap, "film is 0 (pi film) or 1 (2pi film), not %g", law->value[JB_FILM]);
-        return 1;
-    }
-    if (!(law->value[JB_EMAX] < 1.0)) {
-        *field = "max_eccentricity";
-        snprintf(msg, cap, "the eccentricity cap must be below 1 (got %g)", law->value[JB_EMAX]);
-        return 1;
-    }
-    return 0;
-}
-
-static void jb_term(const gd_law *law, int k, double *u, double *w)
-{
-    (void)law;
-    int r = k / 2, c = k % 2;
-    u[r] = 1.0;
-    u[2 + r] = -1.0;
-    w[c] = 1.0;
-    w[2 + c] = -1.0;
+    return gd_law_check_film(law->value[JB_FILM], law->value[JB_EMAX], field, msg, cap);
 }
 
 /* force on the journal and, if J, its Jacobians (row-major 2 x 2: jq, jv) */
@@ -115,38 +95,21 @@ static double jb_record(const gd_law *law, int k, const gd_law_point *x)
     return k == 0 ? fx : fy;
 }
 
-static void jb_linearize(const gd_law *law, const gd_law_point *x, double *K, double *C)
-{
-    double jq[4], jv[4], f[4] = {0};
-    jb_force(law, x, f, jq, jv);
-    for (int k = 0; k < 4; k++) {
-        double u[4] = {0}, w[4] = {0};
-        jb_term(law, k, u, w);
-        for (int i = 0; i < 4; i++)
-            for (int j = 0; j < 4; j++) {
-                K[i + 4 * j] -= jq[k] * u[i] * w[j];
-                C[i + 4 * j] -= jv[k] * u[i] * w[j];
-            }
-    }
-}
-
-static const int jb_dirs[] = {0, 1};
-
 const gd_law_type gd_law_journal_bearing = {
     .name = "journal_bearing",
     .summary = "plain journal bearing, short-bearing (Ocvirk) theory with film rupture",
     .flags = GD_LAW_SMOOTH,
     .params = jb_params,
     .nparams = JB_NPARAMS,
-    .dirs = jb_dirs,
+    .dirs = gd_law_xy_dirs,
     .ndirs = 2,
     .two_nodes = 1,
     .check = jb_check,
     .nterms = 4,
-    .term = jb_term,
+    .term = gd_law_xy_term,
     .force = jb_force,
     .records = jb_records,
     .nrecords = 3,
     .record = jb_record,
-    .linearize = jb_linearize,
+    .linearize = gd_law_linearize_terms,
 };

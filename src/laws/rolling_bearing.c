@@ -21,6 +21,7 @@
 #include <stdio.h>
 
 #include "geardyn/law_type.h"
+#include "laws/laws_impl.h"
 
 enum { RB_Z, RB_K, RB_N, RB_GAP, RB_D, RB_DB, RB_ALPHA, RB_C, RB_PHASE, RB_NPARAMS };
 
@@ -70,17 +71,6 @@ static double cage_speed(const gd_law *law)
 {
     double g = law->value[RB_DB] / law->value[RB_D] * cos(law->value[RB_ALPHA]);
     return 0.5 * (law->spin[0] * (1.0 - g) + law->spin[1] * (1.0 + g));
-}
-
-/* term 2 r + c: u = e_r(node) - e_r(node2), w = e_c(node) - e_c(node2) */
-static void rb_term(const gd_law *law, int k, double *u, double *w)
-{
-    (void)law;
-    int r = k / 2, c = k % 2;
-    u[r] = 1.0;
-    u[2 + r] = -1.0;
-    w[c] = 1.0;
-    w[2 + c] = -1.0;
 }
 
 /* Contact force on the inner race (fx, fy) at relative (x, y) and time t, its stiffness
@@ -159,23 +149,6 @@ static double rb_record(const gd_law *law, int k, const gd_law_point *x)
     return k == 2 ? (double)nl : qm;
 }
 
-static void rb_linearize(const gd_law *law, const gd_law_point *x, double *K, double *C)
-{
-    double jq[4], jv[4], f[4] = {0};
-    rb_force(law, x, f, jq, jv);
-    for (int k = 0; k < 4; k++) {
-        double u[4] = {0}, w[4] = {0};
-        rb_term(law, k, u, w);
-        for (int i = 0; i < 4; i++)
-            for (int j = 0; j < 4; j++) {
-                K[i + 4 * j] -= jq[k] * u[i] * w[j];
-                C[i + 4 * j] -= jv[k] * u[i] * w[j];
-            }
-    }
-}
-
-static const int rb_dirs[] = {0, 1};
-
 const gd_law_type gd_law_rolling_bearing = {
     .name = "rolling_bearing",
     .summary = "ball or roller bearing: Hertzian contacts with clearance, cage at its "
@@ -183,16 +156,16 @@ const gd_law_type gd_law_rolling_bearing = {
     .flags = GD_LAW_SMOOTH,
     .params = rb_params,
     .nparams = RB_NPARAMS,
-    .dirs = rb_dirs,
+    .dirs = gd_law_xy_dirs,
     .ndirs = 2,
     .two_nodes = 1,
     .check = rb_check,
     .nterms = 4,
-    .term = rb_term,
+    .term = gd_law_xy_term,
     .force = rb_force,
     .frequencies = rb_frequencies,
     .records = rb_records,
     .nrecords = 4,
     .record = rb_record,
-    .linearize = rb_linearize,
+    .linearize = gd_law_linearize_terms,
 };

@@ -154,9 +154,9 @@ void gd_sfd_force_jacobian(const gd_sfd_params *p, double x, double y, double vx
  * Local DOFs [x, y] of the journal node, then [x, y] of the housing node (absent:
  * ground). value[]: viscosity, diameter, length, clearance, film (0 pi, 1 2pi),
  * correction (0 auto, < 0 none, > 0 factor), max_eccentricity (0: 0.995). */
-#include <stdio.h>
 
 #include "geardyn/law_type.h"
+#include "laws/laws_impl.h"
 
 enum { SFD_MU, SFD_D, SFD_L, SFD_C, SFD_FILM, SFD_CORR, SFD_EMAX, SFD_NPARAMS };
 
@@ -198,28 +198,7 @@ void gd_sfd_law_values(const gd_sfd_params *p, gd_law *law)
 
 static int sfd_check(const gd_law *law, const char **field, char *msg, size_t cap)
 {
-    if (law->value[SFD_FILM] != 0.0 && law->value[SFD_FILM] != 1.0) {
-        *field = "film";
-        snprintf(msg, cap, "film is 0 (pi film) or 1 (2pi film), not %g", law->value[SFD_FILM]);
-        return 1;
-    }
-    if (!(law->value[SFD_EMAX] < 1.0)) {
-        *field = "max_eccentricity";
-        snprintf(msg, cap, "the eccentricity cap must be below 1 (got %g)", law->value[SFD_EMAX]);
-        return 1;
-    }
-    return 0;
-}
-
-/* term 2 r + c: u = e_r(node) - e_r(node2), w = e_c(node) - e_c(node2) */
-static void sfd_term(const gd_law *law, int k, double *u, double *w)
-{
-    (void)law;
-    int r = k / 2, c = k % 2;
-    u[r] = 1.0;
-    u[2 + r] = -1.0;
-    w[c] = 1.0;
-    w[2 + c] = -1.0;
+    return gd_law_check_film(law->value[SFD_FILM], law->value[SFD_EMAX], field, msg, cap);
 }
 
 static void sfd_relative(const gd_law_point *x, double rel[4])
@@ -265,38 +244,21 @@ static double sfd_record(const gd_law *law, int k, const gd_law_point *x)
     return k == 0 ? fx : fy;
 }
 
-static void sfd_linearize(const gd_law *law, const gd_law_point *x, double *K, double *C)
-{
-    double jq[4], jv[4], f[4] = {0};
-    sfd_force(law, x, f, jq, jv);
-    for (int k = 0; k < 4; k++) {
-        double u[4] = {0}, w[4] = {0};
-        sfd_term(law, k, u, w);
-        for (int i = 0; i < 4; i++)
-            for (int j = 0; j < 4; j++) {
-                K[i + 4 * j] -= jq[k] * u[i] * w[j];
-                C[i + 4 * j] -= jv[k] * u[i] * w[j];
-            }
-    }
-}
-
-static const int sfd_dirs[] = {0, 1};
-
 const gd_law_type gd_law_sfd = {
     .name = "sfd",
     .summary = "squeeze film damper, short-bearing theory with a finite-length correction",
     .flags = GD_LAW_SMOOTH,
     .params = sfd_params,
     .nparams = SFD_NPARAMS,
-    .dirs = sfd_dirs,
+    .dirs = gd_law_xy_dirs,
     .ndirs = 2,
     .two_nodes = 1,
     .check = sfd_check,
     .nterms = 4,
-    .term = sfd_term,
+    .term = gd_law_xy_term,
     .force = sfd_force,
     .records = sfd_records,
     .nrecords = 3,
     .record = sfd_record,
-    .linearize = sfd_linearize,
+    .linearize = gd_law_linearize_terms,
 };

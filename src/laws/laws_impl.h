@@ -1,0 +1,20 @@
+/* Pieces shared by the law files of src/laws (law_type.h): the x-y pair layout of the
+ * film and rolling-element bearings, and a linearisation read off any law's terms. */
+#ifndef GD_LAWS_IMPL_H
+#define GD_LAWS_IMPL_H
+#include <stddef.h>
+
+#include "geardyn/law_type.h"
+
+/* Directions x, y at each node: local DOFs [x, y] of node, then of node2. */
+extern const int gd_law_xy_dirs[2];
+/* Term 2 r + c of such a law: u = e_r(node) - e_r(node2), w = e_c(node) - e_c(node2). */
+void gd_law_xy_term(const gd_law *law, int k, double *u, double *w);
+/* K = -df/dq, C = -df/dq' from the law's force and its rank-one terms (ndofs x ndofs,
+ * column-major, added into). */
+void gd_law_linearize_terms(const gd_law *law, const gd_law_point *x, double *K, double *C);
+/* The film laws' checks: film 0 or 1, eccentricity cap below 1 (0 ok, else field, msg). */
+int gd_law_check_film(double film, double max_eccentricity, const char **field, char *msg,
+                      size_t cap);
+
+#endif
