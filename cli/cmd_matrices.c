@@ -42,8 +42,8 @@ typedef struct mx_set {
 static const char *const NAMES[4] = {"M", "K", "C", "G"};
 static const char *const WHAT[4] = {
     "M, mass", "K + K_b(W), stiffness with the speed-table bearings at W",
-    "C + C_b(W), damping with the speed-table bearings at W, without the gyroscopic term "
-    "(damping at W: C + W G)",
+    ("C + C_b(W), damping with the speed-table bearings at W, without the gyroscopic term "
+     "(damping at W: C + W G)"),
     "G, gyroscopic per unit reference speed (damping at W: C + W G)"};
 
 static int parse_args(int argc, char **argv, mx_args *a)

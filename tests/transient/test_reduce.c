@@ -18,8 +18,8 @@ typedef struct fixture {
     gd_system *s;
 } fixture;
 
-static const char *sets[] = {"unbalances=[{node: gear48, amount: 1e-5}, {node: gear32, amount: "
-                             "5e-6, phase: 90 deg}]",
+static const char *sets[] = {("unbalances=[{node: gear48, amount: 1e-5}, {node: gear32, amount: "
+                              "5e-6, phase: 90 deg}]"),
                              "bearings.*.c=0", "meshes.mesh.damping=0"};
 
 static int fx_load(fixture *f, int nset)
