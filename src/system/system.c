@@ -9,6 +9,7 @@
 #include "elements/elements_impl.h"
 #include "geardyn/system.h"
 #include "linalg/linalg_impl.h"
+#include "system/system_impl.h"
 
 typedef struct assembler {
     const gd_model *m;
@@ -191,7 +192,8 @@ gd_status gd_system_build(const gd_model *m, gd_system **out, gd_error *err)
     if (gd_trip_compress(&as.M, s->node_dof, n, &s->M) ||
         gd_trip_compress(&as.K, s->node_dof, n, &s->K) ||
         gd_trip_compress(&as.C, s->node_dof, n, &s->C) ||
-        gd_trip_compress(&as.G, s->node_dof, n, &s->G) || build_instances(s))
+        gd_trip_compress(&as.G, s->node_dof, n, &s->G) || build_instances(s) ||
+        gd_system_make_laws(s))
         goto nomem;
     for (int j = 0; j < n; j++) {
         int has = 0;
@@ -233,6 +235,7 @@ void gd_system_free(gd_system *s)
     free(s->massless);
     free(s->instances);
     free(s->instance_K);
+    free(s->laws);
     gd_csc_free(&s->M);
     gd_csc_free(&s->K);
     gd_csc_free(&s->C);
@@ -263,7 +266,7 @@ static void add_dense_local(const gd_system *s, const gd_element_instance *in, c
                 A[(size_t)in->dof[a] + (size_t)in->dof[b] * n] += local[a * in->nlocal + b];
 }
 
-void gd_system_dense(const gd_system *s, double speed, double *M, double *D, double *K)
+void gd_system_dense_linear(const gd_system *s, double speed, double *M, double *D, double *K)
 {
     size_t nn = (size_t)s->ndof * (size_t)s->ndof;
     if (M) {
@@ -288,6 +291,12 @@ void gd_system_dense(const gd_system *s, double speed, double *M, double *D, dou
         if (K) add_dense_local(s, in, Kl, K);
         if (D) add_dense_local(s, in, Cl, D);
     }
+}
+
+void gd_system_dense(const gd_system *s, double speed, double *M, double *D, double *K)
+{
+    gd_system_dense_linear(s, speed, M, D, K);
+    gd_system_add_laws_dense(s, speed, D, K);
 }
 
 gd_component_kind gd_system_component(const gd_system *s, int c, int *index, const char **name)
