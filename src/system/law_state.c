@@ -146,25 +146,44 @@ static double residual(const gd_system *s, double W, const double *K, const doub
     return sqrt(s2);
 }
 
-/* Solves J x = b in place (b <- x), J destroyed; LU, or the minimum-norm least-squares
- * solution when J is singular. 0 ok. */
+/* Solves J x = b in place (b <- x), J destroyed: LU when J is well conditioned
+ * (reciprocal condition number above 1e-13), else the minimum-norm least-squares
+ * solution with singular values below 1e-12 of the largest dropped (a free motion held
+ * only by roundoff moves nowhere). 0 ok. */
 static int solve(int n, double *J, double *b, double *Jc, lapack_int *piv)
 {
     memcpy(Jc, J, (size_t)n * n * sizeof *Jc);
-    double *bc = Jc + (size_t)n * n;
-    memcpy(bc, b, (size_t)n * sizeof *bc);
-    if (LAPACKE_dgesv(LAPACK_COL_MAJOR, n, 1, Jc, n, piv, bc, n) == 0) {
-        int ok = 1;
-        for (int i = 0; i < n; i++)
-            ok = ok && isfinite(bc[i]);
-        if (ok) {
-            memcpy(b, bc, (size_t)n * sizeof *b);
-            return 0;
-        }
-    }
-    double *sv = bc; /* n singular values */
+    double anorm = LAPACKE_dlange(LAPACK_COL_MAJOR, '1', n, n, Jc, n), rcond = 0.0;
+    if (LAPACKE_dgetrf(LAPACK_COL_MAJOR, n, n, Jc, n, piv) == 0 &&
+        LAPACKE_dgecon(LAPACK_COL_MAJOR, '1', n, Jc, n, anorm, &rcond) == 0 && rcond > 1e-13)
+        return LAPACKE_dgetrs(LAPACK_COL_MAJOR, 'N', n, 1, Jc, n, piv, b, n) != 0;
+    double *sv = Jc; /* n singular values */
     lapack_int rank;
     return LAPACKE_dgelsd(LAPACK_COL_MAJOR, n, n, 1, J, n, b, n, sv, 1e-12, &rank) != 0;
+}
+
+/* M_ii (0 for a massless DOF). */
+static double diag_mass(const gd_system *s, int i)
+{
+    for (int p = s->M.colptr[i]; p < s->M.colptr[i + 1]; p++)
+        if (s->M.rowind[p] == i) return s->M.values[p];
+    return 0.0;
+}
+
+/* Backtracking along dq from q: qt = q + a dq with the first a = 2^-k (k < halvings)
+ * whose residual is below (1 - 1e-4 a) res. Returns that residual, or res if none. */
+static double search(const gd_system *s, double W, const double *K, const double *f0,
+                     const double *q, const double *dq, double *qt, double *r, double res,
+                     int halvings)
+{
+    double a = 1.0;
+    for (int k = 0; k < halvings; k++, a *= 0.5) {
+        for (int i = 0; i < s->ndof; i++)
+            qt[i] = q[i] + a * dq[i];
+        double rt = residual(s, W, K, f0, qt, r, NULL);
+        if (rt < (1.0 - 1e-4 * a) * res) return rt;
+    }
+    return res;
 }
 
 int gd_system_law_state(const gd_system *s, double speed, double *q)
@@ -174,7 +193,7 @@ int gd_system_law_state(const gd_system *s, double speed, double *q)
     if (!s->nlaws) return 1;
     size_t nn = (size_t)n * n;
     double *f0 = malloc((size_t)n * 4 * sizeof *f0);
-    double *K = malloc(nn * 3 * sizeof *K + (size_t)n * sizeof *K);
+    double *K = malloc(nn * 3 * sizeof *K);
     lapack_int *piv = malloc((size_t)n * sizeof *piv);
     int found = 0;
     if (!f0 || !K || !piv) goto out;
@@ -195,15 +214,19 @@ int gd_system_law_state(const gd_system *s, double speed, double *q)
         }
         for (int i = 0; i < n; i++)
             dq[i] = -r[i];
-        if (solve(n, J, dq, Jc, piv)) break;
-        double a = 1.0, rt = res;
-        for (; a > 1e-8; a *= 0.5) {
+        int newton = !solve(n, J, dq, Jc, piv);
+        double rt = newton ? search(s, speed, K, f0, q, dq, qt, r, res, 30) : res;
+        if (!(rt < res)) {
+            /* no Newton descent: the laws are stiffless where they stand (a Hertzian
+             * contact at zero deflection, a journal bearing at rest). Step along the
+             * mass-scaled residual, which points the way the load pushes, from a step of
+             * the load's own acceleration over 1/s^2 down through 60 halvings. */
+            residual(s, speed, K, f0, q, r, NULL); /* r, overwritten by the search */
             for (int i = 0; i < n; i++)
-                qt[i] = q[i] + a * dq[i];
-            rt = residual(s, speed, K, f0, qt, r, NULL);
-            if (rt < (1.0 - 1e-4 * a) * res) break;
+                dq[i] = diag_mass(s, i) > 0 ? -r[i] / diag_mass(s, i) : 0.0;
+            rt = search(s, speed, K, f0, q, dq, qt, r, res, 60);
         }
-        if (!(a > 1e-8)) break; /* no descent: give up */
+        if (!(rt < res)) break; /* no descent either way: no equilibrium */
         memcpy(q, qt, (size_t)n * sizeof *q);
         res = residual(s, speed, K, f0, q, r, J);
     }
