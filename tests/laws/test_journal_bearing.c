@@ -103,6 +103,7 @@ TEST(linearised_coefficients_against_short_bearing)
     gd_law L;
     bearing(&L);
     const double c = 50e-6, w = 500.0;
+    double worst_k = 0, worst_c = 0;
     for (int k = 1; k <= 9; k++) {
         double e = 0.1 * k;
         /* held at eps along +x at zero velocity: the static state of the load -f */
@@ -135,6 +136,8 @@ TEST(linearised_coefficients_against_short_bearing)
         for (int m = 0; m < 4; m++) {
             CHECK_ABS(Kd[m], a[m], 1e-6 * amax);
             CHECK_ABS(Cd[m], b[m], 1e-6 * bmax);
+            worst_k = fmax(worst_k, fabs(Kd[m] - a[m]) / amax);
+            worst_c = fmax(worst_c, fabs(Cd[m] - b[m]) / bmax);
         }
         if (k == 5)
             printf("  eps 0.5: a = %.6f %.6f %.6f %.6f (closed form %.6f %.6f %.6f %.6f)\n"
@@ -144,6 +147,8 @@ TEST(linearised_coefficients_against_short_bearing)
         /* the journal's block enters the bush's with the opposite sign */
         CHECK(K[2 + 4 * 2] == K[0] && K[0 + 4 * 2] == -K[0]);
     }
+    printf("  eps 0.1..0.9: worst stiffness %.2g, damping %.2g of the largest coefficient\n",
+           worst_k, worst_c);
 }
 
 RUN_TESTS(T(ocvirk_static_forces_and_attitude), T(no_relative_spin_no_wedge),
