@@ -51,7 +51,7 @@ int gd_system_make_laws(gd_system *s)
             int node = side ? ml->node2 : ml->node;
             for (int k = 0; k < nd && node >= 0; k++) {
                 gd_dof d = t->ndirs ? (gd_dof)t->dirs[k] : ml->dof;
-                int dof = gd_system_dof(s, node, d);
+                int dof = s->node_dof[6 * node + d];
                 if (dof < 0) whole = 0; /* a direction the model does not keep */
                 L->dof[side * nd + k] = dof;
             }
@@ -92,7 +92,9 @@ void gd_system_mean_loads(const gd_system *sys, int loads, int gravity, double *
     if (loads)
         for (int k = 0; k < m->nexcitations; k++) {
             const gd_excitation *e = &m->excitations[k];
-            int i = gd_system_dof(sys, e->node, e->dof);
+            int i = e->node >= 0 && e->node < m->nnodes && (int)e->dof >= 0 && e->dof < GD_NODE_DOFS
+                        ? sys->node_dof[6 * e->node + e->dof]
+                        : -1;
             if (i >= 0) f[i] += gd_load_law_mean(&e->law);
         }
     const double *g = m->gravity;
@@ -280,4 +282,10 @@ void gd_system_add_laws_dense(const gd_system *s, double speed, double *D, doubl
         at += (size_t)nd * nd;
     }
     free(Kb);
+}
+
+void gd_system_dense(const gd_system *s, double speed, double *M, double *D, double *K)
+{
+    gd_system_dense_linear(s, speed, M, D, K);
+    gd_system_add_laws_dense(s, speed, D, K);
 }

@@ -35,6 +35,10 @@ void gd_dynmat_at(const gd_dynmat *a, double speed, double *k, double *d);
 int gd_dynmat_factor_at(const gd_dynmat *a, const gd_splu_symbolic *s, const double *k,
                         const double *d, double w, double *z, gd_splu *lu);
 
+/* ---- dense.c ---- */
+/* gd_system_dense without the laws: M, C + C_b(W) + W G, K + K_b(W). */
+void gd_system_dense_linear(const gd_system *sys, double speed, double *M, double *D, double *K);
+
 /* ---- law_state.c: the laws of the registry in the linear analyses ---- */
 /* sys->laws from the model's laws with a linearisation (rates and spins per unit
  * reference speed); a law on a direction the model does not keep is left out. 0 ok, 1
@@ -43,8 +47,6 @@ int gd_system_make_laws(gd_system *sys);
 /* f (ndof, zeroed here): the model's excitation loads at their mean (if loads) and
  * gravity on the masses (if gravity): the static analysis's mean load. */
 void gd_system_mean_loads(const gd_system *sys, int loads, int gravity, double *f);
-/* gd_system_dense without the laws: M, C + C_b(W) + W G, K + K_b(W). */
-void gd_system_dense_linear(const gd_system *sys, double speed, double *M, double *D, double *K);
 /* The laws' K and C about the static state at W, law after law, each a column-major
  * ndofs x ndofs block (sys->law_block doubles each). */
 void gd_system_law_blocks(const gd_system *sys, double speed, double *Kb, double *Cb);
