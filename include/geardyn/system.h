@@ -43,7 +43,7 @@ typedef struct gd_system {
     int nmassless;
     gd_csc M, K, C, G;
     int has_speed_dependent; /* a bearing has a speed table */
-    int has_damping;         /* C or a bearing table has damping terms */
+    int has_damping;         /* C, a bearing table or a law may have damping terms */
     int has_gyroscopic;      /* G is not zero */
     int ncomponents;         /* nshafts + nbearings + nsprings + nmeshes */
     int ninstances;          /* every element of every kind, in registry order */

@@ -205,7 +205,7 @@ gd_status gd_system_build(const gd_model *m, gd_system **out, gd_error *err)
         }
     }
     s->has_gyroscopic = s->G.colptr[n] > 0;
-    s->has_damping = s->C.colptr[n] > 0 || has_speed_damping(s);
+    s->has_damping = s->C.colptr[n] > 0 || has_speed_damping(s) || s->nlaws > 0;
     gd_trip_free(&as.M);
     gd_trip_free(&as.K);
     gd_trip_free(&as.C);

@@ -127,6 +127,14 @@ TEST(oil_whirl_onset_against_stability_curve)
            m->whirl == GD_WHIRL_FORWARD ? "forward" : "not forward");
     CHECK_REL(ratio, sqrt(g2), 1e-4);
     CHECK(m->whirl == GD_WHIRL_FORWARD);
+    /* the sparse eigensolver sees the laws through the same dynamic matrix */
+    gd_campbell_result *rs = NULL;
+    o.method = GD_EIG_SPARSE;
+    o.nmodes = 2;
+    REQUIRE(gd_campbell(f.s, &o, &rs, &err) == GD_OK);
+    CHECK(rs->sparse);
+    CHECK_REL(rs->instability_onset, w, 1e-6);
+    gd_campbell_free(rs);
     gd_campbell_free(r);
     free(sp);
     fx_free(&f);
