@@ -43,12 +43,17 @@ typedef struct gd_system {
     int nmassless;
     gd_csc M, K, C, G;
     int has_speed_dependent; /* a bearing has a speed table */
-    int has_damping;         /* C or a bearing table has damping terms */
+    int has_damping;         /* C, a bearing table or a law may have damping terms */
     int has_gyroscopic;      /* G is not zero */
     int ncomponents;         /* nshafts + nbearings + nsprings + nmeshes */
     int ninstances;          /* every element of every kind, in registry order */
     gd_element_instance *instances;
     double *instance_K; /* storage of the instances' K */
+    /* laws of the registry with a linearisation (the model's `laws:`): their DOFs, with
+       rates and spins per unit reference speed (src/system/law_state.c) */
+    int nlaws;
+    gd_law *laws;
+    int law_block; /* sum of the laws' ndofs^2 */
 } gd_system;
 
 GD_API gd_status gd_system_build(const gd_model *model, gd_system **out, gd_error *err);
@@ -60,15 +65,28 @@ GD_API int gd_system_dof(const gd_system *sys, int node, gd_dof dof);
 GD_API void gd_system_dof_label(const gd_system *sys, int i, char *buf, int size);
 
 /* Dense column-major n x n matrices at reference speed W: M, the total damping
- * D = C + C_b(W) + W G, and K + K_b(W). Any pointer may be NULL. */
+ * D = C + C_b(W) + W G + C_L(W), and K + K_b(W) + K_L(W), where K_L and C_L are the
+ * linearisations (K = -df/dq, C = -df/dq') of the model's laws (docs/laws.md) about
+ * the static state at W (gd_system_law_state): a journal bearing's eight speed-dependent
+ * coefficients, a rolling bearing's stiffness under its static load. Any pointer may be
+ * NULL. */
 GD_API void gd_system_dense(const gd_system *sys, double speed, double *M, double *D, double *K);
+
+/* The static state about which the laws are linearised at reference speed W: q (ndof)
+ * solves K(W) q = f0 + sum f_law(q) with the laws' velocities zero at t = 0, f0 the
+ * static analysis's mean load (excitation loads at their mean and gravity). Returns 1
+ * when found (also with no laws or no load: q = 0), 0 when no equilibrium was found (a
+ * journal bearing at rest carries no load): q is then 0, the state the laws are
+ * linearised about. */
+GD_API int gd_system_law_state(const gd_system *sys, double speed, double *q);
 
 /* The system's matrices at reference speed W, each on its own sparse pattern: M; K with
  * the speed-table bearings at W (K + K_b(W)); C with them (C + C_b(W)), without the
  * gyroscopic term; and G per unit reference speed, so the damping at W is C + W G (what
- * gd_system_dense returns as D). Rows and columns are the active DOFs (dof_node,
- * dof_type); exact zeros are left out and rows are sorted within each column. Each
- * output is filled and owned by the caller, who frees it with gd_csc_free; any output
+ * gd_system_dense returns as D without the laws: these are the linear system the time
+ * integrators add the laws' nonlinear forces to, so the laws are not in them). Rows and columns are
+ * the active DOFs (dof_node, dof_type); exact zeros are left out and rows are sorted within each
+ * column. Each output is filled and owned by the caller, who frees it with gd_csc_free; any output
  * may be NULL. speed must be finite (GD_EINPUT otherwise). On failure the outputs are
  * left empty (zeroed). */
 GD_API gd_status gd_system_matrices(const gd_system *sys, double speed, gd_csc *M, gd_csc *K,

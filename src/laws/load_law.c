@@ -4,6 +4,26 @@
 
 #include "geardyn/laws.h"
 
+/* Average of a periodic table over its period, by the midpoint rule on 4096 points. */
+static double table_mean(const gd_table *t)
+{
+    if (!t || t->n < 1) return 0;
+    double x0 = t->x[0], per = t->period > 0 ? t->period : t->x[t->n - 1] - t->x[0];
+    if (!(per > 0)) return t->y[0];
+    const int n = 4096;
+    double s = 0;
+    for (int i = 0; i < n; i++)
+        s += gd_table_eval(t, x0 + per * (i + 0.5) / n, NULL, NULL);
+    return s / n;
+}
+
+double gd_load_law_mean(const gd_load_law *law)
+{
+    double v = law->mean;
+    if (law->kind == GD_LOAD_TABLE_ANGLE) v += table_mean(law->table);
+    return v;
+}
+
 double gd_load_eval_grad(const gd_load_law *law, double t, double angle, double *dangle)
 {
     double d = 0.0, v;

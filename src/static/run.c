@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "static/static_impl.h"
+#include "system/system_impl.h"
 
 void gd_static_options_init(gd_static_options *opt)
 {
@@ -140,7 +141,8 @@ gd_status gd_static_run(const gd_system *sys, const gd_static_options *opt, gd_s
         goto out;
     }
     res->speed = opt->speed >= 0 ? opt->speed : m->speed;
-    gd_system_dense(sys, res->speed, NULL, NULL, K);
+    /* the linear stiffness: the laws of the registry are not linearised here */
+    gd_system_dense_linear(sys, res->speed, NULL, NULL, K);
     if ((st = gd_st_loads(sys, opt, res->f, err)) || (st = gd_st_holds(sys, K, opt, held, err)) ||
         (st = solve(sys, K, res->f, held, res->q, err)))
         goto out;

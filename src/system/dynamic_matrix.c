@@ -64,6 +64,13 @@ gd_status gd_dynmat_build(const gd_system *sys, gd_dynmat *a, gd_error *err)
                     gd_trip_add(&t, in->dof[i], in->dof[j], 1.0))
                     goto nomem;
     }
+    for (int l = 0; l < sys->nlaws; l++) {
+        const gd_law *L = &sys->laws[l];
+        for (int i = 0; i < L->ndofs; i++)
+            for (int j = 0; j < L->ndofs; j++)
+                if (L->dof[i] >= 0 && L->dof[j] >= 0 && gd_trip_add(&t, L->dof[i], L->dof[j], 1.0))
+                    goto nomem;
+    }
     if (gd_trip_compress(&t, map, n, &u)) goto nomem;
     gd_trip_free(&t);
     free(map);
@@ -82,7 +89,8 @@ gd_status gd_dynmat_build(const gd_system *sys, gd_dynmat *a, gd_error *err)
     a->k = malloc(z * sizeof(double));
     a->tab = calloc((size_t)(a->ntab > 0 ? a->ntab : 1), sizeof *a->tab);
     a->pat.diag = malloc((size_t)(n > 0 ? n : 1) * sizeof *a->pat.diag);
-    if (!a->m || !a->c || !a->g || !a->k || !a->tab || !a->pat.diag) goto nomem;
+    a->law_pos = malloc((size_t)(sys->law_block > 0 ? sys->law_block : 1) * sizeof *a->law_pos);
+    if (!a->m || !a->c || !a->g || !a->k || !a->tab || !a->pat.diag || !a->law_pos) goto nomem;
     for (int j = 0; j < n; j++)
         a->pat.diag[j] = gd_pattern_find(&a->pat, j, j);
     scatter_values(a, &sys->M, a->m);
@@ -101,6 +109,15 @@ gd_status gd_dynmat_build(const gd_system *sys, gd_dynmat *a, gd_error *err)
                 dt->pos[i * nl + j] = in->dof[i] >= 0 && in->dof[j] >= 0
                                           ? gd_pattern_find(&a->pat, in->dof[i], in->dof[j])
                                           : -1;
+    }
+    /* the laws' blocks, column-major as gd_system_law_blocks gives them */
+    for (int l = 0, at = 0; l < sys->nlaws; l++) {
+        const gd_law *L = &sys->laws[l];
+        for (int j = 0; j < L->ndofs; j++)
+            for (int i = 0; i < L->ndofs; i++, at++)
+                a->law_pos[at] = L->dof[i] >= 0 && L->dof[j] >= 0
+                                     ? gd_pattern_find(&a->pat, L->dof[i], L->dof[j])
+                                     : -1;
     }
     a->sys = sys;
     return GD_OK;
@@ -122,6 +139,7 @@ void gd_dynmat_free(gd_dynmat *a)
     free(a->k);
     free(a->tab);
     free(a->pat.diag);
+    free(a->law_pos);
     memset(a, 0, sizeof *a);
 }
 
@@ -150,6 +168,19 @@ void gd_dynmat_at(const gd_dynmat *a, double speed, double *k, double *d)
         for (size_t i = 0; i < z; i++)
             d[i] = a->c[i] + speed * a->g[i];
     gd_dynmat_add_speed_terms(a, speed, k, d);
+    const gd_system *sys = a->sys;
+    if (!sys->nlaws || (!k && !d)) return;
+    double *Kb = malloc((size_t)sys->law_block * 2 * sizeof *Kb);
+    if (!Kb) return;
+    double *Cb = Kb + sys->law_block;
+    gd_system_law_blocks(sys, speed, Kb, Cb);
+    for (int p = 0; p < sys->law_block; p++) {
+        int at = a->law_pos[p];
+        if (at < 0) continue;
+        if (k) k[at] += Kb[p];
+        if (d) d[at] += Cb[p];
+    }
+    free(Kb);
 }
 
 int gd_dynmat_factor_at(const gd_dynmat *a, const gd_splu_symbolic *s, const double *k,

@@ -9,6 +9,7 @@
 #include "elements/elements_impl.h"
 #include "geardyn/system.h"
 #include "linalg/linalg_impl.h"
+#include "system/system_impl.h"
 
 typedef struct assembler {
     const gd_model *m;
@@ -191,7 +192,8 @@ gd_status gd_system_build(const gd_model *m, gd_system **out, gd_error *err)
     if (gd_trip_compress(&as.M, s->node_dof, n, &s->M) ||
         gd_trip_compress(&as.K, s->node_dof, n, &s->K) ||
         gd_trip_compress(&as.C, s->node_dof, n, &s->C) ||
-        gd_trip_compress(&as.G, s->node_dof, n, &s->G) || build_instances(s))
+        gd_trip_compress(&as.G, s->node_dof, n, &s->G) || build_instances(s) ||
+        gd_system_make_laws(s))
         goto nomem;
     for (int j = 0; j < n; j++) {
         int has = 0;
@@ -203,7 +205,7 @@ gd_status gd_system_build(const gd_model *m, gd_system **out, gd_error *err)
         }
     }
     s->has_gyroscopic = s->G.colptr[n] > 0;
-    s->has_damping = s->C.colptr[n] > 0 || has_speed_damping(s);
+    s->has_damping = s->C.colptr[n] > 0 || has_speed_damping(s) || s->nlaws > 0;
     gd_trip_free(&as.M);
     gd_trip_free(&as.K);
     gd_trip_free(&as.C);
@@ -233,6 +235,7 @@ void gd_system_free(gd_system *s)
     free(s->massless);
     free(s->instances);
     free(s->instance_K);
+    free(s->laws);
     gd_csc_free(&s->M);
     gd_csc_free(&s->K);
     gd_csc_free(&s->C);
@@ -250,44 +253,6 @@ void gd_system_dof_label(const gd_system *s, int i, char *buf, int size)
 {
     snprintf(buf, (size_t)size, "%s.%s", s->model->nodes[s->dof_node[i]].name,
              gd_dof_names[s->dof_type[i]]);
-}
-
-/* A += local (n x n) at the instance's active DOFs (A dense column-major ndof^2). */
-static void add_dense_local(const gd_system *s, const gd_element_instance *in, const double *local,
-                            double *A)
-{
-    size_t n = (size_t)s->ndof;
-    for (int a = 0; a < in->nlocal; a++)
-        for (int b = 0; b < in->nlocal; b++)
-            if (in->dof[a] >= 0 && in->dof[b] >= 0)
-                A[(size_t)in->dof[a] + (size_t)in->dof[b] * n] += local[a * in->nlocal + b];
-}
-
-void gd_system_dense(const gd_system *s, double speed, double *M, double *D, double *K)
-{
-    size_t nn = (size_t)s->ndof * (size_t)s->ndof;
-    if (M) {
-        memset(M, 0, nn * sizeof *M);
-        gd_csc_add_dense(&s->M, 1.0, M);
-    }
-    if (D) {
-        memset(D, 0, nn * sizeof *D);
-        gd_csc_add_dense(&s->C, 1.0, D);
-        gd_csc_add_dense(&s->G, speed, D);
-    }
-    if (K) {
-        memset(K, 0, nn * sizeof *K);
-        gd_csc_add_dense(&s->K, 1.0, K);
-    }
-    if (!s->has_speed_dependent) return;
-    for (int e = 0; e < s->ninstances; e++) {
-        const gd_element_instance *in = &s->instances[e];
-        if (!(in->terms & GD_TERM_SPEED)) continue;
-        double Kl[144], Cl[144];
-        in->type->matrices(s->model, in->index, speed, NULL, Kl, Cl, NULL);
-        if (K) add_dense_local(s, in, Kl, K);
-        if (D) add_dense_local(s, in, Cl, D);
-    }
 }
 
 gd_component_kind gd_system_component(const gd_system *s, int c, int *index, const char **name)

@@ -17,6 +17,7 @@ typedef struct gd_dynmat {
     double *m, *c, *g, *k;
     int ntab;
     gd_dyn_term *tab;
+    int *law_pos; /* sys->law_block: pattern position of each law block entry, or -1 */
     const gd_system *sys;
 } gd_dynmat;
 
@@ -25,13 +26,32 @@ void gd_dynmat_free(gd_dynmat *a);
 /* k += K_b(W), c += C_b(W): the speed-dependent terms on the pattern (either may be
  * NULL). */
 void gd_dynmat_add_speed_terms(const gd_dynmat *a, double speed, double *k, double *c);
-/* k = K + K_b(W), d = C + C_b(W) + W G on the pattern (nnz each). */
+/* k = K + K_b(W) + K_laws(W), d = C + C_b(W) + W G + C_laws(W) on the pattern (nnz
+ * each): the laws linearised about the static state at W (law_state.c). */
 void gd_dynmat_at(const gd_dynmat *a, double speed, double *k, double *d);
 
 /* Factors the complex dynamic stiffness Z(w) = K - w^2 M + i w D (k, d from
  * gd_dynmat_at; z: 2 nnz scratch). Returns as gd_splu_factor. */
 int gd_dynmat_factor_at(const gd_dynmat *a, const gd_splu_symbolic *s, const double *k,
                         const double *d, double w, double *z, gd_splu *lu);
+
+/* ---- dense.c ---- */
+/* gd_system_dense without the laws: M, C + C_b(W) + W G, K + K_b(W). */
+void gd_system_dense_linear(const gd_system *sys, double speed, double *M, double *D, double *K);
+
+/* ---- law_state.c: the laws of the registry in the linear analyses ---- */
+/* sys->laws from the model's laws with a linearisation (rates and spins per unit
+ * reference speed); a law on a direction the model does not keep is left out. 0 ok, 1
+ * out of memory. */
+int gd_system_make_laws(gd_system *sys);
+/* f (ndof, zeroed here): the model's excitation loads at their mean (if loads) and
+ * gravity on the masses (if gravity): the static analysis's mean load. */
+void gd_system_mean_loads(const gd_system *sys, int loads, int gravity, double *f);
+/* The laws' K and C about the static state at W, law after law, each a column-major
+ * ndofs x ndofs block (sys->law_block doubles each). */
+void gd_system_law_blocks(const gd_system *sys, double speed, double *Kb, double *Cb);
+/* D += the laws' C, K += their K (dense ndof^2, either may be NULL). */
+void gd_system_add_laws_dense(const gd_system *sys, double speed, double *D, double *K);
 
 /* ---- condense.c ---- */
 /* Static condensation of massless DOFs: master = DOFs with mass, slave = without. */

@@ -75,4 +75,26 @@ TEST(law_errors_exit_2)
     scratch_close(&s);
 }
 
-RUN_TESTS(T(check_lists_the_laws), T(law_records_in_transient_and_periodic), T(law_errors_exit_2))
+/* The linear analyses linearise the laws (docs/laws.md, "Laws in the linear analyses"):
+ * the Duffing oscillator's damper (0.05 N s/m on 1 kg, 1 N/m) gives zeta = 0.025 in
+ * modal, and campbell finds the oil whirl of the journal rotor at the short-bearing
+ * stability curve's 1134.895 rad/s (tests/campbell/test_campbell_journal.c). */
+TEST(laws_in_modal_and_campbell)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    cJSON *o = run_json_args(&s, "modal " DUFFING);
+    REQUIRE(o);
+    const cJSON *m = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(o, "modes"), 0);
+    CHECK_REL(jnum(m, "damping_ratio"), 0.025, 1e-12);
+    CHECK_REL(jnum(m, "omega_n_rad_s"), 1.0, 1e-12);
+    cJSON_Delete(o);
+    o = run_json_args(&s, "campbell examples/journal_rotor.yaml --speeds 1000:1300:61");
+    REQUIRE(o);
+    CHECK_REL(jnum(o, "instability_onset_rpm"), 1134.895 * 30 / M_PI, 1e-3);
+    cJSON_Delete(o);
+    scratch_close(&s);
+}
+
+RUN_TESTS(T(check_lists_the_laws), T(law_records_in_transient_and_periodic), T(law_errors_exit_2),
+          T(laws_in_modal_and_campbell))

@@ -1,0 +1,291 @@
+/* The laws of the registry (geardyn/law_type.h) in the linear analyses: each law with a
+ * `linearize` op adds its stiffness K = -df/dq and damping C = -df/dq' about the static
+ * equilibrium at the reference speed W to the system's K and D (gd_system_dense and the
+ * sparse dynamic matrix, so modal, campbell, frf and unbalance see them without knowing
+ * one law from another).
+ *
+ * The static equilibrium at W solves K(W) q = f0 + sum f_law(q) (velocities zero,
+ * t = 0) by Newton's method with a backtracking line search, the Jacobian
+ * K(W) + sum K_law(q) from the laws' own linearisation, from q = 0. f0 is the mean
+ * load of the static analysis (docs/static.md): the excitation loads at their mean and
+ * gravity on the masses. A journal bearing's equilibrium thus follows its Sommerfeld
+ * number over speed (eccentricity and attitude angle, Childs, Turbomachinery
+ * Rotordynamics, 1993, ch. 3). Where no equilibrium exists (a journal bearing at rest
+ * carries no load) or the iteration does not converge, the laws are linearised about
+ * q = 0 and gd_system_law_state says so.
+ *
+ * Singular Jacobians (a free torsion of a gear train, a rotor held by the laws alone at
+ * a state where they carry nothing) are solved in the least-squares, minimum-norm sense
+ * (LAPACK dgelsd): free rigid-body motions that no load drives stay at zero. */
+#include <lapacke.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "system/system_impl.h"
+
+/* Nominal speed of a DOF's shaft per unit reference speed (a torsional DOF's rate). */
+static double shaft_ratio(const gd_system *s, int dof)
+{
+    const gd_model *m = s->model;
+    return m->shafts[m->nodes[s->dof_node[dof]].shaft].speed_ratio;
+}
+
+int gd_system_make_laws(gd_system *s)
+{
+    const gd_model *m = s->model;
+    s->nlaws = 0;
+    s->law_block = 0;
+    if (!m->nlaws) return 0;
+    s->laws = calloc((size_t)m->nlaws, sizeof *s->laws);
+    if (!s->laws) return 1;
+    for (int i = 0; i < m->nlaws; i++) {
+        const gd_model_law *ml = &m->laws[i];
+        const gd_law_type *t = ml->type;
+        if (!t->linearize) continue;
+        gd_law *L = &s->laws[s->nlaws];
+        gd_law_init(L, t, ml->name);
+        memcpy(L->value, ml->value, sizeof L->value);
+        int nd = t->ndirs ? t->ndirs : 1, whole = 1;
+        for (int side = 0; side < (t->two_nodes ? 2 : 1); side++) {
+            int node = side ? ml->node2 : ml->node;
+            for (int k = 0; k < nd && node >= 0; k++) {
+                gd_dof d = t->ndirs ? (gd_dof)t->dirs[k] : ml->dof;
+                int dof = s->node_dof[6 * node + d];
+                if (dof < 0) whole = 0; /* a direction the model does not keep */
+                L->dof[side * nd + k] = dof;
+            }
+            int d0 = L->dof[side * nd];
+            L->spin[side] = d0 >= 0 ? shaft_ratio(s, d0) : 0.0; /* per unit speed */
+        }
+        if (!whole) continue; /* left out, as the model's DOFs leave it out */
+        for (int j = 0; j < L->ndofs; j++)
+            L->rate[j] =
+                L->dof[j] >= 0 && s->dof_type[L->dof[j]] == GD_RZ ? shaft_ratio(s, L->dof[j]) : 0.0;
+        s->law_block += L->ndofs * L->ndofs;
+        s->nlaws++;
+    }
+    return 0;
+}
+
+/* Instance i at reference speed W: rates and spins scaled. */
+static void law_at(const gd_system *s, int i, double W, gd_law *L)
+{
+    *L = s->laws[i];
+    for (int j = 0; j < L->ndofs; j++)
+        L->rate[j] *= W;
+    L->spin[0] *= W;
+    L->spin[1] *= W;
+}
+
+static void local_q(const gd_law *L, const double *q, double *ql)
+{
+    for (int j = 0; j < L->ndofs; j++)
+        ql[j] = L->dof[j] >= 0 ? q[L->dof[j]] : 0.0;
+}
+
+void gd_system_mean_loads(const gd_system *sys, int loads, int gravity, double *f)
+{
+    const gd_model *m = sys->model;
+    const int n = sys->ndof;
+    memset(f, 0, (size_t)n * sizeof *f);
+    if (loads)
+        for (int k = 0; k < m->nexcitations; k++) {
+            const gd_excitation *e = &m->excitations[k];
+            int i = e->node >= 0 && e->node < m->nnodes && (int)e->dof >= 0 && e->dof < GD_NODE_DOFS
+                        ? sys->node_dof[6 * e->node + e->dof]
+                        : -1;
+            if (i >= 0) f[i] += gd_load_law_mean(&e->law);
+        }
+    const double *g = m->gravity;
+    if (gravity && (g[0] != 0 || g[1] != 0 || g[2] != 0)) {
+        /* f += M t, column by column over the translation DOFs */
+        for (int j = 0; j < n; j++) {
+            gd_dof d = sys->dof_type[j];
+            if (d > GD_Z || g[d] == 0) continue;
+            for (int p = sys->M.colptr[j]; p < sys->M.colptr[j + 1]; p++)
+                f[sys->M.rowind[p]] += sys->M.values[p] * g[d];
+        }
+    }
+}
+
+/* r = K q - f0 - sum f_law(q); J (may be NULL) = K + sum K_law(q). Returns |r|_2. */
+static double residual(const gd_system *s, double W, const double *K, const double *f0,
+                       const double *q, double *r, double *J)
+{
+    const int n = s->ndof;
+    for (int i = 0; i < n; i++)
+        r[i] = -f0[i];
+    for (int j = 0; j < n; j++) {
+        double qj = q[j];
+        if (qj == 0.0) continue;
+        const double *col = K + (size_t)j * n;
+        for (int i = 0; i < n; i++)
+            r[i] += col[i] * qj;
+    }
+    if (J) memcpy(J, K, (size_t)n * n * sizeof *J);
+    for (int i = 0; i < s->nlaws; i++) {
+        gd_law L;
+        law_at(s, i, W, &L);
+        double ql[GD_LAW_MAX_DOFS], v[GD_LAW_MAX_DOFS] = {0}, f[GD_LAW_MAX_DOFS] = {0};
+        local_q(&L, q, ql);
+        gd_law_point x = {0.0, ql, v};
+        L.type->force(&L, &x, f, NULL, NULL);
+        for (int a = 0; a < L.ndofs; a++)
+            if (L.dof[a] >= 0) r[L.dof[a]] -= f[a];
+        if (!J) continue;
+        double Kl[GD_LAW_MAX_DOFS * GD_LAW_MAX_DOFS] = {0}, Cl[GD_LAW_MAX_DOFS * GD_LAW_MAX_DOFS];
+        memset(Cl, 0, sizeof Cl);
+        L.type->linearize(&L, &x, Kl, Cl);
+        for (int b = 0; b < L.ndofs; b++)
+            for (int a = 0; a < L.ndofs; a++)
+                if (L.dof[a] >= 0 && L.dof[b] >= 0)
+                    J[L.dof[a] + (size_t)L.dof[b] * n] += Kl[a + L.ndofs * b];
+    }
+    double s2 = 0;
+    for (int i = 0; i < n; i++)
+        s2 += r[i] * r[i];
+    return sqrt(s2);
+}
+
+/* Solves J x = b in place (b <- x), J destroyed: LU when J is well conditioned
+ * (reciprocal condition number above 1e-13), else the minimum-norm least-squares
+ * solution with singular values below 1e-12 of the largest dropped (a free motion held
+ * only by roundoff moves nowhere). 0 ok. */
+static int solve(int n, double *J, double *b, double *Jc, lapack_int *piv)
+{
+    memcpy(Jc, J, (size_t)n * n * sizeof *Jc);
+    double anorm = LAPACKE_dlange(LAPACK_COL_MAJOR, '1', n, n, Jc, n), rcond = 0.0;
+    if (LAPACKE_dgetrf(LAPACK_COL_MAJOR, n, n, Jc, n, piv) == 0 &&
+        LAPACKE_dgecon(LAPACK_COL_MAJOR, '1', n, Jc, n, anorm, &rcond) == 0 && rcond > 1e-13)
+        return LAPACKE_dgetrs(LAPACK_COL_MAJOR, 'N', n, 1, Jc, n, piv, b, n) != 0;
+    double *sv = Jc; /* n singular values */
+    lapack_int rank;
+    return LAPACKE_dgelsd(LAPACK_COL_MAJOR, n, n, 1, J, n, b, n, sv, 1e-12, &rank) != 0;
+}
+
+/* M_ii (0 for a massless DOF). */
+static double diag_mass(const gd_system *s, int i)
+{
+    for (int p = s->M.colptr[i]; p < s->M.colptr[i + 1]; p++)
+        if (s->M.rowind[p] == i) return s->M.values[p];
+    return 0.0;
+}
+
+/* Backtracking along dq from q: qt = q + a dq with the first a = 2^-k (k < halvings)
+ * whose residual is below (1 - 1e-4 a) res. Returns that residual, or res if none. */
+static double search(const gd_system *s, double W, const double *K, const double *f0,
+                     const double *q, const double *dq, double *qt, double *r, double res,
+                     int halvings)
+{
+    double a = 1.0;
+    for (int k = 0; k < halvings; k++, a *= 0.5) {
+        for (int i = 0; i < s->ndof; i++)
+            qt[i] = q[i] + a * dq[i];
+        double rt = residual(s, W, K, f0, qt, r, NULL);
+        if (rt < (1.0 - 1e-4 * a) * res) return rt;
+    }
+    return res;
+}
+
+int gd_system_law_state(const gd_system *s, double speed, double *q)
+{
+    const int n = s->ndof;
+    memset(q, 0, (size_t)n * sizeof *q);
+    if (!s->nlaws) return 1;
+    size_t nn = (size_t)n * n;
+    double *f0 = malloc((size_t)n * 4 * sizeof *f0);
+    double *K = malloc(nn * 3 * sizeof *K);
+    lapack_int *piv = malloc((size_t)n * sizeof *piv);
+    int found = 0;
+    if (!f0 || !K || !piv) goto out;
+    double *r = f0 + n, *dq = r + n, *qt = dq + n, *J = K + nn, *Jc = J + nn;
+    gd_system_mean_loads(s, 1, 1, f0);
+    double fnorm = 0;
+    for (int i = 0; i < n; i++)
+        fnorm += f0[i] * f0[i];
+    fnorm = sqrt(fnorm);
+    gd_system_dense_linear(s, speed, NULL, NULL, K);
+    double res = residual(s, speed, K, f0, q, r, J);
+    /* converged: the residual a few ulps of the load (or of the linear forces at 0 load) */
+    double tol = 1e-10 * (fnorm > 0 ? fnorm : 1.0);
+    for (int it = 0; it < 100 && !found; it++) {
+        if (res <= tol) {
+            found = 1;
+            break;
+        }
+        for (int i = 0; i < n; i++)
+            dq[i] = -r[i];
+        int newton = !solve(n, J, dq, Jc, piv);
+        double rt = newton ? search(s, speed, K, f0, q, dq, qt, r, res, 30) : res;
+        if (!(rt < res)) {
+            /* no Newton descent: the laws are stiffless where they stand (a Hertzian
+             * contact at zero deflection, a journal bearing at rest). Step along the
+             * mass-scaled residual, which points the way the load pushes, from a step of
+             * the load's own acceleration over 1/s^2 down through 60 halvings. */
+            residual(s, speed, K, f0, q, r, NULL); /* r, overwritten by the search */
+            for (int i = 0; i < n; i++)
+                dq[i] = diag_mass(s, i) > 0 ? -r[i] / diag_mass(s, i) : 0.0;
+            rt = search(s, speed, K, f0, q, dq, qt, r, res, 60);
+        }
+        if (!(rt < res)) break; /* no descent either way: no equilibrium */
+        memcpy(q, qt, (size_t)n * sizeof *q);
+        res = residual(s, speed, K, f0, q, r, J);
+    }
+out:
+    if (!found) memset(q, 0, (size_t)n * sizeof *q);
+    free(f0);
+    free(K);
+    free(piv);
+    return found;
+}
+
+void gd_system_law_blocks(const gd_system *s, double speed, double *Kb, double *Cb)
+{
+    if (!s->nlaws) return;
+    memset(Kb, 0, (size_t)s->law_block * sizeof *Kb);
+    memset(Cb, 0, (size_t)s->law_block * sizeof *Cb);
+    double *q = malloc((size_t)s->ndof * sizeof *q);
+    if (!q) return;
+    gd_system_law_state(s, speed, q);
+    size_t at = 0;
+    for (int i = 0; i < s->nlaws; i++) {
+        gd_law L;
+        law_at(s, i, speed, &L);
+        double ql[GD_LAW_MAX_DOFS], v[GD_LAW_MAX_DOFS] = {0};
+        local_q(&L, q, ql);
+        gd_law_point x = {0.0, ql, v};
+        L.type->linearize(&L, &x, Kb + at, Cb + at);
+        at += (size_t)L.ndofs * L.ndofs;
+    }
+    free(q);
+}
+
+void gd_system_add_laws_dense(const gd_system *s, double speed, double *D, double *K)
+{
+    if (!s->nlaws || (!D && !K)) return;
+    double *Kb = malloc((size_t)s->law_block * 2 * sizeof *Kb);
+    if (!Kb) return;
+    double *Cb = Kb + s->law_block;
+    gd_system_law_blocks(s, speed, Kb, Cb);
+    size_t n = (size_t)s->ndof, at = 0;
+    for (int i = 0; i < s->nlaws; i++) {
+        const gd_law *L = &s->laws[i];
+        int nd = L->ndofs;
+        for (int b = 0; b < nd; b++)
+            for (int a = 0; a < nd; a++)
+                if (L->dof[a] >= 0 && L->dof[b] >= 0) {
+                    size_t p = (size_t)L->dof[a] + (size_t)L->dof[b] * n;
+                    if (K) K[p] += Kb[at + a + nd * b];
+                    if (D) D[p] += Cb[at + a + nd * b];
+                }
+        at += (size_t)nd * nd;
+    }
+    free(Kb);
+}
+
+void gd_system_dense(const gd_system *s, double speed, double *M, double *D, double *K)
+{
+    gd_system_dense_linear(s, speed, M, D, K);
+    gd_system_add_laws_dense(s, speed, D, K);
+}
