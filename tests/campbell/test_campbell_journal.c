@@ -16,27 +16,15 @@
 #include "geardyn/campbell.h"
 #include "harness.h"
 #include "model_support.h"
+#include "short_bearing_reference.h"
 
 static const double MU = 0.02, RAD = 0.025, LEN = 0.01, CL = 50e-6, GN = 9.81, MASS = 20;
-
-static void coefficients(double e, double a[4], double b[4])
-{
-    double h0 = 1.0 / pow(M_PI * M_PI * (1 - e * e) + 16 * e * e, 1.5), s = sqrt(1 - e * e);
-    double p2 = M_PI * M_PI, e2 = e * e;
-    a[0] = h0 * 4 * (p2 * (2 - e2) + 16 * e2);
-    a[1] = h0 * M_PI * (p2 * (1 - e2) * (1 - e2) - 16 * e2 * e2) / (e * s);
-    a[2] = -h0 * M_PI * (p2 * (1 - e2) * (1 + 2 * e2) + 32 * e2 * (1 + e2)) / (e * s);
-    a[3] = h0 * 4 * (p2 * (1 + 2 * e2) + 32 * e2 * (1 + e2) / (1 - e2));
-    b[0] = h0 * 2 * M_PI * s * (p2 * (1 + 2 * e2) - 16 * e2) / e;
-    b[1] = b[2] = -h0 * 8 * (p2 * (1 + 2 * e2) - 16 * e2);
-    b[3] = h0 * 2 * M_PI * (p2 * (1 - e2) * (1 - e2) + 48 * e2) / (e * s);
-}
 
 /* Lund: the squared whirl ratio g^2 and the threshold w_th sqrt(c / g_n) at eps e. */
 static double threshold(double e, double *g2)
 {
     double a[4], b[4];
-    coefficients(e, a, b);
+    short_bearing_coefficients(e, a, b);
     double keq = (a[0] * b[3] + a[3] * b[0] - a[1] * b[2] - a[2] * b[1]) / (b[0] + b[3]);
     *g2 = ((keq - a[0]) * (keq - a[3]) - a[1] * a[2]) / (b[0] * b[3] - b[1] * b[2]);
     return *g2 > 0 ? sqrt(keq / *g2) : INFINITY;

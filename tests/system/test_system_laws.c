@@ -10,6 +10,7 @@
 #include "geardyn/modal.h"
 #include "harness.h"
 #include "model_support.h"
+#include "short_bearing_reference.h"
 
 /* examples/journal_rotor.yaml: 20 kg on each bearing, mu 0.02 Pa s, R 25 mm, L 10 mm,
  * c 50 um, springs 1e11 N/m between the two halves. */
@@ -46,21 +47,6 @@ TEST(journal_equilibrium_follows_sommerfeld)
     CHECK(q[ix] == 0 && q[iy] == 0);
     free(q);
     fx_free(&f);
-}
-
-/* Friswell et al. 2010 Sec. 5.5.2 (Childs 1993 ch. 3); as in tests/laws/test_journal_bearing.c:
- * y along the load, x turned -90 deg from it. */
-static void short_bearing_coefficients(double e, double a[4], double b[4])
-{
-    double h0 = 1.0 / pow(M_PI * M_PI * (1 - e * e) + 16 * e * e, 1.5), s = sqrt(1 - e * e);
-    double p2 = M_PI * M_PI, e2 = e * e;
-    a[0] = h0 * 4 * (p2 * (2 - e2) + 16 * e2);
-    a[1] = h0 * M_PI * (p2 * (1 - e2) * (1 - e2) - 16 * e2 * e2) / (e * s);
-    a[2] = -h0 * M_PI * (p2 * (1 - e2) * (1 + 2 * e2) + 32 * e2 * (1 + e2)) / (e * s);
-    a[3] = h0 * 4 * (p2 * (1 + 2 * e2) + 32 * e2 * (1 + e2) / (1 - e2));
-    b[0] = h0 * 2 * M_PI * s * (p2 * (1 + 2 * e2) - 16 * e2) / e;
-    b[1] = b[2] = -h0 * 8 * (p2 * (1 + 2 * e2) - 16 * e2);
-    b[3] = h0 * 2 * M_PI * (p2 * (1 - e2) * (1 - e2) + 48 * e2) / (e * s);
 }
 
 TEST(journal_coefficients_in_the_system_matrices)
