@@ -125,6 +125,7 @@ cJSON *gd_cli_periods_json(const gd_cli_periods *p, const gd_cli_records *recs)
     cJSON_AddNumberToObject(vo, "return_shift", v->return_shift);
     cJSON_AddItemToObject(vo, "return_distance", gd_cli_json_number(v->return_distance));
     cJSON_AddItemToObject(vo, "halves_distance", gd_cli_json_number(v->halves_distance));
+    cJSON_AddBoolToObject(vo, "converging", v->converging);
     return o;
 }
 
@@ -162,12 +163,20 @@ void gd_cli_periods_print(const gd_cli_periods *p, const gd_cli_records *recs)
            "within %g of each record's peak-to-peak)",
            v->points, name, v->distinct, v->tol);
     if (v->return_shift > 0)
-        printf("; closest uniform return after %d periods: %.3g of the section's spread, "
+        printf("; closest uniform return after q = %d periods: %.3g of the section's spread, "
                "halves %.3g apart (quasi-periodic when both <= %g)",
                v->return_shift, v->return_distance, v->halves_distance, v->torus_tol);
     else if (v->cls != GD_POINCARE_PERIODIC)
         printf("; too few points to test for a torus");
     printf("\n");
+    if (v->converging)
+        printf("the points repeat at the tolerance but still converge: a decaying transient, "
+               "not settled; give a longer --settle\n");
+    else if (v->cls == GD_POINCARE_IRREGULAR && v->return_distance <= v->torus_tol &&
+             v->halves_distance > v->torus_tol)
+        printf("the two halves of the points differ by %.3g of the section's spread: the "
+               "response may still drift; a longer --settle tells\n",
+               v->halves_distance);
 }
 
 void gd_cli_periods_csv(FILE *f, const gd_cli_periods *p, const gd_cli_records *recs)

@@ -66,6 +66,11 @@ typedef struct gd_poincare_verdict {
      * the same units */
     int return_shift;
     double return_distance, halves_distance;
+    /* 1: the points repeat every N >= 2 at the tolerance but the differences between
+     * points N apart still shrink (the last third's largest below half the first
+     * third's): a decaying transient turning by about 2 pi / N per period, not a
+     * period-N orbit; the verdict is then irregular (settle longer) */
+    int converging;
 } gd_poincare_verdict;
 
 GD_API void gd_poincare_options_init(gd_poincare_options *o);
@@ -80,7 +85,10 @@ GD_API void gd_poincare_options_init(gd_poincare_options *o);
  *    number rho), uniformly along the curve (the close-return test of Lathrop & Kostelich
  *    1989 holds for every k, where chaos separates nearby points), and the set is
  *    recurrent (its two halves cover each other: not a drift or a slow approach);
- *  - irregular: otherwise (chaos, noise-like rattle, a transient not settled).
+ *    records that only take the values -1, 0 and 1 (contact states) and records constant
+ *    at the tolerance are left out of these distances;
+ *  - irregular: otherwise (chaos, noise-like rattle, a transient not settled; see
+ *    converging).
  * Errors (GD_EINPUT): n < 1, nrec < 1, a non-finite value, bad options. */
 GD_API gd_status gd_poincare_classify(const double *values, int nrec, int n, const double *scale,
                                       const gd_poincare_options *o, gd_poincare_verdict *v,

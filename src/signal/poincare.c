@@ -46,6 +46,24 @@ static double directed(const double *values, int nrec, int n, const double *w, i
     return h;
 }
 
+/* Whether the points still converge onto a p-cycle: the largest difference between points
+ * p apart (in tolerances) over the last third of the points is below half that over the
+ * first third, the first being above a tenth of the tolerance (else rounding) */
+static int converging(const double *values, int nrec, int n, const double *tol, int p)
+{
+    int m = (n - p) / 3;
+    if (m < 2) return 0;
+    double first = 0, last = 0;
+    for (int k = 0; k < n - p; k++) {
+        double d = 0;
+        for (int r = 0; r < nrec; r++)
+            d = fmax(d, fabs(values[(size_t)r * n + k] - values[(size_t)r * n + k + p]) / tol[r]);
+        if (k < m) first = fmax(first, d);
+        if (k >= n - p - m) last = fmax(last, d);
+    }
+    return first > 0.1 && last < 0.5 * first;
+}
+
 static void torus_test(const double *values, int nrec, int n, const double *w,
                        gd_poincare_verdict *v)
 {
@@ -93,6 +111,7 @@ gd_status gd_poincare_classify(const double *values, int nrec, int n, const doub
     v->torus_tol = o->torus_tol;
     v->return_shift = 0;
     v->return_distance = v->halves_distance = 0;
+    v->converging = 0;
     double *tol = malloc(2 * (size_t)nrec * sizeof *tol);
     int *rep = malloc((size_t)n * sizeof *rep);
     if (!tol || !rep) {
@@ -112,6 +131,14 @@ gd_status gd_poincare_classify(const double *values, int nrec, int n, const doub
         /* a constant record: its rounding */
         tol[r] = scale && scale[r] > 0 ? o->tol * scale[r] : 1e-12 * mag;
         w[r] = hi - lo > tol[r] ? 1.0 / (hi - lo) : 0.0;
+        /* a contact state (-1, 0, 1) jumps where a smooth invariant curve crosses a contact
+         * change: it counts for repetition, not in the distances of the torus test */
+        int state = 1;
+        for (int k = 0; k < n && state; k++) {
+            double x = values[(size_t)r * n + k];
+            state = x == -1.0 || x == 0.0 || x == 1.0;
+        }
+        if (state) w[r] = 0.0;
     }
     for (int p = 1; p <= n / 2 && !v->period; p++) {
         int ok = 1;
@@ -128,6 +155,12 @@ gd_status gd_poincare_classify(const double *values, int nrec, int n, const doub
     }
     /* a slow drift passes the shift test but spreads the points: not settled */
     if (v->distinct != v->period) v->period = 0;
+    /* a transient decaying while it turns by about 2 pi / p per period passes for a
+     * p-cycle at the tolerance: not settled either */
+    if (v->period >= 2 && converging(values, nrec, n, tol, v->period)) {
+        v->period = 0;
+        v->converging = 1;
+    }
     if (v->period > 0)
         v->cls = GD_POINCARE_PERIODIC;
     else if (n >= o->min_points) {
