@@ -93,7 +93,7 @@ static const char USAGE_POINCARE[] =
     "                       period-2, ... or many) and, with --out, DIR/poincare.csv\n"
     "  --settle S           settling time before the Poincare samples: a time (20ms) or\n"
     "                       revolutions of the reference shaft (200rev); default: --from\n"
-    "                       for one run, 100rev for a sweep\n"
+    "                       for one run, 100rev for a sweep or --periods\n"
     "  --sweep-speeds R     bifurcation diagram: FROM:TO:COUNT speeds (e.g.\n"
     "                       500:3000rpm:26); each run starts from the previous speed's end\n"
     "                       state, settles, then takes --points Poincare samples (needs\n"

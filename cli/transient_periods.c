@@ -34,7 +34,9 @@ int gd_cli_periods_plan(const char *cmd, const gd_system *sys, const gd_transien
     /* whole periods: the section times k T keep the phase of t = 0 */
     p->settle = ceil(settle / p->period - 1e-9) * p->period;
     p->t_end = p->settle + count * p->period;
-    int m = 20 * p->max_order > 256 ? 20 * p->max_order : 256;
+    /* 50 samples per cycle of the highest order: an impacting mesh force's peak-to-peak within
+     * 0.6 % (Ducati at 10000 rpm against 2 us sampling; 20 per cycle: 2.2 %) */
+    int m = 50 * p->max_order > 256 ? 50 * p->max_order : 256;
     p->dt = interval > 0 ? interval : p->period / m;
     double ratio = p->period / p->dt;
     p->samples_per_period = fabs(ratio - round(ratio)) < 1e-9 * ratio ? (int)round(ratio) : 0;

@@ -25,7 +25,7 @@ typedef struct gd_cli_periods {
 
 /* The run: T from the excitations (gd_periodic_fundamental), the settling time (seconds,
  * or revolutions of the reference shaft; both 0: 100 revolutions) rounded up to whole
- * periods, the output interval (interval > 0: the user's, else T / max(256, 20 max_order))
+ * periods, the output interval (interval > 0: the user's, else T / max(256, 50 max_order))
  * and the N + 1 section times settle + k T (malloc'd). 0, or 2 after an error message. */
 int gd_cli_periods_plan(const char *cmd, const gd_system *sys, const gd_transient_spec *spec,
                         double speed, int count, double settle_time, double settle_revs,
