@@ -956,6 +956,7 @@ int gd_cmd_transient(int argc, char **argv)
     int nfree = gd_transient_nstates(tr) / 2;
     summary = summary_json(s, tm, &recs, res, spec, &ri, nfree);
     int pperiod = 0, pdistinct = 0;
+    char pverdict[32] = "";
     if (o.poincare) {
         double *scale = malloc((size_t)(recs.n > 0 ? recs.n : 1) * sizeof *scale);
         if (!scale) {
@@ -964,13 +965,26 @@ int gd_cmd_transient(int argc, char **argv)
         }
         for (int r = 0; r < recs.n; r++)
             scale[r] = res->stats[r].peak_to_peak;
-        gd_cli_poincare_classify(res->sample_values, recs.n, res->nsamples, scale, &pperiod,
-                                 &pdistinct);
+        /* the verdict also tells a torus from irregular motion (class "many") */
+        gd_poincare_options po;
+        gd_poincare_options_init(&po);
+        po.tol = GD_CLI_POINCARE_TOL;
+        gd_poincare_verdict pv;
+        gd_error verr;
+        gd_status vst =
+            gd_poincare_classify(res->sample_values, recs.n, res->nsamples, scale, &po, &pv, &verr);
         free(scale);
-        cJSON_AddItemToObject(summary, "poincare",
-                              gd_cli_poincare_json(&pc, pc.angle / ri.speed, &recs, res->sample_t,
-                                                   res->sample_values, res->nsamples, pperiod,
-                                                   pdistinct));
+        if (vst) {
+            rc = gd_cli_report(&verr);
+            goto done;
+        }
+        pperiod = pv.period;
+        pdistinct = pv.distinct;
+        gd_poincare_verdict_name(&pv, pverdict, sizeof pverdict);
+        cJSON *pj = gd_cli_poincare_json(&pc, pc.angle / ri.speed, &recs, res->sample_t,
+                                         res->sample_values, res->nsamples, pperiod, pdistinct);
+        cJSON_AddStringToObject(pj, "verdict", pverdict);
+        cJSON_AddItemToObject(summary, "poincare", pj);
     }
     if (o.periods) {
         if ((rc = gd_cli_periods_analyse(&per, &recs, res))) goto done;
@@ -983,7 +997,13 @@ int gd_cmd_transient(int argc, char **argv)
         gd_cli_print_json(stdout, summary);
     else
         print_text(s, tm, &recs, res, spec, &ri, nfree);
-    if (!o.json && o.poincare) print_poincare(&pc, &recs, res, ri.speed, pperiod, pdistinct);
+    if (!o.json && o.poincare) {
+        print_poincare(&pc, &recs, res, ri.speed, pperiod, pdistinct);
+        printf("verdict: %s%s\n", pverdict,
+               pperiod == 0 && res->nsamples < 32
+                   ? " (fewer than 32 points: not tested for a torus, see --periods)"
+                   : "");
+    }
     if (!o.json && o.periods) gd_cli_periods_print(&per, &recs);
     rc = GD_EXIT_OK;
 done:

@@ -1,8 +1,8 @@
 /* geardyn transient --periods N: per-period statistics and the Poincare verdict from the
  * command line (text, JSON, periods.csv, poincare.csv), on the Mathieu pair (periodic off
  * its tongue, period-2 with a backlash in it), the Chen SFD pair's torus (quasi-periodic);
- * the errors exit 2 naming the option; `periodic` points to the command where its orbit
- * is unstable. */
+ * `--poincare` adds the verdict; the errors exit 2 naming the option; `periodic` points to the
+ * command where its orbit is unstable. */
 #include <math.h>
 
 #include "cli_support.h"
@@ -111,6 +111,14 @@ TEST(chen_torus_quasi_periodic)
     CHECK(jnum(v, "return_distance") < 0.06 && jnum(v, "halves_distance") < 0.15);
     CHECK(jnum(v, "points") == 101 && jnum(v, "distinct_points") > 80);
     cJSON_Delete(o);
+    /* --poincare gives the same verdict beside its class ("many") */
+    o = run_json_args(&s, "transient " CHEN " --speed 5650 --unbalance-scale 3 --revolutions 300 "
+                          "--poincare shaft_a --settle 200rev --record gear_a.y,gear_a.x");
+    REQUIRE(o);
+    const cJSON *pc = cJSON_GetObjectItem(o, "poincare");
+    CHECK_STR(jstr(pc, "class"), "many");
+    CHECK_STR(jstr(pc, "verdict"), "quasi-periodic");
+    CHECK(jnum(pc, "points") == 101);
     scratch_close(&s);
 }
 
