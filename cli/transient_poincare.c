@@ -89,8 +89,9 @@ int gd_cli_poincare_times(const gd_cli_poincare *p, double speed, double from, d
 }
 
 void gd_cli_poincare_classify(const double *values, int nrec, int n, const double *scale,
-                              int *period, int *distinct)
+                              int *period, int *distinct, char *verdict, int vsize)
 {
+    if (verdict && vsize > 0) snprintf(verdict, (size_t)vsize, "irregular");
     gd_poincare_options o;
     gd_poincare_options_init(&o);
     o.tol = GD_CLI_POINCARE_TOL;
@@ -100,6 +101,7 @@ void gd_cli_poincare_classify(const double *values, int nrec, int n, const doubl
     if (gd_poincare_classify(values, nrec, n, scale, &o, &v, &err)) return;
     *period = v.period;
     *distinct = v.distinct;
+    if (verdict) gd_poincare_verdict_name(&v, verdict, vsize);
 }
 
 void gd_cli_poincare_class_name(int period, char *buf, size_t size)

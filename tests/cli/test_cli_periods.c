@@ -1,8 +1,8 @@
 /* geardyn transient --periods N: per-period statistics and the Poincare verdict from the
  * command line (text, JSON, periods.csv, poincare.csv), on the Mathieu pair (periodic off
  * its tongue, period-2 with a backlash in it), the Chen SFD pair's torus (quasi-periodic);
- * `--poincare` adds the verdict; the errors exit 2 naming the option; `periodic` points to the
- * command where its orbit is unstable. */
+ * `--poincare` and `--sweep-speeds` add the verdict; the errors exit 2 naming the option;
+ * `periodic` points to the command where its orbit is unstable. */
 #include <math.h>
 
 #include "cli_support.h"
@@ -119,6 +119,17 @@ TEST(chen_torus_quasi_periodic)
     CHECK_STR(jstr(pc, "class"), "many");
     CHECK_STR(jstr(pc, "verdict"), "quasi-periodic");
     CHECK(jnum(pc, "points") == 101);
+    cJSON_Delete(o);
+    /* and a sweep, per speed: before the Neimark-Sacker bifurcation (5583 rad/s) and on
+     * the torus */
+    o = run_json_args(&s, "transient " CHEN " --sweep-speeds 5560:5650:2 --poincare shaft_a "
+                          "--settle 200rev --points 48 --unbalance-scale 3 "
+                          "--record gear_a.y,gear_a.x");
+    REQUIRE(o);
+    const cJSON *sp = cJSON_GetObjectItem(o, "speeds");
+    CHECK_STR(jstr(cJSON_GetArrayItem(sp, 0), "verdict"), "periodic");
+    CHECK_STR(jstr(cJSON_GetArrayItem(sp, 1), "class"), "many");
+    CHECK_STR(jstr(cJSON_GetArrayItem(sp, 1), "verdict"), "quasi-periodic");
     scratch_close(&s);
 }
 
