@@ -130,6 +130,7 @@ TEST(chen_torus_quasi_periodic)
     CHECK_STR(jstr(cJSON_GetArrayItem(sp, 0), "verdict"), "periodic");
     CHECK_STR(jstr(cJSON_GetArrayItem(sp, 1), "class"), "many");
     CHECK_STR(jstr(cJSON_GetArrayItem(sp, 1), "verdict"), "quasi-periodic");
+    cJSON_Delete(o);
     scratch_close(&s);
 }
 
