@@ -343,6 +343,27 @@ enum {
     OPT_QUIET
 };
 
+/* Where no stable periodic orbit came out (a point unstable or not converged), the
+ * response may have none (a rattling train): name the `transient` run that gives its
+ * per-period statistics and Poincare verdict (docs/transient.md). */
+static void rattle_hint(const char *model, const gd_periodic_result *r)
+{
+    int first = -1, n = 0;
+    for (int i = 0; i < r->npoints; i++)
+        if (!r->points[i].converged || r->points[i].stable == 0) {
+            if (first < 0) first = i;
+            n++;
+        }
+    if (first < 0) return;
+    const gd_periodic_point *p = &r->points[first];
+    printf("\n%d of %d points have no stable periodic orbit (unstable or not converged; "
+           "first at %.6g rad/s). Where the response has none (rattle, a torus), its "
+           "statistics over many periods and the Poincare verdict come from\n"
+           "  geardyn transient %s --speed %.6g --periods 100 --settle 200rev\n"
+           "with the same --set, --dofs and --coupling options (docs/transient.md).\n",
+           n, r->npoints, p->speed, model, p->speed);
+}
+
 int gd_cmd_periodic(int argc, char **argv)
 {
     static const struct option opts[] = {{"speeds", required_argument, 0, 's'},
@@ -622,6 +643,7 @@ int gd_cmd_periodic(int argc, char **argv)
             rc = GD_EXIT_FAIL;
         }
     }
+    if (!json) rattle_hint(argv[optind], r);
 done:
     /* the partial file goes once the complete files are in place, and on an error (which
      * writes nothing); only an interrupted run leaves it */

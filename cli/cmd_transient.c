@@ -10,6 +10,7 @@
 #include "geardyn/spectrum.h"
 #include "geardyn/transient_model.h"
 #include "geardyn/units.h"
+#include "transient_periods.h"
 #include "transient_poincare.h"
 #include "transient_record.h"
 
@@ -26,7 +27,8 @@ static const char USAGE[] =
     "                         [--rho-inf R] [--max-steps N] [--reduce F] [--start rest|static]\n"
     "                         [--spectrum] [--window hann|rect] [--unbalance-scale F]\n"
     "                         [--coupling LEVEL] [--dofs LIST] [--set PATH=VALUE]... [--json]\n"
-    "                         [--out DIR] [--quiet] [--plot FILE.svg|FILE.html]\n\n"
+    "                         [--out DIR] [--quiet] [--plot FILE.svg|FILE.html]\n"
+    "       geardyn transient MODEL.yaml --periods N [--settle T|Nrev] [--speed S] ...\n\n"
     "Integrates the equations of motion at a constant reference speed with the model's\n"
     "nonlinear and time-varying laws (mesh TVMS, transmission error, backlash, squeeze\n"
     "film dampers, loads, prescribed motions, cam torques, unbalances), then prints\n"
@@ -91,7 +93,7 @@ static const char USAGE_POINCARE[] =
     "                       period-2, ... or many) and, with --out, DIR/poincare.csv\n"
     "  --settle S           settling time before the Poincare samples: a time (20ms) or\n"
     "                       revolutions of the reference shaft (200rev); default: --from\n"
-    "                       for one run, 100rev for a sweep\n"
+    "                       for one run, 100rev for a sweep or --periods\n"
     "  --sweep-speeds R     bifurcation diagram: FROM:TO:COUNT speeds (e.g.\n"
     "                       500:3000rpm:26); each run starts from the previous speed's end\n"
     "                       state, settles, then takes --points Poincare samples (needs\n"
@@ -100,6 +102,17 @@ static const char USAGE_POINCARE[] =
     "  --points N           Poincare points per speed in a sweep (default 64)\n"
     "  --run-down           sweep from TO down to FROM\n"
     "  --both-directions    sweep up, then down again\n";
+
+static const char USAGE_PERIODS[] =
+    "  --periods N          responses with no stable periodic orbit (rattle): run --settle\n"
+    "                       (rounded up to whole periods; default 100rev) plus N periods T\n"
+    "                       of the excitations' fundamental, then give per record the\n"
+    "                       median and 5-95 % band over the periods of each period's\n"
+    "                       peak-to-peak, mean and RMS, and the Poincare verdict on the\n"
+    "                       N + 1 once-per-period samples (periodic, period-N,\n"
+    "                       quasi-periodic or irregular); records every T / 256 (finer\n"
+    "                       for high excitation orders) unless --output-interval; with\n"
+    "                       --out, DIR/periods.csv and DIR/poincare.csv\n";
 
 enum { NPEAKS = 6 };
 
@@ -325,7 +338,8 @@ static void print_text(const gd_system *sys, const gd_transient_model *tm,
 
 static int write_outputs(const char *dir, const gd_cli_records *recs,
                          const gd_transient_result *res, gd_spectrum *const *spec,
-                         const cJSON *summary, double speed, int poincare)
+                         const cJSON *summary, double speed, int poincare,
+                         const gd_cli_periods *per)
 {
     gd_error err;
     gd_error_clear(&err);
@@ -375,6 +389,12 @@ static int write_outputs(const char *dir, const gd_cli_records *recs,
         }
         if (gd_outdir_close(&od, f, "poincare.csv", &err)) goto fail;
     }
+    if (per) {
+        f = gd_outdir_open(&od, "periods.csv", &err);
+        if (!f) goto fail;
+        gd_cli_periods_csv(f, per, recs);
+        if (gd_outdir_close(&od, f, "periods.csv", &err)) goto fail;
+    }
     f = gd_outdir_open(&od, "summary.json", &err);
     if (!f) goto fail;
     gd_cli_print_json(f, summary);
@@ -390,7 +410,7 @@ typedef struct cli_opts {
     const char *duration, *revolutions, *speed, *from, *interval, *coupling, *out, *step, *reduce,
         *plot;
     const char *poincare, *settle, *sweep;
-    long points;
+    long points, periods;
     int direction, direction_given;
     const char *records[64];
     int nrecords;
@@ -431,6 +451,7 @@ static int parse_args(int argc, char **argv, cli_opts *o)
                                          {"points", required_argument, 0, 'N'},
                                          {"run-down", no_argument, 0, 'D'},
                                          {"both-directions", no_argument, 0, 'B'},
+                                         {"periods", required_argument, 0, 'Q'},
                                          GD_CLI_SET_OPTION,
                                          GD_CLI_DOFS_OPTION,
                                          {"help", no_argument, 0, 'h'},
@@ -567,6 +588,11 @@ static int parse_args(int argc, char **argv, cli_opts *o)
                 return gd_cli_usage_error(CMD, "--points: '%s' is not a whole number from 2",
                                           optarg);
             break;
+        case 'Q':
+            if (gd_cli_parse_count(optarg, 1, 1000000, &o->periods))
+                return gd_cli_usage_error(
+                    CMD, "--periods: '%s' is not a whole number from 1 to 1000000", optarg);
+            break;
         case 'D':
         case 'B':
             if (o->direction_given && o->direction != (c == 'D' ? 1 : 2))
@@ -579,12 +605,26 @@ static int parse_args(int argc, char **argv, cli_opts *o)
             fputs(USAGE, stdout);
             fputs(USAGE_LIMITS, stdout);
             fputs(USAGE_POINCARE, stdout);
+            fputs(USAGE_PERIODS, stdout);
             return -1;
         default:
             return gd_cli_option_error(CMD, c, argv, optind);
         }
     }
     if (optind != argc - 1) return gd_cli_usage_error(CMD, "give exactly one model file");
+    if (o->periods) {
+        const char *clash = o->sweep         ? "--sweep-speeds"
+                            : o->poincare    ? "--poincare"
+                            : o->duration    ? "--duration"
+                            : o->revolutions ? "--revolutions"
+                            : o->from        ? "--from"
+                                             : NULL;
+        if (clash)
+            return gd_cli_usage_error(CMD,
+                                      "%s does not apply to --periods (the run lasts --settle "
+                                      "plus N periods; the section is once per period)",
+                                      clash);
+    }
     if (o->sweep) {
         if (!o->poincare)
             return gd_cli_usage_error(CMD, "--sweep-speeds needs --poincare SHAFT|MESH (what to "
@@ -613,8 +653,9 @@ static int parse_args(int argc, char **argv, cli_opts *o)
                                   o->points           ? "--points"
                                   : o->direction == 1 ? "--run-down"
                                                       : "--both-directions");
-    if (o->settle && !o->poincare)
-        return gd_cli_usage_error(CMD, "--settle applies to --poincare only");
+    if (o->settle && !o->poincare && !o->periods)
+        return gd_cli_usage_error(CMD, "--settle applies to --poincare and --periods only");
+    if (o->periods) return 0;
     if (o->duration && o->revolutions)
         return gd_cli_usage_error(CMD, "--duration and --revolutions exclude each other");
     if (!o->duration && !o->revolutions)
@@ -709,6 +750,29 @@ static void print_poincare(const gd_cli_poincare *pc, const gd_cli_records *recs
     }
 }
 
+/* --periods: the run's times from the excitations' period (transient_periods.c). */
+static int periods_setup(const cli_opts *o, const gd_system *s, const gd_transient_model *tm,
+                         run_info *ri, gd_cli_periods *per, double **times, int *n)
+{
+    if (!(ri->speed > 0))
+        return gd_cli_usage_error(CMD, "--periods needs a reference speed > 0 (--speed or "
+                                       "'speed:' in the model): the period is undefined at 0");
+    double st = 0, revs = 0, interval = 0;
+    if (o->settle && parse_settle(o->settle, &st, &revs)) return GD_EXIT_INPUT;
+    if (o->interval) {
+        if (parse_time("--output-interval", o->interval, &interval)) return GD_EXIT_INPUT;
+        if (!(interval > 0)) return gd_cli_usage_error(CMD, "--output-interval: give a time > 0");
+    }
+    int rc = gd_cli_periods_plan(CMD, s, &tm->spec, ri->speed, (int)o->periods, st, revs, interval,
+                                 per, times);
+    if (rc) return rc;
+    ri->t_end = per->t_end;
+    ri->from = per->settle;
+    ri->dt = per->dt;
+    *n = per->count + 1;
+    return 0;
+}
+
 /* --sweep-speeds: the bifurcation diagram (transient_sweep.c). */
 static int sweep(const cli_opts *o, gd_model *m, gd_system *s)
 {
@@ -775,6 +839,10 @@ int gd_cmd_transient(int argc, char **argv)
     gd_spectrum **spec = NULL;
     gd_cli_records recs = {0, 0, NULL};
     cJSON *summary = NULL;
+    gd_cli_periods per;
+    memset(&per, 0, sizeof per);
+    double *ptimes = NULL;
+    int npt = 0;
     rc = gd_cli_load(argv[optind], &o.sets, o.coupling, &m, &s);
     if (rc) return rc;
     run_info ri;
@@ -794,9 +862,7 @@ int gd_cmd_transient(int argc, char **argv)
         rc = sweep(&o, m, s);
         goto done;
     }
-    if ((rc = resolve_times(&o, ri.speed, &ri))) goto done;
-    double *ptimes = NULL;
-    int npt = 0;
+    if (!o.periods && (rc = resolve_times(&o, ri.speed, &ri))) goto done;
     if (o.poincare && (rc = poincare_times(&o, &pc, &ri, &ptimes, &npt))) goto done;
     for (int i = 0; i < m->nunbalances; i++)
         m->unbalances[i].amount *= o.unbalance_scale;
@@ -807,6 +873,7 @@ int gd_cmd_transient(int argc, char **argv)
     for (int k = 0; k < o.nrecords; k++)
         if ((rc = gd_cli_parse_records(CMD, s, tm, o.records[k], &recs))) goto done;
     if (!o.nrecords && (rc = gd_cli_default_records(s, tm, &recs))) goto done;
+    if (o.periods && (rc = periods_setup(&o, s, tm, &ri, &per, &ptimes, &npt))) goto done;
     double cutoff = 0;
     if (o.reduce) {
         gd_error why;
@@ -860,7 +927,6 @@ int gd_cmd_transient(int argc, char **argv)
         rr[r] = recs.r[r].rec;
     gd_status st = gd_transient_run(tr, &opt, rr, recs.n, &res, &err);
     free(rr);
-    free(ptimes);
     if (pg.drawn) fprintf(stderr, "\r%60s\r", "");
     if (st) {
         rc = gd_cli_report(&err);
@@ -890,6 +956,7 @@ int gd_cmd_transient(int argc, char **argv)
     int nfree = gd_transient_nstates(tr) / 2;
     summary = summary_json(s, tm, &recs, res, spec, &ri, nfree);
     int pperiod = 0, pdistinct = 0;
+    char pverdict[32] = "";
     if (o.poincare) {
         double *scale = malloc((size_t)(recs.n > 0 ? recs.n : 1) * sizeof *scale);
         if (!scale) {
@@ -898,24 +965,50 @@ int gd_cmd_transient(int argc, char **argv)
         }
         for (int r = 0; r < recs.n; r++)
             scale[r] = res->stats[r].peak_to_peak;
-        gd_cli_poincare_classify(res->sample_values, recs.n, res->nsamples, scale, &pperiod,
-                                 &pdistinct);
+        /* the verdict also tells a torus from irregular motion (class "many") */
+        gd_poincare_options po;
+        gd_poincare_options_init(&po);
+        po.tol = GD_CLI_POINCARE_TOL;
+        gd_poincare_verdict pv;
+        gd_error verr;
+        gd_status vst =
+            gd_poincare_classify(res->sample_values, recs.n, res->nsamples, scale, &po, &pv, &verr);
         free(scale);
-        cJSON_AddItemToObject(summary, "poincare",
-                              gd_cli_poincare_json(&pc, pc.angle / ri.speed, &recs, res->sample_t,
-                                                   res->sample_values, res->nsamples, pperiod,
-                                                   pdistinct));
+        if (vst) {
+            rc = gd_cli_report(&verr);
+            goto done;
+        }
+        pperiod = pv.period;
+        pdistinct = pv.distinct;
+        gd_poincare_verdict_name(&pv, pverdict, sizeof pverdict);
+        cJSON *pj = gd_cli_poincare_json(&pc, pc.angle / ri.speed, &recs, res->sample_t,
+                                         res->sample_values, res->nsamples, pperiod, pdistinct);
+        cJSON_AddStringToObject(pj, "verdict", pverdict);
+        cJSON_AddItemToObject(summary, "poincare", pj);
     }
-    if (o.out &&
-        (rc = write_outputs(o.out, &recs, res, spec, summary, ri.speed, o.poincare != NULL)))
+    if (o.periods) {
+        if ((rc = gd_cli_periods_analyse(&per, &recs, res))) goto done;
+        cJSON_AddItemToObject(summary, "periods", gd_cli_periods_json(&per, &recs));
+    }
+    if (o.out && (rc = write_outputs(o.out, &recs, res, spec, summary, ri.speed,
+                                     o.poincare != NULL || o.periods > 0, o.periods ? &per : NULL)))
         goto done;
     if (o.json)
         gd_cli_print_json(stdout, summary);
     else
         print_text(s, tm, &recs, res, spec, &ri, nfree);
-    if (!o.json && o.poincare) print_poincare(&pc, &recs, res, ri.speed, pperiod, pdistinct);
+    if (!o.json && o.poincare) {
+        print_poincare(&pc, &recs, res, ri.speed, pperiod, pdistinct);
+        printf("verdict: %s%s\n", pverdict,
+               pperiod == 0 && res->nsamples < 32
+                   ? " (fewer than 32 points: not tested for a torus, see --periods)"
+                   : "");
+    }
+    if (!o.json && o.periods) gd_cli_periods_print(&per, &recs);
     rc = GD_EXIT_OK;
 done:
+    free(ptimes);
+    gd_cli_periods_free(&per);
     cJSON_Delete(summary);
     if (spec)
         for (int r = 0; r < recs.n; r++)

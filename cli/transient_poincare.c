@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "geardyn/cycles.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -87,52 +88,20 @@ int gd_cli_poincare_times(const gd_cli_poincare *p, double speed, double from, d
     return n;
 }
 
-/* max over records of |a_r - b_r| / tol_r <= 1 */
-static int same(const double *values, int nrec, int n, const double *tol, int a, int b)
-{
-    for (int r = 0; r < nrec; r++)
-        if (fabs(values[(size_t)r * n + a] - values[(size_t)r * n + b]) > tol[r]) return 0;
-    return 1;
-}
-
 void gd_cli_poincare_classify(const double *values, int nrec, int n, const double *scale,
-                              int *period, int *distinct)
+                              int *period, int *distinct, char *verdict, int vsize)
 {
-    *period = 0;
-    *distinct = 0;
-    if (n <= 0) return;
-    double *tol = malloc((size_t)(nrec > 0 ? nrec : 1) * sizeof *tol);
-    int *rep = malloc((size_t)n * sizeof *rep);
-    if (!tol || !rep) {
-        free(tol);
-        free(rep);
-        return;
-    }
-    const int nr = nrec;
-    for (int r = 0; r < nr; r++) {
-        double mag = 0;
-        for (int k = 0; k < n; k++)
-            mag = fmax(mag, fabs(values[(size_t)r * n + k]));
-        /* a constant record: its rounding */
-        tol[r] = scale[r] > 0 ? GD_CLI_POINCARE_TOL * scale[r] : 1e-12 * mag;
-    }
-    for (int p = 1; p <= n / 2 && !*period; p++) {
-        int ok = 1;
-        for (int k = 0; k + p < n && ok; k++)
-            ok = same(values, nr, n, tol, k, k + p);
-        if (ok) *period = p;
-    }
-    /* greedy clustering: representatives are the first points of their clusters */
-    for (int k = 0; k < n; k++) {
-        int found = 0;
-        for (int c = 0; c < *distinct && !found; c++)
-            found = same(values, nr, n, tol, rep[c], k);
-        if (!found) rep[(*distinct)++] = k;
-    }
-    /* a slow drift passes the shift test but spreads the points: not settled */
-    if (*distinct != *period) *period = 0;
-    free(rep);
-    free(tol);
+    if (verdict && vsize > 0) snprintf(verdict, (size_t)vsize, "irregular");
+    gd_poincare_options o;
+    gd_poincare_options_init(&o);
+    o.tol = GD_CLI_POINCARE_TOL;
+    gd_poincare_verdict v;
+    gd_error err;
+    *period = *distinct = 0;
+    if (gd_poincare_classify(values, nrec, n, scale, &o, &v, &err)) return;
+    *period = v.period;
+    *distinct = v.distinct;
+    if (verdict) gd_poincare_verdict_name(&v, verdict, vsize);
 }
 
 void gd_cli_poincare_class_name(int period, char *buf, size_t size)

@@ -30,9 +30,10 @@ int gd_cli_poincare_times(const gd_cli_poincare *p, double speed, double from, d
  * record's peak-to-peak: the number of distinct points (greedy clustering: a point
  * joins the first cluster whose first point it equals) and the smallest p <= n / 2 with
  * point k + p = point k for every k and exactly p distinct points (0 when none:
- * quasi-periodic, chaotic, or a drift not settled within the settling time). */
+ * quasi-periodic, chaotic, or a drift not settled within the settling time); verdict
+ * (may be NULL): the name of gd_poincare_classify's verdict (include/geardyn/cycles.h). */
 void gd_cli_poincare_classify(const double *values, int nrec, int n, const double *scale,
-                              int *period, int *distinct);
+                              int *period, int *distinct, char *verdict, int vsize);
 /* "period-P", or "many" when period is 0. */
 void gd_cli_poincare_class_name(int period, char *buf, size_t size);
 

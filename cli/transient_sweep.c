@@ -16,6 +16,7 @@
 typedef struct sweep_point {
     double speed, t_start, t_end;
     int down, n, period, distinct;
+    char verdict[32];   /* gd_poincare_verdict_name */
     double *t, *values; /* n; nrec * n */
     double cpu;
     long steps;
@@ -75,7 +76,8 @@ static gd_status one_speed(const gd_system *sys, const gd_transient_model *tm,
     pt->t_start = t0;
     pt->t_end = opt.t_end;
     pt->n = n;
-    gd_cli_poincare_classify(res->sample_values, recs->n, n, scale, &pt->period, &pt->distinct);
+    gd_cli_poincare_classify(res->sample_values, recs->n, n, scale, &pt->period, &pt->distinct,
+                             pt->verdict, sizeof pt->verdict);
     free(scale);
     pt->t = times;
     times = NULL;
@@ -132,6 +134,7 @@ static cJSON *sweep_json(const gd_system *sys, const gd_cli_records *recs, const
         cJSON_AddNumberToObject(e, "period", pt->period);
         cJSON_AddNumberToObject(e, "distinct_points", pt->distinct);
         cJSON_AddStringToObject(e, "class", cls);
+        cJSON_AddStringToObject(e, "verdict", pt->verdict);
         cJSON_AddNumberToObject(e, "steps", (double)pt->steps);
         cJSON_AddNumberToObject(e, "cpu_seconds", pt->cpu);
         cJSON *ra = cJSON_AddArrayToObject(e, "records");
@@ -179,7 +182,7 @@ static int write_sweep(const char *dir, const gd_cli_records *recs, const sweep_
     fprintf(f, "direction,speed_rad_s,speed_rpm,class,period,distinct_points,cpu_s");
     for (int r = 0; r < recs->n; r++)
         fprintf(f, ",%s_min,%s_max", recs->r[r].name, recs->r[r].name);
-    fprintf(f, "\n");
+    fprintf(f, ",verdict\n");
     for (int i = 0; i < npts; i++) {
         char cls[32];
         gd_cli_poincare_class_name(pts[i].period, cls, sizeof cls);
@@ -189,7 +192,7 @@ static int write_sweep(const char *dir, const gd_cli_records *recs, const sweep_
             double mx, mn = range_of(pts[i].values + (size_t)r * pts[i].n, pts[i].n, &mx);
             fprintf(f, ",%.10g,%.10g", mn, mx);
         }
-        fprintf(f, "\n");
+        fprintf(f, ",%s\n", pts[i].verdict);
     }
     if (gd_outdir_close(&od, f, "sweep.csv", &err)) goto fail;
     f = gd_outdir_open(&od, "summary.json", &err);
@@ -216,15 +219,16 @@ static void print_sweep(const gd_system *sys, const gd_cli_records *recs, const 
     printf("; same point within %g of each record's peak-to-peak; %.3g s CPU\n\n",
            GD_CLI_POINCARE_TOL, cpu);
     const char *r0 = recs->n ? recs->r[0].name : "";
-    printf("%-4s %12s %12s %-10s %8s %14s %14s\n", "dir", "speed_rad_s", "speed_rpm", "class",
-           "distinct", "min", "max");
+    printf("%-4s %12s %12s %-10s %8s %14s %14s  %s\n", "dir", "speed_rad_s", "speed_rpm", "class",
+           "distinct", "min", "max", "verdict");
     printf("%-4s %12s %12s %-10s %8s %29.29s\n", "", "", "", "", "", r0);
     for (int i = 0; i < npts; i++) {
         char cls[32];
         gd_cli_poincare_class_name(pts[i].period, cls, sizeof cls);
         double mx = 0, mn = recs->n ? range_of(pts[i].values, pts[i].n, &mx) : 0;
-        printf("%-4s %12.6g %12.6g %-10s %8d %14.6g %14.6g\n", pts[i].down ? "down" : "up",
-               pts[i].speed, pts[i].speed * 30 / M_PI, cls, pts[i].distinct, mn, mx);
+        printf("%-4s %12.6g %12.6g %-10s %8d %14.6g %14.6g  %s\n", pts[i].down ? "down" : "up",
+               pts[i].speed, pts[i].speed * 30 / M_PI, cls, pts[i].distinct, mn, mx,
+               pts[i].verdict);
     }
 }
 

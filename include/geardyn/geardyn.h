@@ -56,6 +56,7 @@
 #include "geardyn/transient_model.h"
 #include "geardyn/periodic.h"
 #include "geardyn/spectrum.h"
+#include "geardyn/cycles.h"
 #include "geardyn/plot.h"
 #include "geardyn/report.h"
 #include "geardyn/study.h"

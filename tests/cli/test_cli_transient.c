@@ -642,7 +642,7 @@ TEST(poincare_errors)
                  "transient " CHEN " --speed 1500 --duration 5ms --poincare shaft_a --settle 2ms");
     expect_error(gd_ts_, &s, "reference speed > 0", NULL,
                  "transient " CHEN " --duration 5ms --poincare shaft_a");
-    expect_error(gd_ts_, &s, "--settle applies to --poincare only", NULL,
+    expect_error(gd_ts_, &s, "--settle applies to --poincare and --periods only", NULL,
                  "transient " CHEN " --speed 1500 --duration 5ms --settle 1ms");
     expect_error(gd_ts_, &s, "COUNT is 0", NULL,
                  "transient " CHEN " --sweep-speeds 1000:2000:0 --poincare shaft_a");
