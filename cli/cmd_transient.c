@@ -99,7 +99,13 @@ static const char USAGE_POINCARE[] =
     "                       with --out, DIR/sweep.csv, DIR/poincare.csv, DIR/summary.json\n"
     "  --points N           Poincare points per speed in a sweep (default 64)\n"
     "  --run-down           sweep from TO down to FROM\n"
-    "  --both-directions    sweep up, then down again\n";
+    "  --both-directions    sweep up, then down again\n"
+    "  --waterfall REC      in a sweep, the run-up waterfall of record REC: its spectrum\n"
+    "                       over each speed's settled part, the order cuts (1x of each\n"
+    "                       shaft, mesh orders) in the table and --json, with --out\n"
+    "                       DIR/waterfall.csv and DIR/order_cuts.csv; --plot FILE draws\n"
+    "                       it (cascade, colour map, order cuts; the first record without\n"
+    "                       --waterfall). A stepped (quasi-steady) run-up (docs/plots.md)\n";
 
 enum { NPEAKS = 6 };
 
@@ -389,7 +395,7 @@ fail:
 typedef struct cli_opts {
     const char *duration, *revolutions, *speed, *from, *interval, *coupling, *out, *step, *reduce,
         *plot;
-    const char *poincare, *settle, *sweep;
+    const char *poincare, *settle, *sweep, *waterfall;
     long points;
     int direction, direction_given;
     const char *records[64];
@@ -431,6 +437,7 @@ static int parse_args(int argc, char **argv, cli_opts *o)
                                          {"points", required_argument, 0, 'N'},
                                          {"run-down", no_argument, 0, 'D'},
                                          {"both-directions", no_argument, 0, 'B'},
+                                         {"waterfall", required_argument, 0, 'Y'},
                                          GD_CLI_SET_OPTION,
                                          GD_CLI_DOFS_OPTION,
                                          {"help", no_argument, 0, 'h'},
@@ -562,6 +569,9 @@ static int parse_args(int argc, char **argv, cli_opts *o)
         case 'W':
             o->sweep = optarg;
             break;
+        case 'Y':
+            o->waterfall = optarg;
+            break;
         case 'N':
             if (gd_cli_parse_count(optarg, 2, 1000000, &o->points))
                 return gd_cli_usage_error(CMD, "--points: '%s' is not a whole number from 2",
@@ -598,7 +608,6 @@ static int parse_args(int argc, char **argv, cli_opts *o)
                             : o->reduce                    ? "--reduce"
                             : o->step                      ? "--step"
                             : o->method == GD_TR_GEN_ALPHA ? "--method galpha"
-                            : o->plot                      ? "--plot"
                                                            : NULL;
         if (clash)
             return gd_cli_usage_error(
@@ -606,8 +615,14 @@ static int parse_args(int argc, char **argv, cli_opts *o)
                 "%s does not apply to --sweep-speeds (each run lasts --settle "
                 "plus --points Poincare periods)",
                 clash);
+        if ((o->waterfall || o->plot) && o->direction == 2)
+            return gd_cli_usage_error(CMD,
+                                      "%s: give one direction (the run-up, or --run-down), "
+                                      "not --both-directions",
+                                      o->waterfall ? "--waterfall" : "--plot");
         return 0;
     }
+    if (o->waterfall) return gd_cli_usage_error(CMD, "--waterfall applies to --sweep-speeds only");
     if (o->points || o->direction_given)
         return gd_cli_usage_error(CMD, "%s applies to --sweep-speeds only",
                                   o->points           ? "--points"
@@ -738,6 +753,8 @@ static int sweep(const cli_opts *o, gd_model *m, gd_system *s)
     sw.json = o->json;
     sw.quiet = o->quiet;
     sw.out = o->out;
+    sw.plot = o->plot;
+    sw.waterfall = -1;
     if ((rc = gd_cli_poincare_parse(CMD, m, o->poincare, &pc))) goto done;
     for (int i = 0; i < m->nunbalances; i++)
         m->unbalances[i].amount *= o->unbalance_scale;
@@ -749,6 +766,9 @@ static int sweep(const cli_opts *o, gd_model *m, gd_system *s)
     for (int k = 0; k < o->nrecords; k++)
         if ((rc = gd_cli_parse_records(CMD, s, tm, o->records[k], &recs))) goto done;
     if (!o->nrecords && (rc = gd_cli_default_records(s, tm, &recs))) goto done;
+    if ((o->waterfall || o->plot) && (rc = gd_cli_waterfall_record(CMD, s, tm, o->waterfall, &recs,
+                                                                   &sw.waterfall, &sw.max_order)))
+        goto done;
     rc = gd_cli_transient_sweep(s, tm, &recs, &pc, &sw);
 done:
     free(speeds);
