@@ -34,6 +34,8 @@ g transient examples/ducati_timing_geartrain.yaml --revolutions 0.2 --quiet \
   --plot "$tmp/transient.html"
 g periodic tests/plot/mathieu_pair.yaml --speeds 680:730:11 --harmonics 4 --both-directions \
   --record mesh:m:force --plot "$tmp/periodic.html"
+g transient tests/plot/runup_pair_te.yaml --sweep-speeds 6000:9000rpm:16 --poincare shaft_a \
+  --points 32 --settle 30rev --waterfall gear_a.x --quiet --plot "$tmp/waterfall.html"
 node tests/plot/figures.mjs \
   "$tmp/rig_modal.html:$F/rig_modal.png:0" \
   "$tmp/rig_campbell.html:$F/rig_campbell.png:0" \
@@ -52,5 +54,8 @@ node tests/plot/figures.mjs \
   "$tmp/gearbox_report.html:$F/gearbox_report.png:top" \
   "$tmp/gearbox_report.html:$F/gearbox_report_model.png:0" \
   "$tmp/transient.html:$F/transient.png:0" \
-  "$tmp/periodic.html:$F/periodic.png:0"
+  "$tmp/periodic.html:$F/periodic.png:0" \
+  "$tmp/waterfall.html:$F/runup_waterfall_cascade.png:0" \
+  "$tmp/waterfall.html:$F/runup_waterfall_map.png:1" \
+  "$tmp/waterfall.html:$F/runup_order_cuts.png:2"
 ls -l "$F"/*.png | awk '{print $5, $9}'

@@ -980,9 +980,88 @@ TEST(png_and_pdf_of_every_plot)
     scratch_close(&d);
 }
 
+/* The run-up waterfall (transient --sweep-speeds --waterfall): the order lines lie at
+ * order x speed / 2 pi, the order cuts are the --json order amplitudes, one cascade curve
+ * per speed; and the 1x cut of the run-up through the pair's lateral critical speed peaks
+ * at the 1x critical speed of `campbell` within half the speed step (the run's resolution). */
+TEST(waterfall_plot_matches_json)
+{
+    scratch d;
+    REQUIRE(scratch_open(&d));
+    plot_run pr;
+    plot_start(gd_ts_, &pr, &d,
+               "transient tests/plot/runup_pair.yaml --sweep-speeds 6800:8400rpm:9 --poincare "
+               "shaft_a --points 32 --settle 30rev --record gear_a.x --waterfall gear_a.x --quiet "
+               "--json --plot %s");
+    run_result rc;
+    run(&d, &rc, "campbell tests/plot/runup_pair.yaml --speeds 0:9000rpm:31 --json");
+    CHECK(rc.code == 0);
+    cJSON *cj = cJSON_Parse(rc.out);
+    const cJSON *wf = pr.json ? cJSON_GetObjectItem(pr.json, "waterfall") : NULL;
+    svg *s = &pr.s;
+    CHECK(wf != NULL && cj != NULL);
+    if (wf && cj && s->ctx) {
+        const cJSON *orders = cJSON_GetObjectItem(wf, "orders");
+        const cJSON *spectra = cJSON_GetObjectItem(wf, "spectra");
+        int ns = cJSON_GetArraySize(spectra), no = cJSON_GetArraySize(orders);
+        CHECK(ns == 9 && no == 3); /* 1x shaft_a, 1x shaft_b, mesh 16x shaft_a */
+        double w0 = 6800 * PI / 30, w1 = 8400 * PI / 30;
+        CHECK(fabs(jnum(cJSON_GetArrayItem(spectra, 0), "speed_rad_s") - w0) < 1e-9 * w0);
+        static double x[64], y[64];
+        /* the mesh order line of the cascade: f = 16 x speed / 2 pi at the ends of the range
+         * (the axis ends above 16 x 8400 rpm / 60, so the line is not cut) */
+        CHECK(trace_numbers(s, TRACE("gear_a.x: cascade", "mesh 16x shaft_a"), "data-x", x, 4) ==
+              2);
+        CHECK(trace_numbers(s, TRACE("gear_a.x: cascade", "mesh 16x shaft_a"), "data-y", y, 4) ==
+              2);
+        CHECK(fabs(x[0] - 16 * w0 / (2 * PI)) < 1e-9 * x[0] &&
+              fabs(x[1] - 16 * w1 / (2 * PI)) < 1e-9 * x[1]);
+        CHECK(fabs(y[0] - 6800) < 1e-9 * 6800 && fabs(y[1] - 8400) < 1e-9 * 8400);
+        /* the same line on the colour map, axes swapped, named on the plot */
+        CHECK(trace_numbers(s, TRACE("gear_a.x: colour map", "1x shaft_a"), "data-y", y, 4) == 2);
+        CHECK(fabs(y[0] - w0 / (2 * PI)) < 1e-9 * y[0] && fabs(y[1] - w1 / (2 * PI)) < 1e-9 * y[1]);
+        CHECK(count(s, "//s:text[@class='label'][.='mesh 16x shaft_a']") == 2);
+        /* one cascade curve per speed */
+        CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'gear_a.x: cascade')]/"
+                       "s:g[@class='trace'][contains(@data-name,' rpm')]") == 9);
+        /* the order cuts are the --json amplitudes */
+        const cJSON *o1 = NULL;
+        for (int k = 0; k < no; k++)
+            if (!strcmp(cJSON_GetObjectItem(cJSON_GetArrayItem(orders, k), "label")->valuestring,
+                        "1x shaft_a"))
+                o1 = cJSON_GetArrayItem(orders, k);
+        CHECK(o1 != NULL);
+        int n = trace_numbers(s, TRACE("gear_a.x: order cuts", "1x shaft_a"), "data-y", y, 64);
+        CHECK(n == ns);
+        int peak = 0;
+        for (int k = 0; o1 && k < n; k++) {
+            double a = jat(cJSON_GetObjectItem(o1, "amplitude"), k);
+            CHECK(same(y[k], a));
+            if (y[k] > y[peak]) peak = k;
+        }
+        /* the peak speed against campbell's nearest 1x shaft_a critical speed */
+        double speak = 6800 + 200.0 * peak, best = INFINITY;
+        const cJSON *cs = cJSON_GetObjectItem(cj, "critical_speeds");
+        for (int k = 0; k < cJSON_GetArraySize(cs); k++) {
+            const cJSON *c = cJSON_GetArrayItem(cs, k);
+            if (!strcmp(cJSON_GetObjectItem(c, "order")->valuestring, "1x shaft_a") &&
+                fabs(jnum(c, "speed_rpm") - speak) < fabs(best - speak))
+                best = jnum(c, "speed_rpm");
+        }
+        CHECK(fabs(speak - best) <= 100); /* 7600 rpm against 7589.26 rpm */
+        if (fabs(speak - best) > 100)
+            fprintf(stderr, "  1x peak %g rpm, critical %g rpm\n", speak, best);
+    }
+    cJSON_Delete(cj);
+    run_free(&rc);
+    plot_end(&pr);
+    scratch_close(&d);
+}
+
 RUN_TESTS(T(campbell_plot_matches_json), T(frf_plot_matches_json), T(unbalance_plot_matches_json),
           T(mesh_stiffness_plot_matches_json), T(modal_and_transient_plots),
           T(periodic_plot_matches_json), T(report_has_every_section), T(html_is_self_contained),
           T(bad_plot_requests_write_nothing), T(png_and_pdf_of_every_plot),
           T(pure_tilt_mode_drawn_alone), T(campbell_pairs_stay_pairs),
-          T(campbell_limit_labels_margins), T(units_follow_the_command_line), T(frf_peaks_located))
+          T(campbell_limit_labels_margins), T(units_follow_the_command_line), T(frf_peaks_located),
+          T(waterfall_plot_matches_json))
