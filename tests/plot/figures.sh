@@ -38,6 +38,7 @@ g transient tests/plot/runup_pair_te.yaml --sweep-speeds 6000:9000rpm:16 --poinc
   --points 32 --settle 30rev --waterfall gear_a.x --quiet --plot "$tmp/waterfall.html"
 node tests/plot/figures.mjs \
   "$tmp/rig_modal.html:$F/rig_modal.png:0" \
+  "$tmp/rig_modal.html:$F/rig_modal_3d_orbits.png:~whirl of the mode:3" \
   "$tmp/rig_campbell.html:$F/rig_campbell.png:0" \
   "$tmp/rig_frf.html:$F/rig_frf_bode.png:0" "$tmp/rig_frf.html:$F/rig_frf_nyquist.png:2" \
   "$tmp/rig_tvms.html:$F/rig_mesh_stiffness.png:0" \
