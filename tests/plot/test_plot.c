@@ -477,8 +477,8 @@ static double prec(const cJSON *pt, const char *rec, const char *field)
  * tongue: period doubling at 698.97 and 715.17 rad/s, the four points inside unstable.
  * Stable peak-to-peak solid, unstable dashed (with the stable neighbours that join
  * them), both equal to the --json numbers; the bifurcation markers sit on the dashed
- * curve (interpolated between the bracketing points); harmonic 1 and |mu| max as in
- * --json. */
+ * curve (interpolated between the bracketing points); harmonic 1 (named as the mesh
+ * order it is) and |mu| max as in --json. */
 TEST(periodic_plot_matches_json)
 {
     scratch d;
@@ -500,7 +500,9 @@ TEST(periodic_plot_matches_json)
         CHECK(trace_numbers(s, TRACE(P2P, "stable"), "data-y", ys, 16) == 11);
         CHECK(trace_numbers(s, TRACE(P2P, "unstable"), "data-y", yu, 16) == 11);
         CHECK(trace_numbers(s, TRACE(P2P, "stable"), "data-x", x, 16) == 11);
-        CHECK(trace_numbers(s, TRACE("harmonic amplitudes", "harmonic 1"), "data-y", h1, 16) == 11);
+        /* the period is the mesh's (w = 20 W): harmonic 1 is the mesh order */
+        CHECK(trace_numbers(s, TRACE("amplitudes at the excitation orders", "mesh m 20x a"),
+                            "data-y", h1, 16) == 11);
         CHECK(trace_numbers(s, TRACE("stability", "|mu| max"), "data-y", mu, 16) == 11);
         int nst = 0, nun = 0, joined = 0;
         for (int i = 0; i < 11; i++) {
@@ -1058,10 +1060,65 @@ TEST(waterfall_plot_matches_json)
     scratch_close(&d);
 }
 
+/* The periodic plot names the harmonics by the orders they are: on the two-stage
+ * helical gearbox the period is the common period of both meshes (mesh 1 is harmonic 36,
+ * mesh 2 harmonic 11), so the curves are the two mesh orders and 2 x, 3 x
+ * mesh 2, each the --json amplitude of its harmonic (not harmonics 1-4, which are noise
+ * there). */
+TEST(periodic_orders_named)
+{
+    scratch d;
+    REQUIRE(scratch_open(&d));
+    plot_run pr;
+    plot_start(gd_ts_, &pr, &d,
+               "periodic examples/helical_two_stage.yaml --speeds 3000rpm:3100rpm:2 --harmonics 36 "
+               "--no-estimate --no-stability --record mesh:pair1:force --json --plot %s");
+    svg *s = &pr.s;
+    cJSON *j = pr.json;
+    if (j && s->ctx) {
+        const cJSON *pts = cJSON_GetObjectItem(j, "points");
+        REQUIRE(cJSON_GetArraySize(pts) == 2);
+#define AMP "amplitudes at the excitation orders"
+        static const struct {
+            const char *name;
+            int k;
+        } want[4] = {{"mesh pair2 22x shaft2", 11},
+                     {"2 x mesh pair2 22x shaft2", 22},
+                     {"3 x mesh pair2 22x shaft2", 33},
+                     {"mesh pair1 52x shaft1", 36}};
+        CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'" AMP "')]/"
+                       "s:g[@class='trace']") == 4);
+        for (int c = 0; c < 4; c++) {
+            char xp[300];
+            double y[4];
+            snprintf(xp, sizeof xp,
+                     "//s:g[@class='panel'][starts-with(@data-title,'" AMP
+                     "')]/s:g[@class='trace'][@data-name='%s']",
+                     want[c].name);
+            CHECK(trace_numbers(s, xp, "data-y", y, 4) == 2);
+            for (int i = 0; i < 2; i++) {
+                const cJSON *a = cJSON_GetObjectItem(
+                    cJSON_GetObjectItem(cJSON_GetObjectItem(cJSON_GetArrayItem(pts, i), "records"),
+                                        "mesh:pair1:force"),
+                    "amplitudes");
+                CHECK(same(y[i], jat(a, want[c].k)));
+            }
+        }
+        /* mesh 1 carries the 50 N m load's fluctuation: far above harmonic 1 of the period */
+        const cJSON *a0 = cJSON_GetObjectItem(
+            cJSON_GetObjectItem(cJSON_GetObjectItem(cJSON_GetArrayItem(pts, 0), "records"),
+                                "mesh:pair1:force"),
+            "amplitudes");
+        CHECK(jat(a0, 36) > 100 * jat(a0, 1));
+    }
+    plot_end(&pr);
+    scratch_close(&d);
+}
+
 RUN_TESTS(T(campbell_plot_matches_json), T(frf_plot_matches_json), T(unbalance_plot_matches_json),
           T(mesh_stiffness_plot_matches_json), T(modal_and_transient_plots),
           T(periodic_plot_matches_json), T(report_has_every_section), T(html_is_self_contained),
           T(bad_plot_requests_write_nothing), T(png_and_pdf_of_every_plot),
           T(pure_tilt_mode_drawn_alone), T(campbell_pairs_stay_pairs),
           T(campbell_limit_labels_margins), T(units_follow_the_command_line), T(frf_peaks_located),
-          T(waterfall_plot_matches_json))
+          T(waterfall_plot_matches_json), T(periodic_orders_named))
