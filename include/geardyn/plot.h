@@ -69,8 +69,9 @@ GD_API gd_status gd_plot_add_note(gd_plot *p, const char *title, const char *tex
 /* Moves every section of src to the end of dst and frees src. */
 GD_API gd_status gd_plot_append(gd_plot *dst, gd_plot *src, gd_error *err);
 /* Changes the unit of every x axis labelled "(from)" (e.g. "Hz") to "(to)" (e.g.
- * "rad/s"): its values times factor, its label rewritten. For --units; returns the
- * number of axes changed. Hover labels and the CSV keep their own units. */
+ * "rad/s"): its values times factor, its label rewritten; and every "<number> from" in
+ * a hover label of any trace to "<number x factor> to". For --units; returns the number
+ * of axes changed. The CSV keeps its own units. */
 GD_API int gd_plot_convert_x(gd_plot *p, const char *from, const char *to, double factor);
 /* Sections and plotted curves (traces) of a document, for tests and callers. */
 GD_API int gd_plot_nsections(const gd_plot *p);

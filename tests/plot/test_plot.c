@@ -861,6 +861,20 @@ TEST(units_follow_the_command_line)
         CHECK(count(s, "//s:text[.='frequency (rad/s)']") == 2);
     }
     plot_end(&pr);
+    /* hover labels follow: the Nyquist points and the located peaks in rad/s (1050 Hz =
+     * 6597.34 rad/s), none left in Hz */
+    char html[300];
+    snprintf(html, sizeof html, "%s/frf.html", d.dir);
+    run(&d, &r,
+        "frf examples/kumar2011_coupled.yaml --input torque:motor --output mesh:mesh --freq "
+        "100:2000Hz:3 --units rad/s --plot %s",
+        html);
+    CHECK(r.code == 0);
+    run_free(&r);
+    char *page = read_file(html);
+    CHECK(page && contains(page, "mesh:mesh at 6597.34 rad/s: Re "));
+    CHECK(page && !contains(page, " Hz: Re ") && !contains(page, "1050 Hz"));
+    free(page);
     scratch_close(&d);
 }
 
