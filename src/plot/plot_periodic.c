@@ -51,12 +51,12 @@ static int pick_orders(const gd_system *sys, const gd_periodic_point *q0, order_
             for (int j = 0; j < n; j++)
                 dup |= fabs(cand[j].order - o) <= 1e-9 * o;
             if (dup) continue;
-            const char *l = ord[i].label; /* "mesh m1 48x driving", not "mesh mesh 48x" */
-            if (ord[i].kind == GD_ORDER_MESH && !strncmp(l, "mesh mesh ", 10)) l += 5;
+            char l[96];
+            pl_order_label(&ord[i], l, sizeof l);
             if (m > 1)
-                snprintf(cand[n].name, sizeof cand[n].name, "%d x %.100s", m, l);
+                snprintf(cand[n].name, sizeof cand[n].name, "%d x %.95s", m, l);
             else
-                snprintf(cand[n].name, sizeof cand[n].name, "%.100s", l);
+                snprintf(cand[n].name, sizeof cand[n].name, "%.95s", l);
             cand[n++].order = o;
         }
     free(ord);

@@ -17,14 +17,6 @@ void gd_plot_waterfall_options_init(gd_plot_waterfall_options *opt)
     memset(opt, 0, sizeof *opt);
 }
 
-/* an order's name on the plot, as on the Campbell diagram ("mesh 48x driving") */
-static void order_label(const gd_order *o, char *buf, size_t n)
-{
-    const char *l = o->label;
-    if (o->kind == GD_ORDER_MESH && !strncmp(l, "mesh mesh ", 10)) l += 5;
-    snprintf(buf, n, "%s", l);
-}
-
 /* the colour-map level of an amplitude (0 the loudest 10 dB), -1 below the last */
 static int level_of(double a, double amax)
 {
@@ -169,7 +161,7 @@ gd_status gd_plot_waterfall(const gd_system *sys, const gd_waterfall *w, const g
         if (ord * w1 / (2 * PI) > ftop) w1 = ftop * 2 * PI / ord;
         if (w1 <= wlo) continue; /* wholly above the axis */
         char label[96];
-        order_label(&w->orders[o], label, sizeof label);
+        pl_order_label(&w->orders[o], label, sizeof label);
         const char *col = w->orders[o].kind == GD_ORDER_MESH ? "#2ca02c" : "#d62728";
         double fx[2] = {fy * ord * wlo / (2 * PI), fy * ord * w1 / (2 * PI)},
                sy[2] = {sx * wlo, sx * w1};
@@ -200,7 +192,7 @@ gd_status gd_plot_waterfall(const gd_system *sys, const gd_waterfall *w, const g
         x[s] = sx * w->speeds[s];
     for (int o = 0; x && o < w->norders; o++) {
         char label[96];
-        order_label(&w->orders[o], label, sizeof label);
+        pl_order_label(&w->orders[o], label, sizeof label);
         pl_trace *t = pl_trace_add(p, cut, label, ns, x, w->order_amplitude + (size_t)o * ns,
                                    PL_LINES_MARKERS, pl_color(o));
         for (int s = 0; t && s < ns; s++)
