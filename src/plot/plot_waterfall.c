@@ -101,8 +101,10 @@ gd_status gd_plot_waterfall(const gd_system *sys, const gd_waterfall *w, const g
         map->ylim[1] = fy * ftop;
     }
     /* the colour map: one trace per 10 dB level (the legend is the colour scale) */
-    pl_trace *lv[NLEVELS] = {0};
+    int lv[NLEVELS]; /* trace index of each level (pointers move as the panel grows), -1 */
     int cnt[NLEVELS] = {0};
+    for (int l = 0; l < NLEVELS; l++)
+        lv[l] = -1;
     for (int s = 0; s < ns; s++)
         for (int k = 1; k < w->spectra[s]->n && w->spectra[s]->freq[k] <= ftop; k++) {
             int l = level_of(w->spectra[s]->amplitude[k], amax);
@@ -112,8 +114,11 @@ gd_status gd_plot_waterfall(const gd_system *sys, const gd_waterfall *w, const g
         if (!cnt[l]) continue;
         char ln[64];
         snprintf(ln, sizeof ln, "%g to %g dB", l ? -DB_STEP * l : 0.0, -DB_STEP * (l + 1));
-        lv[l] = pl_trace_add(p, map, ln, cnt[l], NULL, NULL, PL_MARKERS, level_color(l));
-        if (lv[l]) lv[l]->symbol = PL_SQUARE;
+        pl_trace *t = pl_trace_add(p, map, ln, cnt[l], NULL, NULL, PL_MARKERS, level_color(l));
+        if (t && t->x && t->y) {
+            t->symbol = PL_SQUARE;
+            lv[l] = (int)(t - map->traces);
+        }
         cnt[l] = 0;
     }
     for (int s = 0; s < ns; s++) {
@@ -133,8 +138,8 @@ gd_status gd_plot_waterfall(const gd_system *sys, const gd_waterfall *w, const g
             pl_csv(p, sec, "%.10g,%.10g,%.10g,%.10g\n", w->speeds[s], w->speeds[s] * 30 / PI,
                    sp->freq[k], sp->amplitude[k]);
             int l = level_of(sp->amplitude[k], amax);
-            if (k > 0 && l >= 0 && lv[l]) {
-                pl_trace *t = lv[l];
+            if (k > 0 && l >= 0 && lv[l] >= 0) {
+                pl_trace *t = &map->traces[lv[l]];
                 int i = cnt[l]++;
                 t->x[i] = sx * w->speeds[s];
                 t->y[i] = cx[k];

@@ -965,6 +965,9 @@ TEST(png_and_pdf_of_every_plot)
         {"periodic tests/plot/mathieu_pair.yaml --speeds 680:730:5 --harmonics 4 --record "
          "mesh:m:force --plot %s",
          1},
+        {"transient tests/plot/runup_pair.yaml --sweep-speeds 6000:8000rpm:3 --poincare shaft_a "
+         "--points 8 --settle 10rev --waterfall gear_a.x --quiet --plot %s",
+         1},
         {"report tests/plot/study.yaml --speeds 0:6000rpm:5 --freq-points 40 --out %s", 6},
     };
     gd_error err;
