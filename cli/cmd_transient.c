@@ -83,7 +83,8 @@ static const char USAGE_LIMITS[] =
 /* (split: C99 guarantees string literals of 4095 characters only) */
 static const char USAGE_POINCARE[] =
     "  --plot FILE          time histories, spectra, orbits, contact states: FILE.svg or\n"
-    "                       FILE.html (interactive, self-contained; docs/plots.md)\n"
+    "                       FILE.html (interactive, self-contained; docs/plots.md);\n"
+    "                       with --sweep-speeds, the run-up waterfall (--waterfall)\n"
     "  --poincare SRC       stroboscopic (Poincare) samples of the records once per\n"
     "                       revolution of shaft SRC or per tooth-mesh cycle of mesh SRC\n"
     "                       (shaft:NAME or mesh:NAME when a name is both), at the exact\n"
@@ -105,7 +106,7 @@ static const char USAGE_POINCARE[] =
     "                       shaft, mesh orders) in the table and --json, with --out\n"
     "                       DIR/waterfall.csv and DIR/order_cuts.csv; --plot FILE draws\n"
     "                       it (cascade, colour map, order cuts; the first record without\n"
-    "                       --waterfall). A stepped (quasi-steady) run-up (docs/plots.md)\n";
+    "                       --waterfall). A stepped (quasi-steady) run-up (docs/transient.md)\n";
 
 enum { NPEAKS = 6 };
 
