@@ -358,12 +358,12 @@ static int write_waterfall_csv(gd_outdir *od, const gd_waterfall *w, gd_error *e
     return gd_outdir_close(od, f, "order_cuts.csv", err) ? 1 : 0;
 }
 
-static void print_waterfall(const gd_cli_record *rec, const gd_waterfall *w)
+static void print_waterfall(const gd_cli_record *rec, const gd_waterfall *w, int down)
 {
-    printf("\nrun-up waterfall of %s (stepped: one steady run per speed; Hann window over the "
+    printf("\n%s waterfall of %s (stepped: one steady run per speed; Hann window over the "
            "settled part): amplitude (%s) of each order, the largest within 1.5 bins of order x "
            "speed\n",
-           rec->name, rec->unit ? rec->unit : "");
+           down ? "run-down" : "run-up", rec->name, rec->unit ? rec->unit : "");
     printf("%12s", "speed_rpm");
     for (int k = 0; k < w->norders; k++) { /* "mesh 16x shaft_a", not "mesh mesh 16x ..." */
         const char *l = w->orders[k].label;
@@ -460,7 +460,7 @@ int gd_cli_transient_sweep(const gd_system *sys, const gd_transient_model *tm,
         gd_cli_print_json(stdout, summary);
     else {
         print_sweep(sys, recs, p, sw, pts, done, cpu);
-        if (wf) print_waterfall(&recs->r[sw->waterfall], wf);
+        if (wf) print_waterfall(&recs->r[sw->waterfall], wf, sw->direction == 1);
     }
 out:
     gd_waterfall_free(wf);
