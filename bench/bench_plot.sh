@@ -31,3 +31,10 @@ if "$B/geardyn" report examples/rig2018.yaml --out "$tmp/probe.png" >/dev/null 2
     rd=$(best report examples/rig2018.yaml --out "$tmp/r.pdf")
     echo "report of the rig as .svg $rs s, .png $rp s ($(echo "$rp / $rs" | bc -l | cut -c1-4)x, $(stat -c %s "$tmp/r.png") B), .pdf $rd s ($(echo "$rd / $rs" | bc -l | cut -c1-4)x, $(stat -c %s "$tmp/r.pdf") B)"
 fi
+# the run-up waterfall: the sweep with --waterfall (finer samples, spectra) and with its
+# --plot, over the plain sweep (the floor, same run)
+w="transient tests/plot/runup_pair.yaml --sweep-speeds 6000:9000rpm:16 --poincare shaft_a --points 32 --settle 30rev --quiet"
+wf=$(best $w)
+ww=$(best $w --waterfall gear_a.x)
+wh=$(best $w --waterfall gear_a.x --plot "$tmp/w.html")
+echo "run-up of the test pair (16 speeds): sweep $wf s; with --waterfall $ww s ($(echo "$ww / $wf" | bc -l | cut -c1-4)x), and its --plot .html $wh s ($(echo "$wh / $wf" | bc -l | cut -c1-4)x), $(stat -c %s "$tmp/w.html") B"

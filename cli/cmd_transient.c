@@ -85,7 +85,8 @@ static const char USAGE_LIMITS[] =
 /* (split: C99 guarantees string literals of 4095 characters only) */
 static const char USAGE_POINCARE[] =
     "  --plot FILE          time histories, spectra, orbits, contact states: FILE.svg or\n"
-    "                       FILE.html (interactive, self-contained; docs/plots.md)\n"
+    "                       FILE.html (interactive, self-contained; docs/plots.md);\n"
+    "                       with --sweep-speeds, the run-up waterfall (--waterfall)\n"
     "  --poincare SRC       stroboscopic (Poincare) samples of the records once per\n"
     "                       revolution of shaft SRC or per tooth-mesh cycle of mesh SRC\n"
     "                       (shaft:NAME or mesh:NAME when a name is both), at the exact\n"
@@ -101,7 +102,13 @@ static const char USAGE_POINCARE[] =
     "                       with --out, DIR/sweep.csv, DIR/poincare.csv, DIR/summary.json\n"
     "  --points N           Poincare points per speed in a sweep (default 64)\n"
     "  --run-down           sweep from TO down to FROM\n"
-    "  --both-directions    sweep up, then down again\n";
+    "  --both-directions    sweep up, then down again\n"
+    "  --waterfall REC      in a sweep, the run-up waterfall of record REC: its spectrum\n"
+    "                       over each speed's settled part, the order cuts (1x of each\n"
+    "                       shaft, mesh orders) in the table and --json, with --out\n"
+    "                       DIR/waterfall.csv and DIR/order_cuts.csv; --plot FILE draws\n"
+    "                       it (cascade, colour map, order cuts; the first record without\n"
+    "                       --waterfall). A stepped (quasi-steady) run-up (docs/transient.md)\n";
 
 static const char USAGE_PERIODS[] =
     "  --periods N          responses with no stable periodic orbit (rattle): run --settle\n"
@@ -409,7 +416,7 @@ fail:
 typedef struct cli_opts {
     const char *duration, *revolutions, *speed, *from, *interval, *coupling, *out, *step, *reduce,
         *plot;
-    const char *poincare, *settle, *sweep;
+    const char *poincare, *settle, *sweep, *waterfall;
     long points, periods;
     int direction, direction_given;
     const char *records[64];
@@ -452,6 +459,7 @@ static int parse_args(int argc, char **argv, cli_opts *o)
                                          {"run-down", no_argument, 0, 'D'},
                                          {"both-directions", no_argument, 0, 'B'},
                                          {"periods", required_argument, 0, 'Q'},
+                                         {"waterfall", required_argument, 0, 'Y'},
                                          GD_CLI_SET_OPTION,
                                          GD_CLI_DOFS_OPTION,
                                          {"help", no_argument, 0, 'h'},
@@ -583,6 +591,9 @@ static int parse_args(int argc, char **argv, cli_opts *o)
         case 'W':
             o->sweep = optarg;
             break;
+        case 'Y':
+            o->waterfall = optarg;
+            break;
         case 'N':
             if (gd_cli_parse_count(optarg, 2, 1000000, &o->points))
                 return gd_cli_usage_error(CMD, "--points: '%s' is not a whole number from 2",
@@ -638,7 +649,6 @@ static int parse_args(int argc, char **argv, cli_opts *o)
                             : o->reduce                    ? "--reduce"
                             : o->step                      ? "--step"
                             : o->method == GD_TR_GEN_ALPHA ? "--method galpha"
-                            : o->plot                      ? "--plot"
                                                            : NULL;
         if (clash)
             return gd_cli_usage_error(
@@ -646,8 +656,14 @@ static int parse_args(int argc, char **argv, cli_opts *o)
                 "%s does not apply to --sweep-speeds (each run lasts --settle "
                 "plus --points Poincare periods)",
                 clash);
+        if ((o->waterfall || o->plot) && o->direction == 2)
+            return gd_cli_usage_error(CMD,
+                                      "%s: give one direction (the run-up, or --run-down), "
+                                      "not --both-directions",
+                                      o->waterfall ? "--waterfall" : "--plot");
         return 0;
     }
+    if (o->waterfall) return gd_cli_usage_error(CMD, "--waterfall applies to --sweep-speeds only");
     if (o->points || o->direction_given)
         return gd_cli_usage_error(CMD, "%s applies to --sweep-speeds only",
                                   o->points           ? "--points"
@@ -802,6 +818,8 @@ static int sweep(const cli_opts *o, gd_model *m, gd_system *s)
     sw.json = o->json;
     sw.quiet = o->quiet;
     sw.out = o->out;
+    sw.plot = o->plot;
+    sw.waterfall = -1;
     if ((rc = gd_cli_poincare_parse(CMD, m, o->poincare, &pc))) goto done;
     for (int i = 0; i < m->nunbalances; i++)
         m->unbalances[i].amount *= o->unbalance_scale;
@@ -813,6 +831,9 @@ static int sweep(const cli_opts *o, gd_model *m, gd_system *s)
     for (int k = 0; k < o->nrecords; k++)
         if ((rc = gd_cli_parse_records(CMD, s, tm, o->records[k], &recs))) goto done;
     if (!o->nrecords && (rc = gd_cli_default_records(s, tm, &recs))) goto done;
+    if ((o->waterfall || o->plot) && (rc = gd_cli_waterfall_record(CMD, s, tm, o->waterfall, &recs,
+                                                                   &sw.waterfall, &sw.max_order)))
+        goto done;
     rc = gd_cli_transient_sweep(s, tm, &recs, &pc, &sw);
 done:
     free(speeds);

@@ -55,7 +55,16 @@ typedef struct gd_cli_sweep {
     gd_transient_options base;       /* rtol, method, init of the first speed */
     int json, quiet;
     const char *out;
+    int waterfall;    /* record index whose spectra make the run-up waterfall; -1: none */
+    double max_order; /* highest excitation order (samples fine enough for it) */
+    const char *plot; /* --plot: the waterfall figure */
 } gd_cli_sweep;
+
+/* The record of --waterfall REC (NULL: the first record): its index in recs (REC added
+ * when not recorded yet) and the model's highest excitation order (1x of each shaft,
+ * teeth x speed ratio of each mesh's driver). 0, or 2 after a usage error. */
+int gd_cli_waterfall_record(const char *cmd, const gd_system *sys, const gd_transient_model *tm,
+                            const char *text, gd_cli_records *recs, int *index, double *max_order);
 
 int gd_cli_transient_sweep(const gd_system *sys, const gd_transient_model *tm,
                            const gd_cli_records *recs, const gd_cli_poincare *p,

@@ -1,12 +1,16 @@
 /* `geardyn transient --sweep-speeds FROM:TO:COUNT --poincare SHAFT|MESH`: a bifurcation
  * diagram by time integration, the state carried from one speed to the next (run-up,
- * run-down or both), Poincare points per speed and their periodicity. */
+ * run-down or both), Poincare points per speed and their periodicity; with --waterfall
+ * REC the spectrum of REC over each speed's settled part, the run-up waterfall and its
+ * order cuts (geardyn/waterfall.h). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
 #include "cli.h"
+#include "geardyn/plot.h"
+#include "geardyn/waterfall.h"
 #include "transient_poincare.h"
 
 #ifndef M_PI
@@ -20,6 +24,7 @@ typedef struct sweep_point {
     double *t, *values; /* n; nrec * n */
     double cpu;
     long steps;
+    gd_spectrum *spec; /* --waterfall: the record's spectrum over the settled part */
 } sweep_point;
 
 static void points_free(sweep_point *pts, int n)
@@ -27,6 +32,7 @@ static void points_free(sweep_point *pts, int n)
     for (int i = 0; i < n; i++) {
         free(pts[i].t);
         free(pts[i].values);
+        gd_spectrum_free(pts[i].spec);
     }
     free(pts);
 }
@@ -50,7 +56,15 @@ static gd_status one_speed(const gd_system *sys, const gd_transient_model *tm,
     opt.t_start = t0;
     opt.record_from = k0 * P;
     opt.t_end = (k0 + sw->points - 1) * P;
-    opt.output_interval = P / 16;
+    /* 16 samples per Poincare period; for a waterfall also 2.5 per period of the highest
+     * order at the top speed, so every spectrum reaches the same frequency (whole samples
+     * per period, so the settled part is a whole number of them) */
+    int per = 16;
+    if (sw->waterfall >= 0) { /* at every speed, up to the top speed's highest order */
+        double wtop = sw->speeds[sw->nspeeds - 1] > W ? sw->speeds[sw->nspeeds - 1] : W;
+        per = (int)fmax(16, ceil(2.5 * sw->max_order * p->angle / (2 * M_PI) * wtop / W));
+    }
+    opt.output_interval = P / per;
     if (given) {
         opt.init = GD_TR_INIT_GIVEN;
         opt.q0 = q;
@@ -72,6 +86,14 @@ static gd_status one_speed(const gd_system *sys, const gd_transient_model *tm,
     }
     for (int r = 0; r < recs->n; r++)
         scale[r] = res->stats[r].peak_to_peak;
+    /* the spectrum over the settled part: samples k0 P .. t_end less the last, a whole
+     * number of Poincare periods */
+    if (sw->waterfall >= 0 &&
+        (st = gd_spectrum_compute(res->values + (size_t)sw->waterfall * res->nout, res->nout - 1,
+                                  res->t[1] - res->t[0], GD_WINDOW_HANN, &pt->spec, err))) {
+        free(scale);
+        goto done;
+    }
     pt->speed = W;
     pt->t_start = t0;
     pt->t_end = opt.t_end;
@@ -155,8 +177,10 @@ static cJSON *sweep_json(const gd_system *sys, const gd_cli_records *recs, const
     return o;
 }
 
+static int write_waterfall_csv(gd_outdir *od, const gd_waterfall *w, gd_error *err);
+
 static int write_sweep(const char *dir, const gd_cli_records *recs, const sweep_point *pts,
-                       int npts, const cJSON *summary)
+                       int npts, const cJSON *summary, const gd_waterfall *w)
 {
     gd_error err;
     gd_error_clear(&err);
@@ -195,6 +219,7 @@ static int write_sweep(const char *dir, const gd_cli_records *recs, const sweep_
         fprintf(f, ",%s\n", pts[i].verdict);
     }
     if (gd_outdir_close(&od, f, "sweep.csv", &err)) goto fail;
+    if (w && write_waterfall_csv(&od, w, &err)) goto fail;
     f = gd_outdir_open(&od, "summary.json", &err);
     if (!f) goto fail;
     gd_cli_print_json(f, summary);
@@ -232,6 +257,132 @@ static void print_sweep(const gd_system *sys, const gd_cli_records *recs, const 
     }
 }
 
+int gd_cli_waterfall_record(const char *cmd, const gd_system *sys, const gd_transient_model *tm,
+                            const char *text, gd_cli_records *recs, int *index, double *max_order)
+{
+    const gd_model *m = sys->model;
+    *max_order = 1;
+    for (int s = 0; s < m->nshafts; s++)
+        *max_order = fmax(*max_order, fabs(m->shafts[s].speed_ratio));
+    for (int k = 0; k < m->nmeshes; k++)
+        if (m->meshes[k].teeth[0] > 0)
+            *max_order = fmax(*max_order,
+                              m->meshes[k].teeth[0] *
+                                  fabs(m->shafts[m->nodes[m->meshes[k].driver].shaft].speed_ratio));
+    *index = 0;
+    if (!text) {
+        if (recs->n < 1) return gd_cli_usage_error(cmd, "--plot: give a record (--waterfall REC)");
+        return 0;
+    }
+    gd_cli_records one = {0, 0, NULL};
+    int rc = gd_cli_parse_records(cmd, sys, tm, text, &one);
+    if (!rc && one.n != 1)
+        rc = gd_cli_usage_error(cmd, "--waterfall: give one record (got %d in '%s')", one.n, text);
+    if (rc) {
+        gd_cli_records_free(&one);
+        return rc;
+    }
+    const gd_tr_record *w = &one.r[0].rec;
+    for (*index = 0; *index < recs->n; (*index)++) {
+        const gd_tr_record *r = &recs->r[*index].rec;
+        if (r->kind == w->kind && r->index == w->index && r->index2 == w->index2) break;
+    }
+    gd_cli_records_free(&one);
+    if (*index == recs->n) return gd_cli_parse_records(cmd, sys, tm, text, recs);
+    return 0;
+}
+
+/* --waterfall: the spectra, the orders and the order cuts */
+static cJSON *waterfall_json(const gd_cli_record *rec, const gd_waterfall *w)
+{
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "record", rec->name);
+    cJSON_AddStringToObject(o, "unit", rec->unit ? rec->unit : "");
+    cJSON_AddStringToObject(o, "window", "hann");
+    cJSON *oa = cJSON_AddArrayToObject(o, "orders");
+    for (int k = 0; k < w->norders; k++) {
+        cJSON *e = cJSON_CreateObject();
+        cJSON_AddStringToObject(e, "label", w->orders[k].label);
+        cJSON_AddStringToObject(e, "kind",
+                                w->orders[k].kind == GD_ORDER_MESH    ? "mesh"
+                                : w->orders[k].kind == GD_ORDER_SHAFT ? "shaft"
+                                                                      : "user");
+        cJSON_AddNumberToObject(e, "order", w->orders[k].order);
+        cJSON *aa = cJSON_AddArrayToObject(e, "amplitude");
+        cJSON *fa = cJSON_AddArrayToObject(e, "frequency_hz");
+        for (int i = 0; i < w->nspeeds; i++) {
+            cJSON_AddItemToArray(
+                aa, gd_cli_json_number(w->order_amplitude[(size_t)k * w->nspeeds + i]));
+            cJSON_AddItemToArray(
+                fa, gd_cli_json_number(w->order_frequency[(size_t)k * w->nspeeds + i]));
+        }
+        cJSON_AddItemToArray(oa, e);
+    }
+    cJSON *sa = cJSON_AddArrayToObject(o, "spectra");
+    for (int i = 0; i < w->nspeeds; i++) {
+        const gd_spectrum *sp = w->spectra[i];
+        cJSON *e = cJSON_CreateObject();
+        cJSON_AddNumberToObject(e, "speed_rad_s", w->speeds[i]);
+        cJSON_AddNumberToObject(e, "speed_rpm", w->speeds[i] * 30 / M_PI);
+        cJSON_AddNumberToObject(e, "samples", sp->nsamples);
+        cJSON_AddNumberToObject(e, "dt_s", sp->dt);
+        cJSON_AddNumberToObject(e, "df_hz", sp->df);
+        cJSON *fa = cJSON_AddArrayToObject(e, "frequency_hz");
+        cJSON *aa = cJSON_AddArrayToObject(e, "amplitude");
+        for (int k = 0; k < sp->n; k++) {
+            cJSON_AddItemToArray(fa, gd_cli_json_number(sp->freq[k]));
+            cJSON_AddItemToArray(aa, gd_cli_json_number(sp->amplitude[k]));
+        }
+        cJSON_AddItemToArray(sa, e);
+    }
+    return o;
+}
+
+static int write_waterfall_csv(gd_outdir *od, const gd_waterfall *w, gd_error *err)
+{
+    FILE *f = gd_outdir_open(od, "waterfall.csv", err);
+    if (!f) return 1;
+    fprintf(f, "speed_rad_s,speed_rpm,frequency_hz,amplitude\n");
+    for (int i = 0; i < w->nspeeds; i++)
+        for (int k = 0; k < w->spectra[i]->n; k++)
+            fprintf(f, "%.10g,%.10g,%.10g,%.10g\n", w->speeds[i], w->speeds[i] * 30 / M_PI,
+                    w->spectra[i]->freq[k], w->spectra[i]->amplitude[k]);
+    if (gd_outdir_close(od, f, "waterfall.csv", err)) return 1;
+    if (!(f = gd_outdir_open(od, "order_cuts.csv", err))) return 1;
+    fprintf(f, "speed_rad_s,speed_rpm");
+    for (int k = 0; k < w->norders; k++)
+        fprintf(f, ",\"%s\"", w->orders[k].label);
+    fprintf(f, "\n");
+    for (int i = 0; i < w->nspeeds; i++) {
+        fprintf(f, "%.10g,%.10g", w->speeds[i], w->speeds[i] * 30 / M_PI);
+        for (int k = 0; k < w->norders; k++)
+            fprintf(f, ",%.10g", w->order_amplitude[(size_t)k * w->nspeeds + i]);
+        fprintf(f, "\n");
+    }
+    return gd_outdir_close(od, f, "order_cuts.csv", err) ? 1 : 0;
+}
+
+static void print_waterfall(const gd_cli_record *rec, const gd_waterfall *w, int down)
+{
+    printf("\n%s waterfall of %s (stepped: one steady run per speed; Hann window over the "
+           "settled part): amplitude (%s) of each order, the largest within 1.5 bins of order x "
+           "speed\n",
+           down ? "run-down" : "run-up", rec->name, rec->unit ? rec->unit : "");
+    printf("%12s", "speed_rpm");
+    for (int k = 0; k < w->norders; k++) { /* "mesh 16x shaft_a", not "mesh mesh 16x ..." */
+        const char *l = w->orders[k].label;
+        if (w->orders[k].kind == GD_ORDER_MESH && !strncmp(l, "mesh mesh ", 10)) l += 5;
+        printf(" %18.18s", l);
+    }
+    printf("\n");
+    for (int i = 0; i < w->nspeeds; i++) {
+        printf("%12.6g", w->speeds[i] * 30 / M_PI);
+        for (int k = 0; k < w->norders; k++)
+            printf(" %18.6g", w->order_amplitude[(size_t)k * w->nspeeds + i]);
+        printf("\n");
+    }
+}
+
 int gd_cli_transient_sweep(const gd_system *sys, const gd_transient_model *tm,
                            const gd_cli_records *recs, const gd_cli_poincare *p,
                            const gd_cli_sweep *sw)
@@ -242,6 +393,7 @@ int gd_cli_transient_sweep(const gd_system *sys, const gd_transient_model *tm,
     double *q = calloc((size_t)sys->ndof + 1, sizeof *q),
            *v = calloc((size_t)sys->ndof + 1, sizeof *v);
     cJSON *summary = NULL;
+    gd_waterfall *wf = NULL;
     int rc = GD_EXIT_OK, done = 0;
     if (!pts || !rr || !q || !v) {
         fprintf(stderr, "geardyn: error: out of memory\n");
@@ -277,13 +429,45 @@ int gd_cli_transient_sweep(const gd_system *sys, const gd_transient_model *tm,
         done = k + 1;
     }
     if (tty) fprintf(stderr, "\r%60s\r", "");
+    if (sw->waterfall >= 0) {
+        gd_spectrum **spec = malloc((size_t)done * sizeof *spec);
+        double *speeds = malloc((size_t)done * sizeof *speeds);
+        gd_error err;
+        gd_error_clear(&err);
+        gd_status st = GD_ENOMEM;
+        if (spec && speeds) {
+            for (int k = 0; k < done; k++) {
+                speeds[k] = pts[k].speed;
+                spec[k] = pts[k].spec;
+                pts[k].spec = NULL;
+            }
+            st = gd_waterfall_new(sys, done, speeds, spec, &wf, &err);
+        } else
+            gd_error_set(&err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
+        free(spec);
+        free(speeds);
+        if (st) {
+            rc = gd_cli_report(&err);
+            goto out;
+        }
+        if (sw->plot) { /* before any other output: a refused plot leaves nothing */
+            gd_plot *pl = NULL;
+            st = gd_plot_waterfall(sys, wf, &recs->r[sw->waterfall].rec, NULL, &pl, &err);
+            if ((rc = gd_cli_plot_finish(st, pl, &err, sw->plot))) goto out;
+        }
+    }
     summary = sweep_json(sys, recs, p, sw, pts, done, cpu);
-    if (sw->out && (rc = write_sweep(sw->out, recs, pts, done, summary))) goto out;
+    if (wf)
+        cJSON_AddItemToObject(summary, "waterfall", waterfall_json(&recs->r[sw->waterfall], wf));
+    if (sw->out && (rc = write_sweep(sw->out, recs, pts, done, summary, wf))) goto out;
     if (sw->json)
         gd_cli_print_json(stdout, summary);
-    else
+    else {
         print_sweep(sys, recs, p, sw, pts, done, cpu);
+        if (wf) print_waterfall(&recs->r[sw->waterfall], wf, sw->direction == 1);
+    }
 out:
+    gd_waterfall_free(wf);
     cJSON_Delete(summary);
     if (pts) points_free(pts, nrun);
     free(rr);

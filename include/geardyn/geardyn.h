@@ -9,7 +9,8 @@
  *   system      gd_system: DOF numbering and sparse matrices, built once per model
  *               (system.h, sparse.h, probe.h)
  *   analyses    modal.h, static.h, campbell.h, frf.h, unbalance.h, transient.h, transient_model.h,
- *               mesh_stiffness.h (from gear geometry alone), spectrum.h (of records)
+ *               mesh_stiffness.h (from gear geometry alone), spectrum.h (of records),
+ *               waterfall.h (spectra over a stepped run-up, order cuts)
  *   output      result structures (gd_modal_result, gd_campbell_result, ...); printing,
  *               JSON and CSV are the command-line program's
  *   plots       plot.h: the figure of each result as SVG or self-contained HTML;
@@ -49,6 +50,7 @@
 #include "geardyn/modal.h"
 #include "geardyn/static.h"
 #include "geardyn/campbell.h"
+#include "geardyn/waterfall.h"
 #include "geardyn/probe.h"
 #include "geardyn/frf.h"
 #include "geardyn/unbalance.h"

@@ -33,6 +33,7 @@
 #include "geardyn/system.h"
 #include "geardyn/transient.h"
 #include "geardyn/unbalance.h"
+#include "geardyn/waterfall.h"
 
 typedef struct gd_plot gd_plot;
 
@@ -68,8 +69,9 @@ GD_API gd_status gd_plot_add_note(gd_plot *p, const char *title, const char *tex
 /* Moves every section of src to the end of dst and frees src. */
 GD_API gd_status gd_plot_append(gd_plot *dst, gd_plot *src, gd_error *err);
 /* Changes the unit of every x axis labelled "(from)" (e.g. "Hz") to "(to)" (e.g.
- * "rad/s"): its values times factor, its label rewritten. For --units; returns the
- * number of axes changed. Hover labels and the CSV keep their own units. */
+ * "rad/s"): its values times factor, its label rewritten; and every "<number> from" in
+ * a hover label of any trace to "<number x factor> to". For --units; returns the number
+ * of axes changed. The CSV keeps its own units. */
 GD_API int gd_plot_convert_x(gd_plot *p, const char *from, const char *to, double factor);
 /* Sections and plotted curves (traces) of a document, for tests and callers. */
 GD_API int gd_plot_nsections(const gd_plot *p);
@@ -158,5 +160,22 @@ GD_API gd_status gd_plot_periodic(const gd_system *sys, const gd_periodic_result
  * each mesh's force and misalignment (docs/static.md). GD_EINPUT without shafts. */
 GD_API gd_status gd_plot_static(const gd_system *sys, const gd_static_result *r, gd_plot **out,
                                 gd_error *err);
+
+/* Run-up waterfall (geardyn/waterfall.h) of the record rec: the cascade of the spectra
+ * stacked by speed (each drawn from its speed up, the largest amplitude = 3 speed steps;
+ * hover: the amplitude), the colour map over speed and frequency (6 dB levels down to
+ * 48 dB below the largest amplitude) and the order cuts (log), with the orders (1x of each
+ * shaft red, tooth-mesh green) as lines f = order x speed / 2 pi named on the plot.
+ * GD_EINPUT when there is no spectrum. */
+typedef struct gd_plot_waterfall_options {
+    double max_frequency_hz; /* > 0: the frequency axis ends here; 0: 1.2 x the highest
+                                order at the top speed (within the spectra's last bin) */
+    int speed_rad_s;         /* speed axes in rad/s (default rpm) */
+    int frequency_rad_s;     /* frequency axes in rad/s (default Hz) */
+} gd_plot_waterfall_options;
+GD_API void gd_plot_waterfall_options_init(gd_plot_waterfall_options *opt);
+GD_API gd_status gd_plot_waterfall(const gd_system *sys, const gd_waterfall *w,
+                                   const gd_tr_record *rec, const gd_plot_waterfall_options *opt,
+                                   gd_plot **out, gd_error *err);
 
 #endif

@@ -1,4 +1,5 @@
 /* The plot document: sections, panels, traces, tables and CSV text, owned by gd_plot. */
+#include <ctype.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
@@ -346,8 +347,76 @@ int pl_ticks(double lo, double hi, int logscale, double *ticks, int max)
     return n;
 }
 
+/* A hover label with every "<number> <from>" (the unit a whole word) rewritten as
+ * "<number x factor> <to>"; NULL when nothing changed or out of memory. */
+static char *convert_text(const char *s, const char *from, const char *to, double factor)
+{
+    size_t lf = strlen(from), cap = 2 * strlen(s) + 64, n = 0;
+    char *o = NULL;
+    int changed = 0;
+    const char *last = s; /* copied up to here */
+    for (const char *u = strstr(s, from); u; u = strstr(u + lf, from)) {
+        char after = u[lf];
+        if (u - s < 2 || u[-1] != ' ' || (after && (isalnum((unsigned char)after) || after == '/')))
+            continue;
+        const char *b = u - 1; /* the number before the space */
+        while (b > last && strchr("0123456789.eE+-", b[-1]))
+            b--;
+        if (b == u - 1) continue;
+        char *end;
+        double v = strtod(b, &end);
+        if (end != u - 1) continue;
+        if (!o && !(o = malloc(cap))) return NULL;
+        char num[64];
+        int ln = snprintf(num, sizeof num, "%.6g %s", v * factor, to);
+        size_t keep = (size_t)(b - last);
+        if (n + keep + (size_t)ln + 1 > cap) {
+            cap = 2 * (n + keep + (size_t)ln + 1);
+            char *g = realloc(o, cap);
+            if (!g) {
+                free(o);
+                return NULL;
+            }
+            o = g;
+        }
+        memcpy(o + n, last, keep);
+        n += keep;
+        memcpy(o + n, num, (size_t)ln);
+        n += (size_t)ln;
+        last = u + lf;
+        changed = 1;
+    }
+    if (!changed) {
+        free(o);
+        return NULL;
+    }
+    size_t rest = strlen(last);
+    if (n + rest + 1 > cap) {
+        char *g = realloc(o, n + rest + 1);
+        if (!g) {
+            free(o);
+            return NULL;
+        }
+        o = g;
+    }
+    memcpy(o + n, last, rest + 1);
+    return o;
+}
+
 int gd_plot_convert_x(gd_plot *p, const char *from, const char *to, double factor)
 {
+    /* hover labels of every trace: "126.53 Hz" -> "795.01 rad/s" */
+    for (int i = 0; p && i < p->nsections; i++)
+        for (int k = 0; k < p->sections[i].npanels; k++)
+            for (int t = 0; t < p->sections[i].panels[k].ntraces; t++) {
+                pl_trace *tr = &p->sections[i].panels[k].traces[t];
+                for (int j = 0; tr->text && j < tr->n; j++) {
+                    char *c = tr->text[j] ? convert_text(tr->text[j], from, to, factor) : NULL;
+                    if (!c) continue;
+                    free(tr->text[j]);
+                    tr->text[j] = c;
+                }
+            }
     char want[48], repl[48];
     snprintf(want, sizeof want, "(%s)", from);
     snprintf(repl, sizeof repl, "(%s)", to);

@@ -208,7 +208,8 @@ static void mode3d_json(FILE *f, const pl_panel *pn, const char *id)
     fputs("]}", f);
 }
 
-/* traces of the first mode of a 3-D panel (each drawn with its axis at rest) */
+/* traces of the first mode of a 3-D panel (each drawn with its axis at rest and its
+ * stations' orbits) */
 static int frame0(const pl_panel *pn)
 {
     int n = 0;
@@ -236,7 +237,8 @@ static void table_html(FILE *f, const pl_panel *pn)
 }
 
 /* The page's own script: draws the figures, animates the 3-D mode shapes (the real part
- * of u e^{i phi} for phi over a cycle, x and y motion of each shaft station) and turns
+ * of u e^{i phi} for phi over a cycle, x and y motion of each shaft station, with the
+ * orbit ellipse of each station drawn along the shaft, ROSS style) and turns
  * the CSV texts into downloads. */
 static const char PAGE_JS[] =
     "(function(){\n"
@@ -248,7 +250,14 @@ static const char PAGE_JS[] =
     " function pick(k){cur=m.traces.filter(function(t){return t.frame===k;});\n"
     "  var a=1e-300;cur.forEach(function(t){for(var i=0;i<t.z.length;i++){\n"
     "   a=Math.max(a,Math.hypot(t.xr[i],t.xi[i]),Math.hypot(t.yr[i],t.yi[i]));}});\n"
-    "  cur.scale=1/a;}\n"
+    "  cur.scale=1/a;\n"
+    /* each station's orbit: the ellipse the point traces over a cycle (37 points, a
+     * null between stations), fixed while the deflected line turns along it */
+    "  cur.forEach(function(t){var ox=[],oy=[],oz=[];for(var i=0;i<t.z.length;i++){\n"
+    "   for(var j=0;j<=36;j++){var c=Math.cos(Math.PI*j/18),s=Math.sin(Math.PI*j/18);\n"
+    "    ox.push(t.z[i]);oy.push(cur.scale*(t.xr[i]*c-t.xi[i]*s));\n"
+    "    oz.push(cur.scale*(t.yr[i]*c-t.yi[i]*s));}ox.push(null);oy.push(null);oz.push(null);}\n"
+    "   t.orb={x:ox,y:oy,z:oz};});}\n"
     " function data(){var d=[];cur.forEach(function(t){var y=[],z=[];\n"
     "  var c=Math.cos(phi),s=Math.sin(phi);for(var i=0;i<t.z.length;i++){\n"
     "   y.push(cur.scale*(t.xr[i]*c-t.xi[i]*s));z.push(cur.scale*(t.yr[i]*c-t.yi[i]*s));}\n"
@@ -256,7 +265,10 @@ static const char PAGE_JS[] =
     "   line:{color:t.color,width:6},marker:{size:3,color:t.color}});\n"
     "  d.push({type:'scatter3d',mode:'lines',name:t.name+' (at rest)',x:t.z,\n"
     "   y:t.z.map(function(){return 0;}),z:t.z.map(function(){return 0;}),showlegend:false,\n"
-    "   line:{color:'#999',width:2,dash:'dash'}});});return d;}\n"
+    "   line:{color:'#999',width:2,dash:'dash'}});\n"
+    "  d.push({type:'scatter3d',mode:'lines',name:t.name+' orbits',x:t.orb.x,y:t.orb.y,\n"
+    "   z:t.orb.z,showlegend:false,hoverinfo:'skip',opacity:0.55,\n"
+    "   line:{color:t.color,width:2}});});return d;}\n"
     " var lay={title:{text:m.title},height:560,margin:{t:50},scene:{xaxis:{title:{text:'axial "
     "position (m)'}},\n"
     "  yaxis:{title:{text:'x (scaled)'},range:[-1.1,1.1]},zaxis:{title:{text:'y "
@@ -369,7 +381,7 @@ gd_status pl_write_html(const gd_plot *p, FILE *f, const char *plotly_path, gd_e
                         "<p>mode <select id=\"%s-sel\"></select> <label><input type=\"checkbox\" "
                         "id=\"%s-run\" checked> animate</label></p>\n<div class=\"plot mode3d\" "
                         "id=\"%s\" data-traces=\"%d\"></div>\n",
-                        id, id, id, 2 * frame0(pn));
+                        id, id, id, 3 * frame0(pn));
             else
                 table_html(f, pn);
         }

@@ -23,9 +23,7 @@ gd_status gd_plot_campbell(const gd_campbell_result *r, gd_plot **out, gd_error 
     return gd_plot_campbell_opt(r, NULL, out, err);
 }
 
-/* An order's name on the plot: "1x driving", "2x", "mesh 48x driving" (the mesh's name
- * kept unless it is just "mesh", so the label does not read "mesh mesh 48x ...") */
-static void order_label(const gd_order *o, char *buf, size_t n)
+void pl_order_label(const gd_order *o, char *buf, size_t n)
 {
     const char *l = o->label;
     if (o->kind == GD_ORDER_MESH && !strncmp(l, "mesh mesh ", 10)) l += 5;
@@ -152,7 +150,7 @@ gd_status gd_plot_campbell_opt(const gd_campbell_result *r, const gd_plot_campbe
         double ox[2] = {x[0], sx * w1}, oy[2] = {fy * r->orders[o].order * r->speeds[0] / (2 * PI),
                                                  fy * r->orders[o].order * w1 / (2 * PI)};
         char label[96];
-        order_label(&r->orders[o], label, sizeof label);
+        pl_order_label(&r->orders[o], label, sizeof label);
         pl_trace *t = pl_trace_add(p, fp, label, 2, ox, oy, PL_LINES,
                                    r->orders[o].kind == GD_ORDER_MESH ? "#2ca02c" : "#555");
         if (!t) continue;
@@ -174,7 +172,7 @@ gd_status gd_plot_campbell_opt(const gd_campbell_result *r, const gd_plot_campbe
         c->x[i] = opt->speed_rad_s ? r->critical[k].speed : r->critical[k].speed_rpm;
         c->y[i] = fy * r->critical[k].frequency_hz;
         char label[96];
-        order_label(&r->orders[r->critical[k].order], label, sizeof label);
+        pl_order_label(&r->orders[r->critical[k].order], label, sizeof label);
         if (oper) {
             double sm = margin(c->x[i], olo, ohi);
             if (c->marker_color) c->marker_color[i] = sm > 0 ? "#000" : "#d62728";
@@ -219,7 +217,7 @@ gd_status gd_plot_campbell_opt(const gd_campbell_result *r, const gd_plot_campbe
     for (int k = 0, row = 1; k < r->ncritical; k++) {
         if (r->critical[k].frequency_hz > fcap) continue;
         char label[96];
-        order_label(&r->orders[r->critical[k].order], label, sizeof label);
+        pl_order_label(&r->orders[r->critical[k].order], label, sizeof label);
         pl_cell(p, tb, row, 0, "%d", r->critical[k].mode);
         pl_cell(p, tb, row, 1, "%s", label);
         double cs = opt->speed_rad_s ? r->critical[k].speed : r->critical[k].speed_rpm;

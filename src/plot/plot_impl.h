@@ -114,6 +114,11 @@ char *pl_strdup(gd_plot *p, const char *s);
 void pl_record_describe(const gd_system *sys, const gd_tr_record *rec, char *name, size_t n,
                         const char **quantity, const char **unit);
 
+/* An excitation order's name on the plot: "1x driving", "2x", "mesh 48x driving" (the
+ * mesh's name kept unless it is just "mesh", so it does not read "mesh mesh 48x ...");
+ * the Campbell diagram's, the waterfall's and the periodic plot's (plot_campbell.c) */
+void pl_order_label(const gd_order *o, char *buf, size_t n);
+
 /* colours: a palette for curves, and the whirl colours */
 const char *pl_color(int i);
 const char *pl_whirl_color(gd_whirl w);

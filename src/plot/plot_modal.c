@@ -306,8 +306,10 @@ static void whirl_panel(gd_plot *p, pl_section *s, const gd_system *sys, const g
     for (int h = 0; h < m->nshafts; h++)
         lateral |= shaft_has(sys, &m->shafts[h], GD_X) || shaft_has(sys, &m->shafts[h], GD_Y);
     if (!lateral) return;
-    pl_panel *pn = pl_panel_add(p, s, PL_MODE3D, "whirl of the mode shapes (3-D, animated)",
-                                "axial position (m)", "");
+    pl_panel *pn = pl_panel_add(
+        p, s, PL_MODE3D,
+        "whirl of the mode shapes (3-D: the deflected line, animated, on each station's orbit)",
+        "axial position (m)", "");
     if (!pn) return;
     pn->frames = calloc((size_t)nplotted, sizeof *pn->frames);
     if (!pn->frames) {

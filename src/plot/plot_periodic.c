@@ -1,14 +1,83 @@
-/* Periodic steady state: per record the peak-to-peak value and the first harmonic
- * amplitudes along the branch (stable solid, unstable dashed red, the return run as its
- * own curves), the bifurcations marked by type, and the largest Floquet multiplier. */
+/* Periodic steady state: per record the peak-to-peak value and the amplitudes at the
+ * excitation orders along the branch (stable solid, unstable dashed red, the return run
+ * as its own curves), the bifurcations marked by type, and the largest Floquet
+ * multiplier. The harmonics k w of the solution are named by the orders k w / W they are
+ * (W the reference speed): the model's shaft and tooth-mesh orders (gd_campbell's) and
+ * multiples of the mesh orders, not "harmonic k" of a period that may be an
+ * intermediate shaft's turn. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "campbell/campbell_impl.h"
 #include "plot/plot_impl.h"
 
 #define PI 3.14159265358979323846
-#define NHARM 4 /* harmonics drawn per record: the ones a gear response carries most */
+#define NHARM 4  /* orders drawn per record: the ones a gear response carries most */
+#define MAXMUL 4 /* multiples of a mesh order named as such (2 x .. 4 x mesh) */
+
+/* An order drawn: its name and multiple of the reference speed. */
+typedef struct order_curve {
+    char name[128];
+    double order;
+} order_curve;
+
+/* The harmonic of point q that is order o (k w = o W), or 0 when none is (or above H). */
+static int harmonic_of(const gd_periodic_point *q, double o)
+{
+    if (!q->converged || !(q->omega > 0) || !(q->speed > 0)) return 0;
+    double k = o * q->speed / q->omega;
+    long kr = lround(k);
+    return kr >= 1 && kr <= q->harmonics && fabs(k - kr) <= 1e-6 * k ? (int)kr : 0;
+}
+
+/* The orders to draw, from the first converged point q0: the shaft and mesh orders that
+ * are harmonics of its w, then 2 x .. 4 x each mesh order, by increasing order, at most
+ * NHARM; none of them a harmonic (no teeth, a fixed-frequency load): harmonics 1 ..
+ * NHARM, named by their order. Returns the count. */
+static int pick_orders(const gd_system *sys, const gd_periodic_point *q0, order_curve *oc)
+{
+    gd_campbell_options copt;
+    gd_campbell_options_init(&copt);
+    gd_order *ord = NULL;
+    int no = gd_campbell_orders(sys->model, &copt, &ord), n = 0;
+    order_curve cand[64];
+    for (int m = 1; m <= MAXMUL; m++)
+        for (int i = 0; i < no && n < 64; i++) {
+            if (m > 1 && ord[i].kind != GD_ORDER_MESH) continue;
+            double o = m * ord[i].order;
+            if (!harmonic_of(q0, o)) continue;
+            int dup = 0;
+            for (int j = 0; j < n; j++)
+                dup |= fabs(cand[j].order - o) <= 1e-9 * o;
+            if (dup) continue;
+            char l[96];
+            pl_order_label(&ord[i], l, sizeof l);
+            if (m > 1)
+                snprintf(cand[n].name, sizeof cand[n].name, "%d x %.95s", m, l);
+            else
+                snprintf(cand[n].name, sizeof cand[n].name, "%.95s", l);
+            cand[n++].order = o;
+        }
+    free(ord);
+    /* the lowest orders first */
+    for (int i = 1; i < n; i++)
+        for (int j = i; j > 0 && cand[j].order < cand[j - 1].order; j--) {
+            order_curve t = cand[j];
+            cand[j] = cand[j - 1];
+            cand[j - 1] = t;
+        }
+    if (n > NHARM) n = NHARM;
+    for (int i = 0; i < n; i++)
+        oc[i] = cand[i];
+    if (n) return n;
+    for (int k = 1; k <= NHARM && k <= q0->harmonics; k++) {
+        oc[n].order = k * q0->omega / q0->speed;
+        snprintf(oc[n].name, sizeof oc[n].name, "order %.4gx (harmonic %d)", oc[n].order, k);
+        n++;
+    }
+    return n;
+}
 
 static const char *const UNSTABLE_COLOR = "#d62728";
 static const char *const RETURN_COLOR = "#7f7f7f";
@@ -152,7 +221,13 @@ gd_status gd_plot_periodic(const gd_system *sys, const gd_periodic_result *r,
                                         : "record something (--record)",
                             "nothing to plot: %s",
                             r->nrecords ? "no point converged" : "no record");
-    int param = !isnan(r->points[0].parameter), nh = hmax < NHARM ? hmax : NHARM;
+    int param = !isnan(r->points[0].parameter);
+    const gd_periodic_point *q0 = NULL;
+    for (int i = 0; i < r->npoints && !q0; i++)
+        if (r->points[i].converged) q0 = &r->points[i];
+    order_curve oc[NHARM];
+    int nh = pick_orders(sys, q0, oc);
+    (void)hmax;
     const char *xl = param ? "continuation parameter (SI units)" : "reference speed (rpm)";
     gd_plot *p;
     gd_status st = gd_plot_new("geardyn periodic steady state", &p, err);
@@ -178,8 +253,8 @@ gd_status gd_plot_periodic(const gd_system *sys, const gd_periodic_result *r,
            param ? "parameter" : "speed_rpm");
     for (int k = 0; !p->nomem && k < nr; k++) {
         pl_csv(p, s, ",\"%s peak-to-peak (%s)\"", names[k], unit[k]);
-        for (int h = 1; h <= nh; h++)
-            pl_csv(p, s, ",\"%s harmonic %d (%s)\"", names[k], h, unit[k]);
+        for (int h = 0; h < nh; h++)
+            pl_csv(p, s, ",\"%s %s (%s)\"", names[k], oc[h].name, unit[k]);
     }
     pl_csv(p, s, "\n");
     for (int i = 0; !p->nomem && i < r->npoints; i++) {
@@ -188,9 +263,10 @@ gd_status gd_plot_periodic(const gd_system *sys, const gd_periodic_result *r,
                q->converged, q->stable, q->mu_max);
         for (int k = 0; k < nr; k++) {
             pl_csv(p, s, ",%.10g", q->converged ? q->records[k].peak_to_peak : NAN);
-            for (int h = 1; h <= nh; h++)
-                pl_csv(p, s, ",%.10g",
-                       q->converged && h <= q->harmonics ? q->records[k].amplitude[h] : NAN);
+            for (int h = 0; h < nh; h++) {
+                int hk = harmonic_of(q, oc[h].order);
+                pl_csv(p, s, ",%.10g", hk ? q->records[k].amplitude[hk] : NAN);
+            }
         }
         pl_csv(p, s, "\n");
     }
@@ -199,22 +275,28 @@ gd_status gd_plot_periodic(const gd_system *sys, const gd_periodic_result *r,
         snprintf(title, sizeof title, "peak-to-peak: %s", names[k]);
         snprintf(ylabel, sizeof ylabel, "peak-to-peak %s (%s)", qty[k], unit[k]);
         pl_panel *pp = pl_panel_add(p, s, PL_XY, title, xl, ylabel);
-        snprintf(title, sizeof title, "harmonic amplitudes: %s", names[k]);
+        snprintf(title, sizeof title, "amplitudes at the excitation orders: %s", names[k]);
         snprintf(ylabel, sizeof ylabel, "amplitude (%s)", unit[k]);
         pl_panel *hp = pl_panel_add(p, s, PL_XY, title, xl, ylabel);
         if (hp) hp->ylog = 1;
         for (int d = 0; d < ndir; d++) {
             int dir = d ? -1 : 1, n = run_points(r, dir, idx);
             stability_curves(p, pp, r, param, k, idx, n, dir, assessed);
-            for (int h = 1; h <= nh; h++) {
+            for (int h = 0; h < nh; h++) {
                 char name[160];
-                snprintf(name, sizeof name, "harmonic %d%s", h, d ? " (return run)" : "");
-                pl_trace *t = pl_trace_add(p, hp, name, n, NULL, NULL, PL_LINES, pl_color(h - 1));
+                snprintf(name, sizeof name, "%.127s%s", oc[h].name, d ? " (return run)" : "");
+                pl_trace *t = pl_trace_add(p, hp, name, n, NULL, NULL, PL_LINES, pl_color(h));
                 if (t) t->dash = d;
                 for (int j = 0; t && j < n; j++) {
                     const gd_periodic_point *q = &r->points[idx[j]];
+                    int hk = harmonic_of(q, oc[h].order);
                     t->x[j] = xof(param, q->speed, q->parameter);
-                    t->y[j] = q->converged && h <= q->harmonics ? q->records[k].amplitude[h] : NAN;
+                    t->y[j] = hk ? q->records[k].amplitude[hk] : NAN;
+                    if (hk)
+                        pl_trace_text(p, t, j,
+                                      "%s (%.6gx, harmonic %d of %.6g Hz): %.4g %s at %.6g %s",
+                                      oc[h].name, oc[h].order, hk, q->omega / (2 * PI), t->y[j],
+                                      unit[k], t->x[j], param ? "" : "rpm");
                 }
             }
         }

@@ -43,9 +43,17 @@ static void bode_curve(gd_plot *p, pl_section *s, const bode *b, const char *nam
     pl_trace *ph = pl_trace_add(p, b->phase, name, n, x, NULL, PL_LINES, pl_color(color));
     pl_trace *ny = pl_trace_add(p, b->polar, name, n, re, im, PL_LINES_MARKERS, pl_color(color));
     if (!m || !ph || !ny) return;
+    /* the x unit, "(Hz)" or "(rpm)" in the axis label: the Nyquist plot's hover says at
+     * which frequency or speed each point is (gd_plot_convert_x follows --units) */
+    char xu[32] = "";
+    const char *lp = strrchr(b->mag->xlabel, '('), *rp = lp ? strchr(lp, ')') : NULL;
+    if (lp && rp && rp - lp < (long)sizeof xu)
+        snprintf(xu, sizeof xu, "%.*s", (int)(rp - lp - 1), lp + 1);
     for (int k = 0; k < n; k++) {
         m->y[k] = hypot(re[k], im[k]);
         ph->y[k] = atan2(im[k], re[k]) * 180 / PI;
+        pl_trace_text(p, ny, k, "%s at %.6g %s: Re %.4g, Im %.4g (|H| %.4g, %.1f deg)", name, x[k],
+                      xu, re[k], im[k], m->y[k], ph->y[k]);
         pl_csv(p, s, "\"%s\",%.10g,%.10g,%.10g,%.10g,%.10g\n", name, x[k], m->y[k], ph->y[k], re[k],
                im[k]);
     }

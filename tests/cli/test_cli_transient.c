@@ -681,7 +681,73 @@ TEST(poincare_errors)
     scratch_close(&s);
 }
 
+/* --waterfall: the spectra of the record at every speed and the order cuts in --json,
+ * DIR/waterfall.csv (every bin of every speed) and DIR/order_cuts.csv (one row per speed);
+ * a 1x order cut equals the spectrum's largest bin within 1.5 bins of the shaft speed;
+ * and its errors. */
+TEST(waterfall_outputs_and_errors)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    char out[256], path[300];
+    snprintf(out, sizeof out, "%s/wf", s.dir);
+    cJSON *o = run_json(gd_ts_, &s,
+                        "transient tests/plot/runup_pair.yaml --sweep-speeds 600:800:3 --poincare "
+                        "shaft_a --settle 20rev --points 17 --record gear_a.y --waterfall gear_a.x "
+                        "--out '%s'",
+                        out);
+    REQUIRE(o);
+    const cJSON *wf = jitem(o, "waterfall");
+    REQUIRE(wf);
+    CHECK_STR(jstr(wf, "record"), "gear_a.x:disp");
+    const cJSON *sp = jitem(wf, "spectra"), *od = jitem(wf, "orders");
+    REQUIRE(cJSON_GetArraySize(sp) == 3 && cJSON_GetArraySize(od) == 3);
+    /* 16 settled revolutions of 54 samples (2.5 per period of the 16x mesh order at the
+     * top speed 800 rad/s: ceil(2.5 x 16 x 800 / 600) = 54 at 600 rad/s) */
+    const cJSON *s0 = cJSON_GetArrayItem(sp, 0);
+    CHECK(jnum(s0, "samples") == 16 * 54);
+    CHECK_REL(jnum(s0, "df_hz"), 600 / (2 * M_PI) / 16, 1e-9);
+    const cJSON *o1 = cJSON_GetArrayItem(od, 0);
+    CHECK_STR(jstr(o1, "label"), "1x shaft_a");
+    /* 1x falls on bin 16 of the 16-revolution record: the cut is the largest of bins 15-17 */
+    const cJSON *amp = jitem(s0, "amplitude");
+    double best = 0;
+    for (int k = 15; k <= 17; k++)
+        best = fmax(best, cJSON_GetArrayItem(amp, k)->valuedouble);
+    CHECK_REL(cJSON_GetArrayItem(jitem(o1, "amplitude"), 0)->valuedouble, best, 1e-15);
+    CHECK(best > 1e-7); /* the unbalance response, not noise */
+    snprintf(path, sizeof path, "%s/waterfall.csv", out);
+    char *csv = read_file(path);
+    REQUIRE(csv);
+    /* per revolution ceil(2.5 x 16 x 800 / W): 54, 46, 40 samples at 600, 700, 800 rad/s */
+    CHECK(count_lines(csv) == 1 + (8 * 54 + 1) + (8 * 46 + 1) + (8 * 40 + 1));
+    free(csv);
+    snprintf(path, sizeof path, "%s/order_cuts.csv", out);
+    csv = read_file(path);
+    REQUIRE(csv);
+    CHECK(count_lines(csv) == 4);
+    CHECK(contains(csv, "speed_rad_s,speed_rpm,\"1x shaft_a\",\"1x shaft_b\",\"mesh mesh 16x"));
+    free(csv);
+    cJSON_Delete(o);
+    expect_error(gd_ts_, &s, "--waterfall applies to --sweep-speeds only", NULL,
+                 "transient " CHEN " --speed 1500 --duration 5ms --waterfall gear_a.x");
+    expect_error(gd_ts_, &s, "--waterfall: give one direction", NULL,
+                 "transient " CHEN " --sweep-speeds 1000:2000:3 --poincare shaft_a "
+                 "--both-directions --waterfall gear_a.x");
+    expect_error(gd_ts_, &s, "--plot: give one direction", NULL,
+                 "transient " CHEN " --sweep-speeds 1000:2000:3 --poincare shaft_a "
+                 "--both-directions --plot x.svg");
+    expect_error(gd_ts_, &s, "--waterfall: give one record", NULL,
+                 "transient " CHEN " --sweep-speeds 1000:2000:3 --poincare shaft_a "
+                 "--waterfall gear_a.x,gear_a.y");
+    expect_error(gd_ts_, &s, "nope", NULL,
+                 "transient " CHEN " --sweep-speeds 1000:2000:3 --poincare shaft_a "
+                 "--waterfall nope.x");
+    scratch_close(&s);
+}
+
 RUN_TESTS(T(ducati_speed_ratios_and_contact_losses), T(ducati_text_static_start_and_wildcards),
           T(outputs_and_spectrum_files), T(chen_sfd_orbits), T(chen_sfd_spectrum_high_unbalance),
           T(chen_sfd_subsynchronous_near_the_mesh_mode), T(record_errors), T(option_errors),
-          T(model_errors), T(poincare_single_run), T(poincare_sweep), T(poincare_errors))
+          T(model_errors), T(poincare_single_run), T(poincare_sweep), T(poincare_errors),
+          T(waterfall_outputs_and_errors))

@@ -49,9 +49,27 @@ try {
       if (!g.is3d && g.svgTraces !== g.declared) { ok = false; fail(file, `${g.id}: ${g.svgTraces} drawn, expected ${g.declared}`); }
       if (g.is3d && !g.gl) { ok = false; fail(file, `${g.id}: no WebGL canvas for the 3-D view`); }
     }
+    // 3-D views: each station's orbit passes through the deflected line at the phase
+    // drawn (0: reduced motion stops the animation), at the station's axial position
+    const orbits = await page.evaluate(() => [...document.querySelectorAll('div.mode3d')].map(d => {
+      let n = 0, bad = [];
+      for (const o of d.data.filter(t => t.name.endsWith(' orbits'))) {
+        const l = d.data.find(t => t.name === o.name.slice(0, -7));
+        if (!l) { bad.push(`${o.name}: no line`); continue; }
+        for (let i = 0; i < l.x.length; i++, n++) {
+          const k = 38 * i, tol = 1e-12;
+          if (o.x[k] !== l.x[i] || Math.abs(o.y[k] - l.y[i]) > tol || Math.abs(o.z[k] - l.z[i]) > tol ||
+              o.x[k + 37] !== null)
+            bad.push(`${o.name} station ${i}`);
+        }
+      }
+      return { id: d.id, n, bad };
+    }));
+    for (const o of orbits)
+      if (o.bad.length || !o.n) { ok = false; fail(file, `${o.id}: orbits ${o.n} stations, off the line: ${o.bad.slice(0, 3).join(', ')}`); }
     if (csv) { ok = false; fail(file, `${csv} CSV links without their data`); }
     await page.screenshot({ path: file.replace(/\.html?$/, '.png'), fullPage: false });
-    if (ok) { passed++; console.log(`ok ${file}: ${got.length} plots, ${got.reduce((a, g) => a + g.data, 0)} traces, ${Date.now() - t0} ms`); }
+    if (ok) { passed++; console.log(`ok ${file}: ${got.length} plots, ${got.reduce((a, g) => a + g.data, 0)} traces, ${orbits.reduce((a, o) => a + o.n, 0)} orbits, ${Date.now() - t0} ms`); }
   }
 } finally {
   await browser.close();

@@ -22,8 +22,10 @@ g transient examples/ducati_timing_geartrain.yaml --revolutions 0.2 --quiet --pl
 g mesh-stiffness examples/rig2018_pair.yaml --cycles 2 --compare-helix 10deg,20deg --plot "$out/mesh_stiffness.html"
 g periodic tests/plot/mathieu_pair.yaml --speeds 680:730:11 --harmonics 4 --both-directions \
   --record mesh:m:force --plot "$out/periodic.html"
+g transient tests/plot/runup_pair.yaml --sweep-speeds 6800:8400rpm:5 --poincare shaft_a --points 16 \
+  --settle 20rev --waterfall gear_a.x --quiet --plot "$out/waterfall.html"
 g report tests/plot/study.yaml --speeds 0:6000rpm:9 --freq-points 100 --out "$out/report.html"
 # FILE:PLOTS, the plot elements each page must draw (the 3-D view counts as one)
 exec node tests/plot/check_html.mjs "$out/modal.html:11" "$out/campbell.html:2" \
   "$out/frf_directional.html:3" "$out/unbalance.html:10" "$out/transient.html:3" \
-  "$out/mesh_stiffness.html:4" "$out/periodic.html:3" "$out/report.html:32"
+  "$out/mesh_stiffness.html:4" "$out/periodic.html:3" "$out/waterfall.html:3" "$out/report.html:32"

@@ -34,8 +34,13 @@ g transient examples/ducati_timing_geartrain.yaml --revolutions 0.2 --quiet \
   --plot "$tmp/transient.html"
 g periodic tests/plot/mathieu_pair.yaml --speeds 680:730:11 --harmonics 4 --both-directions \
   --record mesh:m:force --plot "$tmp/periodic.html"
+g periodic examples/helical_two_stage.yaml --speeds 2000rpm:4000rpm:21 --harmonics 36 --no-estimate \
+  --no-stability --record mesh:pair1:force --plot "$tmp/gearbox_periodic.html"
+g transient tests/plot/runup_pair_te.yaml --sweep-speeds 6000:9000rpm:16 --poincare shaft_a \
+  --points 32 --settle 30rev --waterfall gear_a.x --quiet --plot "$tmp/waterfall.html"
 node tests/plot/figures.mjs \
   "$tmp/rig_modal.html:$F/rig_modal.png:0" \
+  "$tmp/rig_modal.html:$F/rig_modal_3d_orbits.png:~whirl of the mode:3" \
   "$tmp/rig_campbell.html:$F/rig_campbell.png:0" \
   "$tmp/rig_frf.html:$F/rig_frf_bode.png:0" "$tmp/rig_frf.html:$F/rig_frf_nyquist.png:2" \
   "$tmp/rig_tvms.html:$F/rig_mesh_stiffness.png:0" \
@@ -52,5 +57,9 @@ node tests/plot/figures.mjs \
   "$tmp/gearbox_report.html:$F/gearbox_report.png:top" \
   "$tmp/gearbox_report.html:$F/gearbox_report_model.png:0" \
   "$tmp/transient.html:$F/transient.png:0" \
-  "$tmp/periodic.html:$F/periodic.png:0"
+  "$tmp/periodic.html:$F/periodic.png:0" \
+  "$tmp/gearbox_periodic.html:$F/gearbox_periodic_orders.png:1" \
+  "$tmp/waterfall.html:$F/runup_waterfall_cascade.png:0" \
+  "$tmp/waterfall.html:$F/runup_waterfall_map.png:1" \
+  "$tmp/waterfall.html:$F/runup_order_cuts.png:2"
 ls -l "$F"/*.png | awk '{print $5, $9}'

@@ -477,8 +477,8 @@ static double prec(const cJSON *pt, const char *rec, const char *field)
  * tongue: period doubling at 698.97 and 715.17 rad/s, the four points inside unstable.
  * Stable peak-to-peak solid, unstable dashed (with the stable neighbours that join
  * them), both equal to the --json numbers; the bifurcation markers sit on the dashed
- * curve (interpolated between the bracketing points); harmonic 1 and |mu| max as in
- * --json. */
+ * curve (interpolated between the bracketing points); harmonic 1 (named as the mesh
+ * order it is) and |mu| max as in --json. */
 TEST(periodic_plot_matches_json)
 {
     scratch d;
@@ -500,7 +500,9 @@ TEST(periodic_plot_matches_json)
         CHECK(trace_numbers(s, TRACE(P2P, "stable"), "data-y", ys, 16) == 11);
         CHECK(trace_numbers(s, TRACE(P2P, "unstable"), "data-y", yu, 16) == 11);
         CHECK(trace_numbers(s, TRACE(P2P, "stable"), "data-x", x, 16) == 11);
-        CHECK(trace_numbers(s, TRACE("harmonic amplitudes", "harmonic 1"), "data-y", h1, 16) == 11);
+        /* the period is the mesh's (w = 20 W): harmonic 1 is the mesh order */
+        CHECK(trace_numbers(s, TRACE("amplitudes at the excitation orders", "mesh m 20x a"),
+                            "data-y", h1, 16) == 11);
         CHECK(trace_numbers(s, TRACE("stability", "|mu| max"), "data-y", mu, 16) == 11);
         int nst = 0, nun = 0, joined = 0;
         for (int i = 0; i < 11; i++) {
@@ -859,6 +861,20 @@ TEST(units_follow_the_command_line)
         CHECK(count(s, "//s:text[.='frequency (rad/s)']") == 2);
     }
     plot_end(&pr);
+    /* hover labels follow: the Nyquist points and the located peaks in rad/s (1050 Hz =
+     * 6597.34 rad/s), none left in Hz */
+    char html[300];
+    snprintf(html, sizeof html, "%s/frf.html", d.dir);
+    run(&d, &r,
+        "frf examples/kumar2011_coupled.yaml --input torque:motor --output mesh:mesh --freq "
+        "100:2000Hz:3 --units rad/s --plot %s",
+        html);
+    CHECK(r.code == 0);
+    run_free(&r);
+    char *page = read_file(html);
+    CHECK(page && contains(page, "mesh:mesh at 6597.34 rad/s: Re "));
+    CHECK(page && !contains(page, " Hz: Re ") && !contains(page, "1050 Hz"));
+    free(page);
     scratch_close(&d);
 }
 
@@ -949,6 +965,9 @@ TEST(png_and_pdf_of_every_plot)
         {"periodic tests/plot/mathieu_pair.yaml --speeds 680:730:5 --harmonics 4 --record "
          "mesh:m:force --plot %s",
          1},
+        {"transient tests/plot/runup_pair.yaml --sweep-speeds 6000:8000rpm:3 --poincare shaft_a "
+         "--points 8 --settle 10rev --waterfall gear_a.x --quiet --plot %s",
+         1},
         {"report tests/plot/study.yaml --speeds 0:6000rpm:5 --freq-points 40 --out %s", 6},
     };
     gd_error err;
@@ -980,9 +999,143 @@ TEST(png_and_pdf_of_every_plot)
     scratch_close(&d);
 }
 
+/* The run-up waterfall (transient --sweep-speeds --waterfall): the order lines lie at
+ * order x speed / 2 pi, the order cuts are the --json order amplitudes, one cascade curve
+ * per speed; and the 1x cut of the run-up through the pair's lateral critical speed peaks
+ * at the 1x critical speed of `campbell` within half the speed step (the run's resolution). */
+TEST(waterfall_plot_matches_json)
+{
+    scratch d;
+    REQUIRE(scratch_open(&d));
+    plot_run pr;
+    plot_start(gd_ts_, &pr, &d,
+               "transient tests/plot/runup_pair.yaml --sweep-speeds 6800:8400rpm:9 --poincare "
+               "shaft_a --points 32 --settle 30rev --record gear_a.x --waterfall gear_a.x --quiet "
+               "--json --plot %s");
+    run_result rc;
+    run(&d, &rc, "campbell tests/plot/runup_pair.yaml --speeds 0:9000rpm:31 --json");
+    CHECK(rc.code == 0);
+    cJSON *cj = cJSON_Parse(rc.out);
+    const cJSON *wf = pr.json ? cJSON_GetObjectItem(pr.json, "waterfall") : NULL;
+    svg *s = &pr.s;
+    CHECK(wf != NULL && cj != NULL);
+    if (wf && cj && s->ctx) {
+        const cJSON *orders = cJSON_GetObjectItem(wf, "orders");
+        const cJSON *spectra = cJSON_GetObjectItem(wf, "spectra");
+        int ns = cJSON_GetArraySize(spectra), no = cJSON_GetArraySize(orders);
+        CHECK(ns == 9 && no == 3); /* 1x shaft_a, 1x shaft_b, mesh 16x shaft_a */
+        double w0 = 6800 * PI / 30, w1 = 8400 * PI / 30;
+        CHECK(fabs(jnum(cJSON_GetArrayItem(spectra, 0), "speed_rad_s") - w0) < 1e-9 * w0);
+        static double x[64], y[64];
+        /* the mesh order line of the cascade: f = 16 x speed / 2 pi at the ends of the range
+         * (the axis ends above 16 x 8400 rpm / 60, so the line is not cut) */
+        CHECK(trace_numbers(s, TRACE("gear_a.x: cascade", "mesh 16x shaft_a"), "data-x", x, 4) ==
+              2);
+        CHECK(trace_numbers(s, TRACE("gear_a.x: cascade", "mesh 16x shaft_a"), "data-y", y, 4) ==
+              2);
+        CHECK(fabs(x[0] - 16 * w0 / (2 * PI)) < 1e-9 * x[0] &&
+              fabs(x[1] - 16 * w1 / (2 * PI)) < 1e-9 * x[1]);
+        CHECK(fabs(y[0] - 6800) < 1e-9 * 6800 && fabs(y[1] - 8400) < 1e-9 * 8400);
+        /* the same line on the colour map, axes swapped, named on the plot */
+        CHECK(trace_numbers(s, TRACE("gear_a.x: colour map", "1x shaft_a"), "data-y", y, 4) == 2);
+        CHECK(fabs(y[0] - w0 / (2 * PI)) < 1e-9 * y[0] && fabs(y[1] - w1 / (2 * PI)) < 1e-9 * y[1]);
+        CHECK(count(s, "//s:text[@class='label'][.='mesh 16x shaft_a']") == 2);
+        /* one cascade curve per speed */
+        CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'gear_a.x: cascade')]/"
+                       "s:g[@class='trace'][contains(@data-name,' rpm')]") == 9);
+        /* the order cuts are the --json amplitudes */
+        const cJSON *o1 = NULL;
+        for (int k = 0; k < no; k++)
+            if (!strcmp(cJSON_GetObjectItem(cJSON_GetArrayItem(orders, k), "label")->valuestring,
+                        "1x shaft_a"))
+                o1 = cJSON_GetArrayItem(orders, k);
+        CHECK(o1 != NULL);
+        int n = trace_numbers(s, TRACE("gear_a.x: order cuts", "1x shaft_a"), "data-y", y, 64);
+        CHECK(n == ns);
+        int peak = 0;
+        for (int k = 0; o1 && k < n; k++) {
+            double a = jat(cJSON_GetObjectItem(o1, "amplitude"), k);
+            CHECK(same(y[k], a));
+            if (y[k] > y[peak]) peak = k;
+        }
+        /* the peak speed against campbell's nearest 1x shaft_a critical speed */
+        double speak = 6800 + 200.0 * peak, best = INFINITY;
+        const cJSON *cs = cJSON_GetObjectItem(cj, "critical_speeds");
+        for (int k = 0; k < cJSON_GetArraySize(cs); k++) {
+            const cJSON *c = cJSON_GetArrayItem(cs, k);
+            if (!strcmp(cJSON_GetObjectItem(c, "order")->valuestring, "1x shaft_a") &&
+                fabs(jnum(c, "speed_rpm") - speak) < fabs(best - speak))
+                best = jnum(c, "speed_rpm");
+        }
+        CHECK(fabs(speak - best) <= 100); /* 7600 rpm against 7589.26 rpm */
+        if (fabs(speak - best) > 100)
+            fprintf(stderr, "  1x peak %g rpm, critical %g rpm\n", speak, best);
+    }
+    cJSON_Delete(cj);
+    run_free(&rc);
+    plot_end(&pr);
+    scratch_close(&d);
+}
+
+/* The periodic plot names the harmonics by the orders they are: on the two-stage
+ * helical gearbox the period is the common period of both meshes (mesh 1 is harmonic 36,
+ * mesh 2 harmonic 11), so the curves are the two mesh orders and 2 x, 3 x
+ * mesh 2, each the --json amplitude of its harmonic (not harmonics 1-4, which are noise
+ * there). */
+TEST(periodic_orders_named)
+{
+    scratch d;
+    REQUIRE(scratch_open(&d));
+    plot_run pr;
+    plot_start(gd_ts_, &pr, &d,
+               "periodic examples/helical_two_stage.yaml --speeds 3000rpm:3100rpm:2 --harmonics 36 "
+               "--no-estimate --no-stability --record mesh:pair1:force --json --plot %s");
+    svg *s = &pr.s;
+    cJSON *j = pr.json;
+    if (j && s->ctx) {
+        const cJSON *pts = cJSON_GetObjectItem(j, "points");
+        REQUIRE(cJSON_GetArraySize(pts) == 2);
+#define AMP "amplitudes at the excitation orders"
+        static const struct {
+            const char *name;
+            int k;
+        } want[4] = {{"mesh pair2 22x shaft2", 11},
+                     {"2 x mesh pair2 22x shaft2", 22},
+                     {"3 x mesh pair2 22x shaft2", 33},
+                     {"mesh pair1 52x shaft1", 36}};
+        CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'" AMP "')]/"
+                       "s:g[@class='trace']") == 4);
+        for (int c = 0; c < 4; c++) {
+            char xp[300];
+            double y[4];
+            snprintf(xp, sizeof xp,
+                     "//s:g[@class='panel'][starts-with(@data-title,'" AMP
+                     "')]/s:g[@class='trace'][@data-name='%s']",
+                     want[c].name);
+            CHECK(trace_numbers(s, xp, "data-y", y, 4) == 2);
+            for (int i = 0; i < 2; i++) {
+                const cJSON *a = cJSON_GetObjectItem(
+                    cJSON_GetObjectItem(cJSON_GetObjectItem(cJSON_GetArrayItem(pts, i), "records"),
+                                        "mesh:pair1:force"),
+                    "amplitudes");
+                CHECK(same(y[i], jat(a, want[c].k)));
+            }
+        }
+        /* mesh 1 carries the 50 N m load's fluctuation: far above harmonic 1 of the period */
+        const cJSON *a0 = cJSON_GetObjectItem(
+            cJSON_GetObjectItem(cJSON_GetObjectItem(cJSON_GetArrayItem(pts, 0), "records"),
+                                "mesh:pair1:force"),
+            "amplitudes");
+        CHECK(jat(a0, 36) > 100 * jat(a0, 1));
+    }
+    plot_end(&pr);
+    scratch_close(&d);
+}
+
 RUN_TESTS(T(campbell_plot_matches_json), T(frf_plot_matches_json), T(unbalance_plot_matches_json),
           T(mesh_stiffness_plot_matches_json), T(modal_and_transient_plots),
           T(periodic_plot_matches_json), T(report_has_every_section), T(html_is_self_contained),
           T(bad_plot_requests_write_nothing), T(png_and_pdf_of_every_plot),
           T(pure_tilt_mode_drawn_alone), T(campbell_pairs_stay_pairs),
-          T(campbell_limit_labels_margins), T(units_follow_the_command_line), T(frf_peaks_located))
+          T(campbell_limit_labels_margins), T(units_follow_the_command_line), T(frf_peaks_located),
+          T(waterfall_plot_matches_json), T(periodic_orders_named))

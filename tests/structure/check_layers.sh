@@ -31,7 +31,7 @@ declare -A header=(
     [model_file.h]=model_file [elements.h]=elements
     [system.h]=system
     [modal.h]=modal [static.h]=static
-    [campbell.h]=campbell [probe.h]=response [frf.h]=response [unbalance.h]=response
+    [campbell.h]=campbell [waterfall.h]=campbell [probe.h]=response [frf.h]=response [unbalance.h]=response
     [transient.h]=transient [transient_model.h]=transient
     [periodic.h]=periodic
     [plot.h]=plot [report.h]=report
