@@ -83,8 +83,11 @@ int main(int argc, char **argv)
     gd_tr_record rec[2] = {
         {GD_REC_DISP, gd_system_dof(s, gd_model_find_node(m, argv[4]), GD_X), 0},
         {GD_REC_DISP, gd_system_dof(s, gd_model_find_node(m, argv[5]), GD_Y), 0}};
-    static const cfg cases[] = {
+    static cfg cases[] = {
         {"cvode bdf rtol 1e-10 (reference)", GD_TR_BDF, 1e-10, 0, 0, 0},
+        {"auto rtol 1e-4", GD_TR_AUTO, 1e-4, 0, 0, 0},
+        {"auto rtol 1e-6 (default rtol)", GD_TR_AUTO, 1e-6, 0, 0, 0},
+        {"auto rtol 1e-8", GD_TR_AUTO, 1e-8, 0, 0, 0},
         {"cvode bdf rtol 1e-6 (default)", GD_TR_BDF, 1e-6, 0, 0, 0},
         {"galpha rho 0.9 h 2e-5", GD_TR_GEN_ALPHA, 0, 2e-5, 0.9, 0},
         {"galpha rho 0.9 h 1e-5", GD_TR_GEN_ALPHA, 0, 1e-5, 0.9, 0},
@@ -98,6 +101,14 @@ int main(int argc, char **argv)
         {"reduced 20 kHz + cvode bdf rtol 1e-8", GD_TR_BDF, 1e-8, 0, 0, 20000},
     };
     int nc = (int)(sizeof cases / sizeof cases[0]);
+    /* BENCH_REF=lti: the reference by the linear method at rtol 1e-10 (seconds, not
+     * minutes; for development, not for the table) */
+    const char *rm = getenv("BENCH_REF");
+    if (rm && !strcmp(rm, "lti")) {
+        cases[0].label = "lti rtol 1e-10 (reference)";
+        cases[0].method = GD_TR_LTI;
+    }
+    if (argc > 6) nc = atoi(argv[6]);
     printf("model %s: %d DOFs, speed %g rad/s, %g s from rest, records %s.x and %s.y\n", argv[1],
            s->ndof, speed, t_end, argv[4], argv[5]);
     printf("%-38s %8s %10s %12s %12s %10s\n", "method", "coords", "CPU (s)", "err A", "err B",
@@ -120,6 +131,7 @@ int main(int argc, char **argv)
             }
         printf("%-38s %8d %10.4f %12.3g %12.3g %10ld\n", cases[c].label, nr, secs, e[0], e[1],
                r->steps);
+        if (cases[c].method >= GD_TR_AUTO) printf("    %s\n", r->method_note);
         fflush(stdout);
         if (!ref)
             ref = r;

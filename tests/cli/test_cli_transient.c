@@ -373,7 +373,7 @@ TEST(option_errors)
     expect_error(gd_ts_, &s, "--rtol", NULL, "transient " DUCATI " --duration 1ms --rtol 0");
     expect_error(gd_ts_, &s, "--rtol: give a value below 0.1", NULL,
                  "transient " DUCATI " --duration 1ms --rtol 0.5");
-    expect_error(gd_ts_, &s, "not bdf, adams or galpha", NULL,
+    expect_error(gd_ts_, &s, "not auto, bdf, adams or galpha", NULL,
                  "transient " DUCATI " --duration 1ms --method rk4");
     expect_error(gd_ts_, &s, "--step: give a time > 0", NULL,
                  "transient " DUCATI " --duration 1ms --method galpha --step 0");
