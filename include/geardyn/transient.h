@@ -205,7 +205,9 @@ typedef struct gd_transient_options {
     double rtol;            /* default 1e-6 */
     double atol_q, atol_v;  /* absolute tolerances on q (m, rad) and q' (default 1e-12,
                                1e-9) */
-    gd_tr_method method;
+    gd_tr_method method;    /* default GD_TR_BDF here (callers of the library keep their
+                               numbers); geardyn transient, Python and studies default to
+                               GD_TR_AUTO */
     gd_tr_init init;
     const double *q0, *v0;
     double max_step;   /* s; 0: none */
