@@ -32,9 +32,17 @@
 
 typedef cs_complex_t cplx;
 
+/* A complex LU in split real and imaginary arrays (the step's solves run on them: plain
+ * real arithmetic the compiler vectorises, without C99 complex multiplication's
+ * infinity checks); patterns borrowed from N, diagonals stored inverted. */
+typedef struct split_lu {
+    double *lr, *li, *ur, *ui; /* values of N->L, N->U */
+} split_lu;
+
 typedef struct lti_factor {
     double h;
     cs_cin *N[NROOT];
+    split_lu s[NROOT];
 } lti_factor;
 
 typedef struct lti {
@@ -49,8 +57,9 @@ typedef struct lti {
     double *w; /* nw */
     cplx *Q;   /* nw x nf: harmonic amplitudes of q_p */
     double *mv, *kq;
-    cplx *b, *x;    /* nf each */
-    double *z, *zn; /* 2 nf each */
+    cplx *b, *x;     /* nf each */
+    double *sr, *si; /* nf each: split solve vectors */
+    double *z, *zn;  /* 2 nf each */
     long steps, factors;
 } lti;
 
@@ -152,6 +161,79 @@ static int factor_c(lti *L, cplx c, cs_cin **N)
     return *N ? 0 : 1;
 }
 
+static void split_free(split_lu *s)
+{
+    free(s->lr);
+    memset(s, 0, sizeof *s);
+}
+
+/* The split copy of N's factors. 0 ok. */
+static int split_make(const cs_cin *N, split_lu *s)
+{
+    const cs_ci *Lf = N->L, *Uf = N->U;
+    int n = Lf->n, nl = Lf->p[n], nu = Uf->p[n];
+    s->lr = malloc((size_t)2 * (nl + nu) * sizeof *s->lr);
+    if (!s->lr) return 1;
+    s->li = s->lr + nl;
+    s->ur = s->li + nl;
+    s->ui = s->ur + nu;
+    for (int p = 0; p < nl; p++) {
+        s->lr[p] = creal(Lf->x[p]);
+        s->li[p] = cimag(Lf->x[p]);
+    }
+    for (int p = 0; p < nu; p++) {
+        s->ur[p] = creal(Uf->x[p]);
+        s->ui[p] = cimag(Uf->x[p]);
+    }
+    for (int j = 0; j < n; j++) { /* diagonals: first of L's column, last of U's */
+        cplx dl = 1.0 / Lf->x[Lf->p[j]], du = 1.0 / Uf->x[Uf->p[j + 1] - 1];
+        s->lr[Lf->p[j]] = creal(dl);
+        s->li[Lf->p[j]] = cimag(dl);
+        s->ur[Uf->p[j + 1] - 1] = creal(du);
+        s->ui[Uf->p[j + 1] - 1] = cimag(du);
+    }
+    return 0;
+}
+
+/* (xr, xi) = N^-1 (br, bi) with the split factors (cs_lsolve, cs_usolve's order). */
+static void split_solve(const cs_cin *N, const split_lu *s, const int *q, int n, const double *br,
+                        const double *bi, double *xr, double *xi, double *wr, double *wi)
+{
+    const int *Lp = N->L->p, *Li = N->L->i, *Up = N->U->p, *Ui = N->U->i;
+    for (int k = 0; k < n; k++) {
+        wr[N->pinv[k]] = br[k];
+        wi[N->pinv[k]] = bi[k];
+    }
+    for (int j = 0; j < n; j++) {
+        int p0 = Lp[j];
+        double dr = s->lr[p0], di = s->li[p0];
+        double a = wr[j] * dr - wi[j] * di, b = wr[j] * di + wi[j] * dr;
+        wr[j] = a;
+        wi[j] = b;
+        for (int p = p0 + 1; p < Lp[j + 1]; p++) {
+            int i = Li[p];
+            wr[i] -= s->lr[p] * a - s->li[p] * b;
+            wi[i] -= s->lr[p] * b + s->li[p] * a;
+        }
+    }
+    for (int j = n - 1; j >= 0; j--) {
+        int pd = Up[j + 1] - 1;
+        double dr = s->ur[pd], di = s->ui[pd];
+        double a = wr[j] * dr - wi[j] * di, b = wr[j] * di + wi[j] * dr;
+        wr[j] = a;
+        wi[j] = b;
+        for (int p = Up[j]; p < pd; p++) {
+            int i = Ui[p];
+            wr[i] -= s->ur[p] * a - s->ui[p] * b;
+            wi[i] -= s->ur[p] * b + s->ui[p] * a;
+        }
+    }
+    for (int k = 0; k < n; k++) {
+        xr[q[k]] = wr[k];
+        xi[q[k]] = wi[k];
+    }
+}
+
 /* x = N^-1 b (b overwritten). */
 static void lu_solve(lti *L, const cs_cin *N, cplx *b, cplx *x)
 {
@@ -165,14 +247,17 @@ static void lu_solve(lti *L, const cs_cin *N, cplx *b, cplx *x)
 static void lti_free(lti *L)
 {
     for (int i = 0; i < L->ncache; i++)
-        for (int j = 0; j < NROOT; j++)
+        for (int j = 0; j < NROOT; j++) {
             cs_ci_nfree(L->cache[i].N[j]);
+            split_free(&L->cache[i].s[j]);
+        }
     cs_ci_spfree(L->S);
     cs_ci_sfree(L->sym);
     free(L->w);
     free(L->Q);
     free(L->mv);
     free(L->b);
+    free(L->sr);
     free(L->z);
 }
 
@@ -187,13 +272,15 @@ static lti_factor *factors_for(lti *L, double h)
     } else {
         f = &L->cache[L->next];
         L->next = (L->next + 1) % NCACHE;
-        for (int j = 0; j < NROOT; j++)
+        for (int j = 0; j < NROOT; j++) {
             f->N[j] = cs_ci_nfree(f->N[j]);
+            split_free(&f->s[j]);
+        }
     }
     memset(f, 0, sizeof *f);
     f->h = h;
     for (int j = 0; j < NROOT; j++)
-        if (factor_c(L, h / L->r[j], &f->N[j])) {
+        if (factor_c(L, h / L->r[j], &f->N[j]) || split_make(f->N[j], &f->s[j])) {
             f->h = -1; /* never matches */
             return NULL;
         }
@@ -213,8 +300,10 @@ static int lti_init(lti *L, gd_transient *tr)
     L->Q = calloc((size_t)(tr->nunb > 0 ? tr->nunb : 1) * nf, sizeof *L->Q);
     L->mv = malloc((size_t)2 * nf * sizeof *L->mv);
     L->b = malloc((size_t)2 * nf * sizeof *L->b);
+    L->sr = malloc((size_t)4 * (nf > 0 ? nf : 1) * sizeof *L->sr);
     L->z = malloc((size_t)4 * nf * sizeof *L->z);
-    if (!L->S || !L->w || !L->Q || !L->mv || !L->b || !L->z) return 1;
+    if (!L->S || !L->w || !L->Q || !L->mv || !L->b || !L->z || !L->sr) return 1;
+    L->si = L->sr + nf;
     L->kq = L->mv + nf;
     L->x = L->b + nf;
     L->zn = L->z + 2 * nf;
@@ -276,16 +365,21 @@ static int step(lti *L, const lti_factor *f, double h)
     cs_gaxpy(tr->Mff, zv, L->mv);
     cs_gaxpy(tr->Kff, zq, L->kq);
     memcpy(L->zn, L->z, (size_t)2 * nf * sizeof *L->zn);
+    double *br = L->sr, *bi = L->si, *xr = L->sr + 2 * nf, *xi = L->sr + 3 * nf;
+    double *wr = (double *)L->b, *wi = wr + nf; /* L->b: 2 nf complex = 4 nf doubles */
     for (int j = 0; j < NROOT; j++) {
         cplx c = h / L->r[j], g2 = 2.0 * L->g[j];
-        for (int i = 0; i < nf; i++)
-            L->b[i] = L->mv[i] - c * L->kq[i];
-        lu_solve(L, f->N[j], L->b, L->x);
+        double cr = creal(c), ci = cimag(c), gr = creal(g2), gi = cimag(g2);
+        for (int i = 0; i < nf; i++) {
+            br[i] = L->mv[i] - cr * L->kq[i];
+            bi[i] = -ci * L->kq[i];
+        }
+        split_solve(f->N[j], &f->s[j], L->sym->q, nf, br, bi, xr, xi, wr, wi);
         /* conjugate root: the conjugate solution, so the pair adds 2 Re(g x) */
         for (int i = 0; i < nf; i++) {
-            cplx xv = L->x[i], xq = zq[i] + c * xv;
-            L->zn[i] += creal(g2 * xq);
-            L->zn[nf + i] += creal(g2 * xv);
+            double qr = zq[i] + cr * xr[i] - ci * xi[i], qi = cr * xi[i] + ci * xr[i];
+            L->zn[i] += gr * qr - gi * qi;
+            L->zn[nf + i] += gr * xr[i] - gi * xi[i];
         }
     }
     memcpy(L->z, L->zn, (size_t)2 * nf * sizeof *L->z);
@@ -418,6 +512,13 @@ gd_status gd_tr_run_lti(gd_transient *tr, const gd_transient_options *opt,
         memcpy(yb, ya, (size_t)2 * nf * sizeof *yb);
         stride = 1;
         h *= 0.5;
+        /* no step of this level recurs: free its factors (memory on large models) */
+        for (int i = 0; i < L.ncache; i++)
+            for (int j = 0; j < NROOT; j++) {
+                L.cache[i].N[j] = cs_ci_nfree(L.cache[i].N[j]);
+                split_free(&L.cache[i].s[j]);
+            }
+        L.ncache = L.next = 0;
     }
     memcpy(res->values, va, (size_t)nrecords * nout * sizeof *va);
     for (int k = 0; k < nout; k++) {
