@@ -3,9 +3,9 @@
  * transient` runs it. Options: revolutions or duration (one required), speed (default
  * the model's), from (fraction of the run before statistics start, default 0.5, as the
  * CLI), mesh (the mesh whose force and contacts are kept; default the first), rtol,
- * method (auto | bdf | adams; auto as the CLI's default), start (rest | static), max_steps (the per-case step limit, default
- * 50 million: a case that needs more fails with the reason before it runs, and the
- * others go on). Statistics are over the recorded window. */
+ * method (auto | bdf | adams; auto as the CLI's default), start (rest | static), max_steps (the
+ * per-case step limit, default 50 million: a case that needs more fails with the reason before it
+ * runs, and the others go on). Statistics are over the recorded window. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
