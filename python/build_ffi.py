@@ -286,7 +286,7 @@ extern "Python" double gd_py_law_record(const gd_law *law, int k, const gd_law_p
 typedef struct { int mesh; int backlash; ...; } gd_tr_mesh;
 typedef struct { int nmeshes; int nsfds; const gd_law *laws; int nlaws; ...; } gd_transient_spec;
 typedef struct gd_transient gd_transient;
-typedef enum { GD_TR_BDF, GD_TR_ADAMS, ... } gd_tr_method;
+typedef enum { GD_TR_BDF, GD_TR_ADAMS, GD_TR_AUTO, GD_TR_LTI, ... } gd_tr_method;
 typedef enum { GD_TR_INIT_REST, GD_TR_INIT_STATIC, GD_TR_INIT_GIVEN, ... } gd_tr_init;
 typedef struct { double t_start, t_end; double output_interval; double record_from;
                  double rtol; double atol_q, atol_v; gd_tr_method method; gd_tr_init init;
@@ -303,7 +303,8 @@ typedef struct { int contact_losses; int coast_impacts; int drive_impacts;
 typedef struct { int nout; double *t; int nrecords; gd_tr_record *records; double *values;
                  gd_tr_stats *stats; int nmeshes; gd_tr_contact_stats *contacts; int ndof;
                  double *q_end, *v_end; long steps, rhs_evals, lin_iters, prec_setups,
-                 events, reinits; double cpu_seconds; ...; } gd_transient_result;
+                 events, reinits; double cpu_seconds; double step, error_estimate;
+                 char method_note[...]; ...; } gd_transient_result;
 typedef struct { gd_transient_spec spec; gd_tr_mesh *meshes; int *sfd_bearing;
                  ...; } gd_transient_model;
 gd_status gd_transient_model_build(const gd_system *sys, gd_transient_model **out,

@@ -177,7 +177,19 @@ typedef enum gd_tr_method {
     /* fixed-step generalized-alpha (Chung & Hulbert 1993): step, rho_inf; Newmark's
      * average acceleration at rho_inf = 1. rtol/atol and max_order are not used, nor
      * event location: contact changes are resolved to the step */
-    GD_TR_GEN_ALPHA = 2
+    GD_TR_GEN_ALPHA = 2,
+    /* the method for the model and the accuracy asked (docs/transient.md): a linear
+     * time-invariant model (no law, no cam, no prescribed DOF, every mesh linear; forced
+     * by unbalances) by GD_TR_LTI, anything else by BDF; the result says which
+     * (method_used, method_note) */
+    GD_TR_AUTO = 3,
+    /* linear time-invariant models only (GD_EINPUT otherwise): the unbalances' harmonic
+     * response solved exactly, the free motion advanced by the (4,4) Pade approximant
+     * of the exponential (order 8) at a step halved from the output interval until the
+     * run agrees with the run at twice its step to rtol of every record's peak (and of
+     * the end displacements); step, error_estimate in the result. max_step, step,
+     * rho_inf, atol, locate_events are not used */
+    GD_TR_LTI = 4
 } gd_tr_method;
 typedef enum gd_tr_init {
     GD_TR_INIT_REST = 0,   /* q = 0, q' = 0 on the free DOFs */
@@ -193,7 +205,9 @@ typedef struct gd_transient_options {
     double rtol;            /* default 1e-6 */
     double atol_q, atol_v;  /* absolute tolerances on q (m, rad) and q' (default 1e-12,
                                1e-9) */
-    gd_tr_method method;
+    gd_tr_method method;    /* default GD_TR_BDF here (callers of the library keep their
+                               numbers); geardyn transient, Python and studies default to
+                               GD_TR_AUTO */
     gd_tr_init init;
     const double *q0, *v0;
     double max_step;   /* s; 0: none */
@@ -294,6 +308,15 @@ typedef struct gd_transient_result {
     /* solver statistics over the whole run */
     long steps, rhs_evals, lin_iters, prec_setups, events, reinits;
     double cpu_seconds;
+    /* the method that ran (GD_TR_AUTO resolved) and what controlled its error:
+     * GD_TR_LTI: the step taken (s) and the estimated error (largest difference to the
+     * run at twice the step, relative to each record's peak); others: step 0 (adaptive
+     * or the given one), error_estimate -1 (CVODE: local error control by rtol/atol).
+     * method_note: one line saying so, e.g. "auto: lti, step 1e-4 s, est. error 3e-7
+     * <= rtol 1e-4" */
+    gd_tr_method method_used;
+    double step, error_estimate;
+    char method_note[256];
 } gd_transient_result;
 
 GD_API gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,

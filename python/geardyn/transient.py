@@ -202,19 +202,24 @@ def _times(duration, revolutions, speed, record_from, output_interval):
 
 
 def transient(system, duration=None, revolutions=None, speed=None, records=None,
-              record_from=None, output_interval=None, rtol=1e-6, method="bdf", start="rest",
+              record_from=None, output_interval=None, rtol=1e-6, method="auto", start="rest",
               laws=None):
     """Time integration at a constant reference speed (default: the model's), for
     `duration` (s or "12 ms") or `revolutions` of the reference shaft. records: list of
     record specs (NODE.DOF[:disp|vel|angle|speed], ratio:A/B, mesh:NAME[:force|state|
     deflection|stiffness], sfd:BEARING[:fx|fy|ecc]); None: the CLI's defaults. Samples
     from record_from (default half-way) every output_interval (default: 2000 samples,
-    at least 32 per revolution). method "bdf" or "adams"; start "rest" or "static".
+    at least 32 per revolution). method "auto" (as the CLI: a linear time-invariant model
+    by its exact harmonic response and free motion at a step checked against twice the
+    step, anything else by bdf; result.method_note says which), "bdf", "adams" or "lti";
+    start "rest" or "static".
     laws: geardyn.Law objects (laws of your own in Python) added to the model's."""
     w = system.model.speed if speed is None else quantity(speed, "speed", "speed")
     t_end, frm, dt = _times(duration, revolutions, w, record_from, output_interval)
-    if method not in ("bdf", "adams"):
-        raise model_error("method", "unknown method '%s'" % method, "use bdf or adams")
+    methods = {"auto": lib.GD_TR_AUTO, "bdf": lib.GD_TR_BDF, "adams": lib.GD_TR_ADAMS,
+               "lti": lib.GD_TR_LTI}
+    if method not in methods:
+        raise model_error("method", "unknown method '%s'" % method, "use auto, bdf, adams or lti")
     if start not in ("rest", "static"):
         raise model_error("start", "unknown start '%s'" % start, "use rest or static")
     err = new_error()
@@ -229,7 +234,7 @@ def transient(system, duration=None, revolutions=None, speed=None, records=None,
     opt = ffi.new("gd_transient_options *")
     lib.gd_transient_options_init(opt)
     opt.t_end, opt.record_from, opt.output_interval, opt.rtol = t_end, frm, dt, float(rtol)
-    opt.method = lib.GD_TR_ADAMS if method == "adams" else lib.GD_TR_BDF
+    opt.method = methods[method]
     opt.init = lib.GD_TR_INIT_STATIC if start == "static" else lib.GD_TR_INIT_REST
     rr = _record_array(recs)
     out = ffi.new("gd_transient_result **")
@@ -273,6 +278,9 @@ class TransientResult(_Result):
         self.prec_setups, self.events, self.reinits = int(r.prec_setups), int(r.events), \
             int(r.reinits)
         self.cpu_seconds = float(r.cpu_seconds)
+        # the method that ran and its error control (auto resolved; the CLI's header)
+        self.method_note = cstr(r.method_note)
+        self.step, self.error_estimate = float(r.step), float(r.error_estimate)
 
     @property
     def t(self):

@@ -155,6 +155,9 @@ def test_transient(geardyn, path, args, kw):
     assert same([r.speed, r.t_end, r.record_from, r.output_interval],
                 [j["speed_rad_s"], j["t_end_s"], j["record_from_s"], j["output_interval_s"]])
     assert r.nout == j["samples"] and r.free_dofs == j["free_dofs"]
+    # both default to auto, and state the same choice (lti on the linear Kumar model)
+    assert r.method_note == j["method"] and r.method_note.startswith("auto: ")
+    assert r.method_note.startswith("auto: lti") == (path == KUMAR_T)
     assert (r.steps, r.rhs_evals, r.events) == (j["steps"], j["rhs_evaluations"], j["events"])
     assert r.names == [x["name"] for x in j["records"]]
     assert r.units == [x["unit"] for x in j["records"]]

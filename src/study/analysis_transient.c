@@ -3,9 +3,9 @@
  * transient` runs it. Options: revolutions or duration (one required), speed (default
  * the model's), from (fraction of the run before statistics start, default 0.5, as the
  * CLI), mesh (the mesh whose force and contacts are kept; default the first), rtol,
- * method (bdf | adams), start (rest | static), max_steps (the per-case step limit, default
- * 50 million: a case that needs more fails with the reason before it runs, and the
- * others go on). Statistics are over the recorded window. */
+ * method (auto | bdf | adams; auto as the CLI's default), start (rest | static), max_steps (the
+ * per-case step limit, default 50 million: a case that needs more fails with the reason before it
+ * runs, and the others go on). Statistics are over the recorded window. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -16,7 +16,8 @@
 
 static const char *const KEYS[] = {"revolutions", "duration", "speed", "from",      "mesh",
                                    "rtol",        "method",   "start", "max_steps", NULL};
-static const char *const METHODS[] = {"bdf", "adams", NULL};
+static const char *const METHODS[] = {"auto", "bdf", "adams", NULL};
+static const gd_tr_method METHOD_OF[] = {GD_TR_AUTO, GD_TR_BDF, GD_TR_ADAMS};
 static const char *const STARTS[] = {"rest", "static", NULL};
 
 typedef struct tr_opts {
@@ -123,7 +124,7 @@ static gd_status run(const gd_study_input *in, const void *opts, const gd_study_
         if (speed > 0 && 2 * M_PI / speed / 32 < opt.output_interval)
             opt.output_interval = fmax(2 * M_PI / speed / 32, (t_end - opt.record_from) / 2e6);
         opt.rtol = o->rtol;
-        opt.method = (gd_tr_method)o->method;
+        opt.method = METHOD_OF[o->method];
         opt.init = o->start ? GD_TR_INIT_STATIC : GD_TR_INIT_REST;
         opt.max_steps = o->max_steps;
         gd_tr_record rec = {GD_REC_MESH_FORCE, mesh, 0};

@@ -3,6 +3,7 @@
  * contact changes of backlash meshes with the contact state frozen between events and a
  * restart at every event; fixed-interval records and summary statistics. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sunlinsol/sunlinsol_spgmr.h>
@@ -441,6 +442,36 @@ static gd_status advance(gd_transient *tr, run_work *w, const gd_transient_optio
     return GD_OK;
 }
 
+/* The method that ran and what controlled its error, in res (why: the reason auto
+ * chose it, NULL when the method was given). */
+static void method_note(const gd_transient_options *opt, const char *why, double dt,
+                        gd_transient_result *res)
+{
+    static const char *const names[] = {"bdf", "adams", "galpha", "auto", "lti"};
+    char *b = res->method_note;
+    const size_t len = sizeof res->method_note;
+    res->method_used = opt->method;
+    int k = 0;
+    if (why) k = snprintf(b, len, "auto: ");
+    if (opt->method == GD_TR_LTI) {
+        snprintf(b + k, len - k,
+                 "lti (exact harmonic forcing, Pade(4,4) free motion), step %.3g s, estimated "
+                 "error %.2g %s rtol %g",
+                 res->step, res->error_estimate, res->error_estimate <= opt->rtol ? "<=" : ">",
+                 opt->rtol);
+        return;
+    }
+    res->error_estimate = -1.0;
+    if (opt->method == GD_TR_GEN_ALPHA) {
+        res->step = opt->step > 0 ? fmin(opt->step, dt) : dt / 10.0;
+        snprintf(b + k, len - k, "galpha, step %.3g s, rho_inf %g (no error estimate)", res->step,
+                 opt->rho_inf);
+        return;
+    }
+    snprintf(b + k, len - k, "%s, CVODE local error control, rtol %g%s%s%s", names[opt->method],
+             opt->rtol, why ? " (" : "", why ? why : "", why ? ")" : "");
+}
+
 /* Refuses a run that cannot finish within the step limit (max_steps, default 50
  * million) from a lower bound on its step count known before it starts: the fixed step
  * of generalized-alpha (never longer than the output interval), and for CVODE the
@@ -452,6 +483,7 @@ static gd_status check_step_count(const gd_transient *tr, const gd_transient_opt
 {
     const double span = opt->t_end - opt->t_start;
     const double limit = opt->max_steps > 0 ? (double)opt->max_steps : 50e6;
+    if (opt->method == GD_TR_LTI) return GD_OK; /* its own limit (linear.c) */
     if (opt->method == GD_TR_GEN_ALPHA) {
         double h = opt->step > 0 ? fmin(opt->step, dt) : dt / 10.0;
         double steps = span / h;
@@ -484,6 +516,19 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
 {
     *out = NULL;
     const int nf = tr->nf, n = tr->red ? tr->red->nfull : tr->n;
+    /* auto: the linear time-invariant method when the model is one (and no Poincare
+     * sample times are asked), else CVODE BDF */
+    gd_transient_options resolved;
+    char why[160] = "";
+    if (opt->method == GD_TR_AUTO) {
+        resolved = *opt;
+        if (opt->nsample_times > 0) snprintf(why, sizeof why, "Poincare sample times");
+        resolved.method = opt->nsample_times == 0 && gd_tr_lti_reason(tr, why, sizeof why)
+                              ? GD_TR_LTI
+                              : GD_TR_BDF;
+        opt = &resolved;
+    }
+    const int is_auto = why[0] != 0;
     double from = opt->record_from > opt->t_start ? opt->record_from : opt->t_start;
     if (!(opt->t_end > opt->t_start) || !isfinite(opt->t_end) || !isfinite(opt->t_start) ||
         !(from <= opt->t_end) || !(opt->rtol > 0) || !(opt->atol_q > 0) || !(opt->atol_v > 0))
@@ -604,6 +649,16 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
         if (st) goto done;
         goto finish;
     }
+    if (opt->method == GD_TR_LTI) {
+        if (opt->nsample_times > 0) {
+            st = gd_error_set(err, GD_EINPUT, "", 0, 0, "method", "use bdf or adams",
+                              "Poincare sample times need a CVODE method");
+            goto done;
+        }
+        st = gd_tr_run_lti(tr, opt, records, nrecords, from, dt, yd, res, err);
+        if (st) goto done;
+        goto finish;
+    }
     mem = gd_tr_cvode_new(ctx, opt, opt->t_start, opt->t_end, y, atol, cv_rhs, cv_root,
                           tr->nroot && opt->locate_events ? tr->nroot : 0, gd_tr_cv_psetup,
                           gd_tr_cv_psolve, tr, tr, &LS, &flag);
@@ -640,6 +695,7 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
     }
     if ((st = advance(tr, &w, opt, &t, opt->t_end, err))) goto done;
 finish:
+    method_note(opt, is_auto ? why : NULL, dt, res);
     for (int i = 0; i < tr->nmesh; i++)
         account(&res->contacts[i], tr->mesh[i].state, track[i].since, opt->t_end, from);
     gd_tr_fill(tr, opt->t_end, yd, tr->q, tr->v, NULL);

@@ -176,6 +176,16 @@ gd_status gd_tr_run_gen_alpha(gd_transient *tr, const gd_transient_options *opt,
                               double *y, gd_transient_result *res, gd_tr_contact_track *track,
                               gd_error *err);
 
+/* ---- linear.c ---- */
+/* 1 when the problem is linear and time-invariant, forced by unbalances only (GD_TR_LTI
+ * applies); else 0. why (len) receives the reason either way. */
+int gd_tr_lti_reason(const gd_transient *tr, char *why, size_t len);
+/* GD_TR_LTI from the state y (updated to the end) into res's samples, step and
+ * error_estimate; as gd_tr_run_gen_alpha. */
+gd_status gd_tr_run_lti(gd_transient *tr, const gd_transient_options *opt,
+                        const gd_tr_record *records, int nrecords, double from, double dt,
+                        double *y, gd_transient_result *res, gd_error *err);
+
 /* CVODE for the problem (user data ud): method, tolerances (rtol, vector atol), step
  * limits and stop time from opt, SPGMR with left preconditioning by psetup/psolve, and
  * nroot root functions (0: none). *flag != 0 or NULL on failure; the caller frees the

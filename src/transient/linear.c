@@ -1,0 +1,545 @@
+/* Linear time-invariant response (GD_TR_LTI): M q'' + D q' + K q = f(t) with f the
+ * unbalance forces, sums of harmonics U w^2 (cos, sin)(w t + phi) at each shaft's speed.
+ *
+ * The motion is split into the forced harmonic response and a free motion,
+ *   y = y_p + z,  y_p(t) = Re sum_w Y_w e^(i w t),  z' = A z,  z(t0) = y(t0) - y_p(t0),
+ * with (K - w^2 M + i w D) Q_w = F_w (one complex sparse solve per distinct speed: exact)
+ * and A = [0 I; -M^-1 K, -M^-1 D]. The free motion is advanced by the (4,4) Pade
+ * approximant of the exponential, z_{k+1} = R(h A) z_k: order 8, A-stable, |R| -> 1 at
+ * infinite step (modes the step does not resolve keep their amplitude, so comparing
+ * two steps sees them: they are not silently damped away). In partial fractions
+ *   R(hA) = I + sum_j g_j (I - (h / r_j) A)^-1,  g_j = -P(r_j) / (r_j Q'(r_j)),
+ * over the roots r_j of the denominator Q (two complex conjugate pairs: two complex
+ * solves per step). (I - c A) x = b is solved in second-order form,
+ *   (M + c D + c^2 K) x_v = M b_v - c K b_q,  x_q = b_q + c x_v,
+ * with a complex sparse LU (CXSparse) per root and step size.
+ *
+ * Error control: the run at step h is compared with the run at 2h over their common
+ * samples (records) and at the end (displacements); the difference, relative to each
+ * record's peak, bounds the error of the run at h (asymptotically that error is 1/255 of
+ * the difference). The step is halved until the difference is within rtol. */
+#include <lapacke.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "transient/transient_impl.h"
+
+#define NROOT 2  /* roots of Q with Im > 0 */
+#define NCACHE 4 /* step sizes kept factored */
+#define MAXLEVEL 24
+
+typedef cs_complex_t cplx;
+
+/* A complex LU in split real and imaginary arrays (the step's solves run on them: plain
+ * real arithmetic the compiler vectorises, without C99 complex multiplication's
+ * infinity checks); patterns borrowed from N, diagonals stored inverted. */
+typedef struct split_lu {
+    double *lr, *li, *ur, *ui; /* values of N->L, N->U */
+} split_lu;
+
+typedef struct lti_factor {
+    double h;
+    cs_cin *N[NROOT];
+    split_lu s[NROOT];
+} lti_factor;
+
+typedef struct lti {
+    gd_transient *tr;
+    int nf;
+    cplx r[NROOT], g[NROOT]; /* roots of Q (upper half plane), residues g_j */
+    cs_ci *S;                /* complex matrix with the pattern of tr->S */
+    cs_cis *sym;
+    lti_factor cache[NCACHE];
+    int ncache, next;
+    int nw;    /* distinct unbalance speeds */
+    double *w; /* nw */
+    cplx *Q;   /* nw x nf: harmonic amplitudes of q_p */
+    double *mv, *kq;
+    cplx *b, *x;     /* nf each */
+    double *sr, *si; /* nf each: split solve vectors */
+    double *z, *zn;  /* 2 nf each */
+    long steps, factors;
+} lti;
+
+int gd_tr_lti_reason(const gd_transient *tr, char *why, size_t len)
+{
+    const gd_model *m = tr->sys->model;
+    if (tr->nlaw > 0) {
+        const gd_law *L = &tr->law[0];
+        snprintf(why, len, "law %s (%s)%s", L->name, L->type->name,
+                 tr->nlaw > 1 ? " and others" : "");
+        return 0;
+    }
+    if (tr->ncam > 0) {
+        snprintf(why, len, "cam valve trains");
+        return 0;
+    }
+    if (tr->np > 0) {
+        snprintf(why, len, "prescribed DOFs");
+        return 0;
+    }
+    for (int i = 0; i < tr->nmesh; i++) {
+        const tr_mesh *ms = &tr->mesh[i];
+        const gd_tr_mesh *s = &ms->spec;
+        const char *name = m->meshes[ms->model_mesh].name;
+        if (s->backlash || s->tvms || s->ste) {
+            snprintf(why, len, "mesh %s: %s", name,
+                     s->backlash ? "backlash"
+                     : s->tvms   ? "time-varying stiffness"
+                                 : "transmission error");
+            return 0;
+        }
+        if (s->stiffness != ms->k_lin ||
+            s->damping + s->damping_per_k * s->stiffness != ms->c_lin) {
+            snprintf(why, len, "mesh %s: a law other than the assembled stiffness", name);
+            return 0;
+        }
+    }
+    snprintf(why, len, "linear, time-invariant");
+    return 1;
+}
+
+/* The (4,4) Pade approximant of exp: P(z) = sum p_j z^j, Q(z) = P(-z); its roots and
+ * residues. 0 ok. */
+static int pade_roots(lti *L)
+{
+    static const double p[5] = {1.0, 0.5, 3.0 / 28.0, 1.0 / 84.0, 1.0 / 1680.0};
+    double q[5];
+    for (int j = 0; j < 5; j++)
+        q[j] = (j % 2 ? -1.0 : 1.0) * p[j];
+    /* companion matrix of the monic Q */
+    double C[16] = {0}, wr[4], wi[4];
+    for (int i = 0; i < 4; i++)
+        C[12 + i] = -q[i] / q[4]; /* last column */
+    for (int i = 1; i < 4; i++)
+        C[(i - 1) * 4 + i] = 1.0; /* subdiagonal */
+    if (LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', 4, C, 4, wr, wi, NULL, 1, NULL, 1)) return 1;
+    int k = 0;
+    for (int i = 0; i < 4 && k < NROOT; i++) {
+        if (!(wi[i] > 0)) continue;
+        cplx r = wr[i] + wi[i] * _Complex_I, P = 0, dQ = 0, zp = 1;
+        /* Newton on Q polishes the root to full precision: the residues below, and so
+         * |R(i x)| = 1, depend on it */
+        for (int it = 0; it < 3; it++) {
+            cplx qv = 0, dq = 0, zz = 1;
+            for (int j = 0; j < 5; j++) {
+                qv += q[j] * zz;
+                if (j < 4) dq += (j + 1) * q[j + 1] * zz;
+                zz *= r;
+            }
+            r -= qv / dq;
+        }
+        for (int j = 0; j < 5; j++) {
+            P += p[j] * zp;
+            if (j < 4) dQ += (j + 1) * q[j + 1] * zp;
+            zp *= r;
+        }
+        L->r[k] = r;
+        L->g[k] = -P / (r * dQ);
+        k++;
+    }
+    return k == NROOT ? 0 : 1;
+}
+
+/* Factors M + c D + c^2 K into *N. 0 ok. */
+static int factor_c(lti *L, cplx c, cs_cin **N)
+{
+    const gd_transient *tr = L->tr;
+    const int nf = L->nf;
+    cs_ci *S = L->S;
+    memset(S->x, 0, (size_t)S->p[nf] * sizeof *S->x);
+    for (int p = 0; p < tr->Mff->p[nf]; p++)
+        S->x[tr->mapM[p]] += tr->Mff->x[p];
+    for (int p = 0; p < tr->Dff->p[nf]; p++)
+        S->x[tr->mapD[p]] += c * tr->Dff->x[p];
+    for (int p = 0; p < tr->Kff->p[nf]; p++)
+        S->x[tr->mapK[p]] += c * c * tr->Kff->x[p];
+    *N = cs_ci_lu(S, L->sym, 1e-3);
+    L->factors++;
+    return *N ? 0 : 1;
+}
+
+static void split_free(split_lu *s)
+{
+    free(s->lr);
+    memset(s, 0, sizeof *s);
+}
+
+/* The split copy of N's factors. 0 ok. */
+static int split_make(const cs_cin *N, split_lu *s)
+{
+    const cs_ci *Lf = N->L, *Uf = N->U;
+    int n = Lf->n, nl = Lf->p[n], nu = Uf->p[n];
+    s->lr = malloc((size_t)2 * (nl + nu) * sizeof *s->lr);
+    if (!s->lr) return 1;
+    s->li = s->lr + nl;
+    s->ur = s->li + nl;
+    s->ui = s->ur + nu;
+    for (int p = 0; p < nl; p++) {
+        s->lr[p] = creal(Lf->x[p]);
+        s->li[p] = cimag(Lf->x[p]);
+    }
+    for (int p = 0; p < nu; p++) {
+        s->ur[p] = creal(Uf->x[p]);
+        s->ui[p] = cimag(Uf->x[p]);
+    }
+    for (int j = 0; j < n; j++) { /* diagonals: first of L's column, last of U's */
+        cplx dl = 1.0 / Lf->x[Lf->p[j]], du = 1.0 / Uf->x[Uf->p[j + 1] - 1];
+        s->lr[Lf->p[j]] = creal(dl);
+        s->li[Lf->p[j]] = cimag(dl);
+        s->ur[Uf->p[j + 1] - 1] = creal(du);
+        s->ui[Uf->p[j + 1] - 1] = cimag(du);
+    }
+    return 0;
+}
+
+/* (xr, xi) = N^-1 (br, bi) with the split factors (cs_lsolve, cs_usolve's order). */
+static void split_solve(const cs_cin *N, const split_lu *s, const int *q, int n, const double *br,
+                        const double *bi, double *xr, double *xi, double *wr, double *wi)
+{
+    const int *Lp = N->L->p, *Li = N->L->i, *Up = N->U->p, *Ui = N->U->i;
+    for (int k = 0; k < n; k++) {
+        wr[N->pinv[k]] = br[k];
+        wi[N->pinv[k]] = bi[k];
+    }
+    for (int j = 0; j < n; j++) {
+        int p0 = Lp[j];
+        double dr = s->lr[p0], di = s->li[p0];
+        double a = wr[j] * dr - wi[j] * di, b = wr[j] * di + wi[j] * dr;
+        wr[j] = a;
+        wi[j] = b;
+        for (int p = p0 + 1; p < Lp[j + 1]; p++) {
+            int i = Li[p];
+            wr[i] -= s->lr[p] * a - s->li[p] * b;
+            wi[i] -= s->lr[p] * b + s->li[p] * a;
+        }
+    }
+    for (int j = n - 1; j >= 0; j--) {
+        int pd = Up[j + 1] - 1;
+        double dr = s->ur[pd], di = s->ui[pd];
+        double a = wr[j] * dr - wi[j] * di, b = wr[j] * di + wi[j] * dr;
+        wr[j] = a;
+        wi[j] = b;
+        for (int p = Up[j]; p < pd; p++) {
+            int i = Ui[p];
+            wr[i] -= s->ur[p] * a - s->ui[p] * b;
+            wi[i] -= s->ur[p] * b + s->ui[p] * a;
+        }
+    }
+    for (int k = 0; k < n; k++) {
+        xr[q[k]] = wr[k];
+        xi[q[k]] = wi[k];
+    }
+}
+
+/* x = N^-1 b (b overwritten). */
+static void lu_solve(lti *L, const cs_cin *N, cplx *b, cplx *x)
+{
+    cs_ci_ipvec(N->pinv, b, x, L->nf);
+    cs_ci_lsolve(N->L, x);
+    cs_ci_usolve(N->U, x);
+    cs_ci_ipvec(L->sym->q, x, b, L->nf);
+    memcpy(x, b, (size_t)L->nf * sizeof *x);
+}
+
+static void lti_free(lti *L)
+{
+    for (int i = 0; i < L->ncache; i++)
+        for (int j = 0; j < NROOT; j++) {
+            cs_ci_nfree(L->cache[i].N[j]);
+            split_free(&L->cache[i].s[j]);
+        }
+    cs_ci_spfree(L->S);
+    cs_ci_sfree(L->sym);
+    free(L->w);
+    free(L->Q);
+    free(L->mv);
+    free(L->b);
+    free(L->sr);
+    free(L->z);
+}
+
+/* The factors for step h (cached). NULL: singular or no memory. */
+static lti_factor *factors_for(lti *L, double h)
+{
+    for (int i = 0; i < L->ncache; i++)
+        if (fabs(L->cache[i].h - h) <= 1e-12 * h) return &L->cache[i];
+    lti_factor *f;
+    if (L->ncache < NCACHE) {
+        f = &L->cache[L->ncache++];
+    } else {
+        f = &L->cache[L->next];
+        L->next = (L->next + 1) % NCACHE;
+        for (int j = 0; j < NROOT; j++) {
+            f->N[j] = cs_ci_nfree(f->N[j]);
+            split_free(&f->s[j]);
+        }
+    }
+    memset(f, 0, sizeof *f);
+    f->h = h;
+    for (int j = 0; j < NROOT; j++)
+        if (factor_c(L, h / L->r[j], &f->N[j]) || split_make(f->N[j], &f->s[j])) {
+            f->h = -1; /* never matches */
+            return NULL;
+        }
+    return f;
+}
+
+static int lti_init(lti *L, gd_transient *tr)
+{
+    memset(L, 0, sizeof *L);
+    L->tr = tr;
+    const int nf = tr->nf;
+    L->nf = nf;
+    if (pade_roots(L)) return 1;
+    const cs *S = tr->S;
+    L->S = cs_ci_spalloc(nf, nf, S->p[nf], 1, 0);
+    L->w = malloc((size_t)(tr->nunb > 0 ? tr->nunb : 1) * sizeof *L->w);
+    L->Q = calloc((size_t)(tr->nunb > 0 ? tr->nunb : 1) * nf, sizeof *L->Q);
+    L->mv = malloc((size_t)2 * nf * sizeof *L->mv);
+    L->b = malloc((size_t)2 * nf * sizeof *L->b);
+    L->sr = malloc((size_t)4 * (nf > 0 ? nf : 1) * sizeof *L->sr);
+    L->z = malloc((size_t)4 * nf * sizeof *L->z);
+    if (!L->S || !L->w || !L->Q || !L->mv || !L->b || !L->z || !L->sr) return 1;
+    L->si = L->sr + nf;
+    L->kq = L->mv + nf;
+    L->x = L->b + nf;
+    L->zn = L->z + 2 * nf;
+    memcpy(L->S->p, S->p, (size_t)(nf + 1) * sizeof *S->p);
+    memcpy(L->S->i, S->i, (size_t)S->p[nf] * sizeof *S->i);
+    L->sym = cs_ci_sqr(1, L->S, 0);
+    if (!L->sym) return 1;
+    /* harmonic response per distinct speed: (K - w^2 M + i w D) Q = F is
+     * -w^2 (M + c D + c^2 K) Q = F with c = 1 / (i w) */
+    for (int u = 0; u < tr->nunb; u++) {
+        const tr_unb *ub = &tr->unb[u];
+        if (ub->omega == 0.0 || ub->force == 0.0) continue;
+        int g = 0;
+        while (g < L->nw && L->w[g] != ub->omega)
+            g++;
+        if (g == L->nw) L->w[L->nw++] = ub->omega;
+        /* f_x = Re(F e^(i phi) e^(i w t)), f_y = Re(-i F e^(i phi) e^(i w t)) */
+        cplx F = ub->force * cexp(ub->phase * _Complex_I);
+        if (ub->dx >= 0 && tr->fidx[ub->dx] >= 0) L->Q[(size_t)g * nf + tr->fidx[ub->dx]] += F;
+        if (ub->dy >= 0 && tr->fidx[ub->dy] >= 0)
+            L->Q[(size_t)g * nf + tr->fidx[ub->dy]] += -_Complex_I * F;
+    }
+    for (int g = 0; g < L->nw; g++) {
+        double w = L->w[g];
+        cs_cin *N = NULL;
+        if (factor_c(L, 1.0 / (w * _Complex_I), &N)) return 2;
+        cplx *Q = L->Q + (size_t)g * nf;
+        for (int i = 0; i < nf; i++)
+            L->b[i] = -Q[i] / (w * w);
+        lu_solve(L, N, L->b, Q);
+        cs_ci_nfree(N);
+    }
+    return 0;
+}
+
+/* y += s * y_p(t) (y = [q; v], length 2 nf). */
+static void add_particular(const lti *L, double t, double s, double *y)
+{
+    const int nf = L->nf;
+    for (int g = 0; g < L->nw; g++) {
+        double w = L->w[g];
+        cplx e = cexp(w * t * _Complex_I);
+        const cplx *Q = L->Q + (size_t)g * nf;
+        for (int i = 0; i < nf; i++) {
+            cplx a = Q[i] * e;
+            y[i] += s * creal(a);
+            y[nf + i] += s * creal(w * _Complex_I * a);
+        }
+    }
+}
+
+/* One step of the free motion z (2 nf) over h. 0 ok. */
+static int step(lti *L, const lti_factor *f, double h)
+{
+    gd_transient *tr = L->tr;
+    const int nf = L->nf;
+    double *zq = L->z, *zv = L->z + nf;
+    memset(L->mv, 0, (size_t)2 * nf * sizeof *L->mv);
+    cs_gaxpy(tr->Mff, zv, L->mv);
+    cs_gaxpy(tr->Kff, zq, L->kq);
+    memcpy(L->zn, L->z, (size_t)2 * nf * sizeof *L->zn);
+    double *br = L->sr, *bi = L->si, *xr = L->sr + 2 * nf, *xi = L->sr + 3 * nf;
+    double *wr = (double *)L->b, *wi = wr + nf; /* L->b: 2 nf complex = 4 nf doubles */
+    for (int j = 0; j < NROOT; j++) {
+        cplx c = h / L->r[j], g2 = 2.0 * L->g[j];
+        double cr = creal(c), ci = cimag(c), gr = creal(g2), gi = cimag(g2);
+        for (int i = 0; i < nf; i++) {
+            br[i] = L->mv[i] - cr * L->kq[i];
+            bi[i] = -ci * L->kq[i];
+        }
+        split_solve(f->N[j], &f->s[j], L->sym->q, nf, br, bi, xr, xi, wr, wi);
+        /* conjugate root: the conjugate solution, so the pair adds 2 Re(g x) */
+        for (int i = 0; i < nf; i++) {
+            double qr = zq[i] + cr * xr[i] - ci * xi[i], qi = cr * xi[i] + ci * xr[i];
+            L->zn[i] += gr * qr - gi * qi;
+            L->zn[nf + i] += gr * xr[i] - gi * xi[i];
+        }
+    }
+    memcpy(L->z, L->zn, (size_t)2 * nf * sizeof *L->z);
+    L->steps++;
+    return 0;
+}
+
+/* Advances the free motion from *t to t1 in equal steps of at most h. */
+static int advance(lti *L, double *t, double t1, double h)
+{
+    double span = t1 - *t;
+    if (!(span > 0)) return 0;
+    long ns = (long)ceil(span / h * (1.0 - 1e-12));
+    if (ns < 1) ns = 1;
+    double hs = span / ns;
+    lti_factor *f = factors_for(L, hs);
+    if (!f) return 1;
+    for (long s = 0; s < ns; s++)
+        if (step(L, f, hs)) return 1;
+    *t = t1;
+    return 0;
+}
+
+/* One run at step h, sampling every stride-th output time into vals (nrec x nout, only
+ * those columns written), the end state into yend (2 nf). 0 ok. */
+static int pass(lti *L, const gd_transient_options *opt, const gd_tr_record *records, int nrec,
+                double from, double dt, int nout, double h, int stride, const double *y0,
+                double *vals, double *yend)
+{
+    gd_transient *tr = L->tr;
+    const int nf = L->nf;
+    double *y = yend;
+    memcpy(L->z, y0, (size_t)2 * nf * sizeof *L->z);
+    add_particular(L, opt->t_start, -1.0, L->z);
+    double t = opt->t_start;
+    for (int k = 0; k < nout; k++) {
+        if (k % stride && k != nout - 1) continue;
+        double tk = from + k * dt;
+        if (tk > opt->t_end || k == nout - 1) tk = fmin(tk, opt->t_end);
+        if (advance(L, &t, tk, h)) return 1;
+        memcpy(y, L->z, (size_t)2 * nf * sizeof *y);
+        add_particular(L, tk, 1.0, y);
+        gd_tr_fill(tr, tk, y, tr->q, tr->v, NULL);
+        for (int r = 0; r < nrec; r++)
+            vals[(size_t)r * nout + k] = gd_tr_record_value(tr, &records[r], tk, tr->q, tr->v);
+    }
+    if (advance(L, &t, opt->t_end, h)) return 1;
+    memcpy(y, L->z, (size_t)2 * nf * sizeof *y);
+    add_particular(L, opt->t_end, 1.0, y);
+    return 0;
+}
+
+/* Largest difference of the records (over the columns both runs sampled) and of the end
+ * displacements, each relative to its peak in run a. */
+static double difference(const double *va, const double *vb, int nrec, int nout, int stride,
+                         const double *ya, const double *yb, int nf)
+{
+    double e = 0.0;
+    for (int r = 0; r < nrec; r++) {
+        const double *a = va + (size_t)r * nout, *b = vb + (size_t)r * nout;
+        double pk = 0.0, d = 0.0;
+        for (int k = 0; k < nout; k++)
+            pk = fmax(pk, fabs(a[k]));
+        for (int k = 0; k < nout; k++)
+            if (k % stride == 0 || k == nout - 1) d = fmax(d, fabs(a[k] - b[k]));
+        if (pk > 0) e = fmax(e, d / pk);
+    }
+    double pk = 0.0, d = 0.0;
+    for (int i = 0; i < nf; i++) {
+        pk = fmax(pk, fabs(ya[i]));
+        d = fmax(d, fabs(ya[i] - yb[i]));
+    }
+    if (pk > 0) e = fmax(e, d / pk);
+    return e;
+}
+
+gd_status gd_tr_run_lti(gd_transient *tr, const gd_transient_options *opt,
+                        const gd_tr_record *records, int nrecords, double from, double dt,
+                        double *y, gd_transient_result *res, gd_error *err)
+{
+    char why[160];
+    if (!gd_tr_lti_reason(tr, why, sizeof why))
+        return gd_error_set(err, GD_EINPUT, "", 0, 0, "method", "use bdf, adams or galpha",
+                            "the linear time-invariant method does not take this model: %s", why);
+    const int nf = tr->nf, nout = res->nout, nr = nrecords > 0 ? nrecords : 1;
+    lti L;
+    int ist = lti_init(&L, tr);
+    double *va = malloc((size_t)nr * nout * sizeof *va);
+    double *vb = malloc((size_t)nr * nout * sizeof *vb);
+    double *ya = malloc((size_t)4 * (nf > 0 ? nf : 1) * sizeof *ya);
+    double *y0 = malloc((size_t)2 * (nf > 0 ? nf : 1) * sizeof *y0);
+    gd_status st = GD_OK;
+    if (ist == 2) {
+        st = gd_error_set(err, GD_ENUMERIC, "", 0, 0, "speed", "change the speed",
+                          "the harmonic response matrix is singular at an unbalance speed");
+        goto done;
+    }
+    if (ist || !va || !vb || !ya || !y0) {
+        st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
+        goto done;
+    }
+    double *yb = ya + 2 * nf;
+    memcpy(y0, y, (size_t)2 * nf * sizeof *y0);
+    const double limit = opt->max_steps > 0 ? (double)opt->max_steps : 50e6;
+    const double span = opt->t_end - opt->t_start;
+    /* the coarse run at 2 dt samples every other output time; later levels compare
+     * with the previous level at every sample */
+    double h = dt, e = INFINITY, e_prev = INFINITY;
+    int stride = 2;
+    if (pass(&L, opt, records, nrecords, from, dt, nout, 2 * dt, 2, y0, vb, yb)) goto singular;
+    for (int level = 0;; level++) {
+        if (span / h > limit) {
+            st = gd_error_set(err, GD_EINPUT, "", 0, 0, "rtol",
+                              "loosen rtol, or raise max_steps if it is meant",
+                              "the linear method needs steps below %.3g s to reach rtol %g "
+                              "(difference %.3g at that step): %.3g steps, over the limit of %.0f",
+                              h, opt->rtol, e, span / h, limit);
+            goto done;
+        }
+        if (pass(&L, opt, records, nrecords, from, dt, nout, h, 1, y0, va, ya)) goto singular;
+        e = difference(va, vb, nrecords, nout, stride, ya, yb, nf);
+        /* a difference that grows with more steps is the round-off of the steps, not
+         * the truncation: the floor of the method on this model */
+        if (e <= opt->rtol || level == MAXLEVEL || e > e_prev) break;
+        e_prev = e;
+        /* the fine run becomes the coarse one */
+        double *t = va;
+        va = vb;
+        vb = t;
+        memcpy(yb, ya, (size_t)2 * nf * sizeof *yb);
+        stride = 1;
+        h *= 0.5;
+        /* no step of this level recurs: free its factors (memory on large models) */
+        for (int i = 0; i < L.ncache; i++)
+            for (int j = 0; j < NROOT; j++) {
+                L.cache[i].N[j] = cs_ci_nfree(L.cache[i].N[j]);
+                split_free(&L.cache[i].s[j]);
+            }
+        L.ncache = L.next = 0;
+    }
+    memcpy(res->values, va, (size_t)nrecords * nout * sizeof *va);
+    for (int k = 0; k < nout; k++) {
+        double tk = from + k * dt;
+        if (tk > opt->t_end || k == nout - 1) tk = fmin(tk, opt->t_end);
+        res->t[k] = tk;
+    }
+    memcpy(y, ya, (size_t)2 * nf * sizeof *y);
+    res->steps = L.steps;
+    res->prec_setups = L.factors;
+    res->step = h;
+    res->error_estimate = e;
+    goto done;
+singular:
+    st = gd_error_set(err, GD_ENUMERIC, "", 0, 0, "step", "use the bdf method",
+                      "the linear method's step matrix is singular");
+done:
+    lti_free(&L);
+    free(va);
+    free(vb);
+    free(ya);
+    free(y0);
+    return st;
+}
