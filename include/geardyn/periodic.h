@@ -36,6 +36,13 @@ typedef enum gd_per_method {
                              (a run-up; jumps at folds) */
 } gd_per_method;
 
+/* How the orbit is found (docs/periodic.md): harmonic balance (the default), shooting
+ * (Newton on the period map of transient's integrator, natural continuation in the value;
+ * every law transient has, cams with include_acceleration included), or auto: the
+ * cheaper of the two for the model by a measured cost rule (gd_periodic_choose). */
+typedef enum gd_per_kind { GD_PER_HB = 0, GD_PER_SHOOTING = 1, GD_PER_AUTO = 2 } gd_per_kind;
+GD_API const char *gd_per_kind_name(gd_per_kind k);
+
 struct gd_periodic_point;
 /* The largest AFT sample count and Magnus step count per period (2^20): each sample
  * holds the state and forces of every free DOF, so 2^31 samples would ask for about
@@ -60,7 +67,12 @@ typedef struct gd_periodic_options {
     int stability;       /* 1 (default): Floquet multipliers and bifurcations */
     int monodromy_steps; /* Magnus steps per period; 0: 4 x samples, at least 256; at
                             most GD_PERIODIC_MAX_SAMPLES */
-    gd_per_method method;
+    gd_per_method method; /* harmonic balance's continuation (shooting: always natural) */
+    gd_per_kind kind;     /* GD_PER_HB (default), GD_PER_SHOOTING or GD_PER_AUTO */
+    double shoot_rtol;    /* shooting: the integrator's relative tolerance (0: 1e-9); the
+                             absolute ones are 1e-3 of it times the orbit's largest
+                             displacement and velocity, and Newton stops at a scaled
+                             |P(y) - y| of max(tol, 100 shoot_rtol) */
     int both_directions; /* 1: also the run from the end back to the start */
     int max_steps;       /* continuation steps per direction; 0: 50 x count + 200 */
     int solver;          /* Newton's linear solver: 0 automatic (low-rank for 2000+
@@ -156,6 +168,8 @@ typedef struct gd_periodic_result {
     gd_bifurcation *bifurcations;
     int nrecords;
     int steps;          /* continuation steps taken */
+    gd_per_kind method; /* the method that ran (GD_PER_HB or GD_PER_SHOOTING) */
+    char method_note[256]; /* with kind auto: why it was chosen (the measured costs) */
     double cpu_seconds; /* of the whole run */
 } gd_periodic_result;
 
@@ -183,6 +197,18 @@ GD_API void gd_periodic_result_free(gd_periodic_result *r);
  * terms' harmonic couplings, the low-rank capacitance or the sparse LU's fill). */
 GD_API double gd_periodic_memory(const gd_system *sys, const gd_transient_spec *spec, double speed,
                                  int H);
+
+/* The method GD_PER_AUTO takes for the problem at speed (or param's first value):
+ * shooting where harmonic balance cannot represent a law (cams with include_acceleration),
+ * else the cheaper by a measured cost: one period integrated by the shooting integrator
+ * (t_p) against one harmonic balance residual and factorisation at the first H (t_h), the
+ * estimates 5 (2 n + 1) t_p for shooting (n states: five Newton iterations, each a
+ * monodromy of n + 1 columns at about 2 right-hand sides each) and 8 t_h x (3 with the
+ * truncation estimate) x (1 + n_floquet) for harmonic balance; ties go to harmonic
+ * balance. note (may be NULL, 256 bytes) receives the reason with the numbers. */
+GD_API gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *spec,
+                                      const gd_periodic_param *param, double value,
+                                      const gd_periodic_options *opt, char *note);
 
 GD_API gd_status gd_periodic_fundamental(const gd_system *sys, const gd_transient_spec *spec,
                                          double speed, double *w0, int *max_order, gd_error *err);

@@ -1,0 +1,782 @@
+/* Periodic steady state by shooting (docs/periodic.md, "Shooting"): the orbit is the fixed
+ * point of the period map P, the state after one period T of transient's own integrator
+ * (CVODE with located contact events) started from y0 at t = 0,
+ *
+ *   F(y0) = P(y0) - y0 = 0,
+ *
+ * solved by Newton with the monodromy matrix Phi = dP/dy0 (gd_transient_monodromy: the
+ * variational equations integrated with the state, saltation at every contact change;
+ * Leine & Nijmeijer 2004, Sec. 3.5): (Phi - I) dy = -F, with a backtracking line search on
+ * the scaled |F| (Seydel 2010, Sec. 7.3). The Floquet multipliers are the eigenvalues of
+ * Phi at the converged orbit; the records' statistics come from one more integrated period
+ * sampled at the times harmonic balance samples its records (so both report the same
+ * quantities). The continuation is natural in the value (speed or model parameter): each
+ * point starts from the previous points' states extrapolated linearly, the first (or one
+ * whose Newton fails from there) from a short transient from rest or from the static state
+ * under the loads, which a stable orbit attracts. Bifurcations are found between points
+ * where the multipliers cross the unit circle and located by secant iterations on the
+ * critical multiplier's modulus, each a shooting solve. */
+#include <lapacke.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "geardyn/transient_model.h"
+#include "periodic/continuation_impl.h"
+#include "periodic/periodic_impl.h"
+
+/* Periods of the warm-start transient: enough for a damped resonance to be near its orbit
+ * (Newton removes the rest); 6 for the first point of the Chen pair converges in 3
+ * iterations. */
+#define WARM_PERIODS 12
+
+typedef struct shoot {
+    const gd_system *sys0;
+    const gd_transient_spec *spec0;
+    const gd_periodic_param *param;
+    const gd_periodic_options *opt;
+    const gd_tr_record *rec;
+    int nrec;
+    gd_periodic_result *res;
+    int cap_points, cap_bif;
+    int dir, ndir;
+    double v0, v1;
+    /* the problem at the current value */
+    double key;
+    int have;
+    gd_model *m;
+    gd_system *s;
+    gd_transient_model *tm;
+    const gd_system *sys;
+    const gd_transient_spec *spec;
+    gd_transient *tr;
+    int N, nf, ndof, H, Nr;
+    int *free_dof; /* nf: the system DOF of each free DOF */
+    double w, T;
+    double rtol, atol_q, atol_v, tol;
+    /* work: N each, phi and A N x N */
+    double *mem; /* the allocation of phi .. mim (phi and A trade places) */
+    double *phi, *A, *yT, *r, *dy, *yt, *q0, *qv0, *mre, *mim;
+    int *ipiv;
+    size_t capN;
+    int capdof;
+    char why[256];
+} shoot;
+
+static void release_problem(shoot *sh)
+{
+    gd_transient_free(sh->tr);
+    gd_transient_model_free(sh->tm);
+    gd_system_free(sh->s);
+    gd_model_free(sh->m);
+    sh->tr = NULL;
+    sh->tm = NULL;
+    sh->s = NULL;
+    sh->m = NULL;
+    sh->have = 0;
+}
+
+static int grow(shoot *sh)
+{
+    size_t N = (size_t)sh->N;
+    if (N > sh->capN) {
+        free(sh->mem);
+        free(sh->ipiv);
+        sh->mem = malloc((2 * N * N + 10 * N + 2) * sizeof *sh->mem);
+        sh->ipiv = malloc((N + 1) * sizeof *sh->ipiv);
+        if (!sh->mem || !sh->ipiv) {
+            sh->capN = 0;
+            return 1;
+        }
+        sh->capN = N;
+    }
+    sh->phi = sh->mem;
+    sh->A = sh->mem + N * N;
+    sh->yT = sh->A + N * N;
+    sh->r = sh->yT + N;
+    sh->dy = sh->r + N;
+    sh->yt = sh->dy + N;
+    sh->mre = sh->yt + N;
+    sh->mim = sh->mre + N;
+    if (sh->ndof > sh->capdof) {
+        free(sh->q0);
+        sh->q0 = calloc(2 * (size_t)sh->ndof, sizeof *sh->q0);
+        if (!sh->q0) return 1;
+        sh->capdof = sh->ndof;
+    }
+    sh->qv0 = sh->q0 + sh->ndof;
+    return 0;
+}
+
+/* The problem at value key (a speed, or the parameter through the caller's rebuild).
+ * 0 ok; 1 with sh->why. */
+static int make_problem(shoot *sh, double key)
+{
+    if (sh->have && sh->key == key) return 0;
+    release_problem(sh);
+    gd_error err;
+    double speed = key;
+    sh->sys = sh->sys0;
+    sh->spec = sh->spec0;
+    if (sh->param) {
+        const gd_periodic_param *p = sh->param;
+        gd_status st = p->rebuild ? p->rebuild(key, p->data, &sh->m, &sh->s, &sh->tm, &err)
+                                  : gd_error_set(&err, GD_EINPUT, "", 0, 0, "param", "",
+                                                 "no rebuild function");
+        if (!st && (!sh->m || !sh->s || !sh->tm))
+            st =
+                gd_error_set(&err, GD_EINPUT, "", 0, 0, "param", "", "rebuild returned no problem");
+        if (st) {
+            snprintf(sh->why, sizeof sh->why, "%.40s = %.10g: %.160s", p->name ? p->name : "value",
+                     key, err.message);
+            return 1;
+        }
+        sh->sys = sh->s;
+        sh->spec = &sh->tm->spec;
+        speed = p->speed;
+    }
+    double w0;
+    int order;
+    if (gd_periodic_fundamental(sh->sys, sh->spec, speed, &w0, &order, &err)) {
+        snprintf(sh->why, sizeof sh->why, "%.250s", err.message);
+        return 1;
+    }
+    sh->w = w0 / sh->opt->subharmonic;
+    sh->T = TWO_PI / sh->w;
+    /* the harmonics reported: as harmonic balance would use them (at least every
+     * excitation's multiple of the period) */
+    long need = (long)order * sh->opt->subharmonic;
+    sh->H = sh->opt->harmonics;
+    if (sh->opt->adaptive && need > sh->H) sh->H = need > 1 << 20 ? 1 << 20 : (int)need;
+    sh->Nr = 256;
+    while (sh->Nr < 8 * (sh->H + 1))
+        sh->Nr *= 2;
+    if (gd_transient_new(sh->sys, sh->spec, speed, &sh->tr, &err)) {
+        snprintf(sh->why, sizeof sh->why, "%.250s", err.message);
+        return 1;
+    }
+    int N = gd_transient_nstates(sh->tr);
+    if (sh->N && N != sh->N) {
+        snprintf(sh->why, sizeof sh->why, "the number of free DOFs changes with the parameter");
+        return 1;
+    }
+    sh->N = N;
+    sh->nf = N / 2;
+    sh->ndof = sh->sys->ndof;
+    if (grow(sh)) {
+        snprintf(sh->why, sizeof sh->why, "out of memory (%d states)", N);
+        return 1;
+    }
+    free(sh->free_dof);
+    sh->free_dof = malloc((size_t)(sh->nf > 0 ? sh->nf : 1) * sizeof *sh->free_dof);
+    if (!sh->free_dof) return 1;
+    for (int i = 0; i < sh->nf; i++)
+        sh->free_dof[i] = -1;
+    for (int d = 0; d < sh->ndof; d++) {
+        gd_tr_record rec = {GD_REC_DISP, d, 0};
+        int k = -1;
+        if (gd_transient_record_dofs(sh->tr, &rec, &k, 1) == 1 && k >= 0 && k < sh->nf)
+            sh->free_dof[k] = d;
+    }
+    for (int i = 0; i < sh->nf; i++)
+        if (sh->free_dof[i] < 0) {
+            snprintf(sh->why, sizeof sh->why,
+                     "shooting needs the physical DOFs (a reduced model is not supported)");
+            return 1;
+        }
+    sh->key = key;
+    sh->have = 1;
+    return 0;
+}
+
+/* Integration tolerances from the size of the state y (atol a thousandth of rtol times
+ * the largest displacement and velocity): the orbit, not its units, sets them. */
+static void set_tolerances(shoot *sh, const double *y)
+{
+    double sq = 0.0, sv = 0.0;
+    for (int i = 0; i < sh->nf; i++) {
+        sq = fmax(sq, fabs(y[i]));
+        sv = fmax(sv, fabs(y[sh->nf + i]));
+    }
+    sh->rtol = sh->opt->shoot_rtol > 0 ? sh->opt->shoot_rtol : 1e-9;
+    sh->atol_q = sh->rtol * (sq > 0 ? 1e-3 * sq : 1e-6);
+    sh->atol_v = sh->rtol * (sv > 0 ? 1e-3 * sv : 1e-3);
+    /* Newton cannot resolve the fixed point better than the integrator: a hundred times its
+     * tolerance, or the caller's when looser */
+    sh->tol = fmax(sh->opt->tol, 100.0 * sh->rtol);
+}
+
+static void tr_options(const shoot *sh, gd_transient_options *o)
+{
+    gd_transient_options_init(o);
+    o->rtol = sh->rtol;
+    o->atol_q = sh->atol_q;
+    o->atol_v = sh->atol_v;
+    o->t_start = 0.0;
+    o->t_end = sh->T;
+    o->output_interval = sh->T;
+}
+
+/* |F| scaled: per block (displacements, velocities) the largest entry relative to the
+ * block's largest state (or its tolerance scale). */
+static double scaled_norm(const shoot *sh, const double *y, const double *f)
+{
+    const int nf = sh->nf;
+    double yq = sh->atol_q / sh->rtol, yv = sh->atol_v / sh->rtol, fq = 0.0, fv = 0.0;
+    for (int i = 0; i < nf; i++) {
+        yq = fmax(yq, fabs(y[i]));
+        yv = fmax(yv, fabs(y[nf + i]));
+        fq = fmax(fq, fabs(f[i]));
+        fv = fmax(fv, fabs(f[nf + i]));
+    }
+    double r = fmax(fq / yq, fv / yv);
+    return isfinite(r) ? r : INFINITY;
+}
+
+static void to_dofs(shoot *sh, const double *y)
+{
+    memset(sh->q0, 0, 2 * (size_t)sh->ndof * sizeof *sh->q0);
+    for (int i = 0; i < sh->nf; i++) {
+        sh->q0[sh->free_dof[i]] = y[i];
+        sh->qv0[sh->free_dof[i]] = y[sh->nf + i];
+    }
+}
+
+/* One period from y (records and samples as asked): the result, or NULL with sh->why. */
+static gd_transient_result *integrate(shoot *sh, const double *y, double t_end, const double *ts,
+                                      int nts, const gd_tr_record *rec, int nrec)
+{
+    gd_transient_options o;
+    tr_options(sh, &o);
+    o.t_end = t_end;
+    o.output_interval = t_end;
+    o.sample_times = ts;
+    o.nsample_times = nts;
+    if (y) {
+        to_dofs(sh, y);
+        o.init = GD_TR_INIT_GIVEN;
+        o.q0 = sh->q0;
+        o.v0 = sh->qv0;
+    } else {
+        o.init = sh->spec->nloads ? GD_TR_INIT_STATIC : GD_TR_INIT_REST;
+    }
+    gd_transient_result *r = NULL;
+    gd_error err;
+    if (gd_transient_run(sh->tr, &o, rec, nrec, &r, &err)) {
+        snprintf(sh->why, sizeof sh->why, "integration failed: %.220s", err.message);
+        return NULL;
+    }
+    return r;
+}
+
+static void from_dofs(const shoot *sh, const gd_transient_result *r, double *y)
+{
+    for (int i = 0; i < sh->nf; i++) {
+        y[i] = r->q_end[sh->free_dof[i]];
+        y[sh->nf + i] = r->v_end[sh->free_dof[i]];
+    }
+}
+
+/* yT = P(y) by a plain integration. 0 ok. */
+static int period_map(shoot *sh, const double *y, double *yT)
+{
+    gd_transient_result *r = integrate(sh, y, sh->T, NULL, 0, NULL, 0);
+    if (!r) return 1;
+    from_dofs(sh, r, yT);
+    gd_transient_result_free(r);
+    return 0;
+}
+
+/* Phi and yT = P(y). 0 ok. */
+static int monodromy(shoot *sh, const double *y, double *phi, double *yT)
+{
+    gd_transient_options o;
+    tr_options(sh, &o);
+    gd_error err;
+    if (gd_transient_monodromy(sh->tr, 0.0, sh->T, y, &o, phi, yT, &err)) {
+        snprintf(sh->why, sizeof sh->why, "monodromy failed: %.220s", err.message);
+        return 1;
+    }
+    for (size_t k = 0; k < (size_t)sh->N * sh->N; k++)
+        if (!isfinite(phi[k])) {
+            snprintf(sh->why, sizeof sh->why, "the monodromy matrix is not finite");
+            return 1;
+        }
+    return 0;
+}
+
+/* The state y after WARM_PERIODS periods of a transient from rest (or the static state
+ * under the loads). 0 ok. */
+static int warm_start(shoot *sh, double *y)
+{
+    memset(sh->yt, 0, (size_t)sh->N * sizeof *sh->yt);
+    set_tolerances(sh, sh->yt); /* the orbit's size is not known yet */
+    gd_transient_result *r = integrate(sh, NULL, WARM_PERIODS * sh->T, NULL, 0, NULL, 0);
+    if (!r) return 1;
+    from_dofs(sh, r, y);
+    gd_transient_result_free(r);
+    return 0;
+}
+
+/* Newton on F(y) = P(y) - y from y (in place). On success sh->phi is the monodromy at y.
+ * 0 converged; 1 not, with sh->why. */
+static int newton(shoot *sh, double *y, int *iters, double *resid)
+{
+    const int N = sh->N, maxit = sh->opt->max_iter;
+    set_tolerances(sh, y);
+    *iters = 0;
+    if (monodromy(sh, y, sh->phi, sh->yT)) return 1;
+    for (int i = 0; i < N; i++)
+        sh->r[i] = sh->yT[i] - y[i];
+    double res = scaled_norm(sh, y, sh->r);
+    int slow = 0;
+    for (int it = 0;; it++) {
+        *resid = res;
+        if (res <= sh->tol) return 0;
+        if (it >= maxit) {
+            snprintf(sh->why, sizeof sh->why,
+                     "shooting: Newton did not converge in %d iterations (residual %.2g, "
+                     "tolerance %.2g)",
+                     maxit, res, sh->tol);
+            return 1;
+        }
+        /* (Phi - I) dy = -F */
+        memcpy(sh->A, sh->phi, (size_t)N * N * sizeof *sh->A);
+        for (int i = 0; i < N; i++) {
+            sh->A[(size_t)i * N + i] -= 1.0;
+            sh->dy[i] = -sh->r[i];
+        }
+        if (LAPACKE_dgesv(LAPACK_COL_MAJOR, N, 1, sh->A, N, sh->ipiv, sh->dy, N)) {
+            snprintf(sh->why, sizeof sh->why,
+                     "shooting: Phi - I is singular (a multiplier at +1: a fold or a free "
+                     "rigid-body motion)");
+            return 1;
+        }
+        /* full step with the monodromy there; backtracking by plain periods if |F| grows */
+        double alpha = 1.0, rt = INFINITY;
+        for (int i = 0; i < N; i++)
+            sh->yt[i] = y[i] + sh->dy[i];
+        if (monodromy(sh, sh->yt, sh->A, sh->yT)) return 1;
+        for (int i = 0; i < N; i++)
+            sh->r[i] = sh->yT[i] - sh->yt[i];
+        rt = scaled_norm(sh, sh->yt, sh->r);
+        int full = rt < res;
+        while (!full && alpha > 1.0 / 64) {
+            alpha *= 0.5;
+            for (int i = 0; i < N; i++)
+                sh->yt[i] = y[i] + alpha * sh->dy[i];
+            if (period_map(sh, sh->yt, sh->yT)) return 1;
+            for (int i = 0; i < N; i++)
+                sh->r[i] = sh->yT[i] - sh->yt[i];
+            rt = scaled_norm(sh, sh->yt, sh->r);
+            if (rt < res) break;
+        }
+        *iters = it + 1;
+        if (!(rt < res)) {
+            snprintf(sh->why, sizeof sh->why,
+                     "shooting: Newton stalls at residual %.2g (tolerance %.2g): no isolated "
+                     "periodic orbit near the start",
+                     res, sh->tol);
+            return 1;
+        }
+        memcpy(y, sh->yt, (size_t)N * sizeof *y);
+        if (full) {
+            double *t = sh->phi;
+            sh->phi = sh->A;
+            sh->A = t;
+        } else if (monodromy(sh, y, sh->phi, sh->yT)) {
+            return 1;
+        } else {
+            for (int i = 0; i < N; i++)
+                sh->r[i] = sh->yT[i] - y[i];
+            rt = scaled_norm(sh, y, sh->r);
+        }
+        /* a residual that no longer falls is a stall (a chattering orbit): stop early
+         * instead of spending the iterations */
+        slow = rt > 0.5 * res ? slow + 1 : 0;
+        res = rt;
+        if (slow >= 4 && res > sh->tol) {
+            *resid = res;
+            snprintf(sh->why, sizeof sh->why,
+                     "shooting: Newton stalls at residual %.2g (tolerance %.2g) after %d "
+                     "iterations: no isolated periodic orbit near the start",
+                     res, sh->tol, it + 1);
+            return 1;
+        }
+    }
+}
+
+/* ---------------------------------------------------------------- points */
+
+static gd_periodic_point *new_point(shoot *sh, double key)
+{
+    gd_periodic_result *r = sh->res;
+    if (r->npoints == sh->cap_points) {
+        int cap = sh->cap_points ? 2 * sh->cap_points : 64;
+        gd_periodic_point *p = realloc(r->points, (size_t)cap * sizeof *p);
+        if (!p) return NULL;
+        r->points = p;
+        sh->cap_points = cap;
+    }
+    gd_periodic_point *p = &r->points[r->npoints++];
+    memset(p, 0, sizeof *p);
+    p->direction = sh->dir;
+    p->stable = -1;
+    p->mu_max = NAN;
+    p->residual = NAN;
+    p->harmonic_ok = -1;
+    p->harmonic_error_p2p = p->harmonic_error_amp = NAN;
+    p->speed = sh->param ? sh->param->speed : key;
+    p->parameter = sh->param ? key : NAN;
+    p->harmonics = sh->H;
+    return p;
+}
+
+static void announce(shoot *sh, double key)
+{
+    if (!sh->opt->on_point) return;
+    double f = sh->v1 != sh->v0 ? (key - sh->v0) / (sh->v1 - sh->v0) : 1.0;
+    f = f < 0 ? 0 : f > 1 ? 1 : f;
+    sh->opt->on_point(&sh->res->points[sh->res->npoints - 1], sh->res->npoints - 1,
+                      ((sh->dir < 0 ? 1 : 0) + f) / sh->ndir, sh->opt->user);
+}
+
+/* Multipliers: the eigenvalues of sh->phi (destroyed). 0 ok. */
+static int multipliers(shoot *sh, double *mre, double *mim)
+{
+    double dummy[1];
+    return LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', sh->N, sh->phi, sh->N, mre, mim, dummy, 1,
+                         dummy, 1) != 0;
+}
+
+/* The point at the converged state y: records and coefficients from one integrated period
+ * sampled at Nr times, multipliers from sh->phi. 0 ok, 1 out of memory. */
+static int emit(shoot *sh, double key, const double *y, int iters, double resid)
+{
+    const int nf = sh->nf, H = sh->H, Nr = sh->Nr, nr = sh->nrec;
+    gd_periodic_point *p = new_point(sh, key);
+    if (!p) return 1;
+    double *ts = malloc((size_t)Nr * sizeof *ts);
+    if (!ts) return 1;
+    for (int j = 0; j < Nr; j++)
+        ts[j] = sh->T * j / Nr;
+    gd_transient_result *r = integrate(sh, y, sh->T, ts, Nr, sh->rec, nr);
+    free(ts);
+    if (!r || r->nsamples != Nr) {
+        gd_transient_result_free(r);
+        p->converged = 0;
+        snprintf(p->reason, sizeof p->reason, "%.250s", sh->why);
+        announce(sh, key);
+        return 0;
+    }
+    p->converged = 1;
+    p->omega = sh->w;
+    p->residual = resid;
+    p->iterations = iters;
+    p->nfree = nf;
+    const size_t nh = 2 * (size_t)H + 1;
+    p->coef = calloc(nh * nf, sizeof *p->coef);
+    p->records = calloc((size_t)(nr > 0 ? nr : 1), sizeof *p->records);
+    double *buf = fftw_malloc((size_t)Nr * sizeof *buf),
+           *out = fftw_malloc((size_t)Nr * sizeof *out);
+    int rc = 1;
+    if (!p->coef || !p->records || !buf || !out) goto done;
+    fftw_plan plan = fftw_plan_r2r_1d(Nr, buf, out, FFTW_R2HC, FFTW_ESTIMATE);
+    for (int k = 0; k < nr; k++)
+        if (gd_per_sample_stats(&r->sample_values[(size_t)k * Nr], Nr, H, plan, buf, out,
+                                &p->records[k])) {
+            fftw_destroy_plan(plan);
+            goto done;
+        }
+    /* Fourier coefficients of the free DOFs (coef[h * nf + i], as harmonic balance) */
+    for (int i = 0; i < nf; i++) {
+        int d = sh->free_dof[i];
+        for (int j = 0; j < Nr; j++)
+            buf[j] = r->sample_q[(size_t)j * r->ndof + d];
+        fftw_execute(plan);
+        p->coef[i] = out[0] / Nr;
+        for (int k = 1; k <= H && k < Nr / 2; k++) {
+            p->coef[(size_t)(2 * k - 1) * nf + i] = 2.0 * out[k] / Nr;
+            p->coef[(size_t)(2 * k) * nf + i] = -2.0 * out[Nr - k] / Nr;
+        }
+    }
+    fftw_destroy_plan(plan);
+    if (sh->opt->stability) {
+        p->mu_re = malloc((size_t)sh->N * sizeof *p->mu_re);
+        p->mu_im = malloc((size_t)sh->N * sizeof *p->mu_im);
+        if (!p->mu_re || !p->mu_im) goto done;
+        if (multipliers(sh, p->mu_re, p->mu_im)) {
+            snprintf(p->reason, sizeof p->reason, "stability not computed: dgeev failed");
+        } else {
+            double m = 0.0;
+            for (int i = 0; i < sh->N; i++)
+                m = fmax(m, hypot(p->mu_re[i], p->mu_im[i]));
+            p->mu_max = m;
+            p->stable = m <= 1.0 + 1e-6;
+            p->nmult = sh->N;
+        }
+    }
+    rc = 0;
+done:
+    fftw_free(buf);
+    fftw_free(out);
+    gd_transient_result_free(r);
+    if (!rc) announce(sh, key);
+    return rc;
+}
+
+static int fail_point(shoot *sh, double key)
+{
+    gd_periodic_point *p = new_point(sh, key);
+    if (!p) return 1;
+    snprintf(p->reason, sizeof p->reason, "%.250s", sh->why);
+    announce(sh, key);
+    return 0;
+}
+
+/* ---------------------------------------------------------------- bifurcations */
+
+static int add_bif(shoot *sh, gd_bifurcation_type type, double key, double mre, double mim)
+{
+    gd_periodic_result *r = sh->res;
+    if (r->nbifurcations == sh->cap_bif) {
+        int cap = sh->cap_bif ? 2 * sh->cap_bif : 16;
+        gd_bifurcation *b = realloc(r->bifurcations, (size_t)cap * sizeof *b);
+        if (!b) return 1;
+        r->bifurcations = b;
+        sh->cap_bif = cap;
+    }
+    gd_bifurcation *b = &r->bifurcations[r->nbifurcations++];
+    b->type = type;
+    b->speed = sh->param ? sh->param->speed : key;
+    b->parameter = sh->param ? key : NAN;
+    b->direction = sh->dir;
+    b->mu_re = mre;
+    b->mu_im = mim;
+    return 0;
+}
+
+/* The largest |mu| of each kind: 0 real positive, 1 real negative, 2 complex. */
+static void kinds(const double *re, const double *im, int n, double g[3], int at[3])
+{
+    for (int k = 0; k < 3; k++) {
+        g[k] = 0.0;
+        at[k] = -1;
+    }
+    for (int i = 0; i < n; i++) {
+        int k = fabs(im[i]) > 1e-9 * fmax(1.0, fabs(re[i])) ? 2 : re[i] >= 0 ? 0 : 1;
+        double a = hypot(re[i], im[i]);
+        if (a > g[k]) {
+            g[k] = a;
+            at[k] = i;
+        }
+    }
+}
+
+/* The critical multiplier of kind k at value key from state y (a shooting solve):
+ * |mu| - 1 in *g, the multiplier in (*re, *im). 0 ok. */
+static int critical(shoot *sh, double key, double *y, int k, double *g, double *re, double *im)
+{
+    int it;
+    double res;
+    if (make_problem(sh, key) || newton(sh, y, &it, &res) || multipliers(sh, sh->mre, sh->mim))
+        return 1;
+    double gg[3];
+    int at[3];
+    kinds(sh->mre, sh->mim, sh->N, gg, at);
+    if (at[k] < 0) return 1;
+    *g = gg[k] - 1.0;
+    *re = sh->mre[at[k]];
+    *im = sh->mim[at[k]];
+    return 0;
+}
+
+/* A crossing of the unit circle by the multipliers of kind k between (la, ya, ga) and
+ * (lb, yb, gb), located by secant iterations (regula falsi with the Illinois rule) on
+ * |mu| - 1 to 1e-8 relative in the value. The located value, or NAN. */
+static double locate(shoot *sh, int k, double la, const double *ya, double ga, double lb,
+                     const double *yb, double gb, double *mre, double *mim)
+{
+    const int N = sh->N;
+    double *y = malloc((size_t)N * sizeof *y), lx = NAN;
+    if (!y) return NAN;
+    double a = la, b = lb, fa = ga, fb = gb;
+    int side = 0;
+    for (int it = 0; it < 30; it++) {
+        double x = b - fb * (b - a) / (fb - fa), g, re, im;
+        if (!(x > fmin(a, b) && x < fmax(a, b))) x = 0.5 * (a + b);
+        /* start from the nearer end's state, interpolated */
+        double s = (x - la) / (lb - la);
+        for (int i = 0; i < N; i++)
+            y[i] = (1 - s) * ya[i] + s * yb[i];
+        if (critical(sh, x, y, k, &g, &re, &im)) break;
+        lx = x;
+        *mre = re;
+        *mim = im;
+        if (fabs(g) < 1e-12 || fabs(b - a) <= 1e-8 * fabs(x)) break;
+        if ((g > 0) == (fb > 0)) {
+            b = x;
+            fb = g;
+            if (side == -1) fa *= 0.5;
+            side = -1;
+        } else {
+            a = x;
+            fa = g;
+            if (side == 1) fb *= 0.5;
+            side = 1;
+        }
+        if (fabs(b - a) <= 1e-8 * fabs(x)) break;
+    }
+    free(y);
+    return lx;
+}
+
+/* Bifurcations between the previous converged point (la, ya, its multipliers) and this
+ * one: every kind whose largest modulus crossed 1. */
+static int detect(shoot *sh, double la, const double *ya, const double *ma_re, const double *ma_im,
+                  double lb, const double *yb, const gd_periodic_point *pb)
+{
+    double ga[3], gb[3];
+    int aa[3], ab[3];
+    kinds(ma_re, ma_im, sh->N, ga, aa);
+    kinds(pb->mu_re, pb->mu_im, sh->N, gb, ab);
+    static const gd_bifurcation_type type[3] = {GD_BIF_FOLD, GD_BIF_PERIOD_DOUBLING,
+                                                GD_BIF_NEIMARK_SACKER};
+    for (int k = 0; k < 3; k++) {
+        if (aa[k] < 0 || ab[k] < 0 || (ga[k] > 1.0) == (gb[k] > 1.0)) continue;
+        double re = NAN, im = NAN;
+        double x = locate(sh, k, la, ya, ga[k] - 1.0, lb, yb, gb[k] - 1.0, &re, &im);
+        if (isnan(x)) { /* not located: between the points, linearly */
+            x = la + (lb - la) * (1.0 - ga[k]) / (gb[k] - ga[k]);
+            re = im = NAN;
+        }
+        /* a real multiplier through +1 on a branch followed in the value is a fold or a
+         * branch point: natural continuation cannot tell (it jumps at a fold), so it is
+         * reported as the fold it usually is */
+        if (add_bif(sh, type[k], x, k == 0 ? NAN : re, k == 0 ? NAN : im)) return 1;
+    }
+    return 0;
+}
+
+/* ---------------------------------------------------------------- the branch */
+
+static int run_direction(shoot *sh, const double *vals, int nv)
+{
+    const int stab = sh->opt->stability;
+    double *ys = NULL; /* the last two converged states, their values */
+    double lv[2] = {NAN, NAN};
+    int nprev = 0, rc = 1;
+    double *mre = NULL, *mim = NULL, *y = NULL;
+    int have_mu = 0;
+    for (int v = 0; v < nv; v++) {
+        double key = vals[v];
+        if (make_problem(sh, key)) {
+            if (fail_point(sh, key)) goto done;
+            nprev = 0;
+            continue;
+        }
+        const int N = sh->N;
+        if (!ys) {
+            ys = malloc((size_t)5 * N * sizeof *ys);
+            if (!ys) goto done;
+            y = ys + 2 * (size_t)N;
+            mre = y + N;
+            mim = mre + N;
+        }
+        int it = 0, ok = 0, warm = 0;
+        double res = NAN;
+        if (nprev) {
+            /* predictor: the last state, or the secant through the last two */
+            double s = nprev == 2 ? (key - lv[1]) / (lv[1] - lv[0]) : 0.0;
+            for (int i = 0; i < N; i++)
+                y[i] = ys[N + i] + s * (ys[N + i] - ys[i]);
+            ok = !newton(sh, y, &it, &res);
+        }
+        if (!ok) {
+            warm = 1;
+            char first[256];
+            snprintf(first, sizeof first, "%s", nprev ? sh->why : "");
+            ok = !warm_start(sh, y) && !newton(sh, y, &it, &res);
+            if (!ok && first[0] && strcmp(first, sh->why)) {
+                char both[256];
+                snprintf(both, sizeof both, "%.110s; from a transient: %.110s", first, sh->why);
+                snprintf(sh->why, sizeof sh->why, "%s", both);
+            }
+        }
+        (void)warm;
+        if (!ok) {
+            if (fail_point(sh, key)) goto done;
+            nprev = 0;
+            have_mu = 0;
+            continue;
+        }
+        if (emit(sh, key, y, it, res)) goto done;
+        gd_periodic_point *p = &sh->res->points[sh->res->npoints - 1];
+        int nb0 = sh->res->nbifurcations;
+        (void)nb0;
+        if (stab && p->nmult && have_mu && nprev) {
+            /* the previous point's state and multipliers are ys[N..] and mre/mim */
+            double *ya = malloc((size_t)2 * N * sizeof *ya);
+            if (!ya) goto done;
+            memcpy(ya, ys + N, (size_t)N * sizeof *ya);
+            memcpy(ya + N, y, (size_t)N * sizeof *ya);
+            double la = lv[1];
+            int e = detect(sh, la, ya, mre, mim, key, ya + N, p);
+            free(ya);
+            if (e) goto done;
+            if (make_problem(sh, key)) goto done; /* locate moved the problem: back */
+        }
+        p = &sh->res->points[sh->res->npoints - 1];
+        have_mu = p->nmult > 0;
+        if (have_mu) {
+            memcpy(mre, p->mu_re, (size_t)N * sizeof *mre);
+            memcpy(mim, p->mu_im, (size_t)N * sizeof *mim);
+        }
+        if (nprev) memcpy(ys, ys + N, (size_t)N * sizeof *ys);
+        lv[0] = lv[1];
+        memcpy(ys + N, y, (size_t)N * sizeof *ys);
+        lv[1] = key;
+        nprev = nprev < 2 ? nprev + 1 : 2;
+    }
+    rc = 0;
+done:
+    free(ys);
+    return rc;
+}
+
+int gd_per_shoot_run(const gd_system *sys, const gd_transient_spec *spec,
+                     const gd_periodic_param *param, const double *values, int nvalues,
+                     const gd_periodic_options *opt, const gd_tr_record *records, int nrecords,
+                     gd_periodic_result *res)
+{
+    shoot sh;
+    memset(&sh, 0, sizeof sh);
+    sh.sys0 = sys;
+    sh.spec0 = spec;
+    sh.param = param;
+    sh.opt = opt;
+    sh.rec = records;
+    sh.nrec = nrecords;
+    sh.res = res;
+    sh.ndir = opt->both_directions ? 2 : 1;
+    double *rev = malloc((size_t)nvalues * sizeof *rev);
+    int rc = !rev;
+    for (int d = 0; d < sh.ndir && !rc; d++) {
+        sh.dir = d ? -1 : 1;
+        for (int i = 0; i < nvalues; i++)
+            rev[i] = d ? values[nvalues - 1 - i] : values[i];
+        sh.v0 = rev[0];
+        sh.v1 = rev[nvalues - 1];
+        rc = run_direction(&sh, rev, nvalues);
+        res->steps += nvalues;
+    }
+    free(rev);
+    release_problem(&sh);
+    free(sh.mem);
+    free(sh.ipiv);
+    free(sh.q0);
+    free(sh.free_dof);
+    return rc;
+}
