@@ -23,7 +23,7 @@ static const char USAGE[] =
     "                        [--harmonic-tol TOL] [--max-harmonics H] [--no-estimate]\n"
     "                        [--samples N] [--coupling LEVEL] [--set PATH=VALUE]... [--json]\n"
     "                        [--out DIR] [--plot FILE.svg|FILE.html] [--quiet]\n"
-    "                        [--method hb|shooting|auto] [--shoot-rtol TOL]\n\n"
+    "                        [--method hb|shooting|auto] [--shoot-rtol TOL] [--shoot-budget S]\n\n"
     "Periodic steady state by harmonic balance (alternating frequency-time on every\n"
     "nonlinear and time-varying law of `transient`), continued by pseudo-arclength over\n"
     "the speed (through folds: a hysteresis loop gives several points per speed), with\n"
@@ -36,6 +36,8 @@ static const char USAGE[] =
     "                    per speed); auto: the cheaper for the model by a measured cost\n"
     "                    (the choice and the costs are printed)\n"
     "  --shoot-rtol TOL  shooting: the integrator's relative tolerance (default 1e-9)\n"
+    "  --shoot-budget S  shooting: CPU seconds per point before it stops, not converged,\n"
+    "                    saying why (default 30; 0: no limit)\n"
     "  --harmonics H|auto  harmonics of the period; auto (default): from the least H that\n"
     "                    holds every excitation, doubled per point until every record's\n"
     "                    peak-to-peak and harmonic amplitudes agree with those at 2 H to\n"
@@ -353,7 +355,8 @@ enum {
     OPT_NOEST,
     OPT_QUIET,
     OPT_METHOD,
-    OPT_SRTOL
+    OPT_SRTOL,
+    OPT_SBUDGET
 };
 
 int gd_cmd_periodic(int argc, char **argv)
@@ -374,6 +377,7 @@ int gd_cmd_periodic(int argc, char **argv)
                                          {"quiet", no_argument, 0, OPT_QUIET},
                                          {"method", required_argument, 0, OPT_METHOD},
                                          {"shoot-rtol", required_argument, 0, OPT_SRTOL},
+                                         {"shoot-budget", required_argument, 0, OPT_SBUDGET},
                                          {"coupling", required_argument, 0, 'c'},
                                          {"json", no_argument, 0, 'j'},
                                          {"out", required_argument, 0, 'o'},
@@ -388,7 +392,8 @@ int gd_cmd_periodic(int argc, char **argv)
     gd_cli_sets sets = {0};
     gd_periodic_options opt;
     gd_periodic_options_init(&opt);
-    opt.adaptive = 1; /* the default: H from the excitations, raised until it holds */
+    opt.adaptive = 1;        /* the default: H from the excitations, raised until it holds */
+    opt.shoot_budget = 30.0; /* a point never runs for minutes in silence */
     optind = 1;
     opterr = 0;
     while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
@@ -442,6 +447,17 @@ int gd_cmd_periodic(int argc, char **argv)
                                           "got '%s'",
                                           optarg);
             opt.shoot_rtol = v;
+            break;
+        }
+        case OPT_SBUDGET: {
+            char *end;
+            double v = strtod(optarg, &end);
+            if (*end || !(v >= 0 && v < 1e9))
+                return gd_cli_usage_error(CMD,
+                                          "--shoot-budget: expected CPU seconds >= 0 (0: no "
+                                          "limit), got '%s'",
+                                          optarg);
+            opt.shoot_budget = v;
             break;
         }
         case 'N':

@@ -73,6 +73,9 @@ typedef struct gd_periodic_options {
                              absolute ones are 1e-3 of it times the orbit's largest
                              displacement and velocity, and Newton stops at a scaled
                              |P(y) - y| of max(tol, 100 shoot_rtol) */
+    double shoot_budget;  /* shooting: CPU seconds per point (0, default: no limit); a point
+                             whose next integration would pass it stops, not converged, with
+                             what it saw (the warm start's change per period, the residual) */
     int both_directions; /* 1: also the run from the end back to the start */
     int max_steps;       /* continuation steps per direction; 0: 50 x count + 200 */
     int solver;          /* Newton's linear solver: 0 automatic (low-rank for 2000+
