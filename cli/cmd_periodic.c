@@ -215,7 +215,9 @@ static cJSON *to_json(const gd_periodic_result *r, const gd_cli_records *recs, i
 
 static void print_table(const gd_periodic_result *r, const gd_cli_records *recs, int param)
 {
-    printf("method: %s\n", r->method_note[0] ? r->method_note : gd_per_kind_name(r->method));
+    /* harmonic balance by default says nothing (the table's layout is unchanged) */
+    if (r->method != GD_PER_HB || r->method_note[0])
+        printf("method: %s\n", r->method_note[0] ? r->method_note : gd_per_kind_name(r->method));
     printf("%3s %14s %12s%s %4s %9s %8s %8s %6s %10s", "dir", "speed_rad_s", "speed_rpm",
            param ? "      parameter" : "", "H", "residual", "err_p2p", "err_amp", "stable",
            "|mu|max");

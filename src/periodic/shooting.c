@@ -58,7 +58,7 @@ typedef struct shoot {
     double rtol, atol_q, atol_v, tol;
     /* work: N each, phi and A N x N */
     double *mem; /* the allocation of phi .. mim (phi and A trade places) */
-    double *phi, *A, *yT, *r, *dy, *yt, *q0, *qv0, *mre, *mim;
+    double *phi, *A, *yT, *r, *dy, *yt, *q0, *qv0, *mre, *mim, *racc, *ytmp;
     int *ipiv;
     size_t capN;
     int capdof;
@@ -106,6 +106,8 @@ static int grow(shoot *sh)
     sh->yt = sh->dy + N;
     sh->mre = sh->yt + N;
     sh->mim = sh->mre + N;
+    sh->racc = sh->mim + N; /* F at the accepted iterate */
+    sh->ytmp = sh->racc + N;
     if (sh->ndof > sh->capdof) {
         free(sh->q0);
         sh->q0 = calloc(2 * (size_t)sh->ndof, sizeof *sh->q0);
@@ -387,12 +389,18 @@ static int warm_start(shoot *sh, double *y)
 }
 
 /* The residual below which a Newton that stalls has met the integrator's own noise: the
- * period map is integrated to rtol per step, and contact events restart the integrator
- * tens of times a period (the backlash pair at rtol 1e-10 stalls between 1e-8 and 2e-7,
- * the orbit then equal to harmonic balance's within 1e-6). */
-static double noise_floor(const shoot *sh)
+ * period map at the iterate y integrated again without the variational equations (another
+ * step sequence) differs from the monodromy's by about the integration error; ten times
+ * that, and never less than 1e4 rtol (contact events restart the integrator tens of times
+ * a period: the backlash pair at rtol 1e-10 stalls between 1e-8 and 2e-7, the orbit then
+ * equal to harmonic balance's within 1e-6). F at y from the monodromy is in sh->racc. */
+static double noise_floor(shoot *sh, const double *y)
 {
-    return fmax(sh->tol, 1e4 * sh->rtol);
+    double fl = fmax(sh->tol, 1e4 * sh->rtol);
+    if (period_map(sh, y, sh->ytmp)) return fl;
+    for (int i = 0; i < sh->N; i++)
+        sh->ytmp[i] -= y[i] + sh->racc[i];
+    return fmax(fl, 10.0 * scaled_norm(sh, y, sh->ytmp));
 }
 
 /* Newton on F(y) = P(y) - y from y (in place). On success sh->phi is the monodromy at y.
@@ -406,6 +414,7 @@ static int newton(shoot *sh, double *y, int *iters, double *resid)
     for (int i = 0; i < N; i++)
         sh->r[i] = sh->yT[i] - y[i];
     double res = scaled_norm(sh, y, sh->r);
+    memcpy(sh->racc, sh->r, (size_t)N * sizeof *sh->racc);
     int slow = 0;
     for (int it = 0;; it++) {
         *resid = res;
@@ -449,7 +458,7 @@ static int newton(shoot *sh, double *y, int *iters, double *resid)
             if (rt < res) break;
         }
         *iters = it + 1;
-        if (!(rt < res) && res <= noise_floor(sh)) return 0;
+        if (!(rt < res) && res <= noise_floor(sh, y)) return 0;
         if (!(rt < res)) {
             snprintf(sh->why, sizeof sh->why,
                      "shooting: Newton stalls at residual %.2g (tolerance %.2g): no isolated "
@@ -469,12 +478,13 @@ static int newton(shoot *sh, double *y, int *iters, double *resid)
                 sh->r[i] = sh->yT[i] - y[i];
             rt = scaled_norm(sh, y, sh->r);
         }
+        memcpy(sh->racc, sh->r, (size_t)N * sizeof *sh->racc);
         /* a residual that no longer falls is a stall (a chattering orbit): stop early
          * instead of spending the iterations */
         slow = rt > 0.5 * res ? slow + 1 : 0;
         res = rt;
         if (slow >= 4 && res > sh->tol) {
-            if (res <= noise_floor(sh)) return 0;
+            if (res <= noise_floor(sh, y)) return 0;
             *resid = res;
             snprintf(sh->why, sizeof sh->why,
                      "shooting: Newton stalls at residual %.2g (tolerance %.2g) after %d "

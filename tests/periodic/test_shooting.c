@@ -197,4 +197,91 @@ TEST(backlash_shooting_within_hb_truncation)
     fx_free(&f);
 }
 
-RUN_TESTS(T(chen_sfd_shooting_equals_hb), T(backlash_shooting_within_hb_truncation))
+/* A damped Mathieu pair (TVMS k0 (1 + 0.05 cos z theta) on a prescribed driver, zeta =
+ * 0.005, as test_periodic's): across the primary tongue both methods find the two period
+ * doublings, shooting by regula falsi on the critical multiplier's modulus between its
+ * points, harmonic balance on its branch; the same speeds to 1e-7 relative (measured
+ * 4e-10, 2e-9) with the multiplier at -1, and the points inside unstable. */
+static char *mathieu(void)
+{
+    const double k0 = 1e8, r = 0.05, inertia = 5e-3, wn = sqrt(k0 * r * r / inertia);
+    const double c = 2.0 * 0.005 * wn * inertia / (r * r);
+    enum { NP = 96 };
+    char ang[4096] = "", k[4096] = "";
+    int na = 0, nk = 0;
+    for (int j = 0; j < NP; j++) {
+        na += snprintf(ang + na, sizeof ang - (size_t)na, "%s%.17g", j ? ", " : "",
+                       2 * M_PI / 20 * j / NP);
+        nk += snprintf(k + nk, sizeof k - (size_t)nk, "%s%.17g", j ? ", " : "",
+                       k0 * (1 + 0.05 * cos(2 * M_PI * j / NP)));
+    }
+    char *y = malloc(12288);
+    snprintf(y, 12288,
+             "dofs: [rz]\n"
+             "shafts:\n"
+             "  - {name: a, nodes: [{name: gear_a}]}\n"
+             "  - {name: b, nodes: [{name: gear_b}]}\n"
+             "disks:\n"
+             "  - {node: gear_a, polar_inertia: 1e-2}\n"
+             "  - {node: gear_b, polar_inertia: %.17g}\n"
+             "meshes:\n"
+             "  - {name: m, driver: gear_a, driven: gear_b, base_radius: [25 mm, 50 mm],\n"
+             "     teeth: [20, 40], pressure_angle: 20 deg, damping: %.17g,\n"
+             "     tvms: {interpolation: spline, angle: [%s], stiffness: [%s]}}\n"
+             "prescribed:\n"
+             "  - {node: gear_a, motion: nominal}\n"
+             "excitations:\n"
+             "  loads: [{node: gear_b, value: 20}]\n",
+             inertia, c, ang, k);
+    return y;
+}
+
+TEST(mathieu_period_doublings_located)
+{
+    fx f;
+    char *y = mathieu();
+    int ok = load(&f, NULL, y);
+    free(y);
+    REQUIRE(ok);
+    gd_transient_model *tm = NULL;
+    gd_error err;
+    REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
+    double v[21];
+    for (int i = 0; i < 21; i++)
+        v[i] = 678.8 + (735.4 - 678.8) * i / 20;
+    gd_periodic_options o;
+    gd_periodic_options_init(&o);
+    o.harmonics = 8;
+    o.monodromy_steps = 2048;
+    gd_periodic_result *hb = solve(&f, &tm->spec, v, 21, &o, NULL, 0);
+    o.kind = GD_PER_SHOOTING;
+    o.shoot_rtol = 1e-10;
+    gd_periodic_result *sh = solve(&f, &tm->spec, v, 21, &o, NULL, 0);
+    REQUIRE(hb && sh && sh->npoints == 21);
+    double a[2] = {0, 0}, b[2] = {0, 0};
+    int na = 0, nb = 0;
+    for (int i = 0; i < sh->nbifurcations; i++)
+        if (sh->bifurcations[i].type == GD_BIF_PERIOD_DOUBLING && na < 2) {
+            CHECK_ABS(sh->bifurcations[i].mu_re, -1.0, 1e-6);
+            a[na++] = sh->bifurcations[i].speed;
+        }
+    for (int i = 0; i < hb->nbifurcations; i++)
+        if (hb->bifurcations[i].type == GD_BIF_PERIOD_DOUBLING && nb < 2)
+            b[nb++] = hb->bifurcations[i].speed;
+    printf("  period doublings: shooting %.9f, %.9f; harmonic balance %.9f, %.9f rad/s\n", a[0],
+           a[1], b[0], b[1]);
+    CHECK(na == 2 && nb == 2 && sh->nbifurcations == 2);
+    CHECK_REL(a[0], b[0], 1e-7);
+    CHECK_REL(a[1], b[1], 1e-7);
+    for (int i = 0; i < sh->npoints; i++) {
+        const gd_periodic_point *p = &sh->points[i];
+        CHECK(p->converged && p->stable == !(p->speed > a[0] && p->speed < a[1]));
+    }
+    gd_periodic_result_free(hb);
+    gd_periodic_result_free(sh);
+    gd_transient_model_free(tm);
+    fx_free(&f);
+}
+
+RUN_TESTS(T(chen_sfd_shooting_equals_hb), T(backlash_shooting_within_hb_truncation),
+          T(mathieu_period_doublings_located))
