@@ -310,7 +310,7 @@ static int over_budget(shoot *sh, double next, const char *what)
     char settle[160] = "";
     if (isfinite(sh->warm_change))
         snprintf(settle, sizeof settle,
-                 "; the transient from rest still changes by %.2g per period after %d%s",
+                 "; the transient from rest still changes by %.2g per period after %d periods%s",
                  sh->warm_change, sh->warm_periods,
                  sh->warm_change > 1e-2
                      ? " (no stable period-1 orbit attracts it: see geardyn transient)"
