@@ -673,10 +673,10 @@ static int critical(shoot *sh, double key, double *y, int k, double *g, double *
     double gg[3];
     int at[3];
     kinds(sh->mre, sh->mim, sh->N, gg, at);
-    if (at[k] < 0) return 1;
+    /* none of that kind (a complex pair not yet split on the axis): modulus 0 */
     *g = gg[k] - 1.0;
-    *re = sh->mre[at[k]];
-    *im = sh->mim[at[k]];
+    *re = at[k] >= 0 ? sh->mre[at[k]] : NAN;
+    *im = at[k] >= 0 ? sh->mim[at[k]] : NAN;
     return 0;
 }
 
@@ -700,8 +700,10 @@ static double locate(shoot *sh, int k, double la, const double *ya, double ga, d
             y[i] = (1 - s) * ya[i] + s * yb[i];
         if (critical(sh, x, y, k, &g, &re, &im)) break;
         lx = x;
-        *mre = re;
-        *mim = im;
+        if (isfinite(re)) {
+            *mre = re;
+            *mim = im;
+        }
         if (fabs(g) < 1e-12 || fabs(b - a) <= 1e-8 * fabs(x)) break;
         if ((g > 0) == (fb > 0)) {
             b = x;
@@ -732,7 +734,9 @@ static int detect(shoot *sh, double la, const double *ya, const double *ma_re, c
     static const gd_bifurcation_type type[3] = {GD_BIF_FOLD, GD_BIF_PERIOD_DOUBLING,
                                                 GD_BIF_NEIMARK_SACKER};
     for (int k = 0; k < 3; k++) {
-        if (aa[k] < 0 || ab[k] < 0 || (ga[k] > 1.0) == (gb[k] > 1.0)) continue;
+        /* a kind absent on one side counts as modulus 0 (a complex pair meets the real
+         * axis before one of it leaves through -1 or +1) */
+        if ((ga[k] > 1.0) == (gb[k] > 1.0)) continue;
         double re = NAN, im = NAN;
         double x = locate(sh, k, la, ya, ga[k] - 1.0, lb, yb, gb[k] - 1.0, &re, &im);
         if (isnan(x)) { /* not located: between the points, linearly */

@@ -198,9 +198,9 @@ TEST(backlash_shooting_within_hb_truncation)
 }
 
 /* A damped Mathieu pair (TVMS k0 (1 + 0.05 cos z theta) on a prescribed driver, zeta =
- * 0.005, as test_periodic's): across the primary tongue both methods find the two period
- * doublings, shooting by regula falsi on the critical multiplier's modulus between its
- * points, harmonic balance on its branch; the same speeds to 1e-7 relative (measured
+ * 0.005, as test_periodic's): across the primary tongue (21 speeds, and 7) both methods
+ * find the two period doublings, shooting by regula falsi on the critical multiplier's modulus
+ * between its points, harmonic balance on its branch; the same speeds to 1e-7 relative (measured
  * 4e-10, 2e-9) with the multiplier at -1, and the points inside unstable. */
 static char *mathieu(void)
 {
@@ -277,6 +277,19 @@ TEST(mathieu_period_doublings_located)
         const gd_periodic_point *p = &sh->points[i];
         CHECK(p->converged && p->stable == !(p->speed > a[0] && p->speed < a[1]));
     }
+    /* a coarse grid (5 rad/s) whose stable points carry a complex pair, not yet split on
+     * the real axis: the same two crossings */
+    double vc[7];
+    for (int i = 0; i < 7; i++)
+        vc[i] = 690 + 5 * i;
+    gd_periodic_result *sc = solve(&f, &tm->spec, vc, 7, &o, NULL, 0);
+    REQUIRE(sc);
+    CHECK(sc->nbifurcations == 2);
+    for (int i = 0; i < sc->nbifurcations && i < 2; i++) {
+        CHECK(sc->bifurcations[i].type == GD_BIF_PERIOD_DOUBLING);
+        CHECK_REL(sc->bifurcations[i].speed, b[i], 1e-7);
+    }
+    gd_periodic_result_free(sc);
     gd_periodic_result_free(hb);
     gd_periodic_result_free(sh);
     gd_transient_model_free(tm);
