@@ -23,7 +23,8 @@ static const char USAGE[] =
     "                        [--harmonic-tol TOL] [--max-harmonics H] [--no-estimate]\n"
     "                        [--samples N] [--coupling LEVEL] [--set PATH=VALUE]... [--json]\n"
     "                        [--out DIR] [--plot FILE.svg|FILE.html] [--quiet]\n"
-    "                        [--method hb|shooting|auto] [--shoot-rtol TOL] [--shoot-budget S]\n\n"
+    "                        [--method hb|shooting|auto] [--shoot-rtol TOL] [--shoot-budget S]\n"
+    "                        [--shoot-dense-max N]\n\n"
     "Periodic steady state by harmonic balance (alternating frequency-time on every\n"
     "nonlinear and time-varying law of `transient`), continued by pseudo-arclength over\n"
     "the speed (through folds: a hysteresis loop gives several points per speed), with\n"
@@ -36,6 +37,8 @@ static const char USAGE[] =
     "                    per speed); auto: the cheaper for the model by a measured cost\n"
     "                    (the choice and the costs are printed)\n"
     "  --shoot-rtol TOL  shooting: the integrator's relative tolerance (default 1e-9)\n"
+    "  --shoot-dense-max N  shooting: the dense monodromy up to N states (default 64);\n"
+    "                    above, Newton-Krylov on monodromy-vector products\n"
     "  --shoot-budget S  shooting: CPU seconds per point before it stops, not converged,\n"
     "                    saying why (default 30; 0: no limit)\n"
     "  --harmonics H|auto  harmonics of the period; auto (default): from the least H that\n"
@@ -358,7 +361,8 @@ enum {
     OPT_QUIET,
     OPT_METHOD,
     OPT_SRTOL,
-    OPT_SBUDGET
+    OPT_SBUDGET,
+    OPT_SDENSE
 };
 
 int gd_cmd_periodic(int argc, char **argv)
@@ -380,6 +384,7 @@ int gd_cmd_periodic(int argc, char **argv)
                                          {"method", required_argument, 0, OPT_METHOD},
                                          {"shoot-rtol", required_argument, 0, OPT_SRTOL},
                                          {"shoot-budget", required_argument, 0, OPT_SBUDGET},
+                                         {"shoot-dense-max", required_argument, 0, OPT_SDENSE},
                                          {"coupling", required_argument, 0, 'c'},
                                          {"json", no_argument, 0, 'j'},
                                          {"out", required_argument, 0, 'o'},
@@ -451,6 +456,14 @@ int gd_cmd_periodic(int argc, char **argv)
             opt.shoot_rtol = v;
             break;
         }
+        case OPT_SDENSE:
+            if (gd_cli_parse_count(optarg, 1, 1 << 20, &lv))
+                return gd_cli_usage_error(CMD,
+                                          "--shoot-dense-max: expected a whole number of "
+                                          "states >= 1, got '%s'",
+                                          optarg);
+            opt.shoot_dense_max = (int)lv;
+            break;
         case OPT_SBUDGET: {
             char *end;
             double v = strtod(optarg, &end);

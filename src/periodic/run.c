@@ -99,6 +99,9 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
         (opt->shoot_rtol > 0 && !(opt->shoot_rtol >= 1e-14 && opt->shoot_rtol < 1e-2)))
         BAD("shoot_rtol", "give 0 (1e-9) or a tolerance in [1e-14, 1e-2)",
             "shooting tolerance %g out of range", opt->shoot_rtol);
+    if (opt->shoot_dense_max < 0 || opt->shoot_budget < 0)
+        BAD("shoot_dense_max", "give 0 (the default) or a positive value",
+            "shoot_dense_max and shoot_budget must not be negative");
 #undef BAD
     {
         char note[256] = "";

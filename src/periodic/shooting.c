@@ -69,6 +69,7 @@ typedef struct shoot {
     double warm_change; /* the last warm-start period's scaled change (NAN: none) */
     int warm_periods;
     int budget_hit; /* the point stopped at its budget */
+    int dense;      /* the dense monodromy (else Newton-Krylov on monodromy-vector products) */
 } shoot;
 
 static void release_problem(shoot *sh)
@@ -86,11 +87,11 @@ static void release_problem(shoot *sh)
 
 static int grow(shoot *sh)
 {
-    size_t N = (size_t)sh->N;
+    size_t N = (size_t)sh->N, NN = sh->dense ? N * N : 0;
     if (N > sh->capN) {
         free(sh->mem);
         free(sh->ipiv);
-        sh->mem = malloc((2 * N * N + 10 * N + 2) * sizeof *sh->mem);
+        sh->mem = malloc((2 * NN + 10 * N + 2) * sizeof *sh->mem);
         sh->ipiv = malloc((N + 1) * sizeof *sh->ipiv);
         if (!sh->mem || !sh->ipiv) {
             sh->capN = 0;
@@ -99,8 +100,8 @@ static int grow(shoot *sh)
         sh->capN = N;
     }
     sh->phi = sh->mem;
-    sh->A = sh->mem + N * N;
-    sh->yT = sh->A + N * N;
+    sh->A = sh->mem + NN;
+    sh->yT = sh->A + NN;
     sh->r = sh->yT + N;
     sh->dy = sh->r + N;
     sh->yt = sh->dy + N;
@@ -172,6 +173,7 @@ static int make_problem(shoot *sh, double key)
     }
     sh->N = N;
     sh->nf = N / 2;
+    sh->dense = N <= (sh->opt->shoot_dense_max > 0 ? sh->opt->shoot_dense_max : 64);
     sh->ndof = sh->sys->ndof;
     if (grow(sh)) {
         snprintf(sh->why, sizeof sh->why, "out of memory (%d states)", N);
@@ -403,10 +405,283 @@ static double noise_floor(shoot *sh, const double *y)
     return fmax(fl, 10.0 * scaled_norm(sh, y, sh->ytmp));
 }
 
+/* ---------------------------------------------------------------- Newton-Krylov */
+
+/* Largest Krylov dimension (GMRES restart length, Arnoldi steps for the multipliers). */
+#define KRYLOV_M 40
+
+/* Matrix-free monodromy in scaled variables z = y / d (d the block scales of
+ * scaled_norm): w = Phi z by a forward difference of the period map about y (py = P(y)),
+ * the step sqrt(rtol) of the scales: the truncation error (h |P''|) and the integration
+ * noise (rtol / h) balance at about sqrt(rtol) relative (3e-5 at rtol 1e-9). 0 ok. */
+typedef struct kry {
+    const double *y, *py, *d;
+    double *yt, *pt;
+} kry;
+
+static int phi_vec(shoot *sh, kry *k, const double *z, double *w)
+{
+    const int N = sh->N;
+    double nz = 0.0;
+    for (int i = 0; i < N; i++)
+        nz = fmax(nz, fabs(z[i]));
+    if (nz == 0.0) {
+        memset(w, 0, (size_t)N * sizeof *w);
+        return 0;
+    }
+    const double h = sqrt(sh->rtol) / nz;
+    for (int i = 0; i < N; i++)
+        k->yt[i] = k->y[i] + h * k->d[i] * z[i];
+    if (period_map(sh, k->yt, k->pt)) return 1;
+    for (int i = 0; i < N; i++)
+        w[i] = (k->pt[i] - k->py[i]) / (h * k->d[i]);
+    return 0;
+}
+
+/* Arnoldi on Phi - shift I from v0 (normalised here) for at most m steps: V (N x (m + 1)),
+ * H ((m + 1) x m, column-major, leading dimension m + 1). With b (GMRES: solve
+ * (Phi - I) x = b, v0 = b) it stops when the least-squares residual is below tol |b| and
+ * returns x. The number of steps in *steps. 0 ok, 1 an integration failed. */
+static int arnoldi(shoot *sh, kry *k, double shift, const double *v0, int m, double *V, double *H,
+                   int *steps, double tol, double *x)
+{
+    const int N = sh->N, ld = m + 1;
+    double beta = 0.0;
+    for (int i = 0; i < N; i++)
+        beta += v0[i] * v0[i];
+    beta = sqrt(beta);
+    *steps = 0;
+    if (x) memset(x, 0, (size_t)N * sizeof *x);
+    if (beta == 0.0) return 0;
+    double *cs = malloc((size_t)3 * (m + 1) * sizeof *cs), *sn = cs + m + 1, *g = sn + m + 1;
+    if (!cs) return 1;
+    memset(g, 0, (size_t)(m + 1) * sizeof *g);
+    g[0] = beta;
+    memset(H, 0, (size_t)ld * m * sizeof *H);
+    for (int i = 0; i < N; i++)
+        V[i] = v0[i] / beta;
+    int j = 0, rc = 0;
+    for (; j < m; j++) {
+        double *w = V + (size_t)(j + 1) * N;
+        if (phi_vec(sh, k, V + (size_t)j * N, w)) {
+            rc = 1;
+            break;
+        }
+        for (int i = 0; i < N; i++)
+            w[i] -= shift * V[(size_t)j * N + i];
+        for (int l = 0; l <= j; l++) { /* modified Gram-Schmidt */
+            double hij = 0.0;
+            for (int i = 0; i < N; i++)
+                hij += w[i] * V[(size_t)l * N + i];
+            H[(size_t)j * ld + l] = hij;
+            for (int i = 0; i < N; i++)
+                w[i] -= hij * V[(size_t)l * N + i];
+        }
+        double hn = 0.0;
+        for (int i = 0; i < N; i++)
+            hn += w[i] * w[i];
+        hn = sqrt(hn);
+        H[(size_t)j * ld + j + 1] = hn;
+        if (hn > 0.0)
+            for (int i = 0; i < N; i++)
+                w[i] /= hn;
+        if (x) {
+            /* the least-squares problem by Givens rotations, on a copy of column j */
+            double *c = H + (size_t)j * ld, t[KRYLOV_M + 2];
+            memcpy(t, c, (size_t)(j + 2) * sizeof *t);
+            for (int l = 0; l < j; l++) {
+                double a = cs[l] * t[l] + sn[l] * t[l + 1];
+                t[l + 1] = -sn[l] * t[l] + cs[l] * t[l + 1];
+                t[l] = a;
+            }
+            double r = hypot(t[j], t[j + 1]);
+            cs[j] = r > 0 ? t[j] / r : 1.0;
+            sn[j] = r > 0 ? t[j + 1] / r : 0.0;
+            g[j + 1] = -sn[j] * g[j];
+            g[j] = cs[j] * g[j];
+            /* keep the rotated column in the upper part of a second copy: R in cs's tail
+             * is not needed, the triangle is rebuilt below from H */
+            if (fabs(g[j + 1]) <= tol * beta || hn == 0.0) {
+                j++;
+                break;
+            }
+        } else if (hn == 0.0) {
+            j++;
+            break;
+        }
+    }
+    *steps = j;
+    if (x && j > 0 && !rc) {
+        /* R y = g: the rotations applied again to H's first j columns */
+        double *R = malloc((size_t)(j + 1) * j * sizeof *R), *yy = malloc((size_t)j * sizeof *yy);
+        if (!R || !yy) {
+            rc = 1;
+        } else {
+            for (int c = 0; c < j; c++) {
+                double *col = R + (size_t)c * (j + 1);
+                memcpy(col, H + (size_t)c * ld,
+                       (size_t)(c + 2 < j + 1 ? c + 2 : j + 1) * sizeof *col);
+                for (int l = 0; l < c; l++) {
+                    double a = cs[l] * col[l] + sn[l] * col[l + 1];
+                    col[l + 1] = -sn[l] * col[l] + cs[l] * col[l + 1];
+                    col[l] = a;
+                }
+                col[c] = cs[c] * col[c] + sn[c] * col[c + 1];
+            }
+            for (int r = j - 1; r >= 0; r--) {
+                double sum = g[r];
+                for (int c = r + 1; c < j; c++)
+                    sum -= R[(size_t)c * (j + 1) + r] * yy[c];
+                yy[r] = R[(size_t)r * (j + 1) + r] != 0 ? sum / R[(size_t)r * (j + 1) + r] : 0.0;
+            }
+            for (int c = 0; c < j; c++)
+                for (int i = 0; i < N; i++)
+                    x[i] += yy[c] * V[(size_t)c * N + i];
+        }
+        free(R);
+        free(yy);
+    }
+    free(cs);
+    return rc;
+}
+
+static void block_scales(const shoot *sh, const double *y, double *d)
+{
+    double yq = sh->atol_q / sh->rtol, yv = sh->atol_v / sh->rtol;
+    for (int i = 0; i < sh->nf; i++) {
+        yq = fmax(yq, fabs(y[i]));
+        yv = fmax(yv, fabs(y[sh->nf + i]));
+    }
+    for (int i = 0; i < sh->N; i++)
+        d[i] = i < sh->nf ? yq : yv;
+}
+
+/* Newton-Krylov on F(y) = P(y) - y: each step GMRES(KRYLOV_M) on (Phi - I) dy = -F in
+ * scaled variables to 1e-3 of |F| (inexact Newton), at most three restarts, every product
+ * one period integrated; the same line search and tolerances as the dense Newton. */
+static int newton_krylov(shoot *sh, double *y, int *iters, double *resid)
+{
+    const int N = sh->N, m = N < KRYLOV_M ? N : KRYLOV_M, maxit = sh->opt->max_iter;
+    set_tolerances(sh, y);
+    *iters = 0;
+    double *V = malloc(((size_t)N * (m + 1) + (size_t)(m + 1) * m + 5 * (size_t)N) * sizeof *V);
+    if (!V) {
+        snprintf(sh->why, sizeof sh->why, "out of memory");
+        return 1;
+    }
+    double *H = V + (size_t)N * (m + 1), *d = H + (size_t)(m + 1) * m, *b = d + N, *x = b + N,
+           *py = x + N, *pt = py + N;
+    int rc = 1;
+    if (period_map(sh, y, py)) goto done;
+    for (int i = 0; i < N; i++)
+        sh->r[i] = py[i] - y[i];
+    double res = scaled_norm(sh, y, sh->r);
+    for (int it = 0;; it++) {
+        *resid = res;
+        if (res <= sh->tol) {
+            rc = 0;
+            break;
+        }
+        if (it >= maxit) {
+            snprintf(sh->why, sizeof sh->why,
+                     "shooting (Newton-Krylov): not converged in %d iterations (residual %.2g)",
+                     maxit, res);
+            break;
+        }
+        block_scales(sh, y, d);
+        kry k = {y, py, d, sh->yt, pt};
+        for (int i = 0; i < N; i++)
+            b[i] = -sh->r[i] / d[i];
+        memset(sh->dy, 0, (size_t)N * sizeof *sh->dy);
+        /* GMRES with restarts: the residual of the correction recomputed each cycle */
+        for (int cyc = 0; cyc < 4; cyc++) {
+            int steps;
+            if (arnoldi(sh, &k, 1.0, b, m, V, H, &steps, 1e-3, x)) goto done;
+            for (int i = 0; i < N; i++)
+                sh->dy[i] += x[i];
+            if (cyc == 3) break;
+            /* b - (Phi - I) dy */
+            if (phi_vec(sh, &k, sh->dy, sh->ytmp)) goto done;
+            double nb = 0.0, n0 = 0.0;
+            for (int i = 0; i < N; i++) {
+                double r0 = -sh->r[i] / d[i];
+                b[i] = r0 - (sh->ytmp[i] - sh->dy[i]);
+                nb += b[i] * b[i];
+                n0 += r0 * r0;
+            }
+            if (nb <= 1e-6 * n0) break;
+        }
+        for (int i = 0; i < N; i++)
+            sh->dy[i] *= d[i];
+        double alpha = 1.0, rt = INFINITY;
+        for (int ls = 0; ls < 7; ls++, alpha *= 0.5) {
+            for (int i = 0; i < N; i++)
+                sh->yt[i] = y[i] + alpha * sh->dy[i];
+            if (period_map(sh, sh->yt, pt)) goto done;
+            for (int i = 0; i < N; i++)
+                sh->yT[i] = pt[i] - sh->yt[i];
+            rt = scaled_norm(sh, sh->yt, sh->yT);
+            if (rt < res) break;
+        }
+        *iters = it + 1;
+        if (!(rt < res)) {
+            if (res <= fmax(sh->tol, 1e4 * sh->rtol)) {
+                rc = 0;
+                break;
+            }
+            snprintf(sh->why, sizeof sh->why,
+                     "shooting (Newton-Krylov): stalls at residual %.2g (tolerance %.2g)", res,
+                     sh->tol);
+            break;
+        }
+        memcpy(y, sh->yt, (size_t)N * sizeof *y);
+        memcpy(py, pt, (size_t)N * sizeof *py);
+        memcpy(sh->r, sh->yT, (size_t)N * sizeof *sh->r);
+        res = rt;
+    }
+done:
+    free(V);
+    return rc;
+}
+
+/* The largest Floquet multipliers of the orbit through y without the dense monodromy: the
+ * Ritz values of KRYLOV_M Arnoldi steps on Phi (monodromy-vector products) from a fixed
+ * start vector; the outer ones, which decide stability, converge first. Their count, or -1
+ * when an integration failed. */
+static int krylov_multipliers(shoot *sh, const double *y, double *mre, double *mim)
+{
+    const int N = sh->N, m = N < KRYLOV_M ? N : KRYLOV_M;
+    double *V = malloc(((size_t)N * (m + 1) + (size_t)(m + 1) * m + 4 * (size_t)N + (size_t)m * m) *
+                       sizeof *V);
+    if (!V) return -1;
+    double *H = V + (size_t)N * (m + 1), *d = H + (size_t)(m + 1) * m, *py = d + N, *pt = py + N,
+           *v0 = pt + N, *Hs = v0 + N;
+    int n = -1, steps = 0;
+    set_tolerances(sh, y);
+    block_scales(sh, y, d);
+    if (!period_map(sh, y, py)) {
+        kry k = {y, py, d, sh->yt, pt};
+        for (int i = 0; i < N; i++) /* every state excited, none by symmetry left out */
+            v0[i] = 1.0 + 0.5 * sin(1.0 + i);
+        if (!arnoldi(sh, &k, 0.0, v0, m, V, H, &steps, 0.0, NULL) && steps > 0) {
+            for (int c = 0; c < steps; c++)
+                for (int r = 0; r < steps; r++)
+                    Hs[(size_t)c * steps + r] = H[(size_t)c * (m + 1) + r];
+            double dummy[1];
+            if (!LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', steps, Hs, steps, mre, mim, dummy, 1,
+                               dummy, 1))
+                n = steps;
+        }
+    }
+    free(V);
+    return n;
+}
+
 /* Newton on F(y) = P(y) - y from y (in place). On success sh->phi is the monodromy at y.
  * 0 converged; 1 not, with sh->why. */
 static int newton(shoot *sh, double *y, int *iters, double *resid)
 {
+    if (!sh->dense) return newton_krylov(sh, y, iters, resid);
     const int N = sh->N, maxit = sh->opt->max_iter;
     set_tolerances(sh, y);
     *iters = 0;
@@ -530,12 +805,16 @@ static void announce(shoot *sh, double key)
                       ((sh->dir < 0 ? 1 : 0) + f) / sh->ndir, sh->opt->user);
 }
 
-/* Multipliers: the eigenvalues of sh->phi (destroyed). 0 ok. */
-static int multipliers(shoot *sh, double *mre, double *mim)
+/* Multipliers of the orbit through y: the eigenvalues of sh->phi (destroyed), or the
+ * Krylov estimate of the largest. Their count, -1 on failure. */
+static int multipliers(shoot *sh, const double *y, double *mre, double *mim)
 {
+    if (!sh->dense) return krylov_multipliers(sh, y, mre, mim);
     double dummy[1];
     return LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', sh->N, sh->phi, sh->N, mre, mim, dummy, 1,
-                         dummy, 1) != 0;
+                         dummy, 1)
+               ? -1
+               : sh->N;
 }
 
 /* The point at the converged state y: records and coefficients from one integrated period
@@ -594,15 +873,22 @@ static int emit(shoot *sh, double key, const double *y, int iters, double resid)
         p->mu_re = malloc((size_t)sh->N * sizeof *p->mu_re);
         p->mu_im = malloc((size_t)sh->N * sizeof *p->mu_im);
         if (!p->mu_re || !p->mu_im) goto done;
-        if (multipliers(sh, p->mu_re, p->mu_im)) {
-            snprintf(p->reason, sizeof p->reason, "stability not computed: dgeev failed");
+        int nm = multipliers(sh, y, p->mu_re, p->mu_im);
+        if (nm < 0) {
+            snprintf(p->reason, sizeof p->reason, "stability not computed: %.200s",
+                     sh->dense ? "dgeev failed" : sh->why);
         } else {
             double m = 0.0;
-            for (int i = 0; i < sh->N; i++)
+            for (int i = 0; i < nm; i++)
                 m = fmax(m, hypot(p->mu_re[i], p->mu_im[i]));
             p->mu_max = m;
             p->stable = m <= 1.0 + 1e-6;
-            p->nmult = sh->N;
+            p->nmult = nm;
+            if (!sh->dense)
+                snprintf(p->reason, sizeof p->reason,
+                         "multipliers: the %d largest of %d, Ritz values of Arnoldi on "
+                         "monodromy-vector products",
+                         nm, sh->N);
         }
     }
     rc = 0;
@@ -668,11 +954,13 @@ static int critical(shoot *sh, double key, double *y, int k, double *g, double *
 {
     int it;
     double res;
-    if (make_problem(sh, key) || newton(sh, y, &it, &res) || multipliers(sh, sh->mre, sh->mim))
+    int nm;
+    if (make_problem(sh, key) || newton(sh, y, &it, &res) ||
+        (nm = multipliers(sh, y, sh->mre, sh->mim)) < 0)
         return 1;
     double gg[3];
     int at[3];
-    kinds(sh->mre, sh->mim, sh->N, gg, at);
+    kinds(sh->mre, sh->mim, nm, gg, at);
     /* none of that kind (a complex pair not yet split on the axis): modulus 0 */
     *g = gg[k] - 1.0;
     *re = at[k] >= 0 ? sh->mre[at[k]] : NAN;
@@ -725,12 +1013,12 @@ static double locate(shoot *sh, int k, double la, const double *ya, double ga, d
 /* Bifurcations between the previous converged point (la, ya, its multipliers) and this
  * one: every kind whose largest modulus crossed 1. */
 static int detect(shoot *sh, double la, const double *ya, const double *ma_re, const double *ma_im,
-                  double lb, const double *yb, const gd_periodic_point *pb)
+                  int na, double lb, const double *yb, const gd_periodic_point *pb)
 {
     double ga[3], gb[3];
     int aa[3], ab[3];
-    kinds(ma_re, ma_im, sh->N, ga, aa);
-    kinds(pb->mu_re, pb->mu_im, sh->N, gb, ab);
+    kinds(ma_re, ma_im, na, ga, aa);
+    kinds(pb->mu_re, pb->mu_im, pb->nmult, gb, ab);
     static const gd_bifurcation_type type[3] = {GD_BIF_FOLD, GD_BIF_PERIOD_DOUBLING,
                                                 GD_BIF_NEIMARK_SACKER};
     for (int k = 0; k < 3; k++) {
@@ -818,16 +1106,16 @@ static int run_direction(shoot *sh, const double *vals, int nv)
             memcpy(ya, ys + N, (size_t)N * sizeof *ya);
             memcpy(ya + N, y, (size_t)N * sizeof *ya);
             double la = lv[1];
-            int e = detect(sh, la, ya, mre, mim, key, ya + N, p);
+            int e = detect(sh, la, ya, mre, mim, have_mu, key, ya + N, p);
             free(ya);
             if (e) goto done;
             if (make_problem(sh, key)) goto done; /* locate moved the problem: back */
         }
         p = &sh->res->points[sh->res->npoints - 1];
-        have_mu = p->nmult > 0;
+        have_mu = p->nmult; /* the count of the previous point's multipliers */
         if (have_mu) {
-            memcpy(mre, p->mu_re, (size_t)N * sizeof *mre);
-            memcpy(mim, p->mu_im, (size_t)N * sizeof *mim);
+            memcpy(mre, p->mu_re, (size_t)have_mu * sizeof *mre);
+            memcpy(mim, p->mu_im, (size_t)have_mu * sizeof *mim);
         }
         if (nprev) memcpy(ys, ys + N, (size_t)N * sizeof *ys);
         lv[0] = lv[1];

@@ -332,5 +332,48 @@ TEST(budget_stops_a_point_and_auto_says_why)
     fx_free(&f);
 }
 
+/* Newton-Krylov (shoot_dense_max below the state count): the Chen pair at 1000 rad/s by
+ * GMRES on monodromy-vector products (one integrated period each, forward differences at
+ * sqrt(rtol)) equals the dense Newton's orbit (measured 1e-9 and 3e-8 on the records), and the
+ * Arnoldi multipliers (12 steps span the whole space here) those of the dense monodromy to the
+ * difference step's error, sqrt(rtol) = 1e-5 relative in the products: |mu|max to 2e-6, the
+ * smaller multipliers to 5e-4 (asserted 1e-5 and 1e-3). */
+TEST(newton_krylov_equals_dense)
+{
+    fx f;
+    REQUIRE(load(&f, GD_SOURCE_DIR "/examples/chen1998_gear_pair.yaml", NULL));
+    gd_transient_model *tm = NULL;
+    gd_error err;
+    REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
+    gd_tr_record rec[2] = {{GD_REC_DISP, dof(&f, "gear_a", GD_X), 0}, {GD_REC_MESH_FORCE, 0, 0}};
+    const double v[2] = {1000, 1100};
+    gd_periodic_options o;
+    gd_periodic_options_init(&o);
+    o.kind = GD_PER_SHOOTING;
+    o.shoot_rtol = 1e-10;
+    gd_periodic_result *dn = solve(&f, &tm->spec, v, 2, &o, rec, 2);
+    o.shoot_dense_max = 4;
+    gd_periodic_result *kr = solve(&f, &tm->spec, v, 2, &o, rec, 2);
+    REQUIRE(dn && kr && dn->npoints == 2 && kr->npoints == 2);
+    for (int i = 0; i < 2; i++) {
+        const gd_periodic_point *a = &kr->points[i], *b = &dn->points[i];
+        REQUIRE(a->converged && b->converged);
+        double dp, da, dm = mult_distance(a, b);
+        record_difference(a, b, 2, &dp, &da);
+        printf("  %.0f rad/s: Krylov %d iterations, %d multipliers; d p2p %.2e, d amp %.2e, d mu "
+               "%.2e, |mu|max %.6f / %.6f\n",
+               v[i], a->iterations, a->nmult, dp, da, dm, a->mu_max, b->mu_max);
+        CHECK(dp < 1e-6 && da < 1e-6);
+        CHECK(a->nmult == 12 && dm < 1e-3);
+        CHECK_REL(a->mu_max, b->mu_max, 1e-5);
+        CHECK(a->stable == 1);
+    }
+    gd_periodic_result_free(dn);
+    gd_periodic_result_free(kr);
+    gd_transient_model_free(tm);
+    fx_free(&f);
+}
+
 RUN_TESTS(T(chen_sfd_shooting_equals_hb), T(backlash_shooting_within_hb_truncation),
-          T(mathieu_period_doublings_located), T(budget_stops_a_point_and_auto_says_why))
+          T(mathieu_period_doublings_located), T(budget_stops_a_point_and_auto_says_why),
+          T(newton_krylov_equals_dense))
