@@ -207,12 +207,13 @@ GD_API double gd_periodic_memory(const gd_system *sys, const gd_transient_spec *
 
 /* The method GD_PER_AUTO takes for the problem at speed (or param's first value):
  * shooting where harmonic balance cannot represent a law (cams with include_acceleration),
- * else the cheaper by a measured cost: one period integrated by the shooting integrator
- * (t_p) against one harmonic balance residual and factorisation at the first H (t_h), the
- * estimates 5 (2 n + 1) t_p for shooting (n states: five Newton iterations, each a
- * monodromy of n + 1 columns at about 2 right-hand sides each) and 8 t_h x (3 with the
- * truncation estimate) x (1 + n_floquet) for harmonic balance; ties go to harmonic
- * balance. note (may be NULL, 256 bytes) receives the reason with the numbers. */
+ * else the cheaper by a measured cost: one harmonic balance residual and factorisation at
+ * the first H (t_h) and one period integrated from rest at the shooting tolerance (t_p,
+ * stopped once shooting could no longer win); the estimates 8 t_h x (3 with the truncation
+ * estimate) plus the Magnus monodromy with stability, against 5 (2 n + 1) t_p for dense
+ * shooting (n states) or 340 t_p for Newton-Krylov; ties go to harmonic balance
+ * (docs/periodic.md). note (may be NULL, 256 bytes) receives the reason with the numbers.
+ * Reads no files; thread-safe on separate problems. */
 GD_API gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *spec,
                                       const gd_periodic_param *param, double value,
                                       const gd_periodic_options *opt, char *note);

@@ -24,18 +24,20 @@ static double cpu_now(void)
     return (double)clock() / CLOCKS_PER_SEC;
 }
 
-/* CPU seconds of one period integrated from rest at the shooting tolerance (the second
- * of two periods: the first leaves the rest state), or NAN. */
-static double period_cost(gd_transient *tr, const gd_transient_spec *spec, double T, double rtol)
+/* CPU seconds of one period integrated from rest at the shooting tolerance, or NAN when
+ * it fails or needs more than max_steps steps (the cap that keeps the measurement cheap:
+ * shooting could not win then). */
+static double period_cost(gd_transient *tr, const gd_transient_spec *spec, double T, double rtol,
+                          long max_steps)
 {
     gd_transient_options o;
     gd_transient_options_init(&o);
     o.rtol = rtol;
     o.atol_q *= rtol / 1e-6;
     o.atol_v *= rtol / 1e-6;
-    o.t_end = 2 * T;
+    o.t_end = T;
     o.output_interval = T;
-    o.record_from = T;
+    o.max_steps = max_steps;
     o.init = spec->nloads ? GD_TR_INIT_STATIC : GD_TR_INIT_REST;
     gd_transient_result *r = NULL;
     gd_error err;
@@ -43,7 +45,21 @@ static double period_cost(gd_transient *tr, const gd_transient_spec *spec, doubl
     gd_status st = gd_transient_run(tr, &o, NULL, 0, &r, &err);
     double t = cpu_now() - t0;
     gd_transient_result_free(r);
-    return st ? NAN : 0.5 * t;
+    return st ? NAN : t;
+}
+
+/* CPU seconds of one right-hand side at rest (the mean of 20). */
+static double rhs_cost(gd_transient *tr)
+{
+    const int n = gd_transient_nstates(tr);
+    double *y = calloc((size_t)(2 * n + 2), sizeof *y);
+    if (!y) return NAN;
+    double t0 = cpu_now();
+    for (int k = 0; k < 20; k++)
+        gd_transient_rhs(tr, 1e-3 * k, y, y + n + 1);
+    double t = (cpu_now() - t0) / 20;
+    free(y);
+    return t;
 }
 
 /* CPU seconds of one harmonic balance residual with its Jacobian and one factorisation at
@@ -126,11 +142,12 @@ gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *sp
         int backlash = 0;
         for (int i = 0; i < spec->nmeshes; i++)
             backlash |= spec->meshes[i].backlash != 0;
-        double tp = period_cost(tr, spec, TWO_PI / w, opt->shoot_rtol > 0 ? opt->shoot_rtol : 1e-9);
+        const int dense = n <= (opt->shoot_dense_max > 0 ? opt->shoot_dense_max : 64);
+        /* shooting per point: five Newton iterations, each a dense monodromy of n + 1
+         * columns whose right-hand side costs 2 n + 1 evaluations, or (Newton-Krylov) about
+         * 60 monodromy-vector products of one period each, and 40 for the multipliers */
+        const double per_period = dense ? 5.0 * (2.0 * n + 1.0) : 5.0 * 60.0 + 40.0;
         double th = hb_cost(tr, opt, w, H, backlash);
-        /* shooting: five Newton iterations, each a monodromy of n + 1 columns whose right-
-         * hand side costs 2 n + 1 evaluations */
-        double cs = 5.0 * (2.0 * n + 1.0) * tp;
         /* harmonic balance: eight Newton steps, three times that with the solution at 2 H + 1
          * of the truncation estimate, and the Magnus monodromy (4 x samples steps of about
          * 30 (2 nf)^3 flops at 2 GFlop/s) */
@@ -138,6 +155,20 @@ gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *sp
         double steps = opt->monodromy_steps > 0 ? opt->monodromy_steps : fmax(256.0, 4.0 * N);
         double ch = 8.0 * th * ((opt->estimate || opt->adaptive) ? 3.0 : 1.0);
         if (opt->stability) ch += steps * 30.0 * pow(2.0 * nf, 3) / 2e9;
+        /* the period is integrated only as far as shooting could still win: at most the
+         * steps (one right-hand side each, at least) that fit in ch / per_period */
+        double tr1 = rhs_cost(tr), cs = NAN, tp = NAN;
+        long cap = isfinite(th) && tr1 > 0 ? (long)fmin(1e8, ch / per_period / tr1) + 100 : 0;
+        tp = period_cost(tr, spec, TWO_PI / w, opt->shoot_rtol > 0 ? opt->shoot_rtol : 1e-9, cap);
+        cs = per_period * tp;
+        if (!isfinite(cs) && isfinite(th)) {
+            snprintf(note, 256,
+                     "harmonic balance: estimated %.3g s per point (H = %d), and one period of "
+                     "shooting's integration (%d states) needs more than %ld steps: shooting "
+                     "could not be cheaper",
+                     ch, H, n, cap);
+            goto done;
+        }
         if (!isfinite(cs)) {
             snprintf(note, 256, "harmonic balance: the period could not be integrated");
         } else if (!isfinite(th)) {
