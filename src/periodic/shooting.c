@@ -1064,7 +1064,7 @@ static int run_direction(shoot *sh, const double *vals, int nv)
             mre = y + N;
             mim = mre + N;
         }
-        int it = 0, ok = 0, warm = 0;
+        int it = 0, ok = 0;
         double res = NAN;
         sh->cpu0 = cpu_now();
         sh->t_mono = 0.0;
@@ -1078,7 +1078,6 @@ static int run_direction(shoot *sh, const double *vals, int nv)
             ok = !newton(sh, y, &it, &res);
         }
         if (!ok && !sh->budget_hit) {
-            warm = 1;
             char first[256];
             snprintf(first, sizeof first, "%s", nprev ? sh->why : "");
             ok = !warm_start(sh, y) && !newton(sh, y, &it, &res);
@@ -1088,7 +1087,6 @@ static int run_direction(shoot *sh, const double *vals, int nv)
                 snprintf(sh->why, sizeof sh->why, "%s", both);
             }
         }
-        (void)warm;
         if (!ok) {
             if (fail_point(sh, key)) goto done;
             nprev = 0;
@@ -1097,8 +1095,6 @@ static int run_direction(shoot *sh, const double *vals, int nv)
         }
         if (emit(sh, key, y, it, res)) goto done;
         gd_periodic_point *p = &sh->res->points[sh->res->npoints - 1];
-        int nb0 = sh->res->nbifurcations;
-        (void)nb0;
         if (stab && p->nmult && have_mu && nprev) {
             /* the previous point's state and multipliers are ys[N..] and mre/mim */
             double *ya = malloc((size_t)2 * N * sizeof *ya);
