@@ -27,9 +27,9 @@
 #include "periodic/continuation_impl.h"
 #include "periodic/periodic_impl.h"
 
-/* Periods of the warm-start transient: enough for a damped resonance to be near its orbit
- * (Newton removes the rest); 6 for the first point of the Chen pair converges in 3
- * iterations. */
+/* Most periods of the warm-start transient (it stops once a period changes the state by
+ * less than 1e-3): enough for a damped resonance to come near its orbit, Newton removes
+ * the rest (the Chen pair's first point then converges in 2 to 5 iterations). */
 #define WARM_PERIODS 12
 
 typedef struct shoot {
