@@ -393,16 +393,22 @@ static int warm_start(shoot *sh, double *y)
 /* The residual below which a Newton that stalls has met the integrator's own noise: the
  * period map at the iterate y integrated again without the variational equations (another
  * step sequence) differs from the monodromy's by about the integration error; ten times
- * that, and never less than 1e4 rtol (contact events restart the integrator tens of times
- * a period: the backlash pair at rtol 1e-10 stalls between 1e-8 and 2e-7, the orbit then
- * equal to harmonic balance's within 1e-6). F at y from the monodromy is in sh->racc. */
+ * that, at least 1e4 rtol (contact events restart the integrator tens of times a period:
+ * the backlash pair at rtol 1e-10 stalls between 1e-8 and 2e-7, the orbit then equal to
+ * harmonic balance's within 1e-6), and never above 1e-5 (nor below the tolerance): a
+ * strongly unstable orbit amplifies the difference itself (the Ducati train at 3000 rpm,
+ * multipliers up to 1e27, gave a "noise" of order 1) and must not pass for converged.
+ * F at y from the monodromy is in sh->racc (NULL: the fixed part only). */
+#define NOISE_CAP 1e-5
 static double noise_floor(shoot *sh, const double *y)
 {
-    double fl = fmax(sh->tol, 1e4 * sh->rtol);
-    if (period_map(sh, y, sh->ytmp)) return fl;
-    for (int i = 0; i < sh->N; i++)
-        sh->ytmp[i] -= y[i] + sh->racc[i];
-    return fmax(fl, 10.0 * scaled_norm(sh, y, sh->ytmp));
+    double fl = fmin(1e4 * sh->rtol, NOISE_CAP);
+    if (y && !period_map(sh, y, sh->ytmp)) {
+        for (int i = 0; i < sh->N; i++)
+            sh->ytmp[i] -= y[i] + sh->racc[i];
+        fl = fmin(fmax(fl, 10.0 * scaled_norm(sh, y, sh->ytmp)), NOISE_CAP);
+    }
+    return fmax(sh->tol, fl);
 }
 
 /* ---------------------------------------------------------------- Newton-Krylov */
@@ -625,7 +631,7 @@ static int newton_krylov(shoot *sh, double *y, int *iters, double *resid)
         }
         *iters = it + 1;
         if (!(rt < res)) {
-            if (res <= fmax(sh->tol, 1e4 * sh->rtol)) {
+            if (res <= noise_floor(sh, NULL)) {
                 rc = 0;
                 break;
             }

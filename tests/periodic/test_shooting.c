@@ -90,6 +90,7 @@ TEST(chen_sfd_shooting_equals_hb)
         const gd_periodic_point *a = &sh->points[i], *b = &hb->points[i];
         REQUIRE(a->converged && b->converged);
         CHECK(a->harmonics == 30 && a->nmult == 2 * a->nfree && a->stable == 1);
+        CHECK(a->residual <= 1e-7); /* 100 rtol */
         double dp, da, dm = mult_distance(a, b);
         record_difference(a, b, 3, &dp, &da);
         printf("  %5.0f  %.2e  %.2e  %.2e  %.2e  %.6f  %d\n", v[i], b->harmonic_error_amp, dp, da,
@@ -180,6 +181,7 @@ TEST(backlash_shooting_within_hb_truncation)
     for (int i = 0; i < 2; i++) {
         const gd_periodic_point *a = &sh->points[i], *b = &hb->points[i];
         REQUIRE(a->converged && b->converged);
+        CHECK(a->residual <= 1e-5); /* the noise floor's cap */
         double dp, da, dm = mult_distance(a, b);
         record_difference(a, b, 2, &dp, &da);
         printf("  %5.0f  %.2e    %.2e    %.2e  %.2e  %.2e  %.6f\n", v[i], b->harmonic_error_p2p,
