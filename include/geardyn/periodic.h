@@ -50,47 +50,48 @@ struct gd_periodic_point;
 #define GD_PERIODIC_MAX_SAMPLES (1 << 20)
 
 typedef struct gd_periodic_options {
-    int harmonics;        /* H >= 1 (default 10) */
-    int adaptive;         /* 1: H from the least that holds every excitation's fundamental,
-                             doubled at each point until the records agree with those at
-                             twice H to harmonic_tol (the point reports the finer solution) */
-    double harmonic_tol;  /* truncation tolerance: the relative change of every record's
-                             peak-to-peak and of its harmonic amplitudes (relative to its
-                             largest) between H and 2 H (default 0.01) */
-    int max_harmonics;    /* cap of H (0, default: the largest whose workspace fits in
-                             memory_limit) */
-    int subharmonic;      /* N >= 1: solutions of period N T_0 (default 1) */
-    int samples;          /* AFT samples per period; 0: 4 (H + 1) rounded up to 2^k,
-                             at least 16; at most GD_PERIODIC_MAX_SAMPLES */
-    double tol;           /* Newton: relative residual (default 1e-10) */
-    int max_iter;         /* Newton iterations per point (default 30) */
-    int stability;        /* 1 (default): Floquet multipliers and bifurcations */
-    int monodromy_steps;  /* Magnus steps per period; 0: 4 x samples, at least 256; at
-                             most GD_PERIODIC_MAX_SAMPLES */
-    gd_per_method method; /* harmonic balance's continuation (shooting: always natural) */
-    gd_per_kind kind;     /* GD_PER_HB (default), GD_PER_SHOOTING or GD_PER_AUTO */
-    double shoot_rtol;    /* shooting: the integrator's relative tolerance (0: 1e-9); the
-                             absolute ones are 1e-3 of it times the orbit's largest
-                             displacement and velocity, and Newton stops at a scaled
-                             |P(y) - y| of max(tol, 100 shoot_rtol) */
-    int shoot_dense_max;  /* shooting: the dense monodromy up to this many states (0: 64);
-                             above, Newton-Krylov (GMRES on monodromy-vector products, one
-                             integrated period each) and the largest multipliers by
-                             Arnoldi */
-    double shoot_budget;  /* shooting: CPU seconds per point (0, default: no limit); a point
-                             whose next integration would pass it stops, not converged, with
-                             what it saw (the warm start's change per period, the residual) */
-    int both_directions;  /* 1: also the run from the end back to the start */
-    int max_steps;        /* continuation steps per direction; 0: 50 x count + 200 */
-    int solver;           /* Newton's linear solver: 0 automatic (low-rank for 2000+
-                             unknowns whose nonlinear rank is a quarter or less), 1 sparse
-                             LU of the whole coupled system (KLU), 2 low-rank: the linear
-                             DOFs condensed onto the nonlinear laws (Woodbury) */
-    int estimate;         /* 1 (default): every converged point is solved again at 2 H and carries
-                             the change of its records as its truncation error estimate (the
-                             harmonic_error_* fields); 0: not (adaptive H always estimates) */
-    double memory_limit;  /* bytes for one harmonic balance workspace (0: half of the
-                             physical memory); H beyond it is refused or not tried */
+    int harmonics;       /* H >= 1 (default 10) */
+    int adaptive;        /* 1: H from the least that holds every excitation's fundamental,
+                            doubled at each point until the records agree with those at
+                            twice H to harmonic_tol (the point reports the finer solution) */
+    double harmonic_tol; /* truncation tolerance: the relative change of every record's
+                            peak-to-peak and of its harmonic amplitudes (relative to its
+                            largest) between H and 2 H (default 0.01) */
+    int max_harmonics;   /* cap of H (0, default: the largest whose workspace fits in
+                            memory_limit) */
+    int subharmonic;     /* N >= 1: solutions of period N T_0 (default 1) */
+    int samples;         /* AFT samples per period; 0: 4 (H + 1) rounded up to 2^k,
+                            at least 16; at most GD_PERIODIC_MAX_SAMPLES */
+    double tol;          /* Newton: relative residual (default 1e-10) */
+    int max_iter;        /* Newton iterations per point (default 30) */
+    int stability;       /* 1 (default): Floquet multipliers and bifurcations */
+    int monodromy_steps; /* Magnus steps per period; 0: 4 x samples, at least 256; at
+                            most GD_PERIODIC_MAX_SAMPLES */
+    gd_per_method method;
+    gd_per_kind kind;    /* GD_PER_HB (default), GD_PER_SHOOTING or GD_PER_AUTO (shooting
+                            continues naturally, whatever `method` says) */
+    double shoot_rtol;   /* shooting: the integrator's relative tolerance (0: 1e-9); the
+                            absolute ones are 1e-3 of it times the orbit's largest
+                            displacement and velocity, and Newton stops at a scaled
+                            |P(y) - y| of max(tol, 100 shoot_rtol) */
+    int shoot_dense_max; /* shooting: the dense monodromy up to this many states (0: 64);
+                            above, Newton-Krylov (GMRES on monodromy-vector products, one
+                            integrated period each) and the largest multipliers by
+                            Arnoldi */
+    double shoot_budget; /* shooting: CPU seconds per point (0, default: no limit); a point
+                            whose next integration would pass it stops, not converged, with
+                            what it saw (the warm start's change per period, the residual) */
+    int both_directions; /* 1: also the run from the end back to the start */
+    int max_steps;       /* continuation steps per direction; 0: 50 x count + 200 */
+    int solver;          /* Newton's linear solver: 0 automatic (low-rank for 2000+
+                            unknowns whose nonlinear rank is a quarter or less), 1 sparse
+                            LU of the whole coupled system (KLU), 2 low-rank: the linear
+                            DOFs condensed onto the nonlinear laws (Woodbury) */
+    int estimate;        /* 1 (default): every converged point is solved again at 2 H and carries
+                            the change of its records as its truncation error estimate (the
+                            harmonic_error_* fields); 0: not (adaptive H always estimates) */
+    double memory_limit; /* bytes for one harmonic balance workspace (0: half of the
+                            physical memory); H beyond it is refused or not tried */
     /* Called after every point is final (converged or not), in branch order, from the
      * calling thread: p the point (valid during the call only: the result's array grows),
      * index its place in the result, progress the share of the requested range (and
@@ -174,10 +175,11 @@ typedef struct gd_periodic_result {
     int nbifurcations;
     gd_bifurcation *bifurcations;
     int nrecords;
-    int steps;             /* continuation steps taken */
-    gd_per_kind method;    /* the method that ran (GD_PER_HB or GD_PER_SHOOTING) */
-    char method_note[256]; /* with kind auto: why it was chosen (the measured costs) */
-    double cpu_seconds;    /* of the whole run */
+    int steps;          /* continuation steps taken */
+    double cpu_seconds; /* of the whole run */
+    gd_per_kind method; /* the method that ran (GD_PER_HB or GD_PER_SHOOTING) */
+    /* with kind auto: why it was chosen, with the measured costs ("" otherwise) */
+    char method_note[256];
 } gd_periodic_result;
 
 /* Speeds: nvalues requested reference speeds (rad/s), in increasing or decreasing order;
