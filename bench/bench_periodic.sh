@@ -5,7 +5,8 @@
 # the ratio), one curve of 30 speeds and 4 speeds by arclength; and the Figs. 11-13 set
 # itself, 10 curves x 300 speeds at H = 108 (goal: < 60 s CPU on one core), one curve at
 # a time. Each bench_periodic line prints its floor (the local forces at the AFT samples)
-# and the step / floor ratio.
+# and the step / floor ratio. Shooting against harmonic balance per point on the Chen
+# pair (the ratio of the two, measured in the same run) and auto's choice.
 # usage: bench_periodic.sh BUILD [--no-set]   (--no-set: skip the 1-minute set)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -15,6 +16,18 @@ H2=examples/helical_two_stage.yaml
 echo "-- Chen SFD pair, 400..1500 rad/s, 111 speeds, H = 15, without and with Floquet"
 "$B/bench_periodic" examples/chen1998_gear_pair.yaml 400 1500 111 15 0
 "$B/bench_periodic" examples/chen1998_gear_pair.yaml 400 1500 111 15 1
+echo "-- shooting against harmonic balance, CPU per point (both measured here, one after the"
+echo "   other): Chen SFD pair 400..1500 rad/s, 12 speeds, 12 states (HB H = 15); a shooting"
+echo "   Newton step integrates n (n + 1) unknowns: its cost grows about as n^2 (n states)"
+for m in hb shooting; do
+    OPENBLAS_NUM_THREADS=1 "$B/geardyn" periodic examples/chen1998_gear_pair.yaml \
+        --speeds 400:1500:12 --harmonics 15 --sequential --method "$m" --record gear_a.x \
+        --json --quiet | python3 -c "import json,sys; d=json.load(sys.stdin); \
+print('   %-16s %.4f s per point (%d points)' % (d['method'], d['cpu_seconds'] / len(d['points']), \
+len(d['points'])))"
+done
+echo "   auto: $(OPENBLAS_NUM_THREADS=1 "$B/geardyn" periodic examples/chen1998_gear_pair.yaml \
+    --speeds 1000:1000:1 --method auto --quiet | head -1)"
 echo "-- seed 002 helical system (378 DOFs), 2990..3010 rpm, 3 speeds, H = 36, no Floquet:"
 echo "   whole sparse LU (1) against the low-rank condensation (2)"
 "$B/bench_periodic" "$H2" 313.11 315.21 3 36 0 1

@@ -36,6 +36,13 @@ typedef enum gd_per_method {
                              (a run-up; jumps at folds) */
 } gd_per_method;
 
+/* How the orbit is found (docs/periodic.md): harmonic balance (the default), shooting
+ * (Newton on the period map of transient's integrator, natural continuation in the value;
+ * every law transient has, cams with include_acceleration included), or auto: the
+ * cheaper of the two for the model by a measured cost rule (gd_periodic_choose). */
+typedef enum gd_per_kind { GD_PER_HB = 0, GD_PER_SHOOTING = 1, GD_PER_AUTO = 2 } gd_per_kind;
+GD_API const char *gd_per_kind_name(gd_per_kind k);
+
 struct gd_periodic_point;
 /* The largest AFT sample count and Magnus step count per period (2^20): each sample
  * holds the state and forces of every free DOF, so 2^31 samples would ask for about
@@ -61,6 +68,19 @@ typedef struct gd_periodic_options {
     int monodromy_steps; /* Magnus steps per period; 0: 4 x samples, at least 256; at
                             most GD_PERIODIC_MAX_SAMPLES */
     gd_per_method method;
+    gd_per_kind kind;    /* GD_PER_HB (default), GD_PER_SHOOTING or GD_PER_AUTO (shooting
+                            continues naturally, whatever `method` says) */
+    double shoot_rtol;   /* shooting: the integrator's relative tolerance (0: 1e-9); the
+                            absolute ones are 1e-3 of it times the orbit's largest
+                            displacement and velocity, and Newton stops at a scaled
+                            |P(y) - y| of max(tol, 100 shoot_rtol) */
+    int shoot_dense_max; /* shooting: the dense monodromy up to this many states (0: 64);
+                            above, Newton-Krylov (GMRES on monodromy-vector products, one
+                            integrated period each) and the largest multipliers by
+                            Arnoldi */
+    double shoot_budget; /* shooting: CPU seconds per point (0, default: no limit); a point
+                            whose next integration would pass it stops, not converged, with
+                            what it saw (the warm start's change per period, the residual) */
     int both_directions; /* 1: also the run from the end back to the start */
     int max_steps;       /* continuation steps per direction; 0: 50 x count + 200 */
     int solver;          /* Newton's linear solver: 0 automatic (low-rank for 2000+
@@ -157,6 +177,9 @@ typedef struct gd_periodic_result {
     int nrecords;
     int steps;          /* continuation steps taken */
     double cpu_seconds; /* of the whole run */
+    gd_per_kind method; /* the method that ran (GD_PER_HB or GD_PER_SHOOTING) */
+    /* with kind auto: why it was chosen, with the measured costs ("" otherwise) */
+    char method_note[256];
 } gd_periodic_result;
 
 /* Speeds: nvalues requested reference speeds (rad/s), in increasing or decreasing order;
@@ -183,6 +206,19 @@ GD_API void gd_periodic_result_free(gd_periodic_result *r);
  * terms' harmonic couplings, the low-rank capacitance or the sparse LU's fill). */
 GD_API double gd_periodic_memory(const gd_system *sys, const gd_transient_spec *spec, double speed,
                                  int H);
+
+/* The method GD_PER_AUTO takes for the problem at speed (or param's first value):
+ * shooting where harmonic balance cannot represent a law (cams with include_acceleration),
+ * else the cheaper by a measured cost: one harmonic balance residual and factorisation at
+ * the first H (t_h) and one period integrated from rest at the shooting tolerance (t_p,
+ * stopped once shooting could no longer win); the estimates 8 t_h x (3 with the truncation
+ * estimate) plus the Magnus monodromy with stability, against 5 (2 n + 1) t_p for dense
+ * shooting (n states) or 340 t_p for Newton-Krylov; ties go to harmonic balance
+ * (docs/periodic.md). note (may be NULL, 256 bytes) receives the reason with the numbers.
+ * Reads no files; thread-safe on separate problems. */
+GD_API gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *spec,
+                                      const gd_periodic_param *param, double value,
+                                      const gd_periodic_options *opt, char *note);
 
 GD_API gd_status gd_periodic_fundamental(const gd_system *sys, const gd_transient_spec *spec,
                                          double speed, double *w0, int *max_order, gd_error *err);

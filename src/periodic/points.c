@@ -85,6 +85,37 @@ int gd_per_fail_point(ctx *c, double lam, const char *why)
     return 0;
 }
 
+/* Statistics of one record from Nr equally spaced samples v over one period: mean, rms,
+ * peak-to-peak and the amplitudes and phases of harmonics 0..H (plan: an R2HC transform of
+ * length Nr from buf to out). 0 ok, 1 out of memory. */
+int gd_per_sample_stats(const double *v, int Nr, int H, fftw_plan plan, double *buf, double *out,
+                        gd_per_record_stats *st)
+{
+    st->amplitude = calloc((size_t)H + 1, sizeof *st->amplitude);
+    st->phase_deg = calloc((size_t)H + 1, sizeof *st->phase_deg);
+    st->p2p_error = st->amp_error = NAN;
+    if (!st->amplitude || !st->phase_deg) return 1;
+    double mn = INFINITY, mx = -INFINITY, sum = 0.0, sq = 0.0;
+    for (int j = 0; j < Nr; j++) {
+        double x = buf[j] = v[j];
+        mn = x < mn ? x : mn;
+        mx = x > mx ? x : mx;
+        sum += x;
+        sq += x * x;
+    }
+    st->mean = sum / Nr;
+    st->rms = sqrt(sq / Nr);
+    st->peak_to_peak = mx - mn;
+    fftw_execute_r2r(plan, buf, out);
+    st->amplitude[0] = out[0] / Nr;
+    for (int k = 1; k <= H && k < Nr / 2; k++) {
+        double a = 2.0 * out[k] / Nr, b = -2.0 * out[Nr - k] / Nr;
+        st->amplitude[k] = hypot(a, b);
+        st->phase_deg[k] = -atan2(b, a) * 360.0 / TWO_PI;
+    }
+    return 0;
+}
+
 /* Record statistics over one period sampled at Nr points. */
 static int record_stats(ctx *c, stage *s, const double *X, gd_periodic_point *p)
 {
@@ -142,31 +173,8 @@ static int record_stats(ctx *c, stage *s, const double *X, gd_periodic_point *p)
     free(dofs);
     free(rv);
     fftw_plan plan = fftw_plan_r2r_1d(Nr, buf, out, FFTW_R2HC, FFTW_ESTIMATE);
-    for (int r = 0; r < nr; r++) {
-        gd_per_record_stats *st = &p->records[r];
-        st->amplitude = calloc((size_t)H + 1, sizeof *st->amplitude);
-        st->phase_deg = calloc((size_t)H + 1, sizeof *st->phase_deg);
-        st->p2p_error = st->amp_error = NAN;
-        if (!st->amplitude || !st->phase_deg) continue;
-        double mn = INFINITY, mx = -INFINITY, sum = 0.0, sq = 0.0;
-        for (int j = 0; j < Nr; j++) {
-            double v = buf[j] = vals[(size_t)r * Nr + j];
-            mn = v < mn ? v : mn;
-            mx = v > mx ? v : mx;
-            sum += v;
-            sq += v * v;
-        }
-        st->mean = sum / Nr;
-        st->rms = sqrt(sq / Nr);
-        st->peak_to_peak = mx - mn;
-        fftw_execute(plan);
-        st->amplitude[0] = out[0] / Nr;
-        for (int k = 1; k <= H && k < Nr / 2; k++) {
-            double a = 2.0 * out[k] / Nr, b = -2.0 * out[Nr - k] / Nr;
-            st->amplitude[k] = hypot(a, b);
-            st->phase_deg[k] = -atan2(b, a) * 360.0 / TWO_PI;
-        }
-    }
+    for (int r = 0; r < nr; r++)
+        gd_per_sample_stats(&vals[(size_t)r * Nr], Nr, H, plan, buf, out, &p->records[r]);
     fftw_destroy_plan(plan);
     free(vals);
     fftw_free(buf);

@@ -59,6 +59,7 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
 {
     *out = NULL;
     clock_t c0 = clock();
+    char c_note[256] = "";
 #define BAD(field, hint, ...)                                                                      \
     return gd_error_set(err, GD_EINPUT, "", 0, 0, field, hint, __VA_ARGS__)
     if (nvalues < 1 || !values) BAD("speeds", "give FROM:TO:COUNT", "no values to solve at");
@@ -92,7 +93,36 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
         if (records[r].kind == GD_REC_ANGLE)
             BAD("record", "record the DOF's displacement (perturbation) instead",
                 "a total angle grows with time and has no periodic steady state");
+    if (opt->kind < GD_PER_HB || opt->kind > GD_PER_AUTO)
+        BAD("method", "give hb, shooting or auto", "unknown periodic method %d", (int)opt->kind);
+    if (opt->shoot_rtol < 0 ||
+        (opt->shoot_rtol > 0 && !(opt->shoot_rtol >= 1e-14 && opt->shoot_rtol < 1e-2)))
+        BAD("shoot_rtol", "give 0 (1e-9) or a tolerance in [1e-14, 1e-2)",
+            "shooting tolerance %g out of range", opt->shoot_rtol);
+    if (opt->shoot_dense_max < 0 || opt->shoot_budget < 0)
+        BAD("shoot_dense_max", "give 0 (the default) or a positive value",
+            "shoot_dense_max and shoot_budget must not be negative");
 #undef BAD
+    {
+        char note[256] = "";
+        gd_per_kind kind = opt->kind;
+        if (kind == GD_PER_AUTO) kind = gd_periodic_choose(sys, spec, param, values[0], opt, note);
+        if (kind == GD_PER_SHOOTING) {
+            gd_periodic_result *res = calloc(1, sizeof *res);
+            if (!res) return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
+            res->nrecords = nrecords;
+            res->method = GD_PER_SHOOTING;
+            snprintf(res->method_note, sizeof res->method_note, "%s", note);
+            if (gd_per_shoot_run(sys, spec, param, values, nvalues, opt, records, nrecords, res)) {
+                gd_periodic_result_free(res);
+                return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
+            }
+            res->cpu_seconds = (double)(clock() - c0) / CLOCKS_PER_SEC;
+            *out = res;
+            return GD_OK;
+        }
+        snprintf(c_note, sizeof c_note, "%s", note);
+    }
     ctx c;
     memset(&c, 0, sizeof c);
     c.sys = sys;
@@ -106,6 +136,8 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
     if (!res) return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
     c.res = res;
     res->nrecords = nrecords;
+    res->method = GD_PER_HB;
+    snprintf(res->method_note, sizeof res->method_note, "%s", c_note);
     int mnf = 0, mnt = 0, mng = 0, mem_ok = 0; /* what the workspace's memory depends on */
     long mknz = 0;
     /* the number of free DOFs, from a problem at the first value */

@@ -387,6 +387,49 @@ TEST(helical_mesh2_resonance_same_for_both_couplings_at_zero_helix)
     scratch_close(&s);
 }
 
+/* --method shooting on the Chen pair: the JSON says which method ran, every point converged
+ * with its multipliers, the records equal harmonic balance's (H = 20: truncation below 1e-6
+ * here) to 1e-5 (shooting at its default rtol 1e-9; measured 3e-7); --method auto names
+ * its choice and the measured costs; a bad --method value is a usage error. */
+TEST(method_shooting_auto_and_bad_value)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    cJSON *a = run_json_args(&s, "periodic " CHEN " --speeds 900:1100:2 --method shooting "
+                                 "--record gear_a.x --record mesh:mesh:force");
+    cJSON *b = run_json_args(&s, "periodic " CHEN " --speeds 900:1100:2 --harmonics 20 "
+                                 "--record gear_a.x --record mesh:mesh:force");
+    REQUIRE(a && b && npoints(a) == 2 && npoints(b) == 2);
+    CHECK(!strcmp(jstr(a, "method"), "shooting"));
+    CHECK(!strcmp(jstr(b, "method"), "harmonic_balance"));
+    for (int i = 0; i < 2; i++) {
+        const cJSON *p = point(a, i), *q = point(b, i);
+        CHECK(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(p, "converged")));
+        CHECK(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(p, "stable")));
+        CHECK(cJSON_GetArraySize(cJSON_GetObjectItemCaseSensitive(p, "floquet_re")) == 12);
+        CHECK_REL(jnum(p, "floquet_multiplier_max_abs"), jnum(q, "floquet_multiplier_max_abs"),
+                  1e-5);
+        for (int k = 0; k < 2; k++) {
+            const char *name = k ? "mesh:mesh:force" : "gear_a.x:disp";
+            CHECK_REL(jnum(rec(p, name), "peak_to_peak"), jnum(rec(q, name), "peak_to_peak"), 1e-5);
+            CHECK_REL(amp(rec(p, name), 1), amp(rec(q, name), 1), 1e-5);
+        }
+    }
+    cJSON_Delete(a);
+    cJSON_Delete(b);
+    run_result r;
+    run(&s, &r, "periodic " CHEN " --speeds 1000:1000:1 --method auto");
+    CHECK(r.code == 0 && contains(r.out, "method: ") && contains(r.out, "estimated"));
+    run_free(&r);
+    CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --method newton", "--method",
+                            "shooting"));
+    CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --shoot-rtol 1", "--shoot-rtol",
+                            NULL));
+    CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --shoot-budget -1",
+                            "--shoot-budget", NULL));
+    scratch_close(&s);
+}
+
 TEST(error_paths)
 {
     scratch s;
@@ -451,4 +494,5 @@ RUN_TESTS(T(chen_sfd_sweep_json), T(out_files_and_table),
           T(mathieu_bifurcations_directions_subharmonic),
           T(parameter_continuation_and_auto_harmonics), T(undefined_period_point),
           T(warm_start_recovers_failure_from_rest), T(helical_couplings_identical_at_zero_helix),
-          T(helical_mesh2_resonance_same_for_both_couplings_at_zero_helix), T(error_paths))
+          T(helical_mesh2_resonance_same_for_both_couplings_at_zero_helix),
+          T(method_shooting_auto_and_bad_value), T(error_paths))

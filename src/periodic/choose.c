@@ -1,0 +1,191 @@
+/* The method of `--method auto` (periodic.h, gd_periodic_choose): shooting where harmonic
+ * balance cannot represent a law, else the cheaper of the two for the model by a measured
+ * cost rule. Both costs are measured on the problem at the first value (one integrated
+ * period; one harmonic balance residual and factorisation) and scaled by the work a point
+ * needs (docs/periodic.md, "Choosing the method"). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "geardyn/transient_model.h"
+#include "periodic/periodic_impl.h"
+
+#define TWO_PI 6.28318530717958647692
+
+const char *gd_per_kind_name(gd_per_kind k)
+{
+    return k == GD_PER_SHOOTING ? "shooting" : k == GD_PER_AUTO ? "auto" : "harmonic_balance";
+}
+
+static double cpu_now(void)
+{
+    return (double)clock() / CLOCKS_PER_SEC;
+}
+
+/* CPU seconds of one period integrated from rest at the shooting tolerance, or NAN when
+ * it fails or needs more than max_steps steps (the cap that keeps the measurement cheap:
+ * shooting could not win then). */
+static double period_cost(gd_transient *tr, const gd_transient_spec *spec, double T, double rtol,
+                          long max_steps)
+{
+    gd_transient_options o;
+    gd_transient_options_init(&o);
+    o.rtol = rtol;
+    o.atol_q *= rtol / 1e-6;
+    o.atol_v *= rtol / 1e-6;
+    o.t_end = T;
+    o.output_interval = T;
+    o.max_steps = max_steps;
+    o.init = spec->nloads ? GD_TR_INIT_STATIC : GD_TR_INIT_REST;
+    gd_transient_result *r = NULL;
+    gd_error err;
+    double t0 = cpu_now();
+    gd_status st = gd_transient_run(tr, &o, NULL, 0, &r, &err);
+    double t = cpu_now() - t0;
+    gd_transient_result_free(r);
+    return st ? NAN : t;
+}
+
+/* CPU seconds of one right-hand side at rest (the mean of 20). */
+static double rhs_cost(gd_transient *tr)
+{
+    const int n = gd_transient_nstates(tr);
+    double *y = calloc((size_t)(2 * n + 2), sizeof *y);
+    if (!y) return NAN;
+    double t0 = cpu_now();
+    for (int k = 0; k < 20; k++)
+        gd_transient_rhs(tr, 1e-3 * k, y, y + n + 1);
+    double t = (cpu_now() - t0) / 20;
+    free(y);
+    return t;
+}
+
+/* CPU seconds of one harmonic balance residual with its Jacobian and one factorisation at
+ * H harmonics from rest, or NAN. */
+static double hb_cost(gd_transient *tr, const gd_periodic_options *opt, double w, int H,
+                      int backlash)
+{
+    const int nf = gd_transient_nstates(tr) / 2;
+    int N = opt->samples > 0 ? opt->samples : gd_hb_samples_for(H);
+    if (backlash && N < 128) N = 128;
+    if (N < 2 * H + 2) N = 2 * H + 2;
+    hb h;
+    memset(&h, 0, sizeof h);
+    double t = NAN;
+    if (gd_hb_init(&h, nf, H, N)) {
+        gd_hb_free(&h);
+        return NAN;
+    }
+    h.solver = opt->solver;
+    double *X = calloc((size_t)h.n + 1, sizeof *X), *R = malloc((size_t)(h.n + 1) * sizeof *R);
+    double *row = calloc((size_t)h.n + 1, sizeof *row);
+    if (X && R && row) {
+        row[h.n] = 1.0;
+        double sc, t0 = cpu_now();
+        h.stage_id = 1;
+        if (!gd_hb_residual(&h, tr, w, X, R, 1, &sc) && !gd_hb_factor(&h, tr, w, NULL, row))
+            t = cpu_now() - t0;
+    }
+    free(X);
+    free(R);
+    free(row);
+    gd_hb_free(&h);
+    return t;
+}
+
+gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *spec,
+                               const gd_periodic_param *param, double value,
+                               const gd_periodic_options *opt, char *note)
+{
+    char buf[256];
+    if (!note) note = buf;
+    note[0] = '\0';
+    gd_model *m = NULL;
+    gd_system *s = NULL;
+    gd_transient_model *tm = NULL;
+    gd_transient *tr = NULL;
+    gd_error err;
+    gd_per_kind k = GD_PER_HB;
+    double speed = value;
+    if (param) {
+        if (!param->rebuild || param->rebuild(value, param->data, &m, &s, &tm, &err)) {
+            snprintf(note, 256,
+                     "harmonic balance (the default: the problem at the first value "
+                     "could not be made to measure)");
+            return GD_PER_HB;
+        }
+        sys = s;
+        spec = &tm->spec;
+        speed = param->speed;
+    }
+    double w0;
+    int order = 1;
+    if (gd_periodic_fundamental(sys, spec, speed, &w0, &order, &err) ||
+        gd_transient_new(sys, spec, speed, &tr, &err)) {
+        snprintf(note, 256, "harmonic balance (the default: %.200s)", err.message);
+        goto done;
+    }
+    if (gd_transient_terms(tr, NULL) < 0) {
+        k = GD_PER_SHOOTING;
+        snprintf(note, 256,
+                 "shooting: harmonic balance cannot represent cam torques with "
+                 "include_acceleration");
+        goto done;
+    }
+    {
+        const double w = w0 / opt->subharmonic;
+        const int n = gd_transient_nstates(tr), nf = n / 2;
+        int H = opt->harmonics;
+        if (opt->adaptive && (long)order * opt->subharmonic > H) H = order * opt->subharmonic;
+        int backlash = 0;
+        for (int i = 0; i < spec->nmeshes; i++)
+            backlash |= spec->meshes[i].backlash != 0;
+        const int dense = n <= (opt->shoot_dense_max > 0 ? opt->shoot_dense_max : 64);
+        /* shooting per point: five Newton iterations, each a dense monodromy of n + 1
+         * columns whose right-hand side costs 2 n + 1 evaluations, or (Newton-Krylov) about
+         * 60 monodromy-vector products of one period each, and 40 for the multipliers */
+        const double per_period = dense ? 5.0 * (2.0 * n + 1.0) : 5.0 * 60.0 + 40.0;
+        double th = hb_cost(tr, opt, w, H, backlash);
+        /* harmonic balance: eight Newton steps, three times that with the solution at 2 H + 1
+         * of the truncation estimate, and the Magnus monodromy (4 x samples steps of about
+         * 30 (2 nf)^3 flops at 2 GFlop/s) */
+        double N = opt->samples > 0 ? opt->samples : gd_hb_samples_for(H);
+        double steps = opt->monodromy_steps > 0 ? opt->monodromy_steps : fmax(256.0, 4.0 * N);
+        double ch = 8.0 * th * ((opt->estimate || opt->adaptive) ? 3.0 : 1.0);
+        if (opt->stability) ch += steps * 30.0 * pow(2.0 * nf, 3) / 2e9;
+        /* the period is integrated only as far as shooting could still win: at most the
+         * steps (one right-hand side each, at least) that fit in ch / per_period */
+        double tr1 = rhs_cost(tr), cs = NAN, tp = NAN;
+        long cap = isfinite(th) && tr1 > 0 ? (long)fmin(1e8, ch / per_period / tr1) + 100 : 0;
+        tp = period_cost(tr, spec, TWO_PI / w, opt->shoot_rtol > 0 ? opt->shoot_rtol : 1e-9, cap);
+        cs = per_period * tp;
+        if (!isfinite(cs) && isfinite(th)) {
+            snprintf(note, 256,
+                     "harmonic balance: estimated %.3g s per point (H = %d), and one period of "
+                     "shooting's integration (%d states) needs more than %ld steps: shooting "
+                     "could not be cheaper",
+                     ch, H, n, cap);
+            goto done;
+        }
+        if (!isfinite(cs)) {
+            snprintf(note, 256, "harmonic balance: the period could not be integrated");
+        } else if (!isfinite(th)) {
+            k = GD_PER_SHOOTING;
+            snprintf(note, 256, "shooting: the harmonic balance workspace at H = %d failed", H);
+        } else {
+            k = cs < ch ? GD_PER_SHOOTING : GD_PER_HB;
+            snprintf(note, 256,
+                     "%s: estimated %.3g s per point by shooting (%d states, %.3g s per period) "
+                     "against %.3g s by harmonic balance (H = %d, %.3g s per Newton step)",
+                     k == GD_PER_SHOOTING ? "shooting" : "harmonic balance", cs, n, tp, ch, H, th);
+        }
+    }
+done:
+    gd_transient_free(tr);
+    gd_transient_model_free(tm);
+    gd_system_free(s);
+    gd_model_free(m);
+    return k;
+}

@@ -1,0 +1,1167 @@
+/* Periodic steady state by shooting (docs/periodic.md, "Shooting"): the orbit is the fixed
+ * point of the period map P, the state after one period T of transient's own integrator
+ * (CVODE with located contact events) started from y0 at t = 0,
+ *
+ *   F(y0) = P(y0) - y0 = 0,
+ *
+ * solved by Newton with the monodromy matrix Phi = dP/dy0 (gd_transient_monodromy: the
+ * variational equations integrated with the state, saltation at every contact change;
+ * Leine & Nijmeijer 2004, Sec. 3.5): (Phi - I) dy = -F, with a backtracking line search on
+ * the scaled |F| (Seydel 2010, Sec. 7.3). The Floquet multipliers are the eigenvalues of
+ * Phi at the converged orbit; the records' statistics come from one more integrated period
+ * sampled at the times harmonic balance samples its records (so both report the same
+ * quantities). The continuation is natural in the value (speed or model parameter): each
+ * point starts from the previous points' states extrapolated linearly, the first (or one
+ * whose Newton fails from there) from a short transient from rest or from the static state
+ * under the loads, which a stable orbit attracts. Bifurcations are found between points
+ * where the multipliers cross the unit circle and located by secant iterations on the
+ * critical multiplier's modulus, each a shooting solve. */
+#include <lapacke.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "geardyn/transient_model.h"
+#include "periodic/continuation_impl.h"
+#include "periodic/periodic_impl.h"
+
+/* Most periods of the warm-start transient (it stops once a period changes the state by
+ * less than 1e-3): enough for a damped resonance to come near its orbit, Newton removes
+ * the rest (the Chen pair's first point then converges in 2 to 5 iterations). */
+#define WARM_PERIODS 12
+
+typedef struct shoot {
+    const gd_system *sys0;
+    const gd_transient_spec *spec0;
+    const gd_periodic_param *param;
+    const gd_periodic_options *opt;
+    const gd_tr_record *rec;
+    int nrec;
+    gd_periodic_result *res;
+    int cap_points, cap_bif;
+    int dir, ndir;
+    double v0, v1;
+    /* the problem at the current value */
+    double key;
+    int have;
+    gd_model *m;
+    gd_system *s;
+    gd_transient_model *tm;
+    const gd_system *sys;
+    const gd_transient_spec *spec;
+    gd_transient *tr;
+    int N, nf, ndof, H, Nr;
+    int *free_dof; /* nf: the system DOF of each free DOF */
+    double w, T;
+    double rtol, atol_q, atol_v, tol;
+    /* work: N each, phi and A N x N */
+    double *mem; /* the allocation of phi .. mim (phi and A trade places) */
+    double *phi, *A, *yT, *r, *dy, *yt, *q0, *qv0, *mre, *mim, *racc, *ytmp;
+    int *ipiv;
+    size_t capN;
+    int capdof;
+    char why[256];
+    /* CPU budget of a point (opt->shoot_budget): the time spent, the measured costs of one
+     * plain period and of the last monodromy (0: not measured yet) */
+    double cpu0, t_period, t_mono;
+    double warm_change; /* the last warm-start period's scaled change (NAN: none) */
+    int warm_periods;
+    int budget_hit; /* the point stopped at its budget */
+    int dense;      /* the dense monodromy (else Newton-Krylov on monodromy-vector products) */
+} shoot;
+
+static void release_problem(shoot *sh)
+{
+    gd_transient_free(sh->tr);
+    gd_transient_model_free(sh->tm);
+    gd_system_free(sh->s);
+    gd_model_free(sh->m);
+    sh->tr = NULL;
+    sh->tm = NULL;
+    sh->s = NULL;
+    sh->m = NULL;
+    sh->have = 0;
+}
+
+static int grow(shoot *sh)
+{
+    size_t N = (size_t)sh->N, NN = sh->dense ? N * N : 0;
+    if (N > sh->capN) {
+        free(sh->mem);
+        free(sh->ipiv);
+        sh->mem = malloc((2 * NN + 10 * N + 2) * sizeof *sh->mem);
+        sh->ipiv = malloc((N + 1) * sizeof *sh->ipiv);
+        if (!sh->mem || !sh->ipiv) {
+            sh->capN = 0;
+            return 1;
+        }
+        sh->capN = N;
+    }
+    sh->phi = sh->mem;
+    sh->A = sh->mem + NN;
+    sh->yT = sh->A + NN;
+    sh->r = sh->yT + N;
+    sh->dy = sh->r + N;
+    sh->yt = sh->dy + N;
+    sh->mre = sh->yt + N;
+    sh->mim = sh->mre + N;
+    sh->racc = sh->mim + N; /* F at the accepted iterate */
+    sh->ytmp = sh->racc + N;
+    if (sh->ndof > sh->capdof) {
+        free(sh->q0);
+        sh->q0 = calloc(2 * (size_t)sh->ndof, sizeof *sh->q0);
+        if (!sh->q0) return 1;
+        sh->capdof = sh->ndof;
+    }
+    sh->qv0 = sh->q0 + sh->ndof;
+    return 0;
+}
+
+/* The problem at value key (a speed, or the parameter through the caller's rebuild).
+ * 0 ok; 1 with sh->why. */
+static int make_problem(shoot *sh, double key)
+{
+    if (sh->have && sh->key == key) return 0;
+    release_problem(sh);
+    gd_error err;
+    double speed = key;
+    sh->sys = sh->sys0;
+    sh->spec = sh->spec0;
+    if (sh->param) {
+        const gd_periodic_param *p = sh->param;
+        gd_status st = p->rebuild ? p->rebuild(key, p->data, &sh->m, &sh->s, &sh->tm, &err)
+                                  : gd_error_set(&err, GD_EINPUT, "", 0, 0, "param", "",
+                                                 "no rebuild function");
+        if (!st && (!sh->m || !sh->s || !sh->tm))
+            st =
+                gd_error_set(&err, GD_EINPUT, "", 0, 0, "param", "", "rebuild returned no problem");
+        if (st) {
+            snprintf(sh->why, sizeof sh->why, "%.40s = %.10g: %.160s", p->name ? p->name : "value",
+                     key, err.message);
+            return 1;
+        }
+        sh->sys = sh->s;
+        sh->spec = &sh->tm->spec;
+        speed = p->speed;
+    }
+    double w0;
+    int order;
+    if (gd_periodic_fundamental(sh->sys, sh->spec, speed, &w0, &order, &err)) {
+        snprintf(sh->why, sizeof sh->why, "%.250s", err.message);
+        return 1;
+    }
+    sh->w = w0 / sh->opt->subharmonic;
+    sh->T = TWO_PI / sh->w;
+    /* the harmonics reported: as harmonic balance would use them (at least every
+     * excitation's multiple of the period) */
+    long need = (long)order * sh->opt->subharmonic;
+    sh->H = sh->opt->harmonics;
+    if (sh->opt->adaptive && need > sh->H) sh->H = need > 1 << 20 ? 1 << 20 : (int)need;
+    sh->Nr = 256;
+    while (sh->Nr < 8 * (sh->H + 1))
+        sh->Nr *= 2;
+    if (gd_transient_new(sh->sys, sh->spec, speed, &sh->tr, &err)) {
+        snprintf(sh->why, sizeof sh->why, "%.250s", err.message);
+        return 1;
+    }
+    int N = gd_transient_nstates(sh->tr);
+    if (sh->N && N != sh->N) {
+        snprintf(sh->why, sizeof sh->why, "the number of free DOFs changes with the parameter");
+        return 1;
+    }
+    sh->N = N;
+    sh->nf = N / 2;
+    sh->dense = N <= (sh->opt->shoot_dense_max > 0 ? sh->opt->shoot_dense_max : 64);
+    sh->ndof = sh->sys->ndof;
+    if (grow(sh)) {
+        snprintf(sh->why, sizeof sh->why, "out of memory (%d states)", N);
+        return 1;
+    }
+    free(sh->free_dof);
+    sh->free_dof = malloc((size_t)(sh->nf > 0 ? sh->nf : 1) * sizeof *sh->free_dof);
+    if (!sh->free_dof) return 1;
+    for (int i = 0; i < sh->nf; i++)
+        sh->free_dof[i] = -1;
+    for (int d = 0; d < sh->ndof; d++) {
+        gd_tr_record rec = {GD_REC_DISP, d, 0};
+        int k = -1;
+        if (gd_transient_record_dofs(sh->tr, &rec, &k, 1) == 1 && k >= 0 && k < sh->nf)
+            sh->free_dof[k] = d;
+    }
+    for (int i = 0; i < sh->nf; i++)
+        if (sh->free_dof[i] < 0) {
+            snprintf(sh->why, sizeof sh->why,
+                     "shooting needs the physical DOFs (a reduced model is not supported)");
+            return 1;
+        }
+    sh->key = key;
+    sh->have = 1;
+    return 0;
+}
+
+/* Integration tolerances from the size of the state y (atol a thousandth of rtol times
+ * the largest displacement and velocity): the orbit, not its units, sets them. */
+static void set_tolerances(shoot *sh, const double *y)
+{
+    double sq = 0.0, sv = 0.0;
+    for (int i = 0; i < sh->nf; i++) {
+        sq = fmax(sq, fabs(y[i]));
+        sv = fmax(sv, fabs(y[sh->nf + i]));
+    }
+    sh->rtol = sh->opt->shoot_rtol > 0 ? sh->opt->shoot_rtol : 1e-9;
+    sh->atol_q = sh->rtol * (sq > 0 ? 1e-3 * sq : 1e-6);
+    sh->atol_v = sh->rtol * (sv > 0 ? 1e-3 * sv : 1e-3);
+    /* Newton cannot resolve the fixed point better than the integrator: a hundred times its
+     * tolerance, or the caller's when looser */
+    sh->tol = fmax(sh->opt->tol, 100.0 * sh->rtol);
+}
+
+static void tr_options(const shoot *sh, gd_transient_options *o)
+{
+    gd_transient_options_init(o);
+    o->rtol = sh->rtol;
+    o->atol_q = sh->atol_q;
+    o->atol_v = sh->atol_v;
+    o->t_start = 0.0;
+    o->t_end = sh->T;
+    o->output_interval = sh->T;
+}
+
+/* |F| scaled: per block (displacements, velocities) the largest entry relative to the
+ * block's largest state (or its tolerance scale). */
+static double scaled_norm(const shoot *sh, const double *y, const double *f)
+{
+    const int nf = sh->nf;
+    double yq = sh->atol_q / sh->rtol, yv = sh->atol_v / sh->rtol, fq = 0.0, fv = 0.0;
+    for (int i = 0; i < nf; i++) {
+        yq = fmax(yq, fabs(y[i]));
+        yv = fmax(yv, fabs(y[nf + i]));
+        fq = fmax(fq, fabs(f[i]));
+        fv = fmax(fv, fabs(f[nf + i]));
+    }
+    double r = fmax(fq / yq, fv / yv);
+    return isfinite(r) ? r : INFINITY;
+}
+
+static void to_dofs(shoot *sh, const double *y)
+{
+    memset(sh->q0, 0, 2 * (size_t)sh->ndof * sizeof *sh->q0);
+    for (int i = 0; i < sh->nf; i++) {
+        sh->q0[sh->free_dof[i]] = y[i];
+        sh->qv0[sh->free_dof[i]] = y[sh->nf + i];
+    }
+}
+
+/* One period from y (records and samples as asked): the result, or NULL with sh->why. */
+static gd_transient_result *integrate(shoot *sh, const double *y, double t_end, const double *ts,
+                                      int nts, const gd_tr_record *rec, int nrec)
+{
+    gd_transient_options o;
+    tr_options(sh, &o);
+    o.t_end = t_end;
+    o.output_interval = t_end;
+    o.sample_times = ts;
+    o.nsample_times = nts;
+    if (y) {
+        to_dofs(sh, y);
+        o.init = GD_TR_INIT_GIVEN;
+        o.q0 = sh->q0;
+        o.v0 = sh->qv0;
+    } else {
+        o.init = sh->spec->nloads ? GD_TR_INIT_STATIC : GD_TR_INIT_REST;
+    }
+    gd_transient_result *r = NULL;
+    gd_error err;
+    if (gd_transient_run(sh->tr, &o, rec, nrec, &r, &err)) {
+        snprintf(sh->why, sizeof sh->why, "integration failed: %.220s", err.message);
+        return NULL;
+    }
+    return r;
+}
+
+static void from_dofs(const shoot *sh, const gd_transient_result *r, double *y)
+{
+    for (int i = 0; i < sh->nf; i++) {
+        y[i] = r->q_end[sh->free_dof[i]];
+        y[sh->nf + i] = r->v_end[sh->free_dof[i]];
+    }
+}
+
+static double cpu_now(void)
+{
+    return (double)clock() / CLOCKS_PER_SEC;
+}
+
+/* The predicted cost of a monodromy: the last one measured, else (2 n + 1) plain periods
+ * at 0.7 each (the augmented system's right-hand side costs 2 n + 1 evaluations; measured
+ * on the Ducati train, 22 states: 20.4 s against 0.63 s per period). */
+static double mono_cost(const shoot *sh)
+{
+    return sh->t_mono > 0 ? sh->t_mono : 0.7 * (2.0 * sh->N + 1.0) * sh->t_period;
+}
+
+/* 1 when the next job (predicted cost next) would take the point past its CPU budget:
+ * sh->why says so, with what the warm start saw. */
+static int over_budget(shoot *sh, double next, const char *what)
+{
+    const double budget = sh->opt->shoot_budget, used = cpu_now() - sh->cpu0;
+    if (!(budget > 0) || used + next <= budget) return 0;
+    sh->budget_hit = 1;
+    char settle[160] = "";
+    if (isfinite(sh->warm_change))
+        snprintf(settle, sizeof settle,
+                 "; the transient from rest still changes by %.2g per period after %d periods%s",
+                 sh->warm_change, sh->warm_periods,
+                 sh->warm_change > 1e-2
+                     ? " (no stable period-1 orbit attracts it: see geardyn transient)"
+                     : "");
+    snprintf(sh->why, sizeof sh->why,
+             "shooting stopped at %.1f s CPU: %s would need about %.2g s more, past the "
+             "%.3g s budget per point%.150s",
+             used, what, next, budget, settle);
+    return 1;
+}
+
+/* yT = P(y) by a plain integration. 0 ok. */
+static int period_map(shoot *sh, const double *y, double *yT)
+{
+    if (sh->t_period > 0 && over_budget(sh, sh->t_period, "a period of the line search")) return 1;
+    double t0 = cpu_now();
+    gd_transient_result *r = integrate(sh, y, sh->T, NULL, 0, NULL, 0);
+    if (!r) return 1;
+    sh->t_period = cpu_now() - t0;
+    from_dofs(sh, r, yT);
+    gd_transient_result_free(r);
+    return 0;
+}
+
+/* Phi and yT = P(y). 0 ok. */
+static int monodromy(shoot *sh, const double *y, double *phi, double *yT)
+{
+    gd_transient_options o;
+    tr_options(sh, &o);
+    gd_error err;
+    if (sh->t_period > 0 && over_budget(sh, mono_cost(sh), "the next monodromy matrix")) return 1;
+    double t0 = cpu_now();
+    gd_status st = gd_transient_monodromy(sh->tr, 0.0, sh->T, y, &o, phi, yT, &err);
+    sh->t_mono = cpu_now() - t0;
+    if (st) {
+        snprintf(sh->why, sizeof sh->why, "monodromy failed: %.220s", err.message);
+        return 1;
+    }
+    for (size_t k = 0; k < (size_t)sh->N * sh->N; k++)
+        if (!isfinite(phi[k])) {
+            snprintf(sh->why, sizeof sh->why, "the monodromy matrix is not finite");
+            return 1;
+        }
+    return 0;
+}
+
+/* The state y after up to WARM_PERIODS periods of a transient from rest (or the static
+ * state under the loads), one period at a time: it stops once a period changes the state
+ * by less than 1e-3 (scaled as the Newton residual; Newton takes it from there), and
+ * keeps the last change for the messages (a rattling train never settles). 0 ok. */
+static int warm_start(shoot *sh, double *y)
+{
+    memset(sh->yt, 0, (size_t)sh->N * sizeof *sh->yt);
+    set_tolerances(sh, sh->yt); /* the orbit's size is not known yet */
+    sh->warm_change = NAN;
+    sh->warm_periods = 0;
+    double t0 = cpu_now();
+    gd_transient_result *r = integrate(sh, NULL, sh->T, NULL, 0, NULL, 0);
+    if (!r) return 1;
+    sh->t_period = cpu_now() - t0;
+    from_dofs(sh, r, y);
+    gd_transient_result_free(r);
+    sh->warm_periods = 1;
+    for (int k = 1; k < WARM_PERIODS; k++) {
+        if (over_budget(sh, sh->t_period, "the warm-start transient")) break;
+        set_tolerances(sh, y);
+        if (period_map(sh, y, sh->yT)) return 1;
+        for (int i = 0; i < sh->N; i++)
+            sh->r[i] = sh->yT[i] - y[i];
+        sh->warm_change = scaled_norm(sh, sh->yT, sh->r);
+        memcpy(y, sh->yT, (size_t)sh->N * sizeof *y);
+        sh->warm_periods = k + 1;
+        if (sh->warm_change < 1e-3) break;
+    }
+    return 0;
+}
+
+/* The residual below which a Newton that stalls has met the integrator's own noise: the
+ * period map at the iterate y integrated again without the variational equations (another
+ * step sequence) differs from the monodromy's by about the integration error; ten times
+ * that, at least 1e4 rtol (contact events restart the integrator tens of times a period:
+ * the backlash pair at rtol 1e-10 stalls between 1e-8 and 2e-7, the orbit then equal to
+ * harmonic balance's within 1e-6), and never above 1e-5 (nor below the tolerance): a
+ * strongly unstable orbit amplifies the difference itself (the Ducati train at 3000 rpm,
+ * multipliers up to 1e27, gave a "noise" of order 1) and must not pass for converged.
+ * F at y from the monodromy is in sh->racc (NULL: the fixed part only). */
+#define NOISE_CAP 1e-5
+static double noise_floor(shoot *sh, const double *y)
+{
+    double fl = fmin(1e4 * sh->rtol, NOISE_CAP);
+    if (y && !period_map(sh, y, sh->ytmp)) {
+        for (int i = 0; i < sh->N; i++)
+            sh->ytmp[i] -= y[i] + sh->racc[i];
+        fl = fmin(fmax(fl, 10.0 * scaled_norm(sh, y, sh->ytmp)), NOISE_CAP);
+    }
+    return fmax(sh->tol, fl);
+}
+
+/* ---------------------------------------------------------------- Newton-Krylov */
+
+/* Largest Krylov dimension (GMRES restart length, Arnoldi steps for the multipliers). */
+#define KRYLOV_M 40
+
+/* Matrix-free monodromy in scaled variables z = y / d (d the block scales of
+ * scaled_norm): w = Phi z by a forward difference of the period map about y (py = P(y)),
+ * the step sqrt(rtol) of the scales: the truncation error (h |P''|) and the integration
+ * noise (rtol / h) balance at about sqrt(rtol) relative (3e-5 at rtol 1e-9). 0 ok. */
+typedef struct kry {
+    const double *y, *py, *d;
+    double *yt, *pt;
+} kry;
+
+static int phi_vec(shoot *sh, kry *k, const double *z, double *w)
+{
+    const int N = sh->N;
+    double nz = 0.0;
+    for (int i = 0; i < N; i++)
+        nz = fmax(nz, fabs(z[i]));
+    if (nz == 0.0) {
+        memset(w, 0, (size_t)N * sizeof *w);
+        return 0;
+    }
+    const double h = sqrt(sh->rtol) / nz;
+    for (int i = 0; i < N; i++)
+        k->yt[i] = k->y[i] + h * k->d[i] * z[i];
+    if (period_map(sh, k->yt, k->pt)) return 1;
+    for (int i = 0; i < N; i++)
+        w[i] = (k->pt[i] - k->py[i]) / (h * k->d[i]);
+    return 0;
+}
+
+/* Arnoldi on Phi - shift I from v0 (normalised here) for at most m steps: V (N x (m + 1)),
+ * H ((m + 1) x m, column-major, leading dimension m + 1). With b (GMRES: solve
+ * (Phi - I) x = b, v0 = b) it stops when the least-squares residual is below tol |b| and
+ * returns x. The number of steps in *steps. 0 ok, 1 an integration failed. */
+static int arnoldi(shoot *sh, kry *k, double shift, const double *v0, int m, double *V, double *H,
+                   int *steps, double tol, double *x)
+{
+    const int N = sh->N, ld = m + 1;
+    double beta = 0.0;
+    for (int i = 0; i < N; i++)
+        beta += v0[i] * v0[i];
+    beta = sqrt(beta);
+    *steps = 0;
+    if (x) memset(x, 0, (size_t)N * sizeof *x);
+    if (beta == 0.0) return 0;
+    double *cs = malloc((size_t)3 * (m + 1) * sizeof *cs), *sn = cs + m + 1, *g = sn + m + 1;
+    if (!cs) return 1;
+    memset(g, 0, (size_t)(m + 1) * sizeof *g);
+    g[0] = beta;
+    memset(H, 0, (size_t)ld * m * sizeof *H);
+    for (int i = 0; i < N; i++)
+        V[i] = v0[i] / beta;
+    int j = 0, rc = 0;
+    for (; j < m; j++) {
+        double *w = V + (size_t)(j + 1) * N;
+        if (phi_vec(sh, k, V + (size_t)j * N, w)) {
+            rc = 1;
+            break;
+        }
+        for (int i = 0; i < N; i++)
+            w[i] -= shift * V[(size_t)j * N + i];
+        for (int l = 0; l <= j; l++) { /* modified Gram-Schmidt */
+            double hij = 0.0;
+            for (int i = 0; i < N; i++)
+                hij += w[i] * V[(size_t)l * N + i];
+            H[(size_t)j * ld + l] = hij;
+            for (int i = 0; i < N; i++)
+                w[i] -= hij * V[(size_t)l * N + i];
+        }
+        double hn = 0.0;
+        for (int i = 0; i < N; i++)
+            hn += w[i] * w[i];
+        hn = sqrt(hn);
+        H[(size_t)j * ld + j + 1] = hn;
+        if (hn > 0.0)
+            for (int i = 0; i < N; i++)
+                w[i] /= hn;
+        if (x) {
+            /* the least-squares problem by Givens rotations, on a copy of column j */
+            double *c = H + (size_t)j * ld, t[KRYLOV_M + 2];
+            memcpy(t, c, (size_t)(j + 2) * sizeof *t);
+            for (int l = 0; l < j; l++) {
+                double a = cs[l] * t[l] + sn[l] * t[l + 1];
+                t[l + 1] = -sn[l] * t[l] + cs[l] * t[l + 1];
+                t[l] = a;
+            }
+            double r = hypot(t[j], t[j + 1]);
+            cs[j] = r > 0 ? t[j] / r : 1.0;
+            sn[j] = r > 0 ? t[j + 1] / r : 0.0;
+            g[j + 1] = -sn[j] * g[j];
+            g[j] = cs[j] * g[j];
+            /* keep the rotated column in the upper part of a second copy: R in cs's tail
+             * is not needed, the triangle is rebuilt below from H */
+            if (fabs(g[j + 1]) <= tol * beta || hn == 0.0) {
+                j++;
+                break;
+            }
+        } else if (hn == 0.0) {
+            j++;
+            break;
+        }
+    }
+    *steps = j;
+    if (x && j > 0 && !rc) {
+        /* R y = g: the rotations applied again to H's first j columns */
+        double *R = malloc((size_t)(j + 1) * j * sizeof *R), *yy = malloc((size_t)j * sizeof *yy);
+        if (!R || !yy) {
+            rc = 1;
+        } else {
+            for (int c = 0; c < j; c++) {
+                double *col = R + (size_t)c * (j + 1);
+                memcpy(col, H + (size_t)c * ld,
+                       (size_t)(c + 2 < j + 1 ? c + 2 : j + 1) * sizeof *col);
+                for (int l = 0; l < c; l++) {
+                    double a = cs[l] * col[l] + sn[l] * col[l + 1];
+                    col[l + 1] = -sn[l] * col[l] + cs[l] * col[l + 1];
+                    col[l] = a;
+                }
+                col[c] = cs[c] * col[c] + sn[c] * col[c + 1];
+            }
+            for (int r = j - 1; r >= 0; r--) {
+                double sum = g[r];
+                for (int c = r + 1; c < j; c++)
+                    sum -= R[(size_t)c * (j + 1) + r] * yy[c];
+                yy[r] = R[(size_t)r * (j + 1) + r] != 0 ? sum / R[(size_t)r * (j + 1) + r] : 0.0;
+            }
+            for (int c = 0; c < j; c++)
+                for (int i = 0; i < N; i++)
+                    x[i] += yy[c] * V[(size_t)c * N + i];
+        }
+        free(R);
+        free(yy);
+    }
+    free(cs);
+    return rc;
+}
+
+static void block_scales(const shoot *sh, const double *y, double *d)
+{
+    double yq = sh->atol_q / sh->rtol, yv = sh->atol_v / sh->rtol;
+    for (int i = 0; i < sh->nf; i++) {
+        yq = fmax(yq, fabs(y[i]));
+        yv = fmax(yv, fabs(y[sh->nf + i]));
+    }
+    for (int i = 0; i < sh->N; i++)
+        d[i] = i < sh->nf ? yq : yv;
+}
+
+/* Newton-Krylov on F(y) = P(y) - y: each step GMRES(KRYLOV_M) on (Phi - I) dy = -F in
+ * scaled variables to 1e-3 of |F| (inexact Newton), at most three restarts, every product
+ * one period integrated; the same line search and tolerances as the dense Newton. */
+static int newton_krylov(shoot *sh, double *y, int *iters, double *resid)
+{
+    const int N = sh->N, m = N < KRYLOV_M ? N : KRYLOV_M, maxit = sh->opt->max_iter;
+    set_tolerances(sh, y);
+    *iters = 0;
+    double *V = malloc(((size_t)N * (m + 1) + (size_t)(m + 1) * m + 5 * (size_t)N) * sizeof *V);
+    if (!V) {
+        snprintf(sh->why, sizeof sh->why, "out of memory");
+        return 1;
+    }
+    double *H = V + (size_t)N * (m + 1), *d = H + (size_t)(m + 1) * m, *b = d + N, *x = b + N,
+           *py = x + N, *pt = py + N;
+    int rc = 1;
+    if (period_map(sh, y, py)) goto done;
+    for (int i = 0; i < N; i++)
+        sh->r[i] = py[i] - y[i];
+    double res = scaled_norm(sh, y, sh->r);
+    for (int it = 0;; it++) {
+        *resid = res;
+        if (res <= sh->tol) {
+            rc = 0;
+            break;
+        }
+        if (it >= maxit) {
+            snprintf(sh->why, sizeof sh->why,
+                     "shooting (Newton-Krylov): not converged in %d iterations (residual %.2g)",
+                     maxit, res);
+            break;
+        }
+        block_scales(sh, y, d);
+        kry k = {y, py, d, sh->yt, pt};
+        for (int i = 0; i < N; i++)
+            b[i] = -sh->r[i] / d[i];
+        memset(sh->dy, 0, (size_t)N * sizeof *sh->dy);
+        /* GMRES with restarts: the residual of the correction recomputed each cycle */
+        for (int cyc = 0; cyc < 4; cyc++) {
+            int steps;
+            if (arnoldi(sh, &k, 1.0, b, m, V, H, &steps, 1e-3, x)) goto done;
+            for (int i = 0; i < N; i++)
+                sh->dy[i] += x[i];
+            if (cyc == 3) break;
+            /* b - (Phi - I) dy */
+            if (phi_vec(sh, &k, sh->dy, sh->ytmp)) goto done;
+            double nb = 0.0, n0 = 0.0;
+            for (int i = 0; i < N; i++) {
+                double r0 = -sh->r[i] / d[i];
+                b[i] = r0 - (sh->ytmp[i] - sh->dy[i]);
+                nb += b[i] * b[i];
+                n0 += r0 * r0;
+            }
+            if (nb <= 1e-6 * n0) break;
+        }
+        for (int i = 0; i < N; i++)
+            sh->dy[i] *= d[i];
+        double alpha = 1.0, rt = INFINITY;
+        for (int ls = 0; ls < 7; ls++, alpha *= 0.5) {
+            for (int i = 0; i < N; i++)
+                sh->yt[i] = y[i] + alpha * sh->dy[i];
+            if (period_map(sh, sh->yt, pt)) goto done;
+            for (int i = 0; i < N; i++)
+                sh->yT[i] = pt[i] - sh->yt[i];
+            rt = scaled_norm(sh, sh->yt, sh->yT);
+            if (rt < res) break;
+        }
+        *iters = it + 1;
+        if (!(rt < res)) {
+            if (res <= noise_floor(sh, NULL)) {
+                rc = 0;
+                break;
+            }
+            snprintf(sh->why, sizeof sh->why,
+                     "shooting (Newton-Krylov): stalls at residual %.2g (tolerance %.2g)", res,
+                     sh->tol);
+            break;
+        }
+        memcpy(y, sh->yt, (size_t)N * sizeof *y);
+        memcpy(py, pt, (size_t)N * sizeof *py);
+        memcpy(sh->r, sh->yT, (size_t)N * sizeof *sh->r);
+        res = rt;
+    }
+done:
+    free(V);
+    return rc;
+}
+
+/* The largest Floquet multipliers of the orbit through y without the dense monodromy: the
+ * Ritz values of KRYLOV_M Arnoldi steps on Phi (monodromy-vector products) from a fixed
+ * start vector; the outer ones, which decide stability, converge first. Their count, or -1
+ * when an integration failed. */
+static int krylov_multipliers(shoot *sh, const double *y, double *mre, double *mim)
+{
+    const int N = sh->N, m = N < KRYLOV_M ? N : KRYLOV_M;
+    double *V = malloc(((size_t)N * (m + 1) + (size_t)(m + 1) * m + 4 * (size_t)N + (size_t)m * m) *
+                       sizeof *V);
+    if (!V) return -1;
+    double *H = V + (size_t)N * (m + 1), *d = H + (size_t)(m + 1) * m, *py = d + N, *pt = py + N,
+           *v0 = pt + N, *Hs = v0 + N;
+    int n = -1, steps = 0;
+    set_tolerances(sh, y);
+    block_scales(sh, y, d);
+    if (!period_map(sh, y, py)) {
+        kry k = {y, py, d, sh->yt, pt};
+        for (int i = 0; i < N; i++) /* every state excited, none by symmetry left out */
+            v0[i] = 1.0 + 0.5 * sin(1.0 + i);
+        if (!arnoldi(sh, &k, 0.0, v0, m, V, H, &steps, 0.0, NULL) && steps > 0) {
+            for (int c = 0; c < steps; c++)
+                for (int r = 0; r < steps; r++)
+                    Hs[(size_t)c * steps + r] = H[(size_t)c * (m + 1) + r];
+            double dummy[1];
+            if (!LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', steps, Hs, steps, mre, mim, dummy, 1,
+                               dummy, 1))
+                n = steps;
+        }
+    }
+    free(V);
+    return n;
+}
+
+/* Newton on F(y) = P(y) - y from y (in place). On success sh->phi is the monodromy at y.
+ * 0 converged; 1 not, with sh->why. */
+static int newton(shoot *sh, double *y, int *iters, double *resid)
+{
+    if (!sh->dense) return newton_krylov(sh, y, iters, resid);
+    const int N = sh->N, maxit = sh->opt->max_iter;
+    set_tolerances(sh, y);
+    *iters = 0;
+    if (monodromy(sh, y, sh->phi, sh->yT)) return 1;
+    for (int i = 0; i < N; i++)
+        sh->r[i] = sh->yT[i] - y[i];
+    double res = scaled_norm(sh, y, sh->r);
+    memcpy(sh->racc, sh->r, (size_t)N * sizeof *sh->racc);
+    int slow = 0;
+    for (int it = 0;; it++) {
+        *resid = res;
+        if (res <= sh->tol) return 0;
+        if (it >= maxit) {
+            snprintf(sh->why, sizeof sh->why,
+                     "shooting: Newton did not converge in %d iterations (residual %.2g, "
+                     "tolerance %.2g)",
+                     maxit, res, sh->tol);
+            return 1;
+        }
+        /* (Phi - I) dy = -F */
+        memcpy(sh->A, sh->phi, (size_t)N * N * sizeof *sh->A);
+        for (int i = 0; i < N; i++) {
+            sh->A[(size_t)i * N + i] -= 1.0;
+            sh->dy[i] = -sh->r[i];
+        }
+        if (LAPACKE_dgesv(LAPACK_COL_MAJOR, N, 1, sh->A, N, sh->ipiv, sh->dy, N)) {
+            snprintf(sh->why, sizeof sh->why,
+                     "shooting: Phi - I is singular (a multiplier at +1: a fold or a free "
+                     "rigid-body motion)");
+            return 1;
+        }
+        /* full step with the monodromy there; backtracking by plain periods if |F| grows */
+        double alpha = 1.0, rt = INFINITY;
+        for (int i = 0; i < N; i++)
+            sh->yt[i] = y[i] + sh->dy[i];
+        if (monodromy(sh, sh->yt, sh->A, sh->yT)) return 1;
+        for (int i = 0; i < N; i++)
+            sh->r[i] = sh->yT[i] - sh->yt[i];
+        rt = scaled_norm(sh, sh->yt, sh->r);
+        int full = rt < res;
+        while (!full && alpha > 1.0 / 64) {
+            alpha *= 0.5;
+            for (int i = 0; i < N; i++)
+                sh->yt[i] = y[i] + alpha * sh->dy[i];
+            if (period_map(sh, sh->yt, sh->yT)) return 1;
+            for (int i = 0; i < N; i++)
+                sh->r[i] = sh->yT[i] - sh->yt[i];
+            rt = scaled_norm(sh, sh->yt, sh->r);
+            if (rt < res) break;
+        }
+        *iters = it + 1;
+        if (!(rt < res) && res <= noise_floor(sh, y)) return 0;
+        if (!(rt < res)) {
+            snprintf(sh->why, sizeof sh->why,
+                     "shooting: Newton stalls at residual %.2g (tolerance %.2g): no isolated "
+                     "periodic orbit near the start",
+                     res, sh->tol);
+            return 1;
+        }
+        memcpy(y, sh->yt, (size_t)N * sizeof *y);
+        if (full) {
+            double *t = sh->phi;
+            sh->phi = sh->A;
+            sh->A = t;
+        } else if (monodromy(sh, y, sh->phi, sh->yT)) {
+            return 1;
+        } else {
+            for (int i = 0; i < N; i++)
+                sh->r[i] = sh->yT[i] - y[i];
+            rt = scaled_norm(sh, y, sh->r);
+        }
+        memcpy(sh->racc, sh->r, (size_t)N * sizeof *sh->racc);
+        /* a residual that no longer falls is a stall (a chattering orbit): stop early
+         * instead of spending the iterations */
+        slow = rt > 0.5 * res ? slow + 1 : 0;
+        res = rt;
+        if (slow >= 4 && res > sh->tol) {
+            if (res <= noise_floor(sh, y)) return 0;
+            *resid = res;
+            snprintf(sh->why, sizeof sh->why,
+                     "shooting: Newton stalls at residual %.2g (tolerance %.2g) after %d "
+                     "iterations: no isolated periodic orbit near the start",
+                     res, sh->tol, it + 1);
+            return 1;
+        }
+    }
+}
+
+/* ---------------------------------------------------------------- points */
+
+static gd_periodic_point *new_point(shoot *sh, double key)
+{
+    gd_periodic_result *r = sh->res;
+    if (r->npoints == sh->cap_points) {
+        int cap = sh->cap_points ? 2 * sh->cap_points : 64;
+        gd_periodic_point *p = realloc(r->points, (size_t)cap * sizeof *p);
+        if (!p) return NULL;
+        r->points = p;
+        sh->cap_points = cap;
+    }
+    gd_periodic_point *p = &r->points[r->npoints++];
+    memset(p, 0, sizeof *p);
+    p->direction = sh->dir;
+    p->stable = -1;
+    p->mu_max = NAN;
+    p->residual = NAN;
+    p->harmonic_ok = -1;
+    p->harmonic_error_p2p = p->harmonic_error_amp = NAN;
+    p->speed = sh->param ? sh->param->speed : key;
+    p->parameter = sh->param ? key : NAN;
+    p->harmonics = sh->H;
+    return p;
+}
+
+static void announce(shoot *sh, double key)
+{
+    if (!sh->opt->on_point) return;
+    double f = sh->v1 != sh->v0 ? (key - sh->v0) / (sh->v1 - sh->v0) : 1.0;
+    f = f < 0 ? 0 : f > 1 ? 1 : f;
+    sh->opt->on_point(&sh->res->points[sh->res->npoints - 1], sh->res->npoints - 1,
+                      ((sh->dir < 0 ? 1 : 0) + f) / sh->ndir, sh->opt->user);
+}
+
+/* Multipliers of the orbit through y: the eigenvalues of sh->phi (destroyed), or the
+ * Krylov estimate of the largest. Their count, -1 on failure. */
+static int multipliers(shoot *sh, const double *y, double *mre, double *mim)
+{
+    if (!sh->dense) return krylov_multipliers(sh, y, mre, mim);
+    double dummy[1];
+    return LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', sh->N, sh->phi, sh->N, mre, mim, dummy, 1,
+                         dummy, 1)
+               ? -1
+               : sh->N;
+}
+
+/* The point at the converged state y: records and coefficients from one integrated period
+ * sampled at Nr times, multipliers from sh->phi. 0 ok, 1 out of memory. */
+static int emit(shoot *sh, double key, const double *y, int iters, double resid)
+{
+    const int nf = sh->nf, H = sh->H, Nr = sh->Nr, nr = sh->nrec;
+    gd_periodic_point *p = new_point(sh, key);
+    if (!p) return 1;
+    double *ts = malloc((size_t)Nr * sizeof *ts);
+    if (!ts) return 1;
+    for (int j = 0; j < Nr; j++)
+        ts[j] = sh->T * j / Nr;
+    gd_transient_result *r = integrate(sh, y, sh->T, ts, Nr, sh->rec, nr);
+    free(ts);
+    if (!r || r->nsamples != Nr) {
+        gd_transient_result_free(r);
+        p->converged = 0;
+        snprintf(p->reason, sizeof p->reason, "%.250s", sh->why);
+        announce(sh, key);
+        return 0;
+    }
+    p->converged = 1;
+    p->omega = sh->w;
+    p->residual = resid;
+    p->iterations = iters;
+    p->nfree = nf;
+    const size_t nh = 2 * (size_t)H + 1;
+    p->coef = calloc(nh * nf, sizeof *p->coef);
+    p->records = calloc((size_t)(nr > 0 ? nr : 1), sizeof *p->records);
+    double *buf = fftw_malloc((size_t)Nr * sizeof *buf),
+           *out = fftw_malloc((size_t)Nr * sizeof *out);
+    int rc = 1;
+    if (!p->coef || !p->records || !buf || !out) goto done;
+    fftw_plan plan = fftw_plan_r2r_1d(Nr, buf, out, FFTW_R2HC, FFTW_ESTIMATE);
+    for (int k = 0; k < nr; k++)
+        if (gd_per_sample_stats(&r->sample_values[(size_t)k * Nr], Nr, H, plan, buf, out,
+                                &p->records[k])) {
+            fftw_destroy_plan(plan);
+            goto done;
+        }
+    /* Fourier coefficients of the free DOFs (coef[h * nf + i], as harmonic balance) */
+    for (int i = 0; i < nf; i++) {
+        int d = sh->free_dof[i];
+        for (int j = 0; j < Nr; j++)
+            buf[j] = r->sample_q[(size_t)j * r->ndof + d];
+        fftw_execute(plan);
+        p->coef[i] = out[0] / Nr;
+        for (int k = 1; k <= H && k < Nr / 2; k++) {
+            p->coef[(size_t)(2 * k - 1) * nf + i] = 2.0 * out[k] / Nr;
+            p->coef[(size_t)(2 * k) * nf + i] = -2.0 * out[Nr - k] / Nr;
+        }
+    }
+    fftw_destroy_plan(plan);
+    if (sh->opt->stability) {
+        p->mu_re = malloc((size_t)sh->N * sizeof *p->mu_re);
+        p->mu_im = malloc((size_t)sh->N * sizeof *p->mu_im);
+        if (!p->mu_re || !p->mu_im) goto done;
+        int nm = multipliers(sh, y, p->mu_re, p->mu_im);
+        if (nm < 0) {
+            snprintf(p->reason, sizeof p->reason, "stability not computed: %.200s",
+                     sh->dense ? "dgeev failed" : sh->why);
+        } else {
+            double m = 0.0;
+            for (int i = 0; i < nm; i++)
+                m = fmax(m, hypot(p->mu_re[i], p->mu_im[i]));
+            p->mu_max = m;
+            p->stable = m <= 1.0 + 1e-6;
+            p->nmult = nm;
+            if (!sh->dense)
+                snprintf(p->reason, sizeof p->reason,
+                         "multipliers: the %d largest of %d, Ritz values of Arnoldi on "
+                         "monodromy-vector products",
+                         nm, sh->N);
+        }
+    }
+    rc = 0;
+done:
+    fftw_free(buf);
+    fftw_free(out);
+    gd_transient_result_free(r);
+    if (!rc) announce(sh, key);
+    return rc;
+}
+
+static int fail_point(shoot *sh, double key)
+{
+    gd_periodic_point *p = new_point(sh, key);
+    if (!p) return 1;
+    snprintf(p->reason, sizeof p->reason, "%.250s", sh->why);
+    announce(sh, key);
+    return 0;
+}
+
+/* ---------------------------------------------------------------- bifurcations */
+
+static int add_bif(shoot *sh, gd_bifurcation_type type, double key, double mre, double mim)
+{
+    gd_periodic_result *r = sh->res;
+    if (r->nbifurcations == sh->cap_bif) {
+        int cap = sh->cap_bif ? 2 * sh->cap_bif : 16;
+        gd_bifurcation *b = realloc(r->bifurcations, (size_t)cap * sizeof *b);
+        if (!b) return 1;
+        r->bifurcations = b;
+        sh->cap_bif = cap;
+    }
+    gd_bifurcation *b = &r->bifurcations[r->nbifurcations++];
+    b->type = type;
+    b->speed = sh->param ? sh->param->speed : key;
+    b->parameter = sh->param ? key : NAN;
+    b->direction = sh->dir;
+    b->mu_re = mre;
+    b->mu_im = mim;
+    return 0;
+}
+
+/* The largest |mu| of each kind: 0 real positive, 1 real negative, 2 complex. */
+static void kinds(const double *re, const double *im, int n, double g[3], int at[3])
+{
+    for (int k = 0; k < 3; k++) {
+        g[k] = 0.0;
+        at[k] = -1;
+    }
+    for (int i = 0; i < n; i++) {
+        int k = fabs(im[i]) > 1e-9 * fmax(1.0, fabs(re[i])) ? 2 : re[i] >= 0 ? 0 : 1;
+        double a = hypot(re[i], im[i]);
+        if (a > g[k]) {
+            g[k] = a;
+            at[k] = i;
+        }
+    }
+}
+
+/* The critical multiplier of kind k at value key from state y (a shooting solve):
+ * |mu| - 1 in *g, the multiplier in (*re, *im). 0 ok. */
+static int critical(shoot *sh, double key, double *y, int k, double *g, double *re, double *im)
+{
+    int it;
+    double res;
+    int nm;
+    if (make_problem(sh, key) || newton(sh, y, &it, &res) ||
+        (nm = multipliers(sh, y, sh->mre, sh->mim)) < 0)
+        return 1;
+    double gg[3];
+    int at[3];
+    kinds(sh->mre, sh->mim, nm, gg, at);
+    /* none of that kind (a complex pair not yet split on the axis): modulus 0 */
+    *g = gg[k] - 1.0;
+    *re = at[k] >= 0 ? sh->mre[at[k]] : NAN;
+    *im = at[k] >= 0 ? sh->mim[at[k]] : NAN;
+    return 0;
+}
+
+/* A crossing of the unit circle by the multipliers of kind k between (la, ya, ga) and
+ * (lb, yb, gb), located by secant iterations (regula falsi with the Illinois rule) on
+ * |mu| - 1 to 1e-8 relative in the value. The located value, or NAN. */
+static double locate(shoot *sh, int k, double la, const double *ya, double ga, double lb,
+                     const double *yb, double gb, double *mre, double *mim)
+{
+    const int N = sh->N;
+    double *y = malloc((size_t)N * sizeof *y), lx = NAN;
+    if (!y) return NAN;
+    double a = la, b = lb, fa = ga, fb = gb;
+    int side = 0;
+    for (int it = 0; it < 30; it++) {
+        double x = b - fb * (b - a) / (fb - fa), g, re, im;
+        if (!(x > fmin(a, b) && x < fmax(a, b))) x = 0.5 * (a + b);
+        /* start from the nearer end's state, interpolated */
+        double s = (x - la) / (lb - la);
+        for (int i = 0; i < N; i++)
+            y[i] = (1 - s) * ya[i] + s * yb[i];
+        if (critical(sh, x, y, k, &g, &re, &im)) break;
+        lx = x;
+        if (isfinite(re)) {
+            *mre = re;
+            *mim = im;
+        }
+        if (fabs(g) < 1e-12 || fabs(b - a) <= 1e-8 * fabs(x)) break;
+        if ((g > 0) == (fb > 0)) {
+            b = x;
+            fb = g;
+            if (side == -1) fa *= 0.5;
+            side = -1;
+        } else {
+            a = x;
+            fa = g;
+            if (side == 1) fb *= 0.5;
+            side = 1;
+        }
+        if (fabs(b - a) <= 1e-8 * fabs(x)) break;
+    }
+    free(y);
+    return lx;
+}
+
+/* Bifurcations between the previous converged point (la, ya, its multipliers) and this
+ * one: every kind whose largest modulus crossed 1. */
+static int detect(shoot *sh, double la, const double *ya, const double *ma_re, const double *ma_im,
+                  int na, double lb, const double *yb, const gd_periodic_point *pb)
+{
+    double ga[3], gb[3];
+    int aa[3], ab[3];
+    kinds(ma_re, ma_im, na, ga, aa);
+    kinds(pb->mu_re, pb->mu_im, pb->nmult, gb, ab);
+    static const gd_bifurcation_type type[3] = {GD_BIF_FOLD, GD_BIF_PERIOD_DOUBLING,
+                                                GD_BIF_NEIMARK_SACKER};
+    for (int k = 0; k < 3; k++) {
+        /* a kind absent on one side counts as modulus 0 (a complex pair meets the real
+         * axis before one of it leaves through -1 or +1) */
+        if ((ga[k] > 1.0) == (gb[k] > 1.0)) continue;
+        double re = NAN, im = NAN;
+        double x = locate(sh, k, la, ya, ga[k] - 1.0, lb, yb, gb[k] - 1.0, &re, &im);
+        if (isnan(x)) { /* not located: between the points, linearly */
+            x = la + (lb - la) * (1.0 - ga[k]) / (gb[k] - ga[k]);
+            re = im = NAN;
+        }
+        /* a real multiplier through +1 on a branch followed in the value is a fold or a
+         * branch point: natural continuation cannot tell (it jumps at a fold), so it is
+         * reported as the fold it usually is */
+        if (add_bif(sh, type[k], x, k == 0 ? NAN : re, k == 0 ? NAN : im)) return 1;
+    }
+    return 0;
+}
+
+/* ---------------------------------------------------------------- the branch */
+
+static int run_direction(shoot *sh, const double *vals, int nv)
+{
+    const int stab = sh->opt->stability;
+    double *ys = NULL; /* the last two converged states, their values */
+    double lv[2] = {NAN, NAN};
+    int nprev = 0, rc = 1;
+    double *mre = NULL, *mim = NULL, *y = NULL;
+    int have_mu = 0;
+    for (int v = 0; v < nv; v++) {
+        double key = vals[v];
+        if (make_problem(sh, key)) {
+            if (fail_point(sh, key)) goto done;
+            nprev = 0;
+            continue;
+        }
+        const int N = sh->N;
+        if (!ys) {
+            ys = malloc((size_t)5 * N * sizeof *ys);
+            if (!ys) goto done;
+            y = ys + 2 * (size_t)N;
+            mre = y + N;
+            mim = mre + N;
+        }
+        int it = 0, ok = 0;
+        double res = NAN;
+        sh->cpu0 = cpu_now();
+        sh->t_mono = 0.0;
+        sh->warm_change = NAN;
+        sh->budget_hit = 0;
+        if (nprev) {
+            /* predictor: the last state, or the secant through the last two */
+            double s = nprev == 2 ? (key - lv[1]) / (lv[1] - lv[0]) : 0.0;
+            for (int i = 0; i < N; i++)
+                y[i] = ys[N + i] + s * (ys[N + i] - ys[i]);
+            ok = !newton(sh, y, &it, &res);
+        }
+        if (!ok && !sh->budget_hit) {
+            char first[256];
+            snprintf(first, sizeof first, "%s", nprev ? sh->why : "");
+            ok = !warm_start(sh, y) && !newton(sh, y, &it, &res);
+            if (!ok && first[0] && strcmp(first, sh->why)) {
+                char both[256];
+                snprintf(both, sizeof both, "%.110s; from a transient: %.110s", first, sh->why);
+                snprintf(sh->why, sizeof sh->why, "%s", both);
+            }
+        }
+        if (!ok) {
+            if (fail_point(sh, key)) goto done;
+            nprev = 0;
+            have_mu = 0;
+            continue;
+        }
+        if (emit(sh, key, y, it, res)) goto done;
+        gd_periodic_point *p = &sh->res->points[sh->res->npoints - 1];
+        if (stab && p->nmult && have_mu && nprev) {
+            /* the previous point's state and multipliers are ys[N..] and mre/mim */
+            double *ya = malloc((size_t)2 * N * sizeof *ya);
+            if (!ya) goto done;
+            memcpy(ya, ys + N, (size_t)N * sizeof *ya);
+            memcpy(ya + N, y, (size_t)N * sizeof *ya);
+            double la = lv[1];
+            int e = detect(sh, la, ya, mre, mim, have_mu, key, ya + N, p);
+            free(ya);
+            if (e) goto done;
+            if (make_problem(sh, key)) goto done; /* locate moved the problem: back */
+        }
+        p = &sh->res->points[sh->res->npoints - 1];
+        have_mu = p->nmult; /* the count of the previous point's multipliers */
+        if (have_mu) {
+            memcpy(mre, p->mu_re, (size_t)have_mu * sizeof *mre);
+            memcpy(mim, p->mu_im, (size_t)have_mu * sizeof *mim);
+        }
+        if (nprev) memcpy(ys, ys + N, (size_t)N * sizeof *ys);
+        lv[0] = lv[1];
+        memcpy(ys + N, y, (size_t)N * sizeof *ys);
+        lv[1] = key;
+        nprev = nprev < 2 ? nprev + 1 : 2;
+    }
+    rc = 0;
+done:
+    free(ys);
+    return rc;
+}
+
+int gd_per_shoot_run(const gd_system *sys, const gd_transient_spec *spec,
+                     const gd_periodic_param *param, const double *values, int nvalues,
+                     const gd_periodic_options *opt, const gd_tr_record *records, int nrecords,
+                     gd_periodic_result *res)
+{
+    shoot sh;
+    memset(&sh, 0, sizeof sh);
+    sh.sys0 = sys;
+    sh.spec0 = spec;
+    sh.param = param;
+    sh.opt = opt;
+    sh.rec = records;
+    sh.nrec = nrecords;
+    sh.res = res;
+    sh.ndir = opt->both_directions ? 2 : 1;
+    double *rev = malloc((size_t)nvalues * sizeof *rev);
+    int rc = !rev;
+    for (int d = 0; d < sh.ndir && !rc; d++) {
+        sh.dir = d ? -1 : 1;
+        for (int i = 0; i < nvalues; i++)
+            rev[i] = d ? values[nvalues - 1 - i] : values[i];
+        sh.v0 = rev[0];
+        sh.v1 = rev[nvalues - 1];
+        rc = run_direction(&sh, rev, nvalues);
+        res->steps += nvalues;
+    }
+    free(rev);
+    release_problem(&sh);
+    free(sh.mem);
+    free(sh.ipiv);
+    free(sh.q0);
+    free(sh.free_dof);
+    return rc;
+}
