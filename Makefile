@@ -56,9 +56,11 @@ test-unit: build
 
 # The sanitizer build is clang's, with the libFuzzer targets in it: one more compile of
 # the library serves the sanitizer tests and the fuzz smoke run (clang also checks
-# float-to-int casts).
+# float-to-int casts). -O1: with the fuzzer's coverage hooks, -O0 ran the tests 2.2x
+# slower (test_monodromy 2.22 s against 0.96 s of CPU).
 asan-build: deps
-	@CC=clang cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug -DGD_SANITIZE=ON -DGD_FUZZ=ON >/dev/null
+	@CC=clang cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_FLAGS_DEBUG="-g -O1" \
+	    -DGD_SANITIZE=ON -DGD_FUZZ=ON >/dev/null
 	@cmake --build $(ASAN_BUILD) -j$(JOBS)
 
 test-asan: asan-build
