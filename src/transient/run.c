@@ -103,67 +103,6 @@ void *gd_tr_cvode_new(SUNContext ctx, const gd_transient_options *opt, double t0
     return mem;
 }
 
-/* Record value r at time t with full q, v. */
-double gd_tr_record_value(gd_transient *tr, const gd_tr_record *rec, double t, const double *q,
-                          const double *v)
-{
-    const gd_model *model = tr->sys->model;
-    int i = rec->index;
-    switch (rec->kind) {
-    case GD_REC_DISP:
-        return gd_tr_full_value(tr, i, q);
-    case GD_REC_VEL:
-        return gd_tr_full_value(tr, i, v);
-    case GD_REC_ANGLE:
-        return gd_tr_full_rate(tr, i) * t + gd_tr_full_value(tr, i, q);
-    case GD_REC_SPEED:
-        return gd_tr_full_rate(tr, i) + gd_tr_full_value(tr, i, v);
-    case GD_REC_SPEED_RATIO: {
-        int j = rec->index2;
-        double den = gd_tr_full_rate(tr, j) + gd_tr_full_value(tr, j, v);
-        return den != 0.0 ? (gd_tr_full_rate(tr, i) + gd_tr_full_value(tr, i, v)) / den : 0.0;
-    }
-    case GD_REC_MESH_FORCE:
-    case GD_REC_MESH_DEFLECTION:
-    case GD_REC_MESH_STATE:
-    case GD_REC_MESH_STIFFNESS: {
-        int nl = tr->nl_of_mesh[i];
-        double d, dd, k, F;
-        gd_contact state = GD_CONTACT_DRIVE;
-        if (nl >= 0) {
-            const tr_mesh *m = &tr->mesh[nl];
-            state = m->state;
-            F = gd_tr_mesh_force(tr, m, state, t, q, v, &d, &dd, &k, NULL);
-        } else {
-            const gd_mesh_vector *a = &tr->model_a[i];
-            d = dd = 0.0;
-            for (int j = 0; j < a->n; j++) {
-                d += a->a[j] * q[a->dof[j]];
-                dd += a->a[j] * v[a->dof[j]];
-            }
-            k = model->meshes[i].stiffness;
-            F = k * d + model->meshes[i].damping * dd;
-        }
-        if (rec->kind == GD_REC_MESH_FORCE) return F;
-        if (rec->kind == GD_REC_MESH_DEFLECTION) return d;
-        if (rec->kind == GD_REC_MESH_STATE) return (double)state;
-        return k;
-    }
-    case GD_REC_SFD_FX:
-    case GD_REC_SFD_FY:
-    case GD_REC_SFD_ECCENTRICITY:
-    case GD_REC_LAW: {
-        /* a damper's records are its law's fx, fy, ecc */
-        int which = rec->kind == GD_REC_LAW ? rec->index2 : (int)(rec->kind - GD_REC_SFD_FX);
-        const gd_law *L = &tr->law[rec->kind == GD_REC_LAW ? tr->law_spec0 + i : i];
-        gd_law_point x;
-        gd_tr_law_point(L, t, q, v, tr->lq, tr->lv, &x);
-        return L->type->record(L, which, &x);
-    }
-    }
-    return 0.0;
-}
-
 static gd_status check_record(const gd_transient *tr, const gd_tr_record *r, gd_error *err)
 {
     int ok = 1, nfull = tr->red ? tr->red->nfull : tr->n;
@@ -315,33 +254,6 @@ static void add_counters(void *mem, gd_transient_result *res)
     if (!CVodeGetNumLinRhsEvals(mem, &v)) res->rhs_evals += v;
     if (!CVodeGetNumLinIters(mem, &v)) res->lin_iters += v;
     if (!CVodeGetNumPrecEvals(mem, &v)) res->prec_setups += v;
-}
-
-static void account(gd_tr_contact_stats *cs_, gd_contact state, double t0, double t1, double from)
-{
-    if (t0 < from) t0 = from;
-    if (t1 <= t0) return;
-    if (state == GD_CONTACT_SEPARATED)
-        cs_->separated_time += t1 - t0;
-    else if (state == GD_CONTACT_COAST)
-        cs_->coast_time += t1 - t0;
-    else
-        cs_->drive_time += t1 - t0;
-}
-
-void gd_tr_change_state(gd_transient *tr, int i, gd_contact ns, double t, double from,
-                        gd_tr_contact_stats *st, gd_tr_contact_track *track)
-{
-    tr_mesh *m = &tr->mesh[i];
-    if (ns == m->state) return;
-    account(&st[i], m->state, track[i].since, t, from);
-    if (t >= from) {
-        if (m->state == GD_CONTACT_DRIVE && ns != GD_CONTACT_DRIVE) st[i].contact_losses++;
-        if (ns == GD_CONTACT_COAST) st[i].coast_impacts++;
-        if (ns == GD_CONTACT_DRIVE) st[i].drive_impacts++;
-    }
-    track[i].since = t;
-    m->state = ns;
 }
 
 /* The system's DOFs (q, v of length ndof) from the problem's coordinates (xq, xv). */
@@ -697,7 +609,8 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
 finish:
     method_note(opt, is_auto ? why : NULL, dt, res);
     for (int i = 0; i < tr->nmesh; i++)
-        account(&res->contacts[i], tr->mesh[i].state, track[i].since, opt->t_end, from);
+        gd_tr_contact_account(&res->contacts[i], tr->mesh[i].state, track[i].since, opt->t_end,
+                              from);
     gd_tr_fill(tr, opt->t_end, yd, tr->q, tr->v, NULL);
     full_state(tr, tr->q, tr->v, res->q_end, res->v_end);
     for (int r = 0; r < nrecords; r++)

@@ -111,7 +111,8 @@ double gd_tr_mesh_law(const tr_mesh *m, gd_contact state, double t, const double
 /* Law L's local view of (t, q, v) (full DOF vectors) in lq, lv (length L->ndofs). */
 void gd_tr_law_point(const gd_law *L, double t, const double *q, const double *v, double *lq,
                      double *lv, gd_law_point *x);
-/* Value of a record at (t, q, v) (full DOF vectors) with the current contact states. */
+/* record_value.c: value of a record at (t, q, v) (full DOF vectors) with the current
+ * contact states. */
 double gd_tr_record_value(gd_transient *tr, const gd_tr_record *rec, double t, const double *q,
                           const double *v);
 /* Net generalised force r (length n) at (t, q, v, acc) with the current contact states,
@@ -157,13 +158,13 @@ double gd_tr_full_rate(const gd_transient *tr, int i);
  * M-orthogonal projection of the interior motion not explained by them. */
 void gd_tr_project(const gd_transient *tr, const double *full, double *x);
 
-/* ---- run.c: records and contact statistics, shared by the integrators ---- */
+/* ---- contact_stats.c: contact statistics, shared by the integrators ---- */
 typedef struct gd_tr_contact_track {
     double since; /* time of the last state change */
 } gd_tr_contact_track;
-/* Record value at time t with full q, v (current contact states). */
-double gd_tr_record_value(gd_transient *tr, const gd_tr_record *rec, double t, const double *q,
-                          const double *v);
+/* Adds [t0, t1], clipped to t >= from, to the time spent in contact state `state`. */
+void gd_tr_contact_account(gd_tr_contact_stats *cs_, gd_contact state, double t0, double t1,
+                           double from);
 /* Mesh i changes to contact state ns at time t: statistics over [from, t_end]. */
 void gd_tr_change_state(gd_transient *tr, int i, gd_contact ns, double t, double from,
                         gd_tr_contact_stats *st, gd_tr_contact_track *track);
