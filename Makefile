@@ -100,6 +100,14 @@ VALGRIND_SKIP_test_plot = -png_and_pdf_of_every_plot,frf_peaks_located,report_ha
 # long integrations to periodicity (the same code runs in the other tests under valgrind)
 VALGRIND_SKIP_test_transient_laws = -duffing_harmonic_balance_against_time_integration,rolling_bearing_varying_compliance_at_ball_pass_frequency
 VALGRIND_SKIP_test_periodic = -backlash_against_transient,sfd_pair_against_transient,backlash_folds_traced_through_unstable_branch,chen_sfd_neimark_sacker_matches_transient
+# shooting to rtol 1e-11 over several speeds, Newton-Krylov, located period doublings (1.5-5 s
+# natively each); the backlash and budget cases still run the shooting code under valgrind
+VALGRIND_SKIP_test_shooting = -chen_sfd_shooting_equals_hb,mathieu_period_doublings_located,newton_krylov_equals_dense
+# hundreds of periods to a verdict (0.4-0.6 s natively each); the verdict logic runs in
+# test_cycles and on the stored Ducati section
+VALGRIND_SKIP_test_rattle = -chen_torus_is_quasi_periodic,backlash_mathieu_is_period_2,linear_mathieu_is_periodic
+# the 366-DOF run-up against tight CVODE; the free oscillator runs the same stepping
+VALGRIND_SKIP_test_lti = -unbalance_run_up_within_rtol_of_tight_cvode
 # every program with a VALGRIND_SKIP_<program> list above
 VALGRIND_SKIPPED = $(patsubst VALGRIND_SKIP_%,%,$(filter VALGRIND_SKIP_%,$(.VARIABLES)))
 memcheck: build
