@@ -1,6 +1,6 @@
 #!/bin/sh
 # Timing of the loaded tooth contact analysis (docs/mesh-stiffness.md, "Loaded contact
-# analysis"): helical pair 1 of 002_... at 20 deg with tip relief and crowning on both
+# analysis"): helical pair 1 of [JMSTHelical] at 20 deg with tip relief and crowning on both
 # gears and 10 um misalignment, 40 slices x 64 positions (energy method): one contact
 # analysis (target < 50 ms) and a 20-load Harris map (target < 1 s), against the TVMS
 # of the same pair and options timed in the same run (the floor: the contact analysis

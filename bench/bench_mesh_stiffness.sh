@@ -1,6 +1,6 @@
 #!/bin/sh
 # Timing of the mesh-stiffness computation: one mesh cycle at 360 points with 50 slices
-# (energy method, helical pair 1 of 002_... at 20 deg), by a small C driver compiled
+# (energy method, helical pair 1 of [JMSTHelical] at 20 deg), by a small C driver compiled
 # against the built library, and end to end through the CLI. Prints figures only.
 # usage: bench/bench_mesh_stiffness.sh [BUILD_DIR]   (default: build-ms, else build)
 set -e

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Harmonic balance (geardyn periodic): CPU per continuation step on the Chen SFD gear pair
-# with H = 15 (issue 10 goal: < 5 ms); on the 378-DOF two-stage helical system of seed 002
+# with H = 15 (issue 10 goal: < 5 ms); on the 378-DOF two-stage helical system of [JMSTHelical]
 # with both meshes' TVMS, the whole sparse LU against the low-rank condensation (H = 36,
 # the ratio), one curve of 30 speeds and 4 speeds by arclength; and the Figs. 11-13 set
 # itself, 10 curves x 300 speeds at H = 108 (goal: < 60 s CPU on one core), one curve at
@@ -28,11 +28,11 @@ len(d['points'])))"
 done
 echo "   auto: $(OPENBLAS_NUM_THREADS=1 "$B/geardyn" periodic examples/chen1998_gear_pair.yaml \
     --speeds 1000:1000:1 --method auto --quiet | head -1)"
-echo "-- seed 002 helical system (378 DOFs), 2990..3010 rpm, 3 speeds, H = 36, no Floquet:"
+echo "-- [JMSTHelical] helical system (378 DOFs), 2990..3010 rpm, 3 speeds, H = 36, no Floquet:"
 echo "   whole sparse LU (1) against the low-rank condensation (2)"
 "$B/bench_periodic" "$H2" 313.11 315.21 3 36 0 1
 "$B/bench_periodic" "$H2" 313.11 315.21 3 36 0 2
-echo "-- seed 002, one curve: 1000..10000 rpm, 30 speeds, gear 1 y and both mesh forces, sequential"
+echo "-- [JMSTHelical], one curve: 1000..10000 rpm, 30 speeds, gear 1 y and both mesh forces, sequential"
 OPENBLAS_NUM_THREADS=1 "$B/geardyn" periodic "$H2" --speeds 1000rpm:10000rpm:30 --harmonics 36 \
     --no-stability --no-estimate --sequential --record gear1.y --record mesh:pair1:force \
     --record mesh:pair2:force | tail -1
@@ -40,14 +40,14 @@ echo "   (H = 36 holds only the fundamental of mesh 1: the set below needs H = 1
 echo "-- the same model by arclength, 1000..2000 rpm, 4 speeds"
 OPENBLAS_NUM_THREADS=1 "$B/geardyn" periodic "$H2" --speeds 1000rpm:2000rpm:4 --harmonics 36 \
     --no-stability --no-estimate --record gear1.y | tail -1
-echo "-- seed 002 at 2500 rpm, the default --harmonics auto (H doubled from 36 until the"
+echo "-- [JMSTHelical] at 2500 rpm, the default --harmonics auto (H doubled from 36 until the"
 echo "   records agree with 2 H + 1 to 1 %) and the fixed H = 108 with its estimate"
 OPENBLAS_NUM_THREADS=1 "$B/geardyn" periodic "$H2" --speeds 2500rpm:2500rpm:1 --no-stability \
     --record mesh:pair2:force --quiet | sed -n '2p;$p'
 OPENBLAS_NUM_THREADS=1 "$B/geardyn" periodic "$H2" --speeds 2500rpm:2500rpm:1 --no-stability \
     --harmonics 108 --record mesh:pair2:force --quiet 2>/dev/null | sed -n '2p;$p'
 if [ "$SET" != "--no-set" ]; then
-    echo "-- seed 002, the Figs. 11-13 set: 10 curves x 300 speeds, H = 108, one curve at a time"
+    echo "-- [JMSTHelical], the Figs. 11-13 set: 10 curves x 300 speeds, H = 108, one curve at a time"
     OPENBLAS_NUM_THREADS=1 JOBS=1 ESTIMATE=0 GEARDYN="$B/geardyn" examples/seed002/figs11_13.sh \
         "$B/bench-seed002" | tail -1
     echo "   (goal: < 60 s CPU on one core; 557 s before the condensation's rework)"

@@ -3,7 +3,7 @@
 # seconds of the run with --periods against a plain run of the same length beside it
 # (the floor: integration only), so the ratio shows what the statistics and the verdict
 # add; on the Chen SFD torus (5650 rad/s, e_u/C = 1/2) and, with an argument "ducati",
-# on the Ducati train at 10000 rpm (the seed-003 worked example: about 2 minutes each).
+# on the Ducati train at 10000 rpm (the [Benini2004] worked example: about 2 minutes each).
 # usage: bench/bench_periods.sh BUILD_DIR [ducati]
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Cases per second of a parameter study (issue 12): seed 001 Fig. 4 (Chen 1998 gear
+# Cases per second of a parameter study (issue 12): [Chen1998] Fig. 4 (Chen 1998 gear
 # pair, six frequencies over k_m/k_a, 200 log-spaced points) by `geardyn study`, against
 # the floor measured in the same run: a shell loop that runs the CLI once per point,
 # (a) with --set and (b) editing a copy of the YAML with sed, as users did before.
@@ -23,7 +23,7 @@ N=200
 # the mesh stiffness of the study's 200 ratios: k_a * 0.1 * 10^(4 k / 199), k_a = 5.683e6
 stiff=$(awk -v n=$N 'BEGIN { for (k = 0; k < n; k++) printf "%.17g\n", 5.683e6 * 0.1 * 10^(4 * k / (n - 1)) }')
 
-echo "Fig. 4 of 001: $N cases, modal (undamped) of the 6-DOF gear pair"
+echo "Fig. 4 of [Chen1998]: $N cases, modal (undamped) of the 6-DOF gear pair"
 cat > "$tmp/loop.sh" <<LEOF
 for k in $(echo $stiff); do
     "$G" modal examples/chen1998_gear_pair.yaml --undamped --set "meshes.mesh.stiffness=\$k" > /dev/null

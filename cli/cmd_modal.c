@@ -30,9 +30,9 @@ static const char USAGE[] =
     "                    --set meshes.mesh.stiffness=3e8N/m (repeatable; docs/model-format.md)\n"
     "  --group shaft     also the strain energy per shaft with its gears, bearings and\n"
     "                    meshes (half of one between two shafts), and each shaft's by\n"
-    "                    motion type (002 Tables 4-7); default: by component\n"
+    "                    motion type ([JMSTHelical] Tables 4-7); default: by component\n"
     "  --directional     also the directional eigenvalues of the complex coordinates\n"
-    "                    r = x + i y (000): one per mode, Im > 0 forward, < 0 backward\n"
+    "                    r = x + i y ([Kumar2011]): one per mode, Im > 0 forward, < 0 backward\n"
     "  --json            print one JSON object on stdout instead of the table\n"
     "  --out DIR         write DIR/modes.csv and DIR/mode_shapes.csv (every active DOF of\n"
     "                    every mode, complex)\n" GD_CLI_PLOT_HELP;

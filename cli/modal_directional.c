@@ -1,5 +1,5 @@
 /* geardyn modal --directional: the complex-coordinate (r = x + i y) eigenvalues of
- * 000_..., one per mode, Im > 0 forward and Im < 0 backward. */
+ * [Kumar2011], one per mode, Im > 0 forward and Im < 0 backward. */
 #include "modal_directional.h"
 
 #include <math.h>

@@ -1,4 +1,4 @@
-/* `geardyn modal --directional` (000_...): the directional eigenvalues, signed by
+/* `geardyn modal --directional` ([Kumar2011]): the directional eigenvalues, signed by
  * whirl, next to the real-coordinate modes. */
 #ifndef GD_CLI_MODAL_DIRECTIONAL_H
 #define GD_CLI_MODAL_DIRECTIONAL_H

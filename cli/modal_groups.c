@@ -1,4 +1,4 @@
-/* geardyn modal --group shaft: 002_... Table 4 (strain energy per shaft, gears and
+/* geardyn modal --group shaft: [JMSTHelical] Table 4 (strain energy per shaft, gears and
  * bearings included, the dominant shaft) and Table 7 (one shaft's energy by motion
  * type, "no-vibration" when the shaft stores none). */
 #include "modal_groups.h"
@@ -8,7 +8,7 @@
 #include "cli.h"
 
 /* Below this fraction of the mode's energy (0.0 % as printed) a shaft does not vibrate in
- * it: 002 Table 7 writes "No-vibration" where Table 4 has 0. */
+ * it: [JMSTHelical] Table 7 writes "No-vibration" where Table 4 has 0. */
 #define GD_SHAFT_IDLE 5e-4
 
 typedef struct shaft_split {

@@ -1,4 +1,4 @@
-/* `geardyn modal --group shaft` (002_... Tables 4-7): the strain energy of each mode per
+/* `geardyn modal --group shaft` ([JMSTHelical] Tables 4-7): the strain energy of each mode per
  * shaft with its gears and bearings, and each shaft's energy by motion type. */
 #ifndef GD_CLI_MODAL_GROUPS_H
 #define GD_CLI_MODAL_GROUPS_H

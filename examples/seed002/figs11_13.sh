@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# Seed 002 (helical two-stage system), Figs. 11-13: gear-1 response and the dynamic
+# [JMSTHelical] (helical two-stage system), Figs. 11-13: gear-1 response and the dynamic
 # mesh forces of both pairs versus input speed, by harmonic balance (geardyn periodic),
 # for the full and the lateral-torsional mesh coupling at helix angles 0, 5, 10, 15
-# and 20 deg on both meshes: 10 curves. docs/periodic.md, "Seed 002: Figs. 11-13".
+# and 20 deg on both meshes: 10 curves. docs/periodic.md, "[JMSTHelical]: Figs. 11-13".
 #
 # usage: examples/seed002/figs11_13.sh [OUTDIR]      (run from the repository root)
 # environment: H (harmonics, default 108), SPEEDS (default 100rpm:8000rpm:300),

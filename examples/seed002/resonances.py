@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Super-harmonic resonances of the seed-002 Figs. 11-13 curves (figs11_13.sh).
+"""Super-harmonic resonances of the [JMSTHelical] Figs. 11-13 curves (figs11_13.sh).
 
 usage: examples/seed002/resonances.py [OUTDIR]      (run from the repository root)
 

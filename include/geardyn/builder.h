@@ -394,7 +394,7 @@ GD_API gd_status gd_model_set_max_nodes(gd_model *m, long max_nodes, gd_loc loc,
  * mean mesh stiffness. */
 GD_API gd_status gd_model_set_rayleigh(gd_model *m, double alpha, double beta, gd_error *err);
 /* alpha and beta that give the damping ratios z1, z2 at the angular frequencies w1 !=
- * w2 (rad/s, > 0): z = alpha / (2 w) + beta w / 2 at each (002_..., Rayleigh). GD_EINPUT
+ * w2 (rad/s, > 0): z = alpha / (2 w) + beta w / 2 at each ([JMSTHelical], Rayleigh). GD_EINPUT
  * when w1 = w2 or the ratios need a negative alpha or beta. */
 GD_API gd_status gd_rayleigh_from_ratios(double z1, double z2, double w1, double w2, double *alpha,
                                          double *beta, gd_error *err);

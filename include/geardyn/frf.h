@@ -1,8 +1,8 @@
 /* Frequency response: receptance, mobility or accelerance from a unit harmonic force
  * or moment at a DOF to DOF displacements and to derived forces (dynamic mesh force,
  * bearing force), solved directly (one sparse complex factorisation per frequency) or
- * by modal summation over left and right eigenvectors (004 Eqs. 14-15); directional
- * (forward/backward) FRFs of lateral node pairs (000 Eqs. 2.5-2.8).
+ * by modal summation over left and right eigenvectors ([MMT2018] Eqs. 14-15); directional
+ * (forward/backward) FRFs of lateral node pairs ([Kumar2011] Eqs. 2.5-2.8).
  *
  * Ownership and threads: gd_frf returns a result the caller frees with gd_frf_free;
  * the options' arrays are borrowed for the call only. Frequencies are solved in
@@ -57,7 +57,7 @@ GD_API void gd_frf_free(gd_frf_result *r);
 /* Directional FRFs from the complex coordinates p = x + i y of the output node and
  * g = f_x + i f_y of the input node: forward H_f = (H_xx + H_yy + i (H_yx - H_xy)) / 2
  * is the response of p to a forward-rotating force g e^{iwt}; backward
- * H_b = (H_xx + H_yy - i (H_yx - H_xy)) / 2 to a backward-rotating one (000 Eqs.
+ * H_b = (H_xx + H_yy - i (H_yx - H_xy)) / 2 to a backward-rotating one ([Kumar2011] Eqs.
  * 2.5-2.8; Lee's dFRFs). Directions are about +z. r holds the four H of inputs
  * (x, y) and outputs (x, y) of a gd_frf run with inputs {x_in, y_in} and outputs
  * {x_out, y_out}; fwd/bwd get nfreq complex values each (re, im). */

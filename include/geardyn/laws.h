@@ -6,10 +6,10 @@
  *    static transmission error e(angle), valve lift s(cam angle), torque vs angle) or
  *    not (prescribed angle vs time);
  *  - harmonic series: mean + sum_h a_h cos(h nu x) + b_h sin(h nu x);
- *  - backlash mesh force (003_... Eqs. 2-4), contact on the drive and the coast flank;
+ *  - backlash mesh force ([Benini2004] Eqs. 2-4), contact on the drive and the coast flank;
  *  - squeeze film damper forces, short-bearing (Ocvirk) theory, pi and 2pi film, with a
- *    finite-length correction factor (001_..., Barrett, Allaire & Gunter 1980);
- *  - cam inertial torque of a desmodromic valve train (003_... Eq. 10);
+ *    finite-length correction factor ([Chen1998], Barrett, Allaire & Gunter 1980);
+ *  - cam inertial torque of a desmodromic valve train ([Benini2004] Eq. 10);
  *  - applied torque/force laws and prescribed motion laws.
  *
  * Ownership and threads: a gd_table is made by gd_table_new (or gd_table_from_tvms) and
@@ -82,12 +82,12 @@ typedef struct gd_backlash_params {
                                 the total free play is 2 b */
     double k_drive, k_coast; /* contact stiffness on each flank, N/m */
     double c_drive, c_coast; /* damping while in contact, N s/m */
-    double c_free;           /* damping while separated (003: "other dissipative effects") */
+    double c_free; /* damping while separated ([Benini2004]: "other dissipative effects") */
 } gd_backlash_params;
 
 /* Flank from the deformation d (m) along the contact normal. */
 GD_API gd_contact gd_backlash_state(double d, double b);
-/* Mesh force F (N, positive pressing the drive flanks) for a given state, 003 Eqs. 2-4:
+/* Mesh force F (N, positive pressing the drive flanks) for a given state, [Benini2004] Eqs. 2-4:
  *   drive:      F = k_drive (d - b) + c_drive d'
  *   separated:  F = c_free d'
  *   coast:      F = k_coast (d + b) + c_coast d'
@@ -172,7 +172,7 @@ typedef struct gd_lift_law {
 
 /* s, s' = ds/dtheta, s'' at cam angle theta. */
 GD_API double gd_lift_eval(const gd_lift_law *law, double theta, double *ds, double *d2s);
-/* 003_... Eq. 10: torque (N m) the camshaft supplies to one valve train of equivalent
+/* [Benini2004] Eq. 10: torque (N m) the camshaft supplies to one valve train of equivalent
  * mass m_eq (kg) at camshaft angle theta, speed W and acceleration Wdot:
  *   T = m_eq s'(theta - phase) [s''(theta - phase) W^2 + s'(theta - phase) Wdot]
  * It acts on the camshaft against its rotation. */

@@ -1,8 +1,8 @@
 /* Gear mesh stiffness from geometry: involute geometry and contact ratios of spur and
  * helical pairs, and the time-varying mesh stiffness (TVMS) k(angle) by the potential
- * energy method with helical slicing (002_... Sec. 2), ISO 6336-1, the Cai-Hayashi
- * single-pair law (003_... Eq. 5) or a square wave; gear-body compliance in series
- * (003_... Eq. 6). See docs/mesh-stiffness.md.
+ * energy method with helical slicing ([JMSTHelical] Sec. 2), ISO 6336-1, the Cai-Hayashi
+ * single-pair law ([Benini2004] Eq. 5) or a square wave; gear-body compliance in series
+ * ([Benini2004] Eq. 6). See docs/mesh-stiffness.md.
  *
  * Conventions (all SI):
  *  - The driver is gear[0], the driven gear is gear[1].
@@ -74,7 +74,7 @@ typedef struct gd_gear_geometry {
     double root_radius;        /* m; 0 = derive r - (h_f* - x) m_n */
     double bore_radius;        /* m; hub/bore radius (fillet foundation); 0 = 0.5 r_f */
     double E, poisson;         /* Pa, - */
-    /* gear body in series (003_... Eq. 6): either a torsional stiffness or a web */
+    /* gear body in series ([Benini2004] Eq. 6): either a torsional stiffness or a web */
     double body_torsional_stiffness; /* N m/rad; 0 = from the web, or rigid if no web */
     double web_thickness;            /* m; 0 = solid body */
     double web_inner_radius;         /* m; 0 = bore radius */
@@ -152,7 +152,7 @@ typedef struct gd_tvms_options {
     int slices;          /* face-width slices (helical), default 50; spur needs 1;
                             at most GD_TVMS_MAX_SAMPLES points x cycles and
                             GD_TVMS_MAX_SLICE_EVALS points x slices */
-    int body_compliance; /* 1: gear bodies in series (003_... Eq. 6), default 0 */
+    int body_compliance; /* 1: gear bodies in series ([Benini2004] Eq. 6), default 0 */
     int harmonics;       /* Fourier harmonics reported, default 5 */
     double quad_tol;     /* relative tolerance of the energy integrals, default 1e-10 */
     /* loaded tooth contact analysis (gd_ltca_compute; a model's `stiffness:

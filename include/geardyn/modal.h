@@ -1,6 +1,6 @@
 /* Modal analysis: undamped modes (symmetric generalized eigenproblem) and damped,
  * gyroscopic modes at a speed (state space with right and left eigenvectors,
- * bi-orthonormalised as in 004 Eqs. 9-13).
+ * bi-orthonormalised as in [MMT2018] Eqs. 9-13).
  *
  * Ownership and threads: gd_modal_solve and gd_modal_solve_sparse return a result the
  * caller frees with gd_modal_free (modes, shapes, left vectors and energy shares are
@@ -40,7 +40,7 @@ typedef struct gd_modal_options {
     double speed; /* reference speed, rad/s */
     int nmodes;   /* lowest modes kept; 0: all */
     gd_modal_kind kind;
-    int want_left; /* compute bi-orthonormal left eigenvectors (damped) */
+    int want_left;        /* compute bi-orthonormal left eigenvectors (damped) */
     gd_eig_method method; /* default AUTO */
 } gd_modal_options;
 
@@ -75,7 +75,7 @@ GD_API void gd_modal_options_init(gd_modal_options *opt);
 GD_API gd_status gd_modal_solve(const gd_system *sys, const gd_modal_options *opt,
                                 gd_modal_result **out, gd_error *err);
 GD_API void gd_modal_free(gd_modal_result *res);
-/* Directional modes (000_..., complex variable approach): the eigenvalues of the
+/* Directional modes ([Kumar2011], complex variable approach): the eigenvalues of the
  * equation of motion written for p = x + i y and pbar = x - i y at every node, one per
  * physical mode, signed by its whirl: Im lambda > 0 forward, < 0 backward (about each
  * shaft's own sense of rotation). |lambda| and |Im lambda| equal a damped mode of
@@ -97,7 +97,7 @@ GD_API gd_status gd_modal_directional(const gd_system *sys, const gd_modal_optio
                                       gd_directional_result **out, gd_error *err);
 GD_API void gd_directional_free(gd_directional_result *res);
 
-/* Strain energy of mode `mode` of r (solved on sys) per shaft and motion type, 002_...
+/* Strain energy of mode `mode` of r (solved on sys) per shaft and motion type, [JMSTHelical]
  * Tables 4-7: table[s * GD_NMOTIONS + k] (model->nshafts x GD_NMOTIONS, filled by the
  * caller's array) is the fraction of the mode's strain energy in shaft s (its elements,
  * and the bearings, springs and meshes at its nodes, half of one between two shafts)

@@ -177,7 +177,7 @@ typedef struct gd_prescription {
     gd_loc loc;
 } gd_prescription;
 
-/* The valve trains of one camshaft (003 Eq. 10): one lift law, a mass and phase per
+/* The valve trains of one camshaft ([Benini2004] Eq. 10): one lift law, a mass and phase per
  * valve. */
 typedef struct gd_cam {
     char name[GD_NAME_MAX];
@@ -234,7 +234,7 @@ typedef struct gd_model {
     unsigned dof_mask;   /* active node DOFs (GD_DOF_BIT) */
     int reference_shaft; /* shaft whose speed is the reference speed */
     double speed;        /* reference speed, rad/s (0 unless given) */
-    /* Rayleigh damping C += alpha M + beta K (002_...; 0 unless given), K the constant
+    /* Rayleigh damping C += alpha M + beta K ([JMSTHelical]; 0 unless given), K the constant
        stiffness (speed tables of bearings not included) */
     double rayleigh_alpha, rayleigh_beta; /* 1/s, s */
     /* gravitational acceleration, m/s^2, in the model's axes (`gravity:`; zero unless
@@ -253,7 +253,7 @@ GD_API void gd_model_free(gd_model *model);
 
 /* Overrides every mesh's coupling level (as `--coupling` does on the command line). The
  * shafts keep all their DOFs: a lower level only couples fewer DOFs through the meshes
- * (seed 002's lateral-torsional model); gd_model_restrict_dofs removes DOFs. */
+ * ([JMSTHelical]'s lateral-torsional model); gd_model_restrict_dofs removes DOFs. */
 GD_API void gd_model_set_coupling(gd_model *model, gd_coupling level);
 /* Keeps only the active DOFs also in dof_mask (GD_DOF_BIT; `--dofs` on the command
  * line). GD_EINPUT, model unchanged, when none would be left. */

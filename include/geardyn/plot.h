@@ -81,7 +81,7 @@ GD_API void gd_plot_free(gd_plot *p);
 
 /* Modes: the shape of each elastic mode along each shaft (lateral x and y, axial,
  * torsion; gears and bearings drawn on the axis), an animated 3-D view of the whirl (HTML
- * only) and the strain-energy table by motion type and by component (002 Tables 4-7).
+ * only) and the strain-energy table by motion type and by component ([JMSTHelical] Tables 4-7).
  * GD_EINPUT when every mode is a rigid-body mode (nothing to plot). */
 GD_API gd_status gd_plot_modal(const gd_system *sys, const gd_modal_result *r, gd_plot **out,
                                gd_error *err);

@@ -113,7 +113,7 @@ GD_API double gd_system_strain_energy(const gd_system *sys, double speed, const 
  * energy in motion type k (ncomponents x GD_NMOTIONS). Returns the total. */
 GD_API double gd_system_strain_energy_table(const gd_system *sys, double speed, const double *re,
                                             const double *im, double *table);
-/* The shafts component c is grouped with (002_... Tables 4-7: "the gears are included
+/* The shafts component c is grouped with ([JMSTHelical] Tables 4-7: "the gears are included
  * into the shafts"): a shaft is its own; a bearing, spring or mesh belongs to the
  * shafts of its nodes, half to each when they are two. Fills shafts[] and weights[]
  * (summing to 1) and returns how many (1 or 2; 0 for no such component). */

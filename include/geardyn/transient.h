@@ -71,7 +71,7 @@ typedef struct gd_tr_load {
     gd_load_law law;
 } gd_tr_load;
 
-/* One valve train on a camshaft torsional DOF (003_... Eq. 10). The cam angle is the
+/* One valve train on a camshaft torsional DOF ([Benini2004] Eq. 10). The cam angle is the
  * camshaft's rotation in its own sense, theta = s (ratio W t + q), W = s (ratio W + q');
  * the torque acts against the rotation. */
 typedef struct gd_tr_cam {

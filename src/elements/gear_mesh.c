@@ -1,6 +1,6 @@
 /* Gear mesh element: the tooth contact deformation d = a . q along the contact
  * normal, so the mesh adds k a a^T to K and c a a^T to C (DESIGN.md; Kahraman 1994,
- * and the 12-DOF helical element of 002 Eqs. 14-16).
+ * and the 12-DOF helical element of [JMSTHelical] Eqs. 14-16).
  *
  * Geometry (all shafts parallel to z): e_c points from the driver's centre to the
  * driven gear's along the line of centres (angle gamma from +x), e_p = z x e_c. For a
@@ -17,7 +17,7 @@
  * c = damping + per_stiffness x mean k (gd_mesh_linear_damping), no mass. The strain
  * energy k |d|^2 / 2 is shared among motion types in proportion to |d_motion|^2, the
  * part of d from the DOFs of that motion, so the shares are non-negative. The force
- * probe is the dynamic mesh force F = k d + c d' (000 Fig. 3 plots K_m (r_p theta_p +
+ * probe is the dynamic mesh force F = k d + c d' ([Kumar2011] Fig. 3 plots K_m (r_p theta_p +
  * r_g theta_g), the torsional case). */
 #include <math.h>
 #include <string.h>

@@ -3,8 +3,8 @@
  * the relative motion of DOF `dof` of two nodes, or of one node against ground. A is
  * the 6 x 6 matrix with k at (dof, dof) and zeros elsewhere (C likewise with c); the
  * local stiffness is A to ground or [A -A; -A A] between two nodes (connector.c): the
- * shaft springs K_t between motor, gears and load of 000's lumped model, and the shaft
- * and gear-body springs of 003's timing gear train. */
+ * shaft springs K_t between motor, gears and load of [Kumar2011]'s lumped model, and the shaft
+ * and gear-body springs of [Benini2004]'s timing gear train. */
 #include <string.h>
 
 #include "elements/elements_impl.h"

@@ -1,4 +1,4 @@
-/* Backlash mesh force with contact on the drive and the coast flank, 003_... Eqs. 2-4
+/* Backlash mesh force with contact on the drive and the coast flank, [Benini2004] Eqs. 2-4
  * (as cleaned up in DESIGN.md), and mesh damping laws. */
 #include "geardyn/laws.h"
 

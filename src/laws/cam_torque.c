@@ -1,5 +1,5 @@
 /* Valve lift laws and the cam inertial torque of a desmodromic valve train,
- * 003_... Eqs. 7-10: T = m_eq s'(theta) [s''(theta) W^2 + s'(theta) dW/dt]. */
+ * [Benini2004] Eqs. 7-10: T = m_eq s'(theta) [s''(theta) W^2 + s'(theta) dW/dt]. */
 #include "geardyn/laws.h"
 
 double gd_lift_eval(const gd_lift_law *law, double theta, double *ds, double *d2s)

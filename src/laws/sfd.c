@@ -1,5 +1,5 @@
 /* Squeeze film damper forces by short-bearing (Ocvirk) theory, pi (cavitated) and 2pi
- * (uncavitated) film, with a finite-length correction factor (001_..., Barrett, Allaire &
+ * (uncavitated) film, with a finite-length correction factor ([Chen1998], Barrett, Allaire &
  * Gunter 1980). Derivation (docs/transient.md):
  *
  * Journal centre at e (e, phi) from the housing centre, no spin. With theta measured from

@@ -1,4 +1,4 @@
-/* Gear-body (rim/web) torsional compliance in series with the teeth (003_... Eq. 6):
+/* Gear-body (rim/web) torsional compliance in series with the teeth ([Benini2004] Eq. 6):
  * 1/K* = 1/K + 1/K_T1 + 1/K_T2, each body's torsional stiffness K_T (N m/rad) seen at
  * the contact as K_T / (rb cos(beta_b))^2 along the normal line of action. Without a
  * given K_T, a web of thickness t between radii r_i and r_o in in-plane shear gives

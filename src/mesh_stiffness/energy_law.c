@@ -1,8 +1,8 @@
-/* Tooth-pair stiffness per unit face width by the potential energy method (002_...
+/* Tooth-pair stiffness per unit face width by the potential energy method ([JMSTHelical]
  * Eq. 6): Hertz, and for each tooth bending, shear, axial compression and fillet
  * foundation, all in series. A contact at position s on the line of action (from N1)
  * has roll angle s/rb1 on the driver and (N1N2 - s)/rb2 on the driven gear. Helical
- * slices use the transverse profile (002_... Sec. 2.2). */
+ * slices use the transverse profile ([JMSTHelical] Sec. 2.2). */
 #include <math.h>
 
 #include "mesh_stiffness/mesh_stiffness_impl.h"

@@ -1,5 +1,5 @@
 /* Fillet-foundation compliance of a tooth on a ring-shaped body (Sainsot, Velex &
- * Duverger, J. Mech. Des. 126, 2004; 002_... Eq. 10), per unit face width:
+ * Duverger, J. Mech. Des. 126, 2004; [JMSTHelical] Eq. 10), per unit face width:
  *   1/k_f = cos^2(a1)/E { L*(u_f/S_f)^2 + M*(u_f/S_f) + P*(1 + Q* tan^2 a1) }
  * with u_f the distance from the root circle to where the load line crosses the tooth
  * centre line (rb/cos a1 - rf), S_f = 2 rf theta_f the root thickness, and

@@ -1,7 +1,7 @@
 /* Involute geometry of a spur or helical pair: transverse quantities, working pressure
  * angle, tip/root radii, path of contact and contact ratios, with the checks that make
  * a pair physical (undercut, pointed tip, interference, clearance, contact ratio).
- * Contact ratio definitions as in 002_... Table 1: eps_alpha = g_alpha / p_bt and
+ * Contact ratio definitions as in [JMSTHelical] Table 1: eps_alpha = g_alpha / p_bt and
  * eps_beta = b sin(beta) / (pi m_n), with normal module and normal pressure angle. */
 #include <math.h>
 #include <stdio.h>

@@ -1,5 +1,5 @@
 /* Hertzian contact compliance of a tooth pair, per unit face width: Yang & Lin 1987,
- * k_h = pi E L / (4 (1 - nu^2)) for equal materials (002_... Eq. 11), and in general
+ * k_h = pi E L / (4 (1 - nu^2)) for equal materials ([JMSTHelical] Eq. 11), and in general
  * 1/k_h = 2/(pi L) [(1 - nu1^2)/E1 + (1 - nu2^2)/E2], load independent. */
 #include "mesh_stiffness/mesh_stiffness_impl.h"
 

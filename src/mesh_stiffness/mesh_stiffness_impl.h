@@ -56,7 +56,7 @@ void gd_ms_cheb_free(gd_ms_cheb *c);
  * N/m per m) as a function of the contact position s on the line of action ---- */
 typedef double (*gd_ms_law_fn)(double s, const void *ctx);
 
-/* ---- slicing.c: pairs and slices in contact (002_... Sec. 2.1, Eq. 1) ---- */
+/* ---- slicing.c: pairs and slices in contact ([JMSTHelical] Sec. 2.1, Eq. 1) ---- */
 typedef struct gd_ms_slicing {
     const gd_gear_pair_derived *d;
     double face_width;
@@ -107,7 +107,7 @@ typedef struct gd_ms_iso {
 } gd_ms_iso;
 void gd_ms_iso6336(const gd_gear_pair_geometry *g, const gd_gear_pair_derived *d, gd_ms_iso *iso);
 
-/* ---- single_pair_law.c: Cai & Hayashi 1994 (003_... Eq. 5) ---- */
+/* ---- single_pair_law.c: Cai & Hayashi 1994 ([Benini2004] Eq. 5) ---- */
 typedef struct gd_ms_cai_law {
     double s_A, g_alpha; /* contact arc */
     double k_single;     /* k_m per unit width: ISO c' */
@@ -164,7 +164,7 @@ gd_status gd_ms_mods_check(const gd_gear_pair_geometry *g, const gd_gear_pair_de
 gd_status gd_ms_loaded_tvms(const gd_gear_pair_geometry *g, const gd_tvms_options *opt,
                             gd_tvms_result **tvms, double **ste, gd_error *err);
 
-/* ---- body_compliance.c: 003_... Eq. 6 ---- */
+/* ---- body_compliance.c: [Benini2004] Eq. 6 ---- */
 /* Torsional stiffness of gear body i (N m/rad), or 0 when rigid. */
 double gd_ms_body_torsional_stiffness(const gd_gear_pair_geometry *g, const gd_gear_pair_derived *d,
                                       int i);

@@ -1,5 +1,5 @@
 /* Which tooth pairs and face-width slices are in contact at a driver angle, and their
- * summed stiffness (002_... Sec. 2.1 and Eq. 1: K = sum k_i, Lsf_i = k_i / K).
+ * summed stiffness ([JMSTHelical] Sec. 2.1 and Eq. 1: K = sum k_i, Lsf_i = k_i / K).
  *
  * Pair m touches, on the front face, at s_m = s_A + (theta/T + m) p_bt along the
  * transverse line of action (T = 2 pi / z1, p_bt the transverse base pitch); at axial

@@ -1,5 +1,5 @@
 /* Bending, shear and axial compressive compliance of one involute tooth, modelled as a
- * non-uniform cantilever clamped at the root circle (002_... Eqs. 7-9; Yang & Lin 1987
+ * non-uniform cantilever clamped at the root circle ([JMSTHelical] Eqs. 7-9; Yang & Lin 1987
  * for bending and axial energy, Tian 2004 for shear; Chen & Shao 2011 for the straight
  * part between base and root circle when the root circle is the smaller).
  *

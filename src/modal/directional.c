@@ -1,4 +1,4 @@
-/* Directional modes (000_..., complex variable approach, Eqs. 2.5-2.8): the lateral
+/* Directional modes ([Kumar2011], complex variable approach, Eqs. 2.5-2.8): the lateral
  * DOFs of each node become the complex coordinates p = x + i y and its conjugate
  * pbar = x - i y (forward and backward whirl components), the equation of motion is
  * written for them, M_c c'' + D_c c' + K_c c = 0 with q = T c and X_c = T^H X T, and

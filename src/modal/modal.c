@@ -1,5 +1,5 @@
 /* Modal analysis on dense matrices (LAPACK). Massless DOFs are condensed statically
- * (Guyan) when they carry no damping; the state-space form follows 004 Eqs. 5-13 but is
+ * (Guyan) when they carry no damping; the state-space form follows [MMT2018] Eqs. 5-13 but is
  * solved as the standard problem of the mass-normalised companion matrix, whose left
  * eigenvectors give the physical left eigenvectors directly. */
 #include <complex.h>

@@ -30,7 +30,7 @@ static gd_whirl mode_whirl(const gd_system *sys, const double *re, const double 
         if (ix < 0 || iy < 0) continue;
         double complex X = re[ix] + I * im[ix], Y = re[iy] + I * im[iy];
         /* x + i y = (X + iY)/2 e^{iwt} + conj(X - iY)/2 e^{-iwt}: forward and backward
-         * circular components (000 Eqs. 2.5-2.8) */
+         * circular components ([Kumar2011] Eqs. 2.5-2.8) */
         double rf = cabs(X + I * Y), rb = cabs(X - I * Y);
         if (rf + rb < 1e-3 * maxr) continue;
         if (m->shafts[m->nodes[node].shaft].speed_ratio < 0) {

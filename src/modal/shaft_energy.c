@@ -1,4 +1,4 @@
-/* Modal strain energy per shaft and motion type (002_... Tables 4-7): each component's
+/* Modal strain energy per shaft and motion type ([JMSTHelical] Tables 4-7): each component's
  * energy split by motion type, grouped with its shaft (gd_system_component_shafts: a
  * bearing, spring or mesh between two shafts half to each), as fractions of the mode's
  * total. */

@@ -1,6 +1,6 @@
 /* Damped and gyroscopic modes: (lambda^2 M + lambda D + K) u = 0 with left vectors
  * v^T (lambda^2 M + lambda D + K) = 0, normalised so v^T (2 lambda M + D) u = 1, which
- * is 004's bi-orthonormality phi^T A psi = 1 (Eqs. 9-13) written for u and v.
+ * is [MMT2018]'s bi-orthonormality phi^T A psi = 1 (Eqs. 9-13) written for u and v.
  *
  * With M = L L^T, p = L^T u and the companion matrix
  *     A = [0, I; -L^-1 K L^-T, -L^-1 D L^-T]

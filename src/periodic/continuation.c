@@ -39,7 +39,7 @@ int gd_per_run_branch(ctx *c, const double *vals, int nv)
     if (c->opt->method == GD_PER_SEQUENTIAL) {
         /* each speed from the secant through the last two solutions (the plain last
          * solution if the secant start fails): on a smooth curve its error is second
-         * order in the step (the seed-002 curve: starting residual 4.5e-3 -> 1e-3, Newton
+         * order in the step (the [JMSTHelical] curve: starting residual 4.5e-3 -> 1e-3, Newton
          * iterations 601 -> 584 over 300 speeds) */
         double *Xp = NULL, lamx = lam, lamp = lam;
         for (int i = i0 + 1; i < nv; i++) {

@@ -94,7 +94,7 @@ int gd_per_newton(ctx *c, double *X, double *lam, const double *tan, const doubl
         h->stage_id = s->id;
         /* chord step (fixed value only): after a step that cut |R| 100-fold the iterate
          * is close and the Jacobian barely changes, so its factorization is kept (the TVMS
-         * pairs of seed 002: 3e-3 -> 2e-6 -> 3e-10 -> 3e-14 on one factorization, where a
+         * pairs of [JMSTHelical]: 3e-3 -> 2e-6 -> 3e-10 -> 3e-14 on one factorization, where a
          * fresh one costs the dense LU again); a step that contracts less is followed by
          * a fresh Jacobian */
         if (!(chord && !tan) &&

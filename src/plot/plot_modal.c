@@ -1,5 +1,5 @@
 /* The figure of a modal analysis: mode shapes along each shaft, the 3-D whirl view and
- * the strain-energy table (002 Tables 4-7: shares by motion type and by component). */
+ * the strain-energy table ([JMSTHelical] Tables 4-7: shares by motion type and by component). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>

@@ -2,7 +2,7 @@
  * stiffness Z(w) = K - w^2 M + i w D is factored once (KLU, symbolic analysis shared)
  * and solved only for the requested inputs; frequencies run in parallel, each writing
  * its own slots. Modal: H(w) = sum_j u_j v_j^T / (i w - lambda_j) over the modes and
- * their conjugates with v^T (2 lambda M + D) u = 1 (004 Eqs. 14-15), plus, for
+ * their conjugates with v^T (2 lambda M + D) u = 1 ([MMT2018] Eqs. 14-15), plus, for
  * rigid-body modes r (K r = D r = 0), the exact term -r r^T / (w^2 r^T M r). */
 #include <complex.h>
 #include <math.h>

@@ -8,7 +8,7 @@
  *   rotary inertia part gives nothing: a translation does not rotate the sections), and
  *   the weight m g of every disk at its node.
  * Unbalances and cam torques have zero mean over a revolution (a rotating force; the
- * cam torque m s' s'' W^2 = d/dtheta (m s'^2 W^2 / 2) of 003 Eq. 10 is a derivative of a
+ * cam torque m s' s'' W^2 = d/dtheta (m s'^2 W^2 / 2) of [Benini2004] Eq. 10 is a derivative of a
  * periodic function), so they add nothing. */
 #include <math.h>
 #include <string.h>

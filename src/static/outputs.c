@@ -3,7 +3,7 @@
  * is -K_local u_local), and per mesh its force and misalignment.
  *
  * Mesh force: the mesh deflection d = a . q along the contact normal gives F = k d; the
- * force on the gears is -F a (a of src/elements/gear_mesh.c, helical 002 Eqs. 14-16),
+ * force on the gears is -F a (a of src/elements/gear_mesh.c, helical [JMSTHelical] Eqs. 14-16),
  * its components F cos(bb) cos(alpha_wt) (tangential), F cos(bb) sin(alpha_wt) (radial)
  * and F sin(bb) (axial).
  *

@@ -1,4 +1,4 @@
-/* Modal strain energy 1/2 Re(u^H K u) by element, split into motion types (002 Tables
+/* Modal strain energy 1/2 Re(u^H K u) by element, split into motion types ([JMSTHelical] Tables
  * 4-7 name each mode by its dominant shaft and motion) and summed per component. Each
  * element kind says how its energy splits (geardyn/elements.h); this file only loops
  * over the elements. */

@@ -37,7 +37,7 @@ static void scatter(assembler *as, gd_trip *t, const double *local, int n, const
     }
 }
 
-/* Rayleigh damping (002_...): C += alpha M + beta K on the assembled terms. 0 ok, 1 out
+/* Rayleigh damping ([JMSTHelical]): C += alpha M + beta K on the assembled terms. 0 ok, 1 out
  * of memory. */
 static int rayleigh(assembler *as)
 {

@@ -435,7 +435,7 @@ TEST(modal_coupling_torsional_matches_torsional_model)
     scratch_close(&s);
 }
 
-/* --coupling sets the meshes' level only (seed 002: the shafts keep every DOF, the
+/* --coupling sets the meshes' level only ([JMSTHelical]: the shafts keep every DOF, the
  * mesh couples fewer); before, lateral-torsional also dropped z of every node. It
  * gives what the same level written in the file gives. --dofs removes DOFs. */
 TEST(coupling_keeps_the_dofs_and_dofs_removes_them)

@@ -1,4 +1,4 @@
-/* examples/helical_two_stage.yaml (seed 002, two stages, three shafts, TVMS from geometry
+/* examples/helical_two_stage.yaml ([JMSTHelical], two stages, three shafts, TVMS from geometry
  * on both meshes, full coupling): `check` and `modal` run on the 378-DOF model; at helix
  * angle 0 (set on both meshes) the full and the lateral-torsional couplings give the
  * same modes; at 15 deg (the helix-angle variant reached with --set) they differ and

@@ -146,7 +146,7 @@ TEST(methods_points_cycles_slices)
     REQUIRE(o);
     CHECK(num(o, "slices") == 7);
     cJSON_Delete(o);
-    /* 004 rig, default energy method: Fig. 8 values within 15% */
+    /* [MMT2018] rig, default energy method: Fig. 8 values within 15% */
     REQUIRE(run("examples/rig2018_pair.yaml --json") == 0);
     o = cJSON_Parse(out_text);
     REQUIRE(o);

@@ -296,7 +296,7 @@ TEST(undefined_period_point)
     scratch_close(&s);
 }
 
-/* Seed 002's two-stage helical system (378 DOFs, TVMS from geometry on both meshes,
+/* [JMSTHelical]'s two-stage helical system (378 DOFs, TVMS from geometry on both meshes,
  * H = 36: mesh 1 is harmonic 36 of the common period) at helix angle 0: the full and the
  * lateral-torsional coupling give the same response (to 1e-9: the axial and swing
  * couplings vanish at 0 deg), and the mean mesh forces carry the 50 N m load
@@ -335,7 +335,7 @@ TEST(helical_couplings_identical_at_zero_helix)
     scratch_close(&s);
 }
 
-/* Seed 002, Figs. 11-13 (docs/periodic.md, "Seed 002: Figs. 11-13"): at helix angle 0
+/* [JMSTHelical], Figs. 11-13 (docs/periodic.md, "[JMSTHelical]: Figs. 11-13"): at helix angle 0
  * the torsional mode of 481.2 Hz (input held at B11 as `prescribed: nominal` holds it;
  * `geardyn modal ... --set bearings.B11.k_torsion=1e12`, damping ratio 0.001) meets the
  * mesh-2 frequency 22 (52/72) n / 60 at n = 1817.0 rpm: on a 5 rpm grid the peak-to-peak

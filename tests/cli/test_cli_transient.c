@@ -251,7 +251,7 @@ TEST(outputs_and_spectrum_files)
 
 /* ---- the Chen gear pair with its squeeze film damper ---- */
 
-/* 001 Figs. 10-11: near the torsion-dominated coupled mode, with e_u/C = 1/2
+/* [Chen1998] Figs. 10-11: near the torsion-dominated coupled mode, with e_u/C = 1/2
  * (--unbalance-scale 3: 3 x 12.7 um = C/2), the vertical response of gear a has content
  * below 1x. The OCR-read parameters put that mode at 5643 rad/s instead of the paper's
  * 5488, so the paper's 5425 and 5435 rad/s correspond to 5578 and 5589 rad/s here (same

@@ -130,7 +130,7 @@ TEST(torsional_level_is_k_rb_rb)
     }
 }
 
-/* Kumar 2011 (000) Eq. 3.1: with the line of action along y the mesh deformation is
+/* Kumar 2011 ([Kumar2011]) Eq. 3.1: with the line of action along y the mesh deformation is
  * y_p - y_g + r_p th_p + r_g th_g. */
 TEST(kumar_mesh_vector)
 {

@@ -90,7 +90,7 @@ static void sfd_quadrature(const gd_sfd_params *P, double x, double y, double vx
 
 static gd_sfd_params chen_sfd(gd_sfd_film film)
 {
-    /* 001_... Appendix II (DESIGN.md): mu 6.895e-3 Pa s, D 35.56 mm, L 17.145 mm, C 76.2 um */
+    /* [Chen1998] Appendix II (DESIGN.md): mu 6.895e-3 Pa s, D 35.56 mm, L 17.145 mm, C 76.2 um */
     gd_sfd_params p = {.viscosity = 6.895e-3,
                        .radius = 0.5 * 35.56e-3,
                        .length = 17.145e-3,

@@ -12,7 +12,7 @@
 
 static const double DEG = 3.14159265358979323846 / 180.0;
 
-/* 004_... rig pair: 48/32, module 2 mm, b = 20 mm, E = 2.0e11, bores 12.7 mm. */
+/* [MMT2018] rig pair: 48/32, module 2 mm, b = 20 mm, E = 2.0e11, bores 12.7 mm. */
 static void spur_pair(gd_gear_pair_geometry *g)
 {
     gd_gear_pair_geometry_init(g);
@@ -23,7 +23,7 @@ static void spur_pair(gd_gear_pair_geometry *g)
         g->gear[i].E = 2.0e11, g->gear[i].bore_radius = 12.7e-3;
 }
 
-/* 002_... pair 1 at 20 deg: 52/72, normal module 1.75 mm, b = 20 mm. */
+/* [JMSTHelical] pair 1 at 20 deg: 52/72, normal module 1.75 mm, b = 20 mm. */
 static void helical_pair(gd_gear_pair_geometry *g)
 {
     gd_gear_pair_geometry_init(g);

@@ -1,5 +1,5 @@
-/* Gear mesh stiffness from geometry: paper values (002_... Table 1 and Sec. 5.1,
- * 004_... Sec. 5.1), properties of k(angle), quadrature convergence, and bad input. */
+/* Gear mesh stiffness from geometry: paper values ([JMSTHelical] Table 1 and Sec. 5.1,
+ * [MMT2018] Sec. 5.1), properties of k(angle), quadrature convergence, and bad input. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -12,7 +12,7 @@
 
 static const double DEG = GD_MS_PI / 180.0;
 
-/* 002_... pairs: module 1.75 mm (52/72) or 2.5 mm (22/79), b = 20 mm, steel 2.06e11. */
+/* [JMSTHelical] pairs: module 1.75 mm (52/72) or 2.5 mm (22/79), b = 20 mm, steel 2.06e11. */
 static void pair_002(gd_gear_pair_geometry *g, int which, double beta_deg)
 {
     gd_gear_pair_geometry_init(g);
@@ -27,7 +27,7 @@ static void pair_002(gd_gear_pair_geometry *g, int which, double beta_deg)
     }
 }
 
-/* 004_... rig: 48/32, module 2 mm, b = 20 mm, E = 2.0e11, bores on 25.4 mm shafts. */
+/* [MMT2018] rig: 48/32, module 2 mm, b = 20 mm, E = 2.0e11, bores on 25.4 mm shafts. */
 static void pair_004(gd_gear_pair_geometry *g)
 {
     gd_gear_pair_geometry_init(g);
@@ -53,7 +53,7 @@ static gd_tvms_result *run(const gd_gear_pair_geometry *g, const gd_tvms_options
 
 TEST(table1_contact_ratios_002)
 {
-    /* 002_... Table 1, all printed values (rows 5 and 15 lost their labels in OCR) */
+    /* [JMSTHelical] Table 1, all printed values (rows 5 and 15 lost their labels in OCR) */
     static const double beta[5] = {0, 5, 10, 15, 20};
     static const double ea[2][5] = {{1.7865, 1.7763, 1.7459, 1.6957, 1.6268},
                                     {1.7024, 1.6932, 1.6658, 1.6205, 1.5580}};
@@ -103,7 +103,7 @@ TEST(derived_geometry_standard_spur)
 
 TEST(mean_stiffness_002_sec51)
 {
-    /* 002_... Sec. 5.1: averaged TVMS at 20 deg: 3.13e8 (pair 1), 3.69e8 N/m (pair 2) */
+    /* [JMSTHelical] Sec. 5.1: averaged TVMS at 20 deg: 3.13e8 (pair 1), 3.69e8 N/m (pair 2) */
     gd_tvms_options o;
     gd_tvms_options_init(&o);
     gd_gear_pair_geometry g;
@@ -147,7 +147,7 @@ TEST(fluctuation_trend_002_fig4)
 
 TEST(rig_004_fig8)
 {
-    /* 004_... Sec. 5.1 / Table 3: max 3.9e8, mean 3.3e8, min 1.9e8 N/m (15%) */
+    /* [MMT2018] Sec. 5.1 / Table 3: max 3.9e8, mean 3.3e8, min 1.9e8 N/m (15%) */
     gd_gear_pair_geometry g;
     pair_004(&g);
     gd_tvms_options o;
@@ -400,7 +400,7 @@ TEST(quadrature_converges)
 
 /* Bending and axial energy of the involute tooth integrated in Cartesian form, with
  * the profile from the polar involute r -> (r sin th, r cos th), th = a2 - inv(acos(rb/r)):
- * an independent check of the angle parametrisation of 002_... Eqs. 7 and 9. */
+ * an independent check of the angle parametrisation of [JMSTHelical] Eqs. 7 and 9. */
 TEST(tooth_energy_matches_cartesian_integral)
 {
     gd_gear_pair_geometry g;

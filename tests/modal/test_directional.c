@@ -1,4 +1,4 @@
-/* Directional modes (issue 14, 000_... complex variable approach): the eigenvalues of
+/* Directional modes (issue 14, [Kumar2011] complex variable approach): the eigenvalues of
  * the equation written for r = x + i y and its conjugate, one per mode, Im > 0 forward
  * and Im < 0 backward. They are computed from the complex-coordinate matrices by their
  * own (complex) eigensolver, so pairing them with the real-coordinate damped modes

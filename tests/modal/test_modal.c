@@ -53,7 +53,7 @@ static double shape(const fixture *f, int mode, const char *node, gd_dof d, doub
     return f->r->shape_re[i + (size_t)mode * f->s->ndof];
 }
 
-/* ---- 000: Kumar & Rao 2011 ---- */
+/* ---- [Kumar2011]: Kumar & Rao 2011 ---- */
 
 /* Tables 3.1 and 3.2: frequencies within 1% (the paper's rounded parameters give its
  * values to about 0.7%, DESIGN.md); the gear-ratio entry 0.9468 of the rigid and the two
@@ -115,7 +115,7 @@ TEST(kumar_coupled_table_3_2)
     fx_free(&f);
 }
 
-/* ---- 001: Chen, Natsiavas & Nelson 1998, Fig. 3 ---- */
+/* ---- [Chen1998]: Chen, Natsiavas & Nelson 1998, Fig. 3 ---- */
 
 static const double CHEN_FIG3[6] = {669, 808, 1097, 1695, 1841, 5488};
 
@@ -164,7 +164,7 @@ TEST(chen_pure_lateral_modes_independent_of_mesh_stiffness)
     CHECK(w[2][5] > 3 * w[1][5]);
 }
 
-/* ---- 004: the 2018 test rig, Tables 4 and 5 ---- */
+/* ---- [MMT2018]: the 2018 test rig, Tables 4 and 5 ---- */
 
 static const double RIG_COUPLED[8] = {126.45, 135.88, 153.81, 161.82, 740.3, 740.3, 770.66, 770.66};
 static const double RIG_UNCOUPLED[8] = {135.88, 135.88, 161.82, 161.82,
@@ -230,7 +230,7 @@ TEST(rig2018_tables_4_and_5)
 }
 
 /* Refining the mesh converges monotonically from above (a conforming model is
- * stiffer than the continuum) with shrinking increments (004 Fig. 7). */
+ * stiffer than the continuum) with shrinking increments ([MMT2018] Fig. 7). */
 TEST(rig2018_converges_with_element_count)
 {
     const int counts[4] = {1, 2, 4, 8};
@@ -249,7 +249,7 @@ TEST(rig2018_converges_with_element_count)
 
 /* ---- solver invariants ---- */
 
-/* 004 Eq. 13: v_i^T ((lambda_i + lambda_r) M + D) u_r = delta_ir, i.e. phi^T A psi = I,
+/* [MMT2018] Eq. 13: v_i^T ((lambda_i + lambda_r) M + D) u_r = delta_ir, i.e. phi^T A psi = I,
  * over the computed modes, including conjugate pairs formed from them. */
 TEST(left_right_vectors_are_bi_orthonormal)
 {
@@ -291,7 +291,7 @@ TEST(left_right_vectors_are_bi_orthonormal)
     fx_free(&f);
 }
 
-/* Modal summation over all modes and their conjugates (004 Eq. 15) equals the direct
+/* Modal summation over all modes and their conjugates ([MMT2018] Eq. 15) equals the direct
  * inverse of the dynamic stiffness: the strongest check of the left vectors. */
 TEST(modal_summation_equals_direct_receptance)
 {

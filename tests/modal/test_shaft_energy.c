@@ -1,4 +1,4 @@
-/* Strain energy per shaft and motion type (issue 14, 002_... Tables 4 and 7): each
+/* Strain energy per shaft and motion type (issue 14, [JMSTHelical] Tables 4 and 7): each
  * bearing goes with the shaft of its node, a mesh half to each of its two shafts;
  * checked against energies computed by hand from the mode shapes, and on the CLI
  * (`geardyn modal --group shaft`). */

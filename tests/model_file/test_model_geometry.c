@@ -41,7 +41,7 @@ TEST(mesh_sizes_and_stiffness_from_geometry)
     CHECK_REL(g->pressure_angle, 20 * M_PI / 180, 1e-12);
     REQUIRE(g->tvms != NULL);
     CHECK_REL(g->stiffness, g->tvms->mean, 1e-15);
-    /* 004 Sec. 5.1: mean about 3.3e8 N/m (within 15%) */
+    /* [MMT2018] Sec. 5.1: mean about 3.3e8 N/m (within 15%) */
     CHECK_REL(g->stiffness, 3.3e8, 0.15);
     CHECK_REL(g->tvms->mesh_period_rad, 2 * M_PI / 48, 1e-14);
     /* the gear ratio drives the shaft speeds */

@@ -748,7 +748,7 @@ TEST(backlash_folds_traced_through_unstable_branch)
     fx_free(&f);
 }
 
-/* The Chen SFD pair with the unbalance read as e_u/C = 1/2 (3 x the example's; seed 001
+/* The Chen SFD pair with the unbalance read as e_u/C = 1/2 (3 x the example's; [Chen1998]
  * Figs. 9-11): transient sweeps (docs/transient.md, poincare helper) find period-1 up
  * to 5582 rad/s, a Neimark-Sacker bifurcation at 5583 rad/s with the complex pair at
  * 44.5 deg (the 0.876x line), quasi-periodic motion to 5740 and period-1 again from 5760

@@ -329,7 +329,7 @@ TEST(mesh_stiffness_plot_matches_json)
               cJSON_GetArraySize(cJSON_GetObjectItem(j, "harmonics")));
     }
     plot_end(&pr);
-    /* a helical pair of total contact ratio 2.6 (Table 1 of 002): 2 and 3 pairs in
+    /* a helical pair of total contact ratio 2.6 (Table 1 of [JMSTHelical]): 2 and 3 pairs in
      * contact, shaded as such, none as 1 pair; the y axis around the ripple */
     plot_start(
         gd_ts_, &pr, &d,

@@ -1,6 +1,6 @@
-/* Frequency response: direct against modal summation (rig2018, 004 Eqs. 14-15),
+/* Frequency response: direct against modal summation (rig2018, [MMT2018] Eqs. 14-15),
  * driving-point peaks at the modal frequencies, Kumar 2011's mesh force to a motor
- * torque (000 Fig. 3: torsion-only one tooth-mesh peak, coupled the lateral-torsional
+ * torque ([Kumar2011] Fig. 3: torsion-only one tooth-mesh peak, coupled the lateral-torsional
  * split), directional FRFs of a gyroscopic rotor, threads, errors. */
 #include <complex.h>
 #include <stdlib.h>
@@ -44,7 +44,7 @@ static int sharp_peaks(const gd_frf_result *r, int out, double *pk, int max)
     return n;
 }
 
-/* 004 Eqs. 14-15: the modal sum over left/right eigenvectors (all modes, the rigid
+/* [MMT2018] Eqs. 14-15: the modal sum over left/right eigenvectors (all modes, the rigid
  * torsional mode added exactly) equals the direct solve to 1e-6 away from resonance,
  * for displacement, torsion (which the rigid mode dominates), mesh and bearing forces. */
 TEST(rig_direct_equals_modal)
@@ -163,7 +163,7 @@ TEST(rig_driving_point_peaks_at_modes)
     fx_free(&f);
 }
 
-/* 000 Fig. 3: mesh force per 1 N m of motor torque, 0-26000 rad/s. Torsion only: peaks
+/* [Kumar2011] Fig. 3: mesh force per 1 N m of motor torque, 0-26000 rad/s. Torsion only: peaks
  * at the two low modes and one tooth-mesh peak (25543 rad/s); coupled: the low modes and
  * 23288 in that band, and over 0-60000 the split into three coupled modes (23288,
  * 40462, 57295) while the pure x modes (38660, 54673) give no peak. */

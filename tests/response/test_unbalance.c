@@ -71,7 +71,7 @@ TEST(jeffcott_closed_form)
     fx_free(&f);
 }
 
-/* 001 Fig. 5: an unbalance on gear a excites every mode except the pure lateral mode of
+/* [Chen1998] Fig. 5: an unbalance on gear a excites every mode except the pure lateral mode of
  * gear b (its motion across the line of action, which nothing couples). Gear b's
  * motion across the line of action is zero at every speed, the response along it is
  * not, and the overall response peaks at the five other modes but not at 1674 rad/s. */

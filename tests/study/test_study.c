@@ -310,7 +310,7 @@ TEST(every_analysis_gives_the_papers_numbers)
         CHECK_REL(v[1], 1.74443e-4, 1e-5);
         CHECK(v[2] > 0);
     }
-    /* Mesh stiffness of 002's pair 1 at 20 deg: the contact ratios of Table 1 */
+    /* Mesh stiffness of [JMSTHelical]'s pair 1 at 20 deg: the contact ratios of Table 1 */
     if (!run_one(gd_ts_,
                  "model: ../helical_pair1.yaml\nanalysis: {type: mesh-stiffness, points: 60, "
                  "slices: 20}\nparameters:\n  - {path: meshes.pair1.geometry.helix_angle, unit: "

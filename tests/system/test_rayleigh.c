@@ -1,4 +1,4 @@
-/* Rayleigh damping (issue 14, 002_... "Rayleigh-type damping"): `damping: {rayleigh:
+/* Rayleigh damping (issue 14, [JMSTHelical] "Rayleigh-type damping"): `damping: {rayleigh:
  * {alpha, beta}}` adds C = alpha M + beta K, and `{ratios: [z1, z2], frequencies: [w1,
  * w2]}` chooses alpha and beta so that the modes at w1 and w2 have the damping ratios
  * z1 and z2 (z = alpha / (2 w) + beta w / 2). */

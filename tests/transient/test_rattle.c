@@ -168,7 +168,7 @@ TEST(chen_torus_is_quasi_periodic)
     unload(&f);
 }
 
-/* The Ducati section (poincare.csv of the seed-003 worked example, docs/transient.md). */
+/* The Ducati section (poincare.csv of the [Benini2004] worked example, docs/transient.md). */
 TEST(ducati_section_is_irregular)
 {
     FILE *fp = fopen("tests/transient/ducati_section.csv", "r");
