@@ -7,9 +7,13 @@ cd "$(dirname "$0")/../.."
 lib=$1
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-# (a sanitizer build adds its own __odr_asan.* / __asan_* symbols: not ours)
-nm -D --defined-only "$lib" | awk '{print $3}' | grep -v '^__odr_asan\.\|^__asan\|^__ubsan' |
-    sort -u > "$tmp/exported"
+# Not ours, made by the toolchain: a sanitizer build's __odr_asan.* / __asan_* symbols,
+# the fuzzer coverage sections' __start_/__stop___sancov_*, and clang's OpenMP critical
+# lock (.gomp_critical_user_*) and ifunc resolvers of multiversioned static kernels
+# (NAME.resolver: the kernels themselves stay hidden)
+nm -D --defined-only "$lib" | awk '{print $3}' |
+    grep -v '^__odr_asan\.\|^__asan\|^__ubsan\|^__start___sancov\|^__stop___sancov' |
+    grep -v '^\.gomp_critical_user_\|\.resolver$' | sort -u > "$tmp/exported"
 # declarations may continue on the next lines (a list of objects): join each GD_API
 # declaration up to its ';'
 awk '/^GD_API/ {d = ""; on = 1} on {d = d " " $0} on && /;/ {print d; on = 0}' \
