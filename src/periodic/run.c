@@ -169,7 +169,8 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
             if (nt < 0) {
                 gd_periodic_result_free(res);
                 return gd_error_set(err, GD_EINPUT, "", 0, 0, "cam_torques",
-                                    "set include_acceleration: false",
+                                    "solve by shooting (--method shooting, or auto), which "
+                                    "integrates them, or set include_acceleration: false",
                                     "cam torques with include_acceleration are not supported by "
                                     "harmonic balance");
             }
