@@ -322,10 +322,13 @@ void gd_transient_result_free(gd_transient_result *r);
 
 /* ---- periodic (harmonic balance) ---- */
 typedef enum { GD_PER_ARCLENGTH, GD_PER_SEQUENTIAL, ... } gd_per_method;
+typedef enum { GD_PER_HB = 0, GD_PER_SHOOTING = 1, GD_PER_AUTO = 2 } gd_per_kind;
+const char *gd_per_kind_name(gd_per_kind k);
 typedef struct { int harmonics; int adaptive; double harmonic_tol; int max_harmonics;
                  int subharmonic; int samples; double tol; int max_iter; int stability;
                  int monodromy_steps; gd_per_method method; int both_directions;
-                 int max_steps; int solver; ...; } gd_periodic_options;
+                 int max_steps; int solver; gd_per_kind kind; double shoot_rtol;
+                 double shoot_budget; ...; } gd_periodic_options;
 typedef struct { double mean, rms, peak_to_peak; double *amplitude, *phase_deg;
                  ...; } gd_per_record_stats;
 typedef struct { double speed; double parameter; int direction; int converged;
@@ -339,7 +342,7 @@ typedef struct { gd_bifurcation_type type; double speed, parameter; int directio
                  double mu_re, mu_im; ...; } gd_bifurcation;
 typedef struct { int npoints; gd_periodic_point *points; int nbifurcations;
                  gd_bifurcation *bifurcations; int nrecords; int steps; double cpu_seconds;
-                 ...; } gd_periodic_result;
+                 gd_per_kind method; char method_note[...]; ...; } gd_periodic_result;
 typedef struct gd_periodic_param gd_periodic_param;
 void gd_periodic_options_init(gd_periodic_options *opt);
 const char *gd_bifurcation_name(gd_bifurcation_type t);

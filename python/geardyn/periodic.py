@@ -12,11 +12,13 @@ from .laws import with_laws
 __all__ = ["periodic", "PeriodicResult"]
 
 _METHODS = {"arclength": lib.GD_PER_ARCLENGTH, "sequential": lib.GD_PER_SEQUENTIAL}
+_SOLVERS = {"hb": lib.GD_PER_HB, "harmonic_balance": lib.GD_PER_HB,
+            "shooting": lib.GD_PER_SHOOTING, "auto": lib.GD_PER_AUTO}
 
 
 def periodic(system, speeds, harmonics=10, subharmonic=1, records=None,
              method="arclength", both_directions=False, stability=True, tol=1e-10,
-             samples=0, laws=None):
+             samples=0, laws=None, solver="hb", shoot_budget=None):
     """Periodic steady state over the reference speeds `speeds` (rad/s array or
     "FROM:TO:COUNT" with units), as `geardyn periodic`: harmonics H (or "auto": raised
     from 10 until the top quarter carries < 1e-6 of the response), subharmonic N,
@@ -26,12 +28,23 @@ def periodic(system, speeds, harmonics=10, subharmonic=1, records=None,
     loop) or "sequential" (a run-up), both_directions (also the run back), stability
     (Floquet multipliers and bifurcations), tol (Newton's relative residual), samples
     (AFT samples per period; 0: automatic). laws: geardyn.Law objects (laws of your own
-    in Python) added to the model's."""
+    in Python) added to the model's. solver: "hb" (harmonic balance, default), "shooting"
+    (Newton on the period map of the transient integrator: cam torques with
+    include_acceleration too) or "auto" (the cheaper by a measured cost; the result's
+    solver and solver_note say which ran and why), as `--method`; shoot_budget: CPU
+    seconds per shooting point (None: no limit)."""
     w = sweep(speeds, "speed", "speeds")
     if method not in _METHODS:
         raise model_error("method", "unknown method '%s'" % method, "use arclength or sequential")
+    if solver not in _SOLVERS:
+        raise model_error("solver", "unknown solver '%s'" % solver, "use hb, shooting or auto")
     opt = ffi.new("gd_periodic_options *")
     lib.gd_periodic_options_init(opt)
+    opt.kind = _SOLVERS[solver]
+    if shoot_budget is not None:
+        if not float(shoot_budget) > 0:
+            raise model_error("shoot_budget", "expected CPU seconds > 0, got %r" % shoot_budget)
+        opt.shoot_budget = float(shoot_budget)
     if harmonics == "auto":
         opt.adaptive = 1
     else:
@@ -88,7 +101,8 @@ class PeriodicResult(_Result):
     converge): mean, rms, peak_to_peak; amplitudes and phases_deg (npoints x nrecords x
     H + 1, NaN-padded); multipliers(i) (complex Floquet multipliers of point i);
     bifurcations (list of dicts: type, speed, parameter, direction, multiplier); reasons
-    (why a point did not converge); names and units of the records; steps, cpu_seconds."""
+    (why a point did not converge); names and units of the records; steps, cpu_seconds;
+    solver ("harmonic_balance" or "shooting": what ran) and solver_note (with solver="auto": why)."""
 
     _figure = "periodic"
     _FIELDS_DTYPE = POINT_DTYPE  # served by __getattr__
@@ -99,6 +113,8 @@ class PeriodicResult(_Result):
         self.names, self.units = names, units
         self.npoints, self.nrecords = int(r.npoints), int(r.nrecords)
         self.steps, self.cpu_seconds = int(r.steps), float(r.cpu_seconds)
+        self.solver = cstr(lib.gd_per_kind_name(r.method))
+        self.solver_note = cstr(r.method_note)
         self.bifurcations = []
         for i in range(int(r.nbifurcations)):
             b = r.bifurcations[i]

@@ -190,11 +190,16 @@ MATHIEU = os.path.join(os.path.dirname(os.path.dirname(CHEN)), "tests", "plot",
     # a polynomial spring law: its record and its Jacobian terms in Newton
     (DUFFING, ["--speeds", "1:1:1", "--harmonics", "15", "--record", "m.x,law:cubic"],
      {"speeds": "1:1:1", "harmonics": 15, "records": "m.x,law:cubic"}),
+    # shooting: the orbit from the transient integrator, records sampled as HB's
+    (CHEN, ["--speeds", "900:1000:2", "--harmonics", "10", "--method", "shooting",
+            "--record", "gear_a.x"],
+     {"speeds": "900:1000:2", "harmonics": 10, "solver": "shooting", "records": "gear_a.x"}),
 ])
 def test_periodic(geardyn, path, args, kw):
     j = run_cli("periodic", path, *args)
     r = geardyn.load(path).periodic(**kw)
     jp = j["points"]
+    assert r.solver == j["method"] == ("shooting" if "--method" in args else "harmonic_balance")
     assert r.npoints == len(jp) and r.steps == j["continuation_steps"]
     assert same(r.speed, nums([p["speed_rad_s"] for p in jp]))
     assert list(r.direction) == [p["direction"] for p in jp]

@@ -69,6 +69,11 @@ def test_bad_options(geardyn):
         m.periodic("100:200:2", records="gear.rz:angle")
     with pytest.raises(geardyn.ModelError, match="unknown method"):
         m.periodic("100:200:2", method="newton")
+    with pytest.raises(geardyn.ModelError, match="unknown solver") as e:
+        m.periodic("100:200:2", solver="collocation")
+    assert e.value.field == "solver"
+    with pytest.raises(geardyn.ModelError, match="CPU seconds"):
+        m.periodic("100:200:2", solver="shooting", shoot_budget=0)
     with pytest.raises(geardyn.ModelError, match="cannot resolve"):
         m.periodic("100:200:2", harmonics=10, samples=8)
     # the library's bound (2^31 - 1 samples asked for about 100 GB), issue 23
