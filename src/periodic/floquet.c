@@ -32,10 +32,11 @@ static int expm(int n, const double *A, double *E, double *W, int *ipiv)
             c += fabs(A[(size_t)j * n + i]);
         norm = c > norm ? c : norm;
     }
-    /* a non-finite Omega (an overflowed step) has no exponential; a finite norm gives
-     * s <= 1025, so the cast cannot overflow */
+    /* a non-finite Omega (an overflowed step) has no exponential; log2 of a finite norm
+     * is at most 1024, so s <= 1025 and the cast cannot overflow (norm / 0.5 itself
+     * overflows to inf above DBL_MAX / 2: found by fuzz_inputs at speeds of 1e-154) */
     if (!isfinite(norm)) return 1;
-    int s = norm > 0.5 ? (int)ceil(log2(norm / 0.5)) : 0;
+    int s = norm > 0.5 ? (int)ceil(log2(norm) + 1.0) : 0;
     double scale = ldexp(1.0, -s);
     for (size_t k = 0; k < nn; k++)
         S[k] = A[k] * scale;

@@ -959,9 +959,45 @@ TEST(option_bounds_named)
     fx_free(&f);
 }
 
+/* Speeds of 6e-154 and 8e-81 rad/s (subharmonic 3, 130 Magnus steps): a Magnus step
+ * spans so many natural periods that its matrix norm is finite but above DBL_MAX / 2,
+ * and the scaling exponent overflowed a float-to-int cast (undefined behaviour, caught
+ * by the sanitizer build). Found by fuzz_inputs (its input, decoded). The run must end
+ * with every converged point's multipliers finite or left undecided. */
+TEST(extreme_low_speeds_scale_the_step_exponential)
+{
+    fx f;
+    REQUIRE(load(&f, GD_SOURCE_DIR "/tests/plot/mathieu_pair.yaml", NULL));
+    gd_transient_model *tm = NULL;
+    gd_error err;
+    REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
+    gd_periodic_options o;
+    gd_periodic_options_init(&o);
+    o.harmonics = 4;
+    o.subharmonic = 3;
+    o.monodromy_steps = 130;
+    o.max_iter = 30;
+    o.max_harmonics = 8;
+    const double v[2] = {6.013469530795898e-154, 7.939827903423917e-81};
+    gd_periodic_result *r = NULL;
+    gd_status st = gd_periodic_run(f.s, &tm->spec, NULL, v, 2, &o, NULL, 0, &r, &err);
+    CHECK(st == GD_OK || st == GD_EINPUT);
+    int checked = 0;
+    for (int i = 0; r && i < r->npoints; i++) {
+        const gd_periodic_point *p = &r->points[i];
+        if (!p->converged) continue;
+        CHECK(p->stable < 0 ? p->nmult == 0 : isfinite(p->mu_max));
+        checked++;
+    }
+    printf("  status %d, %d converged points checked\n", (int)st, checked);
+    gd_periodic_result_free(r);
+    gd_transient_model_free(tm);
+    fx_free(&f);
+}
+
 RUN_TESTS(T(linear_equals_unbalance), T(mathieu_tongue_period_doubling),
           T(floquet_against_monodromy), T(backlash_against_transient),
           T(sfd_pair_against_transient), T(backlash_folds_traced_through_unstable_branch),
           T(backlash_branch_with_auto_harmonics), T(chen_sfd_neimark_sacker_matches_transient),
           T(lowrank_solver_equals_sparse_lu), T(few_magnus_steps_leave_stability_undecided),
-          T(option_bounds_named))
+          T(option_bounds_named), T(extreme_low_speeds_scale_the_step_exponential))
