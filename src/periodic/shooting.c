@@ -1078,9 +1078,13 @@ static int run_direction(shoot *sh, const double *vals, int nv)
         sh->budget_hit = 0;
         if (nprev) {
             /* predictor: the last state, or the secant through the last two */
-            double s = nprev == 2 ? (key - lv[1]) / (lv[1] - lv[0]) : 0.0;
-            for (int i = 0; i < N; i++)
-                y[i] = ys[N + i] + s * (ys[N + i] - ys[i]);
+            if (nprev == 2) {
+                double s = (key - lv[1]) / (lv[1] - lv[0]);
+                for (int i = 0; i < N; i++)
+                    y[i] = ys[N + i] + s * (ys[N + i] - ys[i]);
+            } else { /* one state only: ys[0..N) is not set yet (0 * garbage can be NaN) */
+                memcpy(y, ys + N, (size_t)N * sizeof *y);
+            }
             ok = !newton(sh, y, &it, &res);
         }
         if (!ok && !sh->budget_hit) {
