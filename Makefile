@@ -70,7 +70,8 @@ test-asan: asan-build
 # The test programs, then the CLI itself on the examples and on error paths. The CLI test
 # programs (test_cli*) are left out: they run the CLI through /bin/sh, which valgrind does
 # not follow, so under valgrind they only re-ran the normal build's CLI tests; the CLI
-# runs below are valgrind's cover of the CLI.
+# runs below are valgrind's cover of the CLI, JOBS at a time (each writes its own folder;
+# the study --resume follows the run it resumes).
 # The two Campbell sweeps over many speeds take minutes under valgrind; they run in the
 # normal and sanitizer builds.
 VALGRIND_SKIP_test_campbell = -threads_and_methods_agree,critical_speeds
@@ -121,43 +122,52 @@ memcheck: build
 	    OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 $$GD_VG "$$@" >/dev/null || \
 	    { echo "valgrind failed: $$*" >&2; exit 255; }' sh; \
 	out=$$(mktemp -d); \
-	for args in "check examples/rig2018.yaml" "modal examples/rig2018.yaml --speed 3000rpm --json" \
-	            "modal examples/chen1998_gear_pair.yaml --out $$out" \
-	            "modal examples/chen1998_gear_pair.yaml --set meshes.*.stiffness=5e7 --set meshes.mesh.base_radius=[12mm,54mm]" \
-	            "matrices examples/rig2018.yaml --speed 3000rpm --out $$out/m" \
-	            "matrices examples/chen1998_gear_pair.yaml --format json --out $$out/j" \
-	            "mesh-stiffness examples/helical_pair1.yaml --set meshes.pair1.geometry.helix_angle=15deg" \
-	            "mesh-stiffness examples/helical_pair1.yaml --json" \
-	            "campbell examples/kumar2011_coupled.yaml --speeds 0:3000rpm:4 --json" \
-	            "frf examples/kumar2011_coupled.yaml --input torque:motor --output mesh:mesh --freq 100:26000:20 --json" \
-	            "unbalance examples/chen1998_gear_pair.yaml --speeds 100:6000:8 --json" \
-	            "transient examples/ducati_timing_geartrain.yaml --revolutions 0.2 --quiet --json" \
-	            "transient examples/rig2018.yaml --set shafts.*.elements_per_section=1 --duration 1ms --output-interval 20us --method galpha --reduce 5kHz --quiet" \
-	            "transient examples/chen1998_gear_pair.yaml --speed 1500 --duration 20ms --poincare shaft_a --quiet --json" \
-	            "transient examples/chen1998_gear_pair.yaml --sweep-speeds 1000:2000:2 --poincare shaft_a --settle 5rev --points 4 --both-directions --quiet --out $$out/sw" \
-	            "modal examples/chen1998_gear_pair.yaml --plot $$out/modes.svg" \
-	            "report tests/plot/study.yaml --speeds 0:3000rpm:3 --freq-points 20 --out $$out/report.html" \
-	            "modal examples/kumar2011_coupled.yaml --directional --group shaft --dofs x,y,rz --json" \
-	            "study examples/studies/chen1998_mesh_stiffness.yaml --out $$out/st --shard 1/4 --threads 2" \
-	            "study examples/studies/chen1998_mesh_stiffness.yaml --out $$out/st --shard 1/4 --resume" \
-	            "periodic tests/plot/mathieu_pair.yaml --speeds 695:705:2 --harmonics 2 --plot $$out/periodic.svg" \
-	            "periodic examples/chen1998_gear_pair.yaml --speeds 500:700:2 --harmonics 3 --json --out $$out/p" \
-	            "modal examples/chen1998_gear_pair.yaml --plot $$out/modes.png"; do \
-	    echo "valgrind geardyn $$args"; OPENBLAS_NUM_THREADS=1 $(VALGRIND) $(BUILD)/geardyn $$args >/dev/null; done; \
-	for args in "modal examples/missing.yaml" "modal examples/rig2018.yaml --speed fast" \
-	            "check examples/helical_pair1.yaml" \
-	            "check examples/rig2018.yaml --set bearings.*.k=-1" \
-	            "check examples/rig2018.yaml --set shafts.nope.name=x" \
-	            "matrices examples/rig2018.yaml --out $$out/bad --set disks.0.mass=-1" \
-	            "transient examples/chen1998_gear_pair.yaml --sweep-speeds 1000:2000:3 --poincare nope" \
-	            "modal examples/chen1998_gear_pair.yaml --plot $$out/modes.bmp" \
-	            "modal examples/kumar2011_torsional.yaml --modes 1 --plot $$out/rigid.svg" \
-	            "check examples" "check tests/model_file/hostile/element_length_1e-9.yaml" \
-	            "study examples/rig2018.yaml --out $$out/badstudy" \
-	            "periodic examples/chen1998_gear_pair.yaml --speeds 1:2:3 --subharmonic 0"; do \
-	    echo "valgrind geardyn $$args (must fail with exit 2)"; \
-	    rc=0; OPENBLAS_NUM_THREADS=1 $(VALGRIND) $(BUILD)/geardyn $$args >/dev/null 2>&1 || rc=$$?; \
-	    [ $$rc -eq 2 ] || { echo "exit $$rc, expected 2"; exit 1; }; done; \
+	printf '%s\n' \
+	    "check examples/rig2018.yaml" \
+	    "modal examples/rig2018.yaml --speed 3000rpm --json" \
+	    "modal examples/chen1998_gear_pair.yaml --out $$out/modal" \
+	    "modal examples/chen1998_gear_pair.yaml --set meshes.*.stiffness=5e7 --set meshes.mesh.base_radius=[12mm,54mm]" \
+	    "matrices examples/rig2018.yaml --speed 3000rpm --out $$out/m" \
+	    "matrices examples/chen1998_gear_pair.yaml --format json --out $$out/j" \
+	    "mesh-stiffness examples/helical_pair1.yaml --set meshes.pair1.geometry.helix_angle=15deg" \
+	    "mesh-stiffness examples/helical_pair1.yaml --json" \
+	    "campbell examples/kumar2011_coupled.yaml --speeds 0:3000rpm:4 --json" \
+	    "frf examples/kumar2011_coupled.yaml --input torque:motor --output mesh:mesh --freq 100:26000:20 --json" \
+	    "unbalance examples/chen1998_gear_pair.yaml --speeds 100:6000:8 --json" \
+	    "transient examples/ducati_timing_geartrain.yaml --revolutions 0.2 --quiet --json" \
+	    "transient examples/rig2018.yaml --set shafts.*.elements_per_section=1 --duration 1ms --output-interval 20us --method galpha --reduce 5kHz --quiet" \
+	    "transient examples/chen1998_gear_pair.yaml --speed 1500 --duration 20ms --poincare shaft_a --quiet --json" \
+	    "transient examples/chen1998_gear_pair.yaml --sweep-speeds 1000:2000:2 --poincare shaft_a --settle 5rev --points 4 --both-directions --quiet --out $$out/sw" \
+	    "modal examples/chen1998_gear_pair.yaml --plot $$out/modes.svg" \
+	    "report tests/plot/study.yaml --speeds 0:3000rpm:3 --freq-points 20 --out $$out/report.html" \
+	    "modal examples/kumar2011_coupled.yaml --directional --group shaft --dofs x,y,rz --json" \
+	    "study examples/studies/chen1998_mesh_stiffness.yaml --out $$out/st --shard 1/4 --threads 2" \
+	    "periodic tests/plot/mathieu_pair.yaml --speeds 695:705:2 --harmonics 2 --plot $$out/periodic.svg" \
+	    "periodic examples/chen1998_gear_pair.yaml --speeds 500:700:2 --harmonics 3 --json --out $$out/p" \
+	    "modal examples/chen1998_gear_pair.yaml --plot $$out/modes.png" | \
+	GD_VG="$(VALGRIND)" GD="$(BUILD)/geardyn" xargs -P $(JOBS) -I{} sh -fc 'echo "valgrind geardyn $$1"; \
+	    OPENBLAS_NUM_THREADS=1 $$GD_VG $$GD $$1 >/dev/null || \
+	    { echo "valgrind failed: geardyn $$1" >&2; exit 255; }' sh {}; \
+	echo "valgrind geardyn study examples/studies/chen1998_mesh_stiffness.yaml --out $$out/st --shard 1/4 --resume"; \
+	OPENBLAS_NUM_THREADS=1 $(VALGRIND) $(BUILD)/geardyn study examples/studies/chen1998_mesh_stiffness.yaml --out $$out/st --shard 1/4 --resume >/dev/null; \
+	printf '%s\n' \
+	    "modal examples/missing.yaml" \
+	    "modal examples/rig2018.yaml --speed fast" \
+	    "check examples/helical_pair1.yaml" \
+	    "check examples/rig2018.yaml --set bearings.*.k=-1" \
+	    "check examples/rig2018.yaml --set shafts.nope.name=x" \
+	    "matrices examples/rig2018.yaml --out $$out/bad --set disks.0.mass=-1" \
+	    "transient examples/chen1998_gear_pair.yaml --sweep-speeds 1000:2000:3 --poincare nope" \
+	    "modal examples/chen1998_gear_pair.yaml --plot $$out/modes.bmp" \
+	    "modal examples/kumar2011_torsional.yaml --modes 1 --plot $$out/rigid.svg" \
+	    "check examples" \
+	    "check tests/model_file/hostile/element_length_1e-9.yaml" \
+	    "study examples/rig2018.yaml --out $$out/badstudy" \
+	    "periodic examples/chen1998_gear_pair.yaml --speeds 1:2:3 --subharmonic 0" | \
+	GD_VG="$(VALGRIND)" GD="$(BUILD)/geardyn" xargs -P $(JOBS) -I{} sh -fc \
+	    'echo "valgrind geardyn $$1 (must fail with exit 2)"; rc=0; \
+	    OPENBLAS_NUM_THREADS=1 $$GD_VG $$GD $$1 >/dev/null 2>&1 || rc=$$?; \
+	    [ $$rc -eq 2 ] || { echo "geardyn $$1: exit $$rc, expected 2" >&2; exit 255; }' sh {}; \
 	rm -rf $$out; echo "valgrind: all test programs and CLI runs clean"
 
 # libFuzzer (clang): fuzz/fuzz_model.c over the model reader and the system build, and
