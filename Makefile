@@ -182,8 +182,7 @@ FUZZ_RUNS    ?= 20000
 # fuzz_inputs solves models and periodic branches (about 100 inputs/s): fewer
 FUZZ_RUNS_INPUTS ?= 2000
 FUZZ_TARGET  ?= fuzz_model
-FUZZ_FLAGS_COMMON = -max_len=8192 -timeout=20 -rss_limit_mb=2048 \
-                -artifact_prefix=$(FUZZ_BUILD)/ -print_final_stats=1
+FUZZ_FLAGS_COMMON = -max_len=8192 -timeout=20 -rss_limit_mb=2048 -print_final_stats=1
 FUZZ_FLAGS_fuzz_model  = -dict=fuzz/model.dict $(FUZZ_FLAGS_COMMON)
 FUZZ_FLAGS_fuzz_inputs = -dict=fuzz/inputs.dict $(FUZZ_FLAGS_COMMON)
 FUZZ_SEEDS_fuzz_model  = examples tests/model_file/hostile
@@ -197,7 +196,7 @@ fuzz-build: deps
 
 fuzz: fuzz-build
 	@mkdir -p $(FUZZ_BUILD)/corpus-$(FUZZ_TARGET)
-	$(FUZZ_ENV) $(FUZZ_BUILD)/$(FUZZ_TARGET) $(FUZZ_FLAGS_$(FUZZ_TARGET)) \
+	$(FUZZ_ENV) $(FUZZ_BUILD)/$(FUZZ_TARGET) $(FUZZ_FLAGS_$(FUZZ_TARGET)) -artifact_prefix=$(FUZZ_BUILD)/ \
 	    -max_total_time=$(FUZZ_SECONDS) $(FUZZ_BUILD)/corpus-$(FUZZ_TARGET) $(FUZZ_SEEDS_$(FUZZ_TARGET))
 
 fuzz-smoke: asan-build
@@ -207,9 +206,9 @@ fuzz-smoke: asan-build
 	        runs=$(FUZZ_RUNS); \
 	    else flags="$(FUZZ_FLAGS_fuzz_inputs)"; seeds="$(FUZZ_SEEDS_fuzz_inputs)"; \
 	        runs=$(FUZZ_RUNS_INPUTS); fi; \
-	    $(FUZZ_ENV) $(ASAN_BUILD)/$$t $$flags -runs=$$runs -seed=1 \
+	    $(FUZZ_ENV) $(ASAN_BUILD)/$$t $$flags -artifact_prefix=$$out/ -runs=$$runs -seed=1 \
 	        $$out $$seeds 2>$$out.log || rc=$$?; \
-	    echo "$$t:"; grep -E "^(stat::number_of_executed_units|INFO: seed)" $$out.log; \
+	    echo "$$t:"; grep -E "^(stat::number_of_executed_units|INFO: Seed)" $$out.log || true; \
 	    [ $$rc -eq 0 ] || cat $$out.log; rm -rf $$out $$out.log; [ $$rc -eq 0 ]; done
 
 bench: build
