@@ -52,7 +52,8 @@ test-python: python
 test: test-unit test-asan memcheck fuzz-smoke test-python
 
 test-unit: build
-	cd $(BUILD) && ctest --output-on-failure -j$(JOBS)
+	mkdir -p $(BUILD)/test-times
+	cd $(BUILD) && GD_TEST_TIMES=$(CURDIR)/$(BUILD)/test-times ctest --output-on-failure -j$(JOBS)
 
 # The sanitizer build is clang's, with the libFuzzer targets in it: one more compile of
 # the library serves the sanitizer tests and the fuzz smoke run (clang also checks
@@ -63,7 +64,11 @@ asan-build: deps
 	    -DGD_SANITIZE=ON -DGD_FUZZ=ON >/dev/null
 	@cmake --build $(ASAN_BUILD) -j$(JOBS)
 
+# ctest starts the costliest programs first when it knows their cost: a first sanitizer run
+# borrows the normal build's record (the same programs, each slower by a similar factor).
 test-asan: asan-build
+	@mkdir -p $(ASAN_BUILD)/Testing/Temporary; cost=Testing/Temporary/CTestCostData.txt; \
+	    [ -f $(ASAN_BUILD)/$$cost ] || [ ! -f $(BUILD)/$$cost ] || cp $(BUILD)/$$cost $(ASAN_BUILD)/$$cost
 	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
 	    UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ctest --output-on-failure -j$(JOBS)
 
@@ -72,51 +77,20 @@ test-asan: asan-build
 # not follow, so under valgrind they only re-ran the normal build's CLI tests; the CLI
 # runs below are valgrind's cover of the CLI, JOBS at a time (each writes its own folder;
 # the study --resume follows the run it resumes).
-# The two Campbell sweeps over many speeds take minutes under valgrind; they run in the
-# normal and sanitizer builds.
-VALGRIND_SKIP_test_campbell = -threads_and_methods_agree,critical_speeds
-# Dense 340-state solves and long fixed-step runs on the 170-DOF rig: normal and
-# sanitizer builds only.
-VALGRIND_SKIP_test_modal_method = -auto_picks_sparse_for_the_rig
-VALGRIND_SKIP_test_gen_alpha = -linear_unbalance_run_up_matches_tight_cvode,backlash_pair_matches_cvode_with_located_events
-VALGRIND_SKIP_test_reduce = -reduced_unbalance_response_matches_the_full_model
-# The 10000-section model and the gyroscopic rotor at two speeds: sanitizers cover them;
-# tests that only run the CLI (valgrind does not follow it through /bin/sh).
-VALGRIND_SKIP_test_hostile_input = -model_size_is_bounded_with_the_limit_named,unusable_out_fails_before_writing
-VALGRIND_SKIP_test_directional = -isotropic_rotor_splits_forward_and_backward_with_speed,cli_directional
-VALGRIND_SKIP_test_shaft_energy = -cli_group_shaft
-# the 170-DOF rig built twice and its dense modes compared: 0.3 s natively, 47 s under
-# valgrind; the other builder tests cover the same builder code
-VALGRIND_SKIP_test_builder = -rig2018_built_in_code_matches_the_file
-# The study tests run the analyses of five models (the sweeps take minutes under valgrind)
-# and the CLI through /bin/sh (not followed), and eight periodic cases on threads; the
-# study CLI runs below instead.
-VALGRIND_SKIP_test_study = -every_analysis_gives_the_papers_numbers,periodic_summarises_the_branch,periodic_cases_on_threads
-VALGRIND_SKIP_test_cli_study = -threads_shards_and_mpi_give_the_same_table,mpirun_two_ranks,killed_halfway_and_resumed,error_paths
-# PNG and PDF of every plot type: librsvg, cairo and fontconfig's code under valgrind for
-# minutes (the sanitizer build runs it, and memcheck renders one PNG below); the adaptive
-# FRF refinement and the whole report take seconds natively and minutes here (the report
-# CLI run below covers the same code)
-VALGRIND_SKIP_test_plot = -png_and_pdf_of_every_plot,frf_peaks_located,report_has_every_section
-# long integrations to periodicity (the same code runs in the other tests under valgrind)
-VALGRIND_SKIP_test_transient_laws = -duffing_harmonic_balance_against_time_integration,rolling_bearing_varying_compliance_at_ball_pass_frequency
-VALGRIND_SKIP_test_periodic = -backlash_against_transient,sfd_pair_against_transient,backlash_folds_traced_through_unstable_branch,chen_sfd_neimark_sacker_matches_transient
-# shooting to rtol 1e-11 over several speeds, Newton-Krylov, located period doublings (1.5-5 s
-# natively each); the backlash and budget cases still run the shooting code under valgrind
-VALGRIND_SKIP_test_shooting = -chen_sfd_shooting_equals_hb,mathieu_period_doublings_located,newton_krylov_equals_dense
-# hundreds of periods to a verdict (0.4-0.6 s natively each); the verdict logic runs in
-# test_cycles and on the stored Ducati section
-VALGRIND_SKIP_test_rattle = -chen_torus_is_quasi_periodic,backlash_mathieu_is_period_2,linear_mathieu_is_periodic
-# the 366-DOF run-up against tight CVODE; the free oscillator runs the same stepping
-VALGRIND_SKIP_test_lti = -unbalance_run_up_within_rtol_of_tight_cvode
-# every program with a VALGRIND_SKIP_<program> list above
-VALGRIND_SKIPPED = $(patsubst VALGRIND_SKIP_%,%,$(filter VALGRIND_SKIP_%,$(.VARIABLES)))
+# Valgrind runs code 20-170x slower than the native build, so it runs the test cases that
+# took at most VALGRIND_MAX_CPU seconds of CPU in the normal build (test-unit records each
+# case's CPU time in $(BUILD)/test-times; a program without a fresh record is run natively
+# once first). The costlier cases, the solver sweeps and long integrations (47 of 406 on the day this came in),
+# run in the normal and sanitizer builds; every program still runs under valgrind.
+VALGRIND_MAX_CPU ?= 0.15
 memcheck: build
-	@set -e; for t in $(BUILD)/test_*; do \
+	@set -e; mkdir -p $(BUILD)/test-times; for t in $(BUILD)/test_*; do \
 	    [ -f $$t ] && [ -x $$t ] && [ "$$(head -c 4 $$t | tail -c 3)" = ELF ] || continue; \
-	    name=$$(basename $$t); skip=""; \
+	    name=$$(basename $$t); \
 	    case $$name in test_cli_*|test_cli) continue;; esac; \
-	    $(foreach p,$(VALGRIND_SKIPPED),[ "$$name" = $(p) ] && skip="$(VALGRIND_SKIP_$(p))";) \
+	    times=$(BUILD)/test-times/$$name.txt; \
+	    [ $$times -nt $$t ] || OPENBLAS_NUM_THREADS=1 GD_TEST_TIMES=$(BUILD)/test-times $$t >/dev/null; \
+	    skip=$$(awk -v max=$(VALGRIND_MAX_CPU) '$$2 > max { printf "%s%s", n++ ? "," : "-", $$1 }' $$times); \
 	    echo "$$t$${skip:+ $$skip}"; done | \
 	GD_VG="$(VALGRIND)" xargs -P $(JOBS) -L 1 sh -fc 'echo "valgrind $$*"; \
 	    OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 $$GD_VG "$$@" >/dev/null || \

@@ -4,7 +4,9 @@
 #define GD_TEST_HARNESS_H
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 
 typedef struct gd_test_state {
     int checks_failed;
@@ -82,9 +84,35 @@ static inline int gd_test_skipped(const char *name, const char *list)
     return 0;
 }
 
+/* With GD_TEST_TIMES=DIR, a run of the whole program writes DIR/PROGRAM.txt: each case's
+ * name and CPU seconds, its own and those of the CLI runs it waited for. `make memcheck` reads it
+ * to leave the costly cases to the sanitizer build (valgrind runs code 20-170x slower). */
+static inline FILE *gd_test_times_file(int argc, char **argv)
+{
+    const char *dir = getenv("GD_TEST_TIMES");
+    if (!dir || !*dir || argc > 1) return NULL;
+    const char *prog = strrchr(argv[0], '/');
+    prog = prog ? prog + 1 : argv[0];
+    char path[4096];
+    if (snprintf(path, sizeof path, "%s/%s.txt", dir, prog) >= (int)sizeof path) return NULL;
+    return fopen(path, "w");
+}
+
+static inline double gd_test_cpu_seconds(void)
+{
+    struct rusage own, children;
+    getrusage(RUSAGE_SELF, &own);
+    getrusage(RUSAGE_CHILDREN, &children);
+    return (double)(own.ru_utime.tv_sec + own.ru_stime.tv_sec + children.ru_utime.tv_sec +
+                    children.ru_stime.tv_sec) +
+           1e-6 * (double)(own.ru_utime.tv_usec + own.ru_stime.tv_usec + children.ru_utime.tv_usec +
+                           children.ru_stime.tv_usec);
+}
+
 static inline int gd_test_run(const gd_test_case *cases, int n, int argc, char **argv)
 {
     int passed = 0, failed = 0;
+    FILE *times = gd_test_times_file(argc, argv);
     for (int i = 0; i < n; i++) {
         if (argc > 1 && argv[1][0] == '-') {
             if (gd_test_skipped(cases[i].name, argv[1] + 1)) continue;
@@ -92,7 +120,9 @@ static inline int gd_test_run(const gd_test_case *cases, int n, int argc, char *
             continue;
         }
         gd_test_state st = {0};
+        double start = times ? gd_test_cpu_seconds() : 0;
         cases[i].fn(&st);
+        if (times) fprintf(times, "%s %.4f\n", cases[i].name, gd_test_cpu_seconds() - start);
         if (st.checks_failed) {
             fprintf(stderr, "FAIL %s\n", cases[i].name);
             failed++;
@@ -101,6 +131,7 @@ static inline int gd_test_run(const gd_test_case *cases, int n, int argc, char *
             passed++;
         }
     }
+    if (times) fclose(times);
     printf("%d passed, %d failed\n", passed, failed);
     return failed ? 1 : 0;
 }
