@@ -49,7 +49,11 @@ enum {
     GD_LAW_SMOOTH = 1u << 0,
     /* the force depends on time only, not on q or q' (a load of time): the
      * generalized-alpha integrator solves such steps without iterating */
-    GD_LAW_TIME_ONLY = 1u << 1
+    GD_LAW_TIME_ONLY = 1u << 1,
+    /* the force grows with the displacement in the law's directions (a bearing, a
+     * spring): `static` counts the law as holding those directions and solves the
+     * equilibrium with it (docs/static.md) */
+    GD_LAW_SUPPORT = 1u << 2
 };
 
 /* Bounds of a parameter. */

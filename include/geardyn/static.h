@@ -7,6 +7,13 @@
  * reacted there). Any other free rigid-body motion (a shaft with no bearing) is an
  * input error naming it.
  *
+ * Laws (docs/laws.md): the model's laws that carry a static load (GD_LAW_SUPPORT: a
+ * journal or rolling bearing, a polynomial spring) hold their directions, and the
+ * equilibrium K q = f + sum f_law(q) is solved by Newton's method (the laws at the
+ * reference speed, velocities zero): a rotor on journal bearings settles at its
+ * eccentricity. Each law's records at the equilibrium are in the result. When the laws
+ * find no equilibrium (a journal bearing at speed 0 carries nothing), GD_EINPUT says so.
+ *
  * Results: the displacement of every node, the reactions of the bearings, springs and
  * held DOFs, the force of every mesh and its misalignment: the relative tilt of the two
  * gears in and out of the plane of action and the ISO 6336-1 mesh misalignment f_sh
@@ -67,6 +74,17 @@ typedef struct gd_static_mesh {
                                  manufacturing part f_ma), m; NAN when b is unknown */
 } gd_static_mesh;
 
+#define GD_STATIC_LAW_RECORDS 8
+/* A law at the static state: its records (fx, fy, ecc of a journal bearing...). */
+typedef struct gd_static_law {
+    const char *name; /* the law's name (owned by the model) */
+    const char *type; /* its type's name (static) */
+    int nrecords;     /* the type's records, at most GD_STATIC_LAW_RECORDS */
+    const char *record_names[GD_STATIC_LAW_RECORDS]; /* static strings of the type */
+    const char *record_units[GD_STATIC_LAW_RECORDS];
+    double records[GD_STATIC_LAW_RECORDS];
+} gd_static_law;
+
 typedef struct gd_static_result {
     int ndof, nnodes, nbearings, nsprings, nmeshes, nholds;
     double speed;
@@ -77,6 +95,8 @@ typedef struct gd_static_result {
     double *springs;              /* nsprings: force or torque on node1 along its DOF */
     gd_static_mesh *meshes;       /* nmeshes */
     gd_static_hold *holds;        /* nholds */
+    int nlaws;                    /* the laws that took part in the equilibrium */
+    gd_static_law *laws;          /* nlaws */
 } gd_static_result;
 
 GD_API void gd_static_options_init(gd_static_options *opt);

@@ -98,7 +98,7 @@ static double jb_record(const gd_law *law, int k, const gd_law_point *x)
 const gd_law_type gd_law_journal_bearing = {
     .name = "journal_bearing",
     .summary = "plain journal bearing, short-bearing (Ocvirk) theory with film rupture",
-    .flags = GD_LAW_SMOOTH,
+    .flags = GD_LAW_SMOOTH | GD_LAW_SUPPORT,
     .params = jb_params,
     .nparams = JB_NPARAMS,
     .dirs = gd_law_xy_dirs,

@@ -66,7 +66,7 @@ static void ps_linearize(const gd_law *law, const gd_law_point *x, double *K, do
 const gd_law_type gd_law_polynomial_spring = {
     .name = "polynomial_spring",
     .summary = "spring k1 d + k2 d^2 + k3 d^3 with damping c d' (cubic: Duffing)",
-    .flags = GD_LAW_SMOOTH,
+    .flags = GD_LAW_SMOOTH | GD_LAW_SUPPORT,
     .params = ps_params,
     .nparams = PS_NPARAMS,
     .two_nodes = 1,

@@ -1,6 +1,8 @@
 /* The static analysis (geardyn/static.h): K q = f with the held DOFs at 0. The free
  * block is solved on its Jacobi scaling D K_FF D y = D f_F, q_F = D y (LU, LAPACK), so
- * translations and rotations weigh alike; the holds' reactions are R = K q - f there. */
+ * translations and rotations weigh alike; the holds' reactions are R = K q - f there.
+ * With laws that carry load (GD_LAW_SUPPORT) it is K q = f + f_law(q), solved by the
+ * system's Newton iteration (system/law_state.c), and R = K q - f - f_law(q). */
 #include <lapacke.h>
 #include <math.h>
 #include <stdlib.h>
@@ -29,6 +31,7 @@ void gd_static_free(gd_static_result *res)
     free(res->springs);
     free(res->meshes);
     free(res->holds);
+    free(res->laws);
     free(res);
 }
 
@@ -114,10 +117,74 @@ static gd_status alloc_result(const gd_system *sys, gd_static_result **out)
     r->springs = calloc((size_t)(m->nsprings > 0 ? m->nsprings : 1), sizeof *r->springs);
     r->meshes = calloc((size_t)(m->nmeshes > 0 ? m->nmeshes : 1), sizeof *r->meshes);
     r->holds = calloc(n1, sizeof *r->holds);
+    r->laws = calloc((size_t)(sys->nlaws > 0 ? sys->nlaws : 1), sizeof *r->laws);
     *out = r;
-    if (!r->q || !r->f || !r->u || !r->bearings || !r->springs || !r->meshes || !r->holds)
+    if (!r->q || !r->f || !r->u || !r->bearings || !r->springs || !r->meshes || !r->holds ||
+        !r->laws)
         return GD_ENOMEM;
     return GD_OK;
+}
+
+/* Kd = K with a small grounded stiffness on every direction a supporting law acts on, so
+ * that the hold search counts those directions as held (a rotor on journal bearings has
+ * no bearing element but is not free): 1e-6 of the largest diagonal, far above the
+ * null-space threshold of holds.c (1e-10) and far below any real stiffness's effect on
+ * it. */
+static void supported_stiffness(const gd_system *sys, const double *K, double *Kd)
+{
+    const size_t n = (size_t)sys->ndof;
+    memcpy(Kd, K, n * n * sizeof *Kd);
+    double kmax = 0;
+    for (size_t i = 0; i < n; i++)
+        kmax = fmax(kmax, fabs(K[i + i * n]));
+    const double kreg = 1e-6 * (kmax > 0 ? kmax : 1.0);
+    for (int l = 0; l < sys->nlaws; l++) {
+        const gd_law *L = &sys->laws[l];
+        if (!(L->type->flags & GD_LAW_SUPPORT)) continue;
+        for (int a = 0; a < L->ndofs; a++)
+            if (L->dof[a] >= 0) Kd[(size_t)L->dof[a] * (n + 1)] += kreg;
+    }
+}
+
+/* q from K q = f + f_law(q) with the held DOFs at 0, from the linear solution where
+ * the linear stiffness alone holds the model, else from rest. */
+static gd_status solve_with_laws(const gd_system *sys, const double *K, const double *f,
+                                 const int *held, double speed, double *q, gd_error *err)
+{
+    gd_error quiet = {0};
+    if (solve(sys, K, f, held, q, &quiet)) memset(q, 0, (size_t)sys->ndof * sizeof *q);
+    double res = 0;
+    if (gd_system_law_equilibrium(sys, speed, K, f, held, q, &res)) return GD_OK;
+    double *q0 = calloc((size_t)(sys->ndof > 0 ? sys->ndof : 1), sizeof *q0);
+    if (!q0) return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
+    double res0 = 0;
+    int found = gd_system_law_equilibrium(sys, speed, K, f, held, q0, &res0);
+    if (found || res0 < res) memcpy(q, q0, (size_t)sys->ndof * sizeof *q);
+    free(q0);
+    if (found) return GD_OK;
+    return gd_error_set(err, GD_EINPUT, sys->model->file, 0, 0, "laws",
+                        "a journal bearing carries load only while the shaft turns: give a "
+                        "speed (--speed) or a bearing that holds the shaft at rest",
+                        "the laws find no static equilibrium at %g rad/s (relative residual "
+                        "%.3g after Newton's iterations)",
+                        speed, fmin(res, res0));
+}
+
+/* The laws' records at the static state q. */
+static void law_outputs(const gd_system *sys, gd_static_result *res)
+{
+    for (int l = 0; l < sys->nlaws; l++) {
+        const gd_law *L = &sys->laws[l];
+        gd_static_law *o = &res->laws[res->nlaws++];
+        o->name = L->name;
+        o->type = L->type->name;
+        o->nrecords =
+            gd_system_law_records(sys, l, res->speed, res->q, o->records, GD_STATIC_LAW_RECORDS);
+        for (int k = 0; k < o->nrecords; k++) {
+            o->record_names[k] = L->type->records[k].name;
+            o->record_units[k] = L->type->records[k].unit;
+        }
+    }
 }
 
 gd_status gd_static_run(const gd_system *sys, const gd_static_options *opt, gd_static_result **out,
@@ -136,20 +203,37 @@ gd_status gd_static_run(const gd_system *sys, const gd_static_options *opt, gd_s
     gd_static_result *res = NULL;
     double *K = malloc((size_t)(n > 0 ? n : 1) * (n > 0 ? n : 1) * sizeof *K);
     int *held = malloc((size_t)(n > 0 ? n : 1) * sizeof *held);
+    double *flaw = NULL; /* the laws' forces at the state */
     if (!K || !held || alloc_result(sys, &res)) {
         st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
         goto out;
     }
     res->speed = opt->speed >= 0 ? opt->speed : m->speed;
-    /* the linear stiffness: the laws of the registry are not linearised here */
+    /* the linear stiffness; the laws add their forces, not a linearisation */
     gd_system_dense_linear(sys, res->speed, NULL, NULL, K);
-    if ((st = gd_st_loads(sys, opt, res->f, err)) || (st = gd_st_holds(sys, K, opt, held, err)) ||
-        (st = solve(sys, K, res->f, held, res->q, err)))
+    if ((st = gd_st_loads(sys, opt, res->f, err))) goto out;
+    if (sys->nlaws) {
+        double *Kd = malloc((size_t)(n > 0 ? n : 1) * (n > 0 ? n : 1) * sizeof *Kd);
+        flaw = calloc((size_t)(n > 0 ? n : 1), sizeof *flaw);
+        if (!Kd || !flaw) {
+            free(Kd);
+            st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
+            goto out;
+        }
+        supported_stiffness(sys, K, Kd);
+        st = gd_st_holds(sys, Kd, opt, held, err);
+        free(Kd);
+        if (st || (st = solve_with_laws(sys, K, res->f, held, res->speed, res->q, err))) goto out;
+        gd_system_law_forces(sys, res->speed, res->q, flaw);
+        law_outputs(sys, res);
+    } else if ((st = gd_st_holds(sys, K, opt, held, err)) ||
+               (st = solve(sys, K, res->f, held, res->q, err))) {
         goto out;
+    }
     for (int i = 0; i < n; i++) {
         res->u[(size_t)sys->dof_node[i] * GD_NODE_DOFS + sys->dof_type[i]] = res->q[i];
         if (!held[i]) continue;
-        double kq = 0;
+        double kq = flaw ? -flaw[i] : 0;
         for (int j = 0; j < n; j++)
             kq += K[i + (size_t)j * n] * res->q[j];
         gd_static_hold *h = &res->holds[res->nholds++];
@@ -162,6 +246,7 @@ gd_status gd_static_run(const gd_system *sys, const gd_static_options *opt, gd_s
 out:
     free(K);
     free(held);
+    free(flaw);
     if (st) {
         gd_static_free(res);
         return st;

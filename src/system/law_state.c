@@ -109,9 +109,11 @@ void gd_system_mean_loads(const gd_system *sys, int loads, int gravity, double *
     }
 }
 
-/* r = K q - f0 - sum f_law(q); J (may be NULL) = K + sum K_law(q). Returns |r|_2. */
+/* r = K q - f0 - sum f_law(q); J (may be NULL) = K + sum K_law(q). Over the held DOFs
+ * (held NULL: none) r is 0 and J the identity, so Newton leaves them where they are.
+ * Returns |r|_2. */
 static double residual(const gd_system *s, double W, const double *K, const double *f0,
-                       const double *q, double *r, double *J)
+                       const int *held, const double *q, double *r, double *J)
 {
     const int n = s->ndof;
     for (int i = 0; i < n; i++)
@@ -142,10 +144,48 @@ static double residual(const gd_system *s, double W, const double *K, const doub
                 if (L.dof[a] >= 0 && L.dof[b] >= 0)
                     J[L.dof[a] + (size_t)L.dof[b] * n] += Kl[a + L.ndofs * b];
     }
+    if (held)
+        for (int i = 0; i < n; i++) {
+            if (!held[i]) continue;
+            r[i] = 0.0;
+            if (!J) continue;
+            for (int j = 0; j < n; j++)
+                J[i + (size_t)j * n] = J[j + (size_t)i * n] = 0.0;
+            J[i + (size_t)i * n] = 1.0;
+        }
     double s2 = 0;
     for (int i = 0; i < n; i++)
         s2 += r[i] * r[i];
     return sqrt(s2);
+}
+
+void gd_system_law_forces(const gd_system *s, double speed, const double *q, double *f)
+{
+    memset(f, 0, (size_t)s->ndof * sizeof *f);
+    for (int i = 0; i < s->nlaws; i++) {
+        gd_law L;
+        law_at(s, i, speed, &L);
+        double ql[GD_LAW_MAX_DOFS], v[GD_LAW_MAX_DOFS] = {0}, fl[GD_LAW_MAX_DOFS] = {0};
+        local_q(&L, q, ql);
+        gd_law_point x = {0.0, ql, v};
+        L.type->force(&L, &x, fl, NULL, NULL);
+        for (int a = 0; a < L.ndofs; a++)
+            if (L.dof[a] >= 0) f[L.dof[a]] += fl[a];
+    }
+}
+
+int gd_system_law_records(const gd_system *s, int i, double speed, const double *q, double *out,
+                          int cap)
+{
+    gd_law L;
+    law_at(s, i, speed, &L);
+    double ql[GD_LAW_MAX_DOFS], v[GD_LAW_MAX_DOFS] = {0};
+    local_q(&L, q, ql);
+    gd_law_point x = {0.0, ql, v};
+    int n = !L.type->record ? 0 : L.type->nrecords < cap ? L.type->nrecords : cap;
+    for (int k = 0; k < n; k++)
+        out[k] = L.type->record(&L, k, &x);
+    return n;
 }
 
 /* Solves J x = b in place (b <- x), J destroyed: LU when J is well conditioned
@@ -175,38 +215,35 @@ static double diag_mass(const gd_system *s, int i)
 /* Backtracking along dq from q: qt = q + a dq with the first a = 2^-k (k < halvings)
  * whose residual is below (1 - 1e-4 a) res. Returns that residual, or res if none. */
 static double search(const gd_system *s, double W, const double *K, const double *f0,
-                     const double *q, const double *dq, double *qt, double *r, double res,
-                     int halvings)
+                     const int *held, const double *q, const double *dq, double *qt, double *r,
+                     double res, int halvings)
 {
     double a = 1.0;
     for (int k = 0; k < halvings; k++, a *= 0.5) {
         for (int i = 0; i < s->ndof; i++)
             qt[i] = q[i] + a * dq[i];
-        double rt = residual(s, W, K, f0, qt, r, NULL);
+        double rt = residual(s, W, K, f0, held, qt, r, NULL);
         if (rt < (1.0 - 1e-4 * a) * res) return rt;
     }
     return res;
 }
 
-int gd_system_law_state(const gd_system *s, double speed, double *q)
+int gd_system_law_equilibrium(const gd_system *s, double speed, const double *K, const double *f0,
+                              const int *held, double *q, double *resnorm)
 {
     const int n = s->ndof;
-    memset(q, 0, (size_t)n * sizeof *q);
-    if (!s->nlaws) return 1;
     size_t nn = (size_t)n * n;
-    double *f0 = malloc((size_t)n * 4 * sizeof *f0);
-    double *K = malloc(nn * 3 * sizeof *K);
+    double *r = malloc((size_t)n * 3 * sizeof *r);
+    double *J = malloc(nn * 2 * sizeof *J);
     lapack_int *piv = malloc((size_t)n * sizeof *piv);
     int found = 0;
-    if (!f0 || !K || !piv) goto out;
-    double *r = f0 + n, *dq = r + n, *qt = dq + n, *J = K + nn, *Jc = J + nn;
-    gd_system_mean_loads(s, 1, 1, f0);
-    double fnorm = 0;
+    double res = INFINITY, fnorm = 0;
+    if (!r || !J || !piv) goto out;
+    double *dq = r + n, *qt = dq + n, *Jc = J + nn;
     for (int i = 0; i < n; i++)
-        fnorm += f0[i] * f0[i];
+        if (!held || !held[i]) fnorm += f0[i] * f0[i];
     fnorm = sqrt(fnorm);
-    gd_system_dense_linear(s, speed, NULL, NULL, K);
-    double res = residual(s, speed, K, f0, q, r, J);
+    res = residual(s, speed, K, f0, held, q, r, J);
     /* converged: the residual a few ulps of the load (or of the linear forces at 0 load) */
     double tol = 1e-10 * (fnorm > 0 ? fnorm : 1.0);
     for (int it = 0; it < 100 && !found; it++) {
@@ -217,26 +254,45 @@ int gd_system_law_state(const gd_system *s, double speed, double *q)
         for (int i = 0; i < n; i++)
             dq[i] = -r[i];
         int newton = !solve(n, J, dq, Jc, piv);
-        double rt = newton ? search(s, speed, K, f0, q, dq, qt, r, res, 30) : res;
+        double rt = newton ? search(s, speed, K, f0, held, q, dq, qt, r, res, 30) : res;
         if (!(rt < res)) {
             /* no Newton descent: the laws are stiffless where they stand (a Hertzian
              * contact at zero deflection, a journal bearing at rest). Step along the
              * mass-scaled residual, which points the way the load pushes, from a step of
              * the load's own acceleration over 1/s^2 down through 60 halvings. */
-            residual(s, speed, K, f0, q, r, NULL); /* r, overwritten by the search */
+            residual(s, speed, K, f0, held, q, r, NULL); /* r, overwritten by the search */
             for (int i = 0; i < n; i++)
                 dq[i] = diag_mass(s, i) > 0 ? -r[i] / diag_mass(s, i) : 0.0;
-            rt = search(s, speed, K, f0, q, dq, qt, r, res, 60);
+            rt = search(s, speed, K, f0, held, q, dq, qt, r, res, 60);
         }
         if (!(rt < res)) break; /* no descent either way: no equilibrium */
         memcpy(q, qt, (size_t)n * sizeof *q);
-        res = residual(s, speed, K, f0, q, r, J);
+        res = residual(s, speed, K, f0, held, q, r, J);
     }
 out:
+    if (resnorm) *resnorm = fnorm > 0 ? res / fnorm : res;
+    free(r);
+    free(J);
+    free(piv);
+    return found;
+}
+
+int gd_system_law_state(const gd_system *s, double speed, double *q)
+{
+    const int n = s->ndof;
+    memset(q, 0, (size_t)n * sizeof *q);
+    if (!s->nlaws) return 1;
+    double *f0 = malloc((size_t)n * sizeof *f0);
+    double *K = malloc((size_t)n * n * sizeof *K);
+    int found = 0;
+    if (f0 && K) {
+        gd_system_mean_loads(s, 1, 1, f0);
+        gd_system_dense_linear(s, speed, NULL, NULL, K);
+        found = gd_system_law_equilibrium(s, speed, K, f0, NULL, q, NULL);
+    }
     if (!found) memset(q, 0, (size_t)n * sizeof *q);
     free(f0);
     free(K);
-    free(piv);
     return found;
 }
 

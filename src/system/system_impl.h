@@ -47,6 +47,18 @@ int gd_system_make_laws(gd_system *sys);
 /* f (ndof, zeroed here): the model's excitation loads at their mean (if loads) and
  * gravity on the masses (if gravity): the static analysis's mean load. */
 void gd_system_mean_loads(const gd_system *sys, int loads, int gravity, double *f);
+/* Newton with a backtracking line search for K q = f0 + sum f_law(q) (K dense ndof^2 at
+ * reference speed W, the laws' velocities zero at t = 0) from q (in: the start, out: the
+ * state), the held DOFs (held[i] != 0; held NULL: none) kept where they start. Returns 1
+ * converged (residual <= 1e-10 of |f0| over the free DOFs), 0 not; *resnorm (may be
+ * NULL) gets that relative residual. */
+int gd_system_law_equilibrium(const gd_system *sys, double speed, const double *K, const double *f0,
+                              const int *held, double *q, double *resnorm);
+/* f (ndof) = sum of the laws' forces at state q, velocities zero, t = 0. */
+void gd_system_law_forces(const gd_system *sys, double speed, const double *q, double *f);
+/* The records of law i (sys->laws) at state q into out (at most cap); returns the count. */
+int gd_system_law_records(const gd_system *sys, int i, double speed, const double *q, double *out,
+                          int cap);
 /* The laws' K and C about the static state at W, law after law, each a column-major
  * ndofs x ndofs block (sys->law_block doubles each). */
 void gd_system_law_blocks(const gd_system *sys, double speed, double *Kb, double *Cb);
