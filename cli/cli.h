@@ -62,8 +62,6 @@ int gd_outdir_close(gd_outdir *od, FILE *f, const char *name, gd_error *err);
 int gd_outdir_commit(gd_outdir *od, gd_error *err);
 void gd_outdir_abort(gd_outdir *od);
 
-#endif
-
 /* ---- shared by the model-based commands ---- */
 #include "geardyn/model.h"
 #include "geardyn/model_file.h"
@@ -181,3 +179,5 @@ int gd_cli_plot_finish_as(gd_status st, gd_plot *p, gd_error *err, const char *p
 int gd_cmd_report(int argc, char **argv);
 /* ---- periodic steady state (cmd_periodic.c) ---- */
 int gd_cmd_periodic(int argc, char **argv);
+
+#endif

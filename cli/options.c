@@ -128,9 +128,12 @@ static int apply(const char *cmd, const gd_cli_opt *o, const char *v, char *args
         if (gd_parse_quantity(v, (gd_qty)o->qty, x, &why))
             return gd_cli_usage_error(cmd, "--%s: %s (e.g. --%s %s)", o->name, why.message, o->name,
                                       o->example);
-        if ((o->lo == GD_CLI_ABOVE_ZERO && !(*x > 0)) || (o->lo == GD_CLI_ZERO_OR_MORE && *x < 0))
-            return gd_cli_usage_error(cmd, "--%s: must be %s (e.g. --%s %s)", o->name,
-                                      o->lo == GD_CLI_ABOVE_ZERO ? "positive" : "zero or more",
+        if (o->lo == GD_CLI_ABOVE_ZERO && !(*x > 0))
+            return gd_cli_usage_error(cmd, "--%s: must be positive (e.g. --%s %s)", o->name,
+                                      o->name, o->example);
+        if (o->lo == GD_CLI_ZERO_OR_MORE && *x < 0)
+            return gd_cli_usage_error(cmd, "--%s: give a %s of zero or more (e.g. --%s %s)",
+                                      o->name, o->qty == GD_QTY_ANGULAR_SPEED ? "speed" : "value",
                                       o->name, o->example);
         if (o->aux) *(int *)(args + o->aux) = 1;
         return 0;
@@ -154,7 +157,7 @@ int gd_cli_parse(const gd_cli_command *c, int argc, char **argv, void *args, con
     }
     lo[n] = (struct option){"help", no_argument, 0, 'h'};
     lo[n + 1] = (struct option){0, 0, 0, 0};
-    optind = 1;
+    optind = 0; /* 0, not 1: glibc's full restart (a second parse in one process) */
     opterr = 0;
     while ((ch = getopt_long(argc, argv, ":h", lo, NULL)) != -1) {
         if (ch == 'h') {

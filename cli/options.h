@@ -94,7 +94,8 @@ void gd_cli_help(const gd_cli_command *c, FILE *f);
     GD_CLI_ROW_COUPLING(T, coupling), GD_CLI_ROW_DOFS(T, sets), GD_CLI_ROW_SET(T, sets)
 #define GD_CLI_ROW_JSON(T, m)                                                                      \
     GD_CLI_ROW("json", GD_CLI_FLAG, offsetof(T, m), NULL, "print one JSON object on stdout")
-#define GD_CLI_ROW_OUT(T, m, h) GD_CLI_ROW("out", GD_CLI_STRING, offsetof(T, m), "DIR", h)
+#define GD_CLI_ROW_OUT(T, m, ...)                                                                  \
+    GD_CLI_ROW("out", GD_CLI_STRING, offsetof(T, m), "DIR", __VA_ARGS__)
 #define GD_CLI_ROW_THREADS(T, m, over)                                                             \
     GD_CLI_ROW("threads", GD_CLI_INT, offsetof(T, m), "N", "parallel threads over " over,          \
                .def = "all cores", .lo = 1, .hi = 4096)
@@ -107,9 +108,10 @@ void gd_cli_help(const gd_cli_command *c, FILE *f);
                "units of the tables and plot axes: rpm or rad/s for speed, Hz or rad/s for "       \
                "frequency (e.g. rpm,Hz)",                                                          \
                .def = "the units you wrote")
-#define GD_CLI_ROW_SPEED(T, m, given, h)                                                           \
-    GD_CLI_ROW("speed", GD_CLI_QUANTITY, offsetof(T, m), "VALUE", h, .lo = GD_CLI_ZERO_OR_MORE,    \
-               .qty = GD_QTY_ANGULAR_SPEED, .example = "3000rpm", .aux = given)
+#define GD_CLI_ROW_SPEED(T, m, given, ...)                                                         \
+    GD_CLI_ROW("speed", GD_CLI_QUANTITY, offsetof(T, m), "VALUE", __VA_ARGS__,                     \
+               .lo = GD_CLI_ZERO_OR_MORE, .qty = GD_QTY_ANGULAR_SPEED, .example = "3000rpm",       \
+               .aux = given)
 #define GD_CLI_ROW_EIG_METHOD(T, m, h)                                                             \
     GD_CLI_ROW("method", GD_CLI_CHOICE, offsetof(T, m), "M", h, .def = "auto",                     \
                .word = "auto|dense|sparse")
