@@ -12,14 +12,6 @@
 
 enum { HELP_WIDTH = 90, FIRST_VAL = 256 };
 
-static int nopts(const gd_cli_command *c)
-{
-    int n = 0;
-    while (c->opts[n].name)
-        n++;
-    return n;
-}
-
 /* Levenshtein distance of a and b[0..nb), for the closest option name. */
 static size_t distance(const char *a, const char *b, size_t nb)
 {
@@ -148,22 +140,27 @@ int gd_cli_parse(const gd_cli_command *c, int argc, char **argv, void *args, con
 {
     struct option lo[GD_CLI_MAX_OPTS + 2];
     unsigned char seen[GD_CLI_MAX_OPTS] = {0};
-    int n = nopts(c), ch;
-    if (n > GD_CLI_MAX_OPTS) n = GD_CLI_MAX_OPTS;
-    for (int k = 0; k < n; k++) {
-        int flag = c->opts[k].kind <= GD_CLI_VALUE;
-        lo[k] = (struct option){c->opts[k].name, flag ? no_argument : required_argument, 0,
-                                FIRST_VAL + k};
+    char shorts[3 * GD_CLI_MAX_OPTS + 3] = ":h";
+    int n = 0, ch;
+    for (; c->opts[n].name && n < GD_CLI_MAX_OPTS; n++) {
+        const gd_cli_opt *o = &c->opts[n];
+        int flag = o->kind <= GD_CLI_VALUE;
+        lo[n] = (struct option){o->name, flag ? no_argument : required_argument, 0, FIRST_VAL + n};
+        if (o->letter)
+            snprintf(shorts + strlen(shorts), sizeof shorts - strlen(shorts), "%c%s", o->letter,
+                     flag ? "" : ":");
     }
     lo[n] = (struct option){"help", no_argument, 0, 'h'};
     lo[n + 1] = (struct option){0, 0, 0, 0};
     optind = 0; /* 0, not 1: glibc's full restart (a second parse in one process) */
     opterr = 0;
-    while ((ch = getopt_long(argc, argv, ":h", lo, NULL)) != -1) {
+    while ((ch = getopt_long(argc, argv, shorts, lo, NULL)) != -1) {
         if (ch == 'h') {
             gd_cli_help(c, stdout);
             return -1;
         }
+        for (int k = 0; k < n && ch < FIRST_VAL && ch != '?' && ch != ':'; k++)
+            if (c->opts[k].letter == ch) ch = FIRST_VAL + k;
         if (ch < FIRST_VAL) return option_error(c, ch, argv[optind - 1]);
         int k = ch - FIRST_VAL;
         const gd_cli_opt *o = &c->opts[k];
@@ -228,11 +225,12 @@ void gd_cli_help(const gd_cli_command *c, FILE *f)
     fprintf(f, "\n%s\n%s\n", c->more ? c->more : "", c->about);
     int width = 0;
     for (const gd_cli_opt *o = c->opts; o->name; o++) {
-        int w = (int)strlen(o->name) + (o->meta ? (int)strlen(o->meta) + 1 : 0);
+        int w = (int)strlen(o->name) + (o->meta ? (int)strlen(o->meta) + 1 : 0) + 4 * !!o->letter;
         if (w > width && w <= 22) width = w;
     }
     for (const gd_cli_opt *o = c->opts; o->name; o++) {
-        col = fprintf(f, "  --%s%s%s", o->name, o->meta ? " " : "", o->meta ? o->meta : "");
+        snprintf(buf, sizeof buf, "--%s%s%s", o->name, o->meta ? " " : "", o->meta ? o->meta : "");
+        col = o->letter ? fprintf(f, "  -%c, %s", o->letter, buf) : fprintf(f, "  %s", buf);
         col += fprintf(f, "%*s", width + 6 - col > 1 ? width + 6 - col : 1, "");
         col = wrap(f, o->help, col, width + 6);
         if (o->def || o->required) {

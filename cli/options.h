@@ -50,6 +50,7 @@ typedef struct gd_cli_opt {
     int required;         /* the command fails without it */
     int once;             /* given twice is an error */
     const char *excludes; /* the name of an option it cannot go with */
+    char letter;          /* a short form (-q), or 0 */
     int (*call)(const char *cmd, const char *value, void *field);
 } gd_cli_opt;
 

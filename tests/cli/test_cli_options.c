@@ -31,7 +31,7 @@ static int parse_pair(const char *cmd, const char *text, void *field)
 static const gd_cli_opt OPTS[] = {
     GD_CLI_ROW("name", GD_CLI_STRING, F(name), "X", "a name", .required = 1, .once = 1),
     GD_CLI_ROW("item", GD_CLI_LIST, F(items), "X", "an item", .aux = F(nitems), .hi = 2),
-    GD_CLI_ROW("flag", GD_CLI_FLAG, F(flag), NULL, "a flag"),
+    GD_CLI_ROW("flag", GD_CLI_FLAG, F(flag), NULL, "a flag", .letter = 'f'),
     GD_CLI_ROW("no-keep", GD_CLI_CLEAR, F(keep), NULL, "do not keep"),
     GD_CLI_ROW("undamped", GD_CLI_VALUE, F(kind), NULL, "kind 1", .ival = 1, .excludes = "damped"),
     GD_CLI_ROW("damped", GD_CLI_VALUE, F(kind), NULL, "kind 2", .ival = 2, .excludes = "undamped"),
@@ -52,13 +52,15 @@ static const gd_cli_command CMD = {.name = "toy",
                                    .footer = "The end.\n"};
 
 static char out_text[16384], err_text[4096];
+static size_t out_len; /* bytes written to stdout (a NUL byte would end out_text early) */
 
-/* Reads fd's file from the start into buf. */
-static void slurp_fd(int fd, char *buf, size_t size)
+/* Reads fd's file from the start into buf; the bytes read. */
+static size_t slurp_fd(int fd, char *buf, size_t size)
 {
     lseek(fd, 0, SEEK_SET);
     ssize_t n = read(fd, buf, size - 1);
     buf[n > 0 ? n : 0] = '\0';
+    return n > 0 ? (size_t)n : 0;
 }
 
 /* Parses "toy WORDS..." (split at spaces) into *a (reset to the defaults first), with
@@ -87,7 +89,7 @@ static int parse(const char *line, toy_args *a)
     dup2(se, 2);
     close(so);
     close(se);
-    slurp_fd(fo, out_text, sizeof out_text);
+    out_len = slurp_fd(fo, out_text, sizeof out_text);
     slurp_fd(fe, err_text, sizeof err_text);
     close(fo);
     close(fe);
@@ -136,7 +138,9 @@ TEST(defaults_abbreviations_and_equals)
     CHECK(parse("m.yaml --name x --cou all --ch=b --sp 10", &a) == 0);
     CHECK(a.count == 0); /* the word gives .ival */
     CHECK(a.choice == 1);
-    CHECK(a.speed == 10.0); /* a plain number is rad/s */
+    CHECK(a.speed == 10.0);                      /* a plain number is rad/s */
+    CHECK(parse("m.yaml --name x -f", &a) == 0); /* the short form */
+    CHECK(a.flag == 1);
 }
 
 TEST(unknown_option_names_the_closest)
@@ -217,13 +221,14 @@ TEST(help_is_generated_from_the_table)
     CHECK(parse("--help", &a) == -1);
     CHECK(err_text[0] == '\0');
     CHECK(has(out_text, "usage: geardyn toy MODEL.yaml --name X [--item X]... [--flag]"));
+    CHECK(out_len > 0 && strlen(out_text) == out_len); /* text only, no NUL byte */
     CHECK(has(out_text, "[--set PATH=VALUE]..."));
     CHECK(has(out_text, "\nA toy command.\n\n"));
     /* every row of the table, with its help text and default */
     for (const gd_cli_opt *o = OPTS; o->name; o++) {
         char line[128];
-        snprintf(line, sizeof line, "\n  --%s%s%s ", o->name, o->meta ? " " : "",
-                 o->meta ? o->meta : "");
+        snprintf(line, sizeof line, "\n  %s--%s%s%s ", o->letter ? "-f, " : "", o->name,
+                 o->meta ? " " : "", o->meta ? o->meta : "");
         CHECK(has(out_text, line));
         snprintf(line, sizeof line, "%.20s", o->help);
         CHECK(has(out_text, line));
