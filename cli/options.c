@@ -12,6 +12,10 @@
 
 enum { HELP_WIDTH = 90, FIRST_VAL = 256 };
 
+/* VALUE and CHOICE rows write an int into the library's enum fields (gd_modal_kind,
+ * gd_eig_method, ...): enums are int-sized here (no -fshort-enums). */
+_Static_assert(sizeof(gd_eig_method) == sizeof(int), "enum fields are written as int");
+
 /* Levenshtein distance of a and b[0..nb), for the closest option name. */
 static size_t distance(const char *a, const char *b, size_t nb)
 {
