@@ -9,6 +9,7 @@
 #include "../../cli/cli_model.c"
 #include "../../cli/cli_util.c"
 #include "../../cli/options.c"
+#include "cli_support.h"
 #include "harness.h"
 
 typedef struct toy_args {
@@ -246,7 +247,40 @@ TEST(help_is_generated_from_the_table)
     CHECK(has(out_text, "usage: geardyn toy"));
 }
 
-RUN_TESTS(T(every_kind_fills_its_field), T(defaults_abbreviations_and_equals),
-          T(unknown_option_names_the_closest),
+/* The commands on tables, through the program: the help of each lists the options of its
+ * table, and a misspelt option is named with the closest one, exit 2, nothing on stdout. */
+TEST(the_commands_name_the_closest_option)
+{
+    static const struct {
+        const char *cmd, *typo, *meant;
+    } CASES[] = {
+        {"check", "--jsno", "--json"},
+        {"modal", "--mdoes 3", "--modes"},
+        {"static", "--torqe 1", "--torque"},
+        {"campbell", "--speds 0:1:2", "--speeds"},
+        {"frf", "--outptu a.x", "--output"},
+        {"unbalance", "--orbit-sped 1", "--orbit-speed"},
+        {"matrices", "--fromat mtx", "--format"},
+        {"mesh-stiffness", "--slcies 3", "--slices"},
+        {"study", "--reusme", "--resume"},
+    };
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    run_result r;
+    for (size_t i = 0; i < sizeof CASES / sizeof CASES[0]; i++) {
+        run(&s, &r, "%s --help", CASES[i].cmd);
+        CHECK(r.code == 0 && contains(r.out, "usage: geardyn ") && contains(r.out, CASES[i].meant));
+        run_free(&r);
+        run(&s, &r, "%s examples/chen1998_gear_pair.yaml %s", CASES[i].cmd, CASES[i].typo);
+        char want[96];
+        snprintf(want, sizeof want, "(did you mean %s?)", CASES[i].meant);
+        CHECK(r.code == 2 && r.out[0] == '\0' && has(r.err, want));
+        run_free(&r);
+    }
+    scratch_close(&s);
+}
+
+RUN_TESTS(T(the_commands_name_the_closest_option), T(every_kind_fills_its_field),
+          T(defaults_abbreviations_and_equals), T(unknown_option_names_the_closest),
           T(missing_and_bad_values_name_the_option_and_the_fix), T(flag_with_a_value_is_refused),
           T(repeated_options), T(positional_and_required), T(help_is_generated_from_the_table))
