@@ -62,16 +62,15 @@ int gd_outdir_close(gd_outdir *od, FILE *f, const char *name, gd_error *err);
 int gd_outdir_commit(gd_outdir *od, gd_error *err);
 void gd_outdir_abort(gd_outdir *od);
 
-#endif
-
 /* ---- shared by the model-based commands ---- */
 #include "geardyn/model.h"
 #include "geardyn/model_file.h"
 #include "geardyn/system.h"
 
-/* --set PATH=VALUE, repeatable (docs/model-format.md, "Overrides (--set)"): each
- * command lists GD_CLI_SET_OPTION in its getopt_long table and passes the value of
- * GD_CLI_OPT_SET to gd_cli_add_set. The strings are argv's. */
+/* --set PATH=VALUE, repeatable (docs/model-format.md, "Overrides (--set)"): a command
+ * on an option table has the row GD_CLI_ROW_SET (options.h); one still on getopt_long
+ * lists GD_CLI_SET_OPTION and passes the value of GD_CLI_OPT_SET to gd_cli_add_set.
+ * The strings are argv's. */
 enum { GD_CLI_OPT_SET = 0x5e7, GD_CLI_OPT_DOFS = 0x5e8, GD_CLI_MAX_SET = 64 };
 #define GD_CLI_SET_OPTION                                                                          \
     {                                                                                              \
@@ -101,10 +100,7 @@ int gd_cli_load(const char *path, const gd_cli_sets *sets, const char *coupling,
                 gd_system **sys);
 /* Parses a speed option value with units ("3000 rpm"); 0 on success. */
 int gd_cli_parse_speed(const char *cmd, const char *text, double *out);
-/* Parses --method auto|dense|sparse (the eigensolver); 0 on success, else the usage
- * error's exit code. */
 #include "geardyn/modal.h"
-int gd_cli_parse_eig_method(const char *cmd, const char *text, gd_eig_method *out);
 
 /* ---- sweeps: Campbell, FRF, unbalance (cli_sweep.c) ---- */
 #include "geardyn/frf.h"
@@ -142,9 +138,6 @@ typedef struct gd_cli_units {
     int speed_rpm; /* speeds in rpm, else rad/s */
     int freq_hz;   /* frequencies in Hz, else rad/s */
 } gd_cli_units;
-#define GD_CLI_UNITS_HELP                                                                          \
-    "  --units LIST      units of the tables and plot axes: rpm or rad/s for speed, Hz or\n"       \
-    "                    rad/s for frequency (e.g. rpm,Hz; default: the units you wrote)\n"
 /* Sets *u from what the user wrote in speed_text / freq_text (either may be NULL; *u
  * holds the command's defaults on entry), then from --units (may be NULL). 0, or the
  * exit code after reporting. */
@@ -163,9 +156,6 @@ enum { GD_CLI_OPT_PLOT = 0x9107 };
     {                                                                                              \
         "plot", required_argument, 0, GD_CLI_OPT_PLOT                                              \
     }
-#define GD_CLI_PLOT_HELP                                                                           \
-    "  --plot FILE       the standard figure: FILE.svg, FILE.png, FILE.pdf (static) or\n"          \
-    "                    FILE.html (interactive, self-contained; docs/plots.md)\n"
 /* Before any computing: path has a known extension and a writable folder (and for HTML
  * plotly.js is there). 0, or the exit code after reporting. */
 int gd_cli_plot_check(const char *path);
@@ -181,3 +171,5 @@ int gd_cli_plot_finish_as(gd_status st, gd_plot *p, gd_error *err, const char *p
 int gd_cmd_report(int argc, char **argv);
 /* ---- periodic steady state (cmd_periodic.c) ---- */
 int gd_cmd_periodic(int argc, char **argv);
+
+#endif

@@ -97,16 +97,3 @@ int gd_cli_parse_speed(const char *cmd, const char *text, double *out)
     }
     return 0;
 }
-
-int gd_cli_parse_eig_method(const char *cmd, const char *text, gd_eig_method *out)
-{
-    if (!strcmp(text, "auto"))
-        *out = GD_EIG_AUTO;
-    else if (!strcmp(text, "dense"))
-        *out = GD_EIG_DENSE;
-    else if (!strcmp(text, "sparse"))
-        *out = GD_EIG_SPARSE;
-    else
-        return gd_cli_usage_error(cmd, "--method: '%s' is not auto, dense or sparse", text);
-    return 0;
-}

@@ -1,46 +1,64 @@
 /* geardyn campbell MODEL --speeds FROM:TO:COUNT: Campbell diagram, critical speeds,
  * stability. */
 #include <cblas.h>
-#include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
+#include "options.h"
 #include "geardyn/campbell.h"
 #include "geardyn/units.h"
 
-static const char USAGE[] =
-    "usage: geardyn campbell MODEL.yaml --speeds FROM:TO:COUNT [--modes N|all] [--orders LIST]\n"
-    "                        [--no-shaft-orders] [--no-mesh-orders] [--method auto|dense|sparse]\n"
-    "                        [--undamped] [--shift VALUE] [--threads N] [--coupling LEVEL]\n"
-    "                        [--dofs LIST] [--set PATH=VALUE]... [--json] [--out DIR] [--plot "
-    "FILE]\n"
-    "                        [--max-frequency F] [--operating-range FROM:TO]\n\n"
-    "Damped modes at every speed, tracked across speeds by mode shape (MAC), with whirl\n"
-    "direction, dominant motion and log decrement; critical speeds where a mode meets an\n"
-    "excitation order (1x of each shaft, --orders, tooth-mesh orders); instability onset.\n\n"
-    "  --speeds FROM:TO:COUNT  reference speeds, units allowed: 0:12000rpm:121 (required)\n"
-    "  --modes N|all       elastic modes tracked (default 12; rigid-body modes are left out)\n"
-    "  --orders LIST       extra orders of the reference speed, comma-separated: 2,0.5\n"
-    "  --no-shaft-orders   leave out the 1x order of each shaft\n"
-    "  --no-mesh-orders    leave out the tooth-mesh orders (teeth x shaft speed)\n"
-    "  --method M          auto (the cheaper by a measured cost model), dense (LAPACK) or sparse\n"
-    "  --undamped          drop damping (gyroscopic terms stay)\n"
-    "  --shift VALUE       sparse shift below zero, e.g. 10Hz (default: automatic)\n"
-    "  --max-frequency F   the plot's frequency axis ends at F (Hz; or 5000rpm, rad/s): modes\n"
-    "                      and critical speeds wholly above it are left out of the "
-    "plot\n" GD_CLI_UNITS_HELP
-    "  --operating-range FROM:TO  shade this speed range on the plot and give each critical\n"
-    "                      speed's separation margin to it (e.g. 2500:3500rpm)\n"
-    "  --threads N         parallel threads over speeds (default: all cores)\n"
-    "  --coupling LEVEL    torsional | lateral-torsional | full: every mesh's level\n"
-    "  --dofs LIST         keep only these node DOFs, e.g. x,y,rz\n"
-    "  --set PATH=VALUE    change a value of the model file, e.g.\n"
-    "                      --set meshes.mesh.stiffness=3e8N/m (repeatable; docs/model-format.md)\n"
-    "  --json              one JSON object on stdout instead of the tables\n"
-    "  --out DIR           write DIR/campbell.csv (long form) and "
-    "DIR/critical_speeds.csv\n" GD_CLI_PLOT_HELP;
+typedef struct campbell_args {
+    gd_campbell_options opt;
+    const char *speeds, *coupling, *out, *orders, *plot, *maxf, *oper, *units;
+    gd_cli_sets sets;
+    int json;
+} campbell_args;
+
+#define F(m) offsetof(campbell_args, m)
+static const gd_cli_opt OPTS[] = {
+    GD_CLI_ROW("speeds", GD_CLI_STRING, F(speeds), "FROM:TO:COUNT",
+               "reference speeds, units allowed: 0:12000rpm:121", .required = 1),
+    GD_CLI_ROW("modes", GD_CLI_INT, F(opt.nmodes), "N|all",
+               "elastic modes tracked (default 12; rigid-body modes are left out)", .lo = 1,
+               .hi = 100000, .word = "all", .ival = 0),
+    GD_CLI_ROW("orders", GD_CLI_STRING, F(orders), "LIST",
+               "extra orders of the reference speed, comma-separated: 2,0.5"),
+    GD_CLI_ROW("no-shaft-orders", GD_CLI_CLEAR, F(opt.shaft_orders), NULL,
+               "leave out the 1x order of each shaft"),
+    GD_CLI_ROW("no-mesh-orders", GD_CLI_CLEAR, F(opt.mesh_orders), NULL,
+               "leave out the tooth-mesh orders (teeth x shaft speed)"),
+    GD_CLI_ROW_EIG_METHOD(campbell_args, opt.method,
+                          "auto (the cheaper by a measured cost model), dense (LAPACK) or sparse"),
+    GD_CLI_ROW("undamped", GD_CLI_VALUE, F(opt.kind), NULL, "drop damping (gyroscopic terms stay)",
+               .ival = GD_MODAL_UNDAMPED),
+    GD_CLI_ROW("shift", GD_CLI_QUANTITY, F(opt.shift), "VALUE",
+               "sparse shift below zero, e.g. 10Hz", .def = "automatic", .lo = GD_CLI_ABOVE_ZERO,
+               .qty = GD_QTY_ANGULAR_SPEED, .example = "10Hz"),
+    GD_CLI_ROW("max-frequency", GD_CLI_STRING, F(maxf), "F",
+               "the plot's frequency axis ends at F (Hz; or 5000rpm, rad/s): modes and critical "
+               "speeds wholly above it are left out of the plot"),
+    GD_CLI_ROW_UNITS(campbell_args, units),
+    GD_CLI_ROW("operating-range", GD_CLI_STRING, F(oper), "FROM:TO",
+               "shade this speed range on the plot and give each critical speed's separation "
+               "margin to it (e.g. 2500:3500rpm)"),
+    GD_CLI_ROW_THREADS(campbell_args, opt.nthreads, "speeds"),
+    GD_CLI_ROW_MODEL(campbell_args, coupling, sets),
+    GD_CLI_ROW_JSON(campbell_args, json),
+    GD_CLI_ROW_OUT(campbell_args, out,
+                   "write DIR/campbell.csv (long form) and DIR/critical_speeds.csv"),
+    GD_CLI_ROW_PLOT(campbell_args, plot),
+    {0}};
+static const gd_cli_command CMD = {
+    .name = "campbell",
+    .args = "MODEL.yaml",
+    .opts = OPTS,
+    .about =
+        "Damped modes at every speed, tracked across speeds by mode shape (MAC), with whirl\n"
+        "direction, dominant motion and log decrement; critical speeds where a mode meets an\n"
+        "excitation order (1x of each shaft, --orders, tooth-mesh orders); instability onset.\n"};
 
 #define PI 3.14159265358979323846
 
@@ -256,122 +274,21 @@ static int plot_speed_range(const char *text, double *lo, double *hi)
 
 int gd_cmd_campbell(int argc, char **argv)
 {
-    static const struct option opts[] = {{"speeds", required_argument, 0, 's'},
-                                         {"modes", required_argument, 0, 'n'},
-                                         {"orders", required_argument, 0, 'r'},
-                                         {"no-shaft-orders", no_argument, 0, 'S'},
-                                         {"no-mesh-orders", no_argument, 0, 'M'},
-                                         {"method", required_argument, 0, 'm'},
-                                         {"undamped", no_argument, 0, 'u'},
-                                         {"shift", required_argument, 0, 'f'},
-                                         {"threads", required_argument, 0, 't'},
-                                         {"coupling", required_argument, 0, 'c'},
-                                         {"json", no_argument, 0, 'j'},
-                                         {"out", required_argument, 0, 'o'},
-                                         GD_CLI_SET_OPTION,
-                                         GD_CLI_DOFS_OPTION,
-                                         {"help", no_argument, 0, 'h'},
-                                         GD_CLI_PLOT_OPTION,
-                                         {"max-frequency", required_argument, 0, 'X'},
-                                         {"operating-range", required_argument, 0, 'R'},
-                                         {"units", required_argument, 0, 'U'},
-                                         {0, 0, 0, 0}};
-    const char *cmd = "campbell", *speeds = NULL, *coupling = NULL, *out = NULL, *orders = NULL,
-               *shift = NULL, *plot = NULL, *maxf = NULL, *oper = NULL, *units = NULL;
-    gd_campbell_options opt;
-    gd_campbell_options_init(&opt);
-    int json = 0, c;
-    gd_cli_sets sets = {0};
-    long nm;
-    optind = 1;
-    opterr = 0;
-    while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
-        switch (c) {
-        case 's':
-            speeds = optarg;
-            break;
-        case 'n':
-            if (!strcmp(optarg, "all"))
-                opt.nmodes = 0;
-            else if (gd_cli_parse_count(optarg, 1, 100000, &nm))
-                return gd_cli_usage_error(
-                    cmd, "--modes: '%s' is not a positive whole number or 'all'", optarg);
-            else
-                opt.nmodes = (int)nm;
-            break;
-        case 'r':
-            orders = optarg;
-            break;
-        case 'S':
-            opt.shaft_orders = 0;
-            break;
-        case 'M':
-            opt.mesh_orders = 0;
-            break;
-        case 'm':
-            if (gd_cli_parse_eig_method(cmd, optarg, &opt.method)) return GD_EXIT_INPUT;
-            break;
-        case 'u':
-            opt.kind = GD_MODAL_UNDAMPED;
-            break;
-        case 'f':
-            shift = optarg;
-            break;
-        case 't':
-            if (gd_cli_parse_threads(cmd, optarg, &opt.nthreads)) return GD_EXIT_INPUT;
-            break;
-        case 'c':
-            coupling = optarg;
-            break;
-        case GD_CLI_OPT_SET:
-            if (gd_cli_add_set(cmd, &sets, optarg)) return GD_EXIT_INPUT;
-            break;
-        case GD_CLI_OPT_DOFS:
-            sets.dofs = optarg;
-            break;
-        case 'j':
-            json = 1;
-            break;
-        case 'o':
-            out = optarg;
-            break;
-        case GD_CLI_OPT_PLOT:
-            plot = optarg;
-            break;
-        case 'X':
-            maxf = optarg;
-            break;
-        case 'R':
-            oper = optarg;
-            break;
-        case 'U':
-            units = optarg;
-            break;
-        case 'h':
-            fputs(USAGE, stdout);
-            return GD_EXIT_OK;
-        default:
-            return gd_cli_option_error(cmd, c, argv, optind);
-        }
-    }
-    if (optind != argc - 1) return gd_cli_usage_error(cmd, "give exactly one model file");
-    if (!speeds) return gd_cli_usage_error(cmd, "--speeds FROM:TO:COUNT is required");
+    const char *cmd = "campbell", *file;
+    campbell_args a = {0};
+    gd_campbell_options_init(&a.opt);
+    int rc = gd_cli_parse(&CMD, argc, argv, &a, &file);
+    if (rc) return rc < 0 ? GD_EXIT_OK : rc;
+    gd_campbell_options opt = a.opt;
+    const char *speeds = a.speeds, *out = a.out, *orders = a.orders, *plot = a.plot, *maxf = a.maxf,
+               *oper = a.oper;
     double *ord = NULL;
     if (orders && parse_orders(orders, &ord, &opt.norders))
         return gd_cli_usage_error(
             cmd, "--orders: '%s' is not a comma-separated list of positive numbers", orders);
     opt.orders = ord;
-    gd_error why;
-    if (shift && gd_parse_quantity(shift, GD_QTY_ANGULAR_SPEED, &opt.shift, &why)) {
-        free(ord);
-        return gd_cli_usage_error(cmd, "--shift: %s (e.g. --shift 10Hz)", why.message);
-    }
-    if (shift && !(opt.shift > 0)) {
-        free(ord);
-        return gd_cli_usage_error(cmd, "--shift: give a value above zero");
-    }
     gd_cli_units u = {.speed_rpm = 1, .freq_hz = 1}; /* rpm and Hz unless rad/s is written */
-    if (gd_cli_units_parse(cmd, units, speeds, maxf, &u)) {
+    if (gd_cli_units_parse(cmd, a.units, speeds, maxf, &u)) {
         free(ord);
         return GD_EXIT_INPUT;
     }
@@ -394,7 +311,7 @@ int gd_cmd_campbell(int argc, char **argv)
                                   oper);
     }
     double *sp = NULL;
-    int rc = gd_cli_parse_range(cmd, "--speeds", speeds, &sp, &opt.nspeeds);
+    rc = gd_cli_parse_range(cmd, "--speeds", speeds, &sp, &opt.nspeeds);
     if (rc) {
         free(ord);
         return rc;
@@ -409,7 +326,7 @@ int gd_cmd_campbell(int argc, char **argv)
     }
     gd_model *m;
     gd_system *s;
-    rc = gd_cli_load(argv[optind], &sets, coupling, &m, &s);
+    rc = gd_cli_load(file, &a.sets, a.coupling, &m, &s);
     if (rc) {
         free(ord);
         free(sp);
@@ -429,7 +346,7 @@ int gd_cmd_campbell(int argc, char **argv)
         }
         if (out && rc == GD_EXIT_OK) rc = write_csv(r, out);
         if (rc == GD_EXIT_OK) {
-            if (json) {
+            if (a.json) {
                 cJSON *o = result_json(s, r);
                 gd_cli_print_json(stdout, o);
                 cJSON_Delete(o);

@@ -1,21 +1,25 @@
 /* geardyn check MODEL: validate a model and summarise it. */
-#include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
+#include "options.h"
 
-static const char USAGE[] =
-    "usage: geardyn check MODEL.yaml [--coupling LEVEL] [--dofs LIST] [--set PATH=VALUE]...\n"
-    "                     [--json]\n\n"
-    "Validates a model and prints a summary: nodes, DOFs, elements, meshes, and the mass\n"
-    "and polar inertia of each shaft with everything on it.\n\n"
-    "  --coupling LEVEL  torsional | lateral-torsional | full: every mesh's level\n"
-    "  --dofs LIST       keep only these node DOFs, e.g. x,y,rz\n"
-    "  --set PATH=VALUE  change a value of the file before checking, e.g.\n"
-    "                    --set meshes.mesh.stiffness=3e8N/m (repeatable; docs/model-format.md)\n"
-    "  --json            print the summary as one JSON object\n";
+typedef struct check_args {
+    const char *coupling;
+    int json;
+    gd_cli_sets sets;
+} check_args;
+
+static const gd_cli_opt OPTS[] = {
+    GD_CLI_ROW_MODEL(check_args, coupling, sets), GD_CLI_ROW_JSON(check_args, json), {0}};
+static const gd_cli_command CMD = {
+    .name = "check",
+    .args = "MODEL.yaml",
+    .opts = OPTS,
+    .about = "Validates a model and prints a summary: nodes, DOFs, elements, meshes, and the mass\n"
+             "and polar inertia of each shaft with everything on it.\n"};
 
 static void print_text(const gd_model *m, const gd_system *s)
 {
@@ -131,44 +135,15 @@ static cJSON *summary_json(const gd_model *m, const gd_system *s)
 
 int gd_cmd_check(int argc, char **argv)
 {
-    static const struct option opts[] = {{"coupling", required_argument, 0, 'c'},
-                                         GD_CLI_SET_OPTION,
-                                         GD_CLI_DOFS_OPTION,
-                                         {"json", no_argument, 0, 'j'},
-                                         {"help", no_argument, 0, 'h'},
-                                         {0, 0, 0, 0}};
-    const char *coupling = NULL;
-    gd_cli_sets sets = {0};
-    int json = 0, c;
-    optind = 1;
-    opterr = 0;
-    while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
-        switch (c) {
-        case 'c':
-            coupling = optarg;
-            break;
-        case GD_CLI_OPT_SET:
-            if (gd_cli_add_set("check", &sets, optarg)) return GD_EXIT_INPUT;
-            break;
-        case GD_CLI_OPT_DOFS:
-            sets.dofs = optarg;
-            break;
-        case 'j':
-            json = 1;
-            break;
-        case 'h':
-            fputs(USAGE, stdout);
-            return GD_EXIT_OK;
-        default:
-            return gd_cli_option_error("check", c, argv, optind);
-        }
-    }
-    if (optind != argc - 1) return gd_cli_usage_error("check", "give exactly one model file");
+    check_args a = {0};
+    const char *file;
+    int rc = gd_cli_parse(&CMD, argc, argv, &a, &file);
+    if (rc) return rc < 0 ? GD_EXIT_OK : rc;
     gd_model *m;
     gd_system *s;
-    int rc = gd_cli_load(argv[optind], &sets, coupling, &m, &s);
+    rc = gd_cli_load(file, &a.sets, a.coupling, &m, &s);
     if (rc) return rc;
-    if (json) {
+    if (a.json) {
         cJSON *o = summary_json(m, s);
         gd_cli_print_json(stdout, o);
         cJSON_Delete(o);

@@ -1,154 +1,81 @@
 /* geardyn frf MODEL --input WHAT --output WHAT --freq FROM:TO:COUNT: frequency
  * response functions, direct or by modal summation, and directional FRFs. */
 #include <cblas.h>
-#include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
+#include "options.h"
 #include "sweep_output.h"
-
-static const char USAGE[] =
-    "usage: geardyn frf MODEL.yaml --input WHAT --output WHAT [--output WHAT ...]\n"
-    "                   --freq FROM:TO:COUNT [--speed VALUE] [--method direct|modal]\n"
-    "                   [--modes N|all] [--type receptance|mobility|accelerance]\n"
-    "                   [--threads N] [--coupling LEVEL] [--dofs LIST] [--set PATH=VALUE]...\n"
-    "                   [--json] [--out DIR] [--plot FILE.svg|FILE.html]\n\n"
-    "Response to a unit harmonic force or moment. Inputs:\n"
-    "  NODE.DOF, node:NODE.DOF  force (x, y, z) or moment (rx, ry, rz) at a node, e.g. pinion.y\n"
-    "  torque:NODE              torque about the shaft axis (= NODE.rz)\n"
-    "  NODE.xy                  directional FRFs: forward and backward (outputs NODE.xy too)\n"
-    "Outputs (repeat --output):\n"
-    "  NODE.DOF, node:NODE.DOF  displacement (or velocity/acceleration, --type)\n"
-    "  mesh:NAME                dynamic mesh force k d + c d' along the contact normal (N)\n"
-    "  bearing:NAME.DIR         force the bearing transmits in DIR (x, y, z, rx, ry, rz)\n\n"
-    "  --freq FROM:TO:COUNT  frequencies, units allowed: 0:26000:1001 (rad/s), 0:5kHz:501\n"
-    "  --speed VALUE     reference shaft speed (gyroscopics, bearing tables); default: model's\n"
-    "  --method M        direct (sparse complex solve per frequency, default) or modal\n"
-    "                    (summation over left/right eigenvectors, rigid-body modes exact)\n"
-    "  --modes N|all     modes summed by --method modal (default all; fewer truncates)\n"
-    "  --type T          receptance (default), mobility or accelerance (DOF outputs)\n"
-    "  --threads N       parallel threads over frequencies (default: all cores)\n"
-    "  --coupling LEVEL  torsional | lateral-torsional | full: every mesh's level\n"
-    "  --dofs LIST       keep only these node DOFs, e.g. x,y,rz\n"
-    "  --set PATH=VALUE  change a value of the model file, e.g.\n"
-    "                    --set meshes.mesh.stiffness=3e8N/m (repeatable; docs/model-format.md)\n"
-    "  --json            one JSON object on stdout\n"
-    "  --out DIR         write DIR/frf.csv (long form)\n" GD_CLI_UNITS_HELP GD_CLI_PLOT_HELP;
 
 #define MAXOUT 16
 
+typedef struct frf_args {
+    gd_frf_options opt;
+    const char *input, *freq, *speed, *coupling, *out, *outs[MAXOUT], *plot, *units;
+    int nouts, json;
+    gd_cli_sets sets;
+} frf_args;
+
+#define F(m) offsetof(frf_args, m)
+static const gd_cli_opt OPTS[] = {
+    GD_CLI_ROW("input", GD_CLI_STRING, F(input), "WHAT", "the input (above)", .required = 1,
+               .once = 1),
+    GD_CLI_ROW("output", GD_CLI_LIST, F(outs), "WHAT", "an output (above); repeatable",
+               .required = 1, .aux = F(nouts), .hi = MAXOUT),
+    GD_CLI_ROW("freq", GD_CLI_STRING, F(freq), "FROM:TO:COUNT",
+               "frequencies, units allowed: 0:26000:1001 (rad/s), 0:5kHz:501", .required = 1),
+    GD_CLI_ROW("speed", GD_CLI_STRING, F(speed), "VALUE",
+               "reference shaft speed (gyroscopics, bearing tables); default: model's"),
+    GD_CLI_ROW("method", GD_CLI_CHOICE, F(opt.method), "M",
+               "direct (sparse complex solve per frequency) or modal (summation over left/right "
+               "eigenvectors, rigid-body modes exact)",
+               .def = "direct", .word = "direct|modal"),
+    GD_CLI_ROW("modes", GD_CLI_INT, F(opt.nmodes), "N|all",
+               "modes summed by --method modal (default all; fewer truncates)", .lo = 1,
+               .hi = 1000000, .word = "all", .ival = 0),
+    GD_CLI_ROW("type", GD_CLI_CHOICE, F(opt.quantity), "T",
+               "receptance, mobility or accelerance (DOF outputs)", .def = "receptance",
+               .word = "receptance|mobility|accelerance"),
+    GD_CLI_ROW_THREADS(frf_args, opt.nthreads, "frequencies"),
+    GD_CLI_ROW_MODEL(frf_args, coupling, sets),
+    GD_CLI_ROW_JSON(frf_args, json),
+    GD_CLI_ROW_OUT(frf_args, out, "write DIR/frf.csv (long form)"),
+    GD_CLI_ROW_UNITS(frf_args, units),
+    GD_CLI_ROW_PLOT(frf_args, plot),
+    {0}};
+static const gd_cli_command CMD = {
+    .name = "frf",
+    .args = "MODEL.yaml",
+    .opts = OPTS,
+    .about =
+        "Response to a unit harmonic force or moment. Inputs:\n"
+        "  NODE.DOF, node:NODE.DOF  force (x, y, z) or moment (rx, ry, rz) at a node, e.g. "
+        "pinion.y\n"
+        "  torque:NODE              torque about the shaft axis (= NODE.rz)\n"
+        "  NODE.xy                  directional FRFs: forward and backward (outputs NODE.xy "
+        "too)\n"
+        "Outputs (repeat --output):\n"
+        "  NODE.DOF, node:NODE.DOF  displacement (or velocity/acceleration, --type)\n"
+        "  mesh:NAME                dynamic mesh force k d + c d' along the contact normal (N)\n"
+        "  bearing:NAME.DIR         force the bearing transmits in DIR (x, y, z, rx, ry, rz)\n"};
+
 int gd_cmd_frf(int argc, char **argv)
 {
-    static const struct option opts[] = {{"input", required_argument, 0, 'i'},
-                                         {"output", required_argument, 0, 'O'},
-                                         {"freq", required_argument, 0, 'F'},
-                                         {"speed", required_argument, 0, 's'},
-                                         {"method", required_argument, 0, 'm'},
-                                         {"modes", required_argument, 0, 'n'},
-                                         {"type", required_argument, 0, 'T'},
-                                         {"threads", required_argument, 0, 't'},
-                                         {"coupling", required_argument, 0, 'c'},
-                                         GD_CLI_SET_OPTION,
-                                         GD_CLI_DOFS_OPTION,
-                                         {"json", no_argument, 0, 'j'},
-                                         {"out", required_argument, 0, 'o'},
-                                         {"help", no_argument, 0, 'h'},
-                                         GD_CLI_PLOT_OPTION,
-                                         {"units", required_argument, 0, 'U'},
-                                         {0, 0, 0, 0}};
-    const char *cmd = "frf", *input = NULL, *freq = NULL, *speed = NULL, *coupling = NULL,
-               *out = NULL, *outs[MAXOUT], *plot = NULL, *units = NULL;
-    int nouts = 0, json = 0, c;
-    gd_cli_sets sets = {0};
-    long nm;
-    gd_frf_options opt;
-    gd_frf_options_init(&opt);
-    optind = 1;
-    opterr = 0;
-    while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
-        switch (c) {
-        case 'i':
-            if (input) return gd_cli_usage_error(cmd, "give one --input");
-            input = optarg;
-            break;
-        case 'O':
-            if (nouts == MAXOUT) return gd_cli_usage_error(cmd, "at most %d outputs", MAXOUT);
-            outs[nouts++] = optarg;
-            break;
-        case 'F':
-            freq = optarg;
-            break;
-        case 's':
-            speed = optarg;
-            break;
-        case 'm':
-            if (!strcmp(optarg, "direct"))
-                opt.method = GD_FRF_DIRECT;
-            else if (!strcmp(optarg, "modal"))
-                opt.method = GD_FRF_MODAL;
-            else
-                return gd_cli_usage_error(cmd, "--method: '%s' is not direct or modal", optarg);
-            break;
-        case 'n':
-            if (!strcmp(optarg, "all"))
-                opt.nmodes = 0;
-            else if (gd_cli_parse_count(optarg, 1, 1000000, &nm))
-                return gd_cli_usage_error(
-                    cmd, "--modes: '%s' is not a positive whole number or 'all'", optarg);
-            else
-                opt.nmodes = (int)nm;
-            break;
-        case 'T': {
-            int q = -1;
-            for (int k = 0; k < 3; k++)
-                if (!strcmp(optarg, gd_frf_quantity_names[k])) q = k;
-            if (q < 0)
-                return gd_cli_usage_error(
-                    cmd, "--type: '%s' is not receptance, mobility or accelerance", optarg);
-            opt.quantity = (gd_frf_quantity)q;
-            break;
-        }
-        case 't':
-            if (gd_cli_parse_threads(cmd, optarg, &opt.nthreads)) return GD_EXIT_INPUT;
-            break;
-        case 'c':
-            coupling = optarg;
-            break;
-        case GD_CLI_OPT_SET:
-            if (gd_cli_add_set(cmd, &sets, optarg)) return GD_EXIT_INPUT;
-            break;
-        case GD_CLI_OPT_DOFS:
-            sets.dofs = optarg;
-            break;
-        case 'j':
-            json = 1;
-            break;
-        case 'o':
-            out = optarg;
-            break;
-        case GD_CLI_OPT_PLOT:
-            plot = optarg;
-            break;
-        case 'U':
-            units = optarg;
-            break;
-        case 'h':
-            fputs(USAGE, stdout);
-            return GD_EXIT_OK;
-        default:
-            return gd_cli_option_error(cmd, c, argv, optind);
-        }
-    }
-    if (optind != argc - 1) return gd_cli_usage_error(cmd, "give exactly one model file");
-    if (!input) return gd_cli_usage_error(cmd, "--input is required");
-    if (!nouts) return gd_cli_usage_error(cmd, "give at least one --output");
-    if (!freq) return gd_cli_usage_error(cmd, "--freq FROM:TO:COUNT is required");
+    frf_args a = {0};
+    gd_frf_options_init(&a.opt);
+    const char *cmd = "frf", *file;
+    int rc = gd_cli_parse(&CMD, argc, argv, &a, &file);
+    if (rc) return rc < 0 ? GD_EXIT_OK : rc;
+    gd_frf_options opt = a.opt;
+    const char *input = a.input, *freq = a.freq, *speed = a.speed, *out = a.out,
+               *plot = a.plot, *const *outs = a.outs;
+    int nouts = a.nouts;
     gd_cli_units u = {.speed_rpm = 0, .freq_hz = 0}; /* rad/s unless rpm or Hz is written */
-    if (gd_cli_units_parse(cmd, units, speed, freq, &u)) return GD_EXIT_INPUT;
+    if (gd_cli_units_parse(cmd, a.units, speed, freq, &u)) return GD_EXIT_INPUT;
     double *fr = NULL;
-    int rc = gd_cli_parse_range(cmd, "--freq", freq, &fr, &opt.nfreq);
+    rc = gd_cli_parse_range(cmd, "--freq", freq, &fr, &opt.nfreq);
     if (rc) return rc;
     opt.freqs = fr;
     gd_error err;
@@ -159,7 +86,7 @@ int gd_cmd_frf(int argc, char **argv)
     }
     gd_model *m;
     gd_system *s;
-    if ((rc = gd_cli_load(argv[optind], &sets, coupling, &m, &s))) {
+    if ((rc = gd_cli_load(file, &a.sets, a.coupling, &m, &s))) {
         free(fr);
         return rc;
     }
@@ -237,7 +164,7 @@ int gd_cmd_frf(int argc, char **argv)
         gd_plot *p = NULL;
         gd_status pst = gd_plot_frf(s, &opt, r, &p, &err);
         /* the axis in rad/s when asked for or written (plain numbers keep Hz) */
-        if (!pst && !u.freq_hz && (units || strstr(freq, "rad/s")))
+        if (!pst && !u.freq_hz && (a.units || strstr(freq, "rad/s")))
             gd_plot_convert_x(p, "Hz", "rad/s", 2 * 3.14159265358979323846);
         if ((rc = gd_cli_plot_finish(pst, p, &err, plot))) goto done;
     }
@@ -292,7 +219,7 @@ int gd_cmd_frf(int argc, char **argv)
             goto done;
         }
     }
-    if (json) {
+    if (a.json) {
         cJSON *o = cJSON_CreateObject();
         cJSON_AddStringToObject(o, "model", m->file);
         cJSON_AddStringToObject(o, "input", inlabel);

@@ -1,39 +1,47 @@
 /* geardyn matrices MODEL --out DIR: the system's M, K, C and G at a speed, in Matrix
  * Market files or one JSON file, with the list of DOFs, to check a model against
  * another code. */
-#include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
-
-static const char USAGE[] =
-    "usage: geardyn matrices MODEL.yaml --out DIR [--speed VALUE] [--format mtx|json]\n"
-    "                        [--coupling LEVEL] [--dofs LIST] [--set PATH=VALUE]...\n\n"
-    "Writes the matrices of the equation of motion at reference speed W over the active\n"
-    "DOFs,  M q'' + (C(W) + W G) q' + K(W) q = f:  the mass M, the stiffness\n"
-    "K(W) = K + K_b(W) and the damping C(W) = C + C_b(W) with the speed-table bearings at\n"
-    "W, and the gyroscopic matrix G per unit reference speed. SI units: DOFs in m and rad,\n"
-    "forces in N, moments in N*m.\n\n"
-    "  --out DIR         the folder for M.mtx, K.mtx, C.mtx, G.mtx (Matrix Market,\n"
-    "                    coordinate real general, 1-based) and dofs.csv (required)\n"
-    "  --speed VALUE     reference speed W, e.g. 3000rpm or 314 (rad/s); default 0\n"
-    "  --format F        mtx (default) or json: DIR/matrices.json (the DOFs and each\n"
-    "                    matrix as 1-based rows, cols, values) in place of the .mtx files\n"
-    "  --coupling LEVEL  torsional | lateral-torsional | full: every mesh's level\n"
-    "  --dofs LIST       keep only these node DOFs, e.g. x,y,rz\n"
-    "  --set PATH=VALUE  change a value of the model file, e.g.\n"
-    "                    --set meshes.mesh.stiffness=3e8N/m (repeatable; docs/model-format.md)\n\n"
-    "Exit status: 0 ok, 2 bad input or usage, 1 numerical failure.\n";
-
-static const char UNITS[] = "SI units: DOFs in m and rad, forces in N, moments in N*m";
+#include "options.h"
 
 typedef struct mx_args {
-    const char *file, *out, *speed, *coupling;
+    const char *out, *file, *coupling;
+    double speed;
     int json;
     gd_cli_sets sets;
 } mx_args;
+
+#define F(m) offsetof(mx_args, m)
+static const gd_cli_opt OPTS[] = {
+    GD_CLI_ROW_OUT(mx_args, out,
+                   "the folder for M.mtx, K.mtx, C.mtx, G.mtx (Matrix Market, coordinate real "
+                   "general, 1-based) and dofs.csv",
+                   .required = 1),
+    GD_CLI_ROW_SPEED(mx_args, speed, 0, "reference speed W, e.g. 3000rpm or 314 (rad/s)",
+                     .def = "0"),
+    GD_CLI_ROW("format", GD_CLI_CHOICE, F(json), "F",
+               "mtx or json: DIR/matrices.json (the DOFs and each matrix as 1-based rows, cols, "
+               "values) in place of the .mtx files",
+               .def = "mtx", .word = "mtx|json"),
+    GD_CLI_ROW_MODEL(mx_args, coupling, sets),
+    {0}};
+static const gd_cli_command CMD = {
+    .name = "matrices",
+    .args = "MODEL.yaml",
+    .opts = OPTS,
+    .about =
+        "Writes the matrices of the equation of motion at reference speed W over the active\n"
+        "DOFs,  M q'' + (C(W) + W G) q' + K(W) q = f:  the mass M, the stiffness\n"
+        "K(W) = K + K_b(W) and the damping C(W) = C + C_b(W) with the speed-table bearings at\n"
+        "W, and the gyroscopic matrix G per unit reference speed. SI units: DOFs in m and rad,\n"
+        "forces in N, moments in N*m.\n",
+    .footer = "Exit status: 0 ok, 2 bad input or usage, 1 numerical failure.\n"};
+
+static const char UNITS[] = "SI units: DOFs in m and rad, forces in N, moments in N*m";
 
 /* The four matrices, in file order, with what each is. */
 typedef struct mx_set {
@@ -45,55 +53,6 @@ static const char *const WHAT[4] = {
     ("C + C_b(W), damping with the speed-table bearings at W, without the gyroscopic term "
      "(damping at W: C + W G)"),
     "G, gyroscopic per unit reference speed (damping at W: C + W G)"};
-
-static int parse_args(int argc, char **argv, mx_args *a)
-{
-    static const struct option opts[] = {{"out", required_argument, 0, 'o'},
-                                         {"speed", required_argument, 0, 's'},
-                                         {"format", required_argument, 0, 'f'},
-                                         {"coupling", required_argument, 0, 'c'},
-                                         GD_CLI_SET_OPTION,
-                                         GD_CLI_DOFS_OPTION,
-                                         {"help", no_argument, 0, 'h'},
-                                         {0, 0, 0, 0}};
-    const char *cmd = "matrices";
-    int c;
-    optind = 1;
-    opterr = 0;
-    while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
-        switch (c) {
-        case 'o':
-            a->out = optarg;
-            break;
-        case 's':
-            a->speed = optarg;
-            break;
-        case 'f':
-            if (strcmp(optarg, "mtx") && strcmp(optarg, "json"))
-                return gd_cli_usage_error(cmd, "--format: '%s' is not mtx or json", optarg);
-            a->json = !strcmp(optarg, "json");
-            break;
-        case 'c':
-            a->coupling = optarg;
-            break;
-        case GD_CLI_OPT_SET:
-            if (gd_cli_add_set(cmd, &a->sets, optarg)) return GD_EXIT_INPUT;
-            break;
-        case GD_CLI_OPT_DOFS:
-            a->sets.dofs = optarg;
-            break;
-        case 'h':
-            fputs(USAGE, stdout);
-            return -1;
-        default:
-            return gd_cli_option_error(cmd, c, argv, optind);
-        }
-    }
-    if (optind != argc - 1) return gd_cli_usage_error(cmd, "give exactly one model file");
-    if (!a->out) return gd_cli_usage_error(cmd, "--out DIR is required");
-    a->file = argv[optind];
-    return 0;
-}
 
 static void write_mtx(FILE *f, const gd_csc *a, int which, const char *model, double speed)
 {
@@ -229,14 +188,11 @@ static int run(const mx_args *a, double speed)
 
 int gd_cmd_matrices(int argc, char **argv)
 {
-    mx_args a;
-    memset(&a, 0, sizeof a);
-    int rc = parse_args(argc, argv, &a);
+    mx_args a = {0};
+    int rc = gd_cli_parse(&CMD, argc, argv, &a, &a.file);
     if (rc) return rc < 0 ? GD_EXIT_OK : rc;
-    double speed = 0;
-    if (a.speed && gd_cli_parse_speed("matrices", a.speed, &speed)) return GD_EXIT_INPUT;
     gd_error err;
     gd_error_clear(&err);
     if (gd_outdir_check_writable(a.out, &err)) return gd_cli_report(&err);
-    return run(&a, speed);
+    return run(&a, a.speed);
 }

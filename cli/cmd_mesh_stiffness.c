@@ -1,68 +1,47 @@
 /* geardyn mesh-stiffness FILE: contact ratios and time-varying mesh stiffness of a
  * gear pair described by its geometry (docs/mesh-stiffness.md). */
-#include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
 #include "mesh_contact.h"
+#include "options.h"
 #include "geardyn/mesh_stiffness.h"
 #include "geardyn/model_file.h"
 #include "geardyn/units.h"
 
-static const char USAGE[] =
-    "usage: geardyn mesh-stiffness FILE [--mesh NAME] [--method M] [--points N] [--cycles N]\n"
-    "                              [--slices N] [--helix-angle VALUE] [--set PATH=VALUE]...\n"
-    "                              [--json] [--out DIR] [--plot FILE] [--compare-helix LIST]\n"
-    "                              [--load TORQUE | --load-range FROM:TO:COUNT]\n"
-    "                              [--misalignment LENGTH]\n\n"
-    "Computes, from the geometry of a gear pair (a mesh entry with a `geometry:` map, in a\n"
-    "model file or a stand-alone file with `meshes:`), the transverse, face and total\n"
-    "contact ratios, base pitch, mesh period and the time-varying mesh stiffness k(angle)\n"
-    "over the driver's rotation angle: pairs in contact, load shares, mean, max, min,\n"
-    "peak-to-peak and Fourier harmonics. k acts along the contact normal (normal plane).\n\n"
-    "  --mesh NAME          the mesh to use (default: the first with a geometry)\n"
-    "  --method M           energy (default) | iso6336 | single-pair-law | square\n"
-    "  --points N           samples per mesh cycle (default 360, or the file's)\n"
-    "  --cycles N           mesh cycles sampled (default 1)\n"
-    "  --slices N           face-width slices of a helical pair (default 50)\n"
-    "  --helix-angle VALUE  override the helix angle, e.g. \"15 deg\" (plain numbers are rad)\n"
-    "  --set PATH=VALUE     change a value of the file first, e.g.\n"
-    "                       --set meshes.pair1.geometry.face_width=30mm (repeatable;\n"
-    "                       docs/model-format.md, \"Overrides (--set)\")\n"
-    "  --json               print everything as one JSON object\n"
-    "  --out DIR            write DIR/mesh_stiffness.csv and DIR/summary.json\n"
-    "  --plot FILE          TVMS with single/double contact zones, pair stiffnesses and\n"
-    "                       harmonics: FILE.svg or FILE.html (docs/plots.md)\n"
-    "  --compare-helix LIST the plot also compares these helix angles, e.g. 0,10deg,20deg\n"
-    "  --load TORQUE        loaded tooth contact analysis at this driver torque, e.g.\n"
-    "                       \"200 N m\": loaded transmission error, stiffness at that load,\n"
-    "                       load per tooth pair and across the face, face load factor (the\n"
-    "                       tooth modifications of the file count; default: the file's\n"
-    "                       `stiffness: {from: contact_analysis, load: ...}`)\n"
-    "  --load-range F:T:N   Harris map: peak-to-peak transmission error at N driver torques\n"
-    "                       from F to T, e.g. 50Nm:500Nm:20\n"
-    "  --misalignment L     relative tilt in the plane of action as the separation at the\n"
-    "                       back face minus the front face, e.g. \"10 um\"\n\n"
-    "Exit status: 0 ok, 2 bad input or usage, 1 numerical failure.\n";
+/* --load-range: torques in N m, 0 = no --load-range */
+typedef struct ms_range {
+    double from, to;
+    long count;
+} ms_range;
 
 typedef struct ms_args {
     const char *file, *mesh, *out, *plot, *compare;
-    int json, has_method, has_helix;
-    gd_tvms_method method;
-    long points, cycles, slices; /* 0 = not given */
-    double helix;
-    double load, range_from, range_to, misalignment; /* N m, N m, N m, m */
-    long range_count;                                /* 0 = no --load-range */
-    int has_load, has_misalignment;
+    int json, method;           /* method: -1 = the file's */
+    int points, cycles, slices; /* 0 = not given */
+    int has_helix, has_load, has_misalignment;
+    double helix, load, misalignment; /* rad, N m, m */
+    ms_range range;
     gd_cli_sets sets;
 } ms_args;
 
-/* FROM:TO:COUNT, torques with units, 2 <= COUNT <= 1000, 0 < FROM < TO. */
-static int parse_range(const char *text, ms_args *a)
+static int parse_method(const char *cmd, const char *text, void *method)
 {
-    const char *cmd = "mesh-stiffness";
+    gd_tvms_method m;
+    if (gd_tvms_method_parse(text, &m, NULL))
+        return gd_cli_usage_error(
+            cmd, "--method: unknown method '%s' (use energy, iso6336, single-pair-law or square)",
+            text);
+    *(int *)method = (int)m;
+    return 0;
+}
+
+/* FROM:TO:COUNT, torques with units, 2 <= COUNT <= 1000, 0 < FROM < TO. */
+static int parse_range(const char *cmd, const char *text, void *range)
+{
+    ms_range *r = range;
     char buf[200];
     snprintf(buf, sizeof buf, "%s", text);
     char *c1 = strchr(buf, ':'), *c2 = c1 ? strchr(c1 + 1, ':') : NULL;
@@ -70,125 +49,83 @@ static int parse_range(const char *text, ms_args *a)
         return gd_cli_usage_error(cmd, "--load-range: write FROM:TO:COUNT, e.g. 50Nm:500Nm:20");
     *c1 = *c2 = '\0';
     gd_error why;
-    if (gd_parse_quantity(buf, GD_QTY_TORQUE, &a->range_from, &why) ||
-        gd_parse_quantity(c1 + 1, GD_QTY_TORQUE, &a->range_to, &why))
+    if (gd_parse_quantity(buf, GD_QTY_TORQUE, &r->from, &why) ||
+        gd_parse_quantity(c1 + 1, GD_QTY_TORQUE, &r->to, &why))
         return gd_cli_usage_error(cmd, "--load-range: %s (e.g. 50Nm:500Nm:20)", why.message);
-    if (gd_cli_parse_count(c2 + 1, 2, 1000, &a->range_count))
+    if (gd_cli_parse_count(c2 + 1, 2, 1000, &r->count))
         return gd_cli_usage_error(
             cmd, "--load-range: count '%s' is not a whole number from 2 to 1000", c2 + 1);
-    if (!(a->range_from > 0 && a->range_to > a->range_from))
+    if (!(r->from > 0 && r->to > r->from))
         return gd_cli_usage_error(cmd, "--load-range: give 0 < FROM < TO (driver torques)");
     return 0;
 }
 
+#define F(m) offsetof(ms_args, m)
+static const gd_cli_opt OPTS[] = {
+    GD_CLI_ROW("mesh", GD_CLI_STRING, F(mesh), "NAME", "the mesh to use",
+               .def = "the first with a geometry"),
+    GD_CLI_ROW("method", GD_CLI_CALL, F(method), "M", "energy | iso6336 | single-pair-law | square",
+               .def = "energy", .call = parse_method),
+    GD_CLI_ROW("points", GD_CLI_INT, F(points), "N", "samples per mesh cycle",
+               .def = "360, or the file's", .lo = 8, .hi = 1000000),
+    GD_CLI_ROW("cycles", GD_CLI_INT, F(cycles), "N", "mesh cycles sampled", .def = "1", .lo = 1,
+               .hi = 10000),
+    GD_CLI_ROW("slices", GD_CLI_INT, F(slices), "N", "face-width slices of a helical pair",
+               .def = "50", .lo = 1, .hi = 100000),
+    GD_CLI_ROW("helix-angle", GD_CLI_QUANTITY, F(helix), "VALUE",
+               "override the helix angle, e.g. \"15 deg\" (plain numbers are rad)",
+               .qty = GD_QTY_ANGLE, .example = "\"15 deg\"", .aux = F(has_helix)),
+    GD_CLI_ROW("set", GD_CLI_SETS, F(sets), "PATH=VALUE",
+               "change a value of the file first, e.g. --set "
+               "meshes.pair1.geometry.face_width=30mm (repeatable; docs/model-format.md, "
+               "\"Overrides (--set)\")"),
+    GD_CLI_ROW("json", GD_CLI_FLAG, F(json), NULL, "print everything as one JSON object"),
+    GD_CLI_ROW_OUT(ms_args, out, "write DIR/mesh_stiffness.csv and DIR/summary.json"),
+    GD_CLI_ROW("plot", GD_CLI_STRING, F(plot), "FILE",
+               "TVMS with single/double contact zones, pair stiffnesses and harmonics: FILE.svg "
+               "or FILE.html (docs/plots.md)"),
+    GD_CLI_ROW("compare-helix", GD_CLI_STRING, F(compare), "LIST",
+               "the plot also compares these helix angles, e.g. 0,10deg,20deg"),
+    GD_CLI_ROW("load", GD_CLI_QUANTITY, F(load), "TORQUE",
+               "loaded tooth contact analysis at this driver torque, e.g. \"200 N m\": loaded "
+               "transmission error, stiffness at that load, load per tooth pair and across the "
+               "face, face load factor (the tooth modifications of the file count)",
+               .def = "the file's `stiffness: {from: contact_analysis, load: ...}`",
+               .lo = GD_CLI_ABOVE_ZERO, .qty = GD_QTY_TORQUE, .example = "\"200 N m\"",
+               .aux = F(has_load)),
+    GD_CLI_ROW("load-range", GD_CLI_CALL, F(range), "F:T:N",
+               "Harris map: peak-to-peak transmission error at N driver torques from F to T, "
+               "e.g. 50Nm:500Nm:20",
+               .call = parse_range),
+    GD_CLI_ROW("misalignment", GD_CLI_QUANTITY, F(misalignment), "L",
+               "relative tilt in the plane of action as the separation at the back face minus "
+               "the front face, e.g. \"10 um\"",
+               .qty = GD_QTY_LENGTH, .example = "\"10 um\"", .aux = F(has_misalignment)),
+    {0}};
+static const gd_cli_command CMD = {
+    .name = "mesh-stiffness",
+    .args = "FILE",
+    .missing = "give exactly one FILE",
+    .opts = OPTS,
+    .about =
+        "Computes, from the geometry of a gear pair (a mesh entry with a `geometry:` map, in a\n"
+        "model file or a stand-alone file with `meshes:`), the transverse, face and total\n"
+        "contact ratios, base pitch, mesh period and the time-varying mesh stiffness k(angle)\n"
+        "over the driver's rotation angle: pairs in contact, load shares, mean, max, min,\n"
+        "peak-to-peak and Fourier harmonics. k acts along the contact normal (normal plane).\n",
+    .footer = "Exit status: 0 ok, 2 bad input or usage, 1 numerical failure.\n"};
+
 static int parse_args(int argc, char **argv, ms_args *a)
 {
-    static const struct option opts[] = {{"mesh", required_argument, 0, 'm'},
-                                         {"method", required_argument, 0, 'M'},
-                                         {"points", required_argument, 0, 'p'},
-                                         {"cycles", required_argument, 0, 'c'},
-                                         {"slices", required_argument, 0, 's'},
-                                         {"helix-angle", required_argument, 0, 'b'},
-                                         {"json", no_argument, 0, 'j'},
-                                         {"out", required_argument, 0, 'o'},
-                                         GD_CLI_SET_OPTION,
-                                         {"help", no_argument, 0, 'h'},
-                                         GD_CLI_PLOT_OPTION,
-                                         {"compare-helix", required_argument, 0, 'H'},
-                                         {"load", required_argument, 0, 'L'},
-                                         {"load-range", required_argument, 0, 'R'},
-                                         {"misalignment", required_argument, 0, 'a'},
-                                         {0, 0, 0, 0}};
     const char *cmd = "mesh-stiffness";
-    int c;
-    optind = 1;
-    opterr = 0;
-    while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
-        switch (c) {
-        case 'm':
-            a->mesh = optarg;
-            break;
-        case 'M':
-            if (gd_tvms_method_parse(optarg, &a->method, NULL))
-                return gd_cli_usage_error(cmd,
-                                          "--method: unknown method '%s' (use energy, iso6336, "
-                                          "single-pair-law or square)",
-                                          optarg);
-            a->has_method = 1;
-            break;
-        case 'p':
-            if (gd_cli_parse_count(optarg, 8, 1000000, &a->points))
-                return gd_cli_usage_error(
-                    cmd, "--points: '%s' is not a whole number from 8 to 1000000", optarg);
-            break;
-        case 'c':
-            if (gd_cli_parse_count(optarg, 1, 10000, &a->cycles))
-                return gd_cli_usage_error(
-                    cmd, "--cycles: '%s' is not a whole number from 1 to 10000", optarg);
-            break;
-        case 's':
-            if (gd_cli_parse_count(optarg, 1, 100000, &a->slices))
-                return gd_cli_usage_error(
-                    cmd, "--slices: '%s' is not a whole number from 1 to 100000", optarg);
-            break;
-        case 'b': {
-            gd_error why;
-            if (gd_parse_quantity(optarg, GD_QTY_ANGLE, &a->helix, &why))
-                return gd_cli_usage_error(cmd, "--helix-angle: %s (write e.g. \"15 deg\")",
-                                          why.message);
-            a->has_helix = 1;
-            break;
-        }
-        case 'j':
-            a->json = 1;
-            break;
-        case GD_CLI_OPT_SET:
-            if (gd_cli_add_set(cmd, &a->sets, optarg)) return GD_EXIT_INPUT;
-            break;
-        case 'o':
-            a->out = optarg;
-            break;
-        case GD_CLI_OPT_PLOT:
-            a->plot = optarg;
-            break;
-        case 'H':
-            a->compare = optarg;
-            break;
-        case 'L': {
-            gd_error why;
-            if (gd_parse_quantity(optarg, GD_QTY_TORQUE, &a->load, &why))
-                return gd_cli_usage_error(cmd, "--load: %s (write e.g. \"200 N m\")", why.message);
-            if (!(a->load > 0))
-                return gd_cli_usage_error(cmd, "--load: the driver torque must be positive");
-            a->has_load = 1;
-            break;
-        }
-        case 'R':
-            if (parse_range(optarg, a)) return GD_EXIT_INPUT;
-            break;
-        case 'a': {
-            gd_error why;
-            if (gd_parse_quantity(optarg, GD_QTY_LENGTH, &a->misalignment, &why))
-                return gd_cli_usage_error(cmd, "--misalignment: %s (write e.g. \"10 um\")",
-                                          why.message);
-            a->has_misalignment = 1;
-            break;
-        }
-        case 'h':
-            fputs(USAGE, stdout);
-            return -1;
-        default:
-            return gd_cli_option_error(cmd, c, argv, optind);
-        }
-    }
-    if (optind != argc - 1) return gd_cli_usage_error(cmd, "give exactly one FILE");
+    int rc = gd_cli_parse(&CMD, argc, argv, a, &a->file);
+    if (rc) return rc;
     if (a->compare && !a->plot) return gd_cli_usage_error(cmd, "--compare-helix goes with --plot");
-    if (a->has_load && a->range_count)
+    if (a->has_load && a->range.count)
         return gd_cli_usage_error(cmd, "give --load or --load-range, not both");
-    if (a->plot && (a->has_load || a->range_count))
+    if (a->plot && (a->has_load || a->range.count))
         return gd_cli_usage_error(cmd, "--plot draws the unloaded TVMS: leave out --load and "
                                        "--load-range");
-    a->file = argv[optind];
     return 0;
 }
 
@@ -380,8 +317,7 @@ static int plot_tvms(const ms_args *a, const gd_gear_pair_geometry *g, const gd_
 
 int gd_cmd_mesh_stiffness(int argc, char **argv)
 {
-    ms_args a;
-    memset(&a, 0, sizeof a);
+    ms_args a = {.method = -1};
     int rc = parse_args(argc, argv, &a);
     if (rc) return rc < 0 ? GD_EXIT_OK : rc;
 
@@ -395,26 +331,26 @@ int gd_cmd_mesh_stiffness(int argc, char **argv)
     if (a.plot && (rc = gd_cli_plot_check(a.plot))) return rc;
     if (gd_gear_pair_load(a.file, a.mesh, &lo, &g, &opt, mesh_name, sizeof mesh_name, &err))
         return gd_cli_report(&err);
-    if (a.has_method) opt.method = a.method;
+    if (a.method >= 0) opt.method = (gd_tvms_method)a.method;
     if (a.points) opt.points = (int)a.points;
     if (a.cycles) opt.cycles = (int)a.cycles;
     if (a.slices) opt.slices = (int)a.slices;
     if (a.has_helix) g.helix_angle = a.helix;
-    if (a.has_misalignment && !a.has_load && !a.range_count && !opt.contact_analysis)
+    if (a.has_misalignment && !a.has_load && !a.range.count && !opt.contact_analysis)
         return gd_cli_usage_error("mesh-stiffness",
                                   "--misalignment goes with --load or --load-range (the unloaded "
                                   "TVMS does not depend on it)");
     if (a.has_misalignment) opt.misalignment = a.misalignment;
     if (a.has_load) opt.load_torque = a.load;
-    if (a.has_load || a.range_count || (opt.contact_analysis && !a.plot)) {
+    if (a.has_load || a.range.count || (opt.contact_analysis && !a.plot)) {
         /* the loaded contact analysis (the file's load unless --load) or the Harris map */
         double *loads = NULL;
-        int nl = (int)a.range_count;
+        int nl = (int)a.range.count;
         if (nl) {
             loads = malloc((size_t)nl * sizeof *loads);
             if (!loads) return gd_cli_usage_error("mesh-stiffness", "out of memory");
             for (int l = 0; l < nl; l++)
-                loads[l] = a.range_from + (a.range_to - a.range_from) * l / (nl - 1);
+                loads[l] = a.range.from + (a.range.to - a.range.from) * l / (nl - 1);
         }
         rc = gd_cli_mesh_contact(a.file, mesh_name, &g, &opt, loads, nl, a.json, a.out);
         free(loads);

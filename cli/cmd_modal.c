@@ -1,5 +1,4 @@
 /* geardyn modal MODEL: natural frequencies and modes. */
-#include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -8,34 +7,54 @@
 #include "geardyn/modal.h"
 #include "modal_directional.h"
 #include "modal_groups.h"
+#include "options.h"
 
-static const char USAGE[] =
-    "usage: geardyn modal MODEL.yaml [--speed VALUE] [--modes N|all] [--undamped | --damped]\n"
-    "                     [--coupling LEVEL] [--dofs LIST] [--method auto|dense|sparse]\n"
-    "                     [--set PATH=VALUE]... [--group shaft] [--directional] [--json]\n"
-    "                     [--out DIR] [--plot FILE.svg|FILE.html]\n\n"
-    "Natural frequencies, damping, whirl direction and modal strain energy of each mode.\n"
-    "Damped/gyroscopic modes (state space, left and right eigenvectors) are computed when\n"
-    "the model has damping or gyroscopic terms at the speed; otherwise undamped modes.\n\n"
-    "  --speed VALUE     reference shaft speed, e.g. 3000rpm, 314 (rad/s); default: model's\n"
-    "  --modes N|all     number of lowest modes (default: all up to 30 DOFs, else 20)\n"
-    "  --undamped        drop damping and gyroscopic terms (symmetric eigenproblem)\n"
-    "  --damped          always use the state-space (damped) eigenproblem\n"
-    "  --method M        auto (default): the cheaper of the two by a measured cost model;\n"
-    "                    dense: LAPACK (all modes); sparse: shift-invert Krylov-Schur\n"
-    "                    with a sparse LU (the lowest N modes, needs mass on every DOF)\n"
-    "  --coupling LEVEL  torsional | lateral-torsional | full: every mesh's level\n"
-    "  --dofs LIST       keep only these node DOFs, e.g. x,y,rz\n"
-    "  --set PATH=VALUE  change a value of the model file, e.g.\n"
-    "                    --set meshes.mesh.stiffness=3e8N/m (repeatable; docs/model-format.md)\n"
-    "  --group shaft     also the strain energy per shaft with its gears, bearings and\n"
-    "                    meshes (half of one between two shafts), and each shaft's by\n"
-    "                    motion type ([JMSTHelical] Tables 4-7); default: by component\n"
-    "  --directional     also the directional eigenvalues of the complex coordinates\n"
-    "                    r = x + i y ([Kumar2011]): one per mode, Im > 0 forward, < 0 backward\n"
-    "  --json            print one JSON object on stdout instead of the table\n"
-    "  --out DIR         write DIR/modes.csv and DIR/mode_shapes.csv (every active DOF of\n"
-    "                    every mode, complex)\n" GD_CLI_PLOT_HELP;
+typedef struct modal_args {
+    gd_modal_options opt;
+    const char *coupling, *out, *plot;
+    gd_cli_sets sets;
+    int json, nmodes, by_shaft, directional;
+} modal_args;
+
+#define F(m) offsetof(modal_args, m)
+static const gd_cli_opt OPTS[] = {
+    GD_CLI_ROW_SPEED(modal_args, opt.speed, 0,
+                     "reference shaft speed, e.g. 3000rpm, 314 (rad/s); default: model's"),
+    GD_CLI_ROW("modes", GD_CLI_INT, F(nmodes), "N|all",
+               "number of lowest modes (default: all up to 30 DOFs, else 20)", .lo = 1,
+               .hi = 1000000, .word = "all", .ival = 0),
+    GD_CLI_ROW("undamped", GD_CLI_VALUE, F(opt.kind), NULL,
+               "drop damping and gyroscopic terms (symmetric eigenproblem)",
+               .ival = GD_MODAL_UNDAMPED, .excludes = "damped"),
+    GD_CLI_ROW("damped", GD_CLI_VALUE, F(opt.kind), NULL,
+               "always use the state-space (damped) eigenproblem", .ival = GD_MODAL_DAMPED,
+               .excludes = "undamped"),
+    GD_CLI_ROW_EIG_METHOD(modal_args, opt.method,
+                          "auto: the cheaper of the two by a measured cost model; dense: LAPACK "
+                          "(all modes); sparse: shift-invert Krylov-Schur with a sparse LU (the "
+                          "lowest N modes, needs mass on every DOF)"),
+    GD_CLI_ROW_MODEL(modal_args, coupling, sets),
+    GD_CLI_ROW("group", GD_CLI_CHOICE, F(by_shaft), "shaft",
+               "also the strain energy per shaft with its gears, bearings and meshes (half of one "
+               "between two shafts), and each shaft's by motion type ([JMSTHelical] Tables 4-7)",
+               .def = "by component", .word = "component|shaft"),
+    GD_CLI_ROW("directional", GD_CLI_FLAG, F(directional), NULL,
+               "also the directional eigenvalues of the complex coordinates r = x + i y "
+               "([Kumar2011]): one per mode, Im > 0 forward, < 0 backward"),
+    GD_CLI_ROW_JSON(modal_args, json),
+    GD_CLI_ROW_OUT(modal_args, out,
+                   "write DIR/modes.csv and DIR/mode_shapes.csv (every active DOF of every mode, "
+                   "complex)"),
+    GD_CLI_ROW_PLOT(modal_args, plot),
+    {0}};
+static const gd_cli_command CMD = {
+    .name = "modal",
+    .args = "MODEL.yaml",
+    .opts = OPTS,
+    .about = "Natural frequencies, damping, whirl direction and modal strain energy of each mode.\n"
+             "Damped/gyroscopic modes (state space, left and right eigenvectors) are computed "
+             "when\nthe model has damping or gyroscopic terms at the speed; otherwise undamped "
+             "modes.\n"};
 
 static double share(const gd_mode *md, int k)
 {
@@ -169,105 +188,26 @@ fail:
 
 int gd_cmd_modal(int argc, char **argv)
 {
-    static const struct option opts[] = {{"speed", required_argument, 0, 's'},
-                                         {"modes", required_argument, 0, 'n'},
-                                         {"undamped", no_argument, 0, 'u'},
-                                         {"damped", no_argument, 0, 'd'},
-                                         {"coupling", required_argument, 0, 'c'},
-                                         GD_CLI_SET_OPTION,
-                                         {"method", required_argument, 0, 'm'},
-                                         GD_CLI_DOFS_OPTION,
-                                         {"json", no_argument, 0, 'j'},
-                                         {"out", required_argument, 0, 'o'},
-                                         {"group", required_argument, 0, 'g'},
-                                         {"directional", no_argument, 0, 'D'},
-                                         {"help", no_argument, 0, 'h'},
-                                         GD_CLI_PLOT_OPTION,
-                                         {0, 0, 0, 0}};
-    gd_modal_options opt;
-    gd_modal_options_init(&opt);
-    opt.want_left = 0;
-    const char *coupling = NULL, *out = NULL, *speed = NULL, *plot = NULL;
-    gd_cli_sets sets = {0};
-    int json = 0, c, all = 0, rc, by_shaft = 0, directional = 0;
-    long nmodes = -1;
-    optind = 1;
-    opterr = 0;
-    while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
-        switch (c) {
-        case 's':
-            speed = optarg;
-            break;
-        case 'n':
-            if (!strcmp(optarg, "all"))
-                all = 1;
-            else if (gd_cli_parse_count(optarg, 1, 1000000, &nmodes))
-                return gd_cli_usage_error(
-                    "modal", "--modes: '%s' is not a positive whole number or 'all'", optarg);
-            break;
-        case 'u':
-            if (opt.kind == GD_MODAL_DAMPED)
-                return gd_cli_usage_error("modal", "--undamped and --damped exclude each other");
-            opt.kind = GD_MODAL_UNDAMPED;
-            break;
-        case 'd':
-            if (opt.kind == GD_MODAL_UNDAMPED)
-                return gd_cli_usage_error("modal", "--undamped and --damped exclude each other");
-            opt.kind = GD_MODAL_DAMPED;
-            break;
-        case 'c':
-            coupling = optarg;
-            break;
-        case GD_CLI_OPT_SET:
-            if (gd_cli_add_set("modal", &sets, optarg)) return GD_EXIT_INPUT;
-            break;
-        case 'm':
-            if (gd_cli_parse_eig_method("modal", optarg, &opt.method)) return GD_EXIT_INPUT;
-            break;
-        case GD_CLI_OPT_DOFS:
-            sets.dofs = optarg;
-            break;
-        case 'j':
-            json = 1;
-            break;
-        case 'o':
-            out = optarg;
-            break;
-        case GD_CLI_OPT_PLOT:
-            plot = optarg;
-            break;
-        case 'g':
-            if (strcmp(optarg, "shaft") && strcmp(optarg, "component"))
-                return gd_cli_usage_error("modal", "--group: '%s' is not shaft or component",
-                                          optarg);
-            by_shaft = !strcmp(optarg, "shaft");
-            break;
-        case 'D':
-            directional = 1;
-            break;
-        case 'h':
-            fputs(USAGE, stdout);
-            return GD_EXIT_OK;
-        default:
-            return gd_cli_option_error("modal", c, argv, optind);
-        }
-    }
-    if (optind != argc - 1) return gd_cli_usage_error("modal", "give exactly one model file");
+    modal_args a = {.nmodes = -1};
+    gd_modal_options_init(&a.opt);
+    a.opt.want_left = 0;
+    a.opt.speed = -1; /* the model's */
+    const char *file;
+    int rc = gd_cli_parse(&CMD, argc, argv, &a, &file);
+    if (rc) return rc < 0 ? GD_EXIT_OK : rc;
+    gd_modal_options opt = a.opt;
+    const char *out = a.out, *plot = a.plot;
+    int json = a.json, by_shaft = a.by_shaft, directional = a.directional;
     gd_error oerr;
     gd_error_clear(&oerr);
     if (out && gd_outdir_check(out, &oerr)) return gd_cli_report(&oerr);
     if (plot && (rc = gd_cli_plot_check(plot))) return rc;
     gd_model *m;
     gd_system *s;
-    rc = gd_cli_load(argv[optind], &sets, coupling, &m, &s);
+    rc = gd_cli_load(file, &a.sets, a.coupling, &m, &s);
     if (rc) return rc;
-    opt.speed = m->speed;
-    if (speed && gd_cli_parse_speed("modal", speed, &opt.speed)) {
-        gd_system_free(s);
-        gd_model_free(m);
-        return GD_EXIT_INPUT;
-    }
-    opt.nmodes = all ? 0 : nmodes > 0 ? (int)nmodes : (s->ndof <= 30 ? 0 : 20);
+    if (opt.speed < 0) opt.speed = m->speed;
+    opt.nmodes = a.nmodes >= 0 ? a.nmodes : (s->ndof <= 30 ? 0 : 20);
     gd_modal_result *r = NULL;
     gd_error err;
     gd_error_clear(&err);

@@ -1,38 +1,52 @@
 /* geardyn static MODEL: equilibrium under the mean loads and gravity (docs/static.md). */
-#include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
+#include "options.h"
 #include "geardyn/static.h"
 #include "geardyn/units.h"
 
-static const char USAGE[] =
-    "usage: geardyn static MODEL.yaml [--torque VALUE] [--input NODE] [--hold NODE]\n"
-    "                      [--speed VALUE] [--no-gravity] [--no-loads] [--coupling LEVEL]\n"
-    "                      [--dofs LIST] [--set PATH=VALUE]... [--json] [--out DIR]\n"
-    "                      [--plot FILE.svg|FILE.html]\n\n"
-    "Static equilibrium K q = f under the model's mean loads (excitation loads at their\n"
-    "mean), an input torque and gravity (`gravity:`): deflection and slope along every\n"
-    "shaft, bearing reactions, the force of every mesh and its misalignment (relative tilt\n"
-    "in and out of the plane of action, ISO 6336-1 f_sh = b x tilt). Prescribed DOFs are\n"
-    "held; a gear train free to turn is held at one torsion DOF (the torque balance).\n\n"
-    "  --torque VALUE    input torque, N m (units allowed: 20N*m), in the input shaft's\n"
-    "                    sense of rotation; default none\n"
-    "  --input NODE      node the input torque acts on (default: the reference shaft's\n"
-    "                    first node)\n"
-    "  --hold NODE       hold the torsion of NODE's train there (default: the output, the\n"
-    "                    last node of the last shaft, with --torque; the input without)\n"
-    "  --speed VALUE     reference speed for bearing speed tables (default: model's)\n"
-    "  --no-gravity      leave out the model's gravity\n"
-    "  --no-loads        leave out the model's excitation loads\n"
-    "  --coupling LEVEL  torsional | lateral-torsional | full: every mesh's level\n"
-    "  --dofs LIST       keep only these node DOFs, e.g. x,y,rx,ry,rz\n"
-    "  --set PATH=VALUE  change a value of the model file (repeatable; docs/model-format.md)\n"
-    "  --json            print one JSON object on stdout instead of the tables\n"
-    "  --out DIR         write DIR/static_nodes.csv, static_bearings.csv, static_meshes.csv\n"
-    "                    and static_holds.csv\n" GD_CLI_PLOT_HELP;
+typedef struct static_args {
+    gd_static_options opt;
+    const char *coupling, *out, *plot, *input, *hold;
+    gd_cli_sets sets;
+    int json;
+} static_args;
+
+#define F(m) offsetof(static_args, m)
+static const gd_cli_opt OPTS[] = {
+    GD_CLI_ROW("torque", GD_CLI_QUANTITY, F(opt.input_torque), "VALUE",
+               "input torque, N m (units allowed: 20N*m), in the input shaft's sense of rotation",
+               .def = "none", .qty = GD_QTY_TORQUE, .example = "20N*m"),
+    GD_CLI_ROW("input", GD_CLI_STRING, F(input), "NODE", "node the input torque acts on",
+               .def = "the reference shaft's first node"),
+    GD_CLI_ROW("hold", GD_CLI_STRING, F(hold), "NODE",
+               "hold the torsion of NODE's train there (default: the output, the last node of "
+               "the last shaft, with --torque; the input without)"),
+    GD_CLI_ROW_SPEED(static_args, opt.speed, 0,
+                     "reference speed for bearing speed tables (default: model's)"),
+    GD_CLI_ROW("no-gravity", GD_CLI_CLEAR, F(opt.gravity), NULL, "leave out the model's gravity"),
+    GD_CLI_ROW("no-loads", GD_CLI_CLEAR, F(opt.loads), NULL,
+               "leave out the model's excitation loads"),
+    GD_CLI_ROW_MODEL(static_args, coupling, sets),
+    GD_CLI_ROW_JSON(static_args, json),
+    GD_CLI_ROW_OUT(static_args, out,
+                   "write DIR/static_nodes.csv, static_bearings.csv, static_meshes.csv and "
+                   "static_holds.csv"),
+    GD_CLI_ROW_PLOT(static_args, plot),
+    {0}};
+static const gd_cli_command CMD = {
+    .name = "static",
+    .args = "MODEL.yaml",
+    .opts = OPTS,
+    .about =
+        "Static equilibrium K q = f under the model's mean loads (excitation loads at their\n"
+        "mean), an input torque and gravity (`gravity:`): deflection and slope along every\n"
+        "shaft, bearing reactions, the force of every mesh and its misalignment (relative tilt\n"
+        "in and out of the plane of action, ISO 6336-1 f_sh = b x tilt). Prescribed DOFs are\n"
+        "held; a gear train free to turn is held at one torsion DOF (the torque balance).\n"};
 
 /* no "-0" in the tables */
 static double nz(double v)
@@ -250,88 +264,22 @@ static int find_node(const gd_model *m, const char *opt, const char *name)
 
 int gd_cmd_static(int argc, char **argv)
 {
-    static const struct option opts[] = {{"torque", required_argument, 0, 't'},
-                                         {"input", required_argument, 0, 'i'},
-                                         {"hold", required_argument, 0, 'H'},
-                                         {"speed", required_argument, 0, 's'},
-                                         {"no-gravity", no_argument, 0, 'G'},
-                                         {"no-loads", no_argument, 0, 'L'},
-                                         {"coupling", required_argument, 0, 'c'},
-                                         GD_CLI_SET_OPTION,
-                                         GD_CLI_DOFS_OPTION,
-                                         {"json", no_argument, 0, 'j'},
-                                         {"out", required_argument, 0, 'o'},
-                                         {"help", no_argument, 0, 'h'},
-                                         GD_CLI_PLOT_OPTION,
-                                         {0, 0, 0, 0}};
-    gd_static_options opt;
-    gd_static_options_init(&opt);
-    const char *coupling = NULL, *out = NULL, *speed = NULL, *plot = NULL, *input = NULL,
-               *hold = NULL;
-    gd_cli_sets sets = {0};
-    int json = 0, c, rc;
-    optind = 1;
-    opterr = 0;
-    while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
-        switch (c) {
-        case 't': {
-            gd_error why;
-            if (gd_parse_quantity(optarg, GD_QTY_TORQUE, &opt.input_torque, &why))
-                return gd_cli_usage_error("static", "--torque: %s (e.g. --torque 20N*m)",
-                                          why.message);
-            break;
-        }
-        case 'i':
-            input = optarg;
-            break;
-        case 'H':
-            hold = optarg;
-            break;
-        case 's':
-            speed = optarg;
-            break;
-        case 'G':
-            opt.gravity = 0;
-            break;
-        case 'L':
-            opt.loads = 0;
-            break;
-        case 'c':
-            coupling = optarg;
-            break;
-        case GD_CLI_OPT_SET:
-            if (gd_cli_add_set("static", &sets, optarg)) return GD_EXIT_INPUT;
-            break;
-        case GD_CLI_OPT_DOFS:
-            sets.dofs = optarg;
-            break;
-        case 'j':
-            json = 1;
-            break;
-        case 'o':
-            out = optarg;
-            break;
-        case GD_CLI_OPT_PLOT:
-            plot = optarg;
-            break;
-        case 'h':
-            fputs(USAGE, stdout);
-            return GD_EXIT_OK;
-        default:
-            return gd_cli_option_error("static", c, argv, optind);
-        }
-    }
-    if (optind != argc - 1) return gd_cli_usage_error("static", "give exactly one model file");
+    static_args a = {0};
+    gd_static_options_init(&a.opt);
+    const char *file;
+    int rc = gd_cli_parse(&CMD, argc, argv, &a, &file);
+    if (rc) return rc < 0 ? GD_EXIT_OK : rc;
+    gd_static_options opt = a.opt;
+    const char *out = a.out, *plot = a.plot, *input = a.input, *hold = a.hold;
     gd_error oerr;
     gd_error_clear(&oerr);
     if (out && gd_outdir_check(out, &oerr)) return gd_cli_report(&oerr);
     if (plot && (rc = gd_cli_plot_check(plot))) return rc;
     gd_model *m;
     gd_system *s;
-    rc = gd_cli_load(argv[optind], &sets, coupling, &m, &s);
+    rc = gd_cli_load(file, &a.sets, a.coupling, &m, &s);
     if (rc) return rc;
-    if ((speed && gd_cli_parse_speed("static", speed, &opt.speed)) ||
-        (input && (opt.input_node = find_node(m, "--input", input)) < 0) ||
+    if ((input && (opt.input_node = find_node(m, "--input", input)) < 0) ||
         (hold && (opt.hold_node = find_node(m, "--hold", hold)) < 0)) {
         gd_system_free(s);
         gd_model_free(m);
@@ -350,7 +298,7 @@ int gd_cmd_static(int argc, char **argv)
         }
         if (out && rc == GD_EXIT_OK) rc = write_csv(s, r, out);
         if (rc == GD_EXIT_OK) {
-            if (json) {
+            if (a.json) {
                 cJSON *o = result_json(s, r);
                 gd_cli_print_json(stdout, o);
                 cJSON_Delete(o);

@@ -2,7 +2,6 @@
  * of one machine, over MPI ranks (geardyn-mpi, which `geardyn` starts in its place under
  * mpirun), or as one shard of a batch array, joined later by --merge. */
 #include <errno.h>
-#include <getopt.h>
 #include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -10,33 +9,24 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "options.h"
 #include "study_cli.h"
 
 void openblas_set_num_threads(int n);
 
-static const char USAGE[] =
-    "usage: geardyn study STUDY.yaml [--out DIR] [--resume] [--shard I/N|slurm]\n"
-    "                               [--threads N] [--quiet]\n"
-    "       geardyn study STUDY.yaml --merge DIR\n"
-    "       mpirun -n N geardyn study STUDY.yaml [--out DIR] [--resume]\n\n"
-    "Runs the cases of a parameter study: the model with each case's parameter values\n"
-    "(--set paths), the analysis, the named scalar outputs. Writes DIR/results.csv and\n"
-    "DIR/results.h5 (one row per case: parameters, outputs, status, message), with\n"
-    "DIR/study.yaml and DIR/version.txt beside them. A failed case is a row with its\n"
-    "error; it never stops the study. Study file format: docs/studies.md.\n\n"
-    "  --out DIR        the run's folder (default: STUDY's name without .yaml, + .out)\n"
-    "  --resume         continue a run that was stopped: finished cases are kept\n"
-    "  --shard I/N      run only the cases c with c mod N = I (0 <= I < N), into\n"
-    "                   DIR/shard-I-of-N; `slurm` takes I and N from\n"
-    "                   SLURM_ARRAY_TASK_ID / SLURM_ARRAY_TASK_COUNT (and _MIN)\n"
-    "  --merge DIR      join DIR/shard-*-of-N into DIR/results.csv and .h5\n"
-    "  --threads N      OpenMP threads (default: all cores; 1 per rank under MPI)\n"
-    "  --quiet          no progress bar (it is drawn only when stderr is a terminal)\n\n"
-    "Exit status: 0 the study ran (failed cases are in the table), 2 bad input or usage,\n"
-    "1 the run itself failed.\n";
+typedef struct study_shard {
+    size_t i, n;
+} study_shard;
 
-static int parse_shard(const char *text, size_t *i, size_t *n)
+typedef struct study_args {
+    const char *out, *merge;
+    int resume, quiet, nthreads;
+    study_shard shard;
+} study_args;
+
+static int parse_shard(const char *cmd, const char *text, void *field)
 {
+    study_shard *sh = field;
     char buf[64];
     if (!strcmp(text, "slurm")) {
         const char *id = getenv("SLURM_ARRAY_TASK_ID"), *cnt = getenv("SLURM_ARRAY_TASK_COUNT");
@@ -51,11 +41,45 @@ static int parse_shard(const char *text, size_t *i, size_t *n)
     long a, b;
     char tail;
     if (sscanf(text, "%ld/%ld%c", &a, &b, &tail) != 2 || b < 1 || a < 0 || a >= b)
-        return gd_cli_usage_error("study", "--shard: '%s' is not I/N with 0 <= I < N", text);
-    *i = (size_t)a;
-    *n = (size_t)b;
+        return gd_cli_usage_error(cmd, "--shard: '%s' is not I/N with 0 <= I < N", text);
+    sh->i = (size_t)a;
+    sh->n = (size_t)b;
     return 0;
 }
+
+#define F(m) offsetof(study_args, m)
+static const gd_cli_opt OPTS[] = {
+    GD_CLI_ROW_OUT(study_args, out, "the run's folder",
+                   .def = "STUDY's name without .yaml, + .out"),
+    GD_CLI_ROW("resume", GD_CLI_FLAG, F(resume), NULL,
+               "continue a run that was stopped: finished cases are kept"),
+    GD_CLI_ROW("shard", GD_CLI_CALL, F(shard), "I/N|slurm",
+               "run only the cases c with c mod N = I (0 <= I < N), into DIR/shard-I-of-N; "
+               "`slurm` takes I and N from SLURM_ARRAY_TASK_ID / SLURM_ARRAY_TASK_COUNT (and "
+               "_MIN)",
+               .call = parse_shard),
+    GD_CLI_ROW("merge", GD_CLI_STRING, F(merge), "DIR",
+               "join DIR/shard-*-of-N into DIR/results.csv and .h5"),
+    GD_CLI_ROW("threads", GD_CLI_INT, F(nthreads), "N", "OpenMP threads",
+               .def = "all cores; 1 per rank under MPI", .lo = 1, .hi = 4096),
+    GD_CLI_ROW("quiet", GD_CLI_FLAG, F(quiet), NULL,
+               "no progress bar (it is drawn only when stderr is a terminal)"),
+    {0}};
+static const gd_cli_command CMD = {
+    .name = "study",
+    .args = "STUDY.yaml",
+    .missing = "give one STUDY.yaml",
+    .several = "give one STUDY.yaml, not several",
+    .opts = OPTS,
+    .more = "       geardyn study STUDY.yaml --merge DIR\n"
+            "       mpirun -n N geardyn study STUDY.yaml [--out DIR] [--resume]\n",
+    .about = "Runs the cases of a parameter study: the model with each case's parameter values\n"
+             "(--set paths), the analysis, the named scalar outputs. Writes DIR/results.csv and\n"
+             "DIR/results.h5 (one row per case: parameters, outputs, status, message), with\n"
+             "DIR/study.yaml and DIR/version.txt beside them. A failed case is a row with its\n"
+             "error; it never stops the study. Study file format: docs/studies.md.\n",
+    .footer = "Exit status: 0 the study ran (failed cases are in the table), 2 bad input or "
+              "usage,\n1 the run itself failed.\n"};
 
 /* Under mpirun (or srun) the plain binary starts geardyn-mpi from its own folder, so
  * that `mpirun -n N geardyn study ...` works while `geardyn` itself does not load MPI. */
@@ -112,49 +136,15 @@ int gd_study_run_local(const gd_study *s, const char *out, size_t shard, size_t 
 
 static int study_main(int argc, char **argv)
 {
-    static const struct option opts[] = {
-        {"out", required_argument, 0, 'o'},     {"resume", no_argument, 0, 'r'},
-        {"shard", required_argument, 0, 's'},   {"merge", required_argument, 0, 'm'},
-        {"threads", required_argument, 0, 't'}, {"quiet", no_argument, 0, 'q'},
-        {"help", no_argument, 0, 'h'},          {0, 0, 0, 0}};
-    const char *cmd = "study", *out = NULL, *merge = NULL;
-    int resume = 0, quiet = 0, nthreads = 0, c;
-    size_t shard = 0, nshards = 1;
-    optind = 1;
-    opterr = 0;
-    while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
-        switch (c) {
-        case 'o':
-            out = optarg;
-            break;
-        case 'r':
-            resume = 1;
-            break;
-        case 'm':
-            merge = optarg;
-            break;
-        case 'q':
-            quiet = 1;
-            break;
-        case 's':
-            if (parse_shard(optarg, &shard, &nshards)) return GD_EXIT_INPUT;
-            break;
-        case 't':
-            if (gd_cli_parse_threads(cmd, optarg, &nthreads)) return GD_EXIT_INPUT;
-            break;
-        case 'h':
-            fputs(USAGE, stdout);
-            return GD_EXIT_OK;
-        default:
-            return gd_cli_option_error(cmd, c, argv, optind);
-        }
-    }
-    if (optind != argc - 1)
-        return gd_cli_usage_error(cmd, optind >= argc ? "give one STUDY.yaml"
-                                                      : "give one STUDY.yaml, not several");
+    study_args a = {.shard = {0, 1}};
+    const char *cmd = "study", *file;
+    int rc = gd_cli_parse(&CMD, argc, argv, &a, &file);
+    if (rc) return rc < 0 ? GD_EXIT_OK : rc;
+    const char *out = a.out, *merge = a.merge;
+    int resume = a.resume, nthreads = a.nthreads;
+    size_t shard = a.shard.i, nshards = a.shard.n;
     if (merge && (out || resume || nshards > 1))
         return gd_cli_usage_error(cmd, "--merge DIR takes no --out, --resume or --shard");
-    const char *file = argv[optind];
     char defout[1024];
     if (!out && !merge) {
         const char *base = strrchr(file, '/');
@@ -171,8 +161,7 @@ static int study_main(int argc, char **argv)
     if (gd_study_load(file, &s, &err)) return gd_cli_report(&err);
     /* each case is single-threaded: the study is parallel over cases */
     openblas_set_num_threads(1);
-    int progress = !quiet && isatty(STDERR_FILENO);
-    int rc;
+    int progress = !a.quiet && isatty(STDERR_FILENO);
     if (merge) rc = gd_study_merge(s, merge);
 #ifdef GD_WITH_MPI
     else

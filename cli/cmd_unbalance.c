@@ -1,40 +1,54 @@
 /* geardyn unbalance MODEL --speeds FROM:TO:COUNT: steady response to the model's
  * unbalances: amplitudes and phases, orbits, bearing and mesh forces, torsion. */
 #include <cblas.h>
-#include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
+#include "options.h"
 #include "sweep_output.h"
-
-static const char USAGE[] =
-    "usage: geardyn unbalance MODEL.yaml --speeds FROM:TO:COUNT [--output WHAT ...]\n"
-    "                         [--threads N] [--coupling LEVEL] [--dofs LIST] [--set "
-    "PATH=VALUE]...\n"
-    "                         [--json] [--out DIR] [--plot FILE] [--orbit-speed VALUE]\n\n"
-    "Steady response to the unbalances of the model, each turning with its own shaft.\n"
-    "Shafts with different |speed ratio| give different harmonics (order = |ratio| of the\n"
-    "reference speed); each output is reported per harmonic.\n\n"
-    "  --speeds FROM:TO:COUNT  reference speeds, units allowed: 0:12000rpm:241 (required)\n"
-    "  --output WHAT     repeatable: NODE.DOF (amplitude, phase), orbit:NODE (major and\n"
-    "                    minor semi-axes, whirl), mesh:NAME (dynamic mesh force),\n"
-    "                    bearing:NAME.DIR (bearing force). Default: x, y, rz and the orbit\n"
-    "                    of every unbalanced node, every mesh force, x and y of every bearing\n"
-    "  --threads N       parallel threads over speeds (default: all cores)\n"
-    "  --coupling LEVEL  torsional | lateral-torsional | full: every mesh's level\n"
-    "  --dofs LIST       keep only these node DOFs, e.g. x,y,rz\n"
-    "  --set PATH=VALUE  change a value of the model file, e.g.\n"
-    "                    --set meshes.mesh.stiffness=3e8N/m (repeatable; docs/model-format.md)\n"
-    "  --json            one JSON object on stdout\n"
-    "  --out DIR         write DIR/unbalance.csv and DIR/orbits.csv (long form)\n" GD_CLI_UNITS_HELP
-        GD_CLI_PLOT_HELP
-    "  --orbit-speed V   the plot's orbits at the nearest speed to V (default: where the\n"
-    "                    largest orbit is largest)\n";
 
 #define PI 3.14159265358979323846
 #define MAXOUT 64
+
+typedef struct unbalance_args {
+    gd_unbalance_options opt;
+    const char *speeds, *coupling, *out, *outs[MAXOUT], *plot, *units;
+    int nouts, json;
+    double orbit_speed;
+    gd_cli_sets sets;
+} unbalance_args;
+
+#define F(m) offsetof(unbalance_args, m)
+static const gd_cli_opt OPTS[] = {
+    GD_CLI_ROW("speeds", GD_CLI_STRING, F(speeds), "FROM:TO:COUNT",
+               "reference speeds, units allowed: 0:12000rpm:241", .required = 1),
+    GD_CLI_ROW("output", GD_CLI_LIST, F(outs), "WHAT",
+               "repeatable: NODE.DOF (amplitude, phase), orbit:NODE (major and minor semi-axes, "
+               "whirl), mesh:NAME (dynamic mesh force), bearing:NAME.DIR (bearing force). "
+               "Default: x, y, rz and the orbit of every unbalanced node, every mesh force, x and "
+               "y of every bearing",
+               .aux = F(nouts), .hi = MAXOUT),
+    GD_CLI_ROW_THREADS(unbalance_args, opt.nthreads, "speeds"),
+    GD_CLI_ROW_MODEL(unbalance_args, coupling, sets),
+    GD_CLI_ROW_JSON(unbalance_args, json),
+    GD_CLI_ROW_OUT(unbalance_args, out, "write DIR/unbalance.csv and DIR/orbits.csv (long form)"),
+    GD_CLI_ROW_UNITS(unbalance_args, units),
+    GD_CLI_ROW_PLOT(unbalance_args, plot),
+    GD_CLI_ROW("orbit-speed", GD_CLI_QUANTITY, F(orbit_speed), "V",
+               "the plot's orbits at the nearest speed to V", .lo = GD_CLI_ZERO_OR_MORE,
+               .def = "where the largest orbit is largest", .qty = GD_QTY_ANGULAR_SPEED,
+               .example = "3000rpm"),
+    {0}};
+static const gd_cli_command CMD = {
+    .name = "unbalance",
+    .args = "MODEL.yaml",
+    .opts = OPTS,
+    .about =
+        "Steady response to the unbalances of the model, each turning with its own shaft.\n"
+        "Shafts with different |speed ratio| give different harmonics (order = |ratio| of the\n"
+        "reference speed); each output is reported per harmonic.\n"};
 
 static int add_default_outputs(const gd_system *s, gd_probe *pr, int *np, int *orb, int *nb)
 {
@@ -74,92 +88,29 @@ static int add_default_outputs(const gd_system *s, gd_probe *pr, int *np, int *o
 
 int gd_cmd_unbalance(int argc, char **argv)
 {
-    static const struct option opts[] = {{"speeds", required_argument, 0, 's'},
-                                         {"output", required_argument, 0, 'O'},
-                                         {"threads", required_argument, 0, 't'},
-                                         {"coupling", required_argument, 0, 'c'},
-                                         {"json", no_argument, 0, 'j'},
-                                         {"out", required_argument, 0, 'o'},
-                                         GD_CLI_SET_OPTION,
-                                         GD_CLI_DOFS_OPTION,
-                                         {"help", no_argument, 0, 'h'},
-                                         GD_CLI_PLOT_OPTION,
-                                         {"units", required_argument, 0, 'U'},
-                                         {"orbit-speed", required_argument, 0, 'B'},
-                                         {0, 0, 0, 0}};
-    const char *cmd = "unbalance", *speeds = NULL, *coupling = NULL, *out = NULL, *outs[MAXOUT],
-               *plot = NULL, *orbit_speed = NULL, *units = NULL;
-    int nouts = 0, json = 0, c;
-    gd_cli_sets sets = {0};
-    gd_unbalance_options opt;
-    gd_unbalance_options_init(&opt);
-    optind = 1;
-    opterr = 0;
-    while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
-        switch (c) {
-        case 's':
-            speeds = optarg;
-            break;
-        case 'O':
-            if (nouts == MAXOUT) return gd_cli_usage_error(cmd, "at most %d outputs", MAXOUT);
-            outs[nouts++] = optarg;
-            break;
-        case 't':
-            if (gd_cli_parse_threads(cmd, optarg, &opt.nthreads)) return GD_EXIT_INPUT;
-            break;
-        case 'c':
-            coupling = optarg;
-            break;
-        case GD_CLI_OPT_SET:
-            if (gd_cli_add_set(cmd, &sets, optarg)) return GD_EXIT_INPUT;
-            break;
-        case GD_CLI_OPT_DOFS:
-            sets.dofs = optarg;
-            break;
-        case 'j':
-            json = 1;
-            break;
-        case 'o':
-            out = optarg;
-            break;
-        case GD_CLI_OPT_PLOT:
-            plot = optarg;
-            break;
-        case 'U':
-            units = optarg;
-            break;
-        case 'B':
-            orbit_speed = optarg;
-            break;
-        case 'h':
-            fputs(USAGE, stdout);
-            return GD_EXIT_OK;
-        default:
-            return gd_cli_option_error(cmd, c, argv, optind);
-        }
-    }
-    if (optind != argc - 1) return gd_cli_usage_error(cmd, "give exactly one model file");
-    if (!speeds) return gd_cli_usage_error(cmd, "--speeds FROM:TO:COUNT is required");
+    unbalance_args a = {0};
+    gd_unbalance_options_init(&a.opt);
+    const char *cmd = "unbalance", *file;
+    int rc = gd_cli_parse(&CMD, argc, argv, &a, &file);
+    if (rc) return rc < 0 ? GD_EXIT_OK : rc;
+    gd_unbalance_options opt = a.opt;
+    const char *speeds = a.speeds, *out = a.out, *plot = a.plot, *const *outs = a.outs;
+    int nouts = a.nouts;
     double *sp = NULL;
     gd_cli_units u = {.speed_rpm = 1, .freq_hz = 1}; /* rpm unless rad/s is written */
-    if (gd_cli_units_parse(cmd, units, speeds, NULL, &u)) return GD_EXIT_INPUT;
-    int rc = gd_cli_parse_range(cmd, "--speeds", speeds, &sp, &opt.nspeeds);
+    if (gd_cli_units_parse(cmd, a.units, speeds, NULL, &u)) return GD_EXIT_INPUT;
+    rc = gd_cli_parse_range(cmd, "--speeds", speeds, &sp, &opt.nspeeds);
     if (rc) return rc;
     opt.speeds = sp;
     gd_error err;
     gd_error_clear(&err);
-    double at = 0;
-    if (orbit_speed && gd_cli_parse_speed(cmd, orbit_speed, &at)) {
-        free(sp);
-        return GD_EXIT_INPUT;
-    }
     if ((out && gd_outdir_check(out, &err)) || (plot && gd_plot_check_path(plot, NULL, &err))) {
         free(sp);
         return gd_cli_report(&err);
     }
     gd_model *m;
     gd_system *s;
-    if ((rc = gd_cli_load(argv[optind], &sets, coupling, &m, &s))) {
+    if ((rc = gd_cli_load(file, &a.sets, a.coupling, &m, &s))) {
         free(sp);
         return rc;
     }
@@ -196,7 +147,7 @@ int gd_cmd_unbalance(int argc, char **argv)
     }
     if (plot) {
         gd_plot *p = NULL;
-        gd_status pst = gd_plot_unbalance(s, &opt, r, at, &p, &err);
+        gd_status pst = gd_plot_unbalance(s, &opt, r, a.orbit_speed, &p, &err);
         if (!pst && !u.speed_rpm) gd_plot_convert_x(p, "rpm", "rad/s", 3.14159265358979323846 / 30);
         if ((rc = gd_cli_plot_finish(pst, p, &err, plot))) goto done;
     }
@@ -228,10 +179,10 @@ int gd_cmd_unbalance(int argc, char **argv)
         fprintf(f, "output,harmonic_order,speed_rad_s,speed_rpm,magnitude,phase_deg,real,imag\n");
         for (int k = 0; k < nh * np; k++)
             for (int i = 0; i < ns; i++) {
-                double a = ser[k].re[i], b = ser[k].im[i];
+                double re = ser[k].re[i], im = ser[k].im[i];
                 fprintf(f, "%s,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n", ser[k].name,
-                        ser[k].harmonic, r->speeds[i], r->speeds[i] * 30 / PI, hypot(a, b),
-                        atan2(b, a) * 180 / PI, a, b);
+                        ser[k].harmonic, r->speeds[i], r->speeds[i] * 30 / PI, hypot(re, im),
+                        atan2(im, re) * 180 / PI, re, im);
             }
         if (gd_outdir_close(&od, f, "unbalance.csv", &err)) goto fail;
         if (!(f = gd_outdir_open(&od, "orbits.csv", &err))) goto fail;
@@ -252,7 +203,7 @@ int gd_cmd_unbalance(int argc, char **argv)
         goto done;
     }
 written:
-    if (json) {
+    if (a.json) {
         cJSON *o = cJSON_CreateObject();
         cJSON_AddStringToObject(o, "model", m->file);
         cJSON *ha = cJSON_AddArrayToObject(o, "harmonics");
