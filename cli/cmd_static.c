@@ -33,8 +33,8 @@ static const gd_cli_opt OPTS[] = {
     GD_CLI_ROW_MODEL(static_args, coupling, sets),
     GD_CLI_ROW_JSON(static_args, json),
     GD_CLI_ROW_OUT(static_args, out,
-                   "write DIR/static_nodes.csv, static_bearings.csv, static_meshes.csv and "
-                   "static_holds.csv"),
+                   "write DIR/static_nodes.csv, static_bearings.csv, static_meshes.csv, "
+                   "static_holds.csv and, with laws, static_laws.csv"),
     GD_CLI_ROW_PLOT(static_args, plot),
     {0}};
 static const gd_cli_command CMD = {
@@ -108,6 +108,17 @@ static void print_tables(const gd_system *s, const gd_static_result *r)
         for (int k = 0; k < m->nsprings; k++)
             printf("%-12.12s %-4s %14.6g\n", m->springs[k].name, gd_dof_names[m->springs[k].dof],
                    r->springs[k]);
+    }
+    if (r->nlaws) {
+        printf("\nlaws (records at the static state)\n");
+        for (int l = 0; l < r->nlaws; l++) {
+            const gd_static_law *L = &r->laws[l];
+            printf("%-16.16s %-16.16s", L->name, L->type);
+            for (int k = 0; k < L->nrecords; k++)
+                printf(" %s %.6g %s%s", L->record_names[k], L->records[k], L->record_units[k],
+                       k + 1 < L->nrecords ? "," : "");
+            printf("\n");
+        }
     }
     printf("\nnodes (displacement um, rotation mrad)\n%-12s %-16s %9s %11s %11s %11s %10s %10s "
            "%10s\n",
@@ -186,6 +197,19 @@ static cJSON *result_json(const gd_system *s, const gd_static_result *r)
         add_num(j, "force", r->springs[k]);
         cJSON_AddItemToArray(ss, j);
     }
+    if (r->nlaws) {
+        cJSON *ls = cJSON_AddArrayToObject(o, "laws");
+        for (int l = 0; l < r->nlaws; l++) {
+            const gd_static_law *L = &r->laws[l];
+            cJSON *j = cJSON_CreateObject();
+            cJSON_AddStringToObject(j, "name", L->name);
+            cJSON_AddStringToObject(j, "type", L->type);
+            cJSON *rec = cJSON_AddObjectToObject(j, "records");
+            for (int k = 0; k < L->nrecords; k++)
+                add_num(rec, L->record_names[k], L->records[k]);
+            cJSON_AddItemToArray(ls, j);
+        }
+    }
     cJSON *ns = cJSON_AddArrayToObject(o, "nodes");
     for (int sh = 0; sh < m->nshafts; sh++)
         for (int i = 0; i < m->shafts[sh].nnodes; i++) {
@@ -247,6 +271,16 @@ static int write_csv(const gd_system *s, const gd_static_result *r, const char *
                 gd_dof_names[r->holds[h].dof], r->holds[h].prescribed ? "prescribed" : "torque",
                 r->holds[h].reaction);
     if (gd_outdir_close(&od, f, "static_holds.csv", &err)) goto fail;
+    if (r->nlaws) {
+        if (!(f = gd_outdir_open(&od, "static_laws.csv", &err))) goto fail;
+        fprintf(f, "law,type,record,value,unit\n");
+        for (int l = 0; l < r->nlaws; l++)
+            for (int k = 0; k < r->laws[l].nrecords; k++)
+                fprintf(f, "%s,%s,%s,%.10g,%s\n", r->laws[l].name, r->laws[l].type,
+                        r->laws[l].record_names[k], r->laws[l].records[k],
+                        r->laws[l].record_units[k]);
+        if (gd_outdir_close(&od, f, "static_laws.csv", &err)) goto fail;
+    }
     if (gd_outdir_commit(&od, &err)) return gd_cli_report(&err);
     return GD_EXIT_OK;
 fail:

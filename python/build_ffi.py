@@ -199,9 +199,13 @@ typedef struct { int node; gd_dof dof; int prescribed; double reaction; ...; } g
 typedef struct { double force; double on_driver[6]; double on_driven[6];
                  double tangential, radial, axial, tilt_in_plane, tilt_out_of_plane,
                  face_width, f_sh, f_beta_x; ...; } gd_static_mesh;
+typedef struct { const char *name; const char *type; int nrecords;
+                 const char *record_names[8]; const char *record_units[8];
+                 double records[8]; ...; } gd_static_law;
 typedef struct { int ndof, nnodes, nbearings, nsprings, nmeshes, nholds; double speed;
                  double *q; double *f; double *u; gd_static_reaction *bearings;
                  double *springs; gd_static_mesh *meshes; gd_static_hold *holds;
+                 double *law_forces; int nlaws; gd_static_law *laws;
                  ...; } gd_static_result;
 void gd_static_options_init(gd_static_options *opt);
 gd_status gd_static_run(const gd_system *sys, const gd_static_options *opt,

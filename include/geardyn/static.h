@@ -95,6 +95,8 @@ typedef struct gd_static_result {
     double *springs;              /* nsprings: force or torque on node1 along its DOF */
     gd_static_mesh *meshes;       /* nmeshes */
     gd_static_hold *holds;        /* nholds */
+    double *law_forces;           /* ndof: the laws' forces on the DOFs at the state (N, N m;
+                                     0 without laws): K q = f + law_forces */
     int nlaws;                    /* the laws that took part in the equilibrium */
     gd_static_law *laws;          /* nlaws */
 } gd_static_result;

@@ -53,7 +53,9 @@ class StaticResult:
     bearing_force, bearing_moment: nbearings x 3, on the shaft; springs: per spring;
     mesh arrays (one per mesh): force, tangential, radial, axial, tilt_in_plane,
     tilt_out_of_plane, face_width, f_sh, f_beta_x, on_driver and on_driven (x 6);
-    holds: list of (node, dof, kind, reaction)."""
+    holds: list of (node, dof, kind, reaction); law_forces: the laws' forces on the
+    active DOFs (K q = f + law_forces); laws: {law name: {"type": ..., record: value}}
+    with each supporting law's records (a journal bearing's fx, fy, ecc) at the state."""
 
     def __init__(self, system, owner):
         self.system = system
@@ -72,6 +74,14 @@ class StaticResult:
                        _core.DOF_NAMES[r.holds[h].dof],
                        "prescribed" if r.holds[h].prescribed else "torque",
                        r.holds[h].reaction) for h in range(r.nholds)]
+        self.law_forces = _core.view(r, r.law_forces, r.ndof)
+        self.laws = {}
+        for k in range(r.nlaws):
+            law = r.laws[k]
+            entry = {"type": cstr(law.type)}
+            for j in range(law.nrecords):
+                entry[cstr(law.record_names[j])] = law.records[j]
+            self.laws[cstr(law.name)] = entry
 
     def __getattr__(self, name):
         if name in _MESH_DTYPE.names:

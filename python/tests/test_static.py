@@ -37,3 +37,19 @@ def test_rig_torque_balance(geardyn):
     # each bearing carries half the mesh force
     assert np.allclose(np.hypot(r.bearing_force[:, 0], r.bearing_force[:, 1]), 10 / 0.048,
                        rtol=1e-9)
+
+
+def test_journal_rotor_on_its_laws(geardyn):
+    """A rotor held by its journal bearings alone: the laws' records equal the CLI's bit
+    for bit, and their vertical forces add up to the 40 kg rotor's weight."""
+    path = example("journal_rotor")
+    j = run_cli("static", path, "--speed", "1000")
+    r = geardyn.load(path).static(speed=1000.0)
+    assert list(r.laws) == [law["name"] for law in j["laws"]]
+    for law in j["laws"]:
+        assert r.laws[law["name"]]["type"] == "journal_bearing"
+        for key, value in law["records"].items():
+            same(np.array([r.laws[law["name"]][key]]), nums([value]))
+    assert math.isclose(sum(v["fy"] for v in r.laws.values()), 40 * 9.81, rel_tol=1e-9)
+    # the laws' forces on the DOFs: the weight up, nothing sideways (x forces are ~1e-9 N)
+    assert math.isclose(float(np.sum(r.law_forces)), 40 * 9.81, rel_tol=1e-9)

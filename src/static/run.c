@@ -32,6 +32,7 @@ void gd_static_free(gd_static_result *res)
     free(res->meshes);
     free(res->holds);
     free(res->laws);
+    free(res->law_forces);
     free(res);
 }
 
@@ -118,9 +119,10 @@ static gd_status alloc_result(const gd_system *sys, gd_static_result **out)
     r->meshes = calloc((size_t)(m->nmeshes > 0 ? m->nmeshes : 1), sizeof *r->meshes);
     r->holds = calloc(n1, sizeof *r->holds);
     r->laws = calloc((size_t)(sys->nlaws > 0 ? sys->nlaws : 1), sizeof *r->laws);
+    r->law_forces = calloc(n1, sizeof *r->law_forces);
     *out = r;
     if (!r->q || !r->f || !r->u || !r->bearings || !r->springs || !r->meshes || !r->holds ||
-        !r->laws)
+        !r->laws || !r->law_forces)
         return GD_ENOMEM;
     return GD_OK;
 }
@@ -203,7 +205,6 @@ gd_status gd_static_run(const gd_system *sys, const gd_static_options *opt, gd_s
     gd_static_result *res = NULL;
     double *K = malloc((size_t)(n > 0 ? n : 1) * (n > 0 ? n : 1) * sizeof *K);
     int *held = malloc((size_t)(n > 0 ? n : 1) * sizeof *held);
-    double *flaw = NULL; /* the laws' forces at the state */
     if (!K || !held || alloc_result(sys, &res)) {
         st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
         goto out;
@@ -214,9 +215,7 @@ gd_status gd_static_run(const gd_system *sys, const gd_static_options *opt, gd_s
     if ((st = gd_st_loads(sys, opt, res->f, err))) goto out;
     if (sys->nlaws) {
         double *Kd = malloc((size_t)(n > 0 ? n : 1) * (n > 0 ? n : 1) * sizeof *Kd);
-        flaw = calloc((size_t)(n > 0 ? n : 1), sizeof *flaw);
-        if (!Kd || !flaw) {
-            free(Kd);
+        if (!Kd) {
             st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
             goto out;
         }
@@ -224,7 +223,7 @@ gd_status gd_static_run(const gd_system *sys, const gd_static_options *opt, gd_s
         st = gd_st_holds(sys, Kd, opt, held, err);
         free(Kd);
         if (st || (st = solve_with_laws(sys, K, res->f, held, res->speed, res->q, err))) goto out;
-        gd_system_law_forces(sys, res->speed, res->q, flaw);
+        gd_system_law_forces(sys, res->speed, res->q, res->law_forces);
         law_outputs(sys, res);
     } else if ((st = gd_st_holds(sys, K, opt, held, err)) ||
                (st = solve(sys, K, res->f, held, res->q, err))) {
@@ -233,7 +232,7 @@ gd_status gd_static_run(const gd_system *sys, const gd_static_options *opt, gd_s
     for (int i = 0; i < n; i++) {
         res->u[(size_t)sys->dof_node[i] * GD_NODE_DOFS + sys->dof_type[i]] = res->q[i];
         if (!held[i]) continue;
-        double kq = flaw ? -flaw[i] : 0;
+        double kq = -res->law_forces[i];
         for (int j = 0; j < n; j++)
             kq += K[i + (size_t)j * n] * res->q[j];
         gd_static_hold *h = &res->holds[res->nholds++];
@@ -246,7 +245,6 @@ gd_status gd_static_run(const gd_system *sys, const gd_static_options *opt, gd_s
 out:
     free(K);
     free(held);
-    free(flaw);
     if (st) {
         gd_static_free(res);
         return st;

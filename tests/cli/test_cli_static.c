@@ -131,5 +131,42 @@ TEST(errors_exit_2)
     scratch_close(&s);
 }
 
+/* A rotor held by its journal bearings alone: the laws' records in the JSON and in
+ * static_laws.csv, the vertical forces adding up to the weight (40 kg), and at rest
+ * (no speed) an input error naming the laws. */
+TEST(journal_rotor_on_its_laws)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    cJSON *o = run_json_args(&s, "static examples/journal_rotor.yaml --speed 1000");
+    REQUIRE(o);
+    double fy = 0;
+    for (int l = 0; l < 2; l++) {
+        const cJSON *law = item(o, "laws", l);
+        REQUIRE(law);
+        CHECK_STR(jstr(law, "type"), "journal_bearing");
+        const cJSON *rec = cJSON_GetObjectItemCaseSensitive(law, "records");
+        fy += jnum(rec, "fy");
+        /* Ocvirk's short bearing at this load and speed: eccentricity 0.5526 (the
+           library test compares the state with the linear analyses' one to 1e-9) */
+        CHECK(fabs(jnum(rec, "ecc") - 0.5526) < 1e-4);
+    }
+    CHECK_REL(fy, 40 * 9.81, 1e-9);
+    cJSON_Delete(o);
+    char path[600];
+    run_result r;
+    CHECK(run(&s, &r, "static examples/journal_rotor.yaml --speed 1000 --out '%s/o'", s.dir) == 0);
+    run_free(&r);
+    snprintf(path, sizeof path, "%s/o/static_laws.csv", s.dir);
+    char *csv = read_file(path);
+    REQUIRE(csv);
+    CHECK(strstr(csv, "law,type,record,value,unit\nleft_bearing,journal_bearing,fx,") == csv);
+    CHECK(strstr(csv, "right_bearing,journal_bearing,ecc,0.5525") != NULL);
+    free(csv);
+    CHECK(run_fails_cleanly(&s, "static examples/journal_rotor.yaml", "laws",
+                            "no static equilibrium at 0 rad/s"));
+    scratch_close(&s);
+}
+
 RUN_TESTS(T(rig_torque_balance), T(helical_motor_torque_and_misalignment), T(out_and_plot),
-          T(errors_exit_2))
+          T(errors_exit_2), T(journal_rotor_on_its_laws))
