@@ -114,26 +114,6 @@ static int exec_mpi(char **argv)
 }
 #endif
 
-int gd_study_run_local(const gd_study *s, const char *out, size_t shard, size_t nshards, int resume,
-                       int progress, int nthreads)
-{
-    gd_study_out o;
-    int rc = gd_study_out_open(&o, s, out, shard, nshards, resume, progress);
-    size_t n = 0, *todo = rc ? NULL : gd_study_out_todo(&o, &n);
-    if (!rc && !todo) rc = GD_EXIT_FAIL;
-    gd_error err;
-    if (!rc && gd_study_run(s, todo, n, nthreads, gd_study_out_sink, &o, &err))
-        rc = gd_cli_report(&err);
-    if (!rc && o.ndone != o.total) {
-        fprintf(stderr, "geardyn study: the journal could not be written; --resume later\n");
-        rc = GD_EXIT_FAIL;
-    }
-    if (!rc) rc = gd_study_out_finish(&o);
-    free(todo);
-    gd_study_out_close(&o);
-    return rc;
-}
-
 static int study_main(int argc, char **argv)
 {
     study_args a = {.shard = {0, 1}};

@@ -10,8 +10,7 @@
 See docs/python.md. Errors raise geardyn.ModelError (file, line, field, hint).
 """
 from ._core import GeardynError, ModelError, SolverError, ffi, lib, cstr
-from .model import Model, System, Matrices, load, loads
-from .builder import build
+from .model import Model, System, Matrices, load, loads, build
 from .analyses import (ModalResult, CampbellResult, FrfResult, UnbalanceResult, sweep)
 from .transient import TransientResult
 from .periodic import PeriodicResult

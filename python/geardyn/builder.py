@@ -281,10 +281,3 @@ def build_handle(spec, name):
         check(lib.gd_model_set_speed(m, quantity(spec["speed"], "speed", "speed"), err), err)
     check(lib.gd_model_finish(m, err), err)
     return m
-
-
-def build(spec, name="<dict>", coupling=None):
-    """A Model from a dict laid out as a model file (see the module's doc), built
-    through the C builder API. Raises ModelError naming the field."""
-    from .model import Model
-    return Model._load(("dict", spec, name), coupling=coupling)

@@ -12,6 +12,7 @@ from . import transient as _transient
 from . import periodic as _periodic
 from . import static as _static
 from ._core import ffi, lib, check, new_error, cstr, quantity, model_error
+from .builder import build_handle
 
 __all__ = ["Model", "System", "Matrices", "load", "loads"]
 
@@ -90,7 +91,6 @@ class Model:
         level = _coupling_level(coupling)
         strings = _set_strings(sets)
         if source[0] == "dict":
-            from .builder import build_handle
             handle = build_handle(source[1], source[2])
         else:
             opt, _keep = _load_options(strings)
@@ -245,6 +245,12 @@ def load(path, sets=None, coupling=None):
 def loads(text, name="<string>", sets=None, coupling=None):
     """Loads a model from YAML text; name stands for the file in error messages."""
     return Model._load(("text", text, name), sets, coupling)
+
+
+def build(spec, name="<dict>", coupling=None):
+    """A Model from a dict laid out as a model file (see the module's doc), built
+    through the C builder API. Raises ModelError naming the field."""
+    return Model._load(("dict", spec, name), coupling=coupling)
 
 
 Matrices = collections.namedtuple("Matrices", "M K C G dofs")

@@ -74,20 +74,6 @@ static gd_status add_station(gd_model *m, gd_bshaft *bs, const char *path, const
     return GD_OK;
 }
 
-void gd_build_free_shaft(gd_bshaft *bs, int nsections)
-{
-    free(bs->path);
-    free(bs->material);
-    for (int j = 0; j < nsections && bs->section_material; j++)
-        free(bs->section_material[j]);
-    free(bs->section_material);
-    for (int j = 0; j < bs->nstations; j++) {
-        free(bs->stations[j].name);
-        free(bs->stations[j].path);
-    }
-    free(bs->stations);
-}
-
 gd_status gd_model_add_shaft(gd_model *m, const gd_shaft_spec *s, int *index, gd_error *err)
 {
     gd_status st;

@@ -9,6 +9,7 @@
  * in a fixed order at load time, so every rank, shard and thread count sees the same
  * cases. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "study/study_impl.h"
@@ -112,4 +113,25 @@ double gd_study_case_value(const gd_study *s, size_t c, int p)
 {
     if (s->samples) return s->samples[c * (size_t)s->nparams + (size_t)p];
     return s->params[p].values[gd_study_value_index(s, c, p)];
+}
+
+/* A case's value of parameter p as text: the assignment "path=value unit" (the --set
+ * form) and the bare value (a table cell). */
+void gd_study_assignment(const gd_study *s, size_t c, int p, char *buf, size_t size)
+{
+    const gd_study_param *pa = &s->params[p];
+    if (!pa->numeric) {
+        snprintf(buf, size, "%s=%s", pa->path, pa->texts[gd_study_value_index(s, c, p)]);
+        return;
+    }
+    snprintf(buf, size, "%s=%.17g%s%s", pa->path, gd_study_case_value(s, c, p) * pa->scale,
+             pa->unit[0] ? " " : "", pa->unit);
+}
+
+const char *gd_study_case_text(const gd_study *s, size_t c, int p, char *buf, size_t size)
+{
+    const gd_study_param *pa = &s->params[p];
+    if (!pa->numeric) return pa->texts[gd_study_value_index(s, c, p)];
+    snprintf(buf, size, "%.17g", gd_study_case_value(s, c, p));
+    return buf;
 }

@@ -11,25 +11,6 @@
 #include "geardyn/system.h"
 #include "study/study_impl.h"
 
-void gd_study_assignment(const gd_study *s, size_t c, int p, char *buf, size_t size)
-{
-    const gd_study_param *pa = &s->params[p];
-    if (!pa->numeric) {
-        snprintf(buf, size, "%s=%s", pa->path, pa->texts[gd_study_value_index(s, c, p)]);
-        return;
-    }
-    snprintf(buf, size, "%s=%.17g%s%s", pa->path, gd_study_case_value(s, c, p) * pa->scale,
-             pa->unit[0] ? " " : "", pa->unit);
-}
-
-const char *gd_study_case_text(const gd_study *s, size_t c, int p, char *buf, size_t size)
-{
-    const gd_study_param *pa = &s->params[p];
-    if (!pa->numeric) return pa->texts[gd_study_value_index(s, c, p)];
-    snprintf(buf, size, "%.17g", gd_study_case_value(s, c, p));
-    return buf;
-}
-
 static gd_status run_analysis(const gd_study *s, const gd_load_options *opt, double *values,
                               gd_error *err)
 {
