@@ -137,8 +137,7 @@ gd_status gd_model_set_speed(gd_model *m, double speed, gd_error *err);
 /* ---- system ---- */
 typedef struct { int n; int *colptr; int *rowind; double *values; } gd_csc;
 void gd_csc_free(gd_csc *a);
-typedef enum { GD_COMP_SHAFT, GD_COMP_BEARING, GD_COMP_SPRING, GD_COMP_MESH, GD_COMP_NONE,
-               ... } gd_component_kind;
+typedef struct { const char *name; ...; } gd_element_type;
 typedef enum { GD_MOTION_LATERAL, GD_MOTION_TORSIONAL, GD_MOTION_AXIAL, GD_MOTION_TILT,
                GD_NMOTIONS, ... } gd_motion;
 extern const char *const gd_motion_names[];
@@ -156,7 +155,7 @@ void gd_system_free(gd_system *sys);
 int gd_system_dof(const gd_system *sys, int node, gd_dof dof);
 gd_status gd_system_matrices(const gd_system *sys, double speed, gd_csc *M, gd_csc *K,
                              gd_csc *C, gd_csc *G, gd_error *err);
-gd_component_kind gd_system_component(const gd_system *sys, int c, int *index,
+const gd_element_type *gd_system_component(const gd_system *sys, int c, int *index,
                                       const char **name);
 
 /* ---- modal ---- */

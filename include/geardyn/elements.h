@@ -29,16 +29,6 @@ typedef enum gd_motion {
 } gd_motion;
 GD_API extern const char *const gd_motion_names[GD_NMOTIONS];
 
-/* Components that store strain energy, in registry order: shafts, bearings, springs,
- * meshes (disks store none). */
-typedef enum gd_component_kind {
-    GD_COMP_SHAFT,
-    GD_COMP_BEARING,
-    GD_COMP_SPRING,
-    GD_COMP_MESH,
-    GD_COMP_NONE
-} gd_component_kind;
-
 /* What an instance contributes (gd_element_type.terms). */
 enum {
     GD_TERM_M = 1u << 0,
@@ -78,8 +68,9 @@ typedef struct gd_element_type {
     double (*strain_energy)(const gd_model *m, int i, const double *K, const double *re,
                             const double *im, double *by_motion);
     /* Components (strain-energy groups) of this kind: how many, which one instance i
-     * belongs to, and the name of component c. ncomponents NULL: stores no energy. */
-    gd_component_kind component_kind;
+     * belongs to, and the name of component c. ncomponents NULL: stores no energy (a
+     * disk). The system numbers the components kind after kind in registry order
+     * (gd_system_component tells a component's kind). */
     int (*ncomponents)(const gd_model *m);
     int (*component)(const gd_model *m, int i);
     const char *(*component_name)(const gd_model *m, int c);

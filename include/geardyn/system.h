@@ -92,9 +92,10 @@ GD_API int gd_system_law_state(const gd_system *sys, double speed, double *q);
 GD_API gd_status gd_system_matrices(const gd_system *sys, double speed, gd_csc *M, gd_csc *K,
                                     gd_csc *C, gd_csc *G, gd_error *err);
 
-/* Component index -> kind, index within kind and name. */
-GD_API gd_component_kind gd_system_component(const gd_system *sys, int c, int *index,
-                                             const char **name);
+/* Component c -> its element kind (a type of the registry, geardyn/elements.h), its
+ * index within the kind and its name; NULL (index -1, name "") when c is out of range. */
+GD_API const gd_element_type *gd_system_component(const gd_system *sys, int c, int *index,
+                                                  const char **name);
 
 /* Mesh deformation vector of mesh k: d = sum a[j] q[dof[j]] over n entries (n <= 12). */
 typedef struct gd_mesh_vector {

@@ -278,10 +278,11 @@ class System:
         self.dofs = ["%s.%s" % (node_names[n], _core.DOF_NAMES[d])
                      for n, d in zip(self.dof_node, self.dof_type)]
         idx, name = ffi.new("int *"), ffi.new("const char **")
-        self.components = []
+        self.components, self.component_kinds = [], []
         for c in range(h.ncomponents):
-            lib.gd_system_component(h, c, idx, name)
+            kind = lib.gd_system_component(h, c, idx, name)
             self.components.append(cstr(name[0]))
+            self.component_kinds.append(cstr(kind.name))
 
     def dof(self, node, dof):
         """Active DOF index of (node name, "x".."rz"), or -1."""

@@ -53,3 +53,11 @@ def test_journal_rotor_on_its_laws(geardyn):
     assert math.isclose(sum(v["fy"] for v in r.laws.values()), 40 * 9.81, rel_tol=1e-9)
     # the laws' forces on the DOFs: the weight up, nothing sideways (x forces are ~1e-9 N)
     assert math.isclose(float(np.sum(r.law_forces)), 40 * 9.81, rel_tol=1e-9)
+
+
+def test_component_kinds_from_the_registry(geardyn):
+    """Each strain-energy component's element kind comes from the C element registry."""
+    s = geardyn.load(RIG).system
+    assert list(zip(s.components, s.component_kinds)) == [
+        ("driving", "shaft"), ("driven", "shaft"), ("A1", "bearing"), ("A2", "bearing"),
+        ("B1", "bearing"), ("B2", "bearing"), ("mesh", "mesh")]

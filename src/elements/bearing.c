@@ -159,7 +159,6 @@ const gd_element_type gd_element_bearing = {
     .matrices = bearing_matrices,
     .speed_pattern = bearing_speed_pattern,
     .motion = gd_support_motion,
-    .component_kind = GD_COMP_BEARING,
     .ncomponents = bearing_ncomponents,
     .component = bearing_component,
     .component_name = bearing_name,

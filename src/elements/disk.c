@@ -63,5 +63,4 @@ const gd_element_type gd_element_disk = {
     .terms = disk_terms,
     .matrices = disk_matrices,
     .motion = DISK_MOTION,
-    .component_kind = GD_COMP_NONE,
 };

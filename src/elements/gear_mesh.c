@@ -152,7 +152,6 @@ const gd_element_type gd_element_mesh = {
     .matrices = mesh_matrices,
     .motion = gd_support_motion,
     .strain_energy = mesh_strain_energy,
-    .component_kind = GD_COMP_MESH,
     .ncomponents = mesh_ncomponents,
     .component = mesh_component,
     .component_name = mesh_name,

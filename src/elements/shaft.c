@@ -166,7 +166,6 @@ const gd_element_type gd_element_shaft = {
     .terms = shaft_terms,
     .matrices = shaft_matrices,
     .motion = SHAFT_MOTION,
-    .component_kind = GD_COMP_SHAFT,
     .ncomponents = shaft_ncomponents,
     .component = shaft_component,
     .component_name = shaft_name,

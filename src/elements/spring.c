@@ -82,7 +82,6 @@ const gd_element_type gd_element_spring = {
     .terms = spring_terms,
     .matrices = spring_matrices,
     .motion = gd_support_motion,
-    .component_kind = GD_COMP_SPRING,
     .ncomponents = spring_ncomponents,
     .component = spring_component,
     .component_name = spring_name,

@@ -91,16 +91,13 @@ int gd_system_component_shafts(const gd_system *s, int c, int shafts[2], double 
     const gd_model *m = s->model;
     int index, nodes[2] = {-1, -1};
     const char *name;
-    gd_component_kind kind = gd_system_component(s, c, &index, &name);
-    if (kind == GD_COMP_SHAFT) {
+    const gd_element_type *t = gd_system_component(s, c, &index, &name);
+    if (t == &gd_element_shaft) { /* a shaft's component is the whole shaft */
         shafts[0] = index;
         weights[0] = 1;
         return 1;
     }
-    /* any other component is one element: the shafts of its nodes, from its kind */
-    const gd_element_type *t = NULL;
-    for (int k = 0; k < gd_nelement_types && !t && kind != GD_COMP_NONE; k++)
-        if (gd_element_types[k]->component_kind == kind) t = gd_element_types[k];
+    /* any other component is one element: the shafts of its nodes */
     if (!t || !t->nodes) return 0;
     t->nodes(m, index, nodes);
     int n = 0;

@@ -255,7 +255,7 @@ void gd_system_dof_label(const gd_system *s, int i, char *buf, int size)
              gd_dof_names[s->dof_type[i]]);
 }
 
-gd_component_kind gd_system_component(const gd_system *s, int c, int *index, const char **name)
+const gd_element_type *gd_system_component(const gd_system *s, int c, int *index, const char **name)
 {
     const gd_model *m = s->model;
     for (int k = 0; k < gd_nelement_types; k++) {
@@ -265,13 +265,13 @@ gd_component_kind gd_system_component(const gd_system *s, int c, int *index, con
         if (c < nc) {
             *index = c;
             *name = t->component_name(m, c);
-            return t->component_kind;
+            return t;
         }
         c -= nc;
     }
     *index = -1;
     *name = "";
-    return GD_COMP_NONE;
+    return NULL;
 }
 
 void gd_system_mesh_vector(const gd_system *s, int mesh, gd_mesh_vector *out)

@@ -439,7 +439,8 @@ TEST(energy_shares_sum_to_one)
     }
     int idx;
     const char *name;
-    CHECK(gd_system_component(f.s, f.r->modes[3].dominant_component, &idx, &name) == GD_COMP_MESH);
+    CHECK(gd_system_component(f.s, f.r->modes[3].dominant_component, &idx, &name) ==
+          &gd_element_mesh);
     fx_free(&f);
 }
 
@@ -479,7 +480,8 @@ TEST(negative_stiffness_is_a_divergence_not_an_oscillation)
         CHECK(grow->dominant_motion == GD_MOTION_LATERAL);
         int idx;
         const char *name = "";
-        CHECK(gd_system_component(f.s, grow->dominant_component, &idx, &name) == GD_COMP_BEARING);
+        CHECK(gd_system_component(f.s, grow->dominant_component, &idx, &name) ==
+              &gd_element_bearing);
         CHECK_REL(osc->omega_d, sqrt(3e6), 1e-12);
         CHECK(!osc->unstable);
         if (!kind) {
