@@ -6,6 +6,9 @@
 #include <string.h>
 
 #include "geardyn/report.h"
+#include "geardyn/transient.h"
+#include "geardyn/transient_model.h"
+#include "geardyn/waterfall.h"
 
 #define PI 3.14159265358979323846
 enum { MAX_PROBES = 32 };
@@ -16,6 +19,7 @@ void gd_report_options_init(gd_report_options *opt)
     opt->speed = -1;
     opt->nmodes = 8;
     opt->nfreq = 400;
+    opt->runup_revolutions = 200;
 }
 
 static int add_probe(gd_probe *pr, int *n, gd_probe_kind kind, int index, gd_dof dir,
@@ -172,6 +176,104 @@ static gd_status add_unbalance(gd_plot *doc, const gd_system *sys, const gd_repo
     return st ? st : gd_plot_append(doc, p, err);
 }
 
+/* What excites a run-up of the model (a name for the note), or NULL when nothing does. */
+static const char *runup_forcing(const gd_model *m, const gd_transient_model *tm)
+{
+    if (m->nunbalances) return "the model's unbalances";
+    for (int i = 0; i < tm->spec.nmeshes; i++)
+        if (tm->meshes[i].tvms || tm->meshes[i].ste || tm->meshes[i].backlash)
+            return "the meshes' time-varying stiffness and transmission error";
+    if (tm->spec.nloads || tm->spec.ncams || tm->spec.nlaws || tm->spec.nprescribed)
+        return "the model's loads, cams and laws";
+    return NULL;
+}
+
+/* The run-up waterfall (gd_report_options.runup_*): one transient through the ramp,
+ * order-tracked (geardyn/waterfall.h). */
+static gd_status add_runup(gd_plot *doc, const gd_system *sys, const gd_report_options *opt,
+                           gd_error *err)
+{
+    const gd_model *m = sys->model;
+    const double w0 = opt->runup_from, w1 = opt->runup_to;
+    if (!(w0 * w1 >= 0) || !isfinite(w0) || !isfinite(w1))
+        return gd_error_set(err, GD_EINPUT, "", 0, 0, "--run-up", "give FROM:TO of one sign",
+                            "run-up speeds %g -> %g rad/s", w0, w1);
+    const double revs = opt->runup_revolutions > 0 ? opt->runup_revolutions : 200;
+    gd_transient_model *tm = NULL;
+    gd_status st = gd_transient_model_build(sys, &tm, err);
+    if (st) return st;
+    const char *forcing = runup_forcing(m, tm);
+    gd_tr_record rec = {GD_REC_DISP, -1, 0};
+    if (m->nunbalances) rec.index = gd_system_dof(sys, m->unbalances[0].node, GD_X);
+    if (rec.index < 0 && m->nmeshes) rec = (gd_tr_record){GD_REC_MESH_FORCE, 0, 0};
+    if (rec.index < 0 && m->ndisks) rec.index = gd_system_dof(sys, m->disks[0].node, GD_X);
+    if (!forcing || rec.index < 0) {
+        gd_transient_model_free(tm);
+        return gd_plot_add_note(
+            doc, "Run-up waterfall",
+            !forcing ? "None: nothing in the model excites a run-up (no unbalance, no mesh "
+                       "time-varying stiffness or transmission error, no load, cam or law); "
+                       "add `unbalances:` to the model file (docs/model-format.md)."
+                     : "None: the model has no unbalance node, mesh or disk to record.",
+            err);
+    }
+    /* the ramp over `revs` turns at the mean speed; 64 samples (and generalized-alpha
+     * steps) per turn at the top speed: two per point of the order tracking's 32 */
+    const double wm = 0.5 * fabs(w0 + w1), wt = fmax(fabs(w0), fabs(w1));
+    gd_speed_profile prof = {GD_SPEED_RAMP, w0, w1, 0, 2 * PI * revs / wm, 0, NULL, NULL};
+    gd_transient *tr = NULL;
+    gd_transient_result *res = NULL;
+    gd_waterfall *wf = NULL;
+    double *ang = NULL;
+    if ((st = gd_transient_new(sys, &tm->spec, 0.5 * (w0 + w1), &tr, err))) goto done;
+    gd_transient_options to;
+    gd_transient_options_init(&to);
+    to.t_end = prof.t1;
+    to.output_interval = 2 * PI / wt / 64;
+    to.method = GD_TR_GEN_ALPHA;
+    to.step = to.output_interval;
+    to.profile = &prof;
+    if ((st = gd_transient_run(tr, &to, &rec, 1, &res, err))) goto done;
+    ang = malloc((size_t)res->nout * sizeof *ang);
+    if (!ang) {
+        st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
+        goto done;
+    }
+    for (int k = 0; k < res->nout; k++)
+        gd_speed_profile_eval(&prof, res->t[k], &ang[k], NULL, NULL);
+    gd_order_track_options oo;
+    gd_order_track_options_init(&oo);
+    oo.revs_per_block = 8;
+    oo.samples_per_rev = 32;
+    if ((st = gd_waterfall_order_track(sys, res->t, res->values, ang, res->nout, &oo, &wf, err)))
+        goto done;
+    gd_plot *p;
+    if ((st = gd_plot_waterfall(sys, wf, &rec, NULL, &p, err))) goto done;
+    char note[700];
+    double acc = (w1 - w0) / prof.t1;
+    snprintf(note, sizeof note,
+             "A run-up from %.6g to %.6g rpm in %.3g s (%.4g rpm/s, %g turns of the reference "
+             "shaft), forced by %s, from rest; generalized-alpha at %d steps per turn at the "
+             "top speed (%.3g s of CPU). Resolution: a block of 8 turns spans %.3g rpm at the "
+             "mean speed, and a resonance swept through at this rate peaks late (less so the "
+             "slower the ramp); orders above 16 are not resolved (geardyn transient "
+             "--speed-ramp --waterfall for those).",
+             w0 * 30 / PI, w1 * 30 / PI, prof.t1, acc * 30 / PI, revs, forcing, 64,
+             res->cpu_seconds, fabs(acc) * 2 * PI * 8 / wm * 30 / PI);
+    st = gd_plot_add_note(doc, "Run-up", note, err);
+    if (st)
+        gd_plot_free(p);
+    else
+        st = gd_plot_append(doc, p, err);
+done:
+    free(ang);
+    gd_waterfall_free(wf);
+    gd_transient_result_free(res);
+    gd_transient_free(tr);
+    gd_transient_model_free(tm);
+    return st;
+}
+
 gd_status gd_report_build(const gd_system *sys, const gd_report_options *opt, gd_plot **out,
                           gd_error *err)
 {
@@ -209,6 +311,13 @@ gd_status gd_report_build(const gd_system *sys, const gd_report_options *opt, gd
         st = gd_plot_add_note(doc, "Unbalance response",
                               "None: the model has no unbalance (add `unbalances:` to the model "
                               "file, docs/model-format.md).",
+                              err);
+    if (!st && opt->runup_to != opt->runup_from)
+        st = add_runup(doc, sys, opt, err);
+    else if (!st)
+        st = gd_plot_add_note(doc, "Run-up waterfall",
+                              "Not asked for: `geardyn report --run-up FROM:TO` adds one (a "
+                              "transient through the ramp, order-tracked; docs/plots.md).",
                               err);
     int ngeo = 0;
     for (int g = 0; g < m->nmeshes; g++)

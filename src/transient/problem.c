@@ -412,6 +412,12 @@ void gd_transient_free(gd_transient *tr)
     free(tr->ratio);
     free(tr->prof_cum);
     free(tr->law_ratio);
+    for (int j = 0; j < tr->nsd; j++) { /* a run-up's, normally freed at its end */
+        cs_spfree(tr->sd_K[j]);
+        cs_spfree(tr->sd_C[j]);
+    }
+    free(tr->sd_K);
+    free(tr->sd_C);
     cs_spfree(tr->Gy);
     gd_tr_release_linear(tr);
     gd_tr_reduction_free(tr->red);

@@ -192,6 +192,7 @@ static void profile_forces(gd_transient *tr, double t, const double *q, const do
         sub_mul(tr->D, v, r);
         if (tr->np) sub_mul(tr->M, acc, r);
     }
+    gd_tr_profile_bearing_forces(tr, w, q, v, r); /* speed-table bearings at W(t) */
     {
         /* r -= (W(t) - W) G v: the time-varying gyroscopic term */
         double dW = w - tr->speed;

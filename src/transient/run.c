@@ -565,7 +565,8 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
     clock_t c0 = clock();
     tr->msg[0] = 0;
     if (gd_tr_profile_set(tr, opt->profile)) {
-        st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
+        st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "",
+                          "out of memory (speed profile, speed-table bearings)");
         goto done;
     }
     if (SUNContext_Create(NULL, &ctx)) {
@@ -664,7 +665,7 @@ finish:
     if (opt->profile && tr->sys->has_speed_dependent) {
         size_t k = strlen(res->method_note);
         snprintf(res->method_note + k, sizeof res->method_note - k,
-                 "; speed-table bearings held at %g rad/s", tr->speed);
+                 "; speed-table bearings at W(t) (linear between %d speeds)", GD_TR_SD_SPEEDS);
     }
     for (int i = 0; i < tr->nmesh; i++)
         gd_tr_contact_account(&res->contacts[i], tr->mesh[i].state, track[i].since, opt->t_end,

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "geardyn/system.h"
 #include "transient/transient_impl.h"
 
 gd_status gd_speed_profile_check(const gd_speed_profile *p, gd_error *err)
@@ -126,9 +127,105 @@ void gd_speed_profile_eval(const gd_speed_profile *p, double t, double *angle, d
     gd_tr_profile_eval(p, NULL, t, angle, speed, accel);
 }
 
+static void bearings_free(gd_transient *tr)
+{
+    for (int j = 0; j < tr->nsd; j++) {
+        cs_spfree(tr->sd_K[j]);
+        cs_spfree(tr->sd_C[j]);
+    }
+    free(tr->sd_K);
+    free(tr->sd_C);
+    tr->sd_K = tr->sd_C = NULL;
+    tr->nsd = 0;
+}
+
+/* a cs view of a gd_csc (no copy) */
+static cs view(const gd_csc *a)
+{
+    cs v;
+    v.nzmax = a->colptr[a->n] > 0 ? a->colptr[a->n] : 1;
+    v.m = v.n = a->n;
+    v.p = a->colptr;
+    v.i = a->rowind;
+    v.x = a->values;
+    v.nz = -1;
+    return v;
+}
+
+int gd_tr_profile_bearings(gd_transient *tr)
+{
+    bearings_free(tr);
+    if (!tr->prof || !tr->sys->has_speed_dependent) return 0;
+    const gd_speed_profile *p = tr->prof;
+    double lo = p->kind == GD_SPEED_RAMP ? fmin(p->from, p->to) : p->speed[0], hi = lo;
+    if (p->kind == GD_SPEED_RAMP) hi = fmax(p->from, p->to);
+    for (int k = 0; p->kind == GD_SPEED_TABLE && k < p->n; k++) {
+        lo = fmin(lo, p->speed[k]);
+        hi = fmax(hi, p->speed[k]);
+    }
+    const int n = hi > lo ? GD_TR_SD_SPEEDS : 1;
+    tr->sd_K = calloc((size_t)n, sizeof *tr->sd_K);
+    tr->sd_C = calloc((size_t)n, sizeof *tr->sd_C);
+    if (!tr->sd_K || !tr->sd_C) return 1;
+    tr->nsd = n;
+    tr->sd_w0 = lo;
+    tr->sd_dw = n > 1 ? (hi - lo) / (n - 1) : 1.0;
+    /* C(W) - C(W_ref): tr->D holds C + W_ref G, the system's C its C + C_b(W_ref) */
+    gd_csc C0 = {0};
+    if (gd_system_matrices(tr->sys, tr->speed, NULL, NULL, &C0, NULL, NULL)) return 1;
+    cs c0 = view(&C0);
+    int bad = 0;
+    for (int j = 0; j < n && !bad; j++) {
+        gd_csc Ks = {0}, Cs = {0};
+        if (gd_system_matrices(tr->sys, lo + j * tr->sd_dw, NULL, &Ks, &Cs, NULL, NULL)) {
+            bad = 1;
+            break;
+        }
+        cs kv = view(&Ks), cv = view(&Cs);
+        tr->sd_K[j] = cs_add(&kv, tr->K, 1.0, -1.0);
+        tr->sd_C[j] = cs_add(&cv, &c0, 1.0, -1.0);
+        bad = !tr->sd_K[j] || !tr->sd_C[j] || cs_dropzeros(tr->sd_K[j]) < 0 ||
+              cs_dropzeros(tr->sd_C[j]) < 0;
+        gd_csc_free(&Ks);
+        gd_csc_free(&Cs);
+    }
+    gd_csc_free(&C0);
+    return bad;
+}
+
+/* r -= f A x */
+static void sub_scaled(const cs *A, double f, const double *x, double *r)
+{
+    if (f == 0.0) return;
+    for (int j = 0; j < A->n; j++) {
+        double xj = f * x[j];
+        if (xj == 0.0) continue;
+        for (int p = A->p[j]; p < A->p[j + 1]; p++)
+            r[A->i[p]] -= A->x[p] * xj;
+    }
+}
+
+void gd_tr_profile_bearing_forces(const gd_transient *tr, double w, const double *q,
+                                  const double *v, double *r)
+{
+    if (!tr->nsd) return;
+    double u = (w - tr->sd_w0) / tr->sd_dw;
+    int j = (int)floor(u);
+    if (j < 0) j = 0;
+    if (j > tr->nsd - 2) j = tr->nsd > 1 ? tr->nsd - 2 : 0;
+    double f = tr->nsd > 1 ? fmin(fmax(u - j, 0.0), 1.0) : 0.0;
+    sub_scaled(tr->sd_K[j], 1.0 - f, q, r);
+    sub_scaled(tr->sd_C[j], 1.0 - f, v, r);
+    if (tr->nsd > 1) {
+        sub_scaled(tr->sd_K[j + 1], f, q, r);
+        sub_scaled(tr->sd_C[j + 1], f, v, r);
+    }
+}
+
 int gd_tr_profile_set(gd_transient *tr, const gd_speed_profile *p)
 {
     const int had = tr->prof != NULL;
+    bearings_free(tr);
     free(tr->prof_cum);
     tr->prof_cum = NULL;
     tr->prof = p;
@@ -165,6 +262,10 @@ int gd_tr_profile_set(gd_transient *tr, const gd_speed_profile *p)
     for (int i = 0; i < tr->nmesh; i++) {
         tr->mesh[i].prof = p;
         tr->mesh[i].prof_cum = tr->prof_cum;
+    }
+    if (gd_tr_profile_bearings(tr)) {
+        gd_tr_profile_set(tr, NULL);
+        return 1;
     }
     return 0;
 }

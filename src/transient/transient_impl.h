@@ -104,6 +104,11 @@ struct gd_transient {
     int nunb_all;      /* unbalances on a turning shaft (nunb: 0 at speed 0) */
     cs *Gy;            /* gyroscopic matrix per unit reference speed (full DOFs) */
     double *law_ratio; /* nlaw x (GD_LAW_MAX_DOFS + 2): ratios of the laws' rates, spins */
+    /* a run-up with speed-table bearings: K(W_j) - K(W), C(W_j) - C(W) at nsd speeds
+     * W_j evenly over the profile's range (interpolated linearly at W(t)) */
+    int nsd;
+    double sd_w0, sd_dw;
+    cs **sd_K, **sd_C;
 };
 
 /* ---- speed_profile.c ---- */
@@ -113,6 +118,14 @@ int gd_tr_profile_set(gd_transient *tr, const gd_speed_profile *p);
 /* The profile's angle, speed and acceleration at t (from cum when not NULL). */
 void gd_tr_profile_eval(const gd_speed_profile *p, const double *cum, double t, double *angle,
                         double *speed, double *accel);
+/* Speed-table bearings of a run-up: the differences of K and C from the reference speed
+ * at GD_TR_SD_SPEEDS speeds over the profile's range (none without speed tables); freed
+ * by gd_tr_profile_set(tr, NULL). 0 ok, 1 out of memory or a matrix failure. */
+#define GD_TR_SD_SPEEDS 65
+int gd_tr_profile_bearings(gd_transient *tr);
+/* r -= (K(W) - K(W_ref)) q + (C(W) - C(W_ref)) v, interpolated at speed W. */
+void gd_tr_profile_bearing_forces(const gd_transient *tr, double w, const double *q,
+                                  const double *v, double *r);
 /* The laws' rates (rate t = ratio phi) and spins (ratio W) at t of a run-up. */
 void gd_tr_profile_laws(gd_transient *tr, double t, double phi, double w);
 
