@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "geardyn/units.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -43,12 +44,18 @@ int gd_cli_speed_ramp(const char *cmd, const char *text, double t_end, gd_cli_pr
     snprintf(b, sizeof b, "%s", c + 1);
     if (!*suffix(a) && *suffix(b)) strncat(a, suffix(b), sizeof a - strlen(a) - 1);
     double from, to;
-    if (gd_cli_parse_speed(cmd, a, &from) || gd_cli_parse_speed(cmd, b, &to)) return GD_EXIT_INPUT;
-    if (from * to < 0 || from == to)
+    gd_error why;
+    if (gd_parse_quantity(a, GD_QTY_ANGULAR_SPEED, &from, &why) ||
+        gd_parse_quantity(b, GD_QTY_ANGULAR_SPEED, &to, &why))
+        return gd_cli_usage_error(cmd, "--speed-ramp: %s (e.g. --speed-ramp 0:6000rpm)",
+                                  why.message);
+    if (from < 0 || to < 0)
         return gd_cli_usage_error(cmd,
-                                  "--speed-ramp: FROM and TO must differ and have one sign "
-                                  "(got %g and %g rad/s)",
-                                  from, to);
+                                  "--speed-ramp: give speeds of zero or more (each shaft's sense "
+                                  "of rotation is the model's)");
+    if (from == to)
+        return gd_cli_usage_error(cmd, "--speed-ramp: FROM equals TO: give --speed for a "
+                                       "constant speed");
     cp->p.kind = GD_SPEED_RAMP;
     cp->p.from = from;
     cp->p.to = to;

@@ -94,7 +94,9 @@ static void order_map(gd_plot *p, pl_section *sec, const gd_waterfall *w, const 
         if (ord > otop) continue;
         char label[96];
         pl_order_label(&w->orders[o], label, sizeof label);
-        double ox[2] = {ord, ord}, oy[2] = {sx * lo, sx * hi};
+        /* named at the line's end: every other one drawn downwards, so neighbouring
+         * orders' names sit at the top and at the bottom */
+        double ox[2] = {ord, ord}, oy[2] = {sx * (o % 2 ? hi : lo), sx * (o % 2 ? lo : hi)};
         pl_trace *t = pl_trace_add(p, map, label, 2, ox, oy, PL_LINES,
                                    w->orders[o].kind == GD_ORDER_MESH ? "#2ca02c" : "#d62728");
         if (t) {
@@ -102,7 +104,6 @@ static void order_map(gd_plot *p, pl_section *sec, const gd_waterfall *w, const 
             t->legend = 0;
             snprintf(t->label, sizeof t->label, "%.63s", label);
             t->label_right = 1;
-            t->label_below = o % 2; /* neighbours' names at either end */
         }
     }
 }
