@@ -247,6 +247,67 @@ TEST(profile_re_evaluates_gyroscopics_and_bearing_tables)
     gd_model_free(m);
 }
 
+/* What a run-up cannot do is refused naming it (GD_EINPUT): a rolling-bearing law (its
+ * cage angle is its spin times t), a prescribed speed (an absolute motion), a reduced
+ * model; and the problem still runs at constant speed afterwards. */
+TEST(run_up_refusals)
+{
+    static const char *yaml =
+        "dofs: [x, y]\nshafts:\n  - {name: rotor, nodes: [{name: j}]}\n"
+        "disks:\n  - {name: j, node: j, mass: 2}\nspeed: 3000 rpm\n"
+        "laws:\n  - {type: rolling_bearing, name: b, node: j, elements: 9, contact_stiffness: "
+        "8e9, clearance: 5 um, pitch_diameter: 39.04 mm, element_diameter: 7.94 mm, damping: "
+        "200 N*s/m}\n";
+    gd_model *m = NULL;
+    gd_system *s = NULL;
+    gd_error err;
+    REQUIRE(gd_model_load_string(yaml, "balls.yaml", &m, &err) == GD_OK);
+    REQUIRE(gd_system_build(m, &s, &err) == GD_OK);
+    gd_transient_model *tm = NULL;
+    gd_transient *tr = NULL;
+    REQUIRE(gd_transient_model_build(s, &tm, &err) == GD_OK);
+    REQUIRE(gd_transient_new(s, &tm->spec, 300, &tr, &err) == GD_OK);
+    gd_speed_profile ramp = {GD_SPEED_RAMP, 100, 300, 0, 0.01, 0, NULL, NULL};
+    gd_tr_record rec = {GD_REC_DISP, 0, 0};
+    gd_transient_options o;
+    gd_transient_options_init(&o);
+    o.t_end = 0.01;
+    o.method = GD_TR_GEN_ALPHA;
+    o.profile = &ramp;
+    gd_transient_result *r = NULL;
+    CHECK(gd_transient_run(tr, &o, &rec, 1, &r, &err) == GD_EINPUT);
+    CHECK(strstr(err.message, "rolling_bearing") != NULL);
+    o.profile = NULL;
+    REQUIRE(gd_transient_run(tr, &o, &rec, 1, &r, &err) == GD_OK);
+    gd_transient_result_free(r);
+    gd_transient_free(tr);
+    /* a prescribed speed, and a reduced model (of the run-up rotor) */
+    gd_tr_prescribed pr = {1, {GD_PRESCRIBED_SPEED, 10, 0, 0, 0, NULL}};
+    gd_transient_spec sp = tm->spec;
+    sp.laws = NULL;
+    sp.nlaws = 0;
+    sp.prescribed = &pr;
+    sp.nprescribed = 1;
+    REQUIRE(gd_transient_new(s, &sp, 300, &tr, &err) == GD_OK);
+    o.profile = &ramp;
+    r = NULL;
+    CHECK(gd_transient_run(tr, &o, &rec, 1, &r, &err) == GD_EINPUT);
+    CHECK(strstr(err.message, "prescribed speed") != NULL);
+    gd_transient_free(tr);
+    gd_transient_model_free(tm);
+    gd_system_free(s);
+    gd_model_free(m);
+    REQUIRE(!load(&m, &s));
+    REQUIRE(gd_transient_model_build(s, &tm, &err) == GD_OK);
+    REQUIRE(gd_transient_new_reduced(s, &tm->spec, 300, 2000, &tr, &err) == GD_OK);
+    CHECK(gd_transient_run(tr, &o, &rec, 1, &r, &err) == GD_EINPUT);
+    CHECK(strstr(err.message, "reduced model") != NULL);
+    gd_transient_free(tr);
+    gd_transient_model_free(tm);
+    gd_system_free(s);
+    gd_model_free(m);
+}
+
 /* The peak of the 1x order cut of gear48.x over a ramp 5500 -> 7800 rpm at `rate` rpm/s
  * (8 revolutions per block); *spacing: the speed between its neighbouring blocks. */
 static double peak_speed(gd_transient *tr, const gd_system *s, double rate, double *spacing)
@@ -326,5 +387,5 @@ TEST(run_up_peak_at_the_critical_speed)
 
 RUN_TESTS(T(profile_angle_is_the_speed_integral), T(order_tracking_of_a_chirp),
           T(flat_profile_equals_constant_speed),
-          T(profile_re_evaluates_gyroscopics_and_bearing_tables),
+          T(profile_re_evaluates_gyroscopics_and_bearing_tables), T(run_up_refusals),
           T(run_up_peak_at_the_critical_speed))
