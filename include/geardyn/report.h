@@ -29,9 +29,11 @@ typedef struct gd_report_options {
      * sign), a transient through the ramp from runup_from to runup_to lasting
      * runup_revolutions turns of the reference shaft at the mean speed (default 200),
      * forced by the model's unbalances, transmission errors and laws (none: a note says
-     * so), integrated by generalized-alpha at 64 steps per turn at the top speed, its
-     * record (the first unbalance's node x, else the first mesh force, else the first
-     * disk's x) order-tracked in blocks of 8 turns: the waterfall, order map and cuts. */
+     * so), its record (the first unbalance's node x, else the first mesh force, else the
+     * first disk's x) order-tracked in blocks of 8 turns at S points per turn (the power
+     * of two >= 2.5 x the highest mesh-law order, at least 32), integrated by
+     * generalized-alpha at 2 S steps per turn at the top speed: the waterfall, order map
+     * and cuts (over 2e7 steps: a note instead). */
     double runup_from, runup_to;
     double runup_revolutions;
 } gd_report_options;

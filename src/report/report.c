@@ -217,9 +217,27 @@ static gd_status add_runup(gd_plot *doc, const gd_system *sys, const gd_report_o
                      : "None: the model has no unbalance node, mesh or disk to record.",
             err);
     }
-    /* the ramp over `revs` turns at the mean speed; 64 samples (and generalized-alpha
-     * steps) per turn at the top speed: two per point of the order tracking's 32 */
+    /* the ramp over `revs` turns at the mean speed; the order tracking's S points per turn
+     * (the power of two >= 2.5 x the highest order a mesh law excites, at least 32) and
+     * 2 S samples and generalized-alpha steps per turn at the top speed */
     const double wm = 0.5 * fabs(w0 + w1), wt = fmax(fabs(w0), fabs(w1));
+    double top = 1;
+    for (int i = 0; i < tm->spec.nmeshes; i++) {
+        const gd_mesh *g = &m->meshes[tm->meshes[i].mesh];
+        if (tm->meshes[i].tvms || tm->meshes[i].ste || tm->meshes[i].backlash)
+            top = fmax(top, g->teeth[0] * fabs(m->shafts[m->nodes[g->driver].shaft].speed_ratio));
+    }
+    int spr = 32;
+    while (spr < 2.5 * top && spr < (1 << 16))
+        spr *= 2;
+    if (revs * 2.0 * spr * wt / wm > 2e7) {
+        gd_transient_model_free(tm);
+        return gd_plot_add_note(doc, "Run-up waterfall",
+                                "None: the run-up would take over 2e7 steps (the mesh orders "
+                                "need fine steps); run geardyn transient --speed-ramp "
+                                "--waterfall with a shorter ramp or fewer turns.",
+                                err);
+    }
     gd_speed_profile prof = {GD_SPEED_RAMP, w0, w1, 0, 2 * PI * revs / wm, 0, NULL, NULL};
     gd_transient *tr = NULL;
     gd_transient_result *res = NULL;
@@ -229,7 +247,7 @@ static gd_status add_runup(gd_plot *doc, const gd_system *sys, const gd_report_o
     gd_transient_options to;
     gd_transient_options_init(&to);
     to.t_end = prof.t1;
-    to.output_interval = 2 * PI / wt / 64;
+    to.output_interval = 2 * PI / wt / (2.0 * spr);
     to.method = GD_TR_GEN_ALPHA;
     to.step = to.output_interval;
     to.profile = &prof;
@@ -244,7 +262,7 @@ static gd_status add_runup(gd_plot *doc, const gd_system *sys, const gd_report_o
     gd_order_track_options oo;
     gd_order_track_options_init(&oo);
     oo.revs_per_block = 8;
-    oo.samples_per_rev = 32;
+    oo.samples_per_rev = spr;
     if ((st = gd_waterfall_order_track(sys, res->t, res->values, ang, res->nout, &oo, &wf, err)))
         goto done;
     gd_plot *p;
@@ -256,10 +274,9 @@ static gd_status add_runup(gd_plot *doc, const gd_system *sys, const gd_report_o
              "shaft), forced by %s, from rest; generalized-alpha at %d steps per turn at the "
              "top speed (%.3g s of CPU). Resolution: a block of 8 turns spans %.3g rpm at the "
              "mean speed, and a resonance swept through at this rate peaks late (less so the "
-             "slower the ramp); orders above 16 are not resolved (geardyn transient "
-             "--speed-ramp --waterfall for those).",
-             w0 * 30 / PI, w1 * 30 / PI, prof.t1, acc * 30 / PI, revs, forcing, 64,
-             res->cpu_seconds, fabs(acc) * 2 * PI * 8 / wm * 30 / PI);
+             "slower the ramp); orders up to %d resolved.",
+             w0 * 30 / PI, w1 * 30 / PI, prof.t1, acc * 30 / PI, revs, forcing, 2 * spr,
+             res->cpu_seconds, fabs(acc) * 2 * PI * 8 / wm * 30 / PI, spr / 2);
     st = gd_plot_add_note(doc, "Run-up", note, err);
     if (st)
         gd_plot_free(p);
