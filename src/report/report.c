@@ -176,16 +176,22 @@ static gd_status add_unbalance(gd_plot *doc, const gd_system *sys, const gd_repo
     return st ? st : gd_plot_append(doc, p, err);
 }
 
-/* What excites a run-up of the model (a name for the note), or NULL when nothing does. */
-static const char *runup_forcing(const gd_model *m, const gd_transient_model *tm)
+/* What excites a run-up of the model, named in buf (empty when nothing does). */
+static const char *runup_forcing(const gd_model *m, const gd_transient_model *tm, char *buf,
+                                 size_t len)
 {
-    if (m->nunbalances) return "the model's unbalances";
+    int mesh = 0,
+        other = tm->spec.nloads || tm->spec.ncams || tm->spec.nlaws || tm->spec.nprescribed;
     for (int i = 0; i < tm->spec.nmeshes; i++)
-        if (tm->meshes[i].tvms || tm->meshes[i].ste || tm->meshes[i].backlash)
-            return "the meshes' time-varying stiffness and transmission error";
-    if (tm->spec.nloads || tm->spec.ncams || tm->spec.nlaws || tm->spec.nprescribed)
-        return "the model's loads, cams and laws";
-    return NULL;
+        mesh |= tm->meshes[i].tvms || tm->meshes[i].ste || tm->meshes[i].backlash;
+    const char *part[3] = {m->nunbalances ? "the model's unbalances" : NULL,
+                           mesh ? "the meshes' time-varying laws" : NULL,
+                           other ? "the model's loads, cams and laws" : NULL};
+    buf[0] = 0;
+    for (int k = 0; k < 3; k++)
+        if (part[k])
+            snprintf(buf + strlen(buf), len - strlen(buf), "%s%s", buf[0] ? " and " : "", part[k]);
+    return buf;
 }
 
 /* The run-up waterfall (gd_report_options.runup_*): one transient through the ramp,
@@ -202,19 +208,20 @@ static gd_status add_runup(gd_plot *doc, const gd_system *sys, const gd_report_o
     gd_transient_model *tm = NULL;
     gd_status st = gd_transient_model_build(sys, &tm, err);
     if (st) return st;
-    const char *forcing = runup_forcing(m, tm);
+    char fbuf[160];
+    const char *forcing = runup_forcing(m, tm, fbuf, sizeof fbuf);
     gd_tr_record rec = {GD_REC_DISP, -1, 0};
     if (m->nunbalances) rec.index = gd_system_dof(sys, m->unbalances[0].node, GD_X);
     if (rec.index < 0 && m->nmeshes) rec = (gd_tr_record){GD_REC_MESH_FORCE, 0, 0};
     if (rec.index < 0 && m->ndisks) rec.index = gd_system_dof(sys, m->disks[0].node, GD_X);
-    if (!forcing || rec.index < 0) {
+    if (!forcing[0] || rec.index < 0) {
         gd_transient_model_free(tm);
         return gd_plot_add_note(
             doc, "Run-up waterfall",
-            !forcing ? "None: nothing in the model excites a run-up (no unbalance, no mesh "
-                       "time-varying stiffness or transmission error, no load, cam or law); "
-                       "add `unbalances:` to the model file (docs/model-format.md)."
-                     : "None: the model has no unbalance node, mesh or disk to record.",
+            !forcing[0] ? "None: nothing in the model excites a run-up (no unbalance, no mesh "
+                          "time-varying stiffness or transmission error, no load, cam or law); "
+                          "add `unbalances:` to the model file (docs/model-format.md)."
+                        : "None: the model has no unbalance node, mesh or disk to record.",
             err);
     }
     /* the ramp over `revs` turns at the mean speed; the order tracking's S points per turn
