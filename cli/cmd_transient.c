@@ -681,6 +681,7 @@ static int parse_args(int argc, char **argv, cli_opts *o)
                             : o->poincare        ? "--poincare"
                             : o->revolutions     ? "--revolutions"
                             : o->reduce          ? "--reduce"
+                            : o->spectrum        ? "--spectrum (use --waterfall)"
                             : o->direction_given ? "--run-down/--both-directions"
                                                  : NULL;
         if (clash)

@@ -124,6 +124,9 @@ TEST(run_up_errors)
                             "--sweep-speeds 1:2:2 --poincare driving",
                             "does not apply to a speed profile", NULL));
     CHECK(run_fails_cleanly(&s,
+                            "transient " ROTOR " --speed-ramp 0:6000rpm --duration 1s --spectrum",
+                            "--spectrum (use --waterfall) does not apply", NULL));
+    CHECK(run_fails_cleanly(&s,
                             "transient " ROTOR " --speed 3000rpm --duration 1s "
                             "--revs-per-block 4",
                             "--revs-per-block applies to --speed-ramp", NULL));
