@@ -63,7 +63,7 @@ gd_status gd_waterfall_order_track(const gd_system *sys, const double *t, const 
     }
     if (dmax > TWO_PI / (2.0 * S))
         return gd_error_set(err, GD_EINPUT, "", 0, 0, "order tracking",
-                            "record more often (a shorter output interval, --dt)",
+                            "record more often (a shorter output interval: --output-interval)",
                             "the record has %.3g samples per revolution at the top speed; "
                             "order tracking at %d samples per revolution needs %d",
                             TWO_PI / dmax, S, 2 * S);
