@@ -1,9 +1,10 @@
 /* Run-up waterfall (cascade) and order cuts: the amplitude spectrum of one record at each
- * speed of a stepped (quasi-steady) run-up, or of each block of revolutions of a
- * run-up through a speed profile (order tracking, gd_waterfall_order_track), i.e. one steady run
- * per speed started from the previous speed's end state (geardyn transient --sweep-speeds
- * --waterfall), with the excitation orders of the model (1x of each shaft, tooth-mesh orders: the
- * Campbell diagram's, gd_campbell) and the amplitude of each order against speed.
+ * speed of a stepped (quasi-steady) run-up, i.e. one steady run per speed started from
+ * the previous speed's end state (geardyn transient --sweep-speeds --waterfall), or of
+ * each block of revolutions of one run through a speed profile (computed order
+ * tracking, gd_waterfall_order_track; geardyn transient --speed-ramp --waterfall), with
+ * the excitation orders of the model (1x of each shaft, tooth-mesh orders: the Campbell
+ * diagram's, gd_campbell) and the amplitude of each order against speed.
  *
  * Order cut: at speed W the amplitude of order o is the largest spectral amplitude within
  * 1.5 bins of o W / 2 pi (Hz), so a tone between two bins (a run that is not a whole
@@ -11,8 +12,11 @@
  * spectrum's last bin (Nyquist).
  *
  * Ownership and threads: gd_waterfall_new takes ownership of the n spectra (freed by
- * gd_waterfall_free, also when it fails) and copies the speeds; the system is read
- * during the call only. A result may be read from several threads at once.
+ * gd_waterfall_free, also when it fails) and copies the speeds; gd_waterfall_order_track
+ * borrows its arrays for the call and returns a waterfall the caller frees with
+ * gd_waterfall_free (it plans FFTs: serialise calls as geardyn/spectrum.h says); the
+ * system is read during the call only. A result may be read from several threads at
+ * once.
  */
 #ifndef GEARDYN_WATERFALL_H
 #define GEARDYN_WATERFALL_H
