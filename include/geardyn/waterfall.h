@@ -14,9 +14,9 @@
  * Ownership and threads: gd_waterfall_new takes ownership of the n spectra (freed by
  * gd_waterfall_free, also when it fails) and copies the speeds; gd_waterfall_order_track
  * borrows its arrays for the call and returns a waterfall the caller frees with
- * gd_waterfall_free (it plans FFTs: serialise calls as geardyn/spectrum.h says); the
- * system is read during the call only. A result may be read from several threads at
- * once.
+ * gd_waterfall_free; calls may run on several threads at once (FFTW's planner is
+ * serialised by the library). The system is read during the call only. A result may be
+ * read from several threads at once.
  */
 #ifndef GEARDYN_WATERFALL_H
 #define GEARDYN_WATERFALL_H
