@@ -345,7 +345,9 @@ static double peak_speed(gd_transient *tr, const gd_system *s, double rate, doub
  * delay of a peak swept through at a finite rate, which vanishes as the rate does
  * (about as its square root). Measured: +121 rpm at 1250 rpm/s, +77 rpm at 625 rpm/s
  * (1.2 %); bounds: within one block spacing below and 2 % above at 625 rpm/s, and the
- * shift smaller at the slower rate (0.64 of the faster one's; bound 0.85). */
+ * shift smaller at the slower rate (0.64 of the faster one's; bound 0.85). The mode alone
+ * as a one-DOF whirl swept and tracked the same way in numpy/scipy
+ * (runup_sdof_check.py) peaks in the same blocks: the shift is the sweep's. */
 TEST(run_up_peak_at_the_critical_speed)
 {
     gd_model *m = NULL;
