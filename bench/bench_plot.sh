@@ -38,3 +38,11 @@ wf=$(best $w)
 ww=$(best $w --waterfall gear_a.x)
 wh=$(best $w --waterfall gear_a.x --plot "$tmp/w.html")
 echo "run-up of the test pair (16 speeds): sweep $wf s; with --waterfall $ww s ($(echo "$ww / $wf" | bc -l | cut -c1-4)x), and its --plot .html $wh s ($(echo "$wh / $wf" | bc -l | cut -c1-4)x), $(stat -c %s "$tmp/w.html") B"
+# the report with a run-up waterfall (report --run-up): the rig (no unbalance: a note, no
+# run) and the rig with an unbalance (tests/transient/rig_unbalance.yaml: a transient of
+# 200 turns, order-tracked), against each one's report without it (the floor, same run)
+r0=$(best report examples/rig2018.yaml --out "$tmp/r0.html")
+r1=$(best report examples/rig2018.yaml --run-up 0:6000rpm --out "$tmp/r1.html")
+u0=$(best report tests/transient/rig_unbalance.yaml --out "$tmp/u0.html")
+u1=$(best report tests/transient/rig_unbalance.yaml --run-up 0:6000rpm --out "$tmp/u1.html")
+echo "report of the rig: $r0 s, with --run-up 0:6000rpm $r1 s (nothing excites it: a note); with an unbalance $u0 s, with --run-up $u1 s ($(echo "$u1 / $u0" | bc -l | cut -c1-4)x)"

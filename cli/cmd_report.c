@@ -10,13 +10,14 @@
 static const char USAGE[] =
     "usage: geardyn report MODEL.yaml --out FILE.html [--speeds FROM:TO:COUNT] [--speed VALUE]\n"
     "                      [--modes N] [--freq-points N] [--threads N] [--coupling LEVEL]\n"
-    "                      [--set PATH=VALUE]...\n\n"
+    "                      [--run-up FROM:TO [--run-up-revolutions N]] [--set PATH=VALUE]...\n\n"
     "One self-contained HTML file (opens offline; FILE.svg, FILE.png or FILE.pdf give static\n"
     "versions, the PDF one page per section) with the\n"
     "model drawn to scale and summarised, its modes (shapes, 3-D whirl, strain energy), the\n"
     "Campbell diagram (critical speeds, log decrement), the FRFs of the mesh and bearing\n"
-    "forces, the unbalance response and the mesh stiffness of every mesh computed from its\n"
-    "geometry; the numbers of each section download as CSV from the page (docs/plots.md).\n\n"
+    "forces, the unbalance response, the mesh stiffness of every mesh computed from its\n"
+    "geometry and, with --run-up, a run-up waterfall; the numbers of each section download as CSV "
+    "from the page (docs/plots.md).\n\n"
     "  --out FILE              the report, FILE.html, FILE.svg, FILE.png or FILE.pdf (required)\n"
     "  --speeds FROM:TO:COUNT  Campbell and unbalance speeds (default 41 from 0 to twice the\n"
     "                          model's speed, or to 10000 rpm)\n"
@@ -24,6 +25,11 @@ static const char USAGE[] =
     "  --modes N               modes tracked in the Campbell diagram (default 8)\n"
     "  --freq-points N         FRF frequencies (default 400)\n"
     "  --threads N             parallel threads of the sweeps (default: all cores)\n"
+    "  --run-up FROM:TO        a run-up through this ramp (e.g. 0:6000rpm): a transient\n"
+    "                          forced by the unbalances, transmission errors and laws,\n"
+    "                          order-tracked into a waterfall and order cuts\n"
+    "  --run-up-revolutions N  its length in turns of the reference shaft at the mean\n"
+    "                          speed (default 200; more: a slower ramp, a sharper peak)\n"
     "  --coupling LEVEL        torsional | lateral-torsional | full\n"
     "  --set PATH=VALUE        change a value of the model file (repeatable;\n"
     "                          docs/model-format.md)\n";
@@ -37,10 +43,13 @@ int gd_cmd_report(int argc, char **argv)
                                          {"freq-points", required_argument, 0, 'F'},
                                          {"threads", required_argument, 0, 't'},
                                          {"coupling", required_argument, 0, 'c'},
+                                         {"run-up", required_argument, 0, 'R'},
+                                         {"run-up-revolutions", required_argument, 0, 'N'},
                                          GD_CLI_SET_OPTION,
                                          {"help", no_argument, 0, 'h'},
                                          {0, 0, 0, 0}};
-    const char *cmd = "report", *out = NULL, *speeds = NULL, *speed = NULL, *coupling = NULL;
+    const char *cmd = "report", *out = NULL, *speeds = NULL, *speed = NULL, *coupling = NULL,
+               *runup = NULL;
     gd_cli_sets sets = {0};
     gd_report_options opt;
     gd_report_options_init(&opt);
@@ -77,6 +86,20 @@ int gd_cmd_report(int argc, char **argv)
         case 'c':
             coupling = optarg;
             break;
+        case 'R':
+            runup = optarg;
+            break;
+        case 'N': {
+            char *end;
+            opt.runup_revolutions = strtod(optarg, &end);
+            if (end == optarg || *end || !(opt.runup_revolutions >= 16) ||
+                !(opt.runup_revolutions <= 1e5))
+                return gd_cli_usage_error(cmd,
+                                          "--run-up-revolutions: '%s' is not a number from 16 "
+                                          "(two blocks of 8 turns) to 1e5",
+                                          optarg);
+            break;
+        }
         case GD_CLI_OPT_SET:
             if (gd_cli_add_set(cmd, &sets, optarg)) return GD_EXIT_INPUT;
             break;
@@ -89,6 +112,20 @@ int gd_cmd_report(int argc, char **argv)
     }
     if (optind != argc - 1) return gd_cli_usage_error(cmd, "give exactly one model file");
     if (!out) return gd_cli_usage_error(cmd, "--out FILE.html is required");
+    if (runup) { /* FROM:TO as a two-point range of speeds (FROM takes TO's unit) */
+        char buf[200];
+        double *r = NULL;
+        int n = 0;
+        if (strlen(runup) > 150) return gd_cli_usage_error(cmd, "--run-up: value too long");
+        snprintf(buf, sizeof buf, "%s:2", runup);
+        int rc0 = gd_cli_parse_range(cmd, "--run-up", buf, &r, &n);
+        if (rc0) return rc0;
+        opt.runup_from = r[0];
+        opt.runup_to = r[1];
+        free(r);
+        if (opt.runup_from == opt.runup_to)
+            return gd_cli_usage_error(cmd, "--run-up: FROM equals TO: give a ramp");
+    }
     int rc = gd_cli_plot_check_as(out, "--out");
     if (rc) return rc;
     double *sp = NULL;

@@ -12,6 +12,7 @@
 #include "geardyn/units.h"
 #include "transient_periods.h"
 #include "transient_poincare.h"
+#include "transient_profile.h"
 #include "transient_record.h"
 
 #ifndef M_PI
@@ -28,7 +29,9 @@ static const char USAGE[] =
     "                         [--spectrum] [--window hann|rect] [--unbalance-scale F]\n"
     "                         [--coupling LEVEL] [--dofs LIST] [--set PATH=VALUE]... [--json]\n"
     "                         [--out DIR] [--quiet] [--plot FILE.svg|FILE.html]\n"
-    "       geardyn transient MODEL.yaml --periods N [--settle T|Nrev] [--speed S] ...\n\n"
+    "       geardyn transient MODEL.yaml --periods N [--settle T|Nrev] [--speed S] ...\n"
+    "       geardyn transient MODEL.yaml --speed-ramp FROM:TO --duration T\n"
+    "                         [--waterfall REC] [--revs-per-block N] [--plot F] ...\n\n"
     "Integrates the equations of motion at a constant reference speed with the model's\n"
     "nonlinear and time-varying laws (mesh TVMS, transmission error, backlash, squeeze\n"
     "film dampers, loads, prescribed motions, cam torques, unbalances), then prints\n"
@@ -113,6 +116,22 @@ static const char USAGE_POINCARE[] =
     "                       DIR/waterfall.csv and DIR/order_cuts.csv; --plot FILE draws\n"
     "                       it (cascade, colour map, order cuts; the first record without\n"
     "                       --waterfall). A stepped (quasi-steady) run-up (docs/transient.md)\n";
+
+static const char USAGE_RUNUP[] =
+    "  --speed-ramp FROM:TO run-up (or run-down): the reference speed goes linearly from\n"
+    "                       FROM to TO over --duration (e.g. 0:6000rpm); every shaft\n"
+    "                       follows through its ratio; gyroscopic, unbalance (with the\n"
+    "                       angular acceleration term), mesh, cam and law forces at the\n"
+    "                       shafts' angles and speeds; records from 0 s; speed-table\n"
+    "                       bearings held at --speed (default: the ramp's mid speed)\n"
+    "  --speed-table FILE   or the speed from rows 'time, speed' (linear between rows,\n"
+    "                       held after the last; a header line may name the unit: rpm,\n"
+    "                       rad/s (default), Hz); --duration defaults to the last time\n"
+    "  --waterfall REC      with a profile: order tracking of REC (resampled on the\n"
+    "                       reference shaft's angle), one order spectrum per block of\n"
+    "                       revolutions at its mean speed, the order cuts; --plot draws\n"
+    "                       it, --out writes DIR/waterfall.csv, DIR/order_cuts.csv\n"
+    "  --revs-per-block N   revolutions per order spectrum (default 16; bins 1/N order)\n";
 
 static const char USAGE_PERIODS[] =
     "  --periods N          responses with no stable periodic orbit (rattle): run --settle\n"
@@ -358,7 +377,7 @@ static void print_text(const gd_system *sys, const gd_transient_model *tm,
 static int write_outputs(const char *dir, const gd_cli_records *recs,
                          const gd_transient_result *res, gd_spectrum *const *spec,
                          const cJSON *summary, double speed, int poincare,
-                         const gd_cli_periods *per)
+                         const gd_cli_periods *per, const gd_waterfall *wf)
 {
     gd_error err;
     gd_error_clear(&err);
@@ -414,6 +433,7 @@ static int write_outputs(const char *dir, const gd_cli_records *recs,
         gd_cli_periods_csv(f, per, recs);
         if (gd_outdir_close(&od, f, "periods.csv", &err)) goto fail;
     }
+    if (wf && gd_cli_waterfall_csv(&od, wf, &err)) goto fail;
     f = gd_outdir_open(&od, "summary.json", &err);
     if (!f) goto fail;
     gd_cli_print_json(f, summary);
@@ -428,7 +448,8 @@ fail:
 typedef struct cli_opts {
     const char *duration, *revolutions, *speed, *from, *interval, *coupling, *out, *step, *reduce,
         *plot;
-    const char *poincare, *settle, *sweep, *waterfall;
+    const char *poincare, *settle, *sweep, *waterfall, *ramp, *table;
+    double revs_per_block;
     long points, periods;
     int direction, direction_given;
     const char *records[64];
@@ -472,6 +493,9 @@ static int parse_args(int argc, char **argv, cli_opts *o)
                                          {"both-directions", no_argument, 0, 'B'},
                                          {"periods", required_argument, 0, 'Q'},
                                          {"waterfall", required_argument, 0, 'Y'},
+                                         {"speed-ramp", required_argument, 0, 'A'},
+                                         {"speed-table", required_argument, 0, 'T'},
+                                         {"revs-per-block", required_argument, 0, 'K'},
                                          GD_CLI_SET_OPTION,
                                          GD_CLI_DOFS_OPTION,
                                          {"help", no_argument, 0, 'h'},
@@ -608,6 +632,18 @@ static int parse_args(int argc, char **argv, cli_opts *o)
         case 'Y':
             o->waterfall = optarg;
             break;
+        case 'A':
+            o->ramp = optarg;
+            break;
+        case 'T':
+            o->table = optarg;
+            break;
+        case 'K':
+            if (parse_positive("--revs-per-block", optarg, &o->revs_per_block))
+                return GD_EXIT_INPUT;
+            if (o->revs_per_block < 1 || o->revs_per_block > 1e5)
+                return gd_cli_usage_error(CMD, "--revs-per-block: give 1 to 1e5 revolutions");
+            break;
         case 'N':
             if (gd_cli_parse_count(optarg, 2, 1000000, &o->points))
                 return gd_cli_usage_error(CMD, "--points: '%s' is not a whole number from 2",
@@ -631,12 +667,34 @@ static int parse_args(int argc, char **argv, cli_opts *o)
             fputs(USAGE_LIMITS, stdout);
             fputs(USAGE_POINCARE, stdout);
             fputs(USAGE_PERIODS, stdout);
+            fputs(USAGE_RUNUP, stdout);
             return -1;
         default:
             return gd_cli_option_error(CMD, c, argv, optind);
         }
     }
     if (optind != argc - 1) return gd_cli_usage_error(CMD, "give exactly one model file");
+    if (o->ramp || o->table) {
+        const char *clash = o->ramp && o->table  ? "--speed-table with --speed-ramp"
+                            : o->sweep           ? "--sweep-speeds"
+                            : o->periods         ? "--periods"
+                            : o->poincare        ? "--poincare"
+                            : o->revolutions     ? "--revolutions"
+                            : o->reduce          ? "--reduce"
+                            : o->spectrum        ? "--spectrum (use --waterfall)"
+                            : o->direction_given ? "--run-down/--both-directions"
+                                                 : NULL;
+        if (clash)
+            return gd_cli_usage_error(CMD,
+                                      "%s does not apply to a speed profile (one run through "
+                                      "the speeds; a reduced model keeps its modes at one speed)",
+                                      clash);
+        if (o->ramp && !o->duration)
+            return gd_cli_usage_error(CMD, "--speed-ramp needs --duration T (the ramp's length)");
+        return 0;
+    }
+    if (o->revs_per_block > 0)
+        return gd_cli_usage_error(CMD, "--revs-per-block applies to --speed-ramp/--speed-table");
     if (o->periods) {
         const char *clash = o->sweep         ? "--sweep-speeds"
                             : o->poincare    ? "--poincare"
@@ -856,6 +914,189 @@ done:
     return rc;
 }
 
+/* --speed-ramp / --speed-table: one run through the speeds (transient_profile.c), with
+ * --waterfall REC its order-tracked waterfall. */
+static int runup(const cli_opts *o, gd_model *m, gd_system *s, run_info *ri)
+{
+    gd_cli_profile cp;
+    gd_transient_model *tm = NULL;
+    gd_transient *tr = NULL;
+    gd_transient_result *res = NULL;
+    gd_waterfall *wf = NULL;
+    gd_cli_records recs = {0, 0, NULL};
+    cJSON *summary = NULL;
+    gd_tr_record *rr = NULL;
+    gd_error err;
+    gd_error_clear(&err);
+    int rc, wi = -1;
+    double max_order = 1;
+    memset(&cp, 0, sizeof cp);
+    if (o->duration) {
+        if (parse_time("--duration", o->duration, &ri->t_end)) return GD_EXIT_INPUT;
+        if (!(ri->t_end > 0))
+            return gd_cli_usage_error(CMD, "--duration: give a time > 0 (got %s)", o->duration);
+    }
+    if (o->table) {
+        if ((rc = gd_cli_speed_table(CMD, o->table, &cp))) return rc;
+        if (!o->duration) ri->t_end = cp.t[cp.p.n - 1];
+        if (!(ri->t_end > 0)) {
+            rc = gd_cli_usage_error(CMD, "%s: the last time is not > 0: give --duration", o->table);
+            goto done;
+        }
+    } else if ((rc = gd_cli_speed_ramp(CMD, o->ramp, ri->t_end, &cp))) {
+        return rc;
+    }
+    /* the reference speed (speed-table bearings, the matrices' W G) */
+    double sign =
+        (cp.p.kind == GD_SPEED_RAMP ? cp.p.from + cp.p.to : cp.w[cp.p.n - 1]) < 0 ? -1 : 1;
+    if (!o->speed) ri->speed = sign * 0.5 * (cp.wmin + cp.wmax);
+    for (int i = 0; i < m->nunbalances; i++)
+        m->unbalances[i].amount *= o->unbalance_scale;
+    if (gd_transient_model_build(s, &tm, &err)) {
+        rc = gd_cli_report(&err);
+        goto done;
+    }
+    for (int k = 0; k < o->nrecords; k++)
+        if ((rc = gd_cli_parse_records(CMD, s, tm, o->records[k], &recs))) goto done;
+    if (!o->nrecords && (rc = gd_cli_default_records(s, tm, &recs))) goto done;
+    if (o->waterfall &&
+        (rc = gd_cli_waterfall_record(CMD, s, tm, o->waterfall, &recs, &wi, &max_order)))
+        goto done;
+    const int spr = gd_cli_track_samples(max_order);
+    ri->from = 0;
+    if (o->from) {
+        if (parse_time("--from", o->from, &ri->from)) {
+            rc = GD_EXIT_INPUT;
+            goto done;
+        }
+        if (ri->from < 0 || ri->from >= ri->t_end) {
+            rc = gd_cli_usage_error(CMD, "--from: give a time in [0, %g s)", ri->t_end);
+            goto done;
+        }
+    }
+    /* 2000 samples, at least 32 per revolution at the top speed; for the order tracking
+     * two per resampled point (linear interpolation on the angle) */
+    ri->dt = (ri->t_end - ri->from) / 2000.0;
+    if (cp.wmax > 0) ri->dt = fmin(ri->dt, 2 * M_PI / cp.wmax / (wi >= 0 ? 2.0 * spr : 32.0));
+    if (o->interval) {
+        if (parse_time("--output-interval", o->interval, &ri->dt)) {
+            rc = GD_EXIT_INPUT;
+            goto done;
+        }
+        if (!(ri->dt > 0)) {
+            rc = gd_cli_usage_error(CMD, "--output-interval: give a time > 0");
+            goto done;
+        }
+    }
+    if ((ri->t_end - ri->from) / ri->dt > 1e7) {
+        rc = gd_cli_usage_error(CMD,
+                                "%.3g samples: over 1e7; give a longer --output-interval, a later "
+                                "--from or a shorter run",
+                                (ri->t_end - ri->from) / ri->dt);
+        goto done;
+    }
+    if (gd_transient_new(s, &tm->spec, ri->speed, &tr, &err)) {
+        rc = gd_cli_report(&err);
+        goto done;
+    }
+    gd_transient_options opt;
+    gd_transient_options_init(&opt);
+    opt.t_end = ri->t_end;
+    opt.record_from = ri->from;
+    opt.output_interval = ri->dt;
+    opt.rtol = o->rtol;
+    opt.method = o->method;
+    opt.init = o->init;
+    opt.rho_inf = o->rho_inf;
+    opt.max_steps = o->max_steps;
+    opt.profile = &cp.p;
+    if (o->step && (parse_time("--step", o->step, &opt.step) || !(opt.step > 0))) {
+        rc = gd_cli_usage_error(CMD, "--step: give a time > 0");
+        goto done;
+    }
+    progress pg = {-1, 0};
+    if (!o->quiet && isatty(2)) {
+        opt.progress = progress_cb;
+        opt.progress_data = &pg;
+    }
+    rr = malloc((size_t)(recs.n > 0 ? recs.n : 1) * sizeof *rr);
+    if (!rr) {
+        rc = GD_EXIT_FAIL;
+        goto done;
+    }
+    for (int r = 0; r < recs.n; r++)
+        rr[r] = recs.r[r].rec;
+    gd_status st = gd_transient_run(tr, &opt, rr, recs.n, &res, &err);
+    if (pg.drawn) fprintf(stderr, "\r%60s\r", "");
+    if (st) {
+        rc = gd_cli_report(&err);
+        goto done;
+    }
+    if (wi >= 0 && (rc = gd_cli_runup_waterfall(
+                        CMD, s, &cp, res->t, res->values + (size_t)wi * res->nout, res->nout,
+                        o->revs_per_block > 0 ? o->revs_per_block : 16, spr, &wf)))
+        goto done;
+    if (o->plot) {
+        gd_plot *p = NULL;
+        gd_status pst = wf ? gd_plot_waterfall(s, wf, &recs.r[wi].rec, NULL, &p, &err)
+                           : gd_plot_transient(s, res, &p, &err);
+        if ((rc = gd_cli_plot_finish(pst, p, &err, o->plot))) goto done;
+    }
+    int nfree = gd_transient_nstates(tr) / 2;
+    if (o->method == GD_TR_AUTO) ri->method = res->method_note;
+    summary = summary_json(s, tm, &recs, res, NULL, ri, nfree);
+    {
+        cJSON *pj = cJSON_CreateObject();
+        cJSON_AddStringToObject(pj, "kind", cp.p.kind == GD_SPEED_RAMP ? "ramp" : "table");
+        if (cp.p.kind == GD_SPEED_RAMP) {
+            cJSON_AddNumberToObject(pj, "from_rad_s", cp.p.from);
+            cJSON_AddNumberToObject(pj, "to_rad_s", cp.p.to);
+            cJSON_AddNumberToObject(pj, "acceleration_rad_s2",
+                                    (cp.p.to - cp.p.from) / (cp.p.t1 - cp.p.t0));
+        } else {
+            cJSON_AddStringToObject(pj, "file", o->table);
+            cJSON_AddNumberToObject(pj, "rows", cp.p.n);
+        }
+        cJSON_AddItemToObject(summary, "speed_profile", pj);
+    }
+    if (wf) {
+        cJSON *wj = gd_cli_waterfall_json(&recs.r[wi], wf);
+        cJSON_AddNumberToObject(wj, "revs_per_block", wf->revs_per_block);
+        cJSON_AddNumberToObject(wj, "samples_per_rev", spr);
+        cJSON_AddItemToObject(summary, "waterfall", wj);
+    }
+    if (o->out && (rc = write_outputs(o->out, &recs, res, NULL, summary, ri->speed, 0, NULL, wf)))
+        goto done;
+    if (o->json) {
+        gd_cli_print_json(stdout, summary);
+    } else {
+        if (cp.p.kind == GD_SPEED_RAMP)
+            printf("speed ramp %g -> %g rpm over 0 .. %g s (%g rpm/s); the header's speed is "
+                   "the reference for speed-table bearings\n",
+                   cp.p.from * 30 / M_PI, cp.p.to * 30 / M_PI, ri->t_end,
+                   (cp.p.to - cp.p.from) * 30 / M_PI / ri->t_end);
+        else
+            printf("speed table %s: %d rows, %g .. %g rpm; the header's speed is the reference "
+                   "for speed-table bearings\n",
+                   o->table, cp.p.n, cp.wmin * 30 / M_PI, cp.wmax * 30 / M_PI);
+        print_text(s, tm, &recs, res, NULL, ri, nfree);
+        if (wf)
+            gd_cli_waterfall_print(&recs.r[wi], wf,
+                                   cp.p.kind == GD_SPEED_RAMP && fabs(cp.p.to) < fabs(cp.p.from));
+    }
+    rc = GD_EXIT_OK;
+done:
+    free(rr);
+    cJSON_Delete(summary);
+    gd_waterfall_free(wf);
+    gd_transient_result_free(res);
+    gd_transient_free(tr);
+    gd_transient_model_free(tm);
+    gd_cli_records_free(&recs);
+    gd_cli_profile_free(&cp);
+    return rc;
+}
+
 int gd_cmd_transient(int argc, char **argv)
 {
     cli_opts o;
@@ -898,6 +1139,10 @@ int gd_cmd_transient(int argc, char **argv)
     if (o.poincare && (rc = gd_cli_poincare_parse(CMD, m, o.poincare, &pc))) goto done;
     if (o.sweep) {
         rc = sweep(&o, m, s);
+        goto done;
+    }
+    if (o.ramp || o.table) {
+        rc = runup(&o, m, s, &ri);
         goto done;
     }
     if (!o.periods && (rc = resolve_times(&o, ri.speed, &ri))) goto done;
@@ -1030,8 +1275,9 @@ int gd_cmd_transient(int argc, char **argv)
         if ((rc = gd_cli_periods_analyse(&per, &recs, res))) goto done;
         cJSON_AddItemToObject(summary, "periods", gd_cli_periods_json(&per, &recs));
     }
-    if (o.out && (rc = write_outputs(o.out, &recs, res, spec, summary, ri.speed,
-                                     o.poincare != NULL || o.periods > 0, o.periods ? &per : NULL)))
+    if (o.out &&
+        (rc = write_outputs(o.out, &recs, res, spec, summary, ri.speed,
+                            o.poincare != NULL || o.periods > 0, o.periods ? &per : NULL, NULL)))
         goto done;
     if (o.json)
         gd_cli_print_json(stdout, summary);

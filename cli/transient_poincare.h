@@ -6,6 +6,7 @@
 #include <cjson/cJSON.h>
 
 #include "geardyn/transient_model.h"
+#include "geardyn/waterfall.h"
 #include "transient_record.h"
 
 /* The sampling period is angle / W at reference speed W. */
@@ -65,6 +66,13 @@ typedef struct gd_cli_sweep {
  * teeth x speed ratio of each mesh's driver). 0, or 2 after a usage error. */
 int gd_cli_waterfall_record(const char *cmd, const gd_system *sys, const gd_transient_model *tm,
                             const char *text, gd_cli_records *recs, int *index, double *max_order);
+
+/* The waterfall's JSON object (record, orders with their cuts, spectra), its CSV files
+ * (waterfall.csv, order_cuts.csv into od; 0 ok) and its text table (down: a run-down). */
+cJSON *gd_cli_waterfall_json(const gd_cli_record *rec, const gd_waterfall *w);
+struct gd_outdir;
+int gd_cli_waterfall_csv(struct gd_outdir *od, const gd_waterfall *w, gd_error *err);
+void gd_cli_waterfall_print(const gd_cli_record *rec, const gd_waterfall *w, int down);
 
 int gd_cli_transient_sweep(const gd_system *sys, const gd_transient_model *tm,
                            const gd_cli_records *recs, const gd_cli_poincare *p,

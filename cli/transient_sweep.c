@@ -177,8 +177,6 @@ static cJSON *sweep_json(const gd_system *sys, const gd_cli_records *recs, const
     return o;
 }
 
-static int write_waterfall_csv(gd_outdir *od, const gd_waterfall *w, gd_error *err);
-
 static int write_sweep(const char *dir, const gd_cli_records *recs, const sweep_point *pts,
                        int npts, const cJSON *summary, const gd_waterfall *w)
 {
@@ -219,7 +217,7 @@ static int write_sweep(const char *dir, const gd_cli_records *recs, const sweep_
         fprintf(f, ",%s\n", pts[i].verdict);
     }
     if (gd_outdir_close(&od, f, "sweep.csv", &err)) goto fail;
-    if (w && write_waterfall_csv(&od, w, &err)) goto fail;
+    if (w && gd_cli_waterfall_csv(&od, w, &err)) goto fail;
     f = gd_outdir_open(&od, "summary.json", &err);
     if (!f) goto fail;
     gd_cli_print_json(f, summary);
@@ -293,7 +291,7 @@ int gd_cli_waterfall_record(const char *cmd, const gd_system *sys, const gd_tran
 }
 
 /* --waterfall: the spectra, the orders and the order cuts */
-static cJSON *waterfall_json(const gd_cli_record *rec, const gd_waterfall *w)
+cJSON *gd_cli_waterfall_json(const gd_cli_record *rec, const gd_waterfall *w)
 {
     cJSON *o = cJSON_CreateObject();
     cJSON_AddStringToObject(o, "record", rec->name);
@@ -338,7 +336,7 @@ static cJSON *waterfall_json(const gd_cli_record *rec, const gd_waterfall *w)
     return o;
 }
 
-static int write_waterfall_csv(gd_outdir *od, const gd_waterfall *w, gd_error *err)
+int gd_cli_waterfall_csv(gd_outdir *od, const gd_waterfall *w, gd_error *err)
 {
     FILE *f = gd_outdir_open(od, "waterfall.csv", err);
     if (!f) return 1;
@@ -362,12 +360,19 @@ static int write_waterfall_csv(gd_outdir *od, const gd_waterfall *w, gd_error *e
     return gd_outdir_close(od, f, "order_cuts.csv", err) ? 1 : 0;
 }
 
-static void print_waterfall(const gd_cli_record *rec, const gd_waterfall *w, int down)
+void gd_cli_waterfall_print(const gd_cli_record *rec, const gd_waterfall *w, int down)
 {
-    printf("\n%s waterfall of %s (stepped: one steady run per speed; Hann window over the "
-           "settled part): amplitude (%s) of each order, the largest within 1.5 bins of order x "
-           "speed\n",
-           down ? "run-down" : "run-up", rec->name, rec->unit ? rec->unit : "");
+    if (w->tracked)
+        printf("\n%s waterfall of %s (order tracking: the record resampled on the reference "
+               "shaft's angle, one Hann-windowed order spectrum per %g revolutions at its mean "
+               "speed): amplitude (%s) of each order, the largest within 1.5 bins (%.3g orders)\n",
+               down ? "run-down" : "run-up", rec->name, w->revs_per_block,
+               rec->unit ? rec->unit : "", 1.5 / w->revs_per_block);
+    else
+        printf("\n%s waterfall of %s (stepped: one steady run per speed; Hann window over the "
+               "settled part): amplitude (%s) of each order, the largest within 1.5 bins of order "
+               "x speed\n",
+               down ? "run-down" : "run-up", rec->name, rec->unit ? rec->unit : "");
     printf("%12s", "speed_rpm");
     for (int k = 0; k < w->norders; k++) { /* "mesh 16x shaft_a", not "mesh mesh 16x ..." */
         const char *l = w->orders[k].label;
@@ -458,13 +463,14 @@ int gd_cli_transient_sweep(const gd_system *sys, const gd_transient_model *tm,
     }
     summary = sweep_json(sys, recs, p, sw, pts, done, cpu);
     if (wf)
-        cJSON_AddItemToObject(summary, "waterfall", waterfall_json(&recs->r[sw->waterfall], wf));
+        cJSON_AddItemToObject(summary, "waterfall",
+                              gd_cli_waterfall_json(&recs->r[sw->waterfall], wf));
     if (sw->out && (rc = write_sweep(sw->out, recs, pts, done, summary, wf))) goto out;
     if (sw->json)
         gd_cli_print_json(stdout, summary);
     else {
         print_sweep(sys, recs, p, sw, pts, done, cpu);
-        if (wf) print_waterfall(&recs->r[sw->waterfall], wf, sw->direction == 1);
+        if (wf) gd_cli_waterfall_print(&recs->r[sw->waterfall], wf, sw->direction == 1);
     }
 out:
     gd_waterfall_free(wf);

@@ -289,12 +289,19 @@ extern "Python" double gd_py_law_record(const gd_law *law, int k, const gd_law_p
 typedef struct { int mesh; int backlash; ...; } gd_tr_mesh;
 typedef struct { int nmeshes; int nsfds; const gd_law *laws; int nlaws; ...; } gd_transient_spec;
 typedef struct gd_transient gd_transient;
-typedef enum { GD_TR_BDF, GD_TR_ADAMS, GD_TR_AUTO, GD_TR_LTI, ... } gd_tr_method;
+typedef enum { GD_TR_BDF, GD_TR_ADAMS, GD_TR_GEN_ALPHA, GD_TR_AUTO, GD_TR_LTI, ... } gd_tr_method;
 typedef enum { GD_TR_INIT_REST, GD_TR_INIT_STATIC, GD_TR_INIT_GIVEN, ... } gd_tr_init;
+typedef enum { GD_SPEED_RAMP = 1, GD_SPEED_TABLE = 2 } gd_speed_profile_kind;
+typedef struct { gd_speed_profile_kind kind; double from, to; double t0, t1; int n;
+                 const double *t, *speed; } gd_speed_profile;
+gd_status gd_speed_profile_check(const gd_speed_profile *p, gd_error *err);
+void gd_speed_profile_eval(const gd_speed_profile *p, double t, double *angle,
+                           double *speed, double *accel);
 typedef struct { double t_start, t_end; double output_interval; double record_from;
                  double rtol; double atol_q, atol_v; gd_tr_method method; gd_tr_init init;
                  const double *q0, *v0; double max_step; long max_steps; int max_order;
-                 int locate_events; ...; } gd_transient_options;
+                 int locate_events; double step; double rho_inf;
+                 const gd_speed_profile *profile; ...; } gd_transient_options;
 typedef enum { GD_REC_DISP, GD_REC_VEL, GD_REC_ANGLE, GD_REC_SPEED, GD_REC_SPEED_RATIO,
                GD_REC_MESH_FORCE, GD_REC_MESH_DEFLECTION, GD_REC_MESH_STATE,
                GD_REC_MESH_STIFFNESS, GD_REC_SFD_FX, GD_REC_SFD_FY,
@@ -322,6 +329,21 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
                            const gd_tr_record *records, int nrecords,
                            gd_transient_result **out, gd_error *err);
 void gd_transient_result_free(gd_transient_result *r);
+/* order tracking of a run-up (geardyn/waterfall.h) */
+typedef enum { GD_WINDOW_HANN = 0, GD_WINDOW_RECT = 1 } gd_window;
+typedef struct { int nsamples; double dt; gd_window window; int n; double df; double *freq;
+                 double *amplitude; } gd_spectrum;
+typedef struct { int nspeeds; double *speeds; gd_spectrum **spectra; int norders;
+                 gd_order *orders; double *order_amplitude; double *order_frequency;
+                 int tracked; double revs_per_block; ...; } gd_waterfall;
+typedef struct { double revs_per_block; int samples_per_rev; double overlap;
+                 gd_window window; } gd_order_track_options;
+void gd_order_track_options_init(gd_order_track_options *opt);
+gd_status gd_waterfall_order_track(const gd_system *sys, const double *t, const double *x,
+                                   const double *angle, int n,
+                                   const gd_order_track_options *opt, gd_waterfall **out,
+                                   gd_error *err);
+void gd_waterfall_free(gd_waterfall *w);
 
 /* ---- periodic (harmonic balance) ---- */
 typedef enum { GD_PER_ARCLENGTH, GD_PER_SEQUENTIAL, ... } gd_per_method;

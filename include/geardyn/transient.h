@@ -198,6 +198,27 @@ typedef enum gd_tr_init {
     GD_TR_INIT_GIVEN = 2   /* q0, v0 (length ndof; prescribed entries ignored) */
 } gd_tr_init;
 
+/* A speed profile of the reference shaft (docs/transient.md, "Run-up"): its speed
+ * W(t), rad/s, and the angle phi(t) = integral from 0 to t of W, every shaft following
+ * through its speed ratio (shaft s turns by ratio_s phi). GD_SPEED_RAMP: W = from until
+ * t0, linear to `to` at t1, then `to`. GD_SPEED_TABLE: n >= 2 rows (t increasing, speeds
+ * rad/s), linear between rows, held at the end rows. The speeds may not change sign.
+ * Borrowed (the table's arrays too) for the run. */
+typedef enum gd_speed_profile_kind { GD_SPEED_RAMP = 1, GD_SPEED_TABLE = 2 } gd_speed_profile_kind;
+typedef struct gd_speed_profile {
+    gd_speed_profile_kind kind;
+    double from, to; /* ramp: rad/s */
+    double t0, t1;   /* ramp: s, t1 > t0 */
+    int n;           /* table rows */
+    const double *t, *speed;
+} gd_speed_profile;
+/* GD_EINPUT naming the field when the profile is not as above. */
+GD_API gd_status gd_speed_profile_check(const gd_speed_profile *p, gd_error *err);
+/* The angle phi(t) (rad), speed W(t) (rad/s) and acceleration W'(t) (rad/s^2) at t (any
+ * output may be NULL; a table costs O(rows)). Thread-safe. */
+GD_API void gd_speed_profile_eval(const gd_speed_profile *p, double t, double *angle, double *speed,
+                                  double *accel);
+
 typedef struct gd_transient_options {
     double t_start, t_end;  /* s */
     double output_interval; /* s; 0: (t_end - record_from) / 1000 */
@@ -232,6 +253,16 @@ typedef struct gd_transient_options {
      * samples. Borrowed for the run. */
     const double *sample_times;
     int nsample_times;
+    /* Run-up (NULL: the constant reference speed of gd_transient_new, today's path
+     * exactly): the nominal motion follows the profile; the gyroscopic term is W(t) G,
+     * unbalance forces U (W^2 cos psi + W' sin psi, W^2 sin psi - W' cos psi) at each
+     * shaft's angle psi, mesh stiffness, transmission error, cams, loads of angle and
+     * the laws at the shafts' angles and speeds. Speed-table bearings stay at the
+     * reference speed (the result's method_note says so). The inertia torque of the
+     * nominal acceleration is taken as supplied by the drive (not applied: no wind-up).
+     * Not with GD_TR_LTI (auto picks BDF), a reduced problem, a prescribed speed or
+     * angle table, or a rolling-bearing law (GD_EINPUT). Borrowed for the run. */
+    const gd_speed_profile *profile;
 } gd_transient_options;
 GD_API void gd_transient_options_init(gd_transient_options *opt);
 

@@ -9,7 +9,7 @@ from ._core import ffi, lib, check, new_error, cstr, quantity, model_error
 from .analyses import _Result, _pandas
 from .laws import with_laws
 
-__all__ = ["transient", "TransientResult"]
+__all__ = ["transient", "TransientResult", "Waterfall"]
 
 _MESH_WHAT = {"force": (lib.GD_REC_MESH_FORCE, "N"), "state": (lib.GD_REC_MESH_STATE, "-"),
               "deflection": (lib.GD_REC_MESH_DEFLECTION, "m"),
@@ -201,9 +201,85 @@ def _times(duration, revolutions, speed, record_from, output_interval):
     return t_end, frm, dt
 
 
+def _profile(system, speed_ramp, speed_table, duration):
+    """The gd_speed_profile of speed_ramp=(FROM, TO) over [0, duration] or
+    speed_table=(times, speeds), its arrays (kept alive), t_end and its speed range."""
+    prof = ffi.new("gd_speed_profile *")
+    keep = []
+    if speed_ramp is not None:
+        if duration is None:
+            raise model_error("speed_ramp", "a speed ramp needs duration=",
+                              "give duration= (the ramp's length)")
+        t_end = quantity(duration, "time", "duration")
+        w0, w1 = (quantity(v, "speed", "speed_ramp") for v in speed_ramp)
+        if w0 < 0 or w1 < 0 or w0 == w1 or not t_end > 0:
+            raise model_error("speed_ramp", "give FROM != TO, speeds >= 0, duration > 0")
+        prof.kind, prof.t0, prof.t1 = lib.GD_SPEED_RAMP, 0.0, t_end
+        setattr(prof, "from", w0)  # a Python keyword
+        prof.to = w1
+        lo, hi = min(w0, w1), max(w0, w1)
+    else:
+        times, speeds = (np.ascontiguousarray(a, dtype=float) for a in speed_table)
+        if times.shape != speeds.shape or times.ndim != 1:
+            raise model_error("speed_table", "give (times, speeds) of one length")
+        ct, cw = ffi.new("double[]", list(times)), ffi.new("double[]", list(speeds))
+        keep += [ct, cw]
+        prof.kind, prof.n, prof.t, prof.speed = lib.GD_SPEED_TABLE, len(times), ct, cw
+        t_end = (quantity(duration, "time", "duration") if duration is not None
+                 else float(times[-1]))
+        lo, hi = float(np.min(np.abs(speeds))), float(np.max(np.abs(speeds)))
+    err = new_error()
+    check(lib.gd_speed_profile_check(prof, err), err)
+    return prof, keep, t_end, lo, hi
+
+
+class Waterfall:
+    """Order-tracked run-up waterfall (C gd_waterfall): speeds (rad/s; speeds_rpm), one
+    amplitude spectrum per block of revs_per_block turns (frequencies[i], amplitudes[i],
+    Hz and the record's unit), the orders of campbell (orders, order_labels) and the
+    order cuts order_amplitude (norders x nspeeds, NaN above the spectra's reach)."""
+
+    def __init__(self, w):
+        n, no = int(w.nspeeds), int(w.norders)
+        self.speeds = np.array([w.speeds[i] for i in range(n)])
+        self.speeds_rpm = self.speeds * 30 / math.pi
+        self.revs_per_block = float(w.revs_per_block)
+        self.orders = np.array([w.orders[k].order for k in range(no)])
+        self.order_labels = [cstr(w.orders[k].label) for k in range(no)]
+        self.order_amplitude = np.array([w.order_amplitude[i] for i in range(no * n)]).reshape(
+            no, n) if no else np.zeros((0, n))
+        self.frequencies = [np.array([w.spectra[i].freq[k] for k in range(w.spectra[i].n)])
+                            for i in range(n)]
+        self.amplitudes = [np.array([w.spectra[i].amplitude[k]
+                                     for k in range(w.spectra[i].n)]) for i in range(n)]
+
+    def __repr__(self):
+        return "Waterfall(%d blocks of %g turns, %.6g-%.6g rpm, orders %s)" % (
+            len(self.speeds), self.revs_per_block, self.speeds_rpm.min(),
+            self.speeds_rpm.max(), ", ".join(self.order_labels))
+
+
+def _order_track(system, res, prof, index, revs_per_block, samples_per_rev):
+    """The Waterfall of record index of res under the profile."""
+    n = res.nout
+    ang = ffi.new("double[]", max(n, 1))
+    for k in range(n):
+        lib.gd_speed_profile_eval(prof, res._owner.t[k], ang + k, ffi.NULL, ffi.NULL)
+    o = ffi.new("gd_order_track_options *")
+    lib.gd_order_track_options_init(o)
+    o.revs_per_block, o.samples_per_rev = float(revs_per_block), int(samples_per_rev)
+    out = ffi.new("gd_waterfall **")
+    err = new_error()
+    check(lib.gd_waterfall_order_track(system._handle, res._owner.t,
+                                       res._owner.values + index * n, ang, n, o, out, err), err)
+    w = ffi.gc(out[0], lib.gd_waterfall_free)
+    return Waterfall(w)
+
+
 def transient(system, duration=None, revolutions=None, speed=None, records=None,
               record_from=None, output_interval=None, rtol=1e-6, method="auto", start="rest",
-              laws=None):
+              laws=None, speed_ramp=None, speed_table=None, step=None, waterfall=None,
+              revs_per_block=16):
     """Time integration at a constant reference speed (default: the model's), for
     `duration` (s or "12 ms") or `revolutions` of the reference shaft. records: list of
     record specs (NODE.DOF[:disp|vel|angle|speed], ratio:A/B, mesh:NAME[:force|state|
@@ -213,13 +289,47 @@ def transient(system, duration=None, revolutions=None, speed=None, records=None,
     by its exact harmonic response and free motion at a step checked against twice the
     step, anything else by bdf; result.method_note says which), "bdf", "adams" or "lti";
     start "rest" or "static".
-    laws: geardyn.Law objects (laws of your own in Python) added to the model's."""
+    laws: geardyn.Law objects (laws of your own in Python) added to the model's.
+    Run-up (docs/transient.md, "Run-up through a speed profile"): speed_ramp=(FROM, TO)
+    over duration, or speed_table=(times, speeds) (s, rad/s); speed is then only the
+    reference the matrices are built at (default the profile's mid speed), records start
+    at 0 s, method "auto" takes bdf ("galpha" with step= is usually much cheaper);
+    waterfall=RECORD order-tracks that record into result.waterfall (a Waterfall) in
+    blocks of revs_per_block turns."""
+    prof = keep_prof = None
+    if speed_ramp is not None or speed_table is not None:
+        if speed_ramp is not None and speed_table is not None:
+            raise model_error("speed_table", "give speed_ramp or speed_table, not both")
+        if revolutions is not None:
+            raise model_error("revolutions", "revolutions do not apply to a speed profile",
+                              "give duration=")
+        prof, keep_prof, t_prof, lo, hi = _profile(system, speed_ramp, speed_table, duration)
+        duration = t_prof
+        if record_from is None:
+            record_from = 0.0
+    elif waterfall is not None:
+        raise model_error("waterfall", "waterfall= needs speed_ramp= or speed_table=")
     w = system.model.speed if speed is None else quantity(speed, "speed", "speed")
+    if prof is not None and speed is None:
+        w = 0.5 * (lo + hi)
     t_end, frm, dt = _times(duration, revolutions, w, record_from, output_interval)
+    spr = 32
+    if prof is not None and output_interval is None and hi > 0:
+        if waterfall is not None:  # as the CLI: 2.5 x the highest shaft or mesh order
+            h = system.model._handle
+            top = max([1.0] + [abs(h.shafts[i].speed_ratio) for i in range(h.nshafts)])
+            for k in range(h.nmeshes):
+                g = h.meshes[k]
+                ratio = h.shafts[h.nodes[g.driver].shaft].speed_ratio
+                top = max(top, g.teeth[0] * abs(ratio))
+            while spr < 2.5 * top:
+                spr *= 2
+        dt = min((t_end - frm) / 2000.0, 2 * math.pi / hi / (2.0 * spr if waterfall else 32))
     methods = {"auto": lib.GD_TR_AUTO, "bdf": lib.GD_TR_BDF, "adams": lib.GD_TR_ADAMS,
-               "lti": lib.GD_TR_LTI}
+               "lti": lib.GD_TR_LTI, "galpha": lib.GD_TR_GEN_ALPHA}
     if method not in methods:
-        raise model_error("method", "unknown method '%s'" % method, "use auto, bdf, adams or lti")
+        raise model_error("method", "unknown method '%s'" % method,
+                          "use auto, bdf, adams, galpha or lti")
     if start not in ("rest", "static"):
         raise model_error("start", "unknown start '%s'" % start, "use rest or static")
     err = new_error()
@@ -228,6 +338,16 @@ def transient(system, duration=None, revolutions=None, speed=None, records=None,
     tm = ffi.gc(tmp[0], lib.gd_transient_model_free)
     spec, view, keep = with_laws(system, tm, laws)
     recs = _records(system, view, records)
+    wi = -1
+    if waterfall is not None:
+        one = _records(system, view, [waterfall])
+        if len(one) != 1:
+            raise model_error("waterfall", "give one record (got %d)" % len(one))
+        names = [r[3] for r in recs]
+        if one[0][3] not in names:
+            recs += one
+            names.append(one[0][3])
+        wi = names.index(one[0][3])
     trp = ffi.new("gd_transient **")
     check(lib.gd_transient_new(system._handle, spec, w, trp, err), err)
     tr = ffi.gc(trp[0], lib.gd_transient_free)
@@ -235,6 +355,10 @@ def transient(system, duration=None, revolutions=None, speed=None, records=None,
     lib.gd_transient_options_init(opt)
     opt.t_end, opt.record_from, opt.output_interval, opt.rtol = t_end, frm, dt, float(rtol)
     opt.method = methods[method]
+    if step is not None:
+        opt.step = quantity(step, "time", "step")
+    if prof is not None:
+        opt.profile = prof
     opt.init = lib.GD_TR_INIT_STATIC if start == "static" else lib.GD_TR_INIT_REST
     rr = _record_array(recs)
     out = ffi.new("gd_transient_result **")
@@ -248,6 +372,10 @@ def transient(system, duration=None, revolutions=None, speed=None, records=None,
                           [bool(tm.meshes[i].backlash) for i in range(tm.spec.nmeshes)])
     res.speed, res.t_end, res.record_from, res.output_interval = w, t_end, frm, dt
     res.method, res.start = method, start
+    res.waterfall = None
+    if wi >= 0:
+        res.waterfall = _order_track(system, res, prof, wi, revs_per_block, spr)
+    del keep_prof
     res.free_dofs = lib.gd_transient_nstates(tr) // 2
     del tr, tm, keep  # the problem borrows the spec: free it first
     return res

@@ -34,6 +34,80 @@ static const char *level_color(int k)
     return c[k];
 }
 
+/* An order-tracked waterfall's colour map over speed and order (the bins are orders):
+ * the same levels as the frequency map, the orders as vertical lines. */
+static void order_map(gd_plot *p, pl_section *sec, const gd_waterfall *w, const char *name,
+                      const char *unit, double amax, double sx, const char *su, double ftop,
+                      double wtop)
+{
+    const int ns = w->nspeeds;
+    /* orders up to the frequency axis's top at the top speed */
+    double otop = ftop * 2 * PI / wtop;
+    char xl[64], yl[64], title[300];
+    snprintf(xl, sizeof xl, "order (multiple of the reference speed)");
+    snprintf(yl, sizeof yl, "reference speed (%s)", su);
+    snprintf(title, sizeof title, "%s: order map, amplitude in dB below %.4g %s", name, amax, unit);
+    pl_panel *map = pl_panel_add(p, sec, PL_XY, title, xl, yl);
+    if (!map) return;
+    map->xlim[0] = 0;
+    map->xlim[1] = otop;
+    int cnt[NLEVELS] = {0}, lv[NLEVELS];
+    for (int s = 0; s < ns; s++)
+        for (int k = 1; k < w->spectra[s]->n; k++) {
+            double o = w->spectra[s]->freq[k] * 2 * PI / w->speeds[s];
+            int l = level_of(w->spectra[s]->amplitude[k], amax);
+            if (o <= otop && l >= 0) cnt[l]++;
+        }
+    for (int l = 0; l < NLEVELS; l++) {
+        lv[l] = -1;
+        if (!cnt[l]) continue;
+        char ln[64];
+        snprintf(ln, sizeof ln, "%g to %g dB", l ? -DB_STEP * l : 0.0, -DB_STEP * (l + 1));
+        pl_trace *t = pl_trace_add(p, map, ln, cnt[l], NULL, NULL, PL_MARKERS, level_color(l));
+        if (t && t->x && t->y) {
+            t->symbol = PL_SQUARE;
+            t->legend = 0;
+            lv[l] = (int)(t - map->traces);
+        }
+        cnt[l] = 0;
+    }
+    for (int s = 0; s < ns; s++)
+        for (int k = 1; k < w->spectra[s]->n; k++) {
+            const gd_spectrum *sp = w->spectra[s];
+            double o = sp->freq[k] * 2 * PI / w->speeds[s];
+            int l = level_of(sp->amplitude[k], amax);
+            if (o > otop || l < 0 || lv[l] < 0) continue;
+            pl_trace *t = &map->traces[lv[l]];
+            int i = cnt[l]++;
+            t->x[i] = o;
+            t->y[i] = sx * w->speeds[s];
+            pl_trace_text(p, t, i, "order %.4g at %.6g %s: %.4g %s (%.1f dB)", o, t->y[i], su,
+                          sp->amplitude[k], unit, 20 * log10(sp->amplitude[k] / amax));
+        }
+    double lo = w->speeds[0], hi = w->speeds[0];
+    for (int s = 1; s < ns; s++) {
+        lo = fmin(lo, w->speeds[s]);
+        hi = fmax(hi, w->speeds[s]);
+    }
+    for (int o = 0; o < w->norders; o++) {
+        double ord = w->orders[o].order;
+        if (ord > otop) continue;
+        char label[96];
+        pl_order_label(&w->orders[o], label, sizeof label);
+        /* named at the line's end: every other one drawn downwards, so neighbouring
+         * orders' names sit at the top and at the bottom */
+        double ox[2] = {ord, ord}, oy[2] = {sx * (o % 2 ? hi : lo), sx * (o % 2 ? lo : hi)};
+        pl_trace *t = pl_trace_add(p, map, label, 2, ox, oy, PL_LINES,
+                                   w->orders[o].kind == GD_ORDER_MESH ? "#2ca02c" : "#d62728");
+        if (t) {
+            t->dash = 1;
+            t->legend = 0;
+            snprintf(t->label, sizeof t->label, "%.63s", label);
+            t->label_right = 1;
+        }
+    }
+}
+
 gd_status gd_plot_waterfall(const gd_system *sys, const gd_waterfall *w, const gd_tr_record *rec,
                             const gd_plot_waterfall_options *opt, gd_plot **out, gd_error *err)
 {
@@ -70,11 +144,21 @@ gd_status gd_plot_waterfall(const gd_system *sys, const gd_waterfall *w, const g
     gd_status st = gd_plot_new("geardyn run-up waterfall", &p, err);
     if (st) return st;
     pl_section *sec = pl_section_add(p, "Run-up waterfall");
-    pl_note(p, sec,
-            "Stepped (quasi-steady) run-up: %d speeds from %.6g to %.6g %s, each a steady run "
-            "started from the previous speed's end state; at each speed the amplitude spectrum "
-            "(Hann window, mean removed) of %s over the settled part. Largest amplitude %.4g %s.",
-            ns, sx * wlo, sx * wtop, su, name, amax, unit);
+    if (w->tracked)
+        pl_note(p, sec,
+                "Run-up through a speed profile, order tracking: %s resampled on the reference "
+                "shaft's angle, one amplitude spectrum (Hann window, mean removed) per block of "
+                "%g revolutions, %d blocks from %.6g to %.6g %s (each at its mean speed; bins "
+                "%.3g orders apart). Largest amplitude %.4g %s.",
+                name, w->revs_per_block, ns, sx * wlo, sx * wtop, su, 1 / w->revs_per_block, amax,
+                unit);
+    else
+        pl_note(p, sec,
+                "Stepped (quasi-steady) run-up: %d speeds from %.6g to %.6g %s, each a steady "
+                "run started from the previous speed's end state; at each speed the amplitude "
+                "spectrum (Hann window, mean removed) of %s over the settled part. Largest "
+                "amplitude %.4g %s.",
+                ns, sx * wlo, sx * wtop, su, name, amax, unit);
     if (sec) snprintf(sec->csv_name, sizeof sec->csv_name, "waterfall.csv");
     pl_csv(p, sec, "speed_rad_s,speed_rpm,frequency_hz,amplitude\n");
     /* the cascade: each spectrum drawn from its speed up, its height the level in dB
@@ -185,6 +269,7 @@ gd_status gd_plot_waterfall(const gd_system *sys, const gd_waterfall *w, const g
             t->label_below = o % 2;
         }
     }
+    if (w->tracked) order_map(p, sec, w, name, unit, amax, sx, su, ftop, wtop);
     /* order cuts */
     snprintf(title, sizeof title,
              "%s: order cuts (largest amplitude within 1.5 bins of each order)", name);

@@ -6,6 +6,9 @@
 #include <string.h>
 
 #include "geardyn/report.h"
+#include "geardyn/transient.h"
+#include "geardyn/transient_model.h"
+#include "geardyn/waterfall.h"
 
 #define PI 3.14159265358979323846
 enum { MAX_PROBES = 32 };
@@ -16,6 +19,7 @@ void gd_report_options_init(gd_report_options *opt)
     opt->speed = -1;
     opt->nmodes = 8;
     opt->nfreq = 400;
+    opt->runup_revolutions = 200;
 }
 
 static int add_probe(gd_probe *pr, int *n, gd_probe_kind kind, int index, gd_dof dir,
@@ -172,6 +176,128 @@ static gd_status add_unbalance(gd_plot *doc, const gd_system *sys, const gd_repo
     return st ? st : gd_plot_append(doc, p, err);
 }
 
+/* What excites a run-up of the model, named in buf (empty when nothing does). */
+static const char *runup_forcing(const gd_model *m, const gd_transient_model *tm, char *buf,
+                                 size_t len)
+{
+    int mesh = 0,
+        other = tm->spec.nloads || tm->spec.ncams || tm->spec.nlaws || tm->spec.nprescribed;
+    for (int i = 0; i < tm->spec.nmeshes; i++)
+        mesh |= tm->meshes[i].tvms || tm->meshes[i].ste || tm->meshes[i].backlash;
+    const char *part[3] = {m->nunbalances ? "the model's unbalances" : NULL,
+                           mesh ? "the meshes' time-varying laws" : NULL,
+                           other ? "the model's loads, cams and laws" : NULL};
+    buf[0] = 0;
+    for (int k = 0; k < 3; k++)
+        if (part[k])
+            snprintf(buf + strlen(buf), len - strlen(buf), "%s%s", buf[0] ? " and " : "", part[k]);
+    return buf;
+}
+
+/* The run-up waterfall (gd_report_options.runup_*): one transient through the ramp,
+ * order-tracked (geardyn/waterfall.h). */
+static gd_status add_runup(gd_plot *doc, const gd_system *sys, const gd_report_options *opt,
+                           gd_error *err)
+{
+    const gd_model *m = sys->model;
+    const double w0 = opt->runup_from, w1 = opt->runup_to;
+    if (!(w0 * w1 >= 0) || !isfinite(w0) || !isfinite(w1))
+        return gd_error_set(err, GD_EINPUT, "", 0, 0, "--run-up", "give FROM:TO of one sign",
+                            "run-up speeds %g -> %g rad/s", w0, w1);
+    const double revs = opt->runup_revolutions > 0 ? opt->runup_revolutions : 200;
+    gd_transient_model *tm = NULL;
+    gd_status st = gd_transient_model_build(sys, &tm, err);
+    if (st) return st;
+    char fbuf[160];
+    const char *forcing = runup_forcing(m, tm, fbuf, sizeof fbuf);
+    gd_tr_record rec = {GD_REC_DISP, -1, 0};
+    if (m->nunbalances) rec.index = gd_system_dof(sys, m->unbalances[0].node, GD_X);
+    if (rec.index < 0 && m->nmeshes) rec = (gd_tr_record){GD_REC_MESH_FORCE, 0, 0};
+    if (rec.index < 0 && m->ndisks) rec.index = gd_system_dof(sys, m->disks[0].node, GD_X);
+    if (!forcing[0] || rec.index < 0) {
+        gd_transient_model_free(tm);
+        return gd_plot_add_note(
+            doc, "Run-up waterfall",
+            !forcing[0] ? "None: nothing in the model excites a run-up (no unbalance, no mesh "
+                          "time-varying stiffness or transmission error, no load, cam or law); "
+                          "add `unbalances:` to the model file (docs/model-format.md)."
+                        : "None: the model has no unbalance node, mesh or disk to record.",
+            err);
+    }
+    /* the ramp over `revs` turns at the mean speed; the order tracking's S points per turn
+     * (the power of two >= 2.5 x the highest order a mesh law excites, at least 32) and
+     * 2 S samples and generalized-alpha steps per turn at the top speed */
+    const double wm = 0.5 * fabs(w0 + w1), wt = fmax(fabs(w0), fabs(w1));
+    double top = 1;
+    for (int i = 0; i < tm->spec.nmeshes; i++) {
+        const gd_mesh *g = &m->meshes[tm->meshes[i].mesh];
+        if (tm->meshes[i].tvms || tm->meshes[i].ste || tm->meshes[i].backlash)
+            top = fmax(top, g->teeth[0] * fabs(m->shafts[m->nodes[g->driver].shaft].speed_ratio));
+    }
+    int spr = 32;
+    while (spr < 2.5 * top && spr < (1 << 16))
+        spr *= 2;
+    if (revs * 2.0 * spr * wt / wm > 2e7) {
+        gd_transient_model_free(tm);
+        return gd_plot_add_note(doc, "Run-up waterfall",
+                                "None: the run-up would take over 2e7 steps (the mesh orders "
+                                "need fine steps); run geardyn transient --speed-ramp "
+                                "--waterfall with a shorter ramp or fewer turns.",
+                                err);
+    }
+    gd_speed_profile prof = {GD_SPEED_RAMP, w0, w1, 0, 2 * PI * revs / wm, 0, NULL, NULL};
+    gd_transient *tr = NULL;
+    gd_transient_result *res = NULL;
+    gd_waterfall *wf = NULL;
+    double *ang = NULL;
+    if ((st = gd_transient_new(sys, &tm->spec, 0.5 * (w0 + w1), &tr, err))) goto done;
+    gd_transient_options to;
+    gd_transient_options_init(&to);
+    to.t_end = prof.t1;
+    to.output_interval = 2 * PI / wt / (2.0 * spr);
+    to.method = GD_TR_GEN_ALPHA;
+    to.step = to.output_interval;
+    to.profile = &prof;
+    if ((st = gd_transient_run(tr, &to, &rec, 1, &res, err))) goto done;
+    ang = malloc((size_t)res->nout * sizeof *ang);
+    if (!ang) {
+        st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
+        goto done;
+    }
+    for (int k = 0; k < res->nout; k++)
+        gd_speed_profile_eval(&prof, res->t[k], &ang[k], NULL, NULL);
+    gd_order_track_options oo;
+    gd_order_track_options_init(&oo);
+    oo.revs_per_block = 8;
+    oo.samples_per_rev = spr;
+    if ((st = gd_waterfall_order_track(sys, res->t, res->values, ang, res->nout, &oo, &wf, err)))
+        goto done;
+    gd_plot *p;
+    if ((st = gd_plot_waterfall(sys, wf, &rec, NULL, &p, err))) goto done;
+    char note[700];
+    double acc = (w1 - w0) / prof.t1;
+    snprintf(note, sizeof note,
+             "A run-up from %.6g to %.6g rpm in %.3g s (%.4g rpm/s, %g turns of the reference "
+             "shaft), forced by %s, from rest; generalized-alpha at %d steps per turn at the "
+             "top speed (%.3g s of CPU). Resolution: a block of 8 turns spans %.3g rpm at the "
+             "mean speed, and a resonance swept through at this rate peaks late (less so the "
+             "slower the ramp); orders up to %d resolved.",
+             w0 * 30 / PI, w1 * 30 / PI, prof.t1, acc * 30 / PI, revs, forcing, 2 * spr,
+             res->cpu_seconds, fabs(acc) * 2 * PI * 8 / wm * 30 / PI, spr / 2);
+    st = gd_plot_add_note(doc, "Run-up", note, err);
+    if (st)
+        gd_plot_free(p);
+    else
+        st = gd_plot_append(doc, p, err);
+done:
+    free(ang);
+    gd_waterfall_free(wf);
+    gd_transient_result_free(res);
+    gd_transient_free(tr);
+    gd_transient_model_free(tm);
+    return st;
+}
+
 gd_status gd_report_build(const gd_system *sys, const gd_report_options *opt, gd_plot **out,
                           gd_error *err)
 {
@@ -209,6 +335,13 @@ gd_status gd_report_build(const gd_system *sys, const gd_report_options *opt, gd
         st = gd_plot_add_note(doc, "Unbalance response",
                               "None: the model has no unbalance (add `unbalances:` to the model "
                               "file, docs/model-format.md).",
+                              err);
+    if (!st && opt->runup_to != opt->runup_from)
+        st = add_runup(doc, sys, opt, err);
+    else if (!st)
+        st = gd_plot_add_note(doc, "Run-up waterfall",
+                              "Not asked for: `geardyn report --run-up FROM:TO` adds one (a "
+                              "transient through the ramp, order-tracked; docs/plots.md).",
                               err);
     int ngeo = 0;
     for (int g = 0; g < m->nmeshes; g++)

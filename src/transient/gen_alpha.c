@@ -93,6 +93,9 @@ static int ga_alloc(ga *g, gd_transient *tr)
             s->damping + s->damping_per_k * s->stiffness != m->c_lin)
             g->wmesh[g->nw++] = i;
     }
+    /* a run-up: the gyroscopic and speed-table bearing terms at W(t) are not in the
+     * tangent (it holds them at the reference speed): iterate to convergence */
+    if (tr->prof) g->linear = g->piecewise = 0;
     return 0;
 }
 

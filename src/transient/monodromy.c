@@ -134,6 +134,9 @@ gd_status gd_transient_monodromy(gd_transient *tr, double t0, double period, con
                             "invalid period %g s", period);
     if (!y0 || !phi || !opt)
         return gd_error_set(err, GD_EINPUT, "", 0, 0, "y0", "", "state or output missing");
+    if (opt->profile)
+        return gd_error_set(err, GD_EINPUT, "", 0, 0, "profile", "run at a constant speed",
+                            "a monodromy matrix needs a periodic motion: no speed profile");
     if (!(opt->rtol > 0) || !(opt->atol_q > 0) || !(opt->atol_v > 0))
         return gd_error_set(err, GD_EINPUT, "", 0, 0, "options", "tolerances > 0",
                             "invalid tolerances");

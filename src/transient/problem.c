@@ -190,18 +190,22 @@ gd_status gd_transient_new(const gd_system *sys, const gd_transient_spec *spec, 
     tr->cam_acc = spec->cam_acceleration;
     tr->fidx = malloc((size_t)n * sizeof *tr->fidx);
     tr->rate = calloc((size_t)n, sizeof *tr->rate);
+    tr->ratio = calloc((size_t)n, sizeof *tr->ratio);
     tr->q = calloc((size_t)n, sizeof *tr->q);
     tr->v = calloc((size_t)n, sizeof *tr->v);
     tr->acc = calloc((size_t)n, sizeof *tr->acc);
     tr->r = calloc((size_t)n, sizeof *tr->r);
     tr->w1 = calloc((size_t)n, sizeof *tr->w1);
     tr->w2 = calloc((size_t)n, sizeof *tr->w2);
-    if (!tr->fidx || !tr->rate || !tr->q || !tr->v || !tr->acc || !tr->r || !tr->w1 || !tr->w2)
+    if (!tr->fidx || !tr->rate || !tr->ratio || !tr->q || !tr->v || !tr->acc || !tr->r || !tr->w1 ||
+        !tr->w2)
         goto fail;
     for (int i = 0; i < n; i++) {
         tr->fidx[i] = is_prescribed(spec, i) ? -1 : tr->nf++;
-        if (sys->dof_type[i] == GD_RZ)
-            tr->rate[i] = model->shafts[model->nodes[sys->dof_node[i]].shaft].speed_ratio * speed;
+        if (sys->dof_type[i] == GD_RZ) {
+            tr->ratio[i] = model->shafts[model->nodes[sys->dof_node[i]].shaft].speed_ratio;
+            tr->rate[i] = tr->ratio[i] * speed;
+        }
     }
     tr->np = n - tr->nf;
     if (tr->nf == 0) {
@@ -231,6 +235,8 @@ gd_status gd_transient_new(const gd_system *sys, const gd_transient_spec *spec, 
     /* matrices at the speed */
     cs Kv = view(&sys->K), Cv = view(&sys->C), Gv = view(&sys->G), Mv = view(&sys->M);
     tr->M = cs_add(&Mv, &Mv, 1.0, 0.0);
+    tr->Gy = cs_add(&Gv, &Gv, 1.0, 0.0); /* a run-up's (W(t) - W) G */
+    if (!tr->Gy) goto fail;
     if (sys->has_speed_dependent) {
         /* sparse K + K_b(W), C + C_b(W): memory linear in the DOFs */
         gd_csc Ks = {0}, Cs = {0};
@@ -274,7 +280,8 @@ gd_status gd_transient_new(const gd_system *sys, const gd_transient_spec *spec, 
         m->k_lin = gm->stiffness;
         m->c_lin = gd_mesh_linear_damping(gm); /* what the system assembled */
         m->drv_dof = gd_system_dof(sys, gm->driver, GD_RZ);
-        m->drv_rate = model->shafts[model->nodes[gm->driver].shaft].speed_ratio * speed;
+        m->drv_ratio = model->shafts[model->nodes[gm->driver].shaft].speed_ratio;
+        m->drv_rate = m->drv_ratio * speed;
         m->sense = gm->driver_sense >= 0 ? 1 : -1;
         m->state = GD_CONTACT_DRIVE;
         tr->nl_of_mesh[m->model_mesh] = i;
@@ -285,22 +292,45 @@ gd_status gd_transient_new(const gd_system *sys, const gd_transient_spec *spec, 
     st = GD_ENOMEM;
     tr->nsfd_law = spec->nsfds;
     tr->law_spec0 = spec->nsfds + spec->nloads;
+    if (tr->nlaw) { /* the ratios of the laws' rates and spins (a run-up's) */
+        const int stride = GD_LAW_MAX_DOFS + 2;
+        tr->law_ratio = calloc((size_t)tr->nlaw * stride, sizeof *tr->law_ratio);
+        if (!tr->law_ratio) goto fail;
+        for (int i = 0; i < tr->nlaw; i++) {
+            const gd_law *L = &tr->law[i];
+            double *r = tr->law_ratio + (size_t)i * stride;
+            for (int j = 0; j < L->ndofs; j++)
+                r[j] = L->dof[j] >= 0 ? tr->ratio[L->dof[j]] : 0.0;
+            int per = L->type->ndirs > 0 ? L->type->ndirs : 1;
+            for (int side = 0; side < (L->type->two_nodes ? 2 : 1); side++) {
+                int d = L->dof[side * per];
+                r[GD_LAW_MAX_DOFS + side] =
+                    d >= 0 ? model->shafts[model->nodes[sys->dof_node[d]].shaft].speed_ratio : 0.0;
+            }
+        }
+    }
     /* unbalances */
     if (spec->unbalances && model->nunbalances) {
         tr->unb = calloc((size_t)model->nunbalances, sizeof *tr->unb);
         if (!tr->unb) goto fail;
         for (int i = 0; i < model->nunbalances; i++) {
             const gd_unbalance *u = &model->unbalances[i];
-            double w = model->shafts[model->nodes[u->node].shaft].speed_ratio * speed;
+            double ratio = model->shafts[model->nodes[u->node].shaft].speed_ratio;
+            double w = ratio * speed;
             int dx = gd_system_dof(sys, u->node, GD_X), dy = gd_system_dof(sys, u->node, GD_Y);
-            if (w == 0.0 || (dx < 0 && dy < 0)) continue;
-            tr_unb *b = &tr->unb[tr->nunb++];
+            /* a run-up turns a shaft at reference speed 0: keep it (nunb_all) */
+            if (ratio == 0.0 || (dx < 0 && dy < 0)) continue;
+            tr_unb *b = &tr->unb[tr->nunb_all++];
+            b->ratio = ratio;
+            b->amount = u->amount;
+            b->phase0 = u->phase;
             b->dx = dx;
             b->dy = dy;
             b->omega = w;
             b->force = u->amount * w * w;
             b->phase = w > 0 ? u->phase : -u->phase;
         }
+        tr->nunb = speed != 0.0 ? tr->nunb_all : 0;
     }
     /* cams */
     tr->ncam = spec->ncams;
@@ -313,6 +343,7 @@ gd_status gd_transient_new(const gd_system *sys, const gd_transient_spec *spec, 
         tr_cam *c = &tr->cam[i];
         c->spec = spec->cams[i];
         c->rate = tr->rate[c->spec.dof];
+        c->ratio = tr->ratio[c->spec.dof];
         c->sense = c->rate >= 0 ? 1 : -1;
         int f = tr->fidx[c->spec.dof];
         c->slot = -1;
@@ -378,6 +409,16 @@ void gd_transient_free(gd_transient *tr)
     free(tr->free_dof);
     free(tr->pres);
     free(tr->rate);
+    free(tr->ratio);
+    free(tr->prof_cum);
+    free(tr->law_ratio);
+    for (int j = 0; j < tr->nsd; j++) { /* a run-up's, normally freed at its end */
+        cs_spfree(tr->sd_K[j]);
+        cs_spfree(tr->sd_C[j]);
+    }
+    free(tr->sd_K);
+    free(tr->sd_C);
+    cs_spfree(tr->Gy);
     gd_tr_release_linear(tr);
     gd_tr_reduction_free(tr->red);
     free(tr->mesh);

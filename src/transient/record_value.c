@@ -9,6 +9,17 @@ double gd_tr_record_value(gd_transient *tr, const gd_tr_record *rec, double t, c
 {
     const gd_model *model = tr->sys->model;
     int i = rec->index;
+    if (tr->prof && (rec->kind == GD_REC_ANGLE || rec->kind == GD_REC_SPEED ||
+                     rec->kind == GD_REC_SPEED_RATIO)) {
+        /* run-up: the nominal angle ratio phi(t) and speed ratio W(t) (not reduced) */
+        double phi, w;
+        gd_tr_profile_eval(tr->prof, tr->prof_cum, t, &phi, &w, NULL);
+        if (rec->kind == GD_REC_ANGLE) return tr->ratio[i] * phi + q[i];
+        if (rec->kind == GD_REC_SPEED) return tr->ratio[i] * w + v[i];
+        int j = rec->index2;
+        double den = tr->ratio[j] * w + v[j];
+        return den != 0.0 ? (tr->ratio[i] * w + v[i]) / den : 0.0;
+    }
     switch (rec->kind) {
     case GD_REC_DISP:
         return gd_tr_full_value(tr, i, q);

@@ -51,8 +51,17 @@ double gd_tr_mesh_law(const tr_mesh *m, gd_contact state, double t, const double
     if (s->tvms || s->ste) {
         double qd = m->drv_dof >= 0 ? q[m->drv_dof] : 0.0;
         double vd = m->drv_dof >= 0 ? v[m->drv_dof] : 0.0;
-        double th = s->angle_offset + m->sense * (m->drv_rate * t + qd);
-        thd = m->sense * (m->drv_rate + vd);
+        double th, wd;
+        if (m->prof) { /* run-up: the driver's nominal angle ratio phi(t) */
+            double phi, w;
+            gd_tr_profile_eval(m->prof, m->prof_cum, t, &phi, &w, NULL);
+            th = s->angle_offset + m->sense * (m->drv_ratio * phi + qd);
+            wd = m->drv_ratio * w;
+        } else {
+            th = s->angle_offset + m->sense * (m->drv_rate * t + qd);
+            wd = m->drv_rate;
+        }
+        thd = m->sense * (wd + vd);
         if (s->tvms) k = gd_table_eval(s->tvms, th, &dk, NULL);
         if (s->ste) {
             double e = gd_table_eval(s->ste, th, &e1, &e2);
@@ -128,6 +137,83 @@ static void sub_mul_prescribed(const gd_transient *tr, const cs *A, const double
         sub_col(A, tr->pres[k].dof, x, r);
 }
 
+/* gd_tr_forces of a run-up (gd_transient_options.profile): every nominal angle ratio
+ * phi(t), speed ratio W(t), and the gyroscopic term's change from the reference speed
+ * the matrices hold, -(W(t) - W) G q'. */
+static void profile_forces(gd_transient *tr, double t, const double *q, const double *v,
+                           const double *acc, double *r, int skip_free_linear)
+{
+    double phi, w, dw;
+    gd_tr_profile_eval(tr->prof, tr->prof_cum, t, &phi, &w, &dw);
+    if (tr->nlaw) gd_tr_profile_laws(tr, t, phi, w);
+    for (int i = 0; i < tr->nlaw; i++) {
+        const gd_law *L = &tr->law[i];
+        gd_law_point x;
+        gd_tr_law_point(L, t, q, v, tr->lq, tr->lv, &x);
+        memset(tr->lf, 0, (size_t)L->ndofs * sizeof *tr->lf);
+        L->type->force(L, &x, tr->lf, NULL, NULL);
+        for (int j = 0; j < L->ndofs; j++)
+            if (L->dof[j] >= 0) r[L->dof[j]] += tr->lf[j];
+    }
+    for (int i = 0; i < tr->nunb_all; i++) {
+        /* heavy spot at psi = ratio phi + phase (mirrored for a shaft turning about -z):
+         * -m r'' = U (psi'^2 cos + psi'' sin, psi'^2 sin - psi'' cos) */
+        const tr_unb *u = &tr->unb[i];
+        double s = u->ratio * tr->prof_sign;
+        double psi = u->ratio * phi + (s > 0 ? u->phase0 : -u->phase0);
+        double w1 = u->ratio * w, w2 = u->ratio * dw, c = cos(psi), sn = sin(psi);
+        if (u->dx >= 0) r[u->dx] += u->amount * (w1 * w1 * c + w2 * sn);
+        if (u->dy >= 0) r[u->dy] += u->amount * (w1 * w1 * sn - w2 * c);
+    }
+    if (tr->ncd) memset(tr->mu, 0, (size_t)tr->ncd * sizeof *tr->mu);
+    for (int i = 0; i < tr->ncam; i++) {
+        const tr_cam *c = &tr->cam[i];
+        int d = c->spec.dof, sense = c->ratio * tr->prof_sign >= 0 ? 1 : -1;
+        double th = sense * (c->ratio * phi + q[d]);
+        double wc = sense * (c->ratio * w + v[d]);
+        double s1, s2;
+        gd_lift_eval(c->spec.law, th - c->spec.phase, &s1, &s2);
+        double m = c->spec.mass;
+        r[d] -= sense * m * s1 * s2 * wc * wc;
+        if (!tr->cam_acc) continue;
+        /* W' = sense (ratio W' + q''): the nominal part here, q'' as in gd_tr_forces */
+        r[d] -= m * s1 * s1 * c->ratio * dw;
+        if (c->slot < 0)
+            r[d] -= m * s1 * s1 * acc[d];
+        else
+            tr->mu[c->slot] += m * s1 * s1;
+    }
+    if (skip_free_linear) {
+        sub_mul_prescribed(tr, tr->K, q, r);
+        sub_mul_prescribed(tr, tr->D, v, r);
+        sub_mul_prescribed(tr, tr->M, acc, r);
+    } else {
+        sub_mul(tr->K, q, r);
+        sub_mul(tr->D, v, r);
+        if (tr->np) sub_mul(tr->M, acc, r);
+    }
+    gd_tr_profile_bearing_forces(tr, w, q, v, r); /* speed-table bearings at W(t) */
+    {
+        /* r -= (W(t) - W) G v: the time-varying gyroscopic term */
+        double dW = w - tr->speed;
+        const cs *G = tr->Gy;
+        for (int j = 0; j < G->n; j++) {
+            double x = dW * v[j];
+            if (x == 0.0) continue;
+            for (int p = G->p[j]; p < G->p[j + 1]; p++)
+                r[G->i[p]] -= G->x[p] * x;
+        }
+    }
+    for (int i = 0; i < tr->nmesh; i++) {
+        const tr_mesh *m = &tr->mesh[i];
+        double d, dd;
+        double F = gd_tr_mesh_force(tr, m, m->state, t, q, v, &d, &dd, NULL, NULL);
+        double g = F - m->k_lin * d - m->c_lin * dd;
+        for (int j = 0; j < m->a.n; j++)
+            r[m->a.dof[j]] -= m->a.a[j] * g;
+    }
+}
+
 void gd_tr_residual(gd_transient *tr, double t, const double *q, const double *v, const double *acc,
                     double *r)
 {
@@ -139,6 +225,10 @@ void gd_tr_forces(gd_transient *tr, double t, const double *q, const double *v, 
 {
     const int n = tr->n;
     memset(r, 0, (size_t)n * sizeof *r);
+    if (tr->prof) {
+        profile_forces(tr, t, q, v, acc, r, skip_free_linear);
+        return;
+    }
     for (int i = 0; i < tr->nlaw; i++) {
         const gd_law *L = &tr->law[i];
         gd_law_point x;

@@ -408,9 +408,13 @@ static gd_status check_step_count(const gd_transient *tr, const gd_transient_opt
                 limit);
         return GD_OK;
     }
-    double wmax = 0.0;
+    double wmax = 0.0, pmax = 0.0;
+    const gd_speed_profile *p = opt->profile;
+    if (p && p->kind == GD_SPEED_RAMP) pmax = fmax(fabs(p->from), fabs(p->to));
+    for (int k = 0; p && p->kind == GD_SPEED_TABLE && k < p->n; k++)
+        pmax = fmax(pmax, fabs(p->speed[k]));
     for (int i = 0; i < tr->n; i++)
-        wmax = fmax(wmax, fabs(tr->rate[i]));
+        wmax = fmax(wmax, p ? fabs(tr->ratio[i]) * pmax : fabs(tr->rate[i]));
     double turns = span * wmax / 6.28318530717958647692;
     if (!(turns <= limit))
         return gd_error_set(err, GD_EINPUT, "", 0, 0, "t_end",
@@ -419,6 +423,41 @@ static gd_status check_step_count(const gd_transient *tr, const gd_transient_opt
                             "%.3g s at %.4g rad/s is %.3g revolutions, each needing steps: over "
                             "the step limit of %.0f",
                             span, wmax, turns, limit);
+    return GD_OK;
+}
+
+/* What a run-up cannot do (GD_EINPUT naming the option): the LTI method (one constant
+ * speed), a reduced problem (its modes and rates at the reference speed), a prescribed
+ * speed or angle table (an absolute motion that ignores the profile), a rolling-bearing
+ * law (its cage angle is its spin times t). */
+static gd_status profile_refusals(const gd_transient *tr, const gd_transient_options *opt,
+                                  gd_error *err)
+{
+    gd_status st = gd_speed_profile_check(opt->profile, err);
+    if (st) return st;
+    if (opt->method == GD_TR_LTI)
+        return gd_error_set(err, GD_EINPUT, "", 0, 0, "method", "use auto, bdf, adams or galpha",
+                            "the linear time-invariant method needs a constant speed, not a "
+                            "speed profile");
+    if (tr->red)
+        return gd_error_set(err, GD_EINPUT, "", 0, 0, "reduce",
+                            "integrate the full model for a run-up",
+                            "a reduced model keeps its modes at the reference speed: no speed "
+                            "profile");
+    for (int k = 0; k < tr->np; k++)
+        if (tr->pres[k].law.kind == GD_PRESCRIBED_SPEED ||
+            tr->pres[k].law.kind == GD_PRESCRIBED_TABLE)
+            return gd_error_set(err, GD_EINPUT, "", 0, 0, "prescribed",
+                                "prescribe a harmonic motion, or give the speed as the profile",
+                                "a prescribed speed or angle table fixes the absolute motion: "
+                                "it cannot follow a speed profile");
+    for (int i = 0; i < tr->nlaw; i++)
+        if (tr->law[i].type == &gd_law_rolling_bearing)
+            return gd_error_set(err, GD_EINPUT, "", 0, 0, "laws",
+                                "run at constant speeds (--sweep-speeds) instead",
+                                "law '%s' (rolling_bearing) turns its cage at a constant speed: "
+                                "not with a speed profile",
+                                tr->law[i].name);
     return GD_OK;
 }
 
@@ -432,7 +471,17 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
      * sample times are asked), else CVODE BDF */
     gd_transient_options resolved;
     char why[160] = "";
-    if (opt->method == GD_TR_AUTO) {
+    if (opt->profile) {
+        gd_status pst = profile_refusals(tr, opt, err);
+        if (pst) return pst;
+    }
+    if (opt->method == GD_TR_AUTO && opt->profile) {
+        /* the LTI method's harmonic forcing needs one constant speed */
+        resolved = *opt;
+        snprintf(why, sizeof why, "speed profile: the speed varies, not LTI");
+        resolved.method = GD_TR_BDF;
+        opt = &resolved;
+    } else if (opt->method == GD_TR_AUTO) {
         resolved = *opt;
         if (opt->nsample_times > 0) snprintf(why, sizeof why, "Poincare sample times");
         resolved.method = opt->nsample_times == 0 && gd_tr_lti_reason(tr, why, sizeof why)
@@ -515,6 +564,11 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
     void *mem = NULL;
     clock_t c0 = clock();
     tr->msg[0] = 0;
+    if (gd_tr_profile_set(tr, opt->profile)) {
+        st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "",
+                          "out of memory (speed profile, speed-table bearings)");
+        goto done;
+    }
     if (SUNContext_Create(NULL, &ctx)) {
         st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "SUNDIALS context");
         goto done;
@@ -608,6 +662,11 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
     if ((st = advance(tr, &w, opt, &t, opt->t_end, err))) goto done;
 finish:
     method_note(opt, is_auto ? why : NULL, dt, res);
+    if (opt->profile && tr->sys->has_speed_dependent) {
+        size_t k = strlen(res->method_note);
+        snprintf(res->method_note + k, sizeof res->method_note - k,
+                 "; speed-table bearings at W(t) (linear between %d speeds)", GD_TR_SD_SPEEDS);
+    }
     for (int i = 0; i < tr->nmesh; i++)
         gd_tr_contact_account(&res->contacts[i], tr->mesh[i].state, track[i].since, opt->t_end,
                               from);
@@ -617,6 +676,7 @@ finish:
         stats_of(res->values + (size_t)r * nout, nout, &res->stats[r]);
     if (mem) add_counters(mem, res);
 done:
+    gd_tr_profile_set(tr, NULL);
     res->cpu_seconds = (double)(clock() - c0) / CLOCKS_PER_SEC;
     if (mem) CVodeFree(&mem);
     if (LS) SUNLinSolFree(LS);

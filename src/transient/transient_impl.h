@@ -11,24 +11,29 @@ typedef struct tr_mesh {
     gd_tr_mesh spec;
     int model_mesh;
     gd_mesh_vector a;
-    double k_lin, c_lin; /* linear terms the system assembled, taken out again */
-    int drv_dof;         /* driver's rz DOF, -1 if not active */
-    double drv_rate;     /* driver's nominal speed about +z (ratio W) */
-    int sense;           /* +1 driver turns about +z */
-    gd_contact state;    /* current contact state (frozen between events) */
-    double hold;         /* contact homotopy (gd_transient_hold_drive); 0 in integration */
+    double k_lin, c_lin;          /* linear terms the system assembled, taken out again */
+    int drv_dof;                  /* driver's rz DOF, -1 if not active */
+    double drv_rate;              /* driver's nominal speed about +z (ratio W) */
+    int sense;                    /* +1 driver turns about +z */
+    gd_contact state;             /* current contact state (frozen between events) */
+    double hold;                  /* contact homotopy (gd_transient_hold_drive); 0 in integration */
+    double drv_ratio;             /* driver's speed ratio (a run-up: angle ratio phi) */
+    const gd_speed_profile *prof; /* a run-up's profile while it runs, else NULL */
+    const double *prof_cum;
 } tr_mesh;
 
 typedef struct tr_unb {
     int dx, dy;
-    double force; /* U omega^2 */
-    double omega; /* signed shaft speed */
-    double phase; /* angle of the heavy spot at t = 0 from +x */
+    double force;                 /* U omega^2 */
+    double omega;                 /* signed shaft speed */
+    double phase;                 /* angle of the heavy spot at t = 0 from +x */
+    double ratio, amount, phase0; /* shaft's speed ratio, U (kg m), model phase (run-up) */
 } tr_unb;
 
 typedef struct tr_cam {
     gd_tr_cam spec;
-    double rate; /* nominal speed about +z */
+    double rate;  /* nominal speed about +z */
+    double ratio; /* speed ratio of its shaft (run-up) */
     int sense;
     int slot; /* index among the distinct free cam DOFs, -1 if prescribed */
 } tr_cam;
@@ -91,7 +96,38 @@ struct gd_transient {
     gd_tr_reduction *red; /* NULL: the physical DOFs */
     int nterm; /* local force terms (local_forces.c), built on first use; -1 unsupported */
     gd_tr_term *term;
+    /* run-up (speed_profile.c): the profile while a run uses it, else NULL */
+    const gd_speed_profile *prof;
+    double *prof_cum;  /* a table's speed integral at its rows */
+    int prof_sign;     /* sense of the profile's speeds */
+    double *ratio;     /* n: speed ratio of each rz DOF's shaft (0 other DOFs) */
+    int nunb_all;      /* unbalances on a turning shaft (nunb: 0 at speed 0) */
+    cs *Gy;            /* gyroscopic matrix per unit reference speed (full DOFs) */
+    double *law_ratio; /* nlaw x (GD_LAW_MAX_DOFS + 2): ratios of the laws' rates, spins */
+    /* a run-up with speed-table bearings: K(W_j) - K(W), C(W_j) - C(W) at nsd speeds
+     * W_j evenly over the profile's range (interpolated linearly at W(t)) */
+    int nsd;
+    double sd_w0, sd_dw;
+    cs **sd_K, **sd_C;
 };
+
+/* ---- speed_profile.c ---- */
+/* Uses profile p (NULL: none) for the next run: its table's integral at the rows. 0 ok,
+ * 1 out of memory. */
+int gd_tr_profile_set(gd_transient *tr, const gd_speed_profile *p);
+/* The profile's angle, speed and acceleration at t (from cum when not NULL). */
+void gd_tr_profile_eval(const gd_speed_profile *p, const double *cum, double t, double *angle,
+                        double *speed, double *accel);
+/* Speed-table bearings of a run-up: the differences of K and C from the reference speed
+ * at GD_TR_SD_SPEEDS speeds over the profile's range (none without speed tables); freed
+ * by gd_tr_profile_set(tr, NULL). 0 ok, 1 out of memory or a matrix failure. */
+#define GD_TR_SD_SPEEDS 65
+int gd_tr_profile_bearings(gd_transient *tr);
+/* r -= (K(W) - K(W_ref)) q + (C(W) - C(W_ref)) v, interpolated at speed W. */
+void gd_tr_profile_bearing_forces(const gd_transient *tr, double w, const double *q,
+                                  const double *v, double *r);
+/* The laws' rates (rate t = ratio phi) and spins (ratio W) at t of a run-up. */
+void gd_tr_profile_laws(gd_transient *tr, double t, double phi, double w);
 
 /* Fills q, v, acc (length n) at time t from the state y: free DOFs from y, prescribed
  * ones from their laws (acc is zero on free DOFs). */

@@ -38,6 +38,8 @@ g periodic examples/helical_two_stage.yaml --speeds 2000rpm:4000rpm:21 --harmoni
   --no-stability --record mesh:pair1:force --plot "$tmp/gearbox_periodic.html"
 g transient tests/plot/runup_pair_te.yaml --sweep-speeds 6000:9000rpm:16 --poincare shaft_a \
   --points 32 --settle 30rev --waterfall gear_a.x --quiet --plot "$tmp/waterfall.html"
+g transient tests/plot/runup_pair_te.yaml --speed-ramp 6000:9000rpm --duration 2s --revs-per-block 8 \
+  --waterfall gear_a.x --method galpha --step 5e-5 --quiet --plot "$tmp/ramp.html"
 node tests/plot/figures.mjs \
   "$tmp/rig_modal.html:$F/rig_modal.png:0" \
   "$tmp/rig_modal.html:$F/rig_modal_3d_orbits.png:~whirl of the mode:3" \
@@ -61,5 +63,7 @@ node tests/plot/figures.mjs \
   "$tmp/gearbox_periodic.html:$F/gearbox_periodic_orders.png:1" \
   "$tmp/waterfall.html:$F/runup_waterfall_cascade.png:0" \
   "$tmp/waterfall.html:$F/runup_waterfall_map.png:1" \
-  "$tmp/waterfall.html:$F/runup_order_cuts.png:2"
+  "$tmp/waterfall.html:$F/runup_order_cuts.png:2" \
+  "$tmp/ramp.html:$F/runup_ramp_cascade.png:0" "$tmp/ramp.html:$F/runup_ramp_order_map.png:2" \
+  "$tmp/ramp.html:$F/runup_ramp_order_cuts.png:3"
 ls -l "$F"/*.png | awk '{print $5, $9}'

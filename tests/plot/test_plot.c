@@ -443,8 +443,9 @@ TEST(report_has_every_section)
     run(&d, &k, "mesh-stiffness tests/plot/study.yaml --json");
     cJSON *j = cJSON_Parse(k.out);
     if (s.ctx && j) {
-        /* model, modes, Campbell, FRF, unbalance (one harmonic), mesh stiffness */
-        CHECK(count(&s, "//s:g[@class='section']") == 6);
+        /* model, modes, Campbell, FRF, unbalance (one harmonic), the run-up's note (not
+         * asked for: how to ask), mesh stiffness */
+        CHECK(count(&s, "//s:g[@class='section']") == 7);
         CHECK(count(&s,
                     "//s:g[@class='panel'][@data-title='the model to scale (side view)']/"
                     "s:g[@class='trace'][@data-name!='nodes']") == 3); /* shafts, gears, bearings */
@@ -1077,6 +1078,43 @@ TEST(waterfall_plot_matches_json)
     scratch_close(&d);
 }
 
+/* The order-tracked waterfall of a speed ramp (transient --speed-ramp --waterfall): the
+ * order cuts are the --json amplitudes, the order map's 1x line stands at order 1 over
+ * the blocks' speeds, one cascade curve per block. */
+TEST(ramp_waterfall_plot_matches_json)
+{
+    scratch d;
+    REQUIRE(scratch_open(&d));
+    plot_run pr;
+    plot_start(gd_ts_, &pr, &d,
+               "transient tests/transient/runup_rotor.yaml --speed-ramp 5000:8000rpm --duration "
+               "0.5s --record gear48.x --waterfall gear48.x --revs-per-block 8 --method galpha "
+               "--step 1e-4 --quiet --json --plot %s");
+    const cJSON *wf = pr.json ? cJSON_GetObjectItem(pr.json, "waterfall") : NULL;
+    svg *s = &pr.s;
+    CHECK(wf != NULL);
+    if (wf && s->ctx) {
+        const cJSON *spectra = cJSON_GetObjectItem(wf, "spectra");
+        const cJSON *o1 = cJSON_GetArrayItem(cJSON_GetObjectItem(wf, "orders"), 0);
+        int ns = cJSON_GetArraySize(spectra);
+        CHECK(ns > 5);
+        static double x[256], y[256];
+        int n = trace_numbers(s, TRACE("gear48.x: order cuts", "1x driving"), "data-y", y, 256);
+        CHECK(n == ns);
+        for (int k = 0; k < n && k < ns; k++)
+            CHECK(same(y[k], jat(cJSON_GetObjectItem(o1, "amplitude"), k)));
+        n = trace_numbers(s, TRACE("gear48.x: order map", "1x driving"), "data-x", x, 4);
+        CHECK(n == 2 && x[0] == 1 && x[1] == 1);
+        CHECK(trace_numbers(s, TRACE("gear48.x: order map", "1x driving"), "data-y", y, 4) == 2);
+        CHECK(same(y[0], jnum(cJSON_GetArrayItem(spectra, 0), "speed_rpm")));
+        CHECK(same(y[1], jnum(cJSON_GetArrayItem(spectra, ns - 1), "speed_rpm")));
+        CHECK(count(s, "//s:g[@class='panel'][starts-with(@data-title,'gear48.x: cascade')]/"
+                       "s:g[@class='trace'][contains(@data-name,' rpm')]") == ns);
+    }
+    plot_end(&pr);
+    scratch_close(&d);
+}
+
 /* The periodic plot names the harmonics by the orders they are: on the two-stage
  * helical gearbox the period is the common period of both meshes (mesh 1 is harmonic 36,
  * mesh 2 harmonic 11), so the curves are the two mesh orders and 2 x, 3 x
@@ -1138,4 +1176,5 @@ RUN_TESTS(T(campbell_plot_matches_json), T(frf_plot_matches_json), T(unbalance_p
           T(bad_plot_requests_write_nothing), T(png_and_pdf_of_every_plot),
           T(pure_tilt_mode_drawn_alone), T(campbell_pairs_stay_pairs),
           T(campbell_limit_labels_margins), T(units_follow_the_command_line), T(frf_peaks_located),
-          T(waterfall_plot_matches_json), T(periodic_orders_named))
+          T(waterfall_plot_matches_json), T(ramp_waterfall_plot_matches_json),
+          T(periodic_orders_named))
