@@ -178,6 +178,46 @@ def transient(r):
     return _layout(fig, "time history")
 
 
+def waterfall(w, unit=""):
+    """A run-up waterfall: the spectra as a colour map over speed and frequency with the
+    order lines (top), and the order cuts, each order's amplitude against speed
+    (bottom); the C plot's two main panels (docs/plots.md)."""
+    go, make_subplots = _go()
+    fig = make_subplots(rows=2, cols=1, vertical_spacing=0.12,
+                        subplot_titles=("spectra over speed", "order cuts"))
+    rpm = np.asarray(w.speeds_rpm)
+    fmax = max((float(f[-1]) for f in w.frequencies if len(f)), default=0.0)
+    if len(w.orders) and len(rpm):  # up to 3x the highest order line, where it is drawn
+        fmax = min(fmax, 3.0 * float(np.max(np.abs(w.orders))) * float(np.max(rpm)) / 60.0)
+    grid = np.linspace(0.0, fmax, 400) if fmax > 0 else np.zeros(1)
+    z = np.array([np.interp(grid, f, a, left=np.nan, right=np.nan) if len(f) else
+                  np.full(grid.shape, np.nan) for f, a in zip(w.frequencies, w.amplitudes)])
+    # in dB of the largest amplitude, 80 dB deep: the order lines and the resonances
+    # show together (a linear scale shows only the highest peak)
+    top = np.nanmax(z) if np.isfinite(z).any() else 1.0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        db = np.maximum(20.0 * np.log10(z / top), -80.0)
+    fig.add_heatmap(x=rpm, y=grid, z=db.T, customdata=z.T, colorscale="Viridis", zmin=-80,
+                    zmax=0, row=1, col=1,
+                    colorbar={"title": "dB re %.3g %s" % (top, unit), "len": 0.45,
+                              "y": 0.78},
+                    hovertemplate="%{x:.1f} rpm, %{y:.1f} Hz: %{customdata:.3g} "
+                    + unit + " (%{z:.1f} dB)<extra></extra>")
+    for k, label in enumerate(w.order_labels):
+        f_line = w.orders[k] * rpm / 60.0
+        fig.add_scatter(x=rpm, y=f_line, mode="lines", line={"color": "white", "width": 1},
+                        name=label, showlegend=False, row=1, col=1)
+        fig.add_scatter(x=rpm, y=w.order_amplitude[k], mode="lines+markers", name=label,
+                        row=2, col=1)
+    fig.update_xaxes(title="reference speed (rpm)", row=2, col=1)
+    fig.update_yaxes(title="frequency (Hz)", range=[0, fmax], row=1, col=1)
+    fig.update_yaxes(title="amplitude" + (" (%s)" % unit if unit else ""), row=2, col=1)
+    fig = _layout(fig, "run-up waterfall (%g turns a block)" % w.revs_per_block)
+    # the legend (the orders) under the plots, clear of the colour bar
+    fig.update_layout(legend={"orientation": "h", "y": -0.12, "x": 0})
+    return fig
+
+
 def periodic(r):
     go, _ = _go()
     fig = go.Figure()

@@ -239,8 +239,9 @@ class Waterfall:
     Hz and the record's unit), the orders of campbell (orders, order_labels) and the
     order cuts order_amplitude (norders x nspeeds, NaN above the spectra's reach)."""
 
-    def __init__(self, w):
+    def __init__(self, w, unit=""):
         n, no = int(w.nspeeds), int(w.norders)
+        self.unit = unit  # the tracked record's unit
         self.speeds = np.array([w.speeds[i] for i in range(n)])
         self.speeds_rpm = self.speeds * 30 / math.pi
         self.revs_per_block = float(w.revs_per_block)
@@ -252,6 +253,18 @@ class Waterfall:
                             for i in range(n)]
         self.amplitudes = [np.array([w.spectra[i].amplitude[k]
                                      for k in range(w.spectra[i].n)]) for i in range(n)]
+
+    def plot(self):
+        """The waterfall as a plotly Figure: spectra over speed with the order lines, and
+        the order cuts (geardyn/figures.py)."""
+        from . import figures
+        return figures.waterfall(self, self.unit)
+
+    def _repr_html_(self):
+        try:
+            return self.plot().to_html(full_html=False, include_plotlyjs=True)
+        except ImportError:
+            return None
 
     def __repr__(self):
         return "Waterfall(%d blocks of %g turns, %.6g-%.6g rpm, orders %s)" % (
@@ -273,7 +286,7 @@ def _order_track(system, res, prof, index, revs_per_block, samples_per_rev):
     check(lib.gd_waterfall_order_track(system._handle, res._owner.t,
                                        res._owner.values + index * n, ang, n, o, out, err), err)
     w = ffi.gc(out[0], lib.gd_waterfall_free)
-    return Waterfall(w)
+    return Waterfall(w, res.units[index] if index < len(res.units) else "")
 
 
 def transient(system, duration=None, revolutions=None, speed=None, records=None,

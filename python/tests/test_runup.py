@@ -31,6 +31,15 @@ def test_ramp_waterfall_equals_the_cli():
     # 3000 rpm/s it comes about 3 % late (docs/transient.md, "Resolution")
     pk = w.speeds_rpm[np.argmax(w.order_amplitude[0])]
     assert 6649.8 < pk < 1.05 * 6649.8
+    # the figure draws those numbers: the order cuts are the waterfall's, the unit the
+    # record's
+    fig = w.plot()
+    cuts = [tr for tr in fig.data if tr.type == "scatter" and tr.mode == "lines+markers"]
+    assert [tr.name for tr in cuts] == w.order_labels
+    assert np.array_equal(np.asarray(cuts[0].y, dtype=float), w.order_amplitude[0],
+                          equal_nan=True)
+    assert np.array_equal(np.asarray(cuts[0].x, dtype=float), w.speeds_rpm)
+    assert w.unit == "m" and "(m)" in fig.layout.yaxis2.title.text
 
 
 def test_table_gives_the_ramp():
