@@ -19,6 +19,10 @@ typedef struct stage {
     gd_system *s;
     gd_transient_model *tm;
     gd_transient *tr;
+    gd_tr_load *loads;       /* load_frequency: the loads at this value (owned) */
+    gd_transient_spec fspec; /* load_frequency: the caller's spec with them */
+    const gd_system *sys;    /* the problem of this stage (either kind) */
+    const gd_transient_spec *spec;
     double w; /* HB frequency */
     int bad;  /* the problem could not be made: reason in msg */
     char msg[320];

@@ -187,8 +187,8 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
         int order = 0;
         c.H = 1 << 30; /* the stage's own check of H is not wanted here */
         if (param && !gd_per_make_stage(&c, &st0, values[0])) {
-            s0 = st0.s;
-            sp0 = &st0.tm->spec;
+            s0 = st0.sys;
+            sp0 = st0.spec;
         } else if (param) {
             s0 = NULL;
         }
@@ -223,7 +223,7 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
          * samples Newton cycles near grazing and the arclength chatters (the backlash
          * test with auto H = 7 at 32 samples: 1500 steps stuck at the 555 rad/s fold; at
          * 128: the whole branch, four folds) */
-        const gd_transient_spec *spc = param ? (st0.tm ? &st0.tm->spec : NULL) : spec;
+        const gd_transient_spec *spc = param ? st0.spec : spec;
         for (int i = 0; spc && i < spc->nmeshes; i++)
             if (spc->meshes[i].backlash) c.min_samples = 128;
         gd_per_stage_clear(&st0);
