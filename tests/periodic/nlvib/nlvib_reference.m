@@ -14,7 +14,7 @@ addpath(fullfile(nlvib, 'SRC', 'MechanicalSystems'));
 addpath(fullfile(nlvib, 'EXAMPLES', '01_Duffing'));
 warning('off', 'all');
 
-function X = newton_fixed(res, X, Om)
+function [X, ok] = newton_fixed(res, X, Om)
   % Newton on R(X, Om) = 0 at fixed Om; res returns [R, dR/dX] (dR over X only)
   for it = 1:60
     [R, J] = res(X, Om);
@@ -23,7 +23,7 @@ function X = newton_fixed(res, X, Om)
     if norm(dx) <= 1e-14 * max(1, norm(X)), break; end
   end
   [R, ~] = res(X, Om);
-  if norm(R) > 1e-11 * max(1, norm(X)), error('no convergence at %g', Om); end
+  ok = norm(R) <= 1e-11 * max(1, norm(X));
 end
 
 function [R, J] = fd_res(fun, X, Om)
@@ -96,8 +96,9 @@ function write_points(file, title, Xb, res, oms, folds)
         if i > 1 && Om(i) == oms(m), continue; end
         s = (oms(m) - Om(i)) / (Om(i + 1) - Om(i));
         X0 = (1 - s) * Xb(1:end-1, i) + s * Xb(1:end-1, i + 1);
-        X = newton_fixed(res, X0, oms(m));
+        [X, ok] = newton_fixed(res, X0, oms(m));
         cr = cr + 1;
+        if ~ok, fprintf(f, '# crossing %d of %.17g: Newton did not converge\n', cr, oms(m)); continue; end
         fprintf(f, 'point %d %.17g', cr, oms(m)); fprintf(f, ' %.17g', X); fprintf(f, '\n');
       end
     end
@@ -152,6 +153,8 @@ y0(length(Q1) + (1:2 * length(Q1))) = [real(Q1); -imag(Q1)];
 fun3 = @(X) HB_residual(X, osc, H, N, 'FRF');
 X3 = solve_and_continue(y0, fun3, Om_s, Om_e, .0085, struct('Dscale', [ones(size(y0)); Om_s]), [], solopt);
 res3 = @(X, Om) an_res(fun3, X, Om);
+printf('example 03: %d points, Om from %.6f to %.6f, last %.6f\n', size(X3, 2), min(X3(end, :)), max(X3(end, :)), X3(end, end));
+save('-ascii', fullfile(outdir, 'ex03_branch.txt'), 'X3');
 F3 = find_folds(fun3, X3);
 write_points(fullfile(outdir, 'nlvib_ex03_ref.txt'), ...
   'NLvib example 03 (masses 1 1, springs ki [0 1 1], dampers 0.03 ki, unilateral spring 100 gap 1 on DOF 1, force 0.1 on DOF 2), H = 21, N = 1024, Om 0.8 -> 0.5', ...
