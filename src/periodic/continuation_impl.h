@@ -57,7 +57,9 @@ typedef struct ctx {
     int want_H;    /* adaptive H: the branch's H to follow */
     double v0, v1; /* the requested range of this direction (progress) */
     int ndir;
-    int min_samples; /* AFT samples at least (non-smooth laws: 128) */
+    int min_samples; /* AFT samples at least (backlash: 128, non-smooth laws: 1024) */
+    int corners;     /* a non-smooth law: a step whose turn does not shrink when halved is
+                        a corner of the sampled branch, taken (continuation.c) */
 } ctx;
 
 typedef struct pstate {

@@ -11,7 +11,7 @@
 
 TEST(registry_tables_are_valid)
 {
-    CHECK(gd_nlaw_types == 6);
+    CHECK(gd_nlaw_types == 7);
     for (int i = 0; i < gd_nlaw_types; i++) {
         const gd_law_type *t = gd_law_types[i];
         gd_error err;

@@ -173,4 +173,61 @@ TEST(unilateral_spring_equals_nlvib_example_03)
     CHECK_ABS(w, 0.65344010156891796, 1e-8);
 }
 
-RUN_TESTS(T(duffing_equals_nlvib_example_01), T(unilateral_spring_equals_nlvib_example_03))
+/* The whole curve of example 03 with the defaults for a non-smooth law (1024 samples)
+ * at NLvib's H = 21: every point converges, in branch order (the frequency turns only at
+ * the two folds), and exactly two folds: the lower one and the resonance peak, NLvib's
+ * 0.7556642410 to 1e-4 (measured 0.755642506: the peak is a corner of the sampled branch,
+ * reported at its turning point). */
+TEST(nlvib_example_03_whole_curve)
+{
+    fx f;
+    REQUIRE(load(&f, GD_SOURCE_DIR "/examples/nlvib_ex03.yaml", NULL));
+    gd_transient_model *tm = NULL;
+    gd_error err;
+    REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
+    gd_periodic_options opt;
+    gd_periodic_options_init(&opt);
+    opt.harmonics = 21;
+    opt.estimate = 0;
+    opt.stability = 0;
+    double vals[31];
+    for (int i = 0; i < 31; i++)
+        vals[i] = 0.8 - 0.01 * i;
+    gd_periodic_param prm = {.name = "load frequency", .load_frequency = 1};
+    gd_periodic_result *r = NULL;
+    REQUIRE(gd_periodic_run(f.s, &tm->spec, &prm, vals, 31, &opt, NULL, 0, &r, &err) == GD_OK);
+    int bad = 0, turns = 0;
+    double last = 0.0; /* the last non-zero change of the frequency between points */
+    for (int i = 0; i < r->npoints; i++) {
+        bad += !r->points[i].converged;
+        double d = i ? r->points[i].parameter - r->points[i - 1].parameter : 0.0;
+        if (d == 0.0) continue; /* a point at both sides of a fold */
+        turns += d * last < 0;
+        last = d;
+    }
+    int folds = 0;
+    double peak = NAN, low = NAN;
+    for (int b = 0; b < r->nbifurcations; b++)
+        if (r->bifurcations[b].type == GD_BIF_FOLD) {
+            folds++;
+            double w = r->bifurcations[b].parameter;
+            if (w > 0.7)
+                peak = w;
+            else
+                low = w;
+        }
+    printf("  %d points (%d not converged), %d turns, %d folds: %.9f, %.9f; %d steps\n", r->npoints,
+           bad, turns, folds, low, peak, r->steps);
+    CHECK(bad == 0);
+    CHECK(r->npoints == 31 + 2 * 10); /* 0.66 .. 0.75 three times */
+    CHECK(turns == 2);
+    CHECK(folds == 2);
+    CHECK_ABS(low, 0.65344010156891796, 1e-8);
+    CHECK_ABS(peak, 0.75566424102782437, 1e-4);
+    gd_periodic_result_free(r);
+    gd_transient_model_free(tm);
+    fx_free(&f);
+}
+
+RUN_TESTS(T(duffing_equals_nlvib_example_01), T(unilateral_spring_equals_nlvib_example_03),
+          T(nlvib_example_03_whole_curve))
