@@ -142,7 +142,7 @@ int gd_per_run_branch(ctx *c, const double *vals, int nv)
     int have_mu = stable >= 0, fold_prev = 0;
     /* fold confirmation: the parameter at the point before X (have_p), a fold located
      * on the last step that waits for the next chord (pend) */
-    double lamp = lam, pend_lf = 0.0, pend_c = 0.0;
+    double lamp = lam, pend_lf = 0.0;
     int have_p = 0, pend = 0;
     double tt_rej = 2.0; /* the turn of the last step refused from X (2: none) */
     if (have_mu) gd_per_categorise(c, mre, mim, out, rho);
@@ -181,11 +181,18 @@ int gd_per_run_branch(ctx *c, const double *vals, int nv)
             }
             tt += t[n] * t1[n];
             tc += t[n] * (l1 - lam) / c->sl;
-            if (getenv("GD_DEBUG_CONT"))
-                fprintf(
-                    stderr,
-                    "step %d lam %.9f ds %.3g -> l1 %.9f it %d tt %.3f tc %.3g tn %.3f t1n %.3f\n",
-                    step, lam, ds, l1, it, tt, tc, t[n], t1[n]);
+            /* with a non-smooth law, a corrector that went far beyond the step (the
+             * chord more than 3 ds, in the scaled variables) jumped to another part of
+             * the branch: NLvib's example 03 at H = 3 went from 0.6537 to 0.9146 in 26
+             * iterations on a step of 0.053 */
+            double cc = 0.0;
+            for (int i = 0; i < n; i++)
+                cc += (X1[i] - X[i]) * (X1[i] - X[i]);
+            cc = sqrt(cc / (c->sx * c->sx) + (l1 - lam) * (l1 - lam) / (c->sl * c->sl));
+            if (c->corners && cc > 3.0 * ds && ds > 16 * dsmin) {
+                ds *= 0.5;
+                continue;
+            }
             /* a corner, not a curve: the turn did not shrink with the halved step (a
              * contact switching at one sample makes the sampled branch piecewise smooth:
              * NLvib's example 03 at 1024 samples turns by 27 deg at every step size near
@@ -243,34 +250,44 @@ int gd_per_run_branch(ctx *c, const double *vals, int nv)
             }
         }
         /* bifurcations between the two steps */
-        /* a fold where the tangent's parameter component changes sign (located on the
-         * branch by gd_per_locate_fold); with a non-smooth law (corners) only if
-         * confirmed by the parameter itself turning at one of the two points (the
-         * chords before and after it move it in opposite directions; the turn at X1 is
-         * known one step later). Near a resonance peak of such a law the component is
-         * small and flips sign at the kinks of the sampled residual while the branch
-         * goes on: NLvib's example 03 at 2048 samples has 12 sign changes near its
-         * 0.7556 fold and one turn. (Backlash meshes keep the plain rule and the
-         * zigzag merge below: their tested folds are unchanged.) */
+        /* a fold where the tangent's parameter component changes sign, located on the
+         * branch by gd_per_locate_fold (not an extremum there: no fold). With a
+         * non-smooth law (corners) the tangent is not trusted for this: the AFT Jacobian
+         * misses the samples that switch contact along the branch, and near a resonance
+         * peak its parameter component is small and flips at kinks while the branch goes
+         * on, or keeps its sign where the branch turns (NLvib's example 03: 12 flips and
+         * one turn at 2048 samples; at auto H a turn at 0.75560 with the component at
+         * +0.007 on both sides). There a fold is where the parameter itself turns (the
+         * chords before and after X move it in opposite directions), at the located
+         * value of a tangent flip next to X when that lies beyond X, else at X.
+         * (Backlash meshes keep the tangent rule and the zigzag merge: their tested
+         * folds are unchanged.) */
         int fold = 0;
-        {
+        if (c->corners) {
             const double cl = l1 - lam, cp = have_p ? lam - lamp : 0.0;
-            if (pend && pend_c * cl < 0) {
+            const double tiny = 1e-13 * c->sl;
+            const int flip = t[n] * t1[n] < 0;
+            if (fabs(cl) > tiny && fabs(cp) > tiny && cp * cl < 0) {
+                /* the parameter turned at X: a maximum when it rose to X */
+                double lf = lam, lg = NAN;
+                if (pend)
+                    lg = pend_lf; /* the tangent flipped between the point before and X */
+                else if (flip && gd_per_locate_fold(c, X, lam, t, X1, l1, t1, ds, &lg) == 1)
+                    lg = NAN;
+                if (cp > 0 ? lg > lam : lg < lam) lf = lg;
                 fold = 1;
-                if (gd_per_add_bif(c, GD_BIF_FOLD, pend_lf, NAN, NAN)) goto done;
+                if (gd_per_add_bif(c, GD_BIF_FOLD, lf, NAN, NAN)) goto done;
+                pend = 0;
+            } else {
+                double lg;
+                pend = flip && gd_per_locate_fold(c, X, lam, t, X1, l1, t1, ds, &lg) != 1;
+                if (pend) pend_lf = lg;
             }
-            pend = 0;
-            if (t[n] * t1[n] < 0) {
-                double lf;
-                int lr = gd_per_locate_fold(c, X, lam, t, X1, l1, t1, ds, &lf);
-                if (lr != 1 && (!c->corners || cp * cl < 0)) { /* turned at X */
-                    fold = 1;
-                    if (gd_per_add_bif(c, GD_BIF_FOLD, lf, NAN, NAN)) goto done;
-                } else if (lr != 1) { /* at X1, if the next chord turns back */
-                    pend = 1;
-                    pend_lf = lf;
-                    pend_c = cl;
-                }
+        } else if (t[n] * t1[n] < 0) {
+            double lf;
+            if (gd_per_locate_fold(c, X, lam, t, X1, l1, t1, ds, &lf) != 1) {
+                fold = 1;
+                if (gd_per_add_bif(c, GD_BIF_FOLD, lf, NAN, NAN)) goto done;
             }
         }
         if (have_mu && stable1 >= 0) {

@@ -176,7 +176,7 @@ TEST(unilateral_spring_equals_nlvib_example_03)
 /* The whole curve of example 03 with the defaults for a non-smooth law (1024 samples)
  * at NLvib's H = 21: every point converges, in branch order (the frequency turns only at
  * the two folds), and exactly two folds: the lower one and the resonance peak, NLvib's
- * 0.7556642410 to 1e-4 (measured 0.755642506: the peak is a corner of the sampled branch,
+ * 0.7556642410 to 1e-4 (measured 0.755663813: the peak is a corner of the sampled branch,
  * reported at its turning point). */
 TEST(nlvib_example_03_whole_curve)
 {
@@ -229,5 +229,49 @@ TEST(nlvib_example_03_whole_curve)
     fx_free(&f);
 }
 
+/* The CLI's defaults (adaptive H from the load's order, the truncation estimate): the
+ * whole curve converges and has the same two folds (the peak at the branch's own H, 15 to
+ * 31: measured 0.755601769, within 1e-4 of NLvib's H = 21 value). */
+TEST(nlvib_example_03_default_options)
+{
+    fx f;
+    REQUIRE(load(&f, GD_SOURCE_DIR "/examples/nlvib_ex03.yaml", NULL));
+    gd_transient_model *tm = NULL;
+    gd_error err;
+    REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
+    gd_periodic_options opt;
+    gd_periodic_options_init(&opt);
+    opt.adaptive = 1;
+    opt.stability = 0;
+    double vals[31];
+    for (int i = 0; i < 31; i++)
+        vals[i] = 0.8 - 0.01 * i;
+    gd_periodic_param prm = {.name = "load frequency", .load_frequency = 1};
+    gd_periodic_result *r = NULL;
+    REQUIRE(gd_periodic_run(f.s, &tm->spec, &prm, vals, 31, &opt, NULL, 0, &r, &err) == GD_OK);
+    int bad = 0, folds = 0;
+    double peak = NAN, low = NAN;
+    for (int i = 0; i < r->npoints; i++)
+        bad += !r->points[i].converged;
+    for (int b = 0; b < r->nbifurcations; b++)
+        if (r->bifurcations[b].type == GD_BIF_FOLD) {
+            folds++;
+            double w = r->bifurcations[b].parameter;
+            if (w > 0.7)
+                peak = w;
+            else
+                low = w;
+        }
+    printf("  %d points (%d not converged), %d folds: %.9f, %.9f; %d steps\n", r->npoints, bad,
+           folds, low, peak, r->steps);
+    CHECK(bad == 0 && r->npoints == 51);
+    CHECK(folds == 2);
+    CHECK_ABS(low, 0.65344010156891796, 1e-8);
+    CHECK_ABS(peak, 0.75566424102782437, 1e-4);
+    gd_periodic_result_free(r);
+    gd_transient_model_free(tm);
+    fx_free(&f);
+}
+
 RUN_TESTS(T(duffing_equals_nlvib_example_01), T(unilateral_spring_equals_nlvib_example_03),
-          T(nlvib_example_03_whole_curve))
+          T(nlvib_example_03_whole_curve), T(nlvib_example_03_default_options))
