@@ -19,6 +19,7 @@ static const char USAGE[] =
     "usage: geardyn periodic MODEL.yaml --speeds FROM:TO:COUNT [--harmonics H|auto]\n"
     "                        [--subharmonic N] [--record WHAT]... [--parameter "
     "PATH=FROM:TO:COUNT]\n"
+    "                        [--frequency FROM:TO:COUNT]\n"
     "                        [--both-directions] [--sequential] [--no-stability] [--tol TOL]\n"
     "                        [--harmonic-tol TOL] [--max-harmonics H] [--no-estimate]\n"
     "                        [--samples N] [--coupling LEVEL] [--set PATH=VALUE]... [--json]\n"
@@ -28,7 +29,9 @@ static const char USAGE[] =
     "Periodic steady state by harmonic balance (alternating frequency-time on every\n"
     "nonlinear and time-varying law of `transient`), continued by pseudo-arclength over\n"
     "the speed (through folds: a hysteresis loop gives several points per speed), with\n"
-    "Floquet multipliers and the bifurcations found on the way.\n\n"
+    "Floquet multipliers and the bifurcations found on the way.\n\n";
+/* the options (one literal would pass the 4095 characters C99 guarantees) */
+static const char USAGE_OPTIONS[] =
     "  --speeds FROM:TO:COUNT  reference speeds, units allowed (required); each requested\n"
     "                    speed is solved exactly wherever the branch crosses it\n"
     "  --method M        hb (default): harmonic balance; shooting: Newton on the period map\n"
@@ -55,6 +58,9 @@ static const char USAGE[] =
     "                    law:NAME[:RECORD]\n"
     "  --parameter PATH=FROM:TO:COUNT  continue in a model value (SI numbers, the --set\n"
     "                    path syntax) at the first speed of --speeds instead of the speed\n"
+    "  --frequency FROM:TO:COUNT  continue in the frequency of the time-harmonic loads\n"
+    "                    (rad/s, or units: 0.1Hz:0.2Hz:51; several loads keep their ratios)\n"
+    "                    at the first speed of --speeds (or the model's speed)\n"
     "  --both-directions also the run from the end back to the start\n"
     "  --sequential      no arclength: one solution per speed from the previous one (jumps\n"
     "                    at folds, as a slow run-up)\n"
@@ -355,6 +361,7 @@ enum {
     OPT_TOL,
     OPT_SAMPLES,
     OPT_PARAM,
+    OPT_FREQ,
     OPT_HTOL,
     OPT_MAXH,
     OPT_NOEST,
@@ -386,6 +393,29 @@ static void rattle_hint(const char *model, const gd_periodic_result *r)
            n, r->npoints, p->speed, model, p->speed);
 }
 
+/* --frequency FROM:TO:COUNT with units, either way (a branch followed downwards, as
+ * NLvib's example 03 does): TO < FROM is parsed as TO:FROM and reversed. */
+static int parse_down_range(const char *text, double **v, int *n)
+{
+    char buf[256], *a, *b;
+    if (strlen(text) >= sizeof buf || !(a = strchr(strcpy(buf, text), ':')) ||
+        !(b = strchr(a + 1, ':')))
+        return gd_cli_parse_range(CMD, "--frequency", text, v, n);
+    *a = *b = '\0';
+    double lo, hi;
+    if (gd_cli_parse_speed(CMD, buf, &lo) || gd_cli_parse_speed(CMD, a + 1, &hi) || !(hi < lo))
+        return gd_cli_parse_range(CMD, "--frequency", text, v, n);
+    char rev[300];
+    snprintf(rev, sizeof rev, "%s:%s:%s", a + 1, buf, b + 1);
+    int rc = gd_cli_parse_range(CMD, "--frequency", rev, v, n);
+    for (int i = 0; !rc && i < *n / 2; i++) {
+        double t = (*v)[i];
+        (*v)[i] = (*v)[*n - 1 - i];
+        (*v)[*n - 1 - i] = t;
+    }
+    return rc;
+}
+
 int gd_cmd_periodic(int argc, char **argv)
 {
     static const struct option opts[] = {{"speeds", required_argument, 0, 's'},
@@ -393,6 +423,7 @@ int gd_cmd_periodic(int argc, char **argv)
                                          {"subharmonic", required_argument, 0, 'N'},
                                          {"record", required_argument, 0, 'r'},
                                          {"parameter", required_argument, 0, OPT_PARAM},
+                                         {"frequency", required_argument, 0, OPT_FREQ},
                                          {"both-directions", no_argument, 0, OPT_BOTH},
                                          {"sequential", no_argument, 0, OPT_SEQ},
                                          {"no-stability", no_argument, 0, OPT_NOSTAB},
@@ -414,6 +445,7 @@ int gd_cmd_periodic(int argc, char **argv)
                                          {"help", no_argument, 0, 'h'},
                                          {0, 0, 0, 0}};
     const char *speeds = NULL, *coupling = NULL, *out = NULL, *param_text = NULL, *plot = NULL;
+    const char *freq_text = NULL;
     const char *records[64];
     int nrec = 0, json = 0, c, quiet = 0, fixed_h = 0;
     long lv;
@@ -510,6 +542,9 @@ int gd_cmd_periodic(int argc, char **argv)
         case OPT_PARAM:
             param_text = optarg;
             break;
+        case OPT_FREQ:
+            freq_text = optarg;
+            break;
         case OPT_BOTH:
             opt.both_directions = 1;
             break;
@@ -560,6 +595,7 @@ int gd_cmd_periodic(int argc, char **argv)
             break;
         case 'h':
             fputs(USAGE, stdout);
+            fputs(USAGE_OPTIONS, stdout);
             return GD_EXIT_OK;
         default:
             return gd_cli_option_error(CMD, c, argv, optind);
@@ -569,7 +605,10 @@ int gd_cmd_periodic(int argc, char **argv)
     if (!opt.estimate && !fixed_h)
         return gd_cli_usage_error(CMD, "--no-estimate needs a fixed --harmonics H (auto always "
                                        "compares H with 2 H)");
-    if (!speeds) return gd_cli_usage_error(CMD, "--speeds FROM:TO:COUNT is required");
+    if (!speeds && !freq_text)
+        return gd_cli_usage_error(CMD, "--speeds FROM:TO:COUNT (or --frequency) is required");
+    if (freq_text && param_text)
+        return gd_cli_usage_error(CMD, "give --frequency or --parameter, not both");
     if (opt.samples && opt.samples < 2 * opt.harmonics + 2)
         return gd_cli_usage_error(CMD, "--samples %d cannot resolve %d harmonics (give >= %d)",
                                   opt.samples, opt.harmonics, 2 * opt.harmonics + 2);
@@ -580,11 +619,16 @@ int gd_cmd_periodic(int argc, char **argv)
     int nsp = 0, npv = 0, rc;
     char ppath[256], partial[1100] = "";
     int made_dir = 0;
-    if ((rc = gd_cli_parse_range(CMD, "--speeds", speeds, &sp, &nsp))) return rc;
+    if (speeds && (rc = gd_cli_parse_range(CMD, "--speeds", speeds, &sp, &nsp))) return rc;
     if (param_text && (rc = parse_param(param_text, ppath, sizeof ppath, &pv, &npv))) {
         free(sp);
         return rc;
     }
+    if (freq_text && (rc = parse_down_range(freq_text, &pv, &npv))) {
+        free(sp);
+        return rc;
+    }
+    if (freq_text) snprintf(ppath, sizeof ppath, "load frequency");
     gd_error err;
     gd_error_clear(&err);
     if ((out && gd_outdir_check_writable(out, &err)) ||
@@ -626,7 +670,8 @@ int gd_cmd_periodic(int argc, char **argv)
     gd_load_options lo = gd_cli_load_options(&sets);
     openblas_set_num_threads(1); /* small dense blocks: threads cost more than they give */
     rebuild_data rd = {argv[optind], &lo, ppath};
-    gd_periodic_param prm = {rebuild, &rd, ppath, sp[0]};
+    /* --frequency: at the first of --speeds, or the model's speed */
+    gd_periodic_param prm = {rebuild, &rd, ppath, sp ? sp[0] : m->speed, freq_text != NULL};
     live lv2 = {0};
     lv2.recs = &recs;
     lv2.tty = !quiet && isatty(2);

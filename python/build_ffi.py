@@ -368,7 +368,8 @@ typedef struct { gd_bifurcation_type type; double speed, parameter; int directio
 typedef struct { int npoints; gd_periodic_point *points; int nbifurcations;
                  gd_bifurcation *bifurcations; int nrecords; int steps; double cpu_seconds;
                  gd_per_kind method; char method_note[...]; ...; } gd_periodic_result;
-typedef struct gd_periodic_param gd_periodic_param;
+typedef struct gd_periodic_param { const char *name; double speed; int load_frequency; ...; }
+    gd_periodic_param;
 void gd_periodic_options_init(gd_periodic_options *opt);
 const char *gd_bifurcation_name(gd_bifurcation_type t);
 gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,

@@ -255,7 +255,7 @@ typedef struct gd_mesh_spec {
     gd_table_spec transmission_error; /* e(driver angle), m, over one mesh period */
     int backlash;                     /* 1: a gap on each flank */
     double backlash_gap;              /* m, >= 0 */
-    double coast_stiffness_ratio;     /* > 0, default 1 */
+    double coast_stiffness_ratio;     /* >= 0, default 1; 0: one-sided contact */
     gd_loc loc;
     const char *path; /* NULL: "meshes[<index>]" */
 } gd_mesh_spec;

@@ -92,7 +92,8 @@ GD_API gd_contact gd_backlash_state(double d, double b);
  *   separated:  F = c_free d'
  *   coast:      F = k_coast (d + b) + c_coast d'
  * The state is an argument so an integrator can keep it frozen between located events;
- * each branch is continued smoothly beyond its interval. */
+ * each branch is continued smoothly beyond its interval. k_coast = 0 is one-sided
+ * contact: the coast state then acts as separated (F = c_free d'). */
 GD_API double gd_backlash_force(const gd_backlash_params *p, gd_contact state, double d, double dd);
 /* The same with the state from d (written to *state if not NULL). */
 GD_API double gd_backlash_force_auto(const gd_backlash_params *p, double d, double dd,

@@ -124,7 +124,7 @@ typedef struct gd_mesh_dynamics {
     gd_table *ste;                /* static transmission error e(driver angle), m; NULL */
     int backlash;                 /* 1: gap on each flank */
     double gap;                   /* b, m */
-    double coast_stiffness_ratio; /* k_coast / k_drive (default 1) */
+    double coast_stiffness_ratio; /* k_coast / k_drive (default 1; 0: one-sided contact) */
 } gd_mesh_dynamics;
 
 /* External gear mesh between a driving and a driven gear on different shafts. The

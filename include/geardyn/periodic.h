@@ -114,6 +114,10 @@ typedef struct gd_periodic_param {
     void *data;       /* passed to rebuild */
     const char *name; /* the parameter, for messages (e.g. "bearings.support_a.sfd.clearance") */
     double speed;     /* the fixed reference speed, rad/s */
+    /* 1: the values are the frequency (rad/s) of the time-harmonic loads of the caller's
+     * sys and spec (every GD_LOAD_HARMONIC_TIME load; several keep their ratios to the
+     * first), at the fixed speed; rebuild and data are not used and no model is rebuilt */
+    int load_frequency;
 } gd_periodic_param;
 
 typedef struct gd_per_record_stats {

@@ -45,7 +45,8 @@ typedef struct gd_tr_mesh {
     int mesh;             /* model mesh index */
     const gd_table *tvms; /* k_drive(theta), N/m; NULL: constant `stiffness` */
     double stiffness;     /* N/m, used when tvms is NULL */
-    double coast_scale;   /* k_coast = coast_scale * k_drive (per-flank stiffness) */
+    double coast_scale;   /* k_coast = coast_scale * k_drive (per-flank stiffness); 0: one-sided
+                             contact, no coast flank (separated beyond it) */
     double damping;       /* constant part of the contact damping, N s/m */
     double damping_per_k; /* c = damping + damping_per_k * k(theta), s */
     double damping_free;  /* damping while separated (c0), N s/m */

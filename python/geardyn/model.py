@@ -190,7 +190,7 @@ class Model:
     def transient(self, **kw):
         return self.system.transient(**kw)
 
-    def periodic(self, speeds, **kw):
+    def periodic(self, speeds=None, **kw):
         return self.system.periodic(speeds, **kw)
 
 
@@ -330,7 +330,7 @@ class System:
     def transient(self, **kw):
         return _transient.transient(self, **kw)
 
-    def periodic(self, speeds, **kw):
+    def periodic(self, speeds=None, **kw):
         return _periodic.periodic(self, speeds, **kw)
 
     modal.__doc__ = _analyses.modal.__doc__

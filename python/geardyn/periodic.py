@@ -16,9 +16,23 @@ _SOLVERS = {"hb": lib.GD_PER_HB, "harmonic_balance": lib.GD_PER_HB,
             "shooting": lib.GD_PER_SHOOTING, "auto": lib.GD_PER_AUTO}
 
 
-def periodic(system, speeds, harmonics=10, subharmonic=1, records=None,
+def _frequencies(values):
+    """--frequency values: "FROM:TO:COUNT" either way (TO < FROM follows the branch
+    downwards), or an array in the order given."""
+    if isinstance(values, str):
+        parts = values.split(":")
+        if len(parts) == 3:
+            a, b = (sweep(p + ":" + p + ":1", "speed", "frequency")[0]
+                    for p in parts[:2])
+            if b < a:
+                return sweep(parts[1] + ":" + parts[0] + ":" + parts[2], "speed",
+                             "frequency")[::-1].copy()
+    return sweep(values, "speed", "frequency")
+
+
+def periodic(system, speeds=None, harmonics=10, subharmonic=1, records=None,
              method="arclength", both_directions=False, stability=True, tol=1e-10,
-             samples=0, laws=None, solver="hb", shoot_budget=None):
+             samples=0, laws=None, solver="hb", shoot_budget=None, frequency=None):
     """Periodic steady state over the reference speeds `speeds` (rad/s array or
     "FROM:TO:COUNT" with units), as `geardyn periodic`: harmonics H (or "auto": raised
     from 10 until the top quarter carries < 1e-6 of the response), subharmonic N,
@@ -32,8 +46,24 @@ def periodic(system, speeds, harmonics=10, subharmonic=1, records=None,
     (Newton on the period map of the transient integrator: cam torques with
     include_acceleration too) or "auto" (the cheaper by a measured cost; the result's
     solver and solver_note say which ran and why), as `--method`; shoot_budget: CPU
-    seconds per shooting point (None: no limit)."""
-    w = sweep(speeds, "speed", "speeds")
+    seconds per shooting point (None: no limit). frequency: continue in the frequency of
+    the model's time-harmonic loads instead of the speed, as `--frequency` (rad/s array in
+    the order to follow, or "FROM:TO:COUNT" with units, e.g. "0.8:0.5:31"; several loads
+    keep their ratios), at the first of `speeds` (None: the model's speed); the points'
+    `parameter` is the frequency."""
+    prm = ffi.NULL
+    if frequency is not None:
+        w = _frequencies(frequency)
+        prm = ffi.new("gd_periodic_param *")
+        prm.speed = (system.model.speed if speeds is None
+                     else float(sweep(speeds, "speed", "speeds")[0]))
+        prm.load_frequency = 1
+        name = ffi.new("char[]", b"load frequency")
+        prm.name = name
+    elif speeds is None:
+        raise model_error("speeds", "give the speeds (or frequency=)", "e.g. 0:3000rpm:61")
+    else:
+        w = sweep(speeds, "speed", "speeds")
     if method not in _METHODS:
         raise model_error("method", "unknown method '%s'" % method, "use arclength or sequential")
     if solver not in _SOLVERS:
@@ -76,7 +106,7 @@ def periodic(system, speeds, harmonics=10, subharmonic=1, records=None,
     rr = _record_array(recs)
     values = ffi.new("double[]", [float(x) for x in w])
     out = ffi.new("gd_periodic_result **")
-    st = lib.gd_periodic_run(system._handle, spec, ffi.NULL, values, len(w), opt, rr,
+    st = lib.gd_periodic_run(system._handle, spec, prm, values, len(w), opt, rr,
                              len(recs), out, err)
     for law in laws or []:
         law.raise_pending()

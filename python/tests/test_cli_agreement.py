@@ -194,6 +194,9 @@ MATHIEU = os.path.join(os.path.dirname(os.path.dirname(CHEN)), "tests", "plot",
     (CHEN, ["--speeds", "900:1000:2", "--harmonics", "10", "--method", "shooting",
             "--record", "gear_a.x"],
      {"speeds": "900:1000:2", "harmonics": 10, "solver": "shooting", "records": "gear_a.x"}),
+    # continuation in the load frequency, downwards through the Duffing hysteresis loop
+    (DUFFING, ["--frequency", "1.6:0.5:12", "--harmonics", "7", "--record", "m.x"],
+     {"frequency": "1.6:0.5:12", "harmonics": 7, "records": "m.x"}),
 ])
 def test_periodic(geardyn, path, args, kw):
     j = run_cli("periodic", path, *args)
@@ -202,6 +205,7 @@ def test_periodic(geardyn, path, args, kw):
     assert r.solver == j["method"] == ("shooting" if "--method" in args else "harmonic_balance")
     assert r.npoints == len(jp) and r.steps == j["continuation_steps"]
     assert same(r.speed, nums([p["speed_rad_s"] for p in jp]))
+    assert same(r.parameter, nums([p.get("parameter") for p in jp]))
     assert list(r.direction) == [p["direction"] for p in jp]
     assert list(r.converged) == [int(p["converged"]) for p in jp]
     assert list(r.stable) == [-1 if p["stable"] is None else int(p["stable"]) for p in jp]

@@ -9,9 +9,17 @@ gd_contact gd_backlash_state(double d, double b)
     return GD_CONTACT_SEPARATED;
 }
 
+/* One-sided contact (coast_stiffness_ratio 0, k_coast = 0): there is no coast flank, so
+ * beyond the gap on that side the teeth stay separated (only c_free acts, not the
+ * contact damping). */
+static gd_contact flank(const gd_backlash_params *p, gd_contact state)
+{
+    return state == GD_CONTACT_COAST && p->k_coast == 0.0 ? GD_CONTACT_SEPARATED : state;
+}
+
 double gd_backlash_force(const gd_backlash_params *p, gd_contact state, double d, double dd)
 {
-    switch (state) {
+    switch (flank(p, state)) {
     case GD_CONTACT_DRIVE:
         return p->k_drive * (d - p->b) + p->c_drive * dd;
     case GD_CONTACT_COAST:
@@ -24,7 +32,7 @@ double gd_backlash_force(const gd_backlash_params *p, gd_contact state, double d
 void gd_backlash_force_grad(const gd_backlash_params *p, gd_contact state, double d, double dd,
                             double g[4])
 {
-    switch (state) {
+    switch (flank(p, state)) {
     case GD_CONTACT_DRIVE:
         g[0] = p->k_drive, g[1] = p->c_drive, g[2] = d - p->b, g[3] = dd;
         break;

@@ -158,7 +158,7 @@ static gd_status mesh_dynamics(const gd_model *m, gd_error *err, const gd_mesh_s
         gd_build_path(q, sizeof q, path, "backlash");
         if ((st = gd_build_positive(m, err, s->loc, q, "gap", s->backlash_gap, 1)) ||
             (st = gd_build_positive(m, err, s->loc, q, "coast_stiffness_ratio",
-                                    s->coast_stiffness_ratio, 0)))
+                                    s->coast_stiffness_ratio, 1))) /* 0: one-sided */
             return st;
     }
     if ((st = gd_build_positive(m, err, s->loc, path, "stiffness", s->stiffness, 1))) return st;

@@ -80,7 +80,7 @@ gd_status gd_mp_mesh_dynamics(gd_mparser *p, const gd_ynode *mm, const char *pat
             (st = gd_ycheck_keys(r, bl, q, BACKLASH_KEYS)) ||
             (st = gd_yread_qty(r, bl, "gap", q, GD_QTY_LENGTH, GD_YREQ | GD_YNONNEG,
                                &s->backlash_gap, NULL)) ||
-            (st = gd_yread_qty(r, bl, "coast_stiffness_ratio", q, GD_QTY_DIMLESS, GD_YPOS,
+            (st = gd_yread_qty(r, bl, "coast_stiffness_ratio", q, GD_QTY_DIMLESS, GD_YNONNEG,
                                &s->coast_stiffness_ratio, NULL)))
             return st;
         s->backlash = 1;

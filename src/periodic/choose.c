@@ -109,7 +109,17 @@ gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *sp
     gd_error err;
     gd_per_kind k = GD_PER_HB;
     double speed = value;
-    if (param) {
+    gd_tr_load *floads = NULL;
+    gd_transient_spec fspec;
+    if (param && param->load_frequency) {
+        char msg[200];
+        if (gd_per_frequency_spec(spec, value, &floads, &fspec, msg, sizeof msg)) {
+            snprintf(note, 256, "harmonic balance (the default: %.200s)", msg);
+            return GD_PER_HB;
+        }
+        spec = &fspec;
+        speed = param->speed;
+    } else if (param) {
         if (!param->rebuild || param->rebuild(value, param->data, &m, &s, &tm, &err)) {
             snprintf(note, 256,
                      "harmonic balance (the default: the problem at the first value "
@@ -184,6 +194,7 @@ gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *sp
     }
 done:
     gd_transient_free(tr);
+    free(floads);
     gd_transient_model_free(tm);
     gd_system_free(s);
     gd_model_free(m);

@@ -140,6 +140,11 @@ int gd_per_run_branch(ctx *c, const double *vals, int nv)
     (void)rho1;
     gd_per_floquet(c, X, lam, mre, mim, &stable, &mu_max);
     int have_mu = stable >= 0, fold_prev = 0;
+    /* fold confirmation: the parameter at the point before X (have_p), a fold located
+     * on the last step that waits for the next chord (pend) */
+    double lamp = lam, pend_lf = 0.0;
+    int have_p = 0, pend = 0;
+    double tt_rej = 2.0; /* the turn of the last step refused from X (2: none) */
     if (have_mu) gd_per_categorise(c, mre, mim, out, rho);
     double ds = 1.0 / (nv - 1), dsmax = 2.0 / (nv - 1), dsmin = 1e-7;
     if (ds > 0.05) ds = 0.05;
@@ -176,9 +181,41 @@ int gd_per_run_branch(ctx *c, const double *vals, int nv)
             }
             tt += t[n] * t1[n];
             tc += t[n] * (l1 - lam) / c->sl;
-            if ((tt < 0.9 || tc <= 0.0) && ds > 16 * dsmin) {
+            /* with a non-smooth law, a corrector that went far beyond the step (the
+             * chord more than 3 ds, in the scaled variables) jumped to another part of
+             * the branch: NLvib's example 03 at H = 3 went from 0.6537 to 0.9146 in 26
+             * iterations on a step of 0.053 */
+            double cc = 0.0;
+            for (int i = 0; i < n; i++)
+                cc += (X1[i] - X[i]) * (X1[i] - X[i]);
+            cc = sqrt(cc / (c->sx * c->sx) + (l1 - lam) * (l1 - lam) / (c->sl * c->sl));
+            if (c->corners && cc > 3.0 * ds && ds > 16 * dsmin) {
                 ds *= 0.5;
                 continue;
+            }
+            /* a corner, not a curve: the turn did not shrink with the halved step (a
+             * contact switching at one sample makes the sampled branch piecewise smooth:
+             * NLvib's example 03 at 1024 samples turns by 27 deg at every step size near
+             * its resonance peak). It is taken with the chord as the next direction:
+             * the tangent at X1 may still be the other side's. */
+            const int corner =
+                c->corners && tt < 0.9 && tc > 0.0 && tt_rej <= 1.0 && tt <= tt_rej + 0.02;
+            if ((tt < 0.9 || tc <= 0.0) && ds > 16 * dsmin && !corner) {
+                tt_rej = tc > 0.0 ? tt : 2.0;
+                ds *= 0.5;
+                continue;
+            }
+            tt_rej = 2.0;
+            if (corner) {
+                double nc = 0.0;
+                for (int i = 0; i < n; i++) {
+                    t1[i] = (X1[i] - X[i]) / c->sx;
+                    nc += t1[i] * t1[i];
+                }
+                t1[n] = (l1 - lam) / c->sl;
+                nc = sqrt(nc + t1[n] * t1[n]);
+                for (int i = 0; i <= n; i++)
+                    t1[i] /= nc;
             }
         }
         int stable1 = -1;
@@ -187,8 +224,10 @@ int gd_per_run_branch(ctx *c, const double *vals, int nv)
             if (stable1 >= 0) gd_per_categorise(c, mre1, mim1, out1, rho1);
         }
         /* requested values crossed on this step, in the step's order */
+        const int up = vals[nv - 1] >= vals[0]; /* the requested values increase */
         for (int q = 0; q < nv; q++) {
-            int i = l1 >= lam ? q : nv - 1 - q;
+            /* nearest to lam first: the values in the step's direction */
+            int i = (l1 >= lam) == up ? q : nv - 1 - q;
             double v = vals[i];
             if (i == i0 && step == 0) continue;
             int crossed = l1 >= lam ? (v > lam && v <= l1) : (v < lam && v >= l1);
@@ -211,14 +250,45 @@ int gd_per_run_branch(ctx *c, const double *vals, int nv)
             }
         }
         /* bifurcations between the two steps */
-        int fold = t[n] * t1[n] < 0;
-        if (fold) {
+        /* a fold where the tangent's parameter component changes sign, located on the
+         * branch by gd_per_locate_fold (not an extremum there: no fold). With a
+         * non-smooth law (corners) the tangent is not trusted for this: the AFT Jacobian
+         * misses the samples that switch contact along the branch, and near a resonance
+         * peak its parameter component is small and flips at kinks while the branch goes
+         * on, or keeps its sign where the branch turns (NLvib's example 03: 12 flips and
+         * one turn at 2048 samples; at auto H a turn at 0.75560 with the component at
+         * +0.007 on both sides). There a fold is where the parameter itself turns (the
+         * chords before and after X move it in opposite directions), at the located
+         * value of a tangent flip next to X when that lies beyond X, else at X.
+         * (Backlash meshes keep the tangent rule and the zigzag merge: their tested
+         * folds are unchanged.) */
+        int fold = 0;
+        if (c->corners) {
+            const double cl = l1 - lam, cp = have_p ? lam - lamp : 0.0;
+            const double tiny = 1e-13 * c->sl;
+            const int flip = t[n] * t1[n] < 0;
+            if (fabs(cl) > tiny && fabs(cp) > tiny && cp * cl < 0) {
+                /* the parameter turned at X: a maximum when it rose to X */
+                double lf = lam, lg = NAN;
+                if (pend)
+                    lg = pend_lf; /* the tangent flipped between the point before and X */
+                else if (flip && gd_per_locate_fold(c, X, lam, t, X1, l1, t1, ds, &lg) == 1)
+                    lg = NAN;
+                if (cp > 0 ? lg > lam : lg < lam) lf = lg;
+                fold = 1;
+                if (gd_per_add_bif(c, GD_BIF_FOLD, lf, NAN, NAN)) goto done;
+                pend = 0;
+            } else {
+                double lg;
+                pend = flip && gd_per_locate_fold(c, X, lam, t, X1, l1, t1, ds, &lg) != 1;
+                if (pend) pend_lf = lg;
+            }
+        } else if (t[n] * t1[n] < 0) {
             double lf;
-            int lr = gd_per_locate_fold(c, X, lam, t, X1, l1, t1, ds, &lf);
-            if (lr == 1)
-                fold = 0; /* not an extremum of the parameter: no fold */
-            else if (gd_per_add_bif(c, GD_BIF_FOLD, lf, NAN, NAN))
-                goto done;
+            if (gd_per_locate_fold(c, X, lam, t, X1, l1, t1, ds, &lf) != 1) {
+                fold = 1;
+                if (gd_per_add_bif(c, GD_BIF_FOLD, lf, NAN, NAN)) goto done;
+            }
         }
         if (have_mu && stable1 >= 0) {
             int tot = out[0] + out[1] + out[2], tot1 = out1[0] + out1[1] + out1[2];
@@ -237,6 +307,8 @@ int gd_per_run_branch(ctx *c, const double *vals, int nv)
         }
         have_mu = have_mu && stable1 >= 0;
         fold_prev = fold;
+        lamp = lam;
+        have_p = 1;
         memcpy(X, X1, (size_t)n * sizeof *X);
         memcpy(t, t1, (size_t)(n + 1) * sizeof *t);
         {
@@ -261,6 +333,7 @@ int gd_per_run_branch(ctx *c, const double *vals, int nv)
             /* a requested point needed more harmonics: the branch goes on with them */
             if (gd_per_follow_H(c, &X, &t)) goto done;
             ALLOC_ALL();
+            have_p = 0; /* the point before has the old H */
             if (gd_per_solve_fixed(c, &X, &t, lam, &it, &res, 0)) goto stop;
         }
         if (it <= 3) ds = ds * 1.6 < dsmax ? ds * 1.6 : dsmax;

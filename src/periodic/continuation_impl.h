@@ -19,6 +19,10 @@ typedef struct stage {
     gd_system *s;
     gd_transient_model *tm;
     gd_transient *tr;
+    gd_tr_load *loads;       /* load_frequency: the loads at this value (owned) */
+    gd_transient_spec fspec; /* load_frequency: the caller's spec with them */
+    const gd_system *sys;    /* the problem of this stage (either kind) */
+    const gd_transient_spec *spec;
     double w; /* HB frequency */
     int bad;  /* the problem could not be made: reason in msg */
     char msg[320];
@@ -53,7 +57,9 @@ typedef struct ctx {
     int want_H;    /* adaptive H: the branch's H to follow */
     double v0, v1; /* the requested range of this direction (progress) */
     int ndir;
-    int min_samples; /* AFT samples at least (non-smooth laws: 128) */
+    int min_samples; /* AFT samples at least (backlash: 128, non-smooth laws: 1024) */
+    int corners;     /* a non-smooth law: a step whose turn does not shrink when halved is
+                        a corner of the sampled branch, taken (continuation.c) */
 } ctx;
 
 typedef struct pstate {

@@ -257,7 +257,7 @@ static int solve_from_rest(ctx *c, double *X, double lam, int *it, double *res)
     if (!Xok) return 1;
     double h = 1.0, step = 0.5;
     int rc = 1, nbl = 0;
-    const gd_transient_spec *spec = c->param ? &s->tm->spec : c->spec;
+    const gd_transient_spec *spec = s->spec;
     for (int i = 0; i < spec->nmeshes; i++)
         nbl += spec->meshes[i].backlash != 0;
     if (!nbl) {
@@ -299,8 +299,8 @@ int gd_per_solve_warm(ctx *c, double *X, double lam, int *it, double *res)
     if (!s) return 1;
     char why[320];
     snprintf(why, sizeof why, "%s", c->reason);
-    const gd_system *sys = c->param ? s->s : c->sys;
-    const gd_transient_spec *spec = c->param ? &s->tm->spec : c->spec;
+    const gd_system *sys = s->sys;
+    const gd_transient_spec *spec = s->spec;
     double speed = c->param ? c->param->speed : lam;
     if (!gd_hb_warm_start(sys, spec, speed, s->w, c->H, PERIODS, X) &&
         !gd_per_newton(c, X, &lam, NULL, NULL, it, res))

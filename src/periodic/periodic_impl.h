@@ -158,9 +158,15 @@ int gd_per_sample_stats(const double *v, int Nr, int H, fftw_plan plan, double *
                         gd_per_record_stats *st);
 /* The branch by shooting (shooting.c) into res (points, bifurcations, steps). 0 ok, 1 out of
  * memory. */
-int gd_per_shoot_run(const gd_system *sys, const gd_transient_spec *spec,
-                     const gd_periodic_param *param, const double *values, int nvalues,
-                     const gd_periodic_options *opt, const gd_tr_record *records, int nrecords,
-                     gd_periodic_result *res); /* the default AFT samples: 4 (H + 1) up to 2^k, >= 16 */
+int gd_per_shoot_run(
+    const gd_system *sys, const gd_transient_spec *spec, const gd_periodic_param *param,
+    const double *values, int nvalues, const gd_periodic_options *opt, const gd_tr_record *records,
+    int nrecords,
+    gd_periodic_result *res); /* the default AFT samples: 4 (H + 1) up to 2^k, >= 16 */
+
+/* The spec with its time-harmonic loads at frequency value (frequency.c): *out a copy of
+ * spec whose loads are *loads (the caller frees it). 0 ok; 1 with msg (no such load). */
+int gd_per_frequency_spec(const gd_transient_spec *spec, double value, gd_tr_load **loads,
+                          gd_transient_spec *out, char *msg, size_t cap);
 
 #endif

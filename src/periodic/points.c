@@ -24,7 +24,7 @@ void gd_per_floquet(ctx *c, const double *X, double lam, double *mre, double *mi
     if (!s) return;
     int steps = c->opt->monodromy_steps > 0 ? c->opt->monodromy_steps : 4 * c->h.N;
     if (steps < 256 && c->opt->monodromy_steps <= 0) steps = 256;
-    const gd_transient_spec *spec = c->param ? &s->tm->spec : c->spec;
+    const gd_transient_spec *spec = s->spec;
     gd_tr_record bl[64];
     int nbl = 0;
     for (int i = 0; i < spec->nmeshes && nbl < 64; i++)

@@ -187,8 +187,8 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
         int order = 0;
         c.H = 1 << 30; /* the stage's own check of H is not wanted here */
         if (param && !gd_per_make_stage(&c, &st0, values[0])) {
-            s0 = st0.s;
-            sp0 = &st0.tm->spec;
+            s0 = st0.sys;
+            sp0 = st0.spec;
         } else if (param) {
             s0 = NULL;
         }
@@ -223,9 +223,21 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
          * samples Newton cycles near grazing and the arclength chatters (the backlash
          * test with auto H = 7 at 32 samples: 1500 steps stuck at the 555 rad/s fold; at
          * 128: the whole branch, four folds) */
-        const gd_transient_spec *spc = param ? (st0.tm ? &st0.tm->spec : NULL) : spec;
+        const gd_transient_spec *spc = param ? st0.spec : spec;
         for (int i = 0; spc && i < spc->nmeshes; i++)
             if (spc->meshes[i].backlash) c.min_samples = 128;
+        /* a registry law that is not smooth (a unilateral spring: a kink at contact):
+         * 1024 samples, as NLvib's example 03 takes (at 128, H = 21, Newton stalls at a
+         * relative residual of 1.5e-7 near grazing; at 1024 the whole branch converges),
+         * and corners of the sampled branch taken as corners (continuation.c) */
+        for (int i = 0; spc && i < spc->nlaws; i++) {
+            const gd_law *L = &spc->laws[i];
+            unsigned fl = L->type->instance_flags ? L->type->instance_flags(L) : L->type->flags;
+            if (!(fl & GD_LAW_SMOOTH)) {
+                c.min_samples = c.min_samples > 1024 ? c.min_samples : 1024;
+                c.corners = 1;
+            }
+        }
         gd_per_stage_clear(&st0);
         if (H0 > c.Hcap) {
             gd_periodic_result_free(res);

@@ -44,6 +44,8 @@ typedef struct shoot {
     int dir, ndir;
     double v0, v1;
     /* the problem at the current value */
+    gd_tr_load *loads;       /* load_frequency: the loads at it (owned) */
+    gd_transient_spec fspec; /* load_frequency: the caller's spec with them */
     double key;
     int have;
     gd_model *m;
@@ -76,6 +78,8 @@ static void release_problem(shoot *sh)
 {
     gd_transient_free(sh->tr);
     gd_transient_model_free(sh->tm);
+    free(sh->loads);
+    sh->loads = NULL;
     gd_system_free(sh->s);
     gd_model_free(sh->m);
     sh->tr = NULL;
@@ -129,7 +133,12 @@ static int make_problem(shoot *sh, double key)
     double speed = key;
     sh->sys = sh->sys0;
     sh->spec = sh->spec0;
-    if (sh->param) {
+    if (sh->param && sh->param->load_frequency) {
+        if (gd_per_frequency_spec(sh->spec0, key, &sh->loads, &sh->fspec, sh->why, sizeof sh->why))
+            return 1;
+        sh->spec = &sh->fspec;
+        speed = sh->param->speed;
+    } else if (sh->param) {
         const gd_periodic_param *p = sh->param;
         gd_status st = p->rebuild ? p->rebuild(key, p->data, &sh->m, &sh->s, &sh->tm, &err)
                                   : gd_error_set(&err, GD_EINPUT, "", 0, 0, "param", "",

@@ -14,6 +14,7 @@
 void gd_per_stage_clear(stage *s)
 {
     gd_transient_free(s->tr);
+    free(s->loads);
     if (s->m) { /* parameter stages own their model */
         gd_transient_model_free(s->tm);
         gd_system_free(s->s);
@@ -30,7 +31,15 @@ int gd_per_make_stage(ctx *c, stage *s, double key)
     const gd_system *sys = c->sys;
     const gd_transient_spec *spec = c->spec;
     double speed = key;
-    if (c->param) {
+    if (c->param && c->param->load_frequency) {
+        /* the caller's problem with its harmonic loads at this frequency */
+        if (gd_per_frequency_spec(spec, key, &s->loads, &s->fspec, s->msg, sizeof s->msg)) {
+            s->bad = 1;
+            return 1;
+        }
+        spec = &s->fspec;
+        speed = c->param->speed;
+    } else if (c->param) {
         /* the caller rebuilds the problem at this value; the stage owns what it returns */
         const gd_periodic_param *p = c->param;
         gd_status st = p->rebuild ? p->rebuild(key, p->data, &s->m, &s->s, &s->tm, &err)
@@ -49,6 +58,8 @@ int gd_per_make_stage(ctx *c, stage *s, double key)
         spec = &s->tm->spec;
         speed = p->speed;
     }
+    s->sys = sys;
+    s->spec = spec;
     double w0;
     int order;
     if (gd_periodic_fundamental(sys, spec, speed, &w0, &order, &err)) {

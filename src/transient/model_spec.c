@@ -95,7 +95,11 @@ gd_status gd_transient_model_build(const gd_system *sys, gd_transient_model **ou
         tmsh->ste = d->ste;
         tmsh->backlash = d->backlash;
         tmsh->gap = d->gap;
-        tmsh->coast_scale = d->coast_stiffness_ratio > 0 ? d->coast_stiffness_ratio : 1.0;
+        /* 0 with backlash: one-sided contact (no coast flank); without, 0 means 1 */
+        tmsh->coast_scale =
+            d->coast_stiffness_ratio > 0 || (d->backlash && d->coast_stiffness_ratio == 0)
+                ? d->coast_stiffness_ratio
+                : 1.0;
     }
     sp->meshes = tm->meshes;
 

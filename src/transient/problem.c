@@ -273,7 +273,7 @@ gd_status gd_transient_new(const gd_system *sys, const gd_transient_spec *spec, 
     for (int i = 0; i < tr->nmesh; i++) {
         tr_mesh *m = &tr->mesh[i];
         m->spec = spec->meshes[i];
-        if (!(m->spec.coast_scale > 0)) m->spec.coast_scale = 1.0;
+        if (!(m->spec.coast_scale >= 0)) m->spec.coast_scale = 1.0; /* 0: one-sided */
         m->model_mesh = m->spec.mesh;
         const gd_mesh *gm = &model->meshes[m->model_mesh];
         m->a = tr->model_a[m->model_mesh];

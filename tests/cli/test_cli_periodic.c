@@ -12,6 +12,7 @@
 #include "harness.h"
 
 #define CHEN "examples/chen1998_gear_pair.yaml"
+#define DUFFING "examples/duffing.yaml"
 
 static const cJSON *point(const cJSON *o, int i)
 {
@@ -490,9 +491,53 @@ TEST(error_paths)
     scratch_close(&s);
 }
 
+/* --frequency: continuation in the load frequency (the Duffing oscillator, NLvib's first
+ * example, downwards through its hysteresis loop: three solutions at 1.2 rad/s, the folds
+ * at NLvib's 1.2696 and 1.1157 to 1e-3 (here 32 samples, NLvib 29: tests/periodic/
+ * test_nlvib.c compares with its own samples to 1e-8)); units; the bad requests. */
+TEST(frequency_continuation)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    cJSON *o = run_json_args(&s, "periodic " DUFFING " --frequency 1.6:0.5:12 --harmonics 7 "
+                                 "--record m.x");
+    REQUIRE(o);
+    REQUIRE(npoints(o) == 14);
+    CHECK_REL(jnum(point(o, 0), "parameter"), 1.6, 1e-12);
+    CHECK_REL(jnum(point(o, 13), "parameter"), 0.5, 1e-12);
+    int at12 = 0;
+    for (int i = 0; i < 14; i++) {
+        const cJSON *p = point(o, i);
+        CHECK(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(p, "converged")));
+        at12 += fabs(jnum(p, "parameter") - 1.2) < 1e-12;
+    }
+    CHECK(at12 == 3);
+    const cJSON *bs = cJSON_GetObjectItemCaseSensitive(o, "bifurcations");
+    int folds = 0;
+    for (const cJSON *b = bs ? bs->child : NULL; b; b = b->next) {
+        double w = jnum(b, "parameter");
+        folds++;
+        CHECK(fabs(w - 1.2696019555) < 1e-3 || fabs(w - 1.1157002518) < 1e-3);
+    }
+    CHECK(folds == 2);
+    cJSON_Delete(o);
+    o = run_json_args(&s, "periodic " DUFFING " --frequency 0.1Hz:0.2Hz:2 --harmonics 7");
+    REQUIRE(o);
+    REQUIRE(npoints(o) == 2);
+    CHECK_REL(jnum(point(o, 0), "parameter"), 2 * M_PI * 0.1, 1e-12);
+    CHECK_REL(jnum(point(o, 1), "parameter"), 2 * M_PI * 0.2, 1e-12);
+    cJSON_Delete(o);
+    CHECK(run_fails_cleanly(&s,
+                            "periodic " DUFFING " --frequency 1:2:3 --parameter "
+                            "disks.0.mass=1:2:3",
+                            "--frequency or --parameter", NULL));
+    CHECK(run_fails_cleanly(&s, "periodic " CHEN " --frequency 1:2:3", "time-harmonic load", NULL));
+    scratch_close(&s);
+}
+
 RUN_TESTS(T(chen_sfd_sweep_json), T(out_files_and_table),
           T(mathieu_bifurcations_directions_subharmonic),
           T(parameter_continuation_and_auto_harmonics), T(undefined_period_point),
           T(warm_start_recovers_failure_from_rest), T(helical_couplings_identical_at_zero_helix),
           T(helical_mesh2_resonance_same_for_both_couplings_at_zero_helix),
-          T(method_shooting_auto_and_bad_value), T(error_paths))
+          T(method_shooting_auto_and_bad_value), T(error_paths), T(frequency_continuation))

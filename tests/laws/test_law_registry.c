@@ -11,7 +11,7 @@
 
 TEST(registry_tables_are_valid)
 {
-    CHECK(gd_nlaw_types == 6);
+    CHECK(gd_nlaw_types == 7);
     for (int i = 0; i < gd_nlaw_types; i++) {
         const gd_law_type *t = gd_law_types[i];
         gd_error err;
@@ -56,6 +56,9 @@ static void sample_law(const gd_law_type *t, gd_law *L)
         /* 9 balls, clearance 10 um, cage turning: a few elements in contact */
         L->value[0] = 9, L->value[1] = 1e10, L->value[3] = 1e-5, L->value[4] = 0.05;
         L->value[5] = 0.01, L->value[7] = 50.0, L->spin[0] = 300.0;
+    } else if (t == &gd_law_unilateral_spring) {
+        /* in contact at the sample point (d = 4.5e-5 > gap) */
+        L->value[0] = 3e7, L->value[1] = 1e-5, L->value[2] = 25.0;
     }
 }
 
