@@ -109,7 +109,14 @@ static gd_motion majority_motion(const gd_mode *md, int ns)
 gd_status gd_campbell(const gd_system *sys, const gd_campbell_options *opt,
                       gd_campbell_result **out, gd_error *err)
 {
+    return gd_campbell_run(sys, opt, 1, NULL, out, err);
+}
+
+gd_status gd_campbell_run(const gd_system *sys, const gd_campbell_options *opt, int continuation,
+                          gd_campbell_stats *stats, gd_campbell_result **out, gd_error *err)
+{
     *out = NULL;
+    if (stats) memset(stats, 0, sizeof *stats);
     const gd_model *m = sys->model;
     int ns = opt->nspeeds;
     if (ns < 1 || !opt->speeds)
@@ -140,11 +147,11 @@ gd_status gd_campbell(const gd_system *sys, const gd_campbell_options *opt,
     gd_status *sts = calloc((size_t)ns, sizeof *sts);
     int **elastic = calloc((size_t)ns, sizeof *elastic),
         **track = calloc((size_t)ns, sizeof *track);
-    int *nel = calloc((size_t)ns, sizeof *nel);
+    int *nel = calloc((size_t)ns, sizeof *nel), *nfb = calloc((size_t)ns, sizeof *nfb);
     gd_campbell_result *r = calloc(1, sizeof *r);
     gd_sparse_ws *wss = NULL;
     int nt = 1;
-    if (!res || !errs || !sts || !elastic || !track || !nel || !r) goto nomem;
+    if (!res || !errs || !sts || !elastic || !track || !nel || !nfb || !r) goto nomem;
     if (sparse) {
         if ((st = gd_dynmat_build(sys, &a, err))) goto done;
         if ((st = gd_splu_analyze(&a.pat, &sym, err))) goto done;
@@ -198,6 +205,9 @@ gd_status gd_campbell(const gd_system *sys, const gd_campbell_options *opt,
      * the first speed of a chain cold, so the chains, and the numbers, are the same
      * whatever the number of threads. */
     int nt_tracks = 0, chain = sparse ? GD_CAMPBELL_CHAIN : 1, block = 8 * nt;
+    /* with the continuation each chain's cold first speed costs a few continued ones:
+     * four chains (a parallel sweep on up to four threads) when the speeds are many */
+    if (sparse && continuation && (ns + 3) / 4 > chain) chain = (ns + 3) / 4;
     if (sparse) block = chain * nt;
     for (int t = 0; t < nt && sparse; t++)
         if (wss[t].k && gd_sparse_ws_chain(&wss[t], a.pat.n)) goto nomem;
@@ -210,6 +220,23 @@ gd_status gd_campbell(const gd_system *sys, const gd_campbell_options *opt,
             if (ws) ws->warm_ok = 0;
             int c1 = b0 + (c + 1) * chain < b1 ? b0 + (c + 1) * chain : b1;
             for (int s = b0 + c * chain; s < c1; s++) {
+                if (!res[s] && ws && continuation && s > b0 + c * chain) {
+                    /* continued from the previous speed of the chain; NULL: Krylov-Schur */
+                    gd_modal_options o;
+                    gd_modal_options_init(&o);
+                    o.speed = opt->speeds[s];
+                    o.nmodes = nreq;
+                    o.kind = opt->kind;
+                    o.want_left = 0;
+                    const gd_modal_result *p2 = s - 1 > b0 + c * chain ? res[s - 2] : NULL;
+                    sts[s] = gd_sparse_track(&a, &sym, &o, res[s - 1], p2, ws, &res[s], &errs[s]);
+                    if (!sts[s] && res[s]) {
+                        gd_sparse_ws_remember(ws, res[s]);
+                        continue;
+                    }
+                    if (!sts[s]) nfb[s] = 1;
+                }
+                if (sts[s]) break;
                 if (!res[s])
                     sts[s] = solve_one(sys, sparse ? &a : NULL, &sym, opt, nreq, opt->speeds[s], ws,
                                        &res[s], &errs[s]);
@@ -241,6 +268,12 @@ gd_status gd_campbell(const gd_system *sys, const gd_campbell_options *opt,
             if (s > 0) drop_shapes(res[s - 1]);
         }
     }
+    if (stats)
+        for (int s = 0; s < ns; s++) {
+            stats->continued +=
+                res[s]->sparse && !nfb[s] && s % chain != 0 && sparse && continuation;
+            stats->fallbacks += nfb[s];
+        }
     r->nspeeds = ns;
     r->ntracks = nt_tracks;
     r->ndof = sys->ndof;
@@ -293,6 +326,7 @@ done:
     free(elastic);
     free(track);
     free(nel);
+    free(nfb);
     gd_campbell_free(r);
     return st;
 }
