@@ -10,7 +10,7 @@
 #include "campbell/campbell_impl.h"
 #include "modal/modal_impl.h"
 
-/* Speeds per warm-started chain (see gd_campbell). */
+/* Speeds per chain without the continuation (see gd_campbell_run). */
 #define GD_CAMPBELL_CHAIN 8
 
 void gd_campbell_options_init(gd_campbell_options *opt)
@@ -199,11 +199,14 @@ gd_status gd_campbell_run(const gd_system *sys, const gd_campbell_options *opt, 
     if (!wss) goto nomem;
     for (int t = 0; t < nt && sparse; t++)
         if (gd_sparse_ws_init(&wss[t], &a, nreq)) memset(&wss[t], 0, sizeof wss[t]);
-    /* Sparse: the speeds go in chains of GD_CAMPBELL_CHAIN, each solved in order by one
-     * thread, every speed's Krylov space started from the previous speed's modes
-     * (gd_sparse_ws warm start: 15-20 % fewer operator steps on the 10k-DOF shaft) and
-     * the first speed of a chain cold, so the chains, and the numbers, are the same
-     * whatever the number of threads. */
+    /* Sparse: the speeds go in chains (GD_CAMPBELL_CHAIN speeds, or a quarter of them
+     * with the continuation), each solved in order by one thread and its first speed
+     * cold, so the chains, and the numbers, are the same whatever the number of threads.
+     * Every later speed of a chain is continued from the previous ones (gd_sparse_track:
+     * each mode refined from its previous eigenpair, then a completeness check) or, when
+     * the continuation declines, solved by Krylov-Schur started from the previous
+     * speed's modes (gd_sparse_ws warm start: 15-20 % fewer operator steps on the
+     * 10k-DOF shaft). */
     int nt_tracks = 0, chain = sparse ? GD_CAMPBELL_CHAIN : 1, block = 8 * nt;
     /* with the continuation each chain's cold first speed costs a few continued ones:
      * four chains (a parallel sweep on up to four threads) when the speeds are many */
