@@ -135,6 +135,46 @@ typedef struct track_ws {
     double *rs;            /* n: R */
 } track_ws;
 
+/* The eigenvalue of the q2 x q2 pencil (A, B) nearest sg by Rayleigh quotient iteration
+ * (the start vector [e1; sg e1]: the basis' first column is the previous eigenvector):
+ * 1 with *lam and v (unit norm; the first q2 / 2 entries are the Ritz vector's
+ * coefficients), 0 when it does not settle in 8 steps. Mw: q2 x q2 scratch. */
+static int small_rqi(int q2, const double complex *A, const double complex *B, double complex sg,
+                     double complex *Mw, double complex *v, double complex *lam)
+{
+    int q = q2 / 2;
+    double complex t[2 * GD_TRACK_MAXQ];
+    lapack_int ipiv[2 * GD_TRACK_MAXQ];
+    memset(v, 0, (size_t)q2 * sizeof *v);
+    v[0] = 1;
+    v[q] = sg;
+    for (int it = 0; it < 8; it++) {
+        for (int i = 0; i < q2 * q2; i++)
+            Mw[i] = A[i] - sg * B[i];
+        for (int i = 0; i < q2; i++) { /* t = B v */
+            double complex sum = 0;
+            for (int j = 0; j < q2; j++)
+                sum += B[i + (size_t)j * q2] * v[j];
+            t[i] = sum;
+        }
+        if (LAPACKE_zgetrf_work(LAPACK_COL_MAJOR, q2, q2, Mw, q2, ipiv)) return 0;
+        if (LAPACKE_zgetrs_work(LAPACK_COL_MAJOR, 'N', q2, 1, Mw, q2, ipiv, t, q2)) return 0;
+        /* t = (A - sg B)^-1 B v = mu v at convergence, lambda = sg + 1 / mu */
+        double complex vt = cdot(v, t, q2), vv = cdot(v, v, q2);
+        double nt = cnrm(t, q2);
+        if (!(nt > 0) || !isfinite(nt) || vt == 0) return 0;
+        double complex next = sg + vv / vt;
+        for (int i = 0; i < q2; i++)
+            v[i] = t[i] / nt;
+        if (cabs(next - sg) <= 1e-14 * cabs(next)) {
+            *lam = next;
+            return 1;
+        }
+        sg = next;
+    }
+    return 0;
+}
+
 static int factor_shift(const gd_dynmat *a, const gd_splu_symbolic *sym, const double *k,
                         const double *d, double complex sg, track_ws *w);
 
@@ -184,16 +224,26 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
                 w->B2[q + i + (size_t)(q + j) * q2] = w->Mq[i + (size_t)j * qmax];
             }
         }
-        if (LAPACKE_zggev(LAPACK_COL_MAJOR, 'N', 'V', q2, w->A2, q2, w->B2, q2, w->al, w->be, NULL,
-                          1, w->VR, q2))
+        /* one mode: Rayleigh quotient iteration on the small pencil from the
+         * extrapolated value (a few 2q x 2q solves); a cluster, or no convergence: QZ */
+        double complex vv[2 * GD_TRACK_MAXQ];
+        int nritz = q2,
+            one = c == 1 && q2 <= 2 * GD_TRACK_MAXQ &&
+                  small_rqi(q2, w->A2, w->B2, it ? out[0].lam : lam0[0], w->VR, vv, &w->al[0]);
+        if (one) {
+            w->be[0] = 1;
+            nritz = 1;
+        } else if (LAPACKE_zggev(LAPACK_COL_MAJOR, 'N', 'V', q2, w->A2, q2, w->B2, q2, w->al, w->be,
+                                 NULL, 1, w->VR, q2)) {
             break;
+        }
         memset(used, 0, sizeof used);
         int nadd = 0, allconv = 1;
         for (int m = 0; m < c; m++) {
             /* the Ritz value nearest this mode's previous eigenvalue */
             int best = -1;
             double bd = INFINITY;
-            for (int j = 0; j < q2; j++) {
+            for (int j = 0; j < nritz; j++) {
                 double complex al = w->al[j], be = w->be[j];
                 double nb = creal(be) * creal(be) + cimag(be) * cimag(be),
                        na = creal(al) * creal(al) + cimag(al) * cimag(al);
@@ -208,7 +258,7 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
             if (best < 0) goto fail;
             used[best] = 1;
             double complex lam = w->al[best] / w->be[best];
-            const double complex *s = w->VR + (size_t)best * q2;
+            const double complex *s = one ? vv : w->VR + (size_t)best * q2;
             double complex *x = out[m].x;
             memset(x, 0, (size_t)n * sizeof *x);
             memset(w->r, 0, (size_t)n * sizeof *w->r);
