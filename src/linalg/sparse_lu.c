@@ -52,6 +52,9 @@ int gd_splu_factor(gd_splu *lu, const gd_pattern *a, const gd_splu_symbolic *s, 
 int gd_splu_refactor(gd_splu *lu, const gd_pattern *a, const gd_splu_symbolic *s, const double *x)
 {
     if (!lu->num) return 1;
+    /* without row scaling, KLU's pass over the input only checks it, as the
+     * factorisation already did for this pattern */
+    if (lu->common.scale == 0) lu->common.scale = -1;
     int ok = lu->is_complex
                  ? klu_z_refactor(a->colptr, a->rowind, (double *)x, s->sym, lu->num, &lu->common)
                  : klu_refactor(a->colptr, a->rowind, (double *)x, s->sym, lu->num, &lu->common);

@@ -74,9 +74,10 @@ static double complex cdot(const double complex *a, const double complex *b, int
 {
     const double *x = (const double *)a, *y = (const double *)b;
     double sr = 0, si = 0;
-    for (int i = 0; i < 2 * n; i += 2) {
-        sr += x[i] * y[i] + x[i + 1] * y[i + 1];
-        si += x[i] * y[i + 1] - x[i + 1] * y[i];
+#pragma omp simd reduction(+ : sr, si)
+    for (int i = 0; i < n; i++) {
+        sr += x[2 * i] * y[2 * i] + x[2 * i + 1] * y[2 * i + 1];
+        si += x[2 * i] * y[2 * i + 1] - x[2 * i + 1] * y[2 * i];
     }
     return sr + I * si;
 }
@@ -86,10 +87,11 @@ static void caxpy(int n, double complex a, const double complex *x, double compl
 {
     const double *u = (const double *)x;
     double *v = (double *)y, ar = creal(a), ai = cimag(a);
-    for (int i = 0; i < 2 * n; i += 2) {
-        double ur = u[i], ui = u[i + 1];
-        v[i] += ar * ur - ai * ui;
-        v[i + 1] += ar * ui + ai * ur;
+#pragma omp simd
+    for (int i = 0; i < n; i++) {
+        double ur = u[2 * i], ui = u[2 * i + 1];
+        v[2 * i] += ar * ur - ai * ui;
+        v[2 * i + 1] += ar * ui + ai * ur;
     }
 }
 
@@ -262,8 +264,7 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
             double complex *x = out[m].x;
             memset(x, 0, (size_t)n * sizeof *x);
             memset(w->r, 0, (size_t)n * sizeof *w->r);
-            memset(w->t, 0, (size_t)n * sizeof *w->t);
-            for (int j = 0; j < q; j++) { /* x = Q s, r = P(lambda) x, t = P'(lambda) x */
+            for (int j = 0; j < q; j++) { /* x = Q s, r = P(lambda) x */
                 const double complex *qj = w->Q + (size_t)j * n, *mj = w->MQ + (size_t)j * n,
                                      *dj = w->DQ + (size_t)j * n, *kj = w->KQ + (size_t)j * n;
                 double complex sj = s[j];
@@ -271,17 +272,22 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
                 caxpy(n, sj * lam * lam, mj, w->r);
                 caxpy(n, sj * lam, dj, w->r);
                 caxpy(n, sj, kj, w->r);
-                caxpy(n, 2 * sj * lam, mj, w->t);
-                caxpy(n, sj, dj, w->t);
             }
-            double nx = cnrm(x, n), nr = cnrm(w->r, n), nt = cnrm(w->t, n);
+            /* x^H P'(lambda) x = s^H (2 lambda Mq + Dq) s, from the projections */
+            double complex dp = 0;
+            for (int j = 0; j < q; j++)
+                for (int i = 0; i < q; i++)
+                    dp += conj(s[i]) *
+                          (2 * lam * w->Mq[i + (size_t)j * qmax] + w->Dq[i + (size_t)j * qmax]) *
+                          s[j];
+            double nx = cnrm(x, n), nr = cnrm(w->r, n);
             if (!(nx > 0)) goto fail;
             for (int i = 0; i < n; i++)
                 x[i] /= nx;
             out[m].lam = lam;
             /* converged, or stalled at the rounding floor of P(lambda) x (stiff elements
              * beside slow modes: eps (element frequency / mode's)^2), below GD_TRACK_STALL */
-            double rel = nr / (cabs(lam) * nt);
+            double rel = nr * nx / (cabs(lam) * cabs(dp));
             conv[m] =
                 rel <= GD_TRACK_TOL || (it > 0 && rel <= GD_TRACK_STALL && rel > 0.1 * last[m]);
             last[m] = rel;
