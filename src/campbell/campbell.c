@@ -147,11 +147,12 @@ gd_status gd_campbell_run(const gd_system *sys, const gd_campbell_options *opt, 
     gd_status *sts = calloc((size_t)ns, sizeof *sts);
     int **elastic = calloc((size_t)ns, sizeof *elastic),
         **track = calloc((size_t)ns, sizeof *track);
-    int *nel = calloc((size_t)ns, sizeof *nel), *nfb = calloc((size_t)ns, sizeof *nfb);
+    int *nel = calloc((size_t)ns, sizeof *nel), *nfb = calloc((size_t)ns, sizeof *nfb),
+        *ncont = calloc((size_t)ns, sizeof *ncont);
     gd_campbell_result *r = calloc(1, sizeof *r);
     gd_sparse_ws *wss = NULL;
     int nt = 1;
-    if (!res || !errs || !sts || !elastic || !track || !nel || !nfb || !r) goto nomem;
+    if (!res || !errs || !sts || !elastic || !track || !nel || !nfb || !ncont || !r) goto nomem;
     if (sparse) {
         if ((st = gd_dynmat_build(sys, &a, err))) goto done;
         if ((st = gd_splu_analyze(&a.pat, &sym, err))) goto done;
@@ -221,9 +222,10 @@ gd_status gd_campbell_run(const gd_system *sys, const gd_campbell_options *opt, 
             gd_sparse_ws *ws = sparse ? &wss[omp_get_thread_num()] : NULL;
             if (ws && !ws->k) ws = NULL;
             if (ws) ws->warm_ok = 0;
-            int c1 = b0 + (c + 1) * chain < b1 ? b0 + (c + 1) * chain : b1;
+            int c1 = b0 + (c + 1) * chain < b1 ? b0 + (c + 1) * chain : b1, easy = 1;
             for (int s = b0 + c * chain; s < c1; s++) {
-                if (!res[s] && ws && continuation && s > b0 + c * chain) {
+                if (s == b0 + c * chain) easy = 1;
+                if (!res[s] && ws && continuation && easy && s > b0 + c * chain) {
                     /* continued from the previous speed of the chain; NULL: Krylov-Schur */
                     gd_modal_options o;
                     gd_modal_options_init(&o);
@@ -232,8 +234,12 @@ gd_status gd_campbell_run(const gd_system *sys, const gd_campbell_options *opt, 
                     o.kind = opt->kind;
                     o.want_left = 0;
                     const gd_modal_result *p2 = s - 1 > b0 + c * chain ? res[s - 2] : NULL;
-                    sts[s] = gd_sparse_track(&a, &sym, &o, res[s - 1], p2, ws, &res[s], &errs[s]);
+                    int hard = 0;
+                    sts[s] =
+                        gd_sparse_track(&a, &sym, &o, res[s - 1], p2, ws, &res[s], &hard, &errs[s]);
+                    easy = !hard;
                     if (!sts[s] && res[s]) {
+                        ncont[s] = 1;
                         gd_sparse_ws_remember(ws, res[s]);
                         continue;
                     }
@@ -273,8 +279,7 @@ gd_status gd_campbell_run(const gd_system *sys, const gd_campbell_options *opt, 
     }
     if (stats)
         for (int s = 0; s < ns; s++) {
-            stats->continued +=
-                res[s]->sparse && !nfb[s] && s % chain != 0 && sparse && continuation;
+            stats->continued += ncont[s];
             stats->fallbacks += nfb[s];
         }
     r->nspeeds = ns;
@@ -330,6 +335,7 @@ done:
     free(track);
     free(nel);
     free(nfb);
+    free(ncont);
     gd_campbell_free(r);
     return st;
 }

@@ -4,8 +4,9 @@
 #include "geardyn/campbell.h"
 
 /* How the speeds of a sparse sweep were solved: continued from the previous speed
- * (gd_sparse_track) or by Krylov-Schur after the continuation declined (fallbacks);
- * the first speed of each chain is always Krylov-Schur and counts in neither. */
+ * (gd_sparse_track), or by Krylov-Schur after the continuation declined (fallbacks);
+ * the first speed of each chain, and the speeds after a hard one in its chain, are
+ * Krylov-Schur and count in neither. */
 typedef struct gd_campbell_stats {
     int continued, fallbacks;
 } gd_campbell_stats;

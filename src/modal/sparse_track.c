@@ -43,6 +43,10 @@
 #define GD_TRACK_MAXC 6       /* largest cluster refined together */
 #define GD_TRACK_MAXQ 6       /* basis columns per cluster member */
 #define GD_TRACK_MAXIT 8      /* Rayleigh-Ritz passes per cluster */
+/* A speed whose completeness check settles at the loose residual is easy: the next speed
+ * is continued too. A hard one (a mode just outside the window: near-double modes cut by
+ * its edge, as on a finely meshed, weakly gyroscopic shaft) hands the rest of its chain
+ * to Krylov-Schur, where the continuation costs more than it saves. */
 /* The completeness check: Krylov to this residual, and a margin below the farthest refined
  * mode's shift-invert magnitude (as the deflated checks of krylov_schur.c) */
 #define GD_TRACK_CHECK_TOL 1e-4
@@ -135,6 +139,7 @@ typedef struct track_ws {
     double complex *z;     /* the complex pattern values, nnz */
     gd_splu lu;            /* R P(sigma) R of the current cluster */
     double *rs;            /* n: R */
+    int passes;            /* the most Rayleigh-Ritz passes a cluster took */
 } track_ws;
 
 /* The eigenvalue of the q2 x q2 pencil (A, B) nearest sg by Rayleigh quotient iteration
@@ -318,6 +323,7 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
             if (corth(w->Q, n, q + nadd, v)) nadd++;
         }
         if (allconv) {
+            if (it + 1 > w->passes) w->passes = it + 1;
             rc = 0;
             break;
         }
@@ -406,9 +412,10 @@ static void lock_vector(double *L, int n2, int *nl, double *v, double *h)
 gd_status gd_sparse_track(const gd_dynmat *a, const gd_splu_symbolic *sym,
                           const gd_modal_options *opt, const gd_modal_result *prev,
                           const gd_modal_result *prev2, gd_sparse_ws *ws, gd_modal_result **out,
-                          gd_error *err)
+                          int *hard, gd_error *err)
 {
     *out = NULL;
+    *hard = 1;
     const gd_system *sys = a->sys;
     int n = a->pat.n, nnz = a->pat.nnz, km = prev ? prev->nmodes : 0;
     if (!prev || !prev->shape_re || !prev->shape_im || prev->ndof != n || km < 1 ||
@@ -584,6 +591,7 @@ gd_status gd_sparse_track(const gd_dynmat *a, const gd_splu_symbolic *sym,
     if (!st && !(top < thr * (1 - GD_TRACK_LOOSE_MARGIN)) &&
         top < thr * (1 + GD_TRACK_LOOSE_MARGIN)) {
         st = gd_ks_deflated_top(si_apply, &ctx, n2, L, nl, GD_TRACK_CHECK_TOL, &ws->ks, &top);
+        w.passes = GD_TRACK_MAXIT; /* a mode just outside the window: hard */
         if (!st && !(top < thr * (1 - GD_TRACK_CHECK_MARGIN))) top = INFINITY;
     } else if (!st && !(top < thr * (1 - GD_TRACK_LOOSE_MARGIN))) {
         top = INFINITY;
@@ -648,6 +656,7 @@ done:
     if (ok) {
         *out = res;
         res = NULL;
+        *hard = w.passes > GD_TRACK_MAXIT - 1;
     }
     gd_modal_free(res);
     gd_shift_invert_free(&op);
