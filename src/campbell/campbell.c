@@ -200,6 +200,33 @@ gd_status gd_campbell_run(const gd_system *sys, const gd_campbell_options *opt, 
     if (!wss) goto nomem;
     for (int t = 0; t < nt && sparse; t++)
         if (gd_sparse_ws_init(&wss[t], &a, nreq)) memset(&wss[t], 0, sizeof wss[t]);
+    /* A trial before the sweep: the second speed continued from the first. Where that
+     * is hard (gd_sparse_track: near-double modes cut by the window's edge, as on a
+     * finely meshed, weakly gyroscopic shaft), every speed goes to Krylov-Schur instead
+     * of each chain finding it out at its own cost. Done once, before the threads, so
+     * the numbers do not depend on their count. */
+    if (sparse && continuation && ns > 1 && wss[0].k) {
+        gd_sparse_ws *w0 = &wss[0];
+        if (gd_sparse_ws_chain(w0, a.pat.n)) goto nomem;
+        w0->warm_ok = 0;
+        if (!res[0] && (st = solve_one(sys, &a, &sym, opt, nreq, opt->speeds[0], w0, &res[0], err)))
+            goto done;
+        gd_modal_options o;
+        gd_modal_options_init(&o);
+        o.speed = opt->speeds[1];
+        o.nmodes = nreq;
+        o.kind = opt->kind;
+        o.want_left = 0;
+        int hard = 0;
+        if ((st = gd_sparse_track(&a, &sym, &o, res[0], NULL, w0, &res[1], &hard, err))) goto done;
+        if (hard) {
+            gd_modal_free(res[1]);
+            res[1] = NULL;
+            continuation = 0;
+        } else {
+            ncont[1] = 1;
+        }
+    }
     /* Sparse: the speeds go in chains (GD_CAMPBELL_CHAIN speeds, or a quarter of them
      * with the continuation), each solved in order by one thread and its first speed
      * cold, so the chains, and the numbers, are the same whatever the number of threads.
