@@ -201,8 +201,8 @@ static const char OILFILM[] =
  * every speed (the reference path), on the oil-film rotor (speed-dependent, cross-coupled
  * bearings) and on the geared rig (gyroscopic, a rigid torsional mode). The continuation
  * accepts a mode at a relative residual of 1e-10 (first-order eigenvalue error), Krylov-
- * Schur at 1e-9 in its own measure: measured |d lambda| / |lambda| from dense 2.8e-10
- * (oil film; Krylov-Schur 7e-11) and 2.3e-10 (rig; Krylov-Schur 5.4e-10), frequencies
+ * Schur at 1e-9 in its own measure: measured |d lambda| / |lambda| from dense 4e-12
+ * (oil film; Krylov-Schur 7e-12) and 2.3e-10 (rig; Krylov-Schur 5.4e-10), frequencies
  * 4.3e-10 apart at most; asserted 1e-9 from dense and 3e-9 between the paths. Most
  * speeds must have been continued (else this compares Krylov-Schur with itself). */
 TEST(continuation_equals_reference)
@@ -210,8 +210,11 @@ TEST(continuation_equals_reference)
     for (int model = 0; model < 2; model++) {
         fx f;
         REQUIRE(load(&f, model ? "examples/rig2018.yaml" : NULL, model ? NULL : OILFILM));
+        /* the oil film from 50 rad/s, where its tables already make it anisotropic: at
+         * rest its pairs are double and the window of 10 modes cuts one, which the
+         * continuation leaves to Krylov-Schur (the trial in campbell.c) */
         int ns = 30, nm = 10;
-        double *sp = linspace(0, 1256.6, ns);
+        double *sp = linspace(model ? 0 : 50, 1256.6, ns);
         gd_campbell_options o;
         gd_campbell_options_init(&o);
         o.speeds = sp;
