@@ -10,7 +10,7 @@
 #include "campbell/campbell_impl.h"
 #include "modal/modal_impl.h"
 
-/* Speeds per warm-started chain (see gd_campbell). */
+/* Speeds per chain without the continuation (see gd_campbell_run). */
 #define GD_CAMPBELL_CHAIN 8
 
 void gd_campbell_options_init(gd_campbell_options *opt)
@@ -109,7 +109,14 @@ static gd_motion majority_motion(const gd_mode *md, int ns)
 gd_status gd_campbell(const gd_system *sys, const gd_campbell_options *opt,
                       gd_campbell_result **out, gd_error *err)
 {
+    return gd_campbell_run(sys, opt, 1, NULL, out, err);
+}
+
+gd_status gd_campbell_run(const gd_system *sys, const gd_campbell_options *opt, int continuation,
+                          gd_campbell_stats *stats, gd_campbell_result **out, gd_error *err)
+{
     *out = NULL;
+    if (stats) memset(stats, 0, sizeof *stats);
     const gd_model *m = sys->model;
     int ns = opt->nspeeds;
     if (ns < 1 || !opt->speeds)
@@ -140,11 +147,12 @@ gd_status gd_campbell(const gd_system *sys, const gd_campbell_options *opt,
     gd_status *sts = calloc((size_t)ns, sizeof *sts);
     int **elastic = calloc((size_t)ns, sizeof *elastic),
         **track = calloc((size_t)ns, sizeof *track);
-    int *nel = calloc((size_t)ns, sizeof *nel);
+    int *nel = calloc((size_t)ns, sizeof *nel), *nfb = calloc((size_t)ns, sizeof *nfb),
+        *ncont = calloc((size_t)ns, sizeof *ncont);
     gd_campbell_result *r = calloc(1, sizeof *r);
     gd_sparse_ws *wss = NULL;
     int nt = 1;
-    if (!res || !errs || !sts || !elastic || !track || !nel || !r) goto nomem;
+    if (!res || !errs || !sts || !elastic || !track || !nel || !nfb || !ncont || !r) goto nomem;
     if (sparse) {
         if ((st = gd_dynmat_build(sys, &a, err))) goto done;
         if ((st = gd_splu_analyze(&a.pat, &sym, err))) goto done;
@@ -192,12 +200,45 @@ gd_status gd_campbell(const gd_system *sys, const gd_campbell_options *opt,
     if (!wss) goto nomem;
     for (int t = 0; t < nt && sparse; t++)
         if (gd_sparse_ws_init(&wss[t], &a, nreq)) memset(&wss[t], 0, sizeof wss[t]);
-    /* Sparse: the speeds go in chains of GD_CAMPBELL_CHAIN, each solved in order by one
-     * thread, every speed's Krylov space started from the previous speed's modes
-     * (gd_sparse_ws warm start: 15-20 % fewer operator steps on the 10k-DOF shaft) and
-     * the first speed of a chain cold, so the chains, and the numbers, are the same
-     * whatever the number of threads. */
+    /* A trial before the sweep: the second speed continued from the first. Where that
+     * is hard (gd_sparse_track: near-double modes cut by the window's edge, as on a
+     * finely meshed, weakly gyroscopic shaft), every speed goes to Krylov-Schur instead
+     * of each chain finding it out at its own cost. Done once, before the threads, so
+     * the numbers do not depend on their count. */
+    if (sparse && continuation && ns > 1 && wss[0].k) {
+        gd_sparse_ws *w0 = &wss[0];
+        if (gd_sparse_ws_chain(w0, a.pat.n)) goto nomem;
+        w0->warm_ok = 0;
+        if (!res[0] && (st = solve_one(sys, &a, &sym, opt, nreq, opt->speeds[0], w0, &res[0], err)))
+            goto done;
+        gd_modal_options o;
+        gd_modal_options_init(&o);
+        o.speed = opt->speeds[1];
+        o.nmodes = nreq;
+        o.kind = opt->kind;
+        o.want_left = 0;
+        int hard = 0;
+        if ((st = gd_sparse_track(&a, &sym, &o, res[0], NULL, w0, &res[1], &hard, err))) goto done;
+        if (hard) {
+            gd_modal_free(res[1]);
+            res[1] = NULL;
+            continuation = 0;
+        } else {
+            ncont[1] = 1;
+        }
+    }
+    /* Sparse: the speeds go in chains (GD_CAMPBELL_CHAIN speeds, or a quarter of them
+     * with the continuation), each solved in order by one thread and its first speed
+     * cold, so the chains, and the numbers, are the same whatever the number of threads.
+     * Every later speed of a chain is continued from the previous ones (gd_sparse_track:
+     * each mode refined from its previous eigenpair, then a completeness check) or, when
+     * the continuation declines, solved by Krylov-Schur started from the previous
+     * speed's modes (gd_sparse_ws warm start: 15-20 % fewer operator steps on the
+     * 10k-DOF shaft). */
     int nt_tracks = 0, chain = sparse ? GD_CAMPBELL_CHAIN : 1, block = 8 * nt;
+    /* with the continuation each chain's cold first speed costs a few continued ones:
+     * four chains (a parallel sweep on up to four threads) when the speeds are many */
+    if (sparse && continuation && (ns + 3) / 4 > chain) chain = (ns + 3) / 4;
     if (sparse) block = chain * nt;
     for (int t = 0; t < nt && sparse; t++)
         if (wss[t].k && gd_sparse_ws_chain(&wss[t], a.pat.n)) goto nomem;
@@ -208,8 +249,30 @@ gd_status gd_campbell(const gd_system *sys, const gd_campbell_options *opt,
             gd_sparse_ws *ws = sparse ? &wss[omp_get_thread_num()] : NULL;
             if (ws && !ws->k) ws = NULL;
             if (ws) ws->warm_ok = 0;
-            int c1 = b0 + (c + 1) * chain < b1 ? b0 + (c + 1) * chain : b1;
+            int c1 = b0 + (c + 1) * chain < b1 ? b0 + (c + 1) * chain : b1, easy = 1;
             for (int s = b0 + c * chain; s < c1; s++) {
+                if (s == b0 + c * chain) easy = 1;
+                if (!res[s] && ws && continuation && easy && s > b0 + c * chain) {
+                    /* continued from the previous speed of the chain; NULL: Krylov-Schur */
+                    gd_modal_options o;
+                    gd_modal_options_init(&o);
+                    o.speed = opt->speeds[s];
+                    o.nmodes = nreq;
+                    o.kind = opt->kind;
+                    o.want_left = 0;
+                    const gd_modal_result *p2 = s - 1 > b0 + c * chain ? res[s - 2] : NULL;
+                    int hard = 0;
+                    sts[s] =
+                        gd_sparse_track(&a, &sym, &o, res[s - 1], p2, ws, &res[s], &hard, &errs[s]);
+                    easy = !hard;
+                    if (!sts[s] && res[s]) {
+                        ncont[s] = 1;
+                        gd_sparse_ws_remember(ws, res[s]);
+                        continue;
+                    }
+                    if (!sts[s]) nfb[s] = 1;
+                }
+                if (sts[s]) break;
                 if (!res[s])
                     sts[s] = solve_one(sys, sparse ? &a : NULL, &sym, opt, nreq, opt->speeds[s], ws,
                                        &res[s], &errs[s]);
@@ -241,6 +304,11 @@ gd_status gd_campbell(const gd_system *sys, const gd_campbell_options *opt,
             if (s > 0) drop_shapes(res[s - 1]);
         }
     }
+    if (stats)
+        for (int s = 0; s < ns; s++) {
+            stats->continued += ncont[s];
+            stats->fallbacks += nfb[s];
+        }
     r->nspeeds = ns;
     r->ntracks = nt_tracks;
     r->ndof = sys->ndof;
@@ -293,6 +361,8 @@ done:
     free(elastic);
     free(track);
     free(nel);
+    free(nfb);
+    free(ncont);
     gd_campbell_free(r);
     return st;
 }

@@ -3,6 +3,19 @@
 #define GD_CAMPBELL_INTERNAL_H
 #include "geardyn/campbell.h"
 
+/* How the speeds of a sparse sweep were solved: continued from the previous speed
+ * (gd_sparse_track), or by Krylov-Schur after the continuation declined (fallbacks);
+ * the first speed of each chain, and the speeds after a hard one in its chain, are
+ * Krylov-Schur and count in neither. */
+typedef struct gd_campbell_stats {
+    int continued, fallbacks;
+} gd_campbell_stats;
+
+/* gd_campbell with the continuation along chains on (1, the default) or off (0: every
+ * speed by Krylov-Schur, the reference), and its counts in *stats (may be NULL). */
+gd_status gd_campbell_run(const gd_system *sys, const gd_campbell_options *opt, int continuation,
+                          gd_campbell_stats *stats, gd_campbell_result **out, gd_error *err);
+
 /* Assigns track ids to the elastic modes of one speed from those of the previous one
  * (prev NULL at the first speed: new tracks). elastic lists the indices into
  * cur->modes of its nel_cur elastic modes (ascending frequency); track[j] receives the

@@ -841,3 +841,24 @@ done:
     if (st) gd_ks_result_free(out);
     return st;
 }
+
+gd_status gd_ks_deflated_top(gd_op_fn op, void *ctx, int n, const double *L, int nl, double tol,
+                             gd_ks_work *ws, double *top)
+{
+    *top = 0;
+    int nc = n - nl - 1 < GD_KS_CHECK_NCV ? n - nl - 1 : GD_KS_CHECK_NCV;
+    if (nc < 3) return GD_OK; /* L spans (nearly) the whole space: nothing can be missed */
+    if (ws->n != n || ws->ncv < nc) return GD_ENOMEM;
+    double *hh = malloc((size_t)2 * (nl + 1) * sizeof *hh);
+    if (!hh) return GD_ENOMEM;
+    locked lk = {n, nl, nl, (double *)L, NULL, NULL, NULL, NULL};
+    deflated dop = {op, ctx, &lk, hh, hh + nl + 1};
+    int mc = 0, nsel = 0, valid = 0, its = 0;
+    gd_status st =
+        ks_iterate(deflated_apply, &dop, n, 1, nc, tol, 50, 2u, ws, &mc, &nsel, &valid, &its);
+    if (!st)
+        for (int j = 0; j < mc; j++)
+            *top = hypot(ws->wr[j], ws->wi[j]) > *top ? hypot(ws->wr[j], ws->wi[j]) : *top;
+    free(hh);
+    return st;
+}

@@ -62,6 +62,11 @@ void gd_splu_symbolic_free(gd_splu_symbolic *s);
  * when singular, -1 when out of memory. */
 int gd_splu_factor(gd_splu *lu, const gd_pattern *a, const gd_splu_symbolic *s, const double *x,
                    int is_complex, int row_scaling);
+/* Factors new values x on the same pattern with the pivot order of lu's last
+ * factorisation (klu_refactor: no pivot search, no allocation), for a matrix near the
+ * one lu was factored for. Same returns as gd_splu_factor; on 1 the factors are not
+ * usable (factor afresh). */
+int gd_splu_refactor(gd_splu *lu, const gd_pattern *a, const gd_splu_symbolic *s, const double *x);
 /* Solves A x = b in place (complex: interleaved), nrhs columns of leading dimension n. */
 void gd_splu_solve(gd_splu *lu, const gd_splu_symbolic *s, int n, int nrhs, double *b);
 void gd_splu_free(gd_splu *lu);
@@ -120,5 +125,13 @@ void gd_ks_work_free(gd_ks_work *w);
 gd_status gd_krylov_schur(gd_op_fn op, void *ctx, int n, int nout, int nev, int ncv, double tol,
                           int maxit, gd_ks_work *ws, gd_ks_result *out); /* ws may be NULL */
 void gd_ks_result_free(gd_ks_result *r);
+/* The largest eigenvalue magnitude (*top) of the deflated operator (I - L L^T) Op on the
+ * complement of the n x nl orthonormal basis L (an invariant subspace of Op: eigenvectors
+ * already found), from a Krylov basis of at most 20 vectors converged to the relative
+ * residual tol: an eigenvalue of Op that L misses and that is larger than the found ones
+ * shows as *top above them (the completeness check of a solve that did not use Krylov).
+ * ws: workspace for n (ncv >= 20). GD_OK, GD_ENUMERIC (no convergence) or GD_ENOMEM. */
+gd_status gd_ks_deflated_top(gd_op_fn op, void *ctx, int n, const double *L, int nl, double tol,
+                             gd_ks_work *ws, double *top);
 
 #endif

@@ -49,6 +49,24 @@ int gd_splu_factor(gd_splu *lu, const gd_pattern *a, const gd_splu_symbolic *s, 
     return 0;
 }
 
+int gd_splu_refactor(gd_splu *lu, const gd_pattern *a, const gd_splu_symbolic *s, const double *x)
+{
+    if (!lu->num) return 1;
+    /* without row scaling, KLU's pass over the input only checks it, as the
+     * factorisation already did for this pattern */
+    if (lu->common.scale == 0) lu->common.scale = -1;
+    int ok = lu->is_complex
+                 ? klu_z_refactor(a->colptr, a->rowind, (double *)x, s->sym, lu->num, &lu->common)
+                 : klu_refactor(a->colptr, a->rowind, (double *)x, s->sym, lu->num, &lu->common);
+    if (!ok) return lu->common.status == KLU_OUT_OF_MEMORY ? -1 : 1;
+    if (lu->is_complex)
+        klu_z_rcond(s->sym, lu->num, &lu->common);
+    else
+        klu_rcond(s->sym, lu->num, &lu->common);
+    lu->rcond = lu->common.rcond;
+    return lu->rcond > 1e-14 ? 0 : 1;
+}
+
 void gd_splu_solve(gd_splu *lu, const gd_splu_symbolic *s, int n, int nrhs, double *b)
 {
     if (lu->is_complex)

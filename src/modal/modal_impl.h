@@ -75,6 +75,20 @@ void gd_sparse_ws_free(gd_sparse_ws *w);
 gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
                           const gd_modal_options *opt, double shift, gd_sparse_ws *ws,
                           gd_modal_result **out, gd_error *err);
+/* ---- sparse_track.c: continuation along a sweep ---- */
+/* The modes of prev (a result of this pattern at a nearby speed, with its shapes: the
+ * same count, rigid-body modes first; prev2, may be NULL, the one before it, for a
+ * linear prediction) refined to opt->speed by per-cluster residual
+ * inverse iteration with Rayleigh-Ritz, then checked for completeness by a deflated
+ * shift-invert Krylov check (sparse_track.c). *out NULL with GD_OK when the
+ * continuation cannot vouch for the result (the caller falls back to gd_sparse_modes);
+ * GD_ENOMEM when out of memory. ws: as for gd_sparse_modes (its k, d and Krylov work).
+ * *hard: 1 when the continuation declined or struggled (a cluster needed many passes,
+ * the completeness check was close): the caller had better use Krylov-Schur next. */
+gd_status gd_sparse_track(const gd_dynmat *a, const gd_splu_symbolic *sym,
+                          const gd_modal_options *opt, const gd_modal_result *prev,
+                          const gd_modal_result *prev2, gd_sparse_ws *ws, gd_modal_result **out,
+                          int *hard, gd_error *err);
 /* sqrt(min K_ii / M_ii) (1e3 when no DOF has both): an element's frequency, of the
  * order of the lowest modes' only on a coarse mesh; bounds the automatic shift
  * (gd_sparse_shift_auto). */

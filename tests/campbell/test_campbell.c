@@ -4,6 +4,7 @@
  * errors. */
 #include <stdlib.h>
 
+#include "campbell/campbell_impl.h"
 #include "geardyn/campbell.h"
 #include "harness.h"
 #include "model_support.h"
@@ -173,6 +174,115 @@ TEST(warm_start_equals_cold)
     fx_free(&f);
 }
 
+/* An overhung disk on two oil-film bearings whose stiffness and damping change with
+ * speed (speed tables, anisotropic and cross-coupled), gyroscopic: the non-symmetric
+ * case of the continuation (sparse_track.c). */
+static const char OILFILM[] =
+    "dofs: [x, y, rx, ry, rz]\n"
+    "materials:\n  steel: {density: 7850, E: 210 GPa, poisson: 0.3}\n"
+    "shafts:\n  - name: rotor\n    material: steel\n    elements_per_section: 12\n"
+    "    sections: [{length: 0.6, outer_diameter: 50 mm}, {length: 0.2, outer_diameter: 40 "
+    "mm}]\n"
+    "    nodes: [{name: b1, at: 0}, {name: b2, at: 0.6}, {name: tip, at: 0.8}]\n"
+    "disks:\n  - {name: wheel, node: tip, mass: 12, polar_inertia: 0.12, "
+    "diametral_inertia: 0.065}\n"
+    "bearings:\n"
+    "  - name: front\n    node: b1\n    table:\n"
+    "      - {speed: 0, k: 5e7, c: 2e3}\n"
+    "      - {speed: 3000 rpm, kxx: 4e7, kyy: 6e7, kxy: 1.5e7, kyx: -1.5e7, c: 1.5e3}\n"
+    "      - {speed: 9000 rpm, kxx: 3e7, kyy: 5e7, kxy: 3e7, kyx: -3e7, c: 1.2e3}\n"
+    "  - name: rear\n    node: b2\n    table:\n"
+    "      - {speed: 0, k: 8e7, c: 3e3}\n"
+    "      - {speed: 9000 rpm, kxx: 6e7, kyy: 9e7, kxy: 2e7, kyx: -2e7, c: 2e3}\n"
+    "springs:\n  - {name: coupling, node: b1, dof: rz, stiffness: 1e4}\n";
+
+/* The continuation of the modes from speed to speed (the default of the sparse sweep)
+ * against the dense (LAPACK) eigenvalues at every speed and against Krylov-Schur at
+ * every speed (the reference path), on the oil-film rotor (speed-dependent, cross-coupled
+ * bearings) and on the geared rig (gyroscopic, a rigid torsional mode). The continuation
+ * accepts a mode at a relative residual of 1e-10 (first-order eigenvalue error), Krylov-
+ * Schur at 1e-9 in its own measure: measured |d lambda| / |lambda| from dense 4e-12
+ * (oil film; Krylov-Schur 7e-12) and 2.3e-10 (rig; Krylov-Schur 5.4e-10), frequencies
+ * 4.3e-10 apart at most; asserted 1e-9 from dense and 3e-9 between the paths. Most
+ * speeds must have been continued (else this compares Krylov-Schur with itself). */
+TEST(continuation_equals_reference)
+{
+    for (int model = 0; model < 2; model++) {
+        fx f;
+        REQUIRE(load(&f, model ? "examples/rig2018.yaml" : NULL, model ? NULL : OILFILM));
+        /* the oil film from 50 rad/s, where its tables already make it anisotropic: at
+         * rest its pairs are double and the window of 10 modes cuts one, which the
+         * continuation leaves to Krylov-Schur (the trial in campbell.c) */
+        int ns = 30, nm = 10;
+        double *sp = linspace(model ? 0 : 50, 1256.6, ns);
+        gd_campbell_options o;
+        gd_campbell_options_init(&o);
+        o.speeds = sp;
+        o.nspeeds = ns;
+        o.nmodes = nm;
+        o.method = GD_EIG_SPARSE;
+        o.nthreads = 1;
+        gd_campbell_result *r[2];
+        gd_campbell_stats st[2];
+        gd_error err;
+        for (int c = 0; c < 2; c++)
+            REQUIRE(gd_campbell_run(f.s, &o, c, &st[c], &r[c], &err) == GD_OK);
+        CHECK(st[0].continued == 0 && st[1].continued >= ns / 2);
+        printf("  model %d: %d of %d speeds continued, %d fallbacks\n", model, st[1].continued, ns,
+               st[1].fallbacks);
+        double worst[2] = {0, 0}, between = 0;
+        int compared = 0;
+        for (int s = 0; s < ns; s++) {
+            gd_modal_options mo;
+            gd_modal_options_init(&mo);
+            mo.speed = sp[s];
+            mo.nmodes = 0;
+            mo.want_left = 0;
+            mo.kind = GD_MODAL_DAMPED;
+            mo.method = GD_EIG_DENSE;
+            gd_modal_result *d;
+            REQUIRE(gd_modal_solve(f.s, &mo, &d, &err) == GD_OK);
+            for (int c = 0; c < 2; c++)
+                for (int t = 0; t < r[c]->ntracks; t++) {
+                    const gd_mode *md = &r[c]->modes[(size_t)t * ns + s];
+                    if (isnan(md->omega_n)) continue;
+                    double near = INFINITY;
+                    for (int q = 0; q < d->nmodes; q++)
+                        if (!d->modes[q].rigid_body)
+                            near = fmin(near, hypot(d->modes[q].lambda_re - md->lambda_re,
+                                                    d->modes[q].lambda_im - md->lambda_im));
+                    worst[c] = fmax(worst[c], near / md->omega_n);
+                    compared += c;
+                }
+            gd_modal_free(d);
+            double wa[64], wb[64];
+            int na = 0, nb = 0;
+            for (int t = 0; t < r[0]->ntracks && na < 64; t++)
+                if (!isnan(r[0]->modes[(size_t)t * ns + s].omega_n))
+                    wa[na++] = r[0]->modes[(size_t)t * ns + s].omega_n;
+            for (int t = 0; t < r[1]->ntracks && nb < 64; t++)
+                if (!isnan(r[1]->modes[(size_t)t * ns + s].omega_n))
+                    wb[nb++] = r[1]->modes[(size_t)t * ns + s].omega_n;
+            CHECK(na == nm && nb == nm);
+            qsort(wa, (size_t)na, sizeof *wa, cmp_double);
+            qsort(wb, (size_t)nb, sizeof *wb, cmp_double);
+            for (int j = 0; j < na && j < nb; j++)
+                between = fmax(between, fabs(wa[j] - wb[j]) / wa[j]);
+        }
+        CHECK(compared == ns * nm);
+        CHECK_ABS(worst[1], 0.0, 1e-9);
+        CHECK_ABS(worst[0], 0.0, 1e-9);
+        CHECK_ABS(between, 0.0, 3e-9);
+        printf("  model %d: |d lambda| / |lambda| from dense %.2e (continuation), %.2e "
+               "(Krylov-Schur); frequencies between them %.2e\n",
+               model, worst[1], worst[0], between);
+        for (int c = 0; c < 2; c++)
+            gd_campbell_free(r[c]);
+        free(sp);
+        fx_free(&f);
+    }
+}
+
 TEST(threads_and_methods_agree)
 {
     fx f;
@@ -329,6 +439,6 @@ TEST(errors)
     fx_free(&f);
 }
 
-RUN_TESTS(T(sparse_equals_dense), T(warm_start_equals_cold),
+RUN_TESTS(T(sparse_equals_dense), T(warm_start_equals_cold), T(continuation_equals_reference),
           T(gyroscopic_forward_rises_backward_falls), T(threads_and_methods_agree),
           T(critical_speeds), T(instability_onset), T(mac_and_hungarian), T(errors))

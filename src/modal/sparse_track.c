@@ -1,0 +1,689 @@
+/* Continuation of the lowest damped modes from one speed of a sweep to the next
+ * (Campbell): each mode is refined from the previous speed's eigenpair instead of being
+ * found again by shift-invert Krylov-Schur (sparse_modes.c), whose ~55 Krylov vectors,
+ * their orthogonalisation and the Hessenberg QR of their Rayleigh quotient cost most of
+ * a Campbell diagram.
+ *
+ * Modes whose previous eigenvalues lie within 5 % of each other form a cluster (the
+ * forward and backward whirl of one lateral mode at low speed, repeated eigenvalues),
+ * refined together. For a cluster: one complex factorisation of P(sigma) = sigma^2 M +
+ * sigma D + K at sigma = the mean of its previous eigenvalues; a basis Q (n x q,
+ * complex) starting from the previous eigenvectors; Rayleigh-Ritz on the quadratic
+ * problem, Q^H P(lambda) Q s = 0 (linearised, q <= 26), the values nearest the previous
+ * ones kept; each residual r = P(lambda) x that fails the tolerance adds
+ * P(sigma)^-1 r to Q (residual inverse iteration, Neumaier, SIAM J. Numer. Anal. 22,
+ * 1985, accelerated by the projection), until every residual passes or the basis is
+ * full. Then a completeness check: shift-invert at today's real shift -s, deflated by
+ * the refined vectors (gd_ks_deflated_top); a remaining eigenvalue nearer -s than the
+ * farthest refined one is a mode the continuation missed (one coming down from above
+ * the window, or a copy of a repeated value).
+ *
+ * Any failure (a cluster of more than GD_TRACK_MAXC modes, an overdamped or nearly
+ * rigid mode, no convergence within the basis, a rigid-body mode whose shape is no
+ * longer in K's null space, a missed mode) returns no result, and the caller solves
+ * that speed by Krylov-Schur (the fallback). */
+#include <cblas.h>
+#include <complex.h>
+#include <lapacke.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "modal/modal_impl.h"
+
+#define PI 3.14159265358979323846
+/* Relative residual ||P(lambda) x|| / (|lambda| ||P'(lambda) x||) of an accepted mode: the
+ * first-order eigenvalue error of a simple, well-conditioned mode; the Galerkin projection
+ * makes the actual error about its square. Measured on bench/models/rig366.yaml (100 speeds,
+ * 12 modes): frequencies within 2e-12 (relative) of Krylov-Schur's, whose own tolerance
+ * is 1e-9 in the first-order form. */
+#define GD_TRACK_TOL 1e-10
+#define GD_TRACK_STALL 1e-8
+#define GD_TRACK_CLUSTER 0.01 /* relative distance of the eigenvalues of one cluster */
+#define GD_TRACK_MAXC 6       /* largest cluster refined together */
+#define GD_TRACK_MAXQ 6       /* basis columns per cluster member */
+#define GD_TRACK_MAXIT 8      /* Rayleigh-Ritz passes per cluster */
+/* A speed whose completeness check settles at the loose residual is easy: the next speed
+ * is continued too. A hard one (a mode just outside the window: near-double modes cut by
+ * its edge, as on a finely meshed, weakly gyroscopic shaft) hands the rest of its chain
+ * to Krylov-Schur, where the continuation costs more than it saves. */
+/* The completeness check: Krylov to this residual, and a margin below the farthest refined
+ * mode's shift-invert magnitude (as the deflated checks of krylov_schur.c) */
+#define GD_TRACK_CHECK_TOL 1e-4
+#define GD_TRACK_CHECK_MARGIN 1e-3
+#define GD_TRACK_LOOSE_TOL 1e-2
+#define GD_TRACK_LOOSE_MARGIN 2e-2
+
+/* y_m = M x, y_d = D x, y_k = K x for a complex x and the real values on the pattern */
+static void spmv3(const gd_pattern *p, const double *m, const double *d, const double *k,
+                  const double complex *x, double complex *ym, double complex *yd,
+                  double complex *yk)
+{
+    memset(ym, 0, (size_t)p->n * sizeof *ym);
+    memset(yd, 0, (size_t)p->n * sizeof *yd);
+    memset(yk, 0, (size_t)p->n * sizeof *yk);
+    for (int j = 0; j < p->n; j++) {
+        double complex xj = x[j];
+        for (int q = p->colptr[j]; q < p->colptr[j + 1]; q++) {
+            int i = p->rowind[q];
+            ym[i] += m[q] * xj;
+            yd[i] += d[q] * xj;
+            yk[i] += k[q] * xj;
+        }
+    }
+}
+
+/* a^H b, in real arithmetic (no complex-multiply special cases in the loop) */
+static double complex cdot(const double complex *a, const double complex *b, int n)
+{
+    const double *x = (const double *)a, *y = (const double *)b;
+    double sr = 0, si = 0;
+#pragma omp simd reduction(+ : sr, si)
+    for (int i = 0; i < n; i++) {
+        sr += x[2 * i] * y[2 * i] + x[2 * i + 1] * y[2 * i + 1];
+        si += x[2 * i] * y[2 * i + 1] - x[2 * i + 1] * y[2 * i];
+    }
+    return sr + I * si;
+}
+
+/* y += a x (complex), in real arithmetic */
+static void caxpy(int n, double complex a, const double complex *x, double complex *y)
+{
+    const double *u = (const double *)x;
+    double *v = (double *)y, ar = creal(a), ai = cimag(a);
+#pragma omp simd
+    for (int i = 0; i < n; i++) {
+        double ur = u[2 * i], ui = u[2 * i + 1];
+        v[2 * i] += ar * ur - ai * ui;
+        v[2 * i + 1] += ar * ui + ai * ur;
+    }
+}
+
+static double cnrm(const double complex *a, int n)
+{
+    double s = 0;
+    for (int i = 0; i < n; i++)
+        s += creal(a[i]) * creal(a[i]) + cimag(a[i]) * cimag(a[i]);
+    return sqrt(s);
+}
+
+/* Orthogonalises v against the q columns of Q (twice) and normalises it; 0 when v is
+ * (numerically) in their span. */
+static int corth(const double complex *Q, int n, int q, double complex *v)
+{
+    double before = cnrm(v, n);
+    if (!(before > 0) || !isfinite(before)) return 0;
+    for (int pass = 0; pass < 2; pass++)
+        for (int c = 0; c < q; c++) {
+            const double complex *qc = Q + (size_t)c * n;
+            caxpy(n, -cdot(qc, v, n), qc, v);
+        }
+    double after = cnrm(v, n);
+    if (!(after > 1e-10 * before)) return 0;
+    for (int i = 0; i < n; i++)
+        v[i] /= after;
+    return 1;
+}
+
+typedef struct found {
+    double complex lam;
+    double complex *x; /* n, unit 2-norm */
+} found;
+
+typedef struct track_ws {
+    int n, qmax;
+    double complex *Q, *MQ, *DQ, *KQ; /* n x qmax */
+    double complex *Mq, *Dq, *Kq;     /* qmax x qmax */
+    double complex *A2, *B2, *VR, *al, *be;
+    double complex *r, *t; /* n */
+    double complex *z;     /* the complex pattern values, nnz */
+    gd_splu lu;            /* R P(sigma) R of the current cluster */
+    double *rs;            /* n: R */
+    int passes;            /* the most Rayleigh-Ritz passes a cluster took */
+} track_ws;
+
+/* The eigenvalue of the q2 x q2 pencil (A, B) nearest sg by Rayleigh quotient iteration
+ * (the start vector [e1; sg e1]: the basis' first column is the previous eigenvector):
+ * 1 with *lam and v (unit norm; the first q2 / 2 entries are the Ritz vector's
+ * coefficients), 0 when it does not settle in 8 steps. Mw: q2 x q2 scratch. */
+static int small_rqi(int q2, const double complex *A, const double complex *B, double complex sg,
+                     double complex *Mw, double complex *v, double complex *lam)
+{
+    int q = q2 / 2;
+    double complex t[2 * GD_TRACK_MAXQ];
+    lapack_int ipiv[2 * GD_TRACK_MAXQ];
+    memset(v, 0, (size_t)q2 * sizeof *v);
+    v[0] = 1;
+    v[q] = sg;
+    for (int it = 0; it < 8; it++) {
+        for (int i = 0; i < q2 * q2; i++)
+            Mw[i] = A[i] - sg * B[i];
+        for (int i = 0; i < q2; i++) { /* t = B v */
+            double complex sum = 0;
+            for (int j = 0; j < q2; j++)
+                sum += B[i + (size_t)j * q2] * v[j];
+            t[i] = sum;
+        }
+        if (LAPACKE_zgetrf_work(LAPACK_COL_MAJOR, q2, q2, Mw, q2, ipiv)) return 0;
+        if (LAPACKE_zgetrs_work(LAPACK_COL_MAJOR, 'N', q2, 1, Mw, q2, ipiv, t, q2)) return 0;
+        /* t = (A - sg B)^-1 B v = mu v at convergence, lambda = sg + 1 / mu */
+        double complex vt = cdot(v, t, q2), vv = cdot(v, v, q2);
+        double nt = cnrm(t, q2);
+        if (!(nt > 0) || !isfinite(nt) || vt == 0) return 0;
+        double complex next = sg + vv / vt;
+        for (int i = 0; i < q2; i++)
+            v[i] = t[i] / nt;
+        if (cabs(next - sg) <= 1e-14 * cabs(next)) {
+            *lam = next;
+            return 1;
+        }
+        sg = next;
+    }
+    return 0;
+}
+
+static int factor_shift(const gd_dynmat *a, const gd_splu_symbolic *sym, const double *k,
+                        const double *d, double complex sg, track_ws *w);
+
+/* The c modes of one cluster (previous eigenvalues lam0, vectors x0, n x c) at the
+ * values k, d: their eigenpairs into out. 0 ok, 1 not converged (fall back), -1 no
+ * memory. */
+static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const double *k,
+                          const double *d, int c, const double complex *lam0,
+                          const double complex *x0, int nx0, track_ws *w, found *out)
+{
+    const gd_pattern *p = &a->pat;
+    int n = p->n, q = 0, qmax = GD_TRACK_MAXQ * c, rc = 1;
+    gd_splu *lu = &w->lu;
+    int factored = 0;
+    for (int i = 0; i < nx0 && q < qmax; i++) {
+        double complex *v = w->Q + (size_t)q * n;
+        memcpy(v, x0 + (size_t)i * n, (size_t)n * sizeof *v);
+        if (corth(w->Q, n, q, v)) q++;
+    }
+    int done = 0; /* columns whose products are in MQ, DQ, KQ and the projections */
+    int conv[GD_TRACK_MAXC], used[2 * GD_TRACK_MAXC * GD_TRACK_MAXQ];
+    double last[GD_TRACK_MAXC];
+    for (int it = 0; it < GD_TRACK_MAXIT && q > 0; it++) {
+        for (int j = done; j < q; j++)
+            spmv3(p, a->m, d, k, w->Q + (size_t)j * n, w->MQ + (size_t)j * n, w->DQ + (size_t)j * n,
+                  w->KQ + (size_t)j * n);
+        /* the projections Q^H X Q, grown by the new rows and columns */
+        for (int j = 0; j < q; j++)
+            for (int i = 0; i < q; i++) {
+                if (i < done && j < done) continue;
+                const double complex *qi = w->Q + (size_t)i * n;
+                w->Mq[i + (size_t)j * qmax] = cdot(qi, w->MQ + (size_t)j * n, n);
+                w->Dq[i + (size_t)j * qmax] = cdot(qi, w->DQ + (size_t)j * n, n);
+                w->Kq[i + (size_t)j * qmax] = cdot(qi, w->KQ + (size_t)j * n, n);
+            }
+        done = q;
+        /* [0 I; -Kq -Dq] v = lambda [I 0; 0 Mq] v */
+        int q2 = 2 * q;
+        memset(w->A2, 0, (size_t)q2 * q2 * sizeof *w->A2);
+        memset(w->B2, 0, (size_t)q2 * q2 * sizeof *w->B2);
+        for (int i = 0; i < q; i++) {
+            w->A2[i + (size_t)(q + i) * q2] = 1;
+            w->B2[i + (size_t)i * q2] = 1;
+            for (int j = 0; j < q; j++) {
+                w->A2[q + i + (size_t)j * q2] = -w->Kq[i + (size_t)j * qmax];
+                w->A2[q + i + (size_t)(q + j) * q2] = -w->Dq[i + (size_t)j * qmax];
+                w->B2[q + i + (size_t)(q + j) * q2] = w->Mq[i + (size_t)j * qmax];
+            }
+        }
+        /* one mode: Rayleigh quotient iteration on the small pencil from the
+         * extrapolated value (a few 2q x 2q solves); a cluster, or no convergence: QZ */
+        double complex vv[2 * GD_TRACK_MAXQ];
+        int nritz = q2,
+            one = c == 1 && q2 <= 2 * GD_TRACK_MAXQ &&
+                  small_rqi(q2, w->A2, w->B2, it ? out[0].lam : lam0[0], w->VR, vv, &w->al[0]);
+        if (one) {
+            w->be[0] = 1;
+            nritz = 1;
+        } else if (LAPACKE_zggev(LAPACK_COL_MAJOR, 'N', 'V', q2, w->A2, q2, w->B2, q2, w->al, w->be,
+                                 NULL, 1, w->VR, q2)) {
+            break;
+        }
+        memset(used, 0, sizeof used);
+        int nadd = 0, allconv = 1;
+        for (int m = 0; m < c; m++) {
+            /* the Ritz value nearest this mode's previous eigenvalue */
+            int best = -1;
+            double bd = INFINITY;
+            for (int j = 0; j < nritz; j++) {
+                double complex al = w->al[j], be = w->be[j];
+                double nb = creal(be) * creal(be) + cimag(be) * cimag(be),
+                       na = creal(al) * creal(al) + cimag(al) * cimag(al);
+                if (used[j] || !(nb > 1e-28 * na)) continue;
+                double complex dl = al / be - lam0[m];
+                double dist = creal(dl) * creal(dl) + cimag(dl) * cimag(dl);
+                if (dist < bd) {
+                    bd = dist;
+                    best = j;
+                }
+            }
+            if (best < 0) goto fail;
+            used[best] = 1;
+            double complex lam = w->al[best] / w->be[best];
+            const double complex *s = one ? vv : w->VR + (size_t)best * q2;
+            double complex *x = out[m].x;
+            memset(x, 0, (size_t)n * sizeof *x);
+            memset(w->r, 0, (size_t)n * sizeof *w->r);
+            for (int j = 0; j < q; j++) { /* x = Q s, r = P(lambda) x */
+                const double complex *qj = w->Q + (size_t)j * n, *mj = w->MQ + (size_t)j * n,
+                                     *dj = w->DQ + (size_t)j * n, *kj = w->KQ + (size_t)j * n;
+                double complex sj = s[j];
+                caxpy(n, sj, qj, x);
+                caxpy(n, sj * lam * lam, mj, w->r);
+                caxpy(n, sj * lam, dj, w->r);
+                caxpy(n, sj, kj, w->r);
+            }
+            /* x^H P'(lambda) x = s^H (2 lambda Mq + Dq) s, from the projections */
+            double complex dp = 0;
+            for (int j = 0; j < q; j++)
+                for (int i = 0; i < q; i++)
+                    dp += conj(s[i]) *
+                          (2 * lam * w->Mq[i + (size_t)j * qmax] + w->Dq[i + (size_t)j * qmax]) *
+                          s[j];
+            double nx = cnrm(x, n), nr = cnrm(w->r, n);
+            if (!(nx > 0)) goto fail;
+            for (int i = 0; i < n; i++)
+                x[i] /= nx;
+            out[m].lam = lam;
+            /* converged, or stalled at the rounding floor of P(lambda) x (stiff elements
+             * beside slow modes: eps (element frequency / mode's)^2), below GD_TRACK_STALL */
+            double rel = nr * nx / (cabs(lam) * cabs(dp));
+            conv[m] =
+                rel <= GD_TRACK_TOL || (it > 0 && rel <= GD_TRACK_STALL && rel > 0.1 * last[m]);
+            last[m] = rel;
+            if (conv[m]) continue;
+            allconv = 0;
+            /* residual inverse iteration: the correction P(sigma)^-1 r joins the basis,
+             * sigma the mean of the cluster's first Ritz values (already far nearer the
+             * eigenvalues than the extrapolation) */
+            if (q + nadd >= qmax) continue;
+            if (!factored) {
+                double complex sg = 0;
+                for (int i = 0; i < c; i++)
+                    sg += (m == i ? lam : lam0[i]) / c;
+                /* the later members' Ritz values are not picked yet: their predictions */
+                for (int i = 0; i < m; i++)
+                    sg += (out[i].lam - lam0[i]) / c;
+                int fr = factor_shift(a, sym, k, d, sg, w);
+                if (fr) return fr < 0 ? -1 : 1;
+                factored = 1;
+            }
+            double complex *v = w->Q + (size_t)(q + nadd) * n;
+            memcpy(v, w->r, (size_t)n * sizeof *v);
+            for (int i = 0; i < n; i++)
+                v[i] *= w->rs[i];
+            gd_splu_solve(lu, sym, n, 1, (double *)v);
+            for (int i = 0; i < n; i++)
+                v[i] *= w->rs[i];
+            if (corth(w->Q, n, q + nadd, v)) nadd++;
+        }
+        if (allconv) {
+            if (it + 1 > w->passes) w->passes = it + 1;
+            rc = 0;
+            break;
+        }
+        if (nadd == 0) break;
+        q += nadd;
+    }
+fail:
+    return rc;
+}
+
+/* Factors P(sigma) (complex) for sigma a little off sg: a mode the speed does not move
+ * (axial, torsional) would otherwise make it singular. 1e-6 |sg| away, inverse
+ * iteration still gains about four digits per step on a mode 1 % from the next; the
+ * pivot order of the speed's first factorisation serves the others (refactor: a poorer
+ * pivot costs convergence, which the residuals measure, not accuracy). 0 ok, 1 singular,
+ * -1 no memory. */
+static int factor_shift(const gd_dynmat *a, const gd_splu_symbolic *sym, const double *k,
+                        const double *d, double complex sg, track_ws *w)
+{
+    const gd_pattern *p = &a->pat;
+    gd_splu *lu = &w->lu;
+    int fr = 1;
+    for (double off = 1e-6; fr == 1 && off < 2e-3; off *= 1e3) {
+        double complex so = sg + off * cabs(sg) * (0.6 + 0.8 * I);
+        for (int q = 0; q < p->nnz; q++)
+            w->z[q] = so * so * a->m[q] + so * d[q] + k[q];
+        /* R P R with R = diag(|P_ii|^-1/2), as shift_invert.c: no KLU row scaling (a
+         * complex modulus per entry) */
+        for (int j = 0; j < p->n; j++) {
+            double djj = p->diag[j] >= 0 ? cabs(w->z[p->diag[j]]) : 0;
+            w->rs[j] = djj > 0 && isfinite(djj) ? 1.0 / sqrt(djj) : 1.0;
+        }
+        for (int j = 0; j < p->n; j++)
+            for (int q = p->colptr[j]; q < p->colptr[j + 1]; q++)
+                w->z[q] *= w->rs[p->rowind[q]] * w->rs[j];
+        if (lu->num) fr = gd_splu_refactor(lu, p, sym, (const double *)w->z);
+        if (fr == 1) {
+            gd_splu_free(lu);
+            fr = gd_splu_factor(lu, p, sym, (const double *)w->z, 1, 0);
+        }
+    }
+    return fr;
+}
+
+typedef struct track_order {
+    int idx;
+    double mag;
+} track_order;
+
+static int cmp_order(const void *a, const void *b)
+{
+    const track_order *x = a, *y = b;
+    if (x->mag != y->mag) return (x->mag > y->mag) - (x->mag < y->mag);
+    return x->idx - y->idx;
+}
+
+typedef struct si_ctx {
+    gd_shift_invert *op;
+    const gd_splu_symbolic *sym;
+} si_ctx;
+
+static void si_apply(void *ctx, const double *x, double *y)
+{
+    si_ctx *c = ctx;
+    gd_shift_invert_apply(c->op, c->sym, x, y);
+}
+
+/* Appends v (2n real) to the orthonormal columns L[:, 0:*nl] when independent
+ * (classical Gram-Schmidt twice, as BLAS matrix-vector products; h: nl scratch). */
+static void lock_vector(double *L, int n2, int *nl, double *v, double *h)
+{
+    double before = cblas_dnrm2(n2, v, 1);
+    if (!(before > 0)) return;
+    for (int pass = 0; pass < 2 && *nl > 0; pass++) {
+        cblas_dgemv(CblasColMajor, CblasTrans, n2, *nl, 1.0, L, n2, v, 1, 0.0, h, 1);
+        cblas_dgemv(CblasColMajor, CblasNoTrans, n2, *nl, -1.0, L, n2, h, 1, 1.0, v, 1);
+    }
+    double after = cblas_dnrm2(n2, v, 1);
+    if (!(after > 1e-8 * before)) return;
+    double *dst = L + (size_t)(*nl) * n2;
+    for (int i = 0; i < n2; i++)
+        dst[i] = v[i] / after;
+    (*nl)++;
+}
+
+gd_status gd_sparse_track(const gd_dynmat *a, const gd_splu_symbolic *sym,
+                          const gd_modal_options *opt, const gd_modal_result *prev,
+                          const gd_modal_result *prev2, gd_sparse_ws *ws, gd_modal_result **out,
+                          int *hard, gd_error *err)
+{
+    *out = NULL;
+    *hard = 1;
+    const gd_system *sys = a->sys;
+    int n = a->pat.n, nnz = a->pat.nnz, km = prev ? prev->nmodes : 0;
+    if (!prev || !prev->shape_re || !prev->shape_im || prev->ndof != n || km < 1 ||
+        opt->kind == GD_MODAL_UNDAMPED || sys->nmassless > 0)
+        return GD_OK;
+    gd_status st = GD_OK;
+    double *k = ws->k, *d = ws->d;
+    gd_dynmat_at(a, opt->speed, k, d);
+    int any_d = 0;
+    for (int i = 0; i < nnz; i++)
+        any_d |= d[i] != 0;
+    int conservative = !any_d && gd_pattern_symmetric(&a->pat, k);
+    double s, g, rtol;
+    gd_sparse_shift_auto(a, k, &s, &g, &rtol);
+    /* rigid-body modes first (sorted so), kept when still in K's null space */
+    int kr = 0;
+    while (kr < km && prev->modes[kr].rigid_body)
+        kr++;
+    for (int j = kr; j < km; j++)
+        if (prev->modes[j].rigid_body || prev->modes[j].lambda_im <= 0 ||
+            hypot(prev->modes[j].lambda_re, prev->modes[j].lambda_im) < 10 * rtol)
+            return GD_OK; /* overdamped or near-rigid modes: Krylov-Schur sorts those */
+    int nel = km - kr, n2 = 2 * n, ok = 0;
+    double kmax = 0;
+    for (int q = 0; q < nnz; q++)
+        kmax = fmax(kmax, fabs(k[q]));
+    found *fd = calloc((size_t)(nel > 0 ? nel : 1), sizeof *fd);
+    double complex *X = malloc((size_t)n * (nel > 0 ? nel : 1) * sizeof *X);
+    double complex *lam0 = malloc((size_t)(nel > 0 ? nel : 1) * sizeof *lam0);
+    double complex *x0 = malloc((size_t)n * 2 * GD_TRACK_MAXC * sizeof *x0);
+    int *match = malloc((size_t)(nel > 0 ? nel : 1) * sizeof *match);
+    double *L = malloc((size_t)n2 * (2 * km + 2) * sizeof *L), *v = malloc((size_t)n2 * sizeof *v);
+    double *hl = malloc((size_t)(2 * km + 2) * sizeof *hl);
+    track_ws w = {0};
+    int qmax = GD_TRACK_MAXQ * GD_TRACK_MAXC, q2 = 2 * qmax;
+    w.n = n;
+    w.qmax = qmax;
+    w.Q = malloc((size_t)n * qmax * sizeof *w.Q);
+    w.MQ = malloc((size_t)n * qmax * sizeof *w.MQ);
+    w.DQ = malloc((size_t)n * qmax * sizeof *w.DQ);
+    w.KQ = malloc((size_t)n * qmax * sizeof *w.KQ);
+    w.Mq = malloc((size_t)qmax * qmax * sizeof *w.Mq);
+    w.Dq = malloc((size_t)qmax * qmax * sizeof *w.Dq);
+    w.Kq = malloc((size_t)qmax * qmax * sizeof *w.Kq);
+    w.A2 = malloc((size_t)q2 * q2 * sizeof *w.A2);
+    w.B2 = malloc((size_t)q2 * q2 * sizeof *w.B2);
+    w.VR = malloc((size_t)q2 * q2 * sizeof *w.VR);
+    w.al = malloc((size_t)q2 * sizeof *w.al);
+    w.be = malloc((size_t)q2 * sizeof *w.be);
+    w.r = malloc((size_t)n * sizeof *w.r);
+    w.t = malloc((size_t)n * sizeof *w.t);
+    w.z = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof *w.z);
+    w.rs = malloc((size_t)n * sizeof *w.rs);
+    gd_shift_invert op = {0};
+    gd_modal_result *res = NULL;
+    if (!fd || !X || !lam0 || !x0 || !match || !hl || !L || !v || !w.Q || !w.MQ || !w.DQ || !w.KQ ||
+        !w.Mq || !w.Dq || !w.Kq || !w.A2 || !w.B2 || !w.VR || !w.al || !w.be || !w.r || !w.t ||
+        !w.z)
+        goto nomem;
+    int nl = 0;
+    /* rigid-body shapes u: |K u| at rounding level, and [u; 0], [0; u] span the
+     * defective zero's invariant subspace of the first-order form */
+    for (int j = 0; j < kr; j++) {
+        const double *u = prev->shape_re + (size_t)j * n;
+        double nu = 0, nk = 0;
+        for (int i = 0; i < n; i++)
+            nu = fmax(nu, fabs(u[i]));
+        memset(v, 0, (size_t)n2 * sizeof *v);
+        gd_pattern_mul2(&a->pat, k, u, d, u, v); /* K u + D u */
+        for (int i = 0; i < n; i++)
+            nk = fmax(nk, fabs(v[i]));
+        if (!(nk <= 1e-9 * kmax * nu)) goto done;
+        memset(v, 0, (size_t)n2 * sizeof *v);
+        memcpy(v, u, (size_t)n * sizeof *v);
+        lock_vector(L, n2, &nl, v, hl);
+        memset(v, 0, (size_t)n2 * sizeof *v);
+        memcpy(v + n, u, (size_t)n * sizeof *v);
+        lock_vector(L, n2, &nl, v, hl);
+    }
+    /* the elastic modes, cluster by cluster */
+    for (int j = 0; j < nel; j++) {
+        const gd_mode *md = &prev->modes[kr + j];
+        lam0[j] = md->lambda_re + I * md->lambda_im;
+        fd[j].x = X + (size_t)j * n;
+    }
+    /* the speed before: each mode's nearest value there (when the nearest both ways)
+     * extrapolates the eigenvalue linearly, and its vector joins the start basis (with the
+     * previous one it spans the linear extrapolation of the eigenvector) */
+    int have2 = prev2 && prev2->shape_re && prev2->shape_im && prev2->nmodes == km &&
+                prev2->ndof == n && isfinite(opt->speed) && prev2->speed != prev->speed;
+    double ratio = have2 ? (opt->speed - prev->speed) / (prev->speed - prev2->speed) : 0;
+    for (int j = 0; j < nel; j++) {
+        match[j] = -1;
+        if (!have2 || prev2->modes[kr + j].rigid_body) continue;
+        int best = -1;
+        double bd = INFINITY;
+        for (int i = kr; i < km; i++) {
+            double dd = cabs(prev2->modes[i].lambda_re + I * prev2->modes[i].lambda_im - lam0[j]);
+            if (dd < bd) {
+                bd = dd;
+                best = i;
+            }
+        }
+        if (best < 0) continue;
+        double complex l2 = prev2->modes[best].lambda_re + I * prev2->modes[best].lambda_im;
+        int back = -1;
+        bd = INFINITY;
+        for (int i = 0; i < nel; i++)
+            if (cabs(lam0[i] - l2) < bd) {
+                bd = cabs(lam0[i] - l2);
+                back = i;
+            }
+        if (back != j) continue;
+        match[j] = best;
+    }
+    for (int j = 0; j < nel; j++)
+        if (match[j] >= 0) {
+            const gd_mode *m2 = &prev2->modes[match[j]];
+            lam0[j] += ratio * (lam0[j] - (m2->lambda_re + I * m2->lambda_im));
+        }
+    for (int j0 = 0; j0 < nel;) {
+        int j1 = j0 + 1;
+        while (j1 < nel && cabs(lam0[j1] - lam0[j1 - 1]) <= GD_TRACK_CLUSTER * cabs(lam0[j1]))
+            j1++;
+        int c = j1 - j0;
+        if (c > GD_TRACK_MAXC) goto done;
+        int nx0 = 0;
+        for (int m = 0; m < c; m++) {
+            const double *re = prev->shape_re + (size_t)(kr + j0 + m) * n,
+                         *im = prev->shape_im + (size_t)(kr + j0 + m) * n;
+            for (int i = 0; i < n; i++)
+                x0[(size_t)nx0 * n + i] = re[i] + I * im[i];
+            nx0++;
+        }
+        for (int m = 0; m < c; m++) {
+            if (match[j0 + m] < 0) continue;
+            const double *re = prev2->shape_re + (size_t)match[j0 + m] * n,
+                         *im = prev2->shape_im + (size_t)match[j0 + m] * n;
+            for (int i = 0; i < n; i++)
+                x0[(size_t)nx0 * n + i] = re[i] + I * im[i];
+            nx0++;
+        }
+        int rc = refine_cluster(a, sym, k, d, c, lam0 + j0, x0, nx0, &w, fd + j0);
+        if (rc < 0) goto nomem;
+        if (rc > 0) goto done;
+        j0 = j1;
+    }
+    /* completeness: no eigenvalue of the shift-invert operator outside the found ones
+     * above the smallest found |mu| = 1 / |lambda + s| */
+    double thr = INFINITY;
+    for (int j = 0; j < nel; j++) {
+        double complex lam = fd[j].lam;
+        if (cimag(lam) < 0) lam = conj(lam);
+        fd[j].lam = lam;
+        if (!(hypot(creal(lam), cimag(lam)) > rtol)) goto done;
+        thr = fmin(thr, 1.0 / cabs(lam + s));
+        for (int part = 0; part < 2; part++) {
+            for (int i = 0; i < n; i++) {
+                double complex z1 = fd[j].x[i], z2 = lam * fd[j].x[i] / g;
+                v[i] = part ? cimag(z1) : creal(z1);
+                v[n + i] = part ? cimag(z2) : creal(z2);
+            }
+            lock_vector(L, n2, &nl, v, hl);
+        }
+    }
+    int rcs = gd_shift_invert_setup(&op, &a->pat, a->m, sym, -s, g, k, d);
+    if (rcs < 0) goto nomem;
+    if (rcs > 0) goto done;
+    si_ctx ctx = {&op, sym};
+    /* first to a loose residual, which settles a clear gap; to the tight one otherwise */
+    double top = 0;
+    st = gd_ks_deflated_top(si_apply, &ctx, n2, L, nl, GD_TRACK_LOOSE_TOL, &ws->ks, &top);
+    if (!st && !(top < thr * (1 - GD_TRACK_LOOSE_MARGIN)) &&
+        top < thr * (1 + GD_TRACK_LOOSE_MARGIN)) {
+        st = gd_ks_deflated_top(si_apply, &ctx, n2, L, nl, GD_TRACK_CHECK_TOL, &ws->ks, &top);
+        w.passes = GD_TRACK_MAXIT; /* a mode just outside the window: hard */
+        if (!st && !(top < thr * (1 - GD_TRACK_CHECK_MARGIN))) top = INFINITY;
+    } else if (!st && !(top < thr * (1 - GD_TRACK_LOOSE_MARGIN))) {
+        top = INFINITY;
+    }
+    if (st == GD_ENOMEM) goto nomem;
+    if (st || !(top < thr)) {
+        st = GD_OK;
+        goto done;
+    }
+    /* the result, as gd_sparse_modes gives it */
+    track_order *ord = malloc((size_t)(nel > 0 ? nel : 1) * sizeof *ord);
+    if (!ord) goto nomem;
+    for (int j = 0; j < nel; j++) {
+        double complex lam = fd[j].lam;
+        if (conservative) { /* as gd_sparse_modes: lambda^2 = -omega^2 exactly */
+            double l2 = creal(lam * lam);
+            lam = l2 < 0 ? I * sqrt(-l2) : sqrt(l2);
+            fd[j].lam = lam;
+        }
+        ord[j] = (track_order){j, cabs(lam)};
+    }
+    qsort(ord, (size_t)nel, sizeof *ord, cmp_order);
+    res = gd_modal_result_new(sys, km, 0);
+    if (!res) {
+        free(ord);
+        goto nomem;
+    }
+    res->damped = any_d || opt->kind == GD_MODAL_DAMPED || !conservative;
+    res->sparse = 1;
+    res->speed = opt->speed;
+    gd_rigid_modes_fill(sys, opt->speed, res, prev->shape_re, kr);
+    for (int j = kr; j < km; j++) {
+        gd_mode *md = &res->modes[j];
+        const found *f = &fd[ord[j - kr].idx];
+        double lr = creal(f->lam), li = cimag(f->lam), mag = hypot(lr, li);
+        md->rigid_body = 0;
+        md->lambda_re = lr;
+        md->lambda_im = li;
+        md->omega_n = mag;
+        md->omega_d = li;
+        md->frequency_hz = mag / (2 * PI);
+        md->damping_ratio = -lr / mag;
+        md->overdamped = li == 0;
+        md->unstable = lr > 1e-8 * mag;
+        double z = md->damping_ratio;
+        md->log_decrement = li > 0 && fabs(z) < 1 ? 2 * PI * z / sqrt(1 - z * z) : NAN;
+        double *re = res->shape_re + (size_t)j * n, *im = res->shape_im + (size_t)j * n;
+        for (int i = 0; i < n; i++) {
+            re[i] = creal(f->x[i]);
+            im[i] = cimag(f->x[i]);
+        }
+        gd_normalise_max(re, im, n);
+        gd_mode_finish(sys, opt->speed, md, re, im,
+                       res->energy_by_component + (size_t)j * sys->ncomponents);
+    }
+    free(ord);
+    ok = 1;
+    goto done;
+nomem:
+    st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory in the mode continuation");
+done:
+    if (ok) {
+        *out = res;
+        res = NULL;
+        *hard = w.passes > GD_TRACK_MAXIT - 1;
+    }
+    gd_modal_free(res);
+    gd_shift_invert_free(&op);
+    gd_splu_free(&w.lu);
+    free(fd);
+    free(X);
+    free(lam0);
+    free(x0);
+    free(match);
+    free(hl);
+    free(L);
+    free(v);
+    free(w.Q);
+    free(w.MQ);
+    free(w.DQ);
+    free(w.KQ);
+    free(w.Mq);
+    free(w.Dq);
+    free(w.Kq);
+    free(w.A2);
+    free(w.B2);
+    free(w.VR);
+    free(w.al);
+    free(w.be);
+    free(w.r);
+    free(w.t);
+    free(w.z);
+    free(w.rs);
+    return st;
+}
