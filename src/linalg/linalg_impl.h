@@ -38,6 +38,9 @@ typedef struct gd_pattern {
 
 /* Position of (row, col) in the pattern, or -1. */
 int gd_pattern_find(const gd_pattern *p, int row, int col);
+/* 1 when values k on the pattern are symmetric to 1e-12 of their largest magnitude (an
+ * entry whose transpose is outside the pattern compares with 0). */
+int gd_pattern_symmetric(const gd_pattern *p, const double *k);
 /* y = S x + T z for values s, t on the pattern (real): one pass over the pattern. */
 void gd_pattern_mul2(const gd_pattern *p, const double *s, const double *x, const double *t,
                      const double *z, double *y);

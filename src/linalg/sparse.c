@@ -1,6 +1,7 @@
 #include "linalg/linalg_impl.h"
 
 #include <cs.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -113,6 +114,22 @@ int gd_pattern_find(const gd_pattern *a, int row, int col)
             hi = mid - 1;
     }
     return -1;
+}
+
+int gd_pattern_symmetric(const gd_pattern *p, const double *k)
+{
+    double mx = 0;
+    for (int q = 0; q < p->nnz; q++)
+        mx = fmax(mx, fabs(k[q]));
+    for (int j = 0; j < p->n; j++)
+        for (int q = p->colptr[j]; q < p->colptr[j + 1]; q++) {
+            int i = p->rowind[q];
+            if (i >= j) continue;
+            int t = gd_pattern_find(p, j, i);
+            double kt = t >= 0 ? k[t] : 0.0;
+            if (fabs(k[q] - kt) > 1e-12 * mx) return 0;
+        }
+    return 1;
 }
 
 void gd_pattern_mul2(const gd_pattern *a, const double *s, const double *x, const double *t,

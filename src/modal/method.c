@@ -59,22 +59,6 @@ double gd_cost_sparse(const gd_pattern *p, const gd_splu_symbolic *sym, int nmod
            C_SCHUR * c * c * c;
 }
 
-int gd_pattern_symmetric(const gd_pattern *p, const double *k)
-{
-    double mx = 0;
-    for (int q = 0; q < p->nnz; q++)
-        mx = fmax(mx, fabs(k[q]));
-    for (int j = 0; j < p->n; j++)
-        for (int q = p->colptr[j]; q < p->colptr[j + 1]; q++) {
-            int i = p->rowind[q];
-            if (i >= j) continue;
-            int t = gd_pattern_find(p, j, i);
-            double kt = t >= 0 ? k[t] : 0.0;
-            if (fabs(k[q] - kt) > 1e-12 * mx) return 0;
-        }
-    return 1;
-}
-
 int gd_modal_damped_at(const gd_dynmat *a, const gd_modal_options *opt, double *k, double *d)
 {
     if (opt->kind == GD_MODAL_DAMPED) return 1;

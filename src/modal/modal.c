@@ -20,18 +20,6 @@ void gd_modal_options_init(gd_modal_options *opt)
     opt->want_left = 1;
 }
 
-void gd_modal_free(gd_modal_result *r)
-{
-    if (!r) return;
-    free(r->modes);
-    free(r->shape_re);
-    free(r->shape_im);
-    free(r->left_re);
-    free(r->left_im);
-    free(r->energy_by_component);
-    free(r);
-}
-
 static int is_symmetric(const double *A, int n)
 {
     double mx = 0;

@@ -114,9 +114,6 @@ double gd_cost_dense(int n, int damped, int nmodes);
 double gd_cost_sparse(const gd_pattern *p, const gd_splu_symbolic *sym, int nmodes);
 /* 1 when the damped (state-space) problem is the one to solve at this speed: asked for,
  * or AUTO and the damping at the speed is not zero. */
-/* 1 when the values k on the pattern p are symmetric to 1e-12 of the largest (the
- * dense solver's test). */
-int gd_pattern_symmetric(const gd_pattern *p, const double *k);
 int gd_modal_damped_at(const gd_dynmat *a, const gd_modal_options *opt, double *k, double *d);
 
 #endif

@@ -27,3 +27,15 @@ gd_modal_result *gd_modal_result_new(const gd_system *sys, int nmodes, int with_
     }
     return r;
 }
+
+void gd_modal_free(gd_modal_result *r)
+{
+    if (!r) return;
+    free(r->modes);
+    free(r->shape_re);
+    free(r->shape_im);
+    free(r->left_re);
+    free(r->left_im);
+    free(r->energy_by_component);
+    free(r);
+}

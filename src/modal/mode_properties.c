@@ -12,6 +12,14 @@
 
 const char *const gd_whirl_names[4] = {"none", "forward", "backward", "mixed"};
 
+gd_motion gd_dof_motion(gd_dof d)
+{
+    return d == GD_RZ                   ? GD_MOTION_TORSIONAL
+           : d == GD_Z                  ? GD_MOTION_AXIAL
+           : (d == GD_RX || d == GD_RY) ? GD_MOTION_TILT
+                                        : GD_MOTION_LATERAL;
+}
+
 static gd_whirl mode_whirl(const gd_system *sys, const double *re, const double *im)
 {
     const gd_model *m = sys->model;

@@ -13,14 +13,6 @@
 
 #include "modal/modal_impl.h"
 
-gd_motion gd_dof_motion(gd_dof d)
-{
-    return d == GD_RZ                   ? GD_MOTION_TORSIONAL
-           : d == GD_Z                  ? GD_MOTION_AXIAL
-           : (d == GD_RX || d == GD_RY) ? GD_MOTION_TILT
-                                        : GD_MOTION_LATERAL;
-}
-
 int gd_null_space(const double *A, int n, double tol, double **basis)
 {
     *basis = NULL;
