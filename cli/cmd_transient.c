@@ -1,12 +1,12 @@
 /* geardyn transient MODEL: time integration of the nonlinear, time-varying system
  * (docs/transient.md), records, statistics, contact history and spectra. */
-#include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
 #include "cli.h"
+#include "options.h"
 #include "geardyn/spectrum.h"
 #include "geardyn/transient_model.h"
 #include "geardyn/units.h"
@@ -20,129 +20,6 @@
 #endif
 
 static const char CMD[] = "transient";
-
-static const char USAGE[] =
-    "usage: geardyn transient MODEL.yaml [--duration T | --revolutions N] [--speed S]\n"
-    "                         [--record WHAT]... [--from T] [--output-interval T]\n"
-    "                         [--rtol R] [--method auto|bdf|adams|galpha] [--step T]\n"
-    "                         [--rho-inf R] [--max-steps N] [--reduce F] [--start rest|static]\n"
-    "                         [--spectrum] [--window hann|rect] [--unbalance-scale F]\n"
-    "                         [--coupling LEVEL] [--dofs LIST] [--set PATH=VALUE]... [--json]\n"
-    "                         [--out DIR] [--quiet] [--plot FILE.svg|FILE.html]\n"
-    "       geardyn transient MODEL.yaml --periods N [--settle T|Nrev] [--speed S] ...\n"
-    "       geardyn transient MODEL.yaml --speed-ramp FROM:TO --duration T\n"
-    "                         [--waterfall REC] [--revs-per-block N] [--plot F] ...\n\n"
-    "Integrates the equations of motion at a constant reference speed with the model's\n"
-    "nonlinear and time-varying laws (mesh TVMS, transmission error, backlash, squeeze\n"
-    "film dampers, loads, prescribed motions, cam torques, unbalances), then prints\n"
-    "statistics of the records over the steady part and the contact history of the\n"
-    "meshes.\n\n"
-    "  --duration T         simulated time, with units (e.g. 12ms); > 0\n"
-    "  --revolutions N      or N revolutions of the reference shaft: T = 2 pi N / speed\n"
-    "  --speed S            reference speed (e.g. 10000rpm); default: the model's\n"
-    "  --record WHAT        what to record, comma-separated, repeatable:\n"
-    "                         NODE.DOF[:disp|vel|angle|speed]  (disp: perturbation q;\n"
-    "                           angle, speed: total, nominal motion included)\n"
-    "                         ratio:NODE_A/NODE_B   angular speed of A over B (rz)\n"
-    "                         mesh:NAME[:force|state|deflection|stiffness] (NAME or *)\n"
-    "                         sfd:BEARING[:fx|fy|ecc]  damper force, e/c (BEARING or *)\n"
-    "                         law:NAME[:RECORD]  a record of a law of `laws:` (NAME or *)\n"
-    "                       default: force and contact state of the nonlinear meshes,\n"
-    "                       fx and fy of the dampers, the first record of each law\n"
-    "  --from T             records and statistics from this time (default: last half)\n"
-    "  --output-interval T  sampling of the records (default: 2000 samples, at least 32\n"
-    "                       per revolution); frequencies above half the sampling rate\n"
-    "                       fold back into a spectrum: sample fast enough\n"
-    "  --rtol R             relative tolerance (default 1e-6)\n"
-    "  --method M           auto (default): a linear time-invariant model (no law, no\n"
-    "                       backlash, TVMS or STE, no cam) by its exact harmonic response\n"
-    "                       plus the free motion at a step halved until two steps agree\n"
-    "                       to --rtol; any other model by bdf; the header says which.\n"
-    "                       bdf or adams: CVODE, error-controlled by --rtol,\n"
-    "                       contact changes located; galpha: fixed-step generalized-alpha\n"
-    "                       (Chung-Hulbert; Newmark's average acceleration at --rho-inf 1),\n"
-    "                       contact changes resolved to the step\n"
-    "  --step T             galpha: largest time step (default: output interval / 10)\n"
-    "  --rho-inf R          galpha: spectral radius at infinite step, 0..1 (default 0.9):\n"
-    "                       below 1 damps the unresolved high modes\n";
-static const char USAGE_LIMITS[] =
-    "  --max-steps N        step limit (default 50 million): a run that needs more (galpha:\n"
-    "                       duration / step; bdf, adams: the fastest shaft's revolutions)\n"
-    "                       is refused before it starts\n"
-    "  --reduce F           modal reduction (Craig-Bampton): DOFs with laws stay physical,\n"
-    "                       the rest become their modes below F (e.g. 5kHz) plus static\n"
-    "                       constraint modes; any --method runs the reduced model\n"
-    "  --start S            rest (default): q = q' = 0 (nominal motion), or static:\n"
-    "                       static equilibrium under the loads at t = 0\n"
-    "  --spectrum           amplitude spectrum (FFT, mean removed) of every record over\n"
-    "                       the recorded part: leading peaks with their order of the\n"
-    "                       reference speed; with --out, DIR/spectrum.csv\n"
-    "  --window W           hann (default) or rect\n"
-    "  --unbalance-scale F  multiplies every unbalance of the model (F >= 0)\n"
-    "  --coupling LEVEL     torsional | lateral-torsional | full: every mesh's level\n"
-    "  --dofs LIST          keep only these node DOFs, e.g. x,y,rz\n"
-    "  --set PATH=VALUE     change a value of the model file, e.g.\n"
-    "                       --set meshes.mesh.stiffness=3e8N/m (repeatable;\n"
-    "                       docs/model-format.md)\n"
-    "  --json               one JSON object on stdout\n"
-    "  --out DIR            DIR/records.csv (time and one column per record),\n"
-    "                       DIR/summary.json, DIR/spectrum.csv with --spectrum\n"
-    "  --quiet              no progress bar (it is shown on stderr only on a terminal)\n";
-
-/* (split: C99 guarantees string literals of 4095 characters only) */
-static const char USAGE_POINCARE[] =
-    "  --plot FILE          time histories, spectra, orbits, contact states: FILE.svg or\n"
-    "                       FILE.html (interactive, self-contained; docs/plots.md);\n"
-    "                       with --sweep-speeds, the run-up waterfall (--waterfall)\n"
-    "  --poincare SRC       stroboscopic (Poincare) samples of the records once per\n"
-    "                       revolution of shaft SRC or per tooth-mesh cycle of mesh SRC\n"
-    "                       (shaft:NAME or mesh:NAME when a name is both), at the exact\n"
-    "                       times k T from --settle on: the points, their period (period-1,\n"
-    "                       period-2, ... or many) and, with --out, DIR/poincare.csv\n"
-    "  --settle S           settling time before the Poincare samples: a time (20ms) or\n"
-    "                       revolutions of the reference shaft (200rev); default: --from\n"
-    "                       for one run, 100rev for a sweep or --periods\n"
-    "  --sweep-speeds R     bifurcation diagram: FROM:TO:COUNT speeds (e.g.\n"
-    "                       500:3000rpm:26); each run starts from the previous speed's end\n"
-    "                       state, settles, then takes --points Poincare samples (needs\n"
-    "                       --poincare; replaces --duration, --revolutions, --speed);\n"
-    "                       with --out, DIR/sweep.csv, DIR/poincare.csv, DIR/summary.json\n"
-    "  --points N           Poincare points per speed in a sweep (default 64)\n"
-    "  --run-down           sweep from TO down to FROM\n"
-    "  --both-directions    sweep up, then down again\n"
-    "  --waterfall REC      in a sweep, the run-up waterfall of record REC: its spectrum\n"
-    "                       over each speed's settled part, the order cuts (1x of each\n"
-    "                       shaft, mesh orders) in the table and --json, with --out\n"
-    "                       DIR/waterfall.csv and DIR/order_cuts.csv; --plot FILE draws\n"
-    "                       it (cascade, colour map, order cuts; the first record without\n"
-    "                       --waterfall). A stepped (quasi-steady) run-up (docs/transient.md)\n";
-
-static const char USAGE_RUNUP[] =
-    "  --speed-ramp FROM:TO run-up (or run-down): the reference speed goes linearly from\n"
-    "                       FROM to TO over --duration (e.g. 0:6000rpm); every shaft\n"
-    "                       follows through its ratio; gyroscopic, unbalance (with the\n"
-    "                       angular acceleration term), mesh, cam and law forces at the\n"
-    "                       shafts' angles and speeds; records from 0 s; speed-table\n"
-    "                       bearings held at --speed (default: the ramp's mid speed)\n"
-    "  --speed-table FILE   or the speed from rows 'time, speed' (linear between rows,\n"
-    "                       held after the last; a header line may name the unit: rpm,\n"
-    "                       rad/s (default), Hz); --duration defaults to the last time\n"
-    "  --waterfall REC      with a profile: order tracking of REC (resampled on the\n"
-    "                       reference shaft's angle), one order spectrum per block of\n"
-    "                       revolutions at its mean speed, the order cuts; --plot draws\n"
-    "                       it, --out writes DIR/waterfall.csv, DIR/order_cuts.csv\n"
-    "  --revs-per-block N   revolutions per order spectrum (default 16; bins 1/N order)\n";
-
-static const char USAGE_PERIODS[] =
-    "  --periods N          responses with no stable periodic orbit (rattle): run --settle\n"
-    "                       (rounded up to whole periods; default 100rev) plus N periods T\n"
-    "                       of the excitations' fundamental, then give per record the\n"
-    "                       median and 5-95 % band over the periods of each period's\n"
-    "                       peak-to-peak, mean and RMS, and the Poincare verdict on the\n"
-    "                       N + 1 once-per-period samples (periodic, period-N,\n"
-    "                       quasi-periodic or irregular); records every T / 256 (finer\n"
-    "                       for high excitation orders) unless --output-interval; with\n"
-    "                       --out, DIR/periods.csv and DIR/poincare.csv\n";
 
 enum { NPEAKS = 6 };
 
@@ -446,12 +323,13 @@ fail:
 }
 
 typedef struct cli_opts {
+    const char *file; /* the model */
     const char *duration, *revolutions, *speed, *from, *interval, *coupling, *out, *step, *reduce,
         *plot;
     const char *poincare, *settle, *sweep, *waterfall, *ramp, *table;
     double revs_per_block;
-    long points, periods;
-    int direction, direction_given;
+    int points, periods;
+    int direction; /* 0 up, 1 --run-down, 2 --both-directions */
     const char *records[64];
     int nrecords;
     gd_cli_sets sets;
@@ -463,44 +341,211 @@ typedef struct cli_opts {
     gd_window window;
 } cli_opts;
 
+/* --rtol R: a number in (0, 0.1). */
+static int parse_rtol(const char *cmd, const char *text, void *field)
+{
+    if (parse_positive("--rtol", text, field)) return GD_EXIT_INPUT;
+    if (*(double *)field >= 0.1) return gd_cli_usage_error(cmd, "--rtol: give a value below 0.1");
+    return 0;
+}
+
+/* --method M: auto, bdf, adams or galpha (gd_tr_method). */
+static int parse_method(const char *cmd, const char *text, void *field)
+{
+    static const char *const names[] = {"auto", "bdf", "adams", "galpha"};
+    static const gd_tr_method methods[] = {GD_TR_AUTO, GD_TR_BDF, GD_TR_ADAMS, GD_TR_GEN_ALPHA};
+    for (int k = 0; k < 4; k++)
+        if (!strcmp(text, names[k])) {
+            *(gd_tr_method *)field = methods[k];
+            return 0;
+        }
+    return gd_cli_usage_error(cmd, "--method: '%s' is not auto, bdf, adams or galpha", text);
+}
+
+/* --max-steps N: a whole number from 1 to 1e15 (written 5e7 or 50000000). */
+static int parse_max_steps(const char *cmd, const char *text, void *field)
+{
+    char *end;
+    double v = strtod(text, &end);
+    if (end == text || *end || !(v >= 1 && v <= 1e15) || v != floor(v))
+        return gd_cli_usage_error(cmd, "--max-steps: '%s' is not a whole number from 1 to 1e15",
+                                  text);
+    *(long *)field = (long)v;
+    return 0;
+}
+
+/* --rho-inf R: a number from 0 to 1. */
+static int parse_rho_inf(const char *cmd, const char *text, void *field)
+{
+    char *end;
+    double v = strtod(text, &end);
+    if (end == text || *end || !(v >= 0 && v <= 1))
+        return gd_cli_usage_error(cmd, "--rho-inf: '%s' is not a number from 0 to 1", text);
+    *(double *)field = v;
+    return 0;
+}
+
+/* --unbalance-scale F: a finite number >= 0. */
+static int parse_unbalance_scale(const char *cmd, const char *text, void *field)
+{
+    char *end;
+    double v = strtod(text, &end);
+    if (end == text || *end || !isfinite(v) || v < 0)
+        return gd_cli_usage_error(cmd, "--unbalance-scale: '%s' is not a number >= 0", text);
+    *(double *)field = v;
+    return 0;
+}
+
+/* --revs-per-block N: revolutions from 1 to 1e5 (not only whole). */
+static int parse_revs_per_block(const char *cmd, const char *text, void *field)
+{
+    if (parse_positive("--revs-per-block", text, field)) return GD_EXIT_INPUT;
+    double v = *(double *)field;
+    if (v < 1 || v > 1e5)
+        return gd_cli_usage_error(cmd, "--revs-per-block: give 1 to 1e5 revolutions");
+    return 0;
+}
+
+#define F(m) offsetof(cli_opts, m)
+static const gd_cli_opt OPTS[] = {
+    GD_CLI_ROW("duration", GD_CLI_STRING, F(duration), "T",
+               "simulated time, with units (e.g. 12ms); > 0"),
+    GD_CLI_ROW("revolutions", GD_CLI_STRING, F(revolutions), "N",
+               "or N revolutions of the reference shaft: T = 2 pi N / speed"),
+    GD_CLI_ROW("speed", GD_CLI_STRING, F(speed), "S", "reference speed (e.g. 10000rpm)",
+               .def = "the model's"),
+    GD_CLI_ROW("record", GD_CLI_LIST, F(records), "WHAT",
+               "what to record, comma-separated, repeatable (WHAT below); default: force and "
+               "contact state of the nonlinear meshes, fx and fy of the dampers, the first "
+               "record of each law",
+               .aux = F(nrecords), .hi = 64),
+    GD_CLI_ROW("from", GD_CLI_STRING, F(from), "T", "records and statistics from this time",
+               .def = "last half"),
+    GD_CLI_ROW("output-interval", GD_CLI_STRING, F(interval), "T",
+               "sampling of the records (default: 2000 samples, at least 32 per revolution); "
+               "frequencies above half the sampling rate fold back into a spectrum: sample fast "
+               "enough"),
+    GD_CLI_ROW("rtol", GD_CLI_CALL, F(rtol), "R", "relative tolerance", .def = "1e-6",
+               .call = parse_rtol),
+    GD_CLI_ROW("method", GD_CLI_CALL, F(method), "M",
+               "auto (default): a linear time-invariant model (no law, no backlash, TVMS or STE, "
+               "no cam) by its exact harmonic response plus the free motion at a step halved "
+               "until two steps agree to --rtol; any other model by bdf; the header says which. "
+               "bdf or adams: CVODE, error-controlled by --rtol, contact changes located; "
+               "galpha: fixed-step generalized-alpha (Chung-Hulbert; Newmark's average "
+               "acceleration at --rho-inf 1), contact changes resolved to the step",
+               .call = parse_method),
+    GD_CLI_ROW("step", GD_CLI_STRING, F(step), "T", "galpha: largest time step",
+               .def = "output interval / 10"),
+    GD_CLI_ROW("rho-inf", GD_CLI_CALL, F(rho_inf), "R",
+               "galpha: spectral radius at infinite step, 0..1: below 1 damps the unresolved "
+               "high modes",
+               .def = "0.9", .call = parse_rho_inf),
+    GD_CLI_ROW("max-steps", GD_CLI_CALL, F(max_steps), "N",
+               "step limit: a run that needs more (galpha: duration / step; bdf, adams: the "
+               "fastest shaft's revolutions) is refused before it starts",
+               .def = "50 million", .call = parse_max_steps),
+    GD_CLI_ROW("reduce", GD_CLI_STRING, F(reduce), "F",
+               "modal reduction (Craig-Bampton): DOFs with laws stay physical, the rest become "
+               "their modes below F (e.g. 5kHz) plus static constraint modes; any --method runs "
+               "the reduced model"),
+    GD_CLI_ROW("start", GD_CLI_CHOICE, F(init), "S",
+               "rest: q = q' = 0 (nominal motion), or static: static equilibrium under the loads "
+               "at t = 0",
+               .def = "rest", .word = "rest|static"),
+    GD_CLI_ROW("spectrum", GD_CLI_FLAG, F(spectrum), NULL,
+               "amplitude spectrum (FFT, mean removed) of every record over the recorded part: "
+               "leading peaks with their order of the reference speed; with --out, "
+               "DIR/spectrum.csv"),
+    GD_CLI_ROW("window", GD_CLI_CHOICE, F(window), "W", "hann or rect", .def = "hann",
+               .word = "hann|rect"),
+    GD_CLI_ROW("unbalance-scale", GD_CLI_CALL, F(unbalance_scale), "F",
+               "multiplies every unbalance of the model (F >= 0)", .call = parse_unbalance_scale),
+    GD_CLI_ROW_MODEL(cli_opts, coupling, sets),
+    GD_CLI_ROW_JSON(cli_opts, json),
+    GD_CLI_ROW_OUT(cli_opts, out,
+                   "DIR/records.csv (time and one column per record), DIR/summary.json, "
+                   "DIR/spectrum.csv with --spectrum"),
+    GD_CLI_ROW("quiet", GD_CLI_FLAG, F(quiet), NULL,
+               "no progress bar (it is shown on stderr only on a terminal)", .letter = 'q'),
+    GD_CLI_ROW("plot", GD_CLI_STRING, F(plot), "FILE",
+               "time histories, spectra, orbits, contact states: FILE.svg or FILE.html "
+               "(interactive, self-contained; docs/plots.md); with --sweep-speeds or a speed "
+               "profile, the run-up waterfall (--waterfall)"),
+    GD_CLI_ROW("poincare", GD_CLI_STRING, F(poincare), "SRC",
+               "stroboscopic (Poincare) samples of the records once per revolution of shaft SRC "
+               "or per tooth-mesh cycle of mesh SRC (shaft:NAME or mesh:NAME when a name is "
+               "both), at the exact times k T from --settle on: the points, their period "
+               "(period-1, period-2, ... or many) and, with --out, DIR/poincare.csv"),
+    GD_CLI_ROW("settle", GD_CLI_STRING, F(settle), "S",
+               "settling time before the Poincare samples: a time (20ms) or revolutions of the "
+               "reference shaft (200rev); default: --from for one run, 100rev for a sweep or "
+               "--periods"),
+    GD_CLI_ROW("sweep-speeds", GD_CLI_STRING, F(sweep), "R",
+               "bifurcation diagram: FROM:TO:COUNT speeds (e.g. 500:3000rpm:26); each run starts "
+               "from the previous speed's end state, settles, then takes --points Poincare "
+               "samples (needs --poincare; replaces --duration, --revolutions, --speed); with "
+               "--out, DIR/sweep.csv, DIR/poincare.csv, DIR/summary.json"),
+    GD_CLI_ROW("points", GD_CLI_INT, F(points), "N", "Poincare points per speed in a sweep",
+               .def = "64", .lo = 2, .hi = 1000000),
+    GD_CLI_ROW("run-down", GD_CLI_VALUE, F(direction), NULL, "sweep from TO down to FROM",
+               .ival = 1, .excludes = "both-directions"),
+    GD_CLI_ROW("both-directions", GD_CLI_VALUE, F(direction), NULL, "sweep up, then down again",
+               .ival = 2, .excludes = "run-down"),
+    GD_CLI_ROW("waterfall", GD_CLI_STRING, F(waterfall), "REC",
+               "the run-up waterfall of record REC. In a sweep: its spectrum over each speed's "
+               "settled part, a stepped (quasi-steady) run-up (docs/transient.md). With a speed "
+               "profile: order tracking of REC (resampled on the reference shaft's angle), one "
+               "order spectrum per block of revolutions at its mean speed. Both: the order cuts "
+               "(1x of each shaft, mesh orders) in the table and --json, with --out "
+               "DIR/waterfall.csv and DIR/order_cuts.csv; --plot FILE draws it (cascade, colour "
+               "map, order cuts; the first record without --waterfall)"),
+    GD_CLI_ROW("periods", GD_CLI_INT, F(periods), "N",
+               "responses with no stable periodic orbit (rattle): run --settle (rounded up to "
+               "whole periods; default 100rev) plus N periods T of the excitations' fundamental, "
+               "then give per record the median and 5-95 % band over the periods of each "
+               "period's peak-to-peak, mean and RMS, and the Poincare verdict on the N + 1 "
+               "once-per-period samples (periodic, period-N, quasi-periodic or irregular); "
+               "records every T / 256 (finer for high excitation orders) unless "
+               "--output-interval; with --out, DIR/periods.csv and DIR/poincare.csv",
+               .lo = 1, .hi = 1000000),
+    GD_CLI_ROW("speed-ramp", GD_CLI_STRING, F(ramp), "FROM:TO",
+               "run-up (or run-down): the reference speed goes linearly from FROM to TO over "
+               "--duration (e.g. 0:6000rpm); every shaft follows through its ratio; gyroscopic, "
+               "unbalance (with the angular acceleration term), mesh, cam and law forces at the "
+               "shafts' angles and speeds; records from 0 s; speed-table bearings held at "
+               "--speed (default: the ramp's mid speed)"),
+    GD_CLI_ROW("speed-table", GD_CLI_STRING, F(table), "FILE",
+               "or the speed from rows 'time, speed' (linear between rows, held after the last; "
+               "a header line may name the unit: rpm, rad/s (default), Hz); --duration defaults "
+               "to the last time"),
+    GD_CLI_ROW("revs-per-block", GD_CLI_CALL, F(revs_per_block), "N",
+               "with a speed profile: revolutions per order spectrum (bins 1/N order)", .def = "16",
+               .call = parse_revs_per_block),
+    {0}};
+static const gd_cli_command TRANSIENT = {
+    .name = CMD,
+    .args = "MODEL.yaml",
+    .opts = OPTS,
+    .more = "       geardyn transient MODEL.yaml --periods N [--settle T|Nrev] [--speed S] ...\n"
+            "       geardyn transient MODEL.yaml --speed-ramp FROM:TO --duration T\n"
+            "                         [--waterfall REC] [--revs-per-block N] [--plot F] ...\n",
+    .about = "Integrates the equations of motion at a constant reference speed with the model's\n"
+             "nonlinear and time-varying laws (mesh TVMS, transmission error, backlash, squeeze\n"
+             "film dampers, loads, prescribed motions, cam torques, unbalances), then prints\n"
+             "statistics of the records over the steady part and the contact history of the\n"
+             "meshes. Give --duration T or --revolutions N (one run), --periods N, "
+             "--sweep-speeds\nor a speed profile (--speed-ramp, --speed-table).\n",
+    .footer = "--record WHAT, comma-separated:\n"
+              "  NODE.DOF[:disp|vel|angle|speed]  (disp: perturbation q; angle, speed: total,\n"
+              "                                   nominal motion included)\n"
+              "  ratio:NODE_A/NODE_B              angular speed of A over B (rz)\n"
+              "  mesh:NAME[:force|state|deflection|stiffness]  (NAME or *)\n"
+              "  sfd:BEARING[:fx|fy|ecc]          damper force, e/c (BEARING or *)\n"
+              "  law:NAME[:RECORD]                a record of a law of `laws:` (NAME or *)\n"};
+
 static int parse_args(int argc, char **argv, cli_opts *o)
 {
-    static const struct option opts[] = {{"duration", required_argument, 0, 'd'},
-                                         {"revolutions", required_argument, 0, 'n'},
-                                         {"speed", required_argument, 0, 's'},
-                                         {"record", required_argument, 0, 'r'},
-                                         {"from", required_argument, 0, 'f'},
-                                         {"output-interval", required_argument, 0, 'i'},
-                                         {"rtol", required_argument, 0, 't'},
-                                         {"method", required_argument, 0, 'm'},
-                                         {"step", required_argument, 0, 'H'},
-                                         {"rho-inf", required_argument, 0, 'R'},
-                                         {"max-steps", required_argument, 0, 'X'},
-                                         {"reduce", required_argument, 0, 'F'},
-                                         {"start", required_argument, 0, 'a'},
-                                         {"spectrum", no_argument, 0, 'S'},
-                                         {"window", required_argument, 0, 'w'},
-                                         {"unbalance-scale", required_argument, 0, 'u'},
-                                         {"coupling", required_argument, 0, 'c'},
-                                         {"json", no_argument, 0, 'j'},
-                                         {"out", required_argument, 0, 'o'},
-                                         {"quiet", no_argument, 0, 'q'},
-                                         {"poincare", required_argument, 0, 'P'},
-                                         {"settle", required_argument, 0, 'E'},
-                                         {"sweep-speeds", required_argument, 0, 'W'},
-                                         {"points", required_argument, 0, 'N'},
-                                         {"run-down", no_argument, 0, 'D'},
-                                         {"both-directions", no_argument, 0, 'B'},
-                                         {"periods", required_argument, 0, 'Q'},
-                                         {"waterfall", required_argument, 0, 'Y'},
-                                         {"speed-ramp", required_argument, 0, 'A'},
-                                         {"speed-table", required_argument, 0, 'T'},
-                                         {"revs-per-block", required_argument, 0, 'K'},
-                                         GD_CLI_SET_OPTION,
-                                         GD_CLI_DOFS_OPTION,
-                                         {"help", no_argument, 0, 'h'},
-                                         GD_CLI_PLOT_OPTION,
-                                         {0, 0, 0, 0}};
     memset(o, 0, sizeof *o);
     o->rtol = 1e-6;
     o->unbalance_scale = 1.0;
@@ -508,182 +553,18 @@ static int parse_args(int argc, char **argv, cli_opts *o)
     o->method = GD_TR_AUTO;
     o->init = GD_TR_INIT_REST;
     o->window = GD_WINDOW_HANN;
-    int c;
-    optind = 1;
-    opterr = 0;
-    while ((c = getopt_long(argc, argv, ":hq", opts, NULL)) != -1) {
-        switch (c) {
-        case 'd':
-            o->duration = optarg;
-            break;
-        case 'n':
-            o->revolutions = optarg;
-            break;
-        case 's':
-            o->speed = optarg;
-            break;
-        case 'r':
-            if (o->nrecords == 64) return gd_cli_usage_error(CMD, "--record: at most 64 options");
-            o->records[o->nrecords++] = optarg;
-            break;
-        case 'f':
-            o->from = optarg;
-            break;
-        case 'i':
-            o->interval = optarg;
-            break;
-        case 't':
-            if (parse_positive("--rtol", optarg, &o->rtol)) return GD_EXIT_INPUT;
-            if (o->rtol >= 0.1) return gd_cli_usage_error(CMD, "--rtol: give a value below 0.1");
-            break;
-        case 'm':
-            if (!strcmp(optarg, "bdf"))
-                o->method = GD_TR_BDF;
-            else if (!strcmp(optarg, "adams"))
-                o->method = GD_TR_ADAMS;
-            else if (!strcmp(optarg, "galpha"))
-                o->method = GD_TR_GEN_ALPHA;
-            else if (!strcmp(optarg, "auto"))
-                o->method = GD_TR_AUTO;
-            else
-                return gd_cli_usage_error(CMD, "--method: '%s' is not auto, bdf, adams or galpha",
-                                          optarg);
-            break;
-        case 'H':
-            o->step = optarg;
-            break;
-        case 'F':
-            o->reduce = optarg;
-            break;
-        case 'X': {
-            char *end;
-            double v = strtod(optarg, &end);
-            if (end == optarg || *end || !(v >= 1 && v <= 1e15) || v != floor(v))
-                return gd_cli_usage_error(
-                    CMD, "--max-steps: '%s' is not a whole number from 1 to 1e15", optarg);
-            o->max_steps = (long)v;
-            break;
-        }
-        case 'R': {
-            char *end;
-            o->rho_inf = strtod(optarg, &end);
-            if (end == optarg || *end || !(o->rho_inf >= 0 && o->rho_inf <= 1))
-                return gd_cli_usage_error(CMD, "--rho-inf: '%s' is not a number from 0 to 1",
-                                          optarg);
-            break;
-        }
-        case 'a':
-            if (!strcmp(optarg, "rest"))
-                o->init = GD_TR_INIT_REST;
-            else if (!strcmp(optarg, "static"))
-                o->init = GD_TR_INIT_STATIC;
-            else
-                return gd_cli_usage_error(CMD, "--start: '%s' is not rest or static", optarg);
-            break;
-        case 'S':
-            o->spectrum = 1;
-            break;
-        case 'w':
-            if (!strcmp(optarg, "hann"))
-                o->window = GD_WINDOW_HANN;
-            else if (!strcmp(optarg, "rect"))
-                o->window = GD_WINDOW_RECT;
-            else
-                return gd_cli_usage_error(CMD, "--window: '%s' is not hann or rect", optarg);
-            break;
-        case 'u': {
-            char *end;
-            o->unbalance_scale = strtod(optarg, &end);
-            if (end == optarg || *end || !isfinite(o->unbalance_scale) || o->unbalance_scale < 0)
-                return gd_cli_usage_error(CMD, "--unbalance-scale: '%s' is not a number >= 0",
-                                          optarg);
-            break;
-        }
-        case 'c':
-            o->coupling = optarg;
-            break;
-        case GD_CLI_OPT_SET:
-            if (gd_cli_add_set(CMD, &o->sets, optarg)) return GD_EXIT_INPUT;
-            break;
-        case GD_CLI_OPT_DOFS:
-            o->sets.dofs = optarg;
-            break;
-        case 'j':
-            o->json = 1;
-            break;
-        case 'o':
-            o->out = optarg;
-            break;
-        case GD_CLI_OPT_PLOT:
-            o->plot = optarg;
-            break;
-        case 'q':
-            o->quiet = 1;
-            break;
-        case 'P':
-            o->poincare = optarg;
-            break;
-        case 'E':
-            o->settle = optarg;
-            break;
-        case 'W':
-            o->sweep = optarg;
-            break;
-        case 'Y':
-            o->waterfall = optarg;
-            break;
-        case 'A':
-            o->ramp = optarg;
-            break;
-        case 'T':
-            o->table = optarg;
-            break;
-        case 'K':
-            if (parse_positive("--revs-per-block", optarg, &o->revs_per_block))
-                return GD_EXIT_INPUT;
-            if (o->revs_per_block < 1 || o->revs_per_block > 1e5)
-                return gd_cli_usage_error(CMD, "--revs-per-block: give 1 to 1e5 revolutions");
-            break;
-        case 'N':
-            if (gd_cli_parse_count(optarg, 2, 1000000, &o->points))
-                return gd_cli_usage_error(CMD, "--points: '%s' is not a whole number from 2",
-                                          optarg);
-            break;
-        case 'Q':
-            if (gd_cli_parse_count(optarg, 1, 1000000, &o->periods))
-                return gd_cli_usage_error(
-                    CMD, "--periods: '%s' is not a whole number from 1 to 1000000", optarg);
-            break;
-        case 'D':
-        case 'B':
-            if (o->direction_given && o->direction != (c == 'D' ? 1 : 2))
-                return gd_cli_usage_error(CMD,
-                                          "--run-down and --both-directions exclude each other");
-            o->direction = c == 'D' ? 1 : 2;
-            o->direction_given = 1;
-            break;
-        case 'h':
-            fputs(USAGE, stdout);
-            fputs(USAGE_LIMITS, stdout);
-            fputs(USAGE_POINCARE, stdout);
-            fputs(USAGE_PERIODS, stdout);
-            fputs(USAGE_RUNUP, stdout);
-            return -1;
-        default:
-            return gd_cli_option_error(CMD, c, argv, optind);
-        }
-    }
-    if (optind != argc - 1) return gd_cli_usage_error(CMD, "give exactly one model file");
+    int rc = gd_cli_parse(&TRANSIENT, argc, argv, o, &o->file);
+    if (rc) return rc;
     if (o->ramp || o->table) {
-        const char *clash = o->ramp && o->table  ? "--speed-table with --speed-ramp"
-                            : o->sweep           ? "--sweep-speeds"
-                            : o->periods         ? "--periods"
-                            : o->poincare        ? "--poincare"
-                            : o->revolutions     ? "--revolutions"
-                            : o->reduce          ? "--reduce"
-                            : o->spectrum        ? "--spectrum (use --waterfall)"
-                            : o->direction_given ? "--run-down/--both-directions"
-                                                 : NULL;
+        const char *clash = o->ramp && o->table ? "--speed-table with --speed-ramp"
+                            : o->sweep          ? "--sweep-speeds"
+                            : o->periods        ? "--periods"
+                            : o->poincare       ? "--poincare"
+                            : o->revolutions    ? "--revolutions"
+                            : o->reduce         ? "--reduce"
+                            : o->spectrum       ? "--spectrum (use --waterfall)"
+                            : o->direction      ? "--run-down/--both-directions"
+                                                : NULL;
         if (clash)
             return gd_cli_usage_error(CMD,
                                       "%s does not apply to a speed profile (one run through "
@@ -736,7 +617,7 @@ static int parse_args(int argc, char **argv, cli_opts *o)
         return 0;
     }
     if (o->waterfall) return gd_cli_usage_error(CMD, "--waterfall applies to --sweep-speeds only");
-    if (o->points || o->direction_given)
+    if (o->points || o->direction)
         return gd_cli_usage_error(CMD, "%s applies to --sweep-speeds only",
                                   o->points           ? "--points"
                                   : o->direction == 1 ? "--run-down"
@@ -1119,7 +1000,7 @@ int gd_cmd_transient(int argc, char **argv)
     memset(&per, 0, sizeof per);
     double *ptimes = NULL;
     int npt = 0;
-    rc = gd_cli_load(argv[optind], &o.sets, o.coupling, &m, &s);
+    rc = gd_cli_load(o.file, &o.sets, o.coupling, &m, &s);
     if (rc) return rc;
     run_info ri;
     memset(&ri, 0, sizeof ri);

@@ -186,4 +186,37 @@ TEST(report_run_up)
     scratch_close(&s);
 }
 
-RUN_TESTS(T(run_up_peak_at_the_campbell_critical_speed), T(run_up_errors), T(report_run_up))
+/* The rows of report's option table: --out is required, each count and the run-up's
+ * length name their range (exit 2, nothing written), and the help lists every option. */
+TEST(report_option_rows)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    run_result r;
+    run(&s, &r, "report " ROTOR);
+    CHECK(r.code == 2 && contains(r.err, "--out FILE.html is required") && !r.out[0]);
+    run_free(&r);
+    CHECK(run_fails_cleanly(&s, "report " ROTOR " --modes 0", "--modes: '0'",
+                            "whole number from 1 to 1000"));
+    CHECK(run_fails_cleanly(&s, "report " ROTOR " --freq-points 1", "--freq-points: '1'",
+                            "whole number from 2 to 100000"));
+    CHECK(run_fails_cleanly(&s, "report " ROTOR " --threads 0", "--threads: '0'",
+                            "whole number from 1"));
+    CHECK(run_fails_cleanly(&s, "report " ROTOR " --run-up 0:6000rpm --run-up-revolutions 10",
+                            "--run-up-revolutions: '10'", "from 16"));
+    CHECK(run_fails_cleanly(&s, "report " ROTOR " --speeds 0:9000rpm:5 --run-up-revol=x",
+                            "--run-up-revolutions: 'x'", NULL));
+    run(&s, &r, "report --help");
+    const char *names[] = {"--out FILE.html",  "--speeds FROM:TO:COUNT", "--speed VALUE",
+                           "--modes N",        "--freq-points N",        "--threads N",
+                           "--run-up FROM:TO", "--run-up-revolutions N", "--coupling LEVEL",
+                           "--set PATH=VALUE"};
+    CHECK(r.code == 0);
+    for (int k = 0; k < 10; k++)
+        CHECK(strstr(r.out, names[k]) != NULL);
+    run_free(&r);
+    scratch_close(&s);
+}
+
+RUN_TESTS(T(run_up_peak_at_the_campbell_critical_speed), T(run_up_errors), T(report_run_up),
+          T(report_option_rows))

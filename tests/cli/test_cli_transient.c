@@ -785,9 +785,54 @@ TEST(waterfall_outputs_and_errors)
     scratch_close(&s);
 }
 
+/* The rows of transient's option table: each value check names its option and its range
+ * (exit 2, nothing written), -q is --quiet, and the help lists every option once with the
+ * --record forms after the options. */
+TEST(option_table_rows)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    expect_error(gd_ts_, &s, "--max-steps: '1.5'", "whole number from 1 to 1e15",
+                 "transient " DUCATI " --duration 1ms --max-steps 1.5");
+    expect_error(gd_ts_, &s, "--rho-inf: '2'", "from 0 to 1",
+                 "transient " DUCATI " --duration 1ms --method galpha --rho-inf 2");
+    expect_error(gd_ts_, &s, "--unbalance-scale: '-1'", ">= 0",
+                 "transient " DUCATI " --duration 1ms --unbalance-scale -1");
+    expect_error(gd_ts_, &s, "--window: 'flat'", "hann or rect",
+                 "transient " DUCATI " --duration 1ms --window flat");
+    expect_error(gd_ts_, &s, "--start: 'moving'", "rest or static",
+                 "transient " DUCATI " --duration 1ms --start moving");
+    expect_error(gd_ts_, &s, "--periods: '0'", "whole number from 1",
+                 "transient " DUCATI " --periods 0");
+    expect_error(gd_ts_, &s, "--revs-per-block: give 1 to 1e5", NULL,
+                 "transient " DUCATI " --speed-ramp 0:6000rpm --duration 1ms --revs-per-block 0.5");
+    expect_error(gd_ts_, &s, "--spectrum' takes no value", NULL,
+                 "transient " DUCATI " --duration 1ms --spectrum=1");
+    expect_error(gd_ts_, &s, "did you mean --duration?", NULL,
+                 "transient " DUCATI " --duratoin 1ms");
+    run_result r;
+    /* -q: the short form of --quiet, on either side of the model file */
+    run(&s, &r, "transient -q " DUCATI " --duration 0.2ms --record crank_pinion.rz");
+    CHECK(r.code == 0 && contains(r.out, "crank_pinion.rz") && !r.err[0]);
+    run_free(&r);
+    run(&s, &r, "transient --help");
+    CHECK(r.code == 0 && contains(r.out, "-q, --quiet"));
+    const char *names[] = {"--duration T",      "--record WHAT",     "--method M",
+                           "--run-down",        "--both-directions", "--speed-table FILE",
+                           "--revs-per-block N"};
+    for (int k = 0; k < 7; k++) {
+        const char *at = strstr(r.out, "\n\n  --duration T"); /* the option list */
+        CHECK(at && strstr(at, names[k]));
+    }
+    const char *forms = strstr(r.out, "--record WHAT, comma-separated:");
+    CHECK(forms && strstr(forms, "mesh:NAME[:force|state|deflection|stiffness]"));
+    run_free(&r);
+    scratch_close(&s);
+}
+
 RUN_TESTS(T(ducati_speed_ratios_and_contact_losses), T(ducati_text_static_start_and_wildcards),
           T(outputs_and_spectrum_files), T(chen_sfd_orbits), T(chen_sfd_spectrum_high_unbalance),
           T(chen_sfd_subsynchronous_near_the_mesh_mode), T(record_errors), T(option_errors),
           T(auto_takes_the_linear_method_on_a_linear_model), T(model_errors),
           T(poincare_single_run), T(poincare_sweep), T(poincare_errors),
-          T(waterfall_outputs_and_errors))
+          T(waterfall_outputs_and_errors), T(option_table_rows))
