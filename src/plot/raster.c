@@ -152,7 +152,7 @@ static gd_status write_pdf(const gd_plot *p, FILE *f, gd_error *err)
                 used += ph;
                 k1++;
             }
-            part.panels = s->panels + k0;
+            part.panels = s->panels ? s->panels + k0 : NULL; /* a note-only section has none */
             part.npanels = k1 - k0;
             if (k0 > 0) {
                 snprintf(part.title, sizeof part.title, "%.180s (continued)", s->title);
