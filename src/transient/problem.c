@@ -447,3 +447,15 @@ int gd_transient_nstates(const gd_transient *tr)
 {
     return 2 * tr->nf;
 }
+
+/* The reduction the problem owns (reduce.c makes it). */
+void gd_tr_reduction_free(gd_tr_reduction *r)
+{
+    if (!r) return;
+    free(r->kept);
+    free(r->irow);
+    free(r->rate);
+    free(r->TI);
+    free(r->MTI);
+    free(r);
+}

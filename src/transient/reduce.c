@@ -215,17 +215,6 @@ static void keep(int *flag, int d)
     if (d >= 0) flag[d] = 1;
 }
 
-void gd_tr_reduction_free(gd_tr_reduction *r)
-{
-    if (!r) return;
-    free(r->kept);
-    free(r->irow);
-    free(r->rate);
-    free(r->TI);
-    free(r->MTI);
-    free(r);
-}
-
 double gd_tr_full_value(const gd_transient *tr, int i, const double *x)
 {
     const gd_tr_reduction *r = tr->red;
