@@ -1,7 +1,6 @@
 /* geardyn periodic MODEL --speeds FROM:TO:COUNT: periodic steady state by harmonic
  * balance or shooting with continuation and Floquet stability (docs/periodic.md). */
 #include <cblas.h>
-#include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -10,73 +9,11 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "options.h"
 #include "geardyn/periodic.h"
 #include "transient_record.h"
 
-static const char *CMD = "periodic";
-
-static const char USAGE[] =
-    "usage: geardyn periodic MODEL.yaml --speeds FROM:TO:COUNT [--harmonics H|auto]\n"
-    "                        [--subharmonic N] [--record WHAT]... [--parameter "
-    "PATH=FROM:TO:COUNT]\n"
-    "                        [--frequency FROM:TO:COUNT]\n"
-    "                        [--both-directions] [--sequential] [--no-stability] [--tol TOL]\n"
-    "                        [--harmonic-tol TOL] [--max-harmonics H] [--no-estimate]\n"
-    "                        [--samples N] [--coupling LEVEL] [--set PATH=VALUE]... [--json]\n"
-    "                        [--out DIR] [--plot FILE.svg|FILE.html] [--quiet]\n"
-    "                        [--method hb|shooting|auto] [--shoot-rtol TOL] [--shoot-budget S]\n"
-    "                        [--shoot-dense-max N]\n\n"
-    "Periodic steady state by harmonic balance (alternating frequency-time on every\n"
-    "nonlinear and time-varying law of `transient`), continued by pseudo-arclength over\n"
-    "the speed (through folds: a hysteresis loop gives several points per speed), with\n"
-    "Floquet multipliers and the bifurcations found on the way.\n\n";
-/* the options (one literal would pass the 4095 characters C99 guarantees) */
-static const char USAGE_OPTIONS[] =
-    "  --speeds FROM:TO:COUNT  reference speeds, units allowed (required); each requested\n"
-    "                    speed is solved exactly wherever the branch crosses it\n"
-    "  --method M        hb (default): harmonic balance; shooting: Newton on the period map\n"
-    "                    of transient's integrator (every law transient has, cams with\n"
-    "                    include_acceleration included; natural continuation, one point\n"
-    "                    per speed); auto: the cheaper for the model by a measured cost\n"
-    "                    (the choice and the costs are printed)\n"
-    "  --shoot-rtol TOL  shooting: the integrator's relative tolerance (default 1e-9)\n"
-    "  --shoot-dense-max N  shooting: the dense monodromy up to N states (default 64);\n"
-    "                    above, Newton-Krylov on monodromy-vector products\n"
-    "  --shoot-budget S  shooting: CPU seconds per point before it stops, not converged,\n"
-    "                    saying why (default 30; 0: no limit)\n"
-    "  --harmonics H|auto  harmonics of the period; auto (default): from the least H that\n"
-    "                    holds every excitation, doubled per point until every record's\n"
-    "                    peak-to-peak and harmonic amplitudes agree with those at 2 H to\n"
-    "                    --harmonic-tol; a fixed H is checked against 2 H the same way\n"
-    "  --harmonic-tol TOL  truncation tolerance, relative (default 0.01)\n"
-    "  --max-harmonics H   cap of H (default: the largest whose workspace fits in half\n"
-    "                    the memory)\n"
-    "  --no-estimate     with a fixed H: no solution at 2 H, no truncation estimate\n"
-    "  --subharmonic N   solutions of period N times the fundamental (default 1)\n"
-    "  --record WHAT     as for transient: NODE.DOF[:disp|vel|speed], ratio:A/B,\n"
-    "                    mesh:NAME[:force|deflection|stiffness|state], sfd:BEARING[:fx|fy|ecc],\n"
-    "                    law:NAME[:RECORD]\n"
-    "  --parameter PATH=FROM:TO:COUNT  continue in a model value (SI numbers, the --set\n"
-    "                    path syntax) at the first speed of --speeds instead of the speed\n"
-    "  --frequency FROM:TO:COUNT  continue in the frequency of the time-harmonic loads\n"
-    "                    (rad/s, or units: 0.1Hz:0.2Hz:51; several loads keep their ratios)\n"
-    "                    at the first speed of --speeds (or the model's speed)\n"
-    "  --both-directions also the run from the end back to the start\n"
-    "  --sequential      no arclength: one solution per speed from the previous one (jumps\n"
-    "                    at folds, as a slow run-up)\n"
-    "  --no-stability    skip the Floquet multipliers (and bifurcations)\n"
-    "  --tol TOL         Newton's relative residual (default 1e-10)\n"
-    "  --samples N       AFT time samples per period (default 4 (H + 1), power of 2)\n"
-    "  --coupling LEVEL  torsional | lateral-torsional | full\n"
-    "  --set PATH=VALUE  change a value of the model file (repeatable)\n"
-    "  --json            one JSON object on stdout: points, bifurcations\n"
-    "  --out DIR         DIR/periodic.csv, DIR/harmonics.csv, DIR/bifurcations.csv\n"
-    "  --plot FILE       peak-to-peak and harmonics of each record over the branch (stable\n"
-    "                    solid, unstable dashed), bifurcations marked, Floquet multipliers:\n"
-    "                    FILE.svg or FILE.html (interactive, self-contained; docs/plots.md)\n"
-    "  --quiet           no progress line (it is shown on stderr only on a terminal)\n\n"
-    "Exit status 1 when a requested point did not converge (after writing what did, with\n"
-    "a summary on stderr).\n";
+static const char CMD[] = "periodic";
 
 #define PI 3.14159265358979323846
 
@@ -354,24 +291,6 @@ static void on_point(const gd_periodic_point *p, int index, double progress, voi
     l->drawn = 1;
 }
 
-enum {
-    OPT_BOTH = 0x700,
-    OPT_SEQ,
-    OPT_NOSTAB,
-    OPT_TOL,
-    OPT_SAMPLES,
-    OPT_PARAM,
-    OPT_FREQ,
-    OPT_HTOL,
-    OPT_MAXH,
-    OPT_NOEST,
-    OPT_QUIET,
-    OPT_METHOD,
-    OPT_SRTOL,
-    OPT_SBUDGET,
-    OPT_SDENSE
-};
-
 /* Where no stable periodic orbit came out (a point unstable or not converged), the
  * response may have none (a rattling train): name the `transient` run that gives its
  * per-period statistics and Poincare verdict (docs/transient.md). */
@@ -416,223 +335,257 @@ static int parse_down_range(const char *text, double **v, int *n)
     return rc;
 }
 
+typedef struct periodic_args {
+    gd_periodic_options opt; /* first: --harmonics's parser reaches fixed_h through it */
+    int fixed_h;             /* --harmonics H given (--no-estimate needs it) */
+    const char *speeds, *coupling, *out, *param, *freq, *plot;
+    const char *records[64];
+    int nrec, json, quiet;
+    gd_cli_sets sets;
+} periodic_args;
+
+/* --harmonics H|auto */
+static int parse_harmonics(const char *cmd, const char *text, void *field)
+{
+    periodic_args *a = field; /* field is .opt, the first member */
+    long h;
+    if (!strcmp(text, "auto")) {
+        a->opt.adaptive = 1;
+        return 0;
+    }
+    if (gd_cli_parse_count(text, 1, 1 << 20, &h))
+        return gd_cli_usage_error(cmd, "--harmonics: expected a whole H >= 1 or auto, got '%s'",
+                                  text);
+    a->opt.harmonics = (int)h;
+    a->opt.adaptive = 0;
+    a->fixed_h = 1;
+    return 0;
+}
+
+static int parse_max_harmonics(const char *cmd, const char *text, void *field)
+{
+    long h;
+    if (gd_cli_parse_count(text, 1, 1 << 20, &h))
+        return gd_cli_usage_error(cmd, "--max-harmonics: expected a whole H >= 1, got '%s'", text);
+    *(int *)field = (int)h;
+    return 0;
+}
+
+/* --method hb|harmonic-balance|shooting|auto */
+static int parse_method(const char *cmd, const char *text, void *field)
+{
+    gd_per_kind *k = field;
+    if (!strcmp(text, "hb") || !strcmp(text, "harmonic-balance"))
+        *k = GD_PER_HB;
+    else if (!strcmp(text, "shooting"))
+        *k = GD_PER_SHOOTING;
+    else if (!strcmp(text, "auto"))
+        *k = GD_PER_AUTO;
+    else
+        return gd_cli_usage_error(cmd, "--method: expected hb, shooting or auto, got '%s'", text);
+    return 0;
+}
+
+static int parse_shoot_rtol(const char *cmd, const char *text, void *field)
+{
+    char *end;
+    double v = strtod(text, &end);
+    if (*end || !(v >= 1e-14 && v < 1e-2))
+        return gd_cli_usage_error(
+            cmd, "--shoot-rtol: expected a tolerance in [1e-14, 1e-2), got '%s'", text);
+    *(double *)field = v;
+    return 0;
+}
+
+static int parse_shoot_dense_max(const char *cmd, const char *text, void *field)
+{
+    long n;
+    if (gd_cli_parse_count(text, 1, 1 << 20, &n))
+        return gd_cli_usage_error(
+            cmd, "--shoot-dense-max: expected a whole number of states >= 1, got '%s'", text);
+    *(int *)field = (int)n;
+    return 0;
+}
+
+static int parse_shoot_budget(const char *cmd, const char *text, void *field)
+{
+    char *end;
+    double v = strtod(text, &end);
+    if (*end || !(v >= 0 && v < 1e9))
+        return gd_cli_usage_error(
+            cmd, "--shoot-budget: expected CPU seconds >= 0 (0: no limit), got '%s'", text);
+    *(double *)field = v;
+    return 0;
+}
+
+static int parse_subharmonic(const char *cmd, const char *text, void *field)
+{
+    long n;
+    if (gd_cli_parse_count(text, 1, 1000, &n))
+        return gd_cli_usage_error(
+            cmd, "--subharmonic: expected a whole number 1..1000 (period N T), got '%s'", text);
+    *(int *)field = (int)n;
+    return 0;
+}
+
+/* --tol, --harmonic-tol: a relative tolerance in [1e-15, 1) */
+static int parse_tolerance(const char *cmd, const char *name, const char *text, void *field)
+{
+    char *end;
+    double v = strtod(text, &end);
+    if (*end || !(v >= 1e-15 && v < 1))
+        return gd_cli_usage_error(cmd,
+                                  "%s: expected a number in [1e-15, 1) (a tolerance below 1e-15 "
+                                  "is unreachable in double precision), got '%s'",
+                                  name, text);
+    *(double *)field = v;
+    return 0;
+}
+static int parse_tol(const char *cmd, const char *text, void *field)
+{
+    return parse_tolerance(cmd, "--tol", text, field);
+}
+static int parse_harmonic_tol(const char *cmd, const char *text, void *field)
+{
+    return parse_tolerance(cmd, "--harmonic-tol", text, field);
+}
+
+static int parse_samples(const char *cmd, const char *text, void *field)
+{
+    long n;
+    if (gd_cli_parse_count(text, 4, GD_PERIODIC_MAX_SAMPLES, &n))
+        return gd_cli_usage_error(
+            cmd, "--samples: expected a whole number from 4 to %d (2^20), got '%s'",
+            GD_PERIODIC_MAX_SAMPLES, text);
+    *(int *)field = (int)n;
+    return 0;
+}
+
+#define F(m) offsetof(periodic_args, m)
+static const gd_cli_opt OPTS[] = {
+    GD_CLI_ROW("speeds", GD_CLI_STRING, F(speeds), "FROM:TO:COUNT",
+               "reference speeds, units allowed (required, or --frequency); each requested speed "
+               "is solved exactly wherever the branch crosses it"),
+    GD_CLI_ROW("method", GD_CLI_CALL, F(opt.kind), "M",
+               "hb (default): harmonic balance; shooting: Newton on the period map of "
+               "transient's integrator (every law transient has, cams with include_acceleration "
+               "included; natural continuation, one point per speed); auto: the cheaper for the "
+               "model by a measured cost (the choice and the costs are printed)",
+               .call = parse_method),
+    GD_CLI_ROW("shoot-rtol", GD_CLI_CALL, F(opt.shoot_rtol), "TOL",
+               "shooting: the integrator's relative tolerance", .def = "1e-9",
+               .call = parse_shoot_rtol),
+    GD_CLI_ROW("shoot-dense-max", GD_CLI_CALL, F(opt.shoot_dense_max), "N",
+               "shooting: the dense monodromy up to N states; above, Newton-Krylov on "
+               "monodromy-vector products",
+               .def = "64", .call = parse_shoot_dense_max),
+    GD_CLI_ROW("shoot-budget", GD_CLI_CALL, F(opt.shoot_budget), "S",
+               "shooting: CPU seconds per point before it stops, not converged, saying why (0: "
+               "no limit)",
+               .def = "30", .call = parse_shoot_budget),
+    GD_CLI_ROW("harmonics", GD_CLI_CALL, F(opt), "H|auto",
+               "harmonics of the period; auto (default): from the least H that holds every "
+               "excitation, doubled per point until every record's peak-to-peak and harmonic "
+               "amplitudes agree with those at 2 H to --harmonic-tol; a fixed H is checked "
+               "against 2 H the same way",
+               .call = parse_harmonics),
+    GD_CLI_ROW("harmonic-tol", GD_CLI_CALL, F(opt.harmonic_tol), "TOL",
+               "truncation tolerance, relative", .def = "0.01", .call = parse_harmonic_tol),
+    GD_CLI_ROW("max-harmonics", GD_CLI_CALL, F(opt.max_harmonics), "H", "cap of H",
+               .def = "the largest whose workspace fits in half the memory",
+               .call = parse_max_harmonics),
+    GD_CLI_ROW("no-estimate", GD_CLI_CLEAR, F(opt.estimate), NULL,
+               "with a fixed H: no solution at 2 H, no truncation estimate"),
+    GD_CLI_ROW("subharmonic", GD_CLI_CALL, F(opt.subharmonic), "N",
+               "solutions of period N times the fundamental", .def = "1",
+               .call = parse_subharmonic),
+    GD_CLI_ROW("record", GD_CLI_LIST, F(records), "WHAT",
+               "as for transient: NODE.DOF[:disp|vel|speed], ratio:A/B, "
+               "mesh:NAME[:force|deflection|stiffness|state], sfd:BEARING[:fx|fy|ecc], "
+               "law:NAME[:RECORD]",
+               .aux = F(nrec), .hi = 64),
+    GD_CLI_ROW("parameter", GD_CLI_STRING, F(param), "PATH=FROM:TO:COUNT",
+               "continue in a model value (SI numbers, the --set path syntax) at the first speed "
+               "of --speeds instead of the speed"),
+    GD_CLI_ROW("frequency", GD_CLI_STRING, F(freq), "FROM:TO:COUNT",
+               "continue in the frequency of the time-harmonic loads (rad/s, or units: "
+               "0.1Hz:0.2Hz:51; several loads keep their ratios) at the first speed of --speeds "
+               "(or the model's speed)"),
+    GD_CLI_ROW("both-directions", GD_CLI_FLAG, F(opt.both_directions), NULL,
+               "also the run from the end back to the start"),
+    GD_CLI_ROW("sequential", GD_CLI_VALUE, F(opt.method), NULL,
+               "no arclength: one solution per speed from the previous one (jumps at folds, as a "
+               "slow run-up)",
+               .ival = GD_PER_SEQUENTIAL),
+    GD_CLI_ROW("no-stability", GD_CLI_CLEAR, F(opt.stability), NULL,
+               "skip the Floquet multipliers (and bifurcations)"),
+    GD_CLI_ROW("tol", GD_CLI_CALL, F(opt.tol), "TOL", "Newton's relative residual", .def = "1e-10",
+               .call = parse_tol),
+    GD_CLI_ROW("samples", GD_CLI_CALL, F(opt.samples), "N", "AFT time samples per period",
+               .def = "4 (H + 1), power of 2", .call = parse_samples),
+    GD_CLI_ROW_COUPLING(periodic_args, coupling),
+    GD_CLI_ROW_SET(periodic_args, sets),
+    GD_CLI_ROW("json", GD_CLI_FLAG, F(json), NULL,
+               "one JSON object on stdout: points, bifurcations"),
+    GD_CLI_ROW_OUT(periodic_args, out, "DIR/periodic.csv, DIR/harmonics.csv, DIR/bifurcations.csv"),
+    GD_CLI_ROW("plot", GD_CLI_STRING, F(plot), "FILE",
+               "peak-to-peak and harmonics of each record over the branch (stable solid, "
+               "unstable dashed), bifurcations marked, Floquet multipliers: FILE.svg or "
+               "FILE.html (interactive, self-contained; docs/plots.md)"),
+    GD_CLI_ROW("quiet", GD_CLI_FLAG, F(quiet), NULL,
+               "no progress line (it is shown on stderr only on a terminal)"),
+    {0}};
+static const gd_cli_command PERIODIC = {
+    .name = CMD,
+    .args = "MODEL.yaml",
+    .opts = OPTS,
+    .about = "Periodic steady state by harmonic balance (alternating frequency-time on every\n"
+             "nonlinear and time-varying law of `transient`), continued by pseudo-arclength over\n"
+             "the speed (through folds: a hysteresis loop gives several points per speed), with\n"
+             "Floquet multipliers and the bifurcations found on the way.\n",
+    .footer = "Exit status 1 when a requested point did not converge (after writing what did, "
+              "with\na summary on stderr).\n"};
 int gd_cmd_periodic(int argc, char **argv)
 {
-    static const struct option opts[] = {{"speeds", required_argument, 0, 's'},
-                                         {"harmonics", required_argument, 0, 'H'},
-                                         {"subharmonic", required_argument, 0, 'N'},
-                                         {"record", required_argument, 0, 'r'},
-                                         {"parameter", required_argument, 0, OPT_PARAM},
-                                         {"frequency", required_argument, 0, OPT_FREQ},
-                                         {"both-directions", no_argument, 0, OPT_BOTH},
-                                         {"sequential", no_argument, 0, OPT_SEQ},
-                                         {"no-stability", no_argument, 0, OPT_NOSTAB},
-                                         {"tol", required_argument, 0, OPT_TOL},
-                                         {"harmonic-tol", required_argument, 0, OPT_HTOL},
-                                         {"samples", required_argument, 0, OPT_SAMPLES},
-                                         {"max-harmonics", required_argument, 0, OPT_MAXH},
-                                         {"no-estimate", no_argument, 0, OPT_NOEST},
-                                         {"quiet", no_argument, 0, OPT_QUIET},
-                                         {"method", required_argument, 0, OPT_METHOD},
-                                         {"shoot-rtol", required_argument, 0, OPT_SRTOL},
-                                         {"shoot-budget", required_argument, 0, OPT_SBUDGET},
-                                         {"shoot-dense-max", required_argument, 0, OPT_SDENSE},
-                                         {"coupling", required_argument, 0, 'c'},
-                                         {"json", no_argument, 0, 'j'},
-                                         {"out", required_argument, 0, 'o'},
-                                         GD_CLI_SET_OPTION,
-                                         GD_CLI_PLOT_OPTION,
-                                         {"help", no_argument, 0, 'h'},
-                                         {0, 0, 0, 0}};
-    const char *speeds = NULL, *coupling = NULL, *out = NULL, *param_text = NULL, *plot = NULL;
-    const char *freq_text = NULL;
-    const char *records[64];
-    int nrec = 0, json = 0, c, quiet = 0, fixed_h = 0;
-    long lv;
-    gd_cli_sets sets = {0};
-    gd_periodic_options opt;
-    gd_periodic_options_init(&opt);
-    opt.adaptive = 1;        /* the default: H from the excitations, raised until it holds */
-    opt.shoot_budget = 30.0; /* a point never runs for minutes in silence */
-    optind = 1;
-    opterr = 0;
-    while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
-        switch (c) {
-        case 's':
-            speeds = optarg;
-            break;
-        case 'H':
-            if (!strcmp(optarg, "auto")) {
-                opt.adaptive = 1;
-                break;
-            }
-            if (gd_cli_parse_count(optarg, 1, 1 << 20, &lv))
-                return gd_cli_usage_error(CMD,
-                                          "--harmonics: expected a whole H >= 1 or auto, "
-                                          "got '%s'",
-                                          optarg);
-            opt.harmonics = (int)lv;
-            opt.adaptive = 0;
-            fixed_h = 1;
-            break;
-        case OPT_MAXH:
-            if (gd_cli_parse_count(optarg, 1, 1 << 20, &lv))
-                return gd_cli_usage_error(CMD, "--max-harmonics: expected a whole H >= 1, got '%s'",
-                                          optarg);
-            opt.max_harmonics = (int)lv;
-            break;
-        case OPT_NOEST:
-            opt.estimate = 0;
-            break;
-        case OPT_QUIET:
-            quiet = 1;
-            break;
-        case OPT_METHOD:
-            if (!strcmp(optarg, "hb") || !strcmp(optarg, "harmonic-balance"))
-                opt.kind = GD_PER_HB;
-            else if (!strcmp(optarg, "shooting"))
-                opt.kind = GD_PER_SHOOTING;
-            else if (!strcmp(optarg, "auto"))
-                opt.kind = GD_PER_AUTO;
-            else
-                return gd_cli_usage_error(CMD, "--method: expected hb, shooting or auto, got '%s'",
-                                          optarg);
-            break;
-        case OPT_SRTOL: {
-            char *end;
-            double v = strtod(optarg, &end);
-            if (*end || !(v >= 1e-14 && v < 1e-2))
-                return gd_cli_usage_error(CMD,
-                                          "--shoot-rtol: expected a tolerance in [1e-14, 1e-2), "
-                                          "got '%s'",
-                                          optarg);
-            opt.shoot_rtol = v;
-            break;
-        }
-        case OPT_SDENSE:
-            if (gd_cli_parse_count(optarg, 1, 1 << 20, &lv))
-                return gd_cli_usage_error(CMD,
-                                          "--shoot-dense-max: expected a whole number of "
-                                          "states >= 1, got '%s'",
-                                          optarg);
-            opt.shoot_dense_max = (int)lv;
-            break;
-        case OPT_SBUDGET: {
-            char *end;
-            double v = strtod(optarg, &end);
-            if (*end || !(v >= 0 && v < 1e9))
-                return gd_cli_usage_error(CMD,
-                                          "--shoot-budget: expected CPU seconds >= 0 (0: no "
-                                          "limit), got '%s'",
-                                          optarg);
-            opt.shoot_budget = v;
-            break;
-        }
-        case 'N':
-            if (gd_cli_parse_count(optarg, 1, 1000, &lv))
-                return gd_cli_usage_error(
-                    CMD, "--subharmonic: expected a whole number 1..1000 (period N T), got '%s'",
-                    optarg);
-            opt.subharmonic = (int)lv;
-            break;
-        case 'r':
-            if (nrec == 64) return gd_cli_usage_error(CMD, "at most 64 --record options");
-            records[nrec++] = optarg;
-            break;
-        case OPT_PARAM:
-            param_text = optarg;
-            break;
-        case OPT_FREQ:
-            freq_text = optarg;
-            break;
-        case OPT_BOTH:
-            opt.both_directions = 1;
-            break;
-        case OPT_SEQ:
-            opt.method = GD_PER_SEQUENTIAL;
-            break;
-        case OPT_NOSTAB:
-            opt.stability = 0;
-            break;
-        case OPT_TOL:
-        case OPT_HTOL: {
-            char *end;
-            double v = strtod(optarg, &end);
-            if (*end || !(v >= 1e-15 && v < 1))
-                return gd_cli_usage_error(CMD,
-                                          "%s: expected a number in [1e-15, 1) (a tolerance "
-                                          "below 1e-15 is unreachable in double precision), "
-                                          "got '%s'",
-                                          c == OPT_TOL ? "--tol" : "--harmonic-tol", optarg);
-            if (c == OPT_TOL)
-                opt.tol = v;
-            else
-                opt.harmonic_tol = v;
-            break;
-        }
-        case OPT_SAMPLES:
-            if (gd_cli_parse_count(optarg, 4, GD_PERIODIC_MAX_SAMPLES, &lv))
-                return gd_cli_usage_error(CMD,
-                                          "--samples: expected a whole number from 4 to %d "
-                                          "(2^20), got '%s'",
-                                          GD_PERIODIC_MAX_SAMPLES, optarg);
-            opt.samples = (int)lv;
-            break;
-        case 'c':
-            coupling = optarg;
-            break;
-        case GD_CLI_OPT_SET:
-            if (gd_cli_add_set(CMD, &sets, optarg)) return GD_EXIT_INPUT;
-            break;
-        case 'j':
-            json = 1;
-            break;
-        case 'o':
-            out = optarg;
-            break;
-        case GD_CLI_OPT_PLOT:
-            plot = optarg;
-            break;
-        case 'h':
-            fputs(USAGE, stdout);
-            fputs(USAGE_OPTIONS, stdout);
-            return GD_EXIT_OK;
-        default:
-            return gd_cli_option_error(CMD, c, argv, optind);
-        }
-    }
-    if (optind != argc - 1) return gd_cli_usage_error(CMD, "give exactly one model file");
-    if (!opt.estimate && !fixed_h)
+    periodic_args a = {0};
+    const char *file;
+    gd_periodic_options_init(&a.opt);
+    a.opt.adaptive = 1;        /* the default: H from the excitations, raised until it holds */
+    a.opt.shoot_budget = 30.0; /* a point never runs for minutes in silence */
+    int rc = gd_cli_parse(&PERIODIC, argc, argv, &a, &file);
+    if (rc) return rc < 0 ? GD_EXIT_OK : rc;
+    gd_periodic_options opt = a.opt;
+    if (!opt.estimate && !a.fixed_h)
         return gd_cli_usage_error(CMD, "--no-estimate needs a fixed --harmonics H (auto always "
                                        "compares H with 2 H)");
-    if (!speeds && !freq_text)
+    if (!a.speeds && !a.freq)
         return gd_cli_usage_error(CMD, "--speeds FROM:TO:COUNT (or --frequency) is required");
-    if (freq_text && param_text)
+    if (a.freq && a.param)
         return gd_cli_usage_error(CMD, "give --frequency or --parameter, not both");
     if (opt.samples && opt.samples < 2 * opt.harmonics + 2)
         return gd_cli_usage_error(CMD, "--samples %d cannot resolve %d harmonics (give >= %d)",
                                   opt.samples, opt.harmonics, 2 * opt.harmonics + 2);
-    if (param_text && coupling)
+    if (a.param && a.coupling)
         return gd_cli_usage_error(CMD, "--parameter reloads the model: give the coupling "
                                        "with --set instead of --coupling");
     double *sp = NULL, *pv = NULL;
-    int nsp = 0, npv = 0, rc;
+    int nsp = 0, npv = 0;
     char ppath[256], partial[1100] = "";
     int made_dir = 0;
-    if (speeds && (rc = gd_cli_parse_range(CMD, "--speeds", speeds, &sp, &nsp))) return rc;
-    if (param_text && (rc = parse_param(param_text, ppath, sizeof ppath, &pv, &npv))) {
+    if (a.speeds && (rc = gd_cli_parse_range(CMD, "--speeds", a.speeds, &sp, &nsp))) return rc;
+    if (a.param && (rc = parse_param(a.param, ppath, sizeof ppath, &pv, &npv))) {
         free(sp);
         return rc;
     }
-    if (freq_text && (rc = parse_down_range(freq_text, &pv, &npv))) {
+    if (a.freq && (rc = parse_down_range(a.freq, &pv, &npv))) {
         free(sp);
         return rc;
     }
-    if (freq_text) snprintf(ppath, sizeof ppath, "load frequency");
+    if (a.freq) snprintf(ppath, sizeof ppath, "load frequency");
     gd_error err;
     gd_error_clear(&err);
-    if ((out && gd_outdir_check_writable(out, &err)) ||
-        (plot && gd_plot_check_path(plot, NULL, &err))) {
+    if ((a.out && gd_outdir_check_writable(a.out, &err)) ||
+        (a.plot && gd_plot_check_path(a.plot, NULL, &err))) {
         free(sp);
         free(pv);
         return gd_cli_report(&err);
@@ -642,14 +595,14 @@ int gd_cmd_periodic(int argc, char **argv)
     gd_transient_model *tm = NULL;
     gd_periodic_result *r = NULL;
     gd_cli_records recs = {0};
-    if ((rc = gd_cli_load(argv[optind], &sets, coupling, &m, &s))) goto done;
+    if ((rc = gd_cli_load(file, &a.sets, a.coupling, &m, &s))) goto done;
     if (gd_transient_model_build(s, &tm, &err)) {
         rc = gd_cli_report(&err);
         goto done;
     }
-    for (int k = 0; k < nrec; k++)
-        if ((rc = gd_cli_parse_records(CMD, s, tm, records[k], &recs))) goto done;
-    if (!nrec && (rc = gd_cli_default_records(s, tm, &recs))) goto done;
+    for (int k = 0; k < a.nrec; k++)
+        if ((rc = gd_cli_parse_records(CMD, s, tm, a.records[k], &recs))) goto done;
+    if (!a.nrec && (rc = gd_cli_default_records(s, tm, &recs))) goto done;
     gd_tr_record *rv = malloc((size_t)(recs.n > 0 ? recs.n : 1) * sizeof *rv);
     if (!rv) {
         rc = GD_EXIT_FAIL;
@@ -667,18 +620,18 @@ int gd_cmd_periodic(int argc, char **argv)
             goto done;
         }
     }
-    gd_load_options lo = gd_cli_load_options(&sets);
+    gd_load_options lo = gd_cli_load_options(&a.sets);
     openblas_set_num_threads(1); /* small dense blocks: threads cost more than they give */
-    rebuild_data rd = {argv[optind], &lo, ppath};
+    rebuild_data rd = {file, &lo, ppath};
     /* --frequency: at the first of --speeds, or the model's speed */
-    gd_periodic_param prm = {rebuild, &rd, ppath, sp ? sp[0] : m->speed, freq_text != NULL};
+    gd_periodic_param prm = {rebuild, &rd, ppath, sp ? sp[0] : m->speed, a.freq != NULL};
     live lv2 = {0};
     lv2.recs = &recs;
-    lv2.tty = !quiet && isatty(2);
+    lv2.tty = !a.quiet && isatty(2);
     clock_gettime(CLOCK_MONOTONIC, &lv2.t0);
-    if (out) {
-        made_dir = mkdir(out, 0777) == 0; /* the partial file goes in it */
-        snprintf(partial, sizeof partial, "%s/periodic.partial.csv", out);
+    if (a.out) {
+        made_dir = mkdir(a.out, 0777) == 0; /* the partial file goes in it */
+        snprintf(partial, sizeof partial, "%s/periodic.partial.csv", a.out);
         if ((lv2.csv = fopen(partial, "w"))) csv_header(lv2.csv);
     }
     opt.on_point = on_point;
@@ -692,14 +645,14 @@ int gd_cmd_periodic(int argc, char **argv)
         rc = gd_cli_report(&err);
         goto done;
     }
-    if (plot) {
+    if (a.plot) {
         gd_plot *p = NULL;
         gd_status pst = gd_plot_periodic(s, r, rv, &p, &err);
         if (pst) {
             /* nothing to plot (no point converged): no file, but the table that says
              * why is still printed before the error */
             free(rv);
-            if (json) {
+            if (a.json) {
                 cJSON *j = to_json(r, &recs, pv != NULL);
                 gd_cli_print_json(stdout, j);
                 cJSON_Delete(j);
@@ -710,14 +663,14 @@ int gd_cmd_periodic(int argc, char **argv)
             rc = gd_cli_report(&err);
             goto done;
         }
-        if ((rc = gd_cli_plot_finish(pst, p, &err, plot))) {
+        if ((rc = gd_cli_plot_finish(pst, p, &err, a.plot))) {
             free(rv);
             goto done;
         }
     }
     free(rv);
-    if (out && (rc = write_out(out, r, &recs))) goto done;
-    if (json) {
+    if (a.out && (rc = write_out(a.out, r, &recs))) goto done;
+    if (a.json) {
         cJSON *j = to_json(r, &recs, pv != NULL);
         gd_cli_print_json(stdout, j);
         cJSON_Delete(j);
@@ -756,12 +709,12 @@ int gd_cmd_periodic(int argc, char **argv)
             rc = GD_EXIT_FAIL;
         }
     }
-    if (!json) rattle_hint(argv[optind], r);
+    if (!a.json) rattle_hint(file, r);
 done:
     /* the partial file goes once the complete files are in place, and on an error (which
      * writes nothing); only an interrupted run leaves it */
     if (partial[0]) remove(partial);
-    if (made_dir && rc != GD_EXIT_OK && rc != GD_EXIT_FAIL) rmdir(out);
+    if (made_dir && rc != GD_EXIT_OK && rc != GD_EXIT_FAIL) rmdir(a.out);
     gd_periodic_result_free(r);
     gd_cli_records_free(&recs);
     gd_transient_model_free(tm);

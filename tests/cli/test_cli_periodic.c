@@ -491,6 +491,72 @@ TEST(error_paths)
     scratch_close(&s);
 }
 
+/* The option table (cli/options.h): a bad value names its option and the range, the
+ * parser's own errors name the option, --harmonics N then auto still counts as a fixed H
+ * for --no-estimate, and --help lists every option of the table, usage and list. */
+TEST(option_table_rows)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --max-harmonics 0",
+                            "--max-harmonics: expected a whole H >= 1, got '0'", NULL));
+    CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --shoot-dense-max 0",
+                            "--shoot-dense-max", "states >= 1"));
+    CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --samples 3", "--samples",
+                            "4 to 1048576"));
+    CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --no-estimate",
+                            "--no-estimate needs a fixed --harmonics H", NULL));
+    CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speds 1:2:3", "did you mean --speeds?", NULL));
+    CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --no-stability=1",
+                            "--no-stability' takes no value", NULL));
+    CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --dofs x", "--dofs", NULL));
+    run_result r;
+    /* harmonic-balance: the long name of hb; --sequential, --both-directions: flags */
+    run(&s, &r,
+        "periodic " CHEN " --speeds 500:600:2 --harmonics 4 --harmonics auto --no-estimate "
+        "--max-harmonics 4 --method harmonic-balance --sequential --both-directions "
+        "--no-stability --json");
+    CHECK(r.code == 0 && contains(r.out, "\"method\":") && contains(r.out, "\"direction\":\t-1"));
+    if (r.code) show(&r);
+    run_free(&r);
+    run(&s, &r, "periodic --help");
+    const char *names[] = {"speeds FROM:TO:COUNT",
+                           "method M",
+                           "shoot-rtol TOL",
+                           "shoot-dense-max N",
+                           "shoot-budget S",
+                           "harmonics H|auto",
+                           "harmonic-tol TOL",
+                           "max-harmonics H",
+                           "no-estimate",
+                           "subharmonic N",
+                           "record WHAT",
+                           "parameter PATH=FROM:TO:COUNT",
+                           "frequency FROM:TO:COUNT",
+                           "both-directions",
+                           "sequential",
+                           "no-stability",
+                           "tol TOL",
+                           "samples N",
+                           "coupling LEVEL",
+                           "set PATH=VALUE",
+                           "json",
+                           "out DIR",
+                           "plot FILE",
+                           "quiet"};
+    const char *list = strstr(r.out, "\n\n  --speeds FROM:TO:COUNT"); /* the option list */
+    CHECK(r.code == 0 && list && contains(r.out, "Exit status 1"));
+    for (size_t k = 0; list && k < sizeof names / sizeof *names; k++) {
+        char usage[64], row[64];
+        snprintf(usage, sizeof usage, "[--%s]", names[k]);
+        snprintf(row, sizeof row, "\n  --%s ", names[k]);
+        CHECK(strstr(r.out, usage) && strstr(list, row));
+        if (!strstr(list, row)) fprintf(stderr, "  not listed: --%s\n", names[k]);
+    }
+    run_free(&r);
+    scratch_close(&s);
+}
+
 /* --frequency: continuation in the load frequency (the Duffing oscillator, NLvib's first
  * example, downwards through its hysteresis loop: three solutions at 1.2 rad/s, the folds
  * at NLvib's 1.2696 and 1.1157 to 1e-3 (here 32 samples, NLvib 29: tests/periodic/
@@ -540,4 +606,5 @@ RUN_TESTS(T(chen_sfd_sweep_json), T(out_files_and_table),
           T(parameter_continuation_and_auto_harmonics), T(undefined_period_point),
           T(warm_start_recovers_failure_from_rest), T(helical_couplings_identical_at_zero_helix),
           T(helical_mesh2_resonance_same_for_both_couplings_at_zero_helix),
-          T(method_shooting_auto_and_bad_value), T(error_paths), T(frequency_continuation))
+          T(method_shooting_auto_and_bad_value), T(error_paths), T(frequency_continuation),
+          T(option_table_rows))
