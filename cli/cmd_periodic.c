@@ -24,7 +24,7 @@ static const char USAGE[] =
     "                        [--samples N] [--coupling LEVEL] [--set PATH=VALUE]... [--json]\n"
     "                        [--out DIR] [--plot FILE.svg|FILE.html] [--quiet]\n"
     "                        [--method hb|shooting|auto] [--shoot-rtol TOL] [--shoot-budget S]\n"
-    "                        [--shoot-dense-max N]\n\n"
+    "                        [--shoot-dense-max N] [--floquet auto|dense|krylov]\n\n"
     "Periodic steady state by harmonic balance (alternating frequency-time on every\n"
     "nonlinear and time-varying law of `transient`), continued by pseudo-arclength over\n"
     "the speed (through folds: a hysteresis loop gives several points per speed), with\n"
@@ -58,7 +58,11 @@ static const char USAGE[] =
     "  --both-directions also the run from the end back to the start\n"
     "  --sequential      no arclength: one solution per speed from the previous one (jumps\n"
     "                    at folds, as a slow run-up)\n"
-    "  --no-stability    skip the Floquet multipliers (and bifurcations)\n"
+    "  --no-stability    skip the Floquet multipliers (and bifurcations)\n";
+/* the rest (one literal may hold 4095 characters in ISO C) */
+static const char USAGE2[] =
+    "  --floquet M       auto (default: dense up to 300 states), dense or krylov (the 8\n"
+    "                    largest multipliers from monodromy-vector products)\n"
     "  --tol TOL         Newton's relative residual (default 1e-10)\n"
     "  --samples N       AFT time samples per period (default 4 (H + 1), power of 2)\n"
     "  --coupling LEVEL  torsional | lateral-torsional | full\n"
@@ -164,6 +168,8 @@ static cJSON *to_json(const gd_periodic_result *r, const gd_cli_records *recs, i
         else
             cJSON_AddNullToObject(o, "stable");
         cJSON_AddItemToObject(o, "floquet_multiplier_max_abs", gd_cli_json_number(p->mu_max));
+        if (p->stable >= 0)
+            cJSON_AddStringToObject(o, "floquet_method", p->floquet_krylov ? "krylov" : "dense");
         cJSON_AddNumberToObject(o, "harmonics", p->harmonics);
         cJSON_AddItemToObject(o, "residual", gd_cli_json_number(p->residual));
         if (p->converged) {
@@ -221,6 +227,13 @@ static void print_table(const gd_periodic_result *r, const gd_cli_records *recs,
     /* harmonic balance by default says nothing (the table's layout is unchanged) */
     if (r->method != GD_PER_HB || r->method_note[0])
         printf("method: %s\n", r->method_note[0] ? r->method_note : gd_per_kind_name(r->method));
+    for (int i = 0; i < r->npoints; i++)
+        if (r->points[i].floquet_krylov) {
+            printf("stability: the %d largest Floquet multipliers by Krylov-Schur on "
+                   "monodromy-vector products (no dense monodromy)\n",
+                   r->points[i].nmult);
+            break;
+        }
     printf("%3s %14s %12s%s %4s %9s %8s %8s %6s %10s", "dir", "speed_rad_s", "speed_rpm",
            param ? "      parameter" : "", "H", "residual", "err_p2p", "err_amp", "stable",
            "|mu|max");
@@ -352,6 +365,7 @@ enum {
     OPT_BOTH = 0x700,
     OPT_SEQ,
     OPT_NOSTAB,
+    OPT_FLOQUET,
     OPT_TOL,
     OPT_SAMPLES,
     OPT_PARAM,
@@ -396,6 +410,7 @@ int gd_cmd_periodic(int argc, char **argv)
                                          {"both-directions", no_argument, 0, OPT_BOTH},
                                          {"sequential", no_argument, 0, OPT_SEQ},
                                          {"no-stability", no_argument, 0, OPT_NOSTAB},
+                                         {"floquet", required_argument, 0, OPT_FLOQUET},
                                          {"tol", required_argument, 0, OPT_TOL},
                                          {"harmonic-tol", required_argument, 0, OPT_HTOL},
                                          {"samples", required_argument, 0, OPT_SAMPLES},
@@ -454,6 +469,15 @@ int gd_cmd_periodic(int argc, char **argv)
             break;
         case OPT_QUIET:
             quiet = 1;
+            break;
+        case OPT_FLOQUET:
+            opt.floquet = !strcmp(optarg, "dense")    ? GD_FLOQUET_DENSE
+                          : !strcmp(optarg, "krylov") ? GD_FLOQUET_KRYLOV
+                          : !strcmp(optarg, "auto")   ? GD_FLOQUET_AUTO
+                                                      : -1;
+            if (opt.floquet < 0)
+                return gd_cli_usage_error(
+                    CMD, "--floquet: expected auto, dense or krylov, got '%s'", optarg);
             break;
         case OPT_METHOD:
             if (!strcmp(optarg, "hb") || !strcmp(optarg, "harmonic-balance"))
@@ -560,6 +584,7 @@ int gd_cmd_periodic(int argc, char **argv)
             break;
         case 'h':
             fputs(USAGE, stdout);
+            fputs(USAGE2, stdout);
             return GD_EXIT_OK;
         default:
             return gd_cli_option_error(CMD, c, argv, optind);
