@@ -395,6 +395,7 @@ int gd_hb_floquet_krylov(const hb *h, gd_transient *tr, double om, const double 
                  "stability not computed: the %d largest Floquet multipliers did not converge "
                  "(Krylov-Schur on monodromy-vector products, tolerance %.1e)",
                  nevk, tol);
+        rc = 3;
         goto done;
     }
     /* largest modulus first (insertion sort: a few dozen values) */

@@ -140,9 +140,9 @@ int gd_hb_magnus_steps(const hb *h, gd_transient *tr, double w, const double *X,
  * monodromy-vector products, each step's exponential applied to the vector by a
  * truncated Taylor series with scaling. mu_re, mu_im: at least nev; *nmu receives the
  * count delivered (nev, or one more when a conjugate pair straddles the cut), each with
- * a relative residual within tol; *products the monodromy-vector products used. 0 ok, 2 the
- * products overflowed (too few steps), 1 other failures (no convergence: msg says so, 160 bytes).
- */
+ * a relative residual within tol; *products the monodromy-vector products used. 0 ok,
+ * 2 the products overflowed (too few steps), 3 no convergence (a cluster of equal
+ * moduli across the cut: ask for more), 1 other failures; msg (160 bytes) says why. */
 int gd_hb_floquet_krylov(const hb *h, gd_transient *tr, double w, const double *X, int steps,
                          const gd_tr_record *bl, int nbl, int nev, double tol, double *mu_re,
                          double *mu_im, int *nmu, int *products, char *msg);

@@ -41,13 +41,17 @@ void gd_per_floquet(ctx *c, const double *X, double lam, double *mre, double *mi
     } else {
         /* the largest few; more while all but one of them lie outside the unit circle
          * (the count outside and the next one in locate the bifurcations) */
-        int want = c->opt->floquet_count > 0 ? c->opt->floquet_count : 8;
+        int want = c->opt->floquet_count > 0 ? c->opt->floquet_count : 8, retry = 0;
         for (;;) {
             int products;
             memset(mre, 0, (size_t)n2 * sizeof *mre);
             memset(mim, 0, (size_t)n2 * sizeof *mim);
             rc = gd_hb_floquet_krylov(&c->h, s->tr, s->w, X, steps, bl, nbl, want, 1e-10, mre, mim,
                                       &nmu, &products, c->floquet_msg);
+            if (rc == 3 && retry++ < 3) { /* moduli tied across the cut: take them all */
+                want += 2;
+                continue;
+            }
             if (rc) break;
             int out = 0;
             for (int i = 0; i < nmu; i++)
@@ -55,6 +59,7 @@ void gd_per_floquet(ctx *c, const double *X, double lam, double *mre, double *mi
             if (out < nmu - 1 || nmu + 4 > n2 || want >= 256) break;
             want *= 2;
         }
+        if (rc == 3) rc = 1;
         if (rc == 1 && !c->floquet_msg[0])
             snprintf(c->floquet_msg, sizeof c->floquet_msg,
                      "stability not computed: the Krylov multipliers failed");
