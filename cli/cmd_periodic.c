@@ -107,6 +107,8 @@ static cJSON *to_json(const gd_periodic_result *r, const gd_cli_records *recs, i
         else
             cJSON_AddNullToObject(o, "stable");
         cJSON_AddItemToObject(o, "floquet_multiplier_max_abs", gd_cli_json_number(p->mu_max));
+        if (p->stable >= 0)
+            cJSON_AddStringToObject(o, "floquet_method", p->floquet_krylov ? "krylov" : "dense");
         cJSON_AddNumberToObject(o, "harmonics", p->harmonics);
         cJSON_AddItemToObject(o, "residual", gd_cli_json_number(p->residual));
         if (p->converged) {
@@ -164,6 +166,13 @@ static void print_table(const gd_periodic_result *r, const gd_cli_records *recs,
     /* harmonic balance by default says nothing (the table's layout is unchanged) */
     if (r->method != GD_PER_HB || r->method_note[0])
         printf("method: %s\n", r->method_note[0] ? r->method_note : gd_per_kind_name(r->method));
+    for (int i = 0; i < r->npoints; i++)
+        if (r->points[i].floquet_krylov) {
+            printf("stability: the %d largest Floquet multipliers by Krylov-Schur on "
+                   "monodromy-vector products (no dense monodromy)\n",
+                   r->points[i].nmult);
+            break;
+        }
     printf("%3s %14s %12s%s %4s %9s %8s %8s %6s %10s", "dir", "speed_rad_s", "speed_rpm",
            param ? "      parameter" : "", "H", "residual", "err_p2p", "err_amp", "stable",
            "|mu|max");
@@ -519,6 +528,10 @@ static const gd_cli_opt OPTS[] = {
                .ival = GD_PER_SEQUENTIAL),
     GD_CLI_ROW("no-stability", GD_CLI_CLEAR, F(opt.stability), NULL,
                "skip the Floquet multipliers (and bifurcations)"),
+    GD_CLI_ROW("floquet", GD_CLI_CHOICE, F(opt.floquet), "M",
+               "auto (dense up to 300 states), dense or krylov (the 8 largest multipliers from "
+               "monodromy-vector products)",
+               .def = "auto", .word = "auto|dense|krylov"),
     GD_CLI_ROW("tol", GD_CLI_CALL, F(opt.tol), "TOL", "Newton's relative residual", .def = "1e-10",
                .call = parse_tol),
     GD_CLI_ROW("samples", GD_CLI_CALL, F(opt.samples), "N", "AFT time samples per period",

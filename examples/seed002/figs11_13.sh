@@ -8,7 +8,10 @@
 # environment: H (harmonics, default 108), SPEEDS (default 100rpm:8000rpm:300),
 #              JOBS (curves run at once, default 1), GEARDYN (default ./build/geardyn),
 #              ESTIMATE (1, default: every point also solved at 2 H + 1 for its truncation
-#              estimate, the peak_to_peak_error column; 0: not, about 3x cheaper)
+#              estimate, the peak_to_peak_error column; 0: not, about 3x cheaper),
+#              STABILITY (0, default: --no-stability; 1: the 8 largest Floquet
+#              multipliers of every point by Krylov-Schur on monodromy-vector products,
+#              minutes per point: docs/periodic.md, "Stability at scale")
 #
 # Why H = 108: the HB period is 36 mesh-1 periods (teeth 52/72, 22/79: w0 = 52 W / 36),
 # so harmonic 36 k is k times the mesh-1 frequency; H = 108 keeps the k = 1, 2, 3
@@ -33,6 +36,8 @@ SPEEDS=${SPEEDS:-100rpm:8000rpm:300}
 JOBS=${JOBS:-1}
 ESTIMATE=${ESTIMATE:-1}
 NOEST=""
+STAB=--no-stability
+[ "${STABILITY:-0}" = 1 ] && STAB="--floquet krylov"
 [ "$ESTIMATE" = 0 ] && NOEST=--no-estimate
 GEARDYN=${GEARDYN:-./build/geardyn}
 MODEL=examples/helical_two_stage.yaml
@@ -44,7 +49,7 @@ run_curve() { # coupling helix_deg
     rm -rf "$dir"
     /usr/bin/time -f "%e %U %S" -o "$dir.time" \
         "$GEARDYN" periodic "$MODEL" --speeds "$SPEEDS" --harmonics "$H" \
-        --sequential --no-stability $NOEST --quiet --coupling "$c" \
+        --sequential $STAB $NOEST --quiet --coupling "$c" \
         --set "meshes.pair1.geometry.helix_angle=${b}deg" \
         --set "meshes.pair2.geometry.helix_angle=${b}deg" \
         --record gear1.x --record gear1.z --record gear1.ry --record gear1.rz \

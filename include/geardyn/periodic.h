@@ -41,6 +41,8 @@ typedef enum gd_per_method {
  * every law transient has, cams with include_acceleration included), or auto: the
  * cheaper of the two for the model by a measured cost rule (gd_periodic_choose). */
 typedef enum gd_per_kind { GD_PER_HB = 0, GD_PER_SHOOTING = 1, GD_PER_AUTO = 2 } gd_per_kind;
+/* The Floquet multipliers of harmonic balance points (gd_periodic_options.floquet). */
+enum { GD_FLOQUET_AUTO = 0, GD_FLOQUET_DENSE = 1, GD_FLOQUET_KRYLOV = 2 };
 GD_API const char *gd_per_kind_name(gd_per_kind k);
 
 struct gd_periodic_point;
@@ -67,6 +69,17 @@ typedef struct gd_periodic_options {
     int stability;       /* 1 (default): Floquet multipliers and bifurcations */
     int monodromy_steps; /* Magnus steps per period; 0: 4 x samples, at least 256; at
                             most GD_PERIODIC_MAX_SAMPLES */
+    int floquet;         /* how the multipliers are found (docs/periodic.md, "Stability at
+                            scale"): GD_FLOQUET_AUTO (default: dense up to floquet_dmax
+                            states, Krylov above), GD_FLOQUET_DENSE (every multiplier, the
+                            dense 2 nf x 2 nf monodromy), GD_FLOQUET_KRYLOV (the
+                            floquet_count largest by Krylov-Schur on monodromy-vector
+                            products over the same Magnus steps; no dense matrix) */
+    int floquet_count;   /* Krylov: multipliers wanted (0: 8); doubled while all but one of
+                            them lie outside the unit circle, so the count outside and the
+                            next one in (which the bifurcations are located by) are known */
+    int floquet_dmax;    /* auto: the dense monodromy up to this many states 2 nf (0: 300,
+                            from the measured costs, docs/periodic.md) */
     gd_per_method method;
     gd_per_kind kind;    /* GD_PER_HB (default), GD_PER_SHOOTING or GD_PER_AUTO (shooting
                             continues naturally, whatever `method` says) */
@@ -143,8 +156,12 @@ typedef struct gd_periodic_point {
     int iterations;
     int stable;    /* 1 stable, 0 unstable, -1 not computed */
     double mu_max; /* max |Floquet multiplier| (NaN if not computed) */
-    int nmult;     /* 2 nfree (0 if not computed) */
+    int nmult;     /* 2 nfree, or the count found by Krylov (0 if not computed) */
+    /* nmult multipliers (largest modulus first when found by Krylov) */
     double *mu_re, *mu_im;
+    /* 1: the multipliers are the nmult largest by Krylov-Schur, 0: every one from the
+     * dense monodromy (or none) */
+    int floquet_krylov;
     int nfree;    /* coefficients: coef[h * nfree + i], h = 0 mean, 2k-1 cos k, 2k sin k */
     double *coef; /* over the free DOFs of gd_transient (increasing DOF order) */
     gd_per_record_stats *records; /* nrecords */

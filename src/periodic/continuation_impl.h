@@ -43,6 +43,8 @@ typedef struct ctx {
     int ratio_mode;
     char reason[320];
     char floquet_msg[200]; /* why the last Floquet multipliers were not computed */
+    int floquet_n;         /* multipliers the last gd_per_floquet delivered (the rest 0) */
+    int floquet_krylov;    /* 1: they are the largest by Krylov (floquet_krylov.c) */
     gd_periodic_result *res;
     int cap_points, cap_bif;
     const gd_tr_record *rec;

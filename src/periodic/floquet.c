@@ -123,6 +123,60 @@ static long contact_code(const hb *h, gd_transient *tr, double om, const double 
     return code;
 }
 
+int gd_hb_magnus_steps(const hb *h, gd_transient *tr, double om, const double *X, int steps,
+                       const gd_tr_record *bl, int nbl, double **tau, int *nsub)
+{
+    double *y = malloc(2 * (size_t)h->nf * sizeof *y);
+    int cap = steps + 1, n = 0;
+    double *b = malloc((size_t)(cap + 1) * sizeof *b);
+    *tau = NULL;
+    *nsub = 0;
+    if (!y || !b) {
+        free(y);
+        free(b);
+        return 1;
+    }
+    b[0] = 0.0;
+    for (int k = 0; k < steps; k++) {
+        /* one step, split at every contact change of a backlash mesh (located by
+         * bisection on the states along the orbit) so no Gauss point straddles a jump
+         * of A(t) */
+        double a = TWO_PI * k / steps, e1 = TWO_PI * (k + 1) / steps;
+        long sa = contact_code(h, tr, om, X, a, bl, nbl, y);
+        while (a < e1) {
+            double e = e1;
+            if (nbl && contact_code(h, tr, om, X, e1, bl, nbl, y) != sa) {
+                double lo = a, hi = e1;
+                for (int it = 0; it < 60 && hi - lo > 1e-15 * TWO_PI; it++) {
+                    double mid = 0.5 * (lo + hi);
+                    if (contact_code(h, tr, om, X, mid, bl, nbl, y) == sa)
+                        lo = mid;
+                    else
+                        hi = mid;
+                }
+                e = hi;
+            }
+            if (n + 1 >= cap) {
+                double *nb = realloc(b, (size_t)(2 * cap + 1) * sizeof *nb);
+                if (!nb) {
+                    free(y);
+                    free(b);
+                    return 1;
+                }
+                b = nb;
+                cap *= 2;
+            }
+            b[++n] = e;
+            if (e < e1) sa = contact_code(h, tr, om, X, e, bl, nbl, y);
+            a = e;
+        }
+    }
+    free(y);
+    *tau = b;
+    *nsub = n;
+    return 0;
+}
+
 int gd_hb_floquet(const hb *h, gd_transient *tr, double om, const double *X, int steps,
                   const gd_tr_record *bl, int nbl, double *mu_re, double *mu_im)
 {
@@ -161,47 +215,31 @@ int gd_hb_floquet(const hb *h, gd_transient *tr, double om, const double *X, int
     for (int i = 0; i < n2; i++)
         Phi[(size_t)i * n2 + i] = 1.0;
     const double g1 = 0.5 - sqrt(3.0) / 6.0, g2 = 0.5 + sqrt(3.0) / 6.0;
-    for (int k = 0; k < steps; k++) {
-        /* one step, split at every contact change of a backlash mesh (located by
-         * bisection on the states along the orbit) so no Gauss point straddles a jump
-         * of A(t) */
-        double a = TWO_PI * k / steps, b = TWO_PI * (k + 1) / steps;
-        long sa = contact_code(h, tr, om, X, a, bl, nbl, w.y);
-        while (a < b) {
-            double e = b;
-            if (nbl && contact_code(h, tr, om, X, b, bl, nbl, w.y) != sa) {
-                double lo = a, hi = b;
-                for (int it = 0; it < 60 && hi - lo > 1e-15 * TWO_PI; it++) {
-                    double mid = 0.5 * (lo + hi);
-                    if (contact_code(h, tr, om, X, mid, bl, nbl, w.y) == sa)
-                        lo = mid;
-                    else
-                        hi = mid;
-                }
-                e = hi;
-            }
-            double dtau = e - a, dt = dtau / om;
-            build_A(&w, h, tr, om, X, a + g1 * dtau, A1);
-            build_A(&w, h, tr, om, X, a + g2 * dtau, A2);
-            /* Omega = dt/2 (A1 + A2) + sqrt(3)/12 dt^2 (A2 A1 - A1 A2) */
-            cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n2, n2, n2, 1.0, A2, n2, A1, n2,
-                        0.0, Om, n2);
-            cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n2, n2, n2, -1.0, A1, n2, A2, n2,
-                        1.0, Om, n2);
-            double c2 = sqrt(3.0) / 12.0 * dt * dt;
-            for (size_t m = 0; m < nn; m++)
-                Om[m] = 0.5 * dt * (A1[m] + A2[m]) + c2 * Om[m];
-            if (expm(n2, Om, Ex, W, ipiv)) {
-                rc = 2;
-                goto done;
-            }
-            cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n2, n2, n2, 1.0, Ex, n2, Phi, n2,
-                        0.0, T, n2);
-            memcpy(Phi, T, nn * sizeof *Phi);
-            if (e < b) sa = contact_code(h, tr, om, X, e, bl, nbl, w.y);
-            a = e;
+    double *tb = NULL;
+    int nsub = 0;
+    if (gd_hb_magnus_steps(h, tr, om, X, steps, bl, nbl, &tb, &nsub)) goto done;
+    for (int k = 0; k < nsub; k++) {
+        double a = tb[k], dtau = tb[k + 1] - a, dt = dtau / om;
+        build_A(&w, h, tr, om, X, a + g1 * dtau, A1);
+        build_A(&w, h, tr, om, X, a + g2 * dtau, A2);
+        /* Omega = dt/2 (A1 + A2) + sqrt(3)/12 dt^2 (A2 A1 - A1 A2) */
+        cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n2, n2, n2, 1.0, A2, n2, A1, n2, 0.0,
+                    Om, n2);
+        cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n2, n2, n2, -1.0, A1, n2, A2, n2,
+                    1.0, Om, n2);
+        double c2 = sqrt(3.0) / 12.0 * dt * dt;
+        for (size_t m = 0; m < nn; m++)
+            Om[m] = 0.5 * dt * (A1[m] + A2[m]) + c2 * Om[m];
+        if (expm(n2, Om, Ex, W, ipiv)) {
+            rc = 2;
+            free(tb);
+            goto done;
         }
+        cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n2, n2, n2, 1.0, Ex, n2, Phi, n2,
+                    0.0, T, n2);
+        memcpy(Phi, T, nn * sizeof *Phi);
     }
+    free(tb);
     /* LAPACK's eigenvalue solvers are undefined on inf and NaN (dgeev wrote outside its
      * arrays): steps too long for the orbit make Phi overflow */
     for (size_t m = 0; m < nn; m++)

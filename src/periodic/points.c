@@ -30,7 +30,40 @@ void gd_per_floquet(ctx *c, const double *X, double lam, double *mre, double *mi
     for (int i = 0; i < spec->nmeshes && nbl < 64; i++)
         if (spec->meshes[i].backlash)
             bl[nbl++] = (gd_tr_record){GD_REC_MESH_STATE, spec->meshes[i].mesh, 0};
-    int rc = gd_hb_floquet(&c->h, s->tr, s->w, X, steps, bl, nbl, mre, mim);
+    const int n2 = 2 * c->nf;
+    const int dmax = c->opt->floquet_dmax > 0 ? c->opt->floquet_dmax : 300;
+    const int krylov =
+        c->opt->floquet == GD_FLOQUET_KRYLOV || (c->opt->floquet == GD_FLOQUET_AUTO && n2 > dmax);
+    int rc, nmu = n2;
+    c->floquet_n = 0;
+    if (!krylov) {
+        rc = gd_hb_floquet(&c->h, s->tr, s->w, X, steps, bl, nbl, mre, mim);
+    } else {
+        /* the largest few; more while all but one of them lie outside the unit circle
+         * (the count outside and the next one in locate the bifurcations) */
+        int want = c->opt->floquet_count > 0 ? c->opt->floquet_count : 8, retry = 0;
+        for (;;) {
+            int products;
+            memset(mre, 0, (size_t)n2 * sizeof *mre);
+            memset(mim, 0, (size_t)n2 * sizeof *mim);
+            rc = gd_hb_floquet_krylov(&c->h, s->tr, s->w, X, steps, bl, nbl, want, 1e-10, mre, mim,
+                                      &nmu, &products, c->floquet_msg);
+            if (rc == 3 && retry++ < 3) { /* moduli tied across the cut: take them all */
+                want += 2;
+                continue;
+            }
+            if (rc) break;
+            int out = 0;
+            for (int i = 0; i < nmu; i++)
+                out += hypot(mre[i], mim[i]) > 1.0 + 1e-6;
+            if (out < nmu - 1 || nmu + 4 > n2 || want >= 256) break;
+            want *= 2;
+        }
+        if (rc == 3) rc = 1;
+        if (rc == 1 && !c->floquet_msg[0])
+            snprintf(c->floquet_msg, sizeof c->floquet_msg,
+                     "stability not computed: the Krylov multipliers failed");
+    }
     if (rc == 2)
         snprintf(c->floquet_msg, sizeof c->floquet_msg,
                  "stability not computed: the monodromy matrix over the period %.3g s overflowed "
@@ -38,12 +71,14 @@ void gd_per_floquet(ctx *c, const double *X, double lam, double *mre, double *mi
                  TWO_PI / s->w, steps);
     if (rc) return;
     double m = 0.0;
-    for (int i = 0; i < 2 * c->nf; i++) {
+    for (int i = 0; i < nmu; i++) {
         double a = hypot(mre[i], mim[i]);
         m = a > m ? a : m;
     }
     *mu_max = m;
     *stable = m <= 1.0 + 1e-6;
+    c->floquet_n = nmu;
+    c->floquet_krylov = krylov;
 }
 
 static gd_periodic_point *new_point(ctx *c)
@@ -367,7 +402,8 @@ int gd_per_emit_point(ctx *c, const double *X, double lam, int iters, double res
     if (fine) swap_ws(c);
     gd_per_floquet(c, p->coef, lam, p->mu_re, p->mu_im, &p->stable, &p->mu_max);
     if (fine) swap_ws(c);
-    p->nmult = p->stable >= 0 ? 2 * c->nf : 0;
+    p->nmult = p->stable >= 0 ? c->floquet_n : 0;
+    p->floquet_krylov = p->stable >= 0 && c->floquet_krylov;
     if (p->stable < 0 && c->floquet_msg[0])
         snprintf(p->reason, sizeof p->reason, "%s", c->floquet_msg);
     announce(c, lam);

@@ -99,6 +99,11 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
         (opt->shoot_rtol > 0 && !(opt->shoot_rtol >= 1e-14 && opt->shoot_rtol < 1e-2)))
         BAD("shoot_rtol", "give 0 (1e-9) or a tolerance in [1e-14, 1e-2)",
             "shooting tolerance %g out of range", opt->shoot_rtol);
+    if (opt->floquet < GD_FLOQUET_AUTO || opt->floquet > GD_FLOQUET_KRYLOV ||
+        opt->floquet_count < 0 || opt->floquet_count > 256 || opt->floquet_dmax < 0)
+        BAD("floquet", "give floquet 0 (auto), 1 (dense) or 2 (krylov), floquet_count 0..256",
+            "Floquet options out of range (method %d, count %d, dense_max %d)", opt->floquet,
+            opt->floquet_count, opt->floquet_dmax);
     if (opt->shoot_dense_max < 0 || opt->shoot_budget < 0)
         BAD("shoot_dense_max", "give 0 (the default) or a positive value",
             "shoot_dense_max and shoot_budget must not be negative");
