@@ -69,12 +69,18 @@ asan-build: deps
 
 # ctest starts the costliest programs first when it knows their cost: a first sanitizer run
 # borrows the normal build's record (the same programs, each slower by a similar factor).
+# The sanitizer build runs the test cases that took at most ASAN_MAX_CPU seconds of CPU in
+# the normal build (test-unit's record, $(BUILD)/test-times; without it, every case): the
+# few costlier ones, solver sweeps and long integrations, run 2-3x slower there and
+# repeat code the cheaper cases already run under the sanitizers. ASAN_MAX_CPU=1e9 runs all.
+ASAN_MAX_CPU ?= 1.0
 test-asan: asan-build
 	@mkdir -p $(ASAN_BUILD)/Testing/Temporary; cost=Testing/Temporary/CTestCostData.txt; \
 	    [ -f $(ASAN_BUILD)/$$cost ] || [ ! -f $(BUILD)/$$cost ] || cp $(BUILD)/$$cost $(ASAN_BUILD)/$$cost
 	@# the structure checks and the install test read the sources and install the same
 	@# library: the normal build's run covers them
-	cd $(ASAN_BUILD) && OPENBLAS_NUM_THREADS=1 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
+	cd $(ASAN_BUILD) && OPENBLAS_NUM_THREADS=1 GD_TEST_TIMES_IN=$(CURDIR)/$(BUILD)/test-times \
+	    GD_TEST_MAX_CPU=$(ASAN_MAX_CPU) ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
 	    UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	    ctest --output-on-failure -j$(JOBS) -E '^(test_install|structure_.*)$$'
 
