@@ -92,9 +92,12 @@ test-asan: asan-build
 # Valgrind runs code 20-170x slower than the native build, so it runs the test cases that
 # took at most VALGRIND_MAX_CPU seconds of CPU in the normal build (test-unit records each
 # case's CPU time in $(BUILD)/test-times; a program without a fresh record is run natively
-# once first). The costlier cases, the solver sweeps and long integrations (47 of 406 on the day this came in),
-# run in the normal and sanitizer builds; every program still runs under valgrind.
-VALGRIND_MAX_CPU ?= 0.15
+# once first). The costlier cases, the solver sweeps and long integrations (52 of 426 on
+# 2026-11-25, 96 % of the native CPU), run in the normal build (and the sanitizer build
+# below 1 s); every program still runs under valgrind. The periodic CLI run leaves out the
+# Floquet multipliers (0.42 of its 0.47 s natively, a minute under valgrind): the Mathieu
+# run computes them.
+VALGRIND_MAX_CPU ?= 0.1
 memcheck: build
 	@set -e; mkdir -p $(BUILD)/test-times; for t in $(BUILD)/test_*; do \
 	    [ -f $$t ] && [ -x $$t ] && [ "$$(head -c 4 $$t | tail -c 3)" = ELF ] || continue; \
@@ -129,7 +132,7 @@ memcheck: build
 	    "modal examples/kumar2011_coupled.yaml --directional --group shaft --dofs x,y,rz --json" \
 	    "study examples/studies/chen1998_mesh_stiffness.yaml --out $$out/st --shard 1/4 --threads 2" \
 	    "periodic tests/plot/mathieu_pair.yaml --speeds 695:705:2 --harmonics 2 --plot $$out/periodic.svg" \
-	    "periodic examples/chen1998_gear_pair.yaml --speeds 500:700:2 --harmonics 3 --json --out $$out/p" \
+	    "periodic examples/chen1998_gear_pair.yaml --speeds 500:700:2 --harmonics 3 --no-stability --json --out $$out/p" \
 	    "modal examples/chen1998_gear_pair.yaml --plot $$out/modes.png" | \
 	GD_VG="$(VALGRIND)" GD="$(BUILD)/geardyn" xargs -P $(JOBS) -I{} sh -fc 'echo "valgrind geardyn $$1"; \
 	    OPENBLAS_NUM_THREADS=1 $$GD_VG $$GD $$1 >/dev/null || \
