@@ -137,15 +137,9 @@ static void sub_mul_prescribed(const gd_transient *tr, const cs *A, const double
         sub_col(A, tr->pres[k].dof, x, r);
 }
 
-/* gd_tr_forces of a run-up (gd_transient_options.profile): every nominal angle ratio
- * phi(t), speed ratio W(t), and the gyroscopic term's change from the reference speed
- * the matrices hold, -(W(t) - W) G q'. */
-static void profile_forces(gd_transient *tr, double t, const double *q, const double *v,
-                           const double *acc, double *r, int skip_free_linear)
+/* r += every registry law's force at (t, q, q'). */
+static void add_law_forces(gd_transient *tr, double t, const double *q, const double *v, double *r)
 {
-    double phi, w, dw;
-    gd_tr_profile_eval(tr->prof, tr->prof_cum, t, &phi, &w, &dw);
-    if (tr->nlaw) gd_tr_profile_laws(tr, t, phi, w);
     for (int i = 0; i < tr->nlaw; i++) {
         const gd_law *L = &tr->law[i];
         gd_law_point x;
@@ -155,6 +149,18 @@ static void profile_forces(gd_transient *tr, double t, const double *q, const do
         for (int j = 0; j < L->ndofs; j++)
             if (L->dof[j] >= 0) r[L->dof[j]] += tr->lf[j];
     }
+}
+
+/* gd_tr_forces of a run-up (gd_transient_options.profile): every nominal angle ratio
+ * phi(t), speed ratio W(t), and the gyroscopic term's change from the reference speed
+ * the matrices hold, -(W(t) - W) G q'. */
+static void profile_forces(gd_transient *tr, double t, const double *q, const double *v,
+                           const double *acc, double *r, int skip_free_linear)
+{
+    double phi, w, dw;
+    gd_tr_profile_eval(tr->prof, tr->prof_cum, t, &phi, &w, &dw);
+    if (tr->nlaw) gd_tr_profile_laws(tr, t, phi, w);
+    add_law_forces(tr, t, q, v, r);
     for (int i = 0; i < tr->nunb_all; i++) {
         /* heavy spot at psi = ratio phi + phase (mirrored for a shaft turning about -z):
          * -m r'' = U (psi'^2 cos + psi'' sin, psi'^2 sin - psi'' cos) */
@@ -229,15 +235,7 @@ void gd_tr_forces(gd_transient *tr, double t, const double *q, const double *v, 
         profile_forces(tr, t, q, v, acc, r, skip_free_linear);
         return;
     }
-    for (int i = 0; i < tr->nlaw; i++) {
-        const gd_law *L = &tr->law[i];
-        gd_law_point x;
-        gd_tr_law_point(L, t, q, v, tr->lq, tr->lv, &x);
-        memset(tr->lf, 0, (size_t)L->ndofs * sizeof *tr->lf);
-        L->type->force(L, &x, tr->lf, NULL, NULL);
-        for (int j = 0; j < L->ndofs; j++)
-            if (L->dof[j] >= 0) r[L->dof[j]] += tr->lf[j];
-    }
+    add_law_forces(tr, t, q, v, r);
     for (int i = 0; i < tr->nunb; i++) {
         const tr_unb *u = &tr->unb[i];
         double psi = u->omega * t + u->phase;
