@@ -416,15 +416,25 @@ static int parse_shoot_dense_max(const char *cmd, const char *text, void *field)
     return 0;
 }
 
-static int parse_shoot_budget(const char *cmd, const char *text, void *field)
+static int parse_seconds(const char *cmd, const char *option, const char *text, void *field)
 {
     char *end;
     double v = strtod(text, &end);
-    if (*end || !(v >= 0 && v < 1e9))
-        return gd_cli_usage_error(
-            cmd, "--shoot-budget: expected CPU seconds >= 0 (0: no limit), got '%s'", text);
+    if (end == text || *end || !(v >= 0 && v < 1e9))
+        return gd_cli_usage_error(cmd, "--%s: expected CPU seconds >= 0 (0: no limit), got '%s'",
+                                  option, text);
     *(double *)field = v;
     return 0;
+}
+
+static int parse_shoot_budget(const char *cmd, const char *text, void *field)
+{
+    return parse_seconds(cmd, "shoot-budget", text, field);
+}
+
+static int parse_floquet_budget(const char *cmd, const char *text, void *field)
+{
+    return parse_seconds(cmd, "floquet-budget", text, field);
 }
 
 static int parse_subharmonic(const char *cmd, const char *text, void *field)
@@ -532,6 +542,11 @@ static const gd_cli_opt OPTS[] = {
                "auto (dense up to 300 states), dense or krylov (the 8 largest multipliers from "
                "monodromy-vector products)",
                .def = "auto", .word = "auto|dense|krylov"),
+    GD_CLI_ROW("floquet-budget", GD_CLI_CALL, F(opt.floquet_budget), "S",
+               "CPU seconds for one point's multipliers; a point whose multipliers would take "
+               "longer keeps its orbit with stability not computed and says how long they would "
+               "take (0: no limit)",
+               .def = "30", .call = parse_floquet_budget),
     GD_CLI_ROW("tol", GD_CLI_CALL, F(opt.tol), "TOL", "Newton's relative residual", .def = "1e-10",
                .call = parse_tol),
     GD_CLI_ROW("samples", GD_CLI_CALL, F(opt.samples), "N", "AFT time samples per period",
@@ -563,8 +578,9 @@ int gd_cmd_periodic(int argc, char **argv)
     periodic_args a = {0};
     const char *file;
     gd_periodic_options_init(&a.opt);
-    a.opt.adaptive = 1;        /* the default: H from the excitations, raised until it holds */
-    a.opt.shoot_budget = 30.0; /* a point never runs for minutes in silence */
+    a.opt.adaptive = 1;          /* the default: H from the excitations, raised until it holds */
+    a.opt.shoot_budget = 30.0;   /* a point never runs for minutes in silence */
+    a.opt.floquet_budget = 30.0; /* nor its multipliers */
     int rc = gd_cli_parse(&PERIODIC, argc, argv, &a, &file);
     if (rc) return rc < 0 ? GD_EXIT_OK : rc;
     gd_periodic_options opt = a.opt;

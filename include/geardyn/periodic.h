@@ -80,6 +80,12 @@ typedef struct gd_periodic_options {
                             next one in (which the bifurcations are located by) are known */
     int floquet_dmax;    /* auto: the dense monodromy up to this many states 2 nf (0: 300,
                             from the measured costs, docs/periodic.md) */
+    double floquet_budget; /* CPU seconds for one point's multipliers (0, the library default:
+                              no limit; the CLI's is 30): a point whose multipliers would
+                              take longer, by the cost of the first Magnus step (dense) or
+                              of one operator action (Krylov), or that passes it, keeps its
+                              orbit with stability not computed, and its reason says how
+                              long they would take */
     gd_per_method method;
     gd_per_kind kind;    /* GD_PER_HB (default), GD_PER_SHOOTING or GD_PER_AUTO (shooting
                             continues naturally, whatever `method` says) */

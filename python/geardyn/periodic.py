@@ -32,7 +32,8 @@ def _frequencies(values):
 
 def periodic(system, speeds=None, harmonics=10, subharmonic=1, records=None,
              method="arclength", both_directions=False, stability=True, tol=1e-10,
-             samples=0, laws=None, solver="hb", shoot_budget=None, frequency=None):
+             samples=0, laws=None, solver="hb", shoot_budget=None, frequency=None,
+             floquet_budget=None):
     """Periodic steady state over the reference speeds `speeds` (rad/s array or
     "FROM:TO:COUNT" with units), as `geardyn periodic`: harmonics H (or "auto": raised
     from 10 until the top quarter carries < 1e-6 of the response), subharmonic N,
@@ -46,7 +47,9 @@ def periodic(system, speeds=None, harmonics=10, subharmonic=1, records=None,
     (Newton on the period map of the transient integrator: cam torques with
     include_acceleration too) or "auto" (the cheaper by a measured cost; the result's
     solver and solver_note say which ran and why), as `--method`; shoot_budget: CPU
-    seconds per shooting point (None: no limit). frequency: continue in the frequency of
+    seconds per shooting point (None: no limit); floquet_budget: CPU seconds for one
+    point's Floquet multipliers (None: no limit; a point over it keeps its orbit, with
+    stable None and a reason saying how long they would take). frequency: continue in the frequency of
     the model's time-harmonic loads instead of the speed, as `--frequency` (rad/s array in
     the order to follow, or "FROM:TO:COUNT" with units, e.g. "0.8:0.5:31"; several loads
     keep their ratios), at the first of `speeds` (None: the model's speed); the points'
@@ -75,6 +78,11 @@ def periodic(system, speeds=None, harmonics=10, subharmonic=1, records=None,
         if not float(shoot_budget) > 0:
             raise model_error("shoot_budget", "expected CPU seconds > 0, got %r" % shoot_budget)
         opt.shoot_budget = float(shoot_budget)
+    if floquet_budget is not None:
+        if not float(floquet_budget) > 0:
+            raise model_error("floquet_budget",
+                              "expected CPU seconds > 0, got %r" % floquet_budget)
+        opt.floquet_budget = float(floquet_budget)
     if harmonics == "auto":
         opt.adaptive = 1
     else:

@@ -74,6 +74,9 @@ def test_bad_options(geardyn):
     assert e.value.field == "solver"
     with pytest.raises(geardyn.ModelError, match="CPU seconds"):
         m.periodic("100:200:2", solver="shooting", shoot_budget=0)
+    with pytest.raises(geardyn.ModelError, match="CPU seconds") as e:
+        m.periodic("100:200:2", floquet_budget=-1)
+    assert e.value.field == "floquet_budget"
     with pytest.raises(geardyn.ModelError, match="cannot resolve"):
         m.periodic("100:200:2", harmonics=10, samples=8)
     # the library's bound (2^31 - 1 samples asked for about 100 GB), issue 23

@@ -12,8 +12,10 @@
 #include <cblas.h>
 #include <lapacke.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "periodic/periodic_impl.h"
 
@@ -177,9 +179,26 @@ int gd_hb_magnus_steps(const hb *h, gd_transient *tr, double om, const double *X
     return 0;
 }
 
+double gd_hb_cpu_seconds(void)
+{
+    struct timespec ts;
+    if (clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts)) return (double)clock() / CLOCKS_PER_SEC;
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 int gd_hb_floquet(const hb *h, gd_transient *tr, double om, const double *X, int steps,
                   const gd_tr_record *bl, int nbl, double *mu_re, double *mu_im)
 {
+    char msg[160];
+    return gd_hb_floquet_budget(h, tr, om, X, steps, bl, nbl, 0.0, mu_re, mu_im, msg);
+}
+
+int gd_hb_floquet_budget(const hb *h, gd_transient *tr, double om, const double *X, int steps,
+                         const gd_tr_record *bl, int nbl, double budget, double *mu_re,
+                         double *mu_im, char *msg)
+{
+    const double cpu0 = gd_hb_cpu_seconds();
+    msg[0] = '\0';
     const int nf = h->nf, n2 = 2 * nf;
     size_t nn = (size_t)n2 * n2, ff = (size_t)nf * nf;
     fq_work w = {0};
@@ -238,6 +257,18 @@ int gd_hb_floquet(const hb *h, gd_transient *tr, double om, const double *X, int
         cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n2, n2, n2, 1.0, Ex, n2, Phi, n2,
                     0.0, T, n2);
         memcpy(Phi, T, nn * sizeof *Phi);
+        /* every step costs the same dense products: the first one (with the set-up) tells
+         * what the whole monodromy will take */
+        const double used = gd_hb_cpu_seconds() - cpu0, need = used * nsub / (k + 1);
+        if (budget > 0 && (need > budget || used > budget)) {
+            snprintf(msg, 160,
+                     "stability not computed: the dense monodromy of %d states would take "
+                     "about %.3g s CPU (%d Magnus steps), over the %g s budget per point",
+                     n2, need, nsub, budget);
+            rc = 4;
+            free(tb);
+            goto done;
+        }
     }
     free(tb);
     /* LAPACK's eigenvalue solvers are undefined on inf and NaN (dgeev wrote outside its

@@ -50,6 +50,8 @@ typedef struct kq {
     int *sub;    /* nsub: Taylor substeps */
     double *a0, *p1, *p2, *d, *t, *f, *trm, *r; /* work vectors (n2; r: nf) */
     int overflow;
+    int over_budget;     /* the CPU budget passed: the products stop (zeros) */
+    double budget, cpu0; /* CPU seconds (0: none), the start */
     int products;
     long omega_products;
 } kq;
@@ -135,6 +137,12 @@ static void monodromy_product(void *ctx, const double *x, double *y)
     kq *k = ctx;
     const int n2 = k->n2;
     k->products++;
+    if (k->budget > 0 && !k->over_budget && gd_hb_cpu_seconds() - k->cpu0 > k->budget)
+        k->over_budget = 1;
+    if (k->over_budget) { /* Krylov-Schur runs out its iterations on zeros: cheap */
+        memset(y, 0, (size_t)n2 * sizeof *y);
+        return;
+    }
     double *z = y, *f = k->f, *trm = k->trm;
     memcpy(z, x, (size_t)n2 * sizeof *z);
     for (int j = 0; j < k->nsub && !k->overflow; j++) {
@@ -310,6 +318,38 @@ static int kq_setup(kq *k, gd_transient *tr)
     return k->com.status < KLU_OK;
 }
 
+/* Whether the multipliers would pass the CPU budget: the time of one Omega action
+ * (measured on a few) times the actions of the fewest products a search needs (the
+ * Krylov space's, or n2 for all of them), at 20 Taylor terms per substep (the series
+ * stops at 28 for the scaled norm 3.5, often earlier). 1 with msg set. */
+static int over_budget(kq *k, int nev, char *msg)
+{
+    const double t0 = gd_hb_cpu_seconds();
+    int reps = 0;
+    for (int i = 0; i < k->n2; i++)
+        k->f[i] = 1.0;
+    do {
+        apply_omega(k, reps % k->nsub, k->f, k->trm);
+        reps++;
+    } while (reps < 64 && gd_hb_cpu_seconds() - t0 < 1e-3);
+    k->omega_products = 0;
+    const double per_action = (gd_hb_cpu_seconds() - t0) / reps;
+    double actions = 0.0;
+    for (int j = 0; j < k->nsub; j++)
+        actions += 20.0 * k->sub[j];
+    const int ncv = 2 * nev + 12 < k->n2 - 1 ? 2 * nev + 12 : k->n2 - 1;
+    const int least = nev + 4 > k->n2 ? k->n2 : ncv;
+    const double product = per_action * actions,
+                 need = gd_hb_cpu_seconds() - k->cpu0 + least * product;
+    if (need <= k->budget) return 0;
+    /* the length is used, so a message cut at 160 bytes is not an error */
+    int len = snprintf(msg, 160,
+                       "stability not computed: the Krylov multipliers of %d states need at least "
+                       "%.3g s CPU (%d products of %.3g s), over the %g s budget per point",
+                       k->n2, need, least, product, k->budget);
+    return len > 0;
+}
+
 /* 1-norm bound of the balanced B for the term derivatives sq, sv */
 static double norm_B(const kq *k, const double *sq, const double *sv)
 {
@@ -320,10 +360,12 @@ static double norm_B(const kq *k, const double *sq, const double *sv)
 }
 
 int gd_hb_floquet_krylov(const hb *h, gd_transient *tr, double om, const double *X, int steps,
-                         const gd_tr_record *bl, int nbl, int nev, double tol, double *mu_re,
-                         double *mu_im, int *nmu, int *products, char *msg)
+                         const gd_tr_record *bl, int nbl, int nev, double tol, double budget,
+                         double *mu_re, double *mu_im, int *nmu, int *products, char *msg)
 {
     kq k = {0};
+    k.budget = budget;
+    k.cpu0 = gd_hb_cpu_seconds();
     k.nf = h->nf;
     k.n2 = 2 * h->nf;
     *nmu = 0;
@@ -375,6 +417,10 @@ int gd_hb_floquet_krylov(const hb *h, gd_transient *tr, double om, const double 
         k.sub[j] = bound > THETA ? (int)ceil(bound / THETA) : 1;
     }
     free(sq);
+    if (budget > 0 && over_budget(&k, nev, msg)) {
+        rc = 4;
+        goto done;
+    }
     if (nev + 4 > k.n2) {
         /* as many wanted as there are states: the monodromy's columns by n2 products, and
          * every multiplier (LAPACK dgeev) */
@@ -388,6 +434,14 @@ int gd_hb_floquet_krylov(const hb *h, gd_transient *tr, double om, const double 
     *products = k.products;
     if (k.overflow) {
         rc = 2;
+        goto done;
+    }
+    if (k.over_budget) {
+        snprintf(msg, 160,
+                 "stability not computed: the Krylov multipliers of %d states passed the "
+                 "%g s CPU budget per point after %d monodromy-vector products",
+                 k.n2, budget, k.products);
+        rc = 4;
         goto done;
     }
     if (st != GD_OK || ks.nconv < 1) {

@@ -130,6 +130,14 @@ void gd_hb_eval(const hb *h, double w, const double *X, double tau, double *q, d
  * monodromy matrix is not finite (too few steps for the orbit), 1 other failures. */
 int gd_hb_floquet(const hb *h, gd_transient *tr, double w, const double *X, int steps,
                   const gd_tr_record *bl, int nbl, double *mu_re, double *mu_im);
+/* As gd_hb_floquet within a CPU budget (seconds, 0: none): 4 when the multipliers would
+ * take longer (the first step's cost times the steps) or took longer, with msg (160
+ * bytes) saying by how much. */
+int gd_hb_floquet_budget(const hb *h, gd_transient *tr, double w, const double *X, int steps,
+                         const gd_tr_record *bl, int nbl, double budget, double *mu_re,
+                         double *mu_im, char *msg);
+/* CPU seconds of this process (the budgets of the multipliers). */
+double gd_hb_cpu_seconds(void);
 /* The Magnus step boundaries of gd_hb_floquet (phases 0..2 pi): `steps` equal steps,
  * each split at the contact changes of the backlash meshes bl. *tau (nsub + 1 entries,
  * the caller frees). 0 ok, 1 out of memory. */
@@ -142,10 +150,12 @@ int gd_hb_magnus_steps(const hb *h, gd_transient *tr, double w, const double *X,
  * count delivered (nev, or one more when a conjugate pair straddles the cut), each with
  * a relative residual within tol; *products the monodromy-vector products used. 0 ok,
  * 2 the products overflowed (too few steps), 3 no convergence (a cluster of equal
- * moduli across the cut: ask for more), 1 other failures; msg (160 bytes) says why. */
+ * moduli across the cut: ask for more), 4 over the CPU budget (seconds, 0: none: estimated
+ * before the first product from one operator action, or passed), 1 other failures; msg
+ * (160 bytes) says why. */
 int gd_hb_floquet_krylov(const hb *h, gd_transient *tr, double w, const double *X, int steps,
-                         const gd_tr_record *bl, int nbl, int nev, double tol, double *mu_re,
-                         double *mu_im, int *nmu, int *products, char *msg);
+                         const gd_tr_record *bl, int nbl, int nev, double tol, double budget,
+                         double *mu_re, double *mu_im, int *nmu, int *products, char *msg);
 
 /* Warm start (warmstart.c): the coefficients X (nf (2 H + 1)) of the last of `periods`
  * periods (2 pi / w) of a transient from rest (static equilibrium with loads) of the

@@ -37,7 +37,8 @@ void gd_per_floquet(ctx *c, const double *X, double lam, double *mre, double *mi
     int rc, nmu = n2;
     c->floquet_n = 0;
     if (!krylov) {
-        rc = gd_hb_floquet(&c->h, s->tr, s->w, X, steps, bl, nbl, mre, mim);
+        rc = gd_hb_floquet_budget(&c->h, s->tr, s->w, X, steps, bl, nbl, c->opt->floquet_budget,
+                                  mre, mim, c->floquet_msg);
     } else {
         /* the largest few; more while all but one of them lie outside the unit circle
          * (the count outside and the next one in locate the bifurcations) */
@@ -46,8 +47,9 @@ void gd_per_floquet(ctx *c, const double *X, double lam, double *mre, double *mi
             int products;
             memset(mre, 0, (size_t)n2 * sizeof *mre);
             memset(mim, 0, (size_t)n2 * sizeof *mim);
-            rc = gd_hb_floquet_krylov(&c->h, s->tr, s->w, X, steps, bl, nbl, want, 1e-10, mre, mim,
-                                      &nmu, &products, c->floquet_msg);
+            rc = gd_hb_floquet_krylov(&c->h, s->tr, s->w, X, steps, bl, nbl, want, 1e-10,
+                                      c->opt->floquet_budget, mre, mim, &nmu, &products,
+                                      c->floquet_msg);
             if (rc == 3 && retry++ < 3) { /* moduli tied across the cut: take them all */
                 want += 2;
                 continue;

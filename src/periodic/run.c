@@ -104,6 +104,9 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
         BAD("floquet", "give floquet 0 (auto), 1 (dense) or 2 (krylov), floquet_count 0..256",
             "Floquet options out of range (method %d, count %d, dense_max %d)", opt->floquet,
             opt->floquet_count, opt->floquet_dmax);
+    if (!(opt->floquet_budget >= 0) || isinf(opt->floquet_budget))
+        BAD("floquet_budget", "give CPU seconds > 0, or 0 for no limit",
+            "Floquet budget %g s out of range", opt->floquet_budget);
     if (opt->shoot_dense_max < 0 || opt->shoot_budget < 0)
         BAD("shoot_dense_max", "give 0 (the default) or a positive value",
             "shoot_dense_max and shoot_budget must not be negative");

@@ -428,6 +428,16 @@ TEST(method_shooting_auto_and_bad_value)
                             NULL));
     CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --shoot-budget -1",
                             "--shoot-budget", NULL));
+    CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --floquet-budget x",
+                            "--floquet-budget", NULL));
+    /* over the multipliers' budget: the orbit, stability unknown and the reason (exit 0:
+     * every requested point converged) */
+    run(&s, &r, "periodic " CHEN " --speeds 1000:1000:1 --harmonics 7 --floquet-budget 1e-9");
+    CHECK(r.code == 0 &&
+          contains(r.out, "stability not computed: the dense monodromy of 12 states") &&
+          contains(r.out, "over the 1e-09 s budget per point"));
+    if (r.code) show(&r);
+    run_free(&r);
     scratch_close(&s);
 }
 
@@ -525,6 +535,7 @@ TEST(option_table_rows)
                            "shoot-rtol TOL",
                            "shoot-dense-max N",
                            "shoot-budget S",
+                           "floquet-budget S",
                            "harmonics H|auto",
                            "harmonic-tol TOL",
                            "max-harmonics H",

@@ -262,6 +262,56 @@ TEST(floquet_options_checked)
     fx_free(&f);
 }
 
+/* The CPU budget of one point's multipliers (floquet_budget): over it (1e-9 s, passed by
+ * any real cost) the point keeps its orbit, converged, with stability not computed and a
+ * reason naming the budget, by either method; within it (1000 s) the multipliers are the
+ * unbudgeted ones bit for bit (the budget only reads the clock); a negative one is refused. */
+TEST(floquet_budget_leaves_stability_out_and_says_why)
+{
+    fx f;
+    REQUIRE(load(&f, GD_SOURCE_DIR "/tests/plot/mathieu_pair.yaml", NULL));
+    gd_transient_model *tm = NULL;
+    gd_error err;
+    REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
+    const double v[1] = {700.0};
+    for (int m = GD_FLOQUET_DENSE; m <= GD_FLOQUET_KRYLOV; m++) {
+        gd_periodic_result *r[3] = {NULL, NULL, NULL};
+        const double budget[3] = {0.0, 1e-9, 1e3};
+        for (int c = 0; c < 3; c++) {
+            gd_periodic_options o;
+            gd_periodic_options_init(&o);
+            o.harmonics = 8;
+            o.estimate = 0;
+            o.floquet = m;
+            o.floquet_budget = budget[c];
+            CHECK(gd_periodic_run(f.s, &tm->spec, NULL, v, 1, &o, NULL, 0, &r[c], &err) == GD_OK);
+        }
+        if (r[0] && r[1] && r[2]) {
+            const gd_periodic_point *p0 = &r[0]->points[0], *p1 = &r[1]->points[0],
+                                    *p2 = &r[2]->points[0];
+            CHECK(p0->converged && p1->converged && p2->converged);
+            CHECK(p0->stable >= 0 && p0->nmult == 2);
+            CHECK(p1->stable == -1 && p1->nmult == 0 && isnan(p1->mu_max));
+            CHECK(strstr(p1->reason, "stability not computed") != NULL);
+            CHECK(strstr(p1->reason, "budget") != NULL);
+            CHECK(p2->stable == p0->stable && p2->nmult == p0->nmult);
+            CHECK(p2->mu_max == p0->mu_max);
+            CHECK(p1->coef[0] == p0->coef[0]); /* the orbit itself is the same */
+        }
+        for (int c = 0; c < 3; c++)
+            gd_periodic_result_free(r[c]);
+    }
+    gd_periodic_options o;
+    gd_periodic_options_init(&o);
+    o.floquet_budget = -1.0;
+    gd_periodic_result *r = NULL;
+    CHECK(gd_periodic_run(f.s, &tm->spec, NULL, v, 1, &o, NULL, 0, &r, &err) == GD_EINPUT);
+    CHECK(r == NULL);
+    CHECK_STR(err.field, "floquet_budget");
+    gd_transient_model_free(tm);
+    fx_free(&f);
+}
+
 RUN_TESTS(T(mathieu_products_equal_dense), T(chen_sfd_krylov_schur_equals_dense),
           T(mathieu_bifurcations_unchanged), T(chen_sfd_neimark_sacker_by_krylov),
-          T(floquet_options_checked))
+          T(floquet_options_checked), T(floquet_budget_leaves_stability_out_and_says_why))
