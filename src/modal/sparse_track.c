@@ -44,6 +44,11 @@
 #define GD_TRACK_MAXC 6       /* largest cluster refined together */
 #define GD_TRACK_MAXQ 6       /* basis columns per cluster member */
 #define GD_TRACK_MAXIT 8      /* Rayleigh-Ritz passes per cluster */
+/* The largest projected pencil solved by Rayleigh quotient iteration from each mode's
+ * prediction (a few small solves); larger ones, or an iteration that does not settle
+ * on distinct values each nearest its own prediction, by QZ (zggev, about ten times the
+ * cost on 8 x 8 to 24 x 24) */
+#define GD_TRACK_RQI 24
 /* Complex factorisations kept from speed to speed (at most GD_TRACK_SLOTS, within
  * GD_TRACK_LU_BYTES per workspace): a cluster whose shift lies within GD_TRACK_REUSE
  * of its distance to the other modes from a kept one corrects with that one (residual
@@ -191,19 +196,62 @@ typedef struct gd_track_cache {
     double *p;          /* nnz */
 } gd_track_cache;
 
+/* Solves M x = t in place (M: n x n, column-major, overwritten) by Gaussian
+ * elimination with partial pivoting on |Re| + |Im|, as LAPACK's zgetf2, without its
+ * call overheads (n <= 12 here, a few per Rayleigh-Ritz pass); 0 on a zero pivot. */
+static int small_solve(int n, double complex *M, double complex *t)
+{
+    for (int c = 0; c < n; c++) {
+        int p = c;
+        double pm = -1;
+        for (int i = c; i < n; i++) {
+            double a = fabs(creal(M[i + c * n])) + fabs(cimag(M[i + c * n]));
+            if (a > pm) {
+                pm = a;
+                p = i;
+            }
+        }
+        if (!(pm > 0)) return 0;
+        if (p != c) {
+            for (int j = c; j < n; j++) {
+                double complex x = M[c + j * n];
+                M[c + j * n] = M[p + j * n];
+                M[p + j * n] = x;
+            }
+            double complex x = t[c];
+            t[c] = t[p];
+            t[p] = x;
+        }
+        double complex ip = 1.0 / M[c + c * n];
+        for (int i = c + 1; i < n; i++) {
+            double complex f = M[i + c * n] * ip;
+            if (f == 0) continue;
+            for (int j = c + 1; j < n; j++)
+                M[i + j * n] -= f * M[c + j * n];
+            t[i] -= f * t[c];
+        }
+    }
+    for (int c = n - 1; c >= 0; c--) {
+        double complex x = t[c];
+        for (int j = c + 1; j < n; j++)
+            x -= M[c + j * n] * t[j];
+        t[c] = x / M[c + c * n];
+    }
+    return 1;
+}
+
 /* The eigenvalue of the q2 x q2 pencil (A, B) nearest sg by Rayleigh quotient iteration
- * (the start vector [e1; sg e1]: the basis' first column is the previous eigenvector):
- * 1 with *lam and v (unit norm; the first q2 / 2 entries are the Ritz vector's
- * coefficients), 0 when it does not settle in 8 steps. Mw: q2 x q2 scratch. */
+ * (the start vector [e_e; sg e_e]: the basis' column e is the mode's previous
+ * eigenvector): 1 with *lam and v (unit norm; the first q2 / 2 entries are the Ritz
+ * vector's coefficients), 0 when it does not settle in 8 steps. q2 <= GD_TRACK_RQI. */
 static int small_rqi(int q2, const double complex *A, const double complex *B, double complex sg,
-                     double complex *Mw, double complex *v, double complex *lam)
+                     int e, double complex *v, double complex *lam)
 {
     int q = q2 / 2;
-    double complex t[2 * GD_TRACK_MAXQ];
-    lapack_int ipiv[2 * GD_TRACK_MAXQ];
+    double complex t[GD_TRACK_RQI], Mw[GD_TRACK_RQI * GD_TRACK_RQI];
     memset(v, 0, (size_t)q2 * sizeof *v);
-    v[0] = 1;
-    v[q] = sg;
+    v[e] = 1;
+    v[q + e] = sg;
     for (int it = 0; it < 8; it++) {
         for (int i = 0; i < q2 * q2; i++)
             Mw[i] = A[i] - sg * B[i];
@@ -213,8 +261,7 @@ static int small_rqi(int q2, const double complex *A, const double complex *B, d
                 sum += B[i + (size_t)j * q2] * v[j];
             t[i] = sum;
         }
-        if (LAPACKE_zgetrf_work(LAPACK_COL_MAJOR, q2, q2, Mw, q2, ipiv)) return 0;
-        if (LAPACKE_zgetrs_work(LAPACK_COL_MAJOR, 'N', q2, 1, Mw, q2, ipiv, t, q2)) return 0;
+        if (!small_solve(q2, Mw, t)) return 0;
         /* t = (A - sg B)^-1 B v = mu v at convergence, lambda = sg + 1 / mu */
         double complex vt = cdot(v, t, q2), vv = cdot(v, v, q2);
         double nt = cnrm(t, q2);
@@ -284,15 +331,22 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
                 w->B2[q + i + (size_t)(q + j) * q2] = w->Mq[i + (size_t)j * qmax];
             }
         }
-        /* one mode: Rayleigh quotient iteration on the small pencil from the
-         * extrapolated value (a few 2q x 2q solves); a cluster, or no convergence: QZ */
-        double complex vv[2 * GD_TRACK_MAXQ];
-        int nritz = q2,
-            one = c == 1 && q2 <= 2 * GD_TRACK_MAXQ &&
-                  small_rqi(q2, w->A2, w->B2, it ? out[0].lam : lam0[0], w->VR, vv, &w->al[0]);
-        if (one) {
-            w->be[0] = 1;
-            nritz = 1;
+        /* each mode's Ritz pair by Rayleigh quotient iteration on the small pencil from
+         * its prediction (the extrapolated value, then the previous pass'); QZ when
+         * that fails or two modes' iterations do not settle apart */
+        int nritz = q2, byrqi = q2 <= GD_TRACK_RQI && c <= q;
+        for (int m = 0; m < c && byrqi; m++) {
+            byrqi = small_rqi(q2, w->A2, w->B2, it ? out[m].lam : lam0[m], m,
+                              w->VR + (size_t)m * q2, &w->al[m]);
+            w->be[m] = 1;
+        }
+        for (int m = 0; m < c && byrqi; m++)
+            for (int j = 0; j < c; j++)
+                if (j != m && (cabs(w->al[m] - lam0[j]) <= cabs(w->al[m] - lam0[m]) ||
+                               cabs(w->al[m] - w->al[j]) <= 1e-8 * cabs(w->al[m])))
+                    byrqi = 0;
+        if (byrqi) {
+            nritz = c;
         } else if (LAPACKE_zggev(LAPACK_COL_MAJOR, 'N', 'V', q2, w->A2, q2, w->B2, q2, w->al, w->be,
                                  NULL, 1, w->VR, q2)) {
             break;
@@ -318,7 +372,7 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
             if (best < 0) goto fail;
             used[best] = 1;
             double complex lam = w->al[best] / w->be[best];
-            const double complex *s = one ? vv : w->VR + (size_t)best * q2;
+            const double complex *s = w->VR + (size_t)best * q2;
             double complex *x = out[m].x;
             memset(x, 0, (size_t)n * sizeof *x);
             memset(w->r, 0, (size_t)n * sizeof *w->r);
