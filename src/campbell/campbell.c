@@ -224,6 +224,7 @@ gd_status gd_campbell_run(const gd_system *sys, const gd_campbell_options *opt, 
             gd_modal_free(res[1]);
             res[1] = NULL;
             continuation = 0;
+            gd_sparse_track_free(w0); /* its buffers and factorisations */
         } else {
             ncont[1] = 1;
         }

@@ -44,11 +44,6 @@
 #define GD_TRACK_MAXC 6       /* largest cluster refined together */
 #define GD_TRACK_MAXQ 6       /* basis columns per cluster member */
 #define GD_TRACK_MAXIT 8      /* Rayleigh-Ritz passes per cluster */
-/* The largest projected pencil solved by Rayleigh quotient iteration from each mode's
- * prediction (a few small solves); larger ones, or an iteration that does not settle
- * on distinct values each nearest its own prediction, by QZ (zggev, about ten times the
- * cost on 8 x 8 to 24 x 24) */
-#define GD_TRACK_RQI 24
 /* Complex factorisations kept from speed to speed (at most GD_TRACK_SLOTS, within
  * GD_TRACK_LU_BYTES per workspace): a cluster whose shift lies within GD_TRACK_REUSE
  * of its distance to the other modes from a kept one corrects with that one (residual
@@ -169,13 +164,13 @@ typedef struct track_slot {
 
 typedef struct track_ws {
     int n, qmax;
-    double complex *Q, *MQ, *DQ, *KQ; /* n x qmax */
-    double complex *Mq, *Dq, *Kq;     /* qmax x qmax */
-    double complex *A2, *B2, *VR, *al, *be;
-    double complex *r, *t; /* n */
-    double complex *z;     /* the complex pattern values, nnz */
-    track_csc cm, cd, ck;  /* M, D, K at this speed */
-    const double *msrc;    /* the values cm holds */
+    double complex *Q, *MQ, *DQ, *KQ;            /* n x qmax */
+    double complex *Mq, *Dq, *Kq;                /* qmax x qmax */
+    double complex *A2, *B2, *VR, *al, *be, *Mw; /* 2 qmax x 2 qmax, 2 qmax */
+    double complex *r, *t;                       /* n */
+    double complex *z;                           /* the complex pattern values, nnz */
+    track_csc cm, cd, ck;                        /* M, D, K at this speed */
+    const double *msrc;                          /* the values cm holds */
     track_slot slot[GD_TRACK_SLOTS];
     int nslot, maxslot; /* slots in use, allowed (by GD_TRACK_LU_BYTES) */
     long stamp;
@@ -243,12 +238,13 @@ static int small_solve(int n, double complex *M, double complex *t)
 /* The eigenvalue of the q2 x q2 pencil (A, B) nearest sg by Rayleigh quotient iteration
  * (the start vector [e_e; sg e_e]: the basis' column e is the mode's previous
  * eigenvector): 1 with *lam and v (unit norm; the first q2 / 2 entries are the Ritz
- * vector's coefficients), 0 when it does not settle in 8 steps. q2 <= GD_TRACK_RQI. */
+ * vector's coefficients), 0 when it does not settle in 8 steps. Mw (q2 x q2), t (q2):
+ * scratch. */
 static int small_rqi(int q2, const double complex *A, const double complex *B, double complex sg,
-                     int e, double complex *v, double complex *lam)
+                     int e, double complex *Mw, double complex *t, double complex *v,
+                     double complex *lam)
 {
     int q = q2 / 2;
-    double complex t[GD_TRACK_RQI], Mw[GD_TRACK_RQI * GD_TRACK_RQI];
     memset(v, 0, (size_t)q2 * sizeof *v);
     v[e] = 1;
     v[q + e] = sg;
@@ -332,11 +328,14 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
             }
         }
         /* each mode's Ritz pair by Rayleigh quotient iteration on the small pencil from
-         * its prediction (the extrapolated value, then the previous pass'); QZ when
-         * that fails or two modes' iterations do not settle apart */
-        int nritz = q2, byrqi = q2 <= GD_TRACK_RQI && c <= q;
+         * its prediction (the extrapolated value, then the previous pass'): a few small
+         * solves, and more accurate than QZ, whose errors scale with the pencil's norm
+         * (the stiff modes' in the projections: on a 10k-DOF gearbox's cluster of three
+         * QZ's Ritz values left the residuals at 1e-7); QZ when an iteration fails or two
+         * do not settle apart, each nearest its own prediction */
+        int nritz = q2, byrqi = c <= q;
         for (int m = 0; m < c && byrqi; m++) {
-            byrqi = small_rqi(q2, w->A2, w->B2, it ? out[m].lam : lam0[m], m,
+            byrqi = small_rqi(q2, w->A2, w->B2, it ? out[m].lam : lam0[m], m, w->Mw, w->t,
                               w->VR + (size_t)m * q2, &w->al[m]);
             w->be[m] = 1;
         }
@@ -608,11 +607,11 @@ void gd_sparse_track_free(gd_sparse_ws *ws)
     slots_free(w);
     for (int i = 0; i < GD_TRACK_SLOTS; i++)
         free(w->slot[i].rs);
-    void *bufs[] = {w->cm.cp,  w->cm.ri, w->cm.v, w->cd.cp, w->cd.ri, w->cd.v,  w->ck.cp,
-                    w->ck.ri,  w->ck.v,  w->Q,    w->MQ,    w->DQ,    w->KQ,    w->Mq,
-                    w->Dq,     w->Kq,    w->A2,   w->B2,    w->VR,    w->al,    w->be,
-                    w->r,      w->t,     w->z,    tc->fd,   tc->X,    tc->lam0, tc->x0,
-                    tc->match, tc->L,    tc->v,   tc->hl,   tc->p};
+    void *bufs[] = {w->cm.cp, w->cm.ri,  w->cm.v, w->cd.cp, w->cd.ri, w->cd.v, w->ck.cp,
+                    w->ck.ri, w->ck.v,   w->Q,    w->MQ,    w->DQ,    w->KQ,   w->Mq,
+                    w->Dq,    w->Kq,     w->A2,   w->B2,    w->VR,    w->Mw,   w->al,
+                    w->be,    w->r,      w->t,    w->z,     tc->fd,   tc->X,   tc->lam0,
+                    tc->x0,   tc->match, tc->L,   tc->v,    tc->hl,   tc->p};
     for (size_t i = 0; i < sizeof bufs / sizeof *bufs; i++)
         free(bufs[i]);
     gd_shift_invert_free(&tc->op);
@@ -646,10 +645,11 @@ static gd_track_cache *cache_get(gd_sparse_ws *ws, int n, int nnz, int km)
     w->A2 = malloc(q2 * q2 * sizeof *w->A2);
     w->B2 = malloc(q2 * q2 * sizeof *w->B2);
     w->VR = malloc(q2 * q2 * sizeof *w->VR);
+    w->Mw = malloc(q2 * q2 * sizeof *w->Mw);
     w->al = malloc(q2 * sizeof *w->al);
     w->be = malloc(q2 * sizeof *w->be);
     w->r = malloc(nn * sizeof *w->r);
-    w->t = malloc(nn * sizeof *w->t);
+    w->t = malloc((nn > q2 ? nn : q2) * sizeof *w->t);
     w->z = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof *w->z);
     tc->fd = calloc(k1, sizeof *tc->fd);
     tc->X = malloc(nn * k1 * sizeof *tc->X);
@@ -671,8 +671,8 @@ static gd_track_cache *cache_get(gd_sparse_ws *ws, int n, int nnz, int km)
         }
     }
     if (!w->Q || !w->MQ || !w->DQ || !w->KQ || !w->Mq || !w->Dq || !w->Kq || !w->A2 || !w->B2 ||
-        !w->VR || !w->al || !w->be || !w->r || !w->t || !w->z || !tc->fd || !tc->X || !tc->lam0 ||
-        !tc->x0 || !tc->match || !tc->L || !tc->v || !tc->hl || !tc->p) {
+        !w->VR || !w->Mw || !w->al || !w->be || !w->r || !w->t || !w->z || !tc->fd || !tc->X ||
+        !tc->lam0 || !tc->x0 || !tc->match || !tc->L || !tc->v || !tc->hl || !tc->p) {
         gd_sparse_track_free(ws);
         return NULL;
     }
