@@ -62,8 +62,10 @@ typedef struct gd_sparse_ws {
     int chain, warm_ok;
     double *warm, *v0;
     /* gd_sparse_track's buffers and complex factorisations, kept from one continued
-     * speed to the next (sparse_track.c; NULL until first used) */
+     * speed to the next (sparse_track.c; NULL until first used), and the function
+     * that frees them (set with them; gd_sparse_ws_free calls it) */
     struct gd_track_cache *track;
+    void (*track_free)(struct gd_sparse_ws *ws);
 } gd_sparse_ws;
 /* Turns the warm start on for an n-DOF pattern (allocates warm, v0; warm_ok stays as
  * it is). 0 ok, 1 out of memory. */

@@ -628,6 +628,7 @@ static gd_track_cache *cache_get(gd_sparse_ws *ws, int n, int nnz, int km)
     gd_sparse_track_free(ws);
     tc = ws->track = calloc(1, sizeof *tc);
     if (!tc) return NULL;
+    ws->track_free = gd_sparse_track_free;
     tc->n = n;
     tc->nnz = nnz;
     tc->km = km;
