@@ -209,6 +209,7 @@ gd_status gd_campbell_run(const gd_system *sys, const gd_campbell_options *opt, 
         gd_sparse_ws *w0 = &wss[0];
         if (gd_sparse_ws_chain(w0, a.pat.n)) goto nomem;
         w0->warm_ok = 0;
+        gd_sparse_track_reset(w0);
         if (!res[0] && (st = solve_one(sys, &a, &sym, opt, nreq, opt->speeds[0], w0, &res[0], err)))
             goto done;
         gd_modal_options o;
@@ -223,6 +224,7 @@ gd_status gd_campbell_run(const gd_system *sys, const gd_campbell_options *opt, 
             gd_modal_free(res[1]);
             res[1] = NULL;
             continuation = 0;
+            gd_sparse_track_free(w0); /* its buffers and factorisations */
         } else {
             ncont[1] = 1;
         }
@@ -248,7 +250,10 @@ gd_status gd_campbell_run(const gd_system *sys, const gd_campbell_options *opt, 
         for (int c = 0; c < nch; c++) {
             gd_sparse_ws *ws = sparse ? &wss[omp_get_thread_num()] : NULL;
             if (ws && !ws->k) ws = NULL;
-            if (ws) ws->warm_ok = 0;
+            if (ws) {
+                ws->warm_ok = 0;
+                gd_sparse_track_reset(ws);
+            }
             int c1 = b0 + (c + 1) * chain < b1 ? b0 + (c + 1) * chain : b1, easy = 1;
             for (int s = b0 + c * chain; s < c1; s++) {
                 if (s == b0 + c * chain) easy = 1;

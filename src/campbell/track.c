@@ -212,13 +212,21 @@ int gd_campbell_track_step(const gd_modal_result *prev, const int *prev_elastic,
         free(col);
         return -1;
     }
+    /* each shape's norm once (gd_mac's own numbers: its norms are these) */
+    for (int i = 0; i < a; i++)
+        nrm[i] = norm2(prev->shape_re + (size_t)prev_elastic[i] * n,
+                       prev->shape_im + (size_t)prev_elastic[i] * n, n);
+    for (int j = 0; j < b; j++)
+        nrm[N + j] = norm2(cur->shape_re + (size_t)elastic[j] * n,
+                           cur->shape_im + (size_t)elastic[j] * n, n);
     for (int j = 0; j < N; j++)
         for (int i = 0; i < N; i++) {
             double v = 0;
             if (i < a && j < b) {
                 int pi = prev_elastic[i], cj = elastic[j];
-                v = gd_mac(prev->shape_re + (size_t)pi * n, prev->shape_im + (size_t)pi * n,
-                           cur->shape_re + (size_t)cj * n, cur->shape_im + (size_t)cj * n, n);
+                v = mac_with_norms(prev->shape_re + (size_t)pi * n, prev->shape_im + (size_t)pi * n,
+                                   nrm[i], cur->shape_re + (size_t)cj * n,
+                                   cur->shape_im + (size_t)cj * n, nrm[N + j], n);
             }
             mac[i + (size_t)j * N] = v;
         }

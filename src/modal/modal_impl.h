@@ -61,6 +61,11 @@ typedef struct gd_sparse_ws {
      * warm_ok: warm holds a previous solve's sums (clear it to start cold). */
     int chain, warm_ok;
     double *warm, *v0;
+    /* gd_sparse_track's buffers and complex factorisations, kept from one continued
+     * speed to the next (sparse_track.c; NULL until first used), and the function
+     * that frees them (set with them; gd_sparse_ws_free calls it) */
+    struct gd_track_cache *track;
+    void (*track_free)(struct gd_sparse_ws *ws);
 } gd_sparse_ws;
 /* Turns the warm start on for an n-DOF pattern (allocates warm, v0; warm_ok stays as
  * it is). 0 ok, 1 out of memory. */
@@ -89,6 +94,10 @@ gd_status gd_sparse_track(const gd_dynmat *a, const gd_splu_symbolic *sym,
                           const gd_modal_options *opt, const gd_modal_result *prev,
                           const gd_modal_result *prev2, gd_sparse_ws *ws, gd_modal_result **out,
                           int *hard, gd_error *err);
+/* Forgets the factorisations gd_sparse_track keeps in ws (at the start of a chain: a
+ * chain's numbers must not depend on the chains its thread did before). */
+void gd_sparse_track_reset(gd_sparse_ws *ws);
+void gd_sparse_track_free(gd_sparse_ws *ws);
 /* sqrt(min K_ii / M_ii) (1e3 when no DOF has both): an element's frequency, of the
  * order of the lowest modes' only on a coarse mesh; bounds the automatic shift
  * (gd_sparse_shift_auto). */

@@ -20,6 +20,13 @@ gd_motion gd_dof_motion(gd_dof d)
                                         : GD_MOTION_LATERAL;
 }
 
+/* |z| without hypot's care for overflow (the shapes are normalised to a largest entry
+ * of 1): the whirl's four moduli per node are a visible part of a Campbell sweep */
+static double mag(double complex z)
+{
+    return sqrt(creal(z) * creal(z) + cimag(z) * cimag(z));
+}
+
 static gd_whirl mode_whirl(const gd_system *sys, const double *re, const double *im)
 {
     const gd_model *m = sys->model;
@@ -28,7 +35,7 @@ static gd_whirl mode_whirl(const gd_system *sys, const double *re, const double 
         int ix = gd_system_dof(sys, node, GD_X), iy = gd_system_dof(sys, node, GD_Y);
         if (ix < 0 || iy < 0) continue;
         double complex X = re[ix] + I * im[ix], Y = re[iy] + I * im[iy];
-        double r = cabs(X + I * Y) + cabs(X - I * Y);
+        double r = mag(X + I * Y) + mag(X - I * Y);
         if (r > maxr) maxr = r;
     }
     if (!(maxr > 0)) return GD_WHIRL_NONE;
@@ -39,7 +46,7 @@ static gd_whirl mode_whirl(const gd_system *sys, const double *re, const double 
         double complex X = re[ix] + I * im[ix], Y = re[iy] + I * im[iy];
         /* x + i y = (X + iY)/2 e^{iwt} + conj(X - iY)/2 e^{-iwt}: forward and backward
          * circular components ([Kumar2011] Eqs. 2.5-2.8) */
-        double rf = cabs(X + I * Y), rb = cabs(X - I * Y);
+        double rf = mag(X + I * Y), rb = mag(X - I * Y);
         if (rf + rb < 1e-3 * maxr) continue;
         if (m->shafts[m->nodes[node].shaft].speed_ratio < 0) {
             double t = rf;

@@ -129,6 +129,7 @@ void gd_sparse_ws_free(gd_sparse_ws *w)
     free(w->d);
     free(w->warm);
     free(w->v0);
+    if (w->track_free) w->track_free(w);
     gd_ks_work_free(&w->ks);
     memset(w, 0, sizeof *w);
 }

@@ -4,10 +4,11 @@
  * their orthogonalisation and the Hessenberg QR of their Rayleigh quotient cost most of
  * a Campbell diagram.
  *
- * Modes whose previous eigenvalues lie within 5 % of each other form a cluster (the
+ * Modes whose previous eigenvalues lie within 1 % of each other form a cluster (the
  * forward and backward whirl of one lateral mode at low speed, repeated eigenvalues),
- * refined together. For a cluster: one complex factorisation of P(sigma) = sigma^2 M +
- * sigma D + K at sigma = the mean of its previous eigenvalues; a basis Q (n x q,
+ * refined together. For a cluster: a complex factorisation of P(sigma) = sigma^2 M +
+ * sigma D + K at sigma near its eigenvalues (one kept from an earlier speed when its
+ * shift is still near enough, else a fresh one at the first Ritz values); a basis Q (n x q,
  * complex) starting from the previous eigenvectors; Rayleigh-Ritz on the quadratic
  * problem, Q^H P(lambda) Q s = 0 (linearised, q <= 26), the values nearest the previous
  * ones kept; each residual r = P(lambda) x that fails the tolerance adds
@@ -43,6 +44,16 @@
 #define GD_TRACK_MAXC 6       /* largest cluster refined together */
 #define GD_TRACK_MAXQ 6       /* basis columns per cluster member */
 #define GD_TRACK_MAXIT 8      /* Rayleigh-Ritz passes per cluster */
+/* Complex factorisations kept from speed to speed (at most GD_TRACK_SLOTS, within
+ * GD_TRACK_LU_BYTES per workspace): a cluster whose shift lies within GD_TRACK_REUSE
+ * of its distance to the other modes from a kept one corrects with that one, for one
+ * pass (residual inverse iteration gains at least a digit per pass at that distance;
+ * the eigenvalues move by 1e-7 to 3e-4 of themselves per speed step on rig366, and its
+ * passes grew from 2016 to 2043 per sweep while the fresh factorisations fell from 876
+ * to 132); a second correction gets a fresh factorisation. */
+#define GD_TRACK_SLOTS 16
+#define GD_TRACK_LU_BYTES (64.0 * 1024 * 1024)
+#define GD_TRACK_REUSE 0.1
 /* A speed whose completeness check settles at the loose residual is easy: the next speed
  * is continued too. A hard one (a mode just outside the window: near-double modes cut by
  * its edge, as on a finely meshed, weakly gyroscopic shaft) hands the rest of its chain
@@ -54,22 +65,35 @@
 #define GD_TRACK_LOOSE_TOL 1e-2
 #define GD_TRACK_LOOSE_MARGIN 2e-2
 
-/* y_m = M x, y_d = D x, y_k = K x for a complex x and the real values on the pattern */
-static void spmv3(const gd_pattern *p, const double *m, const double *d, const double *k,
-                  const double complex *x, double complex *ym, double complex *yd,
-                  double complex *yk)
+/* The nonzero values of one matrix on the pattern, by column (M, D and K each fill
+ * about half of their union's pattern) */
+typedef struct track_csc {
+    int *cp, *ri; /* n + 1, nnz */
+    double *v;    /* nnz */
+} track_csc;
+
+static void csc_compact(const gd_pattern *p, const double *x, track_csc *c)
 {
-    memset(ym, 0, (size_t)p->n * sizeof *ym);
-    memset(yd, 0, (size_t)p->n * sizeof *yd);
-    memset(yk, 0, (size_t)p->n * sizeof *yk);
+    int t = 0;
     for (int j = 0; j < p->n; j++) {
+        c->cp[j] = t;
+        for (int q = p->colptr[j]; q < p->colptr[j + 1]; q++)
+            if (x[q] != 0) {
+                c->ri[t] = p->rowind[q];
+                c->v[t++] = x[q];
+            }
+    }
+    c->cp[p->n] = t;
+}
+
+/* y = A x for a complex x */
+static void csc_mul(const track_csc *c, int n, const double complex *x, double complex *y)
+{
+    memset(y, 0, (size_t)n * sizeof *y);
+    for (int j = 0; j < n; j++) {
         double complex xj = x[j];
-        for (int q = p->colptr[j]; q < p->colptr[j + 1]; q++) {
-            int i = p->rowind[q];
-            ym[i] += m[q] * xj;
-            yd[i] += d[q] * xj;
-            yk[i] += k[q] * xj;
-        }
+        for (int q = c->cp[j]; q < c->cp[j + 1]; q++)
+            y[c->ri[q]] += c->v[q] * xj;
     }
 }
 
@@ -130,31 +154,101 @@ typedef struct found {
     double complex *x; /* n, unit 2-norm */
 } found;
 
+/* A kept factorisation of R P(sg) R (R = diag(|P_ii|^-1/2), rs) */
+typedef struct track_slot {
+    gd_splu lu;
+    double *rs; /* n */
+    double complex sg;
+    long used; /* the stamp of its last use (the least recently used is replaced) */
+    int valid;
+} track_slot;
+
 typedef struct track_ws {
     int n, qmax;
-    double complex *Q, *MQ, *DQ, *KQ; /* n x qmax */
-    double complex *Mq, *Dq, *Kq;     /* qmax x qmax */
-    double complex *A2, *B2, *VR, *al, *be;
-    double complex *r, *t; /* n */
-    double complex *z;     /* the complex pattern values, nnz */
-    gd_splu lu;            /* R P(sigma) R of the current cluster */
-    double *rs;            /* n: R */
-    int passes;            /* the most Rayleigh-Ritz passes a cluster took */
+    double complex *Q, *MQ, *DQ, *KQ;            /* n x qmax */
+    double complex *Mq, *Dq, *Kq;                /* qmax x qmax */
+    double complex *A2, *B2, *VR, *al, *be, *Mw; /* 2 qmax x 2 qmax, 2 qmax */
+    double complex *r, *t;                       /* n */
+    double complex *z;                           /* the complex pattern values, nnz */
+    track_csc cm, cd, ck;                        /* M, D, K at this speed */
+    const double *msrc;                          /* the values cm holds */
+    track_slot slot[GD_TRACK_SLOTS];
+    int nslot, maxslot; /* slots in use, allowed (by GD_TRACK_LU_BYTES) */
+    long stamp;
+    track_slot *cur; /* the factorisation of the current cluster */
+    int fresh;       /* cur was factored for this cluster */
+    int passes;      /* the most Rayleigh-Ritz passes a cluster took */
 } track_ws;
 
+/* gd_sparse_track's workspace, kept in gd_sparse_ws from speed to speed */
+typedef struct gd_track_cache {
+    int n, nnz, km;
+    track_ws w;
+    found *fd;
+    double complex *X, *lam0, *x0;
+    int *match;
+    double *L, *v, *hl;
+    gd_shift_invert op; /* the completeness check's P(-s) (its pivot order reused) */
+    double *p;          /* nnz */
+} gd_track_cache;
+
+/* Solves M x = t in place (M: n x n, column-major, overwritten) by Gaussian
+ * elimination with partial pivoting on |Re| + |Im|, as LAPACK's zgetf2, without its
+ * call overheads (n <= 12 here, a few per Rayleigh-Ritz pass); 0 on a zero pivot. */
+static int small_solve(int n, double complex *M, double complex *t)
+{
+    for (int c = 0; c < n; c++) {
+        int p = c;
+        double pm = -1;
+        for (int i = c; i < n; i++) {
+            double a = fabs(creal(M[i + c * n])) + fabs(cimag(M[i + c * n]));
+            if (a > pm) {
+                pm = a;
+                p = i;
+            }
+        }
+        if (!(pm > 0)) return 0;
+        if (p != c) {
+            for (int j = c; j < n; j++) {
+                double complex x = M[c + j * n];
+                M[c + j * n] = M[p + j * n];
+                M[p + j * n] = x;
+            }
+            double complex x = t[c];
+            t[c] = t[p];
+            t[p] = x;
+        }
+        double complex ip = 1.0 / M[c + c * n];
+        for (int i = c + 1; i < n; i++) {
+            double complex f = M[i + c * n] * ip;
+            if (f == 0) continue;
+            for (int j = c + 1; j < n; j++)
+                M[i + j * n] -= f * M[c + j * n];
+            t[i] -= f * t[c];
+        }
+    }
+    for (int c = n - 1; c >= 0; c--) {
+        double complex x = t[c];
+        for (int j = c + 1; j < n; j++)
+            x -= M[c + j * n] * t[j];
+        t[c] = x / M[c + c * n];
+    }
+    return 1;
+}
+
 /* The eigenvalue of the q2 x q2 pencil (A, B) nearest sg by Rayleigh quotient iteration
- * (the start vector [e1; sg e1]: the basis' first column is the previous eigenvector):
- * 1 with *lam and v (unit norm; the first q2 / 2 entries are the Ritz vector's
- * coefficients), 0 when it does not settle in 8 steps. Mw: q2 x q2 scratch. */
+ * (the start vector [e_e; sg e_e]: the basis' column e is the mode's previous
+ * eigenvector): 1 with *lam and v (unit norm; the first q2 / 2 entries are the Ritz
+ * vector's coefficients), 0 when it does not settle in 8 steps. Mw (q2 x q2), t (q2):
+ * scratch. */
 static int small_rqi(int q2, const double complex *A, const double complex *B, double complex sg,
-                     double complex *Mw, double complex *v, double complex *lam)
+                     int e, double complex *Mw, double complex *t, double complex *v,
+                     double complex *lam)
 {
     int q = q2 / 2;
-    double complex t[2 * GD_TRACK_MAXQ];
-    lapack_int ipiv[2 * GD_TRACK_MAXQ];
     memset(v, 0, (size_t)q2 * sizeof *v);
-    v[0] = 1;
-    v[q] = sg;
+    v[e] = 1;
+    v[q + e] = sg;
     for (int it = 0; it < 8; it++) {
         for (int i = 0; i < q2 * q2; i++)
             Mw[i] = A[i] - sg * B[i];
@@ -164,8 +258,7 @@ static int small_rqi(int q2, const double complex *A, const double complex *B, d
                 sum += B[i + (size_t)j * q2] * v[j];
             t[i] = sum;
         }
-        if (LAPACKE_zgetrf_work(LAPACK_COL_MAJOR, q2, q2, Mw, q2, ipiv)) return 0;
-        if (LAPACKE_zgetrs_work(LAPACK_COL_MAJOR, 'N', q2, 1, Mw, q2, ipiv, t, q2)) return 0;
+        if (!small_solve(q2, Mw, t)) return 0;
         /* t = (A - sg B)^-1 B v = mu v at convergence, lambda = sg + 1 / mu */
         double complex vt = cdot(v, t, q2), vv = cdot(v, v, q2);
         double nt = cnrm(t, q2);
@@ -182,20 +275,22 @@ static int small_rqi(int q2, const double complex *A, const double complex *B, d
     return 0;
 }
 
-static int factor_shift(const gd_dynmat *a, const gd_splu_symbolic *sym, const double *k,
-                        const double *d, double complex sg, track_ws *w);
+static int track_lu(const gd_dynmat *a, const gd_splu_symbolic *sym, const double *k,
+                    const double *d, double complex sg, double gap, int reuse, track_ws *w);
 
 /* The c modes of one cluster (previous eigenvalues lam0, vectors x0, n x c) at the
  * values k, d: their eigenpairs into out. 0 ok, 1 not converged (fall back), -1 no
  * memory. */
 static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const double *k,
                           const double *d, int c, const double complex *lam0,
-                          const double complex *x0, int nx0, track_ws *w, found *out)
+                          const double complex *x0, int nx0, double gap, track_ws *w, found *out)
 {
     const gd_pattern *p = &a->pat;
     int n = p->n, q = 0, qmax = GD_TRACK_MAXQ * c, rc = 1;
-    gd_splu *lu = &w->lu;
-    int factored = 0;
+    /* factored: a factorisation for this pass' corrections; reuse: a kept one may
+     * serve; fresh_prev: the previous pass' corrections came from a fresh one (only
+     * then does a residual that stops falling mean the rounding floor) */
+    int factored = 0, reuse = 1, fresh_prev = 1;
     for (int i = 0; i < nx0 && q < qmax; i++) {
         double complex *v = w->Q + (size_t)q * n;
         memcpy(v, x0 + (size_t)i * n, (size_t)n * sizeof *v);
@@ -205,9 +300,11 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
     int conv[GD_TRACK_MAXC], used[2 * GD_TRACK_MAXC * GD_TRACK_MAXQ];
     double last[GD_TRACK_MAXC];
     for (int it = 0; it < GD_TRACK_MAXIT && q > 0; it++) {
-        for (int j = done; j < q; j++)
-            spmv3(p, a->m, d, k, w->Q + (size_t)j * n, w->MQ + (size_t)j * n, w->DQ + (size_t)j * n,
-                  w->KQ + (size_t)j * n);
+        for (int j = done; j < q; j++) {
+            csc_mul(&w->cm, n, w->Q + (size_t)j * n, w->MQ + (size_t)j * n);
+            csc_mul(&w->cd, n, w->Q + (size_t)j * n, w->DQ + (size_t)j * n);
+            csc_mul(&w->ck, n, w->Q + (size_t)j * n, w->KQ + (size_t)j * n);
+        }
         /* the projections Q^H X Q, grown by the new rows and columns */
         for (int j = 0; j < q; j++)
             for (int i = 0; i < q; i++) {
@@ -231,15 +328,25 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
                 w->B2[q + i + (size_t)(q + j) * q2] = w->Mq[i + (size_t)j * qmax];
             }
         }
-        /* one mode: Rayleigh quotient iteration on the small pencil from the
-         * extrapolated value (a few 2q x 2q solves); a cluster, or no convergence: QZ */
-        double complex vv[2 * GD_TRACK_MAXQ];
-        int nritz = q2,
-            one = c == 1 && q2 <= 2 * GD_TRACK_MAXQ &&
-                  small_rqi(q2, w->A2, w->B2, it ? out[0].lam : lam0[0], w->VR, vv, &w->al[0]);
-        if (one) {
-            w->be[0] = 1;
-            nritz = 1;
+        /* each mode's Ritz pair by Rayleigh quotient iteration on the small pencil from
+         * its prediction (the extrapolated value, then the previous pass'): a few small
+         * solves, and more accurate than QZ, whose errors scale with the pencil's norm
+         * (the stiff modes' in the projections: on a 10k-DOF gearbox's cluster of three
+         * QZ's Ritz values left the residuals at 1e-7); QZ when an iteration fails or two
+         * do not settle apart, each nearest its own prediction */
+        int nritz = q2, byrqi = c <= q;
+        for (int m = 0; m < c && byrqi; m++) {
+            byrqi = small_rqi(q2, w->A2, w->B2, it ? out[m].lam : lam0[m], m, w->Mw, w->t,
+                              w->VR + (size_t)m * q2, &w->al[m]);
+            w->be[m] = 1;
+        }
+        for (int m = 0; m < c && byrqi; m++)
+            for (int j = 0; j < c; j++)
+                if (j != m && (cabs(w->al[m] - lam0[j]) <= cabs(w->al[m] - lam0[m]) ||
+                               cabs(w->al[m] - w->al[j]) <= 1e-8 * cabs(w->al[m])))
+                    byrqi = 0;
+        if (byrqi) {
+            nritz = c;
         } else if (LAPACKE_zggev(LAPACK_COL_MAJOR, 'N', 'V', q2, w->A2, q2, w->B2, q2, w->al, w->be,
                                  NULL, 1, w->VR, q2)) {
             break;
@@ -265,7 +372,7 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
             if (best < 0) goto fail;
             used[best] = 1;
             double complex lam = w->al[best] / w->be[best];
-            const double complex *s = one ? vv : w->VR + (size_t)best * q2;
+            const double complex *s = w->VR + (size_t)best * q2;
             double complex *x = out[m].x;
             memset(x, 0, (size_t)n * sizeof *x);
             memset(w->r, 0, (size_t)n * sizeof *w->r);
@@ -293,8 +400,8 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
             /* converged, or stalled at the rounding floor of P(lambda) x (stiff elements
              * beside slow modes: eps (element frequency / mode's)^2), below GD_TRACK_STALL */
             double rel = nr * nx / (cabs(lam) * cabs(dp));
-            conv[m] =
-                rel <= GD_TRACK_TOL || (it > 0 && rel <= GD_TRACK_STALL && rel > 0.1 * last[m]);
+            conv[m] = rel <= GD_TRACK_TOL ||
+                      (it > 0 && fresh_prev && rel <= GD_TRACK_STALL && rel > 0.1 * last[m]);
             last[m] = rel;
             if (conv[m]) continue;
             allconv = 0;
@@ -309,18 +416,24 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
                 /* the later members' Ritz values are not picked yet: their predictions */
                 for (int i = 0; i < m; i++)
                     sg += (out[i].lam - lam0[i]) / c;
-                int fr = factor_shift(a, sym, k, d, sg, w);
+                int fr = track_lu(a, sym, k, d, sg, gap, reuse, w);
                 if (fr) return fr < 0 ? -1 : 1;
                 factored = 1;
             }
             double complex *v = w->Q + (size_t)(q + nadd) * n;
+            const double *rs = w->cur->rs;
             memcpy(v, w->r, (size_t)n * sizeof *v);
             for (int i = 0; i < n; i++)
-                v[i] *= w->rs[i];
-            gd_splu_solve(lu, sym, n, 1, (double *)v);
+                v[i] *= rs[i];
+            gd_splu_solve(&w->cur->lu, sym, n, 1, (double *)v);
             for (int i = 0; i < n; i++)
-                v[i] *= w->rs[i];
+                v[i] *= rs[i];
             if (corth(w->Q, n, q + nadd, v)) nadd++;
+        }
+        fresh_prev = !factored || w->fresh;
+        if (factored && !w->fresh) { /* a kept factorisation serves one pass */
+            factored = 0;
+            reuse = 0;
         }
         if (allconv) {
             if (it + 1 > w->passes) w->passes = it + 1;
@@ -341,10 +454,10 @@ fail:
  * pivot costs convergence, which the residuals measure, not accuracy). 0 ok, 1 singular,
  * -1 no memory. */
 static int factor_shift(const gd_dynmat *a, const gd_splu_symbolic *sym, const double *k,
-                        const double *d, double complex sg, track_ws *w)
+                        const double *d, double complex sg, track_ws *w, track_slot *sl)
 {
     const gd_pattern *p = &a->pat;
-    gd_splu *lu = &w->lu;
+    gd_splu *lu = &sl->lu;
     int fr = 1;
     for (double off = 1e-6; fr == 1 && off < 2e-3; off *= 1e3) {
         double complex so = sg + off * cabs(sg) * (0.6 + 0.8 * I);
@@ -352,20 +465,76 @@ static int factor_shift(const gd_dynmat *a, const gd_splu_symbolic *sym, const d
             w->z[q] = so * so * a->m[q] + so * d[q] + k[q];
         /* R P R with R = diag(|P_ii|^-1/2), as shift_invert.c: no KLU row scaling (a
          * complex modulus per entry) */
+        double *rs = sl->rs;
         for (int j = 0; j < p->n; j++) {
             double djj = p->diag[j] >= 0 ? cabs(w->z[p->diag[j]]) : 0;
-            w->rs[j] = djj > 0 && isfinite(djj) ? 1.0 / sqrt(djj) : 1.0;
+            rs[j] = djj > 0 && isfinite(djj) ? 1.0 / sqrt(djj) : 1.0;
         }
         for (int j = 0; j < p->n; j++)
             for (int q = p->colptr[j]; q < p->colptr[j + 1]; q++)
-                w->z[q] *= w->rs[p->rowind[q]] * w->rs[j];
+                w->z[q] *= rs[p->rowind[q]] * rs[j];
         if (lu->num) fr = gd_splu_refactor(lu, p, sym, (const double *)w->z);
         if (fr == 1) {
             gd_splu_free(lu);
             fr = gd_splu_factor(lu, p, sym, (const double *)w->z, 1, 0);
         }
+        sl->sg = so;
     }
     return fr;
+}
+
+/* Points w->cur at a factorisation for the shift sg of a cluster gap away from the
+ * other modes: a kept one within GD_TRACK_REUSE gap when reuse allows (w->fresh = 0),
+ * else a fresh one (w->fresh = 1) in the slot nearest sg when within gap / 2 (the
+ * cluster's own from an earlier speed), a new slot, or the least recently used. 0 ok,
+ * 1 singular, -1 no memory. */
+static int track_lu(const gd_dynmat *a, const gd_splu_symbolic *sym, const double *k,
+                    const double *d, double complex sg, double gap, int reuse, track_ws *w)
+{
+    int best = -1;
+    double bd = INFINITY;
+    w->stamp++;
+    for (int i = 0; i < w->nslot; i++)
+        if (w->slot[i].valid && cabs(w->slot[i].sg - sg) < bd) {
+            bd = cabs(w->slot[i].sg - sg);
+            best = i;
+        }
+    if (reuse && best >= 0 && bd <= GD_TRACK_REUSE * gap) {
+        w->cur = &w->slot[best];
+        w->cur->used = w->stamp;
+        w->fresh = 0;
+        return 0;
+    }
+    int t = best >= 0 && bd <= 0.5 * gap ? best : -1;
+    for (int i = 0; t < 0 && i < w->nslot; i++)
+        if (!w->slot[i].valid) t = i;
+    if (t < 0 && w->nslot < (w->maxslot > 0 ? w->maxslot : 1)) {
+        track_slot *sl = &w->slot[w->nslot];
+        if (!sl->rs) sl->rs = malloc((size_t)w->n * sizeof *sl->rs);
+        if (!sl->rs) return -1;
+        t = w->nslot++;
+    }
+    if (t < 0) {
+        t = 0;
+        for (int i = 1; i < w->nslot; i++)
+            if (w->slot[i].used < w->slot[t].used) t = i;
+    }
+    track_slot *sl = &w->slot[t];
+    sl->valid = 0;
+    int fr = factor_shift(a, sym, k, d, sg, w, sl);
+    if (fr) return fr;
+    sl->valid = 1;
+    sl->used = w->stamp;
+    w->cur = sl;
+    w->fresh = 1;
+    /* the budget, from the first factorisation's size (entries of L and U, complex,
+     * with their row indices) */
+    if (w->maxslot == 0 && sl->lu.num) {
+        double bytes = 24.0 * ((double)sl->lu.num->lnz + sl->lu.num->unz) + 64.0 * w->n;
+        double cnt = GD_TRACK_LU_BYTES / bytes;
+        w->maxslot = cnt >= GD_TRACK_SLOTS ? GD_TRACK_SLOTS : cnt >= 1 ? (int)cnt : 1;
+    }
+    return 0;
 }
 
 typedef struct track_order {
@@ -392,21 +561,159 @@ static void si_apply(void *ctx, const double *x, double *y)
 }
 
 /* Appends v (2n real) to the orthonormal columns L[:, 0:*nl] when independent
- * (classical Gram-Schmidt twice, as BLAS matrix-vector products; h: nl scratch). */
+ * (classical Gram-Schmidt, as BLAS matrix-vector products; h: nl scratch). */
 static void lock_vector(double *L, int n2, int *nl, double *v, double *h)
 {
-    double before = cblas_dnrm2(n2, v, 1);
+    double before = cblas_dnrm2(n2, v, 1), after = before;
     if (!(before > 0)) return;
+    /* a second pass only when the first cancelled more than half the norm's square
+     * (Daniel, Gragg, Kaufman and Stewart, Math. Comp. 30, 1976): the vectors of
+     * distinct modes rarely do */
     for (int pass = 0; pass < 2 && *nl > 0; pass++) {
+        double prev = after;
         cblas_dgemv(CblasColMajor, CblasTrans, n2, *nl, 1.0, L, n2, v, 1, 0.0, h, 1);
         cblas_dgemv(CblasColMajor, CblasNoTrans, n2, *nl, -1.0, L, n2, h, 1, 1.0, v, 1);
+        after = cblas_dnrm2(n2, v, 1);
+        if (after > 0.70710678118654752 * prev) break;
     }
-    double after = cblas_dnrm2(n2, v, 1);
     if (!(after > 1e-8 * before)) return;
     double *dst = L + (size_t)(*nl) * n2;
     for (int i = 0; i < n2; i++)
         dst[i] = v[i] / after;
     (*nl)++;
+}
+
+static void slots_free(track_ws *w)
+{
+    for (int i = 0; i < w->nslot; i++) {
+        gd_splu_free(&w->slot[i].lu);
+        w->slot[i].valid = 0;
+    }
+    w->nslot = 0;
+}
+
+void gd_sparse_track_reset(gd_sparse_ws *ws)
+{
+    gd_track_cache *tc = ws->track;
+    if (!tc) return;
+    slots_free(&tc->w);
+    gd_splu_free(&tc->op.lu);
+}
+
+void gd_sparse_track_free(gd_sparse_ws *ws)
+{
+    gd_track_cache *tc = ws->track;
+    if (!tc) return;
+    track_ws *w = &tc->w;
+    slots_free(w);
+    for (int i = 0; i < GD_TRACK_SLOTS; i++)
+        free(w->slot[i].rs);
+    void *bufs[] = {w->cm.cp, w->cm.ri,  w->cm.v, w->cd.cp, w->cd.ri, w->cd.v, w->ck.cp,
+                    w->ck.ri, w->ck.v,   w->Q,    w->MQ,    w->DQ,    w->KQ,   w->Mq,
+                    w->Dq,    w->Kq,     w->A2,   w->B2,    w->VR,    w->Mw,   w->al,
+                    w->be,    w->r,      w->t,    w->z,     tc->fd,   tc->X,   tc->lam0,
+                    tc->x0,   tc->match, tc->L,   tc->v,    tc->hl,   tc->p};
+    for (size_t i = 0; i < sizeof bufs / sizeof *bufs; i++)
+        free(bufs[i]);
+    gd_shift_invert_free(&tc->op);
+    free(tc);
+    ws->track = NULL;
+}
+
+/* ws's track cache for n DOFs, nnz pattern entries and km modes (made or grown as
+ * needed; NULL when out of memory) */
+static gd_track_cache *cache_get(gd_sparse_ws *ws, int n, int nnz, int km)
+{
+    gd_track_cache *tc = ws->track;
+    if (tc && tc->n == n && tc->nnz == nnz && tc->km >= km) return tc;
+    gd_sparse_track_free(ws);
+    tc = ws->track = calloc(1, sizeof *tc);
+    if (!tc) return NULL;
+    ws->track_free = gd_sparse_track_free;
+    tc->n = n;
+    tc->nnz = nnz;
+    tc->km = km;
+    track_ws *w = &tc->w;
+    size_t qmax = GD_TRACK_MAXQ * GD_TRACK_MAXC, q2 = 2 * qmax, nn = (size_t)n, k1 = km + 1;
+    w->n = n;
+    w->qmax = (int)qmax;
+    w->Q = malloc(nn * qmax * sizeof *w->Q);
+    w->MQ = malloc(nn * qmax * sizeof *w->MQ);
+    w->DQ = malloc(nn * qmax * sizeof *w->DQ);
+    w->KQ = malloc(nn * qmax * sizeof *w->KQ);
+    w->Mq = malloc(qmax * qmax * sizeof *w->Mq);
+    w->Dq = malloc(qmax * qmax * sizeof *w->Dq);
+    w->Kq = malloc(qmax * qmax * sizeof *w->Kq);
+    w->A2 = malloc(q2 * q2 * sizeof *w->A2);
+    w->B2 = malloc(q2 * q2 * sizeof *w->B2);
+    w->VR = malloc(q2 * q2 * sizeof *w->VR);
+    w->Mw = malloc(q2 * q2 * sizeof *w->Mw);
+    w->al = malloc(q2 * sizeof *w->al);
+    w->be = malloc(q2 * sizeof *w->be);
+    w->r = malloc(nn * sizeof *w->r);
+    w->t = malloc((nn > q2 ? nn : q2) * sizeof *w->t);
+    w->z = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof *w->z);
+    tc->fd = calloc(k1, sizeof *tc->fd);
+    tc->X = malloc(nn * k1 * sizeof *tc->X);
+    tc->lam0 = malloc(k1 * sizeof *tc->lam0);
+    tc->x0 = malloc(nn * 2 * GD_TRACK_MAXC * sizeof *tc->x0);
+    tc->match = malloc(k1 * sizeof *tc->match);
+    tc->L = malloc(2 * nn * (2 * k1) * sizeof *tc->L);
+    tc->v = malloc(2 * nn * sizeof *tc->v);
+    tc->hl = malloc(2 * k1 * sizeof *tc->hl);
+    tc->p = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof *tc->p);
+    track_csc *cs[3] = {&w->cm, &w->cd, &w->ck};
+    for (int i = 0; i < 3; i++) {
+        cs[i]->cp = malloc((nn + 1) * sizeof *cs[i]->cp);
+        cs[i]->ri = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof *cs[i]->ri);
+        cs[i]->v = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof *cs[i]->v);
+        if (!cs[i]->cp || !cs[i]->ri || !cs[i]->v) {
+            gd_sparse_track_free(ws);
+            return NULL;
+        }
+    }
+    if (!w->Q || !w->MQ || !w->DQ || !w->KQ || !w->Mq || !w->Dq || !w->Kq || !w->A2 || !w->B2 ||
+        !w->VR || !w->Mw || !w->al || !w->be || !w->r || !w->t || !w->z || !tc->fd || !tc->X ||
+        !tc->lam0 || !tc->x0 || !tc->match || !tc->L || !tc->v || !tc->hl || !tc->p) {
+        gd_sparse_track_free(ws);
+        return NULL;
+    }
+    return tc;
+}
+
+/* The completeness check's shift-invert operator at sigma (as gd_shift_invert_setup),
+ * refactored with the pivot order of the previous speed's when there is one. 0 ok, 1
+ * singular, -1 no memory. */
+static int check_op(gd_track_cache *tc, const gd_dynmat *a, const gd_splu_symbolic *sym,
+                    double sigma, double g, const double *k, const double *d)
+{
+    gd_shift_invert *op = &tc->op;
+    const gd_pattern *pt = &a->pat;
+    if (!op->lu.num || !op->r || !op->work) {
+        gd_shift_invert_free(op);
+        return gd_shift_invert_setup(op, pt, a->m, sym, sigma, g, k, d);
+    }
+    op->sigma = sigma;
+    op->scale = g;
+    op->m = a->m;
+    op->d = d;
+    double *p = tc->p;
+    for (int i = 0; i < pt->nnz; i++)
+        p[i] = sigma * sigma * a->m[i] + sigma * d[i] + k[i];
+    for (int j = 0; j < pt->n; j++) { /* R P R, as gd_shift_invert_setup */
+        int q = pt->diag[j];
+        double djj = q >= 0 ? fabs(p[q]) : 0;
+        op->r[j] = djj > 0 && isfinite(djj) ? 1.0 / sqrt(djj) : 1.0;
+    }
+    for (int j = 0; j < pt->n; j++)
+        for (int q = pt->colptr[j]; q < pt->colptr[j + 1]; q++)
+            p[q] *= op->r[pt->rowind[q]] * op->r[j];
+    int rc = gd_splu_refactor(&op->lu, pt, sym, p);
+    if (rc == 1) {
+        gd_splu_free(&op->lu);
+        rc = gd_splu_factor(&op->lu, pt, sym, p, 0, 0);
+    }
+    return rc;
 }
 
 gd_status gd_sparse_track(const gd_dynmat *a, const gd_splu_symbolic *sym,
@@ -442,39 +749,22 @@ gd_status gd_sparse_track(const gd_dynmat *a, const gd_splu_symbolic *sym,
     double kmax = 0;
     for (int q = 0; q < nnz; q++)
         kmax = fmax(kmax, fabs(k[q]));
-    found *fd = calloc((size_t)(nel > 0 ? nel : 1), sizeof *fd);
-    double complex *X = malloc((size_t)n * (nel > 0 ? nel : 1) * sizeof *X);
-    double complex *lam0 = malloc((size_t)(nel > 0 ? nel : 1) * sizeof *lam0);
-    double complex *x0 = malloc((size_t)n * 2 * GD_TRACK_MAXC * sizeof *x0);
-    int *match = malloc((size_t)(nel > 0 ? nel : 1) * sizeof *match);
-    double *L = malloc((size_t)n2 * (2 * km + 2) * sizeof *L), *v = malloc((size_t)n2 * sizeof *v);
-    double *hl = malloc((size_t)(2 * km + 2) * sizeof *hl);
-    track_ws w = {0};
-    int qmax = GD_TRACK_MAXQ * GD_TRACK_MAXC, q2 = 2 * qmax;
-    w.n = n;
-    w.qmax = qmax;
-    w.Q = malloc((size_t)n * qmax * sizeof *w.Q);
-    w.MQ = malloc((size_t)n * qmax * sizeof *w.MQ);
-    w.DQ = malloc((size_t)n * qmax * sizeof *w.DQ);
-    w.KQ = malloc((size_t)n * qmax * sizeof *w.KQ);
-    w.Mq = malloc((size_t)qmax * qmax * sizeof *w.Mq);
-    w.Dq = malloc((size_t)qmax * qmax * sizeof *w.Dq);
-    w.Kq = malloc((size_t)qmax * qmax * sizeof *w.Kq);
-    w.A2 = malloc((size_t)q2 * q2 * sizeof *w.A2);
-    w.B2 = malloc((size_t)q2 * q2 * sizeof *w.B2);
-    w.VR = malloc((size_t)q2 * q2 * sizeof *w.VR);
-    w.al = malloc((size_t)q2 * sizeof *w.al);
-    w.be = malloc((size_t)q2 * sizeof *w.be);
-    w.r = malloc((size_t)n * sizeof *w.r);
-    w.t = malloc((size_t)n * sizeof *w.t);
-    w.z = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof *w.z);
-    w.rs = malloc((size_t)n * sizeof *w.rs);
-    gd_shift_invert op = {0};
+    gd_track_cache *tc = cache_get(ws, n, nnz, km);
+    if (!tc) goto nomem;
+    track_ws *wp = &tc->w;
+    found *fd = tc->fd;
+    double complex *X = tc->X, *lam0 = tc->lam0, *x0 = tc->x0;
+    int *match = tc->match;
+    double *L = tc->L, *v = tc->v, *hl = tc->hl;
+    gd_shift_invert *op = &tc->op;
     gd_modal_result *res = NULL;
-    if (!fd || !X || !lam0 || !x0 || !match || !hl || !L || !v || !w.Q || !w.MQ || !w.DQ || !w.KQ ||
-        !w.Mq || !w.Dq || !w.Kq || !w.A2 || !w.B2 || !w.VR || !w.al || !w.be || !w.r || !w.t ||
-        !w.z)
-        goto nomem;
+    wp->passes = 0;
+    if (wp->msrc != a->m) {
+        csc_compact(&a->pat, a->m, &wp->cm);
+        wp->msrc = a->m;
+    }
+    csc_compact(&a->pat, d, &wp->cd);
+    csc_compact(&a->pat, k, &wp->ck);
     int nl = 0;
     /* rigid-body shapes u: |K u| at rounding level, and [u; 0], [0; u] span the
      * defective zero's invariant subspace of the first-order form */
@@ -558,7 +848,14 @@ gd_status gd_sparse_track(const gd_dynmat *a, const gd_splu_symbolic *sym,
                 x0[(size_t)nx0 * n + i] = re[i] + I * im[i];
             nx0++;
         }
-        int rc = refine_cluster(a, sym, k, d, c, lam0 + j0, x0, nx0, &w, fd + j0);
+        /* the cluster's distance to the other modes (its shift's, to the nearest) */
+        double complex mid = 0;
+        for (int m = 0; m < c; m++)
+            mid += lam0[j0 + m] / c;
+        double gap = cabs(mid);
+        for (int j = 0; j < nel; j++)
+            if (j < j0 || j >= j1) gap = fmin(gap, cabs(lam0[j] - mid));
+        int rc = refine_cluster(a, sym, k, d, c, lam0 + j0, x0, nx0, gap, wp, fd + j0);
         if (rc < 0) goto nomem;
         if (rc > 0) goto done;
         j0 = j1;
@@ -581,17 +878,17 @@ gd_status gd_sparse_track(const gd_dynmat *a, const gd_splu_symbolic *sym,
             lock_vector(L, n2, &nl, v, hl);
         }
     }
-    int rcs = gd_shift_invert_setup(&op, &a->pat, a->m, sym, -s, g, k, d);
+    int rcs = check_op(tc, a, sym, -s, g, k, d);
     if (rcs < 0) goto nomem;
     if (rcs > 0) goto done;
-    si_ctx ctx = {&op, sym};
+    si_ctx ctx = {op, sym};
     /* first to a loose residual, which settles a clear gap; to the tight one otherwise */
     double top = 0;
     st = gd_ks_deflated_top(si_apply, &ctx, n2, L, nl, GD_TRACK_LOOSE_TOL, &ws->ks, &top);
     if (!st && !(top < thr * (1 - GD_TRACK_LOOSE_MARGIN)) &&
         top < thr * (1 + GD_TRACK_LOOSE_MARGIN)) {
         st = gd_ks_deflated_top(si_apply, &ctx, n2, L, nl, GD_TRACK_CHECK_TOL, &ws->ks, &top);
-        w.passes = GD_TRACK_MAXIT; /* a mode just outside the window: hard */
+        wp->passes = GD_TRACK_MAXIT; /* a mode just outside the window: hard */
         if (!st && !(top < thr * (1 - GD_TRACK_CHECK_MARGIN))) top = INFINITY;
     } else if (!st && !(top < thr * (1 - GD_TRACK_LOOSE_MARGIN))) {
         top = INFINITY;
@@ -656,34 +953,8 @@ done:
     if (ok) {
         *out = res;
         res = NULL;
-        *hard = w.passes > GD_TRACK_MAXIT - 1;
+        *hard = wp->passes > GD_TRACK_MAXIT - 1;
     }
     gd_modal_free(res);
-    gd_shift_invert_free(&op);
-    gd_splu_free(&w.lu);
-    free(fd);
-    free(X);
-    free(lam0);
-    free(x0);
-    free(match);
-    free(hl);
-    free(L);
-    free(v);
-    free(w.Q);
-    free(w.MQ);
-    free(w.DQ);
-    free(w.KQ);
-    free(w.Mq);
-    free(w.Dq);
-    free(w.Kq);
-    free(w.A2);
-    free(w.B2);
-    free(w.VR);
-    free(w.al);
-    free(w.be);
-    free(w.r);
-    free(w.t);
-    free(w.z);
-    free(w.rs);
     return st;
 }
