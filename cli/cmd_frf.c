@@ -141,7 +141,7 @@ int gd_cmd_frf(int argc, char **argv)
     }
     if (opt.quantity != GD_FRF_RECEPTANCE)
         for (int k = 0; k < np; k++)
-            if (probes[k].kind != GD_PROBE_DOF) {
+            if (probes[k].element) {
                 rc = gd_cli_usage_error(
                     cmd, "--type %s applies to displacement outputs; '%s' is a force",
                     gd_frf_quantity_names[opt.quantity], probes[k].name);
@@ -194,8 +194,7 @@ int gd_cmd_frf(int argc, char **argv)
             z->re = r->re + (size_t)k * opt.nfreq;
             z->im = r->im + (size_t)k * opt.nfreq;
             snprintf(z->name, sizeof z->name, "%s", probes[k].name);
-            z->quantity =
-                probes[k].kind == GD_PROBE_DOF ? gd_frf_quantity_names[opt.quantity] : "force";
+            z->quantity = !probes[k].element ? gd_frf_quantity_names[opt.quantity] : "force";
         }
     }
     if (out) {
