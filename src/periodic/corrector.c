@@ -259,7 +259,7 @@ static int solve_from_rest(ctx *c, double *X, double lam, int *it, double *res)
     double h = 1.0, step = 0.5;
     int rc = 1, nbl = 0;
     const gd_transient_spec *spec = s->spec;
-    gd_hb_static_start(s->sys, spec, s->tr, c->param ? c->param->speed : lam, n, X);
+    gd_hb_static_start(s->sys, spec, s->tr, c->param ? c->param->speed : lam, c->nf, X);
     for (int i = 0; i < spec->nmeshes; i++)
         nbl += spec->meshes[i].backlash != 0;
     if (!nbl) {
