@@ -49,17 +49,15 @@ static const gd_cli_command CMD = {
     .name = "frf",
     .args = "MODEL.yaml",
     .opts = OPTS,
-    .about =
-        "Response to a unit harmonic force or moment. Inputs:\n"
-        "  NODE.DOF, node:NODE.DOF  force (x, y, z) or moment (rx, ry, rz) at a node, e.g. "
-        "pinion.y\n"
-        "  torque:NODE              torque about the shaft axis (= NODE.rz)\n"
-        "  NODE.xy                  directional FRFs: forward and backward (outputs NODE.xy "
-        "too)\n"
-        "Outputs (repeat --output):\n"
-        "  NODE.DOF, node:NODE.DOF  displacement (or velocity/acceleration, --type)\n"
-        "  mesh:NAME                dynamic mesh force k d + c d' along the contact normal (N)\n"
-        "  bearing:NAME.DIR         force the bearing transmits in DIR (x, y, z, rx, ry, rz)\n"};
+    .about = "Response to a unit harmonic force or moment. Inputs:\n"
+             "  NODE.DOF, node:NODE.DOF  force (x, y, z) or moment (rx, ry, rz) at a node, e.g. "
+             "pinion.y\n"
+             "  torque:NODE              torque about the shaft axis (= NODE.rz)\n"
+             "  NODE.xy                  directional FRFs: forward and backward (outputs NODE.xy "
+             "too)\n"
+             "Outputs (repeat --output):\n"
+             "  NODE.DOF, node:NODE.DOF  displacement (or velocity/acceleration, --type)\n",
+    .probes = 1};
 
 int gd_cmd_frf(int argc, char **argv)
 {
