@@ -34,5 +34,5 @@ row() { # label model speeds H
 echo "-- stability cost per point (CPU s, without the floor), dense vs Krylov (8 largest)"
 row "Chen SFD pair, 12 states" examples/chen1998_gear_pair.yaml 5600:5600:1 12
 row "Kumar 2011 coupled, 16 st." examples/kumar2011_coupled.yaml 300:300:1 94
-echo "   (the 378-DOF seed-002 model, 756 states, H = 108: dense about 1.5 s per Magnus"
+echo "   (the 378-DOF [JMSTHelical] model, 756 states, H = 108: dense about 1.5 s per Magnus"
 echo "    step x 2048 steps, Krylov about 10 s per product: docs/periodic.md)"

@@ -47,9 +47,9 @@ int main(int argc, char **argv)
     double *usp = linspace(0, 12000 * 3.14159265358979 / 30, 1000);
     int in = gd_system_dof(s, gd_model_find_node(m, "gear48"), GD_X);
     if (in < 0) in = 0;
-    gd_probe outs[3] = {{GD_PROBE_DOF, in, GD_X, "in"},
-                        {GD_PROBE_MESH, 0, GD_X, "mesh"},
-                        {GD_PROBE_BEARING, 0, GD_X, "b"}};
+    gd_probe outs[3] = {{NULL, in, GD_X, "in"},
+                        {&gd_element_mesh, 0, GD_X, "mesh"},
+                        {&gd_element_bearing, 0, GD_X, "b"}};
     int nouts = m->nmeshes > 0 ? (m->nbearings > 0 ? 3 : 2) : 1;
     int nthr = argc > 2 ? argc - 2 : 1;
     for (int t = 0; t < nthr; t++) {

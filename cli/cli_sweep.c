@@ -113,25 +113,20 @@ int gd_cli_parse_probe(const char *cmd, const char *opt, const gd_system *sys, c
 {
     memset(p, 0, sizeof *p);
     snprintf(p->name, sizeof p->name, "%s", text);
-    if (!strncmp(text, "mesh:", 5)) {
-        p->kind = GD_PROBE_MESH;
-        p->index = gd_model_find_mesh(sys->model, text + 5);
-        if (p->index < 0) return gd_cli_usage_error(cmd, "%s: unknown mesh '%s'", opt, text + 5);
-        return 0;
-    }
-    if (!strncmp(text, "bearing:", 8)) {
+    const char *rest;
+    const gd_element_type *t = gd_probe_element(text, &rest);
+    if (t) { /* PROBE:NAME or PROBE:NAME.DIR, the kind's own syntax (geardyn/elements.h) */
         char buf[256];
-        snprintf(buf, sizeof buf, "%s", text + 8);
-        char *dot = strrchr(buf, '.');
-        if (!dot)
-            return gd_cli_usage_error(cmd, "%s: '%s' is not bearing:NAME.DIR (e.g. bearing:A1.x)",
-                                      opt, text);
-        *dot = '\0';
-        p->kind = GD_PROBE_BEARING;
-        p->index = -1;
-        for (int b = 0; b < sys->model->nbearings; b++)
-            if (!strcmp(sys->model->bearings[b].name, buf)) p->index = b;
-        if (p->index < 0) return gd_cli_usage_error(cmd, "%s: unknown bearing '%s'", opt, buf);
+        snprintf(buf, sizeof buf, "%s", rest);
+        char *dot = t->probe_dirs ? strrchr(buf, '.') : NULL;
+        if (t->probe_dirs && !dot)
+            return gd_cli_usage_error(cmd, "%s: '%s' is not %s:NAME.DIR (e.g. %s:A1.x)", opt, text,
+                                      t->probe, t->probe);
+        if (dot) *dot = '\0';
+        p->element = t;
+        p->index = gd_probe_instance(sys, t, buf);
+        if (p->index < 0) return gd_cli_usage_error(cmd, "%s: unknown %s '%s'", opt, t->name, buf);
+        if (!dot) return 0;
         int d = find_dof_name(dot + 1);
         if (d < 0)
             return gd_cli_usage_error(cmd, "%s: unknown direction '%s' (use x, y, z, rx, ry or rz)",
@@ -139,7 +134,7 @@ int gd_cli_parse_probe(const char *cmd, const char *opt, const gd_system *sys, c
         p->dir = (gd_dof)d;
         return 0;
     }
-    p->kind = GD_PROBE_DOF;
+    p->element = NULL;
     return node_dof(cmd, opt, sys, !strncmp(text, "node:", 5) ? text + 5 : text, &p->index);
 }
 

@@ -49,17 +49,15 @@ static const gd_cli_command CMD = {
     .name = "frf",
     .args = "MODEL.yaml",
     .opts = OPTS,
-    .about =
-        "Response to a unit harmonic force or moment. Inputs:\n"
-        "  NODE.DOF, node:NODE.DOF  force (x, y, z) or moment (rx, ry, rz) at a node, e.g. "
-        "pinion.y\n"
-        "  torque:NODE              torque about the shaft axis (= NODE.rz)\n"
-        "  NODE.xy                  directional FRFs: forward and backward (outputs NODE.xy "
-        "too)\n"
-        "Outputs (repeat --output):\n"
-        "  NODE.DOF, node:NODE.DOF  displacement (or velocity/acceleration, --type)\n"
-        "  mesh:NAME                dynamic mesh force k d + c d' along the contact normal (N)\n"
-        "  bearing:NAME.DIR         force the bearing transmits in DIR (x, y, z, rx, ry, rz)\n"};
+    .about = "Response to a unit harmonic force or moment. Inputs:\n"
+             "  NODE.DOF, node:NODE.DOF  force (x, y, z) or moment (rx, ry, rz) at a node, e.g. "
+             "pinion.y\n"
+             "  torque:NODE              torque about the shaft axis (= NODE.rz)\n"
+             "  NODE.xy                  directional FRFs: forward and backward (outputs NODE.xy "
+             "too)\n"
+             "Outputs (repeat --output):\n"
+             "  NODE.DOF, node:NODE.DOF  displacement (or velocity/acceleration, --type)\n",
+    .probes = 1};
 
 int gd_cmd_frf(int argc, char **argv)
 {
@@ -141,7 +139,7 @@ int gd_cmd_frf(int argc, char **argv)
     }
     if (opt.quantity != GD_FRF_RECEPTANCE)
         for (int k = 0; k < np; k++)
-            if (probes[k].kind != GD_PROBE_DOF) {
+            if (probes[k].element) {
                 rc = gd_cli_usage_error(
                     cmd, "--type %s applies to displacement outputs; '%s' is a force",
                     gd_frf_quantity_names[opt.quantity], probes[k].name);
@@ -194,8 +192,7 @@ int gd_cmd_frf(int argc, char **argv)
             z->re = r->re + (size_t)k * opt.nfreq;
             z->im = r->im + (size_t)k * opt.nfreq;
             snprintf(z->name, sizeof z->name, "%s", probes[k].name);
-            z->quantity =
-                probes[k].kind == GD_PROBE_DOF ? gd_frf_quantity_names[opt.quantity] : "force";
+            z->quantity = !probes[k].element ? gd_frf_quantity_names[opt.quantity] : "force";
         }
     }
     if (out) {

@@ -62,7 +62,7 @@ static int add_default_outputs(const gd_system *s, gd_probe *pr, int *np, int *o
         for (int d = 0; d < 3 && *np < MAXOUT; d++) {
             int i = gd_system_dof(s, node, ds[d]);
             if (i < 0) continue;
-            pr[*np] = (gd_probe){.kind = GD_PROBE_DOF, .index = i};
+            pr[*np] = (gd_probe){.element = NULL, .index = i};
             snprintf(pr[*np].name, sizeof pr[*np].name, "%s.%s", m->nodes[node].name,
                      gd_dof_names[ds[d]]);
             (*np)++;
@@ -70,19 +70,7 @@ static int add_default_outputs(const gd_system *s, gd_probe *pr, int *np, int *o
         if (*nb < MAXOUT && gd_system_dof(s, node, GD_X) >= 0 && gd_system_dof(s, node, GD_Y) >= 0)
             orb[(*nb)++] = node;
     }
-    for (int g = 0; g < m->nmeshes && *np < MAXOUT; g++) {
-        pr[*np] = (gd_probe){.kind = GD_PROBE_MESH, .index = g};
-        snprintf(pr[*np].name, sizeof pr[*np].name, "mesh:%s", m->meshes[g].name);
-        (*np)++;
-    }
-    for (int b = 0; b < m->nbearings; b++)
-        for (int d = 0; d < 2 && *np < MAXOUT; d++) {
-            if (gd_system_dof(s, m->bearings[b].node, (gd_dof)d) < 0) continue;
-            pr[*np] = (gd_probe){.kind = GD_PROBE_BEARING, .index = b, .dir = (gd_dof)d};
-            snprintf(pr[*np].name, sizeof pr[*np].name, "bearing:%s.%s", m->bearings[b].name,
-                     gd_dof_names[d]);
-            (*np)++;
-        }
+    *np += gd_probe_defaults(s, pr + *np, MAXOUT - *np);
     return 0;
 }
 

@@ -226,7 +226,16 @@ void gd_cli_help(const gd_cli_command *c, FILE *f)
                  rep ? "..." : "");
         col = word(f, buf, strlen(buf), col, indent);
     }
-    fprintf(f, "\n%s\n%s\n", c->more ? c->more : "", c->about);
+    fprintf(f, "\n%s\n%s", c->more ? c->more : "", c->about);
+    /* the force outputs, one line per element kind with a probe, the one-force kinds
+     * first (gd_probe_defaults' order); about ends its own line */
+    for (int k = 0; c->probes && k < 2 * gd_nelement_types; k++) {
+        const gd_element_type *t = gd_element_types[k % gd_nelement_types];
+        if (!t->probe || t->probe_dirs != k / gd_nelement_types) continue;
+        snprintf(buf, sizeof buf, "%s:NAME%s", t->probe, t->probe_dirs ? ".DIR" : "");
+        fprintf(f, "  %-24s %s\n", buf, t->probe_help);
+    }
+    fputc('\n', f);
     int width = 0;
     for (const gd_cli_opt *o = c->opts; o->name; o++) {
         int w = (int)strlen(o->name) + (o->meta ? (int)strlen(o->meta) + 1 : 0) + 4 * !!o->letter;

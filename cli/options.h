@@ -61,6 +61,8 @@ typedef struct gd_cli_command {
     const char *several; /* more than one (default: .missing) */
     const char *more;    /* further usage lines, printed as they are, or NULL */
     const char *about;   /* the paragraphs between the usage and the options */
+    int probes;          /* 1: about is followed by the force outputs of the element kinds
+                            (PROBE:NAME[.DIR] and what it measures, from the registry) */
     const char *footer;  /* printed after the options, or NULL */
     const gd_cli_opt *opts;
 } gd_cli_command;

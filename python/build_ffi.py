@@ -137,7 +137,10 @@ gd_status gd_model_set_speed(gd_model *m, double speed, gd_error *err);
 /* ---- system ---- */
 typedef struct { int n; int *colptr; int *rowind; double *values; } gd_csc;
 void gd_csc_free(gd_csc *a);
-typedef struct { const char *name; ...; } gd_element_type;
+typedef struct { const char *name; const char *probe; int probe_dirs; const char *probe_help;
+                 ...; } gd_element_type;
+extern const gd_element_type *const gd_element_types[];
+extern const int gd_nelement_types;
 typedef enum { GD_MOTION_LATERAL, GD_MOTION_TORSIONAL, GD_MOTION_AXIAL, GD_MOTION_TILT,
                GD_NMOTIONS, ... } gd_motion;
 extern const char *const gd_motion_names[];
@@ -232,8 +235,11 @@ gd_status gd_campbell(const gd_system *sys, const gd_campbell_options *opt,
 void gd_campbell_free(gd_campbell_result *r);
 
 /* ---- probes, frf, unbalance ---- */
-typedef enum { GD_PROBE_DOF, GD_PROBE_MESH, GD_PROBE_BEARING, ... } gd_probe_kind;
-typedef struct { gd_probe_kind kind; int index; gd_dof dir; char name[...]; ...; } gd_probe;
+typedef struct { const gd_element_type *element; int index; gd_dof dir; char name[...]; ...; }
+    gd_probe;
+const gd_element_type *gd_probe_element(const char *text, const char **rest);
+int gd_probe_instance(const gd_system *sys, const gd_element_type *t, const char *name);
+int gd_probe_defaults(const gd_system *sys, gd_probe *out, int cap);
 typedef enum { GD_FRF_RECEPTANCE, GD_FRF_MOBILITY, GD_FRF_ACCELERANCE, ... } gd_frf_quantity;
 extern const char *const gd_frf_quantity_names[3];
 typedef enum { GD_FRF_DIRECT, GD_FRF_MODAL, ... } gd_frf_method;

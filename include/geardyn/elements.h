@@ -2,9 +2,11 @@
  * element (shaft element, disk, bearing, spring, gear mesh) is one constant
  * gd_element_type, defined in its own file under src/elements/, that knows its
  * instances in a model, their nodes, their local matrices at a speed, how their strain
- * energy splits into motion types and which output probes (forces) they offer.
+ * energy splits into motion types and which output probes (forces) they offer, under
+ * which name.
  * Assembly, modal strain energy, the speed-dependent terms and the FRF force probes
- * loop over the registry (gd_element_types) and never switch on the kind.
+ * loop over the registry (gd_element_types) and never switch on the kind; so do the
+ * probe syntax of the CLI, the study files and the Python package.
  *
  * Local DOFs: 6 per node in the order x, y, z, rx, ry, rz; a two-node element stacks
  * node 1 then node 2 (12 DOFs). A second node of -1 is ground: its 6 DOFs are dropped
@@ -77,6 +79,15 @@ typedef struct gd_element_type {
     /* Force output of instance i in direction dir at speed W, as rows over its local
      * DOFs: F = sum_a (k[a] + i w c[a]) u_a. NULL: the kind has no force probe. */
     void (*force_row)(const gd_model *m, int i, double speed, gd_dof dir, double *k, double *c);
+    /* The force probe's vocabulary (geardyn/probe.h; docs/analyses.md): a probe on
+     * instance NAME is written PROBE:NAME (probe_dirs 0: one force, along the kind's own
+     * line) or PROBE:NAME.DIR (probe_dirs 1: the force in DIR = x, y, z in N, the moment
+     * in rx, ry, rz in N m); probe_help says what it measures, for usage texts. The
+     * instance is found by its component name, so a kind with a probe has one component
+     * per instance (component(m, i) = i). probe NULL: no force probe. */
+    const char *probe;
+    int probe_dirs;
+    const char *probe_help;
 } gd_element_type;
 
 /* The registry, in assembly order (shaft, disk, bearing, spring, mesh). */

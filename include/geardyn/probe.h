@@ -7,22 +7,32 @@
  */
 #ifndef GEARDYN_PROBE_H
 #define GEARDYN_PROBE_H
+#include "geardyn/elements.h"
 #include "geardyn/export.h"
 #include "geardyn/system.h"
 
-/* What a response is measured on. */
-typedef enum gd_probe_kind {
-    GD_PROBE_DOF,    /* displacement of an active DOF (m or rad) */
-    GD_PROBE_MESH,   /* dynamic mesh force k d + c d' along the contact normal (N) */
-    GD_PROBE_BEARING /* force the bearing transmits, K dq + C dq' in one direction (N or N m) */
-} gd_probe_kind;
-
+/* What a response is measured on: the displacement of an active DOF (element NULL,
+ * index the DOF, m or rad), or the force of instance `index` of an element kind with a
+ * force probe (geardyn/elements.h: the dynamic mesh force k d + c d' along the contact
+ * normal, N; the force a bearing transmits, K dq + C dq', in direction dir, N or N m). */
 typedef struct gd_probe {
-    gd_probe_kind kind;
-    int index;  /* DOF index, mesh index or bearing index */
-    gd_dof dir; /* bearing direction */
+    const gd_element_type *element; /* NULL: a DOF */
+    int index;                      /* DOF index, or instance of the element kind */
+    gd_dof dir;                     /* direction (kinds with probe_dirs) */
     char name[160];
 } gd_probe;
+
+/* The element kind whose probe prefix starts text ("mesh:..." -> gd_element_mesh),
+ * *rest then pointing after the colon; NULL when none does. */
+GD_API const gd_element_type *gd_probe_element(const char *text, const char **rest);
+/* Instance of kind t named name (its component name), or -1. */
+GD_API int gd_probe_instance(const gd_system *sys, const gd_element_type *t, const char *name);
+/* The default force probes of a system, at most cap into out: every instance of every
+ * kind with a probe, once for a one-force kind, in x and y for a directional kind where
+ * its first node keeps that DOF (the one-force kinds first, then the directional ones,
+ * each in registry order); their names are the probe syntax (mesh:NAME, bearing:NAME.x).
+ * Returns the count. */
+GD_API int gd_probe_defaults(const gd_system *sys, gd_probe *out, int cap);
 
 /* A probe as a linear functional of the complex amplitudes q at frequency w:
  * value = sum_j (k[j] + i w c[j]) q[dof[j]]. */

@@ -79,6 +79,10 @@ GD_API void gd_system_dense(const gd_system *sys, double speed, double *M, doubl
  * journal bearing at rest carries no load): q is then 0, the state the laws are
  * linearised about. */
 GD_API int gd_system_law_state(const gd_system *sys, double speed, double *q);
+/* The same under a load vector f0 of the caller's (ndof): harmonic balance starts from it
+ * under the time integrators' loads, which leave gravity out (docs/periodic.md). */
+GD_API int gd_system_law_state_loads(const gd_system *sys, double speed, const double *f0,
+                                     double *q);
 
 /* The system's matrices at reference speed W, each on its own sparse pattern: M; K with
  * the speed-table bearings at W (K + K_b(W)); C with them (C + C_b(W)), without the

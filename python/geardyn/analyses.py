@@ -427,24 +427,27 @@ def _probe(system, text, what="output"):
     p = ffi.new("gd_probe *")
     name = text.encode()[:ffi.sizeof(p.name) - 1]
     ffi.memmove(p.name, name, len(name))
-    if text.startswith("mesh:"):
-        p.kind = lib.GD_PROBE_MESH
-        p.index = lib.gd_model_find_mesh(system._model_handle, text[5:].encode())
+    kind = lib.gd_probe_element(text.encode(), ffi.NULL)
+    if kind != ffi.NULL:
+        # PROBE:NAME or PROBE:NAME.DIR, the element kind's own syntax (geardyn/elements.h)
+        prefix, kname = cstr(kind.probe), cstr(kind.name)
+        body = text[len(prefix) + 1:]
+        inst, dot, d = body.rpartition(".") if kind.probe_dirs else (body, "", "")
+        if kind.probe_dirs and not dot:
+            raise model_error(what, "'%s' is not %s:NAME.DIR" % (text, prefix),
+                              "e.g. %s:A1.x" % prefix)
+        p.element, p.index = kind, lib.gd_probe_instance(system._handle, kind, inst.encode())
         if p.index < 0:
-            raise model_error(what, "unknown mesh '%s'" % text[5:],
-                              "meshes: " + ", ".join(system.model.meshes))
-    elif text.startswith("bearing:"):
-        b, dot, d = text[8:].rpartition(".")
-        if not dot:
-            raise model_error(what, "'%s' is not bearing:NAME.DIR" % text, "e.g. bearing:A1.x")
-        names = system.model.bearings
-        if b not in names:
-            raise model_error(what, "unknown bearing '%s'" % b, "bearings: " + ", ".join(names))
-        if d not in _core.DOF_NAMES:
-            raise model_error(what, "unknown direction '%s'" % d, "use x, y, z, rx, ry or rz")
-        p.kind, p.index, p.dir = lib.GD_PROBE_BEARING, names.index(b), _core.DOF_NAMES.index(d)
+            names = [c for c, k in zip(system.components, system.component_kinds) if k == kname]
+            plural = kname + ("es" if kname.endswith(("s", "sh", "ch", "x")) else "s")
+            raise model_error(what, "unknown %s '%s'" % (kname, inst),
+                              "%s: %s" % (plural, ", ".join(names)))
+        if kind.probe_dirs:
+            if d not in _core.DOF_NAMES:
+                raise model_error(what, "unknown direction '%s'" % d, "use x, y, z, rx, ry or rz")
+            p.dir = _core.DOF_NAMES.index(d)
     else:
-        p.kind = lib.GD_PROBE_DOF
+        p.element = ffi.NULL
         p.index = _dof_of(system, text[5:] if text.startswith("node:") else text, what)
     return p
 
@@ -499,7 +502,7 @@ def frf(system, input, outputs, freqs, speed=None, method="direct", modes=None,
                           "use receptance, mobility or accelerance")
     if quantity != "receptance":
         for k in range(len(specs)):
-            if probes[k].kind != lib.GD_PROBE_DOF:
+            if probes[k].element != ffi.NULL:
                 raise model_error("quantity", "%s applies to displacement outputs; '%s' is a "
                                   "force" % (quantity, specs[k]))
     if method not in ("direct", "modal"):
@@ -520,7 +523,7 @@ def frf(system, input, outputs, freqs, speed=None, method="direct", modes=None,
     err = new_error()
     check(lib.gd_frf(system._handle, opt, out, err), err)
     res = FrfResult(system, ffi.gc(out[0], lib.gd_frf_free), input, list(outputs), specs,
-                    [probes[k].kind != lib.GD_PROBE_DOF for k in range(len(specs))],
+                    [probes[k].element != ffi.NULL for k in range(len(specs))],
                     quantity, method, float(opt.speed), directional)
     return res
 
@@ -612,12 +615,9 @@ def _default_unbalance_outputs(system):
         if (lib.gd_system_dof(system._handle, node, lib.GD_X) >= 0
                 and lib.gd_system_dof(system._handle, node, lib.GD_Y) >= 0):
             orbits.append(node)
-    names += ["mesh:" + m for m in system.model.meshes]
-    for b in range(h.nbearings):
-        for d in ("x", "y"):
-            if lib.gd_system_dof(system._handle, h.bearings[b].node,
-                                 _core.DOF_NAMES.index(d)) >= 0:
-                names.append("bearing:%s.%s" % (cstr(h.bearings[b].name), d))
+    forces = ffi.new("gd_probe[]", 64)
+    n = lib.gd_probe_defaults(system._handle, forces, 64)
+    names += [cstr(forces[k].name) for k in range(n)]
     return names[:64], [nodes[n] for n in orbits]
 
 

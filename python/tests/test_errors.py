@@ -100,3 +100,21 @@ def test_builder_errors(geardyn):
     with pytest.raises(geardyn.ModelError) as e:
         geardyn.build(spec)
     assert "b" in e.value.message and e.value.field.startswith("bearings[0]")
+
+
+def test_probe_syntax_from_the_element_table(geardyn):
+    # the prefixes (mesh:, bearing:) and the names in the hints come from the element
+    # kinds' probe vocabulary and the system's components, not from a hand list
+    m = geardyn.load(example("chen1998_gear_pair"))
+    with pytest.raises(geardyn.ModelError, match="unknown bearing 'Z9'") as e:
+        m.frf("gear_a.x", "bearing:Z9.x", [1.0])
+    assert e.value.hint == "bearings: support_a, support_b", e.value.hint
+    with pytest.raises(geardyn.ModelError, match="unknown mesh 'gear'") as e:
+        m.frf("gear_a.x", "mesh:gear", [1.0])
+    assert e.value.hint == "meshes: mesh", e.value.hint
+    with pytest.raises(geardyn.ModelError, match="is not bearing:NAME.DIR"):
+        m.frf("gear_a.x", "bearing:support_a", [1.0])
+    with pytest.raises(geardyn.ModelError, match="unknown direction 'w'"):
+        m.frf("gear_a.x", "bearing:support_a.w", [1.0])
+    r = m.frf("gear_a.x", ["bearing:support_b.y", "mesh:mesh"], [10.0])
+    assert r.H.shape[0] == 2

@@ -163,4 +163,7 @@ const gd_element_type gd_element_bearing = {
     .component = bearing_component,
     .component_name = bearing_name,
     .force_row = bearing_force_row,
+    .probe = "bearing",
+    .probe_dirs = 1,
+    .probe_help = "force the bearing transmits in DIR (x, y, z, rx, ry, rz)",
 };

@@ -156,4 +156,6 @@ const gd_element_type gd_element_mesh = {
     .component = mesh_component,
     .component_name = mesh_name,
     .force_row = mesh_force_row,
+    .probe = "mesh",
+    .probe_help = "dynamic mesh force k d + c d' along the contact normal (N)",
 };

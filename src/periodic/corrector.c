@@ -244,7 +244,8 @@ double gd_per_inf_norm(const double *x, int n)
     return m;
 }
 
-/* Newton from rest through a contact homotopy: every backlash mesh first held on its
+/* Newton from rest (from the static state of load-carrying laws: gd_hb_static_start)
+ * through a contact homotopy: every backlash mesh first held on its
  * drive flank (h = 1: smooth), then released step by step to the backlash law (h = 0),
  * each Newton starting from the last solution; a failed release halves the step. Without
  * backlash meshes h changes nothing and the first solve is the answer. */
@@ -258,6 +259,7 @@ static int solve_from_rest(ctx *c, double *X, double lam, int *it, double *res)
     double h = 1.0, step = 0.5;
     int rc = 1, nbl = 0;
     const gd_transient_spec *spec = s->spec;
+    gd_hb_static_start(s->sys, spec, s->tr, c->param ? c->param->speed : lam, c->nf, X);
     for (int i = 0; i < spec->nmeshes; i++)
         nbl += spec->meshes[i].backlash != 0;
     if (!nbl) {

@@ -281,9 +281,9 @@ static int kq_setup(kq *k, gd_transient *tr)
     /* The 1-norm overstates the size that matters: the Taylor terms grow like
      * |A0^p|^(1/p), which tends to the spectral radius (Al-Mohy & Higham 2011, Sec. 4:
      * their d_p); for a finite-element shaft M^-1 K is far from normal and the 1-norm was
-     * 7 times the largest natural frequency (seed 002). Estimated by 24 powers from a
-     * fixed start vector, the largest |A0^p x|^(1/p) / |x| for p = 8..24, times 1.25;
-     * the series is still summed until its terms fall below the rounding of the sum. */
+     * 7 times the largest natural frequency (the [JMSTHelical] model). Estimated by 24 powers from
+     * a fixed start vector, the largest |A0^p x|^(1/p) / |x| for p = 8..24, times 1.25; the series
+     * is still summed until its terms fall below the rounding of the sum. */
     {
         double *x = k->f, *y = k->trm;
         for (int i = 0; i < k->n2; i++)

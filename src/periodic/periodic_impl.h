@@ -157,6 +157,13 @@ int gd_hb_floquet_krylov(const hb *h, gd_transient *tr, double w, const double *
                          const gd_tr_record *bl, int nbl, int nev, double tol, double budget,
                          double *mu_re, double *mu_im, int *nmu, int *products, char *msg);
 
+/* Static start (warmstart.c): where the model has laws that carry a static load
+ * (GD_LAW_SUPPORT), the zeroth harmonic of X (its first nf entries; the rest untouched)
+ * set to the laws' static equilibrium at speed under the spec's mean loads. Returns 1
+ * when set, 0 when the model has no such law or no equilibrium was found (X untouched). */
+int gd_hb_static_start(const gd_system *sys, const gd_transient_spec *spec, const gd_transient *tr,
+                       double speed, int nf, double *X);
+
 /* Warm start (warmstart.c): the coefficients X (nf (2 H + 1)) of the last of `periods`
  * periods (2 pi / w) of a transient from rest (static equilibrium with loads) of the
  * problem at speed. 0 ok. */

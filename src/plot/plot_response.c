@@ -71,7 +71,7 @@ static void frf_unit(const gd_system *sys, const gd_frf_options *opt, const gd_p
 {
     int moment_in = sys->dof_type[opt->inputs[0]] >= GD_RX;
     static const char *const rate[3] = {"", " s", " s^2"};
-    if (pr->kind == GD_PROBE_DOF) {
+    if (!pr->element) {
         int rot = sys->dof_type[pr->index] >= GD_RX;
         const char *r = rate[opt->quantity];
         if (!moment_in) /* m/N, m/(N s), rad/(N s^2) */
@@ -81,7 +81,7 @@ static void frf_unit(const gd_system *sys, const gd_frf_options *opt, const gd_p
         else /* m/(N m) = 1/N */
             snprintf(buf, n, r[0] ? "1/(N%s)" : "1/N%s", r);
     } else {
-        int mom_out = pr->kind == GD_PROBE_BEARING && pr->dir >= GD_RX;
+        int mom_out = pr->element->probe_dirs && pr->dir >= GD_RX;
         if (mom_out == moment_in)
             snprintf(buf, n, "%s", mom_out ? "N m/(N m)" : "N/N");
         else
@@ -319,8 +319,8 @@ gd_status gd_plot_frf(const gd_system *sys, const gd_frf_options *opt, const gd_
 
 static const char *probe_unit(const gd_system *sys, const gd_probe *pr)
 {
-    if (pr->kind == GD_PROBE_DOF) return dof_unit(sys->dof_type[pr->index]);
-    return pr->kind == GD_PROBE_BEARING && pr->dir >= GD_RX ? "N m" : "N";
+    if (!pr->element) return dof_unit(sys->dof_type[pr->index]);
+    return pr->element->probe_dirs && pr->dir >= GD_RX ? "N m" : "N";
 }
 
 /* The orbit ellipse: x = a cos t cos g - b sin t sin g, y = a cos t sin g + b sin t cos g. */

@@ -22,31 +22,20 @@ void gd_report_options_init(gd_report_options *opt)
     opt->runup_revolutions = 200;
 }
 
-static int add_probe(gd_probe *pr, int *n, gd_probe_kind kind, int index, gd_dof dir,
-                     const char *name, const char *suffix)
+static int add_probe(gd_probe *pr, int *n, int index, gd_dof dir, const char *name,
+                     const char *suffix)
 {
     if (*n == MAX_PROBES) return 0;
-    pr[*n] = (gd_probe){.kind = kind, .index = index, .dir = dir};
+    pr[*n] = (gd_probe){.element = NULL, .index = index, .dir = dir};
     snprintf(pr[*n].name, sizeof pr[*n].name, "%s%s", name, suffix);
     (*n)++;
     return 1;
 }
 
-/* Mesh forces and the lateral forces of every bearing. */
+/* Mesh forces and the lateral forces of every bearing (gd_probe_defaults). */
 static void force_probes(const gd_system *sys, gd_probe *pr, int *n)
 {
-    const gd_model *m = sys->model;
-    char name[160];
-    for (int g = 0; g < m->nmeshes; g++) {
-        snprintf(name, sizeof name, "mesh:%s", m->meshes[g].name);
-        add_probe(pr, n, GD_PROBE_MESH, g, GD_X, name, "");
-    }
-    for (int b = 0; b < m->nbearings; b++)
-        for (int d = GD_X; d <= GD_Y; d++)
-            if (gd_system_dof(sys, m->bearings[b].node, (gd_dof)d) >= 0) {
-                snprintf(name, sizeof name, "bearing:%s.", m->bearings[b].name);
-                add_probe(pr, n, GD_PROBE_BEARING, b, (gd_dof)d, name, gd_dof_names[d]);
-            }
+    *n += gd_probe_defaults(sys, pr + *n, MAX_PROBES - *n);
 }
 
 /* The FRF input: the torque on the first mesh's driver, else a lateral force on the
@@ -154,8 +143,8 @@ static gd_status add_unbalance(gd_plot *doc, const gd_system *sys, const gd_repo
             seen |= orb[k] == node;
         if (seen || x < 0 || y < 0 || nb == MAX_PROBES) continue;
         orb[nb++] = node;
-        add_probe(pr, &np, GD_PROBE_DOF, x, GD_X, m->nodes[node].name, ".x");
-        add_probe(pr, &np, GD_PROBE_DOF, y, GD_Y, m->nodes[node].name, ".y");
+        add_probe(pr, &np, x, GD_X, m->nodes[node].name, ".x");
+        add_probe(pr, &np, y, GD_Y, m->nodes[node].name, ".y");
     }
     force_probes(sys, pr, &np);
     gd_unbalance_options uo;

@@ -345,9 +345,9 @@ gd_status gd_frf(const gd_system *sys, const gd_frf_options *opt, gd_frf_result 
     memcpy(r->freqs, opt->freqs, (size_t)opt->nfreq * sizeof(double));
     for (int o = 0; o < opt->noutputs; o++) {
         const gd_probe *p = &opt->outputs[o];
-        int bad = p->index < 0 || (p->kind == GD_PROBE_DOF && p->index >= sys->ndof) ||
-                  (p->kind == GD_PROBE_MESH && p->index >= sys->model->nmeshes) ||
-                  (p->kind == GD_PROBE_BEARING && p->index >= sys->model->nbearings);
+        int bad =
+            p->index < 0 || (!p->element && p->index >= sys->ndof) ||
+            (p->element && (!p->element->force_row || p->index >= p->element->count(sys->model)));
         if (bad) {
             st = gd_error_set(err, GD_EINPUT, "", 0, 0, "output",
                               "name an existing DOF, mesh or bearing", "output %d does not exist",

@@ -98,9 +98,8 @@ gd_status gd_unbalance_response(const gd_system *sys, const gd_unbalance_options
     }
     for (int o = 0; o < no; o++) {
         const gd_probe *p = &opt->outputs[o];
-        if (p->index < 0 || (p->kind == GD_PROBE_DOF && p->index >= sys->ndof) ||
-            (p->kind == GD_PROBE_MESH && p->index >= m->nmeshes) ||
-            (p->kind == GD_PROBE_BEARING && p->index >= m->nbearings))
+        if (p->index < 0 || (!p->element && p->index >= sys->ndof) ||
+            (p->element && (!p->element->force_row || p->index >= p->element->count(m))))
             return gd_error_set(err, GD_EINPUT, "", 0, 0, "output",
                                 "name an existing DOF, mesh or bearing", "output %d does not exist",
                                 o + 1);

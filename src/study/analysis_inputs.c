@@ -69,12 +69,14 @@ gd_status gd_study_probe(const gd_system *sys, const char *text, gd_probe *probe
     snprintf(probe->name, sizeof probe->name, "%s", text);
     *dof = -1;
     const char *hint = "write mesh:NAME, NODE.DOF (x, y, z, rx, ry, rz) or torque:NODE";
-    if (!strncmp(text, "mesh:", 5)) {
-        int k = gd_model_find_mesh(m, text + 5);
+    const char *rest;
+    const gd_element_type *kind = gd_probe_element(text, &rest);
+    if (kind && !kind->probe_dirs) { /* the one-force kinds: mesh:NAME */
+        int k = gd_probe_instance(sys, kind, rest);
         if (k < 0)
-            return gd_error_set(err, GD_EINPUT, m->file, 0, 0, "", hint, "no mesh named '%s'",
-                                text + 5);
-        probe->kind = GD_PROBE_MESH;
+            return gd_error_set(err, GD_EINPUT, m->file, 0, 0, "", hint, "no %s named '%s'",
+                                kind->name, rest);
+        probe->element = kind;
         probe->index = k;
         return GD_OK;
     }
@@ -98,7 +100,7 @@ gd_status gd_study_probe(const gd_system *sys, const char *text, gd_probe *probe
     if (*dof < 0)
         return gd_error_set(err, GD_EINPUT, m->file, 0, 0, "", hint,
                             "'%s' is not an active DOF of the model", text);
-    probe->kind = GD_PROBE_DOF;
+    probe->element = NULL;
     probe->index = *dof;
     return GD_OK;
 }

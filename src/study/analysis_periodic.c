@@ -77,8 +77,12 @@ static gd_status record_of(const gd_system *sys, const per_opts *o, gd_tr_record
     int dof;
     gd_status st = gd_study_probe(sys, o->output, &p, &dof, err);
     if (st) return st;
-    rec->kind = p.kind == GD_PROBE_MESH ? GD_REC_MESH_FORCE : GD_REC_DISP;
-    rec->index = p.kind == GD_PROBE_MESH ? p.index : dof;
+    if (p.element && p.element != &gd_element_mesh)
+        return gd_error_set(err, GD_EINPUT, "", 0, 0, "analysis.output",
+                            "use mesh:NAME or NODE.DOF",
+                            "periodic follows a mesh force or a displacement, not '%s'", o->output);
+    rec->kind = p.element ? GD_REC_MESH_FORCE : GD_REC_DISP;
+    rec->index = p.element ? p.index : dof;
     return GD_OK;
 }
 

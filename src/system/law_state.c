@@ -277,22 +277,34 @@ out:
     return found;
 }
 
+int gd_system_law_state_loads(const gd_system *s, double speed, const double *f0, double *q)
+{
+    const int n = s->ndof;
+    memset(q, 0, (size_t)n * sizeof *q);
+    if (!s->nlaws) return 1;
+    double *K = malloc((size_t)n * n * sizeof *K);
+    int found = 0;
+    if (K) {
+        gd_system_dense_linear(s, speed, NULL, NULL, K);
+        found = gd_system_law_equilibrium(s, speed, K, f0, NULL, q, NULL);
+    }
+    if (!found) memset(q, 0, (size_t)n * sizeof *q);
+    free(K);
+    return found;
+}
+
 int gd_system_law_state(const gd_system *s, double speed, double *q)
 {
     const int n = s->ndof;
     memset(q, 0, (size_t)n * sizeof *q);
     if (!s->nlaws) return 1;
     double *f0 = malloc((size_t)n * sizeof *f0);
-    double *K = malloc((size_t)n * n * sizeof *K);
     int found = 0;
-    if (f0 && K) {
+    if (f0) {
         gd_system_mean_loads(s, 1, 1, f0);
-        gd_system_dense_linear(s, speed, NULL, NULL, K);
-        found = gd_system_law_equilibrium(s, speed, K, f0, NULL, q, NULL);
+        found = gd_system_law_state_loads(s, speed, f0, q);
     }
-    if (!found) memset(q, 0, (size_t)n * sizeof *q);
     free(f0);
-    free(K);
     return found;
 }
 

@@ -123,7 +123,7 @@ TEST(linear_equals_unbalance)
     const gd_dof ds[3] = {GD_X, GD_Y, GD_RZ};
     for (int a = 0; a < 2; a++)
         for (int d = 0; d < 3; d++)
-            pr[np++] = (gd_probe){.kind = GD_PROBE_DOF, .index = dof(&f, nodes[a], ds[d])};
+            pr[np++] = (gd_probe){.element = NULL, .index = dof(&f, nodes[a], ds[d])};
     gd_unbalance_options uo;
     gd_unbalance_options_init(&uo);
     double sp[3] = {r->points[0].speed, r->points[1].speed, r->points[2].speed};

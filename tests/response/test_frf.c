@@ -13,7 +13,7 @@
 
 static gd_probe probe_dof(int i)
 {
-    gd_probe p = {GD_PROBE_DOF, i, GD_X, "dof"};
+    gd_probe p = {NULL, i, GD_X, "dof"};
     return p;
 }
 
@@ -56,8 +56,8 @@ TEST(rig_direct_equals_modal)
     gd_probe outs[5] = {probe_dof(dof(&f, "gear48", GD_X)),
                         probe_dof(dof(&f, "gear32", GD_Y)),
                         probe_dof(dof(&f, "gear32", GD_RZ)),
-                        {GD_PROBE_MESH, 0, GD_X, "mesh"},
-                        {GD_PROBE_BEARING, 0, GD_X, "A1.x"}};
+                        {&gd_element_mesh, 0, GD_X, "mesh"},
+                        {&gd_element_bearing, 0, GD_X, "A1.x"}};
     gd_frf_options o;
     gd_frf_options_init(&o);
     o.freqs = freqs;
@@ -174,7 +174,7 @@ static int kumar_peaks(const char *path, double top, double *pk)
     int nf = (int)top + 1;
     double *fr = linspace(0, top, nf);
     int in = dof(&f, "motor", GD_RZ);
-    gd_probe out = {GD_PROBE_MESH, 0, GD_X, "mesh"};
+    gd_probe out = {&gd_element_mesh, 0, GD_X, "mesh"};
     gd_frf_options o;
     gd_frf_options_init(&o);
     o.freqs = fr;
@@ -306,7 +306,7 @@ TEST(threads_give_identical_results)
     REQUIRE(load(&f, "examples/rig2018.yaml", NULL));
     double *fr = linspace(0, 20000, 401);
     int in = dof(&f, "gear32", GD_Y);
-    gd_probe out[2] = {probe_dof(dof(&f, "gear48", GD_Y)), {GD_PROBE_MESH, 0, GD_X, "mesh"}};
+    gd_probe out[2] = {probe_dof(dof(&f, "gear48", GD_Y)), {&gd_element_mesh, 0, GD_X, "mesh"}};
     gd_frf_options o;
     gd_frf_options_init(&o);
     o.freqs = fr;
@@ -351,7 +351,7 @@ TEST(mesh_force_probe_uses_assembled_damping)
     gd_system_mesh_vector(f.s, 0, &a);
     REQUIRE(a.n > 0);
     gd_probe outs[13];
-    outs[0] = (gd_probe){GD_PROBE_MESH, 0, GD_X, "mesh"};
+    outs[0] = (gd_probe){&gd_element_mesh, 0, GD_X, "mesh"};
     for (int j = 0; j < a.n; j++)
         outs[1 + j] = probe_dof(a.dof[j]);
     int in = dof(&f, "gear_a", GD_RZ);
@@ -405,7 +405,7 @@ TEST(errors)
     in = 0;
     out.index = f.s->ndof + 3;
     CHECK(gd_frf(f.s, &o, &r, &err) == GD_EINPUT);
-    out = (gd_probe){GD_PROBE_MESH, 4, GD_X, "m"};
+    out = (gd_probe){&gd_element_mesh, 4, GD_X, "m"};
     CHECK(gd_frf(f.s, &o, &r, &err) == GD_EINPUT);
     o.ninputs = 0;
     CHECK(gd_frf(f.s, &o, &r, &err) == GD_EINPUT);

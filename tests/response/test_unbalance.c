@@ -34,9 +34,9 @@ TEST(jeffcott_closed_form)
     fx f;
     REQUIRE(load(&f, NULL, JEFFCOTT));
     double *sp = linspace(0, 600, 61);
-    gd_probe out[3] = {{GD_PROBE_DOF, dof(&f, "disk", GD_X), GD_X, "x"},
-                       {GD_PROBE_DOF, dof(&f, "disk", GD_Y), GD_X, "y"},
-                       {GD_PROBE_BEARING, 0, GD_X, "B.x"}};
+    gd_probe out[3] = {{NULL, dof(&f, "disk", GD_X), GD_X, "x"},
+                       {NULL, dof(&f, "disk", GD_Y), GD_X, "y"},
+                       {&gd_element_bearing, 0, GD_X, "B.x"}};
     int node = gd_model_find_node(f.m, "disk");
     gd_unbalance_options o;
     gd_unbalance_options_init(&o);
@@ -92,7 +92,7 @@ TEST(chen_fig5_all_modes_but_gear_b_lateral)
     double *sp = linspace(300, 7500, ns);
     gd_probe *out = calloc((size_t)nd, sizeof *out);
     for (int i = 0; i < nd; i++)
-        out[i] = (gd_probe){GD_PROBE_DOF, i, GD_X, "q"};
+        out[i] = (gd_probe){NULL, i, GD_X, "q"};
     gd_unbalance_options o;
     gd_unbalance_options_init(&o);
     o.speeds = sp;
@@ -143,8 +143,8 @@ TEST(kumar_two_harmonics_and_torsion)
     fx f;
     REQUIRE(load(&f, "examples/kumar2011_coupled.yaml", NULL));
     double sp[3] = {1000, 2000, 20000};
-    gd_probe out[2] = {{GD_PROBE_DOF, dof(&f, "pinion", GD_RZ), GD_X, "pinion.rz"},
-                       {GD_PROBE_MESH, 0, GD_X, "mesh"}};
+    gd_probe out[2] = {{NULL, dof(&f, "pinion", GD_RZ), GD_X, "pinion.rz"},
+                       {&gd_element_mesh, 0, GD_X, "mesh"}};
     int nodes[2] = {gd_model_find_node(f.m, "pinion"), gd_model_find_node(f.m, "gear")};
     gd_unbalance_options o;
     gd_unbalance_options_init(&o);
@@ -182,8 +182,8 @@ TEST(threads_identical)
     fx f;
     REQUIRE(load(&f, "examples/chen1998_gear_pair.yaml", NULL));
     double *sp = linspace(0, 6000, 301);
-    gd_probe out[2] = {{GD_PROBE_MESH, 0, GD_X, "mesh"},
-                       {GD_PROBE_BEARING, 1, GD_Y, "support_b.y"}};
+    gd_probe out[2] = {{&gd_element_mesh, 0, GD_X, "mesh"},
+                       {&gd_element_bearing, 1, GD_Y, "support_b.y"}};
     gd_unbalance_options o;
     gd_unbalance_options_init(&o);
     o.speeds = sp;
