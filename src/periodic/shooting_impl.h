@@ -1,5 +1,6 @@
-/* Internals of shooting shared by shooting.c (the period map, Newton, the points, the
- * natural continuation) and shooting_arclength.c (pseudo-arclength continuation). */
+/* Internals of shooting shared by shooting.c (the problem per value, the period map,
+ * Newton, the points), shooting_arclength.c (pseudo-arclength continuation) and
+ * shooting_natural.c (natural continuation, the entry gd_per_shoot_run). */
 #ifndef GD_PERIODIC_SHOOTING_IMPL_H
 #define GD_PERIODIC_SHOOTING_IMPL_H
 #include "geardyn/periodic.h"
@@ -71,9 +72,8 @@ int gd_per_sh_emit(shoot *sh, double key, const double *y, int iters, double res
 int gd_per_sh_fail(shoot *sh, double key);
 int gd_per_sh_add_bif(shoot *sh, gd_bifurcation_type type, double key, double mre, double mim);
 void gd_per_sh_kinds(const double *re, const double *im, int n, double g[3], int at[3]);
-double gd_per_sh_locate(shoot *sh, int k, double la, const double *ya, double ga, double lb,
-                        const double *yb, double gb, double *mre, double *mim);
 int gd_per_sh_multipliers(shoot *sh, const double *y, double *mre, double *mim);
 int gd_per_sh_arclength(shoot *sh, const double *vals, int nv);
+void gd_per_sh_free(shoot *sh); /* everything sh owns (not sh) */
 
 #endif
