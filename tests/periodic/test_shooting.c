@@ -119,7 +119,7 @@ TEST(chen_sfd_shooting_equals_hb)
  * 20 um, damping 600 N s/m in and out of contact. */
 static char *backlash_pair_with(double amp, double ste, int np)
 {
-    char ang[4096] = "", k[4096] = "", e[4096] = "", te[4200] = "";
+    char ang[4096] = "", k[4096] = "", e[4096] = "", te[8400] = "";
     int na = 0, nk = 0, ne = 0;
     for (int j = 0; j < np; j++) {
         const double c = 2 * M_PI * j / np;
@@ -132,8 +132,8 @@ static char *backlash_pair_with(double amp, double ste, int np)
         snprintf(te, sizeof te,
                  "     transmission_error: {interpolation: spline, angle: [%s], error: [%s]},\n",
                  ang, e);
-    char *y = malloc(16384);
-    snprintf(y, 16384,
+    char *y = malloc(24576);
+    snprintf(y, 24576,
              "dofs: [rz]\n"
              "shafts:\n"
              "  - {name: input, nodes: [{name: pinion}]}\n"
