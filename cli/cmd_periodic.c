@@ -488,7 +488,8 @@ static const gd_cli_opt OPTS[] = {
     GD_CLI_ROW("method", GD_CLI_CALL, F(opt.kind), "M",
                "hb (default): harmonic balance; shooting: Newton on the period map of "
                "transient's integrator (every law transient has, cams with include_acceleration "
-               "included; natural continuation, one point per speed); auto: the cheaper for the "
+               "included; pseudo-arclength through folds as hb, --sequential natural); auto: the "
+               "cheaper for the "
                "model by a measured cost (the choice and the costs are printed)",
                .call = parse_method),
     GD_CLI_ROW("shoot-rtol", GD_CLI_CALL, F(opt.shoot_rtol), "TOL",

@@ -37,7 +37,7 @@ typedef enum gd_per_method {
 } gd_per_method;
 
 /* How the orbit is found (docs/periodic.md): harmonic balance (the default), shooting
- * (Newton on the period map of transient's integrator, natural continuation in the value;
+ * (Newton on the period map of transient's integrator, continued as `method` says;
  * every law transient has, cams with include_acceleration included), or auto: the
  * cheaper of the two for the model by a measured cost rule (gd_periodic_choose). */
 typedef enum gd_per_kind { GD_PER_HB = 0, GD_PER_SHOOTING = 1, GD_PER_AUTO = 2 } gd_per_kind;
@@ -88,7 +88,8 @@ typedef struct gd_periodic_options {
                               long they would take */
     gd_per_method method;
     gd_per_kind kind;    /* GD_PER_HB (default), GD_PER_SHOOTING or GD_PER_AUTO (shooting
-                            continues naturally, whatever `method` says) */
+                            by arclength needs the dense monodromy: on the Newton-Krylov
+                            path it continues naturally, whatever `method` says) */
     double shoot_rtol;   /* shooting: the integrator's relative tolerance (0: 1e-9); the
                             absolute ones are 1e-3 of it times the orbit's largest
                             displacement and velocity, and Newton stops at a scaled

@@ -10,12 +10,10 @@
  * the scaled |F| (Seydel 2010, Sec. 7.3). The Floquet multipliers are the eigenvalues of
  * Phi at the converged orbit; the records' statistics come from one more integrated period
  * sampled at the times harmonic balance samples its records (so both report the same
- * quantities). The continuation is natural in the value (speed or model parameter): each
- * point starts from the previous points' states extrapolated linearly, the first (or one
- * whose Newton fails from there) from a short transient from rest or from the static state
- * under the loads, which a stable orbit attracts. Bifurcations are found between points
- * where the multipliers cross the unit circle and located by secant iterations on the
- * critical multiplier's modulus, each a shooting solve. */
+ * quantities). This file holds the problem per value, the period map, Newton (dense and
+ * Newton-Krylov), the warm start and the points; the continuation is in
+ * shooting_arclength.c (pseudo-arclength) and shooting_natural.c (natural, and the
+ * entry gd_per_shoot_run). */
 #include <lapacke.h>
 #include <math.h>
 #include <stdio.h>
@@ -25,6 +23,7 @@
 
 #include "geardyn/transient_model.h"
 #include "periodic/continuation_impl.h"
+#include "periodic/shooting_impl.h"
 #include "periodic/periodic_impl.h"
 
 /* Most periods of the warm-start transient (it stops once a period changes the state by
@@ -32,61 +31,15 @@
  * the rest (the Chen pair's first point then converges in 2 to 5 iterations). */
 #define WARM_PERIODS 12
 
-typedef struct shoot {
-    const gd_system *sys0;
-    const gd_transient_spec *spec0;
-    const gd_periodic_param *param;
-    const gd_periodic_options *opt;
-    const gd_tr_record *rec;
-    int nrec;
-    gd_periodic_result *res;
-    int cap_points, cap_bif;
-    int dir, ndir;
-    double v0, v1;
-    /* the problem at the current value */
-    gd_tr_load *loads;       /* load_frequency: the loads at it (owned) */
-    gd_transient_spec fspec; /* load_frequency: the caller's spec with them */
-    double key;
-    int have;
-    gd_model *m;
-    gd_system *s;
-    gd_transient_model *tm;
-    const gd_system *sys;
-    const gd_transient_spec *spec;
-    gd_transient *tr;
-    int N, nf, ndof, H, Nr;
-    int *free_dof; /* nf: the system DOF of each free DOF */
-    double w, T;
-    double rtol, atol_q, atol_v, tol;
-    /* work: N each, phi and A N x N */
-    double *mem; /* the allocation of phi .. mim (phi and A trade places) */
-    double *phi, *A, *yT, *r, *dy, *yt, *q0, *qv0, *mre, *mim, *racc, *ytmp;
-    int *ipiv;
-    size_t capN;
-    int capdof;
-    char why[256];
-    /* CPU budget of a point (opt->shoot_budget): the time spent, the measured costs of one
-     * plain period and of the last monodromy (0: not measured yet) */
-    double cpu0, t_period, t_mono;
-    double warm_change; /* the last warm-start period's scaled change (NAN: none) */
-    int warm_periods;
-    int budget_hit; /* the point stopped at its budget */
-    int dense;      /* the dense monodromy (else Newton-Krylov on monodromy-vector products) */
-} shoot;
-
-static void release_problem(shoot *sh)
+/* Releases the problem of slot q. */
+static void release_slot(shoot_prob *q)
 {
-    gd_transient_free(sh->tr);
-    gd_transient_model_free(sh->tm);
-    free(sh->loads);
-    sh->loads = NULL;
-    gd_system_free(sh->s);
-    gd_model_free(sh->m);
-    sh->tr = NULL;
-    sh->tm = NULL;
-    sh->s = NULL;
-    sh->m = NULL;
-    sh->have = 0;
+    gd_transient_free(q->tr);
+    gd_transient_model_free(q->tm);
+    free(q->loads);
+    gd_system_free(q->s);
+    gd_model_free(q->m);
+    memset(q, 0, sizeof *q);
 }
 
 static int grow(shoot *sh)
@@ -125,25 +78,32 @@ static int grow(shoot *sh)
 
 /* The problem at value key (a speed, or the parameter through the caller's rebuild).
  * 0 ok; 1 with sh->why. */
-static int make_problem(shoot *sh, double key)
+int gd_per_sh_problem(shoot *sh, double key)
 {
-    if (sh->have && sh->key == key) return 0;
-    release_problem(sh);
+    if (!sh->p) sh->p = &sh->slot[0];
+    if (sh->p->have && sh->p->key == key) return 0;
+    /* the other slot holds it (the bordered corrector alternates the value and the value
+     * plus its difference step), else it is made there: the last problem stays */
+    shoot_prob *o = sh->p == &sh->slot[0] ? &sh->slot[1] : &sh->slot[0];
+    sh->p = o;
+    if (o->have && o->key == key) return 0;
+    release_slot(o);
     gd_error err;
     double speed = key;
-    sh->sys = sh->sys0;
-    sh->spec = sh->spec0;
+    sh->p->sys = sh->sys0;
+    sh->p->spec = sh->spec0;
     if (sh->param && sh->param->load_frequency) {
-        if (gd_per_frequency_spec(sh->spec0, key, &sh->loads, &sh->fspec, sh->why, sizeof sh->why))
+        if (gd_per_frequency_spec(sh->spec0, key, &sh->p->loads, &sh->p->fspec, sh->why,
+                                  sizeof sh->why))
             return 1;
-        sh->spec = &sh->fspec;
+        sh->p->spec = &sh->p->fspec;
         speed = sh->param->speed;
     } else if (sh->param) {
         const gd_periodic_param *p = sh->param;
-        gd_status st = p->rebuild ? p->rebuild(key, p->data, &sh->m, &sh->s, &sh->tm, &err)
+        gd_status st = p->rebuild ? p->rebuild(key, p->data, &sh->p->m, &sh->p->s, &sh->p->tm, &err)
                                   : gd_error_set(&err, GD_EINPUT, "", 0, 0, "param", "",
                                                  "no rebuild function");
-        if (!st && (!sh->m || !sh->s || !sh->tm))
+        if (!st && (!sh->p->m || !sh->p->s || !sh->p->tm))
             st =
                 gd_error_set(&err, GD_EINPUT, "", 0, 0, "param", "", "rebuild returned no problem");
         if (st) {
@@ -151,31 +111,31 @@ static int make_problem(shoot *sh, double key)
                      key, err.message);
             return 1;
         }
-        sh->sys = sh->s;
-        sh->spec = &sh->tm->spec;
+        sh->p->sys = sh->p->s;
+        sh->p->spec = &sh->p->tm->spec;
         speed = p->speed;
     }
     double w0;
     int order;
-    if (gd_periodic_fundamental(sh->sys, sh->spec, speed, &w0, &order, &err)) {
+    if (gd_periodic_fundamental(sh->p->sys, sh->p->spec, speed, &w0, &order, &err)) {
         snprintf(sh->why, sizeof sh->why, "%.250s", err.message);
         return 1;
     }
-    sh->w = w0 / sh->opt->subharmonic;
-    sh->T = TWO_PI / sh->w;
+    sh->p->w = w0 / sh->opt->subharmonic;
+    sh->p->T = TWO_PI / sh->p->w;
     /* the harmonics reported: as harmonic balance would use them (at least every
      * excitation's multiple of the period) */
     long need = (long)order * sh->opt->subharmonic;
-    sh->H = sh->opt->harmonics;
-    if (sh->opt->adaptive && need > sh->H) sh->H = need > 1 << 20 ? 1 << 20 : (int)need;
-    sh->Nr = 256;
-    while (sh->Nr < 8 * (sh->H + 1))
-        sh->Nr *= 2;
-    if (gd_transient_new(sh->sys, sh->spec, speed, &sh->tr, &err)) {
+    sh->p->H = sh->opt->harmonics;
+    if (sh->opt->adaptive && need > sh->p->H) sh->p->H = need > 1 << 20 ? 1 << 20 : (int)need;
+    sh->p->Nr = 256;
+    while (sh->p->Nr < 8 * (sh->p->H + 1))
+        sh->p->Nr *= 2;
+    if (gd_transient_new(sh->p->sys, sh->p->spec, speed, &sh->p->tr, &err)) {
         snprintf(sh->why, sizeof sh->why, "%.250s", err.message);
         return 1;
     }
-    int N = gd_transient_nstates(sh->tr);
+    int N = gd_transient_nstates(sh->p->tr);
     if (sh->N && N != sh->N) {
         snprintf(sh->why, sizeof sh->why, "the number of free DOFs changes with the parameter");
         return 1;
@@ -183,7 +143,7 @@ static int make_problem(shoot *sh, double key)
     sh->N = N;
     sh->nf = N / 2;
     sh->dense = N <= (sh->opt->shoot_dense_max > 0 ? sh->opt->shoot_dense_max : 64);
-    sh->ndof = sh->sys->ndof;
+    sh->ndof = sh->p->sys->ndof;
     if (grow(sh)) {
         snprintf(sh->why, sizeof sh->why, "out of memory (%d states)", N);
         return 1;
@@ -196,7 +156,7 @@ static int make_problem(shoot *sh, double key)
     for (int d = 0; d < sh->ndof; d++) {
         gd_tr_record rec = {GD_REC_DISP, d, 0};
         int k = -1;
-        if (gd_transient_record_dofs(sh->tr, &rec, &k, 1) == 1 && k >= 0 && k < sh->nf)
+        if (gd_transient_record_dofs(sh->p->tr, &rec, &k, 1) == 1 && k >= 0 && k < sh->nf)
             sh->free_dof[k] = d;
     }
     for (int i = 0; i < sh->nf; i++)
@@ -205,20 +165,37 @@ static int make_problem(shoot *sh, double key)
                      "shooting needs the physical DOFs (a reduced model is not supported)");
             return 1;
         }
-    sh->key = key;
-    sh->have = 1;
+    sh->p->key = key;
+    sh->p->have = 1;
     return 0;
 }
 
-/* Integration tolerances from the size of the state y (atol a thousandth of rtol times
- * the largest displacement and velocity): the orbit, not its units, sets them. */
-static void set_tolerances(shoot *sh, const double *y)
+/* The sizes of the displacements and of the velocities of the orbit through y: the
+ * largest of each block, each at least the other over (times) the frequency w, since an
+ * oscillation of amplitude a has velocities w a. The state at t = 0 is one sample of the
+ * orbit: a displacement there can pass through zero while the orbit does not shrink (the
+ * backlash pair's unstable branch near 419 rad/s: q(0) 2e-7 rad with velocities of 0.58
+ * rad/s at w = 8380 rad/s), and scales from it alone made the residual test and the
+ * arclength's variables hang on that sample. */
+static void block_size(const shoot *sh, const double *y, double *sq, double *sv)
 {
-    double sq = 0.0, sv = 0.0;
+    double q = 0.0, v = 0.0;
     for (int i = 0; i < sh->nf; i++) {
-        sq = fmax(sq, fabs(y[i]));
-        sv = fmax(sv, fabs(y[sh->nf + i]));
+        q = fmax(q, fabs(y[i]));
+        v = fmax(v, fabs(y[sh->nf + i]));
     }
+    const double w = sh->p && sh->p->have ? sh->p->w : 0.0;
+    *sq = w > 0 ? fmax(q, v / w) : q;
+    *sv = w > 0 ? fmax(v, w * q) : v;
+}
+
+/* Integration tolerances from the size of the orbit through y (atol a thousandth of rtol
+ * times the displacements' and the velocities' sizes): the orbit, not its units, sets
+ * them. */
+void gd_per_sh_tolerances(shoot *sh, const double *y)
+{
+    double sq, sv;
+    block_size(sh, y, &sq, &sv);
     sh->rtol = sh->opt->shoot_rtol > 0 ? sh->opt->shoot_rtol : 1e-9;
     sh->atol_q = sh->rtol * (sq > 0 ? 1e-3 * sq : 1e-6);
     sh->atol_v = sh->rtol * (sv > 0 ? 1e-3 * sv : 1e-3);
@@ -234,19 +211,20 @@ static void tr_options(const shoot *sh, gd_transient_options *o)
     o->atol_q = sh->atol_q;
     o->atol_v = sh->atol_v;
     o->t_start = 0.0;
-    o->t_end = sh->T;
-    o->output_interval = sh->T;
+    o->t_end = sh->p->T;
+    o->output_interval = sh->p->T;
 }
 
 /* |F| scaled: per block (displacements, velocities) the largest entry relative to the
- * block's largest state (or its tolerance scale). */
-static double scaled_norm(const shoot *sh, const double *y, const double *f)
+ * block's size (block_size, or its tolerance scale). */
+double gd_per_sh_norm(const shoot *sh, const double *y, const double *f)
 {
     const int nf = sh->nf;
-    double yq = sh->atol_q / sh->rtol, yv = sh->atol_v / sh->rtol, fq = 0.0, fv = 0.0;
+    double yq, yv, fq = 0.0, fv = 0.0;
+    block_size(sh, y, &yq, &yv);
+    yq = fmax(yq, sh->atol_q / sh->rtol);
+    yv = fmax(yv, sh->atol_v / sh->rtol);
     for (int i = 0; i < nf; i++) {
-        yq = fmax(yq, fabs(y[i]));
-        yv = fmax(yv, fabs(y[nf + i]));
         fq = fmax(fq, fabs(f[i]));
         fv = fmax(fv, fabs(f[nf + i]));
     }
@@ -279,11 +257,11 @@ static gd_transient_result *integrate(shoot *sh, const double *y, double t_end, 
         o.q0 = sh->q0;
         o.v0 = sh->qv0;
     } else {
-        o.init = sh->spec->nloads ? GD_TR_INIT_STATIC : GD_TR_INIT_REST;
+        o.init = sh->p->spec->nloads ? GD_TR_INIT_STATIC : GD_TR_INIT_REST;
     }
     gd_transient_result *r = NULL;
     gd_error err;
-    if (gd_transient_run(sh->tr, &o, rec, nrec, &r, &err)) {
+    if (gd_transient_run(sh->p->tr, &o, rec, nrec, &r, &err)) {
         snprintf(sh->why, sizeof sh->why, "integration failed: %.220s", err.message);
         return NULL;
     }
@@ -298,7 +276,7 @@ static void from_dofs(const shoot *sh, const gd_transient_result *r, double *y)
     }
 }
 
-static double cpu_now(void)
+double gd_per_sh_cpu(void)
 {
     return (double)clock() / CLOCKS_PER_SEC;
 }
@@ -315,7 +293,7 @@ static double mono_cost(const shoot *sh)
  * sh->why says so, with what the warm start saw. */
 static int over_budget(shoot *sh, double next, const char *what)
 {
-    const double budget = sh->opt->shoot_budget, used = cpu_now() - sh->cpu0;
+    const double budget = sh->opt->shoot_budget, used = gd_per_sh_cpu() - sh->cpu0;
     if (!(budget > 0) || used + next <= budget) return 0;
     sh->budget_hit = 1;
     char settle[160] = "";
@@ -334,28 +312,28 @@ static int over_budget(shoot *sh, double next, const char *what)
 }
 
 /* yT = P(y) by a plain integration. 0 ok. */
-static int period_map(shoot *sh, const double *y, double *yT)
+int gd_per_sh_period(shoot *sh, const double *y, double *yT)
 {
     if (sh->t_period > 0 && over_budget(sh, sh->t_period, "a period of the line search")) return 1;
-    double t0 = cpu_now();
-    gd_transient_result *r = integrate(sh, y, sh->T, NULL, 0, NULL, 0);
+    double t0 = gd_per_sh_cpu();
+    gd_transient_result *r = integrate(sh, y, sh->p->T, NULL, 0, NULL, 0);
     if (!r) return 1;
-    sh->t_period = cpu_now() - t0;
+    sh->t_period = gd_per_sh_cpu() - t0;
     from_dofs(sh, r, yT);
     gd_transient_result_free(r);
     return 0;
 }
 
 /* Phi and yT = P(y). 0 ok. */
-static int monodromy(shoot *sh, const double *y, double *phi, double *yT)
+int gd_per_sh_monodromy(shoot *sh, const double *y, double *phi, double *yT)
 {
     gd_transient_options o;
     tr_options(sh, &o);
     gd_error err;
     if (sh->t_period > 0 && over_budget(sh, mono_cost(sh), "the next monodromy matrix")) return 1;
-    double t0 = cpu_now();
-    gd_status st = gd_transient_monodromy(sh->tr, 0.0, sh->T, y, &o, phi, yT, &err);
-    sh->t_mono = cpu_now() - t0;
+    double t0 = gd_per_sh_cpu();
+    gd_status st = gd_transient_monodromy(sh->p->tr, 0.0, sh->p->T, y, &o, phi, yT, &err);
+    sh->t_mono = gd_per_sh_cpu() - t0;
     if (st) {
         snprintf(sh->why, sizeof sh->why, "monodromy failed: %.220s", err.message);
         return 1;
@@ -372,26 +350,26 @@ static int monodromy(shoot *sh, const double *y, double *phi, double *yT)
  * state under the loads), one period at a time: it stops once a period changes the state
  * by less than 1e-3 (scaled as the Newton residual; Newton takes it from there), and
  * keeps the last change for the messages (a rattling train never settles). 0 ok. */
-static int warm_start(shoot *sh, double *y)
+int gd_per_sh_warm(shoot *sh, double *y)
 {
     memset(sh->yt, 0, (size_t)sh->N * sizeof *sh->yt);
-    set_tolerances(sh, sh->yt); /* the orbit's size is not known yet */
+    gd_per_sh_tolerances(sh, sh->yt); /* the orbit's size is not known yet */
     sh->warm_change = NAN;
     sh->warm_periods = 0;
-    double t0 = cpu_now();
-    gd_transient_result *r = integrate(sh, NULL, sh->T, NULL, 0, NULL, 0);
+    double t0 = gd_per_sh_cpu();
+    gd_transient_result *r = integrate(sh, NULL, sh->p->T, NULL, 0, NULL, 0);
     if (!r) return 1;
-    sh->t_period = cpu_now() - t0;
+    sh->t_period = gd_per_sh_cpu() - t0;
     from_dofs(sh, r, y);
     gd_transient_result_free(r);
     sh->warm_periods = 1;
     for (int k = 1; k < WARM_PERIODS; k++) {
         if (over_budget(sh, sh->t_period, "the warm-start transient")) break;
-        set_tolerances(sh, y);
-        if (period_map(sh, y, sh->yT)) return 1;
+        gd_per_sh_tolerances(sh, y);
+        if (gd_per_sh_period(sh, y, sh->yT)) return 1;
         for (int i = 0; i < sh->N; i++)
             sh->r[i] = sh->yT[i] - y[i];
-        sh->warm_change = scaled_norm(sh, sh->yT, sh->r);
+        sh->warm_change = gd_per_sh_norm(sh, sh->yT, sh->r);
         memcpy(y, sh->yT, (size_t)sh->N * sizeof *y);
         sh->warm_periods = k + 1;
         if (sh->warm_change < 1e-3) break;
@@ -409,13 +387,13 @@ static int warm_start(shoot *sh, double *y)
  * multipliers up to 1e27, gave a "noise" of order 1) and must not pass for converged.
  * F at y from the monodromy is in sh->racc (NULL: the fixed part only). */
 #define NOISE_CAP 1e-5
-static double noise_floor(shoot *sh, const double *y)
+double gd_per_sh_noise(shoot *sh, const double *y)
 {
     double fl = fmin(1e4 * sh->rtol, NOISE_CAP);
-    if (y && !period_map(sh, y, sh->ytmp)) {
+    if (y && !gd_per_sh_period(sh, y, sh->ytmp)) {
         for (int i = 0; i < sh->N; i++)
             sh->ytmp[i] -= y[i] + sh->racc[i];
-        fl = fmin(fmax(fl, 10.0 * scaled_norm(sh, y, sh->ytmp)), NOISE_CAP);
+        fl = fmin(fmax(fl, 10.0 * gd_per_sh_norm(sh, y, sh->ytmp)), NOISE_CAP);
     }
     return fmax(sh->tol, fl);
 }
@@ -447,7 +425,7 @@ static int phi_vec(shoot *sh, kry *k, const double *z, double *w)
     const double h = sqrt(sh->rtol) / nz;
     for (int i = 0; i < N; i++)
         k->yt[i] = k->y[i] + h * k->d[i] * z[i];
-    if (period_map(sh, k->yt, k->pt)) return 1;
+    if (gd_per_sh_period(sh, k->yt, k->pt)) return 1;
     for (int i = 0; i < N; i++)
         w[i] = (k->pt[i] - k->py[i]) / (h * k->d[i]);
     return 0;
@@ -560,13 +538,12 @@ static int arnoldi(shoot *sh, kry *k, double shift, const double *v0, int m, dou
     return rc;
 }
 
-static void block_scales(const shoot *sh, const double *y, double *d)
+void gd_per_sh_scales(const shoot *sh, const double *y, double *d)
 {
-    double yq = sh->atol_q / sh->rtol, yv = sh->atol_v / sh->rtol;
-    for (int i = 0; i < sh->nf; i++) {
-        yq = fmax(yq, fabs(y[i]));
-        yv = fmax(yv, fabs(y[sh->nf + i]));
-    }
+    double yq, yv;
+    block_size(sh, y, &yq, &yv);
+    yq = fmax(yq, sh->atol_q / sh->rtol);
+    yv = fmax(yv, sh->atol_v / sh->rtol);
     for (int i = 0; i < sh->N; i++)
         d[i] = i < sh->nf ? yq : yv;
 }
@@ -577,7 +554,7 @@ static void block_scales(const shoot *sh, const double *y, double *d)
 static int newton_krylov(shoot *sh, double *y, int *iters, double *resid)
 {
     const int N = sh->N, m = N < KRYLOV_M ? N : KRYLOV_M, maxit = sh->opt->max_iter;
-    set_tolerances(sh, y);
+    gd_per_sh_tolerances(sh, y);
     *iters = 0;
     double *V = malloc(((size_t)N * (m + 1) + (size_t)(m + 1) * m + 5 * (size_t)N) * sizeof *V);
     if (!V) {
@@ -587,10 +564,10 @@ static int newton_krylov(shoot *sh, double *y, int *iters, double *resid)
     double *H = V + (size_t)N * (m + 1), *d = H + (size_t)(m + 1) * m, *b = d + N, *x = b + N,
            *py = x + N, *pt = py + N;
     int rc = 1;
-    if (period_map(sh, y, py)) goto done;
+    if (gd_per_sh_period(sh, y, py)) goto done;
     for (int i = 0; i < N; i++)
         sh->r[i] = py[i] - y[i];
-    double res = scaled_norm(sh, y, sh->r);
+    double res = gd_per_sh_norm(sh, y, sh->r);
     for (int it = 0;; it++) {
         *resid = res;
         if (res <= sh->tol) {
@@ -603,7 +580,7 @@ static int newton_krylov(shoot *sh, double *y, int *iters, double *resid)
                      maxit, res);
             break;
         }
-        block_scales(sh, y, d);
+        gd_per_sh_scales(sh, y, d);
         kry k = {y, py, d, sh->yt, pt};
         for (int i = 0; i < N; i++)
             b[i] = -sh->r[i] / d[i];
@@ -632,15 +609,15 @@ static int newton_krylov(shoot *sh, double *y, int *iters, double *resid)
         for (int ls = 0; ls < 7; ls++, alpha *= 0.5) {
             for (int i = 0; i < N; i++)
                 sh->yt[i] = y[i] + alpha * sh->dy[i];
-            if (period_map(sh, sh->yt, pt)) goto done;
+            if (gd_per_sh_period(sh, sh->yt, pt)) goto done;
             for (int i = 0; i < N; i++)
                 sh->yT[i] = pt[i] - sh->yt[i];
-            rt = scaled_norm(sh, sh->yt, sh->yT);
+            rt = gd_per_sh_norm(sh, sh->yt, sh->yT);
             if (rt < res) break;
         }
         *iters = it + 1;
         if (!(rt < res)) {
-            if (res <= noise_floor(sh, NULL)) {
+            if (res <= gd_per_sh_noise(sh, NULL)) {
                 rc = 0;
                 break;
             }
@@ -672,9 +649,9 @@ static int krylov_multipliers(shoot *sh, const double *y, double *mre, double *m
     double *H = V + (size_t)N * (m + 1), *d = H + (size_t)(m + 1) * m, *py = d + N, *pt = py + N,
            *v0 = pt + N, *Hs = v0 + N;
     int n = -1, steps = 0;
-    set_tolerances(sh, y);
-    block_scales(sh, y, d);
-    if (!period_map(sh, y, py)) {
+    gd_per_sh_tolerances(sh, y);
+    gd_per_sh_scales(sh, y, d);
+    if (!gd_per_sh_period(sh, y, py)) {
         kry k = {y, py, d, sh->yt, pt};
         for (int i = 0; i < N; i++) /* every state excited, none by symmetry left out */
             v0[i] = 1.0 + 0.5 * sin(1.0 + i);
@@ -694,16 +671,16 @@ static int krylov_multipliers(shoot *sh, const double *y, double *mre, double *m
 
 /* Newton on F(y) = P(y) - y from y (in place). On success sh->phi is the monodromy at y.
  * 0 converged; 1 not, with sh->why. */
-static int newton(shoot *sh, double *y, int *iters, double *resid)
+int gd_per_sh_newton(shoot *sh, double *y, int *iters, double *resid)
 {
     if (!sh->dense) return newton_krylov(sh, y, iters, resid);
     const int N = sh->N, maxit = sh->opt->max_iter;
-    set_tolerances(sh, y);
+    gd_per_sh_tolerances(sh, y);
     *iters = 0;
-    if (monodromy(sh, y, sh->phi, sh->yT)) return 1;
+    if (gd_per_sh_monodromy(sh, y, sh->phi, sh->yT)) return 1;
     for (int i = 0; i < N; i++)
         sh->r[i] = sh->yT[i] - y[i];
-    double res = scaled_norm(sh, y, sh->r);
+    double res = gd_per_sh_norm(sh, y, sh->r);
     memcpy(sh->racc, sh->r, (size_t)N * sizeof *sh->racc);
     int slow = 0;
     for (int it = 0;; it++) {
@@ -732,23 +709,23 @@ static int newton(shoot *sh, double *y, int *iters, double *resid)
         double alpha = 1.0, rt = INFINITY;
         for (int i = 0; i < N; i++)
             sh->yt[i] = y[i] + sh->dy[i];
-        if (monodromy(sh, sh->yt, sh->A, sh->yT)) return 1;
+        if (gd_per_sh_monodromy(sh, sh->yt, sh->A, sh->yT)) return 1;
         for (int i = 0; i < N; i++)
             sh->r[i] = sh->yT[i] - sh->yt[i];
-        rt = scaled_norm(sh, sh->yt, sh->r);
+        rt = gd_per_sh_norm(sh, sh->yt, sh->r);
         int full = rt < res;
         while (!full && alpha > 1.0 / 64) {
             alpha *= 0.5;
             for (int i = 0; i < N; i++)
                 sh->yt[i] = y[i] + alpha * sh->dy[i];
-            if (period_map(sh, sh->yt, sh->yT)) return 1;
+            if (gd_per_sh_period(sh, sh->yt, sh->yT)) return 1;
             for (int i = 0; i < N; i++)
                 sh->r[i] = sh->yT[i] - sh->yt[i];
-            rt = scaled_norm(sh, sh->yt, sh->r);
+            rt = gd_per_sh_norm(sh, sh->yt, sh->r);
             if (rt < res) break;
         }
         *iters = it + 1;
-        if (!(rt < res) && res <= noise_floor(sh, y)) return 0;
+        if (!(rt < res) && res <= gd_per_sh_noise(sh, y)) return 0;
         if (!(rt < res)) {
             snprintf(sh->why, sizeof sh->why,
                      "shooting: Newton stalls at residual %.2g (tolerance %.2g): no isolated "
@@ -761,12 +738,12 @@ static int newton(shoot *sh, double *y, int *iters, double *resid)
             double *t = sh->phi;
             sh->phi = sh->A;
             sh->A = t;
-        } else if (monodromy(sh, y, sh->phi, sh->yT)) {
+        } else if (gd_per_sh_monodromy(sh, y, sh->phi, sh->yT)) {
             return 1;
         } else {
             for (int i = 0; i < N; i++)
                 sh->r[i] = sh->yT[i] - y[i];
-            rt = scaled_norm(sh, y, sh->r);
+            rt = gd_per_sh_norm(sh, y, sh->r);
         }
         memcpy(sh->racc, sh->r, (size_t)N * sizeof *sh->racc);
         /* a residual that no longer falls is a stall (a chattering orbit): stop early
@@ -774,7 +751,7 @@ static int newton(shoot *sh, double *y, int *iters, double *resid)
         slow = rt > 0.5 * res ? slow + 1 : 0;
         res = rt;
         if (slow >= 4 && res > sh->tol) {
-            if (res <= noise_floor(sh, y)) return 0;
+            if (res <= gd_per_sh_noise(sh, y)) return 0;
             *resid = res;
             snprintf(sh->why, sizeof sh->why,
                      "shooting: Newton stalls at residual %.2g (tolerance %.2g) after %d "
@@ -807,7 +784,7 @@ static gd_periodic_point *new_point(shoot *sh, double key)
     p->harmonic_error_p2p = p->harmonic_error_amp = NAN;
     p->speed = sh->param ? sh->param->speed : key;
     p->parameter = sh->param ? key : NAN;
-    p->harmonics = sh->H;
+    p->harmonics = sh->p->H;
     return p;
 }
 
@@ -822,7 +799,7 @@ static void announce(shoot *sh, double key)
 
 /* Multipliers of the orbit through y: the eigenvalues of sh->phi (destroyed), or the
  * Krylov estimate of the largest. Their count, -1 on failure. */
-static int multipliers(shoot *sh, const double *y, double *mre, double *mim)
+int gd_per_sh_multipliers(shoot *sh, const double *y, double *mre, double *mim)
 {
     if (!sh->dense) return krylov_multipliers(sh, y, mre, mim);
     double dummy[1];
@@ -834,16 +811,16 @@ static int multipliers(shoot *sh, const double *y, double *mre, double *mim)
 
 /* The point at the converged state y: records and coefficients from one integrated period
  * sampled at Nr times, multipliers from sh->phi. 0 ok, 1 out of memory. */
-static int emit(shoot *sh, double key, const double *y, int iters, double resid)
+int gd_per_sh_emit(shoot *sh, double key, const double *y, int iters, double resid)
 {
-    const int nf = sh->nf, H = sh->H, Nr = sh->Nr, nr = sh->nrec;
+    const int nf = sh->nf, H = sh->p->H, Nr = sh->p->Nr, nr = sh->nrec;
     gd_periodic_point *p = new_point(sh, key);
     if (!p) return 1;
     double *ts = malloc((size_t)Nr * sizeof *ts);
     if (!ts) return 1;
     for (int j = 0; j < Nr; j++)
-        ts[j] = sh->T * j / Nr;
-    gd_transient_result *r = integrate(sh, y, sh->T, ts, Nr, sh->rec, nr);
+        ts[j] = sh->p->T * j / Nr;
+    gd_transient_result *r = integrate(sh, y, sh->p->T, ts, Nr, sh->rec, nr);
     free(ts);
     if (!r || r->nsamples != Nr) {
         gd_transient_result_free(r);
@@ -853,7 +830,7 @@ static int emit(shoot *sh, double key, const double *y, int iters, double resid)
         return 0;
     }
     p->converged = 1;
-    p->omega = sh->w;
+    p->omega = sh->p->w;
     p->residual = resid;
     p->iterations = iters;
     p->nfree = nf;
@@ -888,7 +865,7 @@ static int emit(shoot *sh, double key, const double *y, int iters, double resid)
         p->mu_re = malloc((size_t)sh->N * sizeof *p->mu_re);
         p->mu_im = malloc((size_t)sh->N * sizeof *p->mu_im);
         if (!p->mu_re || !p->mu_im) goto done;
-        int nm = multipliers(sh, y, p->mu_re, p->mu_im);
+        int nm = gd_per_sh_multipliers(sh, y, p->mu_re, p->mu_im);
         if (nm < 0) {
             snprintf(p->reason, sizeof p->reason, "stability not computed: %.200s",
                      sh->dense ? "dgeev failed" : sh->why);
@@ -915,7 +892,7 @@ done:
     return rc;
 }
 
-static int fail_point(shoot *sh, double key)
+int gd_per_sh_fail(shoot *sh, double key)
 {
     gd_periodic_point *p = new_point(sh, key);
     if (!p) return 1;
@@ -926,7 +903,7 @@ static int fail_point(shoot *sh, double key)
 
 /* ---------------------------------------------------------------- bifurcations */
 
-static int add_bif(shoot *sh, gd_bifurcation_type type, double key, double mre, double mim)
+int gd_per_sh_add_bif(shoot *sh, gd_bifurcation_type type, double key, double mre, double mim)
 {
     gd_periodic_result *r = sh->res;
     if (r->nbifurcations == sh->cap_bif) {
@@ -947,7 +924,7 @@ static int add_bif(shoot *sh, gd_bifurcation_type type, double key, double mre, 
 }
 
 /* The largest |mu| of each kind: 0 real positive, 1 real negative, 2 complex. */
-static void kinds(const double *re, const double *im, int n, double g[3], int at[3])
+void gd_per_sh_kinds(const double *re, const double *im, int n, double g[3], int at[3])
 {
     for (int k = 0; k < 3; k++) {
         g[k] = 0.0;
@@ -963,218 +940,12 @@ static void kinds(const double *re, const double *im, int n, double g[3], int at
     }
 }
 
-/* The critical multiplier of kind k at value key from state y (a shooting solve):
- * |mu| - 1 in *g, the multiplier in (*re, *im). 0 ok. */
-static int critical(shoot *sh, double key, double *y, int k, double *g, double *re, double *im)
+void gd_per_sh_free(shoot *sh)
 {
-    int it;
-    double res;
-    int nm;
-    if (make_problem(sh, key) || newton(sh, y, &it, &res) ||
-        (nm = multipliers(sh, y, sh->mre, sh->mim)) < 0)
-        return 1;
-    double gg[3];
-    int at[3];
-    kinds(sh->mre, sh->mim, nm, gg, at);
-    /* none of that kind (a complex pair not yet split on the axis): modulus 0 */
-    *g = gg[k] - 1.0;
-    *re = at[k] >= 0 ? sh->mre[at[k]] : NAN;
-    *im = at[k] >= 0 ? sh->mim[at[k]] : NAN;
-    return 0;
-}
-
-/* A crossing of the unit circle by the multipliers of kind k between (la, ya, ga) and
- * (lb, yb, gb), located by secant iterations (regula falsi with the Illinois rule) on
- * |mu| - 1 to 1e-8 relative in the value. The located value, or NAN. */
-static double locate(shoot *sh, int k, double la, const double *ya, double ga, double lb,
-                     const double *yb, double gb, double *mre, double *mim)
-{
-    const int N = sh->N;
-    double *y = malloc((size_t)N * sizeof *y), lx = NAN;
-    if (!y) return NAN;
-    double a = la, b = lb, fa = ga, fb = gb;
-    int side = 0;
-    for (int it = 0; it < 30; it++) {
-        double x = b - fb * (b - a) / (fb - fa), g, re, im;
-        if (!(x > fmin(a, b) && x < fmax(a, b))) x = 0.5 * (a + b);
-        /* start from the nearer end's state, interpolated */
-        double s = (x - la) / (lb - la);
-        for (int i = 0; i < N; i++)
-            y[i] = (1 - s) * ya[i] + s * yb[i];
-        if (critical(sh, x, y, k, &g, &re, &im)) break;
-        lx = x;
-        if (isfinite(re)) {
-            *mre = re;
-            *mim = im;
-        }
-        if (fabs(g) < 1e-12 || fabs(b - a) <= 1e-8 * fabs(x)) break;
-        if ((g > 0) == (fb > 0)) {
-            b = x;
-            fb = g;
-            if (side == -1) fa *= 0.5;
-            side = -1;
-        } else {
-            a = x;
-            fa = g;
-            if (side == 1) fb *= 0.5;
-            side = 1;
-        }
-        if (fabs(b - a) <= 1e-8 * fabs(x)) break;
-    }
-    free(y);
-    return lx;
-}
-
-/* Bifurcations between the previous converged point (la, ya, its multipliers) and this
- * one: every kind whose largest modulus crossed 1. */
-static int detect(shoot *sh, double la, const double *ya, const double *ma_re, const double *ma_im,
-                  int na, double lb, const double *yb, const gd_periodic_point *pb)
-{
-    double ga[3], gb[3];
-    int aa[3], ab[3];
-    kinds(ma_re, ma_im, na, ga, aa);
-    kinds(pb->mu_re, pb->mu_im, pb->nmult, gb, ab);
-    static const gd_bifurcation_type type[3] = {GD_BIF_FOLD, GD_BIF_PERIOD_DOUBLING,
-                                                GD_BIF_NEIMARK_SACKER};
-    for (int k = 0; k < 3; k++) {
-        /* a kind absent on one side counts as modulus 0 (a complex pair meets the real
-         * axis before one of it leaves through -1 or +1) */
-        if ((ga[k] > 1.0) == (gb[k] > 1.0)) continue;
-        double re = NAN, im = NAN;
-        double x = locate(sh, k, la, ya, ga[k] - 1.0, lb, yb, gb[k] - 1.0, &re, &im);
-        if (isnan(x)) { /* not located: between the points, linearly */
-            x = la + (lb - la) * (1.0 - ga[k]) / (gb[k] - ga[k]);
-            re = im = NAN;
-        }
-        /* a real multiplier through +1 on a branch followed in the value is a fold or a
-         * branch point: natural continuation cannot tell (it jumps at a fold), so it is
-         * reported as the fold it usually is */
-        if (add_bif(sh, type[k], x, k == 0 ? NAN : re, k == 0 ? NAN : im)) return 1;
-    }
-    return 0;
-}
-
-/* ---------------------------------------------------------------- the branch */
-
-static int run_direction(shoot *sh, const double *vals, int nv)
-{
-    const int stab = sh->opt->stability;
-    double *ys = NULL; /* the last two converged states, their values */
-    double lv[2] = {NAN, NAN};
-    int nprev = 0, rc = 1;
-    double *mre = NULL, *mim = NULL, *y = NULL;
-    int have_mu = 0;
-    for (int v = 0; v < nv; v++) {
-        double key = vals[v];
-        if (make_problem(sh, key)) {
-            if (fail_point(sh, key)) goto done;
-            nprev = 0;
-            continue;
-        }
-        const int N = sh->N;
-        if (!ys) {
-            ys = malloc((size_t)5 * N * sizeof *ys);
-            if (!ys) goto done;
-            y = ys + 2 * (size_t)N;
-            mre = y + N;
-            mim = mre + N;
-        }
-        int it = 0, ok = 0;
-        double res = NAN;
-        sh->cpu0 = cpu_now();
-        sh->t_mono = 0.0;
-        sh->warm_change = NAN;
-        sh->budget_hit = 0;
-        if (nprev) {
-            /* predictor: the last state, or the secant through the last two */
-            if (nprev == 2) {
-                double s = (key - lv[1]) / (lv[1] - lv[0]);
-                for (int i = 0; i < N; i++)
-                    y[i] = ys[N + i] + s * (ys[N + i] - ys[i]);
-            } else { /* one state only: ys[0..N) is not set yet (0 * garbage can be NaN) */
-                memcpy(y, ys + N, (size_t)N * sizeof *y);
-            }
-            ok = !newton(sh, y, &it, &res);
-        }
-        if (!ok && !sh->budget_hit) {
-            char first[256];
-            snprintf(first, sizeof first, "%s", nprev ? sh->why : "");
-            ok = !warm_start(sh, y) && !newton(sh, y, &it, &res);
-            if (!ok && first[0] && strcmp(first, sh->why)) {
-                char both[256];
-                snprintf(both, sizeof both, "%.110s; from a transient: %.110s", first, sh->why);
-                snprintf(sh->why, sizeof sh->why, "%s", both);
-            }
-        }
-        if (!ok) {
-            if (fail_point(sh, key)) goto done;
-            nprev = 0;
-            have_mu = 0;
-            continue;
-        }
-        if (emit(sh, key, y, it, res)) goto done;
-        gd_periodic_point *p = &sh->res->points[sh->res->npoints - 1];
-        if (stab && p->nmult && have_mu && nprev) {
-            /* the previous point's state and multipliers are ys[N..] and mre/mim */
-            double *ya = malloc((size_t)2 * N * sizeof *ya);
-            if (!ya) goto done;
-            memcpy(ya, ys + N, (size_t)N * sizeof *ya);
-            memcpy(ya + N, y, (size_t)N * sizeof *ya);
-            double la = lv[1];
-            int e = detect(sh, la, ya, mre, mim, have_mu, key, ya + N, p);
-            free(ya);
-            if (e) goto done;
-            if (make_problem(sh, key)) goto done; /* locate moved the problem: back */
-        }
-        p = &sh->res->points[sh->res->npoints - 1];
-        have_mu = p->nmult; /* the count of the previous point's multipliers */
-        if (have_mu) {
-            memcpy(mre, p->mu_re, (size_t)have_mu * sizeof *mre);
-            memcpy(mim, p->mu_im, (size_t)have_mu * sizeof *mim);
-        }
-        if (nprev) memcpy(ys, ys + N, (size_t)N * sizeof *ys);
-        lv[0] = lv[1];
-        memcpy(ys + N, y, (size_t)N * sizeof *ys);
-        lv[1] = key;
-        nprev = nprev < 2 ? nprev + 1 : 2;
-    }
-    rc = 0;
-done:
-    free(ys);
-    return rc;
-}
-
-int gd_per_shoot_run(const gd_system *sys, const gd_transient_spec *spec,
-                     const gd_periodic_param *param, const double *values, int nvalues,
-                     const gd_periodic_options *opt, const gd_tr_record *records, int nrecords,
-                     gd_periodic_result *res)
-{
-    shoot sh;
-    memset(&sh, 0, sizeof sh);
-    sh.sys0 = sys;
-    sh.spec0 = spec;
-    sh.param = param;
-    sh.opt = opt;
-    sh.rec = records;
-    sh.nrec = nrecords;
-    sh.res = res;
-    sh.ndir = opt->both_directions ? 2 : 1;
-    double *rev = malloc((size_t)nvalues * sizeof *rev);
-    int rc = !rev;
-    for (int d = 0; d < sh.ndir && !rc; d++) {
-        sh.dir = d ? -1 : 1;
-        for (int i = 0; i < nvalues; i++)
-            rev[i] = d ? values[nvalues - 1 - i] : values[i];
-        sh.v0 = rev[0];
-        sh.v1 = rev[nvalues - 1];
-        rc = run_direction(&sh, rev, nvalues);
-        res->steps += nvalues;
-    }
-    free(rev);
-    release_problem(&sh);
-    free(sh.mem);
-    free(sh.ipiv);
-    free(sh.q0);
-    free(sh.free_dof);
-    return rc;
+    release_slot(&sh->slot[0]);
+    release_slot(&sh->slot[1]);
+    free(sh->mem);
+    free(sh->ipiv);
+    free(sh->q0);
+    free(sh->free_dof);
 }

@@ -1,0 +1,465 @@
+/* Pseudo-arclength continuation of shooting's orbits (docs/periodic.md, "Shooting"; Keller
+ * 1977, Seydel 2010 Sec. 4.5): the unknowns are the initial state y0 and the value lambda
+ * (speed or parameter), the equations
+ *
+ *   F(y0; lambda) = P(y0; lambda) - y0 = 0,   t . ((y0, lambda) - (y_p, lambda_p)) = 0,
+ *
+ * the second the hyperplane through the predictor y_p = y + ds t normal to the unit tangent
+ * t. The bordered Newton corrector takes dF/dy0 = Phi - I from the monodromy
+ * (gd_transient_monodromy, the saltation matrices included) and dF/dlambda by a forward
+ * difference of the period map (the problem at lambda + dl, with its own period T), both in
+ * the variables scaled as harmonic balance's continuation scales them: each block of y0
+ * (displacements, velocities) by its largest entry, lambda by the requested range. The step
+ * control, the turn limit, the outputs at the requested values (a Newton at that fixed value
+ * from the step's interpolate) and the fold rule (where the tangent's lambda component changes
+ * sign) are those of continuation.c. Folds, period doublings, Neimark-Sacker and branch points
+ * are located on the branch between two steps by Illinois iterations over points of the
+ * branch (each a corrector on the hyperplane normal to the chord), on the tangent's lambda
+ * component or on the critical multiplier's modulus minus 1. */
+#include <lapacke.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "periodic/shooting_impl.h"
+
+/* The branch's scales and work arrays. */
+typedef struct arc {
+    shoot *sh;
+    int N;
+    double sl;  /* scale of lambda: the requested range */
+    double *D;  /* N: the block scales of y (gd_per_sh_scales) */
+    double *Fl; /* N: dF/dlambda at the last point */
+    double *J;  /* (N + 1)^2 */
+    double *b;  /* N + 1 */
+    double *P2; /* N */
+    int *ipiv;  /* N + 1 */
+} arc;
+
+/* dF/dlambda at (y, lam) into a->Fl, py = P(y; lam) given: a forward difference over dl =
+ * sqrt(rtol) of the larger of |lam| and 1e-3 of the range (the truncation error and the
+ * integration noise balance there, as for the monodromy-vector products). The problem is
+ * left at lam. 0 ok. */
+static int d_lambda(arc *a, const double *y, double lam, const double *py)
+{
+    shoot *sh = a->sh;
+    const double dl = sqrt(sh->rtol) * fmax(fabs(lam), 1e-3 * a->sl);
+    if (gd_per_sh_problem(sh, lam + dl) || gd_per_sh_period(sh, y, a->P2)) return 1;
+    for (int i = 0; i < a->N; i++)
+        a->Fl[i] = (a->P2[i] - py[i]) / dl;
+    return gd_per_sh_problem(sh, lam);
+}
+
+/* Solves the bordered system in scaled variables with sh->phi (at the point) and a->Fl:
+ * [D^-1 (Phi - I) D, D^-1 Fl sl; row] x = a->b (in place). 0 ok. */
+static int bordered(arc *a, const double *row)
+{
+    shoot *sh = a->sh;
+    const int N = a->N, n1 = N + 1;
+    for (int j = 0; j < N; j++)
+        for (int i = 0; i < N; i++)
+            a->J[(size_t)j * n1 + i] =
+                (sh->phi[(size_t)j * N + i] - (i == j ? 1.0 : 0.0)) * a->D[j] / a->D[i];
+    for (int i = 0; i < N; i++)
+        a->J[(size_t)N * n1 + i] = a->Fl[i] * a->sl / a->D[i];
+    for (int j = 0; j <= N; j++)
+        a->J[(size_t)j * n1 + N] = row[j];
+    return LAPACKE_dgesv(LAPACK_COL_MAJOR, n1, 1, a->J, n1, a->ipiv, a->b, n1) != 0;
+}
+
+/* The bordered Newton from (y, *lam) on the hyperplane normal to tan (scaled, N + 1)
+ * through yp (N + 1, unscaled: y then lambda). On success sh->phi is the monodromy at the
+ * converged point and sh->yT its P(y). 0 converged; 1 not, with sh->why. */
+static int corrector(arc *a, double *y, double *lam, const double *tan, const double *yp,
+                     int *iters, double *resid)
+{
+    shoot *sh = a->sh;
+    const int N = a->N, maxit = sh->opt->max_iter;
+    double prev = INFINITY;
+    int slow = 0;
+    gd_per_sh_tolerances(sh, yp);
+    for (int it = 0;; it++) {
+        *iters = it;
+        if (!(*lam > 0) && !sh->param) {
+            snprintf(sh->why, sizeof sh->why, "the corrector left the positive speeds");
+            return 1;
+        }
+        if (gd_per_sh_problem(sh, *lam) || gd_per_sh_monodromy(sh, y, sh->phi, sh->yT)) return 1;
+        for (int i = 0; i < N; i++)
+            sh->r[i] = sh->yT[i] - y[i];
+        const double res = gd_per_sh_norm(sh, y, sh->r);
+        *resid = res;
+        double g = tan[N] * (*lam - yp[N]) / a->sl;
+        for (int i = 0; i < N; i++)
+            g += tan[i] * (y[i] - yp[i]) / a->D[i];
+        if (res <= sh->tol && fabs(g) <= 1e-9) return 0;
+        /* a residual that no longer halves is at the integrator's noise (contact events),
+         * accepted below it as the fixed-value Newton accepts it */
+        slow = res > 0.5 * prev ? slow + 1 : 0;
+        if (slow >= 2 && fabs(g) <= 1e-9) {
+            memcpy(sh->racc, sh->r, (size_t)N * sizeof *sh->racc);
+            if (res <= gd_per_sh_noise(sh, y)) return 0;
+        }
+        if (it >= maxit || (it > 3 && !(res < 1e3 * prev)) || slow >= 4) {
+            snprintf(sh->why, sizeof sh->why,
+                     "shooting (arclength): the corrector did not converge in %d iterations "
+                     "(residual %.2g, tolerance %.2g)",
+                     it, res, sh->tol);
+            return 1;
+        }
+        prev = res;
+        if (d_lambda(a, y, *lam, sh->yT)) return 1;
+        for (int i = 0; i < N; i++)
+            a->b[i] = -sh->r[i] / a->D[i];
+        a->b[N] = -g;
+        if (bordered(a, tan)) {
+            snprintf(sh->why, sizeof sh->why, "shooting (arclength): singular bordered Jacobian");
+            return 1;
+        }
+        for (int i = 0; i < N; i++)
+            y[i] += a->b[i] * a->D[i];
+        *lam += a->b[N] * a->sl;
+    }
+}
+
+/* The unit tangent (scaled, N + 1) at a converged (y, lam) whose monodromy is sh->phi and
+ * P(y) sh->yT: the bordered system with last row prev (NULL: e_lambda), right-hand side
+ * e_{N+1}; oriented along prev, or so that lambda moves by sign. 0 ok. */
+static int tangent(arc *a, const double *y, double lam, const double *prev, double sign, double *t)
+{
+    const int N = a->N;
+    if (d_lambda(a, y, lam, a->sh->yT)) return 1;
+    double *row = calloc((size_t)N + 1, sizeof *row);
+    if (!row) return 1;
+    if (prev)
+        memcpy(row, prev, (size_t)(N + 1) * sizeof *row);
+    else
+        row[N] = 1.0;
+    memset(a->b, 0, (size_t)N * sizeof *a->b);
+    a->b[N] = 1.0;
+    int rc = bordered(a, row);
+    free(row);
+    if (rc) return 1;
+    double nt = 0.0, dot = 0.0;
+    for (int i = 0; i <= N; i++)
+        nt += a->b[i] * a->b[i];
+    nt = sqrt(nt);
+    if (!(nt > 0) || !isfinite(nt)) return 1;
+    for (int i = 0; i <= N; i++) {
+        t[i] = a->b[i] / nt;
+        if (prev) dot += t[i] * prev[i];
+    }
+    if ((prev && dot < 0) || (!prev && t[N] * sign < 0))
+        for (int i = 0; i <= N; i++)
+            t[i] = -t[i];
+    return 0;
+}
+
+/* The multipliers at the point whose monodromy is sh->phi (destroyed): their count in *n,
+ * the largest modulus of each kind (gd_per_sh_kinds) in g. 0 ok. */
+static int point_multipliers(shoot *sh, double *mre, double *mim, int *n)
+{
+    double dummy[1];
+    *n = 0;
+    if (LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', sh->N, sh->phi, sh->N, mre, mim, dummy, 1, dummy,
+                      1))
+        return 1;
+    *n = sh->N;
+    return 0;
+}
+
+/* A point of the branch between (ya, la) and (yb, lb) at fraction s of the chord ch
+ * (scaled, unit): the corrector on the hyperplane normal to the chord through the
+ * interpolate. 0 ok. */
+static int between(arc *a, const double *ya, double la, const double *yb, double lb,
+                   const double *ch, double s, double *y, double *lam)
+{
+    const int N = a->N;
+    double *yp = malloc((size_t)(N + 1) * sizeof *yp);
+    if (!yp) return 1;
+    for (int i = 0; i < N; i++)
+        yp[i] = y[i] = (1 - s) * ya[i] + s * yb[i];
+    yp[N] = *lam = (1 - s) * la + s * lb;
+    int it;
+    double res;
+    int rc = corrector(a, y, lam, ch, yp, &it, &res);
+    free(yp);
+    return rc;
+}
+
+/* What locate() zeroes along the branch: the tangent's lambda component (kind -1, a fold)
+ * or the largest modulus of the multipliers of kind k (0 real positive, 1 real negative,
+ * 2 complex) minus 1, with that multiplier in (re, im). */
+static int criterion(arc *a, int kind, const double *y, double lam, const double *ta, double *tt,
+                     double *g, double *re, double *im)
+{
+    shoot *sh = a->sh;
+    if (kind < 0) {
+        if (tangent(a, y, lam, ta, 1.0, tt)) return 1;
+        *g = tt[a->N];
+        return 0;
+    }
+    int n;
+    if (point_multipliers(sh, sh->mre, sh->mim, &n)) return 1;
+    double gg[3];
+    int at[3];
+    gd_per_sh_kinds(sh->mre, sh->mim, n, gg, at);
+    *g = gg[kind] - 1.0;
+    *re = at[kind] >= 0 ? sh->mre[at[kind]] : NAN;
+    *im = at[kind] >= 0 ? sh->mim[at[kind]] : NAN;
+    return 0;
+}
+
+/* The zero of the criterion between two steps (ga, gb of opposite signs), located on the
+ * branch by Illinois iterations on the fraction of the chord, until lambda moves by less
+ * than 1e-8 relative (near a fold lambda is quadratic in the position, so the fold's value
+ * is found far more precisely than the point; below that the integration noise moves it:
+ * the backlash pair's folds at rtol 1e-7 wander by 4e-8 relative, and a stricter test took
+ * 22 corrector solves per fold instead of 7). The located value, or NAN; for a multiplier
+ * *off is its distance |mu| - 1 there. */
+static double locate(arc *a, int kind, const double *ya, double la, const double *ta, double ga,
+                     const double *yb, double lb, double gb, double *re, double *im, double *off)
+{
+    const int N = a->N;
+    double *ch = malloc((size_t)(3 * N + 2) * sizeof *ch), *y = ch + N + 1, *tt = y + N;
+    double best = NAN;
+    *off = INFINITY;
+    if (!ch) return NAN;
+    double nc = 0.0;
+    for (int i = 0; i < N; i++) {
+        ch[i] = (yb[i] - ya[i]) / a->D[i];
+        nc += ch[i] * ch[i];
+    }
+    ch[N] = (lb - la) / a->sl;
+    nc = sqrt(nc + ch[N] * ch[N]);
+    if (!(nc > 0)) goto done;
+    for (int i = 0; i <= N; i++)
+        ch[i] /= nc;
+    double s0 = 0.0, s1 = 1.0, g0 = ga, g1 = gb, sig = g0 / (g0 - g1), lprev = NAN;
+    for (int it = 0; it < 40; it++) {
+        if (!(sig > s0 && sig < s1)) sig = 0.5 * (s0 + s1);
+        double lam, g, r = NAN, m = NAN;
+        if (between(a, ya, la, yb, lb, ch, sig, y, &lam) ||
+            criterion(a, kind, y, lam, ta, tt, &g, &r, &m))
+            break;
+        best = lam;
+        if (kind >= 0) {
+            *re = r;
+            *im = m;
+            *off = fabs(g);
+        }
+        if (fabs(lam - lprev) <= 1e-8 * fabs(lam) || g == 0.0 || s1 - s0 < 1e-14) break;
+        lprev = lam;
+        if ((g < 0) == (g0 < 0)) {
+            s0 = sig;
+            g0 = g;
+            g1 *= 0.5;
+        } else {
+            s1 = sig;
+            g1 = g;
+            g0 *= 0.5;
+        }
+        sig = s0 - g0 * (s1 - s0) / (g1 - g0);
+    }
+done:
+    free(ch);
+    return best;
+}
+
+/* The first converged point from vals[*i0] on (a transient warm start, then Newton), each
+ * failed value reported. 0 with one found or none left; 1 out of memory. */
+static int first_point(shoot *sh, const double *vals, int nv, int *i0, double *y)
+{
+    for (; *i0 < nv; ++*i0) {
+        const double v = vals[*i0];
+        int it = 0;
+        double res = NAN;
+        sh->cpu0 = gd_per_sh_cpu();
+        sh->t_mono = 0.0;
+        sh->budget_hit = 0;
+        if (!gd_per_sh_problem(sh, v) && !gd_per_sh_warm(sh, y) &&
+            !gd_per_sh_newton(sh, y, &it, &res))
+            return gd_per_sh_emit(sh, v, y, it, res);
+        if (gd_per_sh_fail(sh, v)) return 1;
+    }
+    return 0;
+}
+
+int gd_per_sh_arclength(shoot *sh, const double *vals, int nv)
+{
+    const int N = sh->N, stab = sh->opt->stability;
+    int i0 = 0, rc = 1, it = 0;
+    arc a = {.sh = sh, .N = N};
+    /* y, y1, yg, yp (N + 1), t, t1 (N + 1), D, Fl, P2, b (N + 1), J, multipliers 4 N */
+    double *w = malloc(((size_t)14 * N + 4 + (size_t)(N + 1) * (N + 1)) * sizeof *w);
+    a.ipiv = malloc((size_t)(N + 1) * sizeof *a.ipiv);
+    if (!w || !a.ipiv) goto done;
+    double *y = w, *y1 = y + N, *yg = y1 + N, *yp = yg + N, *t = yp + N + 1, *t1 = t + N + 1;
+    a.D = t1 + N + 1;
+    a.Fl = a.D + N;
+    a.P2 = a.Fl + N;
+    a.b = a.P2 + N;
+    a.J = a.b + N + 1;
+    double *mre = a.J + (size_t)(N + 1) * (N + 1), *mim = mre + N, *mre1 = mim + N,
+           *mim1 = mre1 + N;
+    if (first_point(sh, vals, nv, &i0, y)) goto done;
+    if (i0 >= nv - 1) {
+        rc = 0;
+        goto done;
+    }
+    double lam = vals[i0], reached = lam, res = NAN;
+    const double lend = vals[nv - 1], lstart = vals[i0], sign = lend > lstart ? 1.0 : -1.0;
+    const gd_periodic_point *p0 = &sh->res->points[sh->res->npoints - 1];
+    int nmu = stab ? p0->nmult : 0, nmu1 = 0, fold_prev = 0;
+    if (nmu) {
+        memcpy(mre, p0->mu_re, (size_t)nmu * sizeof *mre);
+        memcpy(mim, p0->mu_im, (size_t)nmu * sizeof *mim);
+    }
+    a.sl = fabs(lend - lstart);
+    gd_per_sh_tolerances(sh, y);
+    gd_per_sh_scales(sh, y, a.D);
+    /* the fixed-value Newton left the monodromy at y in sh->phi, and P(y) in sh->yT is
+     * y within the tolerance */
+    if (gd_per_sh_monodromy(sh, y, sh->phi, sh->yT) || tangent(&a, y, lam, NULL, sign, t)) {
+        snprintf(sh->why, sizeof sh->why, "shooting (arclength): no tangent at the start");
+        goto stop;
+    }
+    double ds = fmin(1.0 / (nv - 1), 0.05), dsmax = fmin(2.0 / (nv - 1), 0.1);
+    const double dsmin = 1e-6;
+    const int maxsteps = sh->opt->max_steps > 0 ? sh->opt->max_steps : 50 * nv + 200;
+    for (int step = 0;; step++) {
+        if (step >= maxsteps) {
+            snprintf(sh->why, sizeof sh->why,
+                     "continuation stopped after %d steps (raise max_steps)", maxsteps);
+            goto stop;
+        }
+        sh->steps++;
+        sh->cpu0 = gd_per_sh_cpu();
+        sh->budget_hit = 0;
+        for (int i = 0; i < N; i++)
+            yp[i] = y1[i] = y[i] + ds * t[i] * a.D[i];
+        double l1 = yp[N] = lam + ds * t[N] * a.sl;
+        if (corrector(&a, y1, &l1, t, yp, &it, &res) || tangent(&a, y1, l1, t, sign, t1)) {
+            if (sh->budget_hit) goto stop;
+            ds *= 0.5;
+            if (ds < dsmin) goto stop;
+            continue;
+        }
+        /* the turn of the tangent and the chord's direction: a step that turned more than
+         * ~25 deg, or whose corrector fell back behind the start, is retried shorter */
+        double tt = t[N] * t1[N], tc = t[N] * (l1 - lam) / a.sl;
+        for (int i = 0; i < N; i++) {
+            tt += t[i] * t1[i];
+            tc += t[i] * (y1[i] - y[i]) / a.D[i];
+        }
+        /* a corrector that went far beyond the step (the chord more than 3 ds, scaled)
+         * jumped to another part of the branch: at rtol 1e-11 the backlash pair's step
+         * of 0.1 from 362 rad/s landed at 326.5 rad/s with the tangent turned by less
+         * than the limit */
+        double cc = (l1 - lam) * (l1 - lam) / (a.sl * a.sl);
+        for (int i = 0; i < N; i++)
+            cc += (y1[i] - y[i]) * (y1[i] - y[i]) / (a.D[i] * a.D[i]);
+        if ((tt < 0.9 || tc <= 0.0 || sqrt(cc) > 3.0 * ds) && ds > 16 * dsmin) {
+            ds *= 0.5;
+            continue;
+        }
+        /* the multipliers at the step (sh->phi is its monodromy) */
+        if (nmu && point_multipliers(sh, mre1, mim1, &nmu1)) nmu1 = 0;
+        /* requested values crossed on this step, nearest to lam first */
+        const int up = vals[nv - 1] >= vals[0];
+        for (int q = 0; q < nv; q++) {
+            int i = (l1 >= lam) == up ? q : nv - 1 - q;
+            const double v = vals[i];
+            if (i == i0 && step == 0) continue;
+            if (!(l1 >= lam ? (v > lam && v <= l1) : (v < lam && v >= l1))) continue;
+            const double sig = (v - lam) / (l1 - lam);
+            int itg = 0, bad = 1;
+            double resg = NAN;
+            for (int start = 0; bad && start < 3; start++) { /* near a fold: either end */
+                for (int k = 0; k < N; k++)
+                    yg[k] = start == 0 ? (1 - sig) * y[k] + sig * y1[k] : start == 1 ? y[k] : y1[k];
+                sh->cpu0 = gd_per_sh_cpu();
+                sh->budget_hit = 0;
+                bad = gd_per_sh_problem(sh, v) || gd_per_sh_newton(sh, yg, &itg, &resg);
+            }
+            if (bad ? gd_per_sh_fail(sh, v) : gd_per_sh_emit(sh, v, yg, itg, resg)) goto done;
+        }
+        /* a fold where the tangent's lambda component changes sign, located on the branch */
+        int fold = 0;
+        if (t[N] * t1[N] < 0) {
+            double off, re, im;
+            double lf = locate(&a, -1, y, lam, t, t[N], y1, l1, t1[N], &re, &im, &off);
+            if (isnan(lf)) { /* not located: the extremum of the cubic through the steps */
+                const double s = t[N] / (t[N] - t1[N]), s2 = s * s, s3 = s2 * s;
+                lf = (2 * s3 - 3 * s2 + 1) * lam + (s3 - 2 * s2 + s) * ds * t[N] * a.sl +
+                     (-2 * s3 + 3 * s2) * l1 + (s3 - s2) * ds * t1[N] * a.sl;
+            }
+            fold = 1;
+            if (gd_per_sh_add_bif(sh, GD_BIF_FOLD, lf, NAN, NAN)) goto done;
+        }
+        /* multipliers through the unit circle: a real one through -1 (period doubling), a
+         * complex pair (Neimark-Sacker), a real one through +1 away from a fold (a branch
+         * point), each located on the branch and reported when |mu| is 1 to 1e-4 there */
+        if (nmu && nmu1) {
+            double ga[3], gb[3];
+            int aa[3], ab[3];
+            gd_per_sh_kinds(mre, mim, nmu, ga, aa);
+            gd_per_sh_kinds(mre1, mim1, nmu1, gb, ab);
+            static const gd_bifurcation_type type[3] = {GD_BIF_BRANCH_POINT, GD_BIF_PERIOD_DOUBLING,
+                                                        GD_BIF_NEIMARK_SACKER};
+            for (int k = 0; k < 3; k++) {
+                if ((ga[k] > 1.0) == (gb[k] > 1.0) || (k == 0 && (fold || fold_prev))) continue;
+                double re = NAN, im = NAN, off;
+                double lx =
+                    locate(&a, k, y, lam, t, ga[k] - 1.0, y1, l1, gb[k] - 1.0, &re, &im, &off);
+                if (!isnan(lx) && off < 1e-4 &&
+                    gd_per_sh_add_bif(sh, type[k], lx, k == 0 ? NAN : re, k == 0 ? NAN : im))
+                    goto done;
+            }
+        }
+        if (nmu) {
+            nmu = nmu1;
+            memcpy(mre, mre1, (size_t)N * sizeof *mre);
+            memcpy(mim, mim1, (size_t)N * sizeof *mim);
+        }
+        fold_prev = fold;
+        memcpy(y, y1, (size_t)N * sizeof *y);
+        memcpy(t, t1, (size_t)(N + 1) * sizeof *t);
+        lam = l1;
+        if (sign * (lam - reached) > 0) reached = lam;
+        {
+            /* the scales follow the orbit's size (a growing resonance does not eat the
+             * arclength): the tangent re-expressed in them */
+            double nt = t[N] * t[N];
+            memcpy(yg, a.D, (size_t)N * sizeof *yg);
+            gd_per_sh_tolerances(sh, y);
+            gd_per_sh_scales(sh, y, a.D);
+            for (int i = 0; i < N; i++) {
+                t[i] *= yg[i] / a.D[i];
+                nt += t[i] * t[i];
+            }
+            nt = sqrt(nt);
+            for (int i = 0; i <= N; i++)
+                t[i] /= nt;
+        }
+        if (it <= 3) ds = fmin(ds * 1.6, dsmax);
+        if (it > 6) ds *= 0.6;
+        if (sign * (lam - lend) >= 0) break;
+        if (sign * (lam - lstart) < -0.5 * a.sl || (!sh->param && lam <= 0)) {
+            snprintf(sh->why, sizeof sh->why, "the branch turned back out of the range");
+            goto stop;
+        }
+    }
+    rc = 0;
+    goto done;
+stop:
+    /* values beyond the furthest point reached get the reason */
+    for (int i = i0 + 1; i < nv; i++)
+        if (sign * (vals[i] - reached) > 0 && gd_per_sh_fail(sh, vals[i])) goto done;
+    rc = 0;
+done:
+    free(w);
+    free(a.ipiv);
+    return rc;
+}

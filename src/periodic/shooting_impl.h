@@ -1,0 +1,79 @@
+/* Internals of shooting shared by shooting.c (the problem per value, the period map,
+ * Newton, the points), shooting_arclength.c (pseudo-arclength continuation) and
+ * shooting_natural.c (natural continuation, the entry gd_per_shoot_run). */
+#ifndef GD_PERIODIC_SHOOTING_IMPL_H
+#define GD_PERIODIC_SHOOTING_IMPL_H
+#include "geardyn/periodic.h"
+#include "geardyn/transient_model.h"
+#include "periodic/periodic_impl.h"
+
+/* The problem at one value (speed or parameter): two are kept, so that the bordered
+ * corrector, which needs the value and the value plus a difference step at every
+ * iteration, rebuilds nothing while the value stays (shooting.c, gd_per_sh_problem). */
+typedef struct shoot_prob {
+    gd_tr_load *loads;       /* load_frequency: the loads at it (owned) */
+    gd_transient_spec fspec; /* load_frequency: the caller's spec with them */
+    double key;
+    int have;
+    gd_model *m;
+    gd_system *s;
+    gd_transient_model *tm;
+    const gd_system *sys;
+    const gd_transient_spec *spec;
+    gd_transient *tr;
+    int H, Nr;
+    double w, T;
+} shoot_prob;
+
+typedef struct shoot {
+    const gd_system *sys0;
+    const gd_transient_spec *spec0;
+    const gd_periodic_param *param;
+    const gd_periodic_options *opt;
+    const gd_tr_record *rec;
+    int nrec;
+    gd_periodic_result *res;
+    int cap_points, cap_bif;
+    int dir, ndir;
+    int steps; /* continuation steps taken (natural: one per value) */
+    double v0, v1;
+    shoot_prob slot[2];
+    shoot_prob *p; /* the problem at the current value: one of slot */
+    int N, nf, ndof;
+    int *free_dof; /* nf: the system DOF of each free DOF */
+    double rtol, atol_q, atol_v, tol;
+    /* work: N each, phi and A N x N */
+    double *mem; /* the allocation of phi .. mim (phi and A trade places) */
+    double *phi, *A, *yT, *r, *dy, *yt, *q0, *qv0, *mre, *mim, *racc, *ytmp;
+    int *ipiv;
+    size_t capN;
+    int capdof;
+    char why[256];
+    /* CPU budget of a point (opt->shoot_budget): the time spent, the measured costs of one
+     * plain period and of the last monodromy (0: not measured yet) */
+    double cpu0, t_period, t_mono;
+    double warm_change; /* the last warm-start period's scaled change (NAN: none) */
+    int warm_periods;
+    int budget_hit; /* the point stopped at its budget */
+    int dense;      /* the dense monodromy (else Newton-Krylov on monodromy-vector products) */
+} shoot;
+
+int gd_per_sh_problem(shoot *sh, double key);
+void gd_per_sh_tolerances(shoot *sh, const double *y);
+double gd_per_sh_norm(const shoot *sh, const double *y, const double *f);
+void gd_per_sh_scales(const shoot *sh, const double *y, double *d);
+double gd_per_sh_cpu(void);
+int gd_per_sh_period(shoot *sh, const double *y, double *yT);
+int gd_per_sh_monodromy(shoot *sh, const double *y, double *phi, double *yT);
+int gd_per_sh_warm(shoot *sh, double *y);
+double gd_per_sh_noise(shoot *sh, const double *y);
+int gd_per_sh_newton(shoot *sh, double *y, int *iters, double *resid);
+int gd_per_sh_emit(shoot *sh, double key, const double *y, int iters, double resid);
+int gd_per_sh_fail(shoot *sh, double key);
+int gd_per_sh_add_bif(shoot *sh, gd_bifurcation_type type, double key, double mre, double mim);
+void gd_per_sh_kinds(const double *re, const double *im, int n, double g[3], int at[3]);
+int gd_per_sh_multipliers(shoot *sh, const double *y, double *mre, double *mim);
+int gd_per_sh_arclength(shoot *sh, const double *vals, int nv);
+void gd_per_sh_free(shoot *sh); /* everything sh owns (not sh) */
+
+#endif
