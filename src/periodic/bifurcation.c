@@ -1,7 +1,7 @@
 /* Bifurcations between continuation steps (continuation_impl.h): the critical
  * multiplier's modulus through 1 located by secant iterations on points of the branch
- * (period doubling, Neimark-Sacker, branch point), folds at the zero of the tangent's
- * parameter component, and close runs of folds merged into one turn. */
+ * (period doubling, Neimark-Sacker, branch point), folds at the parameter's extremum
+ * where it turns, and close runs of folds merged into one turn. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -31,8 +31,13 @@ int gd_per_add_bif(ctx *c, gd_bifurcation_type type, double lam, double mre, dou
 {
     gd_periodic_result *r = c->res;
     /* a real multiplier through +1 next to a fold is the fold itself (located a step
-     * apart when the fold falls near a step end) */
-    const double near = 1e-3 * (c->sl > 0 ? c->sl : 1.0);
+     * apart when the fold falls near a step end). With a contact law the sampled branch
+     * zigzags near its turn (a tooth per sample switching contact) and the multiplier
+     * crosses +1 at a tooth, not at the turn: there "next to" is the zigzag's reach (1 %
+     * of the range, as gd_per_merge_zigzags; the backlash pair at H = 20, 128 samples
+     * and 26 speeds: the crossing at 479.23 rad/s, the turn at 480.38, the crossing
+     * reported as a branch point before) */
+    const double near = (c->min_samples > 0 ? 1e-2 : 1e-3) * (c->sl > 0 ? c->sl : 1.0);
     for (int i = r->nbifurcations - 1; i >= 0 && i >= r->nbifurcations - 3; i--) {
         gd_bifurcation *b = &r->bifurcations[i];
         if (b->direction != c->dir || fabs((c->param ? b->parameter : b->speed) - lam) > near)
@@ -163,69 +168,101 @@ int gd_per_locate(ctx *c, int m, const double *Xa, double la, double ga, const d
     return rc;
 }
 
-/* A fold between steps a and b (the tangent's parameter component ta[n], tb[n] of
- * opposite signs), located on the branch: Illinois iterations on that component over
- * points of the branch between the steps (each a corrector on the hyperplane normal to
- * the chord through its interpolate, then the tangent there), until the parameter stops
- * moving (1e-11 of the range; near a fold it is quadratic in the position, so the
- * located value does not depend on the grid). Confirmed only if the located parameter is
- * an extremum beyond both steps on the side the tangent says: otherwise the sign change
- * was not a fold (a corrector that jumped between sheets) and 1 is returned. 2: the
- * refinement could not run (a corrector failed): *lf holds the cubic Hermite estimate. */
-int gd_per_locate_fold(ctx *c, const double *Xa, double la, const double *ta, const double *Xb,
-                       double lb, const double *tb, double ds, double *lf)
+/* The point at s in [0, 2] of the path P -> X -> X1 (pt[0..2], their parameters l):
+ * Newton on the hyperplane normal to the chord (ch[0]: P -> X, ch[1]: X -> X1) through
+ * the chord's interpolate. */
+static int path_point(ctx *c, const double *const pt[3], const double l[3], double *const ch[2],
+                      double s, double *Y, double *lam)
+{
+    const int k = s < 1.0 ? 0 : 1;
+    return point_between(c, pt[k], l[k], pt[k + 1], l[k + 1], ch[k], s - k, Y, lam);
+}
+
+/* The fold at a turn of the parameter: l[1] (the point X) beyond both neighbours P and
+ * X1 (l[0], l[2]), so the path P -> X -> X1 of the branch holds an extremum of the
+ * parameter. Located by golden-section steps mixed with parabolic ones (every other
+ * step golden, so the bracket shrinks by 0.618 at least every two steps) on the
+ * parameter along that path: on a smooth branch the parabola converges to the zero of
+ * the tangent's parameter component; at a corner of a sampled non-smooth branch (a
+ * sample switching contact) the parameter is only piecewise smooth and the tangent
+ * jumps over zero, and golden section still closes in on the corner. Stops when both
+ * ends of the bracket are within 1e-12 of the best value (relative to it): at a corner
+ * the parameter is linear in the path, so the bracket is then 1e-12 / slope wide; at a
+ * smooth fold it is quadratic, and the best value is exact to far below that. The value
+ * depends on the branch only, not on where the steps fell. *lf receives the best value
+ * found (l[1] if no refinement could run); 0: located, 1: a corrector failed first
+ * (*lf is then the best so far), -1 out of memory. */
+int gd_per_locate_turn(ctx *c, const double *Xp, double lp, const double *X, double l,
+                       const double *X1, double l1, double *lf)
 {
     const int n = c->h.n;
-    {
-        double s = ta[n] / (ta[n] - tb[n]), s2 = s * s, s3 = s2 * s;
-        *lf = (2 * s3 - 3 * s2 + 1) * la + (s3 - 2 * s2 + s) * ds * ta[n] * c->sl +
-              (-2 * s3 + 3 * s2) * lb + (s3 - s2) * ds * tb[n] * c->sl;
-    }
-    double *ch = malloc((size_t)(n + 1) * sizeof *ch), *X = malloc((size_t)(n + 1) * sizeof *X),
-           *tt = malloc((size_t)(n + 1) * sizeof *tt);
-    int rc = 2;
-    if (!ch || !X || !tt) goto done;
-    for (int i = 0; i < n; i++)
-        ch[i] = (Xb[i] - Xa[i]) / c->sx;
-    ch[n] = (lb - la) / c->sl;
-    double nc = gd_per_norm2(ch, n + 1);
-    if (!(nc > 0)) goto done;
-    for (int i = 0; i <= n; i++)
-        ch[i] /= nc;
-    double s0 = 0.0, s1 = 1.0, g0 = ta[n], g1 = tb[n], sig = g0 / (g0 - g1), lprev = NAN;
-    double best = NAN;
-    int calm = 0;
-    for (int it = 0; it < 40; it++) {
-        if (!(sig > s0 && sig < s1)) sig = 0.5 * (s0 + s1);
-        double lam;
-        if (point_between(c, Xa, la, Xb, lb, ch, sig, X, &lam)) break;
-        if (gd_per_tangent(c, X, lam, ta, 1.0, tt)) break;
-        best = lam;
-        double g = tt[n];
-        calm = fabs(lam - lprev) <= 1e-11 * c->sl ? calm + 1 : 0;
-        if (calm >= 2 || g == 0.0 || s1 - s0 < 1e-14) break;
-        lprev = lam;
-        if ((g < 0) == (g0 < 0)) {
-            s0 = sig;
-            g0 = g;
-            g1 *= 0.5;
-        } else {
-            s1 = sig;
-            g1 = g;
-            g0 *= 0.5;
+    const double *const pt[3] = {Xp, X, X1};
+    const double lv[3] = {lp, l, l1};
+    const double sg = l >= lp ? 1.0 : -1.0; /* +1: a maximum */
+    double *ch[2] = {malloc((size_t)(n + 1) * sizeof(double)),
+                     malloc((size_t)(n + 1) * sizeof(double))};
+    double *Y = malloc((size_t)(n + 1) * sizeof *Y);
+    *lf = l;
+    int rc = -1;
+    if (!ch[0] || !ch[1] || !Y) goto done;
+    for (int k = 0; k < 2; k++) {
+        for (int i = 0; i < n; i++)
+            ch[k][i] = (pt[k + 1][i] - pt[k][i]) / c->sx;
+        ch[k][n] = (lv[k + 1] - lv[k]) / c->sl;
+        double nc = gd_per_norm2(ch[k], n + 1);
+        if (!(nc > 0)) {
+            rc = 1;
+            goto done;
         }
-        sig = s0 - g0 * (s1 - s0) / (g1 - g0);
+        for (int i = 0; i <= n; i++)
+            ch[k][i] /= nc;
     }
-    if (isnan(best)) goto done;
-    /* the fold is the parameter's extremum: beyond both steps, on the side the tangent
-     * at a heads to */
-    const double slack = 1e-12 * c->sl;
-    rc = ta[n] > 0 ? !(best >= fmax(la, lb) - slack) : !(best <= fmin(la, lb) + slack);
-    if (!rc) *lf = best;
+    double a = 0.0, b = 1.0, e = 2.0, fa = sg * lp, fb = sg * l, fe = sg * l1;
+    const double gold = 0.3819660112501051; /* 2 - golden ratio */
+    rc = 0;
+    for (int it = 0; it < 200; it++) {
+        const double tol = 1e-12 * fabs(fb) + 1e-300;
+        if ((fb - fa <= tol && fb - fe <= tol) || e - a < 1e-15) break;
+        double x = NAN;
+        if (it % 2) { /* the vertex of the parabola through the three */
+            double p = (b - a) * (b - a) * (fb - fe) - (b - e) * (b - e) * (fb - fa);
+            double q = (b - a) * (fb - fe) - (b - e) * (fb - fa);
+            if (q != 0.0) x = b - 0.5 * p / q;
+            /* inside, and not on top of the best point */
+            const double gap = 1e-3 * (e - a);
+            if (!(x > a + gap && x < e - gap && fabs(x - b) > gap)) x = NAN;
+        }
+        if (isnan(x)) /* golden section of the longer side */
+            x = b - a > e - b ? b - gold * (b - a) : b + gold * (e - b);
+        double lam;
+        if (path_point(c, pt, lv, ch, x, Y, &lam)) {
+            rc = 1;
+            break;
+        }
+        const double fx = sg * lam;
+        if (fx > fb) {
+            if (x < b) {
+                e = b;
+                fe = fb;
+            } else {
+                a = b;
+                fa = fb;
+            }
+            b = x;
+            fb = fx;
+        } else if (x < b) {
+            a = x;
+            fa = fx;
+        } else {
+            e = x;
+            fe = fx;
+        }
+    }
+    *lf = sg * fb;
 done:
-    free(ch);
-    free(X);
-    free(tt);
+    free(ch[0]);
+    free(ch[1]);
+    free(Y);
     return rc;
 }
 

@@ -93,8 +93,8 @@ double gd_per_ranked(const ctx *c, const double *mre, const double *mim, int m, 
 int gd_per_locate(ctx *c, int m, const double *Xa, double la, double ga, const double *Xb,
                   double lb, double gb, const double *tan, const double *mre_b,
                   const double *mim_b);
-int gd_per_locate_fold(ctx *c, const double *Xa, double la, const double *ta, const double *Xb,
-                       double lb, const double *tb, double ds, double *lf);
+int gd_per_locate_turn(ctx *c, const double *Xp, double lp, const double *X, double l,
+                       const double *X1, double l1, double *lf);
 void gd_per_merge_zigzags(ctx *c, int nb0);
 double gd_per_inf_norm(const double *x, int n);
 int gd_per_solve_warm(ctx *c, double *X, double lam, int *it, double *res);
