@@ -178,6 +178,53 @@ static int path_point(ctx *c, const double *const pt[3], const double l[3], doub
     return point_between(c, pt[k], l[k], pt[k + 1], l[k + 1], ch[k], s - k, Y, lam);
 }
 
+/* The bracket of gd_per_locate_turn: x[1] < x[2] < x[3] with f[2] the best, and the
+ * next evaluated points beyond them (x[0] < x[1], x[4] > x[3]; NaN: none). */
+typedef struct brk {
+    double x[5], f[5];
+} brk;
+
+/* Evaluates the path at x and updates the bracket (and Yb, ub with a new best). */
+static int probe(ctx *c, const double *const pt[3], const double lv[3], double *const ch[2],
+                 double sg, double x, double *Y, double *Yb, double *ub, brk *k)
+{
+    const int n = c->h.n;
+    double lam;
+    if (path_point(c, pt, lv, ch, x, Y, &lam)) return 1;
+    const double fx = sg * lam;
+    if (fx > k->f[2] && Yb) {
+        memcpy(Yb, Y, (size_t)n * sizeof *Yb);
+        Yb[n] = lam;
+        memcpy(ub, ch[x < 1.0 ? 0 : 1], (size_t)(n + 1) * sizeof *ub);
+    }
+    int at; /* where x goes: 1 (new a), 2 (new best), 3 (new e) */
+    if (fx > k->f[2]) {
+        at = 2;
+        if (x < k->x[2]) { /* b becomes e */
+            k->x[4] = k->x[3];
+            k->f[4] = k->f[3];
+            k->x[3] = k->x[2];
+            k->f[3] = k->f[2];
+        } else { /* b becomes a */
+            k->x[0] = k->x[1];
+            k->f[0] = k->f[1];
+            k->x[1] = k->x[2];
+            k->f[1] = k->f[2];
+        }
+    } else if (x < k->x[2]) {
+        at = 1;
+        k->x[0] = k->x[1];
+        k->f[0] = k->f[1];
+    } else {
+        at = 3;
+        k->x[4] = k->x[3];
+        k->f[4] = k->f[3];
+    }
+    k->x[at] = x;
+    k->f[at] = fx;
+    return 0;
+}
+
 /* The fold at a turn of the parameter: l[1] (the point X) beyond both neighbours P and
  * X1 (l[0], l[2]), so the path P -> X -> X1 of the branch holds an extremum of the
  * parameter. Located by golden-section steps mixed with parabolic ones (every other
@@ -190,10 +237,12 @@ static int path_point(ctx *c, const double *const pt[3], const double l[3], doub
  * the parameter is linear in the path, so the bracket is then 1e-12 / slope wide; at a
  * smooth fold it is quadratic, and the best value is exact to far below that. The value
  * depends on the branch only, not on where the steps fell. *lf receives the best value
- * found (l[1] if no refinement could run); 0: located, 1: a corrector failed first
- * (*lf is then the best so far), -1 out of memory. */
+ * found (l[1] if no refinement could run); Yb (if not NULL) its state (n + 1, the
+ * parameter last) and ub the unit direction of the path there (scaled as the tangent);
+ * 0: located, 1: a corrector failed first (*lf is then the best so far), -1 out of
+ * memory. */
 int gd_per_locate_turn(ctx *c, const double *Xp, double lp, const double *X, double l,
-                       const double *X1, double l1, double *lf)
+                       const double *X1, double l1, double *lf, double *Yb, double *ub)
 {
     const int n = c->h.n;
     const double *const pt[3] = {Xp, X, X1};
@@ -217,14 +266,38 @@ int gd_per_locate_turn(ctx *c, const double *Xp, double lp, const double *X, dou
         for (int i = 0; i <= n; i++)
             ch[k][i] /= nc;
     }
-    double a = 0.0, b = 1.0, e = 2.0, fa = sg * lp, fb = sg * l, fe = sg * l1;
+    if (Yb) {
+        memcpy(Yb, X, (size_t)n * sizeof *Yb);
+        Yb[n] = l;
+        memcpy(ub, ch[1], (size_t)(n + 1) * sizeof *ub);
+    }
+    brk k = {{NAN, 0.0, 1.0, 2.0, NAN}, {NAN, sg * lp, sg * l, sg * l1, NAN}};
     const double gold = 0.3819660112501051; /* 2 - golden ratio */
     rc = 0;
-    for (int it = 0; it < 200; it++) {
+    for (int it = 0; it < 200 && !rc; it++) {
+        const double a = k.x[1], b = k.x[2], e = k.x[3], fa = k.f[1], fb = k.f[2], fe = k.f[3];
         const double tol = 1e-12 * fabs(fb) + 1e-300;
         if ((fb - fa <= tol && fb - fe <= tol) || e - a < 1e-15) break;
-        double x = NAN;
-        if (it % 2) { /* the vertex of the parabola through the three */
+        double x = NAN, slope = 0.0;
+        if (it % 3 == 1) { /* a kink: the lines through the neighbours on either side */
+            double pf = -INFINITY;
+            for (int side = 0; side < 2; side++) {
+                /* side 0: the kink right of b (lines a-b and e-e2); 1: left (a2-a, b-e) */
+                const int l0 = side ? 0 : 1, r0 = side ? 2 : 3;
+                if (isnan(k.x[l0]) || isnan(k.x[r0 + 1])) continue;
+                const double sL = (k.f[l0 + 1] - k.f[l0]) / (k.x[l0 + 1] - k.x[l0]);
+                const double sR = (k.f[r0 + 1] - k.f[r0]) / (k.x[r0 + 1] - k.x[r0]);
+                if (!(sL > 0 && sR < 0)) continue;
+                const double xk =
+                    (k.f[r0] - k.f[l0 + 1] + sL * k.x[l0 + 1] - sR * k.x[r0]) / (sL - sR);
+                const double fk = k.f[l0 + 1] + sL * (xk - k.x[l0 + 1]);
+                if (xk > (side ? a : b) && xk < (side ? b : e) && fk > pf) {
+                    x = xk;
+                    pf = fk;
+                    slope = fmax(sL, -sR);
+                }
+            }
+        } else if (it % 3 == 2) { /* the vertex of the parabola through the three */
             double p = (b - a) * (b - a) * (fb - fe) - (b - e) * (b - e) * (fb - fa);
             double q = (b - a) * (fb - fe) - (b - e) * (fb - fa);
             if (q != 0.0) x = b - 0.5 * p / q;
@@ -234,36 +307,104 @@ int gd_per_locate_turn(ctx *c, const double *Xp, double lp, const double *X, dou
         }
         if (isnan(x)) /* golden section of the longer side */
             x = b - a > e - b ? b - gold * (b - a) : b + gold * (e - b);
-        double lam;
-        if (path_point(c, pt, lv, ch, x, Y, &lam)) {
-            rc = 1;
-            break;
-        }
-        const double fx = sg * lam;
-        if (fx > fb) {
-            if (x < b) {
-                e = b;
-                fe = fb;
-            } else {
-                a = b;
-                fa = fb;
-            }
-            b = x;
-            fb = fx;
-        } else if (x < b) {
-            a = x;
-            fa = fx;
-        } else {
-            e = x;
-            fe = fx;
+        rc = probe(c, pt, lv, ch, sg, x, Y, Yb, ub, &k);
+        if (slope > 0 && !rc) {
+            /* a kink estimate: its neighbours within the tolerance, so that a right
+             * one closes the bracket at once */
+            const double d = 0.5 * tol / slope;
+            if (x - d > k.x[1] && x - d < k.x[3])
+                rc = probe(c, pt, lv, ch, sg, x - d, Y, Yb, ub, &k);
+            if (!rc && x + d > k.x[1] && x + d < k.x[3])
+                rc = probe(c, pt, lv, ch, sg, x + d, Y, Yb, ub, &k);
         }
     }
+    const double fb = k.f[2];
     *lf = sg * fb;
 done:
     free(ch[0]);
     free(ch[1]);
     free(Y);
     return rc;
+}
+
+/* The highest tooth of a sampled contact law's turn. Near its turn the branch of a
+ * contact law sampled at N points is a saw: a tooth for every sample that switches
+ * contact, the parameter rising along each and dropping at its end (NLvib's example 03
+ * at 1024 samples: teeth 7e-5 deep, the top ones 4e-7 apart), so the turn located from
+ * the steps is the tooth they came near, and moves with the grid. From the located
+ * tooth (Y0: state and parameter, u0 the branch's direction there) the branch is walked
+ * both ways in steps of h (scaled arclength), every tooth it passes located
+ * (gd_per_locate_turn), until three teeth in a row are no higher than the best, the
+ * parameter fell back by ten times the deepest tooth (1 % of the range if none), or 32
+ * steps (two continuation steps) passed no tooth (a smooth turn, the located one):
+ * *best receives the highest. 0 ok, -1 out of memory. */
+int gd_per_climb_teeth(ctx *c, const double *Y0, const double *u0, double h, double sg,
+                       double *best)
+{
+    const int n = c->h.n;
+    double *buf = malloc(5 * (size_t)(n + 1) * sizeof *buf);
+    if (!buf) return -1;
+    double *Ya = buf, *Yb = buf + (n + 1), *Yc = buf + 2 * (n + 1), *u = buf + 3 * (n + 1),
+           *yp = buf + 4 * (n + 1);
+    for (int side = -1; side <= 1; side += 2) {
+        memcpy(Yb, Y0, (size_t)(n + 1) * sizeof *Yb);
+        for (int i = 0; i <= n; i++)
+            u[i] = side * u0[i];
+        int have_a = 0, stale = 0, teeth = 0;
+        double depth = 0.0, top = sg * Y0[n], low = top; /* the last tooth, lowest since */
+        for (int k = 0; k < 400; k++) {
+            for (int i = 0; i < n; i++)
+                Yc[i] = yp[i] = Yb[i] + h * u[i] * c->sx;
+            double lc = yp[n] = Yb[n] + h * u[n] * c->sl;
+            int it;
+            double res;
+            if (gd_per_newton(c, Yc, &lc, u, yp, &it, &res)) break;
+            Yc[n] = lc;
+            double nc = 0.0, dot = 0.0;
+            for (int i = 0; i < n; i++) {
+                double d = (Yc[i] - Yb[i]) / c->sx;
+                nc += d * d;
+                dot += d * u[i];
+            }
+            nc += (lc - Yb[n]) * (lc - Yb[n]) / (c->sl * c->sl);
+            dot += u[n] * (lc - Yb[n]) / c->sl;
+            if (!(nc > 0) || dot <= 0.0) break; /* fell back: not the same branch */
+            nc = sqrt(nc);
+            for (int i = 0; i < n; i++)
+                u[i] = (Yc[i] - Yb[i]) / c->sx / nc;
+            u[n] = (lc - Yb[n]) / c->sl / nc;
+            const double fa = sg * Ya[n], fb = sg * Yb[n], fc = sg * lc;
+            if (have_a && fb > fa && fb >= fc) { /* a tooth at Yb */
+                teeth++;
+                /* its top lies within a step's rise of Yb (linear sides at most):
+                 * located only if that could beat the best */
+                double v = Yb[n];
+                if (fb + fmax(fb - fa, fb - fc) > sg * *best &&
+                    gd_per_locate_turn(c, Ya, Ya[n], Yb, Yb[n], Yc, lc, &v, NULL, NULL) < 0) {
+                    free(buf);
+                    return -1;
+                }
+                if (sg * v > sg * *best) {
+                    *best = v;
+                    stale = 0;
+                } else {
+                    stale++;
+                }
+                if (top - low > depth) depth = top - low;
+                top = low = sg * v;
+                if (stale >= 3) break;
+            }
+            if (fc < low) low = fc;
+            if (!teeth && k >= 32) break; /* two steps and no tooth: a smooth turn */
+            const double drop = depth > 0 ? 10 * depth : 1e-2 * c->sl;
+            if (sg * *best - fc > drop) break;
+            memcpy(Ya, Yb, (size_t)(n + 1) * sizeof *Ya);
+            memcpy(Yb, Yc, (size_t)(n + 1) * sizeof *Yb);
+            have_a = 1;
+        }
+    }
+    free(buf);
+    return 0;
 }
 
 /* Folds from nb0 on that come as a zigzag: consecutive folds less than 1 % of the range

@@ -17,7 +17,7 @@ int gd_per_run_branch(ctx *c, const double *vals, int nv)
     const int nb0 = c->res->nbifurcations;
     double res = NAN, lam = 0.0, reached = 0.0, sign = 1.0;
     double *X = calloc((size_t)n + 1, sizeof *X), *t = NULL, *t1 = NULL, *X1 = NULL, *Xg = NULL,
-           *yp = NULL, *Xb = NULL;
+           *yp = NULL, *Xb = NULL, *Yt = NULL, *ut = NULL;
     double *mre = NULL, *mim = NULL, *mre1 = NULL, *mim1 = NULL;
     if (!X) return 1;
     for (i0 = 0; i0 < nv; i0++) {
@@ -131,8 +131,8 @@ int gd_per_run_branch(ctx *c, const double *vals, int nv)
     do {                                                                                           \
         n = c->h.n;                                                                                \
         cap = n + 1;                                                                               \
-        double **arr[5] = {&t1, &X1, &Xg, &yp, &Xb};                                               \
-        for (int a = 0; a < 5; a++) {                                                              \
+        double **arr[7] = {&t1, &X1, &Xg, &yp, &Xb, &Yt, &ut};                                     \
+        for (int a = 0; a < 7; a++) {                                                              \
             free(*arr[a]);                                                                         \
             *arr[a] = calloc((size_t)cap, sizeof **arr[a]);                                        \
             if (!*arr[a]) goto done;                                                               \
@@ -284,7 +284,26 @@ int gd_per_run_branch(ctx *c, const double *vals, int nv)
             const double tiny = 1e-13 * c->sl;
             if (fabs(cl) > tiny && fabs(cp) > tiny && cp * cl < 0) {
                 double lf;
-                if (gd_per_locate_turn(c, Xb, lamp, X, lam, X1, l1, &lf) < 0) goto done;
+                if (gd_per_locate_turn(c, Xb, lamp, X, lam, X1, l1, &lf, Yt, ut) < 0) goto done;
+                const double sg = lam >= lamp ? 1.0 : -1.0;
+                if (c->min_samples > 0) {
+                    /* a contact law: the turn is the highest tooth of the saw there, once
+                     * per zigzag (a turn within its reach and no higher takes it) */
+                    const int reach = c->climb_dir != 0 && c->climb_H == c->H &&
+                                      fabs(lf - c->climbed) < 1e-2 * c->sl;
+                    const int same = reach && c->climb_dir == sg * c->dir;
+                    if (same && sg * lf > sg * c->climbed) c->climbed = lf;
+                    if (!reach) {
+                        double best = lf;
+                        if (gd_per_climb_teeth(c, Yt, ut, ds / 16, sg, &best) < 0) goto done;
+                        c->climbed = best;
+                        c->climb_dir = (int)sg * c->dir;
+                        c->climb_H = c->H;
+                    }
+                    /* a turn the other way within the zigzag's reach is one of its
+                     * teeth: left as located, gd_per_merge_zigzags takes the run */
+                    if (!reach || same) lf = c->climbed;
+                }
                 fold = 1;
                 if (gd_per_add_bif(c, GD_BIF_FOLD, lf, NAN, NAN)) goto done;
             }
@@ -362,6 +381,8 @@ done:
     free(Xg);
     free(yp);
     free(Xb);
+    free(Yt);
+    free(ut);
     free(mre);
     free(mim);
     free(mre1);
