@@ -697,8 +697,8 @@ TEST(backlash_folds_traced_through_unstable_branch)
          * the sampled branch (128 samples) zigzags at its turn, a tooth per sample
          * switching contact: the fold is its highest tooth, 480.7899697 (the located
          * tooth the steps came near before: 479.36 and 480.79; with 2048 samples the
-         * turn is at 479.7925, within 1.2e-5 of 1024's: the continuous contact's fold is
-         * near 479.8) */
+         * turn is at 479.7925, within 1.2e-5 of 1024's; shooting on CVODE's period map
+         * with located contact events puts the continuous contact's fold at 479.788) */
         gd_periodic_options o2 = o;
         o2.stability = 0;
         o2.estimate = 0;
