@@ -643,6 +643,42 @@ TEST(backlash_branch_with_auto_harmonics)
     fx_free(&f);
 }
 
+/* The same pair at H = 3 over 300..2500 rad/s with 45 speeds (arclength steps 4.4 times
+ * longer in speed than over 300..800): the corrector once jumped from 354.04 to 428.14
+ * rad/s (20 iterations) onto the part of the branch already traced, the chord turned
+ * there and the loop was traced twice (five folds, 65 points). A corrector landing more
+ * than 3 steps away is now refused: four folds, equal to the 26-speed run over 300..800
+ * (555.2221283909, 353.8182313419, 482.3602396383, 369.7404411236) to 1e-8 (measured
+ * 1e-11), 57 points (45 and the 12 inside the two loops). */
+TEST(backlash_wide_range_no_retrace)
+{
+    fx f;
+    gd_transient_model *tm = NULL;
+    REQUIRE(load_spec(&f, backlash_yaml(), &tm));
+    gd_periodic_options o;
+    gd_periodic_options_init(&o);
+    o.harmonics = 3;
+    o.estimate = 0;
+    o.stability = 0;
+    gd_periodic_result *r = run_speeds(&f, &tm->spec, 300, 2500, 45, &o, NULL, 0);
+    REQUIRE(r);
+    const double at[4] = {555.2221283909, 353.8182313419, 482.3602396383, 369.7404411236};
+    int bad = 0;
+    for (int i = 0; i < r->npoints; i++)
+        bad += !r->points[i].converged;
+    for (int i = 0; i < r->nbifurcations; i++)
+        printf("  %s at %.10f rad/s\n", gd_bifurcation_name(r->bifurcations[i].type),
+               r->bifurcations[i].speed);
+    printf("  %d points, %d steps\n", r->npoints, r->steps);
+    CHECK(bad == 0 && r->npoints == 57);
+    CHECK(r->nbifurcations == 4);
+    for (int i = 0; i < 4 && i < r->nbifurcations; i++)
+        CHECK_REL(r->bifurcations[i].speed, at[i], 1e-8);
+    gd_periodic_result_free(r);
+    gd_transient_model_free(tm);
+    fx_free(&f);
+}
+
 /* Softening by tooth separation bends the mesh resonance to low speeds: over 300..800
  * rad/s the branch turns four times (two hysteresis loops); the arclength traces it
  * through its unstable parts. Every requested speed in a loop has three solutions, the
@@ -1002,6 +1038,7 @@ TEST(extreme_low_speeds_scale_the_step_exponential)
 RUN_TESTS(T(linear_equals_unbalance), T(mathieu_tongue_period_doubling),
           T(floquet_against_monodromy), T(backlash_against_transient),
           T(sfd_pair_against_transient), T(backlash_folds_traced_through_unstable_branch),
-          T(backlash_branch_with_auto_harmonics), T(chen_sfd_neimark_sacker_matches_transient),
-          T(lowrank_solver_equals_sparse_lu), T(few_magnus_steps_leave_stability_undecided),
-          T(option_bounds_named), T(extreme_low_speeds_scale_the_step_exponential))
+          T(backlash_wide_range_no_retrace), T(backlash_branch_with_auto_harmonics),
+          T(chen_sfd_neimark_sacker_matches_transient), T(lowrank_solver_equals_sparse_lu),
+          T(few_magnus_steps_leave_stability_undecided), T(option_bounds_named),
+          T(extreme_low_speeds_scale_the_step_exponential))
