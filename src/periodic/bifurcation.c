@@ -1,7 +1,7 @@
 /* Bifurcations between continuation steps (continuation_impl.h): the critical
  * multiplier's modulus through 1 located by secant iterations on points of the branch
- * (period doubling, Neimark-Sacker, branch point), folds at the zero of the tangent's
- * parameter component, and close runs of folds merged into one turn. */
+ * (period doubling, Neimark-Sacker, branch point), folds at the parameter's extremum
+ * where it turns, and close runs of folds merged into one turn. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -31,8 +31,13 @@ int gd_per_add_bif(ctx *c, gd_bifurcation_type type, double lam, double mre, dou
 {
     gd_periodic_result *r = c->res;
     /* a real multiplier through +1 next to a fold is the fold itself (located a step
-     * apart when the fold falls near a step end) */
-    const double near = 1e-3 * (c->sl > 0 ? c->sl : 1.0);
+     * apart when the fold falls near a step end). With a contact law the sampled branch
+     * zigzags near its turn (a tooth per sample switching contact) and the multiplier
+     * crosses +1 at a tooth, not at the turn: there "next to" is the zigzag's reach (1 %
+     * of the range, as gd_per_merge_zigzags; the backlash pair at H = 20, 128 samples
+     * and 26 speeds: the crossing at 479.23 rad/s, the turn at 480.38, the crossing
+     * reported as a branch point before) */
+    const double near = (c->min_samples > 0 ? 1e-2 : 1e-3) * (c->sl > 0 ? c->sl : 1.0);
     for (int i = r->nbifurcations - 1; i >= 0 && i >= r->nbifurcations - 3; i--) {
         gd_bifurcation *b = &r->bifurcations[i];
         if (b->direction != c->dir || fabs((c->param ? b->parameter : b->speed) - lam) > near)
@@ -163,70 +168,243 @@ int gd_per_locate(ctx *c, int m, const double *Xa, double la, double ga, const d
     return rc;
 }
 
-/* A fold between steps a and b (the tangent's parameter component ta[n], tb[n] of
- * opposite signs), located on the branch: Illinois iterations on that component over
- * points of the branch between the steps (each a corrector on the hyperplane normal to
- * the chord through its interpolate, then the tangent there), until the parameter stops
- * moving (1e-11 of the range; near a fold it is quadratic in the position, so the
- * located value does not depend on the grid). Confirmed only if the located parameter is
- * an extremum beyond both steps on the side the tangent says: otherwise the sign change
- * was not a fold (a corrector that jumped between sheets) and 1 is returned. 2: the
- * refinement could not run (a corrector failed): *lf holds the cubic Hermite estimate. */
-int gd_per_locate_fold(ctx *c, const double *Xa, double la, const double *ta, const double *Xb,
-                       double lb, const double *tb, double ds, double *lf)
+/* The point at s in [0, 2] of the path P -> X -> X1 (pt[0..2], their parameters l):
+ * Newton on the hyperplane normal to the chord (ch[0]: P -> X, ch[1]: X -> X1) through
+ * the chord's interpolate. */
+static int path_point(ctx *c, const double *const pt[3], const double l[3], double *const ch[2],
+                      double s, double *Y, double *lam)
+{
+    const int k = s < 1.0 ? 0 : 1;
+    return point_between(c, pt[k], l[k], pt[k + 1], l[k + 1], ch[k], s - k, Y, lam);
+}
+
+/* The bracket of gd_per_locate_turn: x[1] < x[2] < x[3] with f[2] the best, and the
+ * next evaluated points beyond them (x[0] < x[1], x[4] > x[3]; NaN: none). */
+typedef struct brk {
+    double x[5], f[5];
+} brk;
+
+/* Evaluates the path at x and updates the bracket (and Yb, ub with a new best). */
+static int probe(ctx *c, const double *const pt[3], const double lv[3], double *const ch[2],
+                 double sg, double x, double *Y, double *Yb, double *ub, brk *k)
 {
     const int n = c->h.n;
-    {
-        double s = ta[n] / (ta[n] - tb[n]), s2 = s * s, s3 = s2 * s;
-        *lf = (2 * s3 - 3 * s2 + 1) * la + (s3 - 2 * s2 + s) * ds * ta[n] * c->sl +
-              (-2 * s3 + 3 * s2) * lb + (s3 - s2) * ds * tb[n] * c->sl;
+    double lam;
+    if (path_point(c, pt, lv, ch, x, Y, &lam)) return 1;
+    const double fx = sg * lam;
+    if (fx > k->f[2] && Yb) {
+        memcpy(Yb, Y, (size_t)n * sizeof *Yb);
+        Yb[n] = lam;
+        memcpy(ub, ch[x < 1.0 ? 0 : 1], (size_t)(n + 1) * sizeof *ub);
     }
-    double *ch = malloc((size_t)(n + 1) * sizeof *ch), *X = malloc((size_t)(n + 1) * sizeof *X),
-           *tt = malloc((size_t)(n + 1) * sizeof *tt);
-    int rc = 2;
-    if (!ch || !X || !tt) goto done;
-    for (int i = 0; i < n; i++)
-        ch[i] = (Xb[i] - Xa[i]) / c->sx;
-    ch[n] = (lb - la) / c->sl;
-    double nc = gd_per_norm2(ch, n + 1);
-    if (!(nc > 0)) goto done;
-    for (int i = 0; i <= n; i++)
-        ch[i] /= nc;
-    double s0 = 0.0, s1 = 1.0, g0 = ta[n], g1 = tb[n], sig = g0 / (g0 - g1), lprev = NAN;
-    double best = NAN;
-    int calm = 0;
-    for (int it = 0; it < 40; it++) {
-        if (!(sig > s0 && sig < s1)) sig = 0.5 * (s0 + s1);
-        double lam;
-        if (point_between(c, Xa, la, Xb, lb, ch, sig, X, &lam)) break;
-        if (gd_per_tangent(c, X, lam, ta, 1.0, tt)) break;
-        best = lam;
-        double g = tt[n];
-        calm = fabs(lam - lprev) <= 1e-11 * c->sl ? calm + 1 : 0;
-        if (calm >= 2 || g == 0.0 || s1 - s0 < 1e-14) break;
-        lprev = lam;
-        if ((g < 0) == (g0 < 0)) {
-            s0 = sig;
-            g0 = g;
-            g1 *= 0.5;
-        } else {
-            s1 = sig;
-            g1 = g;
-            g0 *= 0.5;
+    int at; /* where x goes: 1 (new a), 2 (new best), 3 (new e) */
+    if (fx > k->f[2]) {
+        at = 2;
+        if (x < k->x[2]) { /* b becomes e */
+            k->x[4] = k->x[3];
+            k->f[4] = k->f[3];
+            k->x[3] = k->x[2];
+            k->f[3] = k->f[2];
+        } else { /* b becomes a */
+            k->x[0] = k->x[1];
+            k->f[0] = k->f[1];
+            k->x[1] = k->x[2];
+            k->f[1] = k->f[2];
         }
-        sig = s0 - g0 * (s1 - s0) / (g1 - g0);
+    } else if (x < k->x[2]) {
+        at = 1;
+        k->x[0] = k->x[1];
+        k->f[0] = k->f[1];
+    } else {
+        at = 3;
+        k->x[4] = k->x[3];
+        k->f[4] = k->f[3];
     }
-    if (isnan(best)) goto done;
-    /* the fold is the parameter's extremum: beyond both steps, on the side the tangent
-     * at a heads to */
-    const double slack = 1e-12 * c->sl;
-    rc = ta[n] > 0 ? !(best >= fmax(la, lb) - slack) : !(best <= fmin(la, lb) + slack);
-    if (!rc) *lf = best;
+    k->x[at] = x;
+    k->f[at] = fx;
+    return 0;
+}
+
+/* The fold at a turn of the parameter: l[1] (the point X) beyond both neighbours P and
+ * X1 (l[0], l[2]), so the path P -> X -> X1 of the branch holds an extremum of the
+ * parameter. Located by golden-section steps mixed with parabolic ones (every other
+ * step golden, so the bracket shrinks by 0.618 at least every two steps) on the
+ * parameter along that path: on a smooth branch the parabola converges to the zero of
+ * the tangent's parameter component; at a corner of a sampled non-smooth branch (a
+ * sample switching contact) the parameter is only piecewise smooth and the tangent
+ * jumps over zero, and golden section still closes in on the corner. Stops when both
+ * ends of the bracket are within 1e-12 of the best value (relative to it): at a corner
+ * the parameter is linear in the path, so the bracket is then 1e-12 / slope wide; at a
+ * smooth fold it is quadratic, and the best value is exact to far below that. The value
+ * depends on the branch only, not on where the steps fell. *lf receives the best value
+ * found (l[1] if no refinement could run); Yb (if not NULL) its state (n + 1, the
+ * parameter last) and ub the unit direction of the path there (scaled as the tangent);
+ * 0: located, 1: a corrector failed first (*lf is then the best so far), -1 out of
+ * memory. */
+int gd_per_locate_turn(ctx *c, const double *Xp, double lp, const double *X, double l,
+                       const double *X1, double l1, double *lf, double *Yb, double *ub)
+{
+    const int n = c->h.n;
+    const double *const pt[3] = {Xp, X, X1};
+    const double lv[3] = {lp, l, l1};
+    const double sg = l >= lp ? 1.0 : -1.0; /* +1: a maximum */
+    double *ch[2] = {malloc((size_t)(n + 1) * sizeof(double)),
+                     malloc((size_t)(n + 1) * sizeof(double))};
+    double *Y = malloc((size_t)(n + 1) * sizeof *Y);
+    *lf = l;
+    int rc = -1;
+    if (!ch[0] || !ch[1] || !Y) goto done;
+    for (int k = 0; k < 2; k++) {
+        for (int i = 0; i < n; i++)
+            ch[k][i] = (pt[k + 1][i] - pt[k][i]) / c->sx;
+        ch[k][n] = (lv[k + 1] - lv[k]) / c->sl;
+        double nc = gd_per_norm2(ch[k], n + 1);
+        if (!(nc > 0)) {
+            rc = 1;
+            goto done;
+        }
+        for (int i = 0; i <= n; i++)
+            ch[k][i] /= nc;
+    }
+    if (Yb) {
+        memcpy(Yb, X, (size_t)n * sizeof *Yb);
+        Yb[n] = l;
+        memcpy(ub, ch[1], (size_t)(n + 1) * sizeof *ub);
+    }
+    brk k = {{NAN, 0.0, 1.0, 2.0, NAN}, {NAN, sg * lp, sg * l, sg * l1, NAN}};
+    const double gold = 0.3819660112501051; /* 2 - golden ratio */
+    rc = 0;
+    for (int it = 0; it < 200 && !rc; it++) {
+        const double a = k.x[1], b = k.x[2], e = k.x[3], fa = k.f[1], fb = k.f[2], fe = k.f[3];
+        const double tol = 1e-12 * fabs(fb) + 1e-300;
+        if ((fb - fa <= tol && fb - fe <= tol) || e - a < 1e-15) break;
+        double x = NAN, slope = 0.0;
+        if (it % 3 == 1) { /* a kink: the lines through the neighbours on either side */
+            double pf = -INFINITY;
+            for (int side = 0; side < 2; side++) {
+                /* side 0: the kink right of b (lines a-b and e-e2); 1: left (a2-a, b-e) */
+                const int l0 = side ? 0 : 1, r0 = side ? 2 : 3;
+                if (isnan(k.x[l0]) || isnan(k.x[r0 + 1])) continue;
+                const double sL = (k.f[l0 + 1] - k.f[l0]) / (k.x[l0 + 1] - k.x[l0]);
+                const double sR = (k.f[r0 + 1] - k.f[r0]) / (k.x[r0 + 1] - k.x[r0]);
+                if (!(sL > 0 && sR < 0)) continue;
+                const double xk =
+                    (k.f[r0] - k.f[l0 + 1] + sL * k.x[l0 + 1] - sR * k.x[r0]) / (sL - sR);
+                const double fk = k.f[l0 + 1] + sL * (xk - k.x[l0 + 1]);
+                if (xk > (side ? a : b) && xk < (side ? b : e) && fk > pf) {
+                    x = xk;
+                    pf = fk;
+                    slope = fmax(sL, -sR);
+                }
+            }
+        } else if (it % 3 == 2) { /* the vertex of the parabola through the three */
+            double p = (b - a) * (b - a) * (fb - fe) - (b - e) * (b - e) * (fb - fa);
+            double q = (b - a) * (fb - fe) - (b - e) * (fb - fa);
+            if (q != 0.0) x = b - 0.5 * p / q;
+            /* inside, and not on top of the best point */
+            const double gap = 1e-3 * (e - a);
+            if (!(x > a + gap && x < e - gap && fabs(x - b) > gap)) x = NAN;
+        }
+        if (isnan(x)) /* golden section of the longer side */
+            x = b - a > e - b ? b - gold * (b - a) : b + gold * (e - b);
+        rc = probe(c, pt, lv, ch, sg, x, Y, Yb, ub, &k);
+        if (slope > 0 && !rc) {
+            /* a kink estimate: its neighbours within the tolerance, so that a right
+             * one closes the bracket at once */
+            const double d = 0.5 * tol / slope;
+            if (x - d > k.x[1] && x - d < k.x[3])
+                rc = probe(c, pt, lv, ch, sg, x - d, Y, Yb, ub, &k);
+            if (!rc && x + d > k.x[1] && x + d < k.x[3])
+                rc = probe(c, pt, lv, ch, sg, x + d, Y, Yb, ub, &k);
+        }
+    }
+    const double fb = k.f[2];
+    *lf = sg * fb;
 done:
-    free(ch);
-    free(X);
-    free(tt);
+    free(ch[0]);
+    free(ch[1]);
+    free(Y);
     return rc;
+}
+
+/* The highest tooth of a sampled contact law's turn. Near its turn the branch of a
+ * contact law sampled at N points is a saw: a tooth for every sample that switches
+ * contact, the parameter rising along each and dropping at its end (NLvib's example 03
+ * at 1024 samples: teeth 7e-5 deep, the top ones 4e-7 apart), so the turn located from
+ * the steps is the tooth they came near, and moves with the grid. From the located
+ * tooth (Y0: state and parameter, u0 the branch's direction there) the branch is walked
+ * both ways in steps of h (scaled arclength), every tooth it passes located
+ * (gd_per_locate_turn), until three teeth in a row are no higher than the best, the
+ * parameter fell back by ten times the deepest tooth (1 % of the range if none), or 32
+ * steps (two continuation steps) passed no tooth (a smooth turn, the located one):
+ * *best receives the highest. 0 ok, -1 out of memory. */
+int gd_per_climb_teeth(ctx *c, const double *Y0, const double *u0, double h, double sg,
+                       double *best)
+{
+    const int n = c->h.n;
+    double *buf = malloc(5 * (size_t)(n + 1) * sizeof *buf);
+    if (!buf) return -1;
+    double *Ya = buf, *Yb = buf + (n + 1), *Yc = buf + 2 * (n + 1), *u = buf + 3 * (n + 1),
+           *yp = buf + 4 * (n + 1);
+    for (int side = -1; side <= 1; side += 2) {
+        memcpy(Yb, Y0, (size_t)(n + 1) * sizeof *Yb);
+        for (int i = 0; i <= n; i++)
+            u[i] = side * u0[i];
+        int have_a = 0, stale = 0, teeth = 0;
+        double depth = 0.0, top = sg * Y0[n], low = top; /* the last tooth, lowest since */
+        for (int k = 0; k < 400; k++) {
+            for (int i = 0; i < n; i++)
+                Yc[i] = yp[i] = Yb[i] + h * u[i] * c->sx;
+            double lc = yp[n] = Yb[n] + h * u[n] * c->sl;
+            int it;
+            double res;
+            if (gd_per_newton(c, Yc, &lc, u, yp, &it, &res)) break;
+            Yc[n] = lc;
+            double nc = 0.0, dot = 0.0;
+            for (int i = 0; i < n; i++) {
+                double d = (Yc[i] - Yb[i]) / c->sx;
+                nc += d * d;
+                dot += d * u[i];
+            }
+            nc += (lc - Yb[n]) * (lc - Yb[n]) / (c->sl * c->sl);
+            dot += u[n] * (lc - Yb[n]) / c->sl;
+            if (!(nc > 0) || dot <= 0.0) break; /* fell back: not the same branch */
+            nc = sqrt(nc);
+            for (int i = 0; i < n; i++)
+                u[i] = (Yc[i] - Yb[i]) / c->sx / nc;
+            u[n] = (lc - Yb[n]) / c->sl / nc;
+            const double fa = sg * Ya[n], fb = sg * Yb[n], fc = sg * lc;
+            if (have_a && fb > fa && fb >= fc) { /* a tooth at Yb */
+                teeth++;
+                /* its top lies within a step's rise of Yb (linear sides at most):
+                 * located only if that could beat the best */
+                double v = Yb[n];
+                if (fb + fmax(fb - fa, fb - fc) > sg * *best &&
+                    gd_per_locate_turn(c, Ya, Ya[n], Yb, Yb[n], Yc, lc, &v, NULL, NULL) < 0) {
+                    free(buf);
+                    return -1;
+                }
+                if (sg * v > sg * *best) {
+                    *best = v;
+                    stale = 0;
+                } else {
+                    stale++;
+                }
+                if (top - low > depth) depth = top - low;
+                top = low = sg * v;
+                if (stale >= 3) break;
+            }
+            if (fc < low) low = fc;
+            if (!teeth && k >= 32) break; /* two steps and no tooth: a smooth turn */
+            const double drop = depth > 0 ? 10 * depth : 1e-2 * c->sl;
+            if (sg * *best - fc > drop) break;
+            memcpy(Ya, Yb, (size_t)(n + 1) * sizeof *Ya);
+            memcpy(Yb, Yc, (size_t)(n + 1) * sizeof *Yb);
+            have_a = 1;
+        }
+    }
+    free(buf);
+    return 0;
 }
 
 /* Folds from nb0 on that come as a zigzag: consecutive folds less than 1 % of the range

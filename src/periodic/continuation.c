@@ -17,7 +17,7 @@ int gd_per_run_branch(ctx *c, const double *vals, int nv)
     const int nb0 = c->res->nbifurcations;
     double res = NAN, lam = 0.0, reached = 0.0, sign = 1.0;
     double *X = calloc((size_t)n + 1, sizeof *X), *t = NULL, *t1 = NULL, *X1 = NULL, *Xg = NULL,
-           *yp = NULL;
+           *yp = NULL, *Xb = NULL, *Yt = NULL, *ut = NULL;
     double *mre = NULL, *mim = NULL, *mre1 = NULL, *mim1 = NULL;
     if (!X) return 1;
     for (i0 = 0; i0 < nv; i0++) {
@@ -34,7 +34,22 @@ int gd_per_run_branch(ctx *c, const double *vals, int nv)
         rc = 0;
         goto done;
     }
-    if (gd_per_emit_point(c, X, lam, it, res) || gd_per_follow_H(c, &X, NULL)) goto done;
+    if (gd_per_emit_point(c, X, lam, it, res)) goto done;
+    if (c->opt->adaptive && c->want_H > c->H) {
+        /* the first point needed more harmonics: the branch starts from it solved again
+         * at them (padded with zeros it is no solution there: the backlash pair over
+         * 300..2500 rad/s went from 300 to 292 rad/s on a step of 1e-6, a false fold at
+         * 241.85 and 300 rad/s reported twice) */
+        if (gd_per_follow_H(c, &X, NULL)) goto done;
+        if (gd_per_solve_fixed(c, &X, NULL, lam, &it, &res, 0)) {
+            snprintf(c->reason, sizeof c->reason,
+                     "the first point did not converge again at H = %d", c->H);
+            rc = 0;
+            for (int i = i0 + 1; i < nv; i++)
+                if (gd_per_fail_point(c, vals[i], c->reason)) rc = 1;
+            goto done;
+        }
+    }
     n = c->h.n;
     if (c->opt->method == GD_PER_SEQUENTIAL) {
         /* each speed from the secant through the last two solutions (the plain last
@@ -116,8 +131,8 @@ int gd_per_run_branch(ctx *c, const double *vals, int nv)
     do {                                                                                           \
         n = c->h.n;                                                                                \
         cap = n + 1;                                                                               \
-        double **arr[4] = {&t1, &X1, &Xg, &yp};                                                    \
-        for (int a = 0; a < 4; a++) {                                                              \
+        double **arr[7] = {&t1, &X1, &Xg, &yp, &Xb, &Yt, &ut};                                     \
+        for (int a = 0; a < 7; a++) {                                                              \
             free(*arr[a]);                                                                         \
             *arr[a] = calloc((size_t)cap, sizeof **arr[a]);                                        \
             if (!*arr[a]) goto done;                                                               \
@@ -140,10 +155,9 @@ int gd_per_run_branch(ctx *c, const double *vals, int nv)
     (void)rho1;
     gd_per_floquet(c, X, lam, mre, mim, &stable, &mu_max);
     int have_mu = stable >= 0, fold_prev = 0;
-    /* fold confirmation: the parameter at the point before X (have_p), a fold located
-     * on the last step that waits for the next chord (pend) */
-    double lamp = lam, pend_lf = 0.0;
-    int have_p = 0, pend = 0;
+    /* the point before X (Xb, lamp; have_p: it exists at this H) */
+    double lamp = lam;
+    int have_p = 0;
     double tt_rej = 2.0; /* the turn of the last step refused from X (2: none) */
     if (have_mu) gd_per_categorise(c, mre, mim, out, rho);
     double ds = 1.0 / (nv - 1), dsmax = 2.0 / (nv - 1), dsmin = 1e-7;
@@ -181,15 +195,18 @@ int gd_per_run_branch(ctx *c, const double *vals, int nv)
             }
             tt += t[n] * t1[n];
             tc += t[n] * (l1 - lam) / c->sl;
-            /* with a non-smooth law, a corrector that went far beyond the step (the
-             * chord more than 3 ds, in the scaled variables) jumped to another part of
-             * the branch: NLvib's example 03 at H = 3 went from 0.6537 to 0.9146 in 26
-             * iterations on a step of 0.053 */
+            /* a corrector that went far beyond the step (the chord more than 3 ds, in
+             * the scaled variables) jumped to another part of the branch: NLvib's
+             * example 03 at H = 3 went from 0.6537 to 0.9146 in 26 iterations on a step
+             * of 0.053; the backlash pair at H = 3 over 300..2500 rad/s from 354.04 to
+             * 428.14 rad/s in 20 iterations, onto the part of its branch already
+             * traced (the chord turned there: a false fold at 354.04 and the loop
+             * traced twice, seven folds instead of four) */
             double cc = 0.0;
             for (int i = 0; i < n; i++)
                 cc += (X1[i] - X[i]) * (X1[i] - X[i]);
             cc = sqrt(cc / (c->sx * c->sx) + (l1 - lam) * (l1 - lam) / (c->sl * c->sl));
-            if (c->corners && cc > 3.0 * ds && ds > 16 * dsmin) {
+            if (cc > 3.0 * ds && ds > 16 * dsmin) {
                 ds *= 0.5;
                 continue;
             }
@@ -250,42 +267,43 @@ int gd_per_run_branch(ctx *c, const double *vals, int nv)
             }
         }
         /* bifurcations between the two steps */
-        /* a fold where the tangent's parameter component changes sign, located on the
-         * branch by gd_per_locate_fold (not an extremum there: no fold). With a
-         * non-smooth law (corners) the tangent is not trusted for this: the AFT Jacobian
-         * misses the samples that switch contact along the branch, and near a resonance
-         * peak its parameter component is small and flips at kinks while the branch goes
-         * on, or keeps its sign where the branch turns (NLvib's example 03: 12 flips and
-         * one turn at 2048 samples; at auto H a turn at 0.75560 with the component at
-         * +0.007 on both sides). There a fold is where the parameter itself turns (the
-         * chords before and after X move it in opposite directions), at the located
-         * value of a tangent flip next to X when that lies beyond X, else at X.
-         * (Backlash meshes keep the tangent rule and the zigzag merge: their tested
-         * folds are unchanged.) */
+        /* a fold where the parameter itself turns: the chords before and after X move it
+         * in opposite directions, so the branch from the point before X through X to X1
+         * holds its extremum, located there by gd_per_locate_turn. Not the sign of the
+         * tangent's parameter component: with a contact law the sampled residual is
+         * only piecewise smooth and the tangent is not trusted near a turn (NLvib's
+         * example 03 at 2048 samples: 12 flips and one turn; at auto H a turn at
+         * 0.75560 with the component at +0.007 on both sides; the backlash pair at
+         * H = 20, 1024 samples and 81 speeds: a flip between 479.630 and 479.768 rad/s
+         * with the branch's maximum beyond both, a fold the tangent rule dropped). A
+         * step that turns within itself and back is refused by the step control (the
+         * tangent turned more than 25 deg). */
         int fold = 0;
-        if (c->corners) {
+        {
             const double cl = l1 - lam, cp = have_p ? lam - lamp : 0.0;
             const double tiny = 1e-13 * c->sl;
-            const int flip = t[n] * t1[n] < 0;
             if (fabs(cl) > tiny && fabs(cp) > tiny && cp * cl < 0) {
-                /* the parameter turned at X: a maximum when it rose to X */
-                double lf = lam, lg = NAN;
-                if (pend)
-                    lg = pend_lf; /* the tangent flipped between the point before and X */
-                else if (flip && gd_per_locate_fold(c, X, lam, t, X1, l1, t1, ds, &lg) == 1)
-                    lg = NAN;
-                if (cp > 0 ? lg > lam : lg < lam) lf = lg;
-                fold = 1;
-                if (gd_per_add_bif(c, GD_BIF_FOLD, lf, NAN, NAN)) goto done;
-                pend = 0;
-            } else {
-                double lg;
-                pend = flip && gd_per_locate_fold(c, X, lam, t, X1, l1, t1, ds, &lg) != 1;
-                if (pend) pend_lf = lg;
-            }
-        } else if (t[n] * t1[n] < 0) {
-            double lf;
-            if (gd_per_locate_fold(c, X, lam, t, X1, l1, t1, ds, &lf) != 1) {
+                double lf;
+                if (gd_per_locate_turn(c, Xb, lamp, X, lam, X1, l1, &lf, Yt, ut) < 0) goto done;
+                const double sg = lam >= lamp ? 1.0 : -1.0;
+                if (c->min_samples > 0) {
+                    /* a contact law: the turn is the highest tooth of the saw there, once
+                     * per zigzag (a turn within its reach and no higher takes it) */
+                    const int reach = c->climb_dir != 0 && c->climb_H == c->H &&
+                                      fabs(lf - c->climbed) < 1e-2 * c->sl;
+                    const int same = reach && c->climb_dir == sg * c->dir;
+                    if (same && sg * lf > sg * c->climbed) c->climbed = lf;
+                    if (!reach) {
+                        double best = lf;
+                        if (gd_per_climb_teeth(c, Yt, ut, ds / 16, sg, &best) < 0) goto done;
+                        c->climbed = best;
+                        c->climb_dir = (int)sg * c->dir;
+                        c->climb_H = c->H;
+                    }
+                    /* a turn the other way within the zigzag's reach is one of its
+                     * teeth: left as located, gd_per_merge_zigzags takes the run */
+                    if (!reach || same) lf = c->climbed;
+                }
                 fold = 1;
                 if (gd_per_add_bif(c, GD_BIF_FOLD, lf, NAN, NAN)) goto done;
             }
@@ -298,7 +316,8 @@ int gd_per_run_branch(ctx *c, const double *vals, int nv)
                 int m = tot < tot1 ? tot1 : tot, ia, ib;
                 double ga = gd_per_ranked(c, mre, mim, m, &ia) - 1.0;
                 double gb = gd_per_ranked(c, mre1, mim1, m, &ib) - 1.0;
-                c->near_fold = fold || fold_prev;
+                /* a tangent that flipped on this step: the turn is seen on the next */
+                c->near_fold = fold || fold_prev || t[n] * t1[n] < 0;
                 if (gd_per_locate(c, m, X, lam, ga, X1, l1, gb, t, mre1, mim1)) goto done;
             }
             memcpy(out, out1, sizeof out);
@@ -309,6 +328,7 @@ int gd_per_run_branch(ctx *c, const double *vals, int nv)
         fold_prev = fold;
         lamp = lam;
         have_p = 1;
+        memcpy(Xb, X, (size_t)n * sizeof *X);
         memcpy(X, X1, (size_t)n * sizeof *X);
         memcpy(t, t1, (size_t)(n + 1) * sizeof *t);
         {
@@ -360,6 +380,9 @@ done:
     free(X1);
     free(Xg);
     free(yp);
+    free(Xb);
+    free(Yt);
+    free(ut);
     free(mre);
     free(mim);
     free(mre1);

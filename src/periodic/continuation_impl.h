@@ -60,8 +60,11 @@ typedef struct ctx {
     double v0, v1; /* the requested range of this direction (progress) */
     int ndir;
     int min_samples; /* AFT samples at least (backlash: 128, non-smooth laws: 1024) */
-    int corners;     /* a non-smooth law: a step whose turn does not shrink when halved is
-                        a corner of the sampled branch, taken (continuation.c) */
+    double climbed;  /* the highest tooth of the last turn climbed (gd_per_climb_teeth) */
+    int climb_dir;   /* its direction (0: none) and H */
+    int climb_H;
+    int corners; /* a non-smooth law: a step whose turn does not shrink when halved is
+                    a corner of the sampled branch, taken (continuation.c) */
 } ctx;
 
 typedef struct pstate {
@@ -93,8 +96,10 @@ double gd_per_ranked(const ctx *c, const double *mre, const double *mim, int m, 
 int gd_per_locate(ctx *c, int m, const double *Xa, double la, double ga, const double *Xb,
                   double lb, double gb, const double *tan, const double *mre_b,
                   const double *mim_b);
-int gd_per_locate_fold(ctx *c, const double *Xa, double la, const double *ta, const double *Xb,
-                       double lb, const double *tb, double ds, double *lf);
+int gd_per_locate_turn(ctx *c, const double *Xp, double lp, const double *X, double l,
+                       const double *X1, double l1, double *lf, double *Yb, double *ub);
+int gd_per_climb_teeth(ctx *c, const double *Y0, const double *u0, double h, double sg,
+                       double *best);
 void gd_per_merge_zigzags(ctx *c, int nb0);
 double gd_per_inf_norm(const double *x, int n);
 int gd_per_solve_warm(ctx *c, double *X, double lam, int *it, double *res);

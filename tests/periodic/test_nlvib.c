@@ -175,9 +175,13 @@ TEST(unilateral_spring_equals_nlvib_example_03)
 
 /* The whole curve of example 03 with the defaults for a non-smooth law (1024 samples)
  * at NLvib's H = 21: every point converges, in branch order (the frequency turns only at
- * the two folds), and exactly two folds: the lower one and the resonance peak, NLvib's
- * 0.7556642410 to 1e-4 (measured 0.755663813: the peak is a corner of the sampled branch,
- * reported at its turning point). */
+ * the two folds), and exactly two folds: the lower one and the resonance peak. The
+ * sampled branch is a saw near its peak (a tooth per sample switching contact, 7e-5
+ * deep); the fold is its highest tooth (gd_per_climb_teeth), the same whatever the steps:
+ * the CLI's 31, 61 and 121 frequencies over 0.8..0.5 give 0.7556642410345,
+ * 0.7556642410325 and 0.7556642410345 (2.6e-12), NLvib's grid value 0.75566424102782
+ * within 9e-12 (it was 0.755663813 here, 0.7556636 and 0.7556572 at 61 and 121, the
+ * tooth the steps came near). */
 TEST(nlvib_example_03_whole_curve)
 {
     fx f;
@@ -223,15 +227,60 @@ TEST(nlvib_example_03_whole_curve)
     CHECK(turns == 2);
     CHECK(folds == 2);
     CHECK_ABS(low, 0.65344010156891796, 1e-8);
-    CHECK_ABS(peak, 0.75566424102782437, 1e-4);
+    CHECK_REL(peak, 0.7556642410345, 1e-8);
     gd_periodic_result_free(r);
+    gd_transient_model_free(tm);
+    fx_free(&f);
+}
+
+/* Folds located on the branch, not on the grid: example 01 (Duffing, H = 7, 29 samples)
+ * over 0.8..1.6 rad/s with 9 and 41 frequencies (arclength steps up to 0.1 and 0.05:
+ * 73 and 145 steps) gives the same two folds to 1e-8 (measured 1e-13; 1.3e-13 between
+ * 21, 41, 81 and 161 frequencies by the CLI), NLvib's 1.2696019555 and 1.1157002518. */
+TEST(duffing_folds_whatever_the_grid)
+{
+    fx f;
+    REQUIRE(load(&f, GD_SOURCE_DIR "/examples/duffing.yaml", NULL));
+    gd_transient_model *tm = NULL;
+    gd_error err;
+    REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
+    gd_periodic_options opt;
+    gd_periodic_options_init(&opt);
+    opt.harmonics = 7;
+    opt.samples = 29;
+    opt.estimate = 0;
+    opt.stability = 0;
+    gd_periodic_param prm = {.name = "load frequency", .load_frequency = 1};
+    double fold[2][2] = {{NAN, NAN}, {NAN, NAN}};
+    const int counts[2] = {9, 41};
+    for (int g = 0; g < 2; g++) {
+        double vals[41];
+        for (int i = 0; i < counts[g]; i++)
+            vals[i] = 0.8 + 0.8 * i / (counts[g] - 1);
+        gd_periodic_result *r = NULL;
+        REQUIRE(gd_periodic_run(f.s, &tm->spec, &prm, vals, counts[g], &opt, NULL, 0, &r, &err) ==
+                GD_OK);
+        int nf = 0;
+        for (int b = 0; b < r->nbifurcations; b++)
+            if (r->bifurcations[b].type == GD_BIF_FOLD && nf < 2)
+                fold[g][nf++] = r->bifurcations[b].parameter;
+        CHECK(nf == 2 && r->nbifurcations == 2);
+        printf("  %d frequencies: folds %.13f, %.13f (%d steps)\n", counts[g], fold[g][0],
+               fold[g][1], r->steps);
+        gd_periodic_result_free(r);
+    }
+    CHECK_REL(fold[1][0], fold[0][0], 1e-8);
+    CHECK_REL(fold[1][1], fold[0][1], 1e-8);
+    CHECK_REL(fold[0][0], 1.2696019555, 1e-9);
+    CHECK_REL(fold[0][1], 1.1157002518, 1e-9);
     gd_transient_model_free(tm);
     fx_free(&f);
 }
 
 /* The CLI's defaults (adaptive H from the load's order, the truncation estimate): the
  * whole curve converges and has the same two folds (the peak at the branch's own H, 15 to
- * 31: measured 0.755601769, within 1e-4 of NLvib's H = 21 value). */
+ * 31: measured 0.755608203, the highest tooth at that H, within 1e-4 of NLvib's H = 21
+ * value). */
 TEST(nlvib_example_03_default_options)
 {
     fx f;
@@ -274,4 +323,5 @@ TEST(nlvib_example_03_default_options)
 }
 
 RUN_TESTS(T(duffing_equals_nlvib_example_01), T(unilateral_spring_equals_nlvib_example_03),
-          T(nlvib_example_03_whole_curve), T(nlvib_example_03_default_options))
+          T(nlvib_example_03_whole_curve), T(nlvib_example_03_default_options),
+          T(duffing_folds_whatever_the_grid))
