@@ -98,7 +98,7 @@ typedef struct hb {
 /* The rank from which the capacitance is solved iteratively when the solver is automatic
  * (0 or 2): measured on the two-stage gearbox, docs/periodic.md "Two linear solvers". */
 #ifndef GD_HB_CAP_CROSSOVER
-#define GD_HB_CAP_CROSSOVER 2000
+#define GD_HB_CAP_CROSSOVER 1000
 #endif
 /* 1 when the capacitance of rank r is solved iteratively: solver 3 always, 4 never, else
  * from GD_HB_CAP_CROSSOVER. */
