@@ -106,7 +106,10 @@ typedef struct gd_periodic_options {
     int solver;          /* Newton's linear solver: 0 automatic (low-rank for 2000+
                             unknowns whose nonlinear rank is a quarter or less), 1 sparse
                             LU of the whole coupled system (KLU), 2 low-rank: the linear
-                            DOFs condensed onto the nonlinear laws (Woodbury) */
+                            DOFs condensed onto the nonlinear laws (Woodbury), its
+                            capacitance by dense LU below rank 1000 and by GMRES from it;
+                            3 / 4: low-rank with the iterative / dense capacitance always
+                            (docs/periodic.md, "Two linear solvers") */
     int estimate;        /* 1 (default): every converged point is solved again at 2 H and carries
                             the change of its records as its truncation error estimate (the
                             harmonic_error_* fields); 0: not (adaptive H always estimates) */

@@ -501,7 +501,7 @@ static int build_pattern(hb *h)
 int gd_hb_use_lowrank(const hb *h)
 {
     if (h->solver == 1) return 0;
-    if (h->solver == 2) return 1;
+    if (h->solver >= 2) return 1; /* 2 low-rank, 3 / 4 with the iterative / dense capacitance */
     return h->n >= 2000 && 4 * gd_hb_term_groups(h, NULL, NULL) * h->nh <= h->n;
 }
 

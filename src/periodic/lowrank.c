@@ -49,6 +49,8 @@ void gd_hb_lowrank_free(hb *h)
     free(h->urow_of);
     free(h->Umat);
     free(h->fitw);
+    gd_hb_cap_free(h);
+    h->cap_iter = 0;
     h->tgroup = h->grep = h->urow = h->urow_of = NULL;
     h->Z0 = h->F0 = h->Umat = h->fitw = NULL;
     h->base_ok = 0;
@@ -173,7 +175,7 @@ int gd_hb_term_groups(const hb *h, int *tgroup, int *grep)
 int gd_hb_lowrank_factor(hb *h, gd_transient *tr, double w, const double *dRdp, const double *row)
 {
     const int nf = h->nf, nh = h->nh, n = h->n, nt = h->nterm, bw = 2 * nf;
-    if (gd_hb_couplings(h, w)) return 1;
+    if (gd_hb_term_activity(h)) return 1;
     int *tg = malloc((size_t)(nt > 0 ? nt : 1) * sizeof *tg),
         *gr = malloc((size_t)(nt > 0 ? nt : 1) * sizeof *gr);
     if (!tg || !gr) {
@@ -182,7 +184,15 @@ int gd_hb_lowrank_factor(hb *h, gd_transient *tr, double w, const double *dRdp, 
         return 1;
     }
     const int ng = gd_hb_term_groups(h, tg, gr), r = ng * nh;
-    int regroup = !h->tgroup || h->ngroup != ng || memcmp(h->tgroup, tg, (size_t)nt * sizeof *tg) ||
+    /* above the crossover no r x r capacitance and no nh x nh couplings (capacitance.c) */
+    const int iter = gd_hb_cap_iterative(h->solver, r);
+    if (!iter && gd_hb_couplings(h, w)) {
+        free(tg);
+        free(gr);
+        return 1;
+    }
+    int regroup = iter != h->cap_iter || (iter && h->cap_nt != nt) || !h->tgroup ||
+                  h->ngroup != ng || memcmp(h->tgroup, tg, (size_t)nt * sizeof *tg) ||
                   memcmp(h->grep, gr, (size_t)ng * sizeof *gr);
     if (!h->Lnum || h->r != r || regroup) {
         gd_hb_lowrank_free(h);
@@ -192,7 +202,8 @@ int gd_hb_lowrank_factor(hb *h, gd_transient *tr, double w, const double *dRdp, 
         h->Lrcond = calloc((size_t)h->H + 1, sizeof *h->Lrcond);
         h->zb = malloc((size_t)2 * (nf > 0 ? nf : 1) * (ng > 1 ? ng : 1) * sizeof *h->zb);
         h->P = malloc((size_t)(r > 0 ? r : 1) * bw * sizeof *h->P);
-        h->S = malloc((size_t)(r > 0 ? r : 1) * (r > 0 ? r : 1) * sizeof *h->S);
+        h->S = iter ? malloc(sizeof *h->S)
+                    : malloc((size_t)(r > 0 ? r : 1) * (r > 0 ? r : 1) * sizeof *h->S);
         h->Spiv = malloc((size_t)(r > 0 ? r : 1) * sizeof *h->Spiv);
         h->xc = malloc((size_t)n * sizeof *h->xc);
         h->brow = malloc((size_t)(n + 1) * sizeof *h->brow);
@@ -202,6 +213,9 @@ int gd_hb_lowrank_factor(hb *h, gd_transient *tr, double w, const double *dRdp, 
         h->tgroup = tg;
         h->grep = gr;
         tg = gr = NULL;
+        h->cap_iter = iter;
+        h->cap_nt = nt;
+        if (iter && gd_hb_cap_alloc(h)) return 1;
         if (!h->Lnum || !h->Lrcond || !h->zb || !h->P || !h->S || !h->Spiv || !h->xc || !h->brow ||
             !h->wr || !h->wz)
             return 1;
@@ -263,6 +277,10 @@ int gd_hb_lowrank_factor(hb *h, gd_transient *tr, double w, const double *dRdp, 
             }
         }
     }
+    if (iter) {
+        if (gd_hb_cap_factor(h, w, fresh)) return 1;
+        goto bordering;
+    }
     /* S = I - Y P: column (g, a) of P is non-zero only in the block of slot a, so
      * w_t^T P_(g,a) has at most two non-zero slots b, each scattering G_t[., b] */
     memset(h->S, 0, (size_t)r * r * sizeof *h->S);
@@ -293,6 +311,7 @@ int gd_hb_lowrank_factor(hb *h, gd_transient *tr, double w, const double *dRdp, 
             }
         }
     if (r && LAPACKE_dgetrf_work(LAPACK_COL_MAJOR, r, r, h->S, r, h->Spiv)) return 1;
+bordering:
     /* bordering: x_c = J^-1 dRdp, denominator d - row . x_c */
     memcpy(h->brow, row, (size_t)(n + 1) * sizeof *row);
     h->denom = row[n];
@@ -329,6 +348,16 @@ static void woodbury(hb *h, double *x)
 {
     const int nf = h->nf, nh = h->nh, nt = h->nterm, r = h->r;
     if (!r) return;
+    if (h->cap_iter) {
+        gd_hb_cap_Yy(h, x, h->wz);
+        if (gd_hb_cap_solve(h, h->wz, 1e-12, NULL) == 1) { /* stalled: a clear failure */
+            for (int i = 0; i < h->n; i++)
+                x[i] = NAN;
+            return;
+        }
+        add_P(h, h->wz, x);
+        return;
+    }
     /* z = Y y (per term: the slots of w_t^T y through G_t), s = S^-1 z, x += P s */
     memset(h->wz, 0, (size_t)r * sizeof *h->wz);
     for (int t = 0; t < nt; t++) {

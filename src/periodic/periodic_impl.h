@@ -78,13 +78,44 @@ typedef struct hb {
     long stage_id; /* set by the caller: the problem the next factorisation is of */
     long L_id;     /* the problem and frequency L and P were made for */
     double L_w;
-    double alias; /* the last residual's aliasing floor: the force content in the top
-                     quarter below the Nyquist harmonic, relative to the residual's scale */
+    /* the iterative capacitance (capacitance.c), used instead of S above the crossover */
+    int cap_iter;     /* 1: no S; S z = b by preconditioned GMRES */
+    int cap_nt;       /* nterm the workspace below was made for */
+    double *cT;       /* (H + 1) x nterm x ngroup complex: w_t^T Z_k^-1 u_g */
+    double *cpre;     /* (H + 1) x ngroup^2 complex: LU of the mean capacitance per harmonic */
+    int *cpiv;        /* (H + 1) x ngroup */
+    double *cq;       /* 2 nterm N: the samples s_q and w s_v of the factorized iterate */
+    double *cwork;    /* GMRES workspace */
+    long cap_iters;   /* GMRES iterations so far (diagnostics) */
+    double cap_resid; /* the largest relative residual a solve ended with */
+    double alias;     /* the last residual's aliasing floor: the force content in the top
+                         quarter below the Nyquist harmonic, relative to the residual's scale */
 } hb;
 
 /* The low-rank (Woodbury) factorisation of the bordered system and its solve, used by
  * gd_hb_factor / gd_hb_solve when solver is 2, or 0 with a large system whose nonlinear
  * rank is small. */
+/* The rank from which the capacitance is solved iteratively when the solver is automatic
+ * (0 or 2): measured on the two-stage gearbox, docs/periodic.md "Two linear solvers". */
+#ifndef GD_HB_CAP_CROSSOVER
+#define GD_HB_CAP_CROSSOVER 1000
+#endif
+/* 1 when the capacitance of rank r is solved iteratively: solver 3 always, 4 never, else
+ * from GD_HB_CAP_CROSSOVER. */
+int gd_hb_cap_iterative(int solver, int r);
+/* tactive from the last residual's term samples (what gd_hb_couplings also sets). 0 ok. */
+int gd_hb_term_activity(hb *h);
+/* Workspace for rank h->r, h->ngroup, h->nterm; 0 ok, 1 out of memory. */
+int gd_hb_cap_alloc(hb *h);
+void gd_hb_cap_free(hb *h);
+/* Transfer scalars from h->P (fresh: L changed) and the mean preconditioner from the last
+ * residual's samples at w. 0 ok. */
+int gd_hb_cap_factor(hb *h, double w, int fresh);
+/* wz (r) = Y x for x in the harmonic unknowns (n). */
+void gd_hb_cap_Yy(hb *h, const double *x, double *wz);
+/* b := S^-1 b by GMRES to the relative residual tol; *iters the iterations (may be NULL).
+ * 0 converged, 2 only to 1e-8 (the result is kept), 1 not even that. */
+int gd_hb_cap_solve(hb *h, double *b, double tol, int *iters);
 int gd_hb_lowrank_factor(hb *h, gd_transient *tr, double w, const double *dRdp, const double *row);
 void gd_hb_lowrank_solve(hb *h, double *b);
 void gd_hb_lowrank_solve_J(hb *h, double *x);

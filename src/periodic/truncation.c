@@ -67,16 +67,22 @@ double gd_hb_memory(int nf, int H, int N, int nterm, int ngroup, long knz)
     const double nh = 2.0 * H + 1, n = nf * nh;
     /* samples and spectra (tq, tv, tf, the term derivatives, gd_hb_samples' buffers) */
     double b = 8.0 * ((double)nf * N * 4 + 2.0 * nterm * N);
-    b += 8.0 * nterm * nh * nh; /* Gall: every term's harmonic coupling */
-    b += 8.0 * n * 12;          /* the Newton and continuation vectors */
+    b += 8.0 * n * 12; /* the Newton and continuation vectors */
     double r = (double)ngroup * nh;
     if (n >= 2000 && r <= n / 4) {
-        /* low rank: capacitance r^2, L^-1 U (r x 2 nf), the complex block factors (KLU
-         * fill of the union pattern, ~4x its entries) */
-        b += 8.0 * r * r + 8.0 * r * 2 * nf + 16.0 * (H + 1) * 4.0 * (double)(knz + nf);
+        /* low rank: L^-1 U (r x 2 nf), the complex block factors (KLU fill of the union
+         * pattern, ~4x its entries) and the capacitance: dense, r^2 and every term's
+         * harmonic coupling Gall; iterative (capacitance.c), the GMRES basis (61 + 3
+         * vectors of r), the samples again and the transfer scalars */
+        b += 8.0 * r * 2 * nf + 16.0 * (H + 1) * 4.0 * (double)(knz + nf);
+        if (r >= GD_HB_CAP_CROSSOVER)
+            b += 8.0 * r * 64 + 16.0 * nterm * N + 16.0 * (H + 1) * nterm * (ngroup + 1);
+        else
+            b += 8.0 * r * r + 8.0 * nterm * nh * nh;
     } else {
         /* the whole sparse LU: the linear part per harmonic plus every term's dense
-         * coupling over the harmonics on its DOFs; fill ~3x */
+         * coupling over the harmonics on its DOFs (Gall); fill ~3x */
+        b += 8.0 * nterm * nh * nh;
         b += 3.0 * 12.0 * (4.0 * (double)knz * nh + (double)nterm * 4 * nh * nh);
     }
     return b;

@@ -928,6 +928,59 @@ TEST(lowrank_solver_equals_sparse_lu)
     }
 }
 
+/* The iterative capacitance (GMRES on the AFT matvecs, capacitance.c) against the dense LU
+ * of the same capacitance, on small models forced onto it (solver 3 against 4): a
+ * backlash pair (mesh with TVMS and backlash: one group, the driver-angle term) by
+ * sequential Newton and by arclength (the bordered solves), and the Chen SFD pair (two
+ * groups, four terms). GMRES stops at 1e-12 of the right-hand side, so the Newton iterates
+ * agree to about that: equal iteration counts and coefficients within 1e-10 of the
+ * largest. */
+TEST(iterative_capacitance_equals_dense)
+{
+    struct {
+        const char *name;
+        char *yaml;
+        const char *path;
+        double w0, w1;
+        int H, method;
+    } cases[3] = {
+        {"backlash pair", backlash_yaml(), NULL, 300, 800, 8, GD_PER_SEQUENTIAL},
+        {"backlash pair, arclength", backlash_yaml(), NULL, 450, 600, 8, GD_PER_ARCLENGTH},
+        {"Chen SFD pair", NULL, GD_SOURCE_DIR "/examples/chen1998_gear_pair.yaml", 900, 1500, 6,
+         GD_PER_SEQUENTIAL},
+    };
+    for (int c = 0; c < 3; c++) {
+        fx f;
+        gd_transient_model *tm = NULL;
+        if (cases[c].yaml) {
+            REQUIRE(load_spec(&f, cases[c].yaml, &tm));
+        } else {
+            gd_error err;
+            REQUIRE(load(&f, cases[c].path, NULL));
+            REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
+        }
+        gd_periodic_options o;
+        gd_periodic_options_init(&o);
+        o.harmonics = cases[c].H;
+        o.stability = 0;
+        o.estimate = 0;
+        o.method = cases[c].method;
+        gd_periodic_result *r[2];
+        for (int sv = 0; sv < 2; sv++) {
+            o.solver = 3 + sv; /* iterative, dense */
+            r[sv] = run_speeds(&f, &tm->spec, cases[c].w0, cases[c].w1, 5, &o, NULL, 0);
+        }
+        double d = coef_difference(r[0], r[1]);
+        printf("  %-26s %d points: |X_iterative - X_dense| / max|X| = %.3g\n", cases[c].name,
+               r[0] ? r[0]->npoints : 0, d);
+        CHECK(d >= 0.0 && d <= 1e-10);
+        gd_periodic_result_free(r[0]);
+        gd_periodic_result_free(r[1]);
+        gd_transient_model_free(tm);
+        fx_free(&f);
+    }
+}
+
 /* Two or four Magnus steps per period of a subharmonic-3 Mathieu orbit: each step spans
  * many natural periods, the step exponential overflows and the monodromy matrix is
  * +-inf. The multipliers are then not computed (stable -1, no multipliers) with the
@@ -1040,5 +1093,5 @@ RUN_TESTS(T(linear_equals_unbalance), T(mathieu_tongue_period_doubling),
           T(sfd_pair_against_transient), T(backlash_folds_traced_through_unstable_branch),
           T(backlash_wide_range_no_retrace), T(backlash_branch_with_auto_harmonics),
           T(chen_sfd_neimark_sacker_matches_transient), T(lowrank_solver_equals_sparse_lu),
-          T(few_magnus_steps_leave_stability_undecided), T(option_bounds_named),
-          T(extreme_low_speeds_scale_the_step_exponential))
+          T(iterative_capacitance_equals_dense), T(few_magnus_steps_leave_stability_undecided),
+          T(option_bounds_named), T(extreme_low_speeds_scale_the_step_exponential))
