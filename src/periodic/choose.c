@@ -160,11 +160,13 @@ gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *sp
         double th = hb_cost(tr, opt, w, H, backlash);
         /* harmonic balance: eight Newton steps, three times that with the solution at 2 H + 1
          * of the truncation estimate, and the Magnus monodromy (4 x samples steps of about
-         * 30 (2 nf)^3 flops at 2 GFlop/s) */
+         * 30 (2 nf)^3 flops at 2 GFlop/s, at most floquet_budget) */
         double N = opt->samples > 0 ? opt->samples : gd_hb_samples_for(H);
         double steps = opt->monodromy_steps > 0 ? opt->monodromy_steps : fmax(256.0, 4.0 * N);
         double ch = 8.0 * th * ((opt->estimate || opt->adaptive) ? 3.0 : 1.0);
-        if (opt->stability) ch += steps * 30.0 * pow(2.0 * nf, 3) / 2e9;
+        if (opt->stability) /* no more than the multipliers' budget: over it they are left out */
+            ch += fmin(steps * 30.0 * pow(2.0 * nf, 3) / 2e9,
+                       opt->floquet_budget > 0 ? opt->floquet_budget : INFINITY);
         /* the period is integrated only as far as shooting could still win: at most the
          * steps (one right-hand side each, at least) that fit in ch / per_period */
         double tr1 = rhs_cost(tr), cs = NAN, tp = NAN;

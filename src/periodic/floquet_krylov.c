@@ -394,6 +394,22 @@ int gd_hb_floquet_krylov(const hb *h, gd_transient *tr, double om, const double 
     /* the Gauss-point term derivatives of every step, once for all products */
     const double g1 = 0.5 - sqrt(3.0) / 6.0, g2 = 0.5 + sqrt(3.0) / 6.0;
     for (int j = 0; j < k.nsub; j++) {
+        /* the set-up alone evaluates the orbit twice per step (O(nf H) each): a long
+         * period at a high H can pass the budget before a product is formed */
+        if (budget > 0 && j % 64 == 63) {
+            const double used = gd_hb_cpu_seconds() - k.cpu0, need = used * k.nsub / (j + 1);
+            if (need > budget) {
+                int len = snprintf(msg, 160,
+                                   "stability not computed: the Krylov multipliers' set-up alone "
+                                   "(%d Magnus steps, %d states) would take about %.3g s CPU, "
+                                   "over the %g s budget per point",
+                                   k.nsub, k.n2, need, budget);
+                free(sq);
+                if (len < 0) msg[0] = '\0';
+                rc = 4;
+                goto done;
+            }
+        }
         double a = tb[j], dtau = tb[j + 1] - a, dt = dtau / om;
         double *sj = k.s + (size_t)j * 4 * nt, nb[2];
         for (int g = 0; g < 2; g++) {
