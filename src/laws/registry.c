@@ -86,7 +86,8 @@ gd_status gd_law_check(const gd_law *law, gd_error *err)
     gd_status st = gd_law_type_validate(law ? law->type : NULL, err);
     if (st) return st;
     const gd_law_type *t = law->type;
-    if (law->ndofs != local_dofs(t))
+    if (t->var_dofs ? (law->ndofs < 1 || law->ndofs > GD_LAW_MAX_DOFS)
+                    : law->ndofs != local_dofs(t))
         return gd_error_set(err, GD_EINPUT, "", 0, 0, law->name, "start from gd_law_init",
                             "law '%s' (%s) acts on %d local DOFs, not %d", law->name, t->name,
                             local_dofs(t), law->ndofs);
@@ -116,4 +117,16 @@ gd_status gd_law_check(const gd_law *law, gd_error *err)
                                 law->name, t->name, msg);
     }
     return GD_OK;
+}
+
+unsigned gd_law_flags(const gd_law *law)
+{
+    return law->type->instance_flags ? law->type->instance_flags(law) : law->type->flags;
+}
+
+int gd_law_nswitches(const gd_law *law)
+{
+    const gd_law_type *t = law->type;
+    if (t->nswitches <= 0 || !t->switch_value) return 0;
+    return (gd_law_flags(law) & GD_LAW_SMOOTH) ? 0 : t->nswitches;
 }
