@@ -42,6 +42,7 @@
 #define GD_LAW_MAX_PARAMS 12
 #define GD_LAW_MAX_TERMS 8
 #define GD_LAW_NAME_MAX 48
+#define GD_LAW_MAX_SWITCHES 8
 
 /* Flags of a type (gd_law_type.flags) or of one instance (gd_law_type.instance_flags). */
 enum {
@@ -167,9 +168,10 @@ struct gd_law_type {
     /* Contact switches (all NULL / 0: a smooth law). A law with nswitches > 0 has a
      * discrete mode (gd_law.mode) its force uses; switch k's function g_k(x) changes
      * sign where the mode changes (an event the integrators locate: CVODE's roots,
-     * generalized-alpha's check per step, the saltation of the monodromy). */
+     * generalized-alpha's check per step, the saltation of the monodromy). `switches`
+     * writes g_0 .. g_{nswitches-1} at x to g (one evaluation of the law for all). */
     int nswitches;
-    double (*switch_value)(const gd_law *law, int k, const gd_law_point *x);
+    void (*switches)(const gd_law *law, const gd_law_point *x, double *g);
     /* The mode the motion x is in (independent of law->mode). */
     int (*mode_at)(const gd_law *law, const gd_law_point *x);
     /* The mode after the located crossings dir[k] (CVODE's directions: +1 g_k rising, -1

@@ -23,9 +23,10 @@ static const gd_mesh_law_data *data_of(const gd_law *law)
     return (const gd_mesh_law_data *)law->data;
 }
 
-double gd_mesh_law_eval(const gd_law *law, int state_in, double t, const double *q, const double *v,
-                        double *d_out, double *dd_out, double *k_out, double *de_out,
-                        double grad[4])
+/* gd_mesh_law_eval, static so the compiler specialises it per call (most pass NULL). */
+static inline __attribute__((always_inline)) double
+eval(const gd_law *law, int state_in, double t, const double *q, const double *v, double *d_out,
+     double *dd_out, double *k_out, double *de_out, double grad[4])
 {
     const gd_mesh_law_data *m = data_of(law);
     gd_contact state = (gd_contact)state_in;
@@ -94,6 +95,12 @@ double gd_mesh_law_eval(const gd_law *law, int state_in, double t, const double 
     return F;
 }
 
+double gd_mesh_law_eval(const gd_law *law, int state, double t, const double *q, const double *v,
+                        double *d, double *dd, double *k, double *de, double grad[4])
+{
+    return eval(law, state, t, q, v, d, dd, k, de, grad);
+}
+
 static unsigned mesh_flags(const gd_law *law)
 {
     const gd_mesh_law_data *m = data_of(law);
@@ -125,12 +132,17 @@ static void mesh_force(const gd_law *law, const gd_law_point *x, double *f, doub
 {
     const gd_mesh_law_data *m = data_of(law);
     double d, dd, gr[4];
-    double F = gd_mesh_law_eval(law, law->mode, x->t, x->q, x->v, &d, &dd, NULL, NULL,
-                                jq || jv ? gr : NULL);
+    if (!jq && !jv) { /* the integrators' right-hand side */
+        double F = eval(law, law->mode, x->t, x->q, x->v, &d, &dd, NULL, NULL, NULL);
+        double g = F - m->k_lin * d - m->c_lin * dd;
+        for (int j = 0; j < m->na; j++)
+            f[j] -= m->a[j] * g;
+        return;
+    }
+    double F = eval(law, law->mode, x->t, x->q, x->v, &d, &dd, NULL, NULL, gr);
     double g = F - m->k_lin * d - m->c_lin * dd;
     for (int j = 0; j < m->na; j++)
         f[j] -= m->a[j] * g;
-    if (!jq && !jv) return;
     /* f -= a (F - k_lin d - c_lin d') */
     if (jq) {
         jq[0] = -(gr[0] - m->k_lin);
@@ -164,7 +176,7 @@ static const gd_law_record mesh_records[] = {
 static double mesh_record(const gd_law *law, int k, const gd_law_point *x)
 {
     double d, kk;
-    double F = gd_mesh_law_eval(law, law->mode, x->t, x->q, x->v, &d, NULL, &kk, NULL, NULL);
+    double F = eval(law, law->mode, x->t, x->q, x->v, &d, NULL, &kk, NULL, NULL);
     switch (k) {
     case GD_MESH_REC_FORCE:
         return F;
@@ -178,12 +190,13 @@ static double mesh_record(const gd_law *law, int k, const gd_law_point *x)
 }
 
 /* switch 0: d_e - b (the drive flank), switch 1: d_e + b (the coast flank) */
-static double mesh_switch(const gd_law *law, int k, const gd_law_point *x)
+static void mesh_switches(const gd_law *law, const gd_law_point *x, double *g)
 {
     const gd_mesh_law_data *m = data_of(law);
     double de;
-    gd_mesh_law_eval(law, law->mode, x->t, x->q, x->v, NULL, NULL, NULL, &de, NULL);
-    return k == 0 ? de - m->gap : de + m->gap;
+    eval(law, law->mode, x->t, x->q, x->v, NULL, NULL, NULL, &de, NULL);
+    g[0] = de - m->gap;
+    g[1] = de + m->gap;
 }
 
 static int mesh_mode_at(const gd_law *law, const gd_law_point *x)
@@ -191,7 +204,7 @@ static int mesh_mode_at(const gd_law *law, const gd_law_point *x)
     const gd_mesh_law_data *m = data_of(law);
     if (!m->backlash) return GD_CONTACT_DRIVE;
     double de;
-    gd_mesh_law_eval(law, law->mode, x->t, x->q, x->v, NULL, NULL, NULL, &de, NULL);
+    eval(law, law->mode, x->t, x->q, x->v, NULL, NULL, NULL, &de, NULL);
     return gd_backlash_state(de, m->gap);
 }
 
@@ -220,7 +233,7 @@ static double mesh_switch_tol(const gd_law *law)
  * the drive flank moves the mesh to the coast flank and back. */
 static int mesh_static_mode(const gd_law *law, const gd_law_point *x)
 {
-    double F = gd_mesh_law_eval(law, law->mode, x->t, x->q, x->v, NULL, NULL, NULL, NULL, NULL);
+    double F = eval(law, law->mode, x->t, x->q, x->v, NULL, NULL, NULL, NULL, NULL);
     if (law->mode == GD_CONTACT_DRIVE && F < 0) return GD_CONTACT_COAST;
     if (law->mode == GD_CONTACT_COAST && F > 0) return GD_CONTACT_DRIVE;
     return law->mode;
@@ -240,7 +253,7 @@ const gd_law_type gd_law_backlash_mesh = {
     .nrecords = 4,
     .record = mesh_record,
     .nswitches = 2,
-    .switch_value = mesh_switch,
+    .switches = mesh_switches,
     .mode_at = mesh_mode_at,
     .mode_after = mesh_mode_after,
     .switch_of = mesh_switch_of,

@@ -34,6 +34,7 @@ typedef struct ga {
     csn *N;
     int *wlaw;     /* nw: laws with a tangent update (GD_LAW_TANGENT: a mesh) */
     double *wu;    /* nw x GD_LAW_MAX_DOFS: their term 0's local u (= w) */
+    int *wsw;      /* nw: their switch counts (gd_law_nswitches) */
     double *W;     /* nf x nw: S^-1 a_m (free part) */
     double *B, *z; /* nw x nw, nw */
     double *cm;    /* nw: rank-one coefficients of the current iterate */
@@ -45,6 +46,7 @@ static void ga_free(ga *g)
     cs_nfree(g->N);
     free(g->wlaw);
     free(g->wu);
+    free(g->wsw);
     free(g->W);
     free(g->B);
     free(g->z);
@@ -61,13 +63,15 @@ static int ga_alloc(ga *g, gd_transient *tr)
     int nf = tr->nf, nm = tr->nlaw > 0 ? tr->nlaw : 1;
     g->wlaw = malloc((size_t)nm * sizeof *g->wlaw);
     g->wu = calloc((size_t)nm * GD_LAW_MAX_DOFS, sizeof *g->wu);
+    g->wsw = malloc((size_t)nm * sizeof *g->wsw);
     g->W = malloc((size_t)nm * (nf > 0 ? nf : 1) * sizeof *g->W);
     g->B = malloc((size_t)nm * nm * sizeof *g->B);
     g->z = malloc((size_t)nm * sizeof *g->z);
     g->cm = malloc((size_t)nm * sizeof *g->cm);
     g->q = malloc((size_t)8 * (nf > 0 ? nf : 1) * sizeof *g->q);
     g->y2 = malloc((size_t)2 * (nf > 0 ? nf : 1) * sizeof *g->y2);
-    if (!g->wlaw || !g->wu || !g->W || !g->B || !g->z || !g->cm || !g->q || !g->y2) return 1;
+    if (!g->wlaw || !g->wu || !g->wsw || !g->W || !g->B || !g->z || !g->cm || !g->q || !g->y2)
+        return 1;
     g->v = g->q + nf;
     g->a = g->v + nf;
     g->q1 = g->a + nf;
@@ -90,6 +94,7 @@ static int ga_alloc(ga *g, gd_transient *tr)
         if (f & GD_LAW_TANGENT) {
             double w[GD_LAW_MAX_DOFS] = {0};
             L->type->term(L, 0, g->wu + (size_t)g->nw * GD_LAW_MAX_DOFS, w);
+            g->wsw[g->nw] = gd_law_nswitches(L);
             g->wlaw[g->nw++] = i;
         }
     }
@@ -157,15 +162,14 @@ static int ga_factor(ga *g, double h)
     return 0;
 }
 
-/* Law L's tangent stiffness and damping along its term 0 in its current mode at the
- * alpha point (tr->q, tr->v filled), less the assembled linear terms: -df/dq, -df/dq'. */
-static void law_tangent(gd_transient *tr, const gd_law *L, double t, double *dk, double *dc)
+/* Law L's tangent stiffness and damping along its term 0 in its current mode at x (the
+ * alpha point), less the assembled linear terms: -df/dq, -df/dq'. */
+static void law_tangent(gd_transient *tr, const gd_law *L, const gd_law_point *x, double *dk,
+                        double *dc)
 {
     double jq[GD_LAW_MAX_TERMS], jv[GD_LAW_MAX_TERMS];
-    gd_law_point x;
-    gd_tr_law_here(tr, L, t, &x);
     memset(tr->lf, 0, (size_t)L->ndofs * sizeof *tr->lf);
-    L->type->force(L, &x, tr->lf, jq, jv);
+    L->type->force(L, x, tr->lf, jq, jv);
     *dk = -jq[0];
     *dc = -jv[0];
 }
@@ -228,7 +232,7 @@ static int same_states(ga *g, double ta)
     gd_tr_fill(tr, ta, g->y2, tr->q, tr->v, NULL);
     for (int w = 0; w < g->nw; w++) {
         const gd_law *L = &tr->law[g->wlaw[w]];
-        if (!gd_law_nswitches(L)) continue;
+        if (!g->wsw[w]) continue;
         gd_law_point x;
         gd_tr_law_here(tr, L, ta, &x);
         if (L->type->mode_at(L, &x) != L->mode) return 0;
@@ -258,13 +262,11 @@ static int ga_step(ga *g, double t, long *nres)
         gd_tr_fill(tr, ta, g->y2, tr->q, tr->v, tr->acc);
         for (int w = 0; w < g->nw; w++) {
             gd_law *L = &tr->law[g->wlaw[w]];
-            if (gd_law_nswitches(L)) {
-                gd_law_point x;
-                gd_tr_law_here(tr, L, ta, &x);
-                L->mode = L->type->mode_at(L, &x);
-            }
+            gd_law_point x;
+            gd_tr_law_here(tr, L, ta, &x);
+            if (g->wsw[w]) L->mode = L->type->mode_at(L, &x);
             double dk, dc;
-            law_tangent(tr, L, ta, &dk, &dc);
+            law_tangent(tr, L, &x, &dk, &dc);
             g->cm[w] = (1.0 - af) * (be * h * h * dk + ga_ * h * dc);
         }
         gd_tr_residual(tr, ta, tr->q, tr->v, tr->acc, tr->r);

@@ -71,15 +71,21 @@ static void sub_mul_prescribed(const gd_transient *tr, const cs *A, const double
 static void add_law_forces(gd_transient *tr, double t, const double *q, const double *v, double *r,
                            int assembled)
 {
+    double lq[GD_LAW_MAX_DOFS], lv[GD_LAW_MAX_DOFS], lf[GD_LAW_MAX_DOFS]; /* no aliasing */
+    const gd_law_point x = {t, lq, lv};
     for (int i = 0; i < tr->nlaw; i++) {
         const gd_law *L = &tr->law[i];
         if (!(L->type->flags & GD_LAW_ASSEMBLED) != !assembled) continue;
-        gd_law_point x;
-        gd_tr_law_point(L, t, q, v, tr->lq, tr->lv, &x);
-        memset(tr->lf, 0, (size_t)L->ndofs * sizeof *tr->lf);
-        L->type->force(L, &x, tr->lf, NULL, NULL);
-        for (int j = 0; j < L->ndofs; j++)
-            if (L->dof[j] >= 0) r[L->dof[j]] += tr->lf[j];
+        const int n = L->ndofs;
+        for (int j = 0; j < n; j++) {
+            int d = L->dof[j];
+            lq[j] = d >= 0 ? q[d] : 0.0;
+            lv[j] = d >= 0 ? v[d] : 0.0;
+            lf[j] = 0.0;
+        }
+        L->type->force(L, &x, lf, NULL, NULL);
+        for (int j = 0; j < n; j++)
+            if (L->dof[j] >= 0) r[L->dof[j]] += lf[j];
     }
 }
 
@@ -284,8 +290,8 @@ void gd_tr_roots(gd_transient *tr, double t, const double *y, double *g)
         if (!ns) continue;
         gd_law_point x;
         gd_tr_law_here(tr, L, t, &x);
-        for (int s = 0; s < ns; s++)
-            g[k++] = L->type->switch_value(L, s, &x);
+        L->type->switches(L, &x, g + k);
+        k += ns;
     }
 }
 
@@ -349,7 +355,9 @@ int gd_tr_missed_mode(gd_transient *tr, const gd_law *L, double t)
     if (ns == L->mode) return ns;
     /* on a switch (within its tolerance): not a missed crossing */
     double tol = L->type->switch_tol ? L->type->switch_tol(L) : 0.0;
+    double g[GD_LAW_MAX_SWITCHES];
+    L->type->switches(L, &x, g);
     for (int k = 0; k < gd_law_nswitches(L); k++)
-        if (!(fabs(L->type->switch_value(L, k, &x)) > tol)) return L->mode;
+        if (!(fabs(g[k]) > tol)) return L->mode;
     return ns;
 }

@@ -134,7 +134,7 @@ void gd_tr_forces(gd_transient *tr, double t, const double *q, const double *v, 
                   double *r, int skip_free_linear);
 /* x = M_ff^-1 b (b, x of length nf; b is overwritten). */
 void gd_tr_mass_solve(gd_transient *tr, double *b, double *x);
-/* Root functions: every law's switches (gd_law_type.switch_value), in law order. */
+/* Root functions: every law's switches (gd_law_type.switches), in law order. */
 void gd_tr_roots(gd_transient *tr, double t, const double *y, double *g);
 /* With tr->q, tr->v filled at t: the mode of law L when its switches are clearly past
  * (two crossings in one step the root-finding missed), else its current mode. */

@@ -103,8 +103,10 @@ TEST(force_is_backlash_law_less_assembled_part)
         CHECK(s.L.type->record(&s.L, GD_MESH_REC_STATE, &x) == mode);
         CHECK(s.L.type->record(&s.L, GD_MESH_REC_STIFFNESS, &x) == k);
         /* the switches are d_e -+ b */
-        CHECK_REL(s.L.type->switch_value(&s.L, 0, &x), d - e - m->gap, 1e-12);
-        CHECK_REL(s.L.type->switch_value(&s.L, 1, &x), d - e + m->gap, 1e-12);
+        double sw[2];
+        s.L.type->switches(&s.L, &x, sw);
+        CHECK_REL(sw[0], d - e - m->gap, 1e-12);
+        CHECK_REL(sw[1], d - e + m->gap, 1e-12);
     }
     /* one-sided contact: the coast mode acts as separated (c_free only) */
     s.m.coast_scale = 0.0;
