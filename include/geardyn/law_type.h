@@ -28,7 +28,8 @@
  * Ownership and threads: types are constants; an instance (gd_law) is a plain value the
  * caller owns (its `data` and `user` pointers are borrowed: they must outlive every
  * problem made from it). Every op is a pure function of its arguments (a law keeps
- * no state between calls), so one instance may be evaluated from any number of threads.
+ * no state between calls; an instance's `mode` and `hold` are set by its caller, the
+ * integrator), so one instance may be evaluated from any number of threads.
  */
 #ifndef GEARDYN_LAW_TYPE_H
 #define GEARDYN_LAW_TYPE_H
@@ -184,7 +185,8 @@ struct gd_law_type {
     double (*switch_tol)(const gd_law *law);
     /* The mode of a static equilibrium at x from mode law->mode (modes held as smooth
      * laws continued beyond their intervals: a mesh whose drive-flank force pulls moves
-     * to the coast flank); law->mode when it stays. NULL: mode_at. */
+     * to the coast flank); law->mode when it stays. NULL: a static start leaves the
+     * mode alone. */
     int (*static_mode)(const gd_law *law, const gd_law_point *x);
     int hold_mode; /* the mode a hold blends with */
     /* (The mesh, gd_law_backlash_mesh, is the built-in law with switches: its modes are

@@ -113,7 +113,8 @@ GD_API double gd_mesh_damping(double c_const, double c_per_k, double k);
  * error e(theta) read at the driver's angle theta = angle_offset + sense (nominal + q_drv).
  * The instance's local DOFs are the mesh vector's (a, na of them: deflection d = a . q)
  * with the driver's rz among them (drv) or appended. Filled by the problem that owns it
- * (the transient problem from a gd_tr_mesh); the tables are borrowed. */
+ * (the transient problem from a gd_tr_mesh, in gd_transient_spec_laws' block); the
+ * tables and nominal_ctx are borrowed. */
 typedef struct gd_mesh_law_data {
     const gd_table *tvms; /* k_drive(theta), N/m; NULL: constant stiffness */
     const gd_table *ste;  /* e(theta), m; NULL: none */

@@ -275,6 +275,14 @@ gd_status gd_transient_new(const gd_system *sys, const gd_transient_spec *spec, 
         tr->nl_of_mesh[spec->meshes[i].mesh] = i;
     for (int i = 0; i < tr->nlaw; i++)
         tr->nroot += gd_law_nswitches(&tr->law[i]);
+    tr->law_order = malloc((size_t)(tr->nlaw > 0 ? tr->nlaw : 1) * sizeof *tr->law_order);
+    if (!tr->law_order) goto fail;
+    for (int pass = 0, k = 0; pass < 2; pass++)
+        for (int i = 0; i < tr->nlaw; i++)
+            if (!(tr->law[i].type->flags & GD_LAW_ASSEMBLED) == !pass) {
+                tr->law_order[k++] = i;
+                if (!pass) tr->nlaw_plain = k;
+            }
     if (tr->nlaw) { /* the ratios of the laws' rates and spins (a run-up's) */
         const int stride = GD_LAW_MAX_DOFS + 2;
         tr->law_ratio = calloc((size_t)tr->nlaw * stride, sizeof *tr->law_ratio);
@@ -406,6 +414,7 @@ void gd_transient_free(gd_transient *tr)
     gd_tr_reduction_free(tr->red);
     free(tr->model_a);
     free(tr->nl_of_mesh);
+    free(tr->law_order);
     free(tr->law);
     free(tr->unb);
     free(tr->cam);

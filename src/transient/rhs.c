@@ -73,9 +73,9 @@ static void add_law_forces(gd_transient *tr, double t, const double *q, const do
 {
     double lq[GD_LAW_MAX_DOFS], lv[GD_LAW_MAX_DOFS], lf[GD_LAW_MAX_DOFS]; /* no aliasing */
     const gd_law_point x = {t, lq, lv};
-    for (int i = 0; i < tr->nlaw; i++) {
-        const gd_law *L = &tr->law[i];
-        if (!(L->type->flags & GD_LAW_ASSEMBLED) != !assembled) continue;
+    const int k0 = assembled ? tr->nlaw_plain : 0, k1 = assembled ? tr->nlaw : tr->nlaw_plain;
+    for (int k = k0; k < k1; k++) {
+        const gd_law *L = &tr->law[tr->law_order[k]];
         const int n = L->ndofs;
         for (int j = 0; j < n; j++) {
             int d = L->dof[j];

@@ -62,6 +62,10 @@ struct gd_transient {
     int nmesh;     /* law[0 .. nmesh - 1]: the spec's meshes (contact statistics) */
     int nsfd_law;  /* law[nmesh .. nmesh + nsfd_law - 1]: the spec's dampers (GD_REC_SFD_*) */
     int law_spec0; /* law[law_spec0 + i]: spec.laws[i] (GD_REC_LAW) */
+    /* law_order[0 .. nlaw_plain - 1]: the laws without an assembled part, then those with
+     * one (GD_LAW_ASSEMBLED: the meshes), in law order: the right-hand side's two passes */
+    int *law_order;
+    int nlaw_plain;
     double lq[GD_LAW_MAX_DOFS], lv[GD_LAW_MAX_DOFS], lf[GD_LAW_MAX_DOFS]; /* workspaces */
     int nunb;
     tr_unb *unb;
