@@ -28,7 +28,8 @@
  * Ownership and threads: types are constants; an instance (gd_law) is a plain value the
  * caller owns (its `data` and `user` pointers are borrowed: they must outlive every
  * problem made from it). Every op is a pure function of its arguments (a law keeps
- * no state between calls), so one instance may be evaluated from any number of threads.
+ * no state between calls; an instance's `mode` and `hold` are set by its caller, the
+ * integrator), so one instance may be evaluated from any number of threads.
  */
 #ifndef GEARDYN_LAW_TYPE_H
 #define GEARDYN_LAW_TYPE_H
@@ -42,6 +43,7 @@
 #define GD_LAW_MAX_PARAMS 12
 #define GD_LAW_MAX_TERMS 8
 #define GD_LAW_NAME_MAX 48
+#define GD_LAW_MAX_SWITCHES 8
 
 /* Flags of a type (gd_law_type.flags) or of one instance (gd_law_type.instance_flags). */
 enum {
@@ -53,7 +55,22 @@ enum {
     /* the force grows with the displacement in the law's directions (a bearing, a
      * spring): `static` counts the law as holding those directions and solves the
      * equilibrium with it (docs/static.md) */
-    GD_LAW_SUPPORT = 1u << 2
+    GD_LAW_SUPPORT = 1u << 2,
+    /* part of the force, k a a^T and c a a^T, is assembled in the system's K and C (a
+     * gear mesh's linear stiffness and damping): the law's force is the rest, and the
+     * integrators sum it after the linear terms (and before the other laws' terms in
+     * the local form) */
+    GD_LAW_ASSEMBLED = 1u << 3,
+    /* instance: the force is linear and time-invariant (an assembled law whose stiffness
+     * is not time-varying and has no switches): the generalized-alpha step is linear */
+    GD_LAW_LINEAR = 1u << 4,
+    /* instance: affine in q and q' within each mode (the problem's positions that the
+     * law's tables are read at are prescribed): the generalized-alpha step is exact
+     * once the modes it assumed hold */
+    GD_LAW_PIECEWISE = 1u << 5,
+    /* instance: the generalized-alpha tangent holds the law's term 0 (u = w) by a
+     * rank-one update (an assembled law that differs from its assembled part) */
+    GD_LAW_TANGENT = 1u << 6
 };
 
 /* Bounds of a parameter. */
@@ -95,6 +112,14 @@ typedef struct gd_law {
     const void *data;                /* typed parameters of laws made in code (a load law with its
                                         table); borrowed */
     void *user; /* user laws: the user's pointer, passed back through the ops */
+    /* Discrete state of a law with switches (gd_law_type.nswitches > 0), e.g. a mesh's
+     * contact flank: the force uses this mode, which the integrator keeps frozen between
+     * the located sign changes of the switch functions (0 at gd_law_init). */
+    int mode;
+    /* Homotopy of a law with switches, 0..1: its force in a mode other than
+     * gd_law_type.hold_mode is blended with the force in that mode (frequency-domain
+     * starts, gd_transient_hold_drive; 0 in integration). */
+    double hold;
 } gd_law;
 
 /* The motion a law sees: time and its local q, q' (length ndofs). */
@@ -116,6 +141,9 @@ struct gd_law_type {
     const int *dirs;
     int ndirs;
     int two_nodes; /* 1: the law acts between a node and node2 (or ground) */
+    /* 1: each instance sets its own ndofs (1 .. GD_LAW_MAX_DOFS) and dof[] (a gear mesh:
+     * its mesh vector's DOFs); dirs, ndirs and two_nodes then only describe the first */
+    int var_dofs;
     /* Checks beyond the parameters' bounds (NULL: none): 0 ok, else writes the
      * offending parameter's name to *field and a message (what and the fix) to msg. */
     int (*check)(const gd_law *law, const char **field, char *msg, size_t cap);
@@ -137,13 +165,48 @@ struct gd_law_type {
     /* Linearisation about x (velocities usually zero): K = -df/dq, C = -df/dq' (ndofs x
      * ndofs, column-major, zeroed by the caller). NULL: none. */
     void (*linearize)(const gd_law *law, const gd_law_point *x, double *K, double *C);
+
+    /* Contact switches (all NULL / 0: a smooth law). A law with nswitches > 0 has a
+     * discrete mode (gd_law.mode) its force uses; switch k's function g_k(x) changes
+     * sign where the mode changes (an event the integrators locate: CVODE's roots,
+     * generalized-alpha's check per step, the saltation of the monodromy). `switches`
+     * writes g_0 .. g_{nswitches-1} at x to g (one evaluation of the law for all). */
+    int nswitches;
+    void (*switches)(const gd_law *law, const gd_law_point *x, double *g);
+    /* The mode the motion x is in (independent of law->mode). */
+    int (*mode_at)(const gd_law *law, const gd_law_point *x);
+    /* The mode after the located crossings dir[k] (CVODE's directions: +1 g_k rising, -1
+     * falling, 0 no crossing) from mode `mode`. */
+    int (*mode_after)(const gd_law *law, int mode, const int *dir);
+    /* The switch a change from mode `from` to `to` crosses (the saltation's surface). */
+    int (*switch_of)(const gd_law *law, int from, int to);
+    /* A switch value within tol of zero is on the switch, not a crossing the root
+     * finding missed. */
+    double (*switch_tol)(const gd_law *law);
+    /* The mode of a static equilibrium at x from mode law->mode (modes held as smooth
+     * laws continued beyond their intervals: a mesh whose drive-flank force pulls moves
+     * to the coast flank); law->mode when it stays. NULL: a static start leaves the
+     * mode alone. */
+    int (*static_mode)(const gd_law *law, const gd_law_point *x);
+    int hold_mode; /* the mode a hold blends with */
+    /* (The mesh, gd_law_backlash_mesh, is the built-in law with switches: its modes are
+     * gd_contact, its switches d_e - b and d_e + b.) */
 };
 
-/* The built-in types, in registry order. */
+/* The instance's flags (type->instance_flags or type->flags). */
+GD_API unsigned gd_law_flags(const gd_law *law);
+/* The instance's number of switches: type->nswitches, or 0 when the instance is
+ * GD_LAW_SMOOTH (a mesh without backlash). */
+GD_API int gd_law_nswitches(const gd_law *law);
+
+/* The built-in types a model's `laws:` list takes, in registry order. The gear mesh,
+ * gd_law_backlash_mesh, is a built-in type too, declared under `meshes:` (its data, a
+ * gd_mesh_law_data of geardyn/laws.h, made by the transient problem from a gd_tr_mesh):
+ * it is not in this list. */
 GD_API extern const gd_law_type *const gd_law_types[];
 GD_API extern const int gd_nlaw_types;
 GD_API extern const gd_law_type gd_law_sfd, gd_law_load, gd_law_polynomial_spring, gd_law_friction,
-    gd_law_rolling_bearing, gd_law_journal_bearing, gd_law_unilateral_spring;
+    gd_law_rolling_bearing, gd_law_journal_bearing, gd_law_unilateral_spring, gd_law_backlash_mesh;
 /* The built-in type named name, or NULL. */
 GD_API const gd_law_type *gd_law_type_find(const char *name);
 

@@ -108,6 +108,47 @@ GD_API void gd_backlash_force_grad(const gd_backlash_params *p, gd_contact state
  * c = c_const + c_per_k * k (c_per_k in s). */
 GD_API double gd_mesh_damping(double c_const, double c_per_k, double k);
 
+/* The typed data (gd_law.data) of a gd_law_backlash_mesh instance: the mesh law of
+ * [Benini2004] Eqs. 2-5 with its time-varying stiffness k(theta) and static transmission
+ * error e(theta) read at the driver's angle theta = angle_offset + sense (nominal + q_drv).
+ * The instance's local DOFs are the mesh vector's (a, na of them: deflection d = a . q)
+ * with the driver's rz among them (drv) or appended. Filled by the problem that owns it
+ * (the transient problem from a gd_tr_mesh, in gd_transient_spec_laws' block); the
+ * tables and nominal_ctx are borrowed. */
+typedef struct gd_mesh_law_data {
+    const gd_table *tvms; /* k_drive(theta), N/m; NULL: constant stiffness */
+    const gd_table *ste;  /* e(theta), m; NULL: none */
+    double stiffness;     /* N/m without tvms */
+    double coast_scale;   /* k_coast = coast_scale k_drive; 0: one-sided contact */
+    double damping;       /* constant part of the contact damping, N s/m */
+    double damping_per_k; /* c = damping + damping_per_k k, s */
+    double damping_free;  /* while separated, N s/m */
+    int backlash;         /* 1: gap b on each flank, modes gd_contact */
+    double gap;           /* b, m */
+    double angle_offset;  /* rad */
+    int na;               /* local DOFs 0..na-1 carry the mesh vector */
+    double a[GD_LAW_MAX_DOFS];
+    int drv;             /* local index of the driver's rz DOF, -1 absent */
+    int sense;           /* +1: the driver turns about +z */
+    double drv_rate;     /* driver's nominal speed about +z, rad/s */
+    double k_lin, c_lin; /* the linear part the system assembled (GD_LAW_ASSEMBLED) */
+    int angle_fixed;     /* 1: the driver's motion is prescribed (not a free DOF) */
+    /* a run-up: the driver's nominal angle and speed at t are drv_ratio times these
+     * (NULL: drv_rate t and drv_rate) */
+    void (*nominal)(const void *ctx, double t, double *angle, double *speed);
+    const void *nominal_ctx;
+    double drv_ratio;
+} gd_mesh_law_data;
+/* Records of a gd_law_backlash_mesh, in its record order. */
+enum { GD_MESH_REC_FORCE = 0, GD_MESH_REC_DEFLECTION, GD_MESH_REC_STATE, GD_MESH_REC_STIFFNESS };
+/* The mesh law in mode `state` at local (t, q, v): the force F (N, pressing the drive
+ * flanks), with d, dd the raw deflection and rate (a . q, a . q'), k the stiffness at
+ * the angle, de the deflection minus the STE (the contact test) and grad = dF/dd,
+ * dF/dd', dF/dq_drv, dF/dq_drv' (any output may be NULL). The law's hold applies. */
+GD_API double gd_mesh_law_eval(const gd_law *law, int state, double t, const double *q,
+                               const double *v, double *d, double *dd, double *k, double *de,
+                               double grad[4]);
+
 /* ---------------------------------------------------------------- squeeze film damper */
 
 typedef enum gd_sfd_film {

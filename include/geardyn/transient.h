@@ -112,8 +112,9 @@ typedef struct gd_transient_spec {
 
 typedef struct gd_transient gd_transient;
 
-/* Every law of a spec as registry instances, in the problem's order: one gd_law_sfd per
- * damper, one gd_law_load per load, then spec->laws; their nominal rates set at the
+/* Every law of a spec as registry instances, in the problem's order: one
+ * gd_law_backlash_mesh per mesh (its gd_mesh_law_data in the same block), one gd_law_sfd
+ * per damper, one gd_law_load per load, then spec->laws; their nominal rates set at the
  * reference speed (rad/s), every instance checked (gd_law_check). *out (length *n, NULL
  * when 0) is the caller's to free(). Errors: GD_EINPUT naming the law and field. */
 GD_API gd_status gd_transient_spec_laws(const gd_system *sys, const gd_transient_spec *spec,
@@ -138,6 +139,9 @@ GD_API int gd_transient_reduced_size(const gd_transient *tr, int *nkept, int *nm
 
 /* The state layout: y = [q_f; q_f'] over the nfree free DOFs (in increasing DOF order). */
 GD_API int gd_transient_nstates(const gd_transient *tr);
+/* The switch functions of the problem's laws (gd_law_nswitches: two per backlash mesh);
+ * 0 when no law has a discrete mode. */
+GD_API int gd_transient_nswitches(const gd_transient *tr);
 /* The right-hand side y' = f(t, y) with the current contact states (for benchmarks and
  * tests). */
 GD_API void gd_transient_rhs(gd_transient *tr, double t, const double *y, double *ydot);

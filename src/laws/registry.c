@@ -71,6 +71,10 @@ gd_status gd_law_type_validate(const gd_law_type *t, gd_error *err)
         what = "a law type has at most GD_LAW_MAX_TERMS Jacobian terms, given by term";
     else if (t->nrecords < 0 || (t->nrecords && (!t->records || !t->record)))
         what = "a law type's records need names and a record function";
+    else if (t->nswitches < 0 || t->nswitches > GD_LAW_MAX_SWITCHES ||
+             (t->nswitches && (!t->switches || !t->mode_at || !t->mode_after || !t->switch_of)))
+        what = "a law type has at most GD_LAW_MAX_SWITCHES switches, with switches, mode_at, "
+               "mode_after and switch_of";
     for (int k = 0; !what && k < t->ndirs; k++)
         if (t->dirs[k] < 0 || t->dirs[k] > 5) what = "a law type's directions are 0 (x) to 5 (rz)";
     for (int k = 0; !what && k < t->nparams; k++)
@@ -86,7 +90,8 @@ gd_status gd_law_check(const gd_law *law, gd_error *err)
     gd_status st = gd_law_type_validate(law ? law->type : NULL, err);
     if (st) return st;
     const gd_law_type *t = law->type;
-    if (law->ndofs != local_dofs(t))
+    if (t->var_dofs ? (law->ndofs < 1 || law->ndofs > GD_LAW_MAX_DOFS)
+                    : law->ndofs != local_dofs(t))
         return gd_error_set(err, GD_EINPUT, "", 0, 0, law->name, "start from gd_law_init",
                             "law '%s' (%s) acts on %d local DOFs, not %d", law->name, t->name,
                             local_dofs(t), law->ndofs);
@@ -116,4 +121,16 @@ gd_status gd_law_check(const gd_law *law, gd_error *err)
                                 law->name, t->name, msg);
     }
     return GD_OK;
+}
+
+unsigned gd_law_flags(const gd_law *law)
+{
+    return law->type->instance_flags ? law->type->instance_flags(law) : law->type->flags;
+}
+
+int gd_law_nswitches(const gd_law *law)
+{
+    const gd_law_type *t = law->type;
+    if (t->nswitches <= 0 || !t->switches) return 0;
+    return (gd_law_flags(law) & GD_LAW_SMOOTH) ? 0 : t->nswitches;
 }

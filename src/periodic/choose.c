@@ -149,9 +149,7 @@ gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *sp
         const int n = gd_transient_nstates(tr), nf = n / 2;
         int H = opt->harmonics;
         if (opt->adaptive && (long)order * opt->subharmonic > H) H = order * opt->subharmonic;
-        int backlash = 0;
-        for (int i = 0; i < spec->nmeshes; i++)
-            backlash |= spec->meshes[i].backlash != 0;
+        int backlash = gd_transient_nswitches(tr) > 0; /* contact laws */
         const int dense = n <= (opt->shoot_dense_max > 0 ? opt->shoot_dense_max : 64);
         /* shooting per point: five Newton iterations, each a dense monodromy of n + 1
          * columns whose right-hand side costs 2 n + 1 evaluations, or (Newton-Krylov) about

@@ -257,11 +257,9 @@ static int solve_from_rest(ctx *c, double *X, double lam, int *it, double *res)
     double *Xok = malloc((size_t)n * sizeof *Xok);
     if (!Xok) return 1;
     double h = 1.0, step = 0.5;
-    int rc = 1, nbl = 0;
     const gd_transient_spec *spec = s->spec;
     gd_hb_static_start(s->sys, spec, s->tr, c->param ? c->param->speed : lam, c->nf, X);
-    for (int i = 0; i < spec->nmeshes; i++)
-        nbl += spec->meshes[i].backlash != 0;
+    int rc = 1, nbl = gd_transient_nswitches(s->tr); /* contact laws (backlash meshes) */
     if (!nbl) {
         free(Xok);
         return gd_per_newton(c, X, &lam, NULL, NULL, it, res);

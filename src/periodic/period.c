@@ -61,18 +61,8 @@ gd_status gd_periodic_fundamental(const gd_system *sys, const gd_transient_spec 
     if (spec->unbalances)
         for (int i = 0; i < m->nunbalances; i++)
             push(f, &n, shaft_rate(sys, m->unbalances[i].node, speed));
-    for (int i = 0; i < spec->nmeshes; i++) {
-        const gd_tr_mesh *g = &spec->meshes[i];
-        double r = shaft_rate(sys, m->meshes[g->mesh].driver, speed);
-        const gd_table *t[2] = {g->tvms, g->ste};
-        for (int k = 0; k < 2; k++) {
-            if (!t[k]) continue;
-            if (!(t[k]->period > 0))
-                return undefined(err, "meshes", "a mesh stiffness or error table is not periodic");
-            push(f, &n, TWO_PI / t[k]->period * r);
-        }
-    }
-    /* every law of the registry names its own excitation frequencies */
+    /* every law of the registry (the meshes' TVMS and STE first) names its own excitation
+     * frequencies */
     gd_law *laws = NULL;
     int nlaws = 0;
     gd_status st = gd_transient_spec_laws(sys, spec, speed, &laws, &nlaws, err);

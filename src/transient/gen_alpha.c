@@ -32,7 +32,9 @@ typedef struct ga {
     int nf, nw, linear, piecewise;
     double am, af, gamma, beta, h, atol;
     csn *N;
-    int *wmesh;    /* nw: meshes with a tangent update */
+    int *wlaw;     /* nw: laws with a tangent update (GD_LAW_TANGENT: a mesh) */
+    double *wu;    /* nw x GD_LAW_MAX_DOFS: their term 0's local u (= w) */
+    int *wsw;      /* nw: their switch counts (gd_law_nswitches) */
     double *W;     /* nf x nw: S^-1 a_m (free part) */
     double *B, *z; /* nw x nw, nw */
     double *cm;    /* nw: rank-one coefficients of the current iterate */
@@ -42,7 +44,9 @@ typedef struct ga {
 static void ga_free(ga *g)
 {
     cs_nfree(g->N);
-    free(g->wmesh);
+    free(g->wlaw);
+    free(g->wu);
+    free(g->wsw);
     free(g->W);
     free(g->B);
     free(g->z);
@@ -56,15 +60,18 @@ static int ga_alloc(ga *g, gd_transient *tr)
     memset(g, 0, sizeof *g);
     g->tr = tr;
     g->nf = tr->nf;
-    int nf = tr->nf, nm = tr->nmesh > 0 ? tr->nmesh : 1;
-    g->wmesh = malloc((size_t)nm * sizeof *g->wmesh);
+    int nf = tr->nf, nm = tr->nlaw > 0 ? tr->nlaw : 1;
+    g->wlaw = malloc((size_t)nm * sizeof *g->wlaw);
+    g->wu = calloc((size_t)nm * GD_LAW_MAX_DOFS, sizeof *g->wu);
+    g->wsw = malloc((size_t)nm * sizeof *g->wsw);
     g->W = malloc((size_t)nm * (nf > 0 ? nf : 1) * sizeof *g->W);
     g->B = malloc((size_t)nm * nm * sizeof *g->B);
     g->z = malloc((size_t)nm * sizeof *g->z);
     g->cm = malloc((size_t)nm * sizeof *g->cm);
     g->q = malloc((size_t)8 * (nf > 0 ? nf : 1) * sizeof *g->q);
     g->y2 = malloc((size_t)2 * (nf > 0 ? nf : 1) * sizeof *g->y2);
-    if (!g->wmesh || !g->W || !g->B || !g->z || !g->cm || !g->q || !g->y2) return 1;
+    if (!g->wlaw || !g->wu || !g->wsw || !g->W || !g->B || !g->z || !g->cm || !g->q || !g->y2)
+        return 1;
     g->v = g->q + nf;
     g->a = g->v + nf;
     g->q1 = g->a + nf;
@@ -72,26 +79,24 @@ static int ga_alloc(ga *g, gd_transient *tr)
     g->a1 = g->v1 + nf;
     g->R = g->a1 + nf;
     g->x = g->R + nf;
-    /* meshes whose law may differ from the assembled k a a^T, c a a^T */
-    g->linear = tr->nlaw == 0 && tr->ncam == 0;
-    /* piecewise linear: affine in (q, q') within each contact state (laws of time only,
-     * such as loads of time; mesh laws whose angle is the driver's nominal or prescribed
-     * motion) */
+    /* linear: every law linear and time-invariant (a mesh at its assembled stiffness);
+     * piecewise linear: affine in (q, q') within each mode (laws of time only, such as
+     * loads of time; mesh laws whose angle is the driver's nominal or prescribed
+     * motion); the laws that differ from their assembled k a a^T, c a a^T get a
+     * rank-one tangent update (their term 0) */
+    g->linear = tr->ncam == 0;
     g->piecewise = tr->ncam == 0;
     for (int i = 0; i < tr->nlaw; i++) {
         const gd_law *L = &tr->law[i];
-        unsigned f = L->type->instance_flags ? L->type->instance_flags(L) : L->type->flags;
-        if (!(f & GD_LAW_TIME_ONLY)) g->piecewise = 0;
-    }
-    for (int i = 0; i < tr->nmesh; i++) {
-        const tr_mesh *m = &tr->mesh[i];
-        const gd_tr_mesh *s = &m->spec;
-        int nonlin = s->backlash || s->tvms || s->ste;
-        if (nonlin) g->linear = 0;
-        if ((s->tvms || s->ste) && m->drv_dof >= 0 && tr->fidx[m->drv_dof] >= 0) g->piecewise = 0;
-        if (nonlin || s->stiffness != m->k_lin ||
-            s->damping + s->damping_per_k * s->stiffness != m->c_lin)
-            g->wmesh[g->nw++] = i;
+        unsigned f = gd_law_flags(L);
+        if (!(f & GD_LAW_LINEAR)) g->linear = 0;
+        if (!(f & (GD_LAW_TIME_ONLY | GD_LAW_PIECEWISE))) g->piecewise = 0;
+        if (f & GD_LAW_TANGENT) {
+            double w[GD_LAW_MAX_DOFS] = {0};
+            L->type->term(L, 0, g->wu + (size_t)g->nw * GD_LAW_MAX_DOFS, w);
+            g->wsw[g->nw] = gd_law_nswitches(L);
+            g->wlaw[g->nw++] = i;
+        }
     }
     /* a run-up: the gyroscopic and speed-table bearing terms at W(t) are not in the
      * tangent (it holds them at the reference speed): iterate to convergence */
@@ -110,13 +115,16 @@ static void s_solve(ga *g, double *b, double *x)
     memcpy(x, b, (size_t)g->nf * sizeof *x);
 }
 
-/* Free part of mesh vector m, dotted with x (length nf). */
-static double a_dot(const gd_transient *tr, const tr_mesh *m, const double *x)
+/* Free part of tangent vector w (law g->wlaw[w]'s u), dotted with x (length nf). */
+static double a_dot(const ga *g, int w, const double *x)
 {
+    const gd_transient *tr = g->tr;
+    const gd_law *L = &tr->law[g->wlaw[w]];
+    const double *u = g->wu + (size_t)w * GD_LAW_MAX_DOFS;
     double s = 0;
-    for (int j = 0; j < m->a.n; j++) {
-        int f = tr->fidx[m->a.dof[j]];
-        if (f >= 0) s += m->a.a[j] * x[f];
+    for (int j = 0; j < L->ndofs; j++) {
+        int f = L->dof[j] >= 0 ? tr->fidx[L->dof[j]] : -1;
+        if (f >= 0) s += u[j] * x[f];
     }
     return s;
 }
@@ -141,43 +149,34 @@ static int ga_factor(ga *g, double h)
     if (!g->N) return 1;
     g->h = h;
     for (int w = 0; w < g->nw; w++) {
-        const tr_mesh *m = &tr->mesh[g->wmesh[w]];
+        const gd_law *L = &tr->law[g->wlaw[w]];
+        const double *u = g->wu + (size_t)w * GD_LAW_MAX_DOFS;
         double *b = g->R, *col = g->W + (size_t)w * nf;
         memset(b, 0, (size_t)nf * sizeof *b);
-        for (int j = 0; j < m->a.n; j++) {
-            int f = tr->fidx[m->a.dof[j]];
-            if (f >= 0) b[f] += m->a.a[j];
+        for (int j = 0; j < L->ndofs; j++) {
+            int f = L->dof[j] >= 0 ? tr->fidx[L->dof[j]] : -1;
+            if (f >= 0) b[f] += u[j];
         }
         s_solve(g, b, col);
     }
     return 0;
 }
 
-/* The law's tangent stiffness and damping of mesh m in its current state at the alpha
- * point (tr->q, tr->v filled), minus the assembled linear terms. */
-static void mesh_tangent(const gd_transient *tr, const tr_mesh *m, double t, double *dk, double *dc)
+/* Law L's tangent stiffness and damping along its term 0 in its current mode at x (the
+ * alpha point), less the assembled linear terms: -df/dq, -df/dq'. */
+static void law_tangent(gd_transient *tr, const gd_law *L, const gd_law_point *x, double *dk,
+                        double *dc)
 {
-    const gd_tr_mesh *s = &m->spec;
-    double k;
-    gd_tr_mesh_force(tr, m, m->state, t, tr->q, tr->v, NULL, NULL, &k, NULL);
-    double kt = k, ct = s->damping + s->damping_per_k * k;
-    if (s->backlash) {
-        if (m->state == GD_CONTACT_COAST) {
-            kt = s->coast_scale * k;
-            ct = s->damping + s->damping_per_k * kt;
-        } else if (m->state == GD_CONTACT_SEPARATED) {
-            kt = 0.0;
-            ct = s->damping_free;
-        }
-    }
-    *dk = kt - m->k_lin;
-    *dc = ct - m->c_lin;
+    double jq[GD_LAW_MAX_TERMS], jv[GD_LAW_MAX_TERMS];
+    memset(tr->lf, 0, (size_t)L->ndofs * sizeof *tr->lf);
+    L->type->force(L, x, tr->lf, jq, jv);
+    *dk = -jq[0];
+    *dc = -jv[0];
 }
 
 /* x = S_t^-1 R with S_t = S + sum_w cm_w a_w a_w^T (Woodbury); R overwritten. */
 static int tangent_solve(ga *g, double *R, double *x)
 {
-    const gd_transient *tr = g->tr;
     const int nf = g->nf, nw = g->nw;
     s_solve(g, R, x);
     int any = 0;
@@ -186,11 +185,9 @@ static int tangent_solve(ga *g, double *R, double *x)
     if (!any) return 0;
     /* (I + C A^T W) z = C A^T x,  x -= W z */
     for (int i = 0; i < nw; i++) {
-        const tr_mesh *m = &tr->mesh[g->wmesh[i]];
-        g->z[i] = g->cm[i] * a_dot(tr, m, x);
+        g->z[i] = g->cm[i] * a_dot(g, i, x);
         for (int j = 0; j < nw; j++)
-            g->B[i + j * nw] =
-                (i == j ? 1.0 : 0.0) + g->cm[i] * a_dot(tr, m, g->W + (size_t)j * nf);
+            g->B[i + j * nw] = (i == j ? 1.0 : 0.0) + g->cm[i] * a_dot(g, i, g->W + (size_t)j * nf);
     }
     lapack_int ipiv[64], *piv = nw <= 64 ? ipiv : malloc((size_t)nw * sizeof *piv);
     if (!piv) return 1;
@@ -219,8 +216,8 @@ static void free_force(ga *g, double t, const double *q, const double *v, double
         out[i] = tr->r[tr->free_dof[i]];
 }
 
-/* 1 when every backlash mesh is, at the alpha point of the current a1, in the contact
- * state the last iterate used. */
+/* 1 when every law with switches (a backlash mesh) is, at the alpha point of the
+ * current a1, in the mode the last iterate used. */
 static int same_states(ga *g, double ta)
 {
     gd_transient *tr = g->tr;
@@ -234,11 +231,11 @@ static int same_states(ga *g, double ta)
     }
     gd_tr_fill(tr, ta, g->y2, tr->q, tr->v, NULL);
     for (int w = 0; w < g->nw; w++) {
-        const tr_mesh *m = &tr->mesh[g->wmesh[w]];
-        if (!m->spec.backlash) continue;
-        double de;
-        gd_tr_mesh_force(tr, m, m->state, ta, tr->q, tr->v, NULL, NULL, NULL, &de);
-        if (gd_backlash_state(de, m->spec.gap) != m->state) return 0;
+        const gd_law *L = &tr->law[g->wlaw[w]];
+        if (!g->wsw[w]) continue;
+        gd_law_point x;
+        gd_tr_law_here(tr, L, ta, &x);
+        if (L->type->mode_at(L, &x) != L->mode) return 0;
     }
     return 1;
 }
@@ -264,14 +261,12 @@ static int ga_step(ga *g, double t, long *nres)
         memcpy(g->y2 + nf, va, (size_t)nf * sizeof *va);
         gd_tr_fill(tr, ta, g->y2, tr->q, tr->v, tr->acc);
         for (int w = 0; w < g->nw; w++) {
-            tr_mesh *m = &tr->mesh[g->wmesh[w]];
-            if (m->spec.backlash) {
-                double de;
-                gd_tr_mesh_force(tr, m, m->state, ta, tr->q, tr->v, NULL, NULL, NULL, &de);
-                m->state = gd_backlash_state(de, m->spec.gap);
-            }
+            gd_law *L = &tr->law[g->wlaw[w]];
+            gd_law_point x;
+            gd_tr_law_here(tr, L, ta, &x);
+            if (g->wsw[w]) L->mode = L->type->mode_at(L, &x);
             double dk, dc;
-            mesh_tangent(tr, m, ta, &dk, &dc);
+            law_tangent(tr, L, &x, &dk, &dc);
             g->cm[w] = (1.0 - af) * (be * h * h * dk + ga_ * h * dc);
         }
         gd_tr_residual(tr, ta, tr->q, tr->v, tr->acc, tr->r);
@@ -339,7 +334,7 @@ gd_status gd_tr_run_gen_alpha(gd_transient *tr, const gd_transient_options *opt,
     g.beta = 0.25 * (1.0 - g.am + g.af) * (1.0 - g.am + g.af);
     g.atol = opt->atol_q;
     double hmax = opt->step > 0 ? opt->step : dt / 10.0;
-    gd_contact *s0 = malloc((size_t)(tr->nmesh > 0 ? tr->nmesh : 1) * sizeof *s0);
+    int *s0 = malloc((size_t)(tr->nlaw > 0 ? tr->nlaw : 1) * sizeof *s0);
     if (!s0) {
         ga_free(&g);
         return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
@@ -368,8 +363,8 @@ gd_status gd_tr_run_gen_alpha(gd_transient *tr, const gd_transient_options *opt,
                 res->prec_setups++;
             }
             for (long s = 0; s < ns; s++) {
-                for (int i = 0; i < tr->nmesh; i++)
-                    s0[i] = tr->mesh[i].state;
+                for (int i = 0; i < tr->nlaw; i++)
+                    s0[i] = tr->law[i].mode;
                 double tn = s == ns - 1 ? tk : t + h;
                 int it = ga_step(&g, t, &res->rhs_evals);
                 if (it < 0) {
@@ -388,13 +383,13 @@ gd_status gd_tr_run_gen_alpha(gd_transient *tr, const gd_transient_options *opt,
                     memcpy(g.y2, g.q, (size_t)nf * sizeof *g.q);
                     memcpy(g.y2 + nf, g.v, (size_t)nf * sizeof *g.v);
                     gd_tr_fill(tr, tn, g.y2, tr->q, tr->v, NULL);
-                    for (int i = 0; i < tr->nmesh; i++) {
-                        tr_mesh *m = &tr->mesh[i];
-                        if (!m->spec.backlash) continue;
-                        double de;
-                        gd_tr_mesh_force(tr, m, m->state, tn, tr->q, tr->v, NULL, NULL, NULL, &de);
-                        gd_contact ns_ = gd_backlash_state(de, m->spec.gap);
-                        m->state = s0[i];
+                    for (int i = 0; i < tr->nlaw; i++) {
+                        gd_law *L = &tr->law[i];
+                        if (!gd_law_nswitches(L)) continue;
+                        gd_law_point x;
+                        gd_tr_law_here(tr, L, tn, &x);
+                        int ns_ = L->type->mode_at(L, &x);
+                        L->mode = s0[i];
                         if (ns_ != s0[i]) {
                             gd_tr_change_state(tr, i, ns_, tn, from, res->contacts, track);
                             res->events++;

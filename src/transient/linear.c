@@ -65,11 +65,13 @@ typedef struct lti {
 
 int gd_tr_lti_reason(const gd_transient *tr, char *why, size_t len)
 {
-    const gd_model *m = tr->sys->model;
-    if (tr->nlaw > 0) {
-        const gd_law *L = &tr->law[0];
+    int nother = 0, first = -1;
+    for (int i = 0; i < tr->nlaw; i++)
+        if (!(tr->law[i].type->flags & GD_LAW_ASSEMBLED) && nother++ == 0) first = i;
+    if (nother > 0) {
+        const gd_law *L = &tr->law[first];
         snprintf(why, len, "law %s (%s)%s", L->name, L->type->name,
-                 tr->nlaw > 1 ? " and others" : "");
+                 nother > 1 ? " and others" : "");
         return 0;
     }
     if (tr->ncam > 0) {
@@ -80,22 +82,22 @@ int gd_tr_lti_reason(const gd_transient *tr, char *why, size_t len)
         snprintf(why, len, "prescribed DOFs");
         return 0;
     }
-    for (int i = 0; i < tr->nmesh; i++) {
-        const tr_mesh *ms = &tr->mesh[i];
-        const gd_tr_mesh *s = &ms->spec;
-        const char *name = m->meshes[ms->model_mesh].name;
-        if (s->backlash || s->tvms || s->ste) {
-            snprintf(why, len, "mesh %s: %s", name,
+    /* laws with an assembled linear part (meshes): linear only as assembled */
+    for (int i = 0; i < tr->nlaw; i++) {
+        const gd_law *L = &tr->law[i];
+        unsigned f = gd_law_flags(L);
+        if (!(f & GD_LAW_ASSEMBLED) || !(f & GD_LAW_TANGENT)) continue;
+        if (L->type == &gd_law_backlash_mesh) {
+            const gd_mesh_law_data *s = L->data;
+            snprintf(why, len, "mesh %s: %s", L->name,
                      s->backlash ? "backlash"
                      : s->tvms   ? "time-varying stiffness"
-                                 : "transmission error");
-            return 0;
+                     : s->ste    ? "transmission error"
+                                 : "a law other than the assembled stiffness");
+        } else {
+            snprintf(why, len, "law %s (%s)", L->name, L->type->name);
         }
-        if (s->stiffness != ms->k_lin ||
-            s->damping + s->damping_per_k * s->stiffness != ms->c_lin) {
-            snprintf(why, len, "mesh %s: a law other than the assembled stiffness", name);
-            return 0;
-        }
+        return 0;
     }
     snprintf(why, len, "linear, time-invariant");
     return 1;

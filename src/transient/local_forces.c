@@ -34,42 +34,45 @@ static void term_w(gd_tr_term *t, const gd_transient *tr, int dof, double coef)
     vec_add(&t->nw, t->w_idx, t->w, tr, dof, coef);
 }
 
+/* Appends law L's terms. */
+static void law_terms(gd_transient *tr, const gd_law *L, int *n)
+{
+    for (int k = 0; k < L->type->nterms; k++) {
+        double u[GD_LAW_MAX_DOFS] = {0}, w[GD_LAW_MAX_DOFS] = {0};
+        L->type->term(L, k, u, w);
+        gd_tr_term *t = &tr->term[(*n)++];
+        for (int j = 0; j < L->ndofs; j++) {
+            term_u(t, tr, L->dof[j], u[j]);
+            term_w(t, tr, L->dof[j], w[j]);
+        }
+    }
+}
+
+/* 1 when law L has an assembled linear part (its terms come first). */
+static int assembled(const gd_law *L)
+{
+    return (L->type->flags & GD_LAW_ASSEMBLED) != 0;
+}
+
+/* Terms in the order: laws with an assembled part (meshes), cams, the other laws. */
 static int build_terms(gd_transient *tr)
 {
     if (tr->cam_acc && tr->ncd) return -1;
-    int cap = 2 * tr->nmesh + tr->ncam;
+    int cap = tr->ncam;
     for (int i = 0; i < tr->nlaw; i++)
         cap += tr->law[i].type->nterms;
     tr->term = calloc((size_t)(cap > 0 ? cap : 1), sizeof *tr->term);
     if (!tr->term) return -2;
     int n = 0;
-    for (int i = 0; i < tr->nmesh; i++) {
-        const tr_mesh *m = &tr->mesh[i];
-        gd_tr_term *a = &tr->term[n++], *b = &tr->term[n++];
-        for (int j = 0; j < m->a.n; j++) {
-            term_u(a, tr, m->a.dof[j], m->a.a[j]);
-            term_w(a, tr, m->a.dof[j], m->a.a[j]);
-            term_u(b, tr, m->a.dof[j], m->a.a[j]);
-        }
-        term_w(b, tr, m->drv_dof, 1.0);
-    }
+    for (int i = 0; i < tr->nlaw; i++)
+        if (assembled(&tr->law[i])) law_terms(tr, &tr->law[i], &n);
     for (int i = 0; i < tr->ncam; i++) {
         gd_tr_term *t = &tr->term[n++];
         term_u(t, tr, tr->cam[i].spec.dof, 1.0);
         term_w(t, tr, tr->cam[i].spec.dof, 1.0);
     }
-    for (int i = 0; i < tr->nlaw; i++) {
-        const gd_law *L = &tr->law[i];
-        for (int k = 0; k < L->type->nterms; k++) {
-            double u[GD_LAW_MAX_DOFS] = {0}, w[GD_LAW_MAX_DOFS] = {0};
-            L->type->term(L, k, u, w);
-            gd_tr_term *t = &tr->term[n++];
-            for (int j = 0; j < L->ndofs; j++) {
-                term_u(t, tr, L->dof[j], u[j]);
-                term_w(t, tr, L->dof[j], w[j]);
-            }
-        }
-    }
+    for (int i = 0; i < tr->nlaw; i++)
+        if (!assembled(&tr->law[i])) law_terms(tr, &tr->law[i], &n);
     return n;
 }
 
@@ -93,16 +96,39 @@ void gd_transient_matrices(const gd_transient *tr, gd_csc *M, gd_csc *D, gd_csc 
     if (K) *K = csc_view(tr->Kff);
 }
 
+/* The term coefficients of the laws with (assembled = 1) or without an assembled part,
+ * in build_terms' order, from sq[*n], sv[*n]. */
+static void law_coefs(gd_transient *tr, double t, int with_assembled, double *sq, double *sv,
+                      int *n)
+{
+    for (int i = 0; i < tr->nlaw; i++) {
+        const gd_law *L = &tr->law[i];
+        if (assembled(L) != with_assembled) continue;
+        int nt = L->type->nterms;
+        double jq[GD_LAW_MAX_TERMS], jv[GD_LAW_MAX_TERMS];
+        gd_law_point x;
+        gd_tr_law_point(L, t, tr->q, tr->v, tr->lq, tr->lv, &x);
+        memset(tr->lf, 0, (size_t)L->ndofs * sizeof *tr->lf);
+        L->type->force(L, &x, tr->lf, jq, jv);
+        for (int k = 0; k < nt; k++, (*n)++) {
+            if (sq) sq[*n] = jq[k];
+            if (sv) sv[*n] = jv[k];
+        }
+    }
+}
+
 void gd_transient_local(gd_transient *tr, double t, const double *y, double *f, double *sq,
                         double *sv)
 {
     const int nf = tr->nf;
     gd_tr_fill(tr, t, y, tr->q, tr->v, tr->acc);
-    for (int i = 0; i < tr->nmesh; i++) {
-        tr_mesh *m = &tr->mesh[i];
-        double de;
-        gd_tr_mesh_law(m, m->state, t, tr->q, tr->v, NULL, NULL, NULL, &de, NULL);
-        m->state = m->spec.backlash ? gd_backlash_state(de, m->spec.gap) : GD_CONTACT_DRIVE;
+    /* the laws' modes from the motion (not frozen between located events) */
+    for (int i = 0; i < tr->nlaw; i++) {
+        gd_law *L = &tr->law[i];
+        if (!L->type->mode_at) continue;
+        gd_law_point x;
+        gd_tr_law_here(tr, L, t, &x);
+        L->mode = L->type->mode_at(L, &x);
     }
     if (f) {
         gd_tr_forces(tr, t, tr->q, tr->v, tr->acc, tr->r, 1);
@@ -112,21 +138,7 @@ void gd_transient_local(gd_transient *tr, double t, const double *y, double *f, 
     if (!sq && !sv) return;
     if (gd_transient_terms(tr, NULL) < 0) return;
     int n = 0;
-    double dq[2], dv[2];
-    for (int i = 0; i < tr->nmesh; i++) {
-        const tr_mesh *m = &tr->mesh[i];
-        double g[4];
-        gd_tr_mesh_law(m, m->state, t, tr->q, tr->v, NULL, NULL, NULL, NULL, g);
-        /* f -= a (F - k_lin d - c_lin d') */
-        dq[0] = -(g[0] - m->k_lin);
-        dv[0] = -(g[1] - m->c_lin);
-        dq[1] = -g[2];
-        dv[1] = -g[3];
-        for (int k = 0; k < 2; k++, n++) {
-            if (sq) sq[n] = dq[k];
-            if (sv) sv[n] = dv[k];
-        }
-    }
+    law_coefs(tr, t, 1, sq, sv, &n);
     for (int i = 0; i < tr->ncam; i++, n++) {
         const tr_cam *c = &tr->cam[i];
         int d = c->spec.dof;
@@ -141,19 +153,7 @@ void gd_transient_local(gd_transient *tr, double t, const double *y, double *f, 
         if (sq) sq[n] = -c->spec.mass * dss * w * w;
         if (sv) sv[n] = -2.0 * c->spec.mass * s1 * s2 * w;
     }
-    for (int i = 0; i < tr->nlaw; i++) {
-        const gd_law *L = &tr->law[i];
-        int nt = L->type->nterms;
-        double jq[GD_LAW_MAX_TERMS], jv[GD_LAW_MAX_TERMS];
-        gd_law_point x;
-        gd_tr_law_point(L, t, tr->q, tr->v, tr->lq, tr->lv, &x);
-        memset(tr->lf, 0, (size_t)L->ndofs * sizeof *tr->lf);
-        L->type->force(L, &x, tr->lf, jq, jv);
-        for (int k = 0; k < nt; k++, n++) {
-            if (sq) sq[n] = jq[k];
-            if (sv) sv[n] = jv[k];
-        }
-    }
+    law_coefs(tr, t, 0, sq, sv, &n);
 }
 
 double gd_transient_record_value(gd_transient *tr, const gd_tr_record *rec, double t,
@@ -200,17 +200,25 @@ int gd_transient_record_dofs(const gd_transient *tr, const gd_tr_record *rec, in
     case GD_REC_MESH_STATE:
     case GD_REC_MESH_STIFFNESS: {
         int nl = tr->nl_of_mesh[i];
-        const gd_mesh_vector *a = nl >= 0 ? &tr->mesh[nl].a : &tr->model_a[i];
-        for (int j = 0; j < a->n; j++)
-            full |= put_dof(tr, a->dof[j], idx, cap, &n);
-        if (nl >= 0) full |= put_dof(tr, tr->mesh[nl].drv_dof, idx, cap, &n);
+        if (nl < 0) {
+            const gd_mesh_vector *a = &tr->model_a[i];
+            for (int j = 0; j < a->n; j++)
+                full |= put_dof(tr, a->dof[j], idx, cap, &n);
+            break;
+        }
+        /* the mesh vector's DOFs, then the driver's (its angle) */
+        const gd_law *L = &tr->law[nl];
+        const gd_mesh_law_data *m = L->data;
+        for (int j = 0; j < m->na; j++)
+            full |= put_dof(tr, L->dof[j], idx, cap, &n);
+        if (m->drv >= 0) full |= put_dof(tr, L->dof[m->drv], idx, cap, &n);
         break;
     }
     case GD_REC_SFD_FX:
     case GD_REC_SFD_FY:
     case GD_REC_SFD_ECCENTRICITY:
     case GD_REC_LAW: {
-        const gd_law *L = &tr->law[rec->kind == GD_REC_LAW ? tr->law_spec0 + i : i];
+        const gd_law *L = &tr->law[rec->kind == GD_REC_LAW ? tr->law_spec0 + i : tr->nmesh + i];
         for (int j = 0; j < L->ndofs; j++)
             full |= put_dof(tr, L->dof[j], idx, cap, &n);
         break;
@@ -223,6 +231,7 @@ int gd_transient_record_dofs(const gd_transient *tr, const gd_tr_record *rec, in
 
 void gd_transient_hold_drive(gd_transient *tr, double hold)
 {
-    for (int i = 0; i < tr->nmesh; i++)
-        tr->mesh[i].hold = hold > 0 ? (hold < 1 ? hold : 1.0) : 0.0;
+    for (int i = 0; i < tr->nlaw; i++)
+        if (tr->law[i].type->nswitches > 0)
+            tr->law[i].hold = hold > 0 ? (hold < 1 ? hold : 1.0) : 0.0;
 }

@@ -100,15 +100,15 @@ static int aug_root(sunrealtype t, N_Vector Y, sunrealtype *g, void *ud)
     return 0;
 }
 
-/* Mesh i switches to state ns at (t, y) through root function k: the saltation update of
+/* Law i switches to mode ns at (t, y) through root function k: the saltation update of
  * the columns of Phi (Y + N). */
-static void saltation(mono *m, int i, gd_contact ns, int k, double t, double *Y)
+static void saltation(mono *m, int i, int ns, int k, double t, double *Y)
 {
     const int N = m->N;
-    tr_mesh *mesh = &m->tr->mesh[i];
+    gd_law *law = &m->tr->law[i];
     gd_transient_rhs(m->tr, t, Y, m->f0); /* f- */
     double rate = root_rate(m, t, Y, 1.0, m->f0, k);
-    mesh->state = ns;
+    law->mode = ns;
     if (!(fabs(rate) > 0.0)) return; /* grazing: the jump is undefined, leave Phi */
     double *df = m->f0;
     /* f+ - f- (f+ into fm: root_rate does not use it) */
@@ -216,25 +216,21 @@ gd_status gd_transient_monodromy(gd_transient *tr, double t0, double period, con
         int changed = 0, kr = 0;
         if (flag == CV_ROOT_RETURN) CVodeGetRootInfo(mem, found);
         if (tr->nroot) gd_tr_fill(tr, t, Yd, tr->q, tr->v, NULL);
-        for (int i = 0; i < tr->nmesh; i++) {
-            tr_mesh *ms = &tr->mesh[i];
-            if (!ms->spec.backlash) continue;
-            int r0 = 0, r1 = 0;
-            if (flag == CV_ROOT_RETURN) {
-                r0 = found[kr];
-                r1 = found[kr + 1];
-            }
-            gd_contact ns = flag == CV_ROOT_RETURN ? gd_tr_root_state(ms->state, r0, r1)
-                                                   : gd_tr_missed_state(tr, ms, t);
-            if (ns != ms->state) {
-                /* the surface crossed: d_e = +b (root kr) when entering or leaving the
-                 * drive flank, else d_e = -b */
-                int k = (ns == GD_CONTACT_DRIVE || ms->state == GD_CONTACT_DRIVE) ? kr : kr + 1;
+        for (int i = 0; i < tr->nlaw; i++) {
+            const gd_law *L = &tr->law[i];
+            int nsw = gd_law_nswitches(L);
+            if (!nsw) continue;
+            int ns = flag == CV_ROOT_RETURN ? L->type->mode_after(L, L->mode, found + kr)
+                                            : gd_tr_missed_mode(tr, L, t);
+            if (ns != L->mode) {
+                /* the surface crossed (a mesh: d_e = +b when entering or leaving the drive
+                 * flank, else d_e = -b) */
+                int k = kr + L->type->switch_of(L, L->mode, ns);
                 saltation(&m, i, ns, k, t, Yd);
                 changed = 1;
                 gd_tr_fill(tr, t, Yd, tr->q, tr->v, NULL);
             }
-            kr += 2;
+            kr += nsw;
         }
         if (changed) CVodeReInit(mem, t, Y);
     }

@@ -265,33 +265,24 @@ gd_status gd_transient_new(const gd_system *sys, const gd_transient_spec *spec, 
             tr->nl_of_mesh[k] = -1;
         }
     }
-    tr->nmesh = spec->nmeshes;
-    if (tr->nmesh) {
-        tr->mesh = calloc((size_t)tr->nmesh, sizeof *tr->mesh);
-        if (!tr->mesh) goto fail;
-    }
-    for (int i = 0; i < tr->nmesh; i++) {
-        tr_mesh *m = &tr->mesh[i];
-        m->spec = spec->meshes[i];
-        if (!(m->spec.coast_scale >= 0)) m->spec.coast_scale = 1.0; /* 0: one-sided */
-        m->model_mesh = m->spec.mesh;
-        const gd_mesh *gm = &model->meshes[m->model_mesh];
-        m->a = tr->model_a[m->model_mesh];
-        m->k_lin = gm->stiffness;
-        m->c_lin = gd_mesh_linear_damping(gm); /* what the system assembled */
-        m->drv_dof = gd_system_dof(sys, gm->driver, GD_RZ);
-        m->drv_ratio = model->shafts[model->nodes[gm->driver].shaft].speed_ratio;
-        m->drv_rate = m->drv_ratio * speed;
-        m->sense = gm->driver_sense >= 0 ? 1 : -1;
-        m->state = GD_CONTACT_DRIVE;
-        tr->nl_of_mesh[m->model_mesh] = i;
-        if (m->spec.backlash) tr->nroot += 2;
-    }
-    /* the laws of the registry: dampers, loads, the spec's laws */
+    /* the laws of the registry: meshes, dampers, loads, the spec's laws */
     if ((st = gd_transient_spec_laws(sys, spec, speed, &tr->law, &tr->nlaw, err))) goto fail;
     st = GD_ENOMEM;
+    tr->nmesh = spec->nmeshes;
     tr->nsfd_law = spec->nsfds;
-    tr->law_spec0 = spec->nsfds + spec->nloads;
+    tr->law_spec0 = spec->nmeshes + spec->nsfds + spec->nloads;
+    for (int i = 0; i < tr->nmesh; i++)
+        tr->nl_of_mesh[spec->meshes[i].mesh] = i;
+    for (int i = 0; i < tr->nlaw; i++)
+        tr->nroot += gd_law_nswitches(&tr->law[i]);
+    tr->law_order = malloc((size_t)(tr->nlaw > 0 ? tr->nlaw : 1) * sizeof *tr->law_order);
+    if (!tr->law_order) goto fail;
+    for (int pass = 0, k = 0; pass < 2; pass++)
+        for (int i = 0; i < tr->nlaw; i++)
+            if (!(tr->law[i].type->flags & GD_LAW_ASSEMBLED) == !pass) {
+                tr->law_order[k++] = i;
+                if (!pass) tr->nlaw_plain = k;
+            }
     if (tr->nlaw) { /* the ratios of the laws' rates and spins (a run-up's) */
         const int stride = GD_LAW_MAX_DOFS + 2;
         tr->law_ratio = calloc((size_t)tr->nlaw * stride, sizeof *tr->law_ratio);
@@ -421,9 +412,9 @@ void gd_transient_free(gd_transient *tr)
     cs_spfree(tr->Gy);
     gd_tr_release_linear(tr);
     gd_tr_reduction_free(tr->red);
-    free(tr->mesh);
     free(tr->model_a);
     free(tr->nl_of_mesh);
+    free(tr->law_order);
     free(tr->law);
     free(tr->unb);
     free(tr->cam);
@@ -446,6 +437,11 @@ void gd_transient_free(gd_transient *tr)
 int gd_transient_nstates(const gd_transient *tr)
 {
     return 2 * tr->nf;
+}
+
+int gd_transient_nswitches(const gd_transient *tr)
+{
+    return tr->nroot;
 }
 
 /* The reduction the problem owns (reduce.c makes it). */

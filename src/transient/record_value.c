@@ -39,25 +39,23 @@ double gd_tr_record_value(gd_transient *tr, const gd_tr_record *rec, double t, c
     case GD_REC_MESH_STATE:
     case GD_REC_MESH_STIFFNESS: {
         int nl = tr->nl_of_mesh[i];
-        double d, dd, k, F;
-        gd_contact state = GD_CONTACT_DRIVE;
-        if (nl >= 0) {
-            const tr_mesh *m = &tr->mesh[nl];
-            state = m->state;
-            F = gd_tr_mesh_force(tr, m, state, t, q, v, &d, &dd, &k, NULL);
-        } else {
-            const gd_mesh_vector *a = &tr->model_a[i];
-            d = dd = 0.0;
-            for (int j = 0; j < a->n; j++) {
-                d += a->a[j] * q[a->dof[j]];
-                dd += a->a[j] * v[a->dof[j]];
-            }
-            k = model->meshes[i].stiffness;
-            F = k * d + model->meshes[i].damping * dd;
+        if (nl >= 0) { /* the mesh law's records, in the same order */
+            const gd_law *L = &tr->law[nl];
+            gd_law_point x;
+            gd_tr_law_point(L, t, q, v, tr->lq, tr->lv, &x);
+            return L->type->record(L, (int)(rec->kind - GD_REC_MESH_FORCE), &x);
         }
-        if (rec->kind == GD_REC_MESH_FORCE) return F;
+        /* a mesh without a law: its assembled linear force */
+        const gd_mesh_vector *a = &tr->model_a[i];
+        double d = 0.0, dd = 0.0;
+        for (int j = 0; j < a->n; j++) {
+            d += a->a[j] * q[a->dof[j]];
+            dd += a->a[j] * v[a->dof[j]];
+        }
+        double k = model->meshes[i].stiffness;
+        if (rec->kind == GD_REC_MESH_FORCE) return k * d + model->meshes[i].damping * dd;
         if (rec->kind == GD_REC_MESH_DEFLECTION) return d;
-        if (rec->kind == GD_REC_MESH_STATE) return (double)state;
+        if (rec->kind == GD_REC_MESH_STATE) return (double)GD_CONTACT_DRIVE;
         return k;
     }
     case GD_REC_SFD_FX:
@@ -66,7 +64,7 @@ double gd_tr_record_value(gd_transient *tr, const gd_tr_record *rec, double t, c
     case GD_REC_LAW: {
         /* a damper's records are its law's fx, fy, ecc */
         int which = rec->kind == GD_REC_LAW ? rec->index2 : (int)(rec->kind - GD_REC_SFD_FX);
-        const gd_law *L = &tr->law[rec->kind == GD_REC_LAW ? tr->law_spec0 + i : i];
+        const gd_law *L = &tr->law[rec->kind == GD_REC_LAW ? tr->law_spec0 + i : tr->nmesh + i];
         gd_law_point x;
         gd_tr_law_point(L, t, q, v, tr->lq, tr->lv, &x);
         return L->type->record(L, which, &x);

@@ -305,8 +305,6 @@ static gd_status reduce(gd_transient *tr, double cutoff, gd_error *err)
     for (int k = 0; k < tr->nmodel_mesh; k++)
         for (int j = 0; j < tr->model_a[k].n; j++)
             keep(flag, tr->model_a[k].dof[j]);
-    for (int k = 0; k < tr->nmesh; k++)
-        keep(flag, tr->mesh[k].drv_dof);
     for (int k = 0; k < tr->nlaw; k++)
         for (int j = 0; j < tr->law[k].ndofs; j++)
             keep(flag, tr->law[k].dof[j]);
@@ -431,11 +429,6 @@ static gd_status reduce(gd_transient *tr, double cutoff, gd_error *err)
     for (int k = 0; k < tr->nmodel_mesh; k++)
         for (int j = 0; j < tr->model_a[k].n; j++)
             tr->model_a[k].dof[j] = bmap[tr->model_a[k].dof[j]];
-    for (int k = 0; k < tr->nmesh; k++) {
-        tr_mesh *m = &tr->mesh[k];
-        m->a = tr->model_a[m->model_mesh];
-        if (m->drv_dof >= 0) m->drv_dof = bmap[m->drv_dof];
-    }
     for (int k = 0; k < tr->nlaw; k++)
         for (int j = 0; j < tr->law[k].ndofs; j++)
             if (tr->law[k].dof[j] >= 0) tr->law[k].dof[j] = bmap[tr->law[k].dof[j]];

@@ -1,5 +1,6 @@
 /* The right-hand side y' = f(t, y) of the first-order form y = [q_f; q_f'], the root
- * functions of the backlash meshes and the preconditioner. Nothing here allocates. */
+ * functions (the laws' switches: a backlash mesh's flanks) and the preconditioner. Nothing here
+ * allocates. */
 #include <math.h>
 #include <string.h>
 
@@ -35,82 +36,9 @@ void gd_tr_law_point(const gd_law *L, double t, const double *q, const double *v
     x->v = lv;
 }
 
-double gd_tr_mesh_law(const tr_mesh *m, gd_contact state, double t, const double *q,
-                      const double *v, double *d_out, double *dd_out, double *k_out, double *de_out,
-                      double grad[4])
+void gd_tr_law_here(gd_transient *tr, const gd_law *L, double t, gd_law_point *x)
 {
-    double d = 0.0, dd = 0.0;
-    for (int j = 0; j < m->a.n; j++) {
-        d += m->a.a[j] * q[m->a.dof[j]];
-        dd += m->a.a[j] * v[m->a.dof[j]];
-    }
-    if (d_out) *d_out = d;
-    if (dd_out) *dd_out = dd;
-    const gd_tr_mesh *s = &m->spec;
-    double k = s->stiffness, dk = 0.0, e1 = 0.0, e2 = 0.0, thd = 0.0;
-    if (s->tvms || s->ste) {
-        double qd = m->drv_dof >= 0 ? q[m->drv_dof] : 0.0;
-        double vd = m->drv_dof >= 0 ? v[m->drv_dof] : 0.0;
-        double th, wd;
-        if (m->prof) { /* run-up: the driver's nominal angle ratio phi(t) */
-            double phi, w;
-            gd_tr_profile_eval(m->prof, m->prof_cum, t, &phi, &w, NULL);
-            th = s->angle_offset + m->sense * (m->drv_ratio * phi + qd);
-            wd = m->drv_ratio * w;
-        } else {
-            th = s->angle_offset + m->sense * (m->drv_rate * t + qd);
-            wd = m->drv_rate;
-        }
-        thd = m->sense * (wd + vd);
-        if (s->tvms) k = gd_table_eval(s->tvms, th, &dk, NULL);
-        if (s->ste) {
-            double e = gd_table_eval(s->ste, th, &e1, &e2);
-            d -= e;
-            dd -= e1 * thd;
-        }
-    }
-    if (k_out) *k_out = k;
-    if (de_out) *de_out = d;
-    double c = s->damping + s->damping_per_k * k;
-    gd_backlash_params p;
-    p.b = s->backlash ? s->gap : 0.0;
-    p.k_drive = k;
-    p.k_coast = s->coast_scale * k;
-    p.c_drive = c;
-    p.c_coast = s->damping + s->damping_per_k * p.k_coast;
-    p.c_free = s->damping_free;
-    gd_contact st = s->backlash ? state : GD_CONTACT_DRIVE;
-    /* contact homotopy (frequency-domain starts only): blend with the drive flank */
-    double h = st != GD_CONTACT_DRIVE ? m->hold : 0.0;
-    if (grad) {
-        /* chain rule through the state's k(theta), c(theta) and the STE e(theta) */
-        for (int b = 0; b < 4; b++)
-            grad[b] = 0.0;
-        for (int pass = 0; pass < (h > 0 ? 2 : 1); pass++) {
-            gd_contact sp = pass ? GD_CONTACT_DRIVE : st;
-            double wgt = pass ? h : 1.0 - h, g[4];
-            gd_backlash_force_grad(&p, sp, d, dd, g);
-            double dks = sp == GD_CONTACT_COAST ? s->coast_scale * dk : dk;
-            double dcs = sp == GD_CONTACT_SEPARATED ? 0.0 : s->damping_per_k * dks;
-            double dth = g[2] * dks + g[3] * dcs - g[0] * e1 - g[1] * e2 * thd;
-            grad[0] += wgt * g[0];
-            grad[1] += wgt * g[1];
-            grad[2] += m->drv_dof >= 0 ? wgt * m->sense * dth : 0.0;
-            grad[3] += m->drv_dof >= 0 ? -wgt * m->sense * g[1] * e1 : 0.0;
-        }
-    }
-    if (!s->backlash) return k * d + c * dd;
-    double F = gd_backlash_force(&p, state, d, dd);
-    if (h > 0) F = (1.0 - h) * F + h * gd_backlash_force(&p, GD_CONTACT_DRIVE, d, dd);
-    return F;
-}
-
-double gd_tr_mesh_force(const gd_transient *tr, const tr_mesh *m, gd_contact state, double t,
-                        const double *q, const double *v, double *d_out, double *dd_out,
-                        double *k_out, double *de_out)
-{
-    (void)tr;
-    return gd_tr_mesh_law(m, state, t, q, v, d_out, dd_out, k_out, de_out, NULL);
+    gd_tr_law_point(L, t, tr->q, tr->v, tr->lq, tr->lv, x);
 }
 
 /* r -= A[:, j] x_j */
@@ -137,17 +65,27 @@ static void sub_mul_prescribed(const gd_transient *tr, const cs *A, const double
         sub_col(A, tr->pres[k].dof, x, r);
 }
 
-/* r += every registry law's force at (t, q, q'). */
-static void add_law_forces(gd_transient *tr, double t, const double *q, const double *v, double *r)
+/* r += the registry laws' forces at (t, q, q'): those with an assembled linear part
+ * (GD_LAW_ASSEMBLED: the difference from it, after the linear terms) when assembled,
+ * else the others. */
+static void add_law_forces(gd_transient *tr, double t, const double *q, const double *v, double *r,
+                           int assembled)
 {
-    for (int i = 0; i < tr->nlaw; i++) {
-        const gd_law *L = &tr->law[i];
-        gd_law_point x;
-        gd_tr_law_point(L, t, q, v, tr->lq, tr->lv, &x);
-        memset(tr->lf, 0, (size_t)L->ndofs * sizeof *tr->lf);
-        L->type->force(L, &x, tr->lf, NULL, NULL);
-        for (int j = 0; j < L->ndofs; j++)
-            if (L->dof[j] >= 0) r[L->dof[j]] += tr->lf[j];
+    double lq[GD_LAW_MAX_DOFS], lv[GD_LAW_MAX_DOFS], lf[GD_LAW_MAX_DOFS]; /* no aliasing */
+    const gd_law_point x = {t, lq, lv};
+    const int k0 = assembled ? tr->nlaw_plain : 0, k1 = assembled ? tr->nlaw : tr->nlaw_plain;
+    for (int k = k0; k < k1; k++) {
+        const gd_law *L = &tr->law[tr->law_order[k]];
+        const int n = L->ndofs;
+        for (int j = 0; j < n; j++) {
+            int d = L->dof[j];
+            lq[j] = d >= 0 ? q[d] : 0.0;
+            lv[j] = d >= 0 ? v[d] : 0.0;
+            lf[j] = 0.0;
+        }
+        L->type->force(L, &x, lf, NULL, NULL);
+        for (int j = 0; j < n; j++)
+            if (L->dof[j] >= 0) r[L->dof[j]] += lf[j];
     }
 }
 
@@ -160,7 +98,7 @@ static void profile_forces(gd_transient *tr, double t, const double *q, const do
     double phi, w, dw;
     gd_tr_profile_eval(tr->prof, tr->prof_cum, t, &phi, &w, &dw);
     if (tr->nlaw) gd_tr_profile_laws(tr, t, phi, w);
-    add_law_forces(tr, t, q, v, r);
+    add_law_forces(tr, t, q, v, r, 0);
     for (int i = 0; i < tr->nunb_all; i++) {
         /* heavy spot at psi = ratio phi + phase (mirrored for a shaft turning about -z):
          * -m r'' = U (psi'^2 cos + psi'' sin, psi'^2 sin - psi'' cos) */
@@ -210,14 +148,7 @@ static void profile_forces(gd_transient *tr, double t, const double *q, const do
                 r[G->i[p]] -= G->x[p] * x;
         }
     }
-    for (int i = 0; i < tr->nmesh; i++) {
-        const tr_mesh *m = &tr->mesh[i];
-        double d, dd;
-        double F = gd_tr_mesh_force(tr, m, m->state, t, q, v, &d, &dd, NULL, NULL);
-        double g = F - m->k_lin * d - m->c_lin * dd;
-        for (int j = 0; j < m->a.n; j++)
-            r[m->a.dof[j]] -= m->a.a[j] * g;
-    }
+    add_law_forces(tr, t, q, v, r, 1);
 }
 
 void gd_tr_residual(gd_transient *tr, double t, const double *q, const double *v, const double *acc,
@@ -235,7 +166,7 @@ void gd_tr_forces(gd_transient *tr, double t, const double *q, const double *v, 
         profile_forces(tr, t, q, v, acc, r, skip_free_linear);
         return;
     }
-    add_law_forces(tr, t, q, v, r);
+    add_law_forces(tr, t, q, v, r, 0);
     for (int i = 0; i < tr->nunb; i++) {
         const tr_unb *u = &tr->unb[i];
         double psi = u->omega * t + u->phase;
@@ -268,14 +199,7 @@ void gd_tr_forces(gd_transient *tr, double t, const double *q, const double *v, 
         sub_mul(tr->D, v, r);
         if (tr->np) sub_mul(tr->M, acc, r);
     }
-    for (int i = 0; i < tr->nmesh; i++) {
-        const tr_mesh *m = &tr->mesh[i];
-        double d, dd;
-        double F = gd_tr_mesh_force(tr, m, m->state, t, q, v, &d, &dd, NULL, NULL);
-        double g = F - m->k_lin * d - m->c_lin * dd;
-        for (int j = 0; j < m->a.n; j++)
-            r[m->a.dof[j]] -= m->a.a[j] * g;
-    }
+    add_law_forces(tr, t, q, v, r, 1);
 }
 
 void gd_tr_mass_solve(gd_transient *tr, double *b, double *x)
@@ -360,28 +284,26 @@ void gd_tr_roots(gd_transient *tr, double t, const double *y, double *g)
 {
     gd_tr_fill(tr, t, y, tr->q, tr->v, NULL);
     int k = 0;
-    for (int i = 0; i < tr->nmesh; i++) {
-        const tr_mesh *m = &tr->mesh[i];
-        if (!m->spec.backlash) continue;
-        double de;
-        gd_tr_mesh_force(tr, m, m->state, t, tr->q, tr->v, NULL, NULL, NULL, &de);
-        g[k++] = de - m->spec.gap;
-        g[k++] = de + m->spec.gap;
+    for (int i = 0; i < tr->nlaw; i++) {
+        const gd_law *L = &tr->law[i];
+        int ns = gd_law_nswitches(L);
+        if (!ns) continue;
+        gd_law_point x;
+        gd_tr_law_here(tr, L, t, &x);
+        L->type->switches(L, &x, g + k);
+        k += ns;
     }
 }
 
 void gd_transient_set_contacts(gd_transient *tr, double t, const double *y)
 {
     gd_tr_fill(tr, t, y, tr->q, tr->v, NULL);
-    for (int i = 0; i < tr->nmesh; i++) {
-        tr_mesh *m = &tr->mesh[i];
-        if (!m->spec.backlash) {
-            m->state = GD_CONTACT_DRIVE;
-            continue;
-        }
-        double de;
-        gd_tr_mesh_force(tr, m, m->state, t, tr->q, tr->v, NULL, NULL, NULL, &de);
-        m->state = gd_backlash_state(de, m->spec.gap);
+    for (int i = 0; i < tr->nlaw; i++) {
+        gd_law *L = &tr->law[i];
+        if (!L->type->mode_at) continue;
+        gd_law_point x;
+        gd_tr_law_here(tr, L, t, &x);
+        L->mode = L->type->mode_at(L, &x);
     }
 }
 
@@ -425,19 +347,17 @@ void gd_tr_prec_solve(gd_transient *tr, const double *r, double *z)
         z[i] = rq[i] + g * z[nf + i];
 }
 
-gd_contact gd_tr_root_state(gd_contact cur, int r0, int r1)
+int gd_tr_missed_mode(gd_transient *tr, const gd_law *L, double t)
 {
-    if (r1 < 0) return GD_CONTACT_COAST;
-    if (r0 > 0) return GD_CONTACT_DRIVE;
-    if (r0 < 0 || r1 > 0) return GD_CONTACT_SEPARATED;
-    return cur;
-}
-
-gd_contact gd_tr_missed_state(gd_transient *tr, const tr_mesh *m, double t)
-{
-    double de;
-    gd_tr_mesh_force(tr, m, m->state, t, tr->q, tr->v, NULL, NULL, NULL, &de);
-    gd_contact ns = gd_backlash_state(de, m->spec.gap);
-    double tol = 1e-6 * m->spec.gap + 1e-15;
-    return ns != m->state && fabs(fabs(de) - m->spec.gap) > tol ? ns : m->state;
+    gd_law_point x;
+    gd_tr_law_here(tr, L, t, &x);
+    int ns = L->type->mode_at(L, &x);
+    if (ns == L->mode) return ns;
+    /* on a switch (within its tolerance): not a missed crossing */
+    double tol = L->type->switch_tol ? L->type->switch_tol(L) : 0.0;
+    double g[GD_LAW_MAX_SWITCHES];
+    L->type->switches(L, &x, g);
+    for (int k = 0; k < gd_law_nswitches(L); k++)
+        if (!(fabs(g[k]) > tol)) return L->mode;
+    return ns;
 }

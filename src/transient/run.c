@@ -161,8 +161,8 @@ static gd_status static_state(gd_transient *tr, double t, double *y, gd_error *e
     memset(y, 0, (size_t)2 * nf * sizeof *y);
     gd_status st = GD_OK;
     double *b = tr->w1, *x = tr->w2;
-    for (int i = 0; i < tr->nmesh; i++)
-        tr->mesh[i].state = GD_CONTACT_DRIVE;
+    for (int i = 0; i < tr->nlaw; i++)
+        if (tr->law[i].type->static_mode) tr->law[i].mode = tr->law[i].type->hold_mode;
     int converged = 0;
     for (int outer = 0; outer < 20 && !converged; outer++) {
         int it;
@@ -187,15 +187,14 @@ static gd_status static_state(gd_transient *tr, double t, double *y, gd_error *e
         if (it == 500) break;
         converged = 1;
         gd_tr_fill(tr, t, y, tr->q, tr->v, NULL);
-        for (int i = 0; i < tr->nmesh; i++) {
-            tr_mesh *m = &tr->mesh[i];
-            if (!m->spec.backlash) continue;
-            double F = gd_tr_mesh_force(tr, m, m->state, t, tr->q, tr->v, NULL, NULL, NULL, NULL);
-            if (m->state == GD_CONTACT_DRIVE && F < 0) {
-                m->state = GD_CONTACT_COAST;
-                converged = 0;
-            } else if (m->state == GD_CONTACT_COAST && F > 0) {
-                m->state = GD_CONTACT_DRIVE;
+        for (int i = 0; i < tr->nlaw; i++) {
+            gd_law *L = &tr->law[i];
+            if (!L->type->static_mode || !gd_law_nswitches(L)) continue;
+            gd_law_point lx;
+            gd_tr_law_here(tr, L, t, &lx);
+            int ns = L->type->static_mode(L, &lx);
+            if (ns != L->mode) {
+                L->mode = ns;
                 converged = 0;
             }
         }
@@ -306,16 +305,20 @@ static gd_status advance(gd_transient *tr, run_work *w, const gd_transient_optio
         if (flag == CV_ROOT_RETURN) {
             CVodeGetRootInfo(w->mem, w->rootsfound);
             int changed = 0, kr = 0;
-            for (int i = 0; i < tr->nmesh; i++) {
-                tr_mesh *m = &tr->mesh[i];
-                if (!m->spec.backlash) continue;
-                int r0 = w->rootsfound[kr++], r1 = w->rootsfound[kr++];
-                gd_contact ns = gd_tr_root_state(m->state, r0, r1);
-                if (ns != m->state) {
+            for (int i = 0; i < tr->nlaw; i++) {
+                const gd_law *L = &tr->law[i];
+                int nsw = gd_law_nswitches(L);
+                if (!nsw) continue;
+                const int *dir = w->rootsfound + kr;
+                kr += nsw;
+                int ns = L->type->mode_after(L, L->mode, dir), any = 0;
+                if (ns != L->mode) {
                     gd_tr_change_state(tr, i, ns, *t, w->from, w->res->contacts, w->track);
                     changed = 1;
                 }
-                if (r0 || r1) w->res->events++;
+                for (int k = 0; k < nsw; k++)
+                    any |= dir[k] != 0;
+                if (any) w->res->events++;
             }
             if (changed) {
                 add_counters(w->mem, w->res);
@@ -334,11 +337,11 @@ static gd_status advance(gd_transient *tr, run_work *w, const gd_transient_optio
         if (tr->nroot) {
             gd_tr_fill(tr, *t, N_VGetArrayPointer(w->y), tr->q, tr->v, NULL);
             int changed = 0;
-            for (int i = 0; i < tr->nmesh; i++) {
-                tr_mesh *m = &tr->mesh[i];
-                if (!m->spec.backlash) continue;
-                gd_contact ns = gd_tr_missed_state(tr, m, *t);
-                if (ns != m->state) {
+            for (int i = 0; i < tr->nlaw; i++) {
+                const gd_law *L = &tr->law[i];
+                if (!gd_law_nswitches(L)) continue;
+                int ns = gd_tr_missed_mode(tr, L, *t);
+                if (ns != L->mode) {
                     gd_tr_change_state(tr, i, ns, *t, w->from, w->res->contacts, w->track);
                     changed = 1;
                     w->res->events++;
@@ -668,8 +671,8 @@ finish:
                  "; speed-table bearings at W(t) (linear between %d speeds)", GD_TR_SD_SPEEDS);
     }
     for (int i = 0; i < tr->nmesh; i++)
-        gd_tr_contact_account(&res->contacts[i], tr->mesh[i].state, track[i].since, opt->t_end,
-                              from);
+        gd_tr_contact_account(&res->contacts[i], (gd_contact)tr->law[i].mode, track[i].since,
+                              opt->t_end, from);
     gd_tr_fill(tr, opt->t_end, yd, tr->q, tr->v, NULL);
     full_state(tr, tr->q, tr->v, res->q_end, res->v_end);
     for (int r = 0; r < nrecords; r++)

@@ -1,7 +1,7 @@
 /* The laws of a transient spec as registry instances (gd_transient_spec_laws): the
- * dampers and loads of the typed spec made into gd_law_sfd and gd_law_load instances,
- * then the spec's own laws, each with its nominal rates at the reference speed. The one
- * place where a spec becomes the list every solver loops over. */
+ * meshes, dampers and loads of the typed spec made into gd_law_backlash_mesh, gd_law_sfd
+ * and gd_law_load instances, then the spec's own laws, each with its nominal rates at the reference
+ * speed. The one place where a spec becomes the list every solver loops over. */
 #include <math.h>
 #include <stdlib.h>
 #include <stdio.h>
@@ -17,18 +17,72 @@ static double dof_rate(const gd_system *sys, int dof, double speed)
     return m->shafts[m->nodes[sys->dof_node[dof]].shaft].speed_ratio * speed;
 }
 
+/* The mesh law's data of spec mesh s (its mesh vector, driver, assembled linear part). */
+static void mesh_law(const gd_system *sys, const gd_transient_spec *spec, const gd_tr_mesh *s,
+                     double speed, gd_law *L, gd_mesh_law_data *m)
+{
+    const gd_model *model = sys->model;
+    const gd_mesh *gm = &model->meshes[s->mesh];
+    gd_law_init(L, &gd_law_backlash_mesh, gm->name);
+    m->tvms = s->tvms;
+    m->ste = s->ste;
+    m->stiffness = s->stiffness;
+    m->coast_scale = s->coast_scale >= 0 ? s->coast_scale : 1.0; /* 0: one-sided */
+    m->damping = s->damping;
+    m->damping_per_k = s->damping_per_k;
+    m->damping_free = s->damping_free;
+    m->backlash = s->backlash;
+    m->gap = s->gap;
+    m->angle_offset = s->angle_offset;
+    gd_mesh_vector a;
+    gd_system_mesh_vector(sys, s->mesh, &a);
+    m->na = a.n;
+    for (int j = 0; j < a.n; j++) {
+        L->dof[j] = a.dof[j];
+        m->a[j] = a.a[j];
+    }
+    L->ndofs = a.n;
+    int drv = gd_system_dof(sys, gm->driver, GD_RZ);
+    m->drv = -1;
+    for (int j = 0; drv >= 0 && j < a.n; j++)
+        if (a.dof[j] == drv) m->drv = j;
+    if (drv >= 0 && m->drv < 0 && a.n < GD_LAW_MAX_DOFS) {
+        m->drv = a.n;
+        L->dof[L->ndofs++] = drv;
+    }
+    if (L->ndofs == 0) L->ndofs = 1; /* a mesh on absent DOFs: one absent DOF */
+    m->drv_ratio = model->shafts[model->nodes[gm->driver].shaft].speed_ratio;
+    m->drv_rate = m->drv_ratio * speed;
+    m->sense = gm->driver_sense >= 0 ? 1 : -1;
+    m->k_lin = gm->stiffness;
+    m->c_lin = gd_mesh_linear_damping(gm); /* what the system assembled */
+    m->angle_fixed = drv < 0;
+    for (int i = 0; i < spec->nprescribed; i++)
+        if (spec->prescribed[i].dof == drv) m->angle_fixed = 1;
+    L->data = m;
+    L->mode = GD_CONTACT_DRIVE;
+}
+
 gd_status gd_transient_spec_laws(const gd_system *sys, const gd_transient_spec *spec, double speed,
                                  gd_law **out, int *n, gd_error *err)
 {
     *out = NULL;
     *n = 0;
-    int total = spec->nsfds + spec->nloads + spec->nlaws;
+    int total = spec->nmeshes + spec->nsfds + spec->nloads + spec->nlaws;
     if (spec->nlaws < 0 || (spec->nlaws && !spec->laws))
         return gd_error_set(err, GD_EINPUT, "", 0, 0, "laws", "", "laws missing");
+    for (int i = 0; i < spec->nmeshes; i++)
+        if (spec->meshes[i].mesh < 0 || spec->meshes[i].mesh >= sys->model->nmeshes)
+            return gd_error_set(err, GD_EINPUT, "", 0, 0, "meshes", "", "no such mesh");
     if (total == 0) return GD_OK;
-    gd_law *L = calloc((size_t)total, sizeof *L);
+    /* the meshes' data after the instances, in the same block (one free) */
+    gd_law *L =
+        calloc((size_t)total * sizeof *L + (size_t)spec->nmeshes * sizeof(gd_mesh_law_data), 1);
     if (!L) return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
+    gd_mesh_law_data *md = (gd_mesh_law_data *)(void *)(L + total);
     int k = 0;
+    for (int i = 0; i < spec->nmeshes; i++, k++)
+        mesh_law(sys, spec, &spec->meshes[i], speed, &L[k], &md[i]);
     for (int i = 0; i < spec->nsfds; i++, k++) {
         const gd_tr_sfd *s = &spec->sfds[i];
         char name[GD_LAW_NAME_MAX];

@@ -3,6 +3,7 @@
  * constant-speed path) and acceleration, exactly for the piecewise-linear speed; and
  * setting a problem up to follow one. */
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -222,6 +223,24 @@ void gd_tr_profile_bearing_forces(const gd_transient *tr, double w, const double
     }
 }
 
+/* The profile's angle and speed at t (a mesh law's nominal driver motion). */
+static void profile_nominal(const void *ctx, double t, double *angle, double *speed)
+{
+    const gd_transient *tr = ctx;
+    gd_tr_profile_eval(tr->prof, tr->prof_cum, t, angle, speed, NULL);
+}
+
+/* The mesh laws read their driver's angle from the profile (on) or at the reference
+ * speed. The problem owns their data (gd_transient_spec_laws' block). */
+static void set_mesh_nominal(gd_transient *tr, int on)
+{
+    for (int i = 0; i < tr->nmesh; i++) {
+        gd_mesh_law_data *m = (gd_mesh_law_data *)(uintptr_t)tr->law[i].data;
+        m->nominal = on ? profile_nominal : NULL;
+        m->nominal_ctx = on ? tr : NULL;
+    }
+}
+
 int gd_tr_profile_set(gd_transient *tr, const gd_speed_profile *p)
 {
     const int had = tr->prof != NULL;
@@ -229,10 +248,7 @@ int gd_tr_profile_set(gd_transient *tr, const gd_speed_profile *p)
     free(tr->prof_cum);
     tr->prof_cum = NULL;
     tr->prof = p;
-    for (int i = 0; i < tr->nmesh; i++) {
-        tr->mesh[i].prof = NULL;
-        tr->mesh[i].prof_cum = NULL;
-    }
+    set_mesh_nominal(tr, 0);
     /* the laws' rates and spins back at the reference speed after a run-up */
     const int stride = GD_LAW_MAX_DOFS + 2;
     for (int i = 0; had && i < tr->nlaw && tr->law_ratio; i++) {
@@ -259,10 +275,7 @@ int gd_tr_profile_set(gd_transient *tr, const gd_speed_profile *p)
     } else if (p->from < 0 || p->to < 0) {
         tr->prof_sign = -1;
     }
-    for (int i = 0; i < tr->nmesh; i++) {
-        tr->mesh[i].prof = p;
-        tr->mesh[i].prof_cum = tr->prof_cum;
-    }
+    set_mesh_nominal(tr, 1);
     if (gd_tr_profile_bearings(tr)) {
         gd_tr_profile_set(tr, NULL);
         return 1;

@@ -7,21 +7,6 @@
 
 #include "geardyn/transient.h"
 
-typedef struct tr_mesh {
-    gd_tr_mesh spec;
-    int model_mesh;
-    gd_mesh_vector a;
-    double k_lin, c_lin;          /* linear terms the system assembled, taken out again */
-    int drv_dof;                  /* driver's rz DOF, -1 if not active */
-    double drv_rate;              /* driver's nominal speed about +z (ratio W) */
-    int sense;                    /* +1 driver turns about +z */
-    gd_contact state;             /* current contact state (frozen between events) */
-    double hold;                  /* contact homotopy (gd_transient_hold_drive); 0 in integration */
-    double drv_ratio;             /* driver's speed ratio (a run-up: angle ratio phi) */
-    const gd_speed_profile *prof; /* a run-up's profile while it runs, else NULL */
-    const double *prof_cum;
-} tr_mesh;
-
 typedef struct tr_unb {
     int dx, dy;
     double force;                 /* U omega^2 */
@@ -66,17 +51,21 @@ struct gd_transient {
     css *Ssym;
     csn *Snum;
     double gamma;
-    int nmesh;
-    tr_mesh *mesh;
     int nmodel_mesh;
     gd_mesh_vector *model_a; /* every model mesh, for records */
-    int *nl_of_mesh;         /* model mesh -> index in mesh[], or -1 */
-    /* the laws of the registry (gd_transient_spec_laws): the spec's dampers, its loads,
-     * then spec.laws; dofs are the problem's (remapped by a reduction) */
+    int *nl_of_mesh;         /* model mesh -> index in law[] (its mesh law), or -1 */
+    /* the laws of the registry (gd_transient_spec_laws): the spec's meshes
+     * (gd_law_backlash_mesh), its dampers, its loads, then spec.laws; dofs are the
+     * problem's (remapped by a reduction) */
     int nlaw;
     gd_law *law;
-    int nsfd_law;  /* law[0 .. nsfd_law - 1]: the spec's dampers (GD_REC_SFD_*) */
+    int nmesh;     /* law[0 .. nmesh - 1]: the spec's meshes (contact statistics) */
+    int nsfd_law;  /* law[nmesh .. nmesh + nsfd_law - 1]: the spec's dampers (GD_REC_SFD_*) */
     int law_spec0; /* law[law_spec0 + i]: spec.laws[i] (GD_REC_LAW) */
+    /* law_order[0 .. nlaw_plain - 1]: the laws without an assembled part, then those with
+     * one (GD_LAW_ASSEMBLED: the meshes), in law order: the right-hand side's two passes */
+    int *law_order;
+    int nlaw_plain;
     double lq[GD_LAW_MAX_DOFS], lv[GD_LAW_MAX_DOFS], lf[GD_LAW_MAX_DOFS]; /* workspaces */
     int nunb;
     tr_unb *unb;
@@ -88,7 +77,7 @@ struct gd_transient {
     double *Z;    /* nf x ncd: M_ff^-1 e_j */
     double *G;    /* ncd x ncd: E^T Z */
     double *mu, *A, *wv;
-    int nroot; /* 2 per backlash mesh */
+    int nroot; /* the laws' switches (gd_law_nswitches), in law order */
     /* workspaces (n each) */
     double *q, *v, *acc, *r, *w1, *w2;
     char msg[256];        /* last solver message */
@@ -132,18 +121,6 @@ void gd_tr_profile_laws(gd_transient *tr, double t, double phi, double w);
 /* Fills q, v, acc (length n) at time t from the state y: free DOFs from y, prescribed
  * ones from their laws (acc is zero on free DOFs). */
 void gd_tr_fill(gd_transient *tr, double t, const double *y, double *q, double *v, double *acc);
-/* Mesh force with the given state; d, dd: raw deformation and rate (a . q, a . v);
- * k: stiffness at the angle; de: deformation minus STE (for the contact test). */
-double gd_tr_mesh_force(const gd_transient *tr, const tr_mesh *m, gd_contact state, double t,
-                        const double *q, const double *v, double *d, double *dd, double *k,
-                        double *de);
-/* The mesh law itself (one implementation for the integrator, the local forces and the
- * frequency-domain solvers): the force as gd_tr_mesh_force, and grad (may be NULL) =
- * dF/dd, dF/dd', dF/dq_drv, dF/dq_drv' (the driver's torsion enters through the angle of
- * k(theta) and e(theta)). */
-double gd_tr_mesh_law(const tr_mesh *m, gd_contact state, double t, const double *q,
-                      const double *v, double *d, double *dd, double *k, double *de,
-                      double grad[4]);
 /* Law L's local view of (t, q, v) (full DOF vectors) in lq, lv (length L->ndofs). */
 void gd_tr_law_point(const gd_law *L, double t, const double *q, const double *v, double *lq,
                      double *lv, gd_law_point *x);
@@ -161,15 +138,13 @@ void gd_tr_forces(gd_transient *tr, double t, const double *q, const double *v, 
                   double *r, int skip_free_linear);
 /* x = M_ff^-1 b (b, x of length nf; b is overwritten). */
 void gd_tr_mass_solve(gd_transient *tr, double *b, double *x);
-/* Root functions d_e - b, d_e + b of every backlash mesh. */
+/* Root functions: every law's switches (gd_law_type.switches), in law order. */
 void gd_tr_roots(gd_transient *tr, double t, const double *y, double *g);
-/* New contact state of a backlash mesh from the root directions CVODE reports (r0 on
- * d_e - b, r1 on d_e + b; 0: no root). */
-gd_contact gd_tr_root_state(gd_contact cur, int r0, int r1);
-/* With tr->q, tr->v filled at t: the state of backlash mesh m when its deformation is
- * clearly outside its current state's range (two crossings in one step the root-finding
- * missed), else its current state. */
-gd_contact gd_tr_missed_state(gd_transient *tr, const tr_mesh *m, double t);
+/* With tr->q, tr->v filled at t: the mode of law L when its switches are clearly past
+ * (two crossings in one step the root-finding missed), else its current mode. */
+int gd_tr_missed_mode(gd_transient *tr, const gd_law *L, double t);
+/* Law L's local view of (t, tr->q, tr->v), in tr->lq, tr->lv. */
+void gd_tr_law_here(gd_transient *tr, const gd_law *L, double t, gd_law_point *x);
 /* Preconditioner set-up (sparse LU of M + g D + g^2 K) and solve. 0 ok. */
 int gd_tr_prec_setup(gd_transient *tr, double gamma);
 void gd_tr_prec_solve(gd_transient *tr, const double *r, double *z);
@@ -201,7 +176,8 @@ typedef struct gd_tr_contact_track {
 /* Adds [t0, t1], clipped to t >= from, to the time spent in contact state `state`. */
 void gd_tr_contact_account(gd_tr_contact_stats *cs_, gd_contact state, double t0, double t1,
                            double from);
-/* Mesh i changes to contact state ns at time t: statistics over [from, t_end]. */
+/* Law i changes to mode ns at time t: a mesh law's (i < nmesh) contact statistics over
+ * [from, t_end]. */
 void gd_tr_change_state(gd_transient *tr, int i, gd_contact ns, double t, double from,
                         gd_tr_contact_stats *st, gd_tr_contact_track *track);
 
