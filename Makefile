@@ -73,7 +73,9 @@ asan-build: deps
 # the normal build (test-unit's record, $(BUILD)/test-times; without it, every case): the
 # few costlier ones, solver sweeps and long integrations, run 2-3x slower there and
 # repeat code the cheaper cases already run under the sanitizers. ASAN_MAX_CPU=1e9 runs all.
-ASAN_MAX_CPU ?= 1.0
+# 0.5 s since 2026-11-26: the clean-clone run had reached 631 s; the 24 cases of 0.5-1 s
+# (15 s native) cost about 25 s of its wall time.
+ASAN_MAX_CPU ?= 0.5
 test-asan: asan-build
 	@mkdir -p $(ASAN_BUILD)/Testing/Temporary; cost=Testing/Temporary/CTestCostData.txt; \
 	    [ -f $(ASAN_BUILD)/$$cost ] || [ ! -f $(BUILD)/$$cost ] || cp $(BUILD)/$$cost $(ASAN_BUILD)/$$cost
@@ -96,8 +98,9 @@ test-asan: asan-build
 # 2026-11-25, 96 % of the native CPU), run in the normal build (and the sanitizer build
 # below 1 s); every program still runs under valgrind. The periodic CLI run leaves out the
 # Floquet multipliers (0.42 of its 0.47 s natively, a minute under valgrind): the Mathieu
-# run computes them.
-VALGRIND_MAX_CPU ?= 0.1
+# run computes them. 0.07 s since 2026-11-26 (was 0.1): the 23 cases of 0.07-0.1 s took
+# 1.9 s natively, about a minute of valgrind CPU, in a clean-clone run that had reached 631 s.
+VALGRIND_MAX_CPU ?= 0.07
 memcheck: build
 	@set -e; mkdir -p $(BUILD)/test-times; for t in $(BUILD)/test_*; do \
 	    [ -f $$t ] && [ -x $$t ] && [ "$$(head -c 4 $$t | tail -c 3)" = ELF ] || continue; \
