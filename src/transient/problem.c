@@ -24,19 +24,6 @@ void gd_tr_mesh_init(const gd_system *sys, int mesh, gd_tr_mesh *m)
     m->coast_scale = 1.0;
 }
 
-/* A cs view of a gd_csc (no copy). */
-static cs view(const gd_csc *a)
-{
-    cs v;
-    v.nzmax = a->colptr[a->n] > 0 ? a->colptr[a->n] : 1;
-    v.m = v.n = a->n;
-    v.p = a->colptr;
-    v.i = a->rowind;
-    v.x = a->values;
-    v.nz = -1;
-    return v;
-}
-
 /* Dense column-major n x n to CSC, dropping zeros. */
 cs *gd_tr_cs_from_dense(int n, const double *A)
 {
@@ -233,7 +220,8 @@ gd_status gd_transient_new(const gd_system *sys, const gd_transient_spec *spec, 
     }
 
     /* matrices at the speed */
-    cs Kv = view(&sys->K), Cv = view(&sys->C), Gv = view(&sys->G), Mv = view(&sys->M);
+    cs Kv = gd_tr_cs_view(&sys->K), Cv = gd_tr_cs_view(&sys->C), Gv = gd_tr_cs_view(&sys->G),
+       Mv = gd_tr_cs_view(&sys->M);
     tr->M = cs_add(&Mv, &Mv, 1.0, 0.0);
     tr->Gy = cs_add(&Gv, &Gv, 1.0, 0.0); /* a run-up's (W(t) - W) G */
     if (!tr->Gy) goto fail;
@@ -241,7 +229,7 @@ gd_status gd_transient_new(const gd_system *sys, const gd_transient_spec *spec, 
         /* sparse K + K_b(W), C + C_b(W): memory linear in the DOFs */
         gd_csc Ks = {0}, Cs = {0};
         if (!gd_system_matrices(sys, speed, NULL, &Ks, &Cs, NULL, NULL)) {
-            cs Kb = view(&Ks), Cb = view(&Cs);
+            cs Kb = gd_tr_cs_view(&Ks), Cb = gd_tr_cs_view(&Cs);
             tr->K = cs_add(&Kb, &Kb, 1.0, 0.0);
             tr->D = cs_add(&Cb, &Gv, 1.0, speed);
         }

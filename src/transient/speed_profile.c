@@ -140,19 +140,6 @@ static void bearings_free(gd_transient *tr)
     tr->nsd = 0;
 }
 
-/* a cs view of a gd_csc (no copy) */
-static cs view(const gd_csc *a)
-{
-    cs v;
-    v.nzmax = a->colptr[a->n] > 0 ? a->colptr[a->n] : 1;
-    v.m = v.n = a->n;
-    v.p = a->colptr;
-    v.i = a->rowind;
-    v.x = a->values;
-    v.nz = -1;
-    return v;
-}
-
 int gd_tr_profile_bearings(gd_transient *tr)
 {
     bearings_free(tr);
@@ -174,7 +161,7 @@ int gd_tr_profile_bearings(gd_transient *tr)
     /* C(W) - C(W_ref): tr->D holds C + W_ref G, the system's C its C + C_b(W_ref) */
     gd_csc C0 = {0};
     if (gd_system_matrices(tr->sys, tr->speed, NULL, NULL, &C0, NULL, NULL)) return 1;
-    cs c0 = view(&C0);
+    cs c0 = gd_tr_cs_view(&C0);
     int bad = 0;
     for (int j = 0; j < n && !bad; j++) {
         gd_csc Ks = {0}, Cs = {0};
@@ -182,7 +169,7 @@ int gd_tr_profile_bearings(gd_transient *tr)
             bad = 1;
             break;
         }
-        cs kv = view(&Ks), cv = view(&Cs);
+        cs kv = gd_tr_cs_view(&Ks), cv = gd_tr_cs_view(&Cs);
         tr->sd_K[j] = cs_add(&kv, tr->K, 1.0, -1.0);
         tr->sd_C[j] = cs_add(&cv, &c0, 1.0, -1.0);
         bad = !tr->sd_K[j] || !tr->sd_C[j] || cs_dropzeros(tr->sd_K[j]) < 0 ||

@@ -103,6 +103,8 @@ struct gd_transient {
 /* ---- speed_profile.c ---- */
 /* Uses profile p (NULL: none) for the next run: its table's integral at the rows. 0 ok,
  * 1 out of memory. */
+/* A cs view of a gd_csc (no copy: valid while a is). */
+cs gd_tr_cs_view(const gd_csc *a);
 int gd_tr_profile_set(gd_transient *tr, const gd_speed_profile *p);
 /* The profile's angle, speed and acceleration at t (from cum when not NULL). */
 void gd_tr_profile_eval(const gd_speed_profile *p, const double *cum, double t, double *angle,
