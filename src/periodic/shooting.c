@@ -299,14 +299,17 @@ static int over_budget(shoot *sh, double next, const char *what)
     char settle[160] = "";
     if (isfinite(sh->warm_change))
         snprintf(settle, sizeof settle,
-                 "; the transient from rest still changes by %.2g per period after %d periods%s",
+                 "; from rest the transient still changes by %.2g per period after %d "
+                 "periods%s",
                  sh->warm_change, sh->warm_periods,
                  sh->warm_change > 1e-2
-                     ? " (no stable period-1 orbit attracts it: see geardyn transient)"
+                     ? ": no stable period-1 orbit attracts it (see geardyn transient)"
                      : "");
+    /* kept under the 256 characters of gd_periodic_point.reason, the longest `what` and
+     * the settle note included (the Ducati train's message was cut before) */
     snprintf(sh->why, sizeof sh->why,
-             "shooting stopped at %.1f s CPU: %s would need about %.2g s more, past the "
-             "%.3g s budget per point%.150s",
+             "shooting stopped at %.1f s CPU: %s needs about %.2g s more (budget %.3g s per "
+             "point)%.150s",
              used, what, next, budget, settle);
     return 1;
 }
