@@ -205,7 +205,13 @@ int gd_hb_warm_start(const gd_system *sys, const gd_transient_spec *spec, double
  * harmonic amplitudes between the coarse solution (Hc) and the fine one (Hf), stored in
  * fine's p2p_error / amp_error; the largest over the records in *p2p, *amp. */
 void gd_hb_truncation(const gd_per_record_stats *coarse, int Hc, gd_per_record_stats *fine, int Hf,
-                      int nrec, double *p2p, double *amp);
+                      int nrec, const double *zero, double *p2p, double *amp);
+/* Per record the size (|mean| + peak-to-peak) below which it is zero to rounding, from the
+ * coefficients X (n of them) at frequency w with H harmonics: 1e-12 of the largest
+ * coefficient for a DOF displacement, times H w for a velocity; 0 (never zero) for the
+ * other records, whose units the coefficients do not carry. */
+void gd_hb_record_zero(const gd_tr_record *rec, int nrec, const double *X, int n, int H, double w,
+                       double *zero);
 /* |Xc - Xf| / |Xf| over the coefficients (Xc padded with zeros from nc to nfine). */
 double gd_hb_coef_change(const double *Xc, int nc, const double *Xf, int nfine);
 /* Bytes of one workspace (an estimate) and the limit of the options. */

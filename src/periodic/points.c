@@ -315,7 +315,11 @@ static int estimate_point(ctx *c, gd_periodic_point *p, double lam)
         }
         double ep, ea;
         if (nrec) {
-            gd_hb_truncation(p->records, Hc, f.records, Hf, nrec, &ep, &ea);
+            double *zero = malloc((size_t)nrec * sizeof *zero);
+            if (zero)
+                gd_hb_record_zero(c->rec, nrec, f.coef, c->nf * (2 * Hf + 1), Hf, f.omega, zero);
+            gd_hb_truncation(p->records, Hc, f.records, Hf, nrec, zero, &ep, &ea);
+            free(zero);
         } else {
             ep = ea =
                 gd_hb_coef_change(p->coef, c->nf * (2 * Hc + 1), f.coef, c->nf * (2 * Hf + 1));

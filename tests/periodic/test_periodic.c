@@ -14,6 +14,7 @@
 #include "geardyn/unbalance.h"
 #include "harness.h"
 #include "model_support.h"
+#include "periodic/periodic_impl.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -1088,10 +1089,43 @@ TEST(extreme_low_speeds_scale_the_step_exponential)
     fx_free(&f);
 }
 
+/* A record that is zero to rounding (the tilt of a spur gear in [JMSTHelical] at 0 deg:
+ * 1e-20 rad against 5e-5 rad of torsion) has no truncation error: its relative changes
+ * between H and 2 H + 1 are noise of order 1 (0.49-5.3 measured), which drove
+ * --harmonics auto to H = 18943. A small but real record keeps its relative error. */
+TEST(record_zero_to_rounding_has_no_truncation_error)
+{
+    const gd_tr_record rec[3] = {
+        {GD_REC_DISP, 0, 0}, {GD_REC_VEL, 1, 0}, {GD_REC_MESH_FORCE, 0, 0}};
+    const double X[4] = {5e-5, -1e-7, 2e-9, 0.0};
+    double zero[3];
+    gd_hb_record_zero(rec, 3, X, 4, 10, 20.0, zero);
+    CHECK_ABS(zero[0], 5e-17, 1e-30);
+    CHECK_ABS(zero[1], 5e-17 * 10 * 20.0, 1e-28);
+    CHECK(zero[2] == 0.0); /* a force: no unit in common with the coefficients */
+    gd_per_record_stats a[3], b[3];
+    memset(a, 0, sizeof a);
+    memset(b, 0, sizeof b);
+    a[0].mean = 1.9e-20, a[0].peak_to_peak = 3.5e-20; /* noise at both H */
+    b[0].mean = 5.8e-20, b[0].peak_to_peak = 4.2e-20;
+    a[1].peak_to_peak = 1.0e-12, b[1].peak_to_peak = 1.1e-12; /* small, real: 10 % */
+    a[2].mean = b[2].mean = 235.0, a[2].peak_to_peak = 73.8, b[2].peak_to_peak = 172.0;
+    double p2p, amp;
+    gd_hb_truncation(a, 10, b, 21, 3, zero, &p2p, &amp);
+    CHECK(b[0].p2p_error == 0.0 && b[0].amp_error == 0.0);
+    CHECK_ABS(b[1].p2p_error, 0.1 / 1.1, 1e-12);
+    CHECK_ABS(b[2].p2p_error, (172.0 - 73.8) / 172.0, 1e-12);
+    CHECK_ABS(p2p, (172.0 - 73.8) / 172.0, 1e-12);
+    /* without the floors (NULL) the noise counts, as before */
+    gd_hb_truncation(a, 10, b, 21, 3, NULL, &p2p, &amp);
+    CHECK(b[0].p2p_error > 0.1);
+}
+
 RUN_TESTS(T(linear_equals_unbalance), T(mathieu_tongue_period_doubling),
           T(floquet_against_monodromy), T(backlash_against_transient),
           T(sfd_pair_against_transient), T(backlash_folds_traced_through_unstable_branch),
           T(backlash_wide_range_no_retrace), T(backlash_branch_with_auto_harmonics),
           T(chen_sfd_neimark_sacker_matches_transient), T(lowrank_solver_equals_sparse_lu),
           T(iterative_capacitance_equals_dense), T(few_magnus_steps_leave_stability_undecided),
-          T(option_bounds_named), T(extreme_low_speeds_scale_the_step_exponential))
+          T(option_bounds_named), T(extreme_low_speeds_scale_the_step_exponential),
+          T(record_zero_to_rounding_has_no_truncation_error))
