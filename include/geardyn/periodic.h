@@ -75,26 +75,27 @@ typedef struct gd_periodic_options {
                               dense 2 nf x 2 nf monodromy), GD_FLOQUET_KRYLOV (the
                               floquet_count largest by Krylov-Schur on monodromy-vector
                               products over the same Magnus steps; no dense matrix),
-                              GD_FLOQUET_REDUCED (every multiplier of the monodromy in a
-                              reduced basis: the modes below floquet_cutoff and the residual
-                              flexibility along the local laws' directions; where its
-                              eigenvector basis is ill-conditioned, as with a free rotation,
-                              dense up to floquet_dmax states and Krylov above) */
+                              GD_FLOQUET_REDUCED (the monodromy in a reduced basis: the
+                              modes below floquet_cutoff and the residual flexibility along
+                              the local laws' directions; the discarded modes' multipliers
+                              estimated one by one; where its eigenvector basis is
+                              ill-conditioned, as with a free rotation, dense up to
+                              floquet_dmax states and Krylov above) */
     int floquet_count;     /* Krylov: multipliers wanted (0: 8); doubled while all but one of
                               them lie outside the unit circle, so the count outside and the
                               next one in (which the bifurcations are located by) are known */
     int floquet_dmax;      /* auto: the dense monodromy up to this many states 2 nf (0: 300,
                               from the measured costs, docs/periodic.md) */
-    double floquet_cutoff; /* reduced: the modes kept, up to this multiple of the highest
-                              excitation frequency (the top of gd_periodic_fundamental's
-                              orders, e.g. the highest tooth-mesh frequency; 0: 4, from the
-                              measured convergence, docs/periodic.md) */
     double floquet_budget; /* CPU seconds for one point's multipliers (0, the library default:
                               no limit; the CLI's is 30): a point whose multipliers would
                               take longer, by the cost of the first Magnus step (dense) or
                               of one operator action (Krylov), or that passes it, keeps its
                               orbit with stability not computed, and its reason says how
                               long they would take */
+    double floquet_cutoff; /* reduced: the modes kept, up to this multiple of the highest
+                              excitation frequency (the top of gd_periodic_fundamental's
+                              orders, e.g. the highest tooth-mesh frequency; 0: 4, from the
+                              measured convergence, docs/periodic.md) */
     gd_per_method method;
     gd_per_kind kind;    /* GD_PER_HB (default), GD_PER_SHOOTING or GD_PER_AUTO (shooting
                             by arclength needs the dense monodromy: on the Newton-Krylov
@@ -181,8 +182,9 @@ typedef struct gd_periodic_point {
     /* 1: the multipliers are the nmult largest by Krylov-Schur, 0: every one from the
      * dense monodromy (or none) */
     int floquet_krylov;
-    /* > 0: the multipliers are the 2 floquet_basis of the monodromy in a reduced basis of
-     * that many vectors (GD_FLOQUET_REDUCED), largest first; 0 otherwise */
+    /* > 0: the multipliers come from the monodromy in a reduced basis of that many vectors
+     * (GD_FLOQUET_REDUCED): its 2 floquet_basis multipliers, then the discarded modes'
+     * estimates while there is room, all largest first; 0 otherwise */
     int floquet_basis;
     int nfree;    /* coefficients: coef[h * nfree + i], h = 0 mean, 2k-1 cos k, 2k sin k */
     double *coef; /* over the free DOFs of gd_transient (increasing DOF order) */

@@ -33,6 +33,9 @@
 #endif
 /* the default cut-off, in multiples of the highest excitation frequency (measured: docs) */
 #define GD_FLOQUET_CUTOFF 4.0
+/* the least reciprocal condition of the equilibrated eigenvector basis (a defective pair's
+ * computed eigenvectors are parallel to about sqrt(eps)) */
+#define GD_FLOQUET_RCOND 1e-8
 
 static void dense_of(const gd_csc *A, int n, double *out)
 {
@@ -332,17 +335,38 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
         int info =
             LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'V', n2, XL, n2, lre, lim, dummy, 1, XR, n2);
         if (info) goto done;
-        memcpy(XL, XR, rr * sizeof *XL);
-        double anorm = LAPACKE_dlange(LAPACK_COL_MAJOR, '1', n2, n2, XL, n2), rcond = 0.0;
-        info = LAPACKE_dgetrf(LAPACK_COL_MAJOR, n2, n2, XL, n2, ipiv);
-        if (!info) info = LAPACKE_dgecon(LAPACK_COL_MAJOR, '1', n2, XL, n2, anorm, &rcond);
         /* a defective eigenvalue (a free rotation: the Jordan block at 0) or a near one
-         * leaves no usable eigenvector basis */
-        if (info || !(rcond > 1e-10)) {
+         * leaves no usable eigenvector basis: judged on XR in the balanced state
+         * [c x; x'] (c the largest kept frequency, so a mode's eigenvector is [c x; s x]
+         * with |s| <= c), each column of unit length: a free rotation's pair s ~ 0 has two
+         * parallel columns */
+        double kmax = 0.0, rcond = 0.0;
+        for (int i = 0; i < r; i++)
+            kmax = fmax(kmax, fabs(A0[(size_t)i * n2 + r + i]));
+        const double cb = kmax > 0 ? sqrt(kmax) : 1.0;
+        double *E = tmp; /* nf r + rr >= rr */
+        for (int j = 0; j < n2; j++) {
+            double *e = E + (size_t)j * n2, nrm = 0.0;
+            for (int i = 0; i < n2; i++) {
+                e[i] = XR[(size_t)j * n2 + i] * (i < r ? cb : 1.0);
+                nrm += e[i] * e[i];
+            }
+            nrm = nrm > 0 ? 1.0 / sqrt(nrm) : 1.0;
+            for (int i = 0; i < n2; i++)
+                e[i] *= nrm;
+        }
+        double anorm = LAPACKE_dlange(LAPACK_COL_MAJOR, '1', n2, n2, E, n2);
+        info = LAPACKE_dgetrf(LAPACK_COL_MAJOR, n2, n2, E, n2, ipiv);
+        if (!info) info = LAPACKE_dgecon(LAPACK_COL_MAJOR, '1', n2, E, n2, anorm, &rcond);
+        memcpy(XL, XR, rr * sizeof *XL);
+        if (!info) info = LAPACKE_dgetrf(LAPACK_COL_MAJOR, n2, n2, XL, n2, ipiv);
+        /* a free rotation shows plainly in the modes of (K, M): a zero eigenvalue */
+        const int free_body = lam[0] <= 1e-12 * fabs(lam[nf - 1]);
+        if (info || free_body || !(rcond > GD_FLOQUET_RCOND)) {
             snprintf(msg, 160,
                      "the reduced constant part has no well-conditioned eigenvector basis "
-                     "(reciprocal condition %.1e: a free rotation?)",
-                     rcond);
+                     "(%s, reciprocal condition %.1e)",
+                     free_body ? "a free rotation" : "near-defective modes", rcond);
             rc = 5;
             goto done;
         }

@@ -40,7 +40,12 @@ void gd_per_floquet(ctx *c, const double *X, double lam, double *mre, double *mi
         (c->opt->floquet == GD_FLOQUET_AUTO && n2 > dmax)) {
         rc = gd_per_floquet_reduced(c, s, X, lam, steps, bl, nbl, mre, mim, &nmu, &nbasis);
         /* no usable basis (a free rotation): the full model's dense or Krylov multipliers */
-        if (rc == 5) krylov = n2 > dmax;
+        if (rc == 5) {
+            krylov = n2 > dmax;
+            nmu = n2;
+            nbasis = 0;
+            c->floquet_msg[0] = '\0';
+        }
     } else {
         rc = 5;
     }
