@@ -33,6 +33,11 @@
 #endif
 /* the default cut-off, in multiples of the highest excitation frequency (measured: docs) */
 #define GD_FLOQUET_CUTOFF 4.0
+/* residual vectors per direction: (K^-1 M)^(o-1) K^-1 v over the discarded modes for the
+ * orders o up to this one. Measured on the [JMSTHelical] model (docs/periodic.md): the
+ * second and third orders moved the largest multiplier by 2e-5 but added spurious ones
+ * (0.99 and 0.85 where the whole model has none), so only the static correction */
+#define GD_FLOQUET_RESID_ORDER 1
 /* the least reciprocal condition of the equilibrated eigenvector basis (a defective pair's
  * computed eigenvectors are parallel to about sqrt(eps)) */
 #define GD_FLOQUET_RCOND 1e-8
@@ -187,19 +192,21 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
     /* the residual flexibility of the discarded modes along each distinct u and w, in the
      * discarded modes' coordinates (M-orthonormal there: Gram-Schmidt in plain dot
      * products), dependent ones dropped */
-    const int nd = nf - nk, ncand = 2 * nt;
+    const int nord = GD_FLOQUET_RESID_ORDER;
+    const int nd = nf - nk, ncand = 2 * nt * nord;
     int nres = 0;
     if (nd > 0 && ncand > 0) {
         C = malloc((size_t)nd * ncand * sizeof *C);
         tmp = malloc((size_t)nf * sizeof *tmp);
         if (!C || !tmp) goto done;
         for (int c = 0; c < ncand; c++) {
-            const gd_tr_term *tm = &term[c % nt];
-            const int isw = c >= nt;
+            const int ord = c / (2 * nt), cc = c % (2 * nt);
+            const gd_tr_term *tm = &term[cc % nt];
+            const int isw = cc >= nt;
             int dup = 0;
-            for (int p = 0; p < c % nt && !dup; p++)
+            for (int p = 0; p < cc % nt && !dup; p++)
                 dup = isw ? same_vec(tm->nw, tm->w_idx, tm->w, term[p].nw, term[p].w_idx, term[p].w)
-                          : tg[p] == tg[c % nt];
+                          : tg[p] == tg[cc % nt];
             if (dup) continue;
             double *cv = C + (size_t)nres * nd, n0 = 0.0;
             for (int j = 0; j < nd; j++) {
@@ -211,7 +218,7 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
                 else
                     for (int a = 0; a < tm->nu; a++)
                         s += ph[tm->u_idx[a]] * tm->u[a];
-                cv[j] = lam[nk + j] > 0 ? s / lam[nk + j] : 0.0;
+                cv[j] = lam[nk + j] > 0 ? s / pow(lam[nk + j], ord + 1) : 0.0;
                 n0 += cv[j] * cv[j];
             }
             n0 = sqrt(n0);
@@ -380,9 +387,9 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
     AP = malloc(((size_t)nt * ng + 1) * sizeof *AP);
     BP = malloc(((size_t)nt * ng + 1) * sizeof *BP);
     Psi = calloc(rr, sizeof *Psi);
-    Rk = malloc(((size_t)nt * n2 + 1) * sizeof *Rk);
-    Y = malloc(((size_t)nt * n2 + 1) * sizeof *Y);
-    Z = malloc(((size_t)(ng + 1) * n2 * 2 + 1) * sizeof *Z);
+    Rk = malloc((2 * (size_t)nt * n2 + 1) * sizeof *Rk);
+    Y = malloc((2 * (size_t)nt * n2 + 1) * sizeof *Y);
+    Z = malloc((6 * (size_t)(ng + 1) * n2 + 1) * sizeof *Z);
     sqv = malloc((2 * (size_t)nt + 2) * sizeof *sqv);
     yv = calloc(2 * (size_t)nf, sizeof *yv);
     sup = malloc((size_t)(nf > 0 ? nf : 1) * sizeof *sup);
@@ -405,10 +412,11 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
                         0.0, BP, nt);
         }
     }
-    /* the steps and the term scalars at their midpoints */
+    /* the steps and the term scalars at their two Gauss points (sq1, sv1, sq2, sv2) */
     int nsub = 0;
     if (gd_hb_magnus_steps(h, tr, om, X, steps, bl, nbl, &tb, &nsub)) goto done;
-    double *scal = malloc(((size_t)nsub * 2 * nt + 1) * sizeof *scal);
+    const double gp[2] = {0.5 - sqrt(3.0) / 6.0, 0.5 + sqrt(3.0) / 6.0};
+    double *scal = malloc(((size_t)nsub * 4 * nt + 1) * sizeof *scal);
     if (!scal) goto done;
     {
         /* the input support: the DOFs the terms read (their w) */
@@ -426,7 +434,7 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
         free(mark);
         const int Ns = steps, H = h->H;
         hc = fftw_malloc(2 * (size_t)Ns * sizeof *hc);
-        smp = malloc(((size_t)Ns * 2 * ns + 1) * sizeof *smp);
+        smp = malloc(((size_t)Ns * 4 * ns + 1) * sizeof *smp);
         if (!hc || !smp) {
             free(scal);
             goto done;
@@ -436,13 +444,14 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
             free(scal);
             goto done;
         }
-        /* q and q' of each support DOF at tau_j = (j + 1/2) 2 pi / Ns: the coefficients
-         * shifted by half a step, one half-complex inverse transform each (FFTW's HC2R:
-         * x_j = hc_0 + 2 sum_k (Re_k cos - Im_k sin)) */
-        const double dl = 0.5 * TWO_PI / Ns;
+        /* q and q' of each support DOF at tau_j = (j + g) 2 pi / Ns for either Gauss point
+         * g: the coefficients shifted by g steps, one half-complex inverse transform each
+         * (FFTW's HC2R: x_j = hc_0 + 2 sum_k (Re_k cos - Im_k sin)) */
         const int Hm = H < (Ns - 1) / 2 ? H : (Ns - 1) / 2;
         for (int m = 0; m < ns; m++)
-            for (int deriv = 0; deriv < 2; deriv++) {
+            for (int pd = 0; pd < 4; pd++) {
+                const int deriv = pd & 1;
+                const double dl = gp[pd >> 1] * TWO_PI / Ns;
                 const int i = sup[m];
                 memset(hc, 0, (size_t)Ns * sizeof *hc);
                 if (!deriv) hc[0] = X[i];
@@ -461,32 +470,36 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
                 }
                 fftw_execute(plan);
                 for (int j = 0; j < Ns; j++)
-                    smp[((size_t)j * 2 + deriv) * ns + m] = hc[Ns + j];
+                    smp[((size_t)j * 4 + pd) * ns + m] = hc[Ns + j];
             }
         double *yfull = NULL;
         for (int j = 0; j < nsub; j++) {
-            const double a = tb[j], b = tb[j + 1], mid = 0.5 * (a + b);
+            const double a = tb[j], b = tb[j + 1];
             const long k = lround(a / TWO_PI * Ns);
-            double *sj = scal + (size_t)j * 2 * nt;
-            if (fabs(a - TWO_PI * k / Ns) < 1e-12 && fabs(b - TWO_PI * (k + 1) / Ns) < 1e-12 &&
-                k < Ns) {
-                const double *qs = smp + (size_t)k * 2 * ns, *vs = qs + ns;
-                for (int m = 0; m < ns; m++) {
-                    yv[sup[m]] = qs[m];
-                    yv[nf + sup[m]] = vs[m];
+            const int uniform = fabs(a - TWO_PI * k / Ns) < 1e-12 &&
+                                fabs(b - TWO_PI * (k + 1) / Ns) < 1e-12 && k < Ns;
+            for (int g = 0; g < 2; g++) {
+                const double tau = a + gp[g] * (b - a);
+                double *sj = scal + (size_t)j * 4 * nt + (size_t)g * 2 * nt;
+                if (uniform) {
+                    const double *qs = smp + ((size_t)k * 4 + 2 * g) * ns, *vs = qs + ns;
+                    for (int m = 0; m < ns; m++) {
+                        yv[sup[m]] = qs[m];
+                        yv[nf + sup[m]] = vs[m];
+                    }
+                    gd_transient_local(tr, tau / om, yv, NULL, sqv, sqv + nt + 1);
+                } else { /* a step split at a contact change: a direct sum */
+                    if (!yfull) yfull = malloc(2 * (size_t)nf * sizeof *yfull);
+                    if (!yfull) {
+                        free(scal);
+                        goto done;
+                    }
+                    gd_hb_eval(h, om, X, tau, yfull, yfull + nf);
+                    gd_transient_local(tr, tau / om, yfull, NULL, sqv, sqv + nt + 1);
                 }
-                gd_transient_local(tr, mid / om, yv, NULL, sqv, sqv + nt + 1);
-            } else { /* a step split at a contact change: a direct sum */
-                if (!yfull) yfull = malloc(2 * (size_t)nf * sizeof *yfull);
-                if (!yfull) {
-                    free(scal);
-                    goto done;
-                }
-                gd_hb_eval(h, om, X, mid, yfull, yfull + nf);
-                gd_transient_local(tr, mid / om, yfull, NULL, sqv, sqv + nt + 1);
+                memcpy(sj, sqv, (size_t)nt * sizeof *sj);
+                memcpy(sj + nt, sqv + nt + 1, (size_t)nt * sizeof *sj);
             }
-            memcpy(sj, sqv, (size_t)nt * sizeof *sj);
-            memcpy(sj + nt, sqv + nt + 1, (size_t)nt * sizeof *sj);
         }
         free(yfull);
     }
@@ -506,9 +519,10 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
             goto done;
         }
         for (int j = 0; j < nsub; j++) {
-            const double wgt = (tb[j + 1] - tb[j]) / TWO_PI;
+            const double wgt = 0.5 * (tb[j + 1] - tb[j]) / TWO_PI;
             for (int t = 0; t < 2 * nt; t++)
-                mq[t] += wgt * scal[(size_t)j * 2 * nt + t];
+                mq[t] +=
+                    wgt * (scal[(size_t)j * 4 * nt + t] + scal[(size_t)j * 4 * nt + 2 * nt + t]);
         }
         for (int j = 0; j < nd; j++) {
             const double *ph = Phi + (size_t)(nk + j) * nf;
@@ -540,58 +554,117 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
         }
         free(mq);
     }
-    /* the propagation */
+    /* The propagation: per step [0, h] about its midpoint m, the interaction picture
+     * zeta = E(m - t) z, d zeta/dt = E(m - t) B(t) E(t - m) zeta, whose fourth-order Magnus
+     * step with the two Gauss points (t_g - m = -+d, d = sqrt(3)/6 h) is
+     *   Omega = h/2 (B1^ + B2^) + sqrt(3)/12 h^2 [B2^, B1^],
+     *   B1^ = E(d) B1 E(-d),  B2^ = E(-d) B2 E(d),
+     * so z(h) = E(h/2) exp(Omega) E(h/2) z(0) (Blanes, Casas & Ros 2000 for the
+     * exponential-propagator form). With B_g = P C R_g, Omega = U Cm V^T with
+     * U = [E(d) P, E(-d) P] (2 ng columns), V^T = [R1 E(-d); R2 E(d)] (2 nt rows) and
+     *   Cm = [h/2 C, -c2 C (R1^ P2^) C; c2 C (R2^ P1^) C, h/2 C],  c2 = sqrt(3)/12 h^2,
+     * and exp(U Cm V^T) = I + U phi1(Cm V^T U) Cm V^T: a rank-2 ng update. */
     for (int i = 0; i < n2; i++)
         Psi[(size_t)i * n2 + i] = 1.0;
     double pend = 0.0, t_check = gd_hb_cpu_seconds();
-    const int ga = 2 * ng;
-    double G[2 * 24 * 24], F[2 * 24 * 24], W3[3 * 4 * 24 * 24];
-    const int small = ng <= 24;
+    if (ng > 12) {
+        snprintf(msg, 160, "stability not computed: %d force directions (at most 12)", ng);
+        goto done;
+    }
+    const int g2 = 2 * ng, t2 = 2 * nt, ga = 2 * g2;
+    double G[48 * 48], F[48 * 48], W3[3 * 48 * 48], Cm[24 * 120], VU[120 * 24], CV[24 * 24];
+    if (nt > 60) {
+        snprintf(msg, 160, "stability not computed: %d local terms (at most 60)", nt);
+        goto done;
+    }
+    double *U = Z + (size_t)2 * g2 * n2; /* n2 x g2 */
     for (int j = 0; j < nsub && rc == 1; j++) {
-        const double dt = (tb[j + 1] - tb[j]) / om;
-        const double *sq = scal + (size_t)j * 2 * nt, *sv = sq + nt;
+        const double dt = (tb[j + 1] - tb[j]) / om, d = sqrt(3.0) / 6.0 * dt,
+                     c2 = sqrt(3.0) / 12.0 * dt * dt;
+        const double *sc = scal + (size_t)j * 4 * nt;
         pend += 0.5 * dt;
         int any = 0;
-        for (int t = 0; t < nt; t++)
-            any |= sq[t] != 0.0 || sv[t] != 0.0;
+        for (int t = 0; t < 2 * t2; t++)
+            any |= sc[t] != 0.0;
         if (!any || !ng) { /* B = 0: the exponentials merge */
             pend += 0.5 * dt;
             continue;
         }
         apply_exp(n2, n2, lre, lim, pend, Psi);
         pend = 0.5 * dt;
-        /* Rk rows (nt x n2, row-major) = sq At + sv Bt; S = Rk P = sq AP + sv BP */
+        /* V^T rows (Rk: t2 rows of n2, row-major): R_g's rows times E(-+d) */
+        for (int g = 0; g < 2; g++) {
+            const double *sq = sc + (size_t)g * 2 * nt, *sv = sq + nt;
+            for (int t = 0; t < nt; t++) {
+                double *rk = Rk + (size_t)(g * nt + t) * n2;
+                const double *at = At + (size_t)t * n2, *bt = Bt + (size_t)t * n2;
+                for (int i = 0; i < n2; i++)
+                    rk[i] = sq[t] * at[i] + sv[t] * bt[i];
+            }
+        }
+        /* a row times E(s) is E(s)^T applied to the column: the rows of Rk as the columns
+         * of an n2 x t2 matrix, E^T's blocks [c, -s; s, c] */
+        for (int g = 0; g < 2; g++) {
+            const double sh = g ? d : -d;
+            for (int i = 0; i < n2; i++) {
+                if (lim[i] > 0.0 && i + 1 < n2) {
+                    const double e = exp(lre[i] * sh), cc = e * cos(lim[i] * sh),
+                                 ss = e * sin(lim[i] * sh);
+                    for (int t = 0; t < nt; t++) {
+                        double *p = Rk + (size_t)(g * nt + t) * n2 + i, a = p[0], b = p[1];
+                        p[0] = cc * a - ss * b;
+                        p[1] = ss * a + cc * b;
+                    }
+                    i++;
+                } else {
+                    const double e = exp(lre[i] * sh);
+                    for (int t = 0; t < nt; t++)
+                        Rk[(size_t)(g * nt + t) * n2 + i] *= e;
+                }
+            }
+        }
+        /* U = [E(d) P, E(-d) P] */
+        memcpy(U, Pt, (size_t)n2 * ng * sizeof *U);
+        memcpy(U + (size_t)n2 * ng, Pt, (size_t)n2 * ng * sizeof *U);
+        apply_exp(n2, ng, lre, lim, d, U);
+        apply_exp(n2, ng, lre, lim, -d, U + (size_t)n2 * ng);
+        /* VU = V^T U (t2 x g2) */
+        cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, t2, g2, n2, 1.0, Rk, n2, U, n2, 0.0,
+                    VU, t2);
+        /* Cm (g2 x t2): C h/2 on the diagonal blocks; the commutator's blocks
+         * (2,1) = c2 C (R2^ P1^) C (rows ng.., columns 0..nt), (1,2) = -c2 C (R1^ P2^) C */
+        memset(Cm, 0, (size_t)g2 * t2 * sizeof *Cm);
         for (int t = 0; t < nt; t++) {
-            double *rk = Rk + (size_t)t * n2;
-            const double *at = At + (size_t)t * n2, *bt = Bt + (size_t)t * n2;
-            for (int i = 0; i < n2; i++)
-                rk[i] = sq[t] * at[i] + sv[t] * bt[i];
+            Cm[(size_t)t * g2 + tg[t]] = 0.5 * dt;
+            Cm[(size_t)(nt + t) * g2 + ng + tg[t]] = 0.5 * dt;
         }
-        if (!small) {
-            snprintf(msg, 160, "stability not computed: %d force directions (at most 24)", ng);
-            goto done;
+        for (int t = 0; t < nt; t++) {           /* column t of block (2,1): from R1 row t */
+            for (int t2r = 0; t2r < nt; t2r++) { /* C (R2^ P1^): row group of term t2r */
+                /* (R2^ P1^)[t2r, g] = VU[nt + t2r, g]; times C[g, t] = (g == tg[t]) */
+                Cm[(size_t)t * g2 + ng + tg[t2r]] += c2 * VU[(size_t)tg[t] * t2 + nt + t2r];
+                /* block (1,2): -c2 C (R1^ P2^) C: (R1^ P2^)[t2r, g] = VU[t2r, ng + g] */
+                Cm[(size_t)(nt + t) * g2 + tg[t2r]] -= c2 * VU[(size_t)(ng + tg[t]) * t2 + t2r];
+            }
         }
-        /* phi1(Gm), Gm = dt C S (ng x ng), from exp([Gm, I; 0, 0]) */
+        /* phi1(Cm VU) from exp([Cm VU, I; 0, 0]) (ga = 2 g2) */
+        cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, g2, g2, t2, 1.0, Cm, g2, VU, t2, 0.0,
+                    CV, g2);
         memset(G, 0, (size_t)ga * ga * sizeof *G);
-        for (int t = 0; t < nt; t++)
-            for (int g = 0; g < ng; g++)
-                G[(size_t)g * ga + tg[t]] +=
-                    dt * (sq[t] * AP[(size_t)g * nt + t] + sv[t] * BP[(size_t)g * nt + t]);
-        for (int g = 0; g < ng; g++)
-            G[(size_t)(ng + g) * ga + g] = 1.0;
+        for (int b = 0; b < g2; b++)
+            for (int a = 0; a < g2; a++)
+                G[(size_t)b * ga + a] = CV[(size_t)b * g2 + a];
+        for (int g = 0; g < g2; g++)
+            G[(size_t)(g2 + g) * ga + g] = 1.0;
         small_expm(ga, G, F, W3);
-        /* Y = Rk Psi (nt x n2); Z = dt phi1 (C Y) (ng x n2); Psi += P Z */
-        cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, nt, n2, n2, 1.0, Rk, n2, Psi, n2, 0.0,
-                    Y, nt);
-        double *CY = Z + (size_t)ng * n2;
-        memset(CY, 0, (size_t)ng * n2 * sizeof *CY);
-        for (int c = 0; c < n2; c++)
-            for (int t = 0; t < nt; t++)
-                CY[(size_t)c * ng + tg[t]] += Y[(size_t)c * nt + t];
-        /* phi1 is F's top-right block: F[g, ng + g'] */
-        cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, ng, n2, ng, dt, F + (size_t)ng * ga,
-                    ga, CY, ng, 0.0, Z, ng);
-        cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n2, n2, ng, 1.0, Pt, n2, Z, ng, 1.0,
+        /* Y = V^T Psi (t2 x n2); Z = phi1 Cm Y (g2 x n2); Psi += U Z */
+        cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, t2, n2, n2, 1.0, Rk, n2, Psi, n2, 0.0,
+                    Y, t2);
+        double *CY = Z + (size_t)g2 * n2;
+        cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, g2, n2, t2, 1.0, Cm, g2, Y, t2, 0.0,
+                    CY, g2);
+        cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, g2, n2, g2, 1.0, F + (size_t)g2 * ga,
+                    ga, CY, g2, 0.0, Z, g2);
+        cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n2, n2, g2, 1.0, U, n2, Z, g2, 1.0,
                     Psi, n2);
         if ((j & 255) == 255) {
             const double now = gd_hb_cpu_seconds();
