@@ -257,7 +257,8 @@ GD_API double gd_periodic_memory(const gd_system *sys, const gd_transient_spec *
  * else the cheaper by a measured cost: one harmonic balance residual and factorisation at
  * the first H (t_h) and one period integrated from rest at the shooting tolerance (t_p,
  * stopped once shooting could no longer win); the estimates 8 t_h x (3 with the truncation
- * estimate) plus the Magnus monodromy with stability, against 5 (2 n + 1) t_p for dense
+ * estimate) plus the multipliers with stability (the dense Magnus monodromy, or the
+ * reduced basis above floquet_dmax states), against 5 (2 n + 1) t_p for dense
  * shooting (n states) or 340 t_p for Newton-Krylov; ties go to harmonic balance
  * (docs/periodic.md). note (may be NULL, 256 bytes) receives the reason with the numbers.
  * Reads no files; thread-safe on separate problems. */
