@@ -8,15 +8,15 @@
  * constant state matrix A0 = [0, I; -Kr, -Dr] (2r x 2r) is diagonalised once (LAPACK
  * dgeev; D is not proportional, so its modes are complex: real 2 x 2 blocks), so its
  * exponential over any step is exact and costs O((2r)^2) on the propagated matrix however
- * stiff the kept modes. The time-varying part B(t) has rank nterm, and each step is the
- * Strang splitting
- *   Psi <- exp(h/2 A0) exp(h B(t_mid)) exp(h/2 A0) Psi,
- * with exp(h P C R) = I + P phi1(h C R P) h C R (P the ng distinct force directions, R the
- * nterm rows), so a step costs about 2 (nterm + ng) (2r)^2 flops. The steps are the Magnus
- * steps of floquet.c (split at contact changes), and the orbit at their midpoints comes from
- * inverse FFTs of the input DOFs' coefficients shifted by half a step (direct sums only on
- * the steps a contact change split). The multipliers are the eigenvalues of Psi (similar to
- * the reduced monodromy), LAPACK dgeev. */
+ * stiff the kept modes. The time-varying part B(t) = P C R(t) has rank nterm (P the ng
+ * distinct force directions, R the nterm input rows with the laws' derivatives), and each
+ * step is a fourth-order Magnus step in the interaction picture about its midpoint (see the
+ * propagation below), whose exponential is a closed-form rank-2 ng update, so a step costs
+ * about 4 (nterm + ng) (2r)^2 flops. The steps are the Magnus steps of floquet.c (split at
+ * contact changes), and the orbit at their two Gauss points comes from inverse FFTs of the
+ * input DOFs' coefficients shifted by the Gauss-point phase (direct sums only on the steps
+ * a contact change split). The multipliers are the eigenvalues of Psi (similar to the
+ * reduced monodromy), LAPACK dgeev, then the discarded modes' estimates. */
 #include <cblas.h>
 #include <fftw3.h>
 #include <lapacke.h>
@@ -50,7 +50,7 @@ static void dense_of(const gd_csc *A, int n, double *out)
             out[(size_t)j * n + A->rowind[p]] += A->values[p];
 }
 
-/* E = exp(A) for a small n x n matrix (n <= 48): Taylor to 18 terms after scaling to a
+/* E = exp(A) for a small n x n matrix: Taylor to 18 terms after scaling to a
  * norm of 1/2 (1/2^18/18! < 1e-21), then squaring. W: 3 n^2. */
 static void small_expm(int n, const double *A, double *E, double *W)
 {
@@ -149,7 +149,7 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
     double *V = NULL, *C = NULL, *A0 = NULL, *XR = NULL, *XL = NULL, *lre = NULL, *lim = NULL,
            *Pt = NULL, *At = NULL, *Bt = NULL, *AP = NULL, *BP = NULL, *Psi = NULL, *Rk = NULL,
            *Y = NULL, *Z = NULL, *sqv = NULL, *yv = NULL, *ur = NULL, *wr = NULL, *tmp = NULL,
-           *tb = NULL, *hc = NULL, *smp = NULL, *dd = NULL, *est = NULL;
+           *tb = NULL, *hc = NULL, *smp = NULL, *dd = NULL, *est = NULL, *small = NULL;
     int *ipiv = NULL, *sup = NULL;
     fftw_plan plan = NULL;
     if (!Km || !Mm || !Dm || !Phi || !lam || !tg || !grep) goto done;
@@ -567,16 +567,15 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
     for (int i = 0; i < n2; i++)
         Psi[(size_t)i * n2 + i] = 1.0;
     double pend = 0.0, t_check = gd_hb_cpu_seconds();
-    if (ng > 12) {
-        snprintf(msg, 160, "stability not computed: %d force directions (at most 12)", ng);
-        goto done;
-    }
     const int g2 = 2 * ng, t2 = 2 * nt, ga = 2 * g2;
-    double G[48 * 48], F[48 * 48], W3[3 * 48 * 48], Cm[24 * 120], VU[120 * 24], CV[24 * 24];
-    if (nt > 60) {
-        snprintf(msg, 160, "stability not computed: %d local terms (at most 60)", nt);
+    const size_t gg = (size_t)ga * ga;
+    small = malloc((5 * gg + 2 * (size_t)g2 * t2 + (size_t)g2 * g2 + 1) * sizeof *small);
+    if (!small) {
+        free(scal);
         goto done;
     }
+    double *G = small, *F = G + gg, *W3 = F + gg, *Cm = W3 + 3 * gg, *VU = Cm + (size_t)g2 * t2,
+           *CV = VU + (size_t)g2 * t2;
     double *U = Z + (size_t)2 * g2 * n2; /* n2 x g2 */
     for (int j = 0; j < nsub && rc == 1; j++) {
         const double dt = (tb[j + 1] - tb[j]) / om, d = sqrt(3.0) / 6.0 * dt,
@@ -757,6 +756,7 @@ done:
     free(sup);
     free(dd);
     free(est);
+    free(small);
     return rc;
 }
 
