@@ -149,7 +149,7 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
     double *V = NULL, *C = NULL, *A0 = NULL, *XR = NULL, *XL = NULL, *lre = NULL, *lim = NULL,
            *Pt = NULL, *At = NULL, *Bt = NULL, *AP = NULL, *BP = NULL, *Psi = NULL, *Rk = NULL,
            *Y = NULL, *Z = NULL, *sqv = NULL, *yv = NULL, *ur = NULL, *wr = NULL, *tmp = NULL,
-           *tb = NULL, *hc = NULL, *smp = NULL, *dd = NULL, *est = NULL, *small = NULL;
+           *tb = NULL, *hc = NULL, *smp = NULL, *dd = NULL, *est = NULL, *small = NULL, *cs = NULL;
     int *ipiv = NULL, *sup = NULL;
     fftw_plan plan = NULL;
     if (!Km || !Mm || !Dm || !Phi || !lam || !tg || !grep) goto done;
@@ -250,10 +250,11 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
     lim = malloc((size_t)n2 * sizeof *lim);
     ipiv = malloc((size_t)n2 * sizeof *ipiv);
     ur = malloc(((size_t)ng * r + 1) * sizeof *ur);
+    cs = malloc((size_t)r * sizeof *cs);
     wr = malloc(((size_t)nt * r + 1) * sizeof *wr);
     free(tmp);
     tmp = malloc(((size_t)nf * r + rr) * sizeof *tmp);
-    if (!V || !A0 || !XR || !XL || !lre || !lim || !ipiv || !ur || !wr || !tmp) goto done;
+    if (!V || !A0 || !XR || !XL || !lre || !lim || !ipiv || !ur || !wr || !tmp || !cs) goto done;
     if (r == nf) {
         memcpy(V, Phi, ff * sizeof *V);
     } else {
@@ -308,10 +309,19 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
             goto done;
         }
         memcpy(ur, rhs + 2 * (size_t)r * r, (size_t)ng * r * sizeof *ur);
+        /* balanced state [c_j x_j; x_j'], c_j = sqrt(Kr_jj) (the kept mode's frequency):
+         * A0 = [0, C; -Kr C^-1, -Dr]. Unbalanced, |A0| is w_max^2 and dgeev's eigenvalues
+         * carry absolute errors of eps w_max^2 (4e-4 1/s on the [JMSTHelical] model, a
+         * uniform 6e-6 on every |mu|: measured); balanced, eps w_max */
+        double kmax = 0.0;
+        for (int j = 0; j < r; j++)
+            kmax = fmax(kmax, fabs(rhs[(size_t)j * r + j]));
+        for (int j = 0; j < r; j++)
+            cs[j] = fmax(sqrt(fabs(rhs[(size_t)j * r + j])), 1e-6 * sqrt(kmax));
         for (int j = 0; j < r; j++) {
-            A0[(size_t)(r + j) * n2 + j] = 1.0;
+            A0[(size_t)(r + j) * n2 + j] = cs[j];
             for (int i = 0; i < r; i++) {
-                A0[(size_t)j * n2 + r + i] = -rhs[(size_t)j * r + i];
+                A0[(size_t)j * n2 + r + i] = -rhs[(size_t)j * r + i] / cs[j];
                 A0[(size_t)(r + j) * n2 + r + i] = -rhs[(size_t)r * r + (size_t)j * r + i];
             }
         }
@@ -347,11 +357,9 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
          * [c x; x'] (c the largest kept frequency, so a mode's eigenvector is [c x; s x]
          * with |s| <= c), each column of unit length: a free rotation's pair s ~ 0 has two
          * parallel columns */
-        double kmax = 0.0, rcond = 0.0;
-        for (int i = 0; i < r; i++)
-            kmax = fmax(kmax, fabs(A0[(size_t)i * n2 + r + i]));
-        const double cb = kmax > 0 ? sqrt(kmax) : 1.0;
-        double *E = tmp; /* nf r + rr >= rr */
+        double rcond = 0.0;
+        const double cb = 1.0; /* the state is balanced already */
+        double *E = tmp;       /* nf r + rr >= rr */
         for (int j = 0; j < n2; j++) {
             double *e = E + (size_t)j * n2, nrm = 0.0;
             for (int i = 0; i < n2; i++) {
@@ -400,7 +408,12 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
                     n2, ur, r, 0.0, Pt, n2);
     /* At, Bt row-major (nt rows of n2): At[t][j] = sum_i wr_t[i] XR[i, j] */
     if (nt) {
-        cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, n2, nt, r, 1.0, XR, n2, wr, r, 0.0, At,
+        /* the laws read x = C^-1 x~ (the balanced displacements); Bt the velocities as they
+         * are */
+        for (int t = 0; t < nt; t++)
+            for (int j = 0; j < r; j++)
+                Rk[(size_t)t * r + j] = wr[(size_t)t * r + j] / cs[j];
+        cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, n2, nt, r, 1.0, XR, n2, Rk, r, 0.0, At,
                     n2);
         cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, n2, nt, r, 1.0, XR + r, n2, wr, r, 0.0,
                     Bt, n2);
@@ -757,6 +770,7 @@ done:
     free(dd);
     free(est);
     free(small);
+    free(cs);
     return rc;
 }
 
