@@ -4,7 +4,8 @@
  *   V = [the modes of (sym K, M) below a cut-off frequency,
  *        the residual flexibility of the discarded modes along every term's u_t and w_t]
  * (a Craig-Bampton-like Ritz basis: the static correction sum_j phi_j phi_j^T v / lambda_j
- * over the discarded modes, Craig & Kurdila 2006, Sec. 17.4), M-orthonormal. The reduced
+ * over the discarded modes, as the constraint modes of Craig & Bampton 1968 carry the
+ * statics of the DOFs they keep), M-orthonormal. The reduced
  * constant state matrix A0 = [0, I; -Kr, -Dr] (2r x 2r) is diagonalised once (LAPACK
  * dgeev; D is not proportional, so its modes are complex: real 2 x 2 blocks), so its
  * exponential over any step is exact and costs O((2r)^2) on the propagated matrix however
@@ -572,11 +573,11 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
      * step with the two Gauss points (t_g - m = -+d, d = sqrt(3)/6 h) is
      *   Omega = h/2 (B1^ + B2^) + sqrt(3)/12 h^2 [B2^, B1^],
      *   B1^ = E(d) B1 E(-d),  B2^ = E(-d) B2 E(d),
-     * so z(h) = E(h/2) exp(Omega) E(h/2) z(0) (Blanes, Casas & Ros 2000 for the
-     * exponential-propagator form). With B_g = P C R_g, Omega = U Cm V^T with
-     * U = [E(d) P, E(-d) P] (2 ng columns), V^T = [R1 E(-d); R2 E(d)] (2 nt rows) and
-     *   Cm = [h/2 C, -c2 C (R1^ P2^) C; c2 C (R2^ P1^) C, h/2 C],  c2 = sqrt(3)/12 h^2,
-     * and exp(U Cm V^T) = I + U phi1(Cm V^T U) Cm V^T: a rank-2 ng update. */
+     * so z(h) = E(h/2) exp(Omega) E(h/2) z(0) (the order-4 Magnus step of Blanes, Casas,
+     * Oteo & Ros 2009, Eq. 4.3, applied to the interaction-picture equation). With B_g = P C R_g,
+     * Omega = U Cm V^T with U = [E(d) P, E(-d) P] (2 ng columns), V^T = [R1 E(-d); R2 E(d)] (2 nt
+     * rows) and Cm = [h/2 C, -c2 C (R1^ P2^) C; c2 C (R2^ P1^) C, h/2 C],  c2 = sqrt(3)/12 h^2, and
+     * exp(U Cm V^T) = I + U phi1(Cm V^T U) Cm V^T: a rank-2 ng update. */
     for (int i = 0; i < n2; i++)
         Psi[(size_t)i * n2 + i] = 1.0;
     double pend = 0.0, t_check = gd_hb_cpu_seconds();
