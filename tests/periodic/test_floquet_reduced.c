@@ -163,6 +163,8 @@ TEST(free_rotation_falls_back_to_dense)
     fx_free(&f);
 }
 
+/* Option checks, and the CPU budget: over it (1e-9 s, passed by the estimate of the modes
+ * alone) the point keeps its orbit with stability unknown and the reason. */
 TEST(reduced_options_checked)
 {
     fx f;
@@ -181,6 +183,20 @@ TEST(reduced_options_checked)
         CHECK_STR(err.field, c ? "floquet_cutoff" : "floquet");
         CHECK(r == NULL);
     }
+    gd_periodic_options o;
+    gd_periodic_options_init(&o);
+    o.floquet = GD_FLOQUET_REDUCED;
+    o.floquet_budget = 1e-9;
+    o.estimate = 0;
+    double W = 690.0;
+    gd_periodic_result *r = NULL;
+    REQUIRE(gd_periodic_run(f.s, &tm->spec, NULL, &W, 1, &o, NULL, 0, &r, &err) == GD_OK);
+    REQUIRE(r->npoints == 1);
+    CHECK(r->points[0].converged == 1 && r->points[0].stable == -1);
+    CHECK(strstr(r->points[0].reason, "reduced basis") != NULL);
+    CHECK(strstr(r->points[0].reason, "budget") != NULL);
+    printf("  %s\n", r->points[0].reason);
+    gd_periodic_result_free(r);
     gd_transient_model_free(tm);
     fx_free(&f);
 }
