@@ -16,9 +16,10 @@ cd "$(dirname "$0")/.."
 B=${1:-build}
 G="$B/geardyn"
 export OPENBLAS_NUM_THREADS=1
+NOEST=--no-estimate # auto H always compares H with 2 H
 
 cpu_of() { # args...: the JSON's cpu_seconds
-    "$G" periodic "$@" --no-estimate --json --quiet --floquet-budget 0 |
+    "$G" periodic "$@" $NOEST --json --quiet --floquet-budget 0 |
         python3 -c "import json,sys; d=json.load(sys.stdin); p=d['points'][0]; \
 print('%.4f %s %s %s' % (d['cpu_seconds'], p.get('floquet_method', '-'), \
 p.get('floquet_multiplier_max_abs'), p['harmonics']))"
@@ -29,6 +30,7 @@ p.get('floquet_multiplier_max_abs'), p['harmonics']))"
 row_reduced() {
     local label=$1 model=$2 speeds=$3 H=$4
     shift 4
+    [ "$H" = auto ] && NOEST= || NOEST=--no-estimate
     read -r t0 _ _ h0 < <(cpu_of "$model" --speeds "$speeds" --harmonics "$H" --no-stability "$@")
     read -r tr mr mur hr < <(cpu_of "$model" --speeds "$speeds" --harmonics "$H" --floquet reduced "$@")
     awk -v l="$label" -v t0="$t0" -v tr="$tr" -v mur="$mur" -v h="$hr" 'BEGIN {

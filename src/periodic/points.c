@@ -36,9 +36,18 @@ void gd_per_floquet(ctx *c, const double *X, double lam, double *mre, double *mi
     int rc, nmu = n2, nbasis = 0;
     c->floquet_n = 0;
     c->floquet_basis = 0;
+    /* rc 5: not by the reduced basis (not asked for, or no usable basis there) */
+    rc = 5;
     if (c->opt->floquet == GD_FLOQUET_REDUCED ||
         (c->opt->floquet == GD_FLOQUET_AUTO && n2 > dmax)) {
+        /* 2 r multipliers and the discarded modes' estimates, at most n2: the rest zero
+         * (the bifurcation search ranks them all) */
+        memset(mre, 0, (size_t)n2 * sizeof *mre);
+        memset(mim, 0, (size_t)n2 * sizeof *mim);
         rc = gd_per_floquet_reduced(c, s, X, lam, steps, bl, nbl, mre, mim, &nmu, &nbasis);
+        if (rc == 1 && !c->floquet_msg[0])
+            snprintf(c->floquet_msg, sizeof c->floquet_msg,
+                     "stability not computed: the reduced-basis multipliers failed");
         /* no usable basis (a free rotation): the full model's dense or Krylov multipliers */
         if (rc == 5) {
             krylov = n2 > dmax;
@@ -46,14 +55,11 @@ void gd_per_floquet(ctx *c, const double *X, double lam, double *mre, double *mi
             nbasis = 0;
             c->floquet_msg[0] = '\0';
         }
-    } else {
-        rc = 5;
     }
-    if (rc != 5) {
-    } else if (!krylov) {
+    if (rc == 5 && !krylov) {
         rc = gd_hb_floquet_budget(&c->h, s->tr, s->w, X, steps, bl, nbl, c->opt->floquet_budget,
                                   mre, mim, c->floquet_msg);
-    } else {
+    } else if (rc == 5) {
         /* the largest few; more while all but one of them lie outside the unit circle
          * (the count outside and the next one in locate the bifurcations) */
         int want = c->opt->floquet_count > 0 ? c->opt->floquet_count : 8, retry = 0;
