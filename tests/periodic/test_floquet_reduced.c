@@ -83,6 +83,45 @@ TEST(mathieu_reduced_equals_dense)
     fx_free(&f);
 }
 
+/* The Mathieu tongue traced with the reduced multipliers (11 speeds, 256 steps): the same
+ * two period doublings as the dense monodromy gives in the same run (measured with
+ * floquet = GD_FLOQUET_DENSE: 698.969804 and 715.170885 rad/s; the two methods'
+ * multipliers differ by about 2e-12, so the located speeds agree to the 1e-6 printed). */
+TEST(mathieu_bifurcations_by_reduced)
+{
+    fx f;
+    REQUIRE(load(&f, GD_SOURCE_DIR "/tests/plot/mathieu_pair.yaml", NULL));
+    gd_transient_model *tm = NULL;
+    gd_error err;
+    REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
+    double at[2] = {0, 0};
+    int nb = 0, basis = 0;
+    gd_periodic_options o;
+    gd_periodic_options_init(&o);
+    o.harmonics = 8;
+    o.estimate = 0;
+    o.monodromy_steps = 256;
+    o.floquet = GD_FLOQUET_REDUCED;
+    double v[11];
+    for (int i = 0; i < 11; i++)
+        v[i] = 690.0 + 3.0 * i;
+    gd_periodic_result *r = NULL;
+    REQUIRE(gd_periodic_run(f.s, &tm->spec, NULL, v, 11, &o, NULL, 0, &r, &err) == GD_OK);
+    for (int i = 0; i < r->nbifurcations; i++) {
+        const gd_bifurcation *b = &r->bifurcations[i];
+        if (b->type == GD_BIF_PERIOD_DOUBLING && nb < 2) at[nb++] = b->speed;
+    }
+    for (int i = 0; i < r->npoints; i++)
+        basis += r->points[i].floquet_basis == 1;
+    CHECK(basis == r->npoints);
+    printf("  reduced: %d period doublings, at %.6f and %.6f rad/s\n", nb, at[0], at[1]);
+    CHECK(nb == 2);
+    CHECK(fabs(at[0] - 698.969804) < 2e-6 && fabs(at[1] - 715.170885) < 2e-6);
+    gd_periodic_result_free(r);
+    gd_transient_model_free(tm);
+    fx_free(&f);
+}
+
 /* Chen SFD pair (unbalance 38.1 um, as in test_floquet_krylov) at 5350 and 5650 rad/s
  * (inside the Neimark-Sacker region: |mu|max 1.178), H = 12, 512 steps. Every mode kept
  * (the default cut-off keeps all six): all twelve multipliers within 1e-6 of the dense
@@ -201,5 +240,6 @@ TEST(reduced_options_checked)
     fx_free(&f);
 }
 
-RUN_TESTS(T(mathieu_reduced_equals_dense), T(chen_sfd_reduced_equals_dense),
-          T(free_rotation_falls_back_to_dense), T(reduced_options_checked))
+RUN_TESTS(T(mathieu_reduced_equals_dense), T(mathieu_bifurcations_by_reduced),
+          T(chen_sfd_reduced_equals_dense), T(free_rotation_falls_back_to_dense),
+          T(reduced_options_checked))
