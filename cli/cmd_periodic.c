@@ -108,7 +108,11 @@ static cJSON *to_json(const gd_periodic_result *r, const gd_cli_records *recs, i
             cJSON_AddNullToObject(o, "stable");
         cJSON_AddItemToObject(o, "floquet_multiplier_max_abs", gd_cli_json_number(p->mu_max));
         if (p->stable >= 0)
-            cJSON_AddStringToObject(o, "floquet_method", p->floquet_krylov ? "krylov" : "dense");
+            cJSON_AddStringToObject(o, "floquet_method",
+                                    p->floquet_basis    ? "reduced"
+                                    : p->floquet_krylov ? "krylov"
+                                                        : "dense");
+        if (p->floquet_basis) cJSON_AddNumberToObject(o, "floquet_basis", p->floquet_basis);
         cJSON_AddNumberToObject(o, "harmonics", p->harmonics);
         cJSON_AddItemToObject(o, "residual", gd_cli_json_number(p->residual));
         if (p->converged) {
@@ -166,6 +170,13 @@ static void print_table(const gd_periodic_result *r, const gd_cli_records *recs,
     /* harmonic balance by default says nothing (the table's layout is unchanged) */
     if (r->method != GD_PER_HB || r->method_note[0])
         printf("method: %s\n", r->method_note[0] ? r->method_note : gd_per_kind_name(r->method));
+    for (int i = 0; i < r->npoints; i++)
+        if (r->points[i].floquet_basis) {
+            printf("stability: the Floquet multipliers of a reduced basis of %d vectors (the "
+                   "modes below the cut-off and the laws' residual flexibility)\n",
+                   r->points[i].floquet_basis);
+            break;
+        }
     for (int i = 0; i < r->npoints; i++)
         if (r->points[i].floquet_krylov) {
             printf("stability: the %d largest Floquet multipliers by Krylov-Schur on "
@@ -432,6 +443,16 @@ static int parse_shoot_budget(const char *cmd, const char *text, void *field)
     return parse_seconds(cmd, "shoot-budget", text, field);
 }
 
+static int parse_floquet_cutoff(const char *cmd, const char *text, void *field)
+{
+    char *end;
+    double v = strtod(text, &end);
+    if (end == text || *end || !(v > 0 && v < 1e6))
+        return gd_cli_usage_error(cmd, "--floquet-cutoff: expected a multiple > 0, got '%s'", text);
+    *(double *)field = v;
+    return 0;
+}
+
 static int parse_floquet_budget(const char *cmd, const char *text, void *field)
 {
     return parse_seconds(cmd, "floquet-budget", text, field);
@@ -540,9 +561,15 @@ static const gd_cli_opt OPTS[] = {
     GD_CLI_ROW("no-stability", GD_CLI_CLEAR, F(opt.stability), NULL,
                "skip the Floquet multipliers (and bifurcations)"),
     GD_CLI_ROW("floquet", GD_CLI_CHOICE, F(opt.floquet), "M",
-               "auto (dense up to 300 states), dense or krylov (the 8 largest multipliers from "
-               "monodromy-vector products)",
-               .def = "auto", .word = "auto|dense|krylov"),
+               "auto (dense up to 300 states, reduced above), dense, krylov (the 8 largest "
+               "multipliers from monodromy-vector products) or reduced (every multiplier of the "
+               "monodromy in the modes below --floquet-cutoff plus the local laws' residual "
+               "flexibility)",
+               .def = "auto", .word = "auto|dense|krylov|reduced"),
+    GD_CLI_ROW("floquet-cutoff", GD_CLI_CALL, F(opt.floquet_cutoff), "C",
+               "reduced multipliers: keep the modes up to C times the highest excitation "
+               "frequency (the top tooth-mesh frequency)",
+               .def = "4", .call = parse_floquet_cutoff),
     GD_CLI_ROW("floquet-budget", GD_CLI_CALL, F(opt.floquet_budget), "S",
                "CPU seconds for one point's multipliers; a point whose multipliers would take "
                "longer keeps its orbit with stability not computed and says how long they would "

@@ -42,7 +42,7 @@ typedef enum gd_per_method {
  * cheaper of the two for the model by a measured cost rule (gd_periodic_choose). */
 typedef enum gd_per_kind { GD_PER_HB = 0, GD_PER_SHOOTING = 1, GD_PER_AUTO = 2 } gd_per_kind;
 /* The Floquet multipliers of harmonic balance points (gd_periodic_options.floquet). */
-enum { GD_FLOQUET_AUTO = 0, GD_FLOQUET_DENSE = 1, GD_FLOQUET_KRYLOV = 2 };
+enum { GD_FLOQUET_AUTO = 0, GD_FLOQUET_DENSE = 1, GD_FLOQUET_KRYLOV = 2, GD_FLOQUET_REDUCED = 3 };
 GD_API const char *gd_per_kind_name(gd_per_kind k);
 
 struct gd_periodic_point;
@@ -52,40 +52,50 @@ struct gd_periodic_point;
 #define GD_PERIODIC_MAX_SAMPLES (1 << 20)
 
 typedef struct gd_periodic_options {
-    int harmonics;       /* H >= 1 (default 10) */
-    int adaptive;        /* 1: H from the least that holds every excitation's fundamental,
-                            doubled at each point until the records agree with those at
-                            twice H to harmonic_tol (the point reports the finer solution) */
-    double harmonic_tol; /* truncation tolerance: the relative change of every record's
-                            peak-to-peak and of its harmonic amplitudes (relative to its
-                            largest) between H and 2 H (default 0.01) */
-    int max_harmonics;   /* cap of H (0, default: the largest whose workspace fits in
-                            memory_limit) */
-    int subharmonic;     /* N >= 1: solutions of period N T_0 (default 1) */
-    int samples;         /* AFT samples per period; 0: 4 (H + 1) rounded up to 2^k,
-                            at least 16; at most GD_PERIODIC_MAX_SAMPLES */
-    double tol;          /* Newton: relative residual (default 1e-10) */
-    int max_iter;        /* Newton iterations per point (default 30) */
-    int stability;       /* 1 (default): Floquet multipliers and bifurcations */
-    int monodromy_steps; /* Magnus steps per period; 0: 4 x samples, at least 256; at
-                            most GD_PERIODIC_MAX_SAMPLES */
-    int floquet;         /* how the multipliers are found (docs/periodic.md, "Stability at
-                            scale"): GD_FLOQUET_AUTO (default: dense up to floquet_dmax
-                            states, Krylov above), GD_FLOQUET_DENSE (every multiplier, the
-                            dense 2 nf x 2 nf monodromy), GD_FLOQUET_KRYLOV (the
-                            floquet_count largest by Krylov-Schur on monodromy-vector
-                            products over the same Magnus steps; no dense matrix) */
-    int floquet_count;   /* Krylov: multipliers wanted (0: 8); doubled while all but one of
-                            them lie outside the unit circle, so the count outside and the
-                            next one in (which the bifurcations are located by) are known */
-    int floquet_dmax;    /* auto: the dense monodromy up to this many states 2 nf (0: 300,
-                            from the measured costs, docs/periodic.md) */
+    int harmonics;         /* H >= 1 (default 10) */
+    int adaptive;          /* 1: H from the least that holds every excitation's fundamental,
+                              doubled at each point until the records agree with those at
+                              twice H to harmonic_tol (the point reports the finer solution) */
+    double harmonic_tol;   /* truncation tolerance: the relative change of every record's
+                              peak-to-peak and of its harmonic amplitudes (relative to its
+                              largest) between H and 2 H (default 0.01) */
+    int max_harmonics;     /* cap of H (0, default: the largest whose workspace fits in
+                              memory_limit) */
+    int subharmonic;       /* N >= 1: solutions of period N T_0 (default 1) */
+    int samples;           /* AFT samples per period; 0: 4 (H + 1) rounded up to 2^k,
+                              at least 16; at most GD_PERIODIC_MAX_SAMPLES */
+    double tol;            /* Newton: relative residual (default 1e-10) */
+    int max_iter;          /* Newton iterations per point (default 30) */
+    int stability;         /* 1 (default): Floquet multipliers and bifurcations */
+    int monodromy_steps;   /* Magnus steps per period; 0: 4 x samples, at least 256; at
+                              most GD_PERIODIC_MAX_SAMPLES */
+    int floquet;           /* how the multipliers are found (docs/periodic.md, "Stability at
+                              scale"): GD_FLOQUET_AUTO (default: dense up to floquet_dmax
+                              states, reduced above), GD_FLOQUET_DENSE (every multiplier, the
+                              dense 2 nf x 2 nf monodromy), GD_FLOQUET_KRYLOV (the
+                              floquet_count largest by Krylov-Schur on monodromy-vector
+                              products over the same Magnus steps; no dense matrix),
+                              GD_FLOQUET_REDUCED (the monodromy in a reduced basis: the
+                              modes below floquet_cutoff and the residual flexibility along
+                              the local laws' directions; the discarded modes' multipliers
+                              estimated one by one; where its eigenvector basis is
+                              ill-conditioned, as with a free rotation, dense up to
+                              floquet_dmax states and Krylov above) */
+    int floquet_count;     /* Krylov: multipliers wanted (0: 8); doubled while all but one of
+                              them lie outside the unit circle, so the count outside and the
+                              next one in (which the bifurcations are located by) are known */
+    int floquet_dmax;      /* auto: the dense monodromy up to this many states 2 nf (0: 300,
+                              from the measured costs, docs/periodic.md) */
     double floquet_budget; /* CPU seconds for one point's multipliers (0, the library default:
                               no limit; the CLI's is 30): a point whose multipliers would
                               take longer, by the cost of the first Magnus step (dense) or
                               of one operator action (Krylov), or that passes it, keeps its
                               orbit with stability not computed, and its reason says how
                               long they would take */
+    double floquet_cutoff; /* reduced: the modes kept, up to this multiple of the highest
+                              excitation frequency (the top of gd_periodic_fundamental's
+                              orders, e.g. the highest tooth-mesh frequency; 0: 4, from the
+                              measured convergence, docs/periodic.md) */
     gd_per_method method;
     gd_per_kind kind;    /* GD_PER_HB (default), GD_PER_SHOOTING or GD_PER_AUTO (shooting
                             by arclength needs the dense monodromy: on the Newton-Krylov
@@ -172,6 +182,10 @@ typedef struct gd_periodic_point {
     /* 1: the multipliers are the nmult largest by Krylov-Schur, 0: every one from the
      * dense monodromy (or none) */
     int floquet_krylov;
+    /* > 0: the multipliers come from the monodromy in a reduced basis of that many vectors
+     * (GD_FLOQUET_REDUCED): its 2 floquet_basis multipliers, then the discarded modes'
+     * estimates while there is room, all largest first; 0 otherwise */
+    int floquet_basis;
     int nfree;    /* coefficients: coef[h * nfree + i], h = 0 mean, 2k-1 cos k, 2k sin k */
     double *coef; /* over the free DOFs of gd_transient (increasing DOF order) */
     gd_per_record_stats *records; /* nrecords */
@@ -243,7 +257,8 @@ GD_API double gd_periodic_memory(const gd_system *sys, const gd_transient_spec *
  * else the cheaper by a measured cost: one harmonic balance residual and factorisation at
  * the first H (t_h) and one period integrated from rest at the shooting tolerance (t_p,
  * stopped once shooting could no longer win); the estimates 8 t_h x (3 with the truncation
- * estimate) plus the Magnus monodromy with stability, against 5 (2 n + 1) t_p for dense
+ * estimate) plus the multipliers with stability (the dense Magnus monodromy, or the
+ * reduced basis above floquet_dmax states), against 5 (2 n + 1) t_p for dense
  * shooting (n states) or 340 t_p for Newton-Krylov; ties go to harmonic balance
  * (docs/periodic.md). note (may be NULL, 256 bytes) receives the reason with the numbers.
  * Reads no files; thread-safe on separate problems. */

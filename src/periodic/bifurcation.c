@@ -87,7 +87,8 @@ static int point_between(ctx *c, const double *Xa, double la, const double *Xb, 
 double gd_per_ranked(const ctx *c, const double *mre, const double *mim, int m, int *at)
 {
     int nm = 2 * c->nf, used[512] = {0};
-    if (nm > 512 && c->floquet_krylov) nm = 512; /* at most 257 found, largest first, then 0 */
+    /* Krylov: at most 257 found; reduced: 2 r; largest first, then 0 */
+    if (nm > 512 && (c->floquet_krylov || c->floquet_basis)) nm = 512;
     double v = NAN;
     *at = -1;
     for (int r = 0; r < m && r < nm && nm <= 512; r++) {

@@ -162,9 +162,17 @@ gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *sp
         double N = opt->samples > 0 ? opt->samples : gd_hb_samples_for(H);
         double steps = opt->monodromy_steps > 0 ? opt->monodromy_steps : fmax(256.0, 4.0 * N);
         double ch = 8.0 * th * ((opt->estimate || opt->adaptive) ? 3.0 : 1.0);
+        /* the reduced basis (floquet_reduced.c, auto above floquet_dmax states): every mode
+         * of (K, M) once, then per step about 8 nterm (2 r)^2 flops, r about 64 (48 on
+         * the [JMSTHelical] model, 22 on the two-stage gearbox: docs/periodic.md) */
+        const int dmax = opt->floquet_dmax > 0 ? opt->floquet_dmax : 300;
+        const int reduced =
+            opt->floquet == GD_FLOQUET_REDUCED || (opt->floquet == GD_FLOQUET_AUTO && n > dmax);
+        const double rb = fmin(nf, 64.0), nterm = fmax(1.0, gd_transient_terms(tr, NULL));
+        const double fq = reduced ? (10.0 * pow(nf, 3) + steps * 8.0 * nterm * 4.0 * rb * rb) / 2e9
+                                  : steps * 30.0 * pow(2.0 * nf, 3) / 2e9;
         if (opt->stability) /* no more than the multipliers' budget: over it they are left out */
-            ch += fmin(steps * 30.0 * pow(2.0 * nf, 3) / 2e9,
-                       opt->floquet_budget > 0 ? opt->floquet_budget : INFINITY);
+            ch += fmin(fq, opt->floquet_budget > 0 ? opt->floquet_budget : INFINITY);
         /* the period is integrated only as far as shooting could still win: at most the
          * steps (one right-hand side each, at least) that fit in ch / per_period */
         double tr1 = rhs_cost(tr), cs = NAN, tp = NAN;

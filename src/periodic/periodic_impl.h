@@ -188,6 +188,18 @@ int gd_hb_floquet_krylov(const hb *h, gd_transient *tr, double w, const double *
                          const gd_tr_record *bl, int nbl, int nev, double tol, double budget,
                          double *mu_re, double *mu_im, int *nmu, int *products, char *msg);
 
+/* The multipliers of the same steps' monodromy in a reduced basis (floquet_reduced.c): the
+ * modes of (sym K, M) below wcut (rad/s) and the discarded modes' residual flexibility along
+ * the terms' u and w, the reduced constant part diagonalised (its exponential exact), each
+ * step a Strang splitting with the rank-nterm local part at the step's midpoint. mu_re,
+ * mu_im: at least 2 nf; *nmu = 2 r of them, largest modulus first, *nbasis = r. 0 ok, 2 not
+ * finite (too few steps), 4 over the CPU budget (seconds, 0: none), 5 no usable basis (an
+ * ill-conditioned eigenvector basis: a free rotation's Jordan block; or too many DOFs for
+ * the dense modes): use another method, 1 other failures; msg (160 bytes) says why. */
+int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double w, const double *X, int steps,
+                          const gd_tr_record *bl, int nbl, double wcut, double budget,
+                          double *mu_re, double *mu_im, int *nmu, int *nbasis, char *msg);
+
 /* Static start (warmstart.c): where the model has laws that carry a static load
  * (GD_LAW_SUPPORT), the zeroth harmonic of X (its first nf entries; the rest untouched)
  * set to the laws' static equilibrium at speed under the spec's mean loads. Returns 1

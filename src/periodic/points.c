@@ -32,14 +32,34 @@ void gd_per_floquet(ctx *c, const double *X, double lam, double *mre, double *mi
             bl[nbl++] = (gd_tr_record){GD_REC_MESH_STATE, spec->meshes[i].mesh, 0};
     const int n2 = 2 * c->nf;
     const int dmax = c->opt->floquet_dmax > 0 ? c->opt->floquet_dmax : 300;
-    const int krylov =
-        c->opt->floquet == GD_FLOQUET_KRYLOV || (c->opt->floquet == GD_FLOQUET_AUTO && n2 > dmax);
-    int rc, nmu = n2;
+    int krylov = c->opt->floquet == GD_FLOQUET_KRYLOV;
+    int rc, nmu = n2, nbasis = 0;
     c->floquet_n = 0;
-    if (!krylov) {
+    c->floquet_basis = 0;
+    /* rc 5: not by the reduced basis (not asked for, or no usable basis there) */
+    rc = 5;
+    if (c->opt->floquet == GD_FLOQUET_REDUCED ||
+        (c->opt->floquet == GD_FLOQUET_AUTO && n2 > dmax)) {
+        /* 2 r multipliers and the discarded modes' estimates, at most n2: the rest zero
+         * (the bifurcation search ranks them all) */
+        memset(mre, 0, (size_t)n2 * sizeof *mre);
+        memset(mim, 0, (size_t)n2 * sizeof *mim);
+        rc = gd_per_floquet_reduced(c, s, X, lam, steps, bl, nbl, mre, mim, &nmu, &nbasis);
+        if (rc == 1 && !c->floquet_msg[0])
+            snprintf(c->floquet_msg, sizeof c->floquet_msg,
+                     "stability not computed: the reduced-basis multipliers failed");
+        /* no usable basis (a free rotation): the full model's dense or Krylov multipliers */
+        if (rc == 5) {
+            krylov = n2 > dmax;
+            nmu = n2;
+            nbasis = 0;
+            c->floquet_msg[0] = '\0';
+        }
+    }
+    if (rc == 5 && !krylov) {
         rc = gd_hb_floquet_budget(&c->h, s->tr, s->w, X, steps, bl, nbl, c->opt->floquet_budget,
                                   mre, mim, c->floquet_msg);
-    } else {
+    } else if (rc == 5) {
         /* the largest few; more while all but one of them lie outside the unit circle
          * (the count outside and the next one in locate the bifurcations) */
         int want = c->opt->floquet_count > 0 ? c->opt->floquet_count : 8, retry = 0;
@@ -80,7 +100,8 @@ void gd_per_floquet(ctx *c, const double *X, double lam, double *mre, double *mi
     *mu_max = m;
     *stable = m <= 1.0 + 1e-6;
     c->floquet_n = nmu;
-    c->floquet_krylov = krylov;
+    c->floquet_krylov = krylov && !nbasis;
+    c->floquet_basis = nbasis;
 }
 
 static gd_periodic_point *new_point(ctx *c)
@@ -410,6 +431,7 @@ int gd_per_emit_point(ctx *c, const double *X, double lam, int iters, double res
     if (fine) swap_ws(c);
     p->nmult = p->stable >= 0 ? c->floquet_n : 0;
     p->floquet_krylov = p->stable >= 0 && c->floquet_krylov;
+    p->floquet_basis = p->stable >= 0 ? c->floquet_basis : 0;
     if (p->stable < 0 && c->floquet_msg[0])
         snprintf(p->reason, sizeof p->reason, "%s", c->floquet_msg);
     announce(c, lam);

@@ -99,11 +99,15 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
         (opt->shoot_rtol > 0 && !(opt->shoot_rtol >= 1e-14 && opt->shoot_rtol < 1e-2)))
         BAD("shoot_rtol", "give 0 (1e-9) or a tolerance in [1e-14, 1e-2)",
             "shooting tolerance %g out of range", opt->shoot_rtol);
-    if (opt->floquet < GD_FLOQUET_AUTO || opt->floquet > GD_FLOQUET_KRYLOV ||
+    if (opt->floquet < GD_FLOQUET_AUTO || opt->floquet > GD_FLOQUET_REDUCED ||
         opt->floquet_count < 0 || opt->floquet_count > 256 || opt->floquet_dmax < 0)
-        BAD("floquet", "give floquet 0 (auto), 1 (dense) or 2 (krylov), floquet_count 0..256",
+        BAD("floquet",
+            "give floquet 0 (auto), 1 (dense), 2 (krylov) or 3 (reduced), floquet_count 0..256",
             "Floquet options out of range (method %d, count %d, dense_max %d)", opt->floquet,
             opt->floquet_count, opt->floquet_dmax);
+    if (!(opt->floquet_cutoff >= 0) || isinf(opt->floquet_cutoff))
+        BAD("floquet_cutoff", "give 0 (the default, 4) or a multiple > 0",
+            "Floquet cut-off %g out of range", opt->floquet_cutoff);
     if (!(opt->floquet_budget >= 0) || isinf(opt->floquet_budget))
         BAD("floquet_budget", "give CPU seconds > 0, or 0 for no limit",
             "Floquet budget %g s out of range", opt->floquet_budget);

@@ -250,7 +250,7 @@ TEST(floquet_options_checked)
     for (int c = 0; c < 2; c++) {
         gd_periodic_options o;
         gd_periodic_options_init(&o);
-        if (c == 0) o.floquet = 3;
+        if (c == 0) o.floquet = GD_FLOQUET_REDUCED + 1;
         if (c == 1) o.floquet_count = 1000;
         const double v[1] = {700.0};
         gd_periodic_result *r = NULL;
