@@ -111,9 +111,8 @@ typedef struct gd_law {
     int dof[GD_LAW_MAX_DOFS];     /* system DOF indices; -1: absent or ground */
     double rate[GD_LAW_MAX_DOFS]; /* nominal speed of each local DOF, rad/s (set by the
                                      problem from its reference speed) */
-    double spin[2];     /* nominal spin about +z of the shaft of node (and node2), rad/s: the
-                           first local DOF of each side tells the node (set by the problem) */
-    double spin_dot[2]; /* d spin / dt, rad/s^2: 0 at a constant speed, set by a run-up */
+    double spin[2]; /* nominal spin about +z of the shaft of node (and node2), rad/s: the
+                       first local DOF of each side tells the node (set by the problem) */
     double value[GD_LAW_MAX_PARAMS]; /* SI, in the order of type->params */
     const void *data;                /* typed parameters of laws made in code (a load law with its
                                         table); borrowed */
@@ -171,11 +170,14 @@ struct gd_law_type {
     /* Linearisation about x (velocities usually zero): K = -df/dq, C = -df/dq' (ndofs x
      * ndofs, column-major, zeroed by the caller). NULL: none. */
     void (*linearize)(const gd_law *law, const gd_law_point *x, double *K, double *C);
-    /* Configuration-dependent inertia of an instance flagged GD_LAW_INERTIA: adds to m
-     * (length ndofs) the diagonal mass the law puts on its local DOFs at x, so that its
-     * generalised force is force(x) - m q'' (a cam's follower mass reduced to the
-     * camshaft, m_eq s'^2: [Benini2004] Eq. 10's s'^2 dW/dt term). NULL: none. */
-    void (*inertia)(const gd_law *law, const gd_law_point *x, double *m);
+    /* Configuration-dependent inertia of an instance flagged GD_LAW_INERTIA: adds the
+     * force at x to f (as force does, without the Jacobian) and to m (length ndofs) the
+     * diagonal mass the law puts on its local DOFs at x, so that its generalised force
+     * is f - m a, a the DOF's absolute acceleration: q'' plus, in a run-up, its nominal
+     * one (a cam's follower mass reduced to the camshaft, m_eq s'^2: [Benini2004] Eq.
+     * 10's s'^2 dW/dt term). One evaluation for both, which the integrators call
+     * instead of force. NULL: none. */
+    void (*inertia)(const gd_law *law, const gd_law_point *x, double *f, double *m);
 
     /* Contact switches (all NULL / 0: a smooth law). A law with nswitches > 0 has a
      * discrete mode (gd_law.mode) its force uses; switch k's function g_k(x) changes

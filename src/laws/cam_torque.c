@@ -4,21 +4,27 @@
  * the model's `cam_torques:` make (one instance per valve).
  *
  * The cam angle is the camshaft's rotation in its own sense s (+1 turning about +z, -1
- * about -z): theta = s (rate t + q), W = s (spin + q'), dW/dt = s (spin_dot + q''). The
- * generalised force on q is -s T:
- *   f = -s m s' s'' W^2 - m s'^2 spin_dot - m s'^2 q''
+ * about -z): theta = s (rate t + q), W = s (spin + q'), dW/dt = s a (a the absolute
+ * angular acceleration). The generalised force on q is -s T:
+ *   f = -s m s' s'' W^2 - m s'^2 a
  * whose last term, with `acceleration` set, is the configuration-dependent inertia
- * m s'^2 (gd_law_type.inertia); without it the s'^2 dW/dt term is left out whole. */
+ * m s'^2 (gd_law_type.inertia: the integrator applies it to q'' and a run-up's nominal
+ * acceleration); without it the s'^2 dW/dt term is left out whole. */
 #include <math.h>
 #include <stdio.h>
 
 #include "geardyn/law_type.h"
 #include "geardyn/laws.h"
 
-double gd_lift_eval(const gd_lift_law *law, double theta, double *ds, double *d2s)
+static inline double lift_at(const gd_lift_law *law, double theta, double *ds, double *d2s)
 {
     if (law->kind == GD_LIFT_TABLE) return gd_table_eval(law->table, theta, ds, d2s);
     return gd_harmonic_eval(&law->harmonic, theta, ds, d2s);
+}
+
+double gd_lift_eval(const gd_lift_law *law, double theta, double *ds, double *d2s)
+{
+    return lift_at(law, theta, ds, d2s);
 }
 
 double gd_cam_torque(const gd_lift_law *law, double m_eq, double phase, double theta, double w,
@@ -60,12 +66,14 @@ static void cam_term(const gd_law *law, int k, double *u, double *w)
     u[0] = w[0] = 1.0;
 }
 
-/* The camshaft's sense (at exactly zero speed: +z). */
+/* The camshaft's sense: that of its spin, ratio W (at W = 0, the sign of the zero: the
+ * ratio's, so a run-up from rest reads its lift in the sense it will turn in). */
 static int cam_sense(const gd_law *law)
 {
-    return law->spin[0] >= 0 ? 1 : -1;
+    return signbit(law->spin[0]) ? -1 : 1;
 }
 
+/* The force into f, with jq, jv when not NULL. */
 static void cam_force(const gd_law *law, const gd_law_point *x, double *f, double *jq, double *jv)
 {
     const gd_lift_law *lift = law->data;
@@ -74,29 +82,30 @@ static void cam_force(const gd_law *law, const gd_law_point *x, double *f, doubl
     double th = sense * (law->rate[0] * x->t + x->q[0]);
     double w = sense * (law->spin[0] + x->v[0]);
     double s1, s2;
-    gd_lift_eval(lift, th - phase, &s1, &s2);
+    lift_at(lift, th - phase, &s1, &s2);
     f[0] -= sense * m * s1 * s2 * w * w;
-    /* the nominal part of dW/dt (a run-up's); q'' is the inertia's */
-    if (law->value[CAM_ACC] != 0.0 && law->spin_dot[0] != 0.0)
-        f[0] -= m * s1 * s1 * law->spin_dot[0];
     if (jq) {
-        /* d(s' s'')/d theta by central differences (a table's s''' is not smooth) */
+        /* d(s' s'')/d theta by central differences (a table's third derivative jumps) */
         double s1p, s2p, s1m, s2m, h = 1e-6;
-        gd_lift_eval(lift, th - phase + h, &s1p, &s2p);
-        gd_lift_eval(lift, th - phase - h, &s1m, &s2m);
+        lift_at(lift, th - phase + h, &s1p, &s2p);
+        lift_at(lift, th - phase - h, &s1m, &s2m);
         double dss = (s1p * s2p - s1m * s2m) / (2.0 * h);
         jq[0] = -m * dss * w * w;
     }
     if (jv) jv[0] = -2.0 * m * s1 * s2 * w;
 }
 
-static void cam_inertia(const gd_law *law, const gd_law_point *x, double *mass)
+/* The inertia op (an instance with the acceleration term): the force, as cam_force
+ * without the Jacobian, and m s'^2; on the right-hand side's path of every evaluation,
+ * so written without cam_force's branches. */
+static void cam_inertia(const gd_law *law, const gd_law_point *x, double *f, double *mass)
 {
-    const int sense = cam_sense(law);
+    const double s = cam_sense(law), m = law->value[CAM_MASS];
+    const double w = s * (law->spin[0] + x->v[0]);
     double s1, s2;
-    gd_lift_eval(law->data, sense * (law->rate[0] * x->t + x->q[0]) - law->value[CAM_PHASE], &s1,
-                 &s2);
-    mass[0] += law->value[CAM_MASS] * s1 * s1;
+    lift_at(law->data, s * (law->rate[0] * x->t + x->q[0]) - law->value[CAM_PHASE], &s1, &s2);
+    f[0] -= s * m * s1 * s2 * w * w;
+    mass[0] += m * s1 * s1;
 }
 
 /* The lift is periodic over one cam revolution: the camshaft's speed. */

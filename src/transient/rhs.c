@@ -65,48 +65,70 @@ static void sub_mul_prescribed(const gd_transient *tr, const cs *A, const double
         sub_col(A, tr->pres[k].dof, x, r);
 }
 
-/* Law k's inertia (GD_LAW_INERTIA) at x: on a free DOF into tr->mu (the right-hand side
- * solves with it), on a prescribed DOF as the force -m q'' into r. */
-static void add_law_inertia(gd_transient *tr, int k, const gd_law_point *x, const double *acc,
-                            double *r)
-{
-    const gd_law *L = &tr->law[k];
-    const int *slot = tr->in_slot + (size_t)k * GD_LAW_MAX_DOFS;
-    double m[GD_LAW_MAX_DOFS];
-    for (int j = 0; j < L->ndofs; j++)
-        m[j] = 0.0;
-    L->type->inertia(L, x, m);
-    for (int j = 0; j < L->ndofs; j++) {
-        if (slot[j] >= 0)
-            tr->mu[slot[j]] += m[j];
-        else if (L->dof[j] >= 0)
-            r[L->dof[j]] -= m[j] * acc[L->dof[j]];
-    }
-}
-
-/* r += the registry laws' forces at (t, q, q') (and their inertias, add_law_inertia):
- * those with an assembled linear part (GD_LAW_ASSEMBLED: the difference from it, after
+/* r += the registry laws' forces at (t, q, q') (and their inertias, GD_LAW_INERTIA, on
+ * the absolute acceleration: q'' and, in a run-up, the nominal ratio W' where dw = W' is
+ * not 0): those with an assembled linear part (GD_LAW_ASSEMBLED: the difference from it, after
  * the linear terms) when assembled, else the others. */
 static void add_law_forces(gd_transient *tr, double t, const double *q, const double *v,
-                           const double *acc, double *r, int assembled)
+                           const double *acc, double dw, double *r, int assembled)
 {
     double lq[GD_LAW_MAX_DOFS], lv[GD_LAW_MAX_DOFS], lf[GD_LAW_MAX_DOFS]; /* no aliasing */
     const gd_law_point x = {t, lq, lv};
     const int k0 = assembled ? tr->nlaw_plain : 0, k1 = assembled ? tr->nlaw : tr->nlaw_plain;
     for (int k = k0; k < k1; k++) {
-        const gd_law *L = &tr->law[tr->law_order[k]];
+        const int i = tr->law_order[k];
+        const gd_law *L = &tr->law[i];
         const int n = L->ndofs;
+        const int inert = tr->in_law && tr->in_law[i];
+        if (n == 1) { /* one DOF (a load, a cam): the scalar path, without the loops */
+            const int d = L->dof[0];
+            lq[0] = d >= 0 ? q[d] : 0.0;
+            lv[0] = d >= 0 ? v[d] : 0.0;
+            lf[0] = 0.0;
+            if (!inert) {
+                L->type->force(L, &x, lf, NULL, NULL);
+                if (d >= 0) r[d] += lf[0];
+                continue;
+            }
+            double m = 0.0;
+            L->type->inertia(L, &x, lf, &m);
+            if (d < 0) continue;
+            r[d] += lf[0];
+            if (dw != 0.0) r[d] -= m * tr->ratio[d] * dw;
+            const int s = tr->in_slot[(size_t)i * GD_LAW_MAX_DOFS];
+            if (s >= 0)
+                tr->mu[s] += m;
+            else
+                r[d] -= m * acc[d];
+            continue;
+        }
         for (int j = 0; j < n; j++) {
             int d = L->dof[j];
             lq[j] = d >= 0 ? q[d] : 0.0;
             lv[j] = d >= 0 ? v[d] : 0.0;
             lf[j] = 0.0;
         }
-        L->type->force(L, &x, lf, NULL, NULL);
-        for (int j = 0; j < n; j++)
-            if (L->dof[j] >= 0) r[L->dof[j]] += lf[j];
-        if (tr->in_law && tr->in_law[tr->law_order[k]])
-            add_law_inertia(tr, tr->law_order[k], &x, acc, r);
+        if (!inert) {
+            L->type->force(L, &x, lf, NULL, NULL);
+            for (int j = 0; j < n; j++)
+                if (L->dof[j] >= 0) r[L->dof[j]] += lf[j];
+            continue;
+        }
+        /* with its inertia: on a free DOF into tr->mu (the right-hand side solves with
+         * it), on a prescribed one as the force -m q'' */
+        const int *slot = tr->in_slot + (size_t)i * GD_LAW_MAX_DOFS;
+        double m[GD_LAW_MAX_DOFS] = {0};
+        L->type->inertia(L, &x, lf, m);
+        for (int j = 0; j < n; j++) {
+            const int d = L->dof[j];
+            if (d < 0) continue;
+            r[d] += lf[j];
+            if (dw != 0.0) r[d] -= m[j] * tr->ratio[d] * dw;
+            if (slot[j] >= 0)
+                tr->mu[slot[j]] += m[j];
+            else
+                r[d] -= m[j] * acc[d];
+        }
     }
 }
 
@@ -118,8 +140,8 @@ static void profile_forces(gd_transient *tr, double t, const double *q, const do
 {
     double phi, w, dw;
     gd_tr_profile_eval(tr->prof, tr->prof_cum, t, &phi, &w, &dw);
-    if (tr->nlaw) gd_tr_profile_laws(tr, t, phi, w, dw);
-    add_law_forces(tr, t, q, v, acc, r, 0);
+    if (tr->nlaw) gd_tr_profile_laws(tr, t, phi, w);
+    add_law_forces(tr, t, q, v, acc, dw, r, 0);
     for (int i = 0; i < tr->nunb_all; i++) {
         /* heavy spot at psi = ratio phi + phase (mirrored for a shaft turning about -z):
          * -m r'' = U (psi'^2 cos + psi'' sin, psi'^2 sin - psi'' cos) */
@@ -151,7 +173,7 @@ static void profile_forces(gd_transient *tr, double t, const double *q, const do
                 r[G->i[p]] -= G->x[p] * x;
         }
     }
-    add_law_forces(tr, t, q, v, acc, r, 1);
+    add_law_forces(tr, t, q, v, acc, 0.0, r, 1);
 }
 
 void gd_tr_residual(gd_transient *tr, double t, const double *q, const double *v, const double *acc,
@@ -170,7 +192,7 @@ void gd_tr_forces(gd_transient *tr, double t, const double *q, const double *v, 
         profile_forces(tr, t, q, v, acc, r, skip_free_linear);
         return;
     }
-    add_law_forces(tr, t, q, v, acc, r, 0);
+    add_law_forces(tr, t, q, v, acc, 0.0, r, 0);
     for (int i = 0; i < tr->nunb; i++) {
         const tr_unb *u = &tr->unb[i];
         double psi = u->omega * t + u->phase;
@@ -186,7 +208,7 @@ void gd_tr_forces(gd_transient *tr, double t, const double *q, const double *v, 
         sub_mul(tr->D, v, r);
         if (tr->np) sub_mul(tr->M, acc, r);
     }
-    add_law_forces(tr, t, q, v, acc, r, 1);
+    add_law_forces(tr, t, q, v, acc, 0.0, r, 1);
 }
 
 void gd_tr_mass_solve(gd_transient *tr, double *b, double *x)

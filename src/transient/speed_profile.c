@@ -244,7 +244,6 @@ int gd_tr_profile_set(gd_transient *tr, const gd_speed_profile *p)
             tr->law[i].rate[j] = r[j] * tr->speed;
         tr->law[i].spin[0] = r[GD_LAW_MAX_DOFS] * tr->speed;
         tr->law[i].spin[1] = r[GD_LAW_MAX_DOFS + 1] * tr->speed;
-        tr->law[i].spin_dot[0] = tr->law[i].spin_dot[1] = 0.0;
     }
     if (!p) return 0;
     tr->prof_sign = 1;
@@ -272,7 +271,7 @@ int gd_tr_profile_set(gd_transient *tr, const gd_speed_profile *p)
 }
 
 /* rate t is each DOF's nominal angle (ratio phi), spin its shaft's speed (ratio W) */
-void gd_tr_profile_laws(gd_transient *tr, double t, double phi, double w, double dw)
+void gd_tr_profile_laws(gd_transient *tr, double t, double phi, double w)
 {
     const int stride = GD_LAW_MAX_DOFS + 2;
     double per_t = t != 0.0 ? phi / t : w;
@@ -282,7 +281,5 @@ void gd_tr_profile_laws(gd_transient *tr, double t, double phi, double w, double
             tr->law[i].rate[j] = r[j] * per_t;
         tr->law[i].spin[0] = r[GD_LAW_MAX_DOFS] * w;
         tr->law[i].spin[1] = r[GD_LAW_MAX_DOFS + 1] * w;
-        tr->law[i].spin_dot[0] = r[GD_LAW_MAX_DOFS] * dw;
-        tr->law[i].spin_dot[1] = r[GD_LAW_MAX_DOFS + 1] * dw;
     }
 }

@@ -112,9 +112,8 @@ int gd_tr_profile_bearings(gd_transient *tr);
 /* r -= (K(W) - K(W_ref)) q + (C(W) - C(W_ref)) v, interpolated at speed W. */
 void gd_tr_profile_bearing_forces(const gd_transient *tr, double w, const double *q,
                                   const double *v, double *r);
-/* The laws' rates (rate t = ratio phi), spins (ratio W) and their derivatives (ratio W')
- * at t of a run-up. */
-void gd_tr_profile_laws(gd_transient *tr, double t, double phi, double w, double dw);
+/* The laws' rates (rate t = ratio phi) and spins (ratio W) at t of a run-up. */
+void gd_tr_profile_laws(gd_transient *tr, double t, double phi, double w);
 
 /* Fills q, v, acc (length n) at time t from the state y: free DOFs from y, prescribed
  * ones from their laws (acc is zero on free DOFs). */
