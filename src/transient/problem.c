@@ -312,13 +312,12 @@ gd_status gd_transient_new(const gd_system *sys, const gd_transient_spec *spec, 
     for (int i = 0; i < tr->nlaw; i++) {
         const gd_law *L = &tr->law[i];
         if (!L->type->inertia || !(gd_law_flags(L) & GD_LAW_INERTIA)) continue;
-        if (!tr->in_law) {
-            tr->in_law = calloc((size_t)tr->nlaw, 1);
+        if (!tr->in_code) {
+            tr->in_code = calloc((size_t)tr->nlaw, sizeof *tr->in_code);
             tr->in_slot = malloc((size_t)tr->nlaw * GD_LAW_MAX_DOFS * sizeof *tr->in_slot);
             tr->in_free = malloc((size_t)tr->nf * sizeof *tr->in_free);
-            if (!tr->in_law || !tr->in_slot || !tr->in_free) goto fail;
+            if (!tr->in_code || !tr->in_slot || !tr->in_free) goto fail;
         }
-        tr->in_law[i] = 1;
         int *slot = tr->in_slot + (size_t)i * GD_LAW_MAX_DOFS;
         for (int j = 0; j < L->ndofs; j++) {
             int f = L->dof[j] >= 0 ? tr->fidx[L->dof[j]] : -1;
@@ -331,6 +330,7 @@ gd_status gd_transient_new(const gd_system *sys, const gd_transient_spec *spec, 
                 tr->in_free[tr->nin++] = f;
             }
         }
+        tr->in_code[i] = 2 + slot[0];
     }
     if (tr->nin) {
         int k = tr->nin;
@@ -403,7 +403,7 @@ void gd_transient_free(gd_transient *tr)
     free(tr->law_order);
     free(tr->law);
     free(tr->unb);
-    free(tr->in_law);
+    free(tr->in_code);
     free(tr->in_slot);
     free(tr->in_free);
     free(tr->Z);

@@ -79,25 +79,20 @@ static void add_law_forces(gd_transient *tr, double t, const double *q, const do
         const int i = tr->law_order[k];
         const gd_law *L = &tr->law[i];
         const int n = L->ndofs;
-        const int inert = tr->in_law && tr->in_law[i];
-        if (n == 1) { /* one DOF (a load, a cam): the scalar path, without the loops */
+        const int inert = tr->in_code ? tr->in_code[i] : 0; /* 0: no inertia */
+        if (n == 1) { /* one DOF (a load, a cam): its force added to r in place */
             const int d = L->dof[0];
-            lq[0] = d >= 0 ? q[d] : 0.0;
-            lv[0] = d >= 0 ? v[d] : 0.0;
-            lf[0] = 0.0;
+            if (d < 0) continue; /* on an absent DOF: no force */
+            const gd_law_point x1 = {t, q + d, v + d};
             if (!inert) {
-                L->type->force(L, &x, lf, NULL, NULL);
-                if (d >= 0) r[d] += lf[0];
+                L->type->force(L, &x1, r + d, NULL, NULL);
                 continue;
             }
             double m = 0.0;
-            L->type->inertia(L, &x, lf, &m);
-            if (d < 0) continue;
-            r[d] += lf[0];
+            L->type->inertia(L, &x1, r + d, &m);
             if (dw != 0.0) r[d] -= m * tr->ratio[d] * dw;
-            const int s = tr->in_slot[(size_t)i * GD_LAW_MAX_DOFS];
-            if (s >= 0)
-                tr->mu[s] += m;
+            if (inert >= 2)
+                tr->mu[inert - 2] += m;
             else
                 r[d] -= m * acc[d];
             continue;
@@ -295,6 +290,7 @@ void gd_tr_roots(gd_transient *tr, double t, const double *y, double *g)
     int k = 0;
     for (int i = 0; i < tr->nlaw; i++) {
         const gd_law *L = &tr->law[i];
+        if (L->type->nswitches <= 0) continue; /* a smooth type: no call */
         int ns = gd_law_nswitches(L);
         if (!ns) continue;
         gd_law_point x;

@@ -68,7 +68,8 @@ struct gd_transient {
     int *in_free; /* nin: free index */
     int *in_slot; /* nlaw x GD_LAW_MAX_DOFS: slot of each local DOF of an inertia law (-1: a
                      prescribed or absent DOF); NULL without inertia laws */
-    char *in_law; /* nlaw: 1 for a law with inertia; NULL without */
+    int *in_code; /* nlaw: 0 a law without inertia, else 2 + the slot of its local DOF 0
+                     (1: DOF 0 prescribed or absent); NULL without inertia laws */
     double *Z;    /* nf x nin: M_ff^-1 e_j */
     double *G;    /* nin x nin: E^T Z */
     double *mu, *A, *wv;
