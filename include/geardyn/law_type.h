@@ -70,7 +70,12 @@ enum {
     GD_LAW_PIECEWISE = 1u << 5,
     /* instance: the generalized-alpha tangent holds the law's term 0 (u = w) by a
      * rank-one update (an assembled law that differs from its assembled part) */
-    GD_LAW_TANGENT = 1u << 6
+    GD_LAW_TANGENT = 1u << 6,
+    /* instance: the law adds a configuration-dependent inertia on its DOFs
+     * (gd_law_type.inertia: a cam's m_eq s'(theta)^2): the integrators that solve for
+     * the accelerations add it to the mass matrix (CVODE's right-hand side by a
+     * low-rank update; generalized-alpha and harmonic balance refuse it) */
+    GD_LAW_INERTIA = 1u << 7
 };
 
 /* Bounds of a parameter. */
@@ -165,6 +170,14 @@ struct gd_law_type {
     /* Linearisation about x (velocities usually zero): K = -df/dq, C = -df/dq' (ndofs x
      * ndofs, column-major, zeroed by the caller). NULL: none. */
     void (*linearize)(const gd_law *law, const gd_law_point *x, double *K, double *C);
+    /* Configuration-dependent inertia of an instance flagged GD_LAW_INERTIA: adds the
+     * force at x to f (as force does, without the Jacobian) and to m (length ndofs) the
+     * diagonal mass the law puts on its local DOFs at x, so that its generalised force
+     * is f - m a, a the DOF's absolute acceleration: q'' plus, in a run-up, its nominal
+     * one (a cam's follower mass reduced to the camshaft, m_eq s'^2: [Benini2004] Eq.
+     * 10's s'^2 dW/dt term). One evaluation for both, which the integrators call
+     * instead of force. NULL: none. */
+    void (*inertia)(const gd_law *law, const gd_law_point *x, double *f, double *m);
 
     /* Contact switches (all NULL / 0: a smooth law). A law with nswitches > 0 has a
      * discrete mode (gd_law.mode) its force uses; switch k's function g_k(x) changes
@@ -202,11 +215,13 @@ GD_API int gd_law_nswitches(const gd_law *law);
 /* The built-in types a model's `laws:` list takes, in registry order. The gear mesh,
  * gd_law_backlash_mesh, is a built-in type too, declared under `meshes:` (its data, a
  * gd_mesh_law_data of geardyn/laws.h, made by the transient problem from a gd_tr_mesh):
- * it is not in this list. */
+ * it is not in this list; nor is the cam torque, gd_law_cam_torque, declared under
+ * `cam_torques:` (its data, the valve's gd_lift_law, from a gd_tr_cam). */
 GD_API extern const gd_law_type *const gd_law_types[];
 GD_API extern const int gd_nlaw_types;
 GD_API extern const gd_law_type gd_law_sfd, gd_law_load, gd_law_polynomial_spring, gd_law_friction,
-    gd_law_rolling_bearing, gd_law_journal_bearing, gd_law_unilateral_spring, gd_law_backlash_mesh;
+    gd_law_rolling_bearing, gd_law_journal_bearing, gd_law_unilateral_spring, gd_law_backlash_mesh,
+    gd_law_cam_torque;
 /* The built-in type named name, or NULL. */
 GD_API const gd_law_type *gd_law_type_find(const char *name);
 

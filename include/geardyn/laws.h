@@ -266,5 +266,11 @@ typedef struct gd_prescribed_law {
  * DOF's nominal speed (speed ratio x reference speed for rz, 0 otherwise). */
 GD_API void gd_prescribed_eval(const gd_prescribed_law *law, double t, double nominal_rate,
                                double *q, double *qd, double *qdd);
+/* The excitation frequencies (rad/s) the motion imposes with the DOF's nominal speed
+ * nominal_rate, written to w (at most cap): their count, or -1 with the reason in msg
+ * when the motion is not periodic with the nominal motion (an angle table, or a speed
+ * other than the nominal one). */
+GD_API int gd_prescribed_frequencies(const gd_prescribed_law *law, double nominal_rate, double *w,
+                                     int cap, char *msg, size_t cap_msg);
 
 #endif

@@ -291,6 +291,10 @@ typedef struct gd_tr_record {
     gd_tr_record_kind kind;
     int index, index2;
 } gd_tr_record;
+/* Records whose values change where a law of the problem changes mode (the contact state,
+ * GD_REC_MESH_STATE, of each mesh law with switches), written to rec (at most cap); their
+ * count. Floquet's steps are split where they change. */
+GD_API int gd_transient_mode_records(const gd_transient *tr, gd_tr_record *rec, int cap);
 /* Contact homotopy for frequency-domain solvers: with hold = h in (0, 1], every backlash
  * mesh's force off the drive flank becomes (1 - h) F(state) + h F(drive), so h = 1 is the
  * smooth problem with the teeth always in contact and h = 0 (the default, and what the

@@ -1,8 +1,8 @@
 /* The fundamental frequency of a problem's excitations: every frequency the laws impose
- * (shaft speeds through the gear ratios for unbalances, cams and angle-dependent loads;
- * tooth-mesh frequencies of TVMS and STE tables; fixed-frequency loads and prescribed
- * harmonic motions) must be a whole multiple of it. Found by Euclid's algorithm on the
- * real frequencies with a relative tolerance. */
+ * (shaft speeds through the gear ratios for unbalances; each law of the registry's
+ * own, gd_law_type.frequencies: tooth-mesh frequencies of TVMS and STE tables, cams,
+ * loads; prescribed harmonic motions) must be a whole multiple of it. Found by Euclid's algorithm
+ * on the real frequencies with a relative tolerance. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -24,12 +24,6 @@ static double shaft_rate(const gd_system *sys, int node, double speed)
 {
     const gd_model *m = sys->model;
     return fabs(m->shafts[m->nodes[node].shaft].speed_ratio * speed);
-}
-
-static double dof_rate(const gd_system *sys, int dof, double speed)
-{
-    if (sys->dof_type[dof] != GD_RZ) return 0.0;
-    return shaft_rate(sys, sys->dof_node[dof], speed);
 }
 
 static void push(double *f, int *n, double v)
@@ -83,21 +77,18 @@ gd_status gd_periodic_fundamental(const gd_system *sys, const gd_transient_spec 
             push(f, &n, w[k]);
     }
     free(laws);
-    for (int i = 0; i < spec->ncams; i++)
-        push(f, &n, dof_rate(sys, spec->cams[i].dof, speed));
+    /* the prescribed motions, from the problem's table of them */
     for (int i = 0; i < spec->nprescribed; i++) {
-        const gd_prescribed_law *p = &spec->prescribed[i].law;
-        double r =
-            sys->dof_type[spec->prescribed[i].dof] == GD_RZ
-                ? m->shafts[m->nodes[sys->dof_node[spec->prescribed[i].dof]].shaft].speed_ratio *
-                      speed
-                : 0.0;
-        if (p->kind == GD_PRESCRIBED_HARMONIC) push(f, &n, fabs(p->frequency));
-        if (p->kind == GD_PRESCRIBED_TABLE)
-            return undefined(err, "prescribed", "a prescribed table motion is not periodic");
-        if (p->kind == GD_PRESCRIBED_SPEED && fabs(p->speed - r) > 1e-12 * fabs(r) + 1e-300)
-            return undefined(err, "prescribed",
-                             "a prescribed speed differs from the shaft's nominal speed");
+        const int d = spec->prescribed[i].dof;
+        double r = sys->dof_type[d] == GD_RZ
+                       ? m->shafts[m->nodes[sys->dof_node[d]].shaft].speed_ratio * speed
+                       : 0.0,
+               w[4];
+        char msg[200] = "";
+        int nw = gd_prescribed_frequencies(&spec->prescribed[i].law, r, w, 4, msg, sizeof msg);
+        if (nw < 0) return undefined(err, "prescribed", msg);
+        for (int k = 0; k < nw; k++)
+            push(f, &n, w[k]);
     }
     if (n == 0)
         return undefined(err, "speed",

@@ -24,12 +24,8 @@ void gd_per_floquet(ctx *c, const double *X, double lam, double *mre, double *mi
     if (!s) return;
     int steps = c->opt->monodromy_steps > 0 ? c->opt->monodromy_steps : 4 * c->h.N;
     if (steps < 256 && c->opt->monodromy_steps <= 0) steps = 256;
-    const gd_transient_spec *spec = s->spec;
-    gd_tr_record bl[64];
-    int nbl = 0;
-    for (int i = 0; i < spec->nmeshes && nbl < 64; i++)
-        if (spec->meshes[i].backlash)
-            bl[nbl++] = (gd_tr_record){GD_REC_MESH_STATE, spec->meshes[i].mesh, 0};
+    gd_tr_record bl[64]; /* the laws' modes: Floquet's steps are split where they change */
+    int nbl = gd_transient_mode_records(s->tr, bl, 64);
     const int n2 = 2 * c->nf;
     const int dmax = c->opt->floquet_dmax > 0 ? c->opt->floquet_dmax : 300;
     int krylov = c->opt->floquet == GD_FLOQUET_KRYLOV;

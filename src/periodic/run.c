@@ -231,24 +231,29 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
             need = MEM(H0);
 #undef MEM
         }
-        /* contact laws (backlash) make the sampled residual piecewise smooth: with few
-         * samples Newton cycles near grazing and the arclength chatters (the backlash
-         * test with auto H = 7 at 32 samples: 1500 steps stuck at the 555 rad/s fold; at
-         * 128: the whole branch, four folds) */
+        /* the laws, asked (gd_transient_spec_laws): a law with switches (a backlash mesh)
+         * makes the sampled residual piecewise smooth: with few samples Newton cycles near
+         * grazing and the arclength chatters (the backlash test with auto H = 7 at 32
+         * samples: 1500 steps stuck at the 555 rad/s fold; at 128: the whole branch, four
+         * folds). One that is not smooth and has no switches (a unilateral spring: a kink
+         * at contact): 1024 samples, as NLvib's example 03 takes (at 128, H = 21, Newton
+         * stalls at a relative residual of 1.5e-7 near grazing; at 1024 the whole branch
+         * converges), and corners of the sampled branch taken as corners
+         * (continuation.c) */
         const gd_transient_spec *spc = param ? st0.spec : spec;
-        for (int i = 0; spc && i < spc->nmeshes; i++)
-            if (spc->meshes[i].backlash) c.min_samples = 128;
-        /* a registry law that is not smooth (a unilateral spring: a kink at contact):
-         * 1024 samples, as NLvib's example 03 takes (at 128, H = 21, Newton stalls at a
-         * relative residual of 1.5e-7 near grazing; at 1024 the whole branch converges),
-         * and corners of the sampled branch taken as corners (continuation.c) */
-        for (int i = 0; spc && i < spc->nlaws; i++) {
-            const gd_law *L = &spc->laws[i];
-            unsigned fl = L->type->instance_flags ? L->type->instance_flags(L) : L->type->flags;
-            if (!(fl & GD_LAW_SMOOTH)) {
-                c.min_samples = c.min_samples > 1024 ? c.min_samples : 1024;
-                c.corners = 1;
+        gd_law *laws = NULL;
+        int nlaws = 0;
+        gd_error e3;
+        if (s0 && spc && !gd_transient_spec_laws(s0, spc, sp, &laws, &nlaws, &e3)) {
+            for (int i = 0; i < nlaws; i++) {
+                if (gd_law_nswitches(&laws[i]) > 0) {
+                    c.min_samples = c.min_samples > 128 ? c.min_samples : 128;
+                } else if (!(gd_law_flags(&laws[i]) & GD_LAW_SMOOTH)) {
+                    c.min_samples = c.min_samples > 1024 ? c.min_samples : 1024;
+                    c.corners = 1;
+                }
             }
+            free(laws);
         }
         gd_per_stage_clear(&st0);
         if (H0 > c.Hcap) {

@@ -84,8 +84,8 @@ static int ga_alloc(ga *g, gd_transient *tr)
      * loads of time; mesh laws whose angle is the driver's nominal or prescribed
      * motion); the laws that differ from their assembled k a a^T, c a a^T get a
      * rank-one tangent update (their term 0) */
-    g->linear = tr->ncam == 0;
-    g->piecewise = tr->ncam == 0;
+    g->linear = 1;
+    g->piecewise = 1;
     for (int i = 0; i < tr->nlaw; i++) {
         const gd_law *L = &tr->law[i];
         unsigned f = gd_law_flags(L);
@@ -317,11 +317,12 @@ gd_status gd_tr_run_gen_alpha(gd_transient *tr, const gd_transient_options *opt,
     if (!(opt->step >= 0.0) || !isfinite(opt->step))
         return gd_error_set(err, GD_EINPUT, "", 0, 0, "step", "give a positive step",
                             "invalid time step %g", opt->step);
-    if (tr->cam_acc && tr->ncd > 0)
+    if (tr->nin > 0)
         return gd_error_set(err, GD_EINPUT, "", 0, 0, "method",
                             "use bdf or adams, or leave out the cam acceleration term",
                             "the generalized-alpha method does not take the cams' "
-                            "angle-dependent inertia");
+                            "angle-dependent inertia (a law's configuration-dependent mass, "
+                            "GD_LAW_INERTIA)");
     ga g;
     gd_status st = GD_OK;
     if (ga_alloc(&g, tr)) {

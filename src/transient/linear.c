@@ -74,10 +74,6 @@ int gd_tr_lti_reason(const gd_transient *tr, char *why, size_t len)
                  nother > 1 ? " and others" : "");
         return 0;
     }
-    if (tr->ncam > 0) {
-        snprintf(why, len, "cam valve trains");
-        return 0;
-    }
     if (tr->np > 0) {
         snprintf(why, len, "prescribed DOFs");
         return 0;

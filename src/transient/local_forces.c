@@ -54,11 +54,13 @@ static int assembled(const gd_law *L)
     return (L->type->flags & GD_LAW_ASSEMBLED) != 0;
 }
 
-/* Terms in the order: laws with an assembled part (meshes), cams, the other laws. */
+/* Terms in the order: laws with an assembled part (meshes), then the others in law
+ * order. -1 with a configuration-dependent inertia on a free DOF (the local form has
+ * the constant M_ff only). */
 static int build_terms(gd_transient *tr)
 {
-    if (tr->cam_acc && tr->ncd) return -1;
-    int cap = tr->ncam;
+    if (tr->nin) return -1;
+    int cap = 0;
     for (int i = 0; i < tr->nlaw; i++)
         cap += tr->law[i].type->nterms;
     tr->term = calloc((size_t)(cap > 0 ? cap : 1), sizeof *tr->term);
@@ -66,11 +68,6 @@ static int build_terms(gd_transient *tr)
     int n = 0;
     for (int i = 0; i < tr->nlaw; i++)
         if (assembled(&tr->law[i])) law_terms(tr, &tr->law[i], &n);
-    for (int i = 0; i < tr->ncam; i++) {
-        gd_tr_term *t = &tr->term[n++];
-        term_u(t, tr, tr->cam[i].spec.dof, 1.0);
-        term_w(t, tr, tr->cam[i].spec.dof, 1.0);
-    }
     for (int i = 0; i < tr->nlaw; i++)
         if (!assembled(&tr->law[i])) law_terms(tr, &tr->law[i], &n);
     return n;
@@ -139,20 +136,6 @@ void gd_transient_local(gd_transient *tr, double t, const double *y, double *f, 
     if (gd_transient_terms(tr, NULL) < 0) return;
     int n = 0;
     law_coefs(tr, t, 1, sq, sv, &n);
-    for (int i = 0; i < tr->ncam; i++, n++) {
-        const tr_cam *c = &tr->cam[i];
-        int d = c->spec.dof;
-        double th = c->sense * (c->rate * t + tr->q[d]) - c->spec.phase;
-        double w = c->sense * (c->rate + tr->v[d]);
-        double s1, s2, s1p, s2p, s1m, s2m, h = 1e-6;
-        gd_lift_eval(c->spec.law, th, &s1, &s2);
-        gd_lift_eval(c->spec.law, th + h, &s1p, &s2p);
-        gd_lift_eval(c->spec.law, th - h, &s1m, &s2m);
-        double dss = (s1p * s2p - s1m * s2m) / (2.0 * h); /* d(s' s'')/d theta */
-        /* r -= sense m s' s'' W^2, theta = sense (rate t + q), W = sense (rate + q') */
-        if (sq) sq[n] = -c->spec.mass * dss * w * w;
-        if (sv) sv[n] = -2.0 * c->spec.mass * s1 * s2 * w;
-    }
     law_coefs(tr, t, 0, sq, sv, &n);
 }
 

@@ -1,6 +1,6 @@
 /* Building the transient problem once: matrices at the speed, free/prescribed
  * partition, sparse Cholesky of the free mass block, preconditioner pattern, element
- * data (mesh vectors, DOF indices, unbalance forces, cam inertia update). */
+ * data (mesh vectors, DOF indices, unbalance forces, the laws' inertia update). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -151,9 +151,6 @@ gd_status gd_transient_new(const gd_system *sys, const gd_transient_spec *spec, 
         if (spec->loads[i].dof < 0 || spec->loads[i].dof >= n ||
             (spec->loads[i].law.kind == GD_LOAD_TABLE_ANGLE && !spec->loads[i].law.table))
             return fail(err, GD_EINPUT, "loads", "", "load on no DOF, or table missing");
-    for (int i = 0; i < spec->ncams; i++)
-        if (spec->cams[i].dof < 0 || spec->cams[i].dof >= n || !spec->cams[i].law)
-            return fail(err, GD_EINPUT, "cams", "", "cam on no DOF, or lift law missing");
     for (int i = 0; i < spec->nsfds; i++) {
         const gd_tr_sfd *s = &spec->sfds[i];
         if (s->node < 0 || s->node >= model->nnodes || s->node2 >= model->nnodes ||
@@ -174,7 +171,6 @@ gd_status gd_transient_new(const gd_system *sys, const gd_transient_spec *spec, 
     tr->sys = sys;
     tr->n = n;
     tr->speed = speed;
-    tr->cam_acc = spec->cam_acceleration;
     tr->fidx = malloc((size_t)n * sizeof *tr->fidx);
     tr->rate = calloc((size_t)n, sizeof *tr->rate);
     tr->ratio = calloc((size_t)n, sizeof *tr->ratio);
@@ -311,31 +307,33 @@ gd_status gd_transient_new(const gd_system *sys, const gd_transient_spec *spec, 
         }
         tr->nunb = speed != 0.0 ? tr->nunb_all : 0;
     }
-    /* cams */
-    tr->ncam = spec->ncams;
-    if (tr->ncam) {
-        tr->cam = calloc((size_t)tr->ncam, sizeof *tr->cam);
-        tr->cd_free = malloc((size_t)tr->ncam * sizeof *tr->cd_free);
-        if (!tr->cam || !tr->cd_free) goto fail;
-    }
-    for (int i = 0; i < tr->ncam; i++) {
-        tr_cam *c = &tr->cam[i];
-        c->spec = spec->cams[i];
-        c->rate = tr->rate[c->spec.dof];
-        c->ratio = tr->ratio[c->spec.dof];
-        c->sense = c->rate >= 0 ? 1 : -1;
-        int f = tr->fidx[c->spec.dof];
-        c->slot = -1;
-        if (f < 0) continue;
-        for (int j = 0; j < tr->ncd; j++)
-            if (tr->cd_free[j] == f) c->slot = j;
-        if (c->slot < 0) {
-            c->slot = tr->ncd;
-            tr->cd_free[tr->ncd++] = f;
+    /* the laws' inertias (GD_LAW_INERTIA): a slot per distinct free DOF, and the
+     * Woodbury identity's M_ff^-1 e_j (Z) and E^T Z (G) */
+    for (int i = 0; i < tr->nlaw; i++) {
+        const gd_law *L = &tr->law[i];
+        if (!L->type->inertia || !(gd_law_flags(L) & GD_LAW_INERTIA)) continue;
+        if (!tr->in_code) {
+            tr->in_code = calloc((size_t)tr->nlaw, sizeof *tr->in_code);
+            tr->in_slot = malloc((size_t)tr->nlaw * GD_LAW_MAX_DOFS * sizeof *tr->in_slot);
+            tr->in_free = malloc((size_t)tr->nf * sizeof *tr->in_free);
+            if (!tr->in_code || !tr->in_slot || !tr->in_free) goto fail;
         }
+        int *slot = tr->in_slot + (size_t)i * GD_LAW_MAX_DOFS;
+        for (int j = 0; j < L->ndofs; j++) {
+            int f = L->dof[j] >= 0 ? tr->fidx[L->dof[j]] : -1;
+            slot[j] = -1;
+            if (f < 0) continue;
+            for (int k = 0; k < tr->nin; k++)
+                if (tr->in_free[k] == f) slot[j] = k;
+            if (slot[j] < 0) {
+                slot[j] = tr->nin;
+                tr->in_free[tr->nin++] = f;
+            }
+        }
+        tr->in_code[i] = 2 + slot[0];
     }
-    if (tr->ncd) {
-        int k = tr->ncd;
+    if (tr->nin) {
+        int k = tr->nin;
         tr->Z = calloc((size_t)tr->nf * k, sizeof *tr->Z);
         tr->G = calloc((size_t)k * k, sizeof *tr->G);
         tr->mu = calloc((size_t)k, sizeof *tr->mu);
@@ -344,12 +342,12 @@ gd_status gd_transient_new(const gd_system *sys, const gd_transient_spec *spec, 
         if (!tr->Z || !tr->G || !tr->mu || !tr->A || !tr->wv) goto fail;
         for (int j = 0; j < k; j++) {
             memset(tr->w1, 0, (size_t)tr->nf * sizeof *tr->w1);
-            tr->w1[tr->cd_free[j]] = 1.0;
+            tr->w1[tr->in_free[j]] = 1.0;
             gd_tr_mass_solve(tr, tr->w1, tr->Z + (size_t)j * tr->nf);
         }
         for (int i = 0; i < k; i++)
             for (int j = 0; j < k; j++)
-                tr->G[i + j * k] = tr->Z[(size_t)j * tr->nf + tr->cd_free[i]];
+                tr->G[i + j * k] = tr->Z[(size_t)j * tr->nf + tr->in_free[i]];
     }
     *out = tr;
     return GD_OK;
@@ -405,8 +403,9 @@ void gd_transient_free(gd_transient *tr)
     free(tr->law_order);
     free(tr->law);
     free(tr->unb);
-    free(tr->cam);
-    free(tr->cd_free);
+    free(tr->in_code);
+    free(tr->in_slot);
+    free(tr->in_free);
     free(tr->Z);
     free(tr->G);
     free(tr->mu);
@@ -430,6 +429,17 @@ int gd_transient_nstates(const gd_transient *tr)
 int gd_transient_nswitches(const gd_transient *tr)
 {
     return tr->nroot;
+}
+
+int gd_transient_mode_records(const gd_transient *tr, gd_tr_record *rec, int cap)
+{
+    int n = 0;
+    for (int i = 0; i < tr->nmesh && n < cap; i++) {
+        if (!gd_law_nswitches(&tr->law[i])) continue;
+        for (int m = 0; m < tr->nmodel_mesh; m++)
+            if (tr->nl_of_mesh[m] == i) rec[n++] = (gd_tr_record){GD_REC_MESH_STATE, m, 0};
+    }
+    return n;
 }
 
 /* The reduction the problem owns (reduce.c makes it). */

@@ -464,12 +464,17 @@ gd_status gd_transient_new_reduced(const gd_system *sys, const gd_transient_spec
     *out = NULL;
     if (!(cutoff > 0) || !isfinite(cutoff))
         return fail(err, GD_EINPUT, "give a cutoff frequency > 0", "invalid cutoff frequency");
-    if (spec->ncams > 0)
-        return fail(err, GD_EINPUT, "integrate the full model",
-                    "the modal reduction does not take cam valve trains");
     gd_transient *tr;
     gd_status st = gd_transient_new(sys, spec, speed, &tr, err);
     if (st) return st;
+    if (tr->nin > 0) { /* the inertia update's M_ff^-1 e_j are the full model's */
+        gd_transient_free(tr);
+        return fail(err, GD_EINPUT,
+                    "integrate the full model, or leave out the cam "
+                    "acceleration term",
+                    "the modal reduction does not take cam valve trains with "
+                    "include_acceleration (a law's configuration-dependent mass)");
+    }
     if ((st = reduce(tr, cutoff, err))) {
         gd_transient_free(tr);
         return st;

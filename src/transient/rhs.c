@@ -65,27 +65,65 @@ static void sub_mul_prescribed(const gd_transient *tr, const cs *A, const double
         sub_col(A, tr->pres[k].dof, x, r);
 }
 
-/* r += the registry laws' forces at (t, q, q'): those with an assembled linear part
- * (GD_LAW_ASSEMBLED: the difference from it, after the linear terms) when assembled,
- * else the others. */
-static void add_law_forces(gd_transient *tr, double t, const double *q, const double *v, double *r,
-                           int assembled)
+/* r += the registry laws' forces at (t, q, q') (and their inertias, GD_LAW_INERTIA, on
+ * the absolute acceleration: q'' and, in a run-up, the nominal ratio W' where dw = W' is
+ * not 0): those with an assembled linear part (GD_LAW_ASSEMBLED: the difference from it, after
+ * the linear terms) when assembled, else the others. */
+static void add_law_forces(gd_transient *tr, double t, const double *q, const double *v,
+                           const double *acc, double dw, double *r, int assembled)
 {
     double lq[GD_LAW_MAX_DOFS], lv[GD_LAW_MAX_DOFS], lf[GD_LAW_MAX_DOFS]; /* no aliasing */
     const gd_law_point x = {t, lq, lv};
     const int k0 = assembled ? tr->nlaw_plain : 0, k1 = assembled ? tr->nlaw : tr->nlaw_plain;
     for (int k = k0; k < k1; k++) {
-        const gd_law *L = &tr->law[tr->law_order[k]];
+        const int i = tr->law_order[k];
+        const gd_law *L = &tr->law[i];
         const int n = L->ndofs;
+        const int inert = tr->in_code ? tr->in_code[i] : 0; /* 0: no inertia */
+        if (n == 1) { /* one DOF (a load, a cam): its force added to r in place */
+            const int d = L->dof[0];
+            if (d < 0) continue; /* on an absent DOF: no force */
+            const gd_law_point x1 = {t, q + d, v + d};
+            if (!inert) {
+                L->type->force(L, &x1, r + d, NULL, NULL);
+                continue;
+            }
+            double m = 0.0;
+            L->type->inertia(L, &x1, r + d, &m);
+            if (dw != 0.0) r[d] -= m * tr->ratio[d] * dw;
+            if (inert >= 2)
+                tr->mu[inert - 2] += m;
+            else
+                r[d] -= m * acc[d];
+            continue;
+        }
         for (int j = 0; j < n; j++) {
             int d = L->dof[j];
             lq[j] = d >= 0 ? q[d] : 0.0;
             lv[j] = d >= 0 ? v[d] : 0.0;
             lf[j] = 0.0;
         }
-        L->type->force(L, &x, lf, NULL, NULL);
-        for (int j = 0; j < n; j++)
-            if (L->dof[j] >= 0) r[L->dof[j]] += lf[j];
+        if (!inert) {
+            L->type->force(L, &x, lf, NULL, NULL);
+            for (int j = 0; j < n; j++)
+                if (L->dof[j] >= 0) r[L->dof[j]] += lf[j];
+            continue;
+        }
+        /* with its inertia: on a free DOF into tr->mu (the right-hand side solves with
+         * it), on a prescribed one as the force -m q'' */
+        const int *slot = tr->in_slot + (size_t)i * GD_LAW_MAX_DOFS;
+        double m[GD_LAW_MAX_DOFS] = {0};
+        L->type->inertia(L, &x, lf, m);
+        for (int j = 0; j < n; j++) {
+            const int d = L->dof[j];
+            if (d < 0) continue;
+            r[d] += lf[j];
+            if (dw != 0.0) r[d] -= m[j] * tr->ratio[d] * dw;
+            if (slot[j] >= 0)
+                tr->mu[slot[j]] += m[j];
+            else
+                r[d] -= m[j] * acc[d];
+        }
     }
 }
 
@@ -98,7 +136,7 @@ static void profile_forces(gd_transient *tr, double t, const double *q, const do
     double phi, w, dw;
     gd_tr_profile_eval(tr->prof, tr->prof_cum, t, &phi, &w, &dw);
     if (tr->nlaw) gd_tr_profile_laws(tr, t, phi, w);
-    add_law_forces(tr, t, q, v, r, 0);
+    add_law_forces(tr, t, q, v, acc, dw, r, 0);
     for (int i = 0; i < tr->nunb_all; i++) {
         /* heavy spot at psi = ratio phi + phase (mirrored for a shaft turning about -z):
          * -m r'' = U (psi'^2 cos + psi'' sin, psi'^2 sin - psi'' cos) */
@@ -108,24 +146,6 @@ static void profile_forces(gd_transient *tr, double t, const double *q, const do
         double w1 = u->ratio * w, w2 = u->ratio * dw, c = cos(psi), sn = sin(psi);
         if (u->dx >= 0) r[u->dx] += u->amount * (w1 * w1 * c + w2 * sn);
         if (u->dy >= 0) r[u->dy] += u->amount * (w1 * w1 * sn - w2 * c);
-    }
-    if (tr->ncd) memset(tr->mu, 0, (size_t)tr->ncd * sizeof *tr->mu);
-    for (int i = 0; i < tr->ncam; i++) {
-        const tr_cam *c = &tr->cam[i];
-        int d = c->spec.dof, sense = c->ratio * tr->prof_sign >= 0 ? 1 : -1;
-        double th = sense * (c->ratio * phi + q[d]);
-        double wc = sense * (c->ratio * w + v[d]);
-        double s1, s2;
-        gd_lift_eval(c->spec.law, th - c->spec.phase, &s1, &s2);
-        double m = c->spec.mass;
-        r[d] -= sense * m * s1 * s2 * wc * wc;
-        if (!tr->cam_acc) continue;
-        /* W' = sense (ratio W' + q''): the nominal part here, q'' as in gd_tr_forces */
-        r[d] -= m * s1 * s1 * c->ratio * dw;
-        if (c->slot < 0)
-            r[d] -= m * s1 * s1 * acc[d];
-        else
-            tr->mu[c->slot] += m * s1 * s1;
     }
     if (skip_free_linear) {
         sub_mul_prescribed(tr, tr->K, q, r);
@@ -148,7 +168,7 @@ static void profile_forces(gd_transient *tr, double t, const double *q, const do
                 r[G->i[p]] -= G->x[p] * x;
         }
     }
-    add_law_forces(tr, t, q, v, r, 1);
+    add_law_forces(tr, t, q, v, acc, 0.0, r, 1);
 }
 
 void gd_tr_residual(gd_transient *tr, double t, const double *q, const double *v, const double *acc,
@@ -162,33 +182,17 @@ void gd_tr_forces(gd_transient *tr, double t, const double *q, const double *v, 
 {
     const int n = tr->n;
     memset(r, 0, (size_t)n * sizeof *r);
+    if (tr->nin) memset(tr->mu, 0, (size_t)tr->nin * sizeof *tr->mu);
     if (tr->prof) {
         profile_forces(tr, t, q, v, acc, r, skip_free_linear);
         return;
     }
-    add_law_forces(tr, t, q, v, r, 0);
+    add_law_forces(tr, t, q, v, acc, 0.0, r, 0);
     for (int i = 0; i < tr->nunb; i++) {
         const tr_unb *u = &tr->unb[i];
         double psi = u->omega * t + u->phase;
         if (u->dx >= 0) r[u->dx] += u->force * cos(psi);
         if (u->dy >= 0) r[u->dy] += u->force * sin(psi);
-    }
-    if (tr->ncd) memset(tr->mu, 0, (size_t)tr->ncd * sizeof *tr->mu);
-    for (int i = 0; i < tr->ncam; i++) {
-        const tr_cam *c = &tr->cam[i];
-        int d = c->spec.dof;
-        double th = c->sense * (c->rate * t + q[d]);
-        double w = c->sense * (c->rate + v[d]);
-        double s1, s2;
-        gd_lift_eval(c->spec.law, th - c->spec.phase, &s1, &s2);
-        double m = c->spec.mass;
-        /* T = m s' (s'' W^2 + s' W'), W' = sense q''; generalised force -sense T */
-        r[d] -= c->sense * m * s1 * s2 * w * w;
-        if (c->slot < 0) {
-            if (tr->cam_acc) r[d] -= m * s1 * s1 * acc[d];
-        } else if (tr->cam_acc) {
-            tr->mu[c->slot] += m * s1 * s1;
-        }
     }
     if (skip_free_linear) {
         sub_mul_prescribed(tr, tr->K, q, r);
@@ -199,7 +203,7 @@ void gd_tr_forces(gd_transient *tr, double t, const double *q, const double *v, 
         sub_mul(tr->D, v, r);
         if (tr->np) sub_mul(tr->M, acc, r);
     }
-    add_law_forces(tr, t, q, v, r, 1);
+    add_law_forces(tr, t, q, v, acc, 0.0, r, 1);
 }
 
 void gd_tr_mass_solve(gd_transient *tr, double *b, double *x)
@@ -257,12 +261,12 @@ void gd_transient_rhs(gd_transient *tr, double t, const double *y, double *ydot)
         tr->w1[i] = tr->r[tr->free_dof[i]];
     double *x = ydot + nf;
     gd_tr_mass_solve(tr, tr->w1, x);
-    if (tr->ncd && tr->cam_acc) {
+    if (tr->nin) {
         /* (M + E D E^T)^-1 r = x - Z (I + D G)^-1 D E^T x */
-        const int k = tr->ncd;
+        const int k = tr->nin;
         int any = 0;
         for (int i = 0; i < k; i++) {
-            tr->wv[i] = tr->mu[i] * x[tr->cd_free[i]];
+            tr->wv[i] = tr->mu[i] * x[tr->in_free[i]];
             if (tr->mu[i] != 0.0) any = 1;
             for (int j = 0; j < k; j++)
                 tr->A[i + j * k] = (i == j ? 1.0 : 0.0) + tr->mu[i] * tr->G[i + j * k];
@@ -286,6 +290,7 @@ void gd_tr_roots(gd_transient *tr, double t, const double *y, double *g)
     int k = 0;
     for (int i = 0; i < tr->nlaw; i++) {
         const gd_law *L = &tr->law[i];
+        if (L->type->nswitches <= 0) continue; /* a smooth type: no call */
         int ns = gd_law_nswitches(L);
         if (!ns) continue;
         gd_law_point x;

@@ -1,7 +1,8 @@
 /* The laws of a transient spec as registry instances (gd_transient_spec_laws): the
  * meshes, dampers and loads of the typed spec made into gd_law_backlash_mesh, gd_law_sfd
- * and gd_law_load instances, then the spec's own laws, each with its nominal rates at the reference
- * speed. The one place where a spec becomes the list every solver loops over. */
+ * and gd_law_load instances, then the spec's own laws, then its cams (gd_law_cam_torque,
+ * one per valve), each with its nominal rates at the reference speed. The one place
+ * where a spec becomes the list every solver loops over. */
 #include <math.h>
 #include <stdlib.h>
 #include <stdio.h>
@@ -68,12 +69,16 @@ gd_status gd_transient_spec_laws(const gd_system *sys, const gd_transient_spec *
 {
     *out = NULL;
     *n = 0;
-    int total = spec->nmeshes + spec->nsfds + spec->nloads + spec->nlaws;
+    int total = spec->nmeshes + spec->nsfds + spec->nloads + spec->nlaws + spec->ncams;
     if (spec->nlaws < 0 || (spec->nlaws && !spec->laws))
         return gd_error_set(err, GD_EINPUT, "", 0, 0, "laws", "", "laws missing");
     for (int i = 0; i < spec->nmeshes; i++)
         if (spec->meshes[i].mesh < 0 || spec->meshes[i].mesh >= sys->model->nmeshes)
             return gd_error_set(err, GD_EINPUT, "", 0, 0, "meshes", "", "no such mesh");
+    for (int i = 0; i < spec->ncams; i++)
+        if (spec->cams[i].dof < 0 || spec->cams[i].dof >= sys->ndof || !spec->cams[i].law)
+            return gd_error_set(err, GD_EINPUT, "", 0, 0, "cams", "",
+                                "cam on no DOF, or lift law missing");
     if (total == 0) return GD_OK;
     /* the meshes' data after the instances, in the same block (one free) */
     gd_law *L =
@@ -118,6 +123,19 @@ gd_status gd_transient_spec_laws(const gd_system *sys, const gd_transient_spec *
                 free(L);
                 return st;
             }
+    }
+    /* the cams last: their torques are summed after the other laws' on a camshaft */
+    for (int i = 0; i < spec->ncams; i++, k++) {
+        const gd_tr_cam *c = &spec->cams[i];
+        char name[GD_LAW_NAME_MAX];
+        snprintf(name, sizeof name, "cams[%d]", i);
+        gd_law_init(&L[k], &gd_law_cam_torque, name);
+        L[k].data = c->law;
+        L[k].dof[0] = c->dof;
+        L[k].value[gd_law_param_index(&gd_law_cam_torque, "mass")] = c->mass;
+        L[k].value[gd_law_param_index(&gd_law_cam_torque, "phase")] = c->phase;
+        L[k].value[gd_law_param_index(&gd_law_cam_torque, "acceleration")] =
+            spec->cam_acceleration ? 1.0 : 0.0;
     }
     for (k = 0; k < total; k++) {
         gd_status st = gd_law_check(&L[k], err);

@@ -15,14 +15,6 @@ typedef struct tr_unb {
     double ratio, amount, phase0; /* shaft's speed ratio, U (kg m), model phase (run-up) */
 } tr_unb;
 
-typedef struct tr_cam {
-    gd_tr_cam spec;
-    double rate;  /* nominal speed about +z */
-    double ratio; /* speed ratio of its shaft (run-up) */
-    int sense;
-    int slot; /* index among the distinct free cam DOFs, -1 if prescribed */
-} tr_cam;
-
 /* A modal reduction (reduce.c): the problem's coordinates x = [q_B; eta] and the
  * physical DOFs q = T x. */
 typedef struct gd_tr_reduction {
@@ -55,8 +47,8 @@ struct gd_transient {
     gd_mesh_vector *model_a; /* every model mesh, for records */
     int *nl_of_mesh;         /* model mesh -> index in law[] (its mesh law), or -1 */
     /* the laws of the registry (gd_transient_spec_laws): the spec's meshes
-     * (gd_law_backlash_mesh), its dampers, its loads, then spec.laws; dofs are the
-     * problem's (remapped by a reduction) */
+     * (gd_law_backlash_mesh), its dampers, its loads, spec.laws, then its cams
+     * (gd_law_cam_torque); dofs are the problem's (remapped by a reduction) */
     int nlaw;
     gd_law *law;
     int nmesh;     /* law[0 .. nmesh - 1]: the spec's meshes (contact statistics) */
@@ -69,13 +61,17 @@ struct gd_transient {
     double lq[GD_LAW_MAX_DOFS], lv[GD_LAW_MAX_DOFS], lf[GD_LAW_MAX_DOFS]; /* workspaces */
     int nunb;
     tr_unb *unb;
-    int ncam;
-    tr_cam *cam;
-    int cam_acc;
-    int ncd;      /* distinct free cam DOFs */
-    int *cd_free; /* ncd: free index */
-    double *Z;    /* nf x ncd: M_ff^-1 e_j */
-    double *G;    /* ncd x ncd: E^T Z */
+    /* the laws' configuration-dependent inertias (GD_LAW_INERTIA, gd_law_type.inertia):
+     * nin distinct free DOFs; the right-hand side solves (M_ff + E diag(mu) E^T) q'' = r
+     * by the Woodbury identity */
+    int nin;
+    int *in_free; /* nin: free index */
+    int *in_slot; /* nlaw x GD_LAW_MAX_DOFS: slot of each local DOF of an inertia law (-1: a
+                     prescribed or absent DOF); NULL without inertia laws */
+    int *in_code; /* nlaw: 0 a law without inertia, else 2 + the slot of its local DOF 0
+                     (1: DOF 0 prescribed or absent); NULL without inertia laws */
+    double *Z;    /* nf x nin: M_ff^-1 e_j */
+    double *G;    /* nin x nin: E^T Z */
     double *mu, *A, *wv;
     int nroot; /* the laws' switches (gd_law_nswitches), in law order */
     /* workspaces (n each) */
@@ -131,7 +127,8 @@ void gd_tr_law_point(const gd_law *L, double t, const double *q, const double *v
 double gd_tr_record_value(gd_transient *tr, const gd_tr_record *rec, double t, const double *q,
                           const double *v);
 /* Net generalised force r (length n) at (t, q, v, acc) with the current contact states,
- * without the inertia of the free DOFs; mu receives the cam inertias (if not NULL). */
+ * without the inertia of the free DOFs; tr->mu receives the laws' inertias on the free
+ * DOFs (GD_LAW_INERTIA), the prescribed DOFs' get -m q'' in r. */
 void gd_tr_residual(gd_transient *tr, double t, const double *q, const double *v, const double *acc,
                     double *r);
 /* gd_tr_residual without the free-free linear part K_ff q_f + D_ff q_f' when

@@ -529,6 +529,42 @@ TEST(cam_inertia_update_matches_dense_solve)
     fx_free(&f);
 }
 
+/* The cams are registry laws (gd_law_cam_torque): one Jacobian term each for harmonic
+ * balance and the reduction keeps their DOF without the acceleration term; with it (a
+ * configuration-dependent inertia) both refuse. */
+TEST(cam_laws_terms_and_reduction)
+{
+    fixture f;
+    REQUIRE(fx_load(&f, camshaft));
+    gd_lift_law law = {.kind = GD_LIFT_HARMONIC};
+    law.harmonic.mean = 5e-3;
+    law.harmonic.order = 1;
+    law.harmonic.n = 1;
+    law.harmonic.cos_amp[0] = -4e-3;
+    int lobe = dof(&f, "lobe", GD_RZ);
+    gd_tr_cam cams[2] = {{lobe, &law, 0.15, 0.0}, {lobe, &law, 0.15, 1.9}};
+    gd_transient_spec spec = {0};
+    spec.cams = cams;
+    spec.ncams = 2;
+    gd_transient *tr;
+    gd_error err;
+    REQUIRE(gd_transient_new(f.s, &spec, 500.0, &tr, &err) == GD_OK);
+    CHECK(gd_transient_terms(tr, NULL) == 2);
+    gd_transient_free(tr);
+    REQUIRE(gd_transient_new_reduced(f.s, &spec, 500.0, 2e4, &tr, &err) == GD_OK);
+    int nkept = -1;
+    gd_transient_reduced_size(tr, &nkept, NULL);
+    CHECK(nkept >= 1); /* the lobe stays physical */
+    gd_transient_free(tr);
+    spec.cam_acceleration = 1;
+    REQUIRE(gd_transient_new(f.s, &spec, 500.0, &tr, &err) == GD_OK);
+    CHECK(gd_transient_terms(tr, NULL) == -1);
+    gd_transient_free(tr);
+    CHECK(gd_transient_new_reduced(f.s, &spec, 500.0, 2e4, &tr, &err) == GD_EINPUT);
+    CHECK(strstr(err.message, "does not take cam valve trains") != NULL);
+    fx_free(&f);
+}
+
 /* ------------------------------------------------------------------ SFD */
 
 static const char *sfd_rotor = "dofs: [x, y]\n"
@@ -630,4 +666,5 @@ TEST(errors_are_reported)
 RUN_TESTS(T(free_vibration_energy_and_tolerance),
           T(linear_forced_steady_state_matches_frequency_domain), T(gear_pair_separation_threshold),
           T(backlash_self_convergence), T(cam_inertia_update_matches_dense_solve),
+          T(cam_laws_terms_and_reduction),
           T(sfd_unbalance_orbit_is_circular_and_matches_force_balance), T(errors_are_reported))
