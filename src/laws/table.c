@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/remainder_impl.h"
 #include "geardyn/laws.h"
 
 static gd_status table_error(gd_error *err, gd_status st, const char *field, const char *msg)
@@ -176,7 +177,7 @@ double gd_table_eval(const gd_table *t, double x, double *dy, double *d2y)
         return NAN;
     }
     if (t->period > 0) {
-        double u = fmod(x - X[0], t->period);
+        double u = gd_remainder(x - X[0], t->period);
         if (u < 0) u += t->period;
         x = X[0] + u;
     } else if (x <= X[0] || x >= X[n - 1]) {

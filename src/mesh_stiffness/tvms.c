@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/remainder_impl.h"
 #include "mesh_stiffness/mesh_stiffness_impl.h"
 
 static const char *const METHOD_NAMES[GD_TVMS_METHOD_COUNT_] = {"energy", "iso6336",
@@ -216,7 +217,7 @@ oom:
 double gd_tvms_eval(const gd_tvms_result *r, double driver_angle)
 {
     double T = r->mesh_period_rad;
-    double ph = fmod(driver_angle, T);
+    double ph = gd_remainder(driver_angle, T);
     if (ph < 0) ph += T;
     double x = ph / T * (double)r->points;
     size_t i = (size_t)x;
