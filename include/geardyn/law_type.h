@@ -75,7 +75,10 @@ enum {
      * (gd_law_type.inertia: a cam's m_eq s'(theta)^2): the integrators that solve for
      * the accelerations add it to the mass matrix (CVODE's right-hand side by a
      * low-rank update; generalized-alpha and harmonic balance refuse it) */
-    GD_LAW_INERTIA = 1u << 7
+    GD_LAW_INERTIA = 1u << 7,
+    /* the law's own clock turns at the reference speed it was built for (a rolling
+     * bearing's cage angle is its spin times t): a run-up or speed table refuses it */
+    GD_LAW_CONSTANT_SPEED = 1u << 8
 };
 
 /* Bounds of a parameter. */

@@ -153,7 +153,7 @@ const gd_law_type gd_law_rolling_bearing = {
     .name = "rolling_bearing",
     .summary = "ball or roller bearing: Hertzian contacts with clearance, cage at its "
                "kinematic speed (varying compliance)",
-    .flags = GD_LAW_SMOOTH | GD_LAW_SUPPORT,
+    .flags = GD_LAW_SMOOTH | GD_LAW_SUPPORT | GD_LAW_CONSTANT_SPEED,
     .params = rb_params,
     .nparams = RB_NPARAMS,
     .dirs = gd_law_xy_dirs,

@@ -431,8 +431,8 @@ static gd_status check_step_count(const gd_transient *tr, const gd_transient_opt
 
 /* What a run-up cannot do (GD_EINPUT naming the option): the LTI method (one constant
  * speed), a reduced problem (its modes and rates at the reference speed), a prescribed
- * speed or angle table (an absolute motion that ignores the profile), a rolling-bearing
- * law (its cage angle is its spin times t). */
+ * speed or angle table (an absolute motion that ignores the profile), a law whose clock
+ * runs at the reference speed (GD_LAW_CONSTANT_SPEED: a rolling bearing's cage). */
 static gd_status profile_refusals(const gd_transient *tr, const gd_transient_options *opt,
                                   gd_error *err)
 {
@@ -455,12 +455,12 @@ static gd_status profile_refusals(const gd_transient *tr, const gd_transient_opt
                                 "a prescribed speed or angle table fixes the absolute motion: "
                                 "it cannot follow a speed profile");
     for (int i = 0; i < tr->nlaw; i++)
-        if (tr->law[i].type == &gd_law_rolling_bearing)
+        if (gd_law_flags(&tr->law[i]) & GD_LAW_CONSTANT_SPEED)
             return gd_error_set(err, GD_EINPUT, "", 0, 0, "laws",
                                 "run at constant speeds (--sweep-speeds) instead",
-                                "law '%s' (rolling_bearing) turns its cage at a constant speed: "
-                                "not with a speed profile",
-                                tr->law[i].name);
+                                "law '%s' (%s) turns at the constant reference speed: not with "
+                                "a speed profile",
+                                tr->law[i].name, tr->law[i].type->name);
     return GD_OK;
 }
 
