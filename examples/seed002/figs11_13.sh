@@ -5,7 +5,7 @@
 # and 20 deg on both meshes: 10 curves. docs/periodic.md, "[JMSTHelical]: Figs. 11-13".
 #
 # usage: examples/seed002/figs11_13.sh [OUTDIR]      (run from the repository root)
-# environment: H (harmonics, default 108), SPEEDS (default 100rpm:8000rpm:300),
+# environment: H (harmonics, default 591), SPEEDS (default 100rpm:8000rpm:300),
 #              JOBS (curves run at once, default 1), GEARDYN (default ./build/geardyn),
 #              ESTIMATE (1, default: every point also solved at 2 H + 1 for its truncation
 #              estimate, the peak_to_peak_error column; 0: not, about 3x cheaper),
@@ -13,14 +13,14 @@
 #              point in a reduced basis, --floquet reduced, about 0.1 s CPU per point:
 #              docs/periodic.md, "Stability at scale")
 #
-# Why H = 108: the HB period is 36 mesh-1 periods (teeth 52/72, 22/79: w0 = 52 W / 36),
-# so harmonic 36 k is k times the mesh-1 frequency; H = 108 keeps the k = 1, 2, 3
-# super-harmonics of mesh 1 (and k <= 9 of mesh 2, harmonic 11 k). With H = 36 the
-# TVMS acts only through its fundamental and the dynamic mesh force is ~2.6x too large
-# at 350 rpm (measured, docs/periodic.md).
-# H = 108 is not enough for the peak-to-peak forces off resonance (mesh 2 at 2500 rpm:
-# 43 % low against a long transient; the truncation estimate of each point, column
-# peak_to_peak_error of periodic.csv, says so): docs/periodic.md, "Harmonic truncation".
+# Why H = 591: the HB period is 36 mesh-1 periods (teeth 52/72, 22/79: w0 = 52 W / 36),
+# so harmonic 36 k is k times the mesh-1 frequency. H = 108 (k <= 3, the old default:
+# 30 min less CPU, H=108) leaves the peak-to-peak forces off resonance wrong (mesh 2 at
+# 2500 rpm: 43 % low against a long transient); 591 is what --harmonics auto takes at
+# 1817 and 3000 rpm, within 0.3 % of the transients there. Below 1000 rpm even 591 is
+# not enough (the estimate says up to 83 %: auto would need H = 18943 at 100 rpm); each
+# point's estimate is the peak_to_peak_error column of periodic.csv. About 30 min CPU
+# for the set (docs/periodic.md, "[JMSTHelical]: Figs. 11-13" and "Harmonic truncation").
 # Why 100-8000 rpm: the OCR text of the paper has lost the figures' speed axes; this
 # range holds mesh-1 k = 1 of every mode of this model up to 6.9 kHz, among them the
 # modes with 10-37 % of their strain energy in the meshes (4.7-7.2 kHz, 5400-8000 rpm),
@@ -31,7 +31,7 @@
 set -euo pipefail
 
 OUT=${1:-build/seed002}
-H=${H:-108}
+H=${H:-591}
 SPEEDS=${SPEEDS:-100rpm:8000rpm:300}
 JOBS=${JOBS:-1}
 ESTIMATE=${ESTIMATE:-1}
