@@ -195,16 +195,7 @@ static int all_multipliers(kq *k, double *mu_re, double *mu_im)
     double dummy[1];
     if (LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', n2, P, n2, mu_re, mu_im, dummy, 1, dummy, 1))
         goto out;
-    for (int i = 1; i < n2; i++) { /* largest modulus first */
-        double re = mu_re[i], im = mu_im[i], a = hypot(re, im);
-        int j = i;
-        for (; j > 0 && hypot(mu_re[j - 1], mu_im[j - 1]) < a; j--) {
-            mu_re[j] = mu_re[j - 1];
-            mu_im[j] = mu_im[j - 1];
-        }
-        mu_re[j] = re;
-        mu_im[j] = im;
-    }
+    gd_hb_sort_multipliers(mu_re, mu_im, n2);
     rc = 0;
 out:
     free(P);
@@ -468,17 +459,11 @@ int gd_hb_floquet_krylov(const hb *h, gd_transient *tr, double om, const double 
         rc = 3;
         goto done;
     }
-    /* largest modulus first (insertion sort: a few dozen values) */
     for (int i = 0; i < ks.nconv; i++) {
-        double re = ks.mu_re[i], im = ks.mu_im[i], a = hypot(re, im);
-        int j = i;
-        for (; j > 0 && hypot(mu_re[j - 1], mu_im[j - 1]) < a; j--) {
-            mu_re[j] = mu_re[j - 1];
-            mu_im[j] = mu_im[j - 1];
-        }
-        mu_re[j] = re;
-        mu_im[j] = im;
+        mu_re[i] = ks.mu_re[i];
+        mu_im[i] = ks.mu_im[i];
     }
+    gd_hb_sort_multipliers(mu_re, mu_im, ks.nconv);
     *nmu = ks.nconv;
     rc = 0;
 done:

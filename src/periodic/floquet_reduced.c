@@ -729,16 +729,7 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
             mu_im[nall] = est[2 * i + 1];
         }
     }
-    for (int i = 1; i < nall; i++) { /* largest modulus first */
-        double re = mu_re[i], im = mu_im[i], a = hypot(re, im);
-        int j = i;
-        for (; j > 0 && hypot(mu_re[j - 1], mu_im[j - 1]) < a; j--) {
-            mu_re[j] = mu_re[j - 1];
-            mu_im[j] = mu_im[j - 1];
-        }
-        mu_re[j] = re;
-        mu_im[j] = im;
-    }
+    gd_hb_sort_multipliers(mu_re, mu_im, nall);
     *nmu = nall;
     *nbasis = r;
     rc = 0;

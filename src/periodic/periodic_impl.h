@@ -224,6 +224,8 @@ void gd_hb_truncation(const gd_per_record_stats *coarse, int Hc, gd_per_record_s
  * other records, whose units the coefficients do not carry. */
 void gd_hb_record_zero(const gd_tr_record *rec, int nrec, const double *X, int n, int H, double w,
                        double *zero);
+/* The n multipliers in place, largest modulus first (stable: multipliers.c). */
+void gd_hb_sort_multipliers(double *mu_re, double *mu_im, int n);
 /* |Xc - Xf| / |Xf| over the coefficients (Xc padded with zeros from nc to nfine). */
 double gd_hb_coef_change(const double *Xc, int nc, const double *Xf, int nfine);
 /* Bytes of one workspace (an estimate) and the limit of the options. */
