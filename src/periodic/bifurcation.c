@@ -139,16 +139,7 @@ int gd_per_locate(ctx *c, int m, const double *Xa, double la, double ga, const d
         best_im = fabs(mim[at]);
         found = 1;
         if (fabs(g) < 1e-10) break;
-        if ((g < 0) == (g0 < 0)) {
-            s0 = sig;
-            g0 = g;
-            g1 *= 0.5;
-        } else {
-            s1 = sig;
-            g1 = g;
-            g0 *= 0.5;
-        }
-        sig = s0 - g0 * (s1 - s0) / (g1 - g0);
+        sig = gd_per_illinois(sig, g, &s0, &g0, &s1, &g1);
     }
     if (!found || !(lam >= fmin(la, lb) && lam <= fmax(la, lb)))
         /* the search left the step (a branch nearby): interpolate between the steps */

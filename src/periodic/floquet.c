@@ -17,6 +17,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "linalg/linalg_impl.h"
 #include "periodic/periodic_impl.h"
 
 #define TWO_PI 6.28318530717958647692
@@ -76,12 +77,11 @@ typedef struct fq_work {
     double *sq, *sv, *y;
 } fq_work;
 
+/* out = A (dense n x n; A is n x n) */
 static void dense_from(const gd_csc *A, int n, double *out)
 {
     memset(out, 0, (size_t)n * n * sizeof *out);
-    for (int j = 0; j < A->n; j++)
-        for (int p = A->colptr[j]; p < A->colptr[j + 1]; p++)
-            out[(size_t)j * n + A->rowind[p]] += A->values[p];
+    gd_csc_add_dense(A, 1.0, out);
 }
 
 /* A(t) (n2 x n2) at phase tau of the solution */

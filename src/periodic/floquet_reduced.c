@@ -26,6 +26,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "linalg/linalg_impl.h"
 #include "periodic/continuation_impl.h"
 #include "periodic/periodic_impl.h"
 
@@ -43,12 +44,11 @@
  * computed eigenvectors are parallel to about sqrt(eps)) */
 #define GD_FLOQUET_RCOND 1e-8
 
+/* out = A (dense n x n; A is n x n) */
 static void dense_of(const gd_csc *A, int n, double *out)
 {
     memset(out, 0, (size_t)n * n * sizeof *out);
-    for (int j = 0; j < A->n; j++)
-        for (int p = A->colptr[j]; p < A->colptr[j + 1]; p++)
-            out[(size_t)j * n + A->rowind[p]] += A->values[p];
+    gd_csc_add_dense(A, 1.0, out);
 }
 
 /* E = exp(A) for a small n x n matrix: Taylor to 18 terms after scaling to a

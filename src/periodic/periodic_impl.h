@@ -253,4 +253,22 @@ int gd_per_shoot_run(
 int gd_per_frequency_spec(const gd_transient_spec *spec, double value, gd_tr_load **loads,
                           gd_transient_spec *out, char *msg, size_t cap);
 
+/* One step of regula falsi, Illinois variant, on the bracket [s0, s1] whose values g0, g1
+ * differ in sign: g, the value at sig, replaces the end of its sign and halves the other
+ * end's value (so a retained end cannot stall the bracket). Returns the next sig. */
+static inline double gd_per_illinois(double sig, double g, double *s0, double *g0, double *s1,
+                                     double *g1)
+{
+    if ((g < 0) == (*g0 < 0)) {
+        *s0 = sig;
+        *g0 = g;
+        *g1 *= 0.5;
+    } else {
+        *s1 = sig;
+        *g1 = g;
+        *g0 *= 0.5;
+    }
+    return *s0 - *g0 * (*s1 - *s0) / (*g1 - *g0);
+}
+
 #endif

@@ -251,16 +251,7 @@ static double locate(arc *a, int kind, const double *ya, double la, const double
         }
         if (fabs(lam - lprev) <= 1e-8 * fabs(lam) || g == 0.0 || s1 - s0 < 1e-14) break;
         lprev = lam;
-        if ((g < 0) == (g0 < 0)) {
-            s0 = sig;
-            g0 = g;
-            g1 *= 0.5;
-        } else {
-            s1 = sig;
-            g1 = g;
-            g0 *= 0.5;
-        }
-        sig = s0 - g0 * (s1 - s0) / (g1 - g0);
+        sig = gd_per_illinois(sig, g, &s0, &g0, &s1, &g1);
     }
 done:
     free(ch);
