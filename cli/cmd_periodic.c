@@ -113,6 +113,7 @@ static cJSON *to_json(const gd_periodic_result *r, const gd_cli_records *recs, i
                                     : p->floquet_krylov ? "krylov"
                                                         : "dense");
         if (p->floquet_basis) cJSON_AddNumberToObject(o, "floquet_basis", p->floquet_basis);
+        if (p->floquet_steps > 0) cJSON_AddNumberToObject(o, "floquet_steps", p->floquet_steps);
         cJSON_AddNumberToObject(o, "harmonics", p->harmonics);
         cJSON_AddItemToObject(o, "residual", gd_cli_json_number(p->residual));
         if (p->converged) {
@@ -501,6 +502,17 @@ static int parse_samples(const char *cmd, const char *text, void *field)
     return 0;
 }
 
+static int parse_monodromy_steps(const char *cmd, const char *text, void *field)
+{
+    long n;
+    if (gd_cli_parse_count(text, 1, GD_PERIODIC_MAX_SAMPLES, &n))
+        return gd_cli_usage_error(
+            cmd, "--monodromy-steps: expected a whole number from 1 to %d (2^20), got '%s'",
+            GD_PERIODIC_MAX_SAMPLES, text);
+    *(int *)field = (int)n;
+    return 0;
+}
+
 #define F(m) offsetof(periodic_args, m)
 static const gd_cli_opt OPTS[] = {
     GD_CLI_ROW("speeds", GD_CLI_STRING, F(speeds), "FROM:TO:COUNT",
@@ -570,6 +582,10 @@ static const gd_cli_opt OPTS[] = {
                "reduced multipliers: keep the modes up to C times the highest excitation "
                "frequency (the top tooth-mesh frequency)",
                .def = "4", .call = parse_floquet_cutoff),
+    GD_CLI_ROW("monodromy-steps", GD_CLI_CALL, F(opt.monodromy_steps), "N",
+               "Magnus steps per period of the multipliers; the reduced method's default: 8 per "
+               "period of the top mesh order, doubled until two counts agree",
+               .def = "4 x samples, at least 256", .call = parse_monodromy_steps),
     GD_CLI_ROW("floquet-budget", GD_CLI_CALL, F(opt.floquet_budget), "S",
                "CPU seconds for one point's multipliers; a point whose multipliers would take "
                "longer keeps its orbit with stability not computed and says how long they would "

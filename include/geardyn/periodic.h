@@ -186,6 +186,9 @@ typedef struct gd_periodic_point {
      * (GD_FLOQUET_REDUCED): its 2 floquet_basis multipliers, then the discarded modes'
      * estimates while there is room, all largest first; 0 otherwise */
     int floquet_basis;
+    /* the Magnus steps per period of the multipliers (0: none computed): monodromy_steps,
+     * or the reduced method's own choice (docs/periodic.md, "Stability at scale") */
+    int floquet_steps;
     int nfree;    /* coefficients: coef[h * nfree + i], h = 0 mean, 2k-1 cos k, 2k sin k */
     double *coef; /* over the free DOFs of gd_transient (increasing DOF order) */
     gd_per_record_stats *records; /* nrecords */

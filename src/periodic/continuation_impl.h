@@ -46,6 +46,7 @@ typedef struct ctx {
     int floquet_n;         /* multipliers the last gd_per_floquet delivered (the rest 0) */
     int floquet_krylov;    /* 1: they are the largest by Krylov (floquet_krylov.c) */
     int floquet_basis;     /* > 0: the reduced basis's size (floquet_reduced.c) */
+    int floquet_steps;     /* the Magnus steps per period of the last multipliers */
     gd_periodic_result *res;
     int cap_points, cap_bif;
     const gd_tr_record *rec;
@@ -87,11 +88,11 @@ int gd_per_newton(ctx *c, double *X, double *lam, const double *tan, const doubl
 int gd_per_tangent(ctx *c, const double *X, double lam, const double *prev, double sign, double *t);
 int gd_per_hb_setup(ctx *c, int H);
 /* The reduced-basis multipliers of X at stage s (points.c: the cut-off from the highest
- * excitation frequency); the return codes of gd_hb_floquet_reduced, its reason in
- * c->floquet_msg. */
-int gd_per_floquet_reduced(ctx *c, stage *s, const double *X, double lam, int steps,
-                           const gd_tr_record *bl, int nbl, double *mre, double *mim, int *nmu,
-                           int *nbasis);
+ * excitation frequency); steps > 0 fixed, 0 chosen by gd_hb_floquet_reduced up to
+ * steps_cap; the return codes of gd_hb_floquet_reduced, its reason in c->floquet_msg. */
+int gd_per_floquet_reduced(ctx *c, stage *s, const double *X, double lam, int steps, int steps_cap,
+                           int *steps_used, const gd_tr_record *bl, int nbl, double *mre,
+                           double *mim, int *nmu, int *nbasis);
 void gd_per_floquet(ctx *c, const double *X, double lam, double *mre, double *mim, int *stable,
                     double *mu_max);
 int gd_per_fail_point(ctx *c, double lam, const char *why);

@@ -188,17 +188,22 @@ int gd_hb_floquet_krylov(const hb *h, gd_transient *tr, double w, const double *
                          const gd_tr_record *bl, int nbl, int nev, double tol, double budget,
                          double *mu_re, double *mu_im, int *nmu, int *products, char *msg);
 
-/* The multipliers of the same steps' monodromy in a reduced basis (floquet_reduced.c): the
- * modes of (sym K, M) below wcut (rad/s) and the discarded modes' residual flexibility along
- * the terms' u and w, the reduced constant part diagonalised (its exponential exact), each
- * step a Strang splitting with the rank-nterm local part at the step's midpoint. mu_re,
+/* The multipliers of the monodromy in a reduced basis (floquet_reduced.c): the modes of
+ * (sym K, M) below wcut (rad/s) and the discarded modes' residual flexibility along the
+ * terms' u and w, the reduced constant part diagonalised (its exponential exact), each step
+ * a fourth-order Magnus step of the rank-nterm local part in the interaction picture.
+ * steps > 0: that many steps per period; 0: s0 steps, doubled until two counts' moduli
+ * agree where stability is decided (each within 1 % of its distance from the unit circle,
+ * at least 1e-7), at most steps_cap; *steps_used (may be
+ * NULL) the count taken. mu_re,
  * mu_im: at least 2 nf; *nmu = 2 r of them, largest modulus first, *nbasis = r. 0 ok, 2 not
  * finite (too few steps), 4 over the CPU budget (seconds, 0: none), 5 no usable basis (an
  * ill-conditioned eigenvector basis: a free rotation's Jordan block; or too many DOFs for
  * the dense modes): use another method, 1 other failures; msg (160 bytes) says why. */
 int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double w, const double *X, int steps,
-                          const gd_tr_record *bl, int nbl, double wcut, double budget,
-                          double *mu_re, double *mu_im, int *nmu, int *nbasis, char *msg);
+                          int s0, int steps_cap, int *steps_used, const gd_tr_record *bl, int nbl,
+                          double wcut, double budget, double *mu_re, double *mu_im, int *nmu,
+                          int *nbasis, char *msg);
 
 /* Static start (warmstart.c): where the model has laws that carry a static load
  * (GD_LAW_SUPPORT), the zeroth harmonic of X (its first nf entries; the rest untouched)

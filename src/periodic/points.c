@@ -29,7 +29,7 @@ void gd_per_floquet(ctx *c, const double *X, double lam, double *mre, double *mi
     const int n2 = 2 * c->nf;
     const int dmax = c->opt->floquet_dmax > 0 ? c->opt->floquet_dmax : 300;
     int krylov = c->opt->floquet == GD_FLOQUET_KRYLOV;
-    int rc, nmu = n2, nbasis = 0;
+    int rc, nmu = n2, nbasis = 0, used = steps;
     c->floquet_n = 0;
     c->floquet_basis = 0;
     /* rc 5: not by the reduced basis (not asked for, or no usable basis there) */
@@ -40,7 +40,8 @@ void gd_per_floquet(ctx *c, const double *X, double lam, double *mre, double *mi
          * (the bifurcation search ranks them all) */
         memset(mre, 0, (size_t)n2 * sizeof *mre);
         memset(mim, 0, (size_t)n2 * sizeof *mim);
-        rc = gd_per_floquet_reduced(c, s, X, lam, steps, bl, nbl, mre, mim, &nmu, &nbasis);
+        rc = gd_per_floquet_reduced(c, s, X, lam, c->opt->monodromy_steps > 0 ? steps : 0, steps,
+                                    &used, bl, nbl, mre, mim, &nmu, &nbasis);
         if (rc == 1 && !c->floquet_msg[0])
             snprintf(c->floquet_msg, sizeof c->floquet_msg,
                      "stability not computed: the reduced-basis multipliers failed");
@@ -98,6 +99,7 @@ void gd_per_floquet(ctx *c, const double *X, double lam, double *mre, double *mi
     c->floquet_n = nmu;
     c->floquet_krylov = krylov && !nbasis;
     c->floquet_basis = nbasis;
+    c->floquet_steps = nbasis ? used : steps;
 }
 
 static gd_periodic_point *new_point(ctx *c)
@@ -428,6 +430,7 @@ int gd_per_emit_point(ctx *c, const double *X, double lam, int iters, double res
     p->nmult = p->stable >= 0 ? c->floquet_n : 0;
     p->floquet_krylov = p->stable >= 0 && c->floquet_krylov;
     p->floquet_basis = p->stable >= 0 ? c->floquet_basis : 0;
+    p->floquet_steps = p->stable >= 0 ? c->floquet_steps : 0;
     if (p->stable < 0 && c->floquet_msg[0])
         snprintf(p->reason, sizeof p->reason, "%s", c->floquet_msg);
     announce(c, lam);

@@ -539,6 +539,7 @@ TEST(option_table_rows)
                            "shoot-budget S",
                            "floquet-budget S",
                            "floquet-cutoff C",
+                           "monodromy-steps N",
                            "harmonics H|auto",
                            "harmonic-tol TOL",
                            "max-harmonics H",
@@ -618,8 +619,9 @@ TEST(frequency_continuation)
 /* --floquet reduced on the Chen pair (six DOFs, every mode kept at the default cut-off):
  * the JSON names the method and the basis, every multiplier is there and |mu|max equals
  * the dense monodromy's to 1e-6 (measured 1.2e-10 at the default 256 steps: two fourth-order
- * schemes); the text says which multipliers it printed; a cut-off that is not a positive
- * number is a usage error. */
+ * schemes); the text says which multipliers it printed; --monodromy-steps is taken as
+ * given (JSON floquet_steps); a cut-off or a step count that is not positive is a usage
+ * error. */
 TEST(floquet_reduced_json_and_text)
 {
     scratch s;
@@ -633,6 +635,7 @@ TEST(floquet_reduced_json_and_text)
     CHECK(!strcmp(jstr(p, "floquet_method"), "reduced"));
     CHECK(!strcmp(jstr(q, "floquet_method"), "dense"));
     CHECK(jnum(p, "floquet_basis") == 6);
+    CHECK(jnum(p, "floquet_steps") == 256 && jnum(q, "floquet_steps") == 256);
     CHECK(cJSON_GetArraySize(cJSON_GetObjectItemCaseSensitive(p, "floquet_re")) == 12);
     printf("  |mu|max reduced %.12f, dense %.12f\n", jnum(p, "floquet_multiplier_max_abs"),
            jnum(q, "floquet_multiplier_max_abs"));
@@ -647,8 +650,16 @@ TEST(floquet_reduced_json_and_text)
     CHECK(r.code == 0 && contains(r.out, "reduced basis of 6 vectors"));
     if (r.code) show(&r);
     run_free(&r);
+    /* a step count given is taken as it is */
+    cJSON *c = run_json_args(&s, "periodic " CHEN " --speeds 5600:5600:1 --harmonics 12 "
+                                 "--no-estimate --floquet reduced --monodromy-steps 96");
+    REQUIRE(c && npoints(c) == 1);
+    CHECK(jnum(point(c, 0), "floquet_steps") == 96);
+    cJSON_Delete(c);
     CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --floquet-cutoff 0",
                             "--floquet-cutoff", NULL));
+    CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --monodromy-steps 0",
+                            "--monodromy-steps", NULL));
     scratch_close(&s);
 }
 
