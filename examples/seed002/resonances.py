@@ -55,6 +55,20 @@ def curves(path):
     return res
 
 
+def stability(path):
+    """(stable, unstable, unknown, largest |mu|max, its rpm) over the curve's points."""
+    seen = {}
+    with open(os.path.join(path, "periodic.csv")) as f:
+        for row in csv.DictReader(f):
+            seen[(row["point"], row["direction"])] = (
+                int(row["stable"]), float(row["floquet_multiplier_max_abs"]),
+                float(row["speed_rad_s"]) * RPM)
+    counts = [sum(1 for v in seen.values() if v[0] == k) for k in (1, 0, -1)]
+    known = [v for v in seen.values() if v[0] >= 0]
+    top = max(known, key=lambda v: v[1]) if known else (0, float("nan"), float("nan"))
+    return counts + [top[1], top[2]]
+
+
 def peaks(curve, half=2, rise=1.5):
     """Local maxima over +-half points that stand rise times above the curve's
     smallest value within +-3 half points (a resonance, not a slow trend)."""
@@ -83,6 +97,13 @@ def main():
             diffs.append(f"{r} p2p {d:.2e} mean {dm:.2e}")
         print(f"helix {helix:2d} deg, full vs lateral-torsional, max |diff| / max: "
               + "; ".join(diffs))
+    print("\nstability (Floquet multipliers of every point): stable / unstable / not computed, "
+          "largest |mu|max")
+    for coupling in ("full", "lateral-torsional"):
+        for helix in (0, 5, 10, 15, 20):
+            st = stability(os.path.join(outdir, f"{coupling}_{helix}deg"))
+            print(f"{coupling:17s} {helix:2d} deg: {st[0]} / {st[1]} / {st[2]}, "
+                  f"{st[3]:.10f} at {st[4]:.0f} rpm")
     print("\nmedian / largest peak-to-peak over the speeds (gear1.x in um, forces in N)")
     for coupling in ("full", "lateral-torsional"):
         for helix in (0, 5, 10, 15, 20):

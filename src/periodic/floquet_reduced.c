@@ -43,6 +43,8 @@
 /* the least reciprocal condition of the equilibrated eigenvector basis (a defective pair's
  * computed eigenvectors are parallel to about sqrt(eps)) */
 #define GD_FLOQUET_RCOND 1e-8
+/* the most Magnus steps per period the reduced method takes of its own choice */
+#define GD_FLOQUET_STEPS_MAX 131072
 
 /* out = A (dense n x n; A is n x n) */
 static void dense_of(const gd_csc *A, int n, double *out)
@@ -502,26 +504,30 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
             for (int i = 0; i < nf; i++)
                 if (mark[i]) sup[ns++] = i;
             free(mark);
+            /* the transform is long enough for every harmonic of the orbit (Nt >= 2 H + 2,
+             * a multiple of the steps): the steps' own count may be below 2 H (their
+             * Gauss points then read every stride-th sample), and the law's coefficients
+             * must still see every harmonic the orbit has */
             const int Ns = S, H = h->H;
-            hc = fftw_malloc(2 * (size_t)Ns * sizeof *hc);
+            int Nt = Ns;
+            while (Nt < 2 * H + 2)
+                Nt *= 2;
+            const int stride = Nt / Ns;
+            hc = fftw_malloc(2 * (size_t)Nt * sizeof *hc);
             smp = malloc(((size_t)Ns * 4 * ns + 1) * sizeof *smp);
-            if (!hc || !smp) {
-                goto done;
-            }
-            plan = fftw_plan_r2r_1d(Ns, hc, hc + Ns, FFTW_HC2R, FFTW_ESTIMATE);
-            if (!plan) {
-                goto done;
-            }
+            if (!hc || !smp) goto done;
+            plan = fftw_plan_r2r_1d(Nt, hc, hc + Nt, FFTW_HC2R, FFTW_ESTIMATE);
+            if (!plan) goto done;
             /* q and q' of each support DOF at tau_j = (j + g) 2 pi / Ns for either Gauss point
              * g: the coefficients shifted by g steps, one half-complex inverse transform each
              * (FFTW's HC2R: x_j = hc_0 + 2 sum_k (Re_k cos - Im_k sin)) */
-            const int Hm = H < (Ns - 1) / 2 ? H : (Ns - 1) / 2;
+            const int Hm = H < (Nt - 1) / 2 ? H : (Nt - 1) / 2;
             for (int m = 0; m < ns; m++)
                 for (int pd = 0; pd < 4; pd++) {
                     const int deriv = pd & 1;
                     const double dl = gp[pd >> 1] * TWO_PI / Ns;
                     const int i = sup[m];
-                    memset(hc, 0, (size_t)Ns * sizeof *hc);
+                    memset(hc, 0, (size_t)Nt * sizeof *hc);
                     if (!deriv) hc[0] = X[i];
                     for (int k = 1; k <= Hm; k++) {
                         const double xc = X[(size_t)(2 * k - 1) * nf + i],
@@ -535,11 +541,11 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
                             b = b2;
                         }
                         hc[k] = 0.5 * a;
-                        hc[Ns - k] = -0.5 * b;
+                        hc[Nt - k] = -0.5 * b;
                     }
                     fftw_execute(plan);
                     for (int j = 0; j < Ns; j++)
-                        smp[((size_t)j * 4 + pd) * ns + m] = hc[Ns + j];
+                        smp[((size_t)j * 4 + pd) * ns + m] = hc[Nt + (size_t)j * stride];
                 }
             double *yfull = NULL;
             for (int j = 0; j < nsub; j++) {
@@ -753,13 +759,32 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
                 }
             }
         }
+        if (rc == 1) {
+            apply_exp(n2, n2, lre, lim, pend, Psi);
+            for (size_t m = 0; m < rr; m++)
+                if (!isfinite(Psi[m])) {
+                    rc = 2;
+                    break;
+                }
+        }
+        /* overflow: the steps are too long for the laws' variation (a long period: the
+         * residual vectors carry the stiff mesh modes, whose coupling the steps must
+         * follow); a count of its own doubles and tries again */
+        const int can_double = steps <= 0 && 2 * (long)S <= steps_cap;
+        if (rc == 2 && can_double) {
+            rc = 1;
+            pass = -1; /* the next count is compared with its double, not with this one */
+            S *= 2;
+            continue;
+        }
+        if (rc == 2 && steps <= 0) {
+            snprintf(msg, 160,
+                     "stability not computed: the reduced monodromy over the period %.3g s "
+                     "overflowed up to %d Magnus steps",
+                     TWO_PI / om, S);
+            rc = 6;
+        }
         if (rc != 1) goto done;
-        apply_exp(n2, n2, lre, lim, pend, Psi);
-        for (size_t m = 0; m < rr; m++)
-            if (!isfinite(Psi[m])) {
-                rc = 2;
-                goto done;
-            }
         {
             double dummy[1];
             if (LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', n2, Psi, n2, mu_re, mu_im, dummy, 1,
@@ -770,9 +795,22 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
         for (int i = 0; i < n2; i++)
             mod[i] = hypot(mu_re[i], mu_im[i]);
         qsort(mod, (size_t)n2, sizeof *mod, by_value_desc);
-        if ((pass > 0 && steps_agree(mod, prev, n2)) || 2 * (long)S > steps_cap) {
+        if (pass > 0 && steps_agree(mod, prev, n2)) {
             if (steps_used) *steps_used = S;
             break;
+        }
+        if (!can_double) {
+            /* no two counts agreed: nothing to trust (an unsettled count once gave
+             * |mu|max 2.8e73 at 100 rpm on the [JMSTHelical] model) */
+            double worst = 0.0;
+            for (int i = 0; pass > 0 && i < n2; i++)
+                worst = fmax(worst, fabs(mod[i] - prev[i]));
+            snprintf(msg, 160,
+                     "stability not computed: the reduced multipliers did not settle by %d Magnus "
+                     "steps (moduli moved by %.2g from %d)",
+                     S, worst, S / 2);
+            rc = 6;
+            goto done;
         }
         memcpy(prev, mod, (size_t)n2 * sizeof *prev);
         S *= 2;
@@ -852,6 +890,11 @@ int gd_per_floquet_reduced(ctx *c, stage *s, const double *X, double lam, int st
     /* the first step count: 8 per period of the highest excitation (the top order of the
      * fundamental, or H), a power of 2, at least 256 */
     const int top = order > 0 ? order : c->H;
+    /* a count of its own may go past the caller's (4 x samples): a long period at a low
+     * speed needs more steps for the stiff directions the residual vectors carry (the
+     * [JMSTHelical] model at 100-180 rpm overflowed at 16384), and there the basis is
+     * small (6 vectors), so the steps are cheap; the CPU budget still bounds it */
+    if (steps <= 0 && steps_cap < GD_FLOQUET_STEPS_MAX) steps_cap = GD_FLOQUET_STEPS_MAX;
     int s0 = 256;
     while (s0 < 8 * top && s0 < GD_PERIODIC_MAX_SAMPLES / 2)
         s0 *= 2;

@@ -197,9 +197,10 @@ int gd_hb_floquet_krylov(const hb *h, gd_transient *tr, double w, const double *
  * at least 1e-7), at most steps_cap; *steps_used (may be
  * NULL) the count taken. mu_re,
  * mu_im: at least 2 nf; *nmu = 2 r of them, largest modulus first, *nbasis = r. 0 ok, 2 not
- * finite (too few steps), 4 over the CPU budget (seconds, 0: none), 5 no usable basis (an
- * ill-conditioned eigenvector basis: a free rotation's Jordan block; or too many DOFs for
- * the dense modes): use another method, 1 other failures; msg (160 bytes) says why. */
+ * finite (too few steps, a count given), 4 over the CPU budget (seconds, 0: none), 5 no
+ * usable basis (an ill-conditioned eigenvector basis: a free rotation's Jordan block; or too
+ * many DOFs for the dense modes): use another method, 6 the steps' own count did not settle
+ * (or overflowed) by steps_cap, 1 other failures; msg (160 bytes) says why. */
 int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double w, const double *X, int steps,
                           int s0, int steps_cap, int *steps_used, const gd_tr_record *bl, int nbl,
                           double wcut, double budget, double *mu_re, double *mu_im, int *nmu,

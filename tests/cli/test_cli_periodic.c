@@ -618,7 +618,7 @@ TEST(frequency_continuation)
 
 /* --floquet reduced on the Chen pair (six DOFs, every mode kept at the default cut-off):
  * the JSON names the method and the basis, every multiplier is there and |mu|max equals
- * the dense monodromy's to 1e-6 (measured 1.2e-10 at the default 256 steps: two fourth-order
+ * the dense monodromy's to 1e-6 (measured 1.2e-10 at 256 and 512 steps: two fourth-order
  * schemes); the text says which multipliers it printed; --monodromy-steps is taken as
  * given (JSON floquet_steps); a cut-off or a step count that is not positive is a usage
  * error. */
@@ -635,7 +635,8 @@ TEST(floquet_reduced_json_and_text)
     CHECK(!strcmp(jstr(p, "floquet_method"), "reduced"));
     CHECK(!strcmp(jstr(q, "floquet_method"), "dense"));
     CHECK(jnum(p, "floquet_basis") == 6);
-    CHECK(jnum(p, "floquet_steps") == 256 && jnum(q, "floquet_steps") == 256);
+    /* dense: 4 x samples (256); reduced: its own, 256 and 512 agreeing */
+    CHECK(jnum(p, "floquet_steps") == 512 && jnum(q, "floquet_steps") == 256);
     CHECK(cJSON_GetArraySize(cJSON_GetObjectItemCaseSensitive(p, "floquet_re")) == 12);
     printf("  |mu|max reduced %.12f, dense %.12f\n", jnum(p, "floquet_multiplier_max_abs"),
            jnum(q, "floquet_multiplier_max_abs"));
