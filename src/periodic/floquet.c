@@ -237,13 +237,15 @@ int gd_hb_floquet_budget(const hb *h, gd_transient *tr, double om, const double 
         w.Minv[(size_t)i * nf + i] = 1.0;
     if (LAPACKE_dgesv(LAPACK_COL_MAJOR, nf, nf, w.J, nf, ipiv, w.Minv, nf)) goto done;
     /* the balance c = sqrt(max_i (M^-1 K)_ii) (about the highest natural frequency; 1
-     * without a stiffness), the same for every DOF (the Krylov path's, floquet_krylov.c).
-     * Unbalanced, |A| is w_max^2 and the exponentials' scaling and squaring round every
-     * multiplier by about eps |A| T whatever the step count: on the [JMSTHelical] model cut
-     * to 178 states at 2500 rpm (|A|_1 5.5e12 1/s^2), |mu|max 5.6e-6 too large and every
-     * multiplier up to 9.2e-6 off against LAPACK's eigenvalues of the constant part and the
-     * reduced basis; balanced (|A|_1 1.7e6), within 2e-10 of both (docs/periodic.md,
-     * "Stability at scale") */
+     * without a stiffness), the same for every DOF (as the Krylov path's, floquet_krylov.c).
+     * Unbalanced, A's 1-norm is set by the w_max^2 entries of M^-1 K, and the scaling and
+     * squaring cuts the period into about 2 |A|_1 T pieces whatever the step count, in
+     * which the slow modes are lost in the rounding of I + S: a bias of every multiplier.
+     * On the [JMSTHelical] model cut to 178 states at 2500 rpm (|A|_1 5.5e12 1/s^2),
+     * |mu|max 5.6e-6 too large, every multiplier up to 9.2e-6 off, against LAPACK's
+     * eigenvalues of the constant part and the reduced basis; balanced (|A|_1 6.6e6),
+     * |mu|max within 5e-11 of the reduced basis's (docs/periodic.md, "Stability at scale";
+     * tests/periodic/test_floquet_reduced.c, stiff_dof_dense_equals_reduced) */
     {
         double kmax = 0.0;
         for (int i = 0; i < nf; i++)
