@@ -1,8 +1,8 @@
 /* Shooting's natural continuation in the value (docs/periodic.md, "Shooting"), and the
- * entry gd_per_shoot_run, which takes the pseudo-arclength (shooting_arclength.c) unless
- * --sequential or on the Newton-Krylov path: each point starts from the previous points'
- * states extrapolated linearly, the first (or one whose Newton fails from there) from a
- * short transient from rest or from the static state under the loads, which a stable orbit
+ * entry gd_per_shoot_run, which takes the pseudo-arclength (shooting_arclength.c, dense
+ * or matrix-free) unless --sequential: each point starts from the previous points' states
+ * extrapolated linearly, the first (or one whose Newton fails from there) from a short
+ * transient from rest or from the static state under the loads, which a stable orbit
  * attracts. Bifurcations are found between points where the multipliers cross the unit
  * circle and located by secant iterations on the critical multiplier's modulus, each a
  * shooting solve. */
@@ -108,10 +108,8 @@ static int detect(shoot *sh, double la, const double *ya, const double *ma_re, c
 
 static int run_direction(shoot *sh, const double *vals, int nv)
 {
-    /* pseudo-arclength (shooting_arclength.c) unless --sequential, where the dense
-     * monodromy gives the bordered Jacobian */
-    if (sh->opt->method == GD_PER_ARCLENGTH && nv >= 2 && !gd_per_sh_problem(sh, vals[0]) &&
-        sh->dense)
+    /* pseudo-arclength (shooting_arclength.c, dense or matrix-free) unless --sequential */
+    if (sh->opt->method == GD_PER_ARCLENGTH && nv >= 2 && !gd_per_sh_problem(sh, vals[0]))
         return gd_per_sh_arclength(sh, vals, nv);
     sh->steps += nv;
     const int stab = sh->opt->stability;
