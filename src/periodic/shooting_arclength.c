@@ -264,14 +264,16 @@ static int criterion(arc *a, int kind, const double *y, double lam, const double
  * than 1e-8 relative (near a fold lambda is quadratic in the position, so the fold's value
  * is found far more precisely than the point; below that the integration noise moves it:
  * the backlash pair's folds at rtol 1e-7 wander by 4e-8 relative, and a stricter test took
- * 22 corrector solves per fold instead of 7). The located value, or NAN; for a multiplier
- * *off is its distance |mu| - 1 there. */
+ * 22 corrector solves per fold instead of 7). The located value, or NAN (a corrector or the
+ * criterion failed first, or 40 points did not settle it); for a multiplier *off is its
+ * distance |mu| - 1 there. */
 static double locate(arc *a, int kind, const double *ya, double la, const double *ta, double ga,
                      const double *yb, double lb, double gb, double *re, double *im, double *off)
 {
     const int N = a->N;
     double *ch = malloc((size_t)(3 * N + 2) * sizeof *ch), *y = ch + N + 1, *tt = y + N;
     double best = NAN;
+    int located = 0;
     *off = INFINITY;
     if (!ch) return NAN;
     double nc = 0.0;
@@ -297,13 +299,16 @@ static double locate(arc *a, int kind, const double *ya, double la, const double
             *im = m;
             *off = fabs(g);
         }
-        if (fabs(lam - lprev) <= 1e-8 * fabs(lam) || g == 0.0 || s1 - s0 < 1e-14) break;
+        if (fabs(lam - lprev) <= 1e-8 * fabs(lam) || g == 0.0 || s1 - s0 < 1e-14) {
+            located = 1;
+            break;
+        }
         lprev = lam;
         sig = gd_per_illinois(sig, g, &s0, &g0, &s1, &g1);
     }
 done:
     free(ch);
-    return best;
+    return located ? best : NAN;
 }
 
 /* The first converged point from vals[*i0] on (a transient warm start, then Newton), each
