@@ -131,12 +131,12 @@ static int point_near(ctx *c, const double *Xa, double la, const double *Xb, dou
  * where that fails too the search stops. Located when the parameter at the bracket's two
  * ends agrees to 1e-8 relative or |mu| - 1 is below 1e-10 (refined on until either, or
  * the parameter to 1e-10, within 40 points). The parameter of a point can
- * lie just outside the steps' [la, lb]: a fold between the steps (the Chen SFD pair's
- * Neimark-Sacker point at 5549.147350 rad/s between steps at 5548.178 and 5549.136,
- * |mu| - 1 = 9e-11 there; before, such a point was replaced by the linear interpolate
- * between the steps). The type from the crossing multiplier at the located point: real > 0
- * branch point (a fold is reported by its tangent), real < 0 period doubling, complex
- * Neimark-Sacker. */
+ * lie just outside the steps' [la, lb] when a fold lies between the steps (the Chen SFD
+ * pair at e_u/C = 1/2: the real multiplier through +1 at its fold, 5549.14735 rad/s, found
+ * between steps at 5548.178 and 5549.136 with |mu| - 1 = 4e-7; before, a point outside
+ * was replaced by the linear interpolate between the steps). The type from the crossing multiplier
+ * at the located point: real > 0 branch point (a fold is reported by its tangent), real < 0 period
+ * doubling, complex Neimark-Sacker. */
 int gd_per_locate(ctx *c, int m, const double *Xa, double la, double ga, const double *Xb,
                   double lb, double gb, const double *tan, const double *mre_b, const double *mim_b)
 {
