@@ -105,8 +105,9 @@ static double hb_cost(gd_transient *tr, const gd_periodic_options *opt, double w
  * --shoot-dense-max). A dense monodromy of n + 1 columns costs 2 n + 1 periods (its
  * right-hand side is 2 n + 1 evaluations); on the Newton-Krylov path a GMRES solve costs
  * min(n + 1, 40) + 1 monodromy-vector products of one period each (one Krylov cycle and the
- * true residual; 60 where restarts are needed, above 40 unknowns) and the multipliers 41
- * at most (Arnoldi's steps, min(n, 40), and one period about the point).
+ * true residual; 60 where restarts are needed, above 40 unknowns) and the multipliers 81
+ * at most (Arnoldi's steps, min(n, 40), by central differences of two periods each, and
+ * one period about the point).
  *  - natural (--sequential): five Newton iterations, each a monodromy or a GMRES solve,
  *    and the multipliers;
  *  - pseudo-arclength: NEWTON_PER_POINT bordered solves, each with its point's P(y) (or
@@ -116,8 +117,9 @@ static double hb_cost(gd_transient *tr, const gd_periodic_options *opt, double w
  *    interpolate (two iterations) and the period of its records. */
 static double shoot_periods(int n, int dense, const gd_periodic_options *opt)
 {
-    const double gm = n + 1 <= 40 ? n + 2.0 : 60.0, mult = opt->stability ? fmin(n, 40.0) + 1 : 0;
-    if (opt->method != GD_PER_ARCLENGTH) return dense ? 5.0 * (2.0 * n + 1.0) : 5.0 * 60.0 + 40.0;
+    const double gm = n + 1 <= 40 ? n + 2.0 : 60.0,
+                 mult = opt->stability ? 2.0 * fmin(n, 40.0) + 1 : 0;
+    if (opt->method != GD_PER_ARCLENGTH) return dense ? 5.0 * (2.0 * n + 1.0) : 5.0 * 60.0 + 80.0;
     if (dense) return NEWTON_PER_POINT * (2.0 * n + 2.0) + 2.0 * (2.0 * n + 1.0) + 1.0;
     return NEWTON_PER_POINT * (gm + 2.0 + mult / 3.0) + 2.0 * (gm + 1.0) + 1.0 + mult;
 }

@@ -59,15 +59,17 @@ typedef struct shoot {
 } shoot;
 
 /* Matrix-free monodromy in scaled variables z = y / d (shooting.c, phi_vec): Phi z by a
- * forward difference of the period map about y (py = P(y)), work yt and pt (N each). The
- * operator is Phi - shift I on n = N unknowns, or with a border f (N) and row (N + 1) the
- * bordered [Phi - shift I, f; row^T] on n = N + 1 (the arclength's corrector). */
+ * forward difference of the period map about y (py = P(y)), or a central one (central),
+ * work yt and pt (N each). The operator is Phi - shift I on n = N unknowns, or with a
+ * border f (N) and row (N + 1) the bordered [Phi - shift I, f; row^T] on n = N + 1 (the
+ * arclength's corrector). */
 typedef struct kry {
     const double *y, *py, *d;
     double *yt, *pt;
     int n;
     double shift;
     const double *f, *row;
+    int central;
 } kry;
 
 int gd_per_sh_gmres(shoot *sh, kry *k, const double *b, double *x, double tol, double stop2,
