@@ -155,7 +155,10 @@ static int corrector(arc *a, double *y, double *lam, const double *tan, const do
             a->b[i] = -sh->r[i] / a->D[i];
         a->b[N] = -g;
         if (bordered(a, y, tan, 1e-3)) {
-            snprintf(sh->why, sizeof sh->why, "shooting (arclength): singular bordered Jacobian");
+            /* (matrix-free: an integration failed or the budget ran out, sh->why says) */
+            if (!a->kry)
+                snprintf(sh->why, sizeof sh->why,
+                         "shooting (arclength): singular bordered Jacobian");
             return 1;
         }
         for (int i = 0; i < N; i++)
