@@ -474,7 +474,9 @@ TEST(newton_krylov_equals_dense)
  * 479.78 the worst, the others within 5.4e-7, and the twelve points' peak-to-peak within
  * 2e-5); the point at 500 rad/s within 4.8e-7 (asserted 1e-5, the Newton's tolerance 100
  * rtol), |mu|max within 1.5e-5 (asserted 2e-4: the Arnoldi multipliers carry the central
- * differences' error, about rtol^(2/3)). */
+ * differences' error, about rtol^(2/3)). Cost: dense 60 corrector iterations and 20
+ * tangents, 85 monodromies and 105 periods (0.19 s); matrix-free 61 and 25, 777 periods
+ * (0.6-0.9 s on a shared machine). */
 TEST(krylov_arclength_equals_dense)
 {
     fx f;
