@@ -102,11 +102,41 @@ double gd_per_ranked(const ctx *c, const double *mre, const double *mim, int m, 
     return v;
 }
 
+/* The point of the branch at fraction sig between the steps, accepted only near the
+ * step: the corrector moved it no farther from its start (the chord's interpolate) than
+ * the chord is long, scaled as the tangent (a corrector that went farther jumped to
+ * another part of the branch). 0 ok; 1 failed or jumped. */
+static int point_near(ctx *c, const double *Xa, double la, const double *Xb, double lb,
+                      const double *tan, double sig, double *X, double *lam)
+{
+    const int n = c->h.n;
+    if (point_between(c, Xa, la, Xb, lb, tan, sig, X, lam)) return 1;
+    double d = 0.0, h = 0.0;
+    for (int i = 0; i < n; i++) {
+        const double e = (X[i] - ((1 - sig) * Xa[i] + sig * Xb[i])) / c->sx,
+                     f = (Xb[i] - Xa[i]) / c->sx;
+        d += e * e;
+        h += f * f;
+    }
+    const double el = (*lam - ((1 - sig) * la + sig * lb)) / c->sl, fl = (lb - la) / c->sl;
+    return !(d + el * el <= h + fl * fl);
+}
+
 /* A multiplier crossed the unit circle between two steps (m - 1 outside on one side, m on
  * the other): regula falsi (Illinois) on |mu|_(m) - 1, the m-th largest modulus, over
- * points of the branch between the steps; the type from the crossing multiplier at the
- * located point: real > 0 branch point (a fold is reported by its tangent), real < 0
- * period doubling, complex Neimark-Sacker. */
+ * points of the branch between the steps (the fraction sig of the chord, each point a
+ * corrector on the hyperplane normal to the tangent through the chord's interpolate), the
+ * bracket [s0, s1] of sig kept: where the Illinois step leaves it, or its corrector fails or
+ * jumps off the step (point_near), the step is a bisection of the bracket instead, and
+ * where that fails too the search stops. Located when the parameter at the bracket's two
+ * ends agrees to 1e-8 relative or |mu| - 1 is below 1e-10 (refined on until either, or
+ * the parameter to 1e-10, within 40 points). The parameter of a point can
+ * lie just outside the steps' [la, lb] when a fold lies between the steps (the Chen SFD
+ * pair at e_u/C = 1/2: the real multiplier through +1 at its fold, 5549.14735 rad/s, found
+ * between steps at 5548.178 and 5549.136 with |mu| - 1 = 4e-7; before, a point outside
+ * was replaced by the linear interpolate between the steps). The type from the crossing multiplier
+ * at the located point: real > 0 branch point (a fold is reported by its tangent), real < 0 period
+ * doubling, complex Neimark-Sacker. */
 int gd_per_locate(ctx *c, int m, const double *Xa, double la, double ga, const double *Xb,
                   double lb, double gb, const double *tan, const double *mre_b, const double *mim_b)
 {
@@ -120,39 +150,56 @@ int gd_per_locate(ctx *c, int m, const double *Xa, double la, double ga, const d
         free(mim);
         return 1;
     }
-    double s0 = 0.0, s1 = 1.0, g0 = ga, g1 = gb, lam = la + 0.5 * (lb - la);
+    /* the bracket: fractions s0, s1, their |mu| - 1 (Illinois-scaled) and parameters */
+    double s0 = 0.0, s1 = 1.0, g0 = ga, g1 = gb, l0 = la, l1 = lb, lam = NAN;
     int at;
     gd_per_ranked(c, mre_b, mim_b, m, &at);
     double best_re = at >= 0 ? mre_b[at] : NAN, best_im = at >= 0 ? fabs(mim_b[at]) : NAN;
-    int ok = isfinite(g0) && isfinite(g1) && g0 != g1, found = 0;
+    int ok = isfinite(g0) && isfinite(g1) && (g0 < 0) != (g1 < 0), located = 0;
     double sig = ok ? -g0 / (g1 - g0) : 0.5;
-    for (int it = 0; it < 30 && ok; it++) {
-        if (!(sig > 0 && sig < 1)) sig = 0.5;
-        if (point_between(c, Xa, la, Xb, lb, tan, sig, X, &lam)) break;
+    for (int it = 0; it < 40 && ok; it++) {
+        int bisect = !(sig > s0 && sig < s1);
+        if (bisect) sig = 0.5 * (s0 + s1);
+        double l;
+        int bad = point_near(c, Xa, la, Xb, lb, tan, sig, X, &l);
+        if (bad && !bisect) { /* the Illinois point failed or jumped: bisection instead */
+            sig = 0.5 * (s0 + s1);
+            bad = point_near(c, Xa, la, Xb, lb, tan, sig, X, &l);
+        }
+        if (bad) break;
         int stable;
         double mu_max;
-        gd_per_floquet(c, X, lam, mre, mim, &stable, &mu_max);
+        gd_per_floquet(c, X, l, mre, mim, &stable, &mu_max);
         if (stable < 0) break;
         double g = gd_per_ranked(c, mre, mim, m, &at) - 1.0;
         if (!isfinite(g) || at < 0) break;
+        lam = l;
         best_re = mre[at];
         best_im = fabs(mim[at]);
-        found = 1;
-        if (fabs(g) < 1e-10) break;
+        if (fabs(g) < 1e-10) {
+            located = 1;
+            break;
+        }
+        const double s_in = sig;
         sig = gd_per_illinois(sig, g, &s0, &g0, &s1, &g1);
+        if (s0 == s_in)
+            l0 = l;
+        else
+            l1 = l;
+        /* located once the bracket holds the parameter to 1e-8; refined on to 1e-10 (or
+         * |mu| - 1 below 1e-10) as long as the iterations allow */
+        located = fabs(l1 - l0) <= 1e-8 * fabs(l);
+        if (fabs(l1 - l0) <= 1e-10 * fabs(l)) break;
     }
-    if (!found || !(lam >= fmin(la, lb) && lam <= fmax(la, lb)))
-        /* the search left the step (a branch nearby): interpolate between the steps */
-        lam = gb != ga ? la + (lb - la) * (-ga / (gb - ga)) : 0.5 * (la + lb);
     double a = hypot(best_re, best_im);
     gd_bifurcation_type type = best_im > 1e-9 * a ? GD_BIF_NEIMARK_SACKER
                                : best_re < 0      ? GD_BIF_PERIOD_DOUBLING
                                                   : GD_BIF_BRANCH_POINT;
     int rc = 0;
-    /* reported only when located (the critical multiplier on the circle to 1e-4): a
-     * search that cannot close in on it (several multipliers moving at once) says
-     * nothing rather than something wrong */
-    if (!(type == GD_BIF_BRANCH_POINT && c->near_fold) && found && fabs(a - 1.0) < 1e-4)
+    /* reported only when located, with the critical multiplier on the circle to 1e-4: a
+     * search that cannot close in on it (a corrector that fails in the whole bracket,
+     * several multipliers moving at once) says nothing rather than something wrong */
+    if (!(type == GD_BIF_BRANCH_POINT && c->near_fold) && located && fabs(a - 1.0) < 1e-4)
         rc = gd_per_add_bif(c, type, lam, best_re, best_im);
     free(X);
     free(mre);

@@ -95,6 +95,35 @@ static double hb_cost(gd_transient *tr, const gd_periodic_options *opt, double w
     return t;
 }
 
+/* Newton steps per point in harmonic balance's estimate; on the arclength also the
+ * bordered solves per point counted for shooting (correctors and tangents together): both
+ * follow the same branch with the same step control (the Chen pair, 400-1500 rad/s, 12
+ * speeds: 112 steps by harmonic balance, 118 by shooting), so both count the same solves. */
+#define NEWTON_PER_POINT 8.0
+
+/* Shooting's cost per point in integrated periods (n states; dense: the monodromy up to
+ * --shoot-dense-max). A dense monodromy of n + 1 columns costs 2 n + 1 periods (its
+ * right-hand side is 2 n + 1 evaluations); on the Newton-Krylov path a GMRES solve costs
+ * min(n + 1, 40) + 1 monodromy-vector products of one period each (one Krylov cycle and the
+ * true residual; 60 where restarts are needed, above 40 unknowns) and the multipliers 81
+ * at most (Arnoldi's steps, min(n, 40), by central differences of two periods each, and
+ * one period about the point).
+ *  - natural (--sequential): five Newton iterations, each a monodromy or a GMRES solve,
+ *    and the multipliers;
+ *  - pseudo-arclength: NEWTON_PER_POINT bordered solves, each with its point's P(y) (or
+ *    its monodromy) and dF/dlambda by one more period, and the Krylov multipliers at every
+ *    step (three solves a step: measured 3.05 on the Chen pair, 2.05 corrector iterations
+ *    and the tangent); at the requested value the fixed-value Newton from the step's
+ *    interpolate (two iterations) and the period of its records. */
+static double shoot_periods(int n, int dense, const gd_periodic_options *opt)
+{
+    const double gm = n + 1 <= 40 ? n + 2.0 : 60.0,
+                 mult = opt->stability ? 2.0 * fmin(n, 40.0) + 1 : 0;
+    if (opt->method != GD_PER_ARCLENGTH) return dense ? 5.0 * (2.0 * n + 1.0) : 5.0 * 60.0 + 80.0;
+    if (dense) return NEWTON_PER_POINT * (2.0 * n + 2.0) + 2.0 * (2.0 * n + 1.0) + 1.0;
+    return NEWTON_PER_POINT * (gm + 2.0 + mult / 3.0) + 2.0 * (gm + 1.0) + 1.0 + mult;
+}
+
 gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *spec,
                                const gd_periodic_param *param, double value,
                                const gd_periodic_options *opt, char *note)
@@ -151,17 +180,14 @@ gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *sp
         if (opt->adaptive && (long)order * opt->subharmonic > H) H = order * opt->subharmonic;
         int backlash = gd_transient_nswitches(tr) > 0; /* contact laws */
         const int dense = n <= (opt->shoot_dense_max > 0 ? opt->shoot_dense_max : 64);
-        /* shooting per point: five Newton iterations, each a dense monodromy of n + 1
-         * columns whose right-hand side costs 2 n + 1 evaluations, or (Newton-Krylov) about
-         * 60 monodromy-vector products of one period each, and 40 for the multipliers */
-        const double per_period = dense ? 5.0 * (2.0 * n + 1.0) : 5.0 * 60.0 + 40.0;
+        const double per_period = shoot_periods(n, dense, opt);
         double th = hb_cost(tr, opt, w, H, backlash);
-        /* harmonic balance: eight Newton steps, three times that with the solution at 2 H + 1
-         * of the truncation estimate, and the Magnus monodromy (4 x samples steps of about
-         * 30 (2 nf)^3 flops at 2 GFlop/s, at most floquet_budget) */
+        /* harmonic balance: eight Newton steps (NEWTON_PER_POINT), three times that with the
+         * solution at 2 H + 1 of the truncation estimate, and the Magnus monodromy (4 x
+         * samples steps of about 30 (2 nf)^3 flops at 2 GFlop/s, at most floquet_budget) */
         double N = opt->samples > 0 ? opt->samples : gd_hb_samples_for(H);
         double steps = opt->monodromy_steps > 0 ? opt->monodromy_steps : fmax(256.0, 4.0 * N);
-        double ch = 8.0 * th * ((opt->estimate || opt->adaptive) ? 3.0 : 1.0);
+        double ch = NEWTON_PER_POINT * th * ((opt->estimate || opt->adaptive) ? 3.0 : 1.0);
         /* the reduced basis (floquet_reduced.c, auto above floquet_dmax states): every mode
          * of (K, M) once, then per step about 8 nterm (2 r)^2 flops, r about 64 (48 on
          * the [JMSTHelical] model, 22 on the two-stage gearbox: docs/periodic.md) */
@@ -195,9 +221,11 @@ gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *sp
         } else {
             k = cs < ch ? GD_PER_SHOOTING : GD_PER_HB;
             snprintf(note, 256,
-                     "%s: estimated %.3g s per point by shooting (%d states, %.3g s per period) "
-                     "against %.3g s by harmonic balance (H = %d, %.3g s per Newton step)",
-                     k == GD_PER_SHOOTING ? "shooting" : "harmonic balance", cs, n, tp, ch, H, th);
+                     "%s: estimated %.3g s per point by shooting (%s%s, %d states, %.3g s per "
+                     "period) against %.3g s by harmonic balance (H = %d, %.3g s per Newton step)",
+                     k == GD_PER_SHOOTING ? "shooting" : "harmonic balance", cs,
+                     opt->method == GD_PER_ARCLENGTH ? "arclength, " : "",
+                     dense ? "dense" : "matrix-free", n, tp, ch, H, th);
         }
     }
 done:

@@ -15,7 +15,13 @@
  * sign) are those of continuation.c. Folds, period doublings, Neimark-Sacker and branch points
  * are located on the branch between two steps by Illinois iterations over points of the
  * branch (each a corrector on the hyperplane normal to the chord), on the tangent's lambda
- * component or on the critical multiplier's modulus minus 1. */
+ * component or on the critical multiplier's modulus minus 1.
+ *
+ * Above --shoot-dense-max states (sh->dense 0) nothing dense is formed: the bordered system
+ * is solved by GMRES (gd_per_sh_gmres) on the products of [D^-1 (Phi - I) D, f; row^T] with a
+ * vector, each Phi z one period integrated about the point (the Newton-Krylov path's
+ * products), for the corrector (to 1e-3, inexact Newton) and for the tangent (to 1e-6);
+ * the multipliers are then the Ritz values of Arnoldi on Phi (gd_per_sh_multipliers). */
 #include <lapacke.h>
 #include <math.h>
 #include <stdio.h>
@@ -31,11 +37,23 @@ typedef struct arc {
     double sl;  /* scale of lambda: the requested range */
     double *D;  /* N: the block scales of y (gd_per_sh_scales) */
     double *Fl; /* N: dF/dlambda at the last point */
-    double *J;  /* (N + 1)^2 */
+    double *J;  /* (N + 1)^2: dense only */
     double *b;  /* N + 1 */
     double *P2; /* N */
     int *ipiv;  /* N + 1 */
+    int kry;    /* matrix-free (sh->dense 0) */
+    double *f;  /* N: the border D^-1 Fl sl (Krylov) */
+    double *x;  /* N + 1: GMRES's solution (Krylov) */
+    double *pt; /* N: the products' work (Krylov) */
 } arc;
+
+/* P(y) at lam into sh->yT, and (dense) the monodromy into sh->phi. 0 ok. */
+static int evaluate(arc *a, const double *y, double lam)
+{
+    shoot *sh = a->sh;
+    if (gd_per_sh_problem(sh, lam)) return 1;
+    return a->kry ? gd_per_sh_period(sh, y, sh->yT) : gd_per_sh_monodromy(sh, y, sh->phi, sh->yT);
+}
 
 /* dF/dlambda at (y, lam) into a->Fl, py = P(y; lam) given: a forward difference over dl =
  * sqrt(rtol) of the larger of |lam| and 1e-3 of the range (the truncation error and the
@@ -51,12 +69,34 @@ static int d_lambda(arc *a, const double *y, double lam, const double *py)
     return gd_per_sh_problem(sh, lam);
 }
 
-/* Solves the bordered system in scaled variables with sh->phi (at the point) and a->Fl:
- * [D^-1 (Phi - I) D, D^-1 Fl sl; row] x = a->b (in place). 0 ok. */
-static int bordered(arc *a, const double *row)
+/* Solves the bordered system in scaled variables with the monodromy at the point y (whose
+ * P(y) is sh->yT: dense, sh->phi) and a->Fl: [D^-1 (Phi - I) D, D^-1 Fl sl; row] x = a->b
+ * (in place); matrix-free by GMRES to tol. 0 ok. */
+static int bordered(arc *a, const double *y, const double *row, double tol)
 {
     shoot *sh = a->sh;
     const int N = a->N, n1 = N + 1;
+    if (a->kry) {
+        for (int i = 0; i < N; i++)
+            a->f[i] = a->Fl[i] * a->sl / a->D[i];
+        kry k = {.y = y,
+                 .py = sh->yT,
+                 .d = a->D,
+                 .yt = sh->yt,
+                 .pt = a->pt,
+                 .n = n1,
+                 .shift = 1.0,
+                 .f = a->f,
+                 .row = row};
+        /* restarts stop at the products' own error, about sqrt(rtol) relative (phi_vec):
+         * below it a cycle only moves the solution within that noise (the backlash pair at
+         * rtol 1e-7: the true residual after one cycle 1e-4 to 2e-3, after two and three
+         * the same) */
+        const double stop = fmax(tol, 10.0 * sqrt(sh->rtol));
+        if (gd_per_sh_gmres(sh, &k, a->b, a->x, tol, stop * stop, 4)) return 1;
+        memcpy(a->b, a->x, (size_t)n1 * sizeof *a->b);
+        return 0;
+    }
     for (int j = 0; j < N; j++)
         for (int i = 0; i < N; i++)
             a->J[(size_t)j * n1 + i] =
@@ -85,7 +125,7 @@ static int corrector(arc *a, double *y, double *lam, const double *tan, const do
             snprintf(sh->why, sizeof sh->why, "the corrector left the positive speeds");
             return 1;
         }
-        if (gd_per_sh_problem(sh, *lam) || gd_per_sh_monodromy(sh, y, sh->phi, sh->yT)) return 1;
+        if (evaluate(a, y, *lam)) return 1;
         for (int i = 0; i < N; i++)
             sh->r[i] = sh->yT[i] - y[i];
         const double res = gd_per_sh_norm(sh, y, sh->r);
@@ -99,7 +139,8 @@ static int corrector(arc *a, double *y, double *lam, const double *tan, const do
         slow = res > 0.5 * prev ? slow + 1 : 0;
         if (slow >= 2 && fabs(g) <= 1e-9) {
             memcpy(sh->racc, sh->r, (size_t)N * sizeof *sh->racc);
-            if (res <= gd_per_sh_noise(sh, y)) return 0;
+            /* (matrix-free: P(y) came from the plain integration the noise test repeats) */
+            if (res <= gd_per_sh_noise(sh, a->kry ? NULL : y)) return 0;
         }
         if (it >= maxit || (it > 3 && !(res < 1e3 * prev)) || slow >= 4) {
             snprintf(sh->why, sizeof sh->why,
@@ -113,8 +154,11 @@ static int corrector(arc *a, double *y, double *lam, const double *tan, const do
         for (int i = 0; i < N; i++)
             a->b[i] = -sh->r[i] / a->D[i];
         a->b[N] = -g;
-        if (bordered(a, tan)) {
-            snprintf(sh->why, sizeof sh->why, "shooting (arclength): singular bordered Jacobian");
+        if (bordered(a, y, tan, 1e-3)) {
+            /* (matrix-free: an integration failed or the budget ran out, sh->why says) */
+            if (!a->kry)
+                snprintf(sh->why, sizeof sh->why,
+                         "shooting (arclength): singular bordered Jacobian");
             return 1;
         }
         for (int i = 0; i < N; i++)
@@ -123,8 +167,8 @@ static int corrector(arc *a, double *y, double *lam, const double *tan, const do
     }
 }
 
-/* The unit tangent (scaled, N + 1) at a converged (y, lam) whose monodromy is sh->phi and
- * P(y) sh->yT: the bordered system with last row prev (NULL: e_lambda), right-hand side
+/* The unit tangent (scaled, N + 1) at a converged (y, lam) whose P(y) is sh->yT (dense:
+ * its monodromy sh->phi): the bordered system with last row prev (NULL: e_lambda), right-hand side
  * e_{N+1}; oriented along prev, or so that lambda moves by sign. 0 ok. */
 static int tangent(arc *a, const double *y, double lam, const double *prev, double sign, double *t)
 {
@@ -138,7 +182,7 @@ static int tangent(arc *a, const double *y, double lam, const double *prev, doub
         row[N] = 1.0;
     memset(a->b, 0, (size_t)N * sizeof *a->b);
     a->b[N] = 1.0;
-    int rc = bordered(a, row);
+    int rc = bordered(a, y, row, 1e-6);
     free(row);
     if (rc) return 1;
     double nt = 0.0, dot = 0.0;
@@ -156,12 +200,19 @@ static int tangent(arc *a, const double *y, double lam, const double *prev, doub
     return 0;
 }
 
-/* The multipliers at the point whose monodromy is sh->phi (destroyed): their count in *n,
- * the largest modulus of each kind (gd_per_sh_kinds) in g. 0 ok. */
-static int point_multipliers(shoot *sh, double *mre, double *mim, int *n)
+/* The multipliers at the converged point y (dense: from its monodromy sh->phi, destroyed;
+ * matrix-free: the Ritz values of Arnoldi on Phi), their count in *n. 0 ok. */
+static int point_multipliers(arc *a, const double *y, double *mre, double *mim, int *n)
 {
+    shoot *sh = a->sh;
     double dummy[1];
     *n = 0;
+    if (a->kry) {
+        *n = gd_per_sh_multipliers(sh, y, mre, mim);
+        if (*n >= 0) return 0;
+        *n = 0;
+        return 1;
+    }
     if (LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', sh->N, sh->phi, sh->N, mre, mim, dummy, 1, dummy,
                       1))
         return 1;
@@ -201,7 +252,7 @@ static int criterion(arc *a, int kind, const double *y, double lam, const double
         return 0;
     }
     int n;
-    if (point_multipliers(sh, sh->mre, sh->mim, &n)) return 1;
+    if (point_multipliers(a, y, sh->mre, sh->mim, &n)) return 1;
     double gg[3];
     int at[3];
     gd_per_sh_kinds(sh->mre, sh->mim, n, gg, at);
@@ -216,14 +267,16 @@ static int criterion(arc *a, int kind, const double *y, double lam, const double
  * than 1e-8 relative (near a fold lambda is quadratic in the position, so the fold's value
  * is found far more precisely than the point; below that the integration noise moves it:
  * the backlash pair's folds at rtol 1e-7 wander by 4e-8 relative, and a stricter test took
- * 22 corrector solves per fold instead of 7). The located value, or NAN; for a multiplier
- * *off is its distance |mu| - 1 there. */
+ * 22 corrector solves per fold instead of 7). The located value, or NAN (a corrector or the
+ * criterion failed first, or 40 points did not settle it); for a multiplier *off is its
+ * distance |mu| - 1 there. */
 static double locate(arc *a, int kind, const double *ya, double la, const double *ta, double ga,
                      const double *yb, double lb, double gb, double *re, double *im, double *off)
 {
     const int N = a->N;
     double *ch = malloc((size_t)(3 * N + 2) * sizeof *ch), *y = ch + N + 1, *tt = y + N;
     double best = NAN;
+    int located = 0;
     *off = INFINITY;
     if (!ch) return NAN;
     double nc = 0.0;
@@ -249,13 +302,16 @@ static double locate(arc *a, int kind, const double *ya, double la, const double
             *im = m;
             *off = fabs(g);
         }
-        if (fabs(lam - lprev) <= 1e-8 * fabs(lam) || g == 0.0 || s1 - s0 < 1e-14) break;
+        if (fabs(lam - lprev) <= 1e-8 * fabs(lam) || g == 0.0 || s1 - s0 < 1e-14) {
+            located = 1;
+            break;
+        }
         lprev = lam;
         sig = gd_per_illinois(sig, g, &s0, &g0, &s1, &g1);
     }
 done:
     free(ch);
-    return best;
+    return located ? best : NAN;
 }
 
 /* The first converged point from vals[*i0] on (a transient warm start, then Newton), each
@@ -281,9 +337,11 @@ int gd_per_sh_arclength(shoot *sh, const double *vals, int nv)
 {
     const int N = sh->N, stab = sh->opt->stability;
     int i0 = 0, rc = 1, it = 0;
-    arc a = {.sh = sh, .N = N};
-    /* y, y1, yg, yp (N + 1), t, t1 (N + 1), D, Fl, P2, b (N + 1), J, multipliers 4 N */
-    double *w = malloc(((size_t)14 * N + 4 + (size_t)(N + 1) * (N + 1)) * sizeof *w);
+    arc a = {.sh = sh, .N = N, .kry = !sh->dense};
+    /* y, y1, yg, yp (N + 1), t, t1 (N + 1), D, Fl, P2, b (N + 1), J (dense) or f, x (N + 1)
+     * and pt (Krylov), multipliers 4 N */
+    const size_t nJ = a.kry ? 3 * (size_t)N + 1 : (size_t)(N + 1) * (N + 1);
+    double *w = malloc(((size_t)14 * N + 4 + nJ) * sizeof *w);
     a.ipiv = malloc((size_t)(N + 1) * sizeof *a.ipiv);
     if (!w || !a.ipiv) goto done;
     double *y = w, *y1 = y + N, *yg = y1 + N, *yp = yg + N, *t = yp + N + 1, *t1 = t + N + 1;
@@ -292,8 +350,13 @@ int gd_per_sh_arclength(shoot *sh, const double *vals, int nv)
     a.P2 = a.Fl + N;
     a.b = a.P2 + N;
     a.J = a.b + N + 1;
-    double *mre = a.J + (size_t)(N + 1) * (N + 1), *mim = mre + N, *mre1 = mim + N,
-           *mim1 = mre1 + N;
+    double *mre = a.J + nJ, *mim = mre + N, *mre1 = mim + N, *mim1 = mre1 + N;
+    if (a.kry) {
+        a.f = a.J;
+        a.x = a.f + N;
+        a.pt = a.x + N + 1;
+        a.J = NULL;
+    }
     if (first_point(sh, vals, nv, &i0, y)) goto done;
     if (i0 >= nv - 1) {
         rc = 0;
@@ -310,9 +373,7 @@ int gd_per_sh_arclength(shoot *sh, const double *vals, int nv)
     a.sl = fabs(lend - lstart);
     gd_per_sh_tolerances(sh, y);
     gd_per_sh_scales(sh, y, a.D);
-    /* the fixed-value Newton left the monodromy at y in sh->phi, and P(y) in sh->yT is
-     * y within the tolerance */
-    if (gd_per_sh_monodromy(sh, y, sh->phi, sh->yT) || tangent(&a, y, lam, NULL, sign, t)) {
+    if (evaluate(&a, y, lam) || tangent(&a, y, lam, NULL, sign, t)) {
         snprintf(sh->why, sizeof sh->why, "shooting (arclength): no tangent at the start");
         goto stop;
     }
@@ -355,8 +416,8 @@ int gd_per_sh_arclength(shoot *sh, const double *vals, int nv)
             ds *= 0.5;
             continue;
         }
-        /* the multipliers at the step (sh->phi is its monodromy) */
-        if (nmu && point_multipliers(sh, mre1, mim1, &nmu1)) nmu1 = 0;
+        /* the multipliers at the step (dense: sh->phi is its monodromy) */
+        if (nmu && point_multipliers(&a, y1, mre1, mim1, &nmu1)) nmu1 = 0;
         /* requested values crossed on this step, nearest to lam first */
         const int up = vals[nv - 1] >= vals[0];
         for (int q = 0; q < nv; q++) {

@@ -58,6 +58,22 @@ typedef struct shoot {
     int dense;      /* the dense monodromy (else Newton-Krylov on monodromy-vector products) */
 } shoot;
 
+/* Matrix-free monodromy in scaled variables z = y / d (shooting.c, phi_vec): Phi z by a
+ * forward difference of the period map about y (py = P(y)), or a central one (central),
+ * work yt and pt (N each). The operator is Phi - shift I on n = N unknowns, or with a
+ * border f (N) and row (N + 1) the bordered [Phi - shift I, f; row^T] on n = N + 1 (the
+ * arclength's corrector). */
+typedef struct kry {
+    const double *y, *py, *d;
+    double *yt, *pt;
+    int n;
+    double shift;
+    const double *f, *row;
+    int central;
+} kry;
+
+int gd_per_sh_gmres(shoot *sh, kry *k, const double *b, double *x, double tol, double stop2,
+                    int cycles);
 int gd_per_sh_problem(shoot *sh, double key);
 void gd_per_sh_tolerances(shoot *sh, const double *y);
 double gd_per_sh_norm(const shoot *sh, const double *y, const double *f);

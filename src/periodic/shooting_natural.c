@@ -1,8 +1,8 @@
 /* Shooting's natural continuation in the value (docs/periodic.md, "Shooting"), and the
- * entry gd_per_shoot_run, which takes the pseudo-arclength (shooting_arclength.c) unless
- * --sequential or on the Newton-Krylov path: each point starts from the previous points'
- * states extrapolated linearly, the first (or one whose Newton fails from there) from a
- * short transient from rest or from the static state under the loads, which a stable orbit
+ * entry gd_per_shoot_run, which takes the pseudo-arclength (shooting_arclength.c, dense
+ * or matrix-free) unless --sequential: each point starts from the previous points' states
+ * extrapolated linearly, the first (or one whose Newton fails from there) from a short
+ * transient from rest or from the static state under the loads, which a stable orbit
  * attracts. Bifurcations are found between points where the multipliers cross the unit
  * circle and located by secant iterations on the critical multiplier's modulus, each a
  * shooting solve. */
@@ -34,16 +34,19 @@ static int critical(shoot *sh, double key, double *y, int k, double *g, double *
 }
 
 /* A crossing of the unit circle by the multipliers of kind k between (la, ya, ga) and
- * (lb, yb, gb), located by secant iterations (regula falsi with the Illinois rule) on
- * |mu| - 1 to 1e-8 relative in the value. The located value, or NAN. */
+ * (lb, yb, gb), located by secant iterations (regula falsi with the Illinois rule, a
+ * bisection where the secant leaves the bracket) on |mu| - 1 to 1e-8 relative in the
+ * value. The located value with |mu| - 1 there in *off, or NAN when a shooting solve failed
+ * before the bracket closed. */
 static double locate(shoot *sh, int k, double la, const double *ya, double ga, double lb,
-                     const double *yb, double gb, double *mre, double *mim)
+                     const double *yb, double gb, double *mre, double *mim, double *off)
 {
     const int N = sh->N;
     double *y = malloc((size_t)N * sizeof *y), lx = NAN;
     if (!y) return NAN;
     double a = la, b = lb, fa = ga, fb = gb;
-    int side = 0;
+    int side = 0, located = 0;
+    *off = INFINITY;
     for (int it = 0; it < 30; it++) {
         double x = b - fb * (b - a) / (fb - fa), g, re, im;
         if (!(x > fmin(a, b) && x < fmax(a, b))) x = 0.5 * (a + b);
@@ -53,11 +56,15 @@ static double locate(shoot *sh, int k, double la, const double *ya, double ga, d
             y[i] = (1 - s) * ya[i] + s * yb[i];
         if (critical(sh, x, y, k, &g, &re, &im)) break;
         lx = x;
+        *off = fabs(g);
         if (isfinite(re)) {
             *mre = re;
             *mim = im;
         }
-        if (fabs(g) < 1e-12 || fabs(b - a) <= 1e-8 * fabs(x)) break;
+        if (fabs(g) < 1e-12 || fabs(b - a) <= 1e-8 * fabs(x)) {
+            located = 1;
+            break;
+        }
         if ((g > 0) == (fb > 0)) {
             b = x;
             fb = g;
@@ -69,10 +76,13 @@ static double locate(shoot *sh, int k, double la, const double *ya, double ga, d
             if (side == 1) fb *= 0.5;
             side = 1;
         }
-        if (fabs(b - a) <= 1e-8 * fabs(x)) break;
+        if (fabs(b - a) <= 1e-8 * fabs(x)) {
+            located = 1;
+            break;
+        }
     }
     free(y);
-    return lx;
+    return located ? lx : NAN;
 }
 
 /* Bifurcations between the previous converged point (la, ya, its multipliers) and this
@@ -90,9 +100,12 @@ static int detect(shoot *sh, double la, const double *ya, const double *ma_re, c
         /* a kind absent on one side counts as modulus 0 (a complex pair meets the real
          * axis before one of it leaves through -1 or +1) */
         if ((ga[k] > 1.0) == (gb[k] > 1.0)) continue;
-        double re = NAN, im = NAN;
-        double x = locate(sh, k, la, ya, ga[k] - 1.0, lb, yb, gb[k] - 1.0, &re, &im);
-        if (isnan(x)) { /* not located: between the points, linearly */
+        double re = NAN, im = NAN, off;
+        double x = locate(sh, k, la, ya, ga[k] - 1.0, lb, yb, gb[k] - 1.0, &re, &im, &off);
+        /* a period doubling or Neimark-Sacker point only where located, its multiplier on
+         * the circle to 1e-4 (as on the arclength and in harmonic balance) */
+        if (k > 0 && (isnan(x) || !(off < 1e-4))) continue;
+        if (isnan(x)) { /* a fold not located (the branch ends there): linearly */
             x = la + (lb - la) * (1.0 - ga[k]) / (gb[k] - ga[k]);
             re = im = NAN;
         }
@@ -108,10 +121,8 @@ static int detect(shoot *sh, double la, const double *ya, const double *ma_re, c
 
 static int run_direction(shoot *sh, const double *vals, int nv)
 {
-    /* pseudo-arclength (shooting_arclength.c) unless --sequential, where the dense
-     * monodromy gives the bordered Jacobian */
-    if (sh->opt->method == GD_PER_ARCLENGTH && nv >= 2 && !gd_per_sh_problem(sh, vals[0]) &&
-        sh->dense)
+    /* pseudo-arclength (shooting_arclength.c, dense or matrix-free) unless --sequential */
+    if (sh->opt->method == GD_PER_ARCLENGTH && nv >= 2 && !gd_per_sh_problem(sh, vals[0]))
         return gd_per_sh_arclength(sh, vals, nv);
     sh->steps += nv;
     const int stab = sh->opt->stability;
