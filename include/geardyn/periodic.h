@@ -98,8 +98,8 @@ typedef struct gd_periodic_options {
                               measured convergence, docs/periodic.md) */
     gd_per_method method;
     gd_per_kind kind;    /* GD_PER_HB (default), GD_PER_SHOOTING or GD_PER_AUTO (shooting
-                            by arclength needs the dense monodromy: on the Newton-Krylov
-                            path it continues naturally, whatever `method` says) */
+                            by arclength: dense up to shoot_dense_max states, above it
+                            matrix-free, GMRES on monodromy-vector products) */
     double shoot_rtol;   /* shooting: the integrator's relative tolerance (0: 1e-9); the
                             absolute ones are 1e-3 of it times the orbit's largest
                             displacement and velocity, and Newton stops at a scaled

@@ -889,7 +889,9 @@ int gd_per_floquet_reduced(ctx *c, stage *s, const double *X, double lam, int st
     const double fc = c->opt->floquet_cutoff > 0 ? c->opt->floquet_cutoff : GD_FLOQUET_CUTOFF;
     /* the first step count: 8 per period of the highest excitation (the top order of the
      * fundamental, or H), a power of 2, at least 256 */
-    const int top = order > 0 ? order : c->H;
+    /* (a subharmonic period holds subharmonic times as many) */
+    const int sub = c->opt->subharmonic > 1 ? c->opt->subharmonic : 1;
+    const long top = order > 0 ? (long)order * sub : c->H;
     /* a count of its own may go past the caller's (4 x samples): a long period at a low
      * speed needs more steps for the stiff directions the residual vectors carry (the
      * [JMSTHelical] model at 100-180 rpm overflowed at 16384), and there the basis is
