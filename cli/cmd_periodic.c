@@ -491,26 +491,27 @@ static int parse_harmonic_tol(const char *cmd, const char *text, void *field)
     return parse_tolerance(cmd, "--harmonic-tol", text, field);
 }
 
-static int parse_samples(const char *cmd, const char *text, void *field)
+/* A count per period from lo to 2^20 (AFT samples, Magnus steps). */
+static int parse_per_period(const char *cmd, const char *name, long lo, const char *text,
+                            void *field)
 {
     long n;
-    if (gd_cli_parse_count(text, 4, GD_PERIODIC_MAX_SAMPLES, &n))
-        return gd_cli_usage_error(
-            cmd, "--samples: expected a whole number from 4 to %d (2^20), got '%s'",
-            GD_PERIODIC_MAX_SAMPLES, text);
+    if (gd_cli_parse_count(text, lo, GD_PERIODIC_MAX_SAMPLES, &n))
+        return gd_cli_usage_error(cmd,
+                                  "--%s: expected a whole number from %ld to %d (2^20), got '%s'",
+                                  name, lo, GD_PERIODIC_MAX_SAMPLES, text);
     *(int *)field = (int)n;
     return 0;
 }
 
+static int parse_samples(const char *cmd, const char *text, void *field)
+{
+    return parse_per_period(cmd, "samples", 4, text, field);
+}
+
 static int parse_monodromy_steps(const char *cmd, const char *text, void *field)
 {
-    long n;
-    if (gd_cli_parse_count(text, 1, GD_PERIODIC_MAX_SAMPLES, &n))
-        return gd_cli_usage_error(
-            cmd, "--monodromy-steps: expected a whole number from 1 to %d (2^20), got '%s'",
-            GD_PERIODIC_MAX_SAMPLES, text);
-    *(int *)field = (int)n;
-    return 0;
+    return parse_per_period(cmd, "monodromy-steps", 1, text, field);
 }
 
 #define F(m) offsetof(periodic_args, m)

@@ -39,6 +39,23 @@ static gd_periodic_result *one_point(const fx *f, const gd_transient_spec *spec,
     return r;
 }
 
+/* The Chen SFD pair at the eccentricity e_u/C = 1/2 (38.1 um), gear b's torsional support
+ * made rigid (k_torsion 1e12) when stiff. 1 ok. */
+static int load_chen(fx *f, int stiff)
+{
+    const char *set[2] = {"unbalances.gear_a_unbalance.eccentricity=38.1um",
+                          "bearings.support_b.k_torsion=1e12"};
+    gd_load_options lo;
+    memset(&lo, 0, sizeof lo);
+    lo.nset = stiff ? 2 : 1;
+    lo.set = set;
+    gd_error err;
+    memset(f, 0, sizeof *f);
+    return gd_model_load_opts(GD_SOURCE_DIR "/examples/chen1998_gear_pair.yaml", &lo, &f->m,
+                              &err) == GD_OK &&
+           gd_system_build(f->m, &f->s, &err) == GD_OK;
+}
+
 /* The largest distance from each of a's first n multipliers to the nearest of b's. */
 static double worst_distance(const gd_periodic_point *a, int n, const gd_periodic_point *b)
 {
@@ -52,9 +69,16 @@ static double worst_distance(const gd_periodic_point *a, int n, const gd_periodi
     return worst;
 }
 
-/* Mathieu pair outside and inside its tongue (698.97 .. 715.17 rad/s), 2048 steps: both
- * multipliers within 1e-10 of the dense monodromy's (measured 2.3e-12 and 2.1e-12: two
- * fourth-order schemes, the interaction picture's and the plain Magnus steps). */
+/* Mathieu pair outside and inside its tongue (698.97 .. 715.17 rad/s), both multipliers
+ * against the dense monodromy's, two ways:
+ *  - H = 8, 2048 steps each: within 1e-10 (measured 9e-14 and 2.1e-13: two fourth-order
+ *    schemes, the interaction picture's and the plain Magnus steps, in balanced states);
+ *  - H = 64, every step count default: dense takes 4 x samples (2048), the reduced method
+ *    its own count, from 256 (8 per period of the top excitation order, at least 256)
+ *    doubled until two counts' moduli agree (each within 1 % of its distance from the
+ *    circle, at least 1e-7): it stops far below 2048 (measured 512) within 1e-7 of dense
+ *    (measured 8e-14 and 4e-14: its constant part is exact, the steps only follow the
+ *    stiffness). */
 TEST(mathieu_reduced_equals_dense)
 {
     fx f;
@@ -63,22 +87,30 @@ TEST(mathieu_reduced_equals_dense)
     gd_error err;
     REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
     const double W[2] = {690.0, 707.0};
-    for (int c = 0; c < 2; c++) {
-        gd_periodic_result *d = one_point(&f, &tm->spec, W[c], 8, 2048, GD_FLOQUET_DENSE, 0);
-        gd_periodic_result *r = one_point(&f, &tm->spec, W[c], 8, 2048, GD_FLOQUET_REDUCED, 0);
-        REQUIRE(d && r);
-        const gd_periodic_point *pd = &d->points[0], *pr = &r->points[0];
-        CHECK(pr->floquet_basis == 1 && pd->floquet_basis == 0 && pr->floquet_krylov == 0);
-        CHECK(pr->nmult == 2);
-        double w = worst_distance(pr, 2, pd);
-        printf("  W = %.0f: |mu|max dense %.12f, reduced %.12f, distance %.2g\n", W[c], pd->mu_max,
-               pr->mu_max, w);
-        CHECK(w <= 1e-10);
-        CHECK(pr->stable == pd->stable);
-        CHECK(pd->stable == (c == 0)); /* 707 rad/s lies inside the tongue */
-        gd_periodic_result_free(d);
-        gd_periodic_result_free(r);
-    }
+    for (int own = 0; own < 2; own++)
+        for (int c = 0; c < 2; c++) {
+            const int H = own ? 64 : 8, steps = own ? 0 : 2048;
+            gd_periodic_result *d = one_point(&f, &tm->spec, W[c], H, steps, GD_FLOQUET_DENSE, 0);
+            gd_periodic_result *r = one_point(&f, &tm->spec, W[c], H, steps, GD_FLOQUET_REDUCED, 0);
+            REQUIRE(d && r);
+            const gd_periodic_point *pd = &d->points[0], *pr = &r->points[0];
+            CHECK(pr->floquet_basis == 1 && pd->floquet_basis == 0 && pr->floquet_krylov == 0);
+            CHECK(pr->nmult == 2);
+            double w = worst_distance(pr, 2, pd);
+            printf("  H = %d, W = %.0f: dense %d steps |mu|max %.12f, reduced %d steps %.12f, "
+                   "distance %.2g\n",
+                   H, W[c], pd->floquet_steps, pd->mu_max, pr->floquet_steps, pr->mu_max, w);
+            CHECK(pd->floquet_steps == 2048);
+            if (own)
+                CHECK(pr->floquet_steps >= 512 && pr->floquet_steps <= 1024);
+            else
+                CHECK(pr->floquet_steps == 2048);
+            CHECK(w <= (own ? 1e-7 : 1e-10));
+            CHECK(pr->stable == pd->stable);
+            CHECK(pd->stable == (c == 0)); /* 707 rad/s lies inside the tongue */
+            gd_periodic_result_free(d);
+            gd_periodic_result_free(r);
+        }
     gd_transient_model_free(tm);
     fx_free(&f);
 }
@@ -132,16 +164,8 @@ TEST(mathieu_bifurcations_by_reduced)
 TEST(chen_sfd_reduced_equals_dense)
 {
     fx f;
-    gd_load_options lo;
-    const char *set[1] = {"unbalances.gear_a_unbalance.eccentricity=38.1um"};
-    memset(&lo, 0, sizeof lo);
-    lo.nset = 1;
-    lo.set = set;
     gd_error err;
-    memset(&f, 0, sizeof f);
-    REQUIRE(gd_model_load_opts(GD_SOURCE_DIR "/examples/chen1998_gear_pair.yaml", &lo, &f.m,
-                               &err) == GD_OK);
-    REQUIRE(gd_system_build(f.m, &f.s, &err) == GD_OK);
+    REQUIRE(load_chen(&f, 0));
     gd_transient_model *tm = NULL;
     REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
     const double W[2] = {5350.0, 5650.0};
@@ -188,17 +212,8 @@ TEST(chen_sfd_reduced_equals_dense)
 TEST(stiff_dof_dense_equals_reduced)
 {
     fx f;
-    gd_load_options lo;
-    const char *set[2] = {"unbalances.gear_a_unbalance.eccentricity=38.1um",
-                          "bearings.support_b.k_torsion=1e12"};
-    memset(&lo, 0, sizeof lo);
-    lo.nset = 2;
-    lo.set = set;
     gd_error err;
-    memset(&f, 0, sizeof f);
-    REQUIRE(gd_model_load_opts(GD_SOURCE_DIR "/examples/chen1998_gear_pair.yaml", &lo, &f.m,
-                               &err) == GD_OK);
-    REQUIRE(gd_system_build(f.m, &f.s, &err) == GD_OK);
+    REQUIRE(load_chen(&f, 1));
     gd_transient_model *tm = NULL;
     REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
     gd_periodic_result *d = one_point(&f, &tm->spec, 5350.0, 12, 512, GD_FLOQUET_DENSE, 0);
@@ -213,42 +228,6 @@ TEST(stiff_dof_dense_equals_reduced)
     CHECK(w <= 1e-8);
     gd_periodic_result_free(d);
     gd_periodic_result_free(r);
-    gd_transient_model_free(tm);
-    fx_free(&f);
-}
-
-/* The reduced method's own step count (monodromy_steps 0): from 256 (8 per period of the
- * top excitation order, at least 256), doubled until two counts' moduli agree (each within
- * 1 % of its distance from the unit circle, at least 1e-7). On the Mathieu pair at H = 64
- * (4 x samples: 2048 steps, what the dense monodromy takes) it stops far below the cap and
- * its multipliers stay within 1e-7 of the dense 2048 steps' (measured 2e-12: the
- * interaction picture's constant part is exact, the steps only follow the stiffness's
- * variation), outside and inside the tongue. */
-TEST(reduced_chooses_its_steps)
-{
-    fx f;
-    REQUIRE(load(&f, GD_SOURCE_DIR "/tests/plot/mathieu_pair.yaml", NULL));
-    gd_transient_model *tm = NULL;
-    gd_error err;
-    REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
-    const double W[2] = {690.0, 707.0};
-    for (int c = 0; c < 2; c++) {
-        gd_periodic_result *d = one_point(&f, &tm->spec, W[c], 64, 0, GD_FLOQUET_DENSE, 0);
-        gd_periodic_result *r = one_point(&f, &tm->spec, W[c], 64, 0, GD_FLOQUET_REDUCED, 0);
-        REQUIRE(d && r);
-        const gd_periodic_point *pd = &d->points[0], *pr = &r->points[0];
-        double w = worst_distance(pr, 2, pd);
-        printf("  W = %.0f: dense %d steps |mu|max %.12f, reduced %d steps %.12f, distance "
-               "%.2g\n",
-               W[c], pd->floquet_steps, pd->mu_max, pr->floquet_steps, pr->mu_max, w);
-        CHECK(pd->floquet_steps == 2048);
-        CHECK(pr->floquet_steps >= 512 && pr->floquet_steps <= 1024);
-        CHECK(w <= 1e-7);
-        CHECK(pr->stable == pd->stable);
-        CHECK(pd->stable == (c == 0));
-        gd_periodic_result_free(d);
-        gd_periodic_result_free(r);
-    }
     gd_transient_model_free(tm);
     fx_free(&f);
 }
@@ -318,5 +297,4 @@ TEST(reduced_options_checked)
 
 RUN_TESTS(T(mathieu_reduced_equals_dense), T(stiff_dof_dense_equals_reduced),
           T(mathieu_bifurcations_by_reduced), T(chen_sfd_reduced_equals_dense),
-          T(free_rotation_falls_back_to_dense), T(reduced_chooses_its_steps),
-          T(reduced_options_checked))
+          T(free_rotation_falls_back_to_dense), T(reduced_options_checked))

@@ -209,6 +209,17 @@ TEST(backlash_shooting_within_hb_truncation)
     fx_free(&f);
 }
 
+/* The backlash pair whose branch folds (gap 0.2, 2e-6 m, 48 teeth: backlash_pair_with) and
+ * its transient model. 1 ok. */
+static int load_folding_pair(fx *f, gd_transient_model **tm)
+{
+    char *y = backlash_pair_with(0.2, 2e-6, 48);
+    int ok = load(f, NULL, y);
+    free(y);
+    gd_error err;
+    return ok && gd_transient_model_build(f->s, tm, &err) == GD_OK;
+}
+
 /* The backlash pair with TVMS 2e8 (1 + 0.2 cos z theta) and STE 2 um sin z theta (the pair
  * of test_periodic's fold tests): softening by tooth separation bends the mesh resonance
  * into two hysteresis loops over 300..800 rad/s. Shooting's pseudo-arclength follows the
@@ -224,13 +235,8 @@ TEST(backlash_shooting_within_hb_truncation)
 TEST(backlash_arclength_folds_equal_hb)
 {
     fx f;
-    char *y = backlash_pair_with(0.2, 2e-6, 48);
-    int ok = load(&f, NULL, y);
-    free(y);
-    REQUIRE(ok);
     gd_transient_model *tm = NULL;
-    gd_error err;
-    REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
+    REQUIRE(load_folding_pair(&f, &tm));
     const double v[6] = {300, 400, 500, 600, 700, 800};
     gd_periodic_options o;
     gd_periodic_options_init(&o);
@@ -480,13 +486,8 @@ TEST(newton_krylov_equals_dense)
 TEST(krylov_arclength_equals_dense)
 {
     fx f;
-    char *y = backlash_pair_with(0.2, 2e-6, 48);
-    int ok = load(&f, NULL, y);
-    free(y);
-    REQUIRE(ok);
     gd_transient_model *tm = NULL;
-    gd_error err;
-    REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
+    REQUIRE(load_folding_pair(&f, &tm));
     const double v[2] = {500, 570};
     gd_periodic_options o;
     gd_periodic_options_init(&o);
