@@ -67,8 +67,10 @@ typedef struct gd_periodic_options {
     double tol;            /* Newton: relative residual (default 1e-10) */
     int max_iter;          /* Newton iterations per point (default 30) */
     int stability;         /* 1 (default): Floquet multipliers and bifurcations */
-    int monodromy_steps;   /* Magnus steps per period; 0: 4 x samples, at least 256; at
-                              most GD_PERIODIC_MAX_SAMPLES */
+    int monodromy_steps;   /* Magnus steps per period; 0: 4 x samples, at least 256 (the
+                              reduced basis: its own count, 8 per period of the top
+                              excitation order doubled until two counts agree, at most
+                              131072); at most GD_PERIODIC_MAX_SAMPLES */
     int floquet;           /* how the multipliers are found (docs/periodic.md, "Stability at
                               scale"): GD_FLOQUET_AUTO (default: dense up to floquet_dmax
                               states, reduced above), GD_FLOQUET_DENSE (every multiplier, the
