@@ -197,13 +197,10 @@ gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *sp
         const double rb = fmin(nf, 64.0), nterm = fmax(1.0, gd_transient_terms(tr, NULL));
         /* the reduced basis picks its own steps: s0 = 8 per period of the top order (a power
          * of 2, at least 256), then 2 s0 to compare, so about 3 s0 steps in all */
-        double rsteps = steps;
-        if (opt->monodromy_steps <= 0) {
-            double s0 = 256.0;
-            while (s0 < 8.0 * order * opt->subharmonic)
-                s0 *= 2.0;
-            rsteps = 3.0 * s0;
-        }
+        const double rsteps =
+            opt->monodromy_steps > 0
+                ? steps
+                : 3.0 * gd_floquet_reduced_first_steps((long)order * opt->subharmonic);
         const double fq = reduced ? (10.0 * pow(nf, 3) + rsteps * 8.0 * nterm * 4.0 * rb * rb) / 2e9
                                   : steps * 30.0 * pow(2.0 * nf, 3) / 2e9;
         if (opt->stability) /* no more than the multipliers' budget: over it they are left out */

@@ -29,13 +29,7 @@ static int expm(int n, const double *A, double *E, double *W, int *ipiv)
     const int p = 8;
     size_t nn = (size_t)n * n;
     double *X = W, *Nm = W + nn, *Dm = W + 2 * nn, *T = W + 3 * nn, *S = W + 4 * nn;
-    double norm = 0.0;
-    for (int j = 0; j < n; j++) {
-        double c = 0.0;
-        for (int i = 0; i < n; i++)
-            c += fabs(A[(size_t)j * n + i]);
-        norm = c > norm ? c : norm;
-    }
+    const double norm = LAPACKE_dlange_work(LAPACK_COL_MAJOR, '1', n, n, A, n, NULL);
     /* a non-finite Omega (an overflowed step) has no exponential; log2 of a finite norm
      * is at most 1024, so s <= 1025 and the cast cannot overflow (norm / 0.5 itself
      * overflows to inf above DBL_MAX / 2: found by fuzz_inputs at speeds of 1e-154) */

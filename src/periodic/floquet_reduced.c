@@ -58,13 +58,7 @@ static void dense_of(const gd_csc *A, int n, double *out)
 static void small_expm(int n, const double *A, double *E, double *W)
 {
     const size_t nn = (size_t)n * n;
-    double norm = 0.0;
-    for (int j = 0; j < n; j++) {
-        double c = 0.0;
-        for (int i = 0; i < n; i++)
-            c += fabs(A[(size_t)j * n + i]);
-        norm = c > norm ? c : norm;
-    }
+    const double norm = LAPACKE_dlange_work(LAPACK_COL_MAJOR, '1', n, n, A, n, NULL);
     int s = norm > 0.5 ? (int)ceil(log2(norm / 0.5)) : 0;
     if (s > 1000) s = 1000;
     const double sc = ldexp(1.0, -s);
@@ -874,6 +868,14 @@ done:
     return rc;
 }
 
+int gd_floquet_reduced_first_steps(long top)
+{
+    int s0 = 256;
+    while (s0 < 8 * top && s0 < GD_PERIODIC_MAX_SAMPLES / 2)
+        s0 *= 2;
+    return s0;
+}
+
 int gd_per_floquet_reduced(ctx *c, stage *s, const double *X, double lam, int steps, int steps_cap,
                            int *steps_used, const gd_tr_record *bl, int nbl, double *mre,
                            double *mim, int *nmu, int *nbasis)
@@ -897,9 +899,7 @@ int gd_per_floquet_reduced(ctx *c, stage *s, const double *X, double lam, int st
      * [JMSTHelical] model at 100-180 rpm overflowed at 16384), and there the basis is
      * small (6 vectors), so the steps are cheap; the CPU budget still bounds it */
     if (steps <= 0 && steps_cap < GD_FLOQUET_STEPS_MAX) steps_cap = GD_FLOQUET_STEPS_MAX;
-    int s0 = 256;
-    while (s0 < 8 * top && s0 < GD_PERIODIC_MAX_SAMPLES / 2)
-        s0 *= 2;
+    const int s0 = gd_floquet_reduced_first_steps(top);
     return gd_hb_floquet_reduced(&c->h, s->tr, s->w, X, steps, s0 < steps_cap ? s0 : steps_cap,
                                  steps_cap, steps_used, bl, nbl, fc * wexc, c->opt->floquet_budget,
                                  mre, mim, nmu, nbasis, c->floquet_msg);

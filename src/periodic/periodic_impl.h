@@ -201,6 +201,9 @@ int gd_hb_floquet_krylov(const hb *h, gd_transient *tr, double w, const double *
  * usable basis (an ill-conditioned eigenvector basis: a free rotation's Jordan block; or too
  * many DOFs for the dense modes): use another method, 6 the steps' own count did not settle
  * (or overflowed) by steps_cap, 1 other failures; msg (160 bytes) says why. */
+/* The reduced basis's first step count of its own: 8 per period of the top excitation
+ * order (top: the period's count of them), a power of 2, at least 256. */
+int gd_floquet_reduced_first_steps(long top);
 int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double w, const double *X, int steps,
                           int s0, int steps_cap, int *steps_used, const gd_tr_record *bl, int nbl,
                           double wcut, double budget, double *mu_re, double *mu_im, int *nmu,

@@ -12,35 +12,12 @@
 #include "geardyn/periodic.h"
 #include "geardyn/transient_model.h"
 #include "harness.h"
+#include "floquet_support.h"
 #include "model_support.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif
-
-/* One point at W by method m (count wanted for Krylov); NULL on failure. */
-static gd_periodic_result *one_point(const fx *f, const gd_transient_spec *spec, double W, int H,
-                                     int steps, int m, int count)
-{
-    gd_periodic_options o;
-    gd_periodic_options_init(&o);
-    o.harmonics = H;
-    o.estimate = 0;
-    o.monodromy_steps = steps;
-    o.floquet = m;
-    o.floquet_count = count;
-    gd_periodic_result *r = NULL;
-    gd_error err;
-    if (gd_periodic_run(f->s, spec, NULL, &W, 1, &o, NULL, 0, &r, &err)) {
-        fprintf(stderr, "  periodic: %s\n", err.message);
-        return NULL;
-    }
-    if (r->npoints != 1 || !r->points[0].converged) {
-        gd_periodic_result_free(r);
-        return NULL;
-    }
-    return r;
-}
 
 /* The largest distance from each Krylov multiplier to the nearest dense one, and whether
  * the Krylov ones are the largest (none of the dense ones left out is larger than the
@@ -77,8 +54,9 @@ TEST(mathieu_products_equal_dense)
     REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
     const double W[2] = {690.0, 707.0};
     for (int c = 0; c < 2; c++) {
-        gd_periodic_result *d = one_point(&f, &tm->spec, W[c], 8, 2048, GD_FLOQUET_DENSE, 0);
-        gd_periodic_result *k = one_point(&f, &tm->spec, W[c], 8, 2048, GD_FLOQUET_KRYLOV, 0);
+        gd_periodic_result *d = floquet_point(&f, &tm->spec, W[c], 8, 2048, GD_FLOQUET_DENSE, 0, 0);
+        gd_periodic_result *k =
+            floquet_point(&f, &tm->spec, W[c], 8, 2048, GD_FLOQUET_KRYLOV, 0, 0);
         REQUIRE(d && k);
         const gd_periodic_point *pd = &d->points[0], *pk = &k->points[0];
         CHECK(pd->floquet_krylov == 0 && pk->floquet_krylov == 1);
@@ -118,12 +96,12 @@ TEST(chen_sfd_krylov_schur_equals_dense)
     REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
     const double W[2] = {5350.0, 5650.0};
     for (int c = 0; c < 2; c++) {
-        gd_periodic_result *d = one_point(&f, &tm->spec, W[c], 12, 128, GD_FLOQUET_DENSE, 0);
+        gd_periodic_result *d = floquet_point(&f, &tm->spec, W[c], 12, 128, GD_FLOQUET_DENSE, 0, 0);
         REQUIRE(d);
         for (int q = 0; q < 2; q++) {
             const int want = q ? 8 : 4;
             gd_periodic_result *k =
-                one_point(&f, &tm->spec, W[c], 12, 128, GD_FLOQUET_KRYLOV, want);
+                floquet_point(&f, &tm->spec, W[c], 12, 128, GD_FLOQUET_KRYLOV, want, 0);
             REQUIRE(k);
             const gd_periodic_point *pd = &d->points[0], *pk = &k->points[0];
             int largest;

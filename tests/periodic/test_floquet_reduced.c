@@ -13,31 +13,8 @@
 #include "geardyn/periodic.h"
 #include "geardyn/transient_model.h"
 #include "harness.h"
+#include "floquet_support.h"
 #include "model_support.h"
-
-/* One point at W by method m (cut-off fc); NULL on failure. */
-static gd_periodic_result *one_point(const fx *f, const gd_transient_spec *spec, double W, int H,
-                                     int steps, int m, double fc)
-{
-    gd_periodic_options o;
-    gd_periodic_options_init(&o);
-    o.harmonics = H;
-    o.estimate = 0;
-    o.monodromy_steps = steps;
-    o.floquet = m;
-    o.floquet_cutoff = fc;
-    gd_periodic_result *r = NULL;
-    gd_error err;
-    if (gd_periodic_run(f->s, spec, NULL, &W, 1, &o, NULL, 0, &r, &err)) {
-        fprintf(stderr, "  periodic: %s\n", err.message);
-        return NULL;
-    }
-    if (r->npoints != 1 || !r->points[0].converged) {
-        gd_periodic_result_free(r);
-        return NULL;
-    }
-    return r;
-}
 
 /* The Chen SFD pair at the eccentricity e_u/C = 1/2 (38.1 um), gear b's torsional support
  * made rigid (k_torsion 1e12) when stiff. 1 ok. */
@@ -90,8 +67,10 @@ TEST(mathieu_reduced_equals_dense)
     for (int own = 0; own < 2; own++)
         for (int c = 0; c < 2; c++) {
             const int H = own ? 64 : 8, steps = own ? 0 : 2048;
-            gd_periodic_result *d = one_point(&f, &tm->spec, W[c], H, steps, GD_FLOQUET_DENSE, 0);
-            gd_periodic_result *r = one_point(&f, &tm->spec, W[c], H, steps, GD_FLOQUET_REDUCED, 0);
+            gd_periodic_result *d =
+                floquet_point(&f, &tm->spec, W[c], H, steps, GD_FLOQUET_DENSE, 0, 0);
+            gd_periodic_result *r =
+                floquet_point(&f, &tm->spec, W[c], H, steps, GD_FLOQUET_REDUCED, 0, 0);
             REQUIRE(d && r);
             const gd_periodic_point *pd = &d->points[0], *pr = &r->points[0];
             CHECK(pr->floquet_basis == 1 && pd->floquet_basis == 0 && pr->floquet_krylov == 0);
@@ -170,8 +149,9 @@ TEST(chen_sfd_reduced_equals_dense)
     REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
     const double W[2] = {5350.0, 5650.0};
     for (int c = 0; c < 2; c++) {
-        gd_periodic_result *d = one_point(&f, &tm->spec, W[c], 12, 512, GD_FLOQUET_DENSE, 0);
-        gd_periodic_result *r = one_point(&f, &tm->spec, W[c], 12, 512, GD_FLOQUET_REDUCED, 0);
+        gd_periodic_result *d = floquet_point(&f, &tm->spec, W[c], 12, 512, GD_FLOQUET_DENSE, 0, 0);
+        gd_periodic_result *r =
+            floquet_point(&f, &tm->spec, W[c], 12, 512, GD_FLOQUET_REDUCED, 0, 0);
         REQUIRE(d && r);
         const gd_periodic_point *pd = &d->points[0], *pr = &r->points[0];
         double w = worst_distance(pr, pr->nmult, pd);
@@ -184,7 +164,7 @@ TEST(chen_sfd_reduced_equals_dense)
         CHECK(pd->stable == (c == 0));
         if (c == 0) {
             gd_periodic_result *s =
-                one_point(&f, &tm->spec, W[c], 12, 512, GD_FLOQUET_REDUCED, 0.3);
+                floquet_point(&f, &tm->spec, W[c], 12, 512, GD_FLOQUET_REDUCED, 0, 0.3);
             REQUIRE(s);
             const gd_periodic_point *ps = &s->points[0];
             printf("  cut-off 0.3 (%d vectors): |mu|max %.10f\n", ps->floquet_basis, ps->mu_max);
@@ -216,8 +196,9 @@ TEST(stiff_dof_dense_equals_reduced)
     REQUIRE(load_chen(&f, 1));
     gd_transient_model *tm = NULL;
     REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
-    gd_periodic_result *d = one_point(&f, &tm->spec, 5350.0, 12, 512, GD_FLOQUET_DENSE, 0);
-    gd_periodic_result *r = one_point(&f, &tm->spec, 5350.0, 12, 512, GD_FLOQUET_REDUCED, 1e6);
+    gd_periodic_result *d = floquet_point(&f, &tm->spec, 5350.0, 12, 512, GD_FLOQUET_DENSE, 0, 0);
+    gd_periodic_result *r =
+        floquet_point(&f, &tm->spec, 5350.0, 12, 512, GD_FLOQUET_REDUCED, 0, 1e6);
     REQUIRE(d && r);
     const gd_periodic_point *pd = &d->points[0], *pr = &r->points[0];
     double w = worst_distance(pr, pr->nmult, pd);
@@ -242,8 +223,8 @@ TEST(free_rotation_falls_back_to_dense)
     gd_transient_model *tm = NULL;
     gd_error err;
     REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
-    gd_periodic_result *d = one_point(&f, &tm->spec, 300.0, 94, 256, GD_FLOQUET_DENSE, 0);
-    gd_periodic_result *r = one_point(&f, &tm->spec, 300.0, 94, 256, GD_FLOQUET_REDUCED, 0);
+    gd_periodic_result *d = floquet_point(&f, &tm->spec, 300.0, 94, 256, GD_FLOQUET_DENSE, 0, 0);
+    gd_periodic_result *r = floquet_point(&f, &tm->spec, 300.0, 94, 256, GD_FLOQUET_REDUCED, 0, 0);
     REQUIRE(d && r);
     const gd_periodic_point *pd = &d->points[0], *pr = &r->points[0];
     printf("  |mu|max dense %.12f, reduced request %.12f (basis %d)\n", pd->mu_max, pr->mu_max,
