@@ -132,12 +132,22 @@ void pl_range(const pl_panel *pn, int axis, double *lo, double *hi);
 /* writers */
 gd_status pl_write_svg(const gd_plot *p, FILE *f, gd_error *err);
 gd_status pl_write_html(const gd_plot *p, FILE *f, const char *plotly_path, gd_error *err);
+/* the SVG drawn for PNG and PDF (raster.c): no data-x/data-y numbers, curves and
+ * markers thinned to the resolution (pl_decimate) */
+gd_status pl_write_svg_raster(const gd_plot *p, FILE *f, gd_error *err);
+/* Of n points in pixels (x, y), the indices (ascending, into keep[n]) of those to draw
+ * at a resolution of cell pixels: every point dropped lies within one cell of the line
+ * through those kept (decimate.c). Returns their count. */
+int pl_decimate(const double *x, const double *y, int n, double cell, int *keep);
 /* the height of a panel in the SVG (pixels) */
 double pl_svg_panel_height(const pl_panel *pn);
-/* PNG (pdf = 0) or PDF of the document's SVG through librsvg and cairo (raster.c) */
-gd_status pl_write_raster(const gd_plot *p, FILE *f, int pdf, gd_error *err);
-/* NULL when PNG and PDF can be written, else the packages this build lacks */
-const char *pl_raster_missing(void);
+/* PNG (pdf = 0) or PDF of the document's SVG through the plugin geardyn-raster.so
+ * (raster.c); errors name path */
+gd_status pl_write_raster(const gd_plot *p, const char *path, FILE *f, int pdf, gd_error *err);
+/* GD_OK when the plugin loads, else a located error (path, --plot) naming what is missing */
+gd_status pl_raster_check(const char *path, int pdf, gd_error *err);
+/* the folder of libgeardyn.so (or of the program that linked libgeardyn.a); 0 if unknown */
+int pl_self_dir(char *dir, size_t size);
 /* text escaped for XML / HTML, and for a JSON string */
 void pl_xml_text(FILE *f, const char *s);
 void pl_json_text(FILE *f, const char *s);

@@ -1,40 +1,25 @@
-/* PNG and PDF plots: the document's SVG (svg.c) rendered by librsvg onto a cairo image
- * surface (PNG) or PDF surface, so the static figure and the raster ones are the same
- * drawing. PNG: one image of the whole document at twice the SVG's pixel size (sharp
- * when pasted into a report), less for very tall documents (cairo's 32767 px limit).
+/* PNG and PDF plots: the document's SVG (svg.c), rendered by the plugin geardyn-raster.so
+ * (plugins/raster/render.c, librsvg and cairo), which is loaded with dlopen only when a
+ * PNG or PDF is written: the library itself links no image, font or PDF library (issue
+ * 35 item 1). The contract is raster_abi.h.
+ * The plugin is looked for, in order: $GEARDYN_RASTER_PLUGIN (only there, when set);
+ * LIBDIR/geardyn beside the installed libgeardyn.so, or beside an installed program that
+ * linked libgeardyn.a (BINDIR/../LIBDIR/geardyn); the folder of libgeardyn.so or of the
+ * program itself (the build tree, where the plugin is built beside them).
+ * The SVG drawn is the document's without its numbers and with its curves thinned to the
+ * resolution (pl_write_svg_raster): librsvg refuses a 100 000-point curve (issue 38 M8).
  * PDF: one page per section, a section taller than an A4-shaped page split between its
- * panels onto pages of their own, so a figure is never cut. Built only when librsvg and
- * cairo were found (GD_HAVE_RASTER); otherwise pl_raster_missing names the packages.
- * A document taller than 8000 SVG pixels (a report) is drawn at its own size. */
+ * panels onto pages of their own, so a figure is never cut. */
 #define _POSIX_C_SOURCE 200809L /* open_memstream */
+#include <dlfcn.h>
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "plot/plot_impl.h"
-
-const char *pl_raster_missing(void)
-{
-#ifdef GD_HAVE_RASTER
-    return NULL;
-#else
-    return "librsvg-2.0 and cairo (Debian: librsvg2-dev libcairo2-dev, scripts/install-deps.sh)";
-#endif
-}
-
-#ifndef GD_HAVE_RASTER
-gd_status pl_write_raster(const gd_plot *p, FILE *f, int pdf, gd_error *err)
-{
-    (void)p;
-    (void)f;
-    return gd_error_set(err, GD_EINPUT, "", 0, 0, "--plot", "install them and rebuild geardyn",
-                        "%s output needs %s, which this build lacks", pdf ? "PDF" : "PNG",
-                        pl_raster_missing());
-}
-#else
-#include <cairo-pdf.h>
-#include <cairo.h>
-#include <librsvg/rsvg.h>
+#include "plot/raster_abi.h"
 
 /* The SVG of a document in memory. */
 static gd_status svg_bytes(const gd_plot *p, char **buf, size_t *len, gd_error *err)
@@ -43,7 +28,7 @@ static gd_status svg_bytes(const gd_plot *p, char **buf, size_t *len, gd_error *
     *len = 0;
     FILE *m = open_memstream(buf, len);
     if (!m) return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
-    gd_status st = pl_write_svg(p, m, err);
+    gd_status st = pl_write_svg_raster(p, m, err);
     if (fclose(m) != 0 && !st) st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
     if (st) {
         free(*buf);
@@ -52,92 +37,86 @@ static gd_status svg_bytes(const gd_plot *p, char **buf, size_t *len, gd_error *
     return st;
 }
 
-static gd_status rsvg_fail(GError *ge, gd_error *err)
+/* Opens the plugin (RTLD_NODELETE: librsvg's GLib types cannot be unloaded, so the
+ * plugin stays mapped once loaded and a later dlopen only counts a reference; the
+ * library keeps no handle of its own). NULL with *why, *tried filled when absent. */
+static void *plugin_open(char *tried, size_t tried_size, char *why, size_t why_size)
 {
-    gd_status st = gd_error_set(err, GD_EIO, "", 0, 0, "--plot", "", "cannot render the figure: %s",
-                                ge ? ge->message : "librsvg");
-    if (ge) g_error_free(ge);
-    return st;
+    char dir[1024], cand[4][1200];
+    int n = 0;
+    const char *env = getenv("GEARDYN_RASTER_PLUGIN");
+    if (env && *env) {
+        snprintf(cand[n++], sizeof cand[0], "%s", env);
+    } else if (pl_self_dir(dir, sizeof dir)) {
+        snprintf(cand[n++], sizeof cand[0], "%s/geardyn/%s", dir, GD_RASTER_PLUGIN_NAME);
+        /* a program in BINDIR that linked libgeardyn.a (not when dir is LIBDIR already) */
+        char up[1200], *lib;
+        snprintf(up, sizeof up, "%s/%s", dir, GD_BIN_TO_LIB);
+        if ((lib = realpath(up, NULL)) && strcmp(lib, dir))
+            snprintf(cand[n++], sizeof cand[0], "%s/geardyn/%s", lib, GD_RASTER_PLUGIN_NAME);
+        free(lib);
+        snprintf(cand[n++], sizeof cand[0], "%s/%s", dir, GD_RASTER_PLUGIN_NAME);
+    }
+    size_t used = 0;
+    tried[0] = why[0] = '\0';
+    for (int i = 0; i < n; i++) {
+        void *h = dlopen(cand[i], RTLD_NOW | RTLD_LOCAL | RTLD_NODELETE);
+        if (h) {
+            gd_raster_abi_fn abi;
+            *(void **)&abi = dlsym(h, "gd_raster_abi");
+            if (abi && abi() == GD_RASTER_ABI && dlsym(h, "gd_raster_render")) return h;
+            snprintf(why, why_size, "%.400s is from another version of geardyn (ABI %d, not %d)",
+                     cand[i], abi ? abi() : -1, GD_RASTER_ABI);
+            dlclose(h);
+        } else if (!why[0] || access(cand[i], F_OK) == 0) {
+            /* the reason of a file that exists (a missing library of its own) wins */
+            const char *e = dlerror();
+            snprintf(why, why_size, "%s", e ? e : "dlopen failed");
+        }
+        if (used < tried_size)
+            used += (size_t)snprintf(tried + used, tried_size - used, "%s%s", used ? ", " : "",
+                                     cand[i]);
+    }
+    if (!n) snprintf(why, why_size, "cannot find the library's own folder");
+    return NULL;
 }
 
-/* An SVG parsed; *w, *h: its size in SVG pixels. */
-static RsvgHandle *load(const char *buf, size_t len, double *w, double *h, GError **ge)
+static gd_status missing(const char *path, int pdf, const char *tried, const char *why,
+                         gd_error *err)
 {
-    RsvgHandle *hd = rsvg_handle_new_from_data((const guint8 *)buf, len, ge);
-    if (!hd) return NULL;
-    if (!rsvg_handle_get_intrinsic_size_in_pixels(hd, w, h)) *w = *h = 0;
-    return hd;
+    const char *env = getenv("GEARDYN_RASTER_PLUGIN");
+    return gd_error_set(
+        err, GD_EIO, path, 0, 0, "--plot",
+        env && *env ? "set GEARDYN_RASTER_PLUGIN to the path of " GD_RASTER_PLUGIN_NAME
+                      ", or unset it; or write FILE.svg or FILE.html"
+                    : "build geardyn with librsvg2-dev and libcairo2-dev installed "
+                      "(scripts/install-deps.sh) and 'make install', or set "
+                      "GEARDYN_RASTER_PLUGIN to the path of " GD_RASTER_PLUGIN_NAME
+                      "; or write FILE.svg or FILE.html",
+        "%s plots need the plugin " GD_RASTER_PLUGIN_NAME ", which cannot be loaded (tried %s): %s",
+        pdf ? "PDF" : "PNG", tried[0] ? tried : "nothing", why);
 }
 
-static cairo_status_t to_file(void *closure, const unsigned char *data, unsigned int length)
+gd_status pl_raster_check(const char *path, int pdf, gd_error *err)
 {
-    return fwrite(data, 1, length, (FILE *)closure) == length ? CAIRO_STATUS_SUCCESS
-                                                              : CAIRO_STATUS_WRITE_ERROR;
-}
-
-enum { TALL = 8000 }; /* SVG pixels */
-
-static gd_status write_png(const gd_plot *p, FILE *f, gd_error *err)
-{
-    char *buf;
-    size_t len;
-    gd_status st = svg_bytes(p, &buf, &len, err);
-    if (st) return st;
-    GError *ge = NULL;
-    double w, h;
-    RsvgHandle *hd = load(buf, len, &w, &h, &ge);
-    free(buf);
-    if (!hd) return rsvg_fail(ge, err);
-    /* twice the pixels for a figure; a long document (a report) at its own size, which
-     * keeps it to about 1 MB and a second */
-    double scale = h > TALL ? 1 : 2;
-    if (h * scale > 32000) scale = 32000 / h;
-    cairo_surface_t *sf = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, (int)(w * scale + 0.5),
-                                                     (int)(h * scale + 0.5));
-    cairo_t *cr = cairo_create(sf);
-    cairo_scale(cr, scale, scale);
-    RsvgRectangle vp = {0, 0, w, h};
-    if (!rsvg_handle_render_document(hd, cr, &vp, &ge)) st = rsvg_fail(ge, err);
-    cairo_destroy(cr);
-    if (!st && cairo_surface_write_to_png_stream(sf, to_file, f) != CAIRO_STATUS_SUCCESS)
-        st = gd_error_set(err, GD_EIO, "", 0, 0, "--plot", "check the free space",
-                          "cannot write the PNG");
-    cairo_surface_destroy(sf);
-    g_object_unref(hd);
-    return st;
+    char tried[2048], why[600];
+    void *h = plugin_open(tried, sizeof tried, why, sizeof why);
+    if (!h) return missing(path, pdf, tried, why, err);
+    dlclose(h);
+    return GD_OK;
 }
 
 /* The height of a page at most (an A4 page's shape at the SVG's 960 px width). */
 enum { PAGE_MAX = 1360 };
 
-static gd_status pdf_page(cairo_surface_t *sf, const gd_plot *page, gd_error *err)
+/* The SVG of every page: one section, or a run of its panels, per page. */
+static gd_status pdf_pages(const gd_plot *p, char ***svg, size_t **len, int *npages, gd_error *err)
 {
-    char *buf;
-    size_t len;
-    gd_status st = svg_bytes(page, &buf, &len, err);
-    if (st) return st;
-    GError *ge = NULL;
-    double w, h;
-    RsvgHandle *hd = load(buf, len, &w, &h, &ge);
-    free(buf);
-    if (!hd) return rsvg_fail(ge, err);
-    cairo_pdf_surface_set_size(sf, w, h);
-    cairo_t *cr = cairo_create(sf);
-    RsvgRectangle vp = {0, 0, w, h};
-    if (!rsvg_handle_render_document(hd, cr, &vp, &ge)) st = rsvg_fail(ge, err);
-    cairo_show_page(cr);
-    cairo_destroy(cr);
-    g_object_unref(hd);
-    return st;
-}
-
-static gd_status write_pdf(const gd_plot *p, FILE *f, gd_error *err)
-{
-    cairo_surface_t *sf = cairo_pdf_surface_create_for_stream(to_file, f, 960, PAGE_MAX);
-    cairo_pdf_surface_set_metadata(sf, CAIRO_PDF_METADATA_TITLE, p->title);
-    cairo_pdf_surface_set_metadata(sf, CAIRO_PDF_METADATA_CREATOR, "geardyn");
+    int cap = 0;
+    *svg = NULL;
+    *len = NULL;
+    *npages = 0;
     gd_status st = GD_OK;
-    /* a page is a view of the document: one section, or a run of its panels */
     gd_plot page = *p;
     for (int i = 0; i < p->nsections && !st; i++) {
         const pl_section *s = &p->sections[i];
@@ -160,21 +139,66 @@ static gd_status write_pdf(const gd_plot *p, FILE *f, gd_error *err)
             }
             page.sections = &part;
             page.nsections = 1;
-            st = pdf_page(sf, &page, err);
+            if (*npages == cap) {
+                cap = cap ? 2 * cap : 8;
+                char **s2 = realloc(*svg, (size_t)cap * sizeof **svg);
+                if (s2) *svg = s2;
+                size_t *l2 = realloc(*len, (size_t)cap * sizeof **len);
+                if (l2) *len = l2;
+                if (!s2 || !l2) {
+                    st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
+                    break;
+                }
+            }
+            st = svg_bytes(&page, &(*svg)[*npages], &(*len)[*npages], err);
+            if (!st) ++*npages;
             k0 = k1;
         } while (k0 < s->npanels && !st);
     }
-    cairo_surface_finish(sf);
-    if (!st && cairo_surface_status(sf) != CAIRO_STATUS_SUCCESS)
-        st = gd_error_set(err, GD_EIO, "", 0, 0, "--plot", "check the free space",
-                          "cannot write the PDF: %s",
-                          cairo_status_to_string(cairo_surface_status(sf)));
-    cairo_surface_destroy(sf);
     return st;
 }
 
-gd_status pl_write_raster(const gd_plot *p, FILE *f, int pdf, gd_error *err)
+gd_status pl_write_raster(const gd_plot *p, const char *path, FILE *f, int pdf, gd_error *err)
 {
-    return pdf ? write_pdf(p, f, err) : write_png(p, f, err);
+    char tried[2048], why[600];
+    void *h = plugin_open(tried, sizeof tried, why, sizeof why);
+    if (!h) return missing(path, pdf, tried, why, err);
+    gd_raster_render_fn render;
+    *(void **)&render = dlsym(h, "gd_raster_render");
+    char **svg = NULL;
+    size_t *len = NULL;
+    int npages = 0;
+    gd_status st;
+    if (pdf) {
+        st = pdf_pages(p, &svg, &len, &npages, err);
+    } else {
+        svg = malloc(sizeof *svg);
+        len = malloc(sizeof *len);
+        st = svg && len ? svg_bytes(p, svg, len, err)
+                        : gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
+        npages = !st;
+    }
+    if (!st) {
+        gd_raster_job job = {.pdf = pdf,
+                             .npages = npages,
+                             .svg = (const char *const *)svg,
+                             .len = len,
+                             .title = p->title,
+                             .out = f};
+        int rc = render(&job);
+        if (rc == GD_RASTER_EWRITE) {
+            errno = job.write_errno;
+            st = gd_error_set(err, GD_EIO, path, 0, 0, "--plot", "check the free space", "%s",
+                              job.why);
+        } else if (rc != GD_RASTER_OK) {
+            st = gd_error_set(err, rc == GD_RASTER_ENOMEM ? GD_ENOMEM : GD_EIO, path, 0, 0,
+                              "--plot", "write FILE.svg or FILE.html instead", "%s", job.why);
+        }
+    }
+    for (int i = 0; i < npages; i++)
+        free(svg[i]);
+    free(svg);
+    free(len);
+    dlclose(h);
+    return st;
 }
-#endif

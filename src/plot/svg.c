@@ -4,6 +4,7 @@
  * round-trip decimals), so a reader (or a test) gets back what was plotted; markers
  * are elements of class "marker". 3-D panels are HTML only: SVG says so. */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "plot/plot_impl.h"
@@ -104,10 +105,26 @@ static void marker(FILE *f, pl_symbol s, double x, double y, const char *c)
     }
 }
 
+/* The resolution of the curves drawn for PNG and PDF (SVG pixels): a PNG has two
+ * device pixels to one SVG pixel, so a quarter of one is finer than the eye sees. */
+#define RASTER_CELL 0.25
+
 /* The points of a trace as polyline/polygon runs, broken at values a log axis or NaN
- * cannot show. */
-static void runs(FILE *f, const frame *fr, const pl_trace *t, const char *clip)
+ * cannot show; for raster output (raster != 0) thinned to RASTER_CELL (pl_decimate).
+ * -1 when out of memory. */
+static int runs(FILE *f, const frame *fr, const pl_trace *t, const char *clip, int raster)
 {
+    double *xs = NULL, *ys = NULL;
+    int *keep = NULL;
+    if (raster && t->mode != PL_FILL) {
+        xs = malloc((size_t)t->n * sizeof *xs + 1);
+        ys = malloc((size_t)t->n * sizeof *ys + 1);
+        keep = malloc((size_t)t->n * sizeof *keep + 1);
+        if (!xs || !ys || !keep) {
+            free(xs), free(ys), free(keep);
+            return -1;
+        }
+    }
     int i = 0;
     while (i < t->n) {
         while (i < t->n && !(isfinite(px(fr, t->x[i])) && isfinite(py(fr, t->y[i]))))
@@ -126,15 +143,25 @@ static void runs(FILE *f, const frame *fr, const pl_trace *t, const char *clip)
                         "<polyline clip-path=\"url(#%s)\" fill=\"none\" stroke=\"%s\" "
                         "stroke-width=\"1.6\"%s points=\"",
                         clip, t->color, t->dash ? " stroke-dasharray=\"6,4\"" : "");
-            for (int k = i; k < j; k++)
-                fprintf(f, "%s%.2f,%.2f", k > i ? " " : "", px(fr, t->x[k]), py(fr, t->y[k]));
+            if (keep) {
+                for (int k = i; k < j; k++)
+                    xs[k - i] = px(fr, t->x[k]), ys[k - i] = py(fr, t->y[k]);
+                int m = pl_decimate(xs, ys, j - i, RASTER_CELL, keep);
+                for (int k = 0; k < m; k++)
+                    fprintf(f, "%s%.2f,%.2f", k ? " " : "", xs[keep[k]], ys[keep[k]]);
+            } else {
+                for (int k = i; k < j; k++)
+                    fprintf(f, "%s%.2f,%.2f", k > i ? " " : "", px(fr, t->x[k]), py(fr, t->y[k]));
+            }
             fputs("\"/>\n", f);
         }
         i = j;
     }
+    free(xs), free(ys), free(keep);
+    return 0;
 }
 
-static void xy_panel(FILE *f, const pl_panel *pn, double y, double h, int id)
+static int xy_panel(FILE *f, const pl_panel *pn, double y, double h, int id, int raster)
 {
     int two = has_y2(pn) && !pn->equal && !pn->ylog;
     double top = TOP + (pn->subtitle[0] ? 16 : 0);
@@ -281,29 +308,40 @@ static void xy_panel(FILE *f, const pl_panel *pn, double y, double h, int id)
         const pl_trace *c = &pn->traces[t];
         fprintf(f, "<g class=\"trace\" data-name=\"");
         pl_xml_text(f, c->name);
-        fprintf(f, "\" data-mode=\"%s\" data-n=\"%d\" data-x=\"",
+        fprintf(f, "\" data-mode=\"%s\" data-n=\"%d\"",
                 c->mode == PL_FILL      ? "fill"
                 : c->mode == PL_MARKERS ? "markers"
                                         : "lines",
                 c->n);
-        for (int i = 0; i < c->n; i++) {
-            if (i) fputc(' ', f);
-            number(f, c->x[i]);
+        if (!raster) { /* the numbers are for readers of the SVG, not for drawing */
+            fputs(" data-x=\"", f);
+            for (int i = 0; i < c->n; i++) {
+                if (i) fputc(' ', f);
+                number(f, c->x[i]);
+            }
+            fputs("\" data-y=\"", f);
+            for (int i = 0; i < c->n; i++) {
+                if (i) fputc(' ', f);
+                number(f, c->y[i]);
+            }
+            fputc('"', f);
         }
-        fputs("\" data-y=\"", f);
-        for (int i = 0; i < c->n; i++) {
-            if (i) fputc(' ', f);
-            number(f, c->y[i]);
-        }
-        fputs(c->y2 ? "\" data-axis=\"y2\">\n" : "\">\n", f);
+        fputs(c->y2 ? " data-axis=\"y2\">\n" : ">\n", f);
         const frame *cf = c->y2 && two ? &fr2 : &fr;
-        if (c->mode != PL_MARKERS) runs(f, cf, c, clip);
+        if (c->mode != PL_MARKERS && runs(f, cf, c, clip, raster)) return -1;
+        double la = NAN, lb = NAN; /* the last marker drawn */
+        const char *lc = NULL;
         if (c->mode == PL_MARKERS || c->mode == PL_LINES_MARKERS)
             for (int i = 0; i < c->n; i++) {
                 double a = px(cf, c->x[i]), b = py(cf, c->y[i]);
                 if (!isfinite(a) || !isfinite(b)) continue;
-                marker(f, c->symbol, a, b, c->marker_color ? c->marker_color[i] : c->color);
+                const char *mc = c->marker_color ? c->marker_color[i] : c->color;
+                /* raster: a marker on top of the last one, of its colour, adds nothing */
+                if (raster && mc == lc && fabs(a - la) < RASTER_CELL && fabs(b - lb) < RASTER_CELL)
+                    continue;
+                marker(f, c->symbol, a, b, mc);
                 fputc('\n', f);
+                la = a, lb = b, lc = mc;
             }
         if (c->label[0] && c->n > 0) { /* at the last point shown, inside the frame */
             double a = px(cf, c->x[c->n - 1]), b = py(cf, c->y[c->n - 1]);
@@ -350,6 +388,7 @@ static void xy_panel(FILE *f, const pl_panel *pn, double y, double h, int id)
         shown++;
     }
     fputs("</g>\n", f);
+    return 0;
 }
 
 static void table_panel(FILE *f, const pl_panel *pn, double y)
@@ -374,7 +413,7 @@ static void table_panel(FILE *f, const pl_panel *pn, double y)
     fputs("</g>\n", f);
 }
 
-gd_status pl_write_svg(const gd_plot *p, FILE *f, gd_error *err)
+static gd_status write_svg(const gd_plot *p, FILE *f, int raster, gd_error *err)
 {
     double h = 40;
     for (int i = 0; i < p->nsections; i++) {
@@ -414,9 +453,10 @@ gd_status pl_write_svg(const gd_plot *p, FILE *f, gd_error *err)
         for (int k = 0; k < s->npanels; k++) {
             const pl_panel *pn = &s->panels[k];
             double ph = pl_svg_panel_height(pn);
-            if (pn->kind == PL_XY)
-                xy_panel(f, pn, y, ph, id++);
-            else if (pn->kind == PL_TABLE)
+            if (pn->kind == PL_XY) {
+                if (xy_panel(f, pn, y, ph, id++, raster))
+                    return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
+            } else if (pn->kind == PL_TABLE)
                 table_panel(f, pn, y);
             else {
                 fprintf(f, "<text x=\"%d\" y=\"%.1f\" font-size=\"12\" font-style=\"italic\">",
@@ -431,6 +471,16 @@ gd_status pl_write_svg(const gd_plot *p, FILE *f, gd_error *err)
     fputs("</svg>\n", f);
     if (ferror(f)) return gd_error_set(err, GD_EIO, "", 0, 0, "", "", "write error");
     return GD_OK;
+}
+
+gd_status pl_write_svg(const gd_plot *p, FILE *f, gd_error *err)
+{
+    return write_svg(p, f, 0, err);
+}
+
+gd_status pl_write_svg_raster(const gd_plot *p, FILE *f, gd_error *err)
+{
+    return write_svg(p, f, 1, err);
 }
 
 void pl_xml_text(FILE *f, const char *s)

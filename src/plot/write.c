@@ -1,9 +1,7 @@
 /* Writing a plot document: the format from the file name, the folder checked before
  * any computing, plotly.js located, and the file written beside its target and renamed
  * into place so that a failure leaves nothing at the path. */
-#define _GNU_SOURCE /* dladdr */
 #include <dirent.h>
-#include <dlfcn.h>
 #include <ctype.h>
 #include <errno.h>
 #include <signal.h>
@@ -51,9 +49,6 @@ static int readable(const char *path)
     return stat(path, &sb) == 0 && S_ISREG(sb.st_mode) && access(path, R_OK) == 0;
 }
 
-/* a byte of the library, to find the file it was loaded from */
-static const char anchor = 0;
-
 gd_status gd_plot_find_plotly(const gd_plot_write_options *opt, char *path, size_t size,
                               gd_error *err)
 {
@@ -82,19 +77,12 @@ gd_status gd_plot_find_plotly(const gd_plot_write_options *opt, char *path, size
                             "cannot read plotly.js");
     }
     /* installed: DATADIR/geardyn beside the library (lib/) or a static program (bin/) */
-    Dl_info info;
-    char buf[2048];
-    if (dladdr(&anchor, &info) && info.dli_fname) {
-        char dir[1024];
-        snprintf(dir, sizeof dir, "%s", info.dli_fname);
-        char *s = strrchr(dir, '/');
-        if (s) {
-            *s = '\0';
-            snprintf(buf, sizeof buf, "%s/%s/geardyn/plotly.min.js", dir, GD_LIB_TO_DATA);
-            TRY(buf);
-            snprintf(buf, sizeof buf, "%s/%s/geardyn/plotly.min.js", dir, GD_BIN_TO_DATA);
-            TRY(buf);
-        }
+    char dir[1024], buf[2048];
+    if (pl_self_dir(dir, sizeof dir)) {
+        snprintf(buf, sizeof buf, "%s/%s/geardyn/plotly.min.js", dir, GD_LIB_TO_DATA);
+        TRY(buf);
+        snprintf(buf, sizeof buf, "%s/%s/geardyn/plotly.min.js", dir, GD_BIN_TO_DATA);
+        TRY(buf);
     }
     /* an uninstalled build: the source tree's npm install */
     TRY(GD_PLOTLY_SOURCE_PATH);
@@ -138,11 +126,8 @@ gd_status gd_plot_check_path(const char *path, const gd_plot_write_options *opt,
         char js[1024];
         if ((st = gd_plot_find_plotly(opt, js, sizeof js, err))) return st;
     }
-    if ((fmt == GD_PLOT_PNG || fmt == GD_PLOT_PDF) && pl_raster_missing())
-        return gd_error_set(err, GD_EINPUT, path, 0, 0, "--plot",
-                            "install them and rebuild geardyn, or write FILE.svg or FILE.html",
-                            "%s plots need %s, which this build of geardyn lacks",
-                            fmt == GD_PLOT_PNG ? "PNG" : "PDF", pl_raster_missing());
+    if (fmt == GD_PLOT_PNG || fmt == GD_PLOT_PDF)
+        return pl_raster_check(path, fmt == GD_PLOT_PDF, err);
     return GD_OK;
 }
 
@@ -212,9 +197,10 @@ gd_status gd_plot_write(const gd_plot *p, const char *path, const gd_plot_write_
                             strerror(errno));
     }
     errno = 0;
+    if (err) gd_error_clear(err); /* so that a message below is this write's own */
     st = fmt == GD_PLOT_SVG    ? pl_write_svg(p, f, err)
          : fmt == GD_PLOT_HTML ? pl_write_html(p, f, js, err)
-                               : pl_write_raster(p, f, fmt == GD_PLOT_PDF, err);
+                               : pl_write_raster(p, path, f, fmt == GD_PLOT_PDF, err);
     int werr = st || ferror(f) ? errno : 0; /* the write's own cause (ENOSPC, EFBIG) */
     if (fclose(f) != 0 && !st) {
         werr = errno;
@@ -230,7 +216,11 @@ gd_status gd_plot_write(const gd_plot *p, const char *path, const gd_plot_write_
                           "cannot move the plot into place: %s", strerror(errno));
     if (st) {
         unlink(tmp);
-        if (!err || !err->file[0])
+        /* the writer's own reason when it gave one (librsvg, memory), located here;
+         * the disk only when the stream itself failed (issue 38 M8) */
+        if (err && err->message[0] && !err->file[0])
+            snprintf(err->file, sizeof err->file, "%s", path);
+        else if (!err || !err->file[0])
             gd_error_set(err, st, path, 0, 0, "--plot", "check the free space",
                          "cannot write the plot: %s", werr ? strerror(werr) : "the write failed");
     }

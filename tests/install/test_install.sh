@@ -3,7 +3,8 @@
 #   1. cmake --install of this build tree into a temporary prefix (nothing is built);
 #   2. every installed header compiles on its own, and none includes a private header;
 #   3. the installed CLI runs and finds the installed libgeardyn.so (RPATH $ORIGIN/..),
-#      and writes an HTML plot with the installed plotly.js (share/geardyn);
+#      writes an HTML plot with the installed plotly.js (share/geardyn) and a PNG through
+#      the installed plugin LIBDIR/geardyn/geardyn-raster.so (a located error without it);
 #   4. tests/install/consumer.c built with `pkg-config --cflags --libs geardyn` only
 #      (shared), then with `pkg-config --static` against libgeardyn.a;
 #   5. the same program built by tests/install/cmake_consumer (find_package(geardyn)),
@@ -90,6 +91,23 @@ env -u LD_LIBRARY_PATH -u GEARDYN_PLOTLY_JS "$prefix/bin/geardyn" mesh-stiffness
     examples/rig2018_pair.yaml --plot "$tmp/k.html" >/dev/null || fail "installed CLI: --plot k.html"
 grep -q 'the installed copy' "$tmp/k.html" || fail "the HTML plot did not inline the installed plotly.js"
 echo "  --plot k.html inlines $js"
+# PNG and PDF: the plugin geardyn-raster.so, installed in LIBDIR/geardyn, is found beside
+# the installed library (when this build made it: librsvg and cairo found)
+if [ -e "$build/geardyn-raster.so" ]; then
+    [ -e "$prefix/$libdir/geardyn/geardyn-raster.so" ] || fail "not installed: $libdir/geardyn/geardyn-raster.so"
+    env -u LD_LIBRARY_PATH -u GEARDYN_RASTER_PLUGIN "$prefix/bin/geardyn" modal "$model" \
+        --plot "$tmp/m.png" >/dev/null || fail "installed CLI: --plot m.png"
+    head -c 8 "$tmp/m.png" | od -An -c | grep -q 'P   N   G' || fail "m.png is not a PNG"
+    # and only there: without it the installed CLI says which plugin is missing
+    mv "$prefix/$libdir/geardyn/geardyn-raster.so" "$tmp/"
+    env -u LD_LIBRARY_PATH -u GEARDYN_RASTER_PLUGIN "$prefix/bin/geardyn" modal "$model" \
+        --plot "$tmp/n.png" >/dev/null 2>"$tmp/err" && fail "--plot n.png without the plugin exited 0"
+    grep -q "$prefix/$libdir/geardyn/geardyn-raster.so" "$tmp/err" ||
+        fail "the missing-plugin error does not name $libdir/geardyn/geardyn-raster.so: $(cat "$tmp/err")"
+    [ ! -e "$tmp/n.png" ] || fail "n.png written without the plugin"
+    mv "$tmp/geardyn-raster.so" "$prefix/$libdir/geardyn/"
+    echo "  --plot m.png through $libdir/geardyn/geardyn-raster.so"
+fi
 
 echo "4a. pkg-config --cflags --libs geardyn"
 flags=$("$pkgconfig" --cflags --libs geardyn)

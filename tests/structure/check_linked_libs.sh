@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# What the core links (issue 35 item 1): libgeardyn.so and the geardyn program load only
+# what the analyses need (LAPACK/BLAS, SuiteSparse, SUNDIALS, FFTW, the YAML and JSON
+# readers, OpenMP) and the C and compiler runtimes. PNG/PDF rendering (librsvg, cairo and
+# their ~45 image, font, PDF and GUI libraries) and HDF5 are plugins loaded with dlopen
+# on first use (geardyn-raster.so, geardyn-hdf5.so), so none of them may appear here.
+# Both the direct dependencies (readelf -d NEEDED) and everything the loader maps (ldd)
+# are checked against the allowed list; exits 1 naming each library that is not on it.
+# usage: check_linked_libs.sh LIBGEARDYN_SO GEARDYN_PROGRAM
+set -euo pipefail
+[ $# -eq 2 ] || { echo "usage: $0 LIBGEARDYN_SO GEARDYN_PROGRAM" >&2; exit 2; }
+
+# base names without the .so version; a sanitizer build adds its runtimes
+allowed='linux-vdso ld-linux-x86-64 ld-linux-aarch64 libc libm libdl libpthread librt
+libgcc_s libgomp libgfortran libquadmath libstdc++ libasan libubsan liblsan
+libgeardyn libopenblas libopenblasp-r0 libblas liblapack liblapacke libtmglib libcblas
+libcxsparse libklu libbtf libamd libcolamd libcamd libccolamd libcholmod libsuitesparseconfig
+libsundials_cvode libsundials_nvecserial libsundials_sunlinsolspgmr
+libfftw3 libfftw3_threads libyaml-0 libcjson'
+
+bad=0
+is_allowed() { # soname
+    local base=${1%%.so*}
+    for a in $allowed; do [ "$base" = "$a" ] && return 0; done
+    return 1
+}
+for f in "$@"; do
+    [ -e "$f" ] || { echo "check_linked_libs: $f does not exist"; exit 1; }
+    direct=$(readelf -d "$f" | sed -n 's/.*(NEEDED).*\[\(.*\)\].*/\1/p')
+    mapped=$(ldd "$f" | awk '{ print $1 }' | sed 's|.*/||')
+    nd=0 nm=0 fbad=0
+    for lib in $direct; do
+        nd=$((nd + 1))
+        is_allowed "$lib" || { echo "$f: links $lib (readelf -d NEEDED), which is not on the allowed list"; fbad=1; }
+    done
+    for lib in $mapped; do
+        nm=$((nm + 1))
+        is_allowed "$lib" || { echo "$f: loads $lib (ldd), which is not on the allowed list"; fbad=1; }
+    done
+    ((fbad)) && bad=1 || echo "$(basename "$f"): $nd direct, $nm mapped, all on the allowed list"
+done
+if ((bad)); then
+    echo "linked libraries: image, font, PDF, GUI or other optional libraries belong in a plugin"
+    echo "  loaded with dlopen (src/plot/raster.c, cli/study_output.c), not in the core;"
+    echo "  a new library the analyses need goes on the allowed list in $0"
+    exit 1
+fi
