@@ -375,9 +375,13 @@ TEST(quadrature_converges)
     pair_002(&g, 2, 0);
     REQUIRE(gd_gear_pair_derive(&g, &d, &err) == GD_OK);
     for (int i = 0; i < 2; i++) {
-        gd_ms_tooth t = {d.base_radius[i], d.half_angle_base[i],
-                         d.root_radius[i], d.bore_radius[i],
-                         2.06e11,          0.3};
+        gd_ms_tooth t = {d.base_radius[i],
+                         d.half_angle_base[i],
+                         d.root_radius[i],
+                         d.bore_radius[i],
+                         2.06e11,
+                         0.3,
+                         0};
         double tc = (i == 0 ? d.contact_start : d.line_of_action - d.contact_end) / t.rb;
         double ref[3], prev_err = 1e300;
         gd_ms_tooth_beam_terms(&t, tc, 1e-14, 0, ref);
@@ -409,7 +413,7 @@ TEST(tooth_energy_matches_cartesian_integral)
     pair_004(&g);
     REQUIRE(gd_gear_pair_derive(&g, &d, &err) == GD_OK);
     gd_ms_tooth t = {
-        d.base_radius[0], d.half_angle_base[0], d.root_radius[0], d.bore_radius[0], 2e11, 0.3};
+        d.base_radius[0], d.half_angle_base[0], d.root_radius[0], d.bore_radius[0], 2e11, 0.3, 0};
     REQUIRE(t.rf > t.rb); /* involute all the way to the root circle */
     double rc = 0.5 * (d.pitch_radius[0] + d.tip_radius[0]);
     double ac = acos(t.rb / rc), thc = t.alpha2 - (tan(ac) - ac);
