@@ -7,7 +7,7 @@
 
 #define GD_MS_PI 3.14159265358979323846
 
-/* ---- gear_geometry.c: shared pieces of the pair geometry ---- */
+/* ---- involute_pair.c: pieces shared by external and internal pair geometry ---- */
 double gd_ms_involute(double a);
 double gd_ms_inverse_involute(double v);
 /* GD_EINPUT with field, hint and message. */
@@ -66,6 +66,9 @@ double gd_ms_ring_fillet_compliance(const gd_ms_tooth *t, double tc);
 
 /* ---- fillet_foundation.c: Sainsot, Velex & Duverger 2004 ---- */
 double gd_ms_fillet_compliance(const gd_ms_tooth *t, double tc);
+/* The formula itself: load angle a1, load height u_f, root thickness S_f, root half
+ * angle theta_f, body ratio h = r_f / r_int, modulus E. */
+double gd_ms_foundation_formula(double a1, double uf, double Sf, double thf, double h, double E);
 
 /* ---- hertz.c: Yang & Lin 1987 line contact, per unit face width ---- */
 double gd_ms_hertz_compliance(double E1, double nu1, double E2, double nu2);

@@ -70,14 +70,6 @@ void gd_ms_radial_beam_terms(const gd_ms_tooth *t, double tc, double rtol, doubl
     }
 }
 
-/* [Sainsot2004] coefficients, as fillet_foundation.c */
-static const double COEF[4][6] = {
-    {-5.574e-5, -1.9986e-3, -2.3015e-4, 4.7702e-3, 0.0271, 6.8045},
-    {60.111e-5, 28.100e-3, -83.431e-4, -9.9256e-3, 0.1624, 0.9086},
-    {-50.952e-5, 185.50e-3, 0.0538e-4, 53.300e-3, 0.2895, 0.9236},
-    {-6.2042e-5, 9.0889e-3, -4.0964e-4, 7.8297e-3, -0.1472, 0.6904},
-};
-
 double gd_ms_ring_fillet_compliance(const gd_ms_tooth *t, double tc)
 {
     double ac = atan(tc);
@@ -88,15 +80,8 @@ double gd_ms_ring_fillet_compliance(const gd_ms_tooth *t, double tc)
     double h = ratio < 2 ? 1 / (2 - ratio) : 7;
     if (h < 1.4) h = 1.4;
     if (h > 7) h = 7;
-    double X[4];
-    for (int i = 0; i < 4; i++) {
-        const double *k = COEF[i];
-        X[i] = k[0] / (thf * thf) + k[1] * h * h + k[2] * h / thf + k[3] / thf + k[4] * h + k[5];
-    }
     /* the load line crosses the centre line r_b / cos(a1) from the ring's centre, inside
      * the root circle */
     double uf = t->rf - t->rb / cos(a1);
-    double Sf = 2 * t->rf * thf;
-    double q = uf / Sf, ta = tan(a1), ca = cos(a1);
-    return ca * ca / t->E * (X[0] * q * q + X[1] * q + X[2] * (1 + X[3] * ta * ta));
+    return gd_ms_foundation_formula(a1, uf, 2 * t->rf * thf, thf, h, t->E);
 }
