@@ -344,6 +344,44 @@ TEST(internal_face_width_and_helix)
     gd_tvms_free(h);
 }
 
+/* Loaded tooth contact analysis of the internal pair (contact_analysis.c through the
+ * ring's pair law): aligned, the approach is F / k(theta) and the loaded stiffness the
+ * TVMS; with a misalignment f inside full-face contact the face load factor is ISO
+ * 6336-1's linear-gap value with N slices at their centres, 1 + f k (1 - 1/N) / (2 F)
+ * (the derivation of test_contact_analysis.c's spur test, which holds for any slice
+ * law that is the same on every slice of a spur pair). */
+TEST(internal_contact_analysis)
+{
+    gd_gear_pair_geometry g;
+    ring_planet(&g, 0.02, 0);
+    gd_tvms_options o;
+    gd_tvms_options_init(&o);
+    o.points = 24, o.slices = 40, o.load_torque = 200;
+    gd_ltca_result *r = NULL;
+    gd_error err;
+    REQUIRE(gd_ltca_compute(&g, &o, &r, &err) == GD_OK);
+    gd_tvms_result *t = run(&g, &o);
+    REQUIRE(t);
+    CHECK_REL(r->force, 200 / (30e-3 * cos(20 * DEG)), 1e-12);
+    for (size_t i = 0; i < r->n; i++) {
+        CHECK_REL(r->stiffness[i], t->stiffness[i], 1e-9);
+        CHECK_REL(r->ste[i], r->force / t->stiffness[i], 1e-9);
+        CHECK_REL(r->face_load_factor[i], 1, 1e-9);
+    }
+    gd_ltca_free(r);
+    const double f = 5e-6;
+    o.misalignment = f;
+    REQUIRE(gd_ltca_compute(&g, &o, &r, &err) == GD_OK);
+    for (size_t i = 0; i < r->n; i++) {
+        double K = 1 + f * t->stiffness[i] * (1 - 1.0 / o.slices) / (2 * r->force);
+        CHECK(K < 2); /* full-face contact */
+        CHECK_REL(r->face_load_factor[i], K, 1e-9);
+    }
+    gd_ltca_free(r);
+    gd_tvms_free(t);
+}
+
 RUN_TESTS(T(hand_calculation_geometry), T(trochoid_interference_rule), T(interference_errors),
           T(radial_integral_matches_external_tooth), T(ring_tooth_tends_to_rack),
-          T(internal_tvms_properties), T(internal_face_width_and_helix))
+          T(internal_tvms_properties), T(internal_face_width_and_helix),
+          T(internal_contact_analysis))
