@@ -210,5 +210,104 @@ TEST(sun_ring_phase)
     CHECK(strncmp(err.field, "ring_planet.", 12) == 0);
 }
 
+/* gamma_rs by a kinematic construction in Cartesian coordinates, independent of the
+ * closed form's flank bookkeeping: the planet (centre at the origin, the set's centre
+ * at (-a, 0)) has its tooth flanks built point by point as involutes unwound from the
+ * base circle; for each mesh the contacting flank is the one whose outward normal at the
+ * pitch point is the direction the mating tooth pushes (from the drive: the sun turning
+ * counterclockwise pushes the planet at P_s = (-r_ws, 0) along (sin a_ws, cos a_ws); the
+ * planet pushes the ring at P_r = (r_wr, 0) along (sin a_wr, -cos a_wr)); the planet turns
+ * clockwise, so the event of a mesh is when its flank's pitch-circle point, rotated,
+ * reaches the pitch point, and the lag is the difference of those times in periods. */
+static double flank_crossing(double rb, double phi0, int side, double rw, double *nx, double *ny)
+{
+    /* side +1: unwinds clockwise from phi0 (tooth's counterclockwise flank), -1 the other */
+    double u = sqrt((rw / rb) * (rw / rb) - 1);
+    double qx[3], qy[3];
+    for (int j = 0; j < 3; j++) {
+        double uu = u + (j - 1) * 1e-6, tau = phi0 - side * uu;
+        /* point of the string of length rb uu from the tangent point tau */
+        qx[j] = rb * (cos(tau) - side * uu * sin(tau));
+        qy[j] = rb * (sin(tau) + side * uu * cos(tau));
+    }
+    /* tangent by central difference; the outward normal points away from the tooth:
+     * toward increasing polar angle for side +1 */
+    double tx = qx[2] - qx[0], ty = qy[2] - qy[0], n = hypot(tx, ty);
+    double mx = -ty / n, my = tx / n; /* tangent turned counterclockwise */
+    double ex = -qy[1], ey = qx[1];   /* counterclockwise direction at the point */
+    if ((mx * ex + my * ey) * side < 0) mx = -mx, my = -my;
+    *nx = mx, *ny = my;
+    return atan2(qy[1], qx[1]);
+}
+
+TEST(sun_ring_phase_by_construction)
+{
+    /* tooth counts with Z_r = Z_s + 2 Z_p, and two with Z_r = Z_s + 2 Z_p + 1 whose ring
+     * shift is solved for the common carrier radius (both working angles differ) */
+    static const struct {
+        int zs, zp, zr;
+        double xs, xp, xr;
+        int solve;
+    } sets[] = {{25, 23, 71, 0, 0, 0, 0},         {24, 24, 72, 0, 0, 0, 0},
+                {25, 23, 71, -0.3, 0.3, -0.3, 0}, {25, 23, 71, 0.2, 0, -0.2, 0},
+                {20, 30, 81, 0.5, 0.4, 0, 1},     {21, 25, 72, 0.45, 0.2, 0, 1}};
+    for (int c = 0; c < 6; c++) {
+        gd_gear_pair_geometry sp, rp;
+        gd_gear_pair_derived ds, dr;
+        gd_error err;
+        set_meshes(&sp, &rp, sets[c].zs, sets[c].zp, sets[c].zr);
+        sp.gear[0].profile_shift = sets[c].xs;
+        sp.gear[1].profile_shift = rp.gear[0].profile_shift = sets[c].xp;
+        rp.gear[1].profile_shift = sets[c].xr;
+        if (sets[c].solve) {
+            /* the ring's shift for the sun-planet centre distance a: cos a_wr = a0r cos 20 / a,
+             * x_p + x_r = (inv 20 - inv a_wr) (z_r - z_p) / (2 tan 20) */
+            REQUIRE(gd_gear_pair_derive(&sp, &ds, &err) == GD_OK);
+            double a20 = 20 * PI / 180, a0r = 1e-3 * (sets[c].zr - sets[c].zp);
+            double awr = acos(a0r * cos(a20) / ds.center_distance);
+            rp.gear[1].profile_shift =
+                (tan(a20) - a20 - (tan(awr) - awr)) * (sets[c].zr - sets[c].zp) / (2 * tan(a20)) -
+                sets[c].xp;
+        }
+        REQUIRE(gd_gear_pair_derive(&sp, &ds, &err) == GD_OK);
+        REQUIRE(gd_gear_pair_derive(&rp, &dr, &err) == GD_OK);
+        double g = -1;
+        if (gd_planet_sun_ring_phase(&sp, &rp, &g, &err)) {
+            fprintf(stderr, "  set %d: %s: %s\n", c, err.field, err.message);
+            CHECK(0);
+            continue;
+        }
+        const int zp = sets[c].zp;
+        const double rb = ds.base_radius[1], at = ds.transverse_pressure_angle;
+        const double bb = (PI / 2 + 2 * sets[c].xp * tan(20 * PI / 180)) / zp + tan(at) - at;
+        const double aws = ds.working_pressure_angle, awr = dr.working_pressure_angle;
+        const double pitch = 2 * PI / zp;
+        double event[2] = {0, 0};
+        int found[2] = {0, 0};
+        for (int mesh = 0; mesh < 2; mesh++) {
+            double rw = rb / cos(mesh ? awr : aws), target = mesh ? 0 : PI;
+            double fx = mesh ? sin(awr) : -sin(aws), fy = mesh ? -cos(awr) : -cos(aws);
+            for (int side = -1; side <= 1; side += 2) {
+                double nx, ny;
+                double ang = flank_crossing(rb, side * bb, side, rw, &nx, &ny);
+                double th = target - ang; /* planet rotation that brings it to P */
+                double rx = cos(th) * nx - sin(th) * ny, ry = sin(th) * nx + cos(th) * ny;
+                if (rx * fx + ry * fy > 0.999) {
+                    /* clockwise at unit rate: the rotation th is reached at t = -th */
+                    double t = -th / pitch;
+                    event[mesh] = t - floor(t);
+                    found[mesh]++;
+                }
+            }
+        }
+        REQUIRE(found[0] == 1 && found[1] == 1);
+        double lag = event[1] - event[0];
+        lag -= floor(lag);
+        if (lag > 1 - 1e-9) lag = 0;
+        fprintf(stderr, "  set %d: gamma_rs %.9f, construction %.9f\n", c, g, lag);
+        CHECK_ABS(g, lag, 1e-7); /* the finite-difference normal only picks the flank */
+    }
+}
+
 RUN_TESTS(T(equally_spaced_in_phase), T(drivetrain_hub_phasing_types), T(parker_suppression_sums),
-          T(assembly_and_input_errors), T(sun_ring_phase))
+          T(assembly_and_input_errors), T(sun_ring_phase), T(sun_ring_phase_by_construction))
