@@ -9,6 +9,7 @@
 
 #include "geardyn/mesh_stiffness.h"
 #include "harness.h"
+#include "tvms_support.h"
 #include "mesh_stiffness/mesh_stiffness_impl.h"
 
 static const double DEG = GD_MS_PI / 180.0;
@@ -44,19 +45,6 @@ static void ring_planet(gd_gear_pair_geometry *g, double b, double beta_deg)
     g->gear[0].teeth = 30;
     g->gear[0].bore_radius = 0.01;
     g->gear[1].teeth = 84;
-}
-
-static gd_tvms_result *run(const gd_gear_pair_geometry *g, const gd_tvms_options *o)
-{
-    gd_tvms_result *r = NULL;
-    gd_error err;
-    if (gd_tvms_compute(g, o, &r, &err)) {
-        char buf[1024];
-        gd_error_format(&err, buf, sizeof buf);
-        fprintf(stderr, "  compute failed: %s\n", buf);
-        return NULL;
-    }
-    return r;
 }
 
 TEST(hand_calculation_geometry)

@@ -6,6 +6,7 @@
 
 #include "geardyn/mesh_stiffness.h"
 #include "harness.h"
+#include "tvms_support.h"
 #include "model_file/mesh_geometry_read_impl.h"
 #include "mesh_stiffness/mesh_stiffness_impl.h"
 #include "model_file/yaml_doc_impl.h"
@@ -36,19 +37,6 @@ static void pair_004(gd_gear_pair_geometry *g)
     g->face_width = 0.020;
     for (int i = 0; i < 2; i++)
         g->gear[i].E = 2.0e11, g->gear[i].bore_radius = 12.7e-3;
-}
-
-static gd_tvms_result *run(const gd_gear_pair_geometry *g, const gd_tvms_options *o)
-{
-    gd_tvms_result *r = NULL;
-    gd_error err;
-    if (gd_tvms_compute(g, o, &r, &err)) {
-        char buf[1024];
-        gd_error_format(&err, buf, sizeof buf);
-        fprintf(stderr, "  compute failed: %s\n", buf);
-        return NULL;
-    }
-    return r;
 }
 
 TEST(table1_contact_ratios_002)
