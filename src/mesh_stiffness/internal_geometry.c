@@ -136,14 +136,6 @@ gd_status gd_ms_internal_derive(const gd_gear_pair_geometry *g, gd_gear_pair_der
                                    "20 deg pairs about 10 more, [KHK] Sec. 5.2)",
                                    msg);
     }
-    for (int i = 0; i < 2; i++) {
-        const gd_tooth_modifications *t = &g->gear[i].mod;
-        if (t->tip_relief.amount != 0 || t->root_relief.amount != 0 || t->crowning != 0 ||
-            t->end_relief != 0 || t->helix_slope_deviation != 0)
-            return gd_ms_geometry_fail(err, i ? "driven.modifications" : "driver.modifications",
-                                       "remove the modifications of this internal pair",
-                                       "tooth modifications of internal pairs are not supported");
-    }
     const double a0 = d->pitch_radius[1] - d->pitch_radius[0];
     d->reference_center_distance = a0;
     double inv_w = gd_ms_involute(at) - 2.0 * tan(an) * (x1 + x2) / (z2 - z1);

@@ -179,6 +179,7 @@ typedef struct gd_ms_mods {
     double end_amount[2], end_length[2];
     int end_shape[2];
     double slope; /* helix slope deviations and misalignment summed */
+    int internal; /* the driven gear is a ring: its roll length is s + line_of_action */
 } gd_ms_mods;
 void gd_ms_mods_init(gd_ms_mods *m, const gd_gear_pair_geometry *g, const gd_gear_pair_derived *d,
                      double misalignment);

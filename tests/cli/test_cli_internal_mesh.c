@@ -109,8 +109,9 @@ TEST(errors_located_nothing_written)
         {"face_width: 20 mm", "face_width: 20 mm\n      center_distance: 54.1 mm", "jam",
          "meshes[0].geometry.center_distance"},
         {"driven: {teeth: 84, material: steel}",
-         "driven: {teeth: 84, material: steel, modifications: {crowning: 2 um}}", "not supported",
-         "driven.modifications"},
+         "driven: {teeth: 84, material: steel, modifications: {tip_relief: {amount: 5 um, "
+         "start_diameter: 160 mm}}}",
+         "not outside its tip", "driven.modifications.tip_relief.start_diameter"},
         {"driven: {teeth: 84, material: steel}",
          "driven: {teeth: 84, material: steel, bore_radius: 87 mm}", "rim", "driven.bore_radius"},
     };

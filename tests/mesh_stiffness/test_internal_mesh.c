@@ -156,11 +156,20 @@ TEST(interference_errors)
     g.center_distance = 53.9e-3; /* backlash: accepted, smaller working angle */
     REQUIRE(gd_gear_pair_derive(&g, &d, &err) == GD_OK);
     CHECK_ABS(d.working_pressure_angle, acos(54e-3 * cos(20 * DEG) / 53.9e-3), 1e-12);
-    /* modifications are refused, located */
+    /* the ring's reliefs run from outside its tip inward, located when wrong */
     ring_planet(&g, 0.02, 0);
-    g.gear[1].mod.crowning = 2e-6;
+    g.gear[1].mod.tip_relief = (gd_profile_relief){10e-6, 0.160, 0, GD_RELIEF_LINEAR};
+    CHECK(gd_gear_pair_derive(&g, &d, &err) == GD_EINPUT); /* inside the tip, 164 mm */
+    CHECK_STR(err.field, "driven.modifications.tip_relief.start_diameter");
+    g.gear[1].mod.tip_relief.start_diameter = 0.170; /* outside the reference, 168 mm */
     CHECK(gd_gear_pair_derive(&g, &d, &err) == GD_EINPUT);
-    CHECK_STR(err.field, "driven.modifications");
+    CHECK(strstr(err.message, "longer than the addendum") != NULL);
+    g.gear[1].mod.tip_relief.start_diameter = 0.166;
+    g.gear[1].mod.root_relief = (gd_profile_relief){5e-6, 0.167, 0, GD_RELIEF_LINEAR};
+    CHECK(gd_gear_pair_derive(&g, &d, &err) == GD_EINPUT); /* inside the reference */
+    CHECK_STR(err.field, "driven.modifications.root_relief.start_diameter");
+    g.gear[1].mod.root_relief.start_diameter = 0.169;
+    CHECK(gd_gear_pair_derive(&g, &d, &err) == GD_OK);
     /* a rim thinner than a module */
     ring_planet(&g, 0.02, 0);
     g.gear[1].bore_radius = 87.5e-3;
@@ -369,7 +378,50 @@ TEST(internal_contact_analysis)
     gd_tvms_free(t);
 }
 
+/* Tooth modifications of an internal pair: a linear tip relief on the ring (start
+ * diameter 166 mm, tip 164 mm) adds its amount where the ring's tip meets the planet
+ * (s_A) and nothing from its start outward, linearly in the ring's roll length s + N1N2;
+ * crowning on the ring is the lead parabola; loaded, the entering pair (at the ring's
+ * tip) carries less than without relief. */
+TEST(internal_modifications)
+{
+    gd_gear_pair_geometry g;
+    gd_gear_pair_derived d;
+    gd_error err;
+    ring_planet(&g, 0.02, 0);
+    const double A = 10e-6;
+    g.gear[1].mod.tip_relief = (gd_profile_relief){A, 0.166, 0, GD_RELIEF_LINEAR};
+    g.gear[1].mod.crowning = 3e-6;
+    REQUIRE(gd_gear_pair_derive(&g, &d, &err) == GD_OK);
+    gd_ms_mods m;
+    gd_ms_mods_init(&m, &g, &d, 0);
+    const double rb2 = d.base_radius[1], L = d.line_of_action;
+    const double rho_a = sqrt(0.082 * 0.082 - rb2 * rb2), rho_s = sqrt(0.083 * 0.083 - rb2 * rb2);
+    const double y0 = 0.01; /* mid face: no crowning */
+    CHECK_ABS(gd_ms_mods_separation(&m, d.contact_start, y0), A, 1e-15);
+    CHECK_ABS(gd_ms_mods_separation(&m, rho_s - L, y0), 0, 1e-15);
+    CHECK_ABS(gd_ms_mods_separation(&m, 0.5 * (rho_a + rho_s) - L, y0), A / 2, 1e-15);
+    CHECK_ABS(gd_ms_mods_separation(&m, d.contact_end, y0), 0, 1e-15);
+    CHECK_ABS(gd_ms_mods_separation(&m, d.contact_end, 0), 3e-6, 1e-15); /* face end */
+    /* loaded: the newest pair (entering at the ring's tip) unloaded by the relief */
+    gd_tvms_options o;
+    gd_tvms_options_init(&o);
+    o.points = 16, o.slices = 10, o.load_torque = 200;
+    gd_ltca_result *r = NULL, *r0 = NULL;
+    REQUIRE(gd_ltca_compute(&g, &o, &r, &err) == GD_OK);
+    gd_gear_pair_geometry g0;
+    ring_planet(&g0, 0.02, 0);
+    REQUIRE(gd_ltca_compute(&g0, &o, &r0, &err) == GD_OK);
+    CHECK(r->pair_load[0] < 0.8 * r0->pair_load[0]);
+    CHECK_REL(r->pair_load[0] + r->pair_load[1], r->force, 1e-9);
+    CHECK(r->ste_peak_to_peak != r0->ste_peak_to_peak);
+    fprintf(stderr, "  newest pair at entry: %.1f N relieved, %.1f N without\n", r->pair_load[0],
+            r0->pair_load[0]);
+    gd_ltca_free(r);
+    gd_ltca_free(r0);
+}
+
 RUN_TESTS(T(hand_calculation_geometry), T(trochoid_interference_rule), T(interference_errors),
           T(radial_integral_matches_external_tooth), T(ring_tooth_tends_to_rack),
           T(internal_tvms_properties), T(internal_face_width_and_helix),
-          T(internal_contact_analysis))
+          T(internal_contact_analysis), T(internal_modifications))
