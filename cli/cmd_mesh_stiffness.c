@@ -153,6 +153,8 @@ static cJSON *make_json(const gd_tvms_result *r, const gd_gear_pair_geometry *g,
                             "driver rotation in rad from the start of contact of a tooth pair");
     int teeth[2] = {g->gear[0].teeth, g->gear[1].teeth};
     cJSON_AddItemToObject(o, "teeth", cJSON_CreateIntArray(teeth, 2));
+    cJSON_AddBoolToObject(o, "internal", d->internal);
+    if (d->internal) cJSON_AddNumberToObject(o, "trochoid_margin_rad", d->trochoid_margin);
     cJSON_AddNumberToObject(o, "contact_ratio_transverse", d->contact_ratio_transverse);
     cJSON_AddNumberToObject(o, "contact_ratio_face", d->contact_ratio_face);
     cJSON_AddNumberToObject(o, "contact_ratio_total", d->contact_ratio_total);
@@ -160,6 +162,8 @@ static cJSON *make_json(const gd_tvms_result *r, const gd_gear_pair_geometry *g,
     cJSON_AddNumberToObject(o, "base_pitch_normal_m", d->base_pitch_normal);
     cJSON_AddNumberToObject(o, "mesh_period_rad", r->mesh_period_rad);
     cJSON_AddNumberToObject(o, "center_distance_m", d->center_distance);
+    cJSON_AddNumberToObject(o, "path_of_contact_m", d->contact_length);
+    cJSON_AddNumberToObject(o, "pitch_point_m", d->pitch_point);
     cJSON_AddNumberToObject(o, "transverse_pressure_angle_rad", d->transverse_pressure_angle);
     cJSON_AddNumberToObject(o, "working_pressure_angle_rad", d->working_pressure_angle);
     cJSON_AddNumberToObject(o, "base_helix_angle_rad", d->base_helix_angle);
@@ -219,8 +223,14 @@ static void print_text(const gd_tvms_result *r, const gd_gear_pair_geometry *g, 
     printf("mesh             %s (%s)\n", mesh, file);
     printf("method           %s, %d slice%s\n", gd_tvms_method_name(r->method), r->slices,
            r->slices == 1 ? "" : "s");
-    printf("teeth            %d / %d, normal module %g mm, helix %g deg\n", g->gear[0].teeth,
-           g->gear[1].teeth, g->normal_module * 1e3, g->helix_angle * 180 / M_PI);
+    printf("teeth            %d / %d%s, normal module %g mm, helix %g deg\n", g->gear[0].teeth,
+           g->gear[1].teeth, d->internal ? " (internal: the driven gear is a ring)" : "",
+           g->normal_module * 1e3, g->helix_angle * 180 / M_PI);
+    if (d->internal)
+        printf("internal pair    centre distance %.6g mm, working pressure angle %.6g deg, "
+               "trochoid margin %.4g rad\n",
+               d->center_distance * 1e3, d->working_pressure_angle * 180 / M_PI,
+               d->trochoid_margin);
     printf("contact ratio    transverse %.4f  face %.4f  total %.4f\n", d->contact_ratio_transverse,
            d->contact_ratio_face, d->contact_ratio_total);
     printf("base pitch       transverse %.6g mm, normal %.6g mm\n", d->base_pitch_transverse * 1e3,

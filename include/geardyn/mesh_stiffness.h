@@ -90,6 +90,12 @@ typedef struct gd_gear_pair_geometry {
     int hand;                     /* of the driver: +1 right, -1 left (driven is opposite) */
     double face_width;            /* b, m (common face width) */
     double center_distance;       /* a, m; 0 = from the profile shifts (zero backlash) */
+    /* 1: an internal pair - gear[1] (driven) is an internal gear (a ring: teeth pointing
+     * inward, tip circle inside the reference circle) and gear[0] an external gear inside
+     * it (a planet or pinion). The ring's profile_shift has the ISO 21771 sign (positive
+     * thickens its teeth and moves its tip circle inward); its bore_radius is the rim's
+     * outer radius (0 = root radius + 3 m_n). docs/mesh-stiffness.md, "Internal pairs". */
+    int internal;
 } gd_gear_pair_geometry;
 
 /* Fills g with the defaults above (teeth = 0, steel E = 2.06e11 Pa, poisson 0.3). */
@@ -116,6 +122,16 @@ typedef struct gd_gear_pair_derived {
     double contact_ratio_transverse, contact_ratio_face, contact_ratio_total;
     double mesh_period; /* 2 pi / z1, rad of driver rotation */
     double ratio;       /* z2 / z1 */
+    /* internal pairs (gear_pair_geometry.internal = 1): both base-circle tangent points
+     * lie on the same side of the contact, so the driven (ring) roll length at s is
+     * s + line_of_action (external: line_of_action - s); tip_radius[1] < root_radius[1];
+     * form_roll[1] is the ring's largest usable roll length (its form circle, outside);
+     * bore_radius[1] the rim's outer radius. */
+    int internal;
+    double pitch_point; /* s of the operating pitch point C on the line of action, m */
+    /* internal pairs: the trochoid-interference margin of [KHK] Eq. (5-6), rad (>= 0;
+     * 0 for external pairs) */
+    double trochoid_margin;
 } gd_gear_pair_derived;
 
 /* Derives and validates (the modifications too: a tip relief starting below the reference
@@ -267,5 +283,42 @@ GD_API gd_status gd_ltca_map_compute(const gd_gear_pair_geometry *g, const gd_tv
                                      const double *torques, int nloads, gd_ltca_map **out,
                                      gd_error *err);
 GD_API void gd_ltca_map_free(gd_ltca_map *m);
+
+/* ---- planetary mesh phasing ([ParkerLin2004]; planet_phasing.c) ----
+ * Carrier frame; planets numbered counterclockwise at angles psi[n] (rad, from planet 0,
+ * counterclockwise, psi[0] = 0 by convention, any value accepted); the sun turns
+ * counterclockwise relative to the carrier when sun_direction = +1 (clockwise: -1),
+ * the ring the other way. With the mesh period T (the same for all meshes),
+ *   k_sn(t) = k_s0(t - gamma_s[n] T),  k_rn(t) = k_r0(t - gamma_r[n] T),
+ *   gamma_s[n] = frac(+sun_direction Z_s psi_n / 2 pi),
+ *   gamma_r[n] = frac(-sun_direction Z_r psi_n / 2 pi),   values in [0, 1).
+ * A planet can only be assembled where (Z_s + Z_r) psi_n / 2 pi is a whole number
+ * (then gamma_s[n] = gamma_r[n]): otherwise GD_EINPUT naming "planet_angles[n]" with the
+ * nearest angle that assembles. Thread-safe, no allocation: gamma_s and gamma_r have
+ * planets entries each (either may be NULL). */
+GD_API gd_status gd_planet_mesh_phases(int sun_teeth, int ring_teeth, int planets,
+                                       const double *psi, int sun_direction, double *gamma_s,
+                                       double *gamma_r, gd_error *err);
+
+/* gamma_rs in [0, 1): the ring-planet mesh of a planet lags its sun-planet mesh by
+ * gamma_rs mesh periods, each mesh's event being a contact passing its operating pitch
+ * point (on the front face):
+ *   gamma_rs = frac( (Z_p - 1)/2 + [Z_p (inv a_ws + inv a_wr - 2 inv a_t)
+ *                                   - 4 x_p tan a_n] / (2 pi) ),
+ * a_ws, a_wr the working transverse pressure angles of the two meshes, a_t the
+ * transverse pressure angle, x_p the planet's profile shift: 0 for an odd, 1/2 for an
+ * even planet tooth count without profile shifts ([ParkerLin2004]; derivation in
+ * docs/mesh-stiffness.md, "Planet mesh phasing"). sun_planet has the sun as driver and
+ * the planet as driven gear; ring_planet has the planet as driver and the ring as the
+ * internal driven gear (internal = 1). Both are derived (gd_gear_pair_derive) and must
+ * share the planet (teeth, shift, module, pressure and helix angles) and the centre
+ * distance (the carrier radius); errors name "sun_planet.<field>" or
+ * "ring_planet.<field>". Thread-safe. To turn the pitch-point events into the angle
+ * origin of gd_tvms_result (the start of contact), a pair passes its pitch point
+ * (pitch_point - contact_start) / base_pitch_transverse mesh periods after it starts
+ * contact. */
+GD_API gd_status gd_planet_sun_ring_phase(const gd_gear_pair_geometry *sun_planet,
+                                          const gd_gear_pair_geometry *ring_planet,
+                                          double *gamma_rs, gd_error *err);
 
 #endif

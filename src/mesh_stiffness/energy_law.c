@@ -1,7 +1,8 @@
 /* Tooth-pair stiffness per unit face width by the potential energy method ([JMSTHelical]
  * Eq. 6): Hertz, and for each tooth bending, shear, axial compression and fillet
  * foundation, all in series. A contact at position s on the line of action (from N1)
- * has roll angle s/rb1 on the driver and (N1N2 - s)/rb2 on the driven gear. Helical
+ * has roll angle s/rb1 on the driver and (N1N2 - s)/rb2 on the driven gear ((N1N2 + s)/rb2
+ * on the ring of an internal pair, whose tooth is ring_tooth.c's). Helical
  * slices use the transverse profile ([JMSTHelical] Sec. 2.2). */
 #include <math.h>
 
@@ -10,11 +11,18 @@
 double gd_ms_energy_pair_stiffness(const gd_ms_energy_law *e, double s)
 {
     double c = e->hertz;
-    double roll[2] = {s, e->line_of_action - s};
+    /* an internal pair's ring rolls on the same side of the contact as the planet */
+    double roll[2] = {s, e->tooth[1].internal ? s + e->line_of_action : e->line_of_action - s};
     for (int i = 0; i < 2; i++) {
         const gd_ms_tooth *t = &e->tooth[i];
         double tc = roll[i] / t->rb;
-        c += gd_ms_tooth_beam_compliance(t, tc, e->rtol, NULL) + gd_ms_fillet_compliance(t, tc);
+        if (t->internal) {
+            double b[3];
+            gd_ms_radial_beam_terms(t, tc, e->rtol, b);
+            c += b[0] + b[1] + b[2] + gd_ms_ring_fillet_compliance(t, tc);
+        } else {
+            c += gd_ms_tooth_beam_compliance(t, tc, e->rtol, NULL) + gd_ms_fillet_compliance(t, tc);
+        }
     }
     return 1.0 / c;
 }
@@ -35,6 +43,7 @@ int gd_ms_energy_law_init(gd_ms_energy_law *e, const gd_gear_pair_geometry *g,
         t->rbore = d->bore_radius[i];
         t->E = g->gear[i].E;
         t->nu = g->gear[i].poisson;
+        t->internal = i == 1 && d->internal;
     }
     e->line_of_action = d->line_of_action;
     e->hertz =

@@ -16,19 +16,21 @@ static const double COEF[4][6] = {
     {-6.2042e-5, 9.0889e-3, -4.0964e-4, 7.8297e-3, -0.1472, 0.6904}, /* Q* */
 };
 
-double gd_ms_fillet_compliance(const gd_ms_tooth *t, double tc)
+double gd_ms_foundation_formula(double a1, double uf, double Sf, double thf, double h, double E)
 {
-    double a1 = tc - t->alpha2;
-    double thf = gd_ms_tooth_root_half_angle(t);
-    double h = t->rf / t->rbore;
     double X[4];
     for (int i = 0; i < 4; i++) {
         const double *c = COEF[i];
         X[i] = c[0] / (thf * thf) + c[1] * h * h + c[2] * h / thf + c[3] / thf + c[4] * h + c[5];
     }
+    double q = uf / Sf, ta = tan(a1), ca = cos(a1);
+    return ca * ca / E * (X[0] * q * q + X[1] * q + X[2] * (1 + X[3] * ta * ta));
+}
+
+double gd_ms_fillet_compliance(const gd_ms_tooth *t, double tc)
+{
+    double a1 = tc - t->alpha2;
+    double thf = gd_ms_tooth_root_half_angle(t);
     double uf = t->rb / cos(a1) - t->rf;
-    double Sf = 2 * t->rf * thf;
-    double q = uf / Sf, ta = tan(a1);
-    double ca = cos(a1);
-    return ca * ca / t->E * (X[0] * q * q + X[1] * q + X[2] * (1 + X[3] * ta * ta));
+    return gd_ms_foundation_formula(a1, uf, 2 * t->rf * thf, thf, t->rf / t->rbore, t->E);
 }

@@ -26,45 +26,21 @@ void gd_gear_pair_geometry_init(gd_gear_pair_geometry *g)
     g->hand = 1;
 }
 
-static double involute(double a)
-{
-    return tan(a) - a;
-}
-
-/* Inverse of the involute function by Newton's method (monotone, convex on (0, pi/2)). */
-static double inverse_involute(double v)
-{
-    double a = cbrt(3.0 * v); /* inv(a) ~ a^3/3 for small a */
-    if (a > 1.2) a = 1.2;
-    for (int it = 0; it < 60; it++) {
-        double t = tan(a);
-        double step = (t - a - v) / (t * t);
-        a -= step;
-        if (a <= 0) a = 1e-6;
-        if (fabs(step) < 1e-15) break;
-    }
-    return a;
-}
-
-static gd_status fail(gd_error *err, const char *field, const char *hint, const char *msg)
-{
-    return gd_error_set(err, GD_EINPUT, "", 0, 0, field, hint, "%s", msg);
-}
-
 static gd_status check_inputs(const gd_gear_pair_geometry *g, gd_error *err)
 {
     char msg[400], hint[300], field[64];
     const double deg = GD_MS_PI / 180.0;
     if (!(g->normal_module > 0))
-        return fail(err, "normal_module", "give the normal module, e.g. \"2 mm\"",
-                    "normal module must be positive");
+        return gd_ms_geometry_fail(err, "normal_module", "give the normal module, e.g. \"2 mm\"",
+                                   "normal module must be positive");
     /* ship and mill gears reach 50 mm; past 1 m the lengths are not gears */
     if (g->normal_module > 1.0) {
         snprintf(msg, sizeof msg, "normal module %g m is over 1 m", g->normal_module);
-        return fail(err, "normal_module",
-                    "give the module in length units, e.g. \"2 mm\" (the largest gears have "
-                    "about 50 mm)",
-                    msg);
+        return gd_ms_geometry_fail(
+            err, "normal_module",
+            "give the module in length units, e.g. \"2 mm\" (the largest gears have "
+            "about 50 mm)",
+            msg);
     }
     if (!(g->normal_pressure_angle > 0 && g->normal_pressure_angle < 45 * deg)) {
         double a = g->normal_pressure_angle;
@@ -74,7 +50,7 @@ static gd_status check_inputs(const gd_gear_pair_geometry *g, gd_error *err)
         else
             snprintf(hint, sizeof hint, "give a value between 0 and 45 deg, e.g. \"20 deg\"");
         snprintf(msg, sizeof msg, "normal pressure angle %g rad is outside (0, 45 deg)", a);
-        return fail(err, "normal_pressure_angle", hint, msg);
+        return gd_ms_geometry_fail(err, "normal_pressure_angle", hint, msg);
     }
     if (!(g->helix_angle >= 0 && g->helix_angle < 45 * deg)) {
         double a = g->helix_angle;
@@ -85,71 +61,78 @@ static gd_status check_inputs(const gd_gear_pair_geometry *g, gd_error *err)
             snprintf(hint, sizeof hint,
                      "give a value from 0 (spur) up to 45 deg; the hand is given by 'hand'");
         snprintf(msg, sizeof msg, "helix angle %g rad is outside [0, 45 deg)", a);
-        return fail(err, "helix_angle", hint, msg);
+        return gd_ms_geometry_fail(err, "helix_angle", hint, msg);
     }
     if (!(g->face_width > 0))
-        return fail(err, "face_width", "give the face width, e.g. \"20 mm\"",
-                    "face width must be positive");
+        return gd_ms_geometry_fail(err, "face_width", "give the face width, e.g. \"20 mm\"",
+                                   "face width must be positive");
     /* the widest gears are about 60 modules wide (ISO 6336 b/m_n); 1000 modules leaves
      * room for any real face and keeps the slices and their stiffness sums finite (a
      * face of 1e300 m made every slice's stiffness 0, issue 23) */
     if (g->face_width > 1000 * g->normal_module) {
         snprintf(msg, sizeof msg, "face width %g m is over 1000 normal modules (%g m)",
                  g->face_width, 1000 * g->normal_module);
-        return fail(err, "face_width",
-                    "give the face width in length units (e.g. \"20 mm\"); real gears are up "
-                    "to about 60 modules wide",
-                    msg);
+        return gd_ms_geometry_fail(
+            err, "face_width",
+            "give the face width in length units (e.g. \"20 mm\"); real gears are up "
+            "to about 60 modules wide",
+            msg);
     }
     if (g->hand != 1 && g->hand != -1)
-        return fail(err, "hand", "use right or left", "hand must be right (+1) or left (-1)");
+        return gd_ms_geometry_fail(err, "hand", "use right or left",
+                                   "hand must be right (+1) or left (-1)");
     if (!(g->center_distance >= 0))
-        return fail(err, "center_distance", "give a positive centre distance or leave it out",
-                    "centre distance must not be negative");
+        return gd_ms_geometry_fail(err, "center_distance",
+                                   "give a positive centre distance or leave it out",
+                                   "centre distance must not be negative");
     for (int i = 0; i < 2; i++) {
         const gd_gear_geometry *w = &g->gear[i];
         const char *gn = GEAR_NAME[i];
         if (w->teeth < 5) {
             snprintf(field, sizeof field, "%s.teeth", gn);
             snprintf(msg, sizeof msg, "%d teeth is below the limit of 5", w->teeth);
-            return fail(err, field, "give the number of teeth (at least 5)", msg);
+            return gd_ms_geometry_fail(err, field, "give the number of teeth (at least 5)", msg);
         }
         if (!(w->addendum_coef > 0 && w->addendum_coef <= 2)) {
             snprintf(field, sizeof field, "%s.addendum_coef", gn);
             snprintf(msg, sizeof msg, "addendum coefficient %g is outside (0, 2]",
                      w->addendum_coef);
-            return fail(err, field, "the standard value is 1.0 (times the normal module)", msg);
+            return gd_ms_geometry_fail(err, field,
+                                       "the standard value is 1.0 (times the normal module)", msg);
         }
         if (!(w->dedendum_coef > 0 && w->dedendum_coef <= 2.5)) {
             snprintf(field, sizeof field, "%s.dedendum_coef", gn);
             snprintf(msg, sizeof msg, "dedendum coefficient %g is outside (0, 2.5]",
                      w->dedendum_coef);
-            return fail(err, field, "the standard value is 1.25 (times the normal module)", msg);
+            return gd_ms_geometry_fail(err, field,
+                                       "the standard value is 1.25 (times the normal module)", msg);
         }
         if (!(w->fillet_radius_coef >= 0 && w->fillet_radius_coef < 0.6)) {
             snprintf(field, sizeof field, "%s.fillet_radius_coef", gn);
             snprintf(msg, sizeof msg, "rack tip fillet coefficient %g is outside [0, 0.6)",
                      w->fillet_radius_coef);
-            return fail(err, field, "the ISO 53 profile A value is 0.38", msg);
+            return gd_ms_geometry_fail(err, field, "the ISO 53 profile A value is 0.38", msg);
         }
         if (!(fabs(w->profile_shift) <= 2)) {
             snprintf(field, sizeof field, "%s.profile_shift", gn);
             snprintf(msg, sizeof msg, "profile shift %g is outside [-2, 2]", w->profile_shift);
-            return fail(err, field,
-                        "profile shift is a coefficient of the module, typically -0.5..1", msg);
+            return gd_ms_geometry_fail(
+                err, field, "profile shift is a coefficient of the module, typically -0.5..1", msg);
         }
         if (!(w->E > 0) || !(w->poisson > -1 && w->poisson < 0.5)) {
             snprintf(field, sizeof field, "%s.material", gn);
-            return fail(err, field, "give E > 0 and a Poisson ratio between -1 and 0.5",
-                        "material is not physical");
+            return gd_ms_geometry_fail(err, field,
+                                       "give E > 0 and a Poisson ratio between -1 and 0.5",
+                                       "material is not physical");
         }
         if (!(w->tip_radius >= 0) || !(w->root_radius >= 0) || !(w->bore_radius >= 0)) {
             snprintf(field, sizeof field, "%s.%s", gn,
                      !(w->tip_radius >= 0)    ? "tip_radius"
                      : !(w->root_radius >= 0) ? "root_radius"
                                               : "bore_radius");
-            return fail(err, field, "give a positive radius or leave it out to derive it",
-                        "radius must not be negative");
+            return gd_ms_geometry_fail(err, field,
+                                       "give a positive radius or leave it out to derive it",
+                                       "radius must not be negative");
         }
     }
     return GD_OK;
@@ -161,7 +144,7 @@ gd_status gd_gear_pair_derive(const gd_gear_pair_geometry *g, gd_gear_pair_deriv
     gd_status st = check_inputs(g, err);
     if (st) return st;
     memset(d, 0, sizeof *d);
-    char msg[400], hint[300], field[64];
+    char msg[400], field[64];
     const double mn = g->normal_module, an = g->normal_pressure_angle, beta = g->helix_angle;
     const double mt = mn / cos(beta);
     const double at = atan(tan(an) / cos(beta));
@@ -174,11 +157,12 @@ gd_status gd_gear_pair_derive(const gd_gear_pair_geometry *g, gd_gear_pair_deriv
         d->pitch_radius[i] = 0.5 * g->gear[i].teeth * mt;
         d->base_radius[i] = d->pitch_radius[i] * cos(at);
     }
+    if (g->internal) return gd_ms_internal_derive(g, d, err);
     const double a0 = d->pitch_radius[0] + d->pitch_radius[1];
     d->reference_center_distance = a0;
     /* zero-backlash working pressure angle from the shifts */
-    double inv_w = involute(at) + 2.0 * tan(an) * (x1 + x2) / (z1 + z2);
-    double aw_shift = inverse_involute(inv_w);
+    double inv_w = gd_ms_involute(at) + 2.0 * tan(an) * (x1 + x2) / (z1 + z2);
+    double aw_shift = gd_ms_inverse_involute(inv_w);
     double a_shift = a0 * cos(at) / cos(aw_shift);
     double a = a_shift, aw = aw_shift;
     if (g->center_distance > 0) {
@@ -187,16 +171,17 @@ gd_status gd_gear_pair_derive(const gd_gear_pair_geometry *g, gd_gear_pair_deriv
             snprintf(msg, sizeof msg,
                      "centre distance %.4g mm does not exceed the sum of base radii %.4g mm",
                      a * 1e3, (d->base_radius[0] + d->base_radius[1]) * 1e3);
-            return fail(err, "center_distance", "leave it out to derive it from the profile shifts",
-                        msg);
+            return gd_ms_geometry_fail(err, "center_distance",
+                                       "leave it out to derive it from the profile shifts", msg);
         }
         if (a < a_shift * (1 - 1e-9)) {
             snprintf(msg, sizeof msg,
                      "centre distance %.6g mm is below %.6g mm, the zero-backlash distance for "
                      "profile shifts %g + %g: the teeth would jam",
                      a * 1e3, a_shift * 1e3, x1, x2);
-            return fail(err, "center_distance",
-                        "enlarge the centre distance or reduce the profile shifts", msg);
+            return gd_ms_geometry_fail(err, "center_distance",
+                                       "enlarge the centre distance or reduce the profile shifts",
+                                       msg);
         }
         aw = acos(a0 * cos(at) / a);
     }
@@ -205,73 +190,8 @@ gd_status gd_gear_pair_derive(const gd_gear_pair_geometry *g, gd_gear_pair_deriv
     double k = (x1 + x2) - (a - a0) / mn; /* tip shortening keeps the standard clearance */
     d->tip_shortening = k > 0 ? k : 0;
 
-    for (int i = 0; i < 2; i++) {
-        const gd_gear_geometry *w = &g->gear[i];
-        const char *gn = GEAR_NAME[i];
-        double r = d->pitch_radius[i], rb = d->base_radius[i];
-        double ra = w->tip_radius > 0
-                        ? w->tip_radius
-                        : r + (w->addendum_coef + w->profile_shift - d->tip_shortening) * mn;
-        double rf =
-            w->root_radius > 0 ? w->root_radius : r - (w->dedendum_coef - w->profile_shift) * mn;
-        d->tip_radius[i] = ra;
-        d->root_radius[i] = rf;
-        if (!(rf > 0) || !(ra > rf)) {
-            snprintf(field, sizeof field, "%s.%s", gn, rf > 0 ? "tip_radius" : "root_radius");
-            snprintf(msg, sizeof msg, "tip radius %.4g mm must exceed root radius %.4g mm > 0",
-                     ra * 1e3, rf * 1e3);
-            return fail(err, field, "check the radii and the dedendum coefficient", msg);
-        }
-        if (!(ra > rb * (1 + 1e-9))) {
-            snprintf(field, sizeof field, "%s.tip_radius", gn);
-            snprintf(msg, sizeof msg, "tip radius %.4g mm is not above the base radius %.4g mm",
-                     ra * 1e3, rb * 1e3);
-            return fail(err, field, "the tip must lie on the involute, above the base circle", msg);
-        }
-        /* Undercut: the rack's straight flank ends h = (h_fP* - rho*(1 - sin an)) m_n
-         * below the datum line; the involute starts at roll length rho_F >= 0 only if
-         * x >= h* - z sin^2(at) / (2 cos beta). */
-        double hstar = w->dedendum_coef - w->fillet_radius_coef * (1 - sin(an));
-        double xmin = hstar - w->teeth * sin(at) * sin(at) / (2 * cos(beta));
-        if (w->profile_shift < xmin - 1e-9) {
-            snprintf(field, sizeof field, "%s.profile_shift", gn);
-            snprintf(msg, sizeof msg,
-                     "%d teeth with profile shift %g are undercut: the profile shift must be at "
-                     "least %.4f (without shift at least %.1f teeth)",
-                     w->teeth, w->profile_shift, xmin, 2 * hstar * cos(beta) / (sin(at) * sin(at)));
-            snprintf(hint, sizeof hint, "set %s.profile_shift to %.3f or more, or use more teeth",
-                     gn, xmin);
-            return fail(err, field, hint, msg);
-        }
-        double rho_f = r * sin(at) - (hstar - w->profile_shift) * mn / sin(at);
-        if (rho_f < 0) rho_f = 0;
-        if (rf > rb) {
-            double rr = sqrt(rf * rf - rb * rb);
-            if (rr > rho_f) rho_f = rr;
-        }
-        d->form_roll[i] = rho_f;
-        /* half tooth angle on the base circle: s/(2r) + inv(at), s = m_t (pi/2 + 2 x tan an) */
-        double a2 = (GD_MS_PI / 2 + 2 * w->profile_shift * tan(an)) / w->teeth + involute(at);
-        d->half_angle_base[i] = a2;
-        double aa = acos(rb / ra);
-        if (a2 - involute(aa) <= 0) {
-            snprintf(field, sizeof field, "%s.tip_radius", gn);
-            snprintf(msg, sizeof msg, "the tooth comes to a point below the tip radius %.4g mm",
-                     ra * 1e3);
-            return fail(err, field, "reduce the tip radius, the addendum or the profile shift",
-                        msg);
-        }
-        double rbore = w->bore_radius > 0 ? w->bore_radius : 0.5 * rf; /* documented default */
-        d->bore_radius[i] = rbore;
-        if (!(rbore < rf - mn)) {
-            snprintf(field, sizeof field, "%s.bore_radius", gn);
-            snprintf(
-                msg, sizeof msg,
-                "bore radius %.4g mm leaves a rim below one module under the root radius %.4g mm",
-                rbore * 1e3, rf * 1e3);
-            return fail(err, field, "give a bore/hub radius below root radius - module", msg);
-        }
-    }
+    for (int i = 0; i < 2; i++)
+        if ((st = gd_ms_external_gear(g, d, i, err))) return st;
     for (int i = 0; i < 2; i++) {
         d->tip_clearance[i] = a - d->tip_radius[i] - d->root_radius[1 - i];
         if (d->tip_clearance[i] < 0) {
@@ -281,10 +201,11 @@ gd_status gd_gear_pair_derive(const gd_gear_pair_geometry *g, gd_gear_pair_deriv
                      "root circle (limit: tip radius <= %.4g mm)",
                      d->tip_clearance[i] * 1e3, GEAR_NAME[i], d->tip_radius[i] * 1e3,
                      GEAR_NAME[1 - i], (a - d->root_radius[1 - i]) * 1e3);
-            return fail(err, field,
-                        "reduce the tip radius or the other gear's dedendum, or enlarge the centre "
-                        "distance",
-                        msg);
+            return gd_ms_geometry_fail(
+                err, field,
+                "reduce the tip radius or the other gear's dedendum, or enlarge the centre "
+                "distance",
+                msg);
         }
     }
     const double N1N2 = a * sin(aw);
@@ -297,7 +218,7 @@ gd_status gd_gear_pair_derive(const gd_gear_pair_geometry *g, gd_gear_pair_deriv
                  "tip interference: the driven tip meets the driver %.4g mm from its base circle, "
                  "below the usable involute that starts at %.4g mm",
                  d->contact_start * 1e3, d->form_roll[0] * 1e3);
-        return fail(
+        return gd_ms_geometry_fail(
             err, "driven.tip_radius",
             "reduce the driven tip radius or addendum, or give the driver a positive profile shift",
             msg);
@@ -307,28 +228,11 @@ gd_status gd_gear_pair_derive(const gd_gear_pair_geometry *g, gd_gear_pair_deriv
                  "tip interference: the driver tip meets the driven gear %.4g mm from its base "
                  "circle, below the usable involute that starts at %.4g mm",
                  (N1N2 - d->contact_end) * 1e3, d->form_roll[1] * 1e3);
-        return fail(err, "driver.tip_radius",
-                    "reduce the driver tip radius or addendum, or give the driven gear a positive "
-                    "profile shift",
-                    msg);
+        return gd_ms_geometry_fail(
+            err, "driver.tip_radius",
+            "reduce the driver tip radius or addendum, or give the driven gear a positive "
+            "profile shift",
+            msg);
     }
-    d->contact_length = d->contact_end - d->contact_start;
-    d->base_pitch_transverse = 2 * GD_MS_PI * rb1 / z1;
-    d->base_pitch_normal = GD_MS_PI * mn * cos(an);
-    d->overlap_length = g->face_width * tan(d->base_helix_angle);
-    d->contact_ratio_transverse = d->contact_length / d->base_pitch_transverse;
-    d->contact_ratio_face = g->face_width * sin(beta) / (GD_MS_PI * mn);
-    d->contact_ratio_total = d->contact_ratio_transverse + d->contact_ratio_face;
-    d->mesh_period = 2 * GD_MS_PI / z1;
-    d->ratio = (double)z2 / z1;
-    if (d->contact_ratio_total < 1) {
-        snprintf(msg, sizeof msg,
-                 "total contact ratio %.4f (transverse %.4f + face %.4f) is below the limit 1: "
-                 "contact would be lost between tooth pairs",
-                 d->contact_ratio_total, d->contact_ratio_transverse, d->contact_ratio_face);
-        return fail(err, "",
-                    "raise the addendum coefficients or tip radii, or the face width / helix angle",
-                    msg);
-    }
-    return gd_ms_mods_check(g, d, err);
+    return gd_ms_contact_ratios(g, d, err);
 }

@@ -19,7 +19,8 @@ void gd_ms_iso6336(const gd_gear_pair_geometry *g, const gd_gear_pair_derived *d
 {
     double cb = cos(d->base_helix_angle), beta = g->helix_angle;
     double zn1 = g->gear[0].teeth / (cb * cb * cos(beta));
-    double zn2 = g->gear[1].teeth / (cb * cb * cos(beta));
+    /* internal pairs: zn2 -> infinity (ISO 6336-1:2006, 9.3.2.1: the ring as a rack) */
+    double zn2 = d->internal ? HUGE_VAL : g->gear[1].teeth / (cb * cb * cos(beta));
     double x1 = g->gear[0].profile_shift, x2 = g->gear[1].profile_shift;
     double q = C[1] + C[2] / zn1 + C[3] / zn2 + C[4] * x1 + C[5] * x1 / zn1 + C[6] * x2 +
                C[7] * x2 / zn2 + C[8] * x1 * x1 + C[9] * x2 * x2;

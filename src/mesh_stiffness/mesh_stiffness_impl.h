@@ -7,6 +7,28 @@
 
 #define GD_MS_PI 3.14159265358979323846
 
+/* ---- involute_pair.c: pieces shared by external and internal pair geometry ---- */
+double gd_ms_involute(double a);
+double gd_ms_inverse_involute(double v);
+/* GD_EINPUT with field, hint and message. */
+gd_status gd_ms_geometry_fail(gd_error *err, const char *field, const char *hint, const char *msg);
+/* Radii, form roll, base half angle and bore of external gear i (pitch and base radii,
+ * transverse pressure angle and tip shortening already in d), with its checks. */
+gd_status gd_ms_external_gear(const gd_gear_pair_geometry *g, gd_gear_pair_derived *d, int i,
+                              gd_error *err);
+/* Path of contact (contact_start/end already in d), pitches and contact ratios. */
+gd_status gd_ms_contact_ratios(const gd_gear_pair_geometry *g, gd_gear_pair_derived *d,
+                               gd_error *err);
+
+/* ---- internal_geometry.c: an external gear in an internal gear (ISO 21771 / [KHK]) ---- */
+/* The rest of gd_gear_pair_derive for g->internal (transverse angles, pitch and base
+ * radii already in d). */
+gd_status gd_ms_internal_derive(const gd_gear_pair_geometry *g, gd_gear_pair_derived *d,
+                                gd_error *err);
+/* Half tooth angle of the ring at its base circle (may be negative: the ring's tooth
+ * widens outward, psi(r) = this + inv(alpha(r))). */
+double gd_ms_ring_half_angle_base(const gd_gear_pair_geometry *g, double at);
+
 /* ---- quadrature.c: adaptive Gauss-Kronrod (7/15) ---- */
 typedef double (*gd_ms_fn)(double x, void *ctx);
 /* Integral of f over [a, b] to relative tolerance rtol; *neval (may be NULL) counts calls. */
@@ -18,10 +40,11 @@ double gd_ms_gauss_legendre(gd_ms_fn f, void *ctx, double a, double b, int n);
  * Tian 2004, Chen & Shao 2011), plane stress, per unit face width ---- */
 typedef struct gd_ms_tooth {
     double rb;     /* base radius (transverse) */
-    double alpha2; /* half tooth angle on the base circle */
+    double alpha2; /* half tooth angle on the base circle (ring: gd_ms_ring_half_angle_base) */
     double rf;     /* root radius */
-    double rbore;  /* hub/bore radius (fillet foundation) */
+    double rbore;  /* hub/bore radius (fillet foundation); ring: rim outer radius */
     double E, nu;
+    int internal; /* 1: a ring's tooth (ring_tooth.c) */
 } gd_ms_tooth;
 
 /* Bending + shear + axial compliance (m/N times m of face width) of one tooth loaded at
@@ -33,8 +56,19 @@ void gd_ms_tooth_beam_terms(const gd_ms_tooth *t, double tc, double rtol, int n,
 /* Half tooth angle at the root circle (theta_f) of the cantilever model. */
 double gd_ms_tooth_root_half_angle(const gd_ms_tooth *t);
 
+/* ---- ring_tooth.c: a tooth as a cantilever along its centre line, integrated over the
+ * pressure angle of the flank (external or internal teeth) ---- */
+/* Bending, shear and axial compliance (out[0..2]) of tooth t loaded at roll angle tc, for
+ * an external tooth whose root circle lies above its base circle, or a ring tooth. */
+void gd_ms_radial_beam_terms(const gd_ms_tooth *t, double tc, double rtol, double out[3]);
+/* Fillet-foundation compliance of a ring tooth (the ring's rim, see ring_tooth.c). */
+double gd_ms_ring_fillet_compliance(const gd_ms_tooth *t, double tc);
+
 /* ---- fillet_foundation.c: Sainsot, Velex & Duverger 2004 ---- */
 double gd_ms_fillet_compliance(const gd_ms_tooth *t, double tc);
+/* The formula itself: load angle a1, load height u_f, root thickness S_f, root half
+ * angle theta_f, body ratio h = r_f / r_int, modulus E. */
+double gd_ms_foundation_formula(double a1, double uf, double Sf, double thf, double h, double E);
 
 /* ---- hertz.c: Yang & Lin 1987 line contact, per unit face width ---- */
 double gd_ms_hertz_compliance(double E1, double nu1, double E2, double nu2);
@@ -145,6 +179,7 @@ typedef struct gd_ms_mods {
     double end_amount[2], end_length[2];
     int end_shape[2];
     double slope; /* helix slope deviations and misalignment summed */
+    int internal; /* the driven gear is a ring: its roll length is s + line_of_action */
 } gd_ms_mods;
 void gd_ms_mods_init(gd_ms_mods *m, const gd_gear_pair_geometry *g, const gd_gear_pair_derived *d,
                      double misalignment);

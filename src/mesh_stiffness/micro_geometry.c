@@ -4,7 +4,9 @@
  * separations of the two flanks add. Profile reliefs follow the roll length
  * rho = sqrt(r^2 - r_b^2) (linear tip relief is then linear along the line of action,
  * as in Tavakoli & Houser, J. Mech. Trans. Autom. Des. 108 (1986) 86); a contact at s
- * from N1 has roll length s on the driver and N1N2 - s on the driven gear. Lead
+ * from N1 has roll length s on the driver and N1N2 - s on the driven gear (N1N2 + s on
+ * the ring of an internal pair, whose tip is its smallest roll length and its form
+ * circle the largest: the reliefs run toward them the same way). Lead
  * modifications and the misalignment follow the face position y of the mesh. */
 #include <math.h>
 #include <stdio.h>
@@ -29,6 +31,7 @@ void gd_ms_mods_init(gd_ms_mods *m, const gd_gear_pair_geometry *g, const gd_gea
                      double misalignment)
 {
     m->line_of_action = d->line_of_action;
+    m->internal = d->internal;
     m->face_width = g->face_width;
     m->crowning = 0;
     m->slope = misalignment;
@@ -67,7 +70,7 @@ static double end_relief(double amount, double len, int shape, double y, double 
 double gd_ms_mods_separation(const gd_ms_mods *m, double s, double y)
 {
     const double b = m->face_width;
-    double rho[2] = {s, m->line_of_action - s};
+    double rho[2] = {s, m->internal ? s + m->line_of_action : m->line_of_action - s};
     double c = 2 * y / b - 1;
     double e = m->crowning * c * c + m->slope * (y / b - 0.5);
     for (int i = 0; i < 2; i++)
@@ -116,6 +119,60 @@ static gd_status check_amount(gd_error *err, int gear, const char *key, double v
     return GD_OK;
 }
 
+/* The ring of an internal pair: its tip circle is inside the reference circle and its
+ * form circle outside, so a tip relief starts outside the tip (at most at the
+ * reference circle) and a root relief inside the form circle (at least at the
+ * reference circle), above the tip relief's start. */
+static gd_status check_ring_relief(const gd_profile_relief *p, const gd_gear_pair_derived *d,
+                                   int tip, double rho, double rs, double other_start,
+                                   gd_error *err)
+{
+    const char *key = tip ? "tip_relief" : "root_relief";
+    const char *sk = p->start_diameter > 0 ? "start_diameter" : "start_roll_angle";
+    char k[64], msg[400], hint[300];
+    snprintf(k, sizeof k, "%s.%s", key, sk);
+    double rb = d->base_radius[1], r = d->pitch_radius[1], ra = d->tip_radius[1];
+    double rho_a = sqrt(ra * ra - rb * rb), rho_f = d->form_roll[1];
+    double dF = 2 * sqrt(rb * rb + rho_f * rho_f);
+    if (tip && rho <= rho_a) {
+        snprintf(msg, sizeof msg,
+                 "the ring's tip relief starts at diameter %.4g mm, not outside its tip %.4g mm",
+                 2 * rs * 1e3, 2 * ra * 1e3);
+        snprintf(hint, sizeof hint, "start it between %.4g and %.4g mm", 2 * ra * 1e3, 2 * r * 1e3);
+        return fail(err, 1, k, hint, msg);
+    }
+    if (tip && rs > r * (1 + 1e-12)) {
+        snprintf(msg, sizeof msg,
+                 "the ring's tip relief from diameter %.4g mm to its tip is longer than the "
+                 "addendum: it starts outside the reference diameter %.4g mm",
+                 2 * rs * 1e3, 2 * r * 1e3);
+        snprintf(hint, sizeof hint, "start it between %.4g and %.4g mm", 2 * ra * 1e3, 2 * r * 1e3);
+        return fail(err, 1, k, hint, msg);
+    }
+    if (!tip && rho >= rho_f) {
+        snprintf(msg, sizeof msg,
+                 "the ring's root relief starts at diameter %.4g mm, not inside its form "
+                 "diameter %.4g mm where the involute ends",
+                 2 * rs * 1e3, dF * 1e3);
+        return fail(err, 1, k, "start the root relief inside the form diameter", msg);
+    }
+    if (!tip && rs < r * (1 - 1e-12)) {
+        snprintf(msg, sizeof msg,
+                 "the ring's root relief from diameter %.4g mm out to its form circle is longer "
+                 "than the dedendum: it starts inside the reference diameter %.4g mm",
+                 2 * rs * 1e3, 2 * r * 1e3);
+        snprintf(hint, sizeof hint, "start it between %.4g and %.4g mm", 2 * r * 1e3, dF * 1e3);
+        return fail(err, 1, k, hint, msg);
+    }
+    if (!tip && other_start > 0 && rho <= other_start) {
+        snprintf(msg, sizeof msg,
+                 "the ring's root relief starts at or inside the start of its "
+                 "tip relief");
+        return fail(err, 1, k, "the ring's root relief must start outside its tip relief", msg);
+    }
+    return GD_OK;
+}
+
 static gd_status check_relief(const gd_profile_relief *p, const gd_gear_pair_derived *d, int i,
                               int tip, double mn, double other_start, gd_error *err)
 {
@@ -143,6 +200,7 @@ static gd_status check_relief(const gd_profile_relief *p, const gd_gear_pair_der
         return fail(err, i, k, "the relief starts on the involute, above the base circle", msg);
     }
     double rho = start_roll(p, rb), rs = sqrt(rb * rb + rho * rho);
+    if (d->internal && i == 1) return check_ring_relief(p, d, tip, rho, rs, other_start, err);
     if (tip && rho >= rho_a) {
         snprintf(msg, sizeof msg,
                  "tip relief starts at diameter %.4g mm, not below the tip %.4g mm", 2 * rs * 1e3,

@@ -59,7 +59,7 @@ static gd_status read_pair(gd_yreader *r, const gd_ynode *root, const char *mesh
     const gd_ynode *mesh = pick_mesh(r, root, mesh_name, path, sizeof path);
     if (!mesh) return GD_EINPUT;
     if (tvms) gd_tvms_options_init(tvms);
-    gd_status st = gd_gear_pair_read(r, root, mesh, path, geom, tvms);
+    gd_status st = gd_gear_pair_read_any(r, root, mesh, path, geom, tvms);
     if (st || !name_out || !size) return st;
     const gd_ynode *nm = gd_ymap_get(mesh, "name");
     snprintf(name_out, size, "%s", nm && nm->kind == GD_Y_SCALAR ? nm->text : path);

@@ -8,15 +8,11 @@
 #include "mesh_stiffness/mesh_stiffness_impl.h"
 #include "model_file/material_read_impl.h"
 
-static const char *const GEOMETRY_KEYS[] = {"normal_module",
-                                            "normal_pressure_angle",
-                                            "helix_angle",
-                                            "hand",
-                                            "face_width",
-                                            "center_distance",
-                                            "driver",
-                                            "driven",
-                                            NULL};
+static const char *const GEOMETRY_KEYS[] = {"normal_module", "normal_pressure_angle",
+                                            "helix_angle",   "hand",
+                                            "face_width",    "center_distance",
+                                            "internal",      "driver",
+                                            "driven",        NULL};
 static const char *const GEAR_KEYS[] = {"teeth",
                                         "profile_shift",
                                         "addendum_coef",
@@ -239,8 +235,9 @@ static gd_status read_options(gd_yreader *r, const gd_ynode *s, const char *path
     return GD_OK;
 }
 
-gd_status gd_gear_pair_read(gd_yreader *r, const gd_ynode *root, const gd_ynode *mesh_map,
-                            const char *path, gd_gear_pair_geometry *geom, gd_tvms_options *opt)
+static gd_status read_pair(gd_yreader *r, const gd_ynode *root, const gd_ynode *mesh_map,
+                           const char *path, gd_gear_pair_geometry *geom, gd_tvms_options *opt,
+                           int allow_internal)
 {
     gd_status st;
     char gp[200], p[200];
@@ -274,6 +271,14 @@ gd_status gd_gear_pair_read(gd_yreader *r, const gd_ynode *root, const gd_ynode 
         if (mh && mh->kind == GD_Y_SCALAR && !strcmp(mh->text, "left")) hand = 1;
     }
     geom->hand = hand == 1 ? -1 : 1;
+    /* an internal pair: the driven gear is a ring (docs/mesh-stiffness.md) */
+    if ((st = gd_yread_bool(r, g, "internal", gp, 0, &geom->internal, &present))) return st;
+    if (geom->internal && !allow_internal)
+        return gd_yfail(r, gd_ymap_get(g, "internal"), gp,
+                        "a ring-planet mesh belongs to a planetary set; `geardyn mesh-stiffness` "
+                        "computes an internal pair's stiffness from a stand-alone file",
+                        "a model mesh couples two external gears: internal pairs are not "
+                        "supported here");
     static const char *const NAMES[2] = {"driver", "driven"};
     for (int i = 0; i < 2; i++) {
         const gd_ynode *m = gd_ymap_get(g, NAMES[i]);
@@ -297,4 +302,16 @@ gd_status gd_gear_pair_read(gd_yreader *r, const gd_ynode *root, const gd_ynode 
         return st;
     }
     return GD_OK;
+}
+
+gd_status gd_gear_pair_read(gd_yreader *r, const gd_ynode *root, const gd_ynode *mesh_map,
+                            const char *path, gd_gear_pair_geometry *geom, gd_tvms_options *opt)
+{
+    return read_pair(r, root, mesh_map, path, geom, opt, 0);
+}
+
+gd_status gd_gear_pair_read_any(gd_yreader *r, const gd_ynode *root, const gd_ynode *mesh_map,
+                                const char *path, gd_gear_pair_geometry *geom, gd_tvms_options *opt)
+{
+    return read_pair(r, root, mesh_map, path, geom, opt, 1);
 }

@@ -13,6 +13,11 @@
  * located in the file. path is the mesh's path, e.g. "meshes[0]". */
 gd_status gd_gear_pair_read(gd_yreader *r, const gd_ynode *root, const gd_ynode *mesh_map,
                             const char *path, gd_gear_pair_geometry *geom, gd_tvms_options *opt);
+/* gd_gear_pair_read that also accepts `internal: true` (an internal pair, read by the
+ * mesh-stiffness command; a model's meshes refuse it). */
+gd_status gd_gear_pair_read_any(gd_yreader *r, const gd_ynode *root, const gd_ynode *mesh_map,
+                                const char *path, gd_gear_pair_geometry *geom,
+                                gd_tvms_options *opt);
 
 /* Locates an error from gd_gear_pair_derive / gd_tvms_compute (whose field is relative
  * to the geometry or stiffness map) at the matching node of mesh_map, prefixing path. */

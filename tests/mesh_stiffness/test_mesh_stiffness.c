@@ -6,6 +6,7 @@
 
 #include "geardyn/mesh_stiffness.h"
 #include "harness.h"
+#include "tvms_support.h"
 #include "model_file/mesh_geometry_read_impl.h"
 #include "mesh_stiffness/mesh_stiffness_impl.h"
 #include "model_file/yaml_doc_impl.h"
@@ -36,19 +37,6 @@ static void pair_004(gd_gear_pair_geometry *g)
     g->face_width = 0.020;
     for (int i = 0; i < 2; i++)
         g->gear[i].E = 2.0e11, g->gear[i].bore_radius = 12.7e-3;
-}
-
-static gd_tvms_result *run(const gd_gear_pair_geometry *g, const gd_tvms_options *o)
-{
-    gd_tvms_result *r = NULL;
-    gd_error err;
-    if (gd_tvms_compute(g, o, &r, &err)) {
-        char buf[1024];
-        gd_error_format(&err, buf, sizeof buf);
-        fprintf(stderr, "  compute failed: %s\n", buf);
-        return NULL;
-    }
-    return r;
 }
 
 TEST(table1_contact_ratios_002)
@@ -375,9 +363,13 @@ TEST(quadrature_converges)
     pair_002(&g, 2, 0);
     REQUIRE(gd_gear_pair_derive(&g, &d, &err) == GD_OK);
     for (int i = 0; i < 2; i++) {
-        gd_ms_tooth t = {d.base_radius[i], d.half_angle_base[i],
-                         d.root_radius[i], d.bore_radius[i],
-                         2.06e11,          0.3};
+        gd_ms_tooth t = {d.base_radius[i],
+                         d.half_angle_base[i],
+                         d.root_radius[i],
+                         d.bore_radius[i],
+                         2.06e11,
+                         0.3,
+                         0};
         double tc = (i == 0 ? d.contact_start : d.line_of_action - d.contact_end) / t.rb;
         double ref[3], prev_err = 1e300;
         gd_ms_tooth_beam_terms(&t, tc, 1e-14, 0, ref);
@@ -409,7 +401,7 @@ TEST(tooth_energy_matches_cartesian_integral)
     pair_004(&g);
     REQUIRE(gd_gear_pair_derive(&g, &d, &err) == GD_OK);
     gd_ms_tooth t = {
-        d.base_radius[0], d.half_angle_base[0], d.root_radius[0], d.bore_radius[0], 2e11, 0.3};
+        d.base_radius[0], d.half_angle_base[0], d.root_radius[0], d.bore_radius[0], 2e11, 0.3, 0};
     REQUIRE(t.rf > t.rb); /* involute all the way to the root circle */
     double rc = 0.5 * (d.pitch_radius[0] + d.tip_radius[0]);
     double ac = acos(t.rb / rc), thc = t.alpha2 - (tan(ac) - ac);
