@@ -202,6 +202,7 @@ gd_status gd_plot_write(const gd_plot *p, const char *path, const gd_plot_write_
          : fmt == GD_PLOT_HTML ? pl_write_html(p, f, js, err)
                                : pl_write_raster(p, path, f, fmt == GD_PLOT_PDF, err);
     int werr = st || ferror(f) ? errno : 0; /* the write's own cause (ENOSPC, EFBIG) */
+    int stream_failed = ferror(f) != 0;     /* the disk, not the writer's content */
     if (fclose(f) != 0 && !st) {
         werr = errno;
         st = gd_error_set(err, GD_EIO, path, 0, 0, "--plot", "check the free space",
@@ -218,8 +219,11 @@ gd_status gd_plot_write(const gd_plot *p, const char *path, const gd_plot_write_
         unlink(tmp);
         /* the writer's own reason when it gave one (librsvg, memory), located here;
          * the disk only when the stream itself failed (issue 38 M8) */
-        if (err && err->message[0] && !err->file[0])
+        if (err && err->message[0] && !err->file[0] && !stream_failed)
             snprintf(err->file, sizeof err->file, "%s", path);
+        else if (stream_failed)
+            gd_error_set(err, st, path, 0, 0, "--plot", "check the free space",
+                         "cannot write the plot: %s", werr ? strerror(werr) : "the write failed");
         else if (!err || !err->file[0])
             gd_error_set(err, st, path, 0, 0, "--plot", "check the free space",
                          "cannot write the plot: %s", werr ? strerror(werr) : "the write failed");
