@@ -221,8 +221,11 @@ static void print_text(const gd_system *sys, const gd_transient_model *tm,
            "peak_to_peak");
     for (int r = 0; r < recs->n; r++) {
         const gd_tr_stats *st = &res->stats[r];
-        printf("%-*s %-6s %13.6g %13.6g %13.6g %13.6g %13.6g\n", w, recs->r[r].name,
-               recs->r[r].unit, st->min, st->max, st->mean, st->rms, st->peak_to_peak);
+        char b[5][32];
+        printf("%-*s %-6s %s %s %s %s %s\n", w, recs->r[r].name, recs->r[r].unit,
+               gd_cli_num(b[0], 32, 13, 6, st->min), gd_cli_num(b[1], 32, 13, 6, st->max),
+               gd_cli_num(b[2], 32, 13, 6, st->mean), gd_cli_num(b[3], 32, 13, 6, st->rms),
+               gd_cli_num(b[4], 32, 13, 6, st->peak_to_peak));
     }
     if (tm->spec.nmeshes) {
         printf("\n%-20s %8s %14s %8s %8s %14s\n", "mesh", "backlash", "contact_losses", "coast",
