@@ -183,6 +183,13 @@ def with_laws(system, tm, laws):
     if not laws:
         return spec, tm, []
     n0 = tm.spec.nlaws
+    seen = {ffi.string(tm.spec.laws[i].name).decode() for i in range(n0)}
+    for law in laws:
+        if isinstance(law, Law) and law.name in seen:  # issue 38 L2: two columns of one name
+            raise model_error("laws", "duplicate law name '%s'" % law.name,
+                              "give every law its own name")
+        if isinstance(law, Law):
+            seen.add(law.name)
     arr = ffi.new("gd_law[]", n0 + len(laws))
     for i in range(n0):
         arr[i] = tm.spec.laws[i]
