@@ -22,8 +22,9 @@ static const gd_cli_opt OPTS[] = {
     GD_CLI_ROW("speeds", GD_CLI_STRING, F(speeds), "FROM:TO:COUNT",
                "reference speeds, units allowed: 0:12000rpm:121", .required = 1),
     GD_CLI_ROW("modes", GD_CLI_INT, F(opt.nmodes), "N|all",
-               "elastic modes tracked (default 12; rigid-body modes are left out)", .lo = 1,
-               .hi = 100000, .word = "all", .ival = 0),
+               "elastic modes tracked (rigid-body modes are left out)",
+               .def = "every mode up to 1.25 x the highest order at the top speed, at least 12",
+               .lo = 1, .hi = 100000, .word = "all", .ival = 0),
     GD_CLI_ROW("orders", GD_CLI_STRING, F(orders), "LIST",
                "extra orders of the reference speed, comma-separated: 2,0.5"),
     GD_CLI_ROW("no-shaft-orders", GD_CLI_CLEAR, F(opt.shaft_orders), NULL,
@@ -279,6 +280,7 @@ int gd_cmd_campbell(int argc, char **argv)
     const char *cmd = "campbell", *file;
     campbell_args a = {0};
     gd_campbell_options_init(&a.opt);
+    a.opt.nmodes = -1; /* not given: chosen from the orders (gd_campbell_default_modes) */
     int rc = gd_cli_parse(&CMD, argc, argv, &a, &file);
     if (rc) return rc < 0 ? GD_EXIT_OK : rc;
     gd_campbell_options opt = a.opt;
@@ -334,10 +336,23 @@ int gd_cmd_campbell(int argc, char **argv)
         free(sp);
         return rc;
     }
-    openblas_set_num_threads(1); /* the sweep is parallel over speeds instead */
     gd_campbell_result *r;
     gd_error err;
     gd_error_clear(&err);
+    double limit = 0;
+    if (opt.nmodes < 0 && gd_campbell_default_modes(s, &opt, &opt.nmodes, &limit, &err)) {
+        rc = gd_cli_report(&err);
+        gd_system_free(s);
+        gd_model_free(m);
+        free(ord);
+        free(sp);
+        return rc;
+    }
+    if (limit > 0 && !a.json)
+        printf("tracking %d modes: every mode up to %.4g Hz (1.25 x the highest order at the top "
+               "speed; --modes N to choose)\n",
+               opt.nmodes, limit / (2 * PI));
+    openblas_set_num_threads(1); /* the sweep is parallel over speeds instead */
     if (gd_campbell(s, &opt, &r, &err)) {
         rc = gd_cli_report(&err);
     } else {

@@ -8,11 +8,14 @@
  * CLI's one piece of process-wide state: a signal handler has nothing else to reach);
  * SIGKILL cannot be caught, so a run removes the stages that dead processes left. When
  * PARENT cannot take a staging folder (not writable, or DIR is a mount point or '.')
- * the stage goes inside DIR and the files move one by one (docs/analyses.md). */
+ * the stage goes inside DIR and the files move one by one (docs/analyses.md). A DIR that
+ * is a symbolic link is followed (its target is the folder replaced, the link stays),
+ * and stage removal never follows a link. */
 #define _GNU_SOURCE
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
+#include <limits.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -67,20 +70,30 @@ static void block_signals(sigset_t *old)
     sigprocmask(SIG_BLOCK, &set, old);
 }
 
-/* Removes the files (and empty folders, one level down) of folder path, then it. */
+/* Removes the files (and empty folders, one level down) of folder path, then it. Never
+ * follows a symbolic link: path is opened with O_NOFOLLOW (a link in its place is
+ * removed as a link, its target untouched) and its entries go by unlinkat on that
+ * descriptor, so nothing outside the folder itself can be reached (issue 38 H1: a stale
+ * "stage" that was a link to the user's folder emptied that folder on every run). */
 static void remove_folder(const char *path)
 {
-    DIR *d = opendir(path);
-    if (d) {
-        struct dirent *e;
-        char p[1400];
-        while ((e = readdir(d))) {
-            if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")) continue;
-            snprintf(p, sizeof p, "%s/%s", path, e->d_name);
-            if (unlink(p) != 0) rmdir(p);
-        }
-        closedir(d);
+    int fd = open(path, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+    if (fd < 0) {
+        struct stat sb;
+        if (lstat(path, &sb) == 0 && S_ISLNK(sb.st_mode)) unlink(path);
+        return;
     }
+    DIR *d = fdopendir(fd);
+    if (!d) {
+        close(fd);
+        return;
+    }
+    struct dirent *e;
+    while ((e = readdir(d))) {
+        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")) continue;
+        if (unlinkat(fd, e->d_name, 0) != 0) unlinkat(fd, e->d_name, AT_REMOVEDIR);
+    }
+    closedir(d); /* closes fd */
     rmdir(path);
 }
 
@@ -98,14 +111,21 @@ static void remove_stale_stages(const char *folder)
         snprintf(path, sizeof path, "%s/%s", folder, e->d_name);
         char *end;
         long pid = strtol(e->d_name + np, &end, 10);
+        struct stat sb;
+        if (lstat(path, &sb) != 0) continue;
         int stale;
-        if (end != e->d_name + np && *end == '-' && pid > 0) {
+        if (end != e->d_name + np && *end == '-' && pid > 0 && pid <= INT_MAX) {
             stale = kill((pid_t)pid, 0) != 0 && errno == ESRCH;
         } else {
-            struct stat sb;
-            stale = stat(path, &sb) == 0 && time(NULL) - sb.st_mtime > 3600;
+            stale = time(NULL) - sb.st_mtime > 3600;
         }
-        if (stale) remove_folder(path);
+        if (!stale) continue;
+        /* a stage is a folder this program made; anything else of that name (a link left
+         * by an earlier version that renamed a linked --out) goes as itself */
+        if (S_ISDIR(sb.st_mode))
+            remove_folder(path);
+        else
+            unlink(path);
     }
     closedir(d);
 }
@@ -134,6 +154,23 @@ int gd_outdir_begin(gd_outdir *od, const char *dir, gd_error *err)
     char parent[1024];
     split(dir, od->dir, sizeof od->dir, parent, sizeof parent);
     struct stat sb, pb;
+    /* A symbolic link given as --out is followed: the outputs land in the folder it
+     * names and the link stays (renaming DIR would otherwise replace the link itself by
+     * a real folder and carry the target's files away from it). */
+    if (lstat(od->dir, &sb) == 0 && S_ISLNK(sb.st_mode)) {
+        char *target = realpath(od->dir, NULL);
+        if (!target)
+            return gd_error_set(
+                err, GD_EIO, dir, 0, 0, "--out", "give a folder, or a link to an existing folder",
+                "is a symbolic link whose target cannot be reached: %s", strerror(errno));
+        if (strlen(target) >= sizeof od->dir - 1) {
+            free(target);
+            return gd_error_set(err, GD_EINPUT, dir, 0, 0, "--out", "use a shorter path",
+                                "the link's target path is too long");
+        }
+        split(target, od->dir, sizeof od->dir, parent, sizeof parent);
+        free(target);
+    }
     int exists = stat(od->dir, &sb) == 0;
     if (exists && !S_ISDIR(sb.st_mode))
         return gd_error_set(err, GD_EIO, dir, 0, 0, "--out",

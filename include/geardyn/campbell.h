@@ -32,7 +32,7 @@ typedef struct gd_campbell_options {
     int nmodes;           /* elastic modes tracked, > 0; 0: all (dense) */
     gd_modal_kind kind;   /* damped (default AUTO) or undamped */
     gd_eig_method method; /* AUTO: the cheaper by gd_modal_solve's cost model */
-    double shift; /* sparse shift, rad/s; 0: automatic */
+    double shift;         /* sparse shift, rad/s; 0: automatic */
     int norders;
     const double *orders; /* user orders (multiples of the reference speed) */
     int shaft_orders;     /* add 1x of every shaft (default 1) */
@@ -76,6 +76,14 @@ GD_API void gd_campbell_options_init(gd_campbell_options *opt);
 GD_API gd_status gd_campbell(const gd_system *sys, const gd_campbell_options *opt,
                              gd_campbell_result **out, gd_error *err);
 GD_API void gd_campbell_free(gd_campbell_result *r);
+
+/* The number of modes to track when the user gives none: every elastic mode up to
+ * *limit = 1.25 x the highest order of opt (shaft, user and tooth-mesh orders) times the
+ * top speed of opt->speeds, plus 2, at least 12 and at most 400 (counted at rest,
+ * undamped). Solves an undamped modal problem (dense up to 1500 DOFs, sparse doubling
+ * counts above). Thread-safe for distinct results. */
+GD_API gd_status gd_campbell_default_modes(const gd_system *sys, const gd_campbell_options *opt,
+                                           int *nmodes, double *limit, gd_error *err);
 
 /* Complex MAC |a^H b|^2 / (|a|^2 |b|^2) of two shapes of n entries. */
 GD_API double gd_mac(const double *are, const double *aim, const double *bre, const double *bim,

@@ -138,75 +138,6 @@ static gd_status check_record(const gd_transient *tr, const gd_tr_record *r, gd_
     return gd_error_set(err, GD_EINPUT, "", 0, 0, "record", "", "record refers to nothing");
 }
 
-/* Static equilibrium at t: modified Newton with the linear stiffness (meshes at their
- * model stiffness, always in contact) as the iteration matrix. Backlash meshes are held
- * on a flank (each flank's law continued beyond its interval, so the problem is smooth):
- * all start on the drive flank; after convergence a mesh whose force pulls (F < 0) moves
- * to the coast flank and one pushing on the coast flank back to the drive flank, until
- * no flank changes. A mesh carrying no load is left in the gap by the caller's
- * gd_transient_set_contacts. */
-static gd_status static_state(gd_transient *tr, double t, double *y, gd_error *err)
-{
-    const int nf = tr->nf;
-    css *S = cs_sqr(1, tr->Kff, 0);
-    csn *N = S ? cs_lu(tr->Kff, S, 1.0) : NULL;
-    if (!N) {
-        cs_sfree(S);
-        return gd_error_set(err, GD_EINPUT, "", 0, 0, "init",
-                            "start from rest, or prescribe a DOF (e.g. the input) or add "
-                            "a support",
-                            "static initial state: the stiffness of the free DOFs is singular "
-                            "(a free rigid-body motion)");
-    }
-    memset(y, 0, (size_t)2 * nf * sizeof *y);
-    gd_status st = GD_OK;
-    double *b = tr->w1, *x = tr->w2;
-    for (int i = 0; i < tr->nlaw; i++)
-        if (tr->law[i].type->static_mode) tr->law[i].mode = tr->law[i].type->hold_mode;
-    int converged = 0;
-    for (int outer = 0; outer < 20 && !converged; outer++) {
-        int it;
-        for (it = 0; it < 500; it++) {
-            gd_tr_fill(tr, t, y, tr->q, tr->v, tr->acc);
-            memset(tr->acc, 0, (size_t)tr->n * sizeof *tr->acc);
-            gd_tr_residual(tr, t, tr->q, tr->v, tr->acc, tr->r);
-            for (int i = 0; i < nf; i++)
-                b[i] = tr->r[tr->free_dof[i]];
-            cs_ipvec(N->pinv, b, x, nf);
-            cs_lsolve(N->L, x);
-            cs_usolve(N->U, x);
-            cs_ipvec(S->q, x, b, nf);
-            double dn = 0, qn = 0;
-            for (int i = 0; i < nf; i++) {
-                y[i] += b[i];
-                dn = fmax(dn, fabs(b[i]));
-                qn = fmax(qn, fabs(y[i]));
-            }
-            if (dn <= 1e-13 * qn || dn == 0.0) break;
-        }
-        if (it == 500) break;
-        converged = 1;
-        gd_tr_fill(tr, t, y, tr->q, tr->v, NULL);
-        for (int i = 0; i < tr->nlaw; i++) {
-            gd_law *L = &tr->law[i];
-            if (!L->type->static_mode || !gd_law_nswitches(L)) continue;
-            gd_law_point lx;
-            gd_tr_law_here(tr, L, t, &lx);
-            int ns = L->type->static_mode(L, &lx);
-            if (ns != L->mode) {
-                L->mode = ns;
-                converged = 0;
-            }
-        }
-    }
-    if (!converged)
-        st = gd_error_set(err, GD_ENUMERIC, "", 0, 0, "init", "start from rest",
-                          "static initial state did not converge");
-    cs_sfree(S);
-    cs_nfree(N);
-    return st;
-}
-
 static void stats_of(const double *x, int n, gd_tr_stats *s)
 {
     memset(s, 0, sizeof *s);
@@ -652,7 +583,7 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
             yd[nf + i] = opt->v0[tr->free_dof[i]];
         }
     } else if (opt->init == GD_TR_INIT_STATIC) {
-        st = static_state(tr, opt->t_start, yd, err);
+        st = gd_tr_static_state(tr, opt->t_start, yd, err);
         if (st) goto done;
     }
     gd_transient_set_contacts(tr, opt->t_start, yd);

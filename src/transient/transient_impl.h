@@ -119,6 +119,9 @@ void gd_tr_profile_laws(gd_transient *tr, double t, double phi, double w);
 /* Fills q, v, acc (length n) at time t from the state y: free DOFs from y, prescribed
  * ones from their laws (acc is zero on free DOFs). */
 void gd_tr_fill(gd_transient *tr, double t, const double *y, double *q, double *v, double *acc);
+/* The static initial state at t into y (2 nf: q, then q' = 0), static_start.c; a train
+ * free in torsion starts from its state under inertia relief. */
+gd_status gd_tr_static_state(gd_transient *tr, double t, double *y, gd_error *err);
 /* Law L's local view of (t, q, v) (full DOF vectors) in lq, lv (length L->ndofs). */
 void gd_tr_law_point(const gd_law *L, double t, const double *q, const double *v, double *lq,
                      double *lv, gd_law_point *x);

@@ -308,6 +308,71 @@ TEST(out_folder_replaced_whole_and_stale_stages_removed)
     scratch_close(&s);
 }
 
+/* Issue 38 H1: --out through a symbolic link deleted the user's files. The run renamed
+ * the link itself, carried the target's files into a new real folder and left the
+ * stage as a link to the target, which every later run "removed as stale" by following
+ * it. Now the link is followed (outputs land in its target, the user's files there stay
+ * and the link stays a link), and a stale stage that is a link is removed as a link. */
+TEST(out_through_a_symlink_keeps_the_users_files)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    char real[256], link[256], p[512];
+    snprintf(real, sizeof real, "%s/real", s.dir);
+    snprintf(link, sizeof link, "%s/link", s.dir);
+    REQUIRE(mkdir(real, 0777) == 0);
+    snprintf(p, sizeof p, "%s/user.txt", real);
+    write_file(p, "mine\n");
+    REQUIRE(symlink(real, link) == 0);
+    run_result r;
+    for (int pass = 0; pass < 2; pass++) {
+        run(&s, &r, "modal " CHEN " --out '%s'", link);
+        CHECK(r.code == 0);
+        run_free(&r);
+        struct stat sb;
+        CHECK(lstat(link, &sb) == 0 && S_ISLNK(sb.st_mode));
+        snprintf(p, sizeof p, "%s/user.txt", real);
+        char *t = read_file(p);
+        CHECK(t && !strcmp(t, "mine\n"));
+        free(t);
+        snprintf(p, sizeof p, "%s/modes.csv", real);
+        CHECK(file_exists(p));
+        /* the scratch folder holds real/, link and the captured output only: no stage */
+        DIR *d = opendir(s.dir);
+        REQUIRE(d);
+        struct dirent *e;
+        int stages = 0;
+        while ((e = readdir(d)))
+            stages += !strncmp(e->d_name, ".geardyn-stage-", 15);
+        closedir(d);
+        CHECK(stages == 0);
+    }
+    /* a stale "stage" left by the old code: a link to a folder of the user's */
+    char other[256];
+    snprintf(other, sizeof other, "%s/other", s.dir);
+    REQUIRE(mkdir(other, 0777) == 0);
+    snprintf(p, sizeof p, "%s/precious.txt", other);
+    write_file(p, "keep\n");
+    snprintf(p, sizeof p, "%s/.geardyn-stage-999999999-zzzzzz", s.dir);
+    REQUIRE(symlink(other, p) == 0);
+    run(&s, &r, "modal " CHEN " --out '%s/fresh'", s.dir);
+    CHECK(r.code == 0);
+    run_free(&r);
+    struct stat sb;
+    CHECK(lstat(p, &sb) != 0); /* the link is gone */
+    snprintf(p, sizeof p, "%s/precious.txt", other);
+    char *t = read_file(p);
+    CHECK(t && !strcmp(t, "keep\n")); /* its target untouched */
+    free(t);
+    /* a dangling link as --out: refused, nothing made */
+    snprintf(p, sizeof p, "%s/dangling", s.dir);
+    REQUIRE(symlink("/nonexistent/geardyn-folder", p) == 0);
+    run(&s, &r, "modal " CHEN " --out '%s'", p);
+    CHECK(r.code == 2 && contains(r.err, "--out") && contains(r.err, "symbolic link"));
+    run_free(&r);
+    scratch_close(&s);
+}
+
 /* report --out on a file that cannot be written: the option is --out (it said --plot)
  * and the reason is given (it said only "cannot write the plot"); nothing is left. */
 TEST(report_write_failure_names_out_and_the_cause)
@@ -338,4 +403,5 @@ RUN_TESTS(T(runs_that_cannot_finish_are_refused), T(study_case_over_the_step_lim
           T(reduce_names_the_free_rigid_body_motion), T(study_folder_is_locked_by_its_run),
           T(study_write_failure_names_the_cause),
           T(out_folder_replaced_whole_and_stale_stages_removed),
-          T(report_write_failure_names_out_and_the_cause))
+          T(report_write_failure_names_out_and_the_cause),
+          T(out_through_a_symlink_keeps_the_users_files))

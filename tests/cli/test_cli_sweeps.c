@@ -349,6 +349,41 @@ TEST(help_lists_sweeps)
     scratch_close(&s);
 }
 
-RUN_TESTS(T(campbell_json_names_and_values), T(campbell_out_csv_long_form), T(campbell_errors),
-          T(frf_json_and_methods), T(frf_errors), T(unbalance_json_and_defaults),
-          T(unbalance_errors), T(help_lists_sweeps))
+/* Issue 35: a fixed 12 tracked modes stopped a gearbox's Campbell diagram far below its
+ * tooth-mesh crossings. Without --modes, every elastic mode up to 1.25 x the highest order
+ * at the top speed is tracked (rig2018: its 48-tooth mesh at 6000 rpm is 4800 Hz, so
+ * 6000 Hz), checked against the undamped modes of `geardyn modal --modes all`. */
+TEST(campbell_default_modes_reach_the_mesh_orders)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    cJSON *m = run_json_args(&s, "modal examples/rig2018.yaml --undamped --modes all");
+    REQUIRE(m);
+    int below = 0;
+    const cJSON *md;
+    cJSON_ArrayForEach(md, cJSON_GetObjectItem(m, "modes"))
+    {
+        below += !cJSON_IsTrue(cJSON_GetObjectItem(md, "rigid_body")) &&
+                 jnum(md, "frequency_hz") <= 6000.0;
+    }
+    cJSON_Delete(m);
+    CHECK(below > 12);
+    cJSON *c = run_json_args(&s, "campbell examples/rig2018.yaml --speeds 0:6000rpm:3");
+    REQUIRE(c);
+    CHECK(cJSON_GetArraySize(cJSON_GetObjectItem(c, "modes")) == below + 2);
+    cJSON_Delete(c);
+    run_result r;
+    run(&s, &r, "campbell examples/rig2018.yaml --speeds 0:6000rpm:3");
+    CHECK(r.code == 0 && contains(r.out, "every mode up to 6000 Hz"));
+    run_free(&r);
+    /* --modes keeps its meaning */
+    c = run_json_args(&s, "campbell examples/rig2018.yaml --speeds 0:6000rpm:3 --modes 5");
+    REQUIRE(c);
+    CHECK(cJSON_GetArraySize(cJSON_GetObjectItem(c, "modes")) == 5);
+    cJSON_Delete(c);
+    scratch_close(&s);
+}
+
+RUN_TESTS(T(campbell_default_modes_reach_the_mesh_orders), T(campbell_json_names_and_values),
+          T(campbell_out_csv_long_form), T(campbell_errors), T(frf_json_and_methods), T(frf_errors),
+          T(unbalance_json_and_defaults), T(unbalance_errors), T(help_lists_sweeps))
