@@ -211,11 +211,15 @@ FILE *gd_outdir_open(gd_outdir *od, const char *name, gd_error *err)
     }
     char path[1200];
     snprintf(path, sizeof path, "%s/%s", od->stage, name);
+    /* a signal waits while the file is made (a worker's clean-up racing this fopen
+     * would leave the file and so the stage) */
+    gd_cli_commit_begin();
     if (g_stage.active && g_stage.nfiles < 16) {
         snprintf(g_stage.files[g_stage.nfiles], sizeof g_stage.files[0], "%s", path);
         g_stage.nfiles = g_stage.nfiles + 1;
     }
     FILE *f = fopen(path, "w");
+    gd_cli_commit_end();
     if (!f) {
         gd_error_set(err, GD_EIO, path, 0, 0, "--out", "check free space and permissions",
                      "cannot write: %s", strerror(errno));
