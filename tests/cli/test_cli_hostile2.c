@@ -186,6 +186,9 @@ TEST(extreme_loads_are_located_input_errors)
                   "mesh-stiffness examples/rig2018_pair_relief.yaml --set "
                   "'meshes.*.stiffness.misalignment=1'"));
     CHECK(refused(&s, "--torque: 1e+308 N m overflows", NULL, "static " CHEN " --torque 1e308"));
+    CHECK(refused(&s, "unbalances: the response overflows at 10.472 rad/s", NULL,
+                  "unbalance examples/kumar2011_coupled.yaml --speeds 100:1000rpm:3 --set "
+                  "'unbalances.*.amount=1e308'"));
     CHECK(refused(&s, "gravity.g", "over 1e6 m/s^2",
                   "static examples/rig2018.yaml --set 'gravity={direction: [0,-1,0], g: 1e308}'"));
     /* "LU pivot -7" before: the direction's norm overflowed; now the direction only */
