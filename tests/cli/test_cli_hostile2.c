@@ -267,6 +267,14 @@ TEST(names_messages_and_tables)
     run(&s, &r, "campbell examples/journal_rotor.yaml --speeds 100:3000rpm:4");
     CHECK(r.code == 0 && contains(r.out, "min logdec") && !contains(r.out, " nan"));
     run_free(&r);
+    /* the FRF table at frequencies without a value (null in the JSON) */
+    run(&s, &r,
+        "frf " CHEN " --freq 1:1000:3 --input gear_a.y --output gear_a.y --set "
+        "'meshes.*.stiffness=1e308'");
+    CHECK(r.code == 0 && contains(r.err, "null (JSON), - (tables)") && !contains(r.out, "nan") &&
+          contains(r.out, "1000             -           -"));
+    if (r.code) show(&r);
+    run_free(&r);
     scratch_close(&s);
 }
 
