@@ -262,6 +262,10 @@ TEST(names_messages_and_tables)
     CHECK(refused(&s, "hold inf or NaN entries", "overflows",
                   "campbell examples/journal_rotor.yaml --speeds 100:1000rpm:3 --set "
                   "'laws.*.viscosity=1e308'"));
+    /* L3: "speeds: values must be finite" for a --parameter continuation */
+    CHECK(refused(&s, "parameter: meshes.mesh.stiffness value 3 (inf) is not finite", NULL,
+                  "periodic " CHEN " --speeds 500:500:1 --harmonics 4 --parameter "
+                  "'meshes.mesh.stiffness=1e8:1e308:3'"));
     /* L4: the Campbell summary's min logdec of modes without one */
     run_result r;
     run(&s, &r, "campbell examples/journal_rotor.yaml --speeds 100:3000rpm:4");
