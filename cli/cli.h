@@ -167,6 +167,22 @@ int gd_cli_plot_check_as(const char *path, const char *opt);
 int gd_cli_plot_finish_as(gd_status st, gd_plot *p, gd_error *err, const char *path,
                           const char *opt);
 
+/* v as "%WIDTH.PRECISIONg" in buf, or "-" in that width when it is NaN (no value: the
+ * JSON's null; "nan" in a text table read as a number). Returns buf. */
+const char *gd_cli_num(char *buf, size_t size, int width, int precision, double v);
+
+/* ---- SIGINT, SIGTERM, SIGHUP (signals.c) ---- */
+/* One process-wide handler for the three, installed by main before any thread starts
+ * (a signal the caller ignores stays ignored). */
+void gd_cli_signals_install(void);
+/* The clean-up the handler runs before the process ends (the --out stage); NULL: none.
+ * It must use only async-signal-safe calls. */
+void gd_cli_signals_cleanup(void (*fn)(void));
+/* A commit (a --plot file written and renamed, the --out folder put in place): the
+ * three signals wait until gd_cli_commit_end, which then delivers one that came. */
+void gd_cli_commit_begin(void);
+void gd_cli_commit_end(void);
+
 /* ---- the study report (cmd_report.c) ---- */
 int gd_cmd_report(int argc, char **argv);
 /* ---- periodic steady state (cmd_periodic.c) ---- */

@@ -1,5 +1,4 @@
 /* --plot FILE.svg|FILE.html: checked before computing, written after. */
-#include <signal.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -29,16 +28,12 @@ int gd_cli_plot_finish_as(gd_status st, gd_plot *p, gd_error *err, const char *p
                           const char *opt)
 {
     if (!st) {
-        /* SIGINT/SIGTERM wait until the file is written and renamed (a few MB at most),
-         * so no FILE.tmp-PID-XXXXXX is left behind */
-        sigset_t set, old;
-        sigemptyset(&set);
-        sigaddset(&set, SIGINT);
-        sigaddset(&set, SIGTERM);
-        sigaddset(&set, SIGHUP);
-        sigprocmask(SIG_BLOCK, &set, &old);
+        /* SIGINT/SIGTERM/SIGHUP, whichever thread takes them, wait until the file is
+         * written and renamed (a few MB at most), so no FILE.tmp-PID-XXXXXX is left
+         * behind (signals.c) */
+        gd_cli_commit_begin();
         st = gd_plot_write(p, path, NULL, err);
-        sigprocmask(SIG_SETMASK, &old, NULL);
+        gd_cli_commit_end();
     }
     gd_plot_free(p);
     return st ? report_as(err, opt) : GD_EXIT_OK;

@@ -35,16 +35,6 @@ int gd_cli_option_error(const char *cmd, int c, char **argv, int optind_now)
     return gd_cli_usage_error(cmd, "unknown option '%s'", opt);
 }
 
-int gd_outdir_check(const char *dir, gd_error *err)
-{
-    struct stat sb;
-    if (stat(dir, &sb) == 0 && !S_ISDIR(sb.st_mode))
-        return gd_error_set(err, GD_EIO, dir, 0, 0, "--out",
-                            "give a folder (it is created if missing)",
-                            "exists and is not a folder");
-    return GD_OK;
-}
-
 /* The folder dir would be created in: "." or everything before the last '/'. */
 static void parent_of(const char *dir, char *buf, size_t size)
 {
@@ -57,6 +47,35 @@ static void parent_of(const char *dir, char *buf, size_t size)
         snprintf(buf, size, ".");
     else
         slash[slash == buf ? 1 : 0] = '\0';
+}
+
+int gd_outdir_check(const char *dir, gd_error *err)
+{
+    struct stat sb;
+    if (stat(dir, &sb) == 0) {
+        if (!S_ISDIR(sb.st_mode))
+            return gd_error_set(err, GD_EIO, dir, 0, 0, "--out",
+                                "give a folder (it is created if missing)",
+                                "exists and is not a folder");
+        return GD_OK;
+    }
+    /* a folder to be made: try, before any computing, that its parent takes one (a
+     * permission check says nothing for root or in /proc), so a run that could not
+     * write its folder neither computes nor writes its --plot (issue 38 L1) */
+    char probe[1100];
+    parent_of(dir, probe, sizeof probe - 40);
+    snprintf(probe + strlen(probe), sizeof probe - strlen(probe), "/.geardyn-probe-%ld-XXXXXX",
+             (long)getpid());
+    if (!mkdtemp(probe)) {
+        int e = errno;
+        char parent[1024];
+        parent_of(dir, parent, sizeof parent);
+        return gd_error_set(
+            err, GD_EIO, dir, 0, 0, "--out", "check that the parent folder exists and is writable",
+            "cannot create folder: '%s' is not a writable folder (%s)", parent, strerror(e));
+    }
+    rmdir(probe);
+    return GD_OK;
 }
 
 int gd_outdir_check_writable(const char *dir, gd_error *err)
@@ -102,4 +121,13 @@ void gd_cli_print_json(FILE *f, const cJSON *item)
         fputc('\n', f);
         free(s);
     }
+}
+
+const char *gd_cli_num(char *buf, size_t size, int width, int precision, double v)
+{
+    if (isnan(v))
+        snprintf(buf, size, "%*s", width, "-");
+    else
+        snprintf(buf, size, "%*.*g", width, precision, v);
+    return buf;
 }

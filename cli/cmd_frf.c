@@ -154,10 +154,11 @@ int gd_cmd_frf(int argc, char **argv)
         goto done;
     }
     if (r->nsingular)
-        fprintf(stderr,
-                "geardyn frf: note: %d frequenc%s hit a singular dynamic stiffness (a rigid-body "
-                "mode at 0 rad/s or an undamped resonance); values there are null/nan\n",
-                r->nsingular, r->nsingular == 1 ? "y" : "ies");
+        fprintf(
+            stderr,
+            "geardyn frf: note: %d frequenc%s hit a singular dynamic stiffness (a rigid-body "
+            "mode at 0 rad/s or an undamped resonance); values there are null (JSON), - (tables)\n",
+            r->nsingular, r->nsingular == 1 ? "y" : "ies");
     if (plot) {
         gd_plot *p = NULL;
         gd_status pst = gd_plot_frf(s, &opt, r, &p, &err);

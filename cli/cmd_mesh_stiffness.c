@@ -325,6 +325,37 @@ static int plot_tvms(const ms_args *a, const gd_gear_pair_geometry *g, const gd_
     return rc;
 }
 
+/* --load, --load-range and --misalignment past what the contact analysis can mean gave
+ * inf and NaN rows with exit 0 (issue 38 M7): the bounds the model reader puts on the
+ * file's load and misalignment (mesh_geometry_read.c): the normal force
+ * T / (r_b1 cos beta_b) at most E b m_n (a tooth section b x m_n strained by 1), the
+ * misalignment at most the normal module. */
+static int check_loading(const ms_args *a, const gd_gear_pair_geometry *g,
+                         const gd_tvms_options *opt)
+{
+    gd_gear_pair_derived d;
+    gd_error err;
+    gd_error_clear(&err);
+    if (gd_gear_pair_derive(g, &d, &err)) return 0; /* the analysis reports the geometry */
+    const double E = fmin(g->gear[0].E, g->gear[1].E), mn = g->normal_module;
+    const double fmax_n = E * g->face_width * mn;
+    const double per_torque = 1.0 / (d.base_radius[0] * cos(d.base_helix_angle));
+    const double t = a->range.count ? a->range.to : opt->load_torque;
+    if ((a->range.count || a->has_load) && !(fabs(t) * per_torque <= fmax_n))
+        return gd_cli_usage_error("mesh-stiffness",
+                                  "%s: a driver torque of %g N m is a normal load of %g N, over "
+                                  "E b m_n = %.4g N (a tooth section strained by 1): give at "
+                                  "most %.4g N m",
+                                  a->range.count ? "--load-range" : "--load", t,
+                                  fabs(t) * per_torque, fmax_n, fmax_n / per_torque);
+    if (a->has_misalignment && !(fabs(opt->misalignment) <= mn))
+        return gd_cli_usage_error("mesh-stiffness",
+                                  "--misalignment: %g m is over the normal module (%g m): "
+                                  "flanks parting by more across the face do not mesh",
+                                  opt->misalignment, mn);
+    return 0;
+}
+
 int gd_cmd_mesh_stiffness(int argc, char **argv)
 {
     ms_args a = {.method = -1};
@@ -352,6 +383,7 @@ int gd_cmd_mesh_stiffness(int argc, char **argv)
                                   "TVMS does not depend on it)");
     if (a.has_misalignment) opt.misalignment = a.misalignment;
     if (a.has_load) opt.load_torque = a.load;
+    if ((rc = check_loading(&a, &g, &opt))) return rc;
     if (a.has_load || a.range.count || (opt.contact_analysis && !a.plot)) {
         /* the loaded contact analysis (the file's load unless --load) or the Harris map */
         double *loads = NULL;

@@ -288,6 +288,22 @@ fail:
     return gd_cli_report(&err);
 }
 
+/* 1 when every displacement, reaction and mesh force of r is finite. A torque or a
+ * load of 1e308 N m solved to inf and NaN tables with exit 0 (issue 38 M7). */
+static int all_finite(const gd_static_result *r)
+{
+    for (int i = 0; i < r->ndof; i++)
+        if (!isfinite(r->q[i]) || !isfinite(r->f[i])) return 0;
+    for (int b = 0; b < r->nbearings; b++)
+        for (int k = 0; k < 3; k++)
+            if (!isfinite(r->bearings[b].force[k]) || !isfinite(r->bearings[b].moment[k])) return 0;
+    for (int k = 0; k < r->nmeshes; k++)
+        if (!isfinite(r->meshes[k].force)) return 0;
+    for (int h = 0; h < r->nholds; h++)
+        if (!isfinite(r->holds[h].reaction)) return 0;
+    return 1;
+}
+
 /* A node by name for --input / --hold; -1 after a usage error. */
 static int find_node(const gd_model *m, const char *opt, const char *name)
 {
@@ -324,6 +340,20 @@ int gd_cmd_static(int argc, char **argv)
     gd_error_clear(&err);
     if (gd_static_run(s, &opt, &r, &err)) {
         rc = gd_cli_report(&err);
+    } else if (!all_finite(r)) {
+        if (opt.input_torque != 0)
+            rc = gd_cli_usage_error("static",
+                                    "--torque: %g N m overflows the equilibrium (displacements "
+                                    "or forces beyond 1e308): give a torque the model can carry",
+                                    opt.input_torque);
+        else
+            rc = gd_cli_report((gd_error_set(&err, GD_EINPUT, file, 0, 0, "loads",
+                                             "check the loads' means, the gravity and the "
+                                             "stiffnesses",
+                                             "the static equilibrium overflows (displacements "
+                                             "or forces beyond 1e308)"),
+                                &err));
+        gd_static_free(r);
     } else {
         if (plot) {
             gd_plot *p = NULL;

@@ -221,8 +221,11 @@ static void print_text(const gd_system *sys, const gd_transient_model *tm,
            "peak_to_peak");
     for (int r = 0; r < recs->n; r++) {
         const gd_tr_stats *st = &res->stats[r];
-        printf("%-*s %-6s %13.6g %13.6g %13.6g %13.6g %13.6g\n", w, recs->r[r].name,
-               recs->r[r].unit, st->min, st->max, st->mean, st->rms, st->peak_to_peak);
+        char b[5][32];
+        printf("%-*s %-6s %s %s %s %s %s\n", w, recs->r[r].name, recs->r[r].unit,
+               gd_cli_num(b[0], 32, 13, 6, st->min), gd_cli_num(b[1], 32, 13, 6, st->max),
+               gd_cli_num(b[2], 32, 13, 6, st->mean), gd_cli_num(b[3], 32, 13, 6, st->rms),
+               gd_cli_num(b[4], 32, 13, 6, st->peak_to_peak));
     }
     if (tm->spec.nmeshes) {
         printf("\n%-20s %8s %14s %8s %8s %14s\n", "mesh", "backlash", "contact_losses", "coast",
@@ -360,6 +363,18 @@ static int parse_method(const char *cmd, const char *text, void *field)
             return 0;
         }
     return gd_cli_usage_error(cmd, "--method: '%s' is not auto, bdf, adams or galpha", text);
+}
+
+/* A run's error with the library's option names as this command's options (issue 38
+ * L3: "t_end: 1e+30 s ..." for --duration). */
+static gd_error *as_options(gd_error *err)
+{
+    static const char *const OPTION_OF[][2] = {
+        {"t_end", "--duration"}, {"max_steps", "--max-steps"}, {"step", "--step"}};
+    for (size_t k = 0; k < sizeof OPTION_OF / sizeof OPTION_OF[0]; k++)
+        if (!strcmp(err->field, OPTION_OF[k][0]))
+            snprintf(err->field, sizeof err->field, "%s", OPTION_OF[k][1]);
+    return err;
 }
 
 /* --max-steps N: a whole number from 1 to 1e15 (written 5e7 or 50000000). */
@@ -947,7 +962,7 @@ static int runup(const cli_opts *o, gd_model *m, gd_system *s, run_info *ri)
     gd_status st = gd_transient_run(tr, &opt, rr, recs.n, &res, &err);
     if (pg.drawn) fprintf(stderr, "\r%60s\r", "");
     if (st) {
-        rc = gd_cli_report(&err);
+        rc = gd_cli_report(as_options(&err));
         goto done;
     }
     if (wi >= 0 && (rc = gd_cli_runup_waterfall(
@@ -1130,7 +1145,7 @@ int gd_cmd_transient(int argc, char **argv)
     free(rr);
     if (pg.drawn) fprintf(stderr, "\r%60s\r", "");
     if (st) {
-        rc = gd_cli_report(&err);
+        rc = gd_cli_report(as_options(&err));
         goto done;
     }
     if (o.spectrum) {

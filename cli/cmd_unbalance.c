@@ -133,6 +133,20 @@ int gd_cmd_unbalance(int argc, char **argv)
         rc = gd_cli_report(&err);
         goto done;
     }
+    /* an amplitude past 1e308 at a speed the system solves (an unbalance of 1e308
+     * kg m printed inf and NaN with exit 0, issue 38 M7) */
+    for (int h = 0; h < r->nharmonics; h++)
+        for (int o = 0; o < r->noutputs; o++)
+            for (int k = 0; k < r->nspeeds; k++) {
+                size_t at = ((size_t)h * r->noutputs + o) * r->nspeeds + k;
+                if (r->singular[k] || (isfinite(r->re[at]) && isfinite(r->im[at]))) continue;
+                gd_error_set(&err, GD_EINPUT, file, 0, 0, "unbalances",
+                             "check the unbalances' amounts (kg m) and the speeds",
+                             "the response overflows at %g rad/s (amplitudes beyond 1e308)",
+                             r->speeds[k]);
+                rc = gd_cli_report(&err);
+                goto done;
+            }
     if (plot) {
         gd_plot *p = NULL;
         gd_status pst = gd_plot_unbalance(s, &opt, r, a.orbit_speed, &p, &err);

@@ -1,4 +1,5 @@
 /* geardyn: command-line front end. Each subcommand lives in its own cmd_*.c. */
+#include <errno.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -52,19 +53,36 @@ static void usage(FILE *f)
                "Model format: docs/model-format.md\n");
 }
 
+/* Every command prints through stdio: a failed write to stdout (a full disk, a closed
+ * pipe's reader gone, /dev/full) leaves the stream's error flag set, and the last bytes
+ * only leave at the flush, so the exit code is decided here (issue 38 M6). */
+static int checked_exit(int code)
+{
+    errno = 0;
+    if (fflush(stdout) == 0 && !ferror(stdout)) return code;
+    int e = errno;
+    fprintf(stderr,
+            "geardyn: error: writing to the standard output failed%s%s: the output is "
+            "incomplete (check the free space, or give --out FOLDER)\n",
+            e ? ": " : "", e ? strerror(e) : "");
+    return code == GD_EXIT_OK ? GD_EXIT_INPUT : code;
+}
+
 int main(int argc, char **argv)
 {
+    gd_cli_signals_install(); /* before OpenMP's or any other thread (signals.c) */
     if (argc < 2) {
         usage(stderr);
         return GD_EXIT_INPUT;
     }
     if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
         usage(stdout);
-        return GD_EXIT_OK;
+        return checked_exit(GD_EXIT_OK);
     }
-    if (!strcmp(argv[1], "--version")) return cmd_version(argc, argv);
+    if (!strcmp(argv[1], "--version")) return checked_exit(cmd_version(argc, argv));
     for (size_t i = 0; i < sizeof COMMANDS / sizeof COMMANDS[0]; i++)
-        if (!strcmp(argv[1], COMMANDS[i].name)) return COMMANDS[i].run(argc - 1, argv + 1);
+        if (!strcmp(argv[1], COMMANDS[i].name))
+            return checked_exit(COMMANDS[i].run(argc - 1, argv + 1));
     fprintf(stderr, "geardyn: unknown command '%s'\n", argv[1]);
     usage(stderr);
     return GD_EXIT_INPUT;

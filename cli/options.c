@@ -4,6 +4,8 @@
 #include "options.h"
 
 #include <getopt.h>
+#include <limits.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -140,6 +142,49 @@ static int apply(const char *cmd, const gd_cli_opt *o, const char *v, char *args
     return GD_EXIT_INPUT;
 }
 
+/* path with its folder resolved (symbolic links, "..", "./"), trailing slashes off */
+static void resolved(const char *path, char *buf, size_t size)
+{
+    char p[4096], dir[4096];
+    snprintf(p, sizeof p, "%s", path);
+    size_t n = strlen(p);
+    while (n > 1 && p[n - 1] == '/')
+        p[--n] = '\0';
+    char *slash = strrchr(p, '/');
+    const char *base = slash ? slash + 1 : p;
+    if (slash == p)
+        snprintf(dir, sizeof dir, "/");
+    else
+        snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - p) : 1, slash ? p : ".");
+    char real[PATH_MAX];
+    if (realpath(dir, real))
+        snprintf(buf, size, "%s/%s", real, base);
+    else
+        snprintf(buf, size, "%s", p);
+}
+
+/* --out and --plot naming one path: the folder would replace the figure (or the figure
+ * land where the folder goes) after the run (issue 38 L1). */
+static int out_is_plot(const gd_cli_command *c, const unsigned char *seen, int n, char *args)
+{
+    const char *out = NULL, *plot = NULL;
+    for (int k = 0; k < n; k++) {
+        const gd_cli_opt *o = &c->opts[k];
+        if (!seen[k] || o->kind != GD_CLI_STRING) continue;
+        if (!strcmp(o->name, "out")) out = *(const char **)(args + o->field);
+        if (!strcmp(o->name, "plot")) plot = *(const char **)(args + o->field);
+    }
+    if (!out || !plot) return 0;
+    char a[8192], b[8192];
+    resolved(out, a, sizeof a);
+    resolved(plot, b, sizeof b);
+    if (strcmp(a, b)) return 0;
+    return gd_cli_usage_error(c->name,
+                              "--out %s and --plot %s name the same path: give the folder and "
+                              "the figure different names (e.g. --out results --plot fig.svg)",
+                              out, plot);
+}
+
 int gd_cli_parse(const gd_cli_command *c, int argc, char **argv, void *args, const char **file)
 {
     struct option lo[GD_CLI_MAX_OPTS + 2];
@@ -188,6 +233,7 @@ int gd_cli_parse(const gd_cli_command *c, int argc, char **argv, void *args, con
         if (o->required && !seen[k])
             return gd_cli_usage_error(c->name, "--%s %s is required", o->name, o->meta);
     }
+    if (out_is_plot(c, seen, n, (char *)args)) return GD_EXIT_INPUT;
     *file = argv[optind];
     return 0;
 }

@@ -4,8 +4,10 @@
  * staging folder then takes DIR's place in one rename (Linux renameat2 RENAME_EXCHANGE;
  * elsewhere DIR is renamed aside first, leaving an instant with no DIR but never a mix
  * of old and new files). A reader sees the old folder or the new one, never a mix.
- * SIGINT, SIGTERM and SIGHUP remove the staging folder before the process ends (the
- * CLI's one piece of process-wide state: a signal handler has nothing else to reach);
+ * SIGINT, SIGTERM and SIGHUP remove the staging folder before the process ends, and
+ * wait during the commit itself (cli/signals.c's handler runs remove_stage; the stage
+ * list is, with signals.c's state, the CLI's process-wide state: a signal handler has
+ * nothing else to reach);
  * SIGKILL cannot be caught, so a run removes the stages that dead processes left. When
  * PARENT cannot take a staging folder (not writable, or DIR is a mount point or '.')
  * the stage goes inside DIR and the files move one by one (docs/analyses.md). A DIR that
@@ -35,39 +37,15 @@ static struct {
     char files[16][1200];
 } g_stage;
 
-static void on_signal(int sig)
+/* The signal handler's clean-up (cli/signals.c): the stage's files, then the stage.
+ * Async-signal-safe: unlink and rmdir of paths written before the count was raised. */
+static void remove_stage(void)
 {
     if (g_stage.active) {
         for (int i = 0; i < g_stage.nfiles; i++)
             unlink(g_stage.files[i]);
         rmdir(g_stage.stage);
     }
-    signal(sig, SIG_DFL);
-    raise(sig);
-}
-
-static void install_handlers(void)
-{
-    static const int sigs[3] = {SIGINT, SIGTERM, SIGHUP};
-    for (int i = 0; i < 3; i++) {
-        struct sigaction old;
-        if (sigaction(sigs[i], NULL, &old) == 0 && old.sa_handler == SIG_IGN) continue;
-        struct sigaction sa;
-        memset(&sa, 0, sizeof sa);
-        sa.sa_handler = on_signal;
-        sigemptyset(&sa.sa_mask);
-        sigaction(sigs[i], &sa, NULL);
-    }
-}
-
-static void block_signals(sigset_t *old)
-{
-    sigset_t set;
-    sigemptyset(&set);
-    sigaddset(&set, SIGINT);
-    sigaddset(&set, SIGTERM);
-    sigaddset(&set, SIGHUP);
-    sigprocmask(SIG_BLOCK, &set, old);
 }
 
 /* Removes the files (and empty folders, one level down) of folder path, then it. Never
@@ -187,13 +165,19 @@ int gd_outdir_begin(gd_outdir *od, const char *dir, gd_error *err)
     int same_fs = !exists || (stat(parent, &pb) == 0 && pb.st_dev == sb.st_dev);
     remove_stale_stages(parent);
     if (exists) remove_stale_stages(od->dir);
+    /* from the stage's making to its registration for the signal handler's clean-up,
+     * a signal waits (a stage made just before it would be left behind) */
+    gd_cli_commit_begin();
     snprintf(od->stage, sizeof od->stage, "%s/" STAGE_PREFIX "%ld-XXXXXX", parent, (long)getpid());
     od->inside = odd_name || !same_fs || !mkdtemp(od->stage);
     if (od->inside) {
-        if (!exists && mkdir(od->dir, 0777) != 0)
-            return gd_error_set(err, GD_EIO, dir, 0, 0, "--out",
-                                "check that the parent folder exists and is writable",
-                                "cannot create folder: %s", strerror(errno));
+        if (!exists && mkdir(od->dir, 0777) != 0) {
+            gd_error_set(err, GD_EIO, dir, 0, 0, "--out",
+                         "check that the parent folder exists and is writable",
+                         "cannot create folder: %s", strerror(errno));
+            gd_cli_commit_end();
+            return GD_EIO;
+        }
         od->created = !exists;
         snprintf(od->stage, sizeof od->stage, "%s/" STAGE_PREFIX "%ld-XXXXXX", od->dir,
                  (long)getpid());
@@ -202,6 +186,7 @@ int gd_outdir_begin(gd_outdir *od, const char *dir, gd_error *err)
                          "cannot write into folder: %s", strerror(errno));
             od->stage[0] = '\0';
             gd_outdir_abort(od);
+            gd_cli_commit_end();
             return GD_EIO;
         }
     }
@@ -213,7 +198,8 @@ int gd_outdir_begin(gd_outdir *od, const char *dir, gd_error *err)
     g_stage.nfiles = 0;
     snprintf(g_stage.stage, sizeof g_stage.stage, "%s", od->stage);
     g_stage.active = 1;
-    install_handlers();
+    gd_cli_signals_cleanup(remove_stage);
+    gd_cli_commit_end();
     return GD_OK;
 }
 
@@ -225,11 +211,15 @@ FILE *gd_outdir_open(gd_outdir *od, const char *name, gd_error *err)
     }
     char path[1200];
     snprintf(path, sizeof path, "%s/%s", od->stage, name);
+    /* a signal waits while the file is made (a worker's clean-up racing this fopen
+     * would leave the file and so the stage) */
+    gd_cli_commit_begin();
     if (g_stage.active && g_stage.nfiles < 16) {
         snprintf(g_stage.files[g_stage.nfiles], sizeof g_stage.files[0], "%s", path);
         g_stage.nfiles = g_stage.nfiles + 1;
     }
     FILE *f = fopen(path, "w");
+    gd_cli_commit_end();
     if (!f) {
         gd_error_set(err, GD_EIO, path, 0, 0, "--out", "check free space and permissions",
                      "cannot write: %s", strerror(errno));
@@ -346,8 +336,9 @@ static int commit_folder(gd_outdir *od, gd_error *err)
 
 int gd_outdir_commit(gd_outdir *od, gd_error *err)
 {
-    sigset_t old;
-    block_signals(&old);
+    /* SIGINT/SIGTERM/SIGHUP, whichever thread takes them, wait for the commit's end
+     * (signals.c: a mask in this thread alone left the workers to die mid-commit) */
+    gd_cli_commit_begin();
     int st = od->inside ? commit_files(od, err) : commit_folder(od, err);
     if (st) {
         gd_outdir_abort(od);
@@ -355,7 +346,7 @@ int gd_outdir_commit(gd_outdir *od, gd_error *err)
         od->nfiles = 0;
         g_stage.active = 0;
     }
-    sigprocmask(SIG_SETMASK, &old, NULL);
+    gd_cli_commit_end();
     return st;
 }
 

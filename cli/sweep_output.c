@@ -49,9 +49,14 @@ void gd_series_table(FILE *f, const gd_series *s, int ns, const char *xlabel, do
     fprintf(f, "\n");
     for (int k = 0; k < (ns ? s[0].n : 0); k++) {
         fprintf(f, "%12.6g", s[0].x[k] * xscale);
-        for (int j = 0; j < ns; j++)
-            fprintf(f, "  %12.5g %11.2f", hypot(s[j].re[k], s[j].im[k]),
-                    atan2(s[j].im[k], s[j].re[k]) * 180 / PI);
+        for (int j = 0; j < ns; j++) {
+            /* no value (a singular frequency: the JSON's null) is "-", not "nan" */
+            double mag = hypot(s[j].re[k], s[j].im[k]);
+            if (isnan(mag) || isnan(s[j].re[k]) || isnan(s[j].im[k]))
+                fprintf(f, "  %12s %11s", "-", "-");
+            else
+                fprintf(f, "  %12.5g %11.2f", mag, atan2(s[j].im[k], s[j].re[k]) * 180 / PI);
+        }
         fprintf(f, "\n");
     }
 }

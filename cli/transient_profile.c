@@ -8,13 +8,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "cli.h"
 #include "geardyn/units.h"
-
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
-#endif
 
 void gd_cli_profile_free(gd_cli_profile *cp)
 {
@@ -66,6 +63,54 @@ int gd_cli_speed_ramp(const char *cmd, const char *text, double t_end, gd_cli_pr
     return 0;
 }
 
+/* 1 if text (up to n bytes) is a speed unit of the units module; its factor to rad/s */
+static int speed_unit(const char *text, size_t n, double *scale)
+{
+    char q[96];
+    if (n == 0 || n > 64) return 0;
+    snprintf(q, sizeof q, "1 %.*s", (int)n, text);
+    return gd_parse_quantity(q, GD_QTY_ANGULAR_SPEED, scale, NULL) == GD_OK;
+}
+
+/* The speed unit of a header line (its last field: "speed [rpm]", "speed_rpm",
+ * "speed_rev_min", "rpm"), through the units module; a bare column name without a unit
+ * ("speed", "omega", "w") keeps rad/s. 1 for a unit it does not know, which was read
+ * as rad/s before (issue 38 M5: "RPM", "furlongs"). */
+static int header_unit(const char *line, double *scale)
+{
+    *scale = 1.0;
+    size_t len = strcspn(line, "\r\n");
+    while (len && isspace((unsigned char)line[len - 1]))
+        len--;
+    const char *f = line + len; /* the last field: after the last comma, tab or blank */
+    while (f > line && f[-1] != ',' && f[-1] != '\t' && f[-1] != ' ')
+        f--;
+    size_t n = (size_t)(line + len - f);
+    const char *open = memchr(f, '[', n);
+    if (!open) open = memchr(f, '(', n);
+    if (open) { /* "speed[rpm]", "speed(rpm)" */
+        const char *close = memchr(open, open[0] == '[' ? ']' : ')', (size_t)(f + n - open));
+        return !(close && speed_unit(open + 1, (size_t)(close - open - 1), scale));
+    }
+    if (speed_unit(f, n, scale)) return 0;
+    const char *us = memchr(f, '_', n);
+    if (us) { /* "speed_rpm", "speed_rad_s" (rad/s), "speed_rev_min" (rev/min) */
+        char u[72];
+        size_t m = (size_t)(f + n - us - 1);
+        if (m == 0 || m >= sizeof u) return 1;
+        memcpy(u, us + 1, m);
+        u[m] = 0;
+        if (speed_unit(u, m, scale)) return 0;
+        for (char *c = u; *c; c++)
+            if (*c == '_') *c = '/';
+        return !speed_unit(u, m, scale);
+    }
+    static const char *const names[] = {"speed", "omega", "w", "W", "Omega", "Speed"};
+    for (size_t k = 0; k < sizeof names / sizeof names[0]; k++)
+        if (strlen(names[k]) == n && !strncmp(f, names[k], n)) return 0;
+    return 1;
+}
+
 int gd_cli_speed_table(const char *cmd, const char *path, gd_cli_profile *cp)
 {
     memset(cp, 0, sizeof *cp);
@@ -73,6 +118,14 @@ int gd_cli_speed_table(const char *cmd, const char *path, gd_cli_profile *cp)
     if (!f)
         return gd_cli_usage_error(cmd, "--speed-table: cannot read '%s': %s", path,
                                   strerror(errno));
+    struct stat sb; /* a folder opens, then reads as "0 row(s)" (issue 38 L3) */
+    if (fstat(fileno(f), &sb) == 0 && S_ISDIR(sb.st_mode)) {
+        fclose(f);
+        return gd_cli_usage_error(cmd,
+                                  "--speed-table: '%s' is a folder: give a file of rows "
+                                  "'time, speed'",
+                                  path);
+    }
     char line[512];
     int ln = 0, n = 0, cap = 0, rc = 0, header = 0;
     double scale = 1.0; /* to rad/s */
@@ -93,9 +146,14 @@ int gd_cli_speed_table(const char *cmd, const char *path, gd_cli_profile *cp)
                 break;
             }
             header = 1;
-            scale = strstr(s, "rpm")                     ? M_PI / 30
-                    : strstr(s, "hz") || strstr(s, "Hz") ? 2 * M_PI
-                                                         : 1;
+            if (header_unit(s, &scale)) {
+                rc = gd_cli_usage_error(cmd,
+                                        "%s:%d: the header '%s' names no speed unit geardyn "
+                                        "knows: head the speed column with rpm, rev/min, Hz "
+                                        "or rad/s (e.g. 'time_s, speed_rpm' or 'time, rpm')",
+                                        path, ln, strtok(s, "\r\n"));
+                break;
+            }
             continue;
         }
         while (*end == ',' || isspace((unsigned char)*end))

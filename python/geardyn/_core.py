@@ -97,12 +97,29 @@ def quantity(value, kind, field=""):
             raise model_error(field, "'%s': %s" % (value, cstr(err.message)),
                               "write a number in SI units or a number with a unit")
         return out[0]
-    if isinstance(value, bool):
-        raise model_error(field, "expected a number, got %r" % (value,))
+    if isinstance(value, (bool, complex, np.complexfloating)):
+        raise model_error(field, "expected a real number, got %r" % (value,))
     try:
-        return float(value)
+        v = float(value)
     except (TypeError, ValueError):
         raise model_error(field, "expected a number, got %r" % (value,)) from None
+    if not math.isfinite(v):  # issue 38 L5: modal(speed=nan) ran
+        raise model_error(field, "expected a finite number, got %r" % (value,))
+    return v
+
+
+def whole(value, field, lo, hi):
+    """value as an int in lo..hi: an int, or a float without a fraction (issue 38 L5:
+    modes=-1 and harmonics=2.5 were taken); ModelError naming field otherwise."""
+    if not isinstance(value, bool):
+        try:
+            f = float(value)
+            if not isinstance(value, (complex, np.complexfloating)) and f.is_integer() \
+                    and lo <= f <= hi:
+                return int(f)
+        except (TypeError, ValueError, OverflowError):
+            pass
+    raise model_error(field, "expected a whole number from %d to %d, got %r" % (lo, hi, value))
 
 
 def names(array, count):

@@ -12,7 +12,7 @@ import threading
 import numpy as np
 
 from . import _core
-from ._core import ffi, lib, check, new_error, cstr, quantity, model_error
+from ._core import ffi, lib, check, new_error, cstr, quantity, model_error, whole
 
 __all__ = ["modal", "campbell", "frf", "unbalance", "sweep", "ModalResult",
            "CampbellResult", "FrfResult", "UnbalanceResult"]
@@ -140,7 +140,7 @@ def modal(system, speed=None, modes=None, kind="auto", left=False):
     if modes is None:
         opt.nmodes = 0 if system.ndof <= 30 else 20
     else:
-        opt.nmodes = 0 if modes == "all" else int(modes)
+        opt.nmodes = 0 if modes == "all" else whole(modes, "modes", 0, 1000000)
     try:
         opt.kind = _KINDS[kind]
     except KeyError:
@@ -282,7 +282,7 @@ def campbell(system, speeds, modes=None, orders=(), shaft_orders=True, mesh_orde
     lib.gd_campbell_options_init(opt)
     opt.nspeeds, opt.speeds = len(sp), _doubles(sp)
     if modes is not None:
-        opt.nmodes = 0 if modes == "all" else int(modes)
+        opt.nmodes = 0 if modes == "all" else whole(modes, "modes", 0, 1000000)
     if len(ords):
         opt.norders, opt.orders = len(ords), _doubles(ords)
     opt.shaft_orders, opt.mesh_orders = int(bool(shaft_orders)), int(bool(mesh_orders))
@@ -296,7 +296,7 @@ def campbell(system, speeds, modes=None, orders=(), shaft_orders=True, mesh_orde
         opt.shift = quantity(shift, "speed", "shift")
     if mac_min is not None:
         opt.mac_min = float(mac_min)
-    opt.nthreads = int(threads)
+    opt.nthreads = whole(threads, "threads", 0, 4096)
     out = ffi.new("gd_campbell_result **")
     err = new_error()
     check(lib.gd_campbell(system._handle, opt, out, err), err)
@@ -517,8 +517,8 @@ def frf(system, input, outputs, freqs, speed=None, method="direct", modes=None,
     opt.quantity = _QUANTITIES.index(quantity)
     opt.method = lib.GD_FRF_MODAL if method == "modal" else lib.GD_FRF_DIRECT
     if modes is not None:
-        opt.nmodes = 0 if modes == "all" else int(modes)
-    opt.nthreads = int(threads)
+        opt.nmodes = 0 if modes == "all" else whole(modes, "modes", 0, 1000000)
+    opt.nthreads = whole(threads, "threads", 0, 4096)
     out = ffi.new("gd_frf_result **")
     err = new_error()
     check(lib.gd_frf(system._handle, opt, out, err), err)
@@ -652,7 +652,7 @@ def unbalance(system, speeds, outputs=None, orbits=None, threads=0):
     opt.nspeeds, opt.speeds = len(sp), _doubles(sp)
     opt.noutputs, opt.outputs = len(specs), probes
     opt.norbits, opt.orbit_nodes = len(orb), orbit_arr
-    opt.nthreads = int(threads)
+    opt.nthreads = whole(threads, "threads", 0, 4096)
     out = ffi.new("gd_unbalance_result **")
     err = new_error()
     check(lib.gd_unbalance_response(system._handle, opt, out, err), err)

@@ -16,8 +16,12 @@ law before it becomes a C file under src/laws/.
 
 The C library calls back into Python for every evaluation (tens of thousands per
 transient, one per time sample and Newton step in harmonic balance): expect it to run
-100-1000 times slower than a C law. An exception raised by a callback stops nothing in C
-(the force is then zero); it is raised again when the analysis returns.
+100-1000 times slower than a C law. An exception raised by a callback, Ctrl-C's
+KeyboardInterrupt included, stops the analysis: the callback keeps the exception and
+from then on returns NaN for the force, its Jacobian and its records without calling
+Python again (never a silent zero), the C side stops at the first non-finite force
+(the integrators' error return, the Newton solvers' failed step), and the exception is
+raised again when the analysis returns.
 """
 import numpy as np
 
@@ -120,34 +124,54 @@ def gd_py_law_term(law, k, u, w):
         u[j], w[j] = uk[j], wk[j]
 
 
+def _poison(obj, n, f, jq, jv):
+    """NaN force and Jacobian after an exception: the C side stops at a non-finite force
+    (issue 38 M1: a zero force let the analysis run on with a wrong answer)."""
+    nan = float("nan")
+    for j in range(n):
+        f[j] = nan
+    for k in range(len(obj.terms)):
+        if jq != ffi.NULL:
+            jq[k] = nan
+        if jv != ffi.NULL:
+            jv[k] = nan
+
+
 @ffi.def_extern()
 def gd_py_law_force(law, x, f, jq, jv):
     obj = ffi.from_handle(law.user)
     n = law.ndofs
+    if obj.error is not None:  # already failed: no more Python (a looping law stays out)
+        _poison(obj, n, f, jq, jv)
+        return
     try:
         q, v = _local(x, n)
         ff, a, b = obj.force(x.t, q, v)
+        ff = [float(ff[j]) for j in range(n)]
+        a = [float(a[k]) for k in range(len(obj.terms))] if jq != ffi.NULL else None
+        b = [float(b[k]) for k in range(len(obj.terms))] if jv != ffi.NULL else None
         for j in range(n):
-            f[j] += float(ff[j])
+            f[j] += ff[j]
         for k in range(len(obj.terms)):
-            if jq != ffi.NULL:
-                jq[k] = float(a[k])
-            if jv != ffi.NULL:
-                jv[k] = float(b[k])
-    except Exception as e:  # noqa: BLE001 - handed back after the C call
-        if obj.error is None:
-            obj.error = e
+            if a is not None:
+                jq[k] = a[k]
+            if b is not None:
+                jv[k] = b[k]
+    except BaseException as e:  # noqa: BLE001 - Ctrl-C too: handed back after the C call
+        obj.error = e
+        _poison(obj, n, f, jq, jv)
 
 
 @ffi.def_extern()
 def gd_py_law_record(law, k, x):
     obj = ffi.from_handle(law.user)
+    if obj.error is not None:
+        return float("nan")
     try:
         q, v = _local(x, law.ndofs)
         return float(obj.record(k, x.t, q, v))
-    except Exception as e:  # noqa: BLE001
-        if obj.error is None:
-            obj.error = e
+    except BaseException as e:  # noqa: BLE001
+        obj.error = e
         return float("nan")
 
 
@@ -159,6 +183,13 @@ def with_laws(system, tm, laws):
     if not laws:
         return spec, tm, []
     n0 = tm.spec.nlaws
+    seen = {ffi.string(tm.spec.laws[i].name).decode() for i in range(n0)}
+    for law in laws:
+        if isinstance(law, Law) and law.name in seen:  # issue 38 L2: two columns of one name
+            raise model_error("laws", "duplicate law name '%s'" % law.name,
+                              "give every law its own name")
+        if isinstance(law, Law):
+            seen.add(law.name)
     arr = ffi.new("gd_law[]", n0 + len(laws))
     for i in range(n0):
         arr[i] = tm.spec.laws[i]

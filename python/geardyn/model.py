@@ -244,6 +244,9 @@ def load(path, sets=None, coupling=None):
 
 def loads(text, name="<string>", sets=None, coupling=None):
     """Loads a model from YAML text; name stands for the file in error messages."""
+    if not isinstance(text, str):  # loads(None): AttributeError before
+        raise model_error("text", "expected the model's YAML text as a str, got %r"
+                          % type(text).__name__, "read the file first, or use load(path)")
     return Model._load(("text", text, name), sets, coupling)
 
 

@@ -4,7 +4,7 @@ the record specs and the defaults of `geardyn periodic`."""
 import numpy as np
 
 from . import _core
-from ._core import ffi, lib, check, new_error, cstr, model_error
+from ._core import ffi, lib, check, new_error, cstr, model_error, whole
 from .analyses import _Result, _pandas, sweep
 from .transient import _records, _record_array
 from .laws import with_laws
@@ -86,12 +86,9 @@ def periodic(system, speeds=None, harmonics=10, subharmonic=1, records=None,
     if harmonics == "auto":
         opt.adaptive = 1
     else:
-        h = int(harmonics)
-        if not 1 <= h <= 1000:
-            raise model_error("harmonics", "expected 1..1000 or 'auto', got %r" % harmonics)
-        opt.harmonics = h
-    if not 1 <= int(subharmonic) <= 1000:
-        raise model_error("subharmonic", "expected a whole number 1..1000, got %r" % subharmonic)
+        opt.harmonics = whole(harmonics, "harmonics", 1, 1000)  # 2.5 was taken as 2
+    subharmonic = whole(subharmonic, "subharmonic", 1, 1000)
+    samples = whole(samples, "samples", 0, 1 << 20)
     if not 1e-15 <= float(tol) < 1:
         raise model_error("tol", "expected a number in [1e-15, 1), got %r" % tol)
     if samples and int(samples) < 2 * opt.harmonics + 2:

@@ -154,6 +154,9 @@ def _records(system, tm, records):
         return _default_records(system, tm)
     recs = []
     for text in ([records] if isinstance(records, str) else records):
+        if not isinstance(text, str):  # records=[1, 2]: AttributeError before
+            raise model_error("records", "expected record names (strings), got %r" % (text,),
+                              "write e.g. records=['gear_a.x', 'mesh:mesh']")
         for item in text.split(","):
             item = item.strip()
             if not item:
@@ -219,9 +222,15 @@ def _profile(system, speed_ramp, speed_table, duration):
         prof.to = w1
         lo, hi = min(w0, w1), max(w0, w1)
     else:
-        times, speeds = (np.ascontiguousarray(a, dtype=float) for a in speed_table)
-        if times.shape != speeds.shape or times.ndim != 1:
-            raise model_error("speed_table", "give (times, speeds) of one length")
+        try:
+            times, speeds = (np.ascontiguousarray(a, dtype=float) for a in speed_table)
+        except (TypeError, ValueError):
+            raise model_error("speed_table", "give (times, speeds): two arrays of numbers") \
+                from None
+        if times.shape != speeds.shape or times.ndim != 1 or times.size < 2:
+            # an empty table: IndexError before
+            raise model_error("speed_table", "give (times, speeds) of one length, at least two "
+                              "rows")
         ct, cw = ffi.new("double[]", list(times)), ffi.new("double[]", list(speeds))
         keep += [ct, cw]
         prof.kind, prof.n, prof.t, prof.speed = lib.GD_SPEED_TABLE, len(times), ct, cw

@@ -382,8 +382,17 @@ gd_status gd_modal_state_space(const gd_system *sys, const gd_modal_options *opt
     res = NULL;
     goto done;
 noconv:
-    st = gd_error_set(err, GD_ENUMERIC, sys->model->file, 0, 0, "", "",
-                      "the eigensolver did not converge (LAPACK info %d)", (int)info);
+    /* LAPACK's info < 0 names an argument it refused: here a matrix with inf or NaN
+     * entries (a viscosity of 1e308 overflows the bearings' coefficients), an input
+     * error the user can fix, not a solver failure (issue 38 L3) */
+    if (info < 0)
+        st = gd_error_set(err, GD_EINPUT, sys->model->file, 0, 0, "",
+                          "check the bearings' and laws' values for ones so large their "
+                          "stiffness or damping overflows",
+                          "the matrices at speed %g rad/s hold inf or NaN entries", opt->speed);
+    else
+        st = gd_error_set(err, GD_ENUMERIC, sys->model->file, 0, 0, "", "",
+                          "the eigensolver did not converge (LAPACK info %d)", (int)info);
     goto done;
 nomem:
     st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "reduce the model size",

@@ -43,6 +43,13 @@ gd_status gd_modal_undamped(const gd_system *sys, const gd_modal_options *opt, c
                               &found, w, Z, n, ifail);
         free(ifail);
     }
+    if (info < 0) { /* an argument refused: inf or NaN entries (issue 38 L3, as state_space.c) */
+        st = gd_error_set(err, GD_EINPUT, sys->model->file, 0, 0, "",
+                          "check the bearings' and laws' values for ones so large their "
+                          "stiffness or damping overflows",
+                          "the matrices at speed %g rad/s hold inf or NaN entries", opt->speed);
+        goto done;
+    }
     if (info != 0) {
         st = gd_error_set(err, info > n ? GD_EINPUT : GD_ENUMERIC, sys->model->file, 0, 0, "",
                           info > n ? "check for negative or zero masses and inertias" : "",

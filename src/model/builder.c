@@ -179,14 +179,18 @@ gd_status gd_model_set_gravity(gd_model *m, const double direction[3], double g,
 {
     gd_status st;
     if ((st = gd_build_open(m, err))) return st;
-    double n = 0;
+    double n = 0, big = 0;
     for (int i = 0; i < 3; i++) {
         if (!isfinite(direction[i]))
             return gd_build_fail(m, err, loc, "gravity.direction", "gravity.direction",
                                  "give three finite numbers, e.g. [0, -1, 0]",
                                  "direction component %d is not finite", i);
-        n += direction[i] * direction[i];
+        big = fmax(big, fabs(direction[i]));
     }
+    /* scaled by the largest component: [0, -1e308, 1e308] squared overflowed to an inf
+     * norm, a zero gravity vector and "LU pivot -7" (issue 38 M7) */
+    for (int i = 0; big > 0 && i < 3; i++)
+        n += (direction[i] / big) * (direction[i] / big);
     if (!(n > 0))
         return gd_build_fail(m, err, loc, "gravity.direction", "gravity.direction",
                              "give the direction gravity pulls in, e.g. [0, -1, 0]",
@@ -195,9 +199,15 @@ gd_status gd_model_set_gravity(gd_model *m, const double direction[3], double g,
         return gd_build_fail(m, err, loc, "gravity.g", "gravity.g",
                              "give g >= 0 in m/s^2, e.g. 9.81", "g = %g is not a finite value >= 0",
                              g);
+    /* 1e6 m/s^2 is 1e5 times the Earth's (beyond a centrifuge's); 1e308 gave deflections
+     * of 1e307 m and NaN in the static tables with exit 0 */
+    if (g > 1e6)
+        return gd_build_fail(m, err, loc, "gravity.g", "gravity.g",
+                             "give g in m/s^2 (9.81 on the Earth), at most 1e6",
+                             "g = %g m/s^2 is over 1e6 m/s^2", g);
     n = sqrt(n);
     for (int i = 0; i < 3; i++)
-        m->gravity[i] = g * direction[i] / n;
+        m->gravity[i] = g * (direction[i] / big) / n;
     return GD_OK;
 }
 

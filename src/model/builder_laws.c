@@ -33,6 +33,14 @@ gd_status gd_model_add_law(gd_model *m, const gd_law_spec *s, int *index, gd_err
     memset(&L, 0, sizeof L);
     snprintf(fb, sizeof fb, "%s%d", s->type->name, idx + 1);
     if ((st = gd_build_name(m, err, s->loc, path, s->name, fb, L.name))) return st;
+    /* records and messages name a law (law:NAME:RECORD): two of one name gave two
+     * columns of one heading (issue 38 L2) */
+    for (int k = 0; k < idx; k++)
+        if (!strcmp(m->laws[k].name, L.name))
+            return gd_build_fail(m, err, s->loc, NULL, gd_build_path(q, sizeof q, path, "name"),
+                                 "give every law its own name",
+                                 "duplicate law name '%s' (first on line %d)", L.name,
+                                 m->laws[k].loc.line);
     if (s->node2 && !s->type->two_nodes)
         return gd_build_fail(m, err, s->loc, NULL, gd_build_path(q, sizeof q, path, "to"),
                              "remove it: this law acts on one node",

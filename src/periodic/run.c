@@ -63,8 +63,13 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
 #define BAD(field, hint, ...)                                                                      \
     return gd_error_set(err, GD_EINPUT, "", 0, 0, field, hint, __VA_ARGS__)
     if (nvalues < 1 || !values) BAD("speeds", "give FROM:TO:COUNT", "no values to solve at");
-    for (int i = 0; i < nvalues; i++)
-        if (!isfinite(values[i])) BAD("speeds", "", "values must be finite");
+    for (int i = 0; i < nvalues; i++) /* named as given (issue 38 L3: "speeds" for all) */
+        if (!isfinite(values[i]))
+            BAD(!param                  ? "speeds"
+                : param->load_frequency ? "frequency"
+                                        : "parameter",
+                "", "%s value %d (%g) is not finite", param && param->name ? param->name : "the",
+                i + 1, values[i]);
     if (opt->harmonics < 1)
         BAD("harmonics", "give H >= 1", "harmonic count %d out of range", opt->harmonics);
     if (opt->max_harmonics < 0 || opt->memory_limit < 0)

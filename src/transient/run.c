@@ -144,6 +144,10 @@ static void stats_of(const double *x, int n, gd_tr_stats *s)
     if (n <= 0) return;
     double mn = x[0], mx = x[0], sum = 0, sq = 0;
     for (int k = 0; k < n; k++) {
+        if (isnan(x[k])) { /* no statistics of a record with a gap (issue 38 L5: -inf) */
+            s->min = s->max = s->mean = s->rms = s->peak_to_peak = s->std = NAN;
+            return;
+        }
         mn = fmin(mn, x[k]);
         mx = fmax(mx, x[k]);
         sum += x[k];
@@ -219,7 +223,10 @@ typedef struct run_work {
     gd_transient_result *res;
     gd_tr_contact_track *track;
     double from;
+    int slow; /* windows of GD_TR_WINDOW steps in a row projecting past the step limit */
 } run_work;
+
+#define GD_TR_WINDOW 20000 /* steps per CVODE call at most: the pace check's window */
 
 /* Integrates from *t to tk (CVODE's output at tk), handling the contact events on the
  * way. */
@@ -231,7 +238,40 @@ static gd_status advance(gd_transient *tr, run_work *w, const gd_transient_optio
          * interpolates at the intermediate times; its steps are the same) */
         double tout = tk, chunk = (opt->t_end - opt->t_start) / 200.0;
         if (opt->progress && tk - *t > 1.5 * chunk) tout = *t + chunk;
+        /* the step limit counts every step of the run, not each call's (CVODE's own
+         * mxstep), and CVODE returns every GD_TR_WINDOW steps so that a run whose steps
+         * have collapsed (a contact stiffness of 1e308: 1e5 steps stuck at one t) ends
+         * with the limit named once its pace projects past it, instead of running for
+         * days (issue 38 M4) */
+        const long limit = opt->max_steps > 0 ? opt->max_steps : 50000000L;
+        long used = 0;
+        CVodeGetNumSteps(w->mem, &used);
+        const long budget = limit - w->res->steps - used;
+        double t0 = *t;
+        if (budget <= 0 ||
+            CVodeSetMaxNumSteps(w->mem, budget < GD_TR_WINDOW ? budget : GD_TR_WINDOW))
+            return gd_error_set(err, GD_EINPUT, "", 0, 0, "max_steps",
+                                "shorten the run, loosen rtol, or raise max_steps (transient "
+                                "--max-steps, a study's max_steps) if it is meant",
+                                "the integrator used the step limit of %ld steps by t = %.6g s "
+                                "of %.6g s",
+                                limit, *t, opt->t_end);
         int flag = CVode(w->mem, tout, w->y, t, CV_NORMAL);
+        if (flag == CV_TOO_MUCH_WORK) {
+            /* a window's pace: three in a row projecting past the limit end the run */
+            double need = (opt->t_end - *t) / fmax(*t - t0, 1e-300) * GD_TR_WINDOW;
+            w->slow = need > (double)budget ? w->slow + 1 : 0;
+            if (w->slow >= 3)
+                return gd_error_set(err, GD_EINPUT, "", 0, 0, "max_steps",
+                                    "shorten the run, loosen rtol, check for a stiffness "
+                                    "far beyond the others, or raise max_steps (transient "
+                                    "--max-steps, a study's max_steps) if it is meant",
+                                    "at t = %.6g s of %.6g s the last %d steps advanced %.3g s: "
+                                    "the rest needs about %.3g steps at that pace, over the "
+                                    "step limit of %ld",
+                                    *t, opt->t_end, GD_TR_WINDOW, *t - t0, need, limit);
+            continue;
+        }
         if (opt->progress) opt->progress(*t, opt->t_start, opt->t_end, opt->progress_data);
         if (flag == CV_ROOT_RETURN) {
             CVodeGetRootInfo(w->mem, w->rootsfound);
@@ -349,13 +389,24 @@ static gd_status check_step_count(const gd_transient *tr, const gd_transient_opt
         pmax = fmax(pmax, fabs(p->speed[k]));
     for (int i = 0; i < tr->n; i++)
         wmax = fmax(wmax, p ? fabs(tr->ratio[i]) * pmax : fabs(tr->rate[i]));
+    /* a model driven at a fixed frequency turns no shaft: its loads' and prescribed
+     * motions' periods bound the steps the same way (issue 38 M4: Duffing for 1e30 s) */
+    for (int i = 0; i < tr->nlaw; i++) {
+        const gd_load_law *L = tr->law[i].type == &gd_law_load ? tr->law[i].data : NULL;
+        if (L && L->kind == GD_LOAD_HARMONIC_TIME && L->amplitude != 0)
+            wmax = fmax(wmax, fabs(L->frequency));
+    }
+    for (int k = 0; k < tr->np; k++)
+        if (tr->pres[k].law.kind == GD_PRESCRIBED_HARMONIC && tr->pres[k].law.amplitude != 0)
+            wmax = fmax(wmax, fabs(tr->pres[k].law.frequency));
     double turns = span * wmax / 6.28318530717958647692;
     if (!(turns <= limit))
         return gd_error_set(err, GD_EINPUT, "", 0, 0, "t_end",
                             "shorten the run, or raise max_steps (transient --max-steps, a study's "
                             "max_steps) if it is meant",
-                            "%.3g s at %.4g rad/s is %.3g revolutions, each needing steps: over "
-                            "the step limit of %.0f",
+                            "%.3g s at %.4g rad/s (the fastest shaft or forcing) is %.3g "
+                            "revolutions or forcing periods, each needing steps: over the step "
+                            "limit of %.0f",
                             span, wmax, turns, limit);
     return GD_OK;
 }
@@ -568,7 +619,7 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
         goto done;
     }
 
-    run_work w = {mem, y, rootsfound, res, track, from};
+    run_work w = {mem, y, rootsfound, res, track, from, 0};
     double t = opt->t_start;
     int ks = 0;
     for (int k = 0; k < nout; k++) {
