@@ -62,5 +62,7 @@
 #include "geardyn/plot.h"
 #include "geardyn/report.h"
 #include "geardyn/study.h"
+#include "geardyn/testdata.h"
+#include "geardyn/ema.h"
 
 #endif
