@@ -221,19 +221,21 @@ static inline void synth_free(synth *sy)
     free(sy->im);
 }
 
-/* Writes the synthetic FRFs as one UFF file: response points numbered 1.., the
- * reference its own point; binary and dtype as uff_write58. */
+/* Writes the synthetic FRFs as one UFF file: each point labelled by its model node's
+ * number (1-based, geardyn's default without a test setup); binary and dtype as
+ * uff_write58. */
 static inline int synth_write_uff(const synth *sy, const char *path, int binary, int dtype)
 {
     FILE *fp = fopen(path, "wb");
     if (!fp) return 0;
     for (int j = 0; j < sy->nresp; j++) {
         char id[64];
-        snprintf(id, sizeof id, "H y%dy%d", j + 1, 2);
+        int rn = sy->resp_node[j] + 1, fn = sy->resp_node[1] + 1;
+        snprintf(id, sizeof id, "H y%dy%d", rn, fn);
         uff_frf h = {id,
-                     j + 1,
+                     rn,
                      2,
-                     2,
+                     fn,
                      2,
                      12,
                      "m/s^2",

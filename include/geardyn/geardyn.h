@@ -64,5 +64,6 @@
 #include "geardyn/study.h"
 #include "geardyn/testdata.h"
 #include "geardyn/ema.h"
+#include "geardyn/correlate.h"
 
 #endif
