@@ -15,6 +15,7 @@ int gd_td_next_line(gd_td_text *t, const char **s, size_t *n)
     const char *e = memchr(b, '\n', t->len - t->pos);
     size_t m = e ? (size_t)(e - b) : t->len - t->pos;
     t->pos += m + (e ? 1 : 0);
+    t->partial = !e;
     if (m && b[m - 1] == '\r') m--;
     t->line++;
     *s = b;

@@ -39,7 +39,7 @@ static gd_status read_one(const char *path, int skip_other, gd_testdata *td, gd_
         return gd_error_set(err, GD_EIO, path, 0, 0, "", "check the file", "read error");
     }
     buf[len] = 0;
-    gd_td_text t = {path, buf, len, 0, 0};
+    gd_td_text t = {path, buf, len, 0, 0, 0};
     /* the form from the first non-blank line */
     size_t p = 0;
     while (p < len && isspace((unsigned char)buf[p]))

@@ -11,7 +11,8 @@ typedef struct gd_td_text {
     const char *file;
     const char *buf; /* the whole file, NUL-terminated after len */
     size_t len, pos;
-    int line; /* 1-based line of pos */
+    int line;    /* 1-based line of pos */
+    int partial; /* the last line read had no end: the file stops inside it */
 } gd_td_text;
 
 /* The next line (without its end) into *s, *n; 0 at the end of the file. */

@@ -246,6 +246,13 @@ static gd_status ordinate_units(gd_td_text *t, int line9, gd_td_function *f, con
     return GD_OK;
 }
 
+/* A whole header record line: 0 at the end of the file or when the file stops inside
+ * the line (then the record is cut, not malformed). */
+static int record_line(gd_td_text *t, const char **s, size_t *n)
+{
+    return gd_td_next_line(t, s, n) && !t->partial;
+}
+
 /* One dataset 58 or 58b; the "-1" and identifier lines are read, t is at record 1. */
 static gd_status read58(gd_td_text *t, int id_line, int binary, int big, long nbytes,
                         gd_testdata *td, gd_error *err)
@@ -256,11 +263,11 @@ static gd_status read58(gd_td_text *t, int id_line, int binary, int big, long nb
     gd_td_function *f = gd_td_push(td, t->file, id_line);
     if (!f) return gd_error_set(err, GD_ENOMEM, t->file, id_line, 0, "", "", "out of memory");
     for (int r = 1; r <= 5; r++) {
-        if (!gd_td_next_line(t, &s, &n)) return cut(t, t->line, "records 1-5 (ID lines)", err);
+        if (!record_line(t, &s, &n)) return cut(t, t->line, "records 1-5 (ID lines)", err);
         if (r == 1) field(s, n, 0, 80, f->name, sizeof f->name);
     }
     /* record 6 */
-    if (!gd_td_next_line(t, &s, &n)) return cut(t, t->line, "record 6", err);
+    if (!record_line(t, &s, &n)) return cut(t, t->line, "record 6", err);
     int l6 = t->line;
     long v[4];
     static const size_t C6[4][2] = {{0, 5}, {41, 10}, {51, 4}, {66, 10}};
@@ -291,7 +298,7 @@ static gd_status read58(gd_td_text *t, int id_line, int binary, int big, long nb
                             "direction %ld is not a UFF direction code",
                             labs(v[2]) > 6 ? v[2] : refdir);
     /* record 7 */
-    if (!gd_td_next_line(t, &s, &n)) return cut(t, t->line, "record 7", err);
+    if (!record_line(t, &s, &n)) return cut(t, t->line, "record 7", err);
     int l7 = t->line;
     long type, nval, even;
     double xmin = 0, dx = 0;
@@ -328,7 +335,7 @@ static gd_status read58(gd_td_text *t, int id_line, int binary, int big, long nb
     ascii_rec rec[4];
     int l8 = 0;
     for (int r = 0; r < 4; r++) {
-        if (!gd_td_next_line(t, &s, &n)) return cut(t, t->line, "records 8-11", err);
+        if (!record_line(t, &s, &n)) return cut(t, t->line, "records 8-11", err);
         if (r == 0) l8 = t->line;
         field(s, n, 0, 10, buf, sizeof buf);
         if (!parse_int(buf, &rec[r].spec))
