@@ -210,5 +210,42 @@ TEST(bad_files_are_located)
     synth_free(&sy);
 }
 
-RUN_TESTS(T(uff58_ascii_and_binary_read_field_by_field), T(frf_conversions_and_units), T(csv_forms),
-          T(bad_files_are_located))
+/* a coherence (record 6 function type 6) is kept as a ratio, and an FRF fit refuses it */
+TEST(coherence_is_a_ratio)
+{
+    synth sy;
+    REQUIRE(synth_make(&sy, 1.0, 0.0, 2, 101, 2.0, 7));
+    char p[256];
+    tmp_path(p, sizeof p, "coh.uff");
+    REQUIRE(synth_write_uff(&sy, p, 0, 6));
+    FILE *f = fopen(p, "rb");
+    REQUIRE(f);
+    char *text = calloc(1, 1 << 20);
+    size_t n = fread(text, 1, (1 << 20) - 1, f);
+    fclose(f);
+    text[n] = 0;
+    /* the first dataset's record 6 starts "    4": make it "    6" */
+    char *r6 = text;
+    for (int l = 0; l < 7; l++)
+        r6 = strchr(r6, '\n') + 1;
+    REQUIRE(strncmp(r6, "    4", 5) == 0);
+    r6[4] = '6';
+    write_text(p, text);
+    free(text);
+    gd_testdata *td;
+    gd_error err;
+    REQUIRE(read1(p, &td, &err) == GD_OK);
+    CHECK(td->functions[0].function_type == GD_UFF_COHERENCE);
+    CHECK(td->functions[0].quantity == GD_TD_RATIO);
+    CHECK(td->functions[1].quantity == GD_TD_ACCELERANCE);
+    const gd_td_function *fs[2] = {&td->functions[0], &td->functions[1]};
+    gd_ema_result *r;
+    CHECK(gd_ema_lscf(2, fs, NULL, &r, &err) == GD_EINPUT);
+    CHECK(strstr(err.message, "is not an FRF") != NULL);
+    gd_testdata_free(td);
+    unlink(p);
+    synth_free(&sy);
+}
+
+RUN_TESTS(T(coherence_is_a_ratio), T(uff58_ascii_and_binary_read_field_by_field),
+          T(frf_conversions_and_units), T(csv_forms), T(bad_files_are_located))
