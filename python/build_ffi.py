@@ -457,13 +457,14 @@ gd_status gd_testdata_read(int nfiles, const char *const *paths, int skip_other_
 void gd_testdata_free(gd_testdata *td);
 const char *gd_td_dir_name(int dir);
 typedef struct { double band_lo_hz, band_hi_hz; int max_order; double stab_freq, stab_damp,
-                 max_damping, stable_share, peak_threshold; } gd_ema_options;
+                 max_damping, stable_share, peak_threshold; int poly_reference; }
+               gd_ema_options;
 typedef struct { int order; double frequency_hz, damping_ratio; char status; } gd_ema_pole;
 typedef struct { double frequency_hz, damping_ratio; double lambda_re, lambda_im;
                  int stable_count; } gd_ema_mode;
 typedef struct { int nfrf, nmodes; gd_ema_mode *modes; double *residue_re, *residue_im;
-                 int npoles; gd_ema_pole *poles; int max_order; double band_lo_hz,
-                 band_hi_hz; int nlines; } gd_ema_result;
+                 int npoles; gd_ema_pole *poles; int max_order; int nreferences;
+                 double band_lo_hz, band_hi_hz; int nlines; } gd_ema_result;
 void gd_ema_options_init(gd_ema_options *opt);
 gd_status gd_ema_lscf(int nfrf, const gd_td_function *const *frfs, const gd_ema_options *opt,
                       gd_ema_result **out, gd_error *err);

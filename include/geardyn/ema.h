@@ -10,8 +10,9 @@
  *   the upper orders are the modes; their residues (mode shapes) come from a least-
  *   squares fit in the frequency domain (LSFD) of every FRF to
  *   sum_r A_r/(iw - l_r) + conj(A_r)/(iw - conj(l_r)) + U + L/w^2.
- *   The denominator is one scalar polynomial common to all FRFs (every response and
- *   reference), not PolyMAX's matrix polynomial.
+ *   With several references (every response measured for each) the denominator is a
+ *   matrix polynomial over them (poly-reference), which separates close modes one
+ *   reference sees as one; otherwise one scalar polynomial common to every FRF.
  *
  * Ownership and threads: the FRFs are borrowed for the call; the result is owned by the
  * caller (gd_ema_free). Reentrant: no global state.
@@ -32,6 +33,9 @@ typedef struct gd_ema_options {
                                       half of the orders (0.6) */
     double peak_threshold;         /* peak picking: peaks above this share of the
                                       largest (0.02) */
+    int poly_reference;            /* 1 (default): a matrix denominator over the
+                                      references when every response was measured once
+                                      for each of two or more; 0: one scalar denominator */
 } gd_ema_options;
 
 /* One pole of the stabilisation diagram. status: 'o' new, 'f' frequency stable, 'd'
@@ -57,6 +61,7 @@ typedef struct gd_ema_result {
     int npoles; /* the stabilisation diagram, LSCF only */
     gd_ema_pole *poles;
     int max_order;
+    int nreferences;               /* inputs of LSCF's denominator (1: scalar) */
     double band_lo_hz, band_hi_hz; /* the band used */
     int nlines;
 } gd_ema_result;

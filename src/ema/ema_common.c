@@ -14,6 +14,7 @@ void gd_ema_options_init(gd_ema_options *opt)
     opt->max_damping = 0.2;
     opt->stable_share = 0.6;
     opt->peak_threshold = 0.02;
+    opt->poly_reference = 1;
 }
 
 gd_status gd_ema_band(int nfrf, const gd_td_function *const *frfs, const gd_ema_options *opt,

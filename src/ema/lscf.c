@@ -1,14 +1,19 @@
 /* LSCF, least-squares complex frequency ([Guillaume2003]; [Peeters2004] Sec. 2 for the
- * reduced normal equations), with one scalar denominator common to every FRF:
- *   H_o(w) = N_o(z) / d(z),  z = e^{i w dt},  d(z) = sum_j a_j z^j,  dt = 1 / (2 f_max).
- * Linearised least squares over the lines k: minimise sum_o sum_k |N_o - H_o d|^2.
- * With X_kj = z_k^j and Y_o,kj = -z_k^j H_o(w_k) the normal equations are
+ * reduced normal equations), in its poly-reference form: the FRFs arranged as outputs o
+ * (responses) by inputs i (references), a right matrix-fraction model
+ *   H_o(w) = B_o(z) A(z)^-1,  A(z) = sum_j z^j a_j (Ni x Ni),  z = e^{i w dt},
+ *   dt = 1 / (2 f_max),
+ * linearised least squares over the lines k: minimise sum_o sum_k |B_o - H_o A|^2. With
+ * X_kj = z_k^j and Y_o,k(j,i) = -z_k^j H_oi(w_k) the normal equations are
  * R = Re(X^H X), S_o = Re(X^H Y_o), T_o = Re(Y_o^H Y_o); eliminating the numerators
- * leaves M a = 0, M = sum_o (T_o - S_o^T R^-1 S_o), solved with a_n = 1. R, S_o, T_o
+ * leaves M a = 0, M = sum_o (T_o - S_o^T R^-1 S_o), solved with a_n = I. R, S_o, T_o
  * depend on l - j only (Toeplitz), so the lags up to the highest order are summed once
  * and every order takes its leading blocks. The poles are s = ln(z_r) / dt of the
- * roots z_r of d, kept when they are in the band, oscillating and damped below
- * max_damping. */
+ * eigenvalues z_r of the block companion matrix of A (det A(z_r) = 0), kept when they
+ * are in the band, oscillating and damped below max_damping. With one reference (or
+ * FRFs that are not a full response x reference matrix) Ni = 1 and every FRF is an
+ * output: one scalar denominator common to all. Several references separate close
+ * modes (the x and y modes of a rotor) that one reference sees as one pole. */
 #include <lapacke.h>
 #include <math.h>
 #include <stdlib.h>
@@ -18,9 +23,10 @@
 
 typedef struct lags {
     int N;      /* highest order */
+    int No, Ni; /* outputs, inputs */
     double *r;  /* N + 1: R's lag d */
-    double *t;  /* nfrf x (N + 1): T_o's lag d */
-    double *sp; /* nfrf x (2N + 1): S_o at lag d = l - j, index d + N */
+    double *t;  /* No x Ni x Ni x (2N + 1): T_o's block (i, i') at lag d, index d + N */
+    double *sp; /* No x Ni x (2N + 1): S_o's column i at lag d = l - j, index d + N */
 } lags;
 
 static int cmp_pole(const void *a, const void *b)
@@ -35,64 +41,79 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* The poles of order n into out (at most n/2 + 1); returns their count, -1 on failure. */
-static int order_poles(const lags *L, int nfrf, int n, double dt, double flo, double fhi,
-                       double zmax, double *work, gd_ema_pole *out)
+/* The poles of order n into out (at most n Ni / 2 + 1); returns their count, -1 on
+ * failure. work: at least (n+1)^2 + 4 ((n+1) Ni)^2 + 3 (n+1) Ni doubles. */
+static int order_poles(const lags *L, int n, double dt, double flo, double fhi, double zmax,
+                       double *work, gd_ema_pole *out)
 {
-    int m = n + 1;
-    double *Rn = work, *Mm = Rn + m * m, *W = Mm + m * m, *C = W + m * m;
-    double *wr = C + n * n, *wi = wr + n;
+    int m = n + 1, Ni = L->Ni, p = m * Ni, q = n * Ni, N = L->N;
+    size_t lag = 2 * (size_t)N + 1;
+    double *Rn = work, *Mm = Rn + m * m, *W = Mm + p * p, *C = W + m * p;
+    double *wr = C + q * q, *wi = wr + q, *rhs = wi + q;
     for (int j = 0; j < m; j++)
-        for (int l = 0; l < m; l++) {
+        for (int l = 0; l < m; l++)
             Rn[j + l * m] = L->r[abs(l - j)];
-            double tt = 0;
-            for (int o = 0; o < nfrf; o++)
-                tt += L->t[o * (L->N + 1) + abs(l - j)];
-            Mm[j + l * m] = tt;
-        }
+    for (int j = 0; j < m; j++)
+        for (int i = 0; i < Ni; i++)
+            for (int l = 0; l < m; l++)
+                for (int i2 = 0; i2 < Ni; i2++) {
+                    double tt = 0;
+                    for (int o = 0; o < L->No; o++)
+                        tt += L->t[(((size_t)o * Ni + i) * Ni + i2) * lag + (size_t)(l - j + N)];
+                    Mm[(j * Ni + i) + (size_t)(l * Ni + i2) * p] = tt;
+                }
     if (LAPACKE_dpotrf(LAPACK_COL_MAJOR, 'L', m, Rn, m)) return -1;
-    for (int o = 0; o < nfrf; o++) {
-        const double *sp = L->sp + (size_t)o * (2 * L->N + 1);
+    for (int o = 0; o < L->No; o++) {
         for (int j = 0; j < m; j++)
             for (int l = 0; l < m; l++)
-                W[j + l * m] = sp[l - j + L->N];
+                for (int i = 0; i < Ni; i++)
+                    W[j + (size_t)(l * Ni + i) * m] =
+                        L->sp[((size_t)o * Ni + i) * lag + (size_t)(l - j + N)];
         /* W = L^-1 S_o; M -= W^T W */
-        if (LAPACKE_dtrtrs(LAPACK_COL_MAJOR, 'L', 'N', 'N', m, m, Rn, m, W, m)) return -1;
-        for (int j = 0; j < m; j++)
-            for (int l = 0; l <= j; l++) {
-                double s = 0;
+        if (LAPACKE_dtrtrs(LAPACK_COL_MAJOR, 'L', 'N', 'N', m, p, Rn, m, W, m)) return -1;
+        for (int a = 0; a < p; a++)
+            for (int b = 0; b <= a; b++) {
+                double sum = 0;
                 for (int k = 0; k < m; k++)
-                    s += W[k + j * m] * W[k + l * m];
-                Mm[j + l * m] -= s;
-                if (l != j) Mm[l + j * m] -= s;
+                    sum += W[k + (size_t)a * m] * W[k + (size_t)b * m];
+                Mm[a + (size_t)b * p] -= sum;
+                if (a != b) Mm[b + (size_t)a * p] -= sum;
             }
     }
-    /* M[0:n,0:n] a = -M[0:n, n], a_n = 1 */
-    double *rhs = W; /* reuse */
-    for (int j = 0; j < n; j++)
-        rhs[j] = -Mm[j + n * m];
+    /* M[0:q, 0:q] a = -M[0:q, q:p], a_n = I: a_j = rows j Ni.. of the solution */
     double *A = C;
-    for (int j = 0; j < n; j++)
-        for (int l = 0; l < n; l++)
-            A[j + l * n] = Mm[j + l * m];
-    if (LAPACKE_dposv(LAPACK_COL_MAJOR, 'L', n, 1, A, n, rhs, n)) {
-        for (int j = 0; j < n; j++)
-            for (int l = 0; l < n; l++)
-                A[j + l * n] = Mm[j + l * m];
-        for (int j = 0; j < n; j++)
-            rhs[j] = -Mm[j + n * m];
-        lapack_int *piv = (lapack_int *)(wi + n);
-        if (LAPACKE_dgesv(LAPACK_COL_MAJOR, n, 1, A, n, piv, rhs, n)) return -1;
+    for (int a = 0; a < q; a++) {
+        for (int b = 0; b < q; b++)
+            A[a + (size_t)b * q] = Mm[a + (size_t)b * p];
+        for (int i = 0; i < Ni; i++)
+            rhs[a + (size_t)i * q] = -Mm[a + (size_t)(q + i) * p];
     }
-    /* companion matrix of z^n + a_{n-1} z^{n-1} + ... + a_0 */
-    memset(C, 0, (size_t)n * n * sizeof *C);
+    if (LAPACKE_dposv(LAPACK_COL_MAJOR, 'L', q, Ni, A, q, rhs, q)) {
+        for (int a = 0; a < q; a++) {
+            for (int b = 0; b < q; b++)
+                A[a + (size_t)b * q] = Mm[a + (size_t)b * p];
+            for (int i = 0; i < Ni; i++)
+                rhs[a + (size_t)i * q] = -Mm[a + (size_t)(q + i) * p];
+        }
+        lapack_int *piv = (lapack_int *)W;
+        if (LAPACKE_dgesv(LAPACK_COL_MAJOR, q, Ni, A, q, piv, rhs, q)) return -1;
+    }
+    /* block companion of z^n I + a_{n-1} z^{n-1} + ... + a_0: first block row -a_{n-1},
+     * ..., -a_0, identities below the diagonal */
+    memset(C, 0, (size_t)q * q * sizeof *C);
     for (int j = 0; j < n; j++)
-        C[0 + j * n] = -rhs[n - 1 - j];
-    for (int j = 1; j < n; j++)
-        C[j + (j - 1) * n] = 1;
-    if (LAPACKE_dhseqr(LAPACK_COL_MAJOR, 'E', 'N', n, 1, n, C, n, wr, wi, NULL, 1)) return -1;
+        for (int r = 0; r < Ni; r++)
+            for (int c = 0; c < Ni; c++)
+                C[r + (size_t)((n - 1 - j) * Ni + c) * q] = -rhs[(j * Ni + r) + (size_t)c * q];
+    for (int a = Ni; a < q; a++)
+        C[a + (size_t)(a - Ni) * q] = 1;
+    if (Ni == 1) {
+        if (LAPACKE_dhseqr(LAPACK_COL_MAJOR, 'E', 'N', q, 1, q, C, q, wr, wi, NULL, 1)) return -1;
+    } else if (LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', q, C, q, wr, wi, NULL, 1, NULL, 1)) {
+        return -1;
+    }
     int np = 0;
-    for (int k = 0; k < n; k++) {
+    for (int k = 0; k < q; k++) {
         double mag = hypot(wr[k], wi[k]), arg = atan2(wi[k], wr[k]);
         if (!(arg > 0) || !(mag > 0)) continue;
         double sr = log(mag) / dt, si = arg / dt;
@@ -106,6 +127,57 @@ static int order_poles(const lags *L, int nfrf, int n, double dt, double flo, do
     }
     qsort(out, (size_t)np, sizeof *out, cmp_pole);
     return np;
+}
+
+/* The FRFs as outputs x inputs: Ni > 1 when poly_reference is asked, there are two or
+ * more references and every response was measured once for each; else Ni = 1 and each
+ * FRF an output. map[o * Ni + i] is the FRF of output o and input i. */
+static int arrange(int nfrf, const gd_td_function *const *f, int poly, int *No, int *Ni, int *map)
+{
+    int refs[16], nref = 0;
+    for (int k = 0; k < nfrf && poly; k++) {
+        int j = 0;
+        while (j < nref && !(f[refs[j]]->reference_node == f[k]->reference_node &&
+                             f[refs[j]]->reference_dir == f[k]->reference_dir))
+            j++;
+        if (j == nref) {
+            if (nref == 16) {
+                nref = 0;
+                break;
+            }
+            refs[nref++] = k;
+        }
+    }
+    if (nref >= 2 && nfrf % nref == 0) {
+        int no = 0, ok = 1;
+        for (int k = 0; k < nfrf && ok; k++) {
+            if (!(f[k]->reference_node == f[refs[0]]->reference_node &&
+                  f[k]->reference_dir == f[refs[0]]->reference_dir))
+                continue;
+            for (int j = 0; j < nref && ok; j++) {
+                int found = -1, count = 0;
+                for (int q = 0; q < nfrf; q++)
+                    if (f[q]->response_node == f[k]->response_node &&
+                        f[q]->response_dir == f[k]->response_dir &&
+                        f[q]->reference_node == f[refs[j]]->reference_node &&
+                        f[q]->reference_dir == f[refs[j]]->reference_dir)
+                        found = q, count++;
+                ok = count == 1;
+                map[no * nref + j] = found;
+            }
+            no++;
+        }
+        if (ok && no * nref == nfrf) {
+            *No = no;
+            *Ni = nref;
+            return 1;
+        }
+    }
+    *No = nfrf;
+    *Ni = 1;
+    for (int k = 0; k < nfrf; k++)
+        map[k] = k;
+    return 0;
 }
 
 gd_status gd_ema_lscf(int nfrf, const gd_td_function *const *frfs, const gd_ema_options *opt_in,
@@ -126,13 +198,20 @@ gd_status gd_ema_lscf(int nfrf, const gd_td_function *const *frfs, const gd_ema_
     if (st) return st;
     const double *fr = frfs[0]->freq_hz;
     double flo = fr[k0], fhi = fr[k1 - 1], dt = 1 / (2 * fhi);
-    lags L = {N, calloc((size_t)N + 1, sizeof(double)),
-              calloc((size_t)nfrf * (N + 1), sizeof(double)),
-              calloc((size_t)nfrf * (2 * N + 1), sizeof(double))};
-    size_t m = (size_t)N + 1;
-    double *work = malloc((4 * m * m + 4 * m) * sizeof(double));
+    int No, Ni, *map = malloc((size_t)nfrf * sizeof *map + 1);
+    if (!map) return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
+    arrange(nfrf, frfs, opt.poly_reference, &No, &Ni, map);
+    size_t lag = 2 * (size_t)N + 1;
+    lags L = {N,
+              No,
+              Ni,
+              calloc((size_t)N + 1, sizeof(double)),
+              calloc((size_t)No * Ni * Ni * lag, sizeof(double)),
+              calloc((size_t)No * Ni * lag, sizeof(double))};
+    size_t m = (size_t)N + 1, pp = m * (size_t)Ni;
+    double *work = malloc((m * m + 4 * pp * pp + 4 * pp + 8) * sizeof(double));
     gd_ema_result *r = calloc(1, sizeof *r);
-    gd_ema_pole *poles = malloc((size_t)(N + 1) * (N / 2 + 2) * sizeof *poles);
+    gd_ema_pole *poles = malloc((size_t)(N + 1) * ((size_t)N * Ni + 2) * sizeof *poles);
     if (!L.r || !L.t || !L.sp || !work || !r || !poles) {
         st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
         goto done;
@@ -144,13 +223,24 @@ gd_status gd_ema_lscf(int nfrf, const gd_td_function *const *frfs, const gd_ema_
         for (int d = 0; d <= N; d++) {
             if (d % 16 == 0) c = cos(th * d), s = sin(th * d); /* no drift */
             L.r[d] += c;
-            for (int o = 0; o < nfrf; o++) {
-                double hr = frfs[o]->re[k], hi = frfs[o]->im[k];
-                L.t[o * (N + 1) + d] += (hr * hr + hi * hi) * c;
-                /* S_o(d) = -Re(H e^{i th d}); lag -d: -Re(H e^{-i th d}) */
-                L.sp[(size_t)o * (2 * N + 1) + N + d] += -(hr * c - hi * s);
-                if (d) L.sp[(size_t)o * (2 * N + 1) + N - d] += -(hr * c + hi * s);
-            }
+            for (int o = 0; o < No; o++)
+                for (int i = 0; i < Ni; i++) {
+                    const gd_td_function *fi = frfs[map[o * Ni + i]];
+                    double hr = fi->re[k], hi = fi->im[k];
+                    /* S_o(d) = -Re(H e^{i th d}); lag -d: -Re(H e^{-i th d}) */
+                    double *sp = L.sp + ((size_t)o * Ni + i) * lag + N;
+                    sp[d] += -(hr * c - hi * s);
+                    if (d) sp[-d] += -(hr * c + hi * s);
+                    for (int i2 = 0; i2 < Ni; i2++) {
+                        const gd_td_function *f2 = frfs[map[o * Ni + i2]];
+                        double gr = f2->re[k], gi = f2->im[k];
+                        /* conj(H_i) H_i2 e^{+-i th d} */
+                        double cr = hr * gr + hi * gi, ci = hr * gi - hi * gr;
+                        double *t = L.t + (((size_t)o * Ni + i) * Ni + i2) * lag + N;
+                        t[d] += cr * c - ci * s;
+                        if (d) t[-d] += cr * c + ci * s;
+                    }
+                }
             double cn = c * c1 - s * s1;
             s = s * c1 + c * s1;
             c = cn;
@@ -159,7 +249,7 @@ gd_status gd_ema_lscf(int nfrf, const gd_td_function *const *frfs, const gd_ema_
     /* every order: the stabilisation diagram */
     int npoles = 0, prev0 = 0, prevn = 0;
     for (int n = 1; n <= N; n++) {
-        int np = order_poles(&L, nfrf, n, dt, flo, fhi, opt.max_damping, work, poles + npoles);
+        int np = order_poles(&L, n, dt, flo, fhi, opt.max_damping, work, poles + npoles);
         if (np < 0) {
             st = gd_error_set(err, GD_ENUMERIC, "", 0, 0, "LSCF",
                               "the FRFs may be zero or the band too narrow",
@@ -187,6 +277,7 @@ gd_status gd_ema_lscf(int nfrf, const gd_td_function *const *frfs, const gd_ema_
     r->poles = poles;
     poles = NULL;
     r->max_order = N;
+    r->nreferences = Ni;
     r->nfrf = nfrf;
     r->band_lo_hz = flo;
     r->band_hi_hz = fhi;
@@ -212,21 +303,49 @@ gd_status gd_ema_lscf(int nfrf, const gd_td_function *const *frfs, const gd_ema_
             while (b < ns && (sel[b].frequency_hz - sel[b - 1].frequency_hz) / sel[b].frequency_hz <
                                  opt.stab_freq)
                 b++;
+            /* poles per order in the cluster: k at most orders means k modes closer
+             * than the stability tolerance (an x and a y mode seen by two references);
+             * the i-th pole by frequency of each such order is the i-th mode's */
             memset(seen, 0, (size_t)N + 1);
-            int count = 0;
+            int count = 0, hist[8] = {0};
             for (int i = a; i < b; i++)
-                if (!seen[sel[i].order]) seen[sel[i].order] = 1, count++;
-            if (count >= opt.stable_share * norders) {
+                if (seen[sel[i].order] < 100) seen[sel[i].order]++;
+            for (int o = lo_order; o <= N; o++)
+                if (seen[o]) count++, hist[seen[o] < 7 ? seen[o] : 7]++;
+            int k = 1;
+            for (int c = 2; c < 7; c++)
+                if (hist[c] > hist[k]) k = c;
+            if (hist[k] < opt.stable_share * norders) k = 1;
+            int korders = k == 1 ? count : hist[k];
+            for (int sub = 0; sub < k && korders >= opt.stable_share * norders; sub++) {
+                int nt = 0;
+                for (int i = a; i < b; i++) {
+                    if (k > 1 && seen[sel[i].order] != k) continue;
+                    if (k > 1) { /* the rank of pole i among its order's poles */
+                        int rank = 0;
+                        for (int j = a; j < i; j++)
+                            rank += sel[j].order == sel[i].order;
+                        if (rank != sub) continue;
+                    }
+                    tmp[nt++] = sel[i].frequency_hz;
+                }
                 gd_ema_mode *md = &r->modes[r->nmodes++];
-                for (int i = a; i < b; i++)
-                    tmp[i - a] = sel[i].frequency_hz;
-                qsort(tmp, (size_t)(b - a), sizeof *tmp, cmp_double);
-                md->frequency_hz = tmp[(b - a) / 2];
-                for (int i = a; i < b; i++)
-                    tmp[i - a] = sel[i].damping_ratio;
-                qsort(tmp, (size_t)(b - a), sizeof *tmp, cmp_double);
-                md->damping_ratio = tmp[(b - a) / 2];
-                md->stable_count = count;
+                qsort(tmp, (size_t)nt, sizeof *tmp, cmp_double);
+                md->frequency_hz = tmp[nt / 2];
+                nt = 0;
+                for (int i = a; i < b; i++) {
+                    if (k > 1 && seen[sel[i].order] != k) continue;
+                    if (k > 1) {
+                        int rank = 0;
+                        for (int j = a; j < i; j++)
+                            rank += sel[j].order == sel[i].order;
+                        if (rank != sub) continue;
+                    }
+                    tmp[nt++] = sel[i].damping_ratio;
+                }
+                qsort(tmp, (size_t)nt, sizeof *tmp, cmp_double);
+                md->damping_ratio = tmp[nt / 2];
+                md->stable_count = korders;
                 double wn = 2 * M_PI * md->frequency_hz, z = md->damping_ratio;
                 md->lambda_re = -z * wn;
                 md->lambda_im = wn * sqrt(1 - z * z);
@@ -237,7 +356,7 @@ gd_status gd_ema_lscf(int nfrf, const gd_td_function *const *frfs, const gd_ema_
     }
     st = gd_ema_lsfd(nfrf, frfs, k0, k1, r, err);
 done:
-    free(L.r), free(L.t), free(L.sp), free(work), free(poles);
+    free(L.r), free(L.t), free(L.sp), free(work), free(poles), free(map);
     if (st)
         gd_ema_free(r);
     else
