@@ -61,7 +61,18 @@ cJSON *gd_cli_ema_json(const gd_ema_result *r, int nfrf, const gd_td_function *c
         cJSON_AddItemToObject(m, "damping_ratio", gd_cli_json_number(r->modes[j].damping_ratio));
         if (r->npoles) cJSON_AddNumberToObject(m, "stable_orders", r->modes[j].stable_count);
         if (r->residue_re) {
-            /* normalised by the largest residue of the reference's FRFs */
+            /* the reference that excites the mode most (its FRFs' residues), then the
+             * shape over its FRFs normalised by the largest residue */
+            double emax = -1;
+            for (int g = 0; g < nfrf; g++) {
+                double e = 0;
+                for (int o = 0; o < nfrf; o++)
+                    if (frfs[o]->reference_node == frfs[g]->reference_node &&
+                        frfs[o]->reference_dir == frfs[g]->reference_dir)
+                        e += pow(r->residue_re[o + (size_t)j * nfrf], 2) +
+                             pow(r->residue_im[o + (size_t)j * nfrf], 2);
+                if (e > emax) emax = e, ref = g;
+            }
             double br = 0, bi = 0, bm = 0;
             for (int o = 0; o < nfrf; o++) {
                 if (frfs[o]->reference_node != frfs[ref]->reference_node ||
