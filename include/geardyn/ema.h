@@ -38,8 +38,9 @@ typedef struct gd_ema_options {
                                       for each of two or more; 0: one scalar denominator */
 } gd_ema_options;
 
-/* One pole of the stabilisation diagram. status: 'o' new, 'f' frequency stable, 'd'
- * frequency and damping stable against a pole of the order below... 's' both. */
+/* One pole of the stabilisation diagram, compared with the nearest pole of the order
+ * below: 'o' new, 'f' its frequency within stab_freq, 's' and its damping within
+ * stab_damp. */
 typedef struct gd_ema_pole {
     int order;
     double frequency_hz, damping_ratio;
