@@ -211,6 +211,14 @@ TEST(bad_input_is_refused_cleanly)
     CHECK(fails_cleanly(args, "--band", NULL));
     CHECK(fails_cleanly("testmodal examples/rig2018.yaml", "not a test-data file", NULL));
     CHECK(fails_cleanly("testmodal", "give at least one test-data file", NULL));
+    CHECK(
+        fails_cleanly("testmodal examples/mmt2018_coupled_modes.csv", "no FRF in the files", NULL));
+    CHECK(fails_cleanly("correlate examples/rig2018.yaml",
+                        "give a model file and at least one test-data file", NULL));
+    snprintf(args, sizeof args, "testmodal '%s' --method peaks", UFF);
+    CHECK(fails_cleanly(args, "--plot draws LSCF's stabilisation diagram", NULL));
+    snprintf(args, sizeof args, "testmodal '%s' --order 1", UFF);
+    CHECK(fails_cleanly(args, "--order", NULL));
 }
 
 static void done(void)
