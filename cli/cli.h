@@ -15,6 +15,9 @@ int gd_cmd_modal(int argc, char **argv);
 int gd_cmd_static(int argc, char **argv);
 int gd_cmd_mesh_stiffness(int argc, char **argv);
 int gd_cmd_study(int argc, char **argv);
+/* test-analysis correlation (docs/testing.md) */
+int gd_cmd_testmodal(int argc, char **argv);
+int gd_cmd_correlate(int argc, char **argv);
 
 /* Prints "geardyn: error: ..." to stderr and returns the exit code for err. */
 int gd_cli_report(const gd_error *err);

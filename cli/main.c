@@ -40,6 +40,10 @@ static const command COMMANDS[] = {
     {"report", gd_cmd_report,
      "one self-contained HTML report: model drawing, modes, Campbell, FRFs, unbalance, TVMS"},
     {"study", gd_cmd_study, "parameter study: many cases, OpenMP, MPI, shards; CSV and HDF5 table"},
+    {"testmodal", gd_cmd_testmodal,
+     "modes from measured FRFs (UFF 58/58b, CSV): LSCF, peak picking"},
+    {"correlate", gd_cmd_correlate,
+     "model against measured modes and FRFs; model updating to measured frequencies"},
     {"version", cmd_version, "print the version"},
 };
 

@@ -185,7 +185,9 @@ static int out_is_plot(const gd_cli_command *c, const unsigned char *seen, int n
                               out, plot);
 }
 
-int gd_cli_parse(const gd_cli_command *c, int argc, char **argv, void *args, const char **file)
+/* The options of argv into args; positionals [*first, argc) (getopt_long moves them to
+ * the end). 0, -1 (help) or an exit code. */
+static int parse_options(const gd_cli_command *c, int argc, char **argv, void *args, int *first)
 {
     struct option lo[GD_CLI_MAX_OPTS + 2];
     unsigned char seen[GD_CLI_MAX_OPTS] = {0};
@@ -222,10 +224,6 @@ int gd_cli_parse(const gd_cli_command *c, int argc, char **argv, void *args, con
         int rc = apply(c->name, o, optarg, args);
         if (rc) return rc;
     }
-    const char *missing = c->missing ? c->missing : "give exactly one model file";
-    if (optind != argc - 1)
-        return gd_cli_usage_error(c->name, "%s",
-                                  optind < argc && c->several ? c->several : missing);
     for (int k = 0; k < n; k++) {
         const gd_cli_opt *o = &c->opts[k];
         if (o->required && !seen[k] && o->kind == GD_CLI_LIST)
@@ -234,7 +232,30 @@ int gd_cli_parse(const gd_cli_command *c, int argc, char **argv, void *args, con
             return gd_cli_usage_error(c->name, "--%s %s is required", o->name, o->meta);
     }
     if (out_is_plot(c, seen, n, (char *)args)) return GD_EXIT_INPUT;
-    *file = argv[optind];
+    *first = optind;
+    return 0;
+}
+
+int gd_cli_parse(const gd_cli_command *c, int argc, char **argv, void *args, const char **file)
+{
+    int first, rc = parse_options(c, argc, argv, args, &first);
+    if (rc) return rc;
+    const char *missing = c->missing ? c->missing : "give exactly one model file";
+    if (first != argc - 1)
+        return gd_cli_usage_error(c->name, "%s", first < argc && c->several ? c->several : missing);
+    *file = argv[first];
+    return 0;
+}
+
+int gd_cli_parse_files(const gd_cli_command *c, int argc, char **argv, void *args, int min_files,
+                       char ***files, int *nfiles)
+{
+    int first, rc = parse_options(c, argc, argv, args, &first);
+    if (rc) return rc;
+    if (argc - first < min_files)
+        return gd_cli_usage_error(c->name, "%s", c->missing ? c->missing : "give the files");
+    *files = argv + first;
+    *nfiles = argc - first;
     return 0;
 }
 

@@ -72,6 +72,10 @@ typedef struct gd_cli_command {
  * the exit code of the usage error it reported. Options not given leave their field as
  * the caller set it (the defaults). */
 int gd_cli_parse(const gd_cli_command *c, int argc, char **argv, void *args, const char **file);
+/* As gd_cli_parse for a command of several positional arguments (at least min_files):
+ * *files points into argv at the first, *nfiles of them, in their order. */
+int gd_cli_parse_files(const gd_cli_command *c, int argc, char **argv, void *args, int min_files,
+                       char ***files, int *nfiles);
 /* The help of c, generated from its table. */
 void gd_cli_help(const gd_cli_command *c, FILE *f);
 

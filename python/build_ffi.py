@@ -442,6 +442,69 @@ gd_status gd_ltca_map_compute(const gd_gear_pair_geometry *g, const gd_tvms_opti
                               const double *torques, int nloads, gd_ltca_map **out,
                               gd_error *err);
 void gd_ltca_map_free(gd_ltca_map *m);
+/* ---- test data, modal parameters, correlation (docs/testing.md) ---- */
+typedef enum { GD_TD_RECEPTANCE, GD_TD_MOBILITY, GD_TD_ACCELERANCE, GD_TD_RATIO,
+               ... } gd_td_quantity;
+extern const char *const gd_td_quantity_names[4];
+typedef struct { char name[...]; int function_type; int response_node, response_dir;
+                 int reference_node, reference_dir; gd_td_quantity quantity;
+                 char units[...]; double to_si; int n; double *freq_hz; double *re, *im;
+                 int line; char file[...]; } gd_td_function;
+typedef struct { int nfunctions; gd_td_function *functions; int nmodes; double *mode_hz;
+                 double *mode_zeta; ...; } gd_testdata;
+gd_status gd_testdata_read(int nfiles, const char *const *paths, int skip_other_datasets,
+                           gd_testdata **out, gd_error *err);
+void gd_testdata_free(gd_testdata *td);
+const char *gd_td_dir_name(int dir);
+typedef struct { double band_lo_hz, band_hi_hz; int max_order; double stab_freq, stab_damp,
+                 max_damping, stable_share, peak_threshold; int poly_reference; }
+               gd_ema_options;
+typedef struct { int order; double frequency_hz, damping_ratio; char status; } gd_ema_pole;
+typedef struct { double frequency_hz, damping_ratio; double lambda_re, lambda_im;
+                 int stable_count; } gd_ema_mode;
+typedef struct { int nfrf, nmodes; gd_ema_mode *modes; double *residue_re, *residue_im;
+                 int npoles; gd_ema_pole *poles; int max_order; int nreferences;
+                 double band_lo_hz, band_hi_hz; int nlines; } gd_ema_result;
+void gd_ema_options_init(gd_ema_options *opt);
+gd_status gd_ema_lscf(int nfrf, const gd_td_function *const *frfs, const gd_ema_options *opt,
+                      gd_ema_result **out, gd_error *err);
+gd_status gd_ema_peaks(int nfrf, const gd_td_function *const *frfs, const gd_ema_options *opt,
+                       gd_ema_result **out, gd_error *err);
+void gd_ema_free(gd_ema_result *r);
+typedef struct { int npoints; ...; } gd_test_setup;
+gd_status gd_test_setup_load(const char *path, gd_test_setup **out, gd_error *err);
+void gd_test_setup_free(gd_test_setup *s);
+typedef struct { int nmodes; double *hz; double *zeta; int ndofs; int *dof; double *sign;
+                 double *shape_re, *shape_im; } gd_measured_modes;
+gd_status gd_measured_from_ema(const gd_system *sys, const gd_test_setup *setup, int nfrf,
+                               const gd_td_function *const *frfs, const gd_ema_result *r,
+                               gd_measured_modes *out, gd_error *err);
+gd_status gd_measured_from_testdata(const gd_testdata *td, gd_measured_modes *out,
+                                    gd_error *err);
+void gd_measured_modes_free(gd_measured_modes *m);
+typedef struct { int measured, model; double f_test, f_model, diff_pct; double mac;
+                 double zeta_test; } gd_corr_pair;
+typedef struct { int npairs; gd_corr_pair *pairs; double rms_pct; } gd_corr_table;
+gd_status gd_correlate_modes(const gd_system *sys, const gd_measured_modes *mm,
+                             gd_corr_table **out, gd_error *err);
+void gd_corr_table_free(gd_corr_table *t);
+gd_status gd_correlate_frf(const gd_system *sys, const gd_test_setup *setup,
+                           const gd_td_function *f, gd_frf_quantity q, double *re, double *im,
+                           gd_error *err);
+typedef struct gd_model_source gd_model_source;
+gd_status gd_model_source_load(const char *path, gd_model_source **out, gd_error *err);
+void gd_model_source_free(gd_model_source *src);
+typedef struct { const char *key; double lo, hi; } gd_update_param;
+typedef struct { int nparams; const gd_update_param *params; gd_load_options load;
+                 int max_iter; double tol; double step; int fd_check; } gd_update_options;
+typedef struct { int nparams, ntargets, iterations; double *initial, *value, *sigma;
+                 double *sens, *sens_fd; gd_corr_table *before, *after;
+                 int at_bound; } gd_update_result;
+void gd_update_options_init(gd_update_options *opt);
+gd_status gd_model_update(const gd_model_source *src, const gd_measured_modes *mm,
+                          const gd_update_options *opt, gd_update_result **out, gd_error *err);
+void gd_update_free(gd_update_result *r);
+
 """
 
 

@@ -62,5 +62,8 @@
 #include "geardyn/plot.h"
 #include "geardyn/report.h"
 #include "geardyn/study.h"
+#include "geardyn/testdata.h"
+#include "geardyn/ema.h"
+#include "geardyn/correlate.h"
 
 #endif

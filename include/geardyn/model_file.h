@@ -76,6 +76,12 @@ GD_API gd_status gd_model_source_gear_pair(const gd_model_source *src, const cha
  * hint (err->file is "--set PATH"). */
 GD_API gd_status gd_model_source_check_path(const gd_model_source *src, const char *path, int *adds,
                                             gd_error *err);
+/* The number at path (a --set path; the first place it reaches) after opt's overrides
+ * (opt may be NULL), in SI when written with units: the starting value of a parameter
+ * to update (geardyn/correlate.h). GD_EINPUT when the path reaches nothing, a list or
+ * a map, or text that is not a number (err->file is "--update PATH"). */
+GD_API gd_status gd_model_source_value(const gd_model_source *src, const gd_load_options *opt,
+                                       const char *path, double *value, gd_error *err);
 /* The file the source was read from. */
 GD_API const char *gd_model_source_file(const gd_model_source *src);
 GD_API void gd_model_source_free(gd_model_source *src);

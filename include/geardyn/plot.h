@@ -24,6 +24,8 @@
 #define GEARDYN_PLOT_H
 #include "geardyn/export.h"
 #include "geardyn/campbell.h"
+#include "geardyn/correlate.h"
+#include "geardyn/ema.h"
 #include "geardyn/error.h"
 #include "geardyn/frf.h"
 #include "geardyn/mesh_stiffness.h"
@@ -177,5 +179,17 @@ GD_API void gd_plot_waterfall_options_init(gd_plot_waterfall_options *opt);
 GD_API gd_status gd_plot_waterfall(const gd_system *sys, const gd_waterfall *w,
                                    const gd_tr_record *rec, const gd_plot_waterfall_options *opt,
                                    gd_plot **out, gd_error *err);
+
+/* Test data (docs/testing.md): the stabilisation diagram of an LSCF fit r of the FRFs
+ * frfs (poles over model order by stability, the summed |H| on the right-hand axis,
+ * the chosen modes dashed); the overlay of the model's FRFs (model_re/_im[o]: frfs[o]'s
+ * lines) on the measured ones, magnitude and phase, after the correlation table t (may
+ * be NULL). */
+GD_API gd_status gd_plot_stabilisation(const gd_ema_result *r, int nfrf,
+                                       const gd_td_function *const *frfs, gd_plot **out,
+                                       gd_error *err);
+GD_API gd_status gd_plot_correlation(int nfrf, const gd_td_function *const *frfs,
+                                     const double *const *model_re, const double *const *model_im,
+                                     const gd_corr_table *t, gd_plot **out, gd_error *err);
 
 #endif

@@ -18,12 +18,15 @@ from .static import StaticResult
 from .mesh_stiffness import (mesh_stiffness, MeshStiffnessResult, contact_analysis,
                              ContactAnalysisResult, harris_map, HarrisMapResult)
 from .laws import Law
+from .testdata import (read_testdata, testmodal, correlate, update, TestData, EmaResult,
+                       Correlation, UpdateResult)
 
 __all__ = ["GeardynError", "ModelError", "SolverError", "Model", "System", "Matrices", "load",
            "loads", "build", "sweep", "mesh_stiffness", "ModalResult", "CampbellResult",
            "FrfResult", "UnbalanceResult", "TransientResult", "PeriodicResult", "StaticResult",
            "MeshStiffnessResult", "contact_analysis", "ContactAnalysisResult", "harris_map",
-           "HarrisMapResult", "Law",
+           "HarrisMapResult", "Law", "read_testdata", "testmodal", "correlate", "update",
+           "TestData", "EmaResult", "Correlation", "UpdateResult",
            "version", "__version__"]
 
 

@@ -2,6 +2,7 @@
  * (gd_model_source, geardyn/model_file.h): every load clones the parsed document,
  * applies its overrides to the clone and reads the model (or gear pair) from it. */
 #include <stdio.h>
+#include <math.h>
 #include <stdlib.h>
 
 #include "geardyn/model_file.h"
@@ -69,6 +70,48 @@ gd_status gd_model_source_check_path(const gd_model_source *src, const char *pat
     for (size_t i = 0; !st && i < n; i++)
         if (t[i].add) *adds = 1;
     free(t);
+    return st;
+}
+
+gd_status gd_model_source_value(const gd_model_source *src, const gd_load_options *opt,
+                                const char *path, double *value, gd_error *err)
+{
+    *value = NAN;
+    gd_ydoc *doc;
+    gd_status st = clone(src, &doc, err);
+    if (st) return st;
+    st = gd_ydoc_apply(doc, opt, err);
+    char origin[512];
+    snprintf(origin, sizeof origin, "--update %s", path);
+    gd_ytarget *t = NULL;
+    size_t n = 0;
+    if (!st) st = gd_ypath_resolve(doc->root, path, origin, &t, &n, err);
+    const gd_ynode *v = NULL;
+    if (!st && n > 0 && !t[0].add) {
+        const gd_ynode *parent = t[0].parent;
+        v = parent->items[t[0].index];
+    }
+    if (!st && (!v || v->kind != GD_Y_SCALAR))
+        st = gd_error_set(err, GD_EINPUT, origin, 0, 0, path,
+                          "name a number of the file, e.g. bearings.A1.k or meshes.mesh.stiffness",
+                          "'%s' is %s, not a number of the file", path,
+                          v ? gd_ykind_name(v->kind) : "not in the file");
+    if (!st) {
+        /* a plain number, or a number with the units of any quantity */
+        char *end;
+        double x = strtod(v->text, &end);
+        int ok = end != v->text && *end == 0;
+        for (int q = 0; !ok && q < GD_QTY_COUNT_; q++)
+            ok = gd_parse_quantity(v->text, (gd_qty)q, &x, NULL) == GD_OK;
+        if (ok)
+            *value = x;
+        else
+            st = gd_error_set(err, GD_EINPUT, origin, 0, 0, path,
+                              "name a number of the file, e.g. bearings.A1.k",
+                              "'%s' is '%s', not a number", path, v->text);
+    }
+    free(t);
+    gd_ydoc_free(doc);
     return st;
 }
 

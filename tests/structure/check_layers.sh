@@ -9,14 +9,14 @@ cd "$(dirname "$0")/../.."
 
 declare -A level=(
     [core]=0
-    [linalg]=1 [mesh_stiffness]=1 [signal]=1
-    [laws]=2
+    [linalg]=1 [mesh_stiffness]=1 [signal]=1 [testdata]=1
+    [laws]=2 [ema]=2
     [model]=3
     [model_file]=4 [elements]=4
     [system]=5
     [modal]=6 [static]=6
     [campbell]=7 [response]=7 [transient]=7
-    [periodic]=8
+    [periodic]=8 [correlate]=8
     [plot]=9
     [report]=10
     [study]=10
@@ -25,6 +25,7 @@ declare -A level=(
 # public header -> module
 declare -A header=(
     [error.h]=core [units.h]=core [version.h]=core [export.h]=core
+    [testdata.h]=testdata [ema.h]=ema [correlate.h]=correlate
     [sparse.h]=linalg [mesh_stiffness.h]=mesh_stiffness [spectrum.h]=signal [cycles.h]=signal
     [laws.h]=laws [law_type.h]=laws
     [model.h]=model [material.h]=model [builder.h]=model
