@@ -11,6 +11,7 @@
 #include "geardyn/transient_model.h"
 #include "geardyn/units.h"
 #include "transient_periods.h"
+#include "transient_rattle.h"
 #include "transient_poincare.h"
 #include "transient_profile.h"
 #include "transient_record.h"
@@ -336,6 +337,8 @@ typedef struct cli_opts {
     double rtol, unbalance_scale, rho_inf;
     long max_steps;
     int json, quiet, spectrum;
+    int rattle, rattle_batches; /* --rattle, --rattle-batches */
+    double rattle_target;       /* --rattle-precision */
     gd_tr_method method;
     gd_tr_init init;
     gd_window window;
@@ -403,6 +406,17 @@ static int parse_revs_per_block(const char *cmd, const char *text, void *field)
     double v = *(double *)field;
     if (v < 1 || v > 1e5)
         return gd_cli_usage_error(cmd, "--revs-per-block: give 1 to 1e5 revolutions");
+    return 0;
+}
+
+/* --rattle-precision P: a number in (0, 1]. */
+static int parse_rattle_precision(const char *cmd, const char *text, void *field)
+{
+    char *end;
+    double v = strtod(text, &end);
+    if (end == text || *end || !(v > 0 && v <= 1))
+        return gd_cli_usage_error(cmd, "--rattle-precision: '%s' is not a number in (0, 1]", text);
+    *(double *)field = v;
     return 0;
 }
 
@@ -519,6 +533,17 @@ static const gd_cli_opt OPTS[] = {
                "or the speed from rows 'time, speed' (linear between rows, held after the last; "
                "a header line may name the unit: rpm, rad/s (default), Hz); --duration defaults "
                "to the last time"),
+    GD_CLI_ROW("rattle", GD_CLI_FLAG, F(rattle), NULL,
+               "rattle metrics of every backlash mesh over the recorded part (docs/rattle.md): "
+               "separated fraction, impacts per second on the drive and coast flank, impact-speed "
+               "histograms and the impact-energy intensity, each with its 95 % confidence "
+               "half-width from batch means, and the window that would reach "
+               "--rattle-precision"),
+    GD_CLI_ROW("rattle-batches", GD_CLI_INT, F(rattle_batches), "N",
+               "--rattle: batches of the batch means", .def = "10", .lo = 2, .hi = 1000),
+    GD_CLI_ROW("rattle-precision", GD_CLI_CALL, F(rattle_target), "P",
+               "--rattle: the relative half-width wanted of the metrics", .def = "0.1",
+               .call = parse_rattle_precision),
     GD_CLI_ROW("revs-per-block", GD_CLI_CALL, F(revs_per_block), "N",
                "with a speed profile: revolutions per order spectrum (bins 1/N order)", .def = "16",
                .call = parse_revs_per_block),
@@ -553,8 +578,13 @@ static int parse_args(int argc, char **argv, cli_opts *o)
     o->method = GD_TR_AUTO;
     o->init = GD_TR_INIT_REST;
     o->window = GD_WINDOW_HANN;
+    o->rattle_batches = 10;
+    o->rattle_target = 0.1;
     int rc = gd_cli_parse(&TRANSIENT, argc, argv, o, &o->file);
     if (rc) return rc;
+    if (o->rattle && (o->sweep || o->ramp || o->table))
+        return gd_cli_usage_error(CMD, "--rattle is for one run at a constant speed, not with %s",
+                                  o->sweep ? "--sweep-speeds" : "a speed profile");
     if (o->ramp || o->table) {
         const char *clash = o->ramp && o->table ? "--speed-table with --speed-ramp"
                             : o->sweep          ? "--sweep-speeds"
@@ -998,6 +1028,8 @@ int gd_cmd_transient(int argc, char **argv)
     cJSON *summary = NULL;
     gd_cli_periods per;
     memset(&per, 0, sizeof per);
+    gd_cli_rattle rat;
+    memset(&rat, 0, sizeof rat);
     double *ptimes = NULL;
     int npt = 0;
     rc = gd_cli_load(o.file, &o.sets, o.coupling, &m, &s);
@@ -1156,6 +1188,12 @@ int gd_cmd_transient(int argc, char **argv)
         if ((rc = gd_cli_periods_analyse(&per, &recs, res))) goto done;
         cJSON_AddItemToObject(summary, "periods", gd_cli_periods_json(&per, &recs));
     }
+    if (o.rattle) {
+        if ((rc = gd_cli_rattle_analyse(tr, tm, res, ri.from, ri.t_end, o.rattle_batches,
+                                        o.rattle_target, &rat)))
+            goto done;
+        cJSON_AddItemToObject(summary, "rattle", gd_cli_rattle_json(&rat, m, tm));
+    }
     if (o.out &&
         (rc = write_outputs(o.out, &recs, res, spec, summary, ri.speed,
                             o.poincare != NULL || o.periods > 0, o.periods ? &per : NULL, NULL)))
@@ -1172,8 +1210,10 @@ int gd_cmd_transient(int argc, char **argv)
                    : "");
     }
     if (!o.json && o.periods) gd_cli_periods_print(&per, &recs);
+    if (!o.json && o.rattle) gd_cli_rattle_print(&rat, m, tm);
     rc = GD_EXIT_OK;
 done:
+    gd_cli_rattle_free(&rat);
     free(ptimes);
     gd_cli_periods_free(&per);
     cJSON_Delete(summary);
