@@ -322,6 +322,8 @@ static gd_status advance(gd_transient *tr, run_work *w, const gd_transient_optio
                 for (int k = 0; k < nsw; k++)
                     any |= dir[k] != 0;
                 if (any) w->res->events++;
+                changed |= any; /* a crossing back into the same mode (chatter at grazing)
+                                   restarts too: CVODE would stop at its zero next step */
             }
             if (changed) {
                 add_counters(w->mem, w->res);
