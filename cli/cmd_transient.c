@@ -338,6 +338,7 @@ typedef struct cli_opts {
     long max_steps;
     int json, quiet, spectrum;
     int rattle, rattle_batches; /* --rattle, --rattle-batches */
+    const char *rattle_extend;  /* --rattle-extend */
     double rattle_target;       /* --rattle-precision */
     gd_tr_method method;
     gd_tr_init init;
@@ -544,6 +545,9 @@ static const gd_cli_opt OPTS[] = {
     GD_CLI_ROW("rattle-precision", GD_CLI_CALL, F(rattle_target), "P",
                "--rattle: the relative half-width wanted of the metrics", .def = "0.1",
                .call = parse_rattle_precision),
+    GD_CLI_ROW("rattle-extend", GD_CLI_STRING, F(rattle_extend), "T",
+               "--rattle: while a metric's relative half-width exceeds --rattle-precision, run "
+               "again with the window it needs (times 1.2), up to a run of T (e.g. 60s)"),
     GD_CLI_ROW("revs-per-block", GD_CLI_CALL, F(revs_per_block), "N",
                "with a speed profile: revolutions per order spectrum (bins 1/N order)", .def = "16",
                .call = parse_revs_per_block),
@@ -582,6 +586,11 @@ static int parse_args(int argc, char **argv, cli_opts *o)
     o->rattle_target = 0.1;
     int rc = gd_cli_parse(&TRANSIENT, argc, argv, o, &o->file);
     if (rc) return rc;
+    if (o->rattle_extend && !o->rattle)
+        return gd_cli_usage_error(CMD, "--rattle-extend needs --rattle");
+    if (o->rattle_extend && (o->periods || o->poincare))
+        return gd_cli_usage_error(CMD, "--rattle-extend runs again with a longer window: not with "
+                                       "--periods or --poincare");
     if (o->rattle && (o->sweep || o->ramp || o->table))
         return gd_cli_usage_error(CMD, "--rattle is for one run at a constant speed, not with %s",
                                   o->sweep ? "--sweep-speeds" : "a speed profile");
@@ -1122,6 +1131,30 @@ int gd_cmd_transient(int argc, char **argv)
     for (int r = 0; r < recs.n; r++)
         rr[r] = recs.r[r].rec;
     gd_status st = gd_transient_run(tr, &opt, rr, recs.n, &res, &err);
+    /* --rattle-extend: again over the window the metrics need (docs/rattle.md) */
+    double extend = 0;
+    if (!st && o.rattle_extend && parse_time("--rattle-extend", o.rattle_extend, &extend)) {
+        free(rr);
+        rc = GD_EXIT_INPUT;
+        goto done;
+    }
+    for (int pass = 0; !st && extend > 0 && pass < 4; pass++) {
+        if ((rc = gd_cli_rattle_analyse(tr, tm, res, ri.from, ri.t_end, o.rattle_batches,
+                                        o.rattle_target, &rat))) {
+            free(rr);
+            goto done;
+        }
+        double need = 0;
+        for (int j = 0; j < rat.n; j++)
+            if (!rat.metrics[j].converged) need = fmax(need, rat.metrics[j].suggested_duration);
+        gd_cli_rattle_free(&rat);
+        double t_new = fmin(ri.from + 1.2 * need, extend);
+        if (!(need > 0) || !(t_new > ri.t_end * (1 + 1e-9))) break;
+        ri.t_end = opt.t_end = t_new;
+        gd_transient_result_free(res);
+        res = NULL;
+        st = gd_transient_run(tr, &opt, rr, recs.n, &res, &err);
+    }
     free(rr);
     if (pg.drawn) fprintf(stderr, "\r%60s\r", "");
     if (st) {

@@ -109,11 +109,34 @@ TEST(rattle_metrics_in_json_and_text)
     scratch_close(&s);
 }
 
+/* --rattle-extend runs again with the window the metrics ask for until they reach
+ * --rattle-precision (or the limit). */
+TEST(extend_until_the_metrics_are_known)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    cJSON *o = run_json_args(&s, "transient " PAIR " --duration 1 --from 0.5 --rattle "
+                                 "--rattle-precision 0.15 --rattle-extend 20s");
+    REQUIRE(o);
+    const cJSON *r = first(cJSON_GetObjectItemCaseSensitive(o, "rattle"), "meshes");
+    REQUIRE(r);
+    CHECK(jnum(r, "window_s") > 0.5 && jnum(r, "window_s") < 19.5);
+    CHECK(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(r, "converged")));
+    CHECK(jnum(r, "relative_half_width") <= 0.15);
+    cJSON_Delete(o);
+    scratch_close(&s);
+}
+
 TEST(rattle_and_drag_errors_exit_2)
 {
     scratch s;
     REQUIRE(scratch_open(&s));
     CHECK(run_fails_cleanly(&s, RUN " --rattle-precision 2", "--rattle-precision", NULL));
+    CHECK(run_fails_cleanly(&s, "transient " PAIR " --duration 1 --rattle-extend 5s",
+                            "--rattle-extend needs --rattle", NULL));
+    CHECK(run_fails_cleanly(&s, RUN " --rattle-extend 5s --periods 4", "--rattle-extend",
+                            "--periods"));
+    CHECK(run_fails_cleanly(&s, RUN " --rattle-extend 5parsecs", "--rattle-extend", NULL));
     CHECK(run_fails_cleanly(&s,
                             "transient " PAIR " --rattle --sweep-speeds 500:900rpm:3 "
                             "--poincare input",
@@ -132,4 +155,5 @@ TEST(rattle_and_drag_errors_exit_2)
 }
 
 RUN_TESTS(T(onset_brackets_the_inertia_drag_threshold), T(grazing_onset_runs_through),
-          T(rattle_metrics_in_json_and_text), T(rattle_and_drag_errors_exit_2))
+          T(rattle_metrics_in_json_and_text), T(extend_until_the_metrics_are_known),
+          T(rattle_and_drag_errors_exit_2))
