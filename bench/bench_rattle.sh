@@ -26,7 +26,9 @@ FROM=1
 echo "CPU s per simulated s ($D s runs, metrics over the last $((D - FROM)) s)"
 for case in "rattle_pair.yaml 3 mrad|--set prescribed.0.amplitude=3mrad" \
             "rattle_pair.yaml 1.3 mrad (grazing)|--set prescribed.0.amplitude=1.3mrad" \
-            "rattle_idle.yaml 800 rpm 1 N m|"; do
+            "rattle_idle.yaml 800 rpm 1 N m|" \
+            "gearbox_neutral_rattle.yaml 2 N m|" \
+            "gearbox_neutral_rattle.yaml 1.1 N m|--set excitations.loads.firing.amplitude=1.1"; do
     name=${case%%|*}
     sets=${case#*|}
     model=examples/${name%% *}
