@@ -1177,9 +1177,21 @@ int gd_cmd_transient(int argc, char **argv)
             }
         }
     }
+    if (o.rattle && (rc = gd_cli_rattle_analyse(tr, tm, res, ri.from, ri.t_end, o.rattle_batches,
+                                                o.rattle_target, &rat)))
+        goto done;
     if (o.plot) {
         gd_plot *p = NULL;
         gd_status pst = gd_plot_transient(s, res, &p, &err);
+        if (!pst && o.rattle && rat.n > 0) { /* the rattle section after the records' */
+            const char *names[64];
+            int nn = rat.n < 64 ? rat.n : 64;
+            for (int j = 0; j < nn; j++)
+                names[j] = m->meshes[tm->meshes[rat.mesh[j]].mesh].name;
+            gd_plot *pr = NULL;
+            pst = gd_plot_rattle(names, rat.metrics, nn, &pr, &err);
+            if (!pst) pst = gd_plot_append(p, pr, &err);
+        }
         if ((rc = gd_cli_plot_finish(pst, p, &err, o.plot))) goto done;
     }
     int nfree = gd_transient_nstates(tr) / 2;
@@ -1221,12 +1233,7 @@ int gd_cmd_transient(int argc, char **argv)
         if ((rc = gd_cli_periods_analyse(&per, &recs, res))) goto done;
         cJSON_AddItemToObject(summary, "periods", gd_cli_periods_json(&per, &recs));
     }
-    if (o.rattle) {
-        if ((rc = gd_cli_rattle_analyse(tr, tm, res, ri.from, ri.t_end, o.rattle_batches,
-                                        o.rattle_target, &rat)))
-            goto done;
-        cJSON_AddItemToObject(summary, "rattle", gd_cli_rattle_json(&rat, m, tm));
-    }
+    if (o.rattle) cJSON_AddItemToObject(summary, "rattle", gd_cli_rattle_json(&rat, m, tm));
     if (o.out &&
         (rc = write_outputs(o.out, &recs, res, spec, summary, ri.speed,
                             o.poincare != NULL || o.periods > 0, o.periods ? &per : NULL, NULL)))

@@ -106,6 +106,16 @@ TEST(rattle_metrics_in_json_and_text)
     run(&s, &t, RUN);
     CHECK(t.code == 0 && contains(t.out, "rattle over 0.5 s") && contains(t.out, "m12"));
     run_free(&t);
+    /* --plot: the rattle section (metrics table, impact-speed histograms) after the records */
+    char svg[600];
+    snprintf(svg, sizeof svg, "%s/rattle.svg", s.dir);
+    run(&s, &t, RUN " --plot '%s'", svg);
+    CHECK(t.code == 0);
+    run_free(&t);
+    char *text = read_file(svg);
+    CHECK(text && contains(text, "Rattle metrics") && contains(text, "m12: impact speeds") &&
+          contains(text, "coast flank"));
+    free(text);
     scratch_close(&s);
 }
 
