@@ -17,6 +17,9 @@
  * wall at s (Daily & Nece's regime I, torque coefficient C_M = 2 pi / ((s/R) Re_R)):
  *   C_v = pi mu w R^4 / s   (both faces).
  *
+ * The oil: its dynamic viscosity, or (viscosity 0) its kinematic viscosities at 40 and 100 C
+ * and its temperature, through Walther's equation (ASTM D341; drag_speed.c).
+ *
  * The sign is regularised below `velocity` (drag_speed.c). Records: the torque on node
  * (N m, opposing w), w, and Re (the first regime's validity). */
 #include <math.h>
@@ -38,12 +41,16 @@ enum {
     CD_SURFACE,
     CD_GAP,
     CD_VREG,
+    CD_NU40,
+    CD_NU100,
+    CD_TEMP,
     CD_NPARAMS
 };
 
 static const gd_law_param cd_params[CD_NPARAMS] = {
-    {"viscosity", GD_QTY_VISCOSITY, NAN, GD_LAW_POSITIVE,
-     "dynamic viscosity mu of the oil at its temperature (Pa s, e.g. 0.04 Pa*s)"},
+    {"viscosity", GD_QTY_VISCOSITY, 0.0, GD_LAW_NONNEG,
+     "dynamic viscosity mu of the oil at its temperature (Pa s, e.g. 0.04 Pa*s), or 0 and "
+     "nu40, nu100, temperature"},
     {"density", GD_QTY_DENSITY, 870.0, GD_LAW_POSITIVE, "oil density rho (kg/m^3)"},
     {"radius", GD_QTY_LENGTH, NAN, GD_LAW_POSITIVE, "pitch radius R of the gear"},
     {"face_width", GD_QTY_LENGTH, NAN, GD_LAW_POSITIVE, "face width b of the gear"},
@@ -56,6 +63,11 @@ static const gd_law_param cd_params[CD_NPARAMS] = {
      "gap s between each face and a wall for the viscous face drag (0: none)"},
     {"velocity", GD_QTY_ANGULAR_SPEED, 1.0, GD_LAW_POSITIVE,
      "speed w_r below which the torque's sign is regularised (rad/s)"},
+    {"nu40", GD_QTY_DIMLESS, 0.0, GD_LAW_NONNEG,
+     "without viscosity: kinematic viscosity at 40 C, mm^2/s (the ISO VG grade)"},
+    {"nu100", GD_QTY_DIMLESS, 0.0, GD_LAW_NONNEG, "without viscosity: at 100 C, mm^2/s"},
+    {"temperature", GD_QTY_DIMLESS, 40.0, GD_LAW_ANY,
+     "without viscosity: the oil's temperature, C (Walther's equation, ASTM D341)"},
 };
 
 static const int cd_dirs[1] = {5};
@@ -83,7 +95,8 @@ static double cd_torque(const gd_law *law, double w, double *dT)
 {
     const double *p = law->value;
     const double g0 = 9.81;
-    double mu = p[CD_VISCOSITY], rho = p[CD_DENSITY], R = p[CD_RADIUS], b = p[CD_WIDTH];
+    double rho = p[CD_DENSITY], R = p[CD_RADIUS], b = p[CD_WIDTH];
+    double mu = gd_law_drag_mu(p[CD_VISCOSITY], rho, p[CD_NU40], p[CD_NU100], p[CD_TEMP]);
     double h = p[CD_IMMERSION], D = 2.0 * R, nu = mu / rho;
     double s = gd_law_drag_s(w, p[CD_VREG]), g = 0.0, dg = 0.0;
     if (h > 0) {
@@ -121,12 +134,16 @@ static double cd_record(const gd_law *law, int k, const gd_law_point *x)
     if (k == 0) return -cd_torque(law, w, NULL);
     if (k == 1) return w;
     const double *p = law->value;
-    return fabs(w) * p[CD_RADIUS] * p[CD_WIDTH] * p[CD_DENSITY] / p[CD_VISCOSITY];
+    double mu = gd_law_drag_mu(p[CD_VISCOSITY], p[CD_DENSITY], p[CD_NU40], p[CD_NU100], p[CD_TEMP]);
+    return fabs(w) * p[CD_RADIUS] * p[CD_WIDTH] * p[CD_DENSITY] / mu;
 }
 
 static int cd_check(const gd_law *law, const char **field, char *msg, size_t cap)
 {
     const double *p = law->value;
+    if (gd_law_drag_check_oil(p[CD_VISCOSITY], p[CD_NU40], p[CD_NU100], p[CD_TEMP], field, msg,
+                              cap))
+        return 1;
     if (p[CD_IMMERSION] > 2.0 * p[CD_RADIUS]) {
         *field = "immersion";
         snprintf(msg, cap,

@@ -182,7 +182,8 @@ TEST(rattle_and_drag_errors_exit_2)
                             "--poincare input",
                             "--rattle", "--sweep-speeds"));
     CHECK(run_fails_cleanly(&s, RUN " --set laws.drag2.viscosity=-0.04", "laws[0].viscosity",
-                            "must be positive"));
+                            "must not be negative"));
+    CHECK(run_fails_cleanly(&s, RUN " --set laws.drag2.viscosity=0", "viscosity", "nu40"));
     char path[600], args[700];
     snprintf(path, sizeof path, "%s/bad.yaml", s.dir);
     write_file(path, "dofs: [rz]\nshafts:\n  - {name: s, nodes: [{name: m}]}\n"
@@ -190,7 +191,7 @@ TEST(rattle_and_drag_errors_exit_2)
                      "laws:\n  - {type: bearing_drag, node: m, f0: 3, pitch_diameter: 30 mm,\n"
                      "     viscosity: -0.04 Pa*s}\n");
     snprintf(args, sizeof args, "transient %s --duration 1", path);
-    CHECK(run_fails_cleanly(&s, args, "bad.yaml:8:17: laws[0].viscosity", "must be positive"));
+    CHECK(run_fails_cleanly(&s, args, "bad.yaml:8:17: laws[0].viscosity", "must not be negative"));
     scratch_close(&s);
 }
 

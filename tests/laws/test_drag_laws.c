@@ -119,7 +119,48 @@ TEST(bearing_moment_equals_palmgren)
     L.value[2] = -0.01;
     CHECK(gd_law_check(&L, &err) == GD_EINPUT);
     CHECK_STR(err.field, "viscosity");
-    CHECK(strstr(err.message, "> 0") != NULL);
+    CHECK(strstr(err.message, ">= 0") != NULL);
+    /* none at all: the oil is needed, by viscosity or by nu40, nu100 and a temperature */
+    L.value[2] = 0.0;
+    CHECK(gd_law_check(&L, &err) == GD_EINPUT);
+    CHECK_STR(err.field, "viscosity");
+    CHECK(strstr(err.message, "nu40") != NULL);
+}
+
+/* Temperature through Walther's equation (ASTM D341): an ISO VG 68 oil (68 and 8.7 mm^2/s
+ * at 40 and 100 C) gives back its two points and thins in between; the laws then equal
+ * the same laws given that viscosity. */
+TEST(temperature_through_walther)
+{
+    gd_law T, V;
+    churning_idler(&T);
+    const gd_law_type *t = T.type;
+    T.value[gd_law_param_index(t, "viscosity")] = 0.0;
+    T.value[gd_law_param_index(t, "nu40")] = 68.0;
+    T.value[gd_law_param_index(t, "nu100")] = 8.7;
+    gd_error err;
+    REQUIRE(gd_law_check(&T, &err) == GD_OK);
+    double prev = 1e300;
+    for (double c = 40; c <= 100; c += 10) {
+        T.value[gd_law_param_index(t, "temperature")] = c;
+        /* the viscosity the law uses, from its Reynolds number record: Re = w R b rho / mu */
+        double q[2] = {0, 0}, v[2] = {0, 0};
+        T.rate[0] = 200.0;
+        gd_law_point x = {0, q, v};
+        double mu = 200.0 * 0.04 * 0.015 * 870.0 / t->record(&T, 2, &x);
+        if (c == 40) CHECK_REL(mu, 870 * 68e-6, 1e-12);
+        if (c == 100) CHECK_REL(mu, 870 * 8.7e-6, 1e-12);
+        CHECK(mu < prev);
+        prev = mu;
+        /* the same law given that viscosity */
+        churning_idler(&V);
+        V.value[0] = mu;
+        CHECK_REL(torque_at(&T, 200.0), torque_at(&V, 200.0), 1e-12);
+    }
+    /* an oil that thickens when warmer is refused, naming the field */
+    T.value[gd_law_param_index(t, "nu100")] = 80.0;
+    CHECK(gd_law_check(&T, &err) == GD_EINPUT);
+    CHECK_STR(err.field, "nu40");
 }
 
 TEST(churning_bad_parameters_are_located)
@@ -138,4 +179,5 @@ TEST(churning_bad_parameters_are_located)
 }
 
 RUN_TESTS(T(churning_torque_equals_changenet_velex), T(viscous_face_drag_equals_couette),
-          T(bearing_moment_equals_palmgren), T(churning_bad_parameters_are_located))
+          T(temperature_through_walther), T(bearing_moment_equals_palmgren),
+          T(churning_bad_parameters_are_located))
