@@ -167,6 +167,36 @@ TEST(extend_until_the_metrics_are_known)
     scratch_close(&s);
 }
 
+/* `geardyn study --plot`: the rattle map's outputs over the first parameter (speed), one
+ * curve per torque amplitude: 2 x 2 cases, the figure holds both curves per output. */
+TEST(study_plot_draws_the_map)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    char study[600], svg[600], args[2000];
+    snprintf(study, sizeof study, "%s/map.yaml", s.dir);
+    snprintf(svg, sizeof svg, "%s/map.svg", s.dir);
+    write_file(study, "model: " GD_SOURCE_DIR "/examples/rattle_idle.yaml\n"
+                      "analysis: {type: transient, duration: 0.5, from: 0.5}\n"
+                      "parameters:\n"
+                      "  - {name: speed_rpm, path: speed, unit: rpm, values: [700, 900]}\n"
+                      "  - {name: amp, path: excitations.loads.firing.amplitude, unit: N*m,\n"
+                      "     values: [0.25, 2]}\n"
+                      "outputs: [rattle_intensity, separated_fraction]\n");
+    snprintf(args, sizeof args, "study '%s' --out '%s/out' --quiet --plot '%s'", study, s.dir, svg);
+    run_result r;
+    run(&s, &r, "%s", args);
+    CHECK(r.code == 0);
+    run_free(&r);
+    char *text = read_file(svg);
+    CHECK(text && contains(text, "rattle_intensity") && contains(text, "amp=0.25") &&
+          contains(text, "amp=2"));
+    free(text);
+    snprintf(args, sizeof args, "study '%s' --shard 0/2 --plot '%s'", study, svg);
+    CHECK(run_fails_cleanly(&s, args, "--plot", "--shard"));
+    scratch_close(&s);
+}
+
 TEST(rattle_and_drag_errors_exit_2)
 {
     scratch s;
@@ -197,4 +227,5 @@ TEST(rattle_and_drag_errors_exit_2)
 
 RUN_TESTS(T(onset_brackets_the_inertia_drag_threshold), T(grazing_onset_runs_through),
           T(rattle_metrics_in_json_and_text), T(extend_until_the_metrics_are_known),
-          T(gearbox_onset_brackets_the_first_idler_threshold), T(rattle_and_drag_errors_exit_2))
+          T(gearbox_onset_brackets_the_first_idler_threshold), T(study_plot_draws_the_map),
+          T(rattle_and_drag_errors_exit_2))
