@@ -19,7 +19,7 @@ typedef struct study_shard {
 } study_shard;
 
 typedef struct study_args {
-    const char *out, *merge;
+    const char *out, *merge, *plot;
     int resume, quiet, nthreads;
     study_shard shard;
 } study_args;
@@ -58,6 +58,9 @@ static const gd_cli_opt OPTS[] = {
                "`slurm` takes I and N from SLURM_ARRAY_TASK_ID / SLURM_ARRAY_TASK_COUNT (and "
                "_MIN)",
                .call = parse_shard),
+    GD_CLI_ROW("plot", GD_CLI_STRING, F(plot), "FILE",
+               "after the run: each output over the first parameter, one curve per value of "
+               "the others (FILE.svg or .html; docs/studies.md)"),
     GD_CLI_ROW("merge", GD_CLI_STRING, F(merge), "DIR",
                "join DIR/shard-*-of-N into DIR/results.csv and .h5"),
     GD_CLI_ROW("threads", GD_CLI_INT, F(nthreads), "N", "OpenMP threads",
@@ -125,6 +128,12 @@ static int study_main(int argc, char **argv)
     size_t shard = a.shard.i, nshards = a.shard.n;
     if (merge && (out || resume || nshards > 1))
         return gd_cli_usage_error(cmd, "--merge DIR takes no --out, --resume or --shard");
+    if (a.plot && nshards > 1)
+        return gd_cli_usage_error(cmd, "--plot draws the whole table: not with --shard");
+#ifdef GD_WITH_MPI
+    if (a.plot) return gd_cli_usage_error(cmd, "--plot: run without mpirun");
+#endif
+    if (a.plot && (rc = gd_cli_plot_check(a.plot))) return rc;
     char defout[1024];
     if (!out && !merge) {
         const char *base = strrchr(file, '/');
@@ -150,6 +159,7 @@ static int study_main(int argc, char **argv)
     else
         rc = gd_study_run_local(s, out, shard, nshards, resume, progress, nthreads);
 #endif
+    if (!rc && a.plot) rc = gd_cli_study_plot(s, merge ? merge : out, a.plot);
     gd_study_free(s);
     return rc;
 }

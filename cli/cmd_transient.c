@@ -11,6 +11,7 @@
 #include "geardyn/transient_model.h"
 #include "geardyn/units.h"
 #include "transient_periods.h"
+#include "transient_rattle.h"
 #include "transient_poincare.h"
 #include "transient_profile.h"
 #include "transient_record.h"
@@ -339,6 +340,9 @@ typedef struct cli_opts {
     double rtol, unbalance_scale, rho_inf;
     long max_steps;
     int json, quiet, spectrum;
+    int rattle, rattle_batches; /* --rattle, --rattle-batches */
+    const char *rattle_extend;  /* --rattle-extend */
+    double rattle_target;       /* --rattle-precision */
     gd_tr_method method;
     gd_tr_init init;
     gd_window window;
@@ -418,6 +422,17 @@ static int parse_revs_per_block(const char *cmd, const char *text, void *field)
     double v = *(double *)field;
     if (v < 1 || v > 1e5)
         return gd_cli_usage_error(cmd, "--revs-per-block: give 1 to 1e5 revolutions");
+    return 0;
+}
+
+/* --rattle-precision P: a number in (0, 1]. */
+static int parse_rattle_precision(const char *cmd, const char *text, void *field)
+{
+    char *end;
+    double v = strtod(text, &end);
+    if (end == text || *end || !(v > 0 && v <= 1))
+        return gd_cli_usage_error(cmd, "--rattle-precision: '%s' is not a number in (0, 1]", text);
+    *(double *)field = v;
     return 0;
 }
 
@@ -534,6 +549,20 @@ static const gd_cli_opt OPTS[] = {
                "or the speed from rows 'time, speed' (linear between rows, held after the last; "
                "a header line may name the unit: rpm, rad/s (default), Hz); --duration defaults "
                "to the last time"),
+    GD_CLI_ROW("rattle", GD_CLI_FLAG, F(rattle), NULL,
+               "rattle metrics of every backlash mesh over the recorded part (docs/rattle.md): "
+               "separated fraction, impacts per second on the drive and coast flank, impact-speed "
+               "histograms and the impact-energy intensity, each with its 95 % confidence "
+               "half-width from batch means, and the window that would reach "
+               "--rattle-precision"),
+    GD_CLI_ROW("rattle-batches", GD_CLI_INT, F(rattle_batches), "N",
+               "--rattle: batches of the batch means", .def = "10", .lo = 2, .hi = 1000),
+    GD_CLI_ROW("rattle-precision", GD_CLI_CALL, F(rattle_target), "P",
+               "--rattle: the relative half-width wanted of the metrics", .def = "0.1",
+               .call = parse_rattle_precision),
+    GD_CLI_ROW("rattle-extend", GD_CLI_STRING, F(rattle_extend), "T",
+               "--rattle: while a metric's relative half-width exceeds --rattle-precision, run "
+               "again with the window it needs (times 1.2), up to a run of T (e.g. 60s)"),
     GD_CLI_ROW("revs-per-block", GD_CLI_CALL, F(revs_per_block), "N",
                "with a speed profile: revolutions per order spectrum (bins 1/N order)", .def = "16",
                .call = parse_revs_per_block),
@@ -568,8 +597,18 @@ static int parse_args(int argc, char **argv, cli_opts *o)
     o->method = GD_TR_AUTO;
     o->init = GD_TR_INIT_REST;
     o->window = GD_WINDOW_HANN;
+    o->rattle_batches = 10;
+    o->rattle_target = 0.1;
     int rc = gd_cli_parse(&TRANSIENT, argc, argv, o, &o->file);
     if (rc) return rc;
+    if (o->rattle_extend && !o->rattle)
+        return gd_cli_usage_error(CMD, "--rattle-extend needs --rattle");
+    if (o->rattle_extend && (o->periods || o->poincare))
+        return gd_cli_usage_error(CMD, "--rattle-extend runs again with a longer window: not with "
+                                       "--periods or --poincare");
+    if (o->rattle && (o->sweep || o->ramp || o->table))
+        return gd_cli_usage_error(CMD, "--rattle is for one run at a constant speed, not with %s",
+                                  o->sweep ? "--sweep-speeds" : "a speed profile");
     if (o->ramp || o->table) {
         const char *clash = o->ramp && o->table ? "--speed-table with --speed-ramp"
                             : o->sweep          ? "--sweep-speeds"
@@ -1050,6 +1089,8 @@ int gd_cmd_transient(int argc, char **argv)
     cJSON *summary = NULL;
     gd_cli_periods per;
     memset(&per, 0, sizeof per);
+    gd_cli_rattle rat;
+    memset(&rat, 0, sizeof rat);
     double *ptimes = NULL;
     int npt = 0;
     rc = gd_cli_load(o.file, &o.sets, o.coupling, &m, &s);
@@ -1142,6 +1183,30 @@ int gd_cmd_transient(int argc, char **argv)
     for (int r = 0; r < recs.n; r++)
         rr[r] = recs.r[r].rec;
     gd_status st = gd_transient_run(tr, &opt, rr, recs.n, &res, &err);
+    /* --rattle-extend: again over the window the metrics need (docs/rattle.md) */
+    double extend = 0;
+    if (!st && o.rattle_extend && parse_time("--rattle-extend", o.rattle_extend, &extend)) {
+        free(rr);
+        rc = GD_EXIT_INPUT;
+        goto done;
+    }
+    for (int pass = 0; !st && extend > 0 && pass < 4; pass++) {
+        if ((rc = gd_cli_rattle_analyse(tr, tm, res, ri.from, ri.t_end, o.rattle_batches,
+                                        o.rattle_target, &rat))) {
+            free(rr);
+            goto done;
+        }
+        double need = 0;
+        for (int j = 0; j < rat.n; j++)
+            if (!rat.metrics[j].converged) need = fmax(need, rat.metrics[j].suggested_duration);
+        gd_cli_rattle_free(&rat);
+        double t_new = fmin(ri.from + 1.2 * need, extend);
+        if (!(need > 0) || !(t_new > ri.t_end * (1 + 1e-9))) break;
+        ri.t_end = opt.t_end = t_new;
+        gd_transient_result_free(res);
+        res = NULL;
+        st = gd_transient_run(tr, &opt, rr, recs.n, &res, &err);
+    }
     free(rr);
     if (pg.drawn) fprintf(stderr, "\r%60s\r", "");
     if (st) {
@@ -1164,9 +1229,21 @@ int gd_cmd_transient(int argc, char **argv)
             }
         }
     }
+    if (o.rattle && (rc = gd_cli_rattle_analyse(tr, tm, res, ri.from, ri.t_end, o.rattle_batches,
+                                                o.rattle_target, &rat)))
+        goto done;
     if (o.plot) {
         gd_plot *p = NULL;
         gd_status pst = gd_plot_transient(s, res, &p, &err);
+        if (!pst && o.rattle && rat.n > 0) { /* the rattle section after the records' */
+            const char *names[64];
+            int nn = rat.n < 64 ? rat.n : 64;
+            for (int j = 0; j < nn; j++)
+                names[j] = m->meshes[tm->meshes[rat.mesh[j]].mesh].name;
+            gd_plot *pr = NULL;
+            pst = gd_plot_rattle(names, rat.metrics, nn, &pr, &err);
+            if (!pst) pst = gd_plot_append(p, pr, &err);
+        }
         if ((rc = gd_cli_plot_finish(pst, p, &err, o.plot))) goto done;
     }
     int nfree = gd_transient_nstates(tr) / 2;
@@ -1208,6 +1285,7 @@ int gd_cmd_transient(int argc, char **argv)
         if ((rc = gd_cli_periods_analyse(&per, &recs, res))) goto done;
         cJSON_AddItemToObject(summary, "periods", gd_cli_periods_json(&per, &recs));
     }
+    if (o.rattle) cJSON_AddItemToObject(summary, "rattle", gd_cli_rattle_json(&rat, m, tm));
     if (o.out &&
         (rc = write_outputs(o.out, &recs, res, spec, summary, ri.speed,
                             o.poincare != NULL || o.periods > 0, o.periods ? &per : NULL, NULL)))
@@ -1224,8 +1302,10 @@ int gd_cmd_transient(int argc, char **argv)
                    : "");
     }
     if (!o.json && o.periods) gd_cli_periods_print(&per, &recs);
+    if (!o.json && o.rattle) gd_cli_rattle_print(&rat, m, tm);
     rc = GD_EXIT_OK;
 done:
+    gd_cli_rattle_free(&rat);
     free(ptimes);
     gd_cli_periods_free(&per);
     cJSON_Delete(summary);

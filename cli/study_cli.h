@@ -63,6 +63,9 @@ int gd_study_write_results(const gd_study *s, const char *dir, char *const *line
 int gd_study_write_hdf5(const gd_study *s, const char *path, char *const *lines, char *why,
                         size_t why_size);
 
+/* `--plot FILE`: DIR/results.csv drawn, each output over the first parameter, one curve
+ * per combination of the others (study_plot.c); exit code. */
+int gd_cli_study_plot(const gd_study *s, const char *dir, const char *path);
 /* The cases of this run (shard) over nthreads OpenMP threads; exit code. */
 int gd_study_run_local(const gd_study *s, const char *dir, size_t shard, size_t nshards, int resume,
                        int progress, int nthreads);

@@ -59,6 +59,7 @@
 #include "geardyn/periodic.h"
 #include "geardyn/spectrum.h"
 #include "geardyn/cycles.h"
+#include "geardyn/rattle.h"
 #include "geardyn/plot.h"
 #include "geardyn/report.h"
 #include "geardyn/study.h"

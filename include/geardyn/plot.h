@@ -31,6 +31,7 @@
 #include "geardyn/mesh_stiffness.h"
 #include "geardyn/modal.h"
 #include "geardyn/periodic.h"
+#include "geardyn/rattle.h"
 #include "geardyn/static.h"
 #include "geardyn/system.h"
 #include "geardyn/transient.h"
@@ -130,6 +131,19 @@ GD_API gd_status gd_plot_unbalance(const gd_system *sys, const gd_unbalance_opti
  * x and y displacements are both recorded, the amplitude spectrum of each record
  * (FFTW, Hann window) and the contact state of each recorded mesh (drive / separated /
  * coast). GD_EINPUT when there is no record or fewer than 4 samples. */
+/* Curves of a parameter study (`geardyn study --plot`): one panel per output, the output
+ * over x (nx values), one curve per family (nfam, labelled). y[(o * nfam + f) * nx + i]
+ * is output o of family f at x[i] (NaN: no such case, left out). GD_EINPUT when nx < 1,
+ * nfam < 1 or nout < 1. */
+GD_API gd_status gd_plot_lines(const char *title, const char *xlabel, int nx, const double *x,
+                               int nfam, const char *const *families, int nout,
+                               const char *const *outputs, const double *y, gd_plot **out,
+                               gd_error *err);
+/* The rattle metrics of n meshes (geardyn/rattle.h; names[k] labels metrics k): a table
+ * of the metrics with their confidence half-widths and the impact-speed histograms of
+ * the drive and the coast flank (docs/rattle.md). GD_EINPUT when n < 1. */
+GD_API gd_status gd_plot_rattle(const char *const *names, const gd_rattle_metrics *metrics, int n,
+                                gd_plot **out, gd_error *err);
 GD_API gd_status gd_plot_transient(const gd_system *sys, const gd_transient_result *r,
                                    gd_plot **out, gd_error *err);
 

@@ -316,6 +316,15 @@ GD_API void gd_transient_record_values(gd_transient *tr, const gd_tr_record *rec
 GD_API int gd_transient_record_dofs(const gd_transient *tr, const gd_tr_record *rec, int *idx,
                                     int cap);
 
+/* The effective mass of spec mesh `mesh` along its line of action, kg: 1 / (a^T M_ff^-1 a)
+ * with a the mesh vector on the free DOFs (a prescribed side has no motion to give: it
+ * drops out), the mass an impact of the flanks moves before the stiffness acts (the
+ * rattle intensity's m_e, geardyn/rattle.h; for two gears of inertia J1, J2 on base radii
+ * r1, r2 alone on their nodes, 1 / (r1^2 / J1 + r2^2 / J2)). GD_EINPUT: no such mesh, a
+ * reduced problem (its coordinates are not the mesh's), or a mesh on prescribed DOFs only.
+ * Not thread-safe on one problem. */
+GD_API gd_status gd_transient_mesh_mass(gd_transient *tr, int mesh, double *mass, gd_error *err);
+
 /* min, max, mean, rms (root mean square of the value), peak-to-peak, standard deviation
  * over the recorded samples. */
 typedef struct gd_tr_stats {
@@ -330,6 +339,18 @@ typedef struct gd_tr_contact_stats {
     double separated_time, coast_time, drive_time; /* s */
 } gd_tr_contact_stats;
 
+/* One contact change of a backlash mesh at or after record_from (gd_transient_result's
+ * log, in time order): an impact is a change from GD_CONTACT_SEPARATED to a flank, a
+ * separation the change from a flank. velocity is the rate of the effective deflection
+ * d_e = d - e(theta) at the change (m/s): the approach speed of the flanks, > 0 onto the
+ * drive flank and < 0 onto the coast flank (src/signal/rattle.c reads the log). */
+typedef struct gd_tr_contact_event {
+    double t;
+    int mesh;     /* spec mesh index (0 .. nmeshes - 1) */
+    int from, to; /* gd_contact */
+    double velocity;
+} gd_tr_contact_event;
+
 typedef struct gd_transient_result {
     int nout;  /* samples */
     double *t; /* nout */
@@ -339,6 +360,10 @@ typedef struct gd_transient_result {
     gd_tr_stats *stats;
     int nmeshes; /* = spec nmeshes */
     gd_tr_contact_stats *contacts;
+    /* every contact change of the meshes from record_from on (owned; NULL when none);
+     * contact_events_lost counts changes left out when memory ran out */
+    int ncontact_events, contact_events_lost;
+    gd_tr_contact_event *contact_events;
     int ndof;
     double *q_end, *v_end; /* ndof, at t_end (prescribed DOFs from their law) */
     /* Poincare samples (options.sample_times): times, records (record r, sample k:

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "geardyn/rattle.h"
 #include "geardyn/transient_model.h"
 #include "study/study_impl.h"
 
@@ -27,7 +28,25 @@ typedef struct tr_opts {
     char mesh[128];
 } tr_opts;
 
-enum { F_MAX, F_MIN, F_MEAN, F_RMS, F_P2P, F_STD, LOSSES, COAST, DRIVE, SEPARATED };
+enum {
+    F_MAX,
+    F_MIN,
+    F_MEAN,
+    F_RMS,
+    F_P2P,
+    F_STD,
+    LOSSES,
+    COAST,
+    DRIVE,
+    SEPARATED,
+    R_SEP,
+    R_SEP_HW,
+    R_DRIVE,
+    R_COAST,
+    R_INT,
+    R_INT_HW,
+    R_VRMS
+};
 static const gd_study_output_def OUTPUTS[] = {
     {"mesh_force_max", 0, "largest mesh force, N"},
     {"mesh_force_min", 0, "smallest mesh force, N"},
@@ -39,7 +58,41 @@ static const gd_study_output_def OUTPUTS[] = {
     {"coast_impacts", 0, "separated -> coast-side impacts"},
     {"drive_impacts", 0, "separated -> drive-side re-contacts"},
     {"separated_time", 0, "time out of contact, s"},
+    /* rattle metrics (geardyn/rattle.h: 10 batches, 95 %) over the recorded window */
+    {"separated_fraction", 0, "fraction of the window out of contact"},
+    {"separated_fraction_hw", 0, "its 95 % half-width (batch means)"},
+    {"drive_impacts_per_s", 0, "drive-flank impacts per second"},
+    {"coast_impacts_per_s", 0, "coast-flank impacts per second"},
+    {"rattle_intensity", 0, "impact energy per second m_e v^2 / 2, W"},
+    {"rattle_intensity_hw", 0, "its 95 % half-width (batch means), W"},
+    {"impact_speed_rms", 0, "RMS of the impact speeds, m/s"},
 };
+
+/* The rattle metrics of spec mesh k over [t0, t1] (zeros when the mesh has no events
+ * and stays in contact). */
+static gd_status rattle_of(gd_transient *tr, const gd_transient_result *res, int k, double t0,
+                           double t1, gd_rattle_metrics *m, gd_error *err)
+{
+    gd_rattle_event *ev =
+        malloc((size_t)(res->ncontact_events > 0 ? res->ncontact_events : 1) * sizeof *ev);
+    if (!ev) return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
+    int n = 0;
+    for (int i = 0; i < res->ncontact_events; i++) {
+        const gd_tr_contact_event *e = &res->contact_events[i];
+        if (e->mesh == k) ev[n++] = (gd_rattle_event){e->t, e->from, e->to, e->velocity};
+    }
+    gd_rattle_options o;
+    gd_rattle_options_init(&o);
+    o.t0 = t0;
+    o.t1 = t1;
+    const gd_tr_contact_stats *c = &res->contacts[k];
+    o.state0 = c->drive_time > 0 ? 1 : (c->coast_time > 0 ? -1 : 0);
+    gd_error merr;
+    if (gd_transient_mesh_mass(tr, k, &o.mass, &merr)) o.mass = 0.0;
+    gd_status st = gd_rattle_metrics_eval(ev, n, &o, m, err);
+    free(ev);
+    return st;
+}
 
 static gd_status options(gd_yreader *r, const gd_ynode *map, void **out)
 {
@@ -134,7 +187,13 @@ static gd_status run(const gd_study_input *in, const void *opts, const gd_study_
         const gd_tr_stats *f = &res->stats[0];
         int k = gd_transient_model_mesh_index(tm, mesh);
         const gd_tr_contact_stats *c = k >= 0 ? &res->contacts[k] : NULL;
-        for (int i = 0; i < nreq; i++) {
+        gd_rattle_metrics rm;
+        memset(&rm, 0, sizeof rm);
+        int want = 0;
+        for (int i = 0; i < nreq; i++)
+            want |= req[i].def >= R_SEP;
+        if (want && k >= 0) st = rattle_of(tr, res, k, o->from * t_end, t_end, &rm, err);
+        for (int i = 0; st == GD_OK && i < nreq; i++) {
             double v = NAN;
             switch (req[i].def) {
             case F_MAX:
@@ -166,6 +225,27 @@ static gd_status run(const gd_study_input *in, const void *opts, const gd_study_
                 break;
             case SEPARATED:
                 v = c ? c->separated_time : 0;
+                break;
+            case R_SEP:
+                v = rm.separated.mean;
+                break;
+            case R_SEP_HW:
+                v = rm.separated.half_width;
+                break;
+            case R_DRIVE:
+                v = rm.drive_rate.mean;
+                break;
+            case R_COAST:
+                v = rm.coast_rate.mean;
+                break;
+            case R_INT:
+                v = rm.intensity.mean;
+                break;
+            case R_INT_HW:
+                v = rm.intensity.half_width;
+                break;
+            case R_VRMS:
+                v = rm.v_rms;
                 break;
             }
             values[i] = v;

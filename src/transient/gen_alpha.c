@@ -392,7 +392,7 @@ gd_status gd_tr_run_gen_alpha(gd_transient *tr, const gd_transient_options *opt,
                         int ns_ = L->type->mode_at(L, &x);
                         L->mode = s0[i];
                         if (ns_ != s0[i]) {
-                            gd_tr_change_state(tr, i, ns_, tn, from, res->contacts, track);
+                            gd_tr_change_state(tr, i, ns_, tn, from, res, track);
                             res->events++;
                         }
                     }

@@ -170,6 +170,7 @@ void gd_transient_result_free(gd_transient_result *r)
     free(r->values);
     free(r->stats);
     free(r->contacts);
+    free(r->contact_events);
     free(r->q_end);
     free(r->v_end);
     free(r->sample_t);
@@ -284,12 +285,16 @@ static gd_status advance(gd_transient *tr, run_work *w, const gd_transient_optio
                 kr += nsw;
                 int ns = L->type->mode_after(L, L->mode, dir), any = 0;
                 if (ns != L->mode) {
-                    gd_tr_change_state(tr, i, ns, *t, w->from, w->res->contacts, w->track);
+                    /* the state at the root for the event's approach speed */
+                    gd_tr_fill(tr, *t, N_VGetArrayPointer(w->y), tr->q, tr->v, NULL);
+                    gd_tr_change_state(tr, i, ns, *t, w->from, w->res, w->track);
                     changed = 1;
                 }
                 for (int k = 0; k < nsw; k++)
                     any |= dir[k] != 0;
                 if (any) w->res->events++;
+                changed |= any; /* a crossing back into the same mode (chatter at grazing)
+                                   restarts too: CVODE would stop at its zero next step */
             }
             if (changed) {
                 add_counters(w->mem, w->res);
@@ -313,7 +318,7 @@ static gd_status advance(gd_transient *tr, run_work *w, const gd_transient_optio
                 if (!gd_law_nswitches(L)) continue;
                 int ns = gd_tr_missed_mode(tr, L, *t);
                 if (ns != L->mode) {
-                    gd_tr_change_state(tr, i, ns, *t, w->from, w->res->contacts, w->track);
+                    gd_tr_change_state(tr, i, ns, *t, w->from, w->res, w->track);
                     changed = 1;
                     w->res->events++;
                 }

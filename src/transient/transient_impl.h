@@ -179,9 +179,10 @@ typedef struct gd_tr_contact_track {
 void gd_tr_contact_account(gd_tr_contact_stats *cs_, gd_contact state, double t0, double t1,
                            double from);
 /* Law i changes to mode ns at time t: a mesh law's (i < nmesh) contact statistics over
- * [from, t_end]. */
+ * [from, t_end] and its entry in res's contact-event log (its approach speed from the
+ * state in tr->q, tr->v, which the caller has filled at t). */
 void gd_tr_change_state(gd_transient *tr, int i, gd_contact ns, double t, double from,
-                        gd_tr_contact_stats *st, gd_tr_contact_track *track);
+                        gd_transient_result *res, gd_tr_contact_track *track);
 
 /* ---- gen_alpha.c ---- */
 /* Integrates from opt->t_start with the state y = [q_f; q_f'] (updated to the last

@@ -11,7 +11,7 @@
 
 TEST(registry_tables_are_valid)
 {
-    CHECK(gd_nlaw_types == 7);
+    CHECK(gd_nlaw_types == 9);
     for (int i = 0; i < gd_nlaw_types; i++) {
         const gd_law_type *t = gd_law_types[i];
         gd_error err;
@@ -59,6 +59,16 @@ static void sample_law(const gd_law_type *t, gd_law *L)
     } else if (t == &gd_law_unilateral_spring) {
         /* in contact at the sample point (d = 4.5e-5 > gap) */
         L->value[0] = 3e7, L->value[1] = 1e-5, L->value[2] = 25.0;
+    } else if (t == &gd_law_churning_drag) {
+        /* an idler at 150 rad/s, half immersed, with a face wall: both terms matter */
+        L->value[0] = 0.04, L->value[2] = 0.04, L->value[3] = 0.015, L->value[4] = 0.02;
+        L->value[7] = 2e-3;
+        L->rate[0] = 150.0, L->rate[1] = 20.0;
+    } else if (t == &gd_law_bearing_drag) {
+        /* a needle bearing at nu n well above 2000 with a load term */
+        L->value[0] = 3.0, L->value[1] = 0.035, L->value[2] = 0.04, L->value[4] = 5e-4;
+        L->value[5] = 800.0;
+        L->rate[0] = 150.0, L->rate[1] = 20.0;
     }
 }
 
