@@ -14,6 +14,7 @@ int gd_cmd_check(int argc, char **argv);
 int gd_cmd_modal(int argc, char **argv);
 int gd_cmd_static(int argc, char **argv);
 int gd_cmd_mesh_stiffness(int argc, char **argv);
+int gd_cmd_bearing_stiffness(int argc, char **argv);
 int gd_cmd_study(int argc, char **argv);
 
 /* Prints "geardyn: error: ..." to stderr and returns the exit code for err. */

@@ -63,9 +63,11 @@ GD_API gd_status gd_bearing_forces(const gd_bearing_geometry *g, const double d[
                                    double K[25], int *loaded, gd_error *err);
 /* The displacement d (5) at which the bearing carries the load L (5: Fx, Fy, Fz in N, Mx,
  * My in N m) and the stiffness K (25, column-major) there: Newton's method with a line
- * search on the potential from d = 0 (across the clearance). Directions the bearing
- * does not hold (the axial and tilt motion of a radial roller bearing) stay at 0 and
- * must not be loaded. GD_EINPUT when the bearing cannot carry L (named). */
+ * search on the potential from d = 0 (across the clearance). A roller bearing's tilt is
+ * held at 0 (its point contacts at the pitch radius tie its moment to its forces, Mx = R
+ * tan(alpha) Fy, My = -R tan(alpha) Fx: L's moments must be 0), and at contact angle 0
+ * its axial motion too (Fz must be 0). GD_EINPUT when the bearing cannot carry L
+ * (named). */
 GD_API gd_status gd_bearing_at_load(const gd_bearing_geometry *g, const double L[5], double d[5],
                                     double K[25], gd_error *err);
 

@@ -36,7 +36,7 @@ gd_status gd_bearing_geometry_check(const gd_bearing_geometry *g, gd_error *err)
         return bad(err, "element_diameter", "give the ball or roller diameter, > 0",
                    "the element diameter must be positive");
     if (!(g->pitch_diameter > g->element_diameter) || !isfinite(g->pitch_diameter))
-        return bad(err, "pitch_diameter", "the pitch diameter exceeds the element diameter",
+        return bad(err, "pitch_diameter", "give a pitch diameter above the element diameter",
                    "the pitch diameter must be larger than the element diameter");
     if (!(g->contact_angle >= 0 && g->contact_angle < 1.5707963267948966))
         return bad(err, "contact_angle", "give 0 to below 90 deg",
@@ -265,15 +265,23 @@ gd_status gd_bearing_at_load(const gd_bearing_geometry *g, const double L[5], do
         lnorm += s.L[a] * s.L[a];
     }
     lnorm = sqrt(lnorm);
-    /* a roller at contact angle 0 holds no axial motion and no tilt */
-    int radial = g->kind == GD_BEARING_ROLLER && g->contact_angle == 0;
+    /* A roller's point contacts at the pitch radius and a fixed angle tie its moment to
+       its forces (Mx = R tan(alpha) Fy, My = -R tan(alpha) Fx): its tilt is held at 0 and
+       the moment it reacts follows; at contact angle 0 it holds no axial motion either */
+    int roller = g->kind == GD_BEARING_ROLLER, radial = roller && g->contact_angle == 0;
     for (int a = 0; a < 5; a++)
-        if (!radial || a < 2) s.act[s.na++] = a;
-    if (radial && (L[2] != 0 || L[3] != 0 || L[4] != 0))
+        if (!roller || a < (radial ? 2 : 3)) s.act[s.na++] = a;
+    if (radial && L[2] != 0)
         return bad(err, "load",
                    "a roller bearing at contact angle 0 carries radial load only: give a "
                    "contact angle (tapered rollers) or put the axial load on another bearing",
-                   "the bearing cannot carry an axial load or a moment");
+                   "the bearing cannot carry an axial load");
+    if (roller && (L[3] != 0 || L[4] != 0))
+        return bad(err, "load",
+                   "a roller bearing's moment follows from its forces (Mx = R tan(alpha) Fy, "
+                   "My = -R tan(alpha) Fx, R the pitch radius): give Mx = My = 0; its tilt is "
+                   "held at 0",
+                   "the moments of a roller bearing are not free");
     double y[5] = {0}, r[5], J[25], dy[5], sv[5];
     int found = 0;
     for (int it = 0; it < 300 && !found; it++) {
@@ -301,10 +309,8 @@ gd_status gd_bearing_at_load(const gd_bearing_geometry *g, const double L[5], do
     if (!found)
         return bad(err, "load",
                    g->kind == GD_BEARING_ROLLER
-                       ? "a roller's contact angle is fixed, so its elements' axial forces tie "
-                         "the moment to the radial load (Mx = R tan(alpha) Fy, My = -R "
-                         "tan(alpha) Fx, R the pitch radius): give a load that satisfies it, "
-                         "or the pair of bearings that carries the rest"
+                       ? "a tapered roller bearing carries axial load in one direction only "
+                         "(+z pushes the inner ring into its cone): check the sign of Fz"
                        : "check the load against the geometry: a ball bearing carries axial "
                          "load and moments through its contact angle and groove conformity",
                    "the bearing finds no position that carries the load");

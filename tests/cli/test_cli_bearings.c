@@ -106,5 +106,49 @@ TEST(operating_point_options)
     scratch_close(&s);
 }
 
-RUN_TESTS(T(roller_static_and_modal_at_its_load), T(journal_at_rest_is_an_error_or_a_flagged_speed),
-          T(operating_point_options))
+/* bearing-stiffness: the table's ball bearing at a radial load (its stiffness from the
+ * library, tests/laws/test_bearing_geometry.c), and its located errors */
+TEST(bearing_stiffness_from_a_table)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    cJSON *o = run_json_args(&s, "bearing-stiffness examples/bearings.yaml --bearing 6205 --load "
+                                 "0,1kN");
+    REQUIRE(o);
+    CHECK_STR(jstr(o, "bearing"), "6205");
+    CHECK_STR(jstr(o, "type"), "ball");
+    CHECK_REL(jnum(o, "contact_constant"), 9.31923e9, 1e-5);
+    const cJSON *K = cJSON_GetObjectItemCaseSensitive(o, "stiffness");
+    CHECK_REL(cJSON_GetArrayItem(cJSON_GetArrayItem(K, 1), 1)->valuedouble, 1.07051e8, 1e-5);
+    CHECK(jnum(o, "loaded") == 4);
+    cJSON_Delete(o);
+    run_result r;
+    run(&s, &r, "bearing-stiffness examples/bearings.yaml --bearing X");
+    CHECK(r.code == 2 && contains(r.err, "bearings.yaml:6:3: --bearing: no bearing named 'X'") &&
+          contains(r.err, "'NU205'"));
+    run_free(&r);
+    run(&s, &r, "bearing-stiffness examples/bearings.yaml --bearing NU205 --load 0,1kN,100");
+    CHECK(r.code == 2 && contains(r.err, "cannot carry an axial load") && !r.out[0]);
+    run_free(&r);
+    run(&s, &r, "bearing-stiffness examples/bearings.yaml --load 1,2,3,4,5,6");
+    CHECK(r.code == 2 && contains(r.err, "at most five"));
+    run_free(&r);
+    run(&s, &r, "bearing-stiffness examples/bearings.yaml --load 1kg");
+    CHECK(r.code == 2 && contains(r.err, "--load"));
+    run_free(&r);
+    char path[256];
+    snprintf(path, sizeof path, "%s/t.yaml", s.dir);
+    write_file(path, "bearings:\n  - {name: a, type: ball, elements: 9, element_diameter: 40 "
+                     "mm,\n     pitch_diameter: 39 mm}\n");
+    run(&s, &r, "bearing-stiffness '%s'", path);
+    CHECK(r.code == 2 && contains(r.err, "t.yaml:3:22: bearings[0].pitch_diameter"));
+    run_free(&r);
+    write_file(path, "bearings:\n  - {name: a, type: ball, elements: 9, element_diam: 4 mm}\n");
+    run(&s, &r, "bearing-stiffness '%s'", path);
+    CHECK(r.code == 2 && contains(r.err, "element_diam"));
+    run_free(&r);
+    scratch_close(&s);
+}
+
+RUN_TESTS(T(bearing_stiffness_from_a_table), T(roller_static_and_modal_at_its_load),
+          T(journal_at_rest_is_an_error_or_a_flagged_speed), T(operating_point_options))

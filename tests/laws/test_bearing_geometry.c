@@ -146,13 +146,15 @@ TEST(tangent_against_central_differences)
     for (int kind = 0; kind < 2; kind++) {
         gd_bearing_geometry g = kind ? roller(15 * M_PI / 180) : ball(25 * M_PI / 180, -2e-6);
         double L[5] = {700, -1200, 2500, 15, -8}, d[5], K[25], F[5];
-        if (kind) { /* fixed angle: the moment the radial load brings along */
-            double rt = 0.5 * g.pitch_diameter * tan(g.contact_angle);
-            L[3] = rt * L[1] + 0.0;
-            L[4] = -rt * L[0];
-        }
+        double rt = 0.5 * g.pitch_diameter * tan(g.contact_angle);
+        if (kind) L[3] = L[4] = 0; /* a roller's tilt is held: its moments follow */
         REQUIRE(gd_bearing_at_load(&g, L, d, K, &err) == GD_OK);
         REQUIRE(gd_bearing_forces(&g, d, F, NULL, NULL, &err) == GD_OK);
+        if (kind) {
+            CHECK(d[3] == 0 && d[4] == 0);
+            L[3] = rt * L[1]; /* Mx = R tan(alpha) Fy, My = -R tan(alpha) Fx */
+            L[4] = -rt * L[0];
+        }
         for (int a = 0; a < 5; a++)
             CHECK_ABS(F[a], L[a], 1e-9 * 2500);
         double big = 0, asym = 0, worst = 0, size = 0;
@@ -217,7 +219,13 @@ TEST(bad_input_is_named)
     double axial[5] = {0, 100, 50, 0, 0};
     CHECK(gd_bearing_at_load(&g, axial, d, K, &err) == GD_EINPUT);
     CHECK_STR(err.field, "load");
+    CHECK(strstr(err.message, "axial") != NULL);
     CHECK(strstr(err.hint, "contact angle") != NULL);
+    g = roller(0.2);
+    double moment[5] = {0, 100, 50, 1, 0};
+    CHECK(gd_bearing_at_load(&g, moment, d, K, &err) == GD_EINPUT);
+    CHECK(strstr(err.message, "moments") != NULL);
+    g = roller(0);
     double nan_load[5] = {NAN, 0, 0, 0, 0};
     CHECK(gd_bearing_at_load(&g, nan_load, d, K, &err) == GD_EINPUT);
     g = roller(0);

@@ -28,7 +28,7 @@ declare -A header=(
     [sparse.h]=linalg [mesh_stiffness.h]=mesh_stiffness [spectrum.h]=signal [cycles.h]=signal
     [laws.h]=laws [law_type.h]=laws [bearing_geometry.h]=laws
     [model.h]=model [material.h]=model [builder.h]=model
-    [model_file.h]=model_file [elements.h]=elements
+    [model_file.h]=model_file [bearing_table.h]=model_file [elements.h]=elements
     [system.h]=system
     [modal.h]=modal [static.h]=static
     [campbell.h]=campbell [waterfall.h]=campbell [probe.h]=response [frf.h]=response [unbalance.h]=response
