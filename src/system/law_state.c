@@ -216,14 +216,17 @@ static double diag_mass(const gd_system *s, int i)
  * whose residual is below (1 - 1e-4 a) res. Returns that residual, or res if none. */
 static double search(const gd_system *s, double W, const double *K, const double *f0,
                      const int *held, const double *q, const double *dq, double *qt, double *r,
-                     double res, int halvings)
+                     double res, int halvings, double *taken)
 {
     double a = 1.0;
     for (int k = 0; k < halvings; k++, a *= 0.5) {
         for (int i = 0; i < s->ndof; i++)
             qt[i] = q[i] + a * dq[i];
         double rt = residual(s, W, K, f0, held, qt, r, NULL);
-        if (rt < (1.0 - 1e-4 * a) * res) return rt;
+        if (rt < (1.0 - 1e-4 * a) * res) {
+            if (taken) *taken = a;
+            return rt;
+        }
     }
     return res;
 }
@@ -309,11 +312,17 @@ int gd_system_law_equilibrium(const gd_system *s, double speed, const double *K,
         for (int i = 0; i < n; i++)
             dq[i] = -r[i];
         int newton = !solve(n, J, dq, Jc, piv);
-        double rt = newton ? search(s, speed, K, f0, held, q, dq, qt, r, res, 30) : res;
-        if (!(rt < res) && newton && energy < 50) {
-            /* the residual's norm refuses the Newton step: minimise the potential along it */
+        double a = 1.0;
+        double rt = newton ? search(s, speed, K, f0, held, q, dq, qt, r, res, 30, &a) : res;
+        if ((!(rt < res) || a < 0.125) && newton && energy < 50) {
+            /* the residual's norm refuses the Newton step, or takes a sliver of it (a
+               crawl where Hertz contacts stiffen from nothing): minimise the potential
+               along it instead */
             if (energy_search(s, speed, K, f0, held, q, dq, qt, r))
                 rt = residual(s, speed, K, f0, held, qt, r, NULL), energy++, moved = 1;
+            else if (rt < res) /* the sliver, recomputed (the search overwrote qt) */
+                for (int i = 0; i < n; i++)
+                    qt[i] = q[i] + a * dq[i];
         }
         if (!(rt < res) && !moved) {
             /* no Newton descent: the laws are stiffless where they stand (a Hertzian
@@ -324,7 +333,7 @@ int gd_system_law_equilibrium(const gd_system *s, double speed, const double *K,
             residual(s, speed, K, f0, held, q, r, NULL); /* r, overwritten by the search */
             for (int i = 0; i < n; i++)
                 dq[i] = diag_mass(s, i) > 0 ? -r[i] / diag_mass(s, i) : 0.0;
-            rt = search(s, speed, K, f0, held, q, dq, qt, r, res, 60);
+            rt = search(s, speed, K, f0, held, q, dq, qt, r, res, 60, NULL);
             if (!(rt < res) && energy < 50) {
                 residual(s, speed, K, f0, held, q, r, NULL);
                 if (energy_search(s, speed, K, f0, held, q, dq, qt, r))
