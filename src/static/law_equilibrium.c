@@ -135,6 +135,15 @@ gd_status gd_static_operating_point(gd_system *sys, const gd_static_options *opt
     if ((st = gd_st_holds(sys, Kd, opt, held, err))) goto out;
     if ((st = gd_system_set_operating_point(sys, GD_OPERATING_STATIC, f, held, err))) goto out;
     if (check) st = gd_st_solve_with_laws(sys, K, f, held, speed, q, err);
+    /* the state the analyses will linearise about (from rest, not from the linear
+       solution static starts from): never silently q = 0 where static found a state */
+    if (check && !st && !gd_system_law_state(sys, speed, q))
+        st = gd_error_set(err, GD_ENUMERIC, m->file, 0, 0, "laws",
+                          "use --operating-point zero to linearise at q = 0, and report the "
+                          "model: static finds its equilibrium",
+                          "the linear analyses' equilibrium iteration did not converge at %g "
+                          "rad/s",
+                          speed);
 out:
     free(K);
     free(Kd);

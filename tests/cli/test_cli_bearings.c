@@ -64,6 +64,19 @@ TEST(journal_at_rest_is_an_error_or_a_flagged_speed)
     CHECK(cJSON_GetArraySize(bad) == 1 && cJSON_GetArrayItem(bad, 0)->valuedouble == 0);
     cJSON_Delete(o);
     run_free(&r);
+    /* a journal bearing with zero clearance: the law's located bound */
+    char *text = read_file(GD_SOURCE_DIR "/examples/jeffcott_journal.yaml"), path[256];
+    REQUIRE(text);
+    char *at = strstr(text, "clearance: 50 um");
+    REQUIRE(at);
+    memcpy(at, "clearance:  0 um", 16);
+    snprintf(path, sizeof path, "%s/zero.yaml", s.dir);
+    write_file(path, text);
+    free(text);
+    run(&s, &r, "modal '%s' --speed 1000", path);
+    CHECK(r.code == 2 && contains(r.err, "zero.yaml:22:") &&
+          contains(r.err, "laws[0].clearance: must be positive"));
+    run_free(&r);
     /* modal at a speed: the film's equilibrium, no error */
     run(&s, &r, "modal " JOURNAL " --speed 1000");
     CHECK(r.code == 0 && contains(r.out, "2 law(s) linearised about the static equilibrium"));
