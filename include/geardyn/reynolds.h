@@ -41,4 +41,17 @@ GD_API gd_status gd_reynolds_force(const gd_sfd_params *p, const gd_reynolds_gri
                                    double y, double vx, double vy, double *fx, double *fy,
                                    gd_error *err);
 
+/* A plain journal bearing of the finite-length film under the static load W (N, along
+ * -y: the journal is pushed down) at spin w (rad/s > 0, about +z): the film force is the
+ * squeeze film's in the frame turning at w / 2 (src/laws/journal_bearing.c). Solves the
+ * journal's equilibrium (Newton on the film force, its Jacobian by central differences)
+ * and gives the eccentricity ratio eps, the attitude angle (rad, between the load line
+ * and the line of centres) and the eight coefficients K = -dF/dq, C = -dF/dq' (row-major
+ * [xx xy yx yy], N/m and N s/m) by central differences (steps 1e-5 of the clearance and
+ * of c w). GD_EINPUT when the film cannot carry W below the eccentricity cap or for bad
+ * parameters; the errors of gd_reynolds_force. */
+GD_API gd_status gd_reynolds_journal(const gd_sfd_params *p, const gd_reynolds_grid *grid,
+                                     double load, double speed, double *eps, double *attitude,
+                                     double K[4], double C[4], gd_error *err);
+
 #endif

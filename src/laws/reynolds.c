@@ -111,3 +111,81 @@ gd_status gd_reynolds_force(const gd_sfd_params *p, const gd_reynolds_grid *grid
     free(h3);
     return st;
 }
+
+/* the journal's film force at (x, y, vx, vy) spinning at w: the squeeze film's in the
+   frame turning at w / 2 */
+static gd_status journal_force(const gd_sfd_params *p, const gd_reynolds_grid *g, double w,
+                               const double *u, double *f, gd_error *err)
+{
+    double h = 0.5 * w;
+    return gd_reynolds_force(p, g, u[0], u[1], u[2] + h * u[1], u[3] - h * u[0], &f[0], &f[1], err);
+}
+
+/* J[2 x 4] row-major = dF/d(x, y, vx, vy) by central differences */
+static gd_status jacobian(const gd_sfd_params *p, const gd_reynolds_grid *g, double w,
+                          const double *u, double *J, gd_error *err)
+{
+    double hs[4] = {1e-5 * p->clearance, 1e-5 * p->clearance, 1e-5 * p->clearance * w,
+                    1e-5 * p->clearance * w};
+    for (int j = 0; j < 4; j++) {
+        double up[4] = {u[0], u[1], u[2], u[3]}, um[4] = {u[0], u[1], u[2], u[3]}, fp[2], fm[2];
+        up[j] += hs[j];
+        um[j] -= hs[j];
+        gd_status st;
+        if ((st = journal_force(p, g, w, up, fp, err)) ||
+            (st = journal_force(p, g, w, um, fm, err)))
+            return st;
+        for (int i = 0; i < 2; i++)
+            J[4 * i + j] = (fp[i] - fm[i]) / (2 * hs[j]);
+    }
+    return GD_OK;
+}
+
+gd_status gd_reynolds_journal(const gd_sfd_params *p, const gd_reynolds_grid *grid, double load,
+                              double speed, double *eps, double *attitude, double K[4], double C[4],
+                              gd_error *err)
+{
+    if (!(load > 0) || !isfinite(load) || !(speed > 0) || !isfinite(speed))
+        return gd_error_set(err, GD_EINPUT, "", 0, 0, "load", "give a load and a speed > 0",
+                            "a journal bearing's equilibrium needs a load and a speed");
+    const double c = p->clearance;
+    const double emax = p->max_eccentricity > 0 ? p->max_eccentricity : 0.995;
+    /* start below the centre, where the load pushes */
+    double u[4] = {0, -0.3 * c, 0, 0}, f[2], J[8];
+    gd_status st;
+    int found = 0;
+    for (int it = 0; it < 60 && !found; it++) {
+        if ((st = journal_force(p, grid, speed, u, f, err))) return st;
+        double r0 = f[0], r1 = f[1] - load; /* film force + load (0, -W) */
+        if (hypot(r0, r1) <= 1e-8 * load) {
+            found = 1;
+            break;
+        }
+        if ((st = jacobian(p, grid, speed, u, J, err))) return st;
+        double a = J[0], b = J[1], cc = J[4], d = J[5], det = a * d - b * cc;
+        if (!(fabs(det) > 0)) break;
+        double dx = -(d * r0 - b * r1) / det, dy = -(-cc * r0 + a * r1) / det;
+        /* keep the journal inside the cap: halve the step until it is */
+        double t = 1;
+        while (hypot(u[0] + t * dx, u[1] + t * dy) > emax * c && t > 1e-6)
+            t *= 0.5;
+        u[0] += t * dx;
+        u[1] += t * dy;
+    }
+    if (!found)
+        return gd_error_set(err, GD_EINPUT, "", 0, 0, "load",
+                            "raise the speed, the viscosity or the bearing length, or lower the "
+                            "load",
+                            "the finite-length film carries no equilibrium for %g N at %g rad/s "
+                            "below eccentricity %g",
+                            load, speed, emax);
+    *eps = hypot(u[0], u[1]) / c;
+    *attitude = atan2(fabs(u[0]), -u[1]);
+    if ((st = jacobian(p, grid, speed, u, J, err))) return st;
+    for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 2; j++) {
+            K[2 * i + j] = -J[4 * i + j];
+            C[2 * i + j] = -J[4 * i + j + 2];
+        }
+    return GD_OK;
+}
