@@ -14,6 +14,7 @@ int gd_cmd_check(int argc, char **argv);
 int gd_cmd_modal(int argc, char **argv);
 int gd_cmd_static(int argc, char **argv);
 int gd_cmd_mesh_stiffness(int argc, char **argv);
+int gd_cmd_bearing_stiffness(int argc, char **argv);
 int gd_cmd_study(int argc, char **argv);
 /* test-analysis correlation (docs/testing.md) */
 int gd_cmd_testmodal(int argc, char **argv);

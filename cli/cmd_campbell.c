@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "operating_point.h"
 #include "options.h"
 #include "geardyn/campbell.h"
 #include "geardyn/units.h"
@@ -15,6 +16,7 @@ typedef struct campbell_args {
     const char *speeds, *coupling, *out, *orders, *plot, *maxf, *oper, *units;
     gd_cli_sets sets;
     int json;
+    gd_cli_operating op;
 } campbell_args;
 
 #define F(m) offsetof(campbell_args, m)
@@ -46,6 +48,7 @@ static const gd_cli_opt OPTS[] = {
                "shade this speed range on the plot and give each critical speed's separation "
                "margin to it (e.g. 2500:3500rpm)"),
     GD_CLI_ROW_THREADS(campbell_args, opt.nthreads, "speeds"),
+    GD_CLI_ROWS_OPERATING(campbell_args, op),
     GD_CLI_ROW_MODEL(campbell_args, coupling, sets),
     GD_CLI_ROW_JSON(campbell_args, json),
     GD_CLI_ROW_OUT(campbell_args, out,
@@ -336,6 +339,13 @@ int gd_cmd_campbell(int argc, char **argv)
         free(sp);
         return rc;
     }
+    if ((rc = gd_cli_operating_apply(s, &a.op, -1, 0))) {
+        gd_system_free(s);
+        gd_model_free(m);
+        free(ord);
+        free(sp);
+        return rc;
+    }
     gd_campbell_result *r;
     gd_error err;
     gd_error_clear(&err);
@@ -362,15 +372,20 @@ int gd_cmd_campbell(int argc, char **argv)
             rc = gd_cli_plot_finish(pst, p, &err, plot);
         }
         if (out && rc == GD_EXIT_OK) rc = write_csv(r, out);
+        int *bad = calloc((size_t)r->nspeeds + 1, sizeof *bad);
+        if (rc == GD_EXIT_OK) gd_cli_operating_scan(s, r->speeds, r->nspeeds, bad);
         if (rc == GD_EXIT_OK) {
             if (a.json) {
                 cJSON *o = result_json(s, r);
+                gd_cli_operating_json(o, s, &a.op, r->speeds, bad, bad ? r->nspeeds : 0);
                 gd_cli_print_json(stdout, o);
                 cJSON_Delete(o);
             } else {
                 print_tables(s, r, &u);
+                gd_cli_operating_print(s, &a.op, 1);
             }
         }
+        free(bad);
         gd_campbell_free(r);
     }
     gd_system_free(s);

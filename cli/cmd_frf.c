@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "operating_point.h"
 #include "options.h"
 #include "sweep_output.h"
 
@@ -16,6 +17,7 @@ typedef struct frf_args {
     const char *input, *freq, *speed, *coupling, *out, *outs[MAXOUT], *plot, *units;
     int nouts, json;
     gd_cli_sets sets;
+    gd_cli_operating op;
 } frf_args;
 
 #define F(m) offsetof(frf_args, m)
@@ -39,6 +41,7 @@ static const gd_cli_opt OPTS[] = {
                "receptance, mobility or accelerance (DOF outputs)", .def = "receptance",
                .word = "receptance|mobility|accelerance"),
     GD_CLI_ROW_THREADS(frf_args, opt.nthreads, "frequencies"),
+    GD_CLI_ROWS_OPERATING(frf_args, op),
     GD_CLI_ROW_MODEL(frf_args, coupling, sets),
     GD_CLI_ROW_JSON(frf_args, json),
     GD_CLI_ROW_OUT(frf_args, out, "write DIR/frf.csv (long form)"),
@@ -100,6 +103,7 @@ int gd_cmd_frf(int argc, char **argv)
         rc = GD_EXIT_INPUT;
         goto done;
     }
+    if ((rc = gd_cli_operating_apply(s, &a.op, opt.speed, 1))) goto done;
     if ((rc = gd_cli_parse_input(cmd, s, input, &inputs[0], &xy, inlabel, sizeof inlabel)))
         goto done;
     if (xy) {
@@ -230,6 +234,7 @@ int gd_cmd_frf(int argc, char **argv)
         cJSON *arr = cJSON_AddArrayToObject(o, "outputs");
         for (int k = 0; k < nser; k++)
             cJSON_AddItemToArray(arr, gd_series_json(&ser[k]));
+        gd_cli_operating_json(o, s, &a.op, NULL, NULL, 0);
         gd_cli_print_json(stdout, o);
         cJSON_Delete(o);
     } else {
@@ -239,6 +244,7 @@ int gd_cmd_frf(int argc, char **argv)
                opt.method == GD_FRF_MODAL ? "modal" : "direct");
         gd_series_table(stdout, ser, nser, u.freq_hz ? "f(Hz)" : "w(rad/s)",
                         gd_cli_freq_out(&u, 1.0));
+        gd_cli_operating_print(s, &a.op, 0);
     }
 done:
     free(ser);

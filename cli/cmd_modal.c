@@ -7,12 +7,14 @@
 #include "geardyn/modal.h"
 #include "modal_directional.h"
 #include "modal_groups.h"
+#include "operating_point.h"
 #include "options.h"
 
 typedef struct modal_args {
     gd_modal_options opt;
     const char *coupling, *out, *plot;
     gd_cli_sets sets;
+    gd_cli_operating op;
     int json, nmodes, by_shaft, directional;
 } modal_args;
 
@@ -33,6 +35,7 @@ static const gd_cli_opt OPTS[] = {
                           "auto: the cheaper of the two by a measured cost model; dense: LAPACK "
                           "(all modes); sparse: shift-invert Krylov-Schur with a sparse LU (the "
                           "lowest N modes, needs mass on every DOF)"),
+    GD_CLI_ROWS_OPERATING(modal_args, op),
     GD_CLI_ROW_MODEL(modal_args, coupling, sets),
     GD_CLI_ROW("group", GD_CLI_CHOICE, F(by_shaft), "shaft",
                "also the strain energy per shaft with its gears, bearings and meshes (half of one "
@@ -207,6 +210,11 @@ int gd_cmd_modal(int argc, char **argv)
     rc = gd_cli_load(file, &a.sets, a.coupling, &m, &s);
     if (rc) return rc;
     if (opt.speed < 0) opt.speed = m->speed;
+    if ((rc = gd_cli_operating_apply(s, &a.op, opt.speed, 1))) {
+        gd_system_free(s);
+        gd_model_free(m);
+        return rc;
+    }
     opt.nmodes = a.nmodes >= 0 ? a.nmodes : (s->ndof <= 30 ? 0 : 20);
     gd_modal_result *r = NULL;
     gd_error err;
@@ -229,12 +237,14 @@ int gd_cmd_modal(int argc, char **argv)
                 if (by_shaft)
                     rc = gd_cli_shaft_json(cJSON_GetObjectItemCaseSensitive(o, "modes"), s, r);
                 if (dr) cJSON_AddItemToObject(o, "directional", gd_cli_directional_json(dr));
+                gd_cli_operating_json(o, s, &a.op, NULL, NULL, 0);
                 if (!rc) gd_cli_print_json(stdout, o);
                 cJSON_Delete(o);
             } else {
                 print_table(s, r);
                 if (by_shaft) rc = gd_cli_print_shaft_tables(stdout, s, r);
                 if (dr) gd_cli_print_directional(stdout, dr);
+                gd_cli_operating_print(s, &a.op, 0);
             }
         }
         gd_modal_free(r);

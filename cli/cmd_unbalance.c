@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "operating_point.h"
 #include "options.h"
 #include "sweep_output.h"
 
@@ -18,6 +19,7 @@ typedef struct unbalance_args {
     int nouts, json;
     double orbit_speed;
     gd_cli_sets sets;
+    gd_cli_operating op;
 } unbalance_args;
 
 #define F(m) offsetof(unbalance_args, m)
@@ -31,6 +33,7 @@ static const gd_cli_opt OPTS[] = {
                "y of every bearing",
                .aux = F(nouts), .hi = MAXOUT),
     GD_CLI_ROW_THREADS(unbalance_args, opt.nthreads, "speeds"),
+    GD_CLI_ROWS_OPERATING(unbalance_args, op),
     GD_CLI_ROW_MODEL(unbalance_args, coupling, sets),
     GD_CLI_ROW_JSON(unbalance_args, json),
     GD_CLI_ROW_OUT(unbalance_args, out, "write DIR/unbalance.csv and DIR/orbits.csv (long form)"),
@@ -106,6 +109,8 @@ int gd_cmd_unbalance(int argc, char **argv)
     int orb[MAXOUT], np = 0, nb = 0;
     gd_unbalance_result *r = NULL;
     gd_series *ser = NULL;
+    int *bad = NULL;
+    if ((rc = gd_cli_operating_apply(s, &a.op, -1, 0))) goto done;
     for (int k = 0; k < nouts; k++) {
         if (!strncmp(outs[k], "orbit:", 6)) {
             int node = gd_model_find_node(m, outs[k] + 6);
@@ -147,6 +152,8 @@ int gd_cmd_unbalance(int argc, char **argv)
                 rc = gd_cli_report(&err);
                 goto done;
             }
+    if ((bad = calloc((size_t)r->nspeeds + 1, sizeof *bad)))
+        gd_cli_operating_scan(s, r->speeds, r->nspeeds, bad);
     if (plot) {
         gd_plot *p = NULL;
         gd_status pst = gd_plot_unbalance(s, &opt, r, a.orbit_speed, &p, &err);
@@ -239,6 +246,7 @@ written:
                 }
                 cJSON_AddItemToArray(oa, x);
             }
+        gd_cli_operating_json(o, s, &a.op, r->speeds, bad, bad ? ns : 0);
         gd_cli_print_json(stdout, o);
         cJSON_Delete(o);
     } else {
@@ -259,8 +267,10 @@ written:
             }
             printf("\n");
         }
+        gd_cli_operating_print(s, &a.op, 1);
     }
 done:
+    free(bad);
     free(ser);
     gd_unbalance_free(r);
     gd_system_free(s);

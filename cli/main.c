@@ -37,6 +37,8 @@ static const command COMMANDS[] = {
      "periodic steady state: harmonic balance, continuation, Floquet stability, bifurcations"},
     {"mesh-stiffness", gd_cmd_mesh_stiffness,
      "contact ratios and time-varying mesh stiffness from gear geometry"},
+    {"bearing-stiffness", gd_cmd_bearing_stiffness,
+     "a rolling bearing of a table at a load: displacement, 5 x 5 stiffness (Hertz, per element)"},
     {"report", gd_cmd_report,
      "one self-contained HTML report: model drawing, modes, Campbell, FRFs, unbalance, TVMS"},
     {"study", gd_cmd_study, "parameter study: many cases, OpenMP, MPI, shards; CSV and HDF5 table"},

@@ -40,6 +40,8 @@
 #include "geardyn/material.h"
 #include "geardyn/law_type.h"
 #include "geardyn/laws.h"
+#include "geardyn/bearing_geometry.h"
+#include "geardyn/reynolds.h"
 #include "geardyn/model.h"
 #include "geardyn/builder.h"
 #include "geardyn/model_file.h"

@@ -108,4 +108,15 @@ GD_API gd_status gd_static_run(const gd_system *sys, const gd_static_options *op
                                gd_static_result **out, gd_error *err);
 GD_API void gd_static_free(gd_static_result *res);
 
+/* The operating point of the linear analyses at the static state (docs/bearings.md):
+ * sets sys's operating point (gd_system_set_operating_point of geardyn/system.h) to
+ * the loads (mean loads, gravity, the input torque of opt) and the holds (prescribed
+ * DOFs, one torsion DOF per free gear train) of gd_static_run under opt, so that
+ * modal, campbell, frf and unbalance linearise the laws about that equilibrium at each
+ * speed. With check, the equilibrium is solved at opt's speed (or the model's) and its
+ * absence is the located GD_EINPUT of gd_static_run. Nothing to do without laws. Not
+ * thread-safe against analyses on sys (it writes sys). */
+GD_API gd_status gd_static_operating_point(gd_system *sys, const gd_static_options *opt, int check,
+                                           gd_error *err);
+
 #endif

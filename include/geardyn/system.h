@@ -54,6 +54,12 @@ typedef struct gd_system {
     int nlaws;
     gd_law *laws;
     int law_block; /* sum of the laws' ndofs^2 */
+    /* the operating point the laws are linearised about (gd_system_set_operating_point):
+       its kind, the load f0 (ndof, NULL: the mean loads) and the held DOFs (ndof, NULL:
+       none), owned by the system */
+    int op_kind;
+    double *op_f0;
+    int *op_held;
 } gd_system;
 
 GD_API gd_status gd_system_build(const gd_model *model, gd_system **out, gd_error *err);
@@ -79,6 +85,18 @@ GD_API void gd_system_dense(const gd_system *sys, double speed, double *M, doubl
  * journal bearing at rest carries no load): q is then 0, the state the laws are
  * linearised about. */
 GD_API int gd_system_law_state(const gd_system *sys, double speed, double *q);
+/* The operating point of the linear analyses (docs/bearings.md). GD_OPERATING_STATIC
+ * (the default): the laws are linearised about the static state at each speed, under
+ * the load f0 (ndof; NULL: the mean loads and gravity of gd_system_law_state) with the
+ * DOFs where held[i] != 0 kept at 0 (NULL: none; a gear train free in torsion is held
+ * at one torsion DOF by the static analysis's torque balance, gd_static_operating_point
+ * of geardyn/static.h). GD_OPERATING_ZERO: about q = 0 (gd_system_law_state returns 1
+ * with q = 0). The system copies f0 and held. Not thread-safe against analyses running
+ * on sys: set it before them. GD_ENOMEM, or GD_EINPUT for an unknown kind or a
+ * non-finite load. */
+typedef enum gd_operating_kind { GD_OPERATING_STATIC = 0, GD_OPERATING_ZERO = 1 } gd_operating_kind;
+GD_API gd_status gd_system_set_operating_point(gd_system *sys, gd_operating_kind kind,
+                                               const double *f0, const int *held, gd_error *err);
 /* The same under a load vector f0 of the caller's (ndof): harmonic balance starts from it
  * under the time integrators' loads, which leave gravity out (docs/periodic.md). */
 GD_API int gd_system_law_state_loads(const gd_system *sys, double speed, const double *f0,

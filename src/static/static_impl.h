@@ -19,4 +19,22 @@ gd_status gd_st_holds(const gd_system *sys, const double *K, const gd_static_opt
 /* The reactions, mesh forces and misalignments of res from res->q (speed res->speed). */
 void gd_st_outputs(const gd_system *sys, gd_static_result *res);
 
+/* Bad options (node out of range, non-finite torque or speed): GD_EINPUT. */
+gd_status gd_st_check_options(const gd_model *m, const gd_static_options *opt, gd_error *err);
+/* q (zeroed) on the free DOFs from K_FF q_F = f_F (Jacobi-scaled LU). */
+gd_status gd_st_solve_linear(const gd_system *sys, const double *K, const double *f,
+                             const int *held, double *q, gd_error *err);
+/* Kd = K plus a small grounded stiffness on every direction a supporting law acts on
+ * (the hold search then counts those directions as held). */
+void gd_st_supported_stiffness(const gd_system *sys, const double *K, double *Kd);
+/* q from K q = f + f_law(q) with the held DOFs at 0 (law_equilibrium.c), from the linear
+ * solution where the linear stiffness alone holds the model, else from rest; the located
+ * error of gd_st_no_equilibrium when there is none. */
+gd_status gd_st_solve_with_laws(const gd_system *sys, const double *K, const double *f,
+                                const int *held, double speed, double *q, gd_error *err);
+/* GD_EINPUT located at the law that cannot hold the load at the best state q (relative
+ * residual res), with the fix for its kind. */
+gd_status gd_st_no_equilibrium(const gd_system *sys, double speed, const double *q, double res,
+                               gd_error *err);
+
 #endif

@@ -236,6 +236,8 @@ void gd_system_free(gd_system *s)
     free(s->instances);
     free(s->instance_K);
     free(s->laws);
+    free(s->op_f0);
+    free(s->op_held);
     gd_csc_free(&s->M);
     gd_csc_free(&s->K);
     gd_csc_free(&s->C);

@@ -163,8 +163,8 @@ TEST(journal_rotor_on_its_laws)
     CHECK(strstr(csv, "law,type,record,value,unit\nleft_bearing,journal_bearing,fx,") == csv);
     CHECK(strstr(csv, "right_bearing,journal_bearing,ecc,0.5525") != NULL);
     free(csv);
-    CHECK(run_fails_cleanly(&s, "static examples/journal_rotor.yaml", "laws",
-                            "no static equilibrium at 0 rad/s"));
+    CHECK(run_fails_cleanly(&s, "static examples/journal_rotor.yaml",
+                            "journal_rotor.yaml:24:", "carries nothing at 0 rad/s"));
     scratch_close(&s);
 }
 

@@ -184,11 +184,17 @@ static void shaft_balance(const fx *f, const gd_static_result *r, int s, double 
     memset(out, 0, 6 * sizeof *out);
     *scale = 0;
     for (int p = m->shafts[s].first_node; p < m->shafts[s].first_node + m->shafts[s].nnodes; p++) {
-        double t[6] = {0};
+        /* the loads and the laws' forces as two terms, so the scale is the load's even
+           where the laws alone carry it */
+        double t[6] = {0}, tl[6] = {0};
         int nt = 0;
         for (int i = 0; i < r->ndof; i++)
-            if (f->s->dof_node[i] == p) t[f->s->dof_type[i]] += r->f[i] + r->law_forces[i];
+            if (f->s->dof_node[i] == p) {
+                t[f->s->dof_type[i]] += r->f[i];
+                tl[f->s->dof_type[i]] += r->law_forces[i];
+            }
         memcpy(F[nt++], t, sizeof t);
+        memcpy(F[nt++], tl, sizeof tl);
         for (int b = 0; b < m->nbearings && nt < 60; b++) {
             double sg = m->bearings[b].node == p ? 1 : m->bearings[b].node2 == p ? -1 : 0;
             if (sg == 0) continue;
@@ -442,8 +448,10 @@ TEST(journal_rotor_settles_at_the_laws_state)
     o.speed = 0;
     r = NULL;
     CHECK(gd_static_run(f.s, &o, &r, &err) == GD_EINPUT);
-    CHECK(r == NULL && strstr(err.message, "no static equilibrium") != NULL);
-    CHECK_STR(err.field, "laws");
+    CHECK(r == NULL && strstr(err.message, "no static") != NULL);
+    CHECK(strstr(err.message, "carries nothing at 0 rad/s") != NULL);
+    CHECK_STR(err.field, "laws[0]"); /* located at the first journal bearing */
+    CHECK(err.line == 24);
     free(q);
     fx_free(&f);
 }
