@@ -1,0 +1,303 @@
+/* The planetary set element ([LinParker1999]): their example system's natural frequencies
+ * (Table 1 data, Table 2 frequencies) for N = 3, 4 and 5 planets, the mode multiplicities
+ * (rotational 1, translational 2, planet N - 3), the same eigenvalues from an independent
+ * assembly in their own coordinates (zeta, eta, u = r theta), the planet-mode frequencies
+ * from the planet's 3 x 3 problem with the central members held (their Sec. 4.3), and the
+ * mesh and bearing deformations of a rigid rotation of a consistent set. */
+#include <lapacke.h>
+
+#include "elements/elements_impl.h"
+#include "geardyn/modal.h"
+#include "geardyn/model.h"
+#include "geardyn/system.h"
+#include "harness.h"
+
+#define PI 3.14159265358979323846
+#define NMAX 5
+
+/* [LinParker1999] Table 1: masses, I/r^2 (kg), radii (diameters 77.4, 275, 176.8, 100.3 mm
+ * for sun, ring, carrier, planet), stiffnesses, alpha = 24.6 deg. */
+static const double MS = 0.4, MR = 2.35, MC = 5.43, MP = 0.66;
+static const double JS = 0.39, JR = 3.00, JC = 6.29, JP = 0.61;
+static const double RS = 0.0387, RR = 0.1375, RC = 0.0884, RP = 0.05015;
+static const double KSP = 5e8, KB = 1e8, KRU = 1e9, ALPHA = 24.6 * PI / 180;
+
+/* [LinParker1999] Table 2 (Hz): rotational (6, one rigid), translational (6 pairs), planet (3,
+ * each N - 3 times). */
+static const double ROT[3][6] = {{0, 1475.7, 1930.3, 2658.3, 7462.8, 11775.3},
+                                 {0, 1536.6, 1970.6, 2625.7, 7773.6, 13071.1},
+                                 {0, 1567.4, 2006.1, 2614.8, 8065.4, 14253.1}};
+static const double TRA[3][6] = {{743.2, 1102.4, 1896.0, 2276.4, 6986.3, 9647.9},
+                                 {727.0, 1091.0, 1892.8, 2342.5, 7189.9, 10437.6},
+                                 {710.0, 1072.0, 1888.1, 2425.3, 7382.4, 11172.3}};
+static const double PLA[3] = {1808.2, 5963.8, 6981.7};
+
+/* The Lin & Parker system with N planets as a model file (examples/planetary_lin_parker.yaml
+ * with count N): inertia = (I/r^2) r^2, k_torsion = k_ru r_r^2. */
+static gd_model *lp_model(int N)
+{
+    char yaml[2048];
+    snprintf(yaml, sizeof yaml,
+             "dofs: [x, y, rz]\n"
+             "shafts:\n"
+             "  - {name: a, nodes: [{name: sun}]}\n"
+             "  - {name: b, nodes: [{name: ring}]}\n"
+             "  - {name: c, nodes: [{name: carrier}]}\n"
+             "planetary_sets:\n"
+             "  - name: lp\n"
+             "    held: ring\n"
+             "    sun: {node: sun, mass: %.17g, inertia: %.17g, k_support: %.17g}\n"
+             "    ring: {node: ring, mass: %.17g, inertia: %.17g, k_support: %.17g, "
+             "k_torsion: %.17g}\n"
+             "    carrier: {node: carrier, mass: %.17g, inertia: %.17g, k_support: %.17g}\n"
+             "    planets: {count: %d, mass: %.17g, inertia: %.17g, bearing_stiffness: %.17g}\n"
+             "    base_radius: {sun: %.17g, ring: %.17g, planet: %.17g}\n"
+             "    carrier_radius: %.17g\n"
+             "    pressure_angle: %.17g\n"
+             "    mesh_stiffness: %.17g\n",
+             MS, JS * RS * RS, KB, MR, JR * RR * RR, KB, KRU * RR * RR, MC, JC * RC * RC, KB, N, MP,
+             JP * RP * RP, KB, RS, RR, RP, RC, ALPHA, KSP);
+    gd_model *m = NULL;
+    gd_error err;
+    if (gd_model_load_string(yaml, "lp.yaml", &m, &err)) {
+        fprintf(stderr, "  %s\n", err.message);
+        return NULL;
+    }
+    return m;
+}
+
+/* The model's undamped natural frequencies (Hz), ascending; returns their count. */
+static int model_frequencies(const gd_model *m, double *f)
+{
+    gd_system *sys = NULL;
+    gd_modal_result *r = NULL;
+    gd_modal_options opt;
+    gd_modal_options_init(&opt);
+    opt.kind = GD_MODAL_UNDAMPED;
+    if (gd_system_build(m, &sys, NULL) || gd_modal_solve(sys, &opt, &r, NULL)) {
+        gd_system_free(sys);
+        return 0;
+    }
+    int n = r->nmodes;
+    for (int i = 0; i < n; i++)
+        f[i] = r->modes[i].frequency_hz;
+    gd_modal_free(r);
+    gd_system_free(sys);
+    return n;
+}
+
+/* K += k v v^T (n x n, column-major) */
+static void add_outer(double *K, int n, double k, const double *v)
+{
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++)
+            K[i + j * n] += k * v[i] * v[j];
+}
+
+/* [LinParker1999] Eqs. 1-6 assembled in their coordinates (c, r, s, then planets; x, y, u
+ * and zeta, eta, u) from the deformations, solved by LAPACK's dsygv: frequencies (Hz). */
+static int paper_frequencies(int N, double *f)
+{
+    int n = 9 + 3 * N;
+    double *M = calloc((size_t)(n * n), sizeof *M), *K = calloc((size_t)(n * n), sizeof *K);
+    double *v = calloc((size_t)n, sizeof *v), *w = calloc((size_t)n, sizeof *w);
+    const double mass[9] = {MC, MC, JC, MR, MR, JR, MS, MS, JS};
+    for (int i = 0; i < 9; i++)
+        M[i + i * n] = mass[i];
+    for (int p = 0; p < N; p++) {
+        M[(9 + 3 * p) * (n + 1)] = M[(10 + 3 * p) * (n + 1)] = MP;
+        M[(11 + 3 * p) * (n + 1)] = JP;
+    }
+    const int sup[5] = {0, 1, 3, 4, 6}; /* k_c, k_c, k_r, k_r, k_s; and k_s on 7, k_ru on 5 */
+    for (int i = 0; i < 5; i++)
+        K[sup[i] * (n + 1)] += KB;
+    K[7 * (n + 1)] += KB;
+    K[5 * (n + 1)] += KRU;
+    for (int p = 0; p < N; p++) {
+        double psi = 2 * PI * p / N, ps = psi - ALPHA, pr = psi + ALPHA;
+        int z = 9 + 3 * p;
+        memset(v, 0, (size_t)n * sizeof *v); /* sun mesh, Eq. 2 */
+        v[6] = -sin(ps), v[7] = cos(ps), v[8] = 1, v[z] = -sin(ALPHA), v[z + 1] = -cos(ALPHA);
+        v[z + 2] = 1;
+        add_outer(K, n, KSP, v);
+        memset(v, 0, (size_t)n * sizeof *v); /* ring mesh, Eq. 3 */
+        v[3] = -sin(pr), v[4] = cos(pr), v[5] = 1, v[z] = sin(ALPHA), v[z + 1] = -cos(ALPHA);
+        v[z + 2] = -1;
+        add_outer(K, n, KSP, v);
+        memset(v, 0, (size_t)n * sizeof *v); /* bearing, radial */
+        v[0] = -cos(psi), v[1] = -sin(psi), v[z] = 1;
+        add_outer(K, n, KB, v);
+        memset(v, 0, (size_t)n * sizeof *v); /* bearing, tangential */
+        v[0] = sin(psi), v[1] = -cos(psi), v[2] = -1, v[z + 1] = 1;
+        add_outer(K, n, KB, v);
+    }
+    int info = LAPACKE_dsygv(LAPACK_COL_MAJOR, 1, 'N', 'U', n, K, n, M, n, w);
+    for (int i = 0; i < n; i++)
+        f[i] = sqrt(fmax(w[i], 0)) / (2 * PI);
+    free(M);
+    free(K);
+    free(v);
+    free(w);
+    return info == 0 ? n : 0;
+}
+
+/* The model matches the paper's own assembly to rounding, and Table 2 to 0.1 % (the table
+ * prints 5 digits: 0.1 % is its rounding plus the Table 1 data's, e.g. 727.27 vs 727.0). */
+TEST(lin_parker_table2_and_independent_assembly)
+{
+    for (int N = 3; N <= NMAX; N++) {
+        gd_model *m = lp_model(N);
+        REQUIRE(m);
+        double f[9 + 3 * NMAX], g[9 + 3 * NMAX], want[9 + 3 * NMAX];
+        int n = model_frequencies(m, f);
+        gd_model_free(m);
+        CHECK(n == 9 + 3 * N);
+        CHECK(paper_frequencies(N, g) == n);
+        for (int i = 0; i < n; i++)
+            CHECK_ABS(f[i], g[i], 1e-8 * g[n - 1]);
+        int k = 0;
+        for (int i = 0; i < 6; i++) {
+            want[k++] = ROT[N - 3][i];
+            want[k++] = TRA[N - 3][i];
+            want[k++] = TRA[N - 3][i];
+        }
+        for (int j = 0; j < N - 3; j++)
+            for (int i = 0; i < 3; i++)
+                want[k++] = PLA[i];
+        for (int i = 0; i < k; i++) /* sort the table */
+            for (int j = i + 1; j < k; j++)
+                if (want[j] < want[i]) {
+                    double t = want[i];
+                    want[i] = want[j];
+                    want[j] = t;
+                }
+        CHECK(k == n);
+        CHECK_ABS(f[0], 0, 1e-3); /* the one rigid-body mode: sun and carrier free */
+        for (int i = 1; i < n && i < k; i++)
+            CHECK_REL(f[i], want[i], 1e-3);
+    }
+}
+
+/* Multiplicities ([LinParker1999] Sec. 4): distinct frequencies counted; the translational
+ * pairs are equal to 1e-9, different classes more than 1e-6 apart. */
+TEST(lin_parker_multiplicities)
+{
+    for (int N = 3; N <= NMAX; N++) {
+        gd_model *m = lp_model(N);
+        REQUIRE(m);
+        double f[9 + 3 * NMAX];
+        int n = model_frequencies(m, f);
+        gd_model_free(m);
+        int mult[4] = {0, 0, 0, 0}; /* frequencies seen once, twice, three times, more */
+        for (int i = 0; i < n;) {
+            int j = i + 1;
+            while (j < n && fabs(f[j] - f[i]) <= 1e-9 * f[n - 1])
+                j++;
+            mult[(j - i) > 4 ? 3 : j - i - 1]++;
+            i = j;
+        }
+        /* N = 3: 6 single rotational, 6 pairs; N = 4: + 3 single planet modes; N = 5: the
+           planet modes are pairs (N - 3 = 2) */
+        CHECK(mult[0] == (N == 4 ? 9 : 6));
+        CHECK(mult[1] == (N == 5 ? 9 : 6));
+        CHECK(mult[2] == 0 && mult[3] == 0);
+    }
+}
+
+/* Planet modes: the central members still, the planet's own 3 x 3 problem in (zeta, eta,
+ * u) ([LinParker1999] Sec. 4.3): k_sp a_s a_s^T + k_rp a_r a_r^T + k_p diag(1, 1, 0). */
+TEST(planet_modes_from_the_planet_alone)
+{
+    double K[9] = {0}, M[9] = {MP, 0, 0, 0, MP, 0, 0, 0, JP}, w[3];
+    const double as[3] = {-sin(ALPHA), -cos(ALPHA), 1}, ar[3] = {sin(ALPHA), -cos(ALPHA), -1};
+    add_outer(K, 3, KSP, as);
+    add_outer(K, 3, KSP, ar);
+    K[0] += KB;
+    K[4] += KB;
+    REQUIRE(LAPACKE_dsygv(LAPACK_COL_MAJOR, 1, 'N', 'U', 3, K, 3, M, 3, w) == 0);
+    gd_model *m = lp_model(5);
+    REQUIRE(m);
+    double f[24];
+    int n = model_frequencies(m, f);
+    gd_model_free(m);
+    for (int i = 0; i < 3; i++) {
+        double fp = sqrt(w[i]) / (2 * PI), best = 1e30;
+        for (int j = 0; j < n; j++)
+            best = fmin(best, fabs(f[j] - fp));
+        CHECK(best <= 1e-8 * fp);
+        CHECK_REL(fp, PLA[i], 1e-3); /* Table 2's planet modes */
+    }
+}
+
+/* A consistent set (r_c cos alpha_s = r_s + r_p, r_c cos alpha_r = r_r - r_p) turned rigidly
+ * by theta: the planets' centres move r_c theta tangentially, every gear turns theta, and
+ * no mesh or bearing deforms. A common translation deforms nothing either. */
+TEST(rigid_motion_deforms_nothing)
+{
+    gd_planetary g;
+    memset(&g, 0, sizeof g);
+    double angles[3] = {0.3, 2.1, 4.4};
+    g.nplanets = 3;
+    g.planet_angle = angles;
+    g.pressure_angle[0] = 22 * PI / 180;
+    g.pressure_angle[1] = 19 * PI / 180;
+    g.carrier_radius = 0.1;
+    g.base_radius[2] = 0.03;
+    g.base_radius[0] = g.carrier_radius * cos(g.pressure_angle[0]) - g.base_radius[2];
+    g.base_radius[1] = g.carrier_radius * cos(g.pressure_angle[1]) + g.base_radius[2];
+    for (int n = 0; n < 3; n++) {
+        double th = 1e-3, q[12] = {0}, t[12] = {0}, a[12], r[12], tg[12];
+        /* member (sun, ring or carrier) at rest position, rotating */
+        q[GD_RZ] = th;
+        q[6 + GD_X] = -sin(angles[n]) * g.carrier_radius * th;
+        q[6 + GD_Y] = cos(angles[n]) * g.carrier_radius * th;
+        q[6 + GD_RZ] = th;
+        t[GD_X] = t[6 + GD_X] = 0.7e-3;
+        t[GD_Y] = t[6 + GD_Y] = -0.2e-3;
+        for (int ring = 0; ring < 2; ring++) {
+            gd_planetary_mesh_vector(&g, ring, n, a);
+            double d = 0, e = 0;
+            for (int i = 0; i < 12; i++)
+                d += a[i] * q[i], e += a[i] * t[i];
+            CHECK_ABS(d, 0, 1e-18);
+            CHECK_ABS(e, 0, 1e-18);
+        }
+        gd_planetary_bearing_vectors(&g, n, r, tg);
+        double dr = 0, dt = 0, er = 0, et = 0;
+        for (int i = 0; i < 12; i++)
+            dr += r[i] * q[i], dt += tg[i] * q[i], er += r[i] * t[i], et += tg[i] * t[i];
+        CHECK_ABS(dr, 0, 1e-18);
+        CHECK_ABS(dt, 0, 1e-18);
+        CHECK_ABS(er, 0, 1e-18);
+        CHECK_ABS(et, 0, 1e-18);
+    }
+}
+
+/* The registry's view of the N = 4 set: 3 + 4N instances; planet 1's bearing (psi = 0) by
+ * hand: radial along x, tangential along y with the pin moved r_c th_c, so
+ * K[carrier.y][carrier.rz] = k_p r_c and K[planet.y][carrier.rz] = -k_p r_c. */
+TEST(bearing_matrix_by_hand)
+{
+    gd_model *m = lp_model(4);
+    REQUIRE(m);
+    const gd_element_type *t = gd_element_type_find("planetary");
+    REQUIRE(t == &gd_element_planetary);
+    CHECK(t->count(m) == 3 + 4 * 4);
+    int node[2], bearing = 3 + 3 * 4; /* bodies, planets, sun meshes, ring meshes */
+    CHECK(t->nodes(m, bearing, node) == 2);
+    CHECK(node[0] == gd_model_find_node(m, "carrier") && node[1] == gd_model_find_node(m, "lp.p1"));
+    CHECK(t->terms(m, bearing) == GD_TERM_K);
+    double K[144];
+    t->matrices(m, bearing, 0, NULL, K, NULL, NULL);
+    CHECK_ABS(K[GD_X * 12 + GD_X], KB, 1e-6);
+    CHECK_ABS(K[GD_X * 12 + 6 + GD_X], -KB, 1e-6);
+    CHECK_ABS(K[GD_Y * 12 + GD_RZ], KB * RC, 1e-6);
+    CHECK_ABS(K[(6 + GD_Y) * 12 + GD_RZ], -KB * RC, 1e-6);
+    CHECK_ABS(K[GD_RZ * 12 + GD_RZ], KB * RC * RC, 1e-6);
+    CHECK_ABS(K[(6 + GD_RZ) * 12 + 6 + GD_RZ], 0, 1e-12);
+    gd_model_free(m);
+}
+
+RUN_TESTS(T(bearing_matrix_by_hand), T(lin_parker_table2_and_independent_assembly),
+          T(lin_parker_multiplicities), T(planet_modes_from_the_planet_alone),
+          T(rigid_motion_deforms_nothing))
