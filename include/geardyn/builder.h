@@ -242,7 +242,6 @@ typedef struct gd_planetary_spec {
     gd_loc loc;
     const char *path; /* NULL: "planetary_sets[<index>]" */
 } gd_planetary_spec;
-#define GD_PLANETARY_MAX_PLANETS 64
 /* Defaults: all zero, held -1, pressure angles 20 deg. */
 GD_API void gd_planetary_spec_init(gd_planetary_spec *s);
 /* *index: the set's index. Adds one lumped shaft per planet. Errors now: a missing or

@@ -113,4 +113,22 @@ GD_API gd_status gd_modal_energy_by_shaft(const gd_system *sys, const gd_modal_r
 GD_API gd_status gd_modal_solve_sparse(const gd_system *sys, const gd_modal_options *opt,
                                        double shift, gd_modal_result **out, gd_error *err);
 
+/* The class of planetary set `set`'s motion in mode `mode` of r (solved on sys),
+ * [LinParker1999] Sec. 4 (docs/planetary.md): rotational (the central members rotate and do
+ * not translate, all planets move alike), translational (the central members translate and
+ * do not rotate), planet (the central members still), mixed (none of these: unequally spaced
+ * planets, or a set coupled to other shafts), or none (the set does not move in the mode). */
+typedef enum gd_planetary_class {
+    GD_PCLASS_NONE,
+    GD_PCLASS_ROTATIONAL,
+    GD_PCLASS_TRANSLATIONAL,
+    GD_PCLASS_PLANET,
+    GD_PCLASS_MIXED,
+    GD_PCLASS_COUNT
+} gd_planetary_class;
+/* "-", "rotational", "translational", "planet", "mixed" */
+GD_API extern const char *const gd_planetary_class_names[GD_PCLASS_COUNT];
+GD_API gd_planetary_class gd_modal_planetary_class(const gd_system *sys, const gd_modal_result *r,
+                                                   int mode, int set);
+
 #endif

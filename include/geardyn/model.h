@@ -216,6 +216,8 @@ typedef enum gd_planetary_member {
 } gd_planetary_member;
 GD_API extern const char *const gd_planetary_member_names[GD_PLANETARY_NMEMBERS];
 
+#define GD_PLANETARY_MAX_PLANETS 64
+
 typedef struct gd_planetary_body {
     int node;               /* model node of the member */
     double mass, inertia;   /* kg (each of x, y), kg m^2 about z; added to the node */

@@ -181,10 +181,16 @@ static gd_status check_geometry(const gd_model *m, gd_error *err, const gd_plane
                              "%d equally spaced planets cannot be assembled: (Z_s + Z_r) / N = "
                              "%d / %d is not a whole number",
                              N, zs, N);
-                snprintf(hint, sizeof hint,
-                         "the nearest angles that assemble are %.6g deg and %.6g deg (multiples "
-                         "of 360 / (Z_s + Z_r)); or change the teeth",
-                         lo, hi);
+                if (s->planet_angles)
+                    snprintf(hint, sizeof hint,
+                             "the nearest angles that assemble are %.6g deg and %.6g deg "
+                             "(multiples of 360 / (Z_s + Z_r)); or change the teeth",
+                             lo, hi);
+                else
+                    snprintf(hint, sizeof hint,
+                             "use a number of planets that divides %d, give `angles:` that are "
+                             "multiples of %.6g deg, or change the teeth",
+                             zs, 360.0 / zs);
                 return fail_at(m, err, s, path, s->planet_angles ? "planets.angles" : "teeth", hint,
                                msg);
             }

@@ -298,6 +298,33 @@ TEST(bearing_matrix_by_hand)
     gd_model_free(m);
 }
 
-RUN_TESTS(T(bearing_matrix_by_hand), T(lin_parker_table2_and_independent_assembly),
-          T(lin_parker_multiplicities), T(planet_modes_from_the_planet_alone),
-          T(rigid_motion_deforms_nothing))
+/* Every mode has its class ([LinParker1999] Sec. 4): 6 rotational (the rigid mode among
+ * them), 6 translational pairs, 3 (N - 3) planet modes; none mixed. */
+TEST(mode_classes_and_their_counts)
+{
+    for (int N = 3; N <= NMAX; N++) {
+        gd_model *m = lp_model(N);
+        REQUIRE(m);
+        gd_system *sys = NULL;
+        gd_modal_result *r = NULL;
+        gd_modal_options opt;
+        gd_modal_options_init(&opt);
+        opt.kind = GD_MODAL_UNDAMPED;
+        REQUIRE(!gd_system_build(m, &sys, NULL) && !gd_modal_solve(sys, &opt, &r, NULL));
+        int count[GD_PCLASS_COUNT] = {0};
+        for (int j = 0; j < r->nmodes; j++)
+            count[gd_modal_planetary_class(sys, r, j, 0)]++;
+        CHECK(count[GD_PCLASS_ROTATIONAL] == 6);
+        CHECK(count[GD_PCLASS_TRANSLATIONAL] == 12);
+        CHECK(count[GD_PCLASS_PLANET] == 3 * (N - 3));
+        CHECK(count[GD_PCLASS_MIXED] == 0 && count[GD_PCLASS_NONE] == 0);
+        CHECK(gd_modal_planetary_class(sys, r, 0, 0) == GD_PCLASS_ROTATIONAL); /* rigid */
+        gd_modal_free(r);
+        gd_system_free(sys);
+        gd_model_free(m);
+    }
+}
+
+RUN_TESTS(T(mode_classes_and_their_counts), T(bearing_matrix_by_hand),
+          T(lin_parker_table2_and_independent_assembly), T(lin_parker_multiplicities),
+          T(planet_modes_from_the_planet_alone), T(rigid_motion_deforms_nothing))

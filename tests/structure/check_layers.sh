@@ -27,7 +27,7 @@ declare -A header=(
     [error.h]=core [units.h]=core [version.h]=core [export.h]=core
     [sparse.h]=linalg [mesh_stiffness.h]=mesh_stiffness [spectrum.h]=signal [cycles.h]=signal
     [laws.h]=laws [law_type.h]=laws
-    [model.h]=model [material.h]=model [builder.h]=model
+    [model.h]=model [material.h]=model [builder.h]=model [planetary.h]=model
     [model_file.h]=model_file [elements.h]=elements
     [system.h]=system
     [modal.h]=modal [static.h]=static
