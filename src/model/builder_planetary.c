@@ -197,10 +197,10 @@ static gd_status check_geometry(const gd_model *m, gd_error *err, const gd_plane
         }
     }
     /* the ring's pitch circle must reach around the planets' pitch circles (equal for a
-       consistent geometry: r_br - r_bp = rc cos(alpha_rp)); 0.5 % for rounded data */
+       consistent geometry: r_br - r_bp = rc cos(alpha_rp)); 2 % for rounded data */
     double ca = cos(s->pressure_angle[1]);
     double ring = s->base_radius[1] / ca, span = rc + s->base_radius[2] / ca;
-    if (ring < span * (1 - 5e-3)) {
+    if (ring < span * (1 - 2e-2)) {
         snprintf(msg, sizeof msg,
                  "the ring (pitch radius %.4g m) is smaller than the planets' span (%.4g m: "
                  "carrier radius plus planet pitch radius)",

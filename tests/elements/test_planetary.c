@@ -94,49 +94,74 @@ static void add_outer(double *K, int n, double k, const double *v)
             K[i + j * n] += k * v[i] * v[j];
 }
 
+/* A set in [LinParker1999]'s terms: masses and I/r^2 of carrier, ring, sun, planet; supports
+ * k (x, y) and k_u (u = r theta) of carrier, ring, sun; k_sp, k_rp, k_p; alpha (both meshes). */
+typedef struct paper_set {
+    double m[4], j[4], k[3], ku[3], ksp, krp, kp, alpha;
+} paper_set;
+
+static const paper_set LP_SET = {
+    {MC, MR, MS, MP}, {JC, JR, JS, JP}, {KB, KB, KB}, {0, KRU, 0}, KSP, KSP, KB, ALPHA};
+
 /* [LinParker1999] Eqs. 1-6 assembled in their coordinates (c, r, s, then planets; x, y, u
- * and zeta, eta, u) from the deformations, solved by LAPACK's dsygv: frequencies (Hz). */
+ * and zeta, eta, u) from the deformations; with [CooleyParker2012] Eq. 1's G (2 m [0 -1; 1 0]
+ * on every body's translations) and K_Omega (diag(m, m, 0)). n x n column-major, n = 9 + 3N;
+ * G and KO may be NULL. */
+static void paper_matrices(const paper_set *p, int N, double *M, double *K, double *G, double *KO)
+{
+    int n = 9 + 3 * N;
+    size_t bytes = (size_t)(n * n) * sizeof(double);
+    memset(M, 0, bytes);
+    memset(K, 0, bytes);
+    if (G) memset(G, 0, bytes);
+    if (KO) memset(KO, 0, bytes);
+    double *v = calloc((size_t)n, sizeof *v);
+    for (int b = 0; b < 3 + N; b++) {
+        int z = 3 * b, t = b < 3 ? b : 3;
+        M[z * (n + 1)] = M[(z + 1) * (n + 1)] = p->m[t];
+        M[(z + 2) * (n + 1)] = p->j[t];
+        if (b < 3) {
+            K[z * (n + 1)] += p->k[b];
+            K[(z + 1) * (n + 1)] += p->k[b];
+            K[(z + 2) * (n + 1)] += p->ku[b];
+        }
+        if (G) G[z + (z + 1) * n] = -2 * p->m[t], G[z + 1 + z * n] = 2 * p->m[t];
+        if (KO) KO[z * (n + 1)] = KO[(z + 1) * (n + 1)] = p->m[t];
+    }
+    double al = p->alpha;
+    for (int q = 0; q < N; q++) {
+        double psi = 2 * PI * q / N, ps = psi - al, pr = psi + al;
+        int z = 9 + 3 * q;
+        memset(v, 0, (size_t)n * sizeof *v); /* sun mesh, Eq. 2 */
+        v[6] = -sin(ps), v[7] = cos(ps), v[8] = 1, v[z] = -sin(al), v[z + 1] = -cos(al);
+        v[z + 2] = 1;
+        add_outer(K, n, p->ksp, v);
+        memset(v, 0, (size_t)n * sizeof *v); /* ring mesh, Eq. 3 */
+        v[3] = -sin(pr), v[4] = cos(pr), v[5] = 1, v[z] = sin(al), v[z + 1] = -cos(al);
+        v[z + 2] = -1;
+        add_outer(K, n, p->krp, v);
+        memset(v, 0, (size_t)n * sizeof *v); /* bearing, radial */
+        v[0] = -cos(psi), v[1] = -sin(psi), v[z] = 1;
+        add_outer(K, n, p->kp, v);
+        memset(v, 0, (size_t)n * sizeof *v); /* bearing, tangential */
+        v[0] = sin(psi), v[1] = -cos(psi), v[2] = -1, v[z + 1] = 1;
+        add_outer(K, n, p->kp, v);
+    }
+    free(v);
+}
+
+/* The paper's assembly at rest solved by LAPACK's dsygv: frequencies (Hz), ascending. */
 static int paper_frequencies(int N, double *f)
 {
     int n = 9 + 3 * N;
-    double *M = calloc((size_t)(n * n), sizeof *M), *K = calloc((size_t)(n * n), sizeof *K);
-    double *v = calloc((size_t)n, sizeof *v), *w = calloc((size_t)n, sizeof *w);
-    const double mass[9] = {MC, MC, JC, MR, MR, JR, MS, MS, JS};
-    for (int i = 0; i < 9; i++)
-        M[i + i * n] = mass[i];
-    for (int p = 0; p < N; p++) {
-        M[(9 + 3 * p) * (n + 1)] = M[(10 + 3 * p) * (n + 1)] = MP;
-        M[(11 + 3 * p) * (n + 1)] = JP;
-    }
-    const int sup[5] = {0, 1, 3, 4, 6}; /* k_c, k_c, k_r, k_r, k_s; and k_s on 7, k_ru on 5 */
-    for (int i = 0; i < 5; i++)
-        K[sup[i] * (n + 1)] += KB;
-    K[7 * (n + 1)] += KB;
-    K[5 * (n + 1)] += KRU;
-    for (int p = 0; p < N; p++) {
-        double psi = 2 * PI * p / N, ps = psi - ALPHA, pr = psi + ALPHA;
-        int z = 9 + 3 * p;
-        memset(v, 0, (size_t)n * sizeof *v); /* sun mesh, Eq. 2 */
-        v[6] = -sin(ps), v[7] = cos(ps), v[8] = 1, v[z] = -sin(ALPHA), v[z + 1] = -cos(ALPHA);
-        v[z + 2] = 1;
-        add_outer(K, n, KSP, v);
-        memset(v, 0, (size_t)n * sizeof *v); /* ring mesh, Eq. 3 */
-        v[3] = -sin(pr), v[4] = cos(pr), v[5] = 1, v[z] = sin(ALPHA), v[z + 1] = -cos(ALPHA);
-        v[z + 2] = -1;
-        add_outer(K, n, KSP, v);
-        memset(v, 0, (size_t)n * sizeof *v); /* bearing, radial */
-        v[0] = -cos(psi), v[1] = -sin(psi), v[z] = 1;
-        add_outer(K, n, KB, v);
-        memset(v, 0, (size_t)n * sizeof *v); /* bearing, tangential */
-        v[0] = sin(psi), v[1] = -cos(psi), v[2] = -1, v[z + 1] = 1;
-        add_outer(K, n, KB, v);
-    }
+    double *M = malloc((size_t)(n * n) * sizeof *M), *K = malloc((size_t)(n * n) * sizeof *K);
+    double *w = calloc((size_t)n, sizeof *w);
+    paper_matrices(&LP_SET, N, M, K, NULL, NULL);
     int info = LAPACKE_dsygv(LAPACK_COL_MAJOR, 1, 'N', 'U', n, K, n, M, n, w);
     for (int i = 0; i < n; i++)
         f[i] = sqrt(fmax(w[i], 0)) / (2 * PI);
     free(M);
     free(K);
-    free(v);
     free(w);
     return info == 0 ? n : 0;
 }
@@ -325,6 +350,101 @@ TEST(mode_classes_and_their_counts)
     }
 }
 
-RUN_TESTS(T(mode_classes_and_their_counts), T(bearing_matrix_by_hand),
+/* [CooleyParker2012] Table 1 (examples/planetary_cooley_parker.yaml, N = 4, the carrier the
+ * reference shaft). */
+static const paper_set CP_SET = {{12.0, 7.64, 3.0, 1.86},
+                                 {6.80, 8.09, 1.75, 1.25},
+                                 {50e6, 100e6, 20e6},
+                                 {100e6, 100e6, 20e6},
+                                 100e6,
+                                 100e6,
+                                 10e6,
+                                 20 * PI / 180};
+#define CP_FILE "examples/planetary_cooley_parker.yaml"
+
+/* At rest: [CooleyParker2012] Table 2, omega / sqrt(k_p / m_p), 4 digits (so 0.1 %). */
+TEST(cooley_parker_at_rest)
+{
+    static const double want[21] = {0.7199, 0.7199, 0.9077, 0.9617, 1.001, 1.001, 1.046,
+                                    1.317,  1.317,  1.317,  1.481,  1.481, 2.013, 4.320,
+                                    5.153,  5.153,  5.672,  5.809,  6.488, 6.488, 8.383};
+    gd_model *m = NULL;
+    REQUIRE(!gd_model_load(CP_FILE, &m, NULL));
+    double f[21];
+    REQUIRE(model_frequencies(m, f) == 21);
+    for (int i = 0; i < 21; i++)
+        CHECK_REL(f[i] / (sqrt(10e6 / 1.86) / (2 * PI)), want[i], 1e-3);
+    gd_model_free(m);
+}
+
+/* The rotating carrier at Omega = 5000 rpm: the library's gyroscopic modes (state space in
+ * the model's node coordinates) against [CooleyParker2012] Eq. 1 assembled here in the
+ * paper's coordinates and solved another way: for M q'' + Omega G q' + (K - Omega^2 K_O) q = 0
+ * with K_eff = K - Omega^2 K_O > 0, H(w) = K_eff - w^2 M + i w Omega G is Hermitian, singular
+ * at each natural frequency, and its count of negative eigenvalues is the number of natural
+ * frequencies below w (each eigencurve of H crosses zero once). LAPACK's zheev gives both. */
+TEST(rotating_carrier_against_the_hermitian_count)
+{
+    gd_model *m = NULL;
+    REQUIRE(!gd_model_load(CP_FILE, &m, NULL));
+    double W = 5000 * PI / 30;
+    gd_system *sys = NULL;
+    gd_modal_result *r = NULL;
+    gd_modal_options opt;
+    gd_modal_options_init(&opt);
+    opt.speed = W;
+    opt.kind = GD_MODAL_DAMPED;
+    REQUIRE(!gd_system_build(m, &sys, NULL) && !gd_modal_solve(sys, &opt, &r, NULL));
+    double w[42];
+    int nw = 0;
+    for (int j = 0; j < r->nmodes && nw < 42; j++)
+        if (r->modes[j].lambda_im > 0) w[nw++] = r->modes[j].lambda_im;
+    CHECK(nw == 21);
+    for (int i = 0; i < nw; i++) /* ascending */
+        for (int j = i + 1; j < nw; j++)
+            if (w[j] < w[i]) {
+                double t = w[i];
+                w[i] = w[j];
+                w[j] = t;
+            }
+    /* the gyroscopic splitting of the lowest translational pair (265.68 Hz at rest) */
+    CHECK(w[1] / w[0] > 1.2 && w[0] / (2 * PI) < 265 && w[1] / (2 * PI) > 266);
+    int n = 21;
+    double M[441], K[441], G[441], KO[441], ev[21];
+    lapack_complex_double H[441];
+    paper_matrices(&CP_SET, 4, M, K, G, KO);
+    double kmax = 0;
+    for (int i = 0; i < n * n; i++)
+        kmax = fmax(kmax, fabs(K[i]));
+    for (int i = 0; i < nw; i++)
+        for (int pass = 0; pass < 2; pass++) {
+            /* at w_i: singular; between w_i and w_{i+1}: i + 1 negative eigenvalues */
+            double x = pass == 0 ? w[i] : (i + 1 < nw ? 0.5 * (w[i] + w[i + 1]) : 1.1 * w[i]);
+            for (int c = 0; c < n; c++)
+                for (int rr = 0; rr < n; rr++) {
+                    int k = rr + c * n;
+                    H[k] = lapack_make_complex_double(K[k] - W * W * KO[k] - x * x * M[k],
+                                                      x * W * G[k]);
+                }
+            REQUIRE(LAPACKE_zheev(LAPACK_COL_MAJOR, 'N', 'U', n, H, n, ev) == 0);
+            if (pass == 0) {
+                double small = 1e300;
+                for (int k = 0; k < n; k++)
+                    small = fmin(small, fabs(ev[k]));
+                CHECK(small <= 1e-8 * kmax);
+            } else {
+                int neg = 0;
+                for (int k = 0; k < n; k++)
+                    neg += ev[k] < 0;
+                CHECK(neg == i + 1);
+            }
+        }
+    gd_modal_free(r);
+    gd_system_free(sys);
+    gd_model_free(m);
+}
+
+RUN_TESTS(T(cooley_parker_at_rest), T(rotating_carrier_against_the_hermitian_count),
+          T(mode_classes_and_their_counts), T(bearing_matrix_by_hand),
           T(lin_parker_table2_and_independent_assembly), T(lin_parker_multiplicities),
           T(planet_modes_from_the_planet_alone), T(rigid_motion_deforms_nothing))
