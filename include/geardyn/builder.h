@@ -239,6 +239,11 @@ typedef struct gd_planetary_spec {
     double planet_tip_radius;           /* m; 0: estimated from the teeth (docs/planetary.md) */
     double mesh_stiffness[2];           /* sun-planet, ring-planet, N/m > 0 */
     double mesh_damping[2];             /* N s/m >= 0 */
+    /* which bodies get the carrier-frame terms when the carrier turns: 1 all (the whole set
+       in the carrier frame, [CooleyParker2012]), 0 the planets only (members on shafts
+       modelled in the fixed frame), -1 (default) all when every member sits on a shaft
+       without sections, else the planets */
+    int carrier_frame;
     gd_loc loc;
     const char *path; /* NULL: "planetary_sets[<index>]" */
 } gd_planetary_spec;

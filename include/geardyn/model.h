@@ -243,6 +243,9 @@ typedef struct gd_planetary {
     double bearing_stiffness;           /* planet bearing, N/m radial and tangential */
     double mesh_stiffness[2];           /* sun-planet, ring-planet, N/m along the line of action */
     double mesh_damping[2];             /* N s/m */
+    /* the carrier-frame terms ([CooleyParker2012]) act on every body of the set (1) or on the
+       planets only (0): docs/planetary.md */
+    int carrier_frame_all;
     char component_name[4][GD_NAME_MAX + 16]; /* strain-energy groups of the set */
     gd_loc loc;
 } gd_planetary;

@@ -26,7 +26,9 @@
  * consistent geometry (tests). With the carrier turning at Omega = ratio W (the speed ratio
  * of the carrier's shaft), every body's translations, taken in the carrier frame, get the
  * Coriolis term 2 m Omega [0 -1; 1 0] (G per unit reference speed: ratio x that) and the
- * centripetal softening -m Omega^2 on x and y ([CooleyParker2012] Eq. 1, G and K_Omega). */
+ * centripetal softening -m Omega^2 on x and y ([CooleyParker2012] Eq. 1, G and K_Omega). A set
+ * whose members sit on shafts modelled in the fixed frame gives these terms to its planets only
+ * (gd_planetary.carrier_frame_all 0): an approximation, docs/planetary.md. */
 #include <math.h>
 #include <string.h>
 
@@ -103,6 +105,13 @@ static double carrier_ratio(const gd_model *m, const gd_planetary *g)
     return m->shafts[m->nodes[g->member[GD_PLANETARY_CARRIER].node].shaft].speed_ratio;
 }
 
+/* The carrier speed ratio for a body of this kind: 0 for a central member when only the
+ * planets are in the carrier frame. */
+static double frame_ratio(const gd_model *m, const gd_planetary *g, int kind)
+{
+    return kind == BODY && !g->carrier_frame_all ? 0.0 : carrier_ratio(m, g);
+}
+
 static void body_values(const gd_planetary *g, int kind, int k, double *mass, double *inertia,
                         double *ks, double *kt)
 {
@@ -128,7 +137,7 @@ static unsigned pl_terms(const gd_model *m, int i)
     double mass, inertia, ks, kt;
     body_values(g, kind, k, &mass, &inertia, &ks, &kt);
     unsigned t = GD_TERM_M | (ks > 0 || kt > 0 ? GD_TERM_K : 0);
-    if (mass > 0 && carrier_ratio(m, g) != 0) t |= GD_TERM_G | GD_TERM_SPEED | GD_TERM_K;
+    if (mass > 0 && frame_ratio(m, g, kind) != 0) t |= GD_TERM_G | GD_TERM_SPEED | GD_TERM_K;
     return t;
 }
 
@@ -196,7 +205,7 @@ static void pl_matrices(const gd_model *m, int i, double speed, double *M, doubl
         }
         return;
     }
-    double mass, inertia, ks, kt, ratio = carrier_ratio(m, g);
+    double mass, inertia, ks, kt, ratio = frame_ratio(m, g, kind);
     body_values(g, kind, k, &mass, &inertia, &ks, &kt);
     if (M) {
         M[GD_X * 6 + GD_X] = M[GD_Y * 6 + GD_Y] = mass;

@@ -18,6 +18,7 @@ void gd_planetary_spec_init(gd_planetary_spec *s)
 {
     memset(s, 0, sizeof *s);
     s->held = -1;
+    s->carrier_frame = -1;
     s->pressure_angle[0] = s->pressure_angle[1] = 20.0 * PI / 180.0;
 }
 
@@ -258,6 +259,7 @@ gd_status gd_model_add_planetary(gd_model *m, const gd_planetary_spec *s, int *i
         g.member[j] = (gd_planetary_body){-1, b->mass, b->inertia, b->k_support, b->k_torsion};
     }
     g.held = s->held;
+    g.carrier_frame_all = s->carrier_frame; /* -1: decided at finish */
     g.nplanets = s->nplanets;
     g.equally_spaced = s->planet_angles == NULL;
     memcpy(g.teeth, s->teeth, sizeof g.teeth);
@@ -339,6 +341,12 @@ gd_status gd_build_resolve_planetary(gd_model *m, gd_error *err)
                                          "the %s and the %s are both on node '%s'",
                                          gd_planetary_member_names[i], gd_planetary_member_names[j],
                                          bp->node[j]);
+        }
+        if (g->carrier_frame_all < 0) {
+            g->carrier_frame_all = 1;
+            for (int j = 0; j < GD_PLANETARY_NMEMBERS; j++)
+                if (m->shafts[m->nodes[g->member[j].node].shaft].nsections > 0)
+                    g->carrier_frame_all = 0;
         }
         char first[GD_NAME_MAX + 16];
         snprintf(first, sizeof first, "%s.p1", g->name);

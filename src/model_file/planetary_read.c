@@ -7,11 +7,11 @@
 
 #include "model_file/model_file_impl.h"
 
-static const char *const SET_KEYS[] = {"name",           "held",         "sun",
-                                       "ring",           "carrier",      "planets",
-                                       "teeth",          "base_radius",  "carrier_radius",
-                                       "pressure_angle", "helix_angle",  "planet_tip_radius",
-                                       "mesh_stiffness", "mesh_damping", NULL};
+static const char *const SET_KEYS[] = {
+    "name",           "held",           "sun",           "ring",
+    "carrier",        "planets",        "teeth",         "base_radius",
+    "carrier_radius", "pressure_angle", "helix_angle",   "planet_tip_radius",
+    "mesh_stiffness", "mesh_damping",   "carrier_frame", NULL};
 static const char *const MEMBER_KEYS[] = {"node",      "mass",      "inertia",
                                           "k_support", "k_torsion", NULL};
 static const char *const PLANET_KEYS[] = {"count", "angles", "mass", "inertia", "bearing_stiffness",
@@ -19,6 +19,7 @@ static const char *const PLANET_KEYS[] = {"count", "angles", "mass", "inertia", 
 static const char *const SIZE_KEYS[] = {"sun", "ring", "planet", NULL};
 static const char *const MESH_KEYS[] = {"sun", "ring", NULL};
 static const char *const HELD[] = {"sun", "ring", "carrier", "none", NULL};
+static const char *const FRAMES[] = {"planets", "all", NULL};
 
 static gd_status read_member(gd_mparser *p, const gd_ynode *sm, const char *q, int j,
                              gd_planetary_member_spec *b)
@@ -123,11 +124,13 @@ static gd_status read_set(gd_mparser *p, const gd_ynode *sm, const char *q, size
     gd_planetary_spec s;
     gd_planetary_spec_init(&s);
     double *angles = NULL, teeth[3] = {0, 0, 0};
-    int held = 3;
+    int held = 3, frame = -1, has_frame = 0;
     if ((st = gd_yexpect(r, sm, GD_Y_MAP, q)) || (st = gd_ycheck_keys(r, sm, q, SET_KEYS)) ||
         (st = gd_mp_read_name(p, sm, q, name, "", 1)) ||
-        (st = gd_yread_str(r, sm, "held", q, HELD, 0, NULL, &held, NULL)))
+        (st = gd_yread_str(r, sm, "held", q, HELD, 0, NULL, &held, NULL)) ||
+        (st = gd_yread_str(r, sm, "carrier_frame", q, FRAMES, 0, NULL, &frame, &has_frame)))
         return st;
+    s.carrier_frame = has_frame ? frame : -1;
     for (int j = 0; j < GD_PLANETARY_NMEMBERS; j++)
         if ((st = read_member(p, sm, q, j, &s.member[j]))) return st;
     if ((st = read_per_gear(p, sm, q, "teeth", SIZE_KEYS, 3, GD_QTY_DIMLESS, GD_YPOS, 0, teeth)) ||

@@ -444,7 +444,42 @@ TEST(rotating_carrier_against_the_hermitian_count)
     gd_model_free(m);
 }
 
-RUN_TESTS(T(cooley_parker_at_rest), T(rotating_carrier_against_the_hermitian_count),
-          T(mode_classes_and_their_counts), T(bearing_matrix_by_hand),
-          T(lin_parker_table2_and_independent_assembly), T(lin_parker_multiplicities),
-          T(planet_modes_from_the_planet_alone), T(rigid_motion_deforms_nothing))
+/* The carrier-frame terms: every body of a set on lumped nodes (the default there), the
+ * planets only with `carrier_frame: planets`; G = 2 m ratio [0 -1; 1 0] and K at speed W
+ * softened by m (ratio W)^2 (the carrier is the reference shaft: ratio 1). */
+TEST(carrier_frame_terms)
+{
+    char *text = NULL;
+    FILE *f = fopen(CP_FILE, "rb");
+    REQUIRE(f);
+    text = calloc(1, 1 << 14);
+    size_t n = fread(text, 1, (1 << 14) - 64, f);
+    fclose(f);
+    REQUIRE(n > 0);
+    for (int variant = 0; variant < 2; variant++) {
+        if (variant) strcat(text, "    carrier_frame: planets\n");
+        gd_model *m = NULL;
+        REQUIRE(!gd_model_load_string(text, "cp.yaml", &m, NULL));
+        const gd_element_type *t = &gd_element_planetary;
+        double M[36], K[36], G[36], W = 300;
+        /* instance 0: the sun body (3 kg, k_support 20e6); 3: planet 1 (1.86 kg) */
+        CHECK(!!(t->terms(m, 0) & GD_TERM_G) == !variant);
+        CHECK(t->terms(m, 3) & GD_TERM_G);
+        CHECK(t->terms(m, 3) & GD_TERM_SPEED);
+        t->matrices(m, 0, W, M, K, NULL, G);
+        CHECK_ABS(G[GD_X * 6 + GD_Y], variant ? 0 : -6.0, 1e-12);
+        CHECK_REL(K[GD_X * 6 + GD_X], 20e6 - (variant ? 0 : 3.0 * W * W), 1e-12);
+        t->matrices(m, 3, W, M, K, NULL, G);
+        CHECK_ABS(G[GD_Y * 6 + GD_X], 2 * 1.86, 1e-12);
+        CHECK_REL(K[GD_Y * 6 + GD_Y], -1.86 * W * W, 1e-12);
+        CHECK_ABS(M[GD_RZ * 6 + GD_RZ], 2.278125e-4, 1e-15);
+        gd_model_free(m);
+    }
+    free(text);
+}
+
+RUN_TESTS(T(carrier_frame_terms), T(cooley_parker_at_rest),
+          T(rotating_carrier_against_the_hermitian_count), T(mode_classes_and_their_counts),
+          T(bearing_matrix_by_hand), T(lin_parker_table2_and_independent_assembly),
+          T(lin_parker_multiplicities), T(planet_modes_from_the_planet_alone),
+          T(rigid_motion_deforms_nothing))
