@@ -148,5 +148,33 @@ TEST(bad_sets_fail_located)
     scratch_close(&s);
 }
 
-RUN_TESTS(T(modal_names_the_lin_parker_classes), T(check_prints_ratios_mesh_order_and_assembly),
-          T(bad_sets_fail_located))
+/* examples/planetary_train.yaml: the stage's carrier drives a parallel stage on FE shafts.
+ * The speeds follow through both: carrier 20 / 90 of the sun, the pinion -90 / 30 of that;
+ * the modes at 1000 rpm are all stable, with the set's planets in them. */
+TEST(stage_joins_a_parallel_train)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    cJSON *o = run_json_args(&s, "check examples/planetary_train.yaml");
+    REQUIRE(o);
+    const cJSON *sh = cJSON_GetObjectItemCaseSensitive(o, "shafts");
+    double want[4] = {1, 0, 20.0 / 90, -20.0 / 30};
+    for (int i = 0; i < 4; i++)
+        CHECK_ABS(jnum(cJSON_GetArrayItem(sh, i), "speed_ratio"), want[i], 1e-12);
+    cJSON_Delete(o);
+    o = run_json_args(&s, "modal examples/planetary_train.yaml");
+    REQUIRE(o);
+    const cJSON *modes = cJSON_GetObjectItemCaseSensitive(o, "modes");
+    int n = cJSON_GetArraySize(modes), unstable = 0, in_set = 0;
+    for (int j = 0; j < n; j++) {
+        const cJSON *md = cJSON_GetArrayItem(modes, j);
+        unstable += cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(md, "unstable"));
+        in_set += strcmp(jstr(md, "class"), "-") != 0;
+    }
+    CHECK(n > 20 && unstable == 0 && in_set > 10);
+    cJSON_Delete(o);
+    scratch_close(&s);
+}
+
+RUN_TESTS(T(stage_joins_a_parallel_train), T(modal_names_the_lin_parker_classes),
+          T(check_prints_ratios_mesh_order_and_assembly), T(bad_sets_fail_located))
