@@ -231,6 +231,8 @@ typedef struct gd_planetary_spec {
     const double *planet_angles; /* nplanets angles, rad, increasing within [0, 2 pi); NULL */
     double planet_mass, planet_inertia; /* kg > 0, kg m^2 > 0 */
     double bearing_stiffness;           /* N/m > 0, radial and tangential */
+    const double *pin_errors;           /* nplanets tangential pin position errors, m (in the
+                                           carrier's sense of rotation); NULL: none */
     int teeth[3];                       /* sun, ring, planet; 0: not given (all or none) */
     double base_radius[3];              /* sun, ring, planet, m > 0 */
     double carrier_radius;              /* m > 0 */

@@ -241,6 +241,8 @@ typedef struct gd_planetary {
     double planet_tip_radius; /* m: given, or estimated (docs/planetary.md) */
     double planet_mass, planet_inertia; /* kg, kg m^2 */
     double bearing_stiffness;           /* planet bearing, N/m radial and tangential */
+    double *pin_error; /* nplanets tangential pin position errors, m (owned; NULL: none):
+                          the bearing's unloaded position (static load sharing) */
     double mesh_stiffness[2];           /* sun-planet, ring-planet, N/m along the line of action */
     double mesh_damping[2];             /* N s/m */
     /* the carrier-frame terms ([CooleyParker2012]) act on every body of the set (1) or on the

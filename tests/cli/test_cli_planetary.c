@@ -176,5 +176,35 @@ TEST(stage_joins_a_parallel_train)
     scratch_close(&s);
 }
 
-RUN_TESTS(T(stage_joins_a_parallel_train), T(modal_names_the_lin_parker_classes),
-          T(check_prints_ratios_mesh_order_and_assembly), T(bad_sets_fail_located))
+/* static: equal sharing for the perfect set, F_n = T / (N r_s) = 100 / (4 x 0.0387); a pin
+ * error unbalances it (the closed form is in tests/elements/test_planetary.c); a pin error
+ * list of the wrong length is a located error. */
+TEST(static_load_sharing)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    cJSON *o = run_json_args(&s, "static " LP " --torque 100N*m --input sun --hold carrier");
+    REQUIRE(o);
+    const cJSON *p = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(o, "planetary_sets"), 0);
+    REQUIRE(p);
+    CHECK_REL(jnum(p, "load_sharing_factor"), 1, 1e-9);
+    const cJSON *f = cJSON_GetObjectItemCaseSensitive(p, "sun_mesh_force_N");
+    for (int n = 0; n < 4; n++)
+        CHECK_REL(cJSON_GetArrayItem(f, n)->valuedouble, 100 / (4 * 0.0387), 1e-9);
+    cJSON_Delete(o);
+    o = run_json_args(&s, "static " LP " --torque 100N*m --input sun --hold carrier --set "
+                          "'planetary_sets.lp.planets.pin_errors=[20 um, 0, 0, 0]'");
+    REQUIRE(o);
+    p = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(o, "planetary_sets"), 0);
+    CHECK(jnum(p, "load_sharing_factor") > 1.1);
+    cJSON_Delete(o);
+    CHECK(run_fails_cleanly(&s,
+                            "static " LP " --torque 100N*m --set "
+                            "'planetary_sets.lp.planets.pin_errors=[20 um, 0]'",
+                            "pin_errors", "2 pin errors for 4 planets"));
+    scratch_close(&s);
+}
+
+RUN_TESTS(T(static_load_sharing), T(stage_joins_a_parallel_train),
+          T(modal_names_the_lin_parker_classes), T(check_prints_ratios_mesh_order_and_assembly),
+          T(bad_sets_fail_located))

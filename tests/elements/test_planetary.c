@@ -8,6 +8,7 @@
 
 #include "elements/elements_impl.h"
 #include "geardyn/modal.h"
+#include "geardyn/static.h"
 #include "geardyn/model.h"
 #include "geardyn/system.h"
 #include "harness.h"
@@ -34,7 +35,7 @@ static const double PLA[3] = {1808.2, 5963.8, 6981.7};
 
 /* The Lin & Parker system with N planets as a model file (examples/planetary_lin_parker.yaml
  * with count N): inertia = (I/r^2) r^2, k_torsion = k_ru r_r^2. */
-static gd_model *lp_model(int N)
+static gd_model *lp_model_ex(int N, double ksup, double kru, const char *planet_extra)
 {
     char yaml[2048];
     snprintf(yaml, sizeof yaml,
@@ -50,13 +51,13 @@ static gd_model *lp_model(int N)
              "    ring: {node: ring, mass: %.17g, inertia: %.17g, k_support: %.17g, "
              "k_torsion: %.17g}\n"
              "    carrier: {node: carrier, mass: %.17g, inertia: %.17g, k_support: %.17g}\n"
-             "    planets: {count: %d, mass: %.17g, inertia: %.17g, bearing_stiffness: %.17g}\n"
+             "    planets: {count: %d, mass: %.17g, inertia: %.17g, bearing_stiffness: %.17g%s}\n"
              "    base_radius: {sun: %.17g, ring: %.17g, planet: %.17g}\n"
              "    carrier_radius: %.17g\n"
              "    pressure_angle: %.17g\n"
              "    mesh_stiffness: %.17g\n",
-             MS, JS * RS * RS, KB, MR, JR * RR * RR, KB, KRU * RR * RR, MC, JC * RC * RC, KB, N, MP,
-             JP * RP * RP, KB, RS, RR, RP, RC, ALPHA, KSP);
+             MS, JS * RS * RS, ksup, MR, JR * RR * RR, ksup, kru * RR * RR, MC, JC * RC * RC, ksup,
+             N, MP, JP * RP * RP, KB, planet_extra, RS, RR, RP, RC, ALPHA, KSP);
     gd_model *m = NULL;
     gd_error err;
     if (gd_model_load_string(yaml, "lp.yaml", &m, &err)) {
@@ -64,6 +65,11 @@ static gd_model *lp_model(int N)
         return NULL;
     }
     return m;
+}
+
+static gd_model *lp_model(int N)
+{
+    return lp_model_ex(N, KB, KRU, "");
 }
 
 /* The model's undamped natural frequencies (Hz), ascending; returns their count. */
@@ -478,7 +484,73 @@ TEST(carrier_frame_terms)
     free(text);
 }
 
-RUN_TESTS(T(carrier_frame_terms), T(cooley_parker_at_rest),
+/* Static sun-planet forces at torque T on the sun, the carrier's torsion held. */
+static int sharing(gd_model *m, double T, gd_static_planetary_loads *pl)
+{
+    gd_system *sys = NULL;
+    gd_static_result *res = NULL;
+    gd_static_options opt;
+    gd_static_options_init(&opt);
+    opt.input_torque = T;
+    opt.input_node = gd_model_find_node(m, "sun");
+    opt.hold_node = gd_model_find_node(m, "carrier");
+    int ok = !gd_system_build(m, &sys, NULL) && !gd_static_run(sys, &opt, &res, NULL) &&
+             !gd_static_planetary(sys, res, 0, pl, NULL);
+    gd_static_free(res);
+    gd_system_free(sys);
+    return ok;
+}
+
+/* A perfect set shares equally: F_n = T / (N r_s) for N = 3, 4, 5, K_gamma = 1. */
+TEST(equal_load_sharing)
+{
+    for (int N = 3; N <= NMAX; N++) {
+        gd_model *m = lp_model(N);
+        REQUIRE(m);
+        gd_static_planetary_loads pl;
+        REQUIRE(sharing(m, 100, &pl));
+        for (int n = 0; n < N; n++)
+            CHECK_REL(pl.sun_force[n], 100 / (N * RS), 1e-9);
+        CHECK_REL(pl.load_sharing, 1, 1e-9);
+        gd_model_free(m);
+    }
+}
+
+/* A pin error e_1 on planet 1 (docs/planetary.md, "Load sharing"): with the central members'
+ * translations rigid (supports 1e14 N/m: 5e-6 of the meshes' stiffness), each planet solves
+ * K_p x = -k_sp u_s a_s + k_p e_n t with K_p = k_sp a_s a_s^T + k_rp a_r a_r^T + k_p diag(1,
+ * 1, 0), so F_n = c1 u_s + c2 e_n, c2 = k_sp k_p a_s^T K_p^-1 t; the torque balance gives
+ * F_n = T / (N r_s) + c2 (e_n - mean e). Here K_p^-1 by LAPACK's dposv on the 3 x 3. */
+TEST(pin_error_load_sharing_against_the_closed_form)
+{
+    const int N = 4;
+    const double e1 = 5e-6, T = 100;
+    gd_model *m = lp_model_ex(N, 1e14, 1e14, ", pin_errors: [5 um, 0, 0, 0]");
+    REQUIRE(m);
+    gd_static_planetary_loads pl;
+    REQUIRE(sharing(m, T, &pl));
+    gd_model_free(m);
+    double K[9] = {0}, x[3] = {0, 1, 0};
+    const double as[3] = {-sin(ALPHA), -cos(ALPHA), 1}, ar[3] = {sin(ALPHA), -cos(ALPHA), -1};
+    add_outer(K, 3, KSP, as);
+    add_outer(K, 3, KSP, ar);
+    K[0] += KB;
+    K[4] += KB;
+    REQUIRE(LAPACKE_dposv(LAPACK_COL_MAJOR, 'U', 3, 1, K, 3, x, 3) == 0);
+    double c2 = KSP * KB * (as[0] * x[0] + as[1] * x[1] + as[2] * x[2]), mean = e1 / N;
+    double want[4], sum = 0, mx = 0;
+    for (int n = 0; n < N; n++) {
+        want[n] = T / (N * RS) + c2 * ((n == 0 ? e1 : 0) - mean);
+        CHECK_REL(pl.sun_force[n], want[n], 1e-4);
+        sum += want[n];
+        mx = fmax(mx, want[n]);
+    }
+    CHECK(fabs(pl.sun_force[0] - pl.sun_force[1]) > 0.1 * T / (N * RS)); /* the error matters */
+    CHECK_REL(pl.load_sharing, N * mx / sum, 1e-4);
+}
+
+RUN_TESTS(T(equal_load_sharing), T(pin_error_load_sharing_against_the_closed_form),
+          T(carrier_frame_terms), T(cooley_parker_at_rest),
           T(rotating_carrier_against_the_hermitian_count), T(mode_classes_and_their_counts),
           T(bearing_matrix_by_hand), T(lin_parker_table2_and_independent_assembly),
           T(lin_parker_multiplicities), T(planet_modes_from_the_planet_alone),
