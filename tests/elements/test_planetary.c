@@ -35,7 +35,8 @@ static const double PLA[3] = {1808.2, 5963.8, 6981.7};
 
 /* The Lin & Parker system with N planets as a model file (examples/planetary_lin_parker.yaml
  * with count N): inertia = (I/r^2) r^2, k_torsion = k_ru r_r^2. */
-static gd_model *lp_model_ex(int N, double ksup, double kru, const char *planet_extra)
+static gd_model *lp_model_ex(int N, double ksup, double kru, const char *planet_extra,
+                             const char *set_extra)
 {
     char yaml[2048];
     snprintf(yaml, sizeof yaml,
@@ -55,9 +56,9 @@ static gd_model *lp_model_ex(int N, double ksup, double kru, const char *planet_
              "    base_radius: {sun: %.17g, ring: %.17g, planet: %.17g}\n"
              "    carrier_radius: %.17g\n"
              "    pressure_angle: %.17g\n"
-             "    mesh_stiffness: %.17g\n",
+             "    mesh_stiffness: %.17g\n%s",
              MS, JS * RS * RS, ksup, MR, JR * RR * RR, ksup, kru * RR * RR, MC, JC * RC * RC, ksup,
-             N, MP, JP * RP * RP, KB, planet_extra, RS, RR, RP, RC, ALPHA, KSP);
+             N, MP, JP * RP * RP, KB, planet_extra, RS, RR, RP, RC, ALPHA, KSP, set_extra);
     gd_model *m = NULL;
     gd_error err;
     if (gd_model_load_string(yaml, "lp.yaml", &m, &err)) {
@@ -69,7 +70,7 @@ static gd_model *lp_model_ex(int N, double ksup, double kru, const char *planet_
 
 static gd_model *lp_model(int N)
 {
-    return lp_model_ex(N, KB, KRU, "");
+    return lp_model_ex(N, KB, KRU, "", "");
 }
 
 /* The model's undamped natural frequencies (Hz), ascending; returns their count. */
@@ -525,7 +526,7 @@ TEST(pin_error_load_sharing_against_the_closed_form)
 {
     const int N = 4;
     const double e1 = 5e-6, T = 100;
-    gd_model *m = lp_model_ex(N, 1e14, 1e14, ", pin_errors: [5 um, 0, 0, 0]");
+    gd_model *m = lp_model_ex(N, 1e14, 1e14, ", pin_errors: [5 um, 0, 0, 0]", "");
     REQUIRE(m);
     gd_static_planetary_loads pl;
     REQUIRE(sharing(m, T, &pl));
@@ -549,9 +550,63 @@ TEST(pin_error_load_sharing_against_the_closed_form)
     CHECK_REL(pl.load_sharing, N * mx / sum, 1e-4);
 }
 
-RUN_TESTS(T(equal_load_sharing), T(pin_error_load_sharing_against_the_closed_form),
-          T(carrier_frame_terms), T(cooley_parker_at_rest),
-          T(rotating_carrier_against_the_hermitian_count), T(mode_classes_and_their_counts),
-          T(bearing_matrix_by_hand), T(lin_parker_table2_and_independent_assembly),
-          T(lin_parker_multiplicities), T(planet_modes_from_the_planet_alone),
-          T(rigid_motion_deforms_nothing))
+/* Planet phasing ([Parker2000]) on a modal FRF: Lin & Parker's N = 4 set with Z_s = 21
+ * (Z_r = 79, Z_p = 29: (21 + 79) / 4 whole). Mesh harmonic l's phased sun-mesh load F
+ * (gd_planetary_mesh_excitation) drives mode k with the modal force p_k = phi_k^T F /
+ * sqrt(phi_k^T M phi_k), its response q_k(w) = p_k / (w_k^2 - w^2). l Z_s mod 4 = 0: only
+ * rotational modes respond; 1 or 3: only translational; 2: only planet modes. The other
+ * classes' responses stay below 1e-9 of the excited class's, at every w of a sweep. */
+TEST(planet_phasing_selects_the_mode_class)
+{
+    gd_model *m = lp_model_ex(4, KB, KRU, "", "    teeth: {sun: 21, ring: 79, planet: 29}\n");
+    REQUIRE(m);
+    gd_system *sys = NULL;
+    gd_modal_result *r = NULL;
+    gd_modal_options opt;
+    gd_modal_options_init(&opt);
+    opt.kind = GD_MODAL_UNDAMPED;
+    REQUIRE(!gd_system_build(m, &sys, NULL) && !gd_modal_solve(sys, &opt, &r, NULL));
+    int n = sys->ndof;
+    double *M = malloc((size_t)(n * n) * sizeof *M), fr[64], fi[64];
+    REQUIRE(M && n <= 64);
+    gd_system_dense(sys, 0, M, NULL, NULL);
+    for (int l = 1; l <= 8; l++) {
+        REQUIRE(!gd_planetary_mesh_excitation(sys, 0, l, 0, fr, fi, NULL));
+        int res = (l * 21) % 4;
+        gd_planetary_class want = res == 0   ? GD_PCLASS_ROTATIONAL
+                                  : res == 2 ? GD_PCLASS_PLANET
+                                             : GD_PCLASS_TRANSLATIONAL;
+        for (int s = 0; s < 5; s++) {
+            double w = 2 * PI * (500 + 2000.0 * s), on = 0, off = 0;
+            for (int k = 0; k < r->nmodes; k++) {
+                const double *phi = r->shape_re + (size_t)k * n;
+                double pr = 0, pi = 0, mk = 0;
+                for (int i = 0; i < n; i++) {
+                    pr += phi[i] * fr[i];
+                    pi += phi[i] * fi[i];
+                    for (int j = 0; j < n; j++)
+                        mk += phi[i] * M[i + (size_t)j * n] * phi[j];
+                }
+                double wk = r->modes[k].omega_n;
+                double q = hypot(pr, pi) / sqrt(mk) / fabs(wk * wk - w * w);
+                if (gd_modal_planetary_class(sys, r, k, 0) == want)
+                    on = fmax(on, q);
+                else
+                    off = fmax(off, q);
+            }
+            CHECK(on > 0);
+            CHECK(off <= 1e-9 * on);
+        }
+    }
+    free(M);
+    gd_modal_free(r);
+    gd_system_free(sys);
+    gd_model_free(m);
+}
+
+RUN_TESTS(T(planet_phasing_selects_the_mode_class), T(equal_load_sharing),
+          T(pin_error_load_sharing_against_the_closed_form), T(carrier_frame_terms),
+          T(cooley_parker_at_rest), T(rotating_carrier_against_the_hermitian_count),
+          T(mode_classes_and_their_counts), T(bearing_matrix_by_hand),
+          T(lin_parker_table2_and_independent_assembly), T(lin_parker_multiplicities),
+          T(planet_modes_from_the_planet_alone), T(rigid_motion_deforms_nothing))
