@@ -205,6 +205,33 @@ TEST(static_load_sharing)
     scratch_close(&s);
 }
 
-RUN_TESTS(T(static_load_sharing), T(stage_joins_a_parallel_train),
-          T(modal_names_the_lin_parker_classes), T(check_prints_ratios_mesh_order_and_assembly),
-          T(bad_sets_fail_located))
+/* campbell over the carrier speed of examples/planetary_cooley_parker.yaml: the lowest
+ * translational pair, 0.7199 sqrt(k_p / m_p) = 265.7 Hz at rest ([CooleyParker2012] Table 2),
+ * splits under the gyroscopic terms (200.8 and 287.0 Hz at 5000 rpm; the library's modes at
+ * speed are checked against the paper's Eq. 1 in tests/elements/test_planetary.c). */
+TEST(campbell_splits_the_translational_pair)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    cJSON *o = run_json_args(&s, "campbell examples/planetary_cooley_parker.yaml --speeds "
+                                 "0:5000rpm:2 --threads 1");
+    REQUIRE(o);
+    const cJSON *modes = cJSON_GetObjectItemCaseSensitive(o, "modes");
+    double at_rest[2], at_speed[2];
+    for (int k = 0; k < 2; k++) {
+        const cJSON *f =
+            cJSON_GetObjectItemCaseSensitive(cJSON_GetArrayItem(modes, k), "frequency_hz");
+        at_rest[k] = cJSON_GetArrayItem(f, 0)->valuedouble;
+        at_speed[k] = cJSON_GetArrayItem(f, 1)->valuedouble;
+        CHECK_REL(at_rest[k], 0.7199 * sqrt(10e6 / 1.86) / (2 * M_PI), 1e-3);
+    }
+    CHECK(fabs(at_speed[0] - at_speed[1]) > 0.2 * at_rest[0]);
+    CHECK(fmin(at_speed[0], at_speed[1]) < at_rest[0] &&
+          fmax(at_speed[0], at_speed[1]) > at_rest[0]);
+    cJSON_Delete(o);
+    scratch_close(&s);
+}
+
+RUN_TESTS(T(campbell_splits_the_translational_pair), T(static_load_sharing),
+          T(stage_joins_a_parallel_train), T(modal_names_the_lin_parker_classes),
+          T(check_prints_ratios_mesh_order_and_assembly), T(bad_sets_fail_located))

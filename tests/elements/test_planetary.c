@@ -73,18 +73,31 @@ static gd_model *lp_model(int N)
     return lp_model_ex(N, KB, KRU, "", "");
 }
 
+/* The system of m and its modes at speed W (undamped, or damped with its gyroscopic terms);
+ * 0 on failure (both freed). */
+static int solve_modes(const gd_model *m, double W, gd_modal_kind kind, gd_system **sys,
+                       gd_modal_result **r)
+{
+    gd_modal_options opt;
+    gd_modal_options_init(&opt);
+    opt.speed = W;
+    opt.kind = kind;
+    *sys = NULL;
+    *r = NULL;
+    if (gd_system_build(m, sys, NULL) || gd_modal_solve(*sys, &opt, r, NULL)) {
+        gd_system_free(*sys);
+        *sys = NULL;
+        return 0;
+    }
+    return 1;
+}
+
 /* The model's undamped natural frequencies (Hz), ascending; returns their count. */
 static int model_frequencies(const gd_model *m, double *f)
 {
-    gd_system *sys = NULL;
-    gd_modal_result *r = NULL;
-    gd_modal_options opt;
-    gd_modal_options_init(&opt);
-    opt.kind = GD_MODAL_UNDAMPED;
-    if (gd_system_build(m, &sys, NULL) || gd_modal_solve(sys, &opt, &r, NULL)) {
-        gd_system_free(sys);
-        return 0;
-    }
+    gd_system *sys;
+    gd_modal_result *r;
+    if (!solve_modes(m, 0, GD_MODAL_UNDAMPED, &sys, &r)) return 0;
     int n = r->nmodes;
     for (int i = 0; i < n; i++)
         f[i] = r->modes[i].frequency_hz;
@@ -337,12 +350,9 @@ TEST(mode_classes_and_their_counts)
     for (int N = 3; N <= NMAX; N++) {
         gd_model *m = lp_model(N);
         REQUIRE(m);
-        gd_system *sys = NULL;
-        gd_modal_result *r = NULL;
-        gd_modal_options opt;
-        gd_modal_options_init(&opt);
-        opt.kind = GD_MODAL_UNDAMPED;
-        REQUIRE(!gd_system_build(m, &sys, NULL) && !gd_modal_solve(sys, &opt, &r, NULL));
+        gd_system *sys;
+        gd_modal_result *r;
+        REQUIRE(solve_modes(m, 0, GD_MODAL_UNDAMPED, &sys, &r));
         int count[GD_PCLASS_COUNT] = {0};
         for (int j = 0; j < r->nmodes; j++)
             count[gd_modal_planetary_class(sys, r, j, 0)]++;
@@ -395,13 +405,9 @@ TEST(rotating_carrier_against_the_hermitian_count)
     gd_model *m = NULL;
     REQUIRE(!gd_model_load(CP_FILE, &m, NULL));
     double W = 5000 * PI / 30;
-    gd_system *sys = NULL;
-    gd_modal_result *r = NULL;
-    gd_modal_options opt;
-    gd_modal_options_init(&opt);
-    opt.speed = W;
-    opt.kind = GD_MODAL_DAMPED;
-    REQUIRE(!gd_system_build(m, &sys, NULL) && !gd_modal_solve(sys, &opt, &r, NULL));
+    gd_system *sys;
+    gd_modal_result *r;
+    REQUIRE(solve_modes(m, W, GD_MODAL_DAMPED, &sys, &r));
     double w[42];
     int nw = 0;
     for (int j = 0; j < r->nmodes && nw < 42; j++)
@@ -560,12 +566,9 @@ TEST(planet_phasing_selects_the_mode_class)
 {
     gd_model *m = lp_model_ex(4, KB, KRU, "", "    teeth: {sun: 21, ring: 79, planet: 29}\n");
     REQUIRE(m);
-    gd_system *sys = NULL;
-    gd_modal_result *r = NULL;
-    gd_modal_options opt;
-    gd_modal_options_init(&opt);
-    opt.kind = GD_MODAL_UNDAMPED;
-    REQUIRE(!gd_system_build(m, &sys, NULL) && !gd_modal_solve(sys, &opt, &r, NULL));
+    gd_system *sys;
+    gd_modal_result *r;
+    REQUIRE(solve_modes(m, 0, GD_MODAL_UNDAMPED, &sys, &r));
     int n = sys->ndof;
     double *M = malloc((size_t)(n * n) * sizeof *M), fr[64], fi[64];
     REQUIRE(M && n <= 64);
