@@ -7,6 +7,7 @@
 #include <lapacke.h>
 
 #include "elements/elements_impl.h"
+#include "geardyn/builder.h"
 #include "geardyn/modal.h"
 #include "geardyn/static.h"
 #include "geardyn/model.h"
@@ -607,7 +608,98 @@ TEST(planet_phasing_selects_the_mode_class)
     gd_model_free(m);
 }
 
-RUN_TESTS(T(planet_phasing_selects_the_mode_class), T(equal_load_sharing),
+/* Unequally spaced planets ([LinParker2000]): the planet modes survive any spacing, central
+ * members still, at the equally spaced set's planet frequencies, N - 3 times each (the
+ * planets' weights c_n need only sum c_n = 0 and sum c_n exp(i psi_n) = 0); the other modes
+ * are no longer purely rotational or translational. */
+TEST(unequal_spacing_keeps_the_planet_modes)
+{
+    const char *angles[2] = {", angles: [0, 80 deg, 170 deg, 265 deg]",
+                             ", angles: [0, 60 deg, 150 deg, 220 deg, 290 deg]"};
+    for (int v = 0; v < 2; v++) {
+        int N = 4 + v;
+        char extra[128];
+        snprintf(extra, sizeof extra, "%s", angles[v]);
+        /* the angles next to `count: N` (they must agree) */
+        gd_model *m = lp_model_ex(N, KB, KRU, extra, "");
+        REQUIRE(m);
+        CHECK(!m->planetary[0].equally_spaced);
+        gd_system *sys;
+        gd_modal_result *r;
+        REQUIRE(solve_modes(m, 0, GD_MODAL_UNDAMPED, &sys, &r));
+        int planet = 0, pure = 0;
+        for (int k = 0; k < r->nmodes; k++) {
+            gd_planetary_class c = gd_modal_planetary_class(sys, r, k, 0);
+            if (c == GD_PCLASS_PLANET) {
+                planet++;
+                double best = 1e30;
+                for (int i = 0; i < 3; i++)
+                    best = fmin(best, fabs(r->modes[k].frequency_hz / PLA[i] - 1));
+                CHECK(best < 1e-3); /* Table 2's planet modes, to its rounding */
+            }
+            pure += c == GD_PCLASS_TRANSLATIONAL;
+        }
+        CHECK(planet == 3 * (N - 3));
+        CHECK(pure < 12); /* the translational pairs are gone */
+        gd_modal_free(r);
+        gd_system_free(sys);
+        gd_model_free(m);
+    }
+}
+
+/* The builder in C: the set of the CLI tests with unequal angles, its planets' nodes and
+ * shafts, and an error located at the spec's field. */
+TEST(builder_api)
+{
+    gd_model *m = NULL;
+    REQUIRE(!gd_model_new("set.c", &m, NULL));
+    const char *names[3] = {"sun", "ring", "carrier"};
+    for (int j = 0; j < 3; j++) {
+        gd_station_spec st;
+        gd_station_spec_init(&st);
+        st.name = names[j];
+        gd_shaft_spec sh;
+        gd_shaft_spec_init(&sh);
+        sh.nstations = 1;
+        sh.stations = &st;
+        REQUIRE(!gd_model_add_shaft(m, &sh, NULL, NULL));
+    }
+    gd_planetary_spec p;
+    gd_planetary_spec_init(&p);
+    CHECK(p.held == -1 && fabs(p.pressure_angle[1] - 20 * PI / 180) < 1e-15);
+    p.name = "ps";
+    for (int j = 0; j < 3; j++)
+        p.member[j].node = names[j], p.member[j].mass = 1, p.member[j].inertia = 1e-3;
+    p.member[GD_PLANETARY_RING].k_torsion = 1e8;
+    p.held = GD_PLANETARY_RING;
+    const double ang[3] = {0, 120 * PI / 180, 248 * PI / 180}; /* 90 x 248 / 360 = 62 */
+    p.nplanets = 3;
+    p.planet_angles = ang;
+    p.planet_mass = 0.4, p.planet_inertia = 1.5e-4, p.bearing_stiffness = 1e8;
+    p.teeth[0] = 20, p.teeth[1] = 70, p.teeth[2] = 25;
+    p.base_radius[0] = 0.0187939, p.base_radius[1] = 0.0657785, p.base_radius[2] = 0.0234923;
+    p.carrier_radius = 0.045;
+    p.mesh_stiffness[0] = p.mesh_stiffness[1] = 4e8;
+    int idx = -1;
+    REQUIRE(!gd_model_add_planetary(m, &p, &idx, NULL));
+    CHECK(idx == 0);
+    gd_planetary_spec bad = p;
+    const double near[3] = {0, 60 * PI / 180, 180 * PI / 180};
+    bad.name = "bad";
+    bad.planet_angles = near;
+    gd_error err;
+    CHECK(gd_model_add_planetary(m, &bad, NULL, &err) == GD_EINPUT);
+    CHECK_STR(err.field, "planetary_sets[1].planets.angles");
+    CHECK(m->nplanetary == 1);
+    REQUIRE(!gd_model_finish(m, NULL));
+    CHECK(m->nshafts == 6 && gd_model_find_node(m, "ps.p3") == m->planetary[0].first_planet + 2);
+    CHECK(m->planetary[0].member[GD_PLANETARY_CARRIER].node == gd_model_find_node(m, "carrier"));
+    CHECK_REL(m->shafts[2].speed_ratio, 20.0 / 90, 1e-12); /* the carrier's, from the sun's */
+    gd_model_free(m);
+}
+
+RUN_TESTS(T(unequal_spacing_keeps_the_planet_modes), T(builder_api),
+          T(planet_phasing_selects_the_mode_class), T(equal_load_sharing),
           T(pin_error_load_sharing_against_the_closed_form), T(carrier_frame_terms),
           T(cooley_parker_at_rest), T(rotating_carrier_against_the_hermitian_count),
           T(mode_classes_and_their_counts), T(bearing_matrix_by_hand),
