@@ -60,11 +60,6 @@ static const gd_planetary *locate(const gd_model *m, int i, int *kind, int *k)
     return NULL;
 }
 
-static int set_index(const gd_model *m, const gd_planetary *g)
-{
-    return (int)(g - m->planetary);
-}
-
 static int pl_count(const gd_model *m)
 {
     int n = 0;
@@ -230,22 +225,21 @@ static void pl_speed_pattern(const gd_model *m, int i, int *acts)
     acts[GD_X] = acts[GD_Y] = 1;
 }
 
-static int pl_ncomponents(const gd_model *m)
-{
-    return 4 * m->nplanetary;
-}
-
+/* One strain-energy component per instance (its nodes give its shafts). */
 static int pl_component(const gd_model *m, int i)
 {
-    int kind, k;
-    const gd_planetary *g = locate(m, i, &kind, &k);
-    int c = kind == SUN_MESH ? 0 : kind == RING_MESH ? 1 : kind == BEARING ? 2 : 3;
-    return 4 * set_index(m, g) + c;
+    (void)m;
+    return i;
 }
 
 static const char *pl_component_name(const gd_model *m, int c)
 {
-    return m->planetary[c / 4].component_name[c % 4];
+    for (int s = 0; s < m->nplanetary; s++) {
+        int n = 3 + 4 * m->planetary[s].nplanets;
+        if (c < n) return m->planetary[s].instance_name[c];
+        c -= n;
+    }
+    return "";
 }
 
 const gd_element_type gd_element_planetary = {
@@ -256,7 +250,7 @@ const gd_element_type gd_element_planetary = {
     .matrices = pl_matrices,
     .speed_pattern = pl_speed_pattern,
     .motion = gd_support_motion,
-    .ncomponents = pl_ncomponents,
+    .ncomponents = pl_count,
     .component = pl_component,
     .component_name = pl_component_name,
 };

@@ -283,9 +283,7 @@ gd_status gd_model_add_planetary(gd_model *m, const gd_planetary_spec *s, int *i
     g.bearing_stiffness = s->bearing_stiffness;
     memcpy(g.mesh_stiffness, s->mesh_stiffness, sizeof g.mesh_stiffness);
     memcpy(g.mesh_damping, s->mesh_damping, sizeof g.mesh_damping);
-    static const char *const COMP[4] = {"sun_meshes", "ring_meshes", "planet_bearings", "supports"};
-    for (int c = 0; c < 4; c++)
-        snprintf(g.component_name[c], sizeof g.component_name[c], "%s.%s", g.name, COMP[c]);
+    g.instance_name = malloc((size_t)(3 + 4 * g.nplanets) * sizeof *g.instance_name);
 
     gd_bplanetary bp;
     memset(&bp, 0, sizeof bp);
@@ -297,7 +295,7 @@ gd_status gd_model_add_planetary(gd_model *m, const gd_planetary_spec *s, int *i
     }
     g.planet_angle = malloc((size_t)g.nplanets * sizeof *g.planet_angle);
     if (s->pin_errors) g.pin_error = malloc((size_t)g.nplanets * sizeof *g.pin_error);
-    ok = ok && g.planet_angle && (!s->pin_errors || g.pin_error) &&
+    ok = ok && g.planet_angle && g.instance_name && (!s->pin_errors || g.pin_error) &&
          gd_build_grow(&m->planetary, m->nplanetary, sizeof *m->planetary) &&
          gd_build_grow(&m->build->planetary, m->nplanetary, sizeof *m->build->planetary);
     if (!ok) {
@@ -306,8 +304,18 @@ gd_status gd_model_add_planetary(gd_model *m, const gd_planetary_spec *s, int *i
             free(bp.node[j]);
         free(g.planet_angle);
         free(g.pin_error);
+        free(g.instance_name);
         return gd_build_oom(m, err);
     }
+    /* the element's instance names (src/elements/planetary.c's order) */
+    static const char *const KINDS[4] = {"planet", "sun_mesh", "ring_mesh", "bearing"};
+    for (int j = 0; j < 3; j++)
+        snprintf(g.instance_name[j], sizeof g.instance_name[j], "%s.%s", g.name,
+                 gd_planetary_member_names[j]);
+    for (int k = 0; k < 4; k++)
+        for (int n = 0; n < g.nplanets; n++)
+            snprintf(g.instance_name[3 + k * g.nplanets + n], sizeof g.instance_name[0], "%s.%s%d",
+                     g.name, KINDS[k], n + 1);
     for (int n = 0; n < g.nplanets; n++) {
         g.planet_angle[n] = planet_angle(s, n);
         if (g.pin_error) g.pin_error[n] = s->pin_errors[n];
