@@ -137,7 +137,7 @@ gd_status gd_build_mesh_from_geometry(gd_model *m, int k, gd_error *err);
 gd_status gd_build_propagate_speeds(gd_model *m, gd_error *err); /* speed_propagation.c */
 /* unbalances, loads, prescribed motions, cams (builder_dynamics.c) */
 gd_status gd_build_resolve_dynamics(gd_model *m, gd_error *err);
-gd_status gd_build_resolve_laws(gd_model *m, gd_error *err); /* builder_laws.c */
+gd_status gd_build_resolve_laws(gd_model *m, gd_error *err);      /* builder_laws.c */
 gd_status gd_build_resolve_planetary(gd_model *m, gd_error *err); /* builder_planetary.c */
 
 #endif
