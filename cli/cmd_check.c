@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "geardyn/planetary.h"
 #include "options.h"
 
 typedef struct check_args {
@@ -20,6 +21,98 @@ static const gd_cli_command CMD = {
     .opts = OPTS,
     .about = "Validates a model and prints a summary: nodes, DOFs, elements, meshes, and the mass\n"
              "and polar inertia of each shaft with everything on it.\n"};
+
+/* The input member's speed ratio to the reference shaft (0 for a differential). */
+static double input_ratio(const gd_model *m, const gd_planetary *g,
+                          const gd_planetary_kinematics *k)
+{
+    return k->input < 0 ? 0 : m->shafts[m->nodes[g->member[k->input].node].shaft].speed_ratio;
+}
+
+/* Each planetary set: members, spacing, ratios, mesh frequency, assembly
+ * (docs/planetary.md). */
+static void print_planetary(const gd_model *m)
+{
+    for (int i = 0; i < m->nplanetary; i++) {
+        const gd_planetary *g = &m->planetary[i];
+        gd_planetary_kinematics k;
+        gd_planetary_kinematics_of(g, &k);
+        printf("\nplanetary set '%s': %d planets, %s, %s held\n", g->name, g->nplanets,
+               g->equally_spaced ? "equally spaced" : "spaced as given",
+               g->held < 0 ? "no member" : gd_planetary_member_names[g->held]);
+        printf("  members    sun '%s', ring '%s', carrier '%s'\n", m->nodes[g->member[0].node].name,
+               m->nodes[g->member[1].node].name, m->nodes[g->member[2].node].name);
+        printf("  angles     ");
+        for (int n = 0; n < g->nplanets; n++)
+            printf("%s%.6g", n ? ", " : "", g->planet_angle[n] * 180 / M_PI);
+        printf(" deg\n");
+        if (k.input < 0) {
+            printf("  ratios     differential (no member held): Z_r / Z_s = %.6g%s\n",
+                   k.teeth_ratio, k.has_teeth ? "" : " (pitch radii)");
+        } else {
+            printf("  ratios     per unit %s speed: sun %.6g, ring %.6g, carrier %.6g, planets "
+                   "%.6g (Z_r / Z_s = %.6g%s)\n",
+                   gd_planetary_member_names[k.input], k.speed[0], k.speed[1], k.speed[2],
+                   k.planet_speed, k.teeth_ratio, k.has_teeth ? "" : ", from pitch radii");
+            if (k.has_teeth) {
+                double order = k.mesh_order * fabs(input_ratio(m, g, &k));
+                printf("  mesh       %.6g per %s revolution, order %.6g of the reference shaft: "
+                       "%.6g Hz at %g rpm\n",
+                       k.mesh_order, gd_planetary_member_names[k.input], order,
+                       order * m->speed / (2 * M_PI), m->speed * 30 / M_PI);
+            }
+        }
+        if (!k.has_teeth) {
+            printf("  assembly   not checked: give the teeth (`teeth: {sun, ring, planet}`)\n");
+        } else {
+            printf("  assembly   (Z_s + Z_r) psi_n / 360 deg =");
+            for (int n = 0; n < g->nplanets; n++)
+                printf(" %.6g", k.assembly[n]);
+            printf(": %s", k.assembles ? "whole numbers, the set assembles" : "NOT whole numbers");
+            if (g->equally_spaced) printf("; Z_s / N = %.6g", k.sun_teeth_per_planet);
+            printf("\n");
+        }
+    }
+}
+
+static cJSON *planetary_json(const gd_model *m)
+{
+    cJSON *a = cJSON_CreateArray();
+    for (int i = 0; i < m->nplanetary; i++) {
+        const gd_planetary *g = &m->planetary[i];
+        gd_planetary_kinematics k;
+        gd_planetary_kinematics_of(g, &k);
+        cJSON *j = cJSON_CreateObject();
+        cJSON_AddStringToObject(j, "name", g->name);
+        cJSON_AddNumberToObject(j, "planets", g->nplanets);
+        cJSON_AddBoolToObject(j, "equally_spaced", g->equally_spaced);
+        cJSON *ang = cJSON_AddArrayToObject(j, "angles_deg");
+        for (int n = 0; n < g->nplanets; n++)
+            cJSON_AddItemToArray(ang, cJSON_CreateNumber(g->planet_angle[n] * 180 / M_PI));
+        if (g->held >= 0)
+            cJSON_AddStringToObject(j, "held", gd_planetary_member_names[g->held]);
+        else
+            cJSON_AddNullToObject(j, "held");
+        cJSON *w = cJSON_AddObjectToObject(j, "speed_per_input");
+        for (int q = 0; q < GD_PLANETARY_NMEMBERS; q++)
+            cJSON_AddItemToObject(w, gd_planetary_member_names[q], gd_cli_json_number(k.speed[q]));
+        cJSON_AddItemToObject(w, "planets", gd_cli_json_number(k.planet_speed));
+        cJSON_AddItemToObject(j, "teeth_ratio", gd_cli_json_number(k.teeth_ratio));
+        double order = k.mesh_order * fabs(input_ratio(m, g, &k));
+        cJSON_AddItemToObject(j, "mesh_order", gd_cli_json_number(order));
+        cJSON_AddItemToObject(j, "mesh_frequency_hz",
+                              gd_cli_json_number(order * m->speed / (2 * M_PI)));
+        cJSON *as = cJSON_AddArrayToObject(j, "assembly");
+        for (int n = 0; n < g->nplanets; n++)
+            cJSON_AddItemToArray(as, gd_cli_json_number(k.assembly[n]));
+        if (k.assembles < 0)
+            cJSON_AddNullToObject(j, "assembles");
+        else
+            cJSON_AddBoolToObject(j, "assembles", k.assembles);
+        cJSON_AddItemToArray(a, j);
+    }
+    return a;
+}
 
 static void print_text(const gd_model *m, const gd_system *s)
 {
@@ -57,6 +150,7 @@ static void print_text(const gd_model *m, const gd_system *s)
                    g->stiffness, g->damping, gd_coupling_names[g->coupling]);
         }
     }
+    print_planetary(m);
     if (m->nlaws) {
         /* laws of the registry: type, where, and the parameters that are not zero */
         printf("\n%-16s %-18s %-24s %s\n", "law", "type", "node -> to", "parameters (SI)");
@@ -116,6 +210,7 @@ static cJSON *summary_json(const gd_model *m, const gd_system *s)
         cJSON_AddStringToObject(j, "coupling", gd_coupling_names[g->coupling]);
         cJSON_AddItemToArray(meshes, j);
     }
+    if (m->nplanetary) cJSON_AddItemToObject(o, "planetary_sets", planetary_json(m));
     cJSON *laws = cJSON_AddArrayToObject(o, "laws");
     for (int i = 0; i < m->nlaws; i++) {
         const gd_model_law *L = &m->laws[i];

@@ -72,19 +72,33 @@ static const char *component_name(const gd_system *s, int c)
     return name;
 }
 
+/* The planetary class of mode j (docs/planetary.md): that of the first set that moves in
+ * it, "-" when none does. */
+static const char *mode_class(const gd_system *s, const gd_modal_result *r, int j)
+{
+    for (int k = 0; k < s->model->nplanetary; k++) {
+        gd_planetary_class c = gd_modal_planetary_class(s, r, j, k);
+        if (c != GD_PCLASS_NONE) return gd_planetary_class_names[c];
+    }
+    return gd_planetary_class_names[GD_PCLASS_NONE];
+}
+
 static void print_table(const gd_system *s, const gd_modal_result *r)
 {
+    int pl = s->model->nplanetary > 0;
     printf("%s: %d DOFs, speed %g rad/s (%g rpm), %s modes (%s solver)\n\n", s->model->file,
            s->ndof, r->speed, r->speed * 30 / M_PI, r->damped ? "damped (state space)" : "undamped",
            r->sparse ? "sparse" : "dense");
-    printf("%4s %12s %12s %12s %9s %9s  %-10s %-10s %-14s %5s %5s %5s %5s\n", "mode", "f_n(Hz)",
+    printf("%4s %12s %12s %12s %9s %9s  %-10s %-10s %-14s %5s %5s %5s %5s%s\n", "mode", "f_n(Hz)",
            "w_n(rad/s)", "w_d(rad/s)", "zeta", "logdec", "whirl", "dominant", "component", "lat%",
-           "tor%", "ax%", "tilt%");
+           "tor%", "ax%", "tilt%", pl ? "  class" : "");
     for (int j = 0; j < r->nmodes; j++) {
         const gd_mode *md = &r->modes[j];
         if (md->rigid_body) {
-            printf("%4d %12.6g %12.6g %12.6g %9s %9s  %-10s %-10s %-14s\n", j + 1, 0.0, 0.0, 0.0,
-                   "-", "-", "none", gd_motion_names[md->dominant_motion], "(rigid body)");
+            printf("%4d %12.6g %12.6g %12.6g %9s %9s  %-10s %-10s %-14s", j + 1, 0.0, 0.0, 0.0, "-",
+                   "-", "none", gd_motion_names[md->dominant_motion], "(rigid body)");
+            if (pl) printf(" %5s %5s %5s %5s  %s", "", "", "", "", mode_class(s, r, j));
+            printf("\n");
             continue;
         }
         char ld[16];
@@ -92,12 +106,13 @@ static void print_table(const gd_system *s, const gd_modal_result *r)
             snprintf(ld, sizeof ld, "-");
         else
             snprintf(ld, sizeof ld, "%.4g", md->log_decrement);
-        printf(
-            "%4d %12.6g %12.6g %12.6g %9.4g %9s  %-10s %-10s %-14.14s %5.1f %5.1f %5.1f %5.1f%s\n",
-            j + 1, md->frequency_hz, md->omega_n, md->omega_d, md->damping_ratio, ld,
-            gd_whirl_names[md->whirl], gd_motion_names[md->dominant_motion],
-            component_name(s, md->dominant_component), share(md, 0), share(md, 1), share(md, 2),
-            share(md, 3), md->unstable ? "  UNSTABLE" : (md->overdamped ? "  overdamped" : ""));
+        printf("%4d %12.6g %12.6g %12.6g %9.4g %9s  %-10s %-10s %-14.14s %5.1f %5.1f %5.1f "
+               "%5.1f%s%s%s\n",
+               j + 1, md->frequency_hz, md->omega_n, md->omega_d, md->damping_ratio, ld,
+               gd_whirl_names[md->whirl], gd_motion_names[md->dominant_motion],
+               component_name(s, md->dominant_component), share(md, 0), share(md, 1), share(md, 2),
+               share(md, 3), pl ? "  " : "", pl ? mode_class(s, r, j) : "",
+               md->unstable ? "  UNSTABLE" : (md->overdamped ? "  overdamped" : ""));
     }
 }
 
@@ -138,6 +153,14 @@ static cJSON *result_json(const gd_system *s, const gd_modal_result *r)
         cJSON_AddBoolToObject(m, "rigid_body", md->rigid_body);
         cJSON_AddBoolToObject(m, "overdamped", md->overdamped);
         cJSON_AddBoolToObject(m, "unstable", md->unstable);
+        if (s->model->nplanetary > 0) {
+            cJSON_AddStringToObject(m, "class", mode_class(s, r, j));
+            cJSON *pc = cJSON_AddObjectToObject(m, "planetary_classes");
+            for (int k = 0; k < s->model->nplanetary; k++)
+                cJSON_AddStringToObject(
+                    pc, s->model->planetary[k].name,
+                    gd_planetary_class_names[gd_modal_planetary_class(s, r, j, k)]);
+        }
         cJSON *es = cJSON_AddObjectToObject(m, "energy_share");
         for (int k = 0; k < GD_NMOTIONS; k++)
             add_num(es, gd_motion_names[k], md->energy_share[k]);

@@ -91,6 +91,16 @@ static void print_tables(const gd_system *s, const gd_static_result *r)
                 printf(" %8s %10s %10s\n", "-", "-", "-");
         }
     }
+    for (int k = 0; k < m->nplanetary; k++) {
+        gd_static_planetary_loads pl;
+        if (gd_static_planetary(s, r, k, &pl, NULL)) continue;
+        printf("\nplanetary set '%s': load-sharing factor K_gamma %.6g\n%-8s %14s %14s %14s\n",
+               m->planetary[k].name, pl.load_sharing, "planet", "F_sun(N)", "F_ring(N)",
+               "F_bearing(N)");
+        for (int n = 0; n < pl.nplanets; n++)
+            printf("%-8d %14.6g %14.6g %14.6g\n", n + 1, pl.sun_force[n], pl.ring_force[n],
+                   pl.bearing_force[n]);
+    }
     if (m->nbearings) {
         printf("\nbearing reactions (force and moment on the shaft)\n%-12s %-14s %12s %12s %12s "
                "%12s %12s %12s\n",
@@ -179,6 +189,20 @@ static cJSON *result_json(const gd_system *s, const gd_static_result *r)
         add_num(j, "f_sh_m", g->f_sh);
         add_num(j, "F_beta_x_m", g->f_beta_x);
         cJSON_AddItemToArray(ms, j);
+    }
+    if (m->nplanetary) {
+        cJSON *ps = cJSON_AddArrayToObject(o, "planetary_sets");
+        for (int k = 0; k < m->nplanetary; k++) {
+            gd_static_planetary_loads pl;
+            if (gd_static_planetary(s, r, k, &pl, NULL)) continue;
+            cJSON *j = cJSON_CreateObject();
+            cJSON_AddStringToObject(j, "name", m->planetary[k].name);
+            add_num(j, "load_sharing_factor", pl.load_sharing);
+            cJSON_AddItemToObject(j, "sun_mesh_force_N", num_array(pl.sun_force, pl.nplanets));
+            cJSON_AddItemToObject(j, "ring_mesh_force_N", num_array(pl.ring_force, pl.nplanets));
+            cJSON_AddItemToObject(j, "bearing_force_N", num_array(pl.bearing_force, pl.nplanets));
+            cJSON_AddItemToArray(ps, j);
+        }
     }
     cJSON *bs = cJSON_AddArrayToObject(o, "bearings");
     for (int b = 0; b < m->nbearings; b++) {

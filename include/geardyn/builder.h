@@ -211,6 +211,56 @@ GD_API void gd_spring_spec_init(gd_spring_spec *s);
 GD_API gd_status gd_model_add_spring(gd_model *m, const gd_spring_spec *s, int *index,
                                      gd_error *err);
 
+/* ---- planetary gear sets (docs/planetary.md) ---- */
+/* One central member: its node and what the set adds there. */
+typedef struct gd_planetary_member_spec {
+    const char *node; /* required: the member's node (lumped or on an FE shaft) */
+    double mass;      /* kg, >= 0 */
+    double inertia;   /* kg m^2 about z, >= 0 */
+    double k_support; /* N/m to ground in x and in y, >= 0 */
+    double k_torsion; /* N m/rad to ground about z, >= 0; required (> 0) for the held member */
+} gd_planetary_member_spec;
+/* A planetary set ([LinParker1999]). Sizes: base radii of sun, ring and planet and the
+ * carrier radius (planet centres), all > 0. Planets: nplanets >= 1 at planet_angles
+ * (NULL: equally spaced, psi_n = 2 pi n / N), all with one mass, inertia and bearing. */
+typedef struct gd_planetary_spec {
+    const char *name; /* required; the planets' shafts and nodes are named after it */
+    gd_planetary_member_spec member[GD_PLANETARY_NMEMBERS]; /* sun, ring, carrier */
+    int held;                    /* gd_planetary_member, or -1 (default): none held */
+    int nplanets;                /* 1 .. GD_PLANETARY_MAX_PLANETS */
+    const double *planet_angles; /* nplanets angles, rad, increasing within [0, 2 pi); NULL */
+    double planet_mass, planet_inertia; /* kg > 0, kg m^2 > 0 */
+    double bearing_stiffness;           /* N/m > 0, radial and tangential */
+    const double *pin_errors;           /* nplanets tangential pin position errors, m (in the
+                                           carrier's sense of rotation); NULL: none */
+    int teeth[3];                       /* sun, ring, planet; 0: not given (all or none) */
+    double base_radius[3];              /* sun, ring, planet, m > 0 */
+    double carrier_radius;              /* m > 0 */
+    double pressure_angle[2];           /* sun-planet, ring-planet, rad; default 20 deg */
+    double helix_angle;                 /* rad, default 0 */
+    double planet_tip_radius;           /* m; 0: estimated from the teeth (docs/planetary.md) */
+    double mesh_stiffness[2];           /* sun-planet, ring-planet, N/m > 0 */
+    double mesh_damping[2];             /* N s/m >= 0 */
+    /* which bodies get the carrier-frame terms when the carrier turns: 1 all (the whole set
+       in the carrier frame, [CooleyParker2012]), 0 the planets only (members on shafts
+       modelled in the fixed frame), -1 (default) all when every member sits on a shaft
+       without sections, else the planets */
+    int carrier_frame;
+    gd_loc loc;
+    const char *path; /* NULL: "planetary_sets[<index>]" */
+} gd_planetary_spec;
+/* Defaults: all zero, held -1, pressure angles 20 deg. */
+GD_API void gd_planetary_spec_init(gd_planetary_spec *s);
+/* *index: the set's index. Adds one lumped shaft per planet. Errors now: a missing or
+ * too long name, values out of range, angles not increasing in [0, 2 pi), teeth given
+ * in part, planets whose tips overlap at their spacing, tooth counts that cannot be
+ * assembled at the angles ((Z_s + Z_r) psi_n / 2 pi not a whole number), a ring whose
+ * pitch circle is inside the planets' span, a held member without torsional support.
+ * At finish: an unknown node, two members on one node, a held member's node also held
+ * torsionally elsewhere (a bearing or spring to ground about z, or another set). */
+GD_API gd_status gd_model_add_planetary(gd_model *m, const gd_planetary_spec *s, int *index,
+                                        gd_error *err);
+
 /* ---- gear meshes ---- */
 
 /* Table data y(x) the builder copies (x increasing). n = 0: no table. */

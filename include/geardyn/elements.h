@@ -90,11 +90,11 @@ typedef struct gd_element_type {
     const char *probe_help;
 } gd_element_type;
 
-/* The registry, in assembly order (shaft, disk, bearing, spring, mesh). */
+/* The registry, in assembly order (shaft, disk, bearing, spring, mesh, planetary). */
 GD_API extern const gd_element_type *const gd_element_types[];
 GD_API extern const int gd_nelement_types;
 GD_API extern const gd_element_type gd_element_shaft, gd_element_disk, gd_element_bearing,
-    gd_element_spring, gd_element_mesh;
+    gd_element_spring, gd_element_mesh, gd_element_planetary;
 /* The kind named name, or NULL. */
 GD_API const gd_element_type *gd_element_type_find(const char *name);
 

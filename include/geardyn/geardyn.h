@@ -44,6 +44,7 @@
 #include "geardyn/reynolds.h"
 #include "geardyn/model.h"
 #include "geardyn/builder.h"
+#include "geardyn/planetary.h"
 #include "geardyn/model_file.h"
 #include "geardyn/elements.h"
 #include "geardyn/system.h"

@@ -113,4 +113,31 @@ GD_API gd_status gd_modal_energy_by_shaft(const gd_system *sys, const gd_modal_r
 GD_API gd_status gd_modal_solve_sparse(const gd_system *sys, const gd_modal_options *opt,
                                        double shift, gd_modal_result **out, gd_error *err);
 
+/* The class of planetary set `set`'s motion in mode `mode` of r (solved on sys),
+ * [LinParker1999] Sec. 4 (docs/planetary.md): rotational (the central members rotate and do
+ * not translate, all planets move alike), translational (the central members translate and
+ * do not rotate), planet (the central members still), mixed (none of these: unequally spaced
+ * planets, or a set coupled to other shafts), or none (the set does not move in the mode). */
+typedef enum gd_planetary_class {
+    GD_PCLASS_NONE,
+    GD_PCLASS_ROTATIONAL,
+    GD_PCLASS_TRANSLATIONAL,
+    GD_PCLASS_PLANET,
+    GD_PCLASS_MIXED,
+    GD_PCLASS_COUNT
+} gd_planetary_class;
+/* "-", "rotational", "translational", "planet", "mixed" */
+GD_API extern const char *const gd_planetary_class_names[GD_PCLASS_COUNT];
+GD_API gd_planetary_class gd_modal_planetary_class(const gd_system *sys, const gd_modal_result *r,
+                                                   int mode, int set);
+/* The load of planetary set `set`'s sun-planet meshes (ring 0) or ring-planet meshes (ring 1)
+ * at mesh harmonic `harmonic`, per unit static transmission error amplitude, with each
+ * planet's mesh phase harmonic Z psi_n ([Parker2000]; docs/planetary.md): the complex
+ * amplitude F = sum_n k a_n exp(-i harmonic Z psi_n) over the system's DOFs (re, im: ndof,
+ * the caller's). With equally spaced planets it excites only rotational modes when
+ * harmonic Z_s / N is whole, only translational ones when (harmonic Z_s +- 1) / N is, and
+ * otherwise only planet modes. GD_EINPUT without teeth. */
+GD_API gd_status gd_planetary_mesh_excitation(const gd_system *sys, int set, int harmonic, int ring,
+                                              double *re, double *im, gd_error *err);
+
 #endif

@@ -201,6 +201,60 @@ typedef struct gd_model_law {
     gd_loc loc;
 } gd_model_law;
 
+/* A planetary (epicyclic) gear set: sun, ring (internal gear), carrier and N planets,
+ * the lumped lateral-torsional model of [LinParker1999] (docs/planetary.md). Sun, ring
+ * and carrier sit on model nodes (lumped or FE shaft nodes): x, y and rz of those nodes
+ * are the members' translations and rotation. Each planet gets a node of its own on a
+ * generated one-node shaft ("<set>.planet<n>", node "<set>.p<n>"), its x, y in the model
+ * axes. Meshes act along their lines of action, planet bearings join each planet to its
+ * pin on the carrier (at carrier_radius, angle planet_angle[n] from +x). */
+typedef enum gd_planetary_member {
+    GD_PLANETARY_SUN,
+    GD_PLANETARY_RING,
+    GD_PLANETARY_CARRIER,
+    GD_PLANETARY_NMEMBERS
+} gd_planetary_member;
+GD_API extern const char *const gd_planetary_member_names[GD_PLANETARY_NMEMBERS];
+
+#define GD_PLANETARY_MAX_PLANETS 64
+
+typedef struct gd_planetary_body {
+    int node;             /* model node of the member */
+    double mass, inertia; /* kg (each of x, y), kg m^2 about z; added to the node */
+    double k_support;     /* N/m, to ground in x and in y */
+    double k_torsion;     /* N m/rad, to ground about z (the held member's holding spring) */
+} gd_planetary_body;
+
+typedef struct gd_planetary {
+    char name[GD_NAME_MAX];
+    gd_planetary_body member[GD_PLANETARY_NMEMBERS];
+    int held;                 /* gd_planetary_member held to ground torsionally, -1: none */
+    int nplanets;             /* >= 1 */
+    int first_planet;         /* planet n is node first_planet + n (consecutive) */
+    double *planet_angle;     /* nplanets angles psi_n from +x, rad, increasing (owned) */
+    int equally_spaced;       /* the angles were not given: psi_n = 2 pi n / N */
+    int teeth[3];             /* sun, ring, planet; 0: not given */
+    double base_radius[3];    /* sun, ring, planet, m */
+    double carrier_radius;    /* radius of the planet centres, m */
+    double pressure_angle[2]; /* operating, sun-planet and ring-planet meshes, rad */
+    double helix_angle;       /* rad (0: spur); only the transverse model is built */
+    double planet_tip_radius; /* m: given, or estimated (docs/planetary.md) */
+    double planet_mass, planet_inertia; /* kg, kg m^2 */
+    double bearing_stiffness;           /* planet bearing, N/m radial and tangential */
+    double *pin_error;        /* nplanets tangential pin position errors, m (owned; NULL: none):
+                                 the bearing's unloaded position (static load sharing) */
+    double mesh_stiffness[2]; /* sun-planet, ring-planet, N/m along the line of action */
+    double mesh_damping[2];   /* N s/m */
+    /* the carrier-frame terms ([CooleyParker2012]) act on every body of the set (1) or on the
+       planets only (0): docs/planetary.md */
+    int carrier_frame_all;
+    /* the names of the set's 3 + 4N element instances (strain-energy components), in the
+       element's order: SET.sun, .ring, .carrier, .planet<n>, .sun_mesh<n>, .ring_mesh<n>,
+       .bearing<n> (owned) */
+    char (*instance_name)[GD_NAME_MAX + 16];
+    gd_loc loc;
+} gd_planetary;
+
 typedef struct gd_model {
     char file[256];
     int nmaterials;
@@ -231,6 +285,8 @@ typedef struct gd_model {
     gd_cam *cams;
     int nlaws;
     gd_model_law *laws;
+    int nplanetary; /* planetary sets (docs/planetary.md) */
+    gd_planetary *planetary;
     unsigned dof_mask;   /* active node DOFs (GD_DOF_BIT) */
     int reference_shaft; /* shaft whose speed is the reference speed */
     double speed;        /* reference speed, rad/s (0 unless given) */

@@ -119,4 +119,20 @@ GD_API void gd_static_free(gd_static_result *res);
 GD_API gd_status gd_static_operating_point(gd_system *sys, const gd_static_options *opt, int check,
                                            gd_error *err);
 
+/* Planet load sharing of planetary set `set` at the static state res of sys
+ * (docs/planetary.md): each planet's sun-planet and ring-planet mesh forces along their
+ * lines of action (N, > 0 compressing the teeth as a driving sun does) and its bearing's
+ * force (N, the magnitude), and the load-sharing factor K_gamma = N max F_sun / sum F_sun (signed
+ * in the sense of the sum; a negative F_sun: that planet's teeth would separate)
+ * (ISO 6336-1 / AGMA 6123; 1 for equal sharing). The planets' pin errors
+ * (gd_planetary.pin_error) load the static analysis. */
+typedef struct gd_static_planetary_loads {
+    int nplanets;
+    double sun_force[GD_PLANETARY_MAX_PLANETS], ring_force[GD_PLANETARY_MAX_PLANETS];
+    double bearing_force[GD_PLANETARY_MAX_PLANETS];
+    double load_sharing;
+} gd_static_planetary_loads;
+GD_API gd_status gd_static_planetary(const gd_system *sys, const gd_static_result *res, int set,
+                                     gd_static_planetary_loads *out, gd_error *err);
+
 #endif

@@ -31,6 +31,15 @@ void gd_bearing_matrices(const gd_bearing_coeffs *c, double K[36], double C[36])
  * coupling level applied. */
 void gd_mesh_vector_local(const gd_mesh *g, double a[12]);
 
+/* ---- planetary.c ---- */
+/* Deformation vector (12: sun or ring, then planet n) of planet n's sun mesh (ring 0) or
+ * ring mesh (ring 1), [LinParker1999] Eqs. 2-3 in the node coordinates. */
+void gd_planetary_mesh_vector(const gd_planetary *g, int ring, int n, double a[12]);
+/* Radial and tangential deformation vectors (12: carrier, then planet n) of planet n's
+ * bearing, [LinParker1999] Eq. 4. */
+void gd_planetary_bearing_vectors(const gd_planetary *g, int n, double radial[12],
+                                  double tangential[12]);
+
 /* ---- connector.c: what bearings and springs share ---- */
 /* Motion types of a support's DOFs: x, y lateral, z axial, rx, ry tilt, rz torsion. */
 extern const gd_motion gd_support_motion[6];

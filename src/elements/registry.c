@@ -7,7 +7,8 @@
 const char *const gd_motion_names[GD_NMOTIONS] = {"lateral", "torsional", "axial", "tilt"};
 
 const gd_element_type *const gd_element_types[] = {
-    &gd_element_shaft, &gd_element_disk, &gd_element_bearing, &gd_element_spring, &gd_element_mesh,
+    &gd_element_shaft,  &gd_element_disk, &gd_element_bearing,
+    &gd_element_spring, &gd_element_mesh, &gd_element_planetary,
 };
 const int gd_nelement_types = (int)(sizeof gd_element_types / sizeof gd_element_types[0]);
 

@@ -58,12 +58,19 @@ typedef struct gd_bmesh {
     gd_btable tvms, ste;
 } gd_bmesh;
 
+/* A planetary set's names until finish (builder_planetary.c) */
+typedef struct gd_bplanetary {
+    char *path;
+    char *node[GD_PLANETARY_NMEMBERS];
+} gd_bplanetary;
+
 typedef struct gd_model_build {
     gd_field_locator locator;
     char **material_path;
     gd_bshaft *shafts;
     gd_bitem *disks, *bearings, *springs, *unbalances, *excitations, *prescribed, *cams, *laws;
     gd_bmesh *meshes;
+    gd_bplanetary *planetary;
     gd_btable *excitation_tables, *prescribed_tables, *cam_tables;
     char *reference_shaft;
     int rotation;
@@ -130,6 +137,7 @@ gd_status gd_build_mesh_from_geometry(gd_model *m, int k, gd_error *err);
 gd_status gd_build_propagate_speeds(gd_model *m, gd_error *err); /* speed_propagation.c */
 /* unbalances, loads, prescribed motions, cams (builder_dynamics.c) */
 gd_status gd_build_resolve_dynamics(gd_model *m, gd_error *err);
-gd_status gd_build_resolve_laws(gd_model *m, gd_error *err); /* builder_laws.c */
+gd_status gd_build_resolve_laws(gd_model *m, gd_error *err);      /* builder_laws.c */
+gd_status gd_build_resolve_planetary(gd_model *m, gd_error *err); /* builder_planetary.c */
 
 #endif

@@ -268,8 +268,9 @@ gd_status gd_model_finish(gd_model *m, gd_error *err)
     m->build->failed = 1; /* until it succeeds: half-resolved items cannot be redone */
     if ((st = gd_build_discretise_shafts(m, err)) || (st = finish_reference(m, err)) ||
         (st = gd_build_resolve_disks(m, err)) || (st = gd_build_resolve_supports(m, err)) ||
-        (st = gd_build_resolve_meshes(m, err)) || (st = gd_build_propagate_speeds(m, err)) ||
-        (st = gd_build_resolve_dynamics(m, err)) || (st = gd_build_resolve_laws(m, err)))
+        (st = gd_build_resolve_meshes(m, err)) || (st = gd_build_resolve_planetary(m, err)) ||
+        (st = gd_build_propagate_speeds(m, err)) || (st = gd_build_resolve_dynamics(m, err)) ||
+        (st = gd_build_resolve_laws(m, err)))
         return st;
     gd_model_build_free(m);
     return GD_OK;

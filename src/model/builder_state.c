@@ -64,6 +64,12 @@ void gd_model_build_free(gd_model *m)
         free_table(&g->ste);
     }
     free(b->meshes);
+    for (int i = 0; i < m->nplanetary && b->planetary; i++) {
+        free(b->planetary[i].path);
+        for (int j = 0; j < GD_PLANETARY_NMEMBERS; j++)
+            free(b->planetary[i].node[j]);
+    }
+    free(b->planetary);
     for (int i = 0; i < m->nexcitations && b->excitation_tables; i++)
         free_table(&b->excitation_tables[i]);
     for (int i = 0; i < m->nprescribed && b->prescribed_tables; i++)

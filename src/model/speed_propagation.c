@@ -1,15 +1,81 @@
 /* Shaft speeds follow the gear ratios from the reference shaft: an external mesh
- * reverses the sense, omega_driven = -omega_driver * rb_driver / rb_driven. A given
+ * reverses the sense, omega_driven = -omega_driver * rb_driver / rb_driven; a planetary
+ * set with a held member ties its free members and planets (docs/planetary.md). A given
  * speed_ratio must agree with the train, and a loop of meshes must close. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "geardyn/planetary.h"
 #include "model/build_impl.h"
+
+/* Shaft `other` turns at ratio through the link named `via` (a mesh or a planetary set,
+ * at loc and path): set it when not yet seen, or check that a loop closes. */
+static gd_status reach(gd_model *m, int *seen, int *queue, int *tail, int other, double ratio,
+                       const char *kind, const char *name, gd_loc loc, const char *path,
+                       gd_error *err)
+{
+    gd_model_build *b = m->build;
+    gd_shaft *o = &m->shafts[other];
+    if (!seen[other]) {
+        if (o->speed_ratio_given && fabs(o->speed_ratio - ratio) > 1e-6 * fabs(ratio)) {
+            char field[200];
+            gd_build_path(field, sizeof field, b->shafts[other].path, "speed_ratio");
+            return gd_build_fail(m, err, o->speed_ratio_loc, NULL, field,
+                                 "remove speed_ratio: it follows from the gear meshes",
+                                 "shaft '%s' has speed_ratio %g but its meshes give %g", o->name,
+                                 o->speed_ratio, ratio);
+        }
+        o->speed_ratio = ratio;
+        seen[other] = 1;
+        queue[(*tail)++] = other;
+    } else if (fabs(o->speed_ratio - ratio) > 1e-6 * fabs(ratio)) {
+        return gd_build_fail(m, err, loc, NULL, path,
+                             "check the radii or teeth of the meshes in the loop",
+                             "%s '%s' closes a loop with inconsistent gear ratios "
+                             "(%g vs %g for shaft '%s')",
+                             kind, name, ratio, o->speed_ratio, o->name);
+    }
+    return GD_OK;
+}
+
+/* The planetary sets with a member on shaft s (not the held one) give their other free
+ * member and their planets the speeds of gd_planetary_kinematics_of. */
+static gd_status spread_planetary(gd_model *m, int s, int *seen, int *queue, int *tail,
+                                  gd_error *err)
+{
+    gd_status st;
+    for (int k = 0; k < m->nplanetary; k++) {
+        const gd_planetary *g = &m->planetary[k];
+        gd_planetary_kinematics kin;
+        gd_planetary_kinematics_of(g, &kin);
+        if (kin.input < 0) continue; /* a differential: no fixed ratio */
+        int from = -1;
+        for (int j = 0; j < GD_PLANETARY_NMEMBERS; j++)
+            if (j != g->held && m->nodes[g->member[j].node].shaft == s && kin.speed[j] != 0)
+                from = j;
+        if (from < 0) continue;
+        double unit = m->shafts[s].speed_ratio / kin.speed[from];
+        const char *path = m->build->planetary[k].path;
+        for (int j = 0; j < GD_PLANETARY_NMEMBERS; j++) {
+            int other = m->nodes[g->member[j].node].shaft;
+            if (j == from || other == s) continue; /* the held member's speed is 0 */
+            if ((st = reach(m, seen, queue, tail, other, unit * kin.speed[j], "planetary set",
+                            g->name, g->loc, path, err)))
+                return st;
+        }
+        for (int n = 0; n < g->nplanets; n++)
+            if ((st = reach(m, seen, queue, tail, m->nodes[g->first_planet + n].shaft,
+                            unit * kin.planet_speed, "planetary set", g->name, g->loc, path, err)))
+                return st;
+    }
+    return GD_OK;
+}
 
 static gd_status spread(gd_model *m, int *seen, int *queue, gd_error *err)
 {
     gd_model_build *b = m->build;
+    gd_status st;
     /* every connected group starts from its own root: the reference shaft first */
     for (int start = -1; start < m->nshafts; start++) {
         /* a shaft not geared to the reference keeps its own speed_ratio (default 1) */
@@ -34,27 +100,11 @@ static gd_status spread(gd_model *m, int *seen, int *queue, gd_error *err)
                 } else {
                     continue;
                 }
-                gd_shaft *o = &m->shafts[other];
-                if (!seen[other]) {
-                    if (o->speed_ratio_given && fabs(o->speed_ratio - ratio) > 1e-6 * fabs(ratio)) {
-                        char field[200];
-                        gd_build_path(field, sizeof field, b->shafts[other].path, "speed_ratio");
-                        return gd_build_fail(m, err, o->speed_ratio_loc, NULL, field,
-                                             "remove speed_ratio: it follows from the gear meshes",
-                                             "shaft '%s' has speed_ratio %g but its meshes give %g",
-                                             o->name, o->speed_ratio, ratio);
-                    }
-                    o->speed_ratio = ratio;
-                    seen[other] = 1;
-                    queue[tail++] = other;
-                } else if (fabs(o->speed_ratio - ratio) > 1e-6 * fabs(ratio)) {
-                    return gd_build_fail(m, err, g->loc, NULL, b->meshes[k].path,
-                                         "check the radii or teeth of the meshes in the loop",
-                                         "mesh '%s' closes a loop with inconsistent gear ratios "
-                                         "(%g vs %g for shaft '%s')",
-                                         g->name, ratio, o->speed_ratio, o->name);
-                }
+                if ((st = reach(m, seen, queue, &tail, other, ratio, "mesh", g->name, g->loc,
+                                b->meshes[k].path, err)))
+                    return st;
             }
+            if ((st = spread_planetary(m, s, seen, queue, &tail, err))) return st;
         }
     }
     return GD_OK;

@@ -52,6 +52,7 @@ gd_status gd_mp_bearings(gd_mparser *p);
 gd_status gd_mp_springs(gd_mparser *p);
 gd_status gd_mp_meshes(gd_mparser *p);
 gd_status gd_mp_unbalances(gd_mparser *p);
+gd_status gd_mp_planetary(gd_mparser *p); /* planetary_read.c */
 
 /* A list of n >= 1 quantities under key (tables_read.c; free *out). */
 gd_status gd_mp_read_qty_list(gd_mparser *p, const gd_ynode *map, const char *key, const char *path,

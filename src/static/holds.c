@@ -6,8 +6,9 @@
  * bearing) below 1e-10 of the largest. A gear train
  * turning as a whole in its ratios moves only torsion DOFs: the torque balance holds it
  * at one torsion DOF per free train, where the train's net torque is reacted (the input
- * torque by the output, or the loads by the input). Any free motion with a lateral,
- * axial or tilt part (a shaft without bearings) is an input error naming the DOF that
+ * torque by the output, or the loads by the input); the planets of a planetary set orbit
+ * with it (their translations count with the torsion) and never hold it. Any free motion with a
+ * lateral, axial or tilt part (a shaft without bearings) is an input error naming the DOF that
  * moves most. */
 #include <lapacke.h>
 #include <math.h>
@@ -31,6 +32,24 @@ static const char *const HOLD_HINTS[GD_NODE_DOFS] = {
     "add a second bearing along the shaft or a bearing with k_tilt",
     "prescribe the torsion of a node of the train"};
 
+/* 1 when node is a planet of a planetary set: its translations orbit with the train's
+ * rotation, and its torsion is no place to react the train's torque (docs/planetary.md). */
+static int planet_node(const gd_model *m, int node)
+{
+    for (int k = 0; k < m->nplanetary; k++) {
+        const gd_planetary *g = &m->planetary[k];
+        if (node >= g->first_planet && node < g->first_planet + g->nplanets) return 1;
+    }
+    return 0;
+}
+
+/* A DOF a gear train turning as a whole moves: torsion, and a planet's translations. */
+static int train_dof(const gd_system *sys, int i)
+{
+    return sys->dof_type[i] == GD_RZ ||
+           (sys->dof_type[i] <= GD_Y && planet_node(sys->model, sys->dof_node[i]));
+}
+
 /* The free motion whose non-torsion part is largest: an input error naming it. */
 static gd_status name_free_motion(const gd_system *sys, const int *fr, int nf, const double *Z,
                                   int r, gd_error *err)
@@ -44,12 +63,12 @@ static gd_status name_free_motion(const gd_system *sys, const int *fr, int nf, c
         for (int a = 0; a < r; a++)
             for (int b = 0; b < r; b++)
                 for (int i = 0; i < nf; i++)
-                    if (sys->dof_type[fr[i]] != GD_RZ)
+                    if (!train_dof(sys, fr[i]))
                         G[a + (size_t)b * r] += Z[i + (size_t)a * nf] * Z[i + (size_t)b * nf];
         if (LAPACKE_dsyev(LAPACK_COL_MAJOR, 'V', 'U', r, G, r, w) == 0) {
             double mx = 0;
             for (int i = 0; i < nf; i++) {
-                if (sys->dof_type[fr[i]] == GD_RZ) continue;
+                if (train_dof(sys, fr[i])) continue;
                 double v = 0;
                 for (int a = 0; a < r; a++)
                     v += Z[i + (size_t)a * nf] * G[a + (size_t)(r - 1) * r];
@@ -158,7 +177,7 @@ gd_status gd_st_holds(const gd_system *sys, const double *K, const gd_static_opt
             double v = sym ? A[i + (size_t)j * nf] : vt[j + (size_t)i * nf];
             Z[i + (size_t)nnull * nf] = v;
             zmax = fmax(zmax, fabs(v));
-            if (sys->dof_type[fr[i]] != GD_RZ) nt = fmax(nt, fabs(v));
+            if (!train_dof(sys, fr[i])) nt = fmax(nt, fabs(v));
         }
         nnull++;
     }
@@ -181,6 +200,7 @@ gd_status gd_st_holds(const gd_system *sys, const double *K, const gd_static_opt
         where[fr[i]] = i; /* position among the free DOFs, -1 */
     int nc = candidates(m, opt, cand), taken = 0;
     for (int c = 0; c < nc && taken < r; c++) {
+        if (planet_node(m, cand[c]) && cand[c] != opt->hold_node) continue;
         int dof = gd_system_dof(sys, cand[c], GD_RZ);
         if (dof < 0 || where[dof] < 0 || held[dof]) continue;
         double row[64], nrm0 = 0, nrm = 0;

@@ -7,6 +7,7 @@
  *   consistent shaft mass this is the consistent load of the distributed weight (the
  *   rotary inertia part gives nothing: a translation does not rotate the sections), and
  *   the weight m g of every disk at its node.
+ * - the planets' pin position errors of planetary sets (planetary_sharing.c).
  * Unbalances and cam torques have zero mean over a revolution (a rotating force; the
  * cam torque m s' s'' W^2 = d/dtheta (m s'^2 W^2 / 2) of [Benini2004] Eq. 10 is a derivative of a
  * periodic function), so they add nothing. */
@@ -29,6 +30,7 @@ gd_status gd_st_loads(const gd_system *sys, const gd_static_options *opt, double
     /* the mean excitation loads and gravity: the static load the laws' equilibrium of
        the linear analyses also uses (src/system/law_state.c) */
     gd_system_mean_loads(sys, opt->loads, opt->gravity, f);
+    gd_st_planetary_loads(sys, f); /* pin position errors (docs/planetary.md) */
     if (opt->input_torque != 0) {
         int node = gd_st_input_node(m, opt);
         int i = node >= 0 ? gd_system_dof(sys, node, GD_RZ) : -1;

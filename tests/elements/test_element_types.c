@@ -39,9 +39,9 @@ static const char *MODEL =
 
 TEST(registry_order_and_lookup)
 {
-    REQUIRE(gd_nelement_types == 5);
-    const char *names[5] = {"shaft", "disk", "bearing", "spring", "mesh"};
-    for (int k = 0; k < 5; k++) {
+    REQUIRE(gd_nelement_types == 6);
+    const char *names[6] = {"shaft", "disk", "bearing", "spring", "mesh", "planetary"};
+    for (int k = 0; k < 6; k++) {
         CHECK_STR(gd_element_types[k]->name, names[k]);
         CHECK(gd_element_type_find(names[k]) == gd_element_types[k]);
     }

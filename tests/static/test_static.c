@@ -214,6 +214,26 @@ static void shaft_balance(const fx *f, const gd_static_result *r, int s, double 
             if (m->meshes[k].driver == p) memcpy(F[nt++], r->meshes[k].on_driver, sizeof F[0]);
             if (m->meshes[k].driven == p) memcpy(F[nt++], r->meshes[k].on_driven, sizeof F[0]);
         }
+        /* a planetary set's springs on the node (its sun, ring or carrier, or a planet):
+           -K u of each instance, summed into one entry */
+        double ps[6] = {0};
+        for (int e = 0; e < f->s->ninstances; e++) {
+            const gd_element_instance *in = &f->s->instances[e];
+            int nodes[2];
+            if (in->type != &gd_element_planetary) continue;
+            int nn = in->type->nodes(m, in->index, nodes);
+            for (int side = 0; side < nn; side++) {
+                if (nodes[side] != p) continue;
+                double K[144], u[12];
+                in->type->matrices(m, in->index, r->speed, NULL, K, NULL, NULL);
+                for (int a = 0; a < in->nlocal; a++)
+                    u[a] = in->dof[a] >= 0 ? r->q[in->dof[a]] : 0;
+                for (int k = 0; k < 6; k++)
+                    for (int a = 0; a < in->nlocal; a++)
+                        ps[k] -= K[(6 * side + k) * in->nlocal + a] * u[a];
+            }
+        }
+        if (nt < 60) memcpy(F[nt++], ps, sizeof ps);
         for (int h = 0; h < r->nholds && nt < 60; h++)
             if (r->holds[h].node == p) {
                 memset(F[nt], 0, sizeof F[nt]);

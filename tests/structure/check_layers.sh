@@ -28,7 +28,7 @@ declare -A header=(
     [testdata.h]=testdata [ema.h]=ema [correlate.h]=correlate
     [sparse.h]=linalg [mesh_stiffness.h]=mesh_stiffness [spectrum.h]=signal [cycles.h]=signal [rattle.h]=signal
     [laws.h]=laws [law_type.h]=laws [bearing_geometry.h]=laws [reynolds.h]=laws
-    [model.h]=model [material.h]=model [builder.h]=model
+    [model.h]=model [material.h]=model [builder.h]=model [planetary.h]=model
     [model_file.h]=model_file [bearing_table.h]=model_file [elements.h]=elements
     [system.h]=system
     [modal.h]=modal [static.h]=static
