@@ -37,6 +37,9 @@ int gd_outdir_check_writable(const char *dir, gd_error *err);
 
 /* Parses a positive whole number option value; returns 0 on success. */
 int gd_cli_parse_count(const char *text, long lo, long hi, long *out);
+/* A relative tolerance in [1e-15, 1) into the double at field; else a usage error naming
+ * the option (name: "--tol") and its exit code. */
+int gd_cli_parse_tolerance(const char *cmd, const char *name, const char *text, void *field);
 
 /* Prints item as JSON (pretty) followed by a newline; frees nothing. */
 void gd_cli_print_json(FILE *f, const cJSON *item);

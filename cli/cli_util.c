@@ -89,6 +89,19 @@ int gd_cli_parse_count(const char *text, long lo, long hi, long *out)
     return 0;
 }
 
+int gd_cli_parse_tolerance(const char *cmd, const char *name, const char *text, void *field)
+{
+    char *end;
+    double v = strtod(text, &end);
+    if (end == text || *end || !(v >= 1e-15 && v < 1))
+        return gd_cli_usage_error(cmd,
+                                  "%s: expected a number in [1e-15, 1) (a tolerance below 1e-15 "
+                                  "is unreachable in double precision), got '%s'",
+                                  name, text);
+    *(double *)field = v;
+    return 0;
+}
+
 cJSON *gd_cli_json_number(double v)
 {
     return isfinite(v) ? cJSON_CreateNumber(v) : cJSON_CreateNull();
