@@ -12,8 +12,13 @@
 #include "geardyn/export.h"
 #include "geardyn/system.h"
 
+/* A mode with less than this fraction of its strain energy in lateral and tilt motion
+ * has whirl GD_WHIRL_NONE (a torsional or axial mode, whatever its small orbits do). */
+#define GD_WHIRL_MIN_LATERAL 0.05
+
 typedef enum gd_whirl {
-    GD_WHIRL_NONE,     /* no lateral orbit, or straight-line orbits */
+    GD_WHIRL_NONE,     /* no lateral orbit, straight-line orbits, or a mode with less than
+                          GD_WHIRL_MIN_LATERAL of lateral and tilt strain energy */
     GD_WHIRL_FORWARD,  /* every orbit turns with its shaft */
     GD_WHIRL_BACKWARD, /* every orbit turns against its shaft */
     GD_WHIRL_MIXED
@@ -66,7 +71,8 @@ typedef struct gd_mode {
     gd_whirl whirl;
     double energy_share[GD_NMOTIONS]; /* fractions of modal strain energy */
     gd_motion dominant_motion;
-    int dominant_component; /* gd_system component index; -1 for rigid modes */
+    int dominant_component; /* gd_system component index; -1 for rigid modes and when no
+                               component holds strain energy */
     /* Relative residual of the eigenpair (lambda, u) of P(lambda) = lambda^2 M +
      * lambda D + K (D = C + W G; 0 for undamped modes), of every solver:
      *   |P(lambda) u| / (|lambda|^2 |M u| + |lambda| |D u| + |K u|)   (2-norms),
