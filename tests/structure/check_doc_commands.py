@@ -15,6 +15,8 @@ line marked slow, by `# slow` after the command (in a code block) or `(slow)` (i
 header): the marker documents that the command takes minutes. Optional arguments in
 square brackets (`[--helix-angle "15 deg"]`) are dropped.
 
+Also the docs' headings: none repeated within a file, no bold run-in heading doubled.
+
 usage: check_doc_commands.py GEARDYN [TIMEOUT]
 """
 import glob
@@ -100,8 +102,33 @@ def classify(cmd):
     return args[1:], ""
 
 
+def repeated_headings():
+    """docs/*.md: a heading given twice in one file, or a bold run-in heading doubled
+    (`**Tracking.****Tracking.**`, issue 35)"""
+    bad = []
+    for p in sorted(glob.glob(os.path.join(ROOT, "docs", "*.md"))):
+        seen, inblock = set(), False
+        for n, line in enumerate(open(p, encoding="utf-8"), 1):
+            if line.startswith("```"):
+                inblock = not inblock
+            if inblock:
+                continue
+            if re.match(r"#{1,6} ", line):
+                h = line.strip()
+                if h in seen:
+                    bad.append("%s:%d: heading repeated: %s" % (os.path.relpath(p, ROOT), n, h))
+                seen.add(h)
+            m = re.search(r"\*\*([^*]+)\*\*\s*\*\*\1\*\*", line)
+            if m:
+                bad.append("%s:%d: heading doubled: %s" % (os.path.relpath(p, ROOT), n, m.group(0)))
+    return bad
+
+
 def main():
     gd = os.path.abspath(sys.argv[1])
+    dup = repeated_headings()
+    for b in dup:
+        print("FAIL  " + b)
     timeout = float(sys.argv[2]) if len(sys.argv) > 2 else 120
     found = []
     for p in sorted(glob.glob(os.path.join(ROOT, "examples", "**", "*.yaml"), recursive=True)):
@@ -135,8 +162,9 @@ def main():
                     where, cmd, code, dt, (err or "").strip().replace("\n", "\n      ")[:600]))
             else:
                 print("ok    %s: %s  (%.1f s)" % (where, cmd, dt))
-    print("doc commands: %d run, %d failed, %d not run" % (ran, bad, len(found) - ran))
-    return 1 if bad else 0
+    print("doc commands: %d run, %d failed, %d not run; %d repeated headings" % (
+        ran, bad, len(found) - ran, len(dup)))
+    return 1 if bad or dup else 0
 
 
 sys.exit(main())
