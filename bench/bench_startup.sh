@@ -7,16 +7,20 @@
 # The shared libraries each process maps are counted too (ldd): the dynamic loader is
 # most of a small run. One thread (OPENBLAS_NUM_THREADS=1, OMP_NUM_THREADS=1), as the
 # project's other benchmarks.
-# usage: bench_startup.sh [BUILD] [N]
+# With a second build folder (e.g. one of an older commit), its program is timed too,
+# the runs of the two interleaved (the machine may be shared), and the ratio printed.
+# usage: bench_startup.sh [BUILD] [N] [OTHER_BUILD]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 B=${1:-build}
 N=${2:-40}
+OTHER=${3:-}
 export OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1
 echo "libraries mapped: libgeardyn.so $(ldd "$B/libgeardyn.so" | wc -l), geardyn $(ldd "$B/geardyn" | wc -l)"
-/usr/bin/python3 - "$B" "$N" <<'PY'
+[ -z "$OTHER" ] || echo "libraries mapped ($OTHER): libgeardyn.so $(ldd "$OTHER/libgeardyn.so" | wc -l), geardyn $(ldd "$OTHER/geardyn" | wc -l)"
+/usr/bin/python3 - "$B" "$N" "$OTHER" <<'PY'
 import os, subprocess, sys, time
-B, N = sys.argv[1], int(sys.argv[2])
+B, N, OTHER = sys.argv[1], int(sys.argv[2]), sys.argv[3]
 
 def best(cmd, env=None):
     t = float("inf")
@@ -29,15 +33,34 @@ def best(cmd, env=None):
 floor = best(["/bin/true"])
 print("floor /bin/true: %.2f ms (best of %d)" % (floor * 1e3, N))
 gd = os.path.join(B, "geardyn")
-for label, cmd in [
-    ("geardyn --version", [gd, "--version"]),
-    ("geardyn check examples/kumar2011_coupled.yaml (8 DOFs)", [gd, "check", "examples/kumar2011_coupled.yaml"]),
-    ("geardyn modal examples/kumar2011_coupled.yaml (8 DOFs)", [gd, "modal", "examples/kumar2011_coupled.yaml"]),
-    ("geardyn modal examples/rig2018.yaml --speed 3000rpm (170 DOFs)", [gd, "modal", "examples/rig2018.yaml", "--speed", "3000rpm"]),
-    ("geardyn modal bench/models/rig366.yaml --speed 3000rpm --modes 12 (366 DOFs)", [gd, "modal", "bench/models/rig366.yaml", "--speed", "3000rpm", "--modes", "12"]),
+def best2(a, b):
+    """best of N of each, interleaved"""
+    ta = tb = float("inf")
+    for _ in range(N):
+        for cmd, which in ((a, 0), (b, 1)):
+            t0 = time.perf_counter()
+            subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
+            t = time.perf_counter() - t0
+            if which == 0:
+                ta = min(ta, t)
+            else:
+                tb = min(tb, t)
+    return ta, tb
+
+for label, args in [
+    ("geardyn --version", ["--version"]),
+    ("geardyn check examples/kumar2011_coupled.yaml (8 DOFs)", ["check", "examples/kumar2011_coupled.yaml"]),
+    ("geardyn modal examples/kumar2011_coupled.yaml (8 DOFs)", ["modal", "examples/kumar2011_coupled.yaml"]),
+    ("geardyn modal examples/rig2018.yaml --speed 3000rpm (170 DOFs)", ["modal", "examples/rig2018.yaml", "--speed", "3000rpm"]),
+    ("geardyn modal bench/models/rig366.yaml --speed 3000rpm --modes 12 (366 DOFs)", ["modal", "bench/models/rig366.yaml", "--speed", "3000rpm", "--modes", "12"]),
 ]:
-    t = best(cmd)
-    print("%-80s %7.2f ms  (floor + %6.2f ms, %5.1fx the floor)" % (label, t * 1e3, (t - floor) * 1e3, t / floor))
+    if OTHER:
+        t, t2 = best2([gd] + args, [os.path.join(OTHER, "geardyn")] + args)
+        print("%-80s %7.2f ms  (floor + %6.2f ms, %5.1fx the floor); %s: %7.2f ms, %.2fx this" % (
+            label, t * 1e3, (t - floor) * 1e3, t / floor, OTHER, t2 * 1e3, t2 / t))
+    else:
+        t = best([gd] + args)
+        print("%-80s %7.2f ms  (floor + %6.2f ms, %5.1fx the floor)" % (label, t * 1e3, (t - floor) * 1e3, t / floor))
 
 # Python: the import alone, timed inside the interpreter (best of N processes)
 env = dict(os.environ, PYTHONPATH="python", GEARDYN_BUILD=B)
