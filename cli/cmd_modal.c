@@ -123,12 +123,19 @@ static void warn_residuals(const gd_modal_result *r, double tol)
         worst = fmax(worst, md->residual);
         floor_max = fmax(floor_max, md->residual_floor);
     }
-    if (n)
+    if (n && worst <= 100 * floor_max)
         fprintf(stderr,
                 "geardyn: warning: %d mode(s) (the first: mode %d) have a relative residual up "
                 "to %.1e, above --tol %.1e: the rounding of this model's matrices leaves about "
                 "%.1e (eps x (element stiffness / mode stiffness)); a finer tolerance cannot "
                 "remove it, a coarser mesh would\n",
+                n, first + 1, worst, tol, floor_max);
+    else if (n)
+        fprintf(stderr,
+                "geardyn: warning: %d mode(s) (the first: mode %d) have a relative residual up "
+                "to %.1e, above --tol %.1e and above what rounding leaves (%.1e): the sparse "
+                "solver's refinement did not converge; --method dense gives them to rounding "
+                "(on a model small enough for it)\n",
                 n, first + 1, worst, tol, floor_max);
 }
 

@@ -881,25 +881,29 @@ static gd_status track(const gd_dynmat *a, const gd_splu_symbolic *sym, const gd
             lock_vector(L, n2, &nl, v, hl);
         }
     }
-    int rcs = check_op(tc, a, sym, -s, g, k, d);
-    if (rcs < 0) goto nomem;
-    if (rcs > 0) goto done;
-    si_ctx ctx = {op, sym};
-    /* first to a loose residual, which settles a clear gap; to the tight one otherwise */
-    double top = 0;
-    st = gd_ks_deflated_top(si_apply, &ctx, n2, L, nl, GD_TRACK_LOOSE_TOL, &ws->ks, &top);
-    if (!st && !(top < thr * (1 - GD_TRACK_LOOSE_MARGIN)) &&
-        top < thr * (1 + GD_TRACK_LOOSE_MARGIN)) {
-        st = gd_ks_deflated_top(si_apply, &ctx, n2, L, nl, GD_TRACK_CHECK_TOL, &ws->ks, &top);
-        wp->passes = GD_TRACK_MAXIT; /* a mode just outside the window: hard */
-        if (!st && !(top < thr * (1 - GD_TRACK_CHECK_MARGIN))) top = INFINITY;
-    } else if (!st && !(top < thr * (1 - GD_TRACK_LOOSE_MARGIN))) {
-        top = INFINITY;
-    }
-    if (st == GD_ENOMEM) goto nomem;
-    if (st || !(top < thr)) {
-        st = GD_OK;
-        goto done;
+    /* the completeness check; a refinement of this speed's own Krylov-Schur modes
+     * (undamped_ok: gd_sparse_refine) needs none, Krylov-Schur found them all */
+    if (!undamped_ok) {
+        int rcs = check_op(tc, a, sym, -s, g, k, d);
+        if (rcs < 0) goto nomem;
+        if (rcs > 0) goto done;
+        si_ctx ctx = {op, sym};
+        /* first to a loose residual, which settles a clear gap; to the tight one otherwise */
+        double top = 0;
+        st = gd_ks_deflated_top(si_apply, &ctx, n2, L, nl, GD_TRACK_LOOSE_TOL, &ws->ks, &top);
+        if (!st && !(top < thr * (1 - GD_TRACK_LOOSE_MARGIN)) &&
+            top < thr * (1 + GD_TRACK_LOOSE_MARGIN)) {
+            st = gd_ks_deflated_top(si_apply, &ctx, n2, L, nl, GD_TRACK_CHECK_TOL, &ws->ks, &top);
+            wp->passes = GD_TRACK_MAXIT; /* a mode just outside the window: hard */
+            if (!st && !(top < thr * (1 - GD_TRACK_CHECK_MARGIN))) top = INFINITY;
+        } else if (!st && !(top < thr * (1 - GD_TRACK_LOOSE_MARGIN))) {
+            top = INFINITY;
+        }
+        if (st == GD_ENOMEM) goto nomem;
+        if (st || !(top < thr)) {
+            st = GD_OK;
+            goto done;
+        }
     }
     /* the result, as gd_sparse_modes gives it */
     track_order *ord = malloc((size_t)(nel > 0 ? nel : 1) * sizeof *ord);
