@@ -216,9 +216,10 @@ gd_status gd_plot_write(const gd_plot *p, const char *path, const gd_plot_write_
                           "cannot move the plot into place: %s", strerror(errno));
     if (st) {
         unlink(tmp);
-        /* the writer's own reason when it gave one (librsvg, memory), located here;
-         * the disk only when the stream itself failed (issue 38 M8) */
-        if (err && err->message[0] && !err->file[0])
+        /* the writer's own reason when it gave one and the stream did not fail
+         * (librsvg's, located here); the stream's cause when it did (issue 38 M8: a
+         * librsvg error was reported as "the write failed / check the free space") */
+        if (err && err->message[0] && !err->file[0] && !werr)
             snprintf(err->file, sizeof err->file, "%s", path);
         else if (!err || !err->file[0])
             gd_error_set(err, st, path, 0, 0, "--plot", "check the free space",
