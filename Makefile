@@ -10,25 +10,30 @@ VALGRIND    = valgrind --quiet --error-exitcode=1 --leak-check=full \
               --trace-children-skip=/bin/*,/usr/bin/*
 
 .PHONY: all deps build install demo test test-unit asan-build test-asan memcheck bench format \
-        clean fuzz fuzz-build fuzz-smoke python test-python
+        clean fuzz fuzz-build fuzz-smoke python test-python help
 
-all: build
+all: build ## the same as build
 
-deps:
+# `make help` (and `./setup help`): the targets, from the `## ` line after each one's name
+help: ## this list
+	@echo "Makefile targets (make TARGET, or ./setup TARGET on a fresh machine):"
+	@sed -n 's/^\([a-z-]*\):.*## \(.*\)/  \1\t\2/p' $(MAKEFILE_LIST) | expand -t 18
+
+deps: ## install what is missing (apt-get, npm ci)
 	@bash scripts/install-deps.sh
 	@# plotly.js (inlined into HTML plots, installed with the library) and playwright-core
 	@# (the browser tests), pinned by package-lock.json; again only when the lock changed
 	@[ node_modules/.package-lock.json -nt package-lock.json ] || npm ci --no-audit --no-fund --loglevel=error
 
-build: deps
+build: deps ## configure and build into $(BUILD) (Release)
 	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release >/dev/null
 	@cmake --build $(BUILD) -j$(JOBS)
 
 # The libraries, the CLI, the headers, geardyn.pc and the CMake package under PREFIX.
-install: build
+install: build ## install under PREFIX (default /usr/local)
 	cmake --install $(BUILD) --prefix $(PREFIX)
 
-demo: build python
+demo: build python ## build, then run the demo on examples/rig2018.yaml
 	./$(BUILD)/geardyn check examples/rig2018.yaml
 	@echo
 	./$(BUILD)/geardyn modal examples/rig2018.yaml --speed 3000rpm --modes 12
@@ -41,19 +46,19 @@ demo: build python
 # The Python package (python/, docs/python.md): the cffi extension module over
 # $(BUILD)/libgeardyn.so, built with Debian's Python (no download).
 PYTHON ?= /usr/bin/python3
-python: build
+python: build ## the Python package (cffi over libgeardyn.so)
 	@$(PYTHON) python/build_ffi.py --libdir $(BUILD)
 
-test-python: python
+test-python: python ## the Python tests (pytest)
 	cd python && OPENBLAS_NUM_THREADS=1 GEARDYN_BUILD=../$(BUILD) $(PYTHON) -m pytest -q -p no:cacheprovider tests
 
 # Every test: the normal build, then AddressSanitizer + UndefinedBehaviorSanitizer,
 # then valgrind on the normal build, the fuzz smoke run and the Python tests.
-test: test-unit test-asan memcheck fuzz-smoke test-python
+test: test-unit test-asan memcheck fuzz-smoke test-python ## every test: ctest, ASan+UBSan, valgrind, fuzz smoke, Python
 
 # OpenBLAS on one thread: ctest already runs JOBS programs at once, and OpenBLAS's own
 # threads on top of them tripled the wall time of the Campbell tests (29 s against 9 s).
-test-unit: build
+test-unit: build ## ctest on the normal build
 	mkdir -p $(BUILD)/test-times
 	cd $(BUILD) && OPENBLAS_NUM_THREADS=1 GD_TEST_TIMES=$(CURDIR)/$(BUILD)/test-times \
 	    ctest --output-on-failure -j$(JOBS)
@@ -62,7 +67,7 @@ test-unit: build
 # the library serves the sanitizer tests and the fuzz smoke run (clang also checks
 # float-to-int casts). -O1: with the fuzzer's coverage hooks, -O0 ran the tests 2.2x
 # slower (test_monodromy 2.22 s against 0.96 s of CPU).
-asan-build: deps
+asan-build: deps ## the AddressSanitizer + UBSan build into $(ASAN_BUILD)
 	@CC=clang cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_FLAGS_DEBUG="-g -O1" \
 	    -DGD_SANITIZE=ON -DGD_FUZZ=ON >/dev/null
 	@cmake --build $(ASAN_BUILD) -j$(JOBS)
@@ -76,7 +81,7 @@ asan-build: deps
 # 0.5 s since 2026-11-26: the clean-clone run had reached 631 s; the 24 cases of 0.5-1 s
 # (15 s native) cost about 25 s of its wall time.
 ASAN_MAX_CPU ?= 0.5
-test-asan: asan-build
+test-asan: asan-build ## ctest on the sanitizer build
 	@mkdir -p $(ASAN_BUILD)/Testing/Temporary; cost=Testing/Temporary/CTestCostData.txt; \
 	    [ -f $(ASAN_BUILD)/$$cost ] || [ ! -f $(BUILD)/$$cost ] || cp $(BUILD)/$$cost $(ASAN_BUILD)/$$cost
 	@# the structure checks and the install test read the sources and install the same
@@ -102,7 +107,7 @@ test-asan: asan-build
 # 3.3 s natively, about two minutes of valgrind CPU, in a clean-clone run that had reached
 # 631 s (606 s at 0.07).
 VALGRIND_MAX_CPU ?= 0.05
-memcheck: build
+memcheck: build ## the test programs under valgrind
 	@set -e; mkdir -p $(BUILD)/test-times; for t in $(BUILD)/test_*; do \
 	    [ -f $$t ] && [ -x $$t ] && [ "$$(head -c 4 $$t | tail -c 3)" = ELF ] || continue; \
 	    name=$$(basename $$t); \
@@ -182,17 +187,17 @@ FUZZ_SEEDS_fuzz_model  = examples tests/model_file/hostile
 FUZZ_SEEDS_fuzz_inputs = fuzz/seeds
 FUZZ_ENV      = OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 \
                 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-fuzz-build: deps
+fuzz-build: deps ## the libFuzzer targets (clang)
 	@CC=clang cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGD_FUZZ=ON \
 	    -DGD_BUILD_TESTS=OFF -DGD_BUILD_SHARED=OFF >/dev/null
 	@cmake --build $(FUZZ_BUILD) -j$(JOBS) --target fuzz_model fuzz_inputs
 
-fuzz: fuzz-build
+fuzz: fuzz-build ## run the fuzz targets
 	@mkdir -p $(FUZZ_BUILD)/corpus-$(FUZZ_TARGET)
 	$(FUZZ_ENV) $(FUZZ_BUILD)/$(FUZZ_TARGET) $(FUZZ_FLAGS_$(FUZZ_TARGET)) -artifact_prefix=$(FUZZ_BUILD)/ \
 	    -max_total_time=$(FUZZ_SECONDS) $(FUZZ_BUILD)/corpus-$(FUZZ_TARGET) $(FUZZ_SEEDS_$(FUZZ_TARGET))
 
-fuzz-smoke: asan-build
+fuzz-smoke: asan-build ## a short fuzz run
 	@set -e; for t in fuzz_model fuzz_inputs; do \
 	    out=$$(mktemp -d); rc=0; \
 	    if [ $$t = fuzz_model ]; then flags="$(FUZZ_FLAGS_fuzz_model)"; seeds="$(FUZZ_SEEDS_fuzz_model)"; \
@@ -204,11 +209,11 @@ fuzz-smoke: asan-build
 	    echo "$$t:"; grep -E "^(stat::number_of_executed_units|INFO: Seed)" $$out.log || true; \
 	    [ $$rc -eq 0 ] || cat $$out.log; rm -rf $$out $$out.log; [ $$rc -eq 0 ]; done
 
-bench: build
+bench: build ## the benchmarks (bench/run.sh)
 	bash bench/run.sh $(BUILD)
 
-format:
+format: ## clang-format every C file
 	clang-format -i $$(git ls-files "*.c" "*.h")
 
-clean:
+clean: ## remove the build folders
 	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD)

@@ -41,6 +41,15 @@ int gd_outdir_check_writable(const char *dir, gd_error *err);
 
 /* Parses a positive whole number option value; returns 0 on success. */
 int gd_cli_parse_count(const char *text, long lo, long hi, long *out);
+/* A relative tolerance in [1e-15, 1) into the double at field; else a usage error naming
+ * the option (name: "--tol") and its exit code. */
+int gd_cli_parse_tolerance(const char *cmd, const char *name, const char *text, void *field);
+/* The n values of a repeatable option, each a comma list ("--output a,b --output c"),
+ * as items in out (at most max), in *buf (the caller frees it, also on failure). Returns
+ * minus the number of items (0 or below), or a usage error's exit code (above 0) for an
+ * empty item or too many. */
+int gd_cli_split_commas(const char *cmd, const char *name, const char *const *in, int n, char **buf,
+                        const char **out, int max);
 
 /* Prints item as JSON (pretty) followed by a newline; frees nothing. */
 void gd_cli_print_json(FILE *f, const cJSON *item);

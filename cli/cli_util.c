@@ -108,6 +108,42 @@ int gd_cli_parse_count(const char *text, long lo, long hi, long *out)
     return 0;
 }
 
+int gd_cli_parse_tolerance(const char *cmd, const char *name, const char *text, void *field)
+{
+    char *end;
+    double v = strtod(text, &end);
+    if (end == text || *end || !(v >= 1e-15 && v < 1))
+        return gd_cli_usage_error(cmd,
+                                  "%s: expected a number in [1e-15, 1) (a tolerance below 1e-15 "
+                                  "is unreachable in double precision), got '%s'",
+                                  name, text);
+    *(double *)field = v;
+    return 0;
+}
+
+int gd_cli_split_commas(const char *cmd, const char *name, const char *const *in, int n, char **buf,
+                        const char **out, int max)
+{
+    size_t len = 1;
+    for (int k = 0; k < n; k++)
+        len += strlen(in[k]) + 1;
+    char *b = *buf = malloc(len), *p = b;
+    if (!b) return gd_cli_usage_error(cmd, "out of memory");
+    int m = 0;
+    for (int k = 0; k < n; k++) {
+        strcpy(p, in[k]);
+        for (char *tok = p, *next; tok; tok = next) {
+            next = strchr(tok, ',');
+            if (next) *next++ = '\0';
+            if (!*tok) return gd_cli_usage_error(cmd, "%s: an empty item in '%s'", name, in[k]);
+            if (m == max) return gd_cli_usage_error(cmd, "%s: more than %d items", name, max);
+            out[m++] = tok;
+        }
+        p += strlen(in[k]) + 1;
+    }
+    return -m;
+}
+
 cJSON *gd_cli_json_number(double v)
 {
     return isfinite(v) ? cJSON_CreateNumber(v) : cJSON_CreateNull();

@@ -24,8 +24,9 @@ typedef struct frf_args {
 static const gd_cli_opt OPTS[] = {
     GD_CLI_ROW("input", GD_CLI_STRING, F(input), "WHAT", "the input (above)", .required = 1,
                .once = 1),
-    GD_CLI_ROW("output", GD_CLI_LIST, F(outs), "WHAT", "an output (above); repeatable",
-               .required = 1, .aux = F(nouts), .hi = MAXOUT),
+    GD_CLI_ROW("output", GD_CLI_LIST, F(outs), "WHAT",
+               "an output (above); repeatable, or a comma list", .required = 1, .aux = F(nouts),
+               .hi = MAXOUT),
     GD_CLI_ROW("freq", GD_CLI_STRING, F(freq), "FROM:TO:COUNT",
                "frequencies, units allowed: 0:26000:1001 (rad/s), 0:5kHz:501", .required = 1),
     GD_CLI_ROW("speed", GD_CLI_STRING, F(speed), "VALUE",
@@ -70,25 +71,40 @@ int gd_cmd_frf(int argc, char **argv)
     int rc = gd_cli_parse(&CMD, argc, argv, &a, &file);
     if (rc) return rc < 0 ? GD_EXIT_OK : rc;
     gd_frf_options opt = a.opt;
-    const char *input = a.input, *freq = a.freq, *speed = a.speed, *out = a.out,
-               *plot = a.plot, *const *outs = a.outs;
-    int nouts = a.nouts;
+    const char *input = a.input, *freq = a.freq, *speed = a.speed, *out = a.out, *plot = a.plot,
+               *outs[MAXOUT];
+    /* --output takes a comma list, as --record does */
+    char *outbuf = NULL;
+    int nouts = gd_cli_split_commas(cmd, "--output", a.outs, a.nouts, &outbuf, outs, MAXOUT);
+    if (nouts > 0) {
+        free(outbuf);
+        return nouts;
+    }
+    nouts = -nouts;
     gd_cli_units u = {.speed_rpm = 0, .freq_hz = 0}; /* rad/s unless rpm or Hz is written */
-    if (gd_cli_units_parse(cmd, a.units, speed, freq, &u)) return GD_EXIT_INPUT;
+    if (gd_cli_units_parse(cmd, a.units, speed, freq, &u)) {
+        free(outbuf);
+        return GD_EXIT_INPUT;
+    }
     double *fr = NULL;
     rc = gd_cli_parse_range(cmd, "--freq", freq, &fr, &opt.nfreq);
-    if (rc) return rc;
+    if (rc) {
+        free(outbuf);
+        return rc;
+    }
     opt.freqs = fr;
     gd_error err;
     gd_error_clear(&err);
     if ((out && gd_outdir_check(out, &err)) || (plot && gd_plot_check_path(plot, NULL, &err))) {
         free(fr);
+        free(outbuf);
         return gd_cli_report(&err);
     }
     gd_model *m;
     gd_system *s;
     if ((rc = gd_cli_load(file, &a.sets, a.coupling, &m, &s))) {
         free(fr);
+        free(outbuf);
         return rc;
     }
     gd_probe probes[2 * MAXOUT];
@@ -247,6 +263,7 @@ int gd_cmd_frf(int argc, char **argv)
         gd_cli_operating_print(s, &a.op, 0);
     }
 done:
+    free(outbuf);
     free(ser);
     free(dirbuf);
     gd_frf_free(r);

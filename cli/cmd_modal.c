@@ -18,6 +18,11 @@ typedef struct modal_args {
     int json, nmodes, by_shaft, directional;
 } modal_args;
 
+static int parse_tol(const char *cmd, const char *text, void *field)
+{
+    return gd_cli_parse_tolerance(cmd, "--tol", text, field);
+}
+
 #define F(m) offsetof(modal_args, m)
 static const gd_cli_opt OPTS[] = {
     GD_CLI_ROW_SPEED(modal_args, opt.speed, 0,
@@ -36,6 +41,10 @@ static const gd_cli_opt OPTS[] = {
                           "(all modes); sparse: shift-invert Krylov-Schur with a sparse LU (the "
                           "lowest N modes, needs mass on every DOF)"),
     GD_CLI_ROWS_OPERATING(modal_args, op),
+    GD_CLI_ROW("tol", GD_CLI_CALL, F(opt.tol), "TOL",
+               "relative residual of each mode the sparse solver iterates to (the 'resid' "
+               "column); LAPACK (dense) is at rounding anyway",
+               .def = "1e-9", .call = parse_tol),
     GD_CLI_ROW_MODEL(modal_args, coupling, sets),
     GD_CLI_ROW("group", GD_CLI_CHOICE, F(by_shaft), "shaft",
                "also the strain energy per shaft with its gears, bearings and meshes (half of one "
@@ -89,15 +98,16 @@ static void print_table(const gd_system *s, const gd_modal_result *r)
     printf("%s: %d DOFs, speed %g rad/s (%g rpm), %s modes (%s solver)\n\n", s->model->file,
            s->ndof, r->speed, r->speed * 30 / M_PI, r->damped ? "damped (state space)" : "undamped",
            r->sparse ? "sparse" : "dense");
-    printf("%4s %12s %12s %12s %9s %9s  %-10s %-10s %-14s %5s %5s %5s %5s%s\n", "mode", "f_n(Hz)",
-           "w_n(rad/s)", "w_d(rad/s)", "zeta", "logdec", "whirl", "dominant", "component", "lat%",
-           "tor%", "ax%", "tilt%", pl ? "  class" : "");
+    printf("%4s %12s %12s %12s %9s %9s  %-10s %-10s %-14s %5s %5s %5s %5s %8s%s\n", "mode",
+           "f_n(Hz)", "w_n(rad/s)", "w_d(rad/s)", "zeta", "logdec", "whirl", "dominant",
+           "component", "lat%", "tor%", "ax%", "tilt%", "resid", pl ? "  class" : "");
     for (int j = 0; j < r->nmodes; j++) {
         const gd_mode *md = &r->modes[j];
         if (md->rigid_body) {
-            printf("%4d %12.6g %12.6g %12.6g %9s %9s  %-10s %-10s %-14s", j + 1, 0.0, 0.0, 0.0, "-",
-                   "-", "none", gd_motion_names[md->dominant_motion], "(rigid body)");
-            if (pl) printf(" %5s %5s %5s %5s  %s", "", "", "", "", mode_class(s, r, j));
+            printf("%4d %12.6g %12.6g %12.6g %9s %9s  %-10s %-10s %-14s %5s %5s %5s %5s %8.1e",
+                   j + 1, 0.0, 0.0, 0.0, "-", "-", "none", gd_motion_names[md->dominant_motion],
+                   "(rigid body)", "", "", "", "", md->residual);
+            if (pl) printf("  %s", mode_class(s, r, j));
             printf("\n");
             continue;
         }
@@ -106,14 +116,44 @@ static void print_table(const gd_system *s, const gd_modal_result *r)
             snprintf(ld, sizeof ld, "-");
         else
             snprintf(ld, sizeof ld, "%.4g", md->log_decrement);
-        printf("%4d %12.6g %12.6g %12.6g %9.4g %9s  %-10s %-10s %-14.14s %5.1f %5.1f %5.1f "
-               "%5.1f%s%s%s\n",
+        printf("%4d %12.6g %12.6g %12.6g %9.4g %9s  %-10s %-10s %-14.14s %5.1f %5.1f %5.1f %5.1f "
+               "%8.1e%s%s%s\n",
                j + 1, md->frequency_hz, md->omega_n, md->omega_d, md->damping_ratio, ld,
                gd_whirl_names[md->whirl], gd_motion_names[md->dominant_motion],
                component_name(s, md->dominant_component), share(md, 0), share(md, 1), share(md, 2),
-               share(md, 3), pl ? "  " : "", pl ? mode_class(s, r, j) : "",
+               share(md, 3), md->residual, pl ? "  " : "", pl ? mode_class(s, r, j) : "",
                md->unstable ? "  UNSTABLE" : (md->overdamped ? "  overdamped" : ""));
     }
+}
+
+/* The modes whose residual is above the precision asked (the sparse solver stops when
+ * rounding, not the iteration, is what is left): said on stderr, with that floor. */
+static void warn_residuals(const gd_modal_result *r, double tol)
+{
+    int n = 0, first = -1;
+    double worst = 0, floor_max = 0;
+    for (int j = 0; j < r->nmodes; j++) {
+        const gd_mode *md = &r->modes[j];
+        if (md->rigid_body || !(md->residual > tol)) continue;
+        if (first < 0) first = j;
+        n++;
+        worst = fmax(worst, md->residual);
+        floor_max = fmax(floor_max, md->residual_floor);
+    }
+    if (n && worst <= 100 * floor_max)
+        fprintf(stderr,
+                "geardyn: warning: %d mode(s) (the first: mode %d) have a relative residual up "
+                "to %.1e, above --tol %.1e: the rounding of this model's matrices leaves about "
+                "%.1e (eps x (element stiffness / mode stiffness)); a finer tolerance cannot "
+                "remove it, a coarser mesh would\n",
+                n, first + 1, worst, tol, floor_max);
+    else if (n)
+        fprintf(stderr,
+                "geardyn: warning: %d mode(s) (the first: mode %d) have a relative residual up "
+                "to %.1e, above --tol %.1e and above what rounding leaves (%.1e): the sparse "
+                "solver's refinement did not converge; --method dense gives them to rounding "
+                "(on a model small enough for it)\n",
+                n, first + 1, worst, tol, floor_max);
 }
 
 /* a number, or null when not finite (JSON has no NaN) */
@@ -122,7 +162,7 @@ static void add_num(cJSON *o, const char *k, double v)
     cJSON_AddItemToObject(o, k, gd_cli_json_number(v));
 }
 
-static cJSON *result_json(const gd_system *s, const gd_modal_result *r)
+static cJSON *result_json(const gd_system *s, const gd_modal_result *r, double tol)
 {
     cJSON *o = cJSON_CreateObject();
     cJSON_AddStringToObject(o, "model", s->model->file);
@@ -130,6 +170,7 @@ static cJSON *result_json(const gd_system *s, const gd_modal_result *r)
     cJSON_AddBoolToObject(o, "damped", r->damped);
     cJSON_AddStringToObject(o, "method", r->sparse ? "sparse" : "dense");
     cJSON_AddNumberToObject(o, "dofs", s->ndof);
+    add_num(o, "tol", tol);
     cJSON *modes = cJSON_AddArrayToObject(o, "modes");
     for (int j = 0; j < r->nmodes; j++) {
         const gd_mode *md = &r->modes[j];
@@ -161,6 +202,8 @@ static cJSON *result_json(const gd_system *s, const gd_modal_result *r)
                     pc, s->model->planetary[k].name,
                     gd_planetary_class_names[gd_modal_planetary_class(s, r, j, k)]);
         }
+        add_num(m, "residual", md->residual);
+        add_num(m, "residual_floor", md->residual_floor);
         cJSON *es = cJSON_AddObjectToObject(m, "energy_share");
         for (int k = 0; k < GD_NMOTIONS; k++)
             add_num(es, gd_motion_names[k], md->energy_share[k]);
@@ -183,14 +226,14 @@ static int write_csv(const gd_system *s, const gd_modal_result *r, const char *d
     if (!f) goto fail;
     fprintf(f, "mode,omega_n_rad_s,frequency_hz,omega_d_rad_s,damping_ratio,log_decrement,"
                "whirl,dominant_motion,dominant_component,rigid_body,energy_lateral,"
-               "energy_torsional,energy_axial,energy_tilt\n");
+               "energy_torsional,energy_axial,energy_tilt,residual\n");
     for (int j = 0; j < r->nmodes; j++) {
         const gd_mode *md = &r->modes[j];
-        fprintf(f, "%d,%.10g,%.10g,%.10g,%.10g,%.10g,%s,%s,%s,%d,%.6g,%.6g,%.6g,%.6g\n", j + 1,
+        fprintf(f, "%d,%.10g,%.10g,%.10g,%.10g,%.10g,%s,%s,%s,%d,%.6g,%.6g,%.6g,%.6g,%.3g\n", j + 1,
                 md->omega_n, md->frequency_hz, md->omega_d, md->damping_ratio, md->log_decrement,
                 gd_whirl_names[md->whirl], gd_motion_names[md->dominant_motion],
                 component_name(s, md->dominant_component), md->rigid_body, md->energy_share[0],
-                md->energy_share[1], md->energy_share[2], md->energy_share[3]);
+                md->energy_share[1], md->energy_share[2], md->energy_share[3], md->residual);
     }
     if (gd_outdir_close(&od, f, "modes.csv", &err)) goto fail;
     f = gd_outdir_open(&od, "mode_shapes.csv", &err);
@@ -248,6 +291,8 @@ int gd_cmd_modal(int argc, char **argv)
         if (r) gd_modal_free(r);
         rc = gd_cli_report(&err);
     } else {
+        double tol = opt.tol > 0 ? opt.tol : GD_MODAL_TOL_DEFAULT;
+        if (r->sparse) warn_residuals(r, tol);
         if (plot) {
             gd_plot *p = NULL;
             gd_status pst = gd_plot_modal(s, r, &p, &err);
@@ -256,7 +301,7 @@ int gd_cmd_modal(int argc, char **argv)
         if (out && rc == GD_EXIT_OK) rc = write_csv(s, r, out);
         if (rc == GD_EXIT_OK) {
             if (json) {
-                cJSON *o = result_json(s, r);
+                cJSON *o = result_json(s, r, tol);
                 if (by_shaft)
                     rc = gd_cli_shaft_json(cJSON_GetObjectItemCaseSensitive(o, "modes"), s, r);
                 if (dr) cJSON_AddItemToObject(o, "directional", gd_cli_directional_json(dr));

@@ -470,25 +470,13 @@ static int parse_subharmonic(const char *cmd, const char *text, void *field)
 }
 
 /* --tol, --harmonic-tol: a relative tolerance in [1e-15, 1) */
-static int parse_tolerance(const char *cmd, const char *name, const char *text, void *field)
-{
-    char *end;
-    double v = strtod(text, &end);
-    if (*end || !(v >= 1e-15 && v < 1))
-        return gd_cli_usage_error(cmd,
-                                  "%s: expected a number in [1e-15, 1) (a tolerance below 1e-15 "
-                                  "is unreachable in double precision), got '%s'",
-                                  name, text);
-    *(double *)field = v;
-    return 0;
-}
 static int parse_tol(const char *cmd, const char *text, void *field)
 {
-    return parse_tolerance(cmd, "--tol", text, field);
+    return gd_cli_parse_tolerance(cmd, "--tol", text, field);
 }
 static int parse_harmonic_tol(const char *cmd, const char *text, void *field)
 {
-    return parse_tolerance(cmd, "--harmonic-tol", text, field);
+    return gd_cli_parse_tolerance(cmd, "--harmonic-tol", text, field);
 }
 
 /* A count per period from lo to 2^20 (AFT samples, Magnus steps). */

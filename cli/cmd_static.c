@@ -59,11 +59,28 @@ static const char *node_name(const gd_model *m, int node)
     return m->nodes[node].name;
 }
 
-static void print_tables(const gd_system *s, const gd_static_result *r)
+static void print_tables(const gd_system *s, const gd_static_result *r, double torque)
 {
     const gd_model *m = s->model;
     printf("%s: %d DOFs, speed %g rad/s; %d held DOF%s\n", m->file, r->ndof, r->speed, r->nholds,
            r->nholds == 1 ? "" : "s");
+    /* --torque adds to the model's own loads at that node: the total, said */
+    if (r->input_node >= 0) {
+        double own = r->input_torque_total - torque;
+        printf("input torque at %s: %.6g N m", node_name(m, r->input_node), r->input_torque_total);
+        if (fabs(own) > 1e-12 * fabs(torque))
+            printf(" = --torque %.6g N m + the model's own loads there %.6g N m\n", torque, own);
+        else
+            printf(" (--torque)\n");
+        /* and the model's loads elsewhere (mean excitation loads, gravity) */
+        int in = gd_system_dof(s, r->input_node, GD_RZ), other = 0;
+        for (int i = 0; i < r->ndof; i++)
+            other += i != in && r->f[i] != 0;
+        if (other)
+            printf("the model's own mean loads and gravity act too, on %d more DOF%s (--no-loads "
+                   "and --no-gravity leave them out)\n",
+                   other, other == 1 ? "" : "s");
+    }
     if (r->nholds) {
         printf("\nheld DOFs (reaction applied to hold them)\n%-20s %4s %-10s %14s\n", "node", "dof",
                "kind", "reaction");
@@ -163,6 +180,10 @@ static cJSON *result_json(const gd_system *s, const gd_static_result *r)
     cJSON_AddStringToObject(o, "model", m->file);
     cJSON_AddNumberToObject(o, "dofs", r->ndof);
     cJSON_AddNumberToObject(o, "speed_rad_s", r->speed);
+    if (r->input_node >= 0) {
+        cJSON_AddStringToObject(o, "input_node", node_name(s->model, r->input_node));
+        cJSON_AddNumberToObject(o, "input_torque_total_n_m", r->input_torque_total);
+    }
     cJSON *hs = cJSON_AddArrayToObject(o, "holds");
     for (int h = 0; h < r->nholds; h++) {
         cJSON *j = cJSON_CreateObject();
@@ -391,7 +412,7 @@ int gd_cmd_static(int argc, char **argv)
                 gd_cli_print_json(stdout, o);
                 cJSON_Delete(o);
             } else {
-                print_tables(s, r);
+                print_tables(s, r, opt.input_torque);
             }
         }
         gd_static_free(r);

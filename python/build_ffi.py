@@ -166,7 +166,7 @@ typedef enum { GD_WHIRL_NONE, GD_WHIRL_FORWARD, GD_WHIRL_BACKWARD, GD_WHIRL_MIXE
                ... } gd_whirl;
 extern const char *const gd_whirl_names[4];
 typedef enum { GD_MODAL_AUTO, GD_MODAL_UNDAMPED, GD_MODAL_DAMPED, ... } gd_modal_kind;
-typedef struct { double speed; int nmodes; gd_modal_kind kind; int want_left;
+typedef struct { double speed; int nmodes; gd_modal_kind kind; int want_left; double tol;
                  ...; } gd_modal_options;
 typedef struct {
     double lambda_re, lambda_im, omega_n, omega_d, frequency_hz, damping_ratio,
@@ -176,6 +176,7 @@ typedef struct {
     double energy_share[...];
     gd_motion dominant_motion;
     int dominant_component;
+    double residual, residual_floor;
     ...;
 } gd_mode;
 typedef struct {

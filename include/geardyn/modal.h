@@ -12,8 +12,13 @@
 #include "geardyn/export.h"
 #include "geardyn/system.h"
 
+/* A mode with less than this fraction of its strain energy in lateral and tilt motion
+ * has whirl GD_WHIRL_NONE (a torsional or axial mode, whatever its small orbits do). */
+#define GD_WHIRL_MIN_LATERAL 0.05
+
 typedef enum gd_whirl {
-    GD_WHIRL_NONE,     /* no lateral orbit, or straight-line orbits */
+    GD_WHIRL_NONE,     /* no lateral orbit, straight-line orbits, or a mode with less than
+                          GD_WHIRL_MIN_LATERAL of lateral and tilt strain energy */
     GD_WHIRL_FORWARD,  /* every orbit turns with its shaft */
     GD_WHIRL_BACKWARD, /* every orbit turns against its shaft */
     GD_WHIRL_MIXED
@@ -36,12 +41,21 @@ typedef enum gd_eig_method {
     GD_EIG_SPARSE /* shift-invert Krylov-Schur with KLU (gd_modal_solve_sparse) */
 } gd_eig_method;
 
+/* The sparse solver's default precision (gd_modal_options.tol = 0): the relative
+ * residual of each eigenpair (gd_mode.residual) */
+#define GD_MODAL_TOL_DEFAULT 1e-9
+
 typedef struct gd_modal_options {
     double speed; /* reference speed, rad/s */
     int nmodes;   /* lowest modes kept; 0: all */
     gd_modal_kind kind;
     int want_left;        /* compute bi-orthonormal left eigenvectors (damped) */
     gd_eig_method method; /* default AUTO */
+    /* The sparse solver iterates until every elastic mode's relative residual
+     * (gd_mode.residual) is at most tol, or no longer falls (it has reached
+     * residual_floor, the rounding of the model's matrices); 0: GD_MODAL_TOL_DEFAULT.
+     * The dense solver (LAPACK) is accurate to rounding and ignores it. */
+    double tol;
 } gd_modal_options;
 
 typedef struct gd_mode {
@@ -57,7 +71,19 @@ typedef struct gd_mode {
     gd_whirl whirl;
     double energy_share[GD_NMOTIONS]; /* fractions of modal strain energy */
     gd_motion dominant_motion;
-    int dominant_component; /* gd_system component index; -1 for rigid modes */
+    int dominant_component; /* gd_system component index; -1 for rigid modes and when no
+                               component holds strain energy */
+    /* Relative residual of the eigenpair (lambda, u) of P(lambda) = lambda^2 M +
+     * lambda D + K (D = C + W G; 0 for undamped modes), of every solver:
+     *   |P(lambda) u| / (|lambda|^2 |M u| + |lambda| |D u| + |K u|)   (2-norms),
+     * about the relative error of the frequency for a well-separated mode (an exact u:
+     * exactly |d omega| / omega). A rigid-body mode: |K u| / | |K| |u| |. */
+    double residual;
+    /* What rounding alone leaves in that residual: eps times the terms that cancel,
+     * (|lambda|^2 | |M||u| | + |lambda| | |D||u| | + | |K||u| |) / the denominator above.
+     * Large on fine meshes, whose element stiffnesses dwarf a low mode's (about eps
+     * (element frequency / mode frequency)^2): no solver gets a residual far below it. */
+    double residual_floor;
 } gd_mode;
 
 typedef struct gd_modal_result {

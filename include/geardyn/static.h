@@ -99,6 +99,11 @@ typedef struct gd_static_result {
                                      0 without laws): K q = f + law_forces */
     int nlaws;                    /* the laws that took part in the equilibrium */
     gd_static_law *laws;          /* nlaws */
+    /* with an input torque: its node (else -1) and the whole mean torque applied there
+     * about the shaft in its sense of rotation, the input torque plus the model's own
+     * loads at that node (issue 35: --torque adds to them) */
+    int input_node;
+    double input_torque_total;
 } gd_static_result;
 
 GD_API void gd_static_options_init(gd_static_options *opt);

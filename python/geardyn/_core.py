@@ -200,7 +200,7 @@ MODE_DTYPE = struct_dtype("gd_mode", {
     "frequency_hz": "f8", "damping_ratio": "f8", "log_decrement": "f8",
     "rigid_body": "i4", "overdamped": "i4", "unstable": "i4", "whirl": _ENUM,
     "energy_share": ("f8", (int(lib.GD_NMOTIONS),)), "dominant_motion": _ENUM,
-    "dominant_component": "i4"})
+    "dominant_component": "i4", "residual": "f8", "residual_floor": "f8"})
 
 WHIRL_NAMES = names(lib.gd_whirl_names, 4)
 MOTION_NAMES = names(lib.gd_motion_names, int(lib.GD_NMOTIONS))

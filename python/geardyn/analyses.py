@@ -124,11 +124,13 @@ _KINDS = {"auto": lib.GD_MODAL_AUTO, "undamped": lib.GD_MODAL_UNDAMPED,
 _tls = threading.local()
 
 
-def modal(system, speed=None, modes=None, kind="auto", left=False):
+def modal(system, speed=None, modes=None, kind="auto", left=False, tol=None):
     """Modes at reference speed `speed` (default: the model's). modes: number of lowest
     modes, "all" or 0 for all; None as the CLI: all up to 30 DOFs, else 20. kind:
     "auto" (damped when the model has damping or gyroscopics), "undamped", "damped".
-    left: also the bi-orthonormal left eigenvectors (damped modes)."""
+    left: also the bi-orthonormal left eigenvectors (damped modes). tol: the relative
+    residual the sparse solver iterates to (None: 1e-9, as `geardyn modal --tol`); each
+    mode's is in `residual` (and `residual_floor`, what rounding leaves)."""
     try:
         opt, out, err = _tls.modal
     except AttributeError:
@@ -146,6 +148,12 @@ def modal(system, speed=None, modes=None, kind="auto", left=False):
     except KeyError:
         raise model_error("kind", "unknown kind '%s'" % kind, "use auto, undamped or damped")
     opt.want_left = 1 if left else 0
+    if tol is not None:
+        if isinstance(tol, bool) or not isinstance(tol, (int, float)) or \
+                not (1e-15 <= tol < 1):
+            raise model_error("tol", "tol must be a number in [1e-15, 1), got %r" % (tol,),
+                              "give a relative residual such as 1e-10")
+        opt.tol = float(tol)
     if lib.gd_modal_solve(system._handle, opt, out, err) != lib.GD_OK:
         check(err.status, err)
     return ModalResult(system, ffi.gc(out[0], lib.gd_modal_free))
@@ -155,7 +163,8 @@ class ModalResult(_Result):
     """Modes (C gd_modal_result). Per mode (arrays of nmodes): omega_n, frequency_hz,
     omega_d, damping_ratio, log_decrement, eigenvalues, rigid_body, whirl,
     energy_share (nmodes x 4: lateral, torsional, axial, tilt), dominant_motion,
-    dominant_component. Shapes: shape_re, shape_im (ndof x nmodes views), shapes
+    dominant_component, residual (relative residual of each eigenpair), residual_floor.
+    Shapes: shape_re, shape_im (ndof x nmodes views), shapes
     (complex), left (complex or None); energy_by_component (ncomponents x nmodes)."""
 
     _figure = "modal"

@@ -315,8 +315,8 @@ class System:
         return Matrices(*out, dofs=list(self.dofs))
 
     # the analyses (analyses.py, transient.py), each documented there
-    def modal(self, speed=None, modes=None, kind="auto", left=False):
-        return _analyses.modal(self, speed, modes, kind, left)
+    def modal(self, speed=None, modes=None, kind="auto", left=False, tol=None):
+        return _analyses.modal(self, speed, modes, kind, left, tol)
 
     def campbell(self, speeds, **kw):
         return _analyses.campbell(self, speeds, **kw)

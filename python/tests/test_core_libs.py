@@ -3,6 +3,8 @@ analysis, no image, font, PDF or GUI library is mapped into the process (PNG and
 the plugin geardyn-raster.so, which only a PNG or PDF plot loads)."""
 import re
 
+import pytest
+
 from conftest import example
 
 # librsvg's and cairo's dependencies, as tests/structure/check_linked_libs.sh forbids them
@@ -18,3 +20,19 @@ def test_only_the_core_is_loaded(geardyn):
     assert any("libgeardyn.so" in p for p in maps)
     loaded = sorted(p for p in maps if FORBIDDEN.search(p))
     assert loaded == [], "not core libraries: %s" % loaded
+
+
+def test_modal_tol_and_residuals(geardyn):
+    """modal(tol=...) as `geardyn modal --tol`: every elastic mode's residual at most tol
+    (or 100 times its rounding floor), frequencies as the dense solver's to 1e-10."""
+    import os
+    import numpy as np
+    from conftest import ROOT
+    rig = geardyn.load(os.path.join(ROOT, "bench", "models", "rig366.yaml"))
+    sp = rig.modal(speed="3000 rpm", modes=8, tol=1e-11)
+    de = rig.modal(speed="3000 rpm", modes=8, left=True)  # left vectors: the dense solver
+    el = ~sp.rigid_body.astype(bool)
+    assert np.all(sp.residual[el] <= np.maximum(1e-11, 100 * sp.residual_floor[el]))
+    assert np.allclose(sp.omega_n, de.omega_n, rtol=1e-10, atol=0)
+    with pytest.raises(geardyn.ModelError):
+        rig.modal(tol=0)

@@ -70,10 +70,28 @@ int gd_modal_damped_at(const gd_dynmat *a, const gd_modal_options *opt, double *
     return 0;
 }
 
+/* LAPACK's modes and their residuals (gd_mode.residual, the same measure as the
+ * sparse solver's) */
+static gd_status dense_with_residuals(const gd_system *sys, const gd_modal_options *opt,
+                                      gd_modal_result **out, gd_error *err)
+{
+    gd_status st = gd_modal_solve_dense(sys, opt, out, err);
+    if (!st && (st = gd_modal_residuals(sys, *out, err))) {
+        gd_modal_free(*out);
+        *out = NULL;
+    }
+    return st;
+}
+
 gd_status gd_modal_solve(const gd_system *sys, const gd_modal_options *opt, gd_modal_result **out,
                          gd_error *err)
 {
     *out = NULL;
+    if (!(opt->tol >= 0 && opt->tol < 1))
+        return gd_error_set(err, GD_EINPUT, sys->model->file, 0, 0, "tol",
+                            "give a relative residual between 1e-14 and 1e-3, e.g. 1e-10, or 0 "
+                            "for the default 1e-9",
+                            "tolerance %g is not a relative residual below 1", opt->tol);
     int sparse_ok = gd_sparse_applicable(sys, opt->nmodes) && !opt->want_left;
     if (opt->method == GD_EIG_SPARSE) {
         if (opt->want_left)
@@ -104,7 +122,7 @@ gd_status gd_modal_solve(const gd_system *sys, const gd_modal_options *opt, gd_m
         }
         return gd_modal_solve_sparse(sys, opt, 0, out, err);
     }
-    if (opt->method == GD_EIG_DENSE || !sparse_ok) return gd_modal_solve_dense(sys, opt, out, err);
+    if (opt->method == GD_EIG_DENSE || !sparse_ok) return dense_with_residuals(sys, opt, out, err);
     /* AUTO: the pattern and its AMD analysis cost O(nnz), far below either solve */
     gd_dynmat a;
     gd_splu_symbolic sym;
@@ -122,11 +140,11 @@ gd_status gd_modal_solve(const gd_system *sys, const gd_modal_options *opt, gd_m
         if (err) gd_error_clear(err);
         if (gd_cost_sparse(&a.pat, &sym, opt->nmodes) <
             gd_cost_dense(sys->ndof, damped, opt->nmodes))
-            st = gd_sparse_modes(&a, &sym, opt, 0, &ws, out, err);
+            st = gd_sparse_modes_to_tol(&a, &sym, opt, 0, &ws, out, err);
         else
             st = GD_ENUMERIC;  /* dense below */
         if (st == GD_ENUMERIC) /* also when Krylov-Schur did not converge */
-            st = gd_modal_solve_dense(sys, opt, out, err);
+            st = dense_with_residuals(sys, opt, out, err);
         gd_sparse_ws_free(&ws);
     }
     gd_splu_symbolic_free(&sym);

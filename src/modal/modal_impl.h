@@ -80,6 +80,19 @@ void gd_sparse_ws_free(gd_sparse_ws *w);
 gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
                           const gd_modal_options *opt, double shift, gd_sparse_ws *ws,
                           gd_modal_result **out, gd_error *err);
+/* ---- residual.c: gd_mode.residual and residual_floor ---- */
+/* Of every mode of r, on a's pattern with k, d at r's speed (d NULL: undamped); *worst
+ * and *worst_floor (may be NULL): the largest over the elastic modes. GD_ENOMEM or GD_OK. */
+gd_status gd_modal_residuals_on(const gd_dynmat *a, const double *k, const double *d,
+                                gd_modal_result *r, double *worst, double *worst_floor);
+/* The same, building the sparse matrices of sys. */
+gd_status gd_modal_residuals(const gd_system *sys, gd_modal_result *r, gd_error *err);
+/* gd_sparse_modes to the precision opt->tol asks (GD_MODAL_TOL_DEFAULT when 0): the
+ * Krylov-Schur tolerance tightened 100-fold while an elastic mode's residual is above
+ * tol and above 100 times its rounding floor (at most to 1e-14); residuals filled. */
+gd_status gd_sparse_modes_to_tol(const gd_dynmat *a, const gd_splu_symbolic *sym,
+                                 const gd_modal_options *opt, double shift, gd_sparse_ws *ws,
+                                 gd_modal_result **out, gd_error *err);
 /* ---- sparse_track.c: continuation along a sweep ---- */
 /* The modes of prev (a result of this pattern at a nearby speed, with its shapes: the
  * same count, rigid-body modes first; prev2, may be NULL, the one before it, for a
@@ -94,6 +107,12 @@ gd_status gd_sparse_track(const gd_dynmat *a, const gd_splu_symbolic *sym,
                           const gd_modal_options *opt, const gd_modal_result *prev,
                           const gd_modal_result *prev2, gd_sparse_ws *ws, gd_modal_result **out,
                           int *hard, gd_error *err);
+/* The modes of r (computed at opt->speed, e.g. by Krylov-Schur) refined in place by the
+ * same iteration to the residual opt->tol (GD_TRACK_TOL when 0 or coarser), undamped
+ * ones (opt->kind GD_MODAL_UNDAMPED, D = 0) too; *out NULL when it cannot vouch. */
+gd_status gd_sparse_refine(const gd_dynmat *a, const gd_splu_symbolic *sym,
+                           const gd_modal_options *opt, const gd_modal_result *r, gd_sparse_ws *ws,
+                           gd_modal_result **out, gd_error *err);
 /* Forgets the factorisations gd_sparse_track keeps in ws (at the start of a chain: a
  * chain's numbers must not depend on the chains its thread did before). */
 void gd_sparse_track_reset(gd_sparse_ws *ws);

@@ -104,13 +104,20 @@ void gd_mode_finish(const gd_system *sys, double speed, gd_mode *md, const doubl
             by_comp[c] = by_comp[c] / total + 0.0;
             if (by_comp[c] > by_comp[bc]) bc = c;
         }
-        md->dominant_component = nc > 0 ? bc : -1;
+        /* no component holds strain energy (it is all in elements outside them): no
+         * label rather than the first component's */
+        md->dominant_component = nc > 0 && by_comp[bc] > 1e-9 ? bc : -1;
     }
     /* whirl is relative to the spin; at rest there is no direction to compare with */
     md->whirl = speed != 0.0 ? mode_whirl(sys, re, im) : GD_WHIRL_NONE;
-    /* no lateral motion to speak of: no whirl */
-    if (!md->rigid_body && total != 0 && md->energy_share[GD_MOTION_LATERAL] < 1e-6 &&
-        md->energy_share[GD_MOTION_TILT] < 1e-6)
+    /* no lateral motion to speak of: no whirl. A gearbox's torsional mode carries a few
+     * per cent of lateral strain energy through its meshes, whose small orbits turn
+     * either way; called "backward" it was drawn as a whirling mode in Campbell (issue
+     * 35: a 97 %-torsional mode). A mode with less than GD_WHIRL_MIN_LATERAL of its
+     * strain energy in lateral and tilt motion is not a whirling mode. */
+    if (!md->rigid_body && total != 0 &&
+        md->energy_share[GD_MOTION_LATERAL] + md->energy_share[GD_MOTION_TILT] <
+            GD_WHIRL_MIN_LATERAL)
         md->whirl = GD_WHIRL_NONE;
 }
 

@@ -283,7 +283,8 @@ static int track_lu(const gd_dynmat *a, const gd_splu_symbolic *sym, const doubl
  * memory. */
 static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const double *k,
                           const double *d, int c, const double complex *lam0,
-                          const double complex *x0, int nx0, double gap, track_ws *w, found *out)
+                          const double complex *x0, int nx0, double gap, double tol, track_ws *w,
+                          found *out)
 {
     const gd_pattern *p = &a->pat;
     int n = p->n, q = 0, qmax = GD_TRACK_MAXQ * c, rc = 1;
@@ -400,7 +401,7 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
             /* converged, or stalled at the rounding floor of P(lambda) x (stiff elements
              * beside slow modes: eps (element frequency / mode's)^2), below GD_TRACK_STALL */
             double rel = nr * nx / (cabs(lam) * cabs(dp));
-            conv[m] = rel <= GD_TRACK_TOL ||
+            conv[m] = rel <= tol ||
                       (it > 0 && fresh_prev && rel <= GD_TRACK_STALL && rel > 0.1 * last[m]);
             last[m] = rel;
             if (conv[m]) continue;
@@ -716,21 +717,21 @@ static int check_op(gd_track_cache *tc, const gd_dynmat *a, const gd_splu_symbol
     return rc;
 }
 
-gd_status gd_sparse_track(const gd_dynmat *a, const gd_splu_symbolic *sym,
-                          const gd_modal_options *opt, const gd_modal_result *prev,
-                          const gd_modal_result *prev2, gd_sparse_ws *ws, gd_modal_result **out,
-                          int *hard, gd_error *err)
+static gd_status track(const gd_dynmat *a, const gd_splu_symbolic *sym, const gd_modal_options *opt,
+                       const gd_modal_result *prev, const gd_modal_result *prev2, gd_sparse_ws *ws,
+                       gd_modal_result **out, int *hard, gd_error *err, int undamped_ok)
 {
     *out = NULL;
     *hard = 1;
     const gd_system *sys = a->sys;
     int n = a->pat.n, nnz = a->pat.nnz, km = prev ? prev->nmodes : 0;
     if (!prev || !prev->shape_re || !prev->shape_im || prev->ndof != n || km < 1 ||
-        opt->kind == GD_MODAL_UNDAMPED || sys->nmassless > 0)
+        (opt->kind == GD_MODAL_UNDAMPED && !undamped_ok) || sys->nmassless > 0)
         return GD_OK;
     gd_status st = GD_OK;
     double *k = ws->k, *d = ws->d;
     gd_dynmat_at(a, opt->speed, k, d);
+    if (opt->kind == GD_MODAL_UNDAMPED) memset(d, 0, (size_t)nnz * sizeof *d);
     int any_d = 0;
     for (int i = 0; i < nnz; i++)
         any_d |= d[i] != 0;
@@ -855,7 +856,9 @@ gd_status gd_sparse_track(const gd_dynmat *a, const gd_splu_symbolic *sym,
         double gap = cabs(mid);
         for (int j = 0; j < nel; j++)
             if (j < j0 || j >= j1) gap = fmin(gap, cabs(lam0[j] - mid));
-        int rc = refine_cluster(a, sym, k, d, c, lam0 + j0, x0, nx0, gap, wp, fd + j0);
+        /* a modal solve's own precision (gd_modal_options.tol) when finer */
+        double tol = opt->tol > 0 ? fmin(opt->tol, GD_TRACK_TOL) : GD_TRACK_TOL;
+        int rc = refine_cluster(a, sym, k, d, c, lam0 + j0, x0, nx0, gap, tol, wp, fd + j0);
         if (rc < 0) goto nomem;
         if (rc > 0) goto done;
         j0 = j1;
@@ -878,25 +881,29 @@ gd_status gd_sparse_track(const gd_dynmat *a, const gd_splu_symbolic *sym,
             lock_vector(L, n2, &nl, v, hl);
         }
     }
-    int rcs = check_op(tc, a, sym, -s, g, k, d);
-    if (rcs < 0) goto nomem;
-    if (rcs > 0) goto done;
-    si_ctx ctx = {op, sym};
-    /* first to a loose residual, which settles a clear gap; to the tight one otherwise */
-    double top = 0;
-    st = gd_ks_deflated_top(si_apply, &ctx, n2, L, nl, GD_TRACK_LOOSE_TOL, &ws->ks, &top);
-    if (!st && !(top < thr * (1 - GD_TRACK_LOOSE_MARGIN)) &&
-        top < thr * (1 + GD_TRACK_LOOSE_MARGIN)) {
-        st = gd_ks_deflated_top(si_apply, &ctx, n2, L, nl, GD_TRACK_CHECK_TOL, &ws->ks, &top);
-        wp->passes = GD_TRACK_MAXIT; /* a mode just outside the window: hard */
-        if (!st && !(top < thr * (1 - GD_TRACK_CHECK_MARGIN))) top = INFINITY;
-    } else if (!st && !(top < thr * (1 - GD_TRACK_LOOSE_MARGIN))) {
-        top = INFINITY;
-    }
-    if (st == GD_ENOMEM) goto nomem;
-    if (st || !(top < thr)) {
-        st = GD_OK;
-        goto done;
+    /* the completeness check; a refinement of this speed's own Krylov-Schur modes
+     * (undamped_ok: gd_sparse_refine) needs none, Krylov-Schur found them all */
+    if (!undamped_ok) {
+        int rcs = check_op(tc, a, sym, -s, g, k, d);
+        if (rcs < 0) goto nomem;
+        if (rcs > 0) goto done;
+        si_ctx ctx = {op, sym};
+        /* first to a loose residual, which settles a clear gap; to the tight one otherwise */
+        double top = 0;
+        st = gd_ks_deflated_top(si_apply, &ctx, n2, L, nl, GD_TRACK_LOOSE_TOL, &ws->ks, &top);
+        if (!st && !(top < thr * (1 - GD_TRACK_LOOSE_MARGIN)) &&
+            top < thr * (1 + GD_TRACK_LOOSE_MARGIN)) {
+            st = gd_ks_deflated_top(si_apply, &ctx, n2, L, nl, GD_TRACK_CHECK_TOL, &ws->ks, &top);
+            wp->passes = GD_TRACK_MAXIT; /* a mode just outside the window: hard */
+            if (!st && !(top < thr * (1 - GD_TRACK_CHECK_MARGIN))) top = INFINITY;
+        } else if (!st && !(top < thr * (1 - GD_TRACK_LOOSE_MARGIN))) {
+            top = INFINITY;
+        }
+        if (st == GD_ENOMEM) goto nomem;
+        if (st || !(top < thr)) {
+            st = GD_OK;
+            goto done;
+        }
     }
     /* the result, as gd_sparse_modes gives it */
     track_order *ord = malloc((size_t)(nel > 0 ? nel : 1) * sizeof *ord);
@@ -957,4 +964,20 @@ done:
     }
     gd_modal_free(res);
     return st;
+}
+
+gd_status gd_sparse_track(const gd_dynmat *a, const gd_splu_symbolic *sym,
+                          const gd_modal_options *opt, const gd_modal_result *prev,
+                          const gd_modal_result *prev2, gd_sparse_ws *ws, gd_modal_result **out,
+                          int *hard, gd_error *err)
+{
+    return track(a, sym, opt, prev, prev2, ws, out, hard, err, 0);
+}
+
+gd_status gd_sparse_refine(const gd_dynmat *a, const gd_splu_symbolic *sym,
+                           const gd_modal_options *opt, const gd_modal_result *r, gd_sparse_ws *ws,
+                           gd_modal_result **out, gd_error *err)
+{
+    int hard;
+    return track(a, sym, opt, r, NULL, ws, out, &hard, err, 1);
 }

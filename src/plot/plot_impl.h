@@ -139,8 +139,9 @@ gd_status pl_write_svg_raster(const gd_plot *p, FILE *f, gd_error *err);
  * at a resolution of cell pixels: every point dropped lies within one cell of the line
  * through those kept (decimate.c). Returns their count. */
 int pl_decimate(const double *x, const double *y, int n, double cell, int *keep);
-/* the height of a panel in the SVG (pixels) */
-double pl_svg_panel_height(const pl_panel *pn);
+/* the height of a panel in the SVG (pixels); raster: in the SVG drawn for PNG and PDF
+ * (tables cut at 40 rows) */
+double pl_svg_panel_height(const pl_panel *pn, int raster);
 /* PNG (pdf = 0) or PDF of the document's SVG through the plugin geardyn-raster.so
  * (raster.c); errors name path */
 gd_status pl_write_raster(const gd_plot *p, const char *path, FILE *f, int pdf, gd_error *err);

@@ -126,7 +126,7 @@ static gd_status pdf_pages(const gd_plot *p, char ***svg, size_t **len, int *npa
             double used = 0;
             int k1 = k0;
             while (k1 < s->npanels) {
-                double ph = pl_svg_panel_height(&s->panels[k1]);
+                double ph = pl_svg_panel_height(&s->panels[k1], 1);
                 if (k1 > k0 && used + ph > PAGE_MAX - 160) break;
                 used += ph;
                 k1++;

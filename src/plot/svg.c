@@ -42,9 +42,20 @@ static int note_lines(const char *s)
     return s ? (int)(strlen(s) / 140) + 1 : 0;
 }
 
-double pl_svg_panel_height(const pl_panel *pn)
+/* The rows of a table drawn for PNG and PDF: a Campbell or report table of hundreds of
+ * rows made PNGs 8000 to 22874 px tall (issue 35); the rest are in the SVG, the HTML
+ * and the CSV, which the line under the cut says. */
+enum { RASTER_TABLE_ROWS = 40 };
+
+static int table_rows(const pl_panel *pn, int raster)
 {
-    if (pn->kind == PL_TABLE) return 40 + 20.0 * (pn->nrows + 1);
+    return raster && pn->nrows > RASTER_TABLE_ROWS ? RASTER_TABLE_ROWS : pn->nrows;
+}
+
+double pl_svg_panel_height(const pl_panel *pn, int raster)
+{
+    if (pn->kind == PL_TABLE)
+        return 40 + 20.0 * (table_rows(pn, raster) + 1 + (table_rows(pn, raster) < pn->nrows));
     if (pn->kind == PL_MODE3D) return 36;
     if (pn->equal) {
         double xl, xh, yl, yh;
@@ -391,8 +402,9 @@ static int xy_panel(FILE *f, const pl_panel *pn, double y, double h, int id, int
     return 0;
 }
 
-static void table_panel(FILE *f, const pl_panel *pn, double y)
+static void table_panel(FILE *f, const pl_panel *pn, double y, int raster)
 {
+    int shown = table_rows(pn, raster);
     fprintf(f,
             "<g class=\"table\" data-rows=\"%d\" data-cols=\"%d\">\n<text x=\"%d\" y=\"%.1f\" "
             "font-size=\"14\" font-weight=\"bold\">",
@@ -400,7 +412,7 @@ static void table_panel(FILE *f, const pl_panel *pn, double y)
     pl_xml_text(f, pn->title);
     fputs("</text>\n", f);
     double cw = (double)(W - 40) / (pn->ncols > 0 ? pn->ncols : 1);
-    for (int r = 0; r <= pn->nrows; r++)
+    for (int r = 0; r <= shown; r++)
         for (int c = 0; c < pn->ncols; c++) {
             const char *s = pn->cells[(size_t)r * pn->ncols + c];
             fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"%d\"%s>", 20 + c * cw,
@@ -410,6 +422,11 @@ static void table_panel(FILE *f, const pl_panel *pn, double y)
             pl_xml_text(f, cut);
             fputs("</text>\n", f);
         }
+    if (shown < pn->nrows)
+        fprintf(f,
+                "<text class=\"cut\" x=\"20\" y=\"%.1f\" font-size=\"11\" font-style=\"italic\">"
+                "... %d more rows: every row is in the SVG and HTML plots and the CSV</text>\n",
+                y + 44 + 20.0 * (shown + 1), pn->nrows - shown);
     fputs("</g>\n", f);
 }
 
@@ -420,7 +437,7 @@ static gd_status write_svg(const gd_plot *p, FILE *f, int raster, gd_error *err)
         const pl_section *s = &p->sections[i];
         h += 48 + 16.0 * note_lines(s->note);
         for (int k = 0; k < s->npanels; k++)
-            h += pl_svg_panel_height(&s->panels[k]);
+            h += pl_svg_panel_height(&s->panels[k], raster);
     }
     fprintf(f,
             "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" "
@@ -452,12 +469,12 @@ static gd_status write_svg(const gd_plot *p, FILE *f, int raster, gd_error *err)
         y += 6;
         for (int k = 0; k < s->npanels; k++) {
             const pl_panel *pn = &s->panels[k];
-            double ph = pl_svg_panel_height(pn);
+            double ph = pl_svg_panel_height(pn, raster);
             if (pn->kind == PL_XY) {
                 if (xy_panel(f, pn, y, ph, id++, raster))
                     return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
             } else if (pn->kind == PL_TABLE)
-                table_panel(f, pn, y);
+                table_panel(f, pn, y, raster);
             else {
                 fprintf(f, "<text x=\"%d\" y=\"%.1f\" font-size=\"12\" font-style=\"italic\">",
                         LEFT, y + 22);

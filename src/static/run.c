@@ -94,6 +94,15 @@ gd_status gd_static_run(const gd_system *sys, const gd_static_options *opt, gd_s
     /* the linear stiffness; the laws add their forces, not a linearisation */
     gd_system_dense_linear(sys, res->speed, NULL, NULL, K);
     if ((st = gd_st_loads(sys, opt, res->f, err))) goto out;
+    res->input_node = -1;
+    if (opt->input_torque != 0) { /* the total there, the model's own loads included */
+        int node = gd_st_input_node(m, opt), i = node >= 0 ? gd_system_dof(sys, node, GD_RZ) : -1;
+        if (i >= 0) {
+            res->input_node = node;
+            res->input_torque_total =
+                (m->shafts[m->nodes[node].shaft].speed_ratio < 0 ? -1.0 : 1.0) * res->f[i];
+        }
+    }
     if (sys->nlaws) {
         double *Kd = malloc((size_t)(n > 0 ? n : 1) * (n > 0 ? n : 1) * sizeof *Kd);
         if (!Kd) {

@@ -499,10 +499,10 @@ TEST(modal_out_writes_csv)
     CHECK(strncmp(modes,
                   "mode,omega_n_rad_s,frequency_hz,omega_d_rad_s,damping_ratio,log_decrement,"
                   "whirl,dominant_motion,dominant_component,rigid_body,energy_lateral,"
-                  "energy_torsional,energy_axial,energy_tilt\n",
+                  "energy_torsional,energy_axial,energy_tilt,residual\n",
                   strlen("mode,omega_n_rad_s,frequency_hz,omega_d_rad_s,damping_ratio,log_"
                          "decrement,whirl,dominant_motion,dominant_component,rigid_body,energy_"
-                         "lateral,energy_torsional,energy_axial,energy_tilt\n")) == 0);
+                         "lateral,energy_torsional,energy_axial,energy_tilt,residual\n")) == 0);
     CHECK(count_lines(modes) == 1 + 8);
     const char *row2 = strstr(modes, "\n2,");
     double w2 = row2 ? strtod(row2 + 3, NULL) : 0;

@@ -190,6 +190,50 @@ TEST(many_points_png_and_pdf)
     scratch_close(&d);
 }
 
+/* Tables in PNG and PDF (issue 35: Campbell and report PNGs 8000 to 22874 px tall): a
+ * table of 2000 rows is cut at 40 in the PNG (1920 x about 2 x 1000 px: the section
+ * title, 41 rows and the line that says where the rest are), while the SVG keeps all. */
+TEST(long_tables_are_cut_in_png)
+{
+    scratch d;
+    REQUIRE(scratch_open(&d));
+    gd_plot *p = NULL;
+    REQUIRE(gd_plot_new("table", &p, NULL) == GD_OK);
+    pl_section *s = pl_section_add(p, "critical speeds");
+    pl_panel *tb = pl_panel_add(p, s, PL_TABLE, "crossings", NULL, NULL);
+    REQUIRE(s && tb);
+    pl_table_init(p, tb, 2000, 3);
+    for (int r = 0; r <= 2000; r++)
+        for (int c = 0; c < 3; c++)
+            pl_cell(p, tb, r, c, "%d.%d", r, c);
+    gd_plot *doc = NULL;
+    REQUIRE(pl_done(p, &doc, NULL) == GD_OK);
+    char path[300];
+    snprintf(path, sizeof path, "%s/t.png", d.dir);
+    CHECK(gd_plot_write(doc, path, NULL, NULL) == GD_OK);
+    int w = 0, h = 0;
+    CHECK(png_size(path, &w, &h));
+    /* 2 x (40 + 48 + 40 + 20 x 42) = about 1940 px; uncut it was 2 x 40 128 (at 1x: 40 128) */
+    CHECK(w == 1920 && h > 1500 && h < 2500);
+    printf("  PNG of a 2000-row table: %d x %d px\n", w, h);
+    snprintf(path, sizeof path, "%s/t.svg", d.dir);
+    CHECK(gd_plot_write(doc, path, NULL, NULL) == GD_OK);
+    char *svg = read_file(path);
+    CHECK(svg && strstr(svg, ">2000.2<") && !strstr(svg, "more rows"));
+    free(svg);
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *m = open_memstream(&buf, &len);
+    REQUIRE(m);
+    CHECK(pl_write_svg_raster(doc, m, NULL) == GD_OK);
+    fclose(m);
+    CHECK(buf && strstr(buf, ">40.2<") && !strstr(buf, ">41.0<") &&
+          strstr(buf, "... 1960 more rows"));
+    free(buf);
+    gd_plot_free(doc);
+    scratch_close(&d);
+}
+
 /* The command of issue 38 M8, on the 4-DOF torsional model (the cheapest FRF: the
  * figure, not the solve, is what failed) */
 TEST(frf_of_100k_points_to_png)
@@ -259,5 +303,6 @@ TEST(missing_plugin_is_a_located_error)
     scratch_close(&d);
 }
 
-RUN_TESTS(T(decimation_keeps_the_drawing), T(many_points_png_and_pdf), T(frf_of_100k_points_to_png),
+RUN_TESTS(T(decimation_keeps_the_drawing), T(many_points_png_and_pdf),
+          T(long_tables_are_cut_in_png), T(frf_of_100k_points_to_png),
           T(missing_plugin_is_a_located_error))

@@ -1,0 +1,83 @@
+#!/usr/bin/env bash
+# Start-up and small problems (issue 35 item 2): the wall time of a whole process, best
+# of N runs, for `geardyn --version`, `check` and `modal` of small models, against
+# /bin/true measured the same way in the same run (the floor: fork, exec and the
+# timer), and Python's `import geardyn` against `import numpy` (which it needs) and a
+# bare interpreter. Prints each time, its excess over the floor and the ratio to it.
+# The shared libraries each process maps are counted too (ldd): the dynamic loader is
+# most of a small run. One thread (OPENBLAS_NUM_THREADS=1, OMP_NUM_THREADS=1), as the
+# project's other benchmarks.
+# With a second build folder (e.g. one of an older commit), its program is timed too,
+# the runs of the two interleaved (the machine may be shared), and the ratio printed.
+# usage: bench_startup.sh [BUILD] [N] [OTHER_BUILD]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+B=${1:-build}
+N=${2:-40}
+OTHER=${3:-}
+export OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1
+echo "libraries mapped: libgeardyn.so $(ldd "$B/libgeardyn.so" | wc -l), geardyn $(ldd "$B/geardyn" | wc -l)"
+[ -z "$OTHER" ] || echo "libraries mapped ($OTHER): libgeardyn.so $(ldd "$OTHER/libgeardyn.so" | wc -l), geardyn $(ldd "$OTHER/geardyn" | wc -l)"
+/usr/bin/python3 - "$B" "$N" "$OTHER" <<'PY'
+import os, subprocess, sys, time
+B, N, OTHER = sys.argv[1], int(sys.argv[2]), sys.argv[3]
+
+def best(cmd, env=None):
+    t = float("inf")
+    for _ in range(N):
+        t0 = time.perf_counter()
+        subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True, env=env)
+        t = min(t, time.perf_counter() - t0)
+    return t
+
+floor = best(["/bin/true"])
+print("floor /bin/true: %.2f ms (best of %d)" % (floor * 1e3, N))
+gd = os.path.join(B, "geardyn")
+def best2(a, b):
+    """best of N of each, interleaved"""
+    ta = tb = float("inf")
+    for _ in range(N):
+        for cmd, which in ((a, 0), (b, 1)):
+            t0 = time.perf_counter()
+            subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
+            t = time.perf_counter() - t0
+            if which == 0:
+                ta = min(ta, t)
+            else:
+                tb = min(tb, t)
+    return ta, tb
+
+for label, args in [
+    ("geardyn --version", ["--version"]),
+    ("geardyn check examples/kumar2011_coupled.yaml (8 DOFs)", ["check", "examples/kumar2011_coupled.yaml"]),
+    ("geardyn modal examples/kumar2011_coupled.yaml (8 DOFs)", ["modal", "examples/kumar2011_coupled.yaml"]),
+    ("geardyn modal examples/rig2018.yaml --speed 3000rpm (170 DOFs)", ["modal", "examples/rig2018.yaml", "--speed", "3000rpm"]),
+    ("geardyn modal bench/models/rig366.yaml --speed 3000rpm --modes 12 (366 DOFs)", ["modal", "bench/models/rig366.yaml", "--speed", "3000rpm", "--modes", "12"]),
+]:
+    if OTHER:
+        t, t2 = best2([gd] + args, [os.path.join(OTHER, "geardyn")] + args)
+        print("%-80s %7.2f ms  (floor + %6.2f ms, %5.1fx the floor); %s: %7.2f ms, %.2fx this" % (
+            label, t * 1e3, (t - floor) * 1e3, t / floor, OTHER, t2 * 1e3, t2 / t))
+    else:
+        t = best([gd] + args)
+        print("%-80s %7.2f ms  (floor + %6.2f ms, %5.1fx the floor)" % (label, t * 1e3, (t - floor) * 1e3, t / floor))
+
+# Python: the import alone, timed inside the interpreter (best of N processes)
+env = dict(os.environ, PYTHONPATH="python", GEARDYN_BUILD=B)
+def import_time(stmt):
+    code = "import time; t = time.perf_counter(); %s; print(time.perf_counter() - t)" % stmt
+    t = float("inf")
+    for _ in range(N // 4 or 1):
+        out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env)
+        if out.returncode:
+            return None, out.stderr.strip().splitlines()[-1] if out.stderr else "failed"
+        t = min(t, float(out.stdout))
+    return t, ""
+tn, _ = import_time("import numpy")
+tg, why = import_time("import geardyn")
+if tg is None:
+    print("python import geardyn: not measured (%s; run 'make python')" % why)
+else:
+    print("python import numpy:   %7.2f ms" % (tn * 1e3))
+    print("python import geardyn: %7.2f ms  (numpy included; geardyn's own %.2f ms)" % (tg * 1e3, (tg - tn) * 1e3))
+PY
