@@ -117,6 +117,8 @@ static gd_periodic_point *new_point(ctx *c)
     p->direction = c->dir;
     p->stable = -1;
     p->mu_max = NAN;
+    p->method = GD_PER_HB;
+    p->stability_method = -1;
     p->residual = NAN;
     p->harmonic_ok = -1;
     p->harmonic_error_p2p = p->harmonic_error_amp = NAN;
@@ -431,6 +433,7 @@ int gd_per_emit_point(ctx *c, const double *X, double lam, int iters, double res
     p->floquet_krylov = p->stable >= 0 && c->floquet_krylov;
     p->floquet_basis = p->stable >= 0 ? c->floquet_basis : 0;
     p->floquet_steps = p->stable >= 0 ? c->floquet_steps : 0;
+    p->stability_method = p->stable >= 0 ? GD_PER_HB : -1;
     if (p->stable < 0 && c->floquet_msg[0])
         snprintf(p->reason, sizeof p->reason, "%s", c->floquet_msg);
     announce(c, lam);

@@ -52,14 +52,9 @@ const char *gd_bifurcation_name(gd_bifurcation_type t)
 
 /* ---------------------------------------------------------------- problems per value */
 
-gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
-                          const gd_periodic_param *param, const double *values, int nvalues,
-                          const gd_periodic_options *opt, const gd_tr_record *records, int nrecords,
-                          gd_periodic_result **out, gd_error *err)
+gd_status gd_per_check_options(const double *values, int nvalues, const gd_periodic_options *opt,
+                               const gd_tr_record *records, int nrecords, gd_error *err)
 {
-    *out = NULL;
-    clock_t c0 = clock();
-    char c_note[256] = "";
 #define BAD(field, hint, ...)                                                                      \
     return gd_error_set(err, GD_EINPUT, "", 0, 0, field, hint, __VA_ARGS__)
     if (nvalues < 1 || !values) BAD("speeds", "give FROM:TO:COUNT", "no values to solve at");
@@ -115,10 +110,28 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
         BAD("shoot_dense_max", "give 0 (the default) or a positive value",
             "shoot_dense_max and shoot_budget must not be negative");
 #undef BAD
+    return GD_OK;
+}
+
+gd_status gd_per_run_kind(const gd_system *sys, const gd_transient_spec *spec,
+                          const gd_periodic_param *param, const double *values, int nvalues,
+                          const gd_periodic_options *opt, const gd_tr_record *records, int nrecords,
+                          gd_periodic_result **out, gd_error *err)
+{
+    *out = NULL;
+    clock_t c0 = clock();
+    char c_note[256] = "";
+    {
+        gd_status cs = gd_per_check_options(values, nvalues, opt, records, nrecords, err);
+        if (cs) return cs;
+    }
+    if (opt->kind == GD_PER_AUTO)
+        return gd_error_set(err, GD_EINPUT, "", 0, 0, "method", "",
+                            "auto is resolved by the caller");
+
     {
         char note[256] = "";
         gd_per_kind kind = opt->kind;
-        if (kind == GD_PER_AUTO) kind = gd_periodic_choose(sys, spec, param, values[0], opt, note);
         if (kind == GD_PER_SHOOTING) {
             gd_periodic_result *res = calloc(1, sizeof *res);
             if (!res) return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
