@@ -659,6 +659,12 @@ static const gd_cli_opt OPTS[] = {
                "monodromy in the modes below --floquet-cutoff plus the local laws' residual "
                "flexibility)",
                .def = "auto", .word = "auto|dense|krylov|reduced"),
+    GD_CLI_ROW("stability-orbit", GD_CLI_CHOICE, F(opt.shoot_stability), "M",
+               "harmonic balance points' multipliers: auto (where a law is not smooth, from the "
+               "orbit corrected by shooting: a few Newton steps on the period map, then its "
+               "integrated monodromy), fourier (the Magnus monodromy about the truncated Fourier "
+               "orbit) or shooting (always corrected); JSON stability_method says which",
+               .def = "auto", .word = "fourier|auto|shooting"),
     GD_CLI_ROW("floquet-cutoff", GD_CLI_CALL, F(opt.floquet_cutoff), "C",
                "reduced multipliers: keep the modes up to C times the highest excitation "
                "frequency (the top tooth-mesh frequency)",
@@ -707,6 +713,7 @@ int gd_cmd_periodic(int argc, char **argv)
     gd_periodic_options_init(&a.opt);
     a.opt.adaptive = 1;          /* the default: H from the excitations, raised until it holds */
     a.opt.kind = GD_PER_AUTO;    /* the method from the model, failed points handed over */
+    a.opt.shoot_stability = 1;   /* non-smooth laws: multipliers of a time-domain orbit */
     a.opt.shoot_budget = 30.0;   /* a point never runs for minutes in silence */
     a.opt.floquet_budget = 30.0; /* nor its multipliers */
     int rc = gd_cli_parse(&PERIODIC, argc, argv, &a, &file);

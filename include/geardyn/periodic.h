@@ -115,6 +115,15 @@ typedef struct gd_periodic_options {
                             above, Newton-Krylov (GMRES on monodromy-vector products, one
                             integrated period each) and the largest multipliers by
                             Arnoldi */
+    int shoot_stability; /* harmonic balance points' multipliers: 0 (the library's default)
+                            from the Magnus monodromy about the truncated Fourier orbit; 1
+                            where a law is not smooth (a switch or a kink) from the orbit
+                            corrected by shooting (a few Newton steps on the period map from
+                            the Fourier orbit's state, then its integrated monodromy: the
+                            multipliers of a solution of the time-domain equations), which
+                            GD_PER_AUTO takes; 2 always from the corrected orbit. A point
+                            whose correction fails keeps the Magnus multipliers and its
+                            reason says why (gd_periodic_point.stability_method) */
     double shoot_budget; /* shooting: seconds per point (0, default: no limit) of counted
                             work: the integrator's right-hand sides, counted, times their
                             counted flops at a nominal 2 GFlop/s (a monodromy: 0.7 (2 n + 1)

@@ -33,6 +33,7 @@ static int hand_over(const gd_system *sys, const gd_transient_spec *spec,
 {
     gd_periodic_options o = *opt;
     o.kind = k;
+    if (o.shoot_stability == 0) o.shoot_stability = 1;
     o.method = GD_PER_SEQUENTIAL;
     o.both_directions = 0;
     o.on_point = NULL;
@@ -84,6 +85,8 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
     char note[256] = "";
     gd_periodic_options o = *opt;
     o.kind = gd_periodic_choose(sys, spec, param, values[0], opt, note);
+    /* harmonic balance's multipliers from the time-domain orbit where a law is not smooth */
+    if (o.shoot_stability == 0) o.shoot_stability = 1;
     gd_status st =
         gd_per_run_kind(sys, spec, param, values, nvalues, &o, records, nrecords, out, err);
     if (st) return st;
@@ -93,7 +96,8 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
     /* cams with include_acceleration: harmonic balance cannot take them */
     int hb_ok = other != GD_PER_HB || strncmp(note, "shooting: harmonic balance cannot", 33);
     for (int i = 0; i < r->npoints && hb_ok; i++)
-        if (!r->points[i].converged) {
+        if (!r->points[i].converged &&
+            !strstr(r->points[i].reason, "period is undefined")) { /* no method has one */
             failed++;
             if (hand_over(sys, spec, param, opt, other, records, nrecords, &r->points[i],
                           &solved)) {

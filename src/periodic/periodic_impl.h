@@ -297,6 +297,15 @@ gd_status gd_per_run_kind(const gd_system *sys, const gd_transient_spec *spec,
                           const gd_periodic_param *param, const double *values, int nvalues,
                           const gd_periodic_options *opt, const gd_tr_record *records, int nrecords,
                           gd_periodic_result **out, gd_error *err);
+/* The multipliers of the harmonic balance solution X (workspace h, frequency w) at value
+ * key from the orbit corrected by shooting (floquet_shooting.c): its state at t = 0
+ * corrected by Newton on the period map, the eigenvalues of that orbit's monodromy in
+ * mre, mim (2 nf), *nmu of them (the largest by Arnoldi on the matrix-free path), *change
+ * the correction scaled as shooting's residual. 0 ok; 1 with msg (cap bytes). */
+int gd_per_floquet_shooting(const gd_system *sys, const gd_transient_spec *spec,
+                            const gd_periodic_param *param, const gd_periodic_options *opt,
+                            double key, const hb *h, double w, const double *X, double *mre,
+                            double *mim, int *nmu, double *change, char *msg, size_t cap);
 /* 1 when a law of the problem at speed has a switch or a kink (choose.c). */
 int gd_per_nonsmooth(const gd_system *sys, const gd_transient_spec *spec, double speed);
 

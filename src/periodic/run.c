@@ -106,6 +106,11 @@ gd_status gd_per_check_options(const double *values, int nvalues, const gd_perio
     if (!(opt->floquet_budget >= 0) || isinf(opt->floquet_budget))
         BAD("floquet_budget", "give CPU seconds > 0, or 0 for no limit",
             "Floquet budget %g s out of range", opt->floquet_budget);
+    if (opt->shoot_stability < 0 || opt->shoot_stability > 2)
+        BAD("shoot_stability",
+            "give 0 (Magnus about the Fourier orbit), 1 (non-smooth laws: the "
+            "orbit corrected by shooting) or 2 (always)",
+            "shoot_stability %d out of range", opt->shoot_stability);
     if (opt->shoot_dense_max < 0 || opt->shoot_budget < 0)
         BAD("shoot_dense_max", "give 0 (the default) or a positive value",
             "shoot_dense_max and shoot_budget must not be negative");
@@ -157,6 +162,7 @@ gd_status gd_per_run_kind(const gd_system *sys, const gd_transient_spec *spec,
     c.rec = records;
     c.nrec = nrecords;
     c.H = opt->harmonics;
+    c.shoot_stab = opt->shoot_stability == 2 && opt->stability;
     gd_periodic_result *res = calloc(1, sizeof *res);
     if (!res) return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
     c.res = res;
@@ -259,6 +265,8 @@ gd_status gd_per_run_kind(const gd_system *sys, const gd_transient_spec *spec,
         gd_error e3;
         if (s0 && spc && !gd_transient_spec_laws(s0, spc, sp, &laws, &nlaws, &e3)) {
             for (int i = 0; i < nlaws; i++) {
+                if (gd_law_nswitches(&laws[i]) > 0 || !(gd_law_flags(&laws[i]) & GD_LAW_SMOOTH))
+                    c.shoot_stab |= opt->shoot_stability == 1 && opt->stability;
                 if (gd_law_nswitches(&laws[i]) > 0) {
                     c.min_samples = c.min_samples > 128 ? c.min_samples : 128;
                 } else if (!(gd_law_flags(&laws[i]) & GD_LAW_SMOOTH)) {
