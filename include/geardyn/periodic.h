@@ -120,7 +120,9 @@ typedef struct gd_periodic_options {
                             where a law is not smooth (a switch or a kink) from the orbit
                             corrected by shooting (a few Newton steps on the period map from
                             the Fourier orbit's state, then its integrated monodromy: the
-                            multipliers of a solution of the time-domain equations), which
+                            multipliers of a solution of the time-domain equations), and
+                            at a reported point whose truncation estimate is not within
+                            harmonic_tol on a model of up to shoot_dense_max states; which
                             GD_PER_AUTO takes; 2 always from the corrected orbit. A point
                             whose correction fails keeps the Magnus multipliers and its
                             reason says why (gd_periodic_point.stability_method) */

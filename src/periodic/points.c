@@ -422,7 +422,14 @@ int gd_per_emit_point(ctx *c, const double *X, double lam, int iters, double res
     /* the multipliers of the reported solution, in its workspace */
     const int fine = p->harmonics != c->H;
     if (fine) swap_ws(c);
+    /* a truncation not within the tolerance: the Fourier orbit is not the time-domain one
+     * to that accuracy, so its multipliers come from the orbit corrected by shooting too
+     * (issue 33 item 1), where the dense monodromy is cheap (shoot_dense_max states) */
+    const int was = c->shoot_stab,
+              dmax = c->opt->shoot_dense_max > 0 ? c->opt->shoot_dense_max : 64;
+    if (c->opt->shoot_stability == 1 && p->harmonic_ok == 0 && 2 * c->nf <= dmax) c->shoot_stab = 1;
     gd_per_floquet(c, p->coef, lam, p->mu_re, p->mu_im, &p->stable, &p->mu_max);
+    c->shoot_stab = was;
     if (fine) swap_ws(c);
     p->nmult = p->stable >= 0 ? c->floquet_n : 0;
     p->floquet_krylov = p->stable >= 0 && c->floquet_krylov;

@@ -144,6 +144,35 @@ TEST(hb_stability_from_corrected_orbit)
     scratch_close(&s);
 }
 
+/* A truncation not within the tolerance: the Fourier orbit is not the time-domain one to
+ * that accuracy, so a small model's multipliers come from the orbit corrected by shooting
+ * (smooth law or not). The Duffing oscillator at H = 1 (--method hb) from 1.6 down to 1.1
+ * rad/s: the points within the tolerance keep the Magnus multipliers, the three beyond it
+ * (1.2 twice, 1.1) take shooting's: |mu|max 1.31491 and 0.87731 at 1.2 rad/s, 0.86693 at
+ * 1.1 (--method shooting; tolerance 1e-4, the Newton tolerances of both). */
+TEST(truncated_points_take_the_corrected_orbit)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    cJSON *o = run_json_args(&s, "periodic " DUFFING " --frequency 1.6:1.1:6 --harmonics 1 "
+                                 "--method hb");
+    REQUIRE(o);
+    REQUIRE(npoints(o) == 8);
+    static const double mu[3] = {1.31491, 0.87731, 0.86693};
+    int k = 0;
+    for (int i = 0; i < 8; i++) {
+        const cJSON *p = point(o, i),
+                    *t = cJSON_GetObjectItemCaseSensitive(
+                        cJSON_GetObjectItemCaseSensitive(p, "truncation"), "within_tolerance");
+        const int ok = cJSON_IsTrue(t);
+        CHECK(!strcmp(jstr(p, "stability_method"), ok ? "harmonic_balance" : "shooting"));
+        if (!ok && k < 3) CHECK(fabs(jnum(p, "floquet_multiplier_max_abs") - mu[k++]) < 1e-4);
+    }
+    CHECK(k == 3);
+    cJSON_Delete(o);
+    scratch_close(&s);
+}
+
 /* A point the chosen method fails goes to the other: shooting with a budget too small for
  * one monodromy fails every point of NLvib's example 03, and harmonic balance solves each
  * alone; each point says so (method, stability_method, reason) and the text's summary
@@ -227,5 +256,5 @@ TEST(dofs_option)
 }
 
 RUN_TESTS(T(five_runs_identical), T(unilateral_spring_default_is_shooting),
-          T(hb_stability_from_corrected_orbit), T(failed_points_handed_over),
-          T(frequency_messages_name_the_quantity), T(dofs_option))
+          T(hb_stability_from_corrected_orbit), T(truncated_points_take_the_corrected_orbit),
+          T(failed_points_handed_over), T(frequency_messages_name_the_quantity), T(dofs_option))
