@@ -38,7 +38,7 @@ static double period_cost(gd_transient *tr, const gd_transient_spec *spec, doubl
     gd_transient_result *r = NULL;
     gd_error err;
     gd_status st = gd_transient_run(tr, &o, NULL, 0, &r, &err);
-    double t = st ? NAN : (double)r->rhs_evals * gd_per_work_seconds(gd_per_rhs_flops(tr));
+    double t = st ? NAN : (double)r->rhs_evals * gd_per_work_seconds(gd_per_rhs_flops(tr, spec));
     gd_transient_result_free(r);
     return t;
 }
@@ -200,7 +200,7 @@ gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *sp
         const double ratio = nonsmooth ? NONSMOOTH_RATIO : 1.0;
         /* the period is integrated only as far as shooting could still win: at most the
          * steps (one right-hand side each, at least) that fit in ratio ch / per_period */
-        double tr1 = gd_per_work_seconds(gd_per_rhs_flops(tr)), cs = NAN, tp = NAN;
+        double tr1 = gd_per_work_seconds(gd_per_rhs_flops(tr, spec)), cs = NAN, tp = NAN;
         long cap =
             isfinite(th) && tr1 > 0 ? (long)fmin(2e6, ratio * ch / per_period / tr1) + 100 : 0;
         tp = period_cost(tr, spec, TWO_PI / w, opt->shoot_rtol > 0 ? opt->shoot_rtol : 1e-9, cap);

@@ -286,7 +286,7 @@ static inline double gd_per_illinois(double sig, double g, double *s0, double *g
 #define GD_PER_FLOPS 2e9
 #define GD_PER_TERM_FLOPS 200.0
 double gd_per_work_seconds(double flops);
-double gd_per_rhs_flops(gd_transient *tr);
+double gd_per_rhs_flops(gd_transient *tr, const gd_transient_spec *spec);
 double gd_per_hb_step_flops(gd_transient *tr, int H, int N);
 /* The options' bounds (run.c: GD_EINPUT naming the field), and the run by one method,
  * opt->kind GD_PER_HB or GD_PER_SHOOTING (run.c); gd_periodic_run (auto.c) resolves

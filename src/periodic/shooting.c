@@ -245,7 +245,8 @@ static void to_dofs(shoot *sh, const double *y)
 /* One right-hand side of the current problem in seconds of counted work (work.c). */
 static double rhs_seconds(shoot *sh)
 {
-    if (!(sh->p->rhs_s > 0)) sh->p->rhs_s = gd_per_work_seconds(gd_per_rhs_flops(sh->p->tr));
+    if (!(sh->p->rhs_s > 0))
+        sh->p->rhs_s = gd_per_work_seconds(gd_per_rhs_flops(sh->p->tr, sh->p->spec));
     return sh->p->rhs_s;
 }
 
