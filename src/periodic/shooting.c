@@ -313,8 +313,8 @@ static int over_budget(shoot *sh, double next, const char *what)
     /* kept under the 256 characters of gd_periodic_point.reason, the longest `what` and
      * the settle note included (the Ducati train's message was cut before) */
     int len = snprintf(sh->why, sizeof sh->why,
-                       "shooting stopped at %.1f s: %s needs about %.2g s more (budget %.3g s "
-                       "per point, counted work)%.130s",
+                       "shooting stopped at %.1f s: %s needs about %.2g s more (budget %.3g s, "
+                       "counted)%.130s",
                        used, what, next, budget, settle);
     if (len < 0) sh->why[0] = '\0';
     return 1;
