@@ -511,8 +511,8 @@ static int parse_seconds(const char *cmd, const char *option, const char *text, 
     char *end;
     double v = strtod(text, &end);
     if (end == text || *end || !(v >= 0 && v < 1e9))
-        return gd_cli_usage_error(cmd, "--%s: expected CPU seconds >= 0 (0: no limit), got '%s'",
-                                  option, text);
+        return gd_cli_usage_error(
+            cmd, "--%s: expected seconds >= 0 (counted work; 0: no limit), got '%s'", option, text);
     *(double *)field = v;
     return 0;
 }
@@ -614,8 +614,8 @@ static const gd_cli_opt OPTS[] = {
                "monodromy-vector products",
                .def = "64", .call = parse_shoot_dense_max),
     GD_CLI_ROW("shoot-budget", GD_CLI_CALL, F(opt.shoot_budget), "S",
-               "shooting: CPU seconds per point before it stops, not converged, saying why (0: "
-               "no limit)",
+               "shooting: seconds per point (counted work at 2 GFlop/s, never a clock: the same "
+               "decision every run) before it stops, not converged, saying why (0: no limit)",
                .def = "30", .call = parse_shoot_budget),
     GD_CLI_ROW("harmonics", GD_CLI_CALL, F(opt), "H|auto",
                "harmonics of the period; auto (default): from the least H that holds every "
@@ -674,8 +674,9 @@ static const gd_cli_opt OPTS[] = {
                "period of the top mesh order, doubled until two counts agree",
                .def = "4 x samples, at least 256", .call = parse_monodromy_steps),
     GD_CLI_ROW("floquet-budget", GD_CLI_CALL, F(opt.floquet_budget), "S",
-               "CPU seconds for one point's multipliers; a point whose multipliers would take "
-               "longer keeps its orbit with stability not computed and says how long they would "
+               "seconds for one point's multipliers (counted work at 2 GFlop/s, never a clock); a "
+               "point whose multipliers would take longer keeps its orbit with stability not "
+               "computed and says how long they would "
                "take (0: no limit)",
                .def = "30", .call = parse_floquet_budget),
     GD_CLI_ROW("tol", GD_CLI_CALL, F(opt.tol), "TOL", "Newton's relative residual", .def = "1e-10",
@@ -701,9 +702,11 @@ static const gd_cli_command PERIODIC = {
     .args = "MODEL.yaml",
     .opts = OPTS,
     .about = "Periodic steady state by harmonic balance (alternating frequency-time on every\n"
-             "nonlinear and time-varying law of `transient`), continued by pseudo-arclength over\n"
-             "the speed (through folds: a hysteresis loop gives several points per speed), with\n"
-             "Floquet multipliers and the bifurcations found on the way.\n",
+             "nonlinear and time-varying law of `transient`) or shooting (--method auto, the\n"
+             "default, picks per model and hands failed points over), continued by\n"
+             "pseudo-arclength over the speed (through folds: a hysteresis loop gives several\n"
+             "points per speed), with Floquet multipliers and the bifurcations found on the\n"
+             "way. The same command gives the same output on every run.\n",
     .footer = "Exit status 1 when a requested point did not converge (after writing what did, "
               "with\na summary on stderr).\n"};
 int gd_cmd_periodic(int argc, char **argv)
