@@ -18,11 +18,15 @@ G="$B/geardyn"
 export OPENBLAS_NUM_THREADS=1
 NOEST=--no-estimate # auto H always compares H with 2 H
 
-cpu_of() { # args...: the JSON's cpu_seconds
-    "$G" periodic "$@" $NOEST --json --quiet --floquet-budget 0 |
-        python3 -c "import json,sys; d=json.load(sys.stdin); p=d['points'][0]; \
-print('%.4f %s %s %s' % (d['cpu_seconds'], p.get('floquet_method', '-'), \
-p.get('floquet_multiplier_max_abs'), p['harmonics']))"
+cpu_of() { # args...: the CPU time (stderr's "N points, T s CPU": the JSON has no timing)
+    local err
+    err=$(mktemp)
+    "$G" periodic "$@" $NOEST --json --quiet --floquet-budget 0 2>"$err" |
+        python3 -c "import json,re,sys; d=json.load(sys.stdin); p=d['points'][0]; \
+t=float(re.search(r'([0-9.eE+-]+) s CPU', open(sys.argv[1]).read()).group(1)); \
+print('%.4f %s %s %s' % (t, p.get('floquet_method', '-'), \
+p.get('floquet_multiplier_max_abs'), p['harmonics']))" "$err"
+    rm -f "$err"
 }
 
 # label model speeds H [args...]: the floor and the reduced multipliers only (the dense and

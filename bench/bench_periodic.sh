@@ -20,11 +20,14 @@ echo "-- shooting against harmonic balance, CPU per point (both measured here, o
 echo "   other): Chen SFD pair 400..1500 rad/s, 12 speeds, 12 states (HB H = 15); a shooting"
 echo "   Newton step integrates n (n + 1) unknowns: its cost grows about as n^2 (n states)"
 for m in hb shooting; do
+    err=$(mktemp) # the CPU time is on stderr ("N points, T s CPU"), not in the JSON
     OPENBLAS_NUM_THREADS=1 "$B/geardyn" periodic examples/chen1998_gear_pair.yaml \
         --speeds 400:1500:12 --harmonics 15 --sequential --method "$m" --record gear_a.x \
-        --json --quiet | python3 -c "import json,sys; d=json.load(sys.stdin); \
-print('   %-16s %.4f s per point (%d points)' % (d['method'], d['cpu_seconds'] / len(d['points']), \
-len(d['points'])))"
+        --json --quiet 2>"$err" | python3 -c "import json,re,sys; d=json.load(sys.stdin); \
+t=float(re.search(r'([0-9.eE+-]+) s CPU', open(sys.argv[1]).read()).group(1)); \
+print('   %-16s %.4f s per point (%d points)' % (d['method'], t / len(d['points']), \
+len(d['points'])))" "$err"
+    rm -f "$err"
 done
 echo "   auto: $(OPENBLAS_NUM_THREADS=1 "$B/geardyn" periodic examples/chen1998_gear_pair.yaml \
     --speeds 1000:1000:1 --method auto --quiet | head -1)"

@@ -101,6 +101,12 @@ static cJSON *to_json(const gd_periodic_result *r, const gd_cli_records *recs, i
         if (param) cJSON_AddItemToObject(o, "parameter", gd_cli_json_number(p->parameter));
         cJSON_AddNumberToObject(o, "direction", p->direction);
         cJSON_AddBoolToObject(o, "converged", p->converged);
+        cJSON_AddStringToObject(o, "method", gd_per_kind_name(p->method));
+        if (p->stability_method >= 0)
+            cJSON_AddStringToObject(o, "stability_method",
+                                    gd_per_kind_name((gd_per_kind)p->stability_method));
+        else
+            cJSON_AddNullToObject(o, "stability_method");
         if (!p->converged || p->reason[0]) cJSON_AddStringToObject(o, "reason", p->reason);
         if (p->stable >= 0)
             cJSON_AddBoolToObject(o, "stable", p->stable);
@@ -162,15 +168,29 @@ static cJSON *to_json(const gd_periodic_result *r, const gd_cli_records *recs, i
         cJSON_AddItemToArray(bif, o);
     }
     cJSON_AddNumberToObject(root, "continuation_steps", r->steps);
-    cJSON_AddNumberToObject(root, "cpu_seconds", r->cpu_seconds);
+    /* no timings: the same command gives the same JSON (the CPU time goes to stderr) */
     return root;
 }
 
 static void print_table(const gd_periodic_result *r, const gd_cli_records *recs, int param)
 {
-    /* harmonic balance by default says nothing (the table's layout is unchanged) */
-    if (r->method != GD_PER_HB || r->method_note[0])
-        printf("method: %s\n", r->method_note[0] ? r->method_note : gd_per_kind_name(r->method));
+    printf("method: %s\n", r->method_note[0] ? r->method_note : gd_per_kind_name(r->method));
+    {
+        /* how each point's orbit and multipliers were found, counted */
+        int orb[2] = {0, 0}, stab[2] = {0, 0}, none = 0;
+        for (int i = 0; i < r->npoints; i++) {
+            const gd_periodic_point *p = &r->points[i];
+            if (!p->converged) continue;
+            orb[p->method == GD_PER_SHOOTING]++;
+            if (p->stability_method < 0)
+                none++;
+            else
+                stab[p->stability_method == GD_PER_SHOOTING]++;
+        }
+        printf("points: %d by harmonic balance, %d by shooting; stability: %d from harmonic "
+               "balance orbits, %d from shooting orbits, %d not computed\n",
+               orb[0], orb[1], stab[0], stab[1], none);
+    }
     for (int i = 0; i < r->npoints; i++)
         if (r->points[i].floquet_basis) {
             printf("stability: the Floquet multipliers of a reduced basis of %d vectors (the "
@@ -218,7 +238,7 @@ static void print_table(const gd_periodic_result *r, const gd_cli_records *recs,
         if (isfinite(b->mu_re)) printf("  multiplier %.6f%+.6fi", b->mu_re, b->mu_im);
         printf("\n");
     }
-    printf("\n%d continuation steps, %.3f s\n", r->steps, r->cpu_seconds);
+    printf("\n%d continuation steps\n", r->steps);
 }
 
 static void csv_header(FILE *f)
@@ -277,6 +297,19 @@ fail:
     return gd_cli_report(&err);
 }
 
+/* The continued quantity of point p with its unit, for messages: "speed 120 rad/s",
+ * "load frequency 1.2 rad/s" or "PATH = VALUE" (issue 38 L6). */
+static void point_value(char *buf, size_t cap, const gd_periodic_point *p, const char *param,
+                        int freq)
+{
+    if (freq)
+        snprintf(buf, cap, "load frequency %.6g rad/s", p->parameter);
+    else if (param)
+        snprintf(buf, cap, "%s = %.6g", param, p->parameter);
+    else
+        snprintf(buf, cap, "speed %.6g rad/s", p->speed);
+}
+
 /* Points as they converge: appended to DIR/periodic.partial.csv (flushed per point, so an
  * interrupted run keeps what it finished; removed once the complete files are in place)
  * and a progress line with the estimated time left on a terminal. */
@@ -284,8 +317,16 @@ typedef struct live {
     FILE *csv;
     const gd_cli_records *recs;
     int tty, drawn, nfail;
-    struct timespec t0;
+    int quiet;              /* --quiet: no progress at all */
+    struct timespec t0, tl; /* the run's start, the last point's end */
+    const char *param;      /* the continued quantity's name (NULL: the speed) */
+    int freq;
 } live;
+
+static double since(const struct timespec *a, const struct timespec *b)
+{
+    return (double)(b->tv_sec - a->tv_sec) + 1e-9 * (double)(b->tv_nsec - a->tv_nsec);
+}
 
 static void on_point(const gd_periodic_point *p, int index, double progress, void *user)
 {
@@ -295,10 +336,26 @@ static void on_point(const gd_periodic_point *p, int index, double progress, voi
         csv_rows(l->csv, index, p, l->recs);
         fflush(l->csv);
     }
-    if (!l->tty) return;
+    if (l->quiet) return;
     struct timespec t;
     clock_gettime(CLOCK_MONOTONIC, &t);
-    double el = (double)(t.tv_sec - l->t0.tv_sec) + 1e-9 * (double)(t.tv_nsec - l->t0.tv_nsec);
+    const double el = since(&l->t0, &t), took = since(&l->tl, &t);
+    l->tl = t;
+    if (!l->tty) {
+        /* not a terminal (a log, a pipe): one line per point that took more than a second,
+         * so a long run is never silent; stdout is untouched (the same output every run) */
+        if (took > 1.0) {
+            char at[300];
+            point_value(at, sizeof at, p, l->param, l->freq);
+            fprintf(stderr,
+                    "geardyn periodic: point %d (%s) %s by %s in %.1f s, %d%% of the range, "
+                    "%d failed\n",
+                    index + 1, at, p->converged ? "converged" : "failed",
+                    gd_per_kind_name(p->method), took, (int)(100 * progress), l->nfail);
+            fflush(stderr);
+        }
+        return;
+    }
     char eta[32] = "?";
     if (progress > 0.005) snprintf(eta, sizeof eta, "%.0f s", el * (1 - progress) / progress);
     char bar[31];
@@ -315,7 +372,8 @@ static void on_point(const gd_periodic_point *p, int index, double progress, voi
 /* Where no stable periodic orbit came out (a point unstable or not converged), the
  * response may have none (a rattling train): name the `transient` run that gives its
  * per-period statistics and Poincare verdict (docs/transient.md). */
-static void rattle_hint(const char *model, const gd_periodic_result *r)
+static void rattle_hint(const char *model, const gd_periodic_result *r, const char *param, int freq,
+                        int load_index)
 {
     int first = -1, n = 0;
     for (int i = 0; i < r->npoints; i++)
@@ -325,12 +383,32 @@ static void rattle_hint(const char *model, const gd_periodic_result *r)
         }
     if (first < 0) return;
     const gd_periodic_point *p = &r->points[first];
+    char at[300];
+    point_value(at, sizeof at, p, param, freq);
     printf("\n%d of %d points have no stable periodic orbit (unstable or not converged; "
-           "first at %.6g rad/s). Where the response has none (rattle, a torus), its "
-           "statistics over many periods and the Poincare verdict come from\n"
-           "  geardyn transient %s --speed %.6g --periods 100 --settle 200rev\n"
-           "with the same --set, --dofs and --coupling options (docs/transient.md).\n",
-           n, r->npoints, p->speed, model, p->speed);
+           "first at %s). Where the response has none (rattle, a torus), its statistics over "
+           "many periods and the Poincare verdict come from `geardyn transient`",
+           n, r->npoints, at);
+    if (freq) {
+        /* a forced response: the model's loads at that frequency, set in the model file
+         * (transient has no frequency option; the speed is the model's) */
+        const double T = p->parameter > 0 ? 6.283185307179586 / p->parameter : 1.0;
+        printf(" with the load at that frequency over 300 of its periods (the statistics of the "
+               "last 100), e.g.\n  geardyn transient %s --set "
+               "excitations.loads.%d.frequency=%.9grad/s --duration %.6g --from %.6g\n",
+               model, load_index, p->parameter, 300.0 * T, 200.0 * T);
+    } else if (param) {
+        printf(", e.g.\n  geardyn transient %s --set %s=%.9g --speed %.6g --periods 100 "
+               "--settle 200rev\n",
+               model, param, p->parameter, p->speed);
+    } else if (p->speed > 0) {
+        printf(", e.g.\n  geardyn transient %s --speed %.6g --periods 100 --settle 200rev\n", model,
+               p->speed);
+    } else {
+        printf(" (at a reference speed of 0 a driven model has no shaft period to count: give "
+               "--duration)\n");
+    }
+    printf("with the same --set, --dofs and --coupling options (docs/transient.md).\n");
 }
 
 /* --frequency FROM:TO:COUNT with units, either way (a branch followed downwards, as
@@ -433,8 +511,8 @@ static int parse_seconds(const char *cmd, const char *option, const char *text, 
     char *end;
     double v = strtod(text, &end);
     if (end == text || *end || !(v >= 0 && v < 1e9))
-        return gd_cli_usage_error(cmd, "--%s: expected CPU seconds >= 0 (0: no limit), got '%s'",
-                                  option, text);
+        return gd_cli_usage_error(
+            cmd, "--%s: expected seconds >= 0 (counted work; 0: no limit), got '%s'", option, text);
     *(double *)field = v;
     return 0;
 }
@@ -508,12 +586,14 @@ static const gd_cli_opt OPTS[] = {
                "reference speeds, units allowed (required, or --frequency); each requested speed "
                "is solved exactly wherever the branch crosses it"),
     GD_CLI_ROW("method", GD_CLI_CALL, F(opt.kind), "M",
-               "hb (default): harmonic balance; shooting: Newton on the period map of "
-               "transient's integrator (every law transient has, cams with include_acceleration "
-               "included; pseudo-arclength through folds as hb, --sequential natural); auto: the "
-               "cheaper for the "
-               "model by a measured cost (the choice and the costs are printed)",
-               .call = parse_method),
+               "auto (default): shooting where a law is not smooth (backlash, contact, a "
+               "unilateral spring: its orbits solve the time-domain equations), else the cheaper "
+               "by a cost counted from the model's sizes; a point the chosen method fails is "
+               "handed to the other (each choice is printed); hb: harmonic balance; shooting: "
+               "Newton on the period map of transient's integrator (every law transient has, "
+               "cams with include_acceleration included; pseudo-arclength through folds as hb, "
+               "--sequential natural)",
+               .def = "auto", .call = parse_method),
     GD_CLI_ROW("shoot-rtol", GD_CLI_CALL, F(opt.shoot_rtol), "TOL",
                "shooting: the integrator's relative tolerance", .def = "1e-9",
                .call = parse_shoot_rtol),
@@ -522,8 +602,8 @@ static const gd_cli_opt OPTS[] = {
                "monodromy-vector products",
                .def = "64", .call = parse_shoot_dense_max),
     GD_CLI_ROW("shoot-budget", GD_CLI_CALL, F(opt.shoot_budget), "S",
-               "shooting: CPU seconds per point before it stops, not converged, saying why (0: "
-               "no limit)",
+               "shooting: seconds per point (counted work at 2 GFlop/s, never a clock: the same "
+               "decision every run) before it stops, not converged, saying why (0: no limit)",
                .def = "30", .call = parse_shoot_budget),
     GD_CLI_ROW("harmonics", GD_CLI_CALL, F(opt), "H|auto",
                "harmonics of the period; auto (default): from the least H that holds every "
@@ -567,6 +647,12 @@ static const gd_cli_opt OPTS[] = {
                "monodromy in the modes below --floquet-cutoff plus the local laws' residual "
                "flexibility)",
                .def = "auto", .word = "auto|dense|krylov|reduced"),
+    GD_CLI_ROW("stability-orbit", GD_CLI_CHOICE, F(opt.shoot_stability), "M",
+               "harmonic balance points' multipliers: auto (where a law is not smooth, from the "
+               "orbit corrected by shooting: a few Newton steps on the period map, then its "
+               "integrated monodromy), fourier (the Magnus monodromy about the truncated Fourier "
+               "orbit) or shooting (always corrected); JSON stability_method says which",
+               .def = "auto", .word = "fourier|auto|shooting"),
     GD_CLI_ROW("floquet-cutoff", GD_CLI_CALL, F(opt.floquet_cutoff), "C",
                "reduced multipliers: keep the modes up to C times the highest excitation "
                "frequency (the top tooth-mesh frequency)",
@@ -576,8 +662,9 @@ static const gd_cli_opt OPTS[] = {
                "period of the top mesh order, doubled until two counts agree",
                .def = "4 x samples, at least 256", .call = parse_monodromy_steps),
     GD_CLI_ROW("floquet-budget", GD_CLI_CALL, F(opt.floquet_budget), "S",
-               "CPU seconds for one point's multipliers; a point whose multipliers would take "
-               "longer keeps its orbit with stability not computed and says how long they would "
+               "seconds for one point's multipliers (counted work at 2 GFlop/s, never a clock); a "
+               "point whose multipliers would take longer keeps its orbit with stability not "
+               "computed and says how long they would "
                "take (0: no limit)",
                .def = "30", .call = parse_floquet_budget),
     GD_CLI_ROW("tol", GD_CLI_CALL, F(opt.tol), "TOL", "Newton's relative residual", .def = "1e-10",
@@ -585,6 +672,7 @@ static const gd_cli_opt OPTS[] = {
     GD_CLI_ROW("samples", GD_CLI_CALL, F(opt.samples), "N", "AFT time samples per period",
                .def = "4 (H + 1), power of 2", .call = parse_samples),
     GD_CLI_ROW_COUPLING(periodic_args, coupling),
+    GD_CLI_ROW_DOFS(periodic_args, sets),
     GD_CLI_ROW_SET(periodic_args, sets),
     GD_CLI_ROW("json", GD_CLI_FLAG, F(json), NULL,
                "one JSON object on stdout: points, bifurcations"),
@@ -594,16 +682,19 @@ static const gd_cli_opt OPTS[] = {
                "unstable dashed), bifurcations marked, Floquet multipliers: FILE.svg or "
                "FILE.html (interactive, self-contained; docs/plots.md)"),
     GD_CLI_ROW("quiet", GD_CLI_FLAG, F(quiet), NULL,
-               "no progress line (it is shown on stderr only on a terminal)"),
+               "no progress on stderr (a bar on a terminal; otherwise a line for every point "
+               "that took more than a second); the closing CPU time line stays"),
     {0}};
 static const gd_cli_command PERIODIC = {
     .name = CMD,
     .args = "MODEL.yaml",
     .opts = OPTS,
     .about = "Periodic steady state by harmonic balance (alternating frequency-time on every\n"
-             "nonlinear and time-varying law of `transient`), continued by pseudo-arclength over\n"
-             "the speed (through folds: a hysteresis loop gives several points per speed), with\n"
-             "Floquet multipliers and the bifurcations found on the way.\n",
+             "nonlinear and time-varying law of `transient`) or shooting (--method auto, the\n"
+             "default, picks per model and hands failed points over), continued by\n"
+             "pseudo-arclength over the speed (through folds: a hysteresis loop gives several\n"
+             "points per speed), with Floquet multipliers and the bifurcations found on the\n"
+             "way. The same command gives the same output on every run.\n",
     .footer = "Exit status 1 when a requested point did not converge (after writing what did, "
               "with\na summary on stderr).\n"};
 int gd_cmd_periodic(int argc, char **argv)
@@ -612,6 +703,8 @@ int gd_cmd_periodic(int argc, char **argv)
     const char *file;
     gd_periodic_options_init(&a.opt);
     a.opt.adaptive = 1;          /* the default: H from the excitations, raised until it holds */
+    a.opt.kind = GD_PER_AUTO;    /* the method from the model, failed points handed over */
+    a.opt.shoot_stability = 1;   /* non-smooth laws: multipliers of a time-domain orbit */
     a.opt.shoot_budget = 30.0;   /* a point never runs for minutes in silence */
     a.opt.floquet_budget = 30.0; /* nor its multipliers */
     int rc = gd_cli_parse(&PERIODIC, argc, argv, &a, &file);
@@ -630,6 +723,10 @@ int gd_cmd_periodic(int argc, char **argv)
     if (a.param && a.coupling)
         return gd_cli_usage_error(CMD, "--parameter reloads the model: give the coupling "
                                        "with --set instead of --coupling");
+    if (a.param && a.sets.dofs)
+        return gd_cli_usage_error(CMD, "--parameter reloads the model at every value and keeps "
+                                       "every DOF: drop --dofs (or continue in --speeds or "
+                                       "--frequency, which take it)");
     double *sp = NULL, *pv = NULL;
     int nsp = 0, npv = 0;
     char ppath[256], partial[1100] = "";
@@ -690,7 +787,11 @@ int gd_cmd_periodic(int argc, char **argv)
     live lv2 = {0};
     lv2.recs = &recs;
     lv2.tty = !a.quiet && isatty(2);
+    lv2.quiet = a.quiet;
+    lv2.param = pv && !a.freq ? ppath : NULL;
+    lv2.freq = a.freq != NULL;
     clock_gettime(CLOCK_MONOTONIC, &lv2.t0);
+    lv2.tl = lv2.t0;
     if (a.out) {
         made_dir = mkdir(a.out, 0777) == 0; /* the partial file goes in it */
         snprintf(partial, sizeof partial, "%s/periodic.partial.csv", a.out);
@@ -702,6 +803,8 @@ int gd_cmd_periodic(int argc, char **argv)
                                      &opt, rv, recs.n, &r, &err);
     if (lv2.drawn) fprintf(stderr, "\r%100s\r", "");
     if (lv2.csv) fclose(lv2.csv);
+    if (!pst0) /* timings on stderr only (always: the benches read it); stdout is the same */
+        fprintf(stderr, "geardyn periodic: %d points, %.3f s CPU\n", r->npoints, r->cpu_seconds);
     if (pst0) {
         free(rv);
         rc = gd_cli_report(&err);
@@ -747,7 +850,7 @@ int gd_cmd_periodic(int argc, char **argv)
             nf += !r->points[i].converged;
             nt += r->points[i].converged && r->points[i].harmonic_ok == 0;
             ne += r->points[i].converged && r->points[i].harmonic_ok < 0 &&
-                  (opt.estimate || opt.adaptive) && r->method == GD_PER_HB;
+                  (opt.estimate || opt.adaptive) && r->points[i].method == GD_PER_HB;
         }
         if (ne)
             fprintf(stderr,
@@ -764,14 +867,22 @@ int gd_cmd_periodic(int argc, char **argv)
                     r->npoints);
             for (int i = 0, shown = 0; i < r->npoints && shown < 5; i++)
                 if (!r->points[i].converged) {
-                    fprintf(stderr, "  %.6g rad/s: %s\n", r->points[i].speed, r->points[i].reason);
+                    char at[300];
+                    point_value(at, sizeof at, &r->points[i], pv && !a.freq ? ppath : NULL,
+                                a.freq != NULL);
+                    fprintf(stderr, "  %s: %s\n", at, r->points[i].reason);
                     shown++;
                 }
             if (nf > 5) fprintf(stderr, "  ...\n");
             rc = GD_EXIT_FAIL;
         }
     }
-    if (!a.json) rattle_hint(file, r);
+    if (!a.json) {
+        int li = 0; /* the first time-harmonic load (the model's order) */
+        while (li < tm->spec.nloads && tm->spec.loads[li].law.kind != GD_LOAD_HARMONIC_TIME)
+            li++;
+        rattle_hint(file, r, pv && !a.freq ? ppath : NULL, a.freq != NULL, li);
+    }
 done:
     /* the partial file goes once the complete files are in place, and on an error (which
      * writes nothing); only an interrupted run leaves it */

@@ -36,10 +36,13 @@ typedef enum gd_per_method {
                              (a run-up; jumps at folds) */
 } gd_per_method;
 
-/* How the orbit is found (docs/periodic.md): harmonic balance (the default), shooting
- * (Newton on the period map of transient's integrator, continued as `method` says;
- * every law transient has, cams with include_acceleration included), or auto: the
- * cheaper of the two for the model by a measured cost rule (gd_periodic_choose). */
+/* How the orbit is found (docs/periodic.md): harmonic balance (the library's default),
+ * shooting (Newton on the period map of transient's integrator, continued as `method`
+ * says; every law transient has, cams with include_acceleration included), or auto (the
+ * CLI's default): shooting where a law is not smooth, else the cheaper of the two by a
+ * cost counted from the model's sizes (gd_periodic_choose); a requested point the chosen
+ * method fails is handed to the other, solved there alone, and says so
+ * (gd_periodic_point.method, reason). */
 typedef enum gd_per_kind { GD_PER_HB = 0, GD_PER_SHOOTING = 1, GD_PER_AUTO = 2 } gd_per_kind;
 /* The Floquet multipliers of harmonic balance points (gd_periodic_options.floquet). */
 enum { GD_FLOQUET_AUTO = 0, GD_FLOQUET_DENSE = 1, GD_FLOQUET_KRYLOV = 2, GD_FLOQUET_REDUCED = 3 };
@@ -88,12 +91,14 @@ typedef struct gd_periodic_options {
                               next one in (which the bifurcations are located by) are known */
     int floquet_dmax;      /* auto: the dense monodromy up to this many states 2 nf (0: 300,
                               from the measured costs, docs/periodic.md) */
-    double floquet_budget; /* CPU seconds for one point's multipliers (0, the library default:
-                              no limit; the CLI's is 30): a point whose multipliers would
-                              take longer, by the cost of the first Magnus step (dense) or
-                              of one operator action (Krylov), or that passes it, keeps its
-                              orbit with stability not computed, and its reason says how
-                              long they would take */
+    double floquet_budget; /* seconds for one point's multipliers (0, the library default:
+                              no limit; the CLI's is 30), of counted work: operations counted
+                              from the sizes (the Magnus steps' dense products, the Krylov
+                              products' sparse actions, the reduced basis's set-up and steps)
+                              at a nominal 2 GFlop/s, never a clock, so the same run decides
+                              the same way on any machine; a point whose multipliers would
+                              take longer keeps its orbit with stability not computed, and
+                              its reason says how long they would take */
     double floquet_cutoff; /* reduced: the modes kept, up to this multiple of the highest
                               excitation frequency (the top of gd_periodic_fundamental's
                               orders, e.g. the highest tooth-mesh frequency; 0: 4, from the
@@ -110,9 +115,23 @@ typedef struct gd_periodic_options {
                             above, Newton-Krylov (GMRES on monodromy-vector products, one
                             integrated period each) and the largest multipliers by
                             Arnoldi */
-    double shoot_budget; /* shooting: CPU seconds per point (0, default: no limit); a point
-                            whose next integration would pass it stops, not converged, with
-                            what it saw (the warm start's change per period, the residual) */
+    int shoot_stability; /* harmonic balance points' multipliers: 0 (the library's default)
+                            from the Magnus monodromy about the truncated Fourier orbit; 1
+                            where a law is not smooth (a switch or a kink) from the orbit
+                            corrected by shooting (a few Newton steps on the period map from
+                            the Fourier orbit's state, then its integrated monodromy: the
+                            multipliers of a solution of the time-domain equations), and
+                            at a reported point whose truncation estimate is not within
+                            harmonic_tol on a model of up to shoot_dense_max states; which
+                            GD_PER_AUTO takes; 2 always from the corrected orbit. A point
+                            whose correction fails keeps the Magnus multipliers and its
+                            reason says why (gd_periodic_point.stability_method) */
+    double shoot_budget; /* shooting: seconds per point (0, default: no limit) of counted
+                            work: the integrator's right-hand sides, counted, times their
+                            counted flops at a nominal 2 GFlop/s (a monodromy: 0.7 (2 n + 1)
+                            periods); a point whose next integration would pass it stops, not
+                            converged, with what it saw (the warm start's change per period,
+                            the residual) */
     int both_directions; /* 1: also the run from the end back to the start */
     int max_steps;       /* continuation steps per direction; 0: 50 x count + 200 */
     int solver;          /* Newton's linear solver: 0 automatic (low-rank for 2000+
@@ -202,6 +221,13 @@ typedef struct gd_periodic_point {
     int harmonics_ref;
     double harmonic_error_p2p, harmonic_error_amp;
     int harmonic_ok;
+    /* how the orbit was found (GD_PER_HB or GD_PER_SHOOTING: with kind auto a point the
+     * chosen method failed is handed to the other, and its reason says so) and how its
+     * multipliers were (the monodromy of the variational equations about that orbit:
+     * GD_PER_HB the Magnus monodromy about the truncated Fourier orbit, GD_PER_SHOOTING the
+     * integrated monodromy of an orbit that solves the time-domain equations; -1 none) */
+    gd_per_kind method;
+    int stability_method;
 } gd_periodic_point;
 
 typedef enum gd_bifurcation_type {
@@ -226,9 +252,10 @@ typedef struct gd_periodic_result {
     gd_bifurcation *bifurcations;
     int nrecords;
     int steps;          /* continuation steps taken */
-    double cpu_seconds; /* of the whole run */
+    double cpu_seconds; /* of the whole run (reported only: nothing is decided by it) */
     gd_per_kind method; /* the method that ran (GD_PER_HB or GD_PER_SHOOTING) */
-    /* with kind auto: why it was chosen, with the measured costs ("" otherwise) */
+    /* with kind auto: why it was chosen, with the counted costs, and how many failed
+     * points were handed to the other method ("" otherwise) */
     char method_note[256];
 } gd_periodic_result;
 
@@ -258,13 +285,18 @@ GD_API double gd_periodic_memory(const gd_system *sys, const gd_transient_spec *
                                  int H);
 
 /* The method GD_PER_AUTO takes for the problem at speed (or param's first value):
- * shooting where harmonic balance cannot represent a law (cams with include_acceleration),
- * else the cheaper by a measured cost: one harmonic balance residual and factorisation at
- * the first H (t_h) and one period integrated from rest at the shooting tolerance (t_p,
- * stopped once shooting could no longer win); the estimates 8 t_h x (3 with the truncation
- * estimate) plus the multipliers with stability (the dense Magnus monodromy, or the
- * reduced basis above floquet_dmax states), against 5 (2 n + 1) t_p for dense
- * shooting (n states) or 340 t_p for Newton-Krylov; ties go to harmonic balance
+ * shooting where harmonic balance cannot represent a law (cams with include_acceleration)
+ * or where its workspace at an automatic H does not fit in memory_limit; else by a cost
+ * counted, never clocked (the same decision on every run): one harmonic balance Newton
+ * step at the first H (t_h: the FFTs, the laws at every sample, the harmonic couplings, the
+ * block LU and the laws' dense capacitance, counted) and one period integrated from rest
+ * at the shooting tolerance (t_p: its right-hand sides, counted by the integrator, times
+ * their counted flops; stopped once shooting could no longer win); the estimates 8 t_h x (3
+ * with the truncation estimate) plus the multipliers with stability, against 5 (2 n + 1)
+ * t_p for dense shooting (n states) or 340 t_p for Newton-Krylov. Where a law is not smooth
+ * (a switch: backlash, contact; a kink: a unilateral spring) shooting wins up to 20 times
+ * harmonic balance's cost: its orbits solve the time-domain equations, so its multipliers
+ * and bifurcations are those of the dynamics. Ties go to harmonic balance
  * (docs/periodic.md). note (may be NULL, 256 bytes) receives the reason with the numbers.
  * Reads no files; thread-safe on separate problems. */
 GD_API gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *spec,

@@ -7,7 +7,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "geardyn/transient_model.h"
 #include "periodic/periodic_impl.h"
@@ -19,14 +18,11 @@ const char *gd_per_kind_name(gd_per_kind k)
     return k == GD_PER_SHOOTING ? "shooting" : k == GD_PER_AUTO ? "auto" : "harmonic_balance";
 }
 
-static double cpu_now(void)
-{
-    return (double)clock() / CLOCKS_PER_SEC;
-}
-
-/* CPU seconds of one period integrated from rest at the shooting tolerance, or NAN when
- * it fails or needs more than max_steps steps (the cap that keeps the measurement cheap:
- * shooting could not win then). */
+/* Seconds of counted work (work.c) of one period integrated from rest at the shooting
+ * tolerance: the integrator's right-hand sides, counted, times their flops; NAN when it
+ * fails or needs more than max_steps steps (the cap that keeps the measurement cheap:
+ * shooting could not win then). The integrator's step sequence is deterministic, so is
+ * the count. */
 static double period_cost(gd_transient *tr, const gd_transient_spec *spec, double T, double rtol,
                           long max_steps)
 {
@@ -41,58 +37,26 @@ static double period_cost(gd_transient *tr, const gd_transient_spec *spec, doubl
     o.init = spec->nloads ? GD_TR_INIT_STATIC : GD_TR_INIT_REST;
     gd_transient_result *r = NULL;
     gd_error err;
-    double t0 = cpu_now();
     gd_status st = gd_transient_run(tr, &o, NULL, 0, &r, &err);
-    double t = cpu_now() - t0;
+    double t = st ? NAN : (double)r->rhs_evals * gd_per_work_seconds(gd_per_rhs_flops(tr, spec));
     gd_transient_result_free(r);
-    return st ? NAN : t;
-}
-
-/* CPU seconds of one right-hand side at rest (the mean of 20). */
-static double rhs_cost(gd_transient *tr)
-{
-    const int n = gd_transient_nstates(tr);
-    double *y = calloc((size_t)(2 * n + 2), sizeof *y);
-    if (!y) return NAN;
-    double t0 = cpu_now();
-    for (int k = 0; k < 20; k++)
-        gd_transient_rhs(tr, 1e-3 * k, y, y + n + 1);
-    double t = (cpu_now() - t0) / 20;
-    free(y);
     return t;
 }
 
-/* CPU seconds of one harmonic balance residual with its Jacobian and one factorisation at
- * H harmonics from rest, or NAN. */
-static double hb_cost(gd_transient *tr, const gd_periodic_options *opt, double w, int H,
-                      int backlash)
+/* 1 when a law of the problem is not smooth (a switch: backlash, contact; or a kink: a
+ * unilateral spring): harmonic balance's truncated orbit is not a solution of the
+ * time-domain equations there, and the multipliers taken along it are not to be trusted
+ * near grazing (issue 33: |mu| 0.89 against 2.99 on NLvib's example 03). */
+int gd_per_nonsmooth(const gd_system *sys, const gd_transient_spec *spec, double speed)
 {
-    const int nf = gd_transient_nstates(tr) / 2;
-    int N = opt->samples > 0 ? opt->samples : gd_hb_samples_for(H);
-    if (backlash && N < 128) N = 128;
-    if (N < 2 * H + 2) N = 2 * H + 2;
-    hb h;
-    memset(&h, 0, sizeof h);
-    double t = NAN;
-    if (gd_hb_init(&h, nf, H, N)) {
-        gd_hb_free(&h);
-        return NAN;
-    }
-    h.solver = opt->solver;
-    double *X = calloc((size_t)h.n + 1, sizeof *X), *R = malloc((size_t)(h.n + 1) * sizeof *R);
-    double *row = calloc((size_t)h.n + 1, sizeof *row);
-    if (X && R && row) {
-        row[h.n] = 1.0;
-        double sc, t0 = cpu_now();
-        h.stage_id = 1;
-        if (!gd_hb_residual(&h, tr, w, X, R, 1, &sc) && !gd_hb_factor(&h, tr, w, NULL, row))
-            t = cpu_now() - t0;
-    }
-    free(X);
-    free(R);
-    free(row);
-    gd_hb_free(&h);
-    return t;
+    gd_law *laws = NULL;
+    int nlaws = 0, ns = 0;
+    gd_error e;
+    if (gd_transient_spec_laws(sys, spec, speed, &laws, &nlaws, &e)) return 0;
+    for (int i = 0; i < nlaws; i++)
+        if (gd_law_nswitches(&laws[i]) > 0 || !(gd_law_flags(&laws[i]) & GD_LAW_SMOOTH)) ns = 1;
+    free(laws);
+    return ns;
 }
 
 /* Newton steps per point in harmonic balance's estimate; on the arclength also the
@@ -100,6 +64,11 @@ static double hb_cost(gd_transient *tr, const gd_periodic_options *opt, double w
  * follow the same branch with the same step control (the Chen pair, 400-1500 rad/s, 12
  * speeds: 112 steps by harmonic balance, 118 by shooting), so both count the same solves. */
 #define NEWTON_PER_POINT 8.0
+
+/* A non-smooth law takes shooting up to this multiple of harmonic balance's cost: its
+ * orbits solve the time-domain equations, so the multipliers and bifurcations are those
+ * shooting's oracle finds (issue 33 item 1); above it, harmonic balance. */
+#define NONSMOOTH_RATIO 20.0
 
 /* Shooting's cost per point in integrated periods (n states; dense: the monodromy up to
  * --shoot-dense-max). A dense monodromy of n + 1 columns costs 2 n + 1 periods (its
@@ -181,7 +150,26 @@ gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *sp
         int backlash = gd_transient_nswitches(tr) > 0; /* contact laws */
         const int dense = n <= (opt->shoot_dense_max > 0 ? opt->shoot_dense_max : 64);
         const double per_period = shoot_periods(n, dense, opt);
-        double th = hb_cost(tr, opt, w, H, backlash);
+        {
+            /* a workspace over the memory limit: a fixed H is the user's to change (harmonic
+             * balance refuses it, naming the limit); an automatic one leaves shooting */
+            int mnf, mnt, mng;
+            long mknz;
+            gd_hb_memory_params_tr(tr, &mnf, &mnt, &mng, &mknz);
+            const double need = gd_hb_memory(mnf, H, gd_hb_samples_for(H), mnt, mng, mknz);
+            if (need > gd_hb_memory_limit(opt)) {
+                k = opt->adaptive ? GD_PER_SHOOTING : GD_PER_HB;
+                snprintf(note, 256,
+                         "%s: harmonic balance's workspace at H = %d needs about %.2g GB, over "
+                         "the limit",
+                         opt->adaptive ? "shooting" : "harmonic balance", H, need / 1e9);
+                goto done;
+            }
+        }
+        double Ns = opt->samples > 0 ? opt->samples : gd_hb_samples_for(H);
+        if (backlash && Ns < 128) Ns = 128;
+        if (Ns < 2 * H + 2) Ns = 2 * H + 2;
+        double th = gd_per_work_seconds(gd_per_hb_step_flops(tr, H, (int)Ns));
         /* harmonic balance: eight Newton steps (NEWTON_PER_POINT), three times that with the
          * solution at 2 H + 1 of the truncation estimate, and the Magnus monodromy (4 x
          * samples steps of about 30 (2 nf)^3 flops at 2 GFlop/s, at most floquet_budget) */
@@ -205,18 +193,27 @@ gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *sp
                                   : steps * 30.0 * pow(2.0 * nf, 3) / 2e9;
         if (opt->stability) /* no more than the multipliers' budget: over it they are left out */
             ch += fmin(fq, opt->floquet_budget > 0 ? opt->floquet_budget : INFINITY);
+        /* a non-smooth law: shooting, whose orbits solve the time-domain equations (their
+         * multipliers and bifurcations are those of the dynamics), unless it would cost more
+         * than NONSMOOTH_RATIO times harmonic balance */
+        const int nonsmooth = gd_per_nonsmooth(sys, spec, speed);
+        const double ratio = nonsmooth ? NONSMOOTH_RATIO : 1.0;
         /* the period is integrated only as far as shooting could still win: at most the
-         * steps (one right-hand side each, at least) that fit in ch / per_period */
-        double tr1 = rhs_cost(tr), cs = NAN, tp = NAN;
-        long cap = isfinite(th) && tr1 > 0 ? (long)fmin(1e8, ch / per_period / tr1) + 100 : 0;
+         * steps (one right-hand side each, at least) that fit in ratio ch / per_period */
+        double tr1 = gd_per_work_seconds(gd_per_rhs_flops(tr, spec)), cs = NAN, tp = NAN;
+        long cap =
+            isfinite(th) && tr1 > 0 ? (long)fmin(2e6, ratio * ch / per_period / tr1) + 100 : 0;
         tp = period_cost(tr, spec, TWO_PI / w, opt->shoot_rtol > 0 ? opt->shoot_rtol : 1e-9, cap);
         cs = per_period * tp;
         if (!isfinite(cs) && isfinite(th)) {
             snprintf(note, 256,
                      "harmonic balance: estimated %.3g s per point (H = %d), and one period of "
                      "shooting's integration (%d states) needs more than %ld steps: shooting "
-                     "could not be cheaper",
-                     ch, H, n, cap);
+                     "could not be %s",
+                     ch, H, n, cap,
+                     nonsmooth ? "within 20 times of it (non-smooth law: stability by harmonic "
+                                 "balance)"
+                               : "cheaper");
             goto done;
         }
         if (!isfinite(cs)) {
@@ -225,13 +222,16 @@ gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *sp
             k = GD_PER_SHOOTING;
             snprintf(note, 256, "shooting: the harmonic balance workspace at H = %d failed", H);
         } else {
-            k = cs < ch ? GD_PER_SHOOTING : GD_PER_HB;
+            k = cs < ratio * ch ? GD_PER_SHOOTING : GD_PER_HB;
             snprintf(note, 256,
-                     "%s: estimated %.3g s per point by shooting (%s%s, %d states, %.3g s per "
-                     "period) against %.3g s by harmonic balance (H = %d, %.3g s per Newton step)",
-                     k == GD_PER_SHOOTING ? "shooting" : "harmonic balance", cs,
-                     opt->method == GD_PER_ARCLENGTH ? "arclength, " : "",
-                     dense ? "dense" : "matrix-free", n, tp, ch, H, th);
+                     "%s%s: estimated %.3g s per point by shooting (%s%s, %d states) against "
+                     "%.3g s by harmonic balance (H = %d; counted work)",
+                     k == GD_PER_SHOOTING ? "shooting" : "harmonic balance",
+                     nonsmooth ? (k == GD_PER_SHOOTING ? " (a non-smooth law)"
+                                                       : " (a non-smooth law, shooting over 20x)")
+                               : "",
+                     cs, opt->method == GD_PER_ARCLENGTH ? "arclength, " : "",
+                     dense ? "dense" : "matrix-free", n, ch, H);
         }
     }
 done:

@@ -65,8 +65,12 @@ typedef struct ctx {
     double climbed;  /* the highest tooth of the last turn climbed (gd_per_climb_teeth) */
     int climb_dir;   /* its direction (0: none) and H */
     int climb_H;
-    int corners; /* a non-smooth law: a step whose turn does not shrink when halved is
-                    a corner of the sampled branch, taken (continuation.c) */
+    int shoot_stab;         /* the multipliers from the orbit corrected by shooting */
+    int floquet_shooting;   /* 1: the last multipliers came from it (floquet_shooting.c) */
+    double floquet_change;  /* its correction of the orbit (scaled), or NAN */
+    char floquet_note[200]; /* why the correction failed (the Magnus multipliers stand) */
+    int corners;            /* a non-smooth law: a step whose turn does not shrink when halved is
+                               a corner of the sampled branch, taken (continuation.c) */
 } ctx;
 
 typedef struct pstate {

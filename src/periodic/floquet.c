@@ -178,13 +178,6 @@ int gd_hb_magnus_steps(const hb *h, gd_transient *tr, double om, const double *X
     return 0;
 }
 
-double gd_hb_cpu_seconds(void)
-{
-    struct timespec ts;
-    if (clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts)) return (double)clock() / CLOCKS_PER_SEC;
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 int gd_hb_floquet(const hb *h, gd_transient *tr, double om, const double *X, int steps,
                   const gd_tr_record *bl, int nbl, double *mu_re, double *mu_im)
 {
@@ -196,7 +189,6 @@ int gd_hb_floquet_budget(const hb *h, gd_transient *tr, double om, const double 
                          const gd_tr_record *bl, int nbl, double budget, double *mu_re,
                          double *mu_im, char *msg)
 {
-    const double cpu0 = gd_hb_cpu_seconds();
     msg[0] = '\0';
     const int nf = h->nf, n2 = 2 * nf;
     size_t nn = (size_t)n2 * n2, ff = (size_t)nf * nf;
@@ -254,6 +246,22 @@ int gd_hb_floquet_budget(const hb *h, gd_transient *tr, double om, const double 
     double *tb = NULL;
     int nsub = 0;
     if (gd_hb_magnus_steps(h, tr, om, X, steps, bl, nbl, &tb, &nsub)) goto done;
+    {
+        /* every step costs the same dense products, counted (work.c): three products of
+         * n2^3 and an exponential of about 8 more, with the two A's (about 30 n2^3 flops),
+         * so the budget is decided before the first step, the same on every run */
+        const double need = gd_per_work_seconds(30.0 * pow(n2, 3) * nsub);
+        if (budget > 0 && need > budget) {
+            snprintf(msg, 160,
+                     "stability not computed: the dense monodromy of %d states would take "
+                     "about %.3g s (%d Magnus steps, counted work), over the %g s budget per "
+                     "point",
+                     n2, need, nsub, budget);
+            rc = 4;
+            free(tb);
+            goto done;
+        }
+    }
     for (int k = 0; k < nsub; k++) {
         double a = tb[k], dtau = tb[k + 1] - a, dt = dtau / om;
         build_A(&w, h, tr, om, X, a + g1 * dtau, A1);
@@ -274,18 +282,6 @@ int gd_hb_floquet_budget(const hb *h, gd_transient *tr, double om, const double 
         cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n2, n2, n2, 1.0, Ex, n2, Phi, n2,
                     0.0, T, n2);
         memcpy(Phi, T, nn * sizeof *Phi);
-        /* every step costs the same dense products: the first one (with the set-up) tells
-         * what the whole monodromy will take */
-        const double used = gd_hb_cpu_seconds() - cpu0, need = used * nsub / (k + 1);
-        if (budget > 0 && (need > budget || used > budget)) {
-            snprintf(msg, 160,
-                     "stability not computed: the dense monodromy of %d states would take "
-                     "about %.3g s CPU (%d Magnus steps), over the %g s budget per point",
-                     n2, need, nsub, budget);
-            rc = 4;
-            free(tb);
-            goto done;
-        }
     }
     free(tb);
     /* LAPACK's eigenvalue solvers are undefined on inf and NaN (dgeev wrote outside its

@@ -50,8 +50,10 @@ typedef struct kq {
     int *sub;    /* nsub: Taylor substeps */
     double *a0, *p1, *p2, *d, *t, *f, *trm, *r; /* work vectors (n2; r: nf) */
     int overflow;
-    int over_budget;     /* the CPU budget passed: the products stop (zeros) */
-    double budget, cpu0; /* CPU seconds (0: none), the start */
+    int over_budget; /* the budget passed: the products stop (zeros) */
+    double budget;   /* seconds of counted work (0: none, work.c) */
+    double action;   /* flops of one Omega action (counted: action_flops) */
+    double setup;    /* flops of the set-up (the orbit at the Gauss points) */
     int products;
     long omega_products;
 } kq;
@@ -137,7 +139,8 @@ static void monodromy_product(void *ctx, const double *x, double *y)
     kq *k = ctx;
     const int n2 = k->n2;
     k->products++;
-    if (k->budget > 0 && !k->over_budget && gd_hb_cpu_seconds() - k->cpu0 > k->budget)
+    if (k->budget > 0 && !k->over_budget &&
+        gd_per_work_seconds(k->setup + k->action * (double)k->omega_products) > k->budget)
         k->over_budget = 1;
     if (k->over_budget) { /* Krylov-Schur runs out its iterations on zeros: cheap */
         memset(y, 0, (size_t)n2 * sizeof *y);
@@ -309,34 +312,37 @@ static int kq_setup(kq *k, gd_transient *tr)
     return k->com.status < KLU_OK;
 }
 
-/* Whether the multipliers would pass the CPU budget: the time of one Omega action
- * (measured on a few) times the actions of the fewest products a search needs (the
- * Krylov space's, or n2 for all of them), at 20 Taylor terms per substep (the series
- * stops at 28 for the scaled norm 3.5, often earlier). 1 with msg set. */
+/* Flops of one Omega action (apply_omega): two A0 products (K and D, 2 flops per entry,
+ * the mass solve about 4 per entry of M) and four B products (each term 4 nw + 2 nf). */
+static double action_flops(const kq *k)
+{
+    double bf = 0.0;
+    for (int t = 0; t < k->nterm; t++)
+        bf += 4.0 * k->term[t].nw + 2.0 * k->nf;
+    const double a0 =
+        2.0 * (k->K.colptr[k->nf] + k->D.colptr[k->nf]) + 4.0 * k->Mp[k->nf] + 4.0 * k->nf;
+    return 2.0 * a0 + 4.0 * bf + 12.0 * k->n2;
+}
+
+/* Whether the multipliers would pass the budget: the counted flops of one Omega action
+ * times the actions of the fewest products a search needs (the Krylov space's, or n2 for
+ * all of them), at 20 Taylor terms per substep (the series stops at 28 for the scaled norm
+ * 3.5, often earlier). 1 with msg set. */
 static int over_budget(kq *k, int nev, char *msg)
 {
-    const double t0 = gd_hb_cpu_seconds();
-    int reps = 0;
-    for (int i = 0; i < k->n2; i++)
-        k->f[i] = 1.0;
-    do {
-        apply_omega(k, reps % k->nsub, k->f, k->trm);
-        reps++;
-    } while (reps < 64 && gd_hb_cpu_seconds() - t0 < 1e-3);
-    k->omega_products = 0;
-    const double per_action = (gd_hb_cpu_seconds() - t0) / reps;
     double actions = 0.0;
     for (int j = 0; j < k->nsub; j++)
         actions += 20.0 * k->sub[j];
     const int ncv = 2 * nev + 12 < k->n2 - 1 ? 2 * nev + 12 : k->n2 - 1;
     const int least = nev + 4 > k->n2 ? k->n2 : ncv;
-    const double product = per_action * actions,
-                 need = gd_hb_cpu_seconds() - k->cpu0 + least * product;
+    const double product = gd_per_work_seconds(k->action * actions),
+                 need = gd_per_work_seconds(k->setup) + least * product;
     if (need <= k->budget) return 0;
     /* the length is used, so a message cut at 160 bytes is not an error */
     int len = snprintf(msg, 160,
                        "stability not computed: the Krylov multipliers of %d states need at least "
-                       "%.3g s CPU (%d products of %.3g s), over the %g s budget per point",
+                       "%.3g s (%d products of %.3g s, counted work), over the %g s budget per "
+                       "point",
                        k->n2, need, least, product, k->budget);
     return len > 0;
 }
@@ -356,7 +362,6 @@ int gd_hb_floquet_krylov(const hb *h, gd_transient *tr, double om, const double 
 {
     kq k = {0};
     k.budget = budget;
-    k.cpu0 = gd_hb_cpu_seconds();
     k.nf = h->nf;
     k.n2 = 2 * h->nf;
     *nmu = 0;
@@ -371,6 +376,7 @@ int gd_hb_floquet_krylov(const hb *h, gd_transient *tr, double om, const double 
         snprintf(msg, 160, "stability not computed: the mass matrix could not be factored");
         goto done;
     }
+    k.action = action_flops(&k);
     if (gd_hb_magnus_steps(h, tr, om, X, steps, bl, nbl, &tb, &k.nsub)) goto done;
     const int nt = k.nterm;
     k.dt = malloc((size_t)k.nsub * sizeof *k.dt);
@@ -387,12 +393,16 @@ int gd_hb_floquet_krylov(const hb *h, gd_transient *tr, double om, const double 
     for (int j = 0; j < k.nsub; j++) {
         /* the set-up alone evaluates the orbit twice per step (O(nf H) each): a long
          * period at a high H can pass the budget before a product is formed */
-        if (budget > 0 && j % 64 == 63) {
-            const double used = gd_hb_cpu_seconds() - k.cpu0, need = used * k.nsub / (j + 1);
+        if (budget > 0 && j == 0) {
+            /* counted: two orbit evaluations per step (4 nf (2 H + 1) flops each) and the
+             * laws there */
+            const double per = 2.0 * (4.0 * k.nf * (2.0 * h->H + 1.0) + GD_PER_TERM_FLOPS * nt);
+            k.setup = per * k.nsub;
+            const double need = gd_per_work_seconds(k.setup);
             if (need > budget) {
                 int len = snprintf(msg, 160,
                                    "stability not computed: the Krylov multipliers' set-up alone "
-                                   "(%d Magnus steps, %d states) would take about %.3g s CPU, "
+                                   "(%d Magnus steps, %d states) would take about %.3g s, "
                                    "over the %g s budget per point",
                                    k.nsub, k.n2, need, budget);
                 free(sq);
@@ -446,7 +456,7 @@ int gd_hb_floquet_krylov(const hb *h, gd_transient *tr, double om, const double 
     if (k.over_budget) {
         snprintf(msg, 160,
                  "stability not computed: the Krylov multipliers of %d states passed the "
-                 "%g s CPU budget per point after %d monodromy-vector products",
+                 "%g s budget per point (counted work) after %d monodromy-vector products",
                  k.n2, budget, k.products);
         rc = 4;
         goto done;

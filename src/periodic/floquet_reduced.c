@@ -149,7 +149,6 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
                           double wcut, double budget, double *mu_re, double *mu_im, int *nmu,
                           int *nbasis, char *msg)
 {
-    const double cpu0 = gd_hb_cpu_seconds();
     const int nf = h->nf;
     *nmu = 0;
     *nbasis = 0;
@@ -163,12 +162,12 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
                  nf);
         return 5;
     }
-    /* every mode of (K, M), dense: about 10 nf^3 flops (at 2 GFlop/s) before any step */
-    const double setup = 10.0 * pow(nf, 3) / 2e9;
+    /* every mode of (K, M), dense: about 10 nf^3 flops before any step (work.c) */
+    const double setup = gd_per_work_seconds(10.0 * pow(nf, 3));
     if (budget > 0 && setup > budget) {
         snprintf(msg, 160,
                  "stability not computed: the reduced basis's modes of %d DOFs would take "
-                 "about %.3g s CPU, over the %g s budget per point",
+                 "about %.3g s (counted work), over the %g s budget per point",
                  nf, setup, budget);
         return 4;
     }
@@ -635,8 +634,25 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
         memset(Psi, 0, rr * sizeof *Psi);
         for (int i = 0; i < n2; i++)
             Psi[(size_t)i * n2 + i] = 1.0;
-        double pend = 0.0, t_check = gd_hb_cpu_seconds();
+        double pend = 0.0;
         const int g2 = 2 * ng, t2 = 2 * nt, ga = 2 * g2;
+        {
+            /* counted (work.c): per step the four products below and the small exponential
+             * (about 30 ga^3), after the modes' set-up; decided before the first step */
+            const double step = 2.0 * ((double)t2 * n2 * n2 + (double)g2 * n2 * t2 +
+                                       (double)g2 * n2 * g2 + (double)n2 * n2 * g2) +
+                                30.0 * pow(ga, 3),
+                         need = gd_per_work_seconds(step * nsub) + setup;
+            if (budget > 0 && need > budget) {
+                int len = snprintf(msg, 160,
+                                   "stability not computed: the reduced monodromy (%d modes, %d "
+                                   "steps) would take about %.3g s (counted work), over the %g s "
+                                   "budget per point",
+                                   r, nsub, need, budget);
+                if (len < 0) msg[0] = '\0';
+                rc = 4;
+            }
+        }
         const size_t gg = (size_t)ga * ga;
         free(small);
         small = malloc((5 * gg + 2 * (size_t)g2 * t2 + (size_t)g2 * g2 + 1) * sizeof *small);
@@ -734,23 +750,9 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
                         F + (size_t)g2 * ga, ga, CY, g2, 0.0, Z, g2);
             cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n2, n2, g2, 1.0, U, n2, Z, g2,
                         1.0, Psi, n2);
-            if ((j & 255) == 255) {
-                const double now = gd_hb_cpu_seconds();
-                if (!isfinite(Psi[0]) || !isfinite(Psi[rr - 1])) {
-                    rc = 2;
-                    break;
-                }
-                const double used = now - cpu0,
-                             need = used + (now - t_check) * (nsub - j - 1) / 256.0;
-                t_check = now;
-                if (budget > 0 && need > budget) {
-                    snprintf(msg, 160,
-                             "stability not computed: the reduced monodromy (%d modes, %d steps) "
-                             "would take about %.3g s CPU, over the %g s budget per point",
-                             r, nsub, need, budget);
-                    rc = 4;
-                    break;
-                }
+            if ((j & 255) == 255 && (!isfinite(Psi[0]) || !isfinite(Psi[rr - 1]))) {
+                rc = 2;
+                break;
             }
         }
         if (rc == 1) {

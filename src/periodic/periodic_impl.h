@@ -161,14 +161,12 @@ void gd_hb_eval(const hb *h, double w, const double *X, double tau, double *q, d
  * monodromy matrix is not finite (too few steps for the orbit), 1 other failures. */
 int gd_hb_floquet(const hb *h, gd_transient *tr, double w, const double *X, int steps,
                   const gd_tr_record *bl, int nbl, double *mu_re, double *mu_im);
-/* As gd_hb_floquet within a CPU budget (seconds, 0: none): 4 when the multipliers would
- * take longer (the first step's cost times the steps) or took longer, with msg (160
+/* As gd_hb_floquet within a budget (seconds of counted work at GD_PER_FLOPS, 0: none): 4
+ * when the multipliers would take longer (counted before the first step), with msg (160
  * bytes) saying by how much. */
 int gd_hb_floquet_budget(const hb *h, gd_transient *tr, double w, const double *X, int steps,
                          const gd_tr_record *bl, int nbl, double budget, double *mu_re,
                          double *mu_im, char *msg);
-/* CPU seconds of this process (the budgets of the multipliers). */
-double gd_hb_cpu_seconds(void);
 /* The Magnus step boundaries of gd_hb_floquet (phases 0..2 pi): `steps` equal steps,
  * each split at the contact changes of the backlash meshes bl. *tau (nsub + 1 entries,
  * the caller frees). 0 ok, 1 out of memory. */
@@ -181,9 +179,9 @@ int gd_hb_magnus_steps(const hb *h, gd_transient *tr, double w, const double *X,
  * count delivered (nev, or one more when a conjugate pair straddles the cut), each with
  * a relative residual within tol; *products the monodromy-vector products used. 0 ok,
  * 2 the products overflowed (too few steps), 3 no convergence (a cluster of equal
- * moduli across the cut: ask for more), 4 over the CPU budget (seconds, 0: none: estimated
- * before the first product from one operator action, or passed), 1 other failures; msg
- * (160 bytes) says why. */
+ * moduli across the cut: ask for more), 4 over the budget (seconds of counted work, 0:
+ * none: the products a search needs counted before the first, or their count passed), 1 other
+ * failures; msg (160 bytes) says why. */
 int gd_hb_floquet_krylov(const hb *h, gd_transient *tr, double w, const double *X, int steps,
                          const gd_tr_record *bl, int nbl, int nev, double tol, double budget,
                          double *mu_re, double *mu_im, int *nmu, int *products, char *msg);
@@ -197,7 +195,8 @@ int gd_hb_floquet_krylov(const hb *h, gd_transient *tr, double w, const double *
  * at least 1e-7), at most steps_cap; *steps_used (may be
  * NULL) the count taken. mu_re,
  * mu_im: at least 2 nf; *nmu = 2 r of them, largest modulus first, *nbasis = r. 0 ok, 2 not
- * finite (too few steps, a count given), 4 over the CPU budget (seconds, 0: none), 5 no
+ * finite (too few steps, a count given), 4 over the budget (seconds of counted
+ * work, 0: none), 5 no
  * usable basis (an ill-conditioned eigenvector basis: a free rotation's Jordan block; or too
  * many DOFs for the dense modes): use another method, 6 the steps' own count did not settle
  * (or overflowed) by steps_cap, 1 other failures; msg (160 bytes) says why. */
@@ -279,5 +278,36 @@ static inline double gd_per_illinois(double sig, double g, double *s0, double *g
     }
     return *s0 - *g0 * (*s1 - *s0) / (*g1 - *g0);
 }
+
+/* Counted work (work.c): budgets and auto's cost rule are decided from operation counts,
+ * shown as seconds at the nominal rate GD_PER_FLOPS, never from clocks (the same command
+ * gives the same output). GD_PER_TERM_FLOPS: one law term evaluated (contact test, table
+ * stiffness, force and direction). */
+#define GD_PER_FLOPS 2e9
+#define GD_PER_TERM_FLOPS 200.0
+double gd_per_work_seconds(double flops);
+double gd_per_rhs_flops(gd_transient *tr, const gd_transient_spec *spec);
+double gd_per_hb_step_flops(gd_transient *tr, int H, int N);
+/* The options' bounds (run.c: GD_EINPUT naming the field), and the run by one method,
+ * opt->kind GD_PER_HB or GD_PER_SHOOTING (run.c); gd_periodic_run (auto.c) resolves
+ * GD_PER_AUTO and hands failed points over. */
+gd_status gd_per_check_options(const gd_periodic_param *param, const double *values, int nvalues,
+                               const gd_periodic_options *opt, const gd_tr_record *records,
+                               int nrecords, gd_error *err);
+gd_status gd_per_run_kind(const gd_system *sys, const gd_transient_spec *spec,
+                          const gd_periodic_param *param, const double *values, int nvalues,
+                          const gd_periodic_options *opt, const gd_tr_record *records, int nrecords,
+                          gd_periodic_result **out, gd_error *err);
+/* The multipliers of the harmonic balance solution X (workspace h, frequency w) at value
+ * key from the orbit corrected by shooting (floquet_shooting.c): its state at t = 0
+ * corrected by Newton on the period map, the eigenvalues of that orbit's monodromy in
+ * mre, mim (2 nf), *nmu of them (the largest by Arnoldi on the matrix-free path), *change
+ * the correction scaled as shooting's residual. 0 ok; 1 with msg (cap bytes). */
+int gd_per_floquet_shooting(const gd_system *sys, const gd_transient_spec *spec,
+                            const gd_periodic_param *param, const gd_periodic_options *opt,
+                            double key, const hb *h, double w, const double *X, double *mre,
+                            double *mim, int *nmu, double *change, char *msg, size_t cap);
+/* 1 when a law of the problem at speed has a switch or a kink (choose.c). */
+int gd_per_nonsmooth(const gd_system *sys, const gd_transient_spec *spec, double speed);
 
 #endif

@@ -22,6 +22,32 @@ void gd_per_floquet(ctx *c, const double *X, double lam, double *mre, double *mi
     if (!c->opt->stability) return;
     stage *s = gd_per_get_stage(c, lam);
     if (!s) return;
+    c->floquet_shooting = 0;
+    c->floquet_change = NAN;
+    c->floquet_note[0] = '\0';
+    if (c->shoot_stab) {
+        /* a non-smooth law: the multipliers of the time-domain orbit (issue 33 item 1) */
+        const int n2s = 2 * c->nf;
+        int nm = 0;
+        double chg;
+        memset(mre, 0, (size_t)n2s * sizeof *mre);
+        memset(mim, 0, (size_t)n2s * sizeof *mim);
+        if (!gd_per_floquet_shooting(c->sys, c->spec, c->param, c->opt, lam, &c->h, s->w, X, mre,
+                                     mim, &nm, &chg, c->floquet_note, sizeof c->floquet_note)) {
+            double m = 0.0;
+            for (int i = 0; i < nm; i++)
+                m = fmax(m, hypot(mre[i], mim[i]));
+            *mu_max = m;
+            *stable = m <= 1.0 + 1e-6;
+            c->floquet_n = nm;
+            c->floquet_krylov = nm < n2s;
+            c->floquet_basis = 0;
+            c->floquet_steps = 0;
+            c->floquet_shooting = 1;
+            c->floquet_change = chg;
+            return;
+        }
+    }
     int steps = c->opt->monodromy_steps > 0 ? c->opt->monodromy_steps : 4 * c->h.N;
     if (steps < 256 && c->opt->monodromy_steps <= 0) steps = 256;
     gd_tr_record bl[64]; /* the laws' modes: Floquet's steps are split where they change */
@@ -117,6 +143,8 @@ static gd_periodic_point *new_point(ctx *c)
     p->direction = c->dir;
     p->stable = -1;
     p->mu_max = NAN;
+    p->method = GD_PER_HB;
+    p->stability_method = -1;
     p->residual = NAN;
     p->harmonic_ok = -1;
     p->harmonic_error_p2p = p->harmonic_error_amp = NAN;
@@ -138,37 +166,6 @@ int gd_per_fail_point(ctx *c, double lam, const char *why)
     p->harmonics = c->H;
     snprintf(p->reason, sizeof p->reason, "%.250s", why);
     announce(c, lam);
-    return 0;
-}
-
-/* Statistics of one record from Nr equally spaced samples v over one period: mean, rms,
- * peak-to-peak and the amplitudes and phases of harmonics 0..H (plan: an R2HC transform of
- * length Nr from buf to out). 0 ok, 1 out of memory. */
-int gd_per_sample_stats(const double *v, int Nr, int H, fftw_plan plan, double *buf, double *out,
-                        gd_per_record_stats *st)
-{
-    st->amplitude = calloc((size_t)H + 1, sizeof *st->amplitude);
-    st->phase_deg = calloc((size_t)H + 1, sizeof *st->phase_deg);
-    st->p2p_error = st->amp_error = NAN;
-    if (!st->amplitude || !st->phase_deg) return 1;
-    double mn = INFINITY, mx = -INFINITY, sum = 0.0, sq = 0.0;
-    for (int j = 0; j < Nr; j++) {
-        double x = buf[j] = v[j];
-        mn = x < mn ? x : mn;
-        mx = x > mx ? x : mx;
-        sum += x;
-        sq += x * x;
-    }
-    st->mean = sum / Nr;
-    st->rms = sqrt(sq / Nr);
-    st->peak_to_peak = mx - mn;
-    fftw_execute_r2r(plan, buf, out);
-    st->amplitude[0] = out[0] / Nr;
-    for (int k = 1; k <= H && k < Nr / 2; k++) {
-        double a = 2.0 * out[k] / Nr, b = -2.0 * out[Nr - k] / Nr;
-        st->amplitude[k] = hypot(a, b);
-        st->phase_deg[k] = -atan2(b, a) * 360.0 / TWO_PI;
-    }
     return 0;
 }
 
@@ -425,12 +422,30 @@ int gd_per_emit_point(ctx *c, const double *X, double lam, int iters, double res
     /* the multipliers of the reported solution, in its workspace */
     const int fine = p->harmonics != c->H;
     if (fine) swap_ws(c);
+    /* a truncation not within the tolerance: the Fourier orbit is not the time-domain one
+     * to that accuracy, so its multipliers come from the orbit corrected by shooting too
+     * (issue 33 item 1), where the dense monodromy is cheap (shoot_dense_max states) */
+    const int was = c->shoot_stab,
+              dmax = c->opt->shoot_dense_max > 0 ? c->opt->shoot_dense_max : 64;
+    if (c->opt->shoot_stability == 1 && p->harmonic_ok == 0 && 2 * c->nf <= dmax) c->shoot_stab = 1;
     gd_per_floquet(c, p->coef, lam, p->mu_re, p->mu_im, &p->stable, &p->mu_max);
+    c->shoot_stab = was;
     if (fine) swap_ws(c);
     p->nmult = p->stable >= 0 ? c->floquet_n : 0;
     p->floquet_krylov = p->stable >= 0 && c->floquet_krylov;
     p->floquet_basis = p->stable >= 0 ? c->floquet_basis : 0;
     p->floquet_steps = p->stable >= 0 ? c->floquet_steps : 0;
+    p->stability_method = p->stable < 0 ? -1 : c->floquet_shooting ? GD_PER_SHOOTING : GD_PER_HB;
+    if (p->stable >= 0 && c->floquet_shooting && !p->reason[0])
+        snprintf(p->reason, sizeof p->reason,
+                 "stability from the orbit corrected by shooting (its state moved by %.2g, "
+                 "scaled)",
+                 c->floquet_change);
+    else if (p->stable >= 0 && c->shoot_stab && !c->floquet_shooting && !p->reason[0])
+        snprintf(p->reason, sizeof p->reason,
+                 "stability from the harmonic balance orbit: the shooting correction failed: "
+                 "%.180s",
+                 c->floquet_note);
     if (p->stable < 0 && c->floquet_msg[0])
         snprintf(p->reason, sizeof p->reason, "%s", c->floquet_msg);
     announce(c, lam);

@@ -242,6 +242,14 @@ static void to_dofs(shoot *sh, const double *y)
 }
 
 /* One period from y (records and samples as asked): the result, or NULL with sh->why. */
+/* One right-hand side of the current problem in seconds of counted work (work.c). */
+static double rhs_seconds(shoot *sh)
+{
+    if (!(sh->p->rhs_s > 0))
+        sh->p->rhs_s = gd_per_work_seconds(gd_per_rhs_flops(sh->p->tr, sh->p->spec));
+    return sh->p->rhs_s;
+}
+
 static gd_transient_result *integrate(shoot *sh, const double *y, double t_end, const double *ts,
                                       int nts, const gd_tr_record *rec, int nrec)
 {
@@ -265,6 +273,8 @@ static gd_transient_result *integrate(shoot *sh, const double *y, double t_end, 
         snprintf(sh->why, sizeof sh->why, "integration failed: %.220s", err.message);
         return NULL;
     }
+    sh->last_work = (double)r->rhs_evals * rhs_seconds(sh);
+    sh->work += sh->last_work;
     return r;
 }
 
@@ -276,24 +286,19 @@ static void from_dofs(const shoot *sh, const gd_transient_result *r, double *y)
     }
 }
 
-double gd_per_sh_cpu(void)
-{
-    return (double)clock() / CLOCKS_PER_SEC;
-}
-
-/* The predicted cost of a monodromy: the last one measured, else (2 n + 1) plain periods
- * at 0.7 each (the augmented system's right-hand side costs 2 n + 1 evaluations; measured
- * on the Ducati train, 22 states: 20.4 s against 0.63 s per period). */
+/* The cost of a monodromy: (2 n + 1) plain periods at 0.7 each (the augmented system's
+ * right-hand side costs 2 n + 1 evaluations; measured on the Ducati train, 22 states:
+ * 20.4 s against 0.63 s per period), counted from the last plain period. */
 static double mono_cost(const shoot *sh)
 {
-    return sh->t_mono > 0 ? sh->t_mono : 0.7 * (2.0 * sh->N + 1.0) * sh->t_period;
+    return 0.7 * (2.0 * sh->N + 1.0) * sh->t_period;
 }
 
 /* 1 when the next job (predicted cost next) would take the point past its CPU budget:
  * sh->why says so, with what the warm start saw. */
 static int over_budget(shoot *sh, double next, const char *what)
 {
-    const double budget = sh->opt->shoot_budget, used = gd_per_sh_cpu() - sh->cpu0;
+    const double budget = sh->opt->shoot_budget, used = sh->work;
     if (!(budget > 0) || used + next <= budget) return 0;
     sh->budget_hit = 1;
     char settle[160] = "";
@@ -307,10 +312,11 @@ static int over_budget(shoot *sh, double next, const char *what)
                      : "");
     /* kept under the 256 characters of gd_periodic_point.reason, the longest `what` and
      * the settle note included (the Ducati train's message was cut before) */
-    snprintf(sh->why, sizeof sh->why,
-             "shooting stopped at %.1f s CPU: %s needs about %.2g s more (budget %.3g s per "
-             "point)%.150s",
-             used, what, next, budget, settle);
+    int len = snprintf(sh->why, sizeof sh->why,
+                       "shooting stopped at %.1f s: %s needs about %.2g s more (budget %.3g s, "
+                       "counted)%.130s",
+                       used, what, next, budget, settle);
+    if (len < 0) sh->why[0] = '\0';
     return 1;
 }
 
@@ -318,10 +324,9 @@ static int over_budget(shoot *sh, double next, const char *what)
 int gd_per_sh_period(shoot *sh, const double *y, double *yT)
 {
     if (sh->t_period > 0 && over_budget(sh, sh->t_period, "a period of the line search")) return 1;
-    double t0 = gd_per_sh_cpu();
     gd_transient_result *r = integrate(sh, y, sh->p->T, NULL, 0, NULL, 0);
     if (!r) return 1;
-    sh->t_period = gd_per_sh_cpu() - t0;
+    sh->t_period = sh->last_work;
     from_dofs(sh, r, yT);
     gd_transient_result_free(r);
     return 0;
@@ -334,9 +339,9 @@ int gd_per_sh_monodromy(shoot *sh, const double *y, double *phi, double *yT)
     tr_options(sh, &o);
     gd_error err;
     if (sh->t_period > 0 && over_budget(sh, mono_cost(sh), "the next monodromy matrix")) return 1;
-    double t0 = gd_per_sh_cpu();
     gd_status st = gd_transient_monodromy(sh->p->tr, 0.0, sh->p->T, y, &o, phi, yT, &err);
-    sh->t_mono = gd_per_sh_cpu() - t0;
+    sh->t_mono = mono_cost(sh);
+    sh->work += sh->t_mono;
     if (st) {
         snprintf(sh->why, sizeof sh->why, "monodromy failed: %.220s", err.message);
         return 1;
@@ -359,10 +364,9 @@ int gd_per_sh_warm(shoot *sh, double *y)
     gd_per_sh_tolerances(sh, sh->yt); /* the orbit's size is not known yet */
     sh->warm_change = NAN;
     sh->warm_periods = 0;
-    double t0 = gd_per_sh_cpu();
     gd_transient_result *r = integrate(sh, NULL, sh->p->T, NULL, 0, NULL, 0);
     if (!r) return 1;
-    sh->t_period = gd_per_sh_cpu() - t0;
+    sh->t_period = sh->last_work;
     from_dofs(sh, r, y);
     gd_transient_result_free(r);
     sh->warm_periods = 1;
@@ -830,6 +834,8 @@ static gd_periodic_point *new_point(shoot *sh, double key)
     p->direction = sh->dir;
     p->stable = -1;
     p->mu_max = NAN;
+    p->method = GD_PER_SHOOTING;
+    p->stability_method = -1;
     p->residual = NAN;
     p->harmonic_ok = -1;
     p->harmonic_error_p2p = p->harmonic_error_amp = NAN;
@@ -926,6 +932,7 @@ int gd_per_sh_emit(shoot *sh, double key, const double *y, int iters, double res
                 m = fmax(m, hypot(p->mu_re[i], p->mu_im[i]));
             p->mu_max = m;
             p->stable = m <= 1.0 + 1e-6;
+            p->stability_method = GD_PER_SHOOTING;
             p->nmult = nm;
             if (!sh->dense)
                 snprintf(p->reason, sizeof p->reason,

@@ -322,7 +322,7 @@ static int first_point(shoot *sh, const double *vals, int nv, int *i0, double *y
         const double v = vals[*i0];
         int it = 0;
         double res = NAN;
-        sh->cpu0 = gd_per_sh_cpu();
+        sh->work = 0.0;
         sh->t_mono = 0.0;
         sh->budget_hit = 0;
         if (!gd_per_sh_problem(sh, v) && !gd_per_sh_warm(sh, y) &&
@@ -387,7 +387,7 @@ int gd_per_sh_arclength(shoot *sh, const double *vals, int nv)
             goto stop;
         }
         sh->steps++;
-        sh->cpu0 = gd_per_sh_cpu();
+        sh->work = 0.0;
         sh->budget_hit = 0;
         for (int i = 0; i < N; i++)
             yp[i] = y1[i] = y[i] + ds * t[i] * a.D[i];
@@ -431,7 +431,7 @@ int gd_per_sh_arclength(shoot *sh, const double *vals, int nv)
             for (int start = 0; bad && start < 3; start++) { /* near a fold: either end */
                 for (int k = 0; k < N; k++)
                     yg[k] = start == 0 ? (1 - sig) * y[k] + sig * y1[k] : start == 1 ? y[k] : y1[k];
-                sh->cpu0 = gd_per_sh_cpu();
+                sh->work = 0.0;
                 sh->budget_hit = 0;
                 bad = gd_per_sh_problem(sh, v) || gd_per_sh_newton(sh, yg, &itg, &resg);
             }

@@ -23,6 +23,7 @@ typedef struct shoot_prob {
     gd_transient *tr;
     int H, Nr;
     double w, T;
+    double rhs_s; /* one right-hand side in seconds of counted work (0: not yet) */
 } shoot_prob;
 
 typedef struct shoot {
@@ -49,9 +50,11 @@ typedef struct shoot {
     size_t capN;
     int capdof;
     char why[256];
-    /* CPU budget of a point (opt->shoot_budget): the time spent, the measured costs of one
-     * plain period and of the last monodromy (0: not measured yet) */
-    double cpu0, t_period, t_mono;
+    /* budget of a point (opt->shoot_budget), in seconds of counted work (work.c: the
+     * integrator's right-hand sides times their counted flops, never a clock): spent on this
+     * point, one plain period and one monodromy (0: not counted yet) */
+    double work, t_period, t_mono;
+    double last_work;   /* the last integration's */
     double warm_change; /* the last warm-start period's scaled change (NAN: none) */
     int warm_periods;
     int budget_hit; /* the point stopped at its budget */
@@ -78,7 +81,6 @@ int gd_per_sh_problem(shoot *sh, double key);
 void gd_per_sh_tolerances(shoot *sh, const double *y);
 double gd_per_sh_norm(const shoot *sh, const double *y, const double *f);
 void gd_per_sh_scales(const shoot *sh, const double *y, double *d);
-double gd_per_sh_cpu(void);
 int gd_per_sh_period(shoot *sh, const double *y, double *yT);
 int gd_per_sh_monodromy(shoot *sh, const double *y, double *phi, double *yT);
 int gd_per_sh_warm(shoot *sh, double *y);

@@ -148,7 +148,7 @@ static int run_direction(shoot *sh, const double *vals, int nv)
         }
         int it = 0, ok = 0;
         double res = NAN;
-        sh->cpu0 = gd_per_sh_cpu();
+        sh->work = 0.0;
         sh->t_mono = 0.0;
         sh->warm_change = NAN;
         sh->budget_hit = 0;

@@ -521,7 +521,8 @@ TEST(option_table_rows)
     CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speds 1:2:3", "did you mean --speeds?", NULL));
     CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --no-stability=1",
                             "--no-stability' takes no value", NULL));
-    CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --dofs x", "--dofs", NULL));
+    /* --dofs as the other commands take it (its own hint named it before it existed) */
+    CHECK(run_fails_cleanly(&s, "periodic " CHEN " --speeds 1:2:3 --dofs q", "--dofs", NULL));
     run_result r;
     /* harmonic-balance: the long name of hb; --sequential, --both-directions: flags */
     run(&s, &r,
@@ -554,6 +555,7 @@ TEST(option_table_rows)
                            "tol TOL",
                            "samples N",
                            "coupling LEVEL",
+                           "dofs LIST",
                            "set PATH=VALUE",
                            "json",
                            "out DIR",
