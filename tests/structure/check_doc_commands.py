@@ -12,7 +12,8 @@ Not run, and listed: a synopsis (a placeholder such as MODEL, FILE, DIR, WHAT, F
 in capitals, `...`, or `A|B`); a line naming a model file that is not in the tree
 (rig.yaml, gearbox.yaml: the docs' examples of messages about the user's own files); a
 line marked slow, by `# slow` after the command (in a code block) or `(slow)` (in a
-header): the marker documents that the command takes minutes. Optional arguments in
+header): the marker documents that the command takes minutes; `geardyn SUBCOMMAND` alone
+(a command named in prose). A line marked `# exit 2` shows an input error: it must exit 2. Optional arguments in
 square brackets (`[--helix-angle "15 deg"]`) are dropped.
 
 Also the docs' headings: none repeated within a file, no bold run-in heading doubled.
@@ -84,22 +85,25 @@ def from_md(path):
 
 
 def classify(cmd):
-    """(args or None, why it is not run)"""
+    """(args or None, why it is not run; or the exit code it must give, 0 or 2)"""
     if re.search(r"#\s*slow\b|\(slow\)", cmd):
         return None, "marked slow"
+    want = 2 if re.search(r"#\s*exit 2\b", cmd) else 0
     cmd = re.sub(r"\s+#.*$", "", cmd)  # a comment after the command
-    cmd = re.sub(r"\s*\[[^\]]*\]", "", cmd)  # optional arguments
+    cmd = re.sub(r"\s+\[-[^\]]*\]", "", cmd)  # optional arguments: [--opt ...]
     try:
         args = shlex.split(cmd)
     except ValueError:
         return None, "not a shell line"
     if PLACEHOLDER.search(" ".join(args[1:])):
         return None, "synopsis"
+    if len(args) < 3:
+        return None, "a command named in prose"
     for a in args[2:]:
-        if re.search(r"\.(yaml|yml|csv)$", a) and not a.startswith("-") and \
+        if re.search(r"\.(yaml|yml|csv|uff|unv)$", a) and not a.startswith("-") and \
                 not os.path.exists(os.path.join(ROOT, a)):
             return None, "names a file not in the tree (%s)" % a
-    return args[1:], ""
+    return args[1:], want
 
 
 def repeated_headings():
@@ -144,6 +148,7 @@ def main():
                             ignore=shutil.ignore_patterns("*.out", "__pycache__"))
         for where, cmd in found:
             args, why = classify(cmd)
+            want = why if args is not None else 0
             if args is None:
                 print("skip  %s: %s  (%s)" % (where, cmd, why))
                 continue
@@ -156,7 +161,7 @@ def main():
                 code, err = "timeout", "over %g s: mark it '# slow' or shorten it" % timeout
             ran += 1
             dt = time.time() - t0
-            if code != 0:
+            if code != want:
                 bad += 1
                 print("FAIL  %s: %s  (exit %s, %.1f s)\n      %s" % (
                     where, cmd, code, dt, (err or "").strip().replace("\n", "\n      ")[:600]))
