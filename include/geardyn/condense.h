@@ -9,7 +9,7 @@
  * built once from the damped (gyroscopic) modes with right and left eigenvectors
  * ([MMT2018] Eqs. 14-15; [PetrovEwins2003] receptance-based condensation), the kept modes
  * summed and the discarded ones replaced by their static (residual flexibility) part
- * G = W^T (K_e^+ - sum_kept -u v^T / lambda) W ([Craig2006] residual flexibility), with
+ * G = W^T (K_e^+ - sum_kept -u v^T / lambda) W ([CraigKurdila2006] residual flexibility), with
  * rigid-body modes (a train free in torsion) as exact -r r^T / w^2 terms and K_e^+ the
  * elastic flexibility under inertia relief. With every mode kept (nmodes = 0) the result
  * equals the direct solve to round-off. The structure is the one gd_modal_solve sees: M, K
@@ -56,9 +56,23 @@ GD_API gd_status gd_condense_coords_meshes(gd_condense_coords *c, const gd_syste
 GD_API gd_status gd_condense_coords_laws(gd_condense_coords *c, const gd_system *sys,
                                          gd_error *err);
 
+/* How the modes are found. DENSE: every mode of the first-order problem by LAPACK
+ * (O(ndof^3) time, O(ndof^2) memory; left vectors from it). SPARSE: the lowest nmodes + 1
+ * elastic modes by shift-invert Krylov-Schur on the sparse problem (gd_modal_solve_sparse:
+ * needs mass on every DOF), the left vectors by inverse iteration on the transpose; the
+ * static correction by KLU. AUTO: SPARSE when nmodes > 0 and ndof > GD_CONDENSE_DENSE_MAX.
+ * Both refine the kept modes on the sparse problem (two-sided inverse iteration). */
+typedef enum gd_condense_method {
+    GD_CONDENSE_AUTO,
+    GD_CONDENSE_DENSE,
+    GD_CONDENSE_SPARSE
+} gd_condense_method;
+#define GD_CONDENSE_DENSE_MAX 2000
+
 typedef struct gd_condense_options {
     double speed; /* reference speed, rad/s */
-    int nmodes;   /* elastic modes kept (the lowest); 0: all (exact to round-off) */
+    int nmodes;   /* elastic modes kept (the lowest); 0: all (exact to round-off; dense) */
+    gd_condense_method method; /* default AUTO */
 } gd_condense_options;
 GD_API void gd_condense_options_init(gd_condense_options *o);
 
@@ -70,18 +84,19 @@ typedef struct gd_condense_info {
     int ndiscarded;         /* elastic modes replaced by the static correction */
     int nrigid;             /* rigid-body modes, summed exactly */
     double first_discarded; /* |lambda| of the lowest discarded mode, rad/s; INFINITY if none */
-    double zeta_discarded;  /* largest damping ratio among the discarded modes */
+    double zeta_discarded;  /* largest damping ratio among the discarded modes (SPARSE: the
+                               first discarded and the kept ones, the others being unknown) */
     double residual;        /* largest |entry| of the static correction G */
     double static_check;    /* relative residual of the elastic static solve */
     double refine_step;     /* largest relative eigenvalue change in the refinement of the
                                kept modes on the sparse problem (refine.c) */
 } gd_condense_info;
 
-/* Builds the condensation of sys at opt->speed on the coordinates c (c->n >= 1). Dense:
- * one eigensolution of the first-order problem (O(ndof^3)), one static solve with nc
- * right-hand sides. Errors: GD_EINPUT (no coordinates, a coordinate outside the system,
- * rigid modes that carry stiffness or damping), GD_ENUMERIC (a stiffness singular beyond
- * its rigid modes), GD_ENOMEM. */
+/* Builds the condensation of sys at opt->speed on the coordinates c (c->n >= 1): the
+ * modes (opt->method), two complex sparse factorisations per kept mode (refinement), one
+ * static solve with nc right-hand sides. Errors: GD_EINPUT (no coordinates, a coordinate outside
+ * the system, rigid modes that carry stiffness or damping), GD_ENUMERIC (a stiffness singular
+ * beyond its rigid modes), GD_ENOMEM. */
 GD_API gd_status gd_condense_build(const gd_system *sys, const gd_condense_coords *c,
                                    const gd_condense_options *opt, gd_condensation **out,
                                    gd_error *err);

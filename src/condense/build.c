@@ -1,10 +1,10 @@
 /* Building the condensation once (docs/condense.md): the damped, gyroscopic modes with
  * right and left eigenvectors ([MMT2018] Eqs. 9-15), the rigid-body modes M-orthonormal,
  * and the static correction of the discarded modes, W^T (K_e^+ - sum_kept -u v^T/lambda) W
- * ([Craig2006], residual flexibility), K_e^+ the elastic flexibility under inertia relief:
+ * ([CraigKurdila2006], residual flexibility), K_e^+ the elastic flexibility under inertia relief:
  * K x = P^T W with P^T = I - M R R^T (the load balanced by the rigid modes' inertia),
  * solved with one DOF per rigid mode held (chosen by a pivoted QR of R^T) and the rigid
- * part removed afterwards, x -= R R^T M x ([Geradin2015] inertia relief). */
+ * part removed afterwards, x -= R R^T M x ([GeradinRixen2015] inertia relief). */
 #include <lapacke.h>
 #include <math.h>
 #include <stdlib.h>
@@ -12,6 +12,8 @@
 
 #include "condense/condense_impl.h"
 #include "geardyn/modal.h"
+#include "linalg/linalg_impl.h"
+#include "system/system_impl.h"
 
 void gd_condense_options_init(gd_condense_options *o)
 {
@@ -66,6 +68,38 @@ static void matvec_t(const double *A, int N, const double *x, double *y)
     }
 }
 
+/* The structure's matrices, dense (N x N column-major) or as values on a sparse pattern. */
+typedef struct ops {
+    int N;
+    const double *Md, *Dd, *Kd;
+    const gd_pattern *p;
+    const double *m, *d, *k;
+} ops;
+
+/* y = A x (tr: A^T x) for A = M, D or K ('M', 'D', 'K'). */
+static void apply(const ops *o, char which, int tr, const double *x, double *y)
+{
+    int N = o->N;
+    if (!o->p) {
+        const double *A = which == 'M' ? o->Md : which == 'D' ? o->Dd : o->Kd;
+        if (tr)
+            matvec_t(A, N, x, y);
+        else
+            matvec(A, N, x, y);
+        return;
+    }
+    const double *v = which == 'M' ? o->m : which == 'D' ? o->d : o->k;
+    memset(y, 0, (size_t)N * sizeof *y);
+    for (int j = 0; j < N; j++)
+        for (int q = o->p->colptr[j]; q < o->p->colptr[j + 1]; q++) {
+            int i = o->p->rowind[q];
+            if (tr)
+                y[j] += v[q] * x[i];
+            else
+                y[i] += v[q] * x[j];
+        }
+}
+
 static double maxabs(const double *x, size_t n)
 {
     double m = 0;
@@ -77,9 +111,8 @@ static double maxabs(const double *x, size_t n)
 /* The rigid modes of mr, M-orthonormal (Gram-Schmidt twice), checked free of stiffness and
  * damping on both sides (K r = K^T r = D r = D^T r = 0), as the exact -r r^T / w^2 term
  * needs. */
-static gd_status rigid_modes(gd_condensation *c, const gd_modal_result *mr, const double *M,
-                             const double *D, const double *K, double *t, double *t2,
-                             const char *file, gd_error *err)
+static gd_status rigid_modes(gd_condensation *c, const gd_modal_result *mr, const ops *o, double *t,
+                             double *t2, const char *file, gd_error *err)
 {
     int N = c->N, nr = 0;
     for (int j = 0; j < mr->nmodes; j++)
@@ -88,7 +121,8 @@ static gd_status rigid_modes(gd_condensation *c, const gd_modal_result *mr, cons
     if (!nr) return GD_OK;
     if (!(c->R = malloc((size_t)N * nr * sizeof *c->R)))
         return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
-    double kn = maxabs(K, (size_t)N * N), dn = maxabs(D, (size_t)N * N);
+    size_t nv = o->p ? (size_t)o->p->nnz : (size_t)N * N;
+    double kn = maxabs(o->p ? o->k : o->Kd, nv), dn = maxabs(o->p ? o->d : o->Dd, nv);
     int b = 0;
     for (int j = 0; j < mr->nmodes; j++) {
         if (!mr->modes[j].rigid_body) continue;
@@ -97,23 +131,23 @@ static gd_status rigid_modes(gd_condensation *c, const gd_modal_result *mr, cons
         for (int pass = 0; pass < 2; pass++)
             for (int a = 0; a < b; a++) {
                 const double *ra = c->R + (size_t)a * N;
-                matvec(M, N, r, t);
+                apply(o, 'M', 0, r, t);
                 double s = 0;
                 for (int i = 0; i < N; i++)
                     s += ra[i] * t[i];
                 for (int i = 0; i < N; i++)
                     r[i] -= s * ra[i];
             }
-        matvec(M, N, r, t);
+        apply(o, 'M', 0, r, t);
         double mm = 0;
         for (int i = 0; i < N; i++)
             mm += r[i] * t[i];
         double rn = maxabs(r, (size_t)N), bad = 0;
-        matvec(K, N, r, t);
-        matvec_t(K, N, r, t2);
+        apply(o, 'K', 0, r, t);
+        apply(o, 'K', 1, r, t2);
         bad = fmax(maxabs(t, (size_t)N), maxabs(t2, (size_t)N)) / (kn * rn * N);
-        matvec(D, N, r, t);
-        matvec_t(D, N, r, t2);
+        apply(o, 'D', 0, r, t);
+        apply(o, 'D', 1, r, t2);
         double badd =
             fmax(maxabs(t, (size_t)N), maxabs(t2, (size_t)N)) / ((dn > 0 ? dn : 1) * rn * N);
         if (!(mm > 0) || bad > 1e-8 || badd > 1e-8)
@@ -130,10 +164,71 @@ static gd_status rigid_modes(gd_condensation *c, const gd_modal_result *mr, cons
     return GD_OK;
 }
 
+static gd_status singular(gd_error *err, const char *file, int nr, double rcond)
+{
+    return gd_error_set(err, GD_ENUMERIC, file, 0, 0, "bearings",
+                        "support the model (bearings or springs to ground) or remove the "
+                        "unconstrained parts: only motions without stiffness and damping "
+                        "(a free train's rotation) are allowed",
+                        "the stiffness is singular beyond its %d rigid-body modes "
+                        "(reciprocal condition %.2g)",
+                        nr, rcond);
+}
+
+/* Yf (nf x nc) = the free rows of the solution of K' x = Y with K' the sparse K whose held
+ * rows and columns are the identity (and Y's held rows 0). */
+static gd_status sparse_held_solve(const ops *o, const int *held, const double *Y, int nc,
+                                   const int *fr, int nf, double *Yf, const char *file,
+                                   gd_error *err)
+{
+    const gd_pattern *p = o->p;
+    int N = o->N;
+    gd_splu_symbolic sym;
+    gd_status st = gd_splu_analyze(p, &sym, err);
+    if (st) return st;
+    double *kk = malloc((size_t)p->nnz * sizeof *kk), *x = malloc((size_t)N * nc * sizeof *x);
+    if (!kk || !x) {
+        st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
+        goto done;
+    }
+    for (int j = 0; j < N; j++)
+        for (int q = p->colptr[j]; q < p->colptr[j + 1]; q++) {
+            int i = p->rowind[q];
+            kk[q] = held[i] || held[j] ? (i == j ? 1.0 : 0.0) : o->k[q];
+        }
+    for (int j = 0; j < N; j++)
+        if (held[j] && p->diag[j] < 0) {
+            st = singular(err, file, -1, 0);
+            goto done;
+        }
+    for (int j = 0; j < nc; j++)
+        for (int i = 0; i < N; i++)
+            x[i + (size_t)j * N] = held[i] ? 0.0 : Y[i + (size_t)j * N];
+    gd_splu lu;
+    int rc = gd_splu_factor(&lu, p, &sym, kk, 0, 1);
+    if (rc) {
+        double rcond = lu.rcond;
+        gd_splu_free(&lu);
+        st = rc < 0 ? gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory")
+                    : singular(err, file, N - nf, rcond);
+        goto done;
+    }
+    gd_splu_solve(&lu, &sym, N, nc, x);
+    gd_splu_free(&lu);
+    for (int j = 0; j < nc; j++)
+        for (int i = 0; i < nf; i++)
+            Yf[i + (size_t)j * nf] = x[fr[i] + (size_t)j * N];
+done:
+    free(kk);
+    free(x);
+    gd_splu_symbolic_free(&sym);
+    return st;
+}
+
 /* X = K_e^+ Y (N x nc, overwritten in place): the elastic static solution under inertia
  * relief (Y already balanced: R^T Y = 0). */
-static gd_status elastic_solve(gd_condensation *c, const double *M, const double *K, double *Y,
-                               const char *file, gd_error *err)
+static gd_status elastic_solve(gd_condensation *c, const ops *o, double *Y, const char *file,
+                               gd_error *err)
 {
     int N = c->N, nc = c->nc, nr = c->nr, nf = N - nr;
     gd_status st = GD_OK;
@@ -142,7 +237,8 @@ static gd_status elastic_solve(gd_condensation *c, const double *M, const double
         *ipiv = malloc((size_t)(nf > 0 ? nf : 1) * sizeof *ipiv);
     double *Rt = malloc((size_t)(nr > 0 ? nr : 1) * N * sizeof *Rt),
            *tau = malloc((size_t)(nr + 1) * sizeof *tau);
-    double *Kff = malloc((size_t)(nf > 0 ? nf : 1) * (nf > 0 ? nf : 1) * sizeof *Kff);
+    size_t nk = o->p ? 1 : (size_t)(nf > 0 ? nf : 1) * (nf > 0 ? nf : 1);
+    double *Kff = malloc(nk * sizeof *Kff);
     double *Yf = malloc((size_t)(nf > 0 ? nf : 1) * nc * sizeof *Yf),
            *t = malloc((size_t)N * sizeof *t);
     if (!held || !jpvt || !fr || !ipiv || !Rt || !tau || !Kff || !Yf || !t) {
@@ -162,26 +258,24 @@ static gd_status elastic_solve(gd_condensation *c, const double *M, const double
     }
     for (int i = 0, k = 0; i < N; i++)
         if (!held[i]) fr[k++] = i;
-    for (int j = 0; j < nf; j++)
-        for (int i = 0; i < nf; i++)
-            Kff[i + (size_t)j * nf] = K[fr[i] + (size_t)fr[j] * N];
-    for (int j = 0; j < nc; j++)
-        for (int i = 0; i < nf; i++)
-            Yf[i + (size_t)j * nf] = Y[fr[i] + (size_t)j * N];
-    double anorm = LAPACKE_dlange(LAPACK_COL_MAJOR, '1', nf, nf, Kff, nf), rcond = 0;
-    int info = nf ? LAPACKE_dgetrf(LAPACK_COL_MAJOR, nf, nf, Kff, nf, ipiv) : 0;
-    if (nf && !info) LAPACKE_dgecon(LAPACK_COL_MAJOR, '1', nf, Kff, nf, anorm, &rcond);
-    if (info || (nf && !(rcond > 1e-14))) {
-        st = gd_error_set(err, GD_ENUMERIC, file, 0, 0, "bearings",
-                          "support the model (bearings or springs to ground) or remove the "
-                          "unconstrained parts: only motions without stiffness and damping "
-                          "(a free train's rotation) are allowed",
-                          "the stiffness is singular beyond its %d rigid-body modes "
-                          "(reciprocal condition %.2g)",
-                          nr, rcond);
-        goto done;
+    if (o->p) { /* sparse: the held rows and columns replaced by the identity, KLU */
+        if ((st = sparse_held_solve(o, held, Y, nc, fr, nf, Yf, file, err))) goto done;
+    } else {
+        for (int j = 0; j < nf; j++)
+            for (int i = 0; i < nf; i++)
+                Kff[i + (size_t)j * nf] = o->Kd[fr[i] + (size_t)fr[j] * N];
+        for (int j = 0; j < nc; j++)
+            for (int i = 0; i < nf; i++)
+                Yf[i + (size_t)j * nf] = Y[fr[i] + (size_t)j * N];
+        double anorm = LAPACKE_dlange(LAPACK_COL_MAJOR, '1', nf, nf, Kff, nf), rcond = 0;
+        int info = nf ? LAPACKE_dgetrf(LAPACK_COL_MAJOR, nf, nf, Kff, nf, ipiv) : 0;
+        if (nf && !info) LAPACKE_dgecon(LAPACK_COL_MAJOR, '1', nf, Kff, nf, anorm, &rcond);
+        if (info || (nf && !(rcond > 1e-14))) {
+            st = singular(err, file, nr, rcond);
+            goto done;
+        }
+        if (nf) LAPACKE_dgetrs(LAPACK_COL_MAJOR, 'N', nf, nc, Kff, nf, ipiv, Yf, nf);
     }
-    if (nf) LAPACKE_dgetrs(LAPACK_COL_MAJOR, 'N', nf, nc, Kff, nf, ipiv, Yf, nf);
     /* residual of K x = y, for the info */
     double res = 0, ymax = maxabs(Y, (size_t)N * nc);
     for (int j = 0; j < nc; j++) {
@@ -195,11 +289,11 @@ static gd_status elastic_solve(gd_condensation *c, const double *M, const double
             st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
             goto done;
         }
-        matvec(K, N, x, kx);
+        apply(o, 'K', 0, x, kx);
         for (int i = 0; i < N; i++)
             res = fmax(res, fabs(kx[i] - t[i]));
         /* x -= R R^T M x: the elastic part, M-orthogonal to the rigid modes */
-        matvec(M, N, x, kx);
+        apply(o, 'M', 0, x, kx);
         for (int b = 0; b < nr; b++) {
             const double *r = c->R + (size_t)b * N;
             double s = 0;
@@ -244,14 +338,25 @@ gd_status gd_condense_build(const gd_system *sys, const gd_condense_coords *cc,
                             "give a finite speed and nmodes >= 0 (0: all)",
                             "bad condensation options (speed %g, nmodes %d)", opt->speed,
                             opt->nmodes);
-    size_t nn = (size_t)N * N;
+    int sparse = opt->method == GD_CONDENSE_SPARSE ||
+                 (opt->method == GD_CONDENSE_AUTO && opt->nmodes > 0 && N > GD_CONDENSE_DENSE_MAX);
+    if (sparse && opt->nmodes < 1)
+        return gd_error_set(err, GD_EINPUT, file, 0, 0, "nmodes",
+                            "give the number of modes to keep (the sparse method computes the "
+                            "lowest ones only)",
+                            "the sparse condensation needs nmodes > 0");
+    size_t nn = sparse ? 1 : (size_t)N * N;
     gd_condensation *c = calloc(1, sizeof *c);
     double *M = malloc(nn * sizeof *M), *D = malloc(nn * sizeof *D), *K = malloc(nn * sizeof *K);
     double *W = calloc((size_t)N * nc, sizeof *W), *t = malloc((size_t)N * sizeof *t),
            *t2 = malloc((size_t)N * sizeof *t2);
+    double *ks = NULL, *ds = NULL;
+    gd_dynmat dm;
+    int have_a = 0;
     gd_modal_result *mr = NULL;
     double complex *V = NULL;
     gd_status st = GD_OK;
+    ops o = {N, M, D, K, NULL, NULL, NULL, NULL};
     if (!c || !M || !D || !K || !W || !t || !t2) {
         st = gd_error_set(err, GD_ENOMEM, file, 0, 0, "", "reduce the model size",
                           "out of memory for dense %d x %d matrices", N, N);
@@ -262,25 +367,50 @@ gd_status gd_condense_build(const gd_system *sys, const gd_condense_coords *cc,
     for (int k = 0; k < nc; k++)
         for (int e = cc->start[k]; e < cc->start[k + 1]; e++)
             W[cc->dof[e] + (size_t)k * N] += cc->a[e];
-    gd_system_dense(sys, opt->speed, M, D, K);
     gd_modal_options mo;
     gd_modal_options_init(&mo);
     mo.speed = opt->speed;
-    mo.nmodes = 0; /* the dense solver computes them all anyway; the first discarded is known */
     mo.kind = GD_MODAL_DAMPED; /* left vectors in one normalisation, damped or not */
-    mo.want_left = 1;
-    mo.method = GD_EIG_DENSE;
-    if ((st = gd_modal_solve(sys, &mo, &mr, err))) goto done;
-    if (!mr->left_re || !mr->left_im) {
-        st = gd_error_set(err, GD_ENUMERIC, file, 0, 0, "", "",
-                          "the modal solve gave no left vectors");
-        goto done;
+    if (sparse) {
+        /* the structure on its sparse pattern; the lowest modes by shift-invert Krylov
+           (right vectors: the refinement finds the left ones), with room for a few rigid
+           modes and the first discarded one */
+        if ((st = gd_dynmat_build(sys, &dm, err))) goto done;
+        have_a = 1;
+        ks = malloc((size_t)dm.pat.nnz * sizeof *ks);
+        ds = malloc((size_t)dm.pat.nnz * sizeof *ds);
+        if (!ks || !ds) {
+            st = gd_error_set(err, GD_ENOMEM, file, 0, 0, "", "", "out of memory");
+            goto done;
+        }
+        gd_dynmat_at(&dm, opt->speed, ks, ds);
+        o = (ops){N, NULL, NULL, NULL, &dm.pat, dm.m, ds, ks};
+        mo.nmodes = opt->nmodes + 8 < N ? opt->nmodes + 8 : N;
+        mo.want_left = 0;
+        if ((st = gd_modal_solve_sparse(sys, &mo, 0.0, &mr, err))) goto done;
+    } else {
+        gd_system_dense(sys, opt->speed, M, D, K);
+        mo.nmodes = 0; /* the dense solver computes them all anyway: the first discarded known */
+        mo.want_left = 1;
+        mo.method = GD_EIG_DENSE;
+        if ((st = gd_modal_solve(sys, &mo, &mr, err))) goto done;
+        if (!mr->left_re || !mr->left_im) {
+            st = gd_error_set(err, GD_ENUMERIC, file, 0, 0, "", "",
+                              "the modal solve gave no left vectors");
+            goto done;
+        }
     }
-    if ((st = rigid_modes(c, mr, M, D, K, t, t2, file, err))) goto done;
+    if ((st = rigid_modes(c, mr, &o, t, t2, file, err))) goto done;
     int nel = 0;
     for (int j = 0; j < mr->nmodes; j++)
         nel += !mr->modes[j].rigid_body;
     int nm = opt->nmodes > 0 && opt->nmodes < nel ? opt->nmodes : nel;
+    if (sparse && nm >= nel) nm = nel - 1; /* one more than kept, to know the first discarded */
+    if (nm < 1) {
+        st = gd_error_set(err, GD_EINPUT, file, 0, 0, "nmodes", "keep more modes",
+                          "no elastic mode to keep");
+        goto done;
+    }
     c->nm = nm;
     c->info.ndof = N;
     c->info.ncoords = nc;
@@ -318,15 +448,23 @@ gd_status gd_condense_build(const gd_system *sys, const gd_condense_coords *cc,
         c->lam[k] = md->lambda_re + I * md->lambda_im;
         c->pair[k] = md->lambda_im > 0;
         const double *ur = mr->shape_re + (size_t)j * N, *ui = mr->shape_im + (size_t)j * N;
-        const double *vr = mr->left_re + (size_t)j * N, *vi = mr->left_im + (size_t)j * N;
         double complex *u = c->U + (size_t)k * N, *v = V + (size_t)k * N;
         for (int i = 0; i < N; i++) {
             u[i] = ur[i] + I * ui[i];
-            v[i] = vr[i] + I * vi[i];
+            /* without left vectors (sparse): the right one starts the left inverse iteration */
+            v[i] = mr->left_re ? mr->left_re[i + (size_t)j * N] + I * mr->left_im[i + (size_t)j * N]
+                               : u[i];
         }
         k++;
     }
-    if ((st = gd_condense_refine(sys, opt->speed, nm, c->lam, c->U, V, &c->info.refine_step, err)))
+    if (sparse) { /* only the first discarded mode is known: its damping and the kept ones' */
+        c->info.ndiscarded = N - c->nr - nm;
+        for (int k = 0; k < nm; k++)
+            c->info.zeta_discarded =
+                fmax(c->info.zeta_discarded, fmin(-creal(c->lam[k]) / cabs(c->lam[k]), 1.0));
+    }
+    if ((st = gd_condense_refine(sys, opt->speed, nm, c->lam, c->U, V, sparse ? 4 : 2,
+                                 &c->info.refine_step, err)))
         goto done;
     for (int k = 0; k < nm; k++) {
         const double complex *u = c->U + (size_t)k * N, *v = V + (size_t)k * N;
@@ -349,14 +487,14 @@ gd_status gd_condense_build(const gd_system *sys, const gd_condense_coords *cc,
         }
     /* Y = P^T W = W - M R (R^T W): the coordinate loads balanced by the rigid inertia */
     for (int b = 0; b < c->nr; b++) {
-        matvec(M, N, c->R + (size_t)b * N, t);
+        apply(&o, 'M', 0, c->R + (size_t)b * N, t);
         for (int a = 0; a < nc; a++) {
             double rw = c->Rc[a + (size_t)b * nc];
             for (int i = 0; i < N; i++)
                 W[i + (size_t)a * N] -= t[i] * rw;
         }
     }
-    if ((st = elastic_solve(c, M, K, W, file, err))) goto done;
+    if ((st = elastic_solve(c, &o, W, file, err))) goto done;
     /* static correction: X - sum_kept (-u b^T / lambda + its conjugate) */
     for (int k = 0; k < nm; k++) {
         double f = c->pair[k] ? 2.0 : 1.0;
@@ -388,6 +526,9 @@ done:
     gd_condense_destroy(c);
     gd_modal_free(mr);
     free(V);
+    free(ks);
+    free(ds);
+    if (have_a) gd_dynmat_free(&dm);
     free(M);
     free(D);
     free(K);

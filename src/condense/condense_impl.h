@@ -22,12 +22,12 @@ struct gd_condensation {
     gd_condense_info info;
 };
 
-/* refine.c: two-sided inverse iteration with Newton updates of the nm pairs (lam, U, V:
+/* refine.c: iters steps of two-sided inverse iteration with Newton updates of the nm pairs (lam, U, V:
  * N x nm right and left vectors, replaced; V normalised v^T (2 lambda M + D) u = 1).
  * *worst_step: the largest relative eigenvalue change. */
 gd_status gd_condense_refine(const gd_system *sys, double speed, int nm, double complex *lam,
-                             double complex *U, double complex *V, double *worst_step,
-                             gd_error *err);
+                             double complex *U, double complex *V, int iters,
+                             double *worst_step, gd_error *err);
 
 /* state_space.c: fills c->ns, A, B, C from the modal data. 0 ok, 1 out of memory. */
 int gd_condense_build_lti(gd_condensation *c);

@@ -3,9 +3,9 @@
  * eps |lambda_max| in each eigenvalue, which near a lightly damped resonance leaves
  * 1e-7 of the receptance (w - Im lambda is then of the size of Re lambda). Two steps of
  * two-sided inverse iteration at the current eigenvalue with the Newton (two-sided
- * Rayleigh functional) update lambda -= v^T P u / v^T P' u ([Ruhe1973] Sec. 3; [Tisseur2001]
- * Sec. 5) bring eigenvalue and both vectors to round-off; each step is one complex KLU
- * factorisation and a solve with it and one with its transpose. */
+ * Rayleigh functional) update lambda -= v^T P u / v^T P' u ([Ruhe1973] Sec. 3;
+ * [TisseurMeerbergen2001] Sec. 5) bring eigenvalue and both vectors to round-off; each step is one
+ * complex KLU factorisation and a solve with it and one with its transpose. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -38,7 +38,7 @@ static double complex dotu(const double complex *a, const double complex *b, int
 }
 
 gd_status gd_condense_refine(const gd_system *sys, double speed, int nm, double complex *lam,
-                             double complex *U, double complex *V, double *worst_step,
+                             double complex *U, double complex *V, int iters, double *worst_step,
                              gd_error *err)
 {
     gd_dynmat a;
@@ -61,7 +61,7 @@ gd_status gd_condense_refine(const gd_system *sys, double speed, int nm, double 
     gd_dynmat_at(&a, speed, k, d);
     for (int j = 0; j < nm; j++) {
         double complex *u = U + (size_t)j * n, *v = V + (size_t)j * n, s = lam[j];
-        for (int it = 0; it < 2; it++) {
+        for (int it = 0; it < iters; it++) {
             for (int q = 0; q < nnz; q++) {
                 z[q] = k[q] + s * d[q] + s * s * a.m[q];
                 zp[q] = 2 * s * a.m[q] + d[q];
@@ -101,7 +101,7 @@ gd_status gd_condense_refine(const gd_system *sys, double speed, int nm, double 
             memcpy(u, t, (size_t)n * sizeof *u);
             memcpy(v, t2, (size_t)n * sizeof *v);
             *worst_step = fmax(*worst_step, cabs(ds) / cabs(s));
-            if (cabs(ds) <= 1e-15 * cabs(s)) break;
+            if (it > 0 && cabs(ds) <= 1e-15 * cabs(s)) break;
         }
         if (st) break;
         if (cimag(lam[j]) == 0) s = creal(s); /* a real mode stays real */

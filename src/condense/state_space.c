@@ -2,7 +2,7 @@
  * each kept mode eta' = lambda eta + b^T u in real form (a conjugate pair as the real and
  * imaginary parts of eta, its output 2 Re(c eta)), each rigid mode a'' = r_c^T u, and the
  * discarded modes as the static feedthrough y += G u: the 'modal + residual flexibility'
- * model ([Craig2006]; [Krack2019] Sec. 3.4 for its use under nonlinear forces). */
+ * model ([CraigKurdila2006]; [KrackGross2019] Sec. 3.4 for its use under nonlinear forces). */
 #include <stdlib.h>
 #include <string.h>
 
