@@ -151,7 +151,7 @@ static gd_status rigid_modes(gd_condensation *c, const gd_modal_result *mr, cons
         double badd =
             fmax(maxabs(t, (size_t)N), maxabs(t2, (size_t)N)) / ((dn > 0 ? dn : 1) * rn * N);
         if (!(mm > 0) || bad > 1e-8 || badd > 1e-8)
-            return gd_error_set(err, GD_EINPUT, file, 0, 0, "speed",
+            return gd_error_set(err, GD_EINPUT, file, 0, 0, "damping",
                                 "condense a model whose free motions carry no stiffness or "
                                 "damping (e.g. no damping to ground on a free train)",
                                 "rigid-body mode %d is not free of stiffness and damping "
@@ -463,8 +463,8 @@ gd_status gd_condense_build(const gd_system *sys, const gd_condense_coords *cc,
             c->info.zeta_discarded =
                 fmax(c->info.zeta_discarded, fmin(-creal(c->lam[k]) / cabs(c->lam[k]), 1.0));
     }
-    if ((st = gd_condense_refine(sys, opt->speed, nm, c->lam, c->U, V, sparse ? 4 : 2,
-                                 &c->info.refine_step, err)))
+    if ((st = gd_condense_refine(sys, opt->speed, nm, c->lam, c->U, V, 2, &c->info.refine_step,
+                                 err)))
         goto done;
     for (int k = 0; k < nm; k++) {
         const double complex *u = c->U + (size_t)k * N, *v = V + (size_t)k * N;

@@ -542,6 +542,35 @@ TEST(errors)
     CHECK_STR(err.field, "nmodes");
     gd_condense_coords_release(&cc);
     fx_free(&f);
+    /* a free train with a damper to ground: its rotation is no longer a free motion that
+       the exact -r r^T/w^2 term describes (D r != 0): refused, naming the cause */
+    REQUIRE(load(&f, NULL,
+                 "dofs: [rz]\n"
+                 "shafts:\n"
+                 "  - {name: input, nodes: [{name: motor}, {name: pinion}]}\n"
+                 "  - {name: output, nodes: [{name: gear}, {name: load}]}\n"
+                 "disks:\n"
+                 "  - {name: motor, node: motor, polar_inertia: 0.0115}\n"
+                 "  - {name: pinion, node: pinion, mass: 1.84, polar_inertia: 0.001821}\n"
+                 "  - {name: gear, node: gear, mass: 0.92, polar_inertia: 0.001016}\n"
+                 "  - {name: load, node: load, polar_inertia: 0.00575}\n"
+                 "springs:\n"
+                 "  - {name: s1, node: motor, to: pinion, dof: rz, stiffness: 115}\n"
+                 "  - {name: s2, node: gear, to: load, dof: rz, stiffness: 115}\n"
+                 "  - {name: drag, node: motor, dof: rz, damping: 0.01}\n"
+                 "meshes:\n"
+                 "  - {name: mesh, driver: pinion, driven: gear, base_radius: [0.0445, 0.047],\n"
+                 "     pressure_angle: 0, line_of_centres: 0, stiffness: 2e8,\n"
+                 "     coupling: torsional}\n"));
+    gd_condense_coords_init(&cc);
+    REQUIRE(gd_condense_coords_meshes(&cc, f.s, &err) == GD_OK);
+    gd_condense_options_init(&o);
+    CHECK(gd_condense_build(f.s, &cc, &o, &c, &err) == GD_EINPUT);
+    CHECK(c == NULL);
+    CHECK(strstr(err.message, "rigid-body mode 1 is not free of stiffness and damping") != NULL);
+    CHECK_STR(err.field, "damping");
+    gd_condense_coords_release(&cc);
+    fx_free(&f);
 }
 
 RUN_TESTS(T(seed002_exact_receptance_equals_direct), T(rig2018_exact_receptance_equals_direct),
