@@ -140,5 +140,12 @@ GD_API void gd_condense_recover_state(const gd_condensation *c, const double *x,
  * train) is NAN. */
 GD_API gd_status gd_condense_direct(const gd_system *sys, const gd_condense_coords *c, double speed,
                                     int nfreq, const double *w, double *H, gd_error *err);
+/* The exact full response at one frequency by the direct sparse solve: q (ndof complex,
+ * interleaved) = (K - w^2 M + i w D)^-1 W u for coordinate forces u (nc complex): the
+ * recovery for a model too large for every mode. GD_ENUMERIC when Z(w) is singular (w = 0
+ * on a free train). */
+GD_API gd_status gd_condense_direct_recover(const gd_system *sys, const gd_condense_coords *c,
+                                            double speed, double w, const double *u, double *q,
+                                            gd_error *err);
 
 #endif

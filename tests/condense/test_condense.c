@@ -319,6 +319,21 @@ TEST(recovery_equals_full_direct_solve)
     }
     printf("  recovery: max rel. difference %.2e over %d DOFs\n", worst, N);
     CHECK(worst < 1e-9);
+    /* the direct recovery (one KLU solve) gives the same, and refuses w = 0 (free train) */
+    double complex *qd = malloc((size_t)N * sizeof *qd);
+    REQUIRE(gd_condense_direct_recover(f.s, &cc, 0.0, w[1], (const double *)u, (double *)qd,
+                                       &err) == GD_OK);
+    gd_condense_recover(c, w[1], (const double *)u, (double *)q);
+    double dd = 0, dm = 0;
+    for (int i = 0; i < N; i++) {
+        dd = fmax(dd, cabs(q[i] - qd[i]));
+        dm = fmax(dm, cabs(qd[i]));
+    }
+    CHECK(dd < 1e-9 * dm);
+    CHECK(gd_condense_direct_recover(f.s, &cc, 0.0, 0.0, (const double *)u, (double *)qd, &err) ==
+          GD_ENUMERIC);
+    CHECK_STR(err.field, "frequency");
+    free(qd);
     free(q);
     free(outs);
     gd_frf_free(r);
