@@ -12,7 +12,8 @@
  * G = W^T (K_e^+ - sum_kept -u v^T / lambda) W ([CraigKurdila2006] residual flexibility), with
  * rigid-body modes (a train free in torsion) as exact -r r^T / w^2 terms and K_e^+ the
  * elastic flexibility under inertia relief. With every mode kept (nmodes = 0) the result
- * equals the direct solve to round-off. The structure is the one gd_modal_solve sees: M, K
+ * equals the direct solve to round-off (3e-10 on seed 002; at a peak of damping ratio z,
+ * round-off times 1/(2 z), as for any method). The structure is the one gd_modal_solve sees: M, K
  * and D of gd_system_dense at the speed (laws linearised about their static state).
  *
  * Ownership and threads: a gd_condense_coords is the caller's value (gd_condense_coords_init,
@@ -35,7 +36,7 @@ typedef struct gd_condense_coords {
     int *start;                           /* n + 1 */
     int *dof;                             /* nnz: system DOF indices */
     double *a;                            /* nnz */
-    char (*label)[GD_CONDENSE_LABEL_MAX]; /* n: "mesh:<name>", "<law>.<local dof>", ... */
+    char (*label)[GD_CONDENSE_LABEL_MAX]; /* n: "mesh:<name>", "<law>.<node>.<dof>" */
     int cap, nnz_cap;
 } gd_condense_coords;
 
