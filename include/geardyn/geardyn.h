@@ -52,6 +52,7 @@
 #include "geardyn/mesh_stiffness.h"
 #include "geardyn/modal.h"
 #include "geardyn/static.h"
+#include "geardyn/condense.h"
 #include "geardyn/campbell.h"
 #include "geardyn/waterfall.h"
 #include "geardyn/probe.h"

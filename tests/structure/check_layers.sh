@@ -15,12 +15,13 @@ declare -A level=(
     [model_file]=4 [elements]=4
     [system]=5
     [modal]=6 [static]=6
-    [campbell]=7 [response]=7 [transient]=7
-    [periodic]=8 [correlate]=8
-    [plot]=9
-    [report]=10
-    [study]=10
-    [api]=11
+    [condense]=7
+    [campbell]=8 [response]=8 [transient]=8
+    [periodic]=9 [correlate]=9
+    [plot]=10
+    [report]=11
+    [study]=11
+    [api]=12
 )
 # public header -> module
 declare -A header=(
@@ -32,6 +33,7 @@ declare -A header=(
     [model_file.h]=model_file [bearing_table.h]=model_file [elements.h]=elements
     [system.h]=system
     [modal.h]=modal [static.h]=static
+    [condense.h]=condense
     [campbell.h]=campbell [waterfall.h]=campbell [probe.h]=response [frf.h]=response [unbalance.h]=response
     [transient.h]=transient [transient_model.h]=transient
     [periodic.h]=periodic
