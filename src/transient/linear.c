@@ -471,9 +471,11 @@ gd_status gd_tr_run_lti(gd_transient *tr, const gd_transient_options *opt,
     const int nf = tr->nf, nout = res->nout, nr = nrecords > 0 ? nrecords : 1;
     lti L;
     int ist = lti_init(&L, tr);
-    double *va = malloc((size_t)nr * nout * sizeof *va);
-    double *vb = malloc((size_t)nr * nout * sizeof *vb);
-    double *vc = malloc((size_t)nr * nout * sizeof *vc);
+    /* zeroed: a coarse run fills only its own samples, and difference() takes the peak
+     * of its first run over every sample */
+    double *va = calloc((size_t)nr * nout, sizeof *va);
+    double *vb = calloc((size_t)nr * nout, sizeof *vb);
+    double *vc = calloc((size_t)nr * nout, sizeof *vc);
     double *ya = malloc((size_t)6 * (nf > 0 ? nf : 1) * sizeof *ya);
     double *y0 = malloc((size_t)2 * (nf > 0 ? nf : 1) * sizeof *y0);
     gd_status st = GD_OK;
@@ -499,7 +501,7 @@ gd_status gd_tr_run_lti(gd_transient *tr, const gd_transient_options *opt,
      * whether the first level is in the h^8 regime already. vc holds the run at 8 dt,
      * then the one at 4 dt (each compared at its own samples) */
     if (pass(&L, opt, records, nrecords, from, dt, nout, 8 * dt, 8, y0, vc, yc)) goto singular;
-    double *v4 = malloc((size_t)nr * nout * sizeof *v4),
+    double *v4 = calloc((size_t)nr * nout, sizeof *v4),
            *y4 = malloc((size_t)2 * (nf > 0 ? nf : 1) * sizeof *y4);
     if (!v4 || !y4) {
         free(v4);
