@@ -116,8 +116,10 @@ TEST(residual_is_the_frequency_error)
     REQUIRE(load(&f, "bench/models/rig366.yaml", 1));
     gd_modal_result *r = solve(&f, 0, 12, GD_EIG_DENSE, 0, GD_MODAL_UNDAMPED);
     REQUIRE(r);
+    /* LAPACK's own residual: below 1e-10 natively; OpenBLAS's generic kernels under
+     * valgrind leave up to about 1.2e-10, so 1e-9 (and 1e-3 relative at e = 1e-6) */
     for (int j = 0; j < r->nmodes; j++)
-        CHECK(r->modes[j].rigid_body || r->modes[j].residual < 1e-10);
+        CHECK(r->modes[j].rigid_body || r->modes[j].residual < 1e-9);
     const double e[] = {1e-6, 1e-3};
     for (int k = 0; k < 2; k++) {
         for (int j = 0; j < r->nmodes; j++)
@@ -126,8 +128,8 @@ TEST(residual_is_the_frequency_error)
         double expect = e[k] * (2 + e[k]) / (2 + 2 * e[k] + e[k] * e[k]);
         for (int j = 0; j < r->nmodes; j++) {
             if (r->modes[j].rigid_body) continue;
-            /* LAPACK's own residual (< 1e-10) is all that separates them */
-            CHECK_REL(r->modes[j].residual, expect, 1e-4);
+            /* LAPACK's own residual (< 1e-9) is all that separates them */
+            CHECK_REL(r->modes[j].residual, expect, 1e-3);
         }
         for (int j = 0; j < r->nmodes; j++)
             if (!r->modes[j].rigid_body) r->modes[j].lambda_im /= 1 + e[k];
