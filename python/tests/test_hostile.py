@@ -40,9 +40,16 @@ def test_ctrl_c_in_a_law_stops_the_analysis(geardyn):
 
     law = geardyn.Law("looping", ["m.x"], looping, terms=[([1.0], [1.0])])
     m = geardyn.load(DUFFING)
+    # Python's own Ctrl-C handler, whatever this process inherited: a shell starts a
+    # background job with SIGINT ignored, and Python then installs none (the loop never
+    # ended under `.ci/run &`)
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
     t0 = time.monotonic()
-    with pytest.raises(KeyboardInterrupt):
-        m.transient(duration=300, laws=[law])
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            m.transient(duration=300, laws=[law])
+    finally:
+        signal.signal(signal.SIGINT, previous)
     assert calls[0] == 50  # Python was not called again after the interrupt
     # bound on the test's time only (the timer is 0.2 s): the run did not go on
     assert time.monotonic() - t0 < 30
