@@ -160,6 +160,21 @@ static inline cJSON *run_json_args(scratch *s, const char *args)
     return o;
 }
 
+/* 1 when "geardyn ARGS" exits 2 with w1 (and w2, may be NULL) on stderr and nothing on
+ * stdout (the run shown on stderr otherwise). */
+static inline int run_refused(scratch *s, const char *w1, const char *w2, const char *args)
+{
+    run_result r;
+    run(s, &r, "%s", args);
+    int ok = r.code == 2 && contains(r.err, w1) && (!w2 || contains(r.err, w2)) && !r.out[0];
+    if (!ok) {
+        fprintf(stderr, "  args: %s\n", args);
+        show(&r);
+    }
+    run_free(&r);
+    return ok;
+}
+
 /* An error run with "--out DIR" appended: 1 when it exits 2 with w1 (and w2, may be NULL)
  * on stderr, nothing on stdout and nothing in DIR. */
 static inline int run_fails_cleanly(scratch *s, const char *args, const char *w1, const char *w2)

@@ -15,44 +15,32 @@
 #define CHEN "examples/chen1998_gear_pair.yaml"
 #define MATHIEU "tests/plot/mathieu_pair.yaml"
 
-/* exit 2, both words on stderr, nothing on stdout */
-static int refused(scratch *s, const char *w1, const char *w2, const char *args)
-{
-    run_result r;
-    run(s, &r, "%s", args);
-    int ok = r.code == 2 && contains(r.err, w1) && (!w2 || contains(r.err, w2)) && !r.out[0];
-    if (!ok) {
-        fprintf(stderr, "  args: %s\n", args);
-        show(&r);
-    }
-    run_free(&r);
-    return ok;
-}
-
 /* Both ran until killed (1e30 s of a gear pair; 1e13 gen-alpha steps): now refused in
  * under a second (the bound is a time limit for the test: wall time is not asserted). */
 TEST(runs_that_cannot_finish_are_refused)
 {
     scratch s;
     REQUIRE(scratch_open(&s));
-    CHECK(refused(&s, "revolutions", "--max-steps",
-                  "transient " CHEN " --speed 1000rpm --duration 1e30 --quiet"));
-    CHECK(refused(&s, "1e+13 steps", "--max-steps",
-                  "transient " CHEN " --speed 1000rpm --duration 10s --step 1e-12 --method galpha "
-                  "--quiet"));
+    CHECK(run_refused(&s, "revolutions", "--max-steps",
+                      "transient " CHEN " --speed 1000rpm --duration 1e30 --quiet"));
+    CHECK(run_refused(&s, "1e+13 steps", "--max-steps",
+                      "transient " CHEN
+                      " --speed 1000rpm --duration 10s --step 1e-12 --method galpha "
+                      "--quiet"));
     /* the limit can be raised: 0.01 s in steps of 1e-7 s is 1e5 steps, over a limit of
      * 1e4, within one of 2e5 */
-    CHECK(refused(&s, "over the limit of 10000", NULL,
-                  "transient " CHEN " --speed 1000rpm --duration 10ms --step 1e-7 --method galpha "
-                  "--max-steps 10000 --quiet"));
+    CHECK(run_refused(&s, "over the limit of 10000", NULL,
+                      "transient " CHEN
+                      " --speed 1000rpm --duration 10ms --step 1e-7 --method galpha "
+                      "--max-steps 10000 --quiet"));
     run_result r;
     run(&s, &r,
         "transient " CHEN " --speed 1000rpm --duration 10ms --step 1e-7 --method galpha "
         "--max-steps 200000 --quiet");
     CHECK(r.code == 0);
     run_free(&r);
-    CHECK(refused(&s, "--max-steps", "whole number",
-                  "transient " CHEN " --duration 1ms --max-steps 0"));
+    CHECK(run_refused(&s, "--max-steps", "whole number",
+                      "transient " CHEN " --duration 1ms --max-steps 0"));
     scratch_close(&s);
 }
 
@@ -105,16 +93,16 @@ TEST(extreme_values_are_located_input_errors)
     scratch s;
     REQUIRE(scratch_open(&s));
     /* NaN rows before */
-    CHECK(refused(&s, "--speeds", "1e6 rad/s", "unbalance " CHEN " --speeds 0:1e308rpm:3"));
+    CHECK(run_refused(&s, "--speeds", "1e6 rad/s", "unbalance " CHEN " --speeds 0:1e308rpm:3"));
     /* every mode 0 Hz (or 1e302 Hz) before */
-    CHECK(refused(&s, "disks[0].mass", "below 1e-09 kg",
-                  "modal " CHEN " --set 'disks.*.mass=1e-300'"));
-    CHECK(refused(&s, "polar_inertia", "below 1e-15",
-                  "modal " CHEN " --set 'disks.*.polar_inertia=1e-200'"));
+    CHECK(run_refused(&s, "disks[0].mass", "below 1e-09 kg",
+                      "modal " CHEN " --set 'disks.*.mass=1e-300'"));
+    CHECK(run_refused(&s, "polar_inertia", "below 1e-15",
+                      "modal " CHEN " --set 'disks.*.polar_inertia=1e-200'"));
     /* "report this geometry as a bug" (exit 1) before */
-    CHECK(refused(&s, "geometry.face_width", "1000 normal modules",
-                  "mesh-stiffness examples/helical_pair1.yaml --set "
-                  "'meshes.*.geometry.face_width=1e300'"));
+    CHECK(run_refused(&s, "geometry.face_width", "1000 normal modules",
+                      "mesh-stiffness examples/helical_pair1.yaml --set "
+                      "'meshes.*.geometry.face_width=1e300'"));
     /* a massless node (0) stays allowed */
     run_result r;
     run(&s, &r, "check " CHEN " --set 'disks.gear_a.diametral_inertia=0'");
@@ -129,8 +117,8 @@ TEST(periodic_bounds_and_overflowed_monodromy)
     scratch s;
     REQUIRE(scratch_open(&s));
     /* the message named only ">= 4" */
-    CHECK(refused(&s, "--samples", "4 to 1048576",
-                  "periodic " MATHIEU " --speeds 695:705:2 --samples 2147483647"));
+    CHECK(run_refused(&s, "--samples", "4 to 1048576",
+                      "periodic " MATHIEU " --speeds 695:705:2 --samples 2147483647"));
     /* 1e-300 rad/s: a period of 3e299 s overflows the monodromy (Release exited 0 with
      * |mu| = nan and no word why; (int)ceil(log2(inf)) before that) */
     run_result r;

@@ -20,20 +20,6 @@
 #define ROTOR "tests/transient/runup_rotor.yaml"
 #define HELICAL "examples/helical_pair1.yaml"
 
-/* exit 2, both words on stderr, nothing on stdout */
-static int refused(scratch *s, const char *w1, const char *w2, const char *args)
-{
-    run_result r;
-    run(s, &r, "%s", args);
-    int ok = r.code == 2 && contains(r.err, w1) && (!w2 || contains(r.err, w2)) && !r.out[0];
-    if (!ok) {
-        fprintf(stderr, "  args: %s\n", args);
-        show(&r);
-    }
-    run_free(&r);
-    return ok;
-}
-
 /* M6: every command with its stdout on a full disk. Each one printed a table or JSON
  * that went nowhere and exited 0; now exit 2 naming the failed write. */
 TEST(stdout_on_a_full_disk_exits_2)
@@ -80,13 +66,13 @@ TEST(runs_without_a_shaft_speed_are_bounded)
 {
     scratch s;
     REQUIRE(scratch_open(&s));
-    CHECK(refused(&s, "1.91e+29 revolutions or forcing periods", "--duration: 1e+30 s",
-                  "transient " DUFFING " --duration 1e30 --quiet"));
-    CHECK(refused(&s, "1.27e+11 revolutions or forcing periods", "max_steps",
-                  "transient examples/nlvib_ex03.yaml --duration 1e12 --quiet"));
+    CHECK(run_refused(&s, "1.91e+29 revolutions or forcing periods", "--duration: 1e+30 s",
+                      "transient " DUFFING " --duration 1e30 --quiet"));
+    CHECK(run_refused(&s, "1.27e+11 revolutions or forcing periods", "max_steps",
+                      "transient examples/nlvib_ex03.yaml --duration 1e12 --quiet"));
     /* 1000 s of Duffing takes 12306 CVODE steps (measured): within 20000, over 2000 */
-    CHECK(refused(&s, "--max-steps: the integrator used the step limit of 2000 steps by t = ", NULL,
-                  "transient " DUFFING " --duration 1000 --max-steps 2000 --quiet"));
+    CHECK(run_refused(&s, "--max-steps: the integrator used the step limit of 2000 steps by t = ",
+                      NULL, "transient " DUFFING " --duration 1000 --max-steps 2000 --quiet"));
     run_result r;
     run(&s, &r, "transient " DUFFING " --duration 1000 --max-steps 20000 --quiet");
     CHECK(r.code == 0);
@@ -110,7 +96,8 @@ TEST(runs_without_a_shaft_speed_are_bounded)
                      "    - {node: m, dof: y, mean: -200, amplitude: 0, frequency: 1 rad/s}\n");
     char args[600];
     snprintf(args, sizeof args, "transient '%s' --speed 1000rpm --duration 0.02 --quiet", path);
-    CHECK(refused(&s, "steps at that pace, over the step limit of 50000000", "max_steps", args));
+    CHECK(
+        run_refused(&s, "steps at that pace, over the step limit of 50000000", "max_steps", args));
     scratch_close(&s);
 }
 
@@ -166,31 +153,33 @@ TEST(extreme_loads_are_located_input_errors)
     scratch s;
     REQUIRE(scratch_open(&s));
     /* helical_pair1: E 2.06e11 Pa, b 20 mm, m_n 1.75 mm: 7.21e6 N */
-    CHECK(refused(&s, "--load: a driver torque of 1e+308 N m", "E b m_n = 7.21e+06 N",
-                  "mesh-stiffness " HELICAL " --load 1e308"));
-    CHECK(refused(&s, "--load-range", "E b m_n",
-                  "mesh-stiffness " HELICAL " --load-range 1:1e308:3"));
-    CHECK(refused(&s, "--misalignment: 1e+308 m is over the normal module (0.00175 m)", NULL,
-                  "mesh-stiffness " HELICAL " --load 100 --misalignment 1e308"));
-    CHECK(refused(&s, "--misalignment: 1 m", "normal module",
-                  "mesh-stiffness " HELICAL " --load 100 --misalignment 1"));
-    CHECK(refused(&s, "geometry.driver.bore_radius", "tenth of the root radius",
-                  "mesh-stiffness " HELICAL
-                  " --set 'meshes.*.geometry.driver.bore_radius=1e-300'"));
+    CHECK(run_refused(&s, "--load: a driver torque of 1e+308 N m", "E b m_n = 7.21e+06 N",
+                      "mesh-stiffness " HELICAL " --load 1e308"));
+    CHECK(run_refused(&s, "--load-range", "E b m_n",
+                      "mesh-stiffness " HELICAL " --load-range 1:1e308:3"));
+    CHECK(run_refused(&s, "--misalignment: 1e+308 m is over the normal module (0.00175 m)", NULL,
+                      "mesh-stiffness " HELICAL " --load 100 --misalignment 1e308"));
+    CHECK(run_refused(&s, "--misalignment: 1 m", "normal module",
+                      "mesh-stiffness " HELICAL " --load 100 --misalignment 1"));
+    CHECK(run_refused(&s, "geometry.driver.bore_radius", "tenth of the root radius",
+                      "mesh-stiffness " HELICAL
+                      " --set 'meshes.*.geometry.driver.bore_radius=1e-300'"));
     /* the file's contact-analysis load, through any command ("table values must be
      * finite", no file or key, before) */
-    CHECK(refused(&s, "meshes[0].stiffness.load", "a driver torque of 1e+308 N m",
-                  "modal examples/seed002/helical_two_stage_tip_relief.yaml --set "
-                  "'meshes.*.stiffness.load=1e308'"));
-    CHECK(refused(&s, "meshes[0].stiffness.misalignment", "normal module",
-                  "mesh-stiffness examples/rig2018_pair_relief.yaml --set "
-                  "'meshes.*.stiffness.misalignment=1'"));
-    CHECK(refused(&s, "--torque: 1e+308 N m overflows", NULL, "static " CHEN " --torque 1e308"));
-    CHECK(refused(&s, "unbalances: the response overflows at 10.472 rad/s", NULL,
-                  "unbalance examples/kumar2011_coupled.yaml --speeds 100:1000rpm:3 --set "
-                  "'unbalances.*.amount=1e308'"));
-    CHECK(refused(&s, "gravity.g", "over 1e6 m/s^2",
-                  "static examples/rig2018.yaml --set 'gravity={direction: [0,-1,0], g: 1e308}'"));
+    CHECK(run_refused(&s, "meshes[0].stiffness.load", "a driver torque of 1e+308 N m",
+                      "modal examples/seed002/helical_two_stage_tip_relief.yaml --set "
+                      "'meshes.*.stiffness.load=1e308'"));
+    CHECK(run_refused(&s, "meshes[0].stiffness.misalignment", "normal module",
+                      "mesh-stiffness examples/rig2018_pair_relief.yaml --set "
+                      "'meshes.*.stiffness.misalignment=1'"));
+    CHECK(
+        run_refused(&s, "--torque: 1e+308 N m overflows", NULL, "static " CHEN " --torque 1e308"));
+    CHECK(run_refused(&s, "unbalances: the response overflows at 10.472 rad/s", NULL,
+                      "unbalance examples/kumar2011_coupled.yaml --speeds 100:1000rpm:3 --set "
+                      "'unbalances.*.amount=1e308'"));
+    CHECK(run_refused(
+        &s, "gravity.g", "over 1e6 m/s^2",
+        "static examples/rig2018.yaml --set 'gravity={direction: [0,-1,0], g: 1e308}'"));
     /* "LU pivot -7" before: the direction's norm overflowed; now the direction only */
     run_result r;
     run(&s, &r,
@@ -222,12 +211,12 @@ TEST(failed_runs_write_no_plot)
     const char *cmds[] = {"modal " CHEN, "static " CHEN, "campbell " CHEN " --speeds 0:1000rpm:3"};
     for (int k = 0; k < 3; k++) {
         snprintf(args, sizeof args, "%s --out /proc/nope --plot '%s'", cmds[k], plot);
-        CHECK(refused(&s, "/proc/nope", "is not a writable folder", args));
+        CHECK(run_refused(&s, "/proc/nope", "is not a writable folder", args));
         CHECK(!file_exists(plot));
     }
     snprintf(args, sizeof args, "modal " CHEN " --out '%s/same.svg' --plot '%s/./same.svg'", s.dir,
              s.dir);
-    CHECK(refused(&s, "name the same path", NULL, args));
+    CHECK(run_refused(&s, "name the same path", NULL, args));
     snprintf(plot, sizeof plot, "%s/same.svg", s.dir);
     CHECK(!file_exists(plot));
     scratch_close(&s);
@@ -257,15 +246,15 @@ TEST(names_messages_and_tables)
     free(duff);
     write_file(path, text);
     snprintf(args, sizeof args, "transient '%s' --duration 1 --record law:cubic:force", path);
-    CHECK(refused(&s, "laws[1].name: duplicate law name 'cubic' (first on line", NULL, args));
+    CHECK(run_refused(&s, "laws[1].name: duplicate law name 'cubic' (first on line", NULL, args));
     /* L3: LAPACK's "info -5" for a viscosity of 1e308 */
-    CHECK(refused(&s, "hold inf or NaN entries", "overflows",
-                  "campbell examples/journal_rotor.yaml --speeds 100:1000rpm:3 --set "
-                  "'laws.*.viscosity=1e308'"));
+    CHECK(run_refused(&s, "hold inf or NaN entries", "overflows",
+                      "campbell examples/journal_rotor.yaml --speeds 100:1000rpm:3 --set "
+                      "'laws.*.viscosity=1e308'"));
     /* L3: "speeds: values must be finite" for a --parameter continuation */
-    CHECK(refused(&s, "parameter: meshes.mesh.stiffness value 3 (inf) is not finite", NULL,
-                  "periodic " CHEN " --speeds 500:500:1 --harmonics 4 --parameter "
-                  "'meshes.mesh.stiffness=1e8:1e308:3'"));
+    CHECK(run_refused(&s, "parameter: meshes.mesh.stiffness value 3 (inf) is not finite", NULL,
+                      "periodic " CHEN " --speeds 500:500:1 --harmonics 4 --parameter "
+                      "'meshes.mesh.stiffness=1e8:1e308:3'"));
     /* L4: the Campbell summary's min logdec of modes without one */
     run_result r;
     run(&s, &r, "campbell examples/journal_rotor.yaml --speeds 100:3000rpm:4");
