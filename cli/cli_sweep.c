@@ -33,6 +33,16 @@ static const char *unit_of(const char *text)
     return end;
 }
 
+/* n points from `from` to `to`, both ends exact; (1 - t) a + t b never forms b - a, which
+ * overflows for finite ends such as -1e308:1e308 (issue 38). */
+void gd_cli_linspace(double from, double to, long n, double *out)
+{
+    for (long i = 0; i < n; i++) {
+        const double t = n > 1 ? (double)i / (double)(n - 1) : 0.0;
+        out[i] = n > 1 && i == n - 1 ? to : (1.0 - t) * from + t * to;
+    }
+}
+
 int gd_cli_parse_range(const char *cmd, const char *opt, const char *text, double **values,
                        int *count)
 {
@@ -70,8 +80,7 @@ int gd_cli_parse_range(const char *cmd, const char *opt, const char *text, doubl
         return gd_cli_usage_error(cmd, "%s: FROM equals TO: give COUNT 1 or a wider range", opt);
     double *v = malloc((size_t)n * sizeof *v);
     if (!v) return gd_cli_usage_error(cmd, "%s: out of memory for %ld points", opt, n);
-    for (long i = 0; i < n; i++)
-        v[i] = n == 1 ? from : from + (to - from) * (double)i / (double)(n - 1);
+    gd_cli_linspace(from, to, n, v);
     *values = v;
     *count = (int)n;
     return 0;

@@ -34,8 +34,7 @@ static int parse_param(const char *text, char *path, size_t psize, double **vals
     if (*end || n < 1 || n > 100000 || !isfinite(a) || !isfinite(b)) goto bad;
     *vals = malloc((size_t)n * sizeof **vals);
     if (!*vals) return GD_EXIT_FAIL;
-    for (long i = 0; i < n; i++)
-        (*vals)[i] = n > 1 ? a + (b - a) * (double)i / (double)(n - 1) : a;
+    gd_cli_linspace(a, b, n, *vals);
     *count = (int)n;
     return 0;
 bad:

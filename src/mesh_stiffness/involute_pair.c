@@ -108,6 +108,22 @@ gd_status gd_ms_external_gear(const gd_gear_pair_geometry *g, gd_gear_pair_deriv
         return gd_ms_geometry_fail(err, field, "give a bore/hub radius below root radius - module",
                                    msg);
     }
+    /* [Sainsot2004]'s fillet-foundation polynomials are fitted for 1.4 <= r_f / r_bore <= 7
+     * and grow without bound past it (helical_pair1: r_bore 1e-4 m gives 988 N/m, 1e-100 m
+     * zero, which the TVMS then reported as "a bug"): refused here, so the C API and the
+     * model reader say the same (issue 38 M7). */
+    if (!(rf / rbore <= 10.0)) {
+        snprintf(field, sizeof field, "%s.bore_radius", gn);
+        snprintf(msg, sizeof msg,
+                 "bore radius %g m is below a tenth of the root radius %g m: the "
+                 "fillet-foundation model [Sainsot2004] holds for root/bore radius ratios up to "
+                 "about 7",
+                 rbore, rf);
+        return gd_ms_geometry_fail(err, field,
+                                   "give the hub radius (at least a tenth of the root radius), or "
+                                   "leave bore_radius out (half the root radius)",
+                                   msg);
+    }
     return GD_OK;
 }
 

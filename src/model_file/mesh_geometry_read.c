@@ -235,35 +235,16 @@ static gd_status read_options(gd_yreader *r, const gd_ynode *s, const char *path
     return GD_OK;
 }
 
-/* Values the stiffness models cannot mean, refused at their keys (issue 38 M7: a bore
- * radius of 1e-300 m said "report this geometry as a bug", a contact-analysis load of
- * 1e308 N m "table values must be finite"):
- * - a bore radius below a tenth of the root radius: [Sainsot2004]'s fillet-foundation
- *   polynomials are fitted for 1.4 <= r_f / r_bore <= 7 and grow without bound past it
- *   (measured on helical_pair1: r_bore 1e-4 m gives 988 N/m, 1e-100 m zero);
+/* Values the stiffness models cannot mean, refused at their keys (issue 38 M7: a
+ * contact-analysis load of 1e308 N m said "table values must be finite"; the bore radius
+ * bound is gd_gear_pair_derive's, located by the caller):
  * - a contact-analysis normal load T / (r_b1 cos beta_b) above E b m_n (a tooth section
  *   b x m_n strained by 1), and a misalignment above the normal module. */
-static gd_status check_extremes(gd_yreader *r, const gd_ynode *g, const gd_ynode *s, const char *gp,
-                                const char *path, const gd_gear_pair_geometry *geom,
-                                const gd_gear_pair_derived *d, const gd_tvms_options *opt)
+static gd_status check_extremes(gd_yreader *r, const gd_ynode *s, const char *path,
+                                const gd_gear_pair_geometry *geom, const gd_gear_pair_derived *d,
+                                const gd_tvms_options *opt)
 {
-    static const char *const NAMES[2] = {"driver", "driven"};
     char p[200], q[200];
-    for (int i = 0; i < 2; i++) {
-        double rb = geom->gear[i].bore_radius;
-        if (rb > 0 && !(d->root_radius[i] / rb <= 10.0)) {
-            gd_ypath_key(q, sizeof q, gd_ypath_key(p, sizeof p, gp, NAMES[i]), "bore_radius");
-            const gd_ynode *gear = gd_ymap_get(g, NAMES[i]);
-            const gd_ynode *at = gear ? gd_ymap_get(gear, "bore_radius") : NULL;
-            return gd_yfail(r, at ? at : g, q,
-                            "give the hub radius (at least a tenth of the root radius), or "
-                            "leave bore_radius out (half the root radius)",
-                            "bore radius %g m is below a tenth of the root radius %g m: the "
-                            "fillet-foundation model [Sainsot2004] holds for root/bore radius "
-                            "ratios up to about 7",
-                            rb, d->root_radius[i]);
-        }
-    }
     if (!opt || !opt->contact_analysis || !s) return GD_OK;
     const double E = fmin(geom->gear[0].E, geom->gear[1].E), mn = geom->normal_module;
     const double fmax_n = E * geom->face_width * mn;
@@ -352,7 +333,7 @@ static gd_status read_pair(gd_yreader *r, const gd_ynode *root, const gd_ynode *
         gd_gear_pair_error_locate(r->file, mesh_map, path, e);
         return st;
     }
-    return check_extremes(r, g, s, gp, path, geom, &d, opt);
+    return check_extremes(r, s, path, geom, &d, opt);
 }
 
 gd_status gd_gear_pair_read(gd_yreader *r, const gd_ynode *root, const gd_ynode *mesh_map,

@@ -71,6 +71,24 @@ static gd_status frf_direct(const gd_system *sys, const gd_frf_options *opt,
     double *k = malloc((size_t)a.pat.nnz * sizeof *k), *d = malloc((size_t)a.pat.nnz * sizeof *d);
     int nomem = !k || !d;
     if (!nomem) gd_dynmat_at(&a, opt->speed, k, d);
+    /* Entries past 1e150 (no physical stiffness is near: steel contacts are 1e9-1e10 N/m)
+     * overflow in the factorisation, which then looked singular and printed "-" with exit 0
+     * for a mesh stiffness of 1e308 (issue 38). */
+    double big = 0;
+    for (int e = 0; !nomem && e < a.pat.nnz; e++)
+        big = isfinite(k[e]) && isfinite(d[e]) ? fmax(big, fmax(fabs(k[e]), fabs(d[e]))) : INFINITY;
+    if (!nomem && !(big <= 1e150)) {
+        free(k);
+        free(d);
+        gd_splu_symbolic_free(&sym);
+        gd_dynmat_free(&a);
+        return gd_error_set(err, GD_EINPUT, sys->model->file, 0, 0, "",
+                            "check the stiffness and damping values (and their units) for ones "
+                            "so large the solve overflows",
+                            "the dynamic stiffness at speed %g rad/s holds entries of %g, beyond "
+                            "1e150: the factorisation would overflow",
+                            opt->speed, big);
+    }
     int nt = opt->nthreads > 0 ? opt->nthreads : omp_get_max_threads();
 #pragma omp parallel num_threads(nt) if (!nomem)
     {

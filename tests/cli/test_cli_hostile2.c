@@ -251,21 +251,32 @@ TEST(names_messages_and_tables)
     CHECK(run_refused(&s, "hold inf or NaN entries", "overflows",
                       "campbell examples/journal_rotor.yaml --speeds 100:1000rpm:3 --set "
                       "'laws.*.viscosity=1e308'"));
-    /* L3: "speeds: values must be finite" for a --parameter continuation */
-    CHECK(run_refused(&s, "parameter: meshes.mesh.stiffness value 3 (inf) is not finite", NULL,
-                      "periodic " CHEN " --speeds 500:500:1 --harmonics 4 --parameter "
-                      "'meshes.mesh.stiffness=1e8:1e308:3'"));
-    /* L4: the Campbell summary's min logdec of modes without one */
+    /* L3: "speeds: values must be finite" for a --parameter continuation; then the
+     * spacing 1e8 + (1e308 - 1e8) * 2 / 2 itself overflowed: the last value is 1e308 */
     run_result r;
+    run(&s, &r,
+        "periodic " CHEN " --speeds 500:500:1 --harmonics 4 --parameter "
+        "'meshes.mesh.stiffness=1e8:1e308:3'");
+    CHECK(r.code == 1 && contains(r.err, "meshes.mesh.stiffness = 5e+307: Newton did not") &&
+          contains(r.err, "meshes.mesh.stiffness = 1e+308: Newton did not") &&
+          !contains(r.err, "inf") && !contains(r.out, "inf"));
+    run_free(&r);
+    /* L4: the Campbell summary's min logdec of modes without one */
     run(&s, &r, "campbell examples/journal_rotor.yaml --speeds 100:3000rpm:4");
     CHECK(r.code == 0 && contains(r.out, "min logdec") && !contains(r.out, " nan"));
     run_free(&r);
-    /* the FRF table at frequencies without a value (null in the JSON) */
+    /* a mesh stiffness of 1e308 overflowed the factorisation, which looked singular: exit 0
+     * with "-" in every row; now refused before the solve */
+    CHECK(run_refused(&s, "beyond 1e150", "overflows",
+                      "frf " CHEN " --freq 1:1000:3 --input gear_a.y --output gear_a.y --set "
+                      "'meshes.*.stiffness=1e308'"));
+    /* the FRF table at a frequency without a value (a rigid-body mode at 0 Hz): null in
+     * the JSON, - in the table, exit 0 */
     run(&s, &r,
-        "frf " CHEN " --freq 1:1000:3 --input gear_a.y --output gear_a.y --set "
-        "'meshes.*.stiffness=1e308'");
+        "frf examples/kumar2011_torsional.yaml --freq 0:1000:3 --input motor.rz --output "
+        "motor.rz");
     CHECK(r.code == 0 && contains(r.err, "null (JSON), - (tables)") && !contains(r.out, "nan") &&
-          contains(r.out, "1000             -           -"));
+          contains(r.out, "0             -           -"));
     if (r.code) show(&r);
     run_free(&r);
     scratch_close(&s);

@@ -627,6 +627,19 @@ TEST(bad_geometry_errors)
     g.gear[1].bore_radius = 0.029;
     CHECK(derive_err(&g, &err) == GD_EINPUT);
     CHECK_STR(err.field, "driven.bore_radius");
+    /* bore far below the fillet-foundation fit (issue 38 M7: through the C API a bore
+     * of 1e-300 m reached the TVMS and was reported as "a bug") */
+    pair_004(&g);
+    g.gear[0].bore_radius = 1e-300;
+    CHECK(derive_err(&g, &err) == GD_EINPUT);
+    CHECK_STR(err.field, "driver.bore_radius");
+    CHECK(strstr(err.message, "tenth of the root radius") != NULL);
+    gd_tvms_options o0;
+    gd_tvms_options_init(&o0);
+    gd_tvms_result *r0 = NULL;
+    CHECK(gd_tvms_compute(&g, &o0, &r0, &err) == GD_EINPUT && r0 == NULL);
+    CHECK_STR(err.field, "driver.bore_radius");
+    CHECK(strstr(err.hint, "bug") == NULL);
     pair_004(&g);
     g.gear[1].teeth = 8, g.gear[1].profile_shift = 1.2;
     CHECK(derive_err(&g, &err) == GD_EINPUT);
