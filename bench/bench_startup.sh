@@ -5,7 +5,8 @@
 # timer), and Python's `import geardyn` against `import numpy` (which it needs) and a
 # bare interpreter. Prints each time, its excess over the floor and the ratio to it.
 # The shared libraries each process maps are counted too (ldd): the dynamic loader is
-# most of a small run. One thread (OPENBLAS_NUM_THREADS=1, OMP_NUM_THREADS=1), as the
+# most of a small run, so the instructions of `geardyn --version` are counted too
+# (valgrind callgrind: the same on any machine, whatever else runs). One thread (OPENBLAS_NUM_THREADS=1, OMP_NUM_THREADS=1), as the
 # project's other benchmarks.
 # With a second build folder (e.g. one of an older commit), its program is timed too,
 # the runs of the two interleaved (the machine may be shared), and the ratio printed.
@@ -61,6 +62,28 @@ for label, args in [
     else:
         t = best([gd] + args)
         print("%-80s %7.2f ms  (floor + %6.2f ms, %5.1fx the floor)" % (label, t * 1e3, (t - floor) * 1e3, t / floor))
+
+# The instructions of `geardyn --version` (valgrind's callgrind, when installed): the same
+# count on any machine and under any load (a wall time on a shared machine is not), nearly
+# all of it the dynamic loader's binding of symbols.
+def instructions(prog):
+    try:
+        out = subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=/dev/null",
+                              prog, "--version"], capture_output=True, text=True)
+    except OSError:
+        return None
+    for line in out.stderr.splitlines():
+        if "Collected :" in line:
+            return int(line.split()[-1])
+    return None
+ni, nt = instructions(gd), instructions("/bin/true")
+if ni and nt:
+    line = "geardyn --version: %.2f million instructions (callgrind; /bin/true %.2f million)" % (
+        ni / 1e6, nt / 1e6)
+    no = instructions(os.path.join(OTHER, "geardyn")) if OTHER else None
+    if no:
+        line += "; %s: %.2f million, %.1fx this" % (OTHER, no / 1e6, no / ni)
+    print(line)
 
 # Python: the import alone, timed inside the interpreter (best of N processes)
 env = dict(os.environ, PYTHONPATH="python", GEARDYN_BUILD=B)
