@@ -21,7 +21,7 @@ gd_status gd_system_law_instance(const gd_system *s, int i, gd_law *L, gd_error 
         int node = side ? ml->node2 : ml->node; /* node2 < 0: ground */
         for (int k = 0; k < nd && node >= 0; k++) {
             gd_dof d = t->ndirs ? (gd_dof)t->dirs[k] : ml->dof;
-            int dof = gd_system_dof(s, node, d);
+            int dof = s->node_dof[6 * node + d]; /* node and d checked by the builder */
             if (dof < 0) {
                 char field[32];
                 snprintf(field, sizeof field, "laws[%d]", i);
