@@ -48,13 +48,14 @@ def best2(a, b):
                 tb = min(tb, t)
     return ta, tb
 
-for label, args in [
+RUNS = [
     ("geardyn --version", ["--version"]),
     ("geardyn check examples/kumar2011_coupled.yaml (8 DOFs)", ["check", "examples/kumar2011_coupled.yaml"]),
     ("geardyn modal examples/kumar2011_coupled.yaml (8 DOFs)", ["modal", "examples/kumar2011_coupled.yaml"]),
     ("geardyn modal examples/rig2018.yaml --speed 3000rpm (170 DOFs)", ["modal", "examples/rig2018.yaml", "--speed", "3000rpm"]),
     ("geardyn modal bench/models/rig366.yaml --speed 3000rpm --modes 12 (366 DOFs)", ["modal", "bench/models/rig366.yaml", "--speed", "3000rpm", "--modes", "12"]),
-]:
+]
+for label, args in RUNS:
     if OTHER:
         t, t2 = best2([gd] + args, [os.path.join(OTHER, "geardyn")] + args)
         print("%-80s %7.2f ms  (floor + %6.2f ms, %5.1fx the floor); %s: %7.2f ms, %.2fx this" % (
@@ -63,27 +64,29 @@ for label, args in [
         t = best([gd] + args)
         print("%-80s %7.2f ms  (floor + %6.2f ms, %5.1fx the floor)" % (label, t * 1e3, (t - floor) * 1e3, t / floor))
 
-# The instructions of `geardyn --version` (valgrind's callgrind, when installed): the same
-# count on any machine and under any load (a wall time on a shared machine is not), nearly
-# all of it the dynamic loader's binding of symbols.
-def instructions(prog):
+# The instructions of each run (valgrind's callgrind, when installed): the same count on
+# any machine and under any load (a wall time on a shared machine is not); for --version
+# and the 8-DOF runs nearly all of them the dynamic loader's binding of symbols.
+def instructions(cmd):
     try:
-        out = subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=/dev/null",
-                              prog, "--version"], capture_output=True, text=True)
+        out = subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=/dev/null"] + cmd,
+                             capture_output=True, text=True)
     except OSError:
         return None
     for line in out.stderr.splitlines():
         if "Collected :" in line:
             return int(line.split()[-1])
     return None
-ni, nt = instructions(gd), instructions("/bin/true")
-if ni and nt:
-    line = "geardyn --version: %.2f million instructions (callgrind; /bin/true %.2f million)" % (
-        ni / 1e6, nt / 1e6)
-    no = instructions(os.path.join(OTHER, "geardyn")) if OTHER else None
-    if no:
-        line += "; %s: %.2f million, %.1fx this" % (OTHER, no / 1e6, no / ni)
-    print(line)
+nt = instructions(["/bin/true"])
+if nt:
+    print("instructions (callgrind): /bin/true %.2f million" % (nt / 1e6))
+    for label, args in RUNS:
+        ni = instructions([gd] + args)
+        line = "  %-76s %8.2f million" % (label, ni / 1e6)
+        no = instructions([os.path.join(OTHER, "geardyn")] + args) if OTHER else None
+        if no:
+            line += "; %s: %8.2f million, %.1fx this" % (OTHER, no / 1e6, no / ni)
+        print(line)
 
 # Python: the import alone, timed inside the interpreter (best of N processes)
 env = dict(os.environ, PYTHONPATH="python", GEARDYN_BUILD=B)
