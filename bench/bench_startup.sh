@@ -2,10 +2,11 @@
 # Start-up and small problems (issue 35 item 2): the wall time of a whole process, best
 # of N runs, for `geardyn --version`, `check` and `modal` of small models, against
 # /bin/true measured the same way in the same run (the floor: fork, exec and the
-# timer), and Python's `import geardyn` against `import numpy` (which it needs) and a
-# bare interpreter. Prints each time, its excess over the floor and the ratio to it.
+# timer), and Python's `import geardyn` against `import numpy` (which it imports on
+# first use only). Prints each time, its excess over the floor and the ratio to it.
 # The shared libraries each process maps are counted too (ldd): the dynamic loader is
-# most of a small run. One thread (OPENBLAS_NUM_THREADS=1, OMP_NUM_THREADS=1), as the
+# most of a small run, so the instructions of `geardyn --version` are counted too
+# (valgrind callgrind: the same on any machine, whatever else runs). One thread (OPENBLAS_NUM_THREADS=1, OMP_NUM_THREADS=1), as the
 # project's other benchmarks.
 # With a second build folder (e.g. one of an older commit), its program is timed too,
 # the runs of the two interleaved (the machine may be shared), and the ratio printed.
@@ -47,13 +48,14 @@ def best2(a, b):
                 tb = min(tb, t)
     return ta, tb
 
-for label, args in [
+RUNS = [
     ("geardyn --version", ["--version"]),
     ("geardyn check examples/kumar2011_coupled.yaml (8 DOFs)", ["check", "examples/kumar2011_coupled.yaml"]),
     ("geardyn modal examples/kumar2011_coupled.yaml (8 DOFs)", ["modal", "examples/kumar2011_coupled.yaml"]),
     ("geardyn modal examples/rig2018.yaml --speed 3000rpm (170 DOFs)", ["modal", "examples/rig2018.yaml", "--speed", "3000rpm"]),
     ("geardyn modal bench/models/rig366.yaml --speed 3000rpm --modes 12 (366 DOFs)", ["modal", "bench/models/rig366.yaml", "--speed", "3000rpm", "--modes", "12"]),
-]:
+]
+for label, args in RUNS:
     if OTHER:
         t, t2 = best2([gd] + args, [os.path.join(OTHER, "geardyn")] + args)
         print("%-80s %7.2f ms  (floor + %6.2f ms, %5.1fx the floor); %s: %7.2f ms, %.2fx this" % (
@@ -61,6 +63,30 @@ for label, args in [
     else:
         t = best([gd] + args)
         print("%-80s %7.2f ms  (floor + %6.2f ms, %5.1fx the floor)" % (label, t * 1e3, (t - floor) * 1e3, t / floor))
+
+# The instructions of each run (valgrind's callgrind, when installed): the same count on
+# any machine and under any load (a wall time on a shared machine is not); for --version
+# and the 8-DOF runs nearly all of them the dynamic loader's binding of symbols.
+def instructions(cmd):
+    try:
+        out = subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=/dev/null"] + cmd,
+                             capture_output=True, text=True)
+    except OSError:
+        return None
+    for line in out.stderr.splitlines():
+        if "Collected :" in line:
+            return int(line.split()[-1])
+    return None
+nt = instructions(["/bin/true"])
+if nt:
+    print("instructions (callgrind): /bin/true %.2f million" % (nt / 1e6))
+    for label, args in RUNS:
+        ni = instructions([gd] + args)
+        line = "  %-76s %8.2f million" % (label, ni / 1e6)
+        no = instructions([os.path.join(OTHER, "geardyn")] + args) if OTHER else None
+        if no:
+            line += "; %s: %8.2f million, %.1fx this" % (OTHER, no / 1e6, no / ni)
+        print(line)
 
 # Python: the import alone, timed inside the interpreter (best of N processes)
 env = dict(os.environ, PYTHONPATH="python", GEARDYN_BUILD=B)
@@ -79,5 +105,5 @@ if tg is None:
     print("python import geardyn: not measured (%s; run 'make python')" % why)
 else:
     print("python import numpy:   %7.2f ms" % (tn * 1e3))
-    print("python import geardyn: %7.2f ms  (numpy included; geardyn's own %.2f ms)" % (tg * 1e3, (tg - tn) * 1e3))
+    print("python import geardyn: %7.2f ms  (numpy is imported on the first result array, python/geardyn/_numpy.py)" % (tg * 1e3))
 PY

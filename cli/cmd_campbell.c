@@ -1,10 +1,10 @@
 /* geardyn campbell MODEL --speeds FROM:TO:COUNT: Campbell diagram, critical speeds,
  * stability. */
-#include <cblas.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "geardyn/blas.h"
 #include "cli.h"
 #include "operating_point.h"
 #include "options.h"
@@ -362,7 +362,7 @@ int gd_cmd_campbell(int argc, char **argv)
         printf("tracking %d modes: every mode up to %.4g Hz (1.25 x the highest order at the top "
                "speed; --modes N to choose)\n",
                opt.nmodes, limit / (2 * PI));
-    openblas_set_num_threads(1); /* the sweep is parallel over speeds instead */
+    gd_blas_set_threads(1); /* the sweep is parallel over speeds instead */
     if (gd_campbell(s, &opt, &r, &err)) {
         rc = gd_cli_report(&err);
     } else {

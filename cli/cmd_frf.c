@@ -1,10 +1,10 @@
 /* geardyn frf MODEL --input WHAT --output WHAT --freq FROM:TO:COUNT: frequency
  * response functions, direct or by modal summation, and directional FRFs. */
-#include <cblas.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "geardyn/blas.h"
 #include "cli.h"
 #include "operating_point.h"
 #include "options.h"
@@ -168,7 +168,7 @@ int gd_cmd_frf(int argc, char **argv)
     opt.inputs = inputs;
     opt.outputs = probes;
     opt.noutputs = np;
-    openblas_set_num_threads(1); /* parallel over frequencies instead */
+    gd_blas_set_threads(1); /* parallel over frequencies instead */
     if (gd_frf(s, &opt, &r, &err)) {
         rc = gd_cli_report(&err);
         goto done;

@@ -1,6 +1,5 @@
 /* geardyn periodic MODEL --speeds FROM:TO:COUNT: periodic steady state by harmonic
  * balance or shooting with continuation and Floquet stability (docs/periodic.md). */
-#include <cblas.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -8,6 +7,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "geardyn/blas.h"
 #include "cli.h"
 #include "options.h"
 #include "geardyn/periodic.h"
@@ -779,7 +779,7 @@ int gd_cmd_periodic(int argc, char **argv)
         }
     }
     gd_load_options lo = gd_cli_load_options(&a.sets);
-    openblas_set_num_threads(1); /* small dense blocks: threads cost more than they give */
+    gd_blas_set_threads(1); /* small dense blocks: threads cost more than they give */
     rebuild_data rd = {file, &lo, ppath};
     /* --frequency: at the first of --speeds, or the model's speed */
     gd_periodic_param prm = {rebuild, &rd, ppath, sp ? sp[0] : m->speed, a.freq != NULL};

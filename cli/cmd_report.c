@@ -1,8 +1,8 @@
 /* geardyn report MODEL --out report.html: the whole study in one file. */
-#include <cblas.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "geardyn/blas.h"
 #include "cli.h"
 #include "options.h"
 #include "geardyn/report.h"
@@ -100,7 +100,7 @@ int gd_cmd_report(int argc, char **argv)
     if (speed && gd_cli_parse_speed(cmd, speed, &opt.speed)) {
         rc = GD_EXIT_INPUT;
     } else {
-        openblas_set_num_threads(1); /* the sweeps are parallel over points instead */
+        gd_blas_set_threads(1); /* the sweeps are parallel over points instead */
         gd_error err;
         gd_error_clear(&err);
         gd_plot *p = NULL;

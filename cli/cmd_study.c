@@ -8,11 +8,10 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "geardyn/blas.h"
 #include "cli.h"
 #include "options.h"
 #include "study_cli.h"
-
-void openblas_set_num_threads(int n);
 
 typedef struct study_shard {
     size_t i, n;
@@ -149,7 +148,7 @@ static int study_main(int argc, char **argv)
     gd_study *s;
     if (gd_study_load(file, &s, &err)) return gd_cli_report(&err);
     /* each case is single-threaded: the study is parallel over cases */
-    openblas_set_num_threads(1);
+    gd_blas_set_threads(1);
     int progress = !a.quiet && isatty(STDERR_FILENO);
     if (merge) rc = gd_study_merge(s, merge);
 #ifdef GD_WITH_MPI

@@ -1,10 +1,10 @@
 /* geardyn unbalance MODEL --speeds FROM:TO:COUNT: steady response to the model's
  * unbalances: amplitudes and phases, orbits, bearing and mesh forces, torsion. */
-#include <cblas.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "geardyn/blas.h"
 #include "cli.h"
 #include "operating_point.h"
 #include "options.h"
@@ -133,7 +133,7 @@ int gd_cmd_unbalance(int argc, char **argv)
     opt.noutputs = np;
     opt.orbit_nodes = orb;
     opt.norbits = nb;
-    openblas_set_num_threads(1);
+    gd_blas_set_threads(1);
     if (gd_unbalance_response(s, &opt, &r, &err)) {
         rc = gd_cli_report(&err);
         goto done;

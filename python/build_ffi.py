@@ -11,6 +11,7 @@ usage: python3 python/build_ffi.py [--include DIR] [--libdir DIR]
        (defaults: the checkout's include/ and build/; `make python` passes BUILD)
 """
 import argparse
+import compileall
 import os
 import sys
 import tempfile
@@ -537,6 +538,10 @@ def main():
         so = ffi.compile(tmpdir=tmp, verbose=False)
         dest = os.path.join(HERE, "geardyn", os.path.basename(so))
         os.replace(so, dest)
+    # The package's bytecode, as an installed package has it: without it every
+    # `import geardyn` compiles its sources again (PYTHONDONTWRITEBYTECODE, a read-only
+    # checkout), 5x the import's own time (issue 35: import <= 30 ms).
+    compileall.compile_dir(os.path.join(HERE, "geardyn"), quiet=1)
     print("build_ffi: %s (links %s/libgeardyn.so)" % (os.path.relpath(dest, ROOT), libdir))
 
 

@@ -49,6 +49,7 @@
 #include "geardyn/elements.h"
 #include "geardyn/system.h"
 #include "geardyn/sparse.h"
+#include "geardyn/blas.h"
 #include "geardyn/mesh_stiffness.h"
 #include "geardyn/modal.h"
 #include "geardyn/static.h"

@@ -67,6 +67,12 @@ GD_API void gd_system_free(gd_system *sys);
 
 /* Active DOF index of (node, dof), or -1. */
 GD_API int gd_system_dof(const gd_system *sys, int node, gd_dof dof);
+/* The instance of the model's law i (model->laws[i]) on the system's DOFs, with the
+ * rates and spins per unit reference speed: the one maker every analysis uses (the
+ * linear ones in gd_system_build, transient and periodic in the transient spec). A law
+ * on a direction that is not an active DOF is a located error (file, line, laws[i], the
+ * node and DOF). Thread-safe (reads sys only). */
+GD_API gd_status gd_system_law_instance(const gd_system *sys, int i, gd_law *law, gd_error *err);
 /* "node.dof" label of DOF i, e.g. "pinion.rz". */
 GD_API void gd_system_dof_label(const gd_system *sys, int i, char *buf, int size);
 

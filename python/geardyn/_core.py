@@ -8,7 +8,7 @@ result object) is collected.
 """
 import math
 
-import numpy as np
+from ._numpy import np
 
 from ._native import ffi, lib
 
@@ -157,12 +157,12 @@ def field_view(owner, pointer, count, struct, name):
     return np.asarray(_Memory(owner, address, 0, False, base.str, shape, strides))
 
 
-def view(owner, pointer, shape, dtype=np.float64, order="C", writable=False):
+def view(owner, pointer, shape, dtype="f8", order="C", writable=False):
     """numpy array of the C memory at pointer (no copy), of the given shape and dtype,
     row-major ("C") or column-major ("F"); owner is kept alive by the array. The array
     interface describes the final array directly (not bytes viewed as dtype), so its
     base has its size: scipy copies arrays that view a base twice their size."""
-    dtype = np.dtype(dtype)
+    dtype = dtype.dtype if isinstance(dtype, StructDtype) else np.dtype(dtype)
     shape = (int(shape),) if isinstance(shape, int) else tuple(int(s) for s in shape)
     count = math.prod(shape)
     if pointer == ffi.NULL or count == 0:
@@ -177,16 +177,30 @@ def view(owner, pointer, shape, dtype=np.float64, order="C", writable=False):
     return np.asarray(_Memory(owner, address, 0, writable, dtype.str, shape, strides))
 
 
+class StructDtype:
+    """numpy structured dtype laid out exactly as a C struct, made on first use (numpy is
+    imported on first use, _numpy.py): `names` without numpy, `dtype` the numpy dtype,
+    whose other attributes (fields, itemsize) it answers too."""
+
+    def __init__(self, ctype, fields):
+        self.names = tuple(fields)
+        self._spec = {"names": list(fields), "formats": list(fields.values()),
+                      "offsets": [ffi.offsetof(ctype, name) for name in fields],
+                      "itemsize": ffi.sizeof(ctype)}
+
+    def __getattr__(self, name):
+        if name == "dtype":
+            self.dtype = np.dtype(self._spec)
+            return self.dtype
+        if name.startswith("__"):
+            raise AttributeError(name)
+        return getattr(self.dtype, name)
+
+
 def struct_dtype(ctype, fields):
-    """numpy structured dtype laid out exactly as C struct ctype, for the given fields
-    (name -> numpy type, or (numpy type, shape)); the rest is padding."""
-    names_, formats, offsets = [], [], []
-    for name, fmt in fields.items():
-        names_.append(name)
-        formats.append(fmt)
-        offsets.append(ffi.offsetof(ctype, name))
-    return np.dtype({"names": names_, "formats": formats, "offsets": offsets,
-                     "itemsize": ffi.sizeof(ctype)})
+    """The structured dtype laid out exactly as C struct ctype, for the given fields
+    (name -> numpy type, or (numpy type, shape)); the rest is padding (a StructDtype)."""
+    return StructDtype(ctype, fields)
 
 
 def struct_view(owner, pointer, shape, dtype):
@@ -194,7 +208,7 @@ def struct_view(owner, pointer, shape, dtype):
     return view(owner, pointer, shape, dtype)
 
 
-_ENUM = np.dtype("i%d" % ffi.sizeof("gd_whirl"))
+_ENUM = "i%d" % ffi.sizeof("gd_whirl")  # a dtype string: numpy is imported on first use
 MODE_DTYPE = struct_dtype("gd_mode", {
     "lambda_re": "f8", "lambda_im": "f8", "omega_n": "f8", "omega_d": "f8",
     "frequency_hz": "f8", "damping_ratio": "f8", "log_decrement": "f8",

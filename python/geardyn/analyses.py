@@ -9,7 +9,7 @@ left, H, response) are made from them (a copy: numpy complex arrays interleave).
 import math
 import threading
 
-import numpy as np
+from ._numpy import np
 
 from . import _core
 from ._core import ffi, lib, check, new_error, cstr, quantity, model_error, whole
@@ -94,7 +94,7 @@ class _Result:
         from . import figures
         return figures.public_names(self)
 
-    def _view(self, ptr, shape, dtype=np.float64, order="C"):
+    def _view(self, ptr, shape, dtype="f8", order="C"):
         return _core.view(self._owner, ptr, shape, dtype, order)
 
 

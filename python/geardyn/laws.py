@@ -23,7 +23,7 @@ Python again (never a silent zero), the C side stops at the first non-finite for
 (the integrators' error return, the Newton solvers' failed step), and the exception is
 raised again when the analysis returns.
 """
-import numpy as np
+from ._numpy import np
 
 from ._core import ffi, lib, check, new_error, model_error, DOF_NAMES
 

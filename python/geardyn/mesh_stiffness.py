@@ -3,7 +3,7 @@ gd_tvms_compute, as `geardyn mesh-stiffness`; the loaded tooth contact analysis
 (gd_ltca_compute, `--load`) and the Harris map (gd_ltca_map_compute, `--load-range`)."""
 import os
 
-import numpy as np
+from ._numpy import np
 
 from ._core import ffi, lib, check, new_error, cstr, quantity, model_error
 from .analyses import _Result, _pandas
@@ -178,7 +178,7 @@ class ContactAnalysisResult(_Result):
             setattr(self, k, float(getattr(r, k)))
         self.contact_ratio_total = float(r.geom.contact_ratio_total)
 
-    def _n(self, name, dtype=np.float64):
+    def _n(self, name, dtype="f8"):
         return self._view(getattr(self._owner, name), self.n, dtype)
 
     angle_rad = property(lambda self: self._n("angle_rad"))
@@ -226,7 +226,7 @@ class HarrisMapResult(_Result):
         self.file, self.mesh = file, mesh
         self.nloads, self.points = int(owner.nloads), int(owner.points)
 
-    def _l(self, name, dtype=np.float64):
+    def _l(self, name, dtype="f8"):
         return self._view(getattr(self._owner, name), self.nloads, dtype)
 
     torque = property(lambda self: self._l("torque"))

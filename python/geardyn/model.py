@@ -4,7 +4,7 @@ import collections
 import copy
 import os
 
-import numpy as np
+from ._numpy import np
 
 from . import _core
 from . import analyses as _analyses

@@ -1,7 +1,7 @@
 """Periodic steady state by harmonic balance (docs/periodic.md): gd_periodic_run over a
 speed range with pseudo-arclength continuation, Floquet stability and bifurcations, with
 the record specs and the defaults of `geardyn periodic`."""
-import numpy as np
+from ._numpy import np
 
 from . import _core
 from ._core import ffi, lib, check, new_error, cstr, model_error, whole

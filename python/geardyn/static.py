@@ -2,7 +2,7 @@
 loads, an input torque and gravity; shaft deflection and slope, bearing reactions, mesh
 forces and misalignment. One C call (gd_static_run, the GIL released); the arrays are
 numpy views of the C result (no copy)."""
-import numpy as np
+from ._numpy import np
 
 from . import _core
 from ._core import ffi, lib, check, new_error, cstr, quantity, model_error

@@ -5,7 +5,7 @@ and bounded Levenberg-Marquardt updating of --set values to the measured frequen
 Every result holds numpy arrays a user can plot."""
 import os
 
-import numpy as np
+from ._numpy import np
 
 from . import _core
 from ._core import ffi, lib, check, new_error, cstr

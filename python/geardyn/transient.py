@@ -2,7 +2,7 @@
 gd_transient_run, with the record specs and the defaults of `geardyn transient`."""
 import math
 
-import numpy as np
+from ._numpy import np
 
 from . import _core
 from ._core import ffi, lib, check, new_error, cstr, quantity, model_error

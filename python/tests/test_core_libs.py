@@ -36,3 +36,32 @@ def test_modal_tol_and_residuals(geardyn):
     assert np.allclose(sp.omega_n, de.omega_n, rtol=1e-10, atol=0)
     with pytest.raises(geardyn.ModelError):
         rig.modal(tol=0)
+
+
+def test_import_leaves_numpy_for_the_first_array():
+    """`import geardyn` imports no numpy (issue 35: numpy's import is ~9x the package's
+    own, in instructions): loading and checking a model needs none; the first result
+    array imports it, and the structured views (modes) are laid out as the C records."""
+    import os
+    import subprocess
+    import sys
+    from conftest import ROOT
+    code = ("import sys, geardyn\n"
+            "assert 'numpy' not in sys.modules, 'import geardyn imported numpy'\n"
+            "m = geardyn.load(%r)\n"
+            "assert 'numpy' not in sys.modules, 'load imported numpy'\n"
+            "r = m.modal()\n"
+            "import numpy as np\n"
+            "assert isinstance(r.frequency_hz, np.ndarray)\n"
+            "assert r.modes.dtype.itemsize == geardyn.ffi.sizeof('gd_mode')\n"
+            "assert np.array_equal(r.modes['frequency_hz'], r.frequency_hz)\n"
+            "print(geardyn.version())\n" % example("kumar2011_coupled"))
+    env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "python"))
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == geardyn_version()
+
+
+def geardyn_version():
+    import geardyn
+    return geardyn.version()

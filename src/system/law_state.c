@@ -24,48 +24,23 @@
 
 #include "system/system_impl.h"
 
-/* Nominal speed of a DOF's shaft per unit reference speed (a torsional DOF's rate). */
-static double shaft_ratio(const gd_system *s, int dof)
-{
-    const gd_model *m = s->model;
-    return m->shafts[m->nodes[s->dof_node[dof]].shaft].speed_ratio;
-}
-
-int gd_system_make_laws(gd_system *s)
+gd_status gd_system_make_laws(gd_system *s, gd_error *err)
 {
     const gd_model *m = s->model;
     s->nlaws = 0;
     s->law_block = 0;
-    if (!m->nlaws) return 0;
+    if (!m->nlaws) return GD_OK;
     s->laws = calloc((size_t)m->nlaws, sizeof *s->laws);
-    if (!s->laws) return 1;
+    if (!s->laws) return gd_error_set(err, GD_ENOMEM, m->file, 0, 0, "", "", "out of memory");
     for (int i = 0; i < m->nlaws; i++) {
-        const gd_model_law *ml = &m->laws[i];
-        const gd_law_type *t = ml->type;
-        if (!t->linearize) continue;
         gd_law *L = &s->laws[s->nlaws];
-        gd_law_init(L, t, ml->name);
-        memcpy(L->value, ml->value, sizeof L->value);
-        int nd = t->ndirs ? t->ndirs : 1, whole = 1;
-        for (int side = 0; side < (t->two_nodes ? 2 : 1); side++) {
-            int node = side ? ml->node2 : ml->node;
-            for (int k = 0; k < nd && node >= 0; k++) {
-                gd_dof d = t->ndirs ? (gd_dof)t->dirs[k] : ml->dof;
-                int dof = s->node_dof[6 * node + d];
-                if (dof < 0) whole = 0; /* a direction the model does not keep */
-                L->dof[side * nd + k] = dof;
-            }
-            int d0 = L->dof[side * nd];
-            L->spin[side] = d0 >= 0 ? shaft_ratio(s, d0) : 0.0; /* per unit speed */
-        }
-        if (!whole) continue; /* left out, as the model's DOFs leave it out */
-        for (int j = 0; j < L->ndofs; j++)
-            L->rate[j] =
-                L->dof[j] >= 0 && s->dof_type[L->dof[j]] == GD_RZ ? shaft_ratio(s, L->dof[j]) : 0.0;
+        gd_status st = gd_system_law_instance(s, i, L, err);
+        if (st) return st;
+        if (!L->type->linearize) continue; /* checked, but no part of K and D */
         s->law_block += L->ndofs * L->ndofs;
         s->nlaws++;
     }
-    return 0;
+    return GD_OK;
 }
 
 /* Instance i at reference speed W: rates and spins scaled. */

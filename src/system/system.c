@@ -192,9 +192,9 @@ gd_status gd_system_build(const gd_model *m, gd_system **out, gd_error *err)
     if (gd_trip_compress(&as.M, s->node_dof, n, &s->M) ||
         gd_trip_compress(&as.K, s->node_dof, n, &s->K) ||
         gd_trip_compress(&as.C, s->node_dof, n, &s->C) ||
-        gd_trip_compress(&as.G, s->node_dof, n, &s->G) || build_instances(s) ||
-        gd_system_make_laws(s))
+        gd_trip_compress(&as.G, s->node_dof, n, &s->G) || build_instances(s))
         goto nomem;
+    if (gd_system_make_laws(s, err)) goto fail;
     for (int j = 0; j < n; j++) {
         int has = 0;
         for (int k = s->M.colptr[j]; k < s->M.colptr[j + 1]; k++)

@@ -40,10 +40,11 @@ int gd_dynmat_factor_at(const gd_dynmat *a, const gd_splu_symbolic *s, const dou
 void gd_system_dense_linear(const gd_system *sys, double speed, double *M, double *D, double *K);
 
 /* ---- law_state.c: the laws of the registry in the linear analyses ---- */
-/* sys->laws from the model's laws with a linearisation (rates and spins per unit
- * reference speed); a law on a direction the model does not keep is left out. 0 ok, 1
- * out of memory. */
-int gd_system_make_laws(gd_system *sys);
+/* sys->laws from the model's laws with a linearisation, made by gd_system_law_instance
+ * (rates and spins per unit reference speed); every law's DOFs are checked there, the
+ * ones without a linearisation too: a law on a direction that is not an active DOF is
+ * its located error. */
+gd_status gd_system_make_laws(gd_system *sys, gd_error *err);
 /* f (ndof, zeroed here): the model's excitation loads at their mean (if loads) and
  * gravity on the masses (if gravity): the static analysis's mean load. */
 void gd_system_mean_loads(const gd_system *sys, int loads, int gravity, double *f);

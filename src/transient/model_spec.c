@@ -155,29 +155,8 @@ gd_status gd_transient_model_build(const gd_system *sys, gd_transient_model **ou
         st = oom(err);
         goto fail;
     }
-    for (int i = 0; i < m->nlaws; i++) {
-        const gd_model_law *ml = &m->laws[i];
-        const gd_law_type *t = ml->type;
-        gd_law *L = &tm->laws[i];
-        gd_law_init(L, t, ml->name);
-        memcpy(L->value, ml->value, sizeof L->value);
-        int nd = t->ndirs ? t->ndirs : 1;
-        for (int side = 0; side < (t->two_nodes ? 2 : 1); side++) {
-            int node = side ? ml->node2 : ml->node;
-            for (int k = 0; k < nd && node >= 0; k++) {
-                gd_dof d = t->ndirs ? (gd_dof)t->dirs[k] : ml->dof;
-                int dof = gd_system_dof(sys, node, d);
-                if (dof < 0) {
-                    char field[96], what[GD_NAME_MAX + 32];
-                    snprintf(field, sizeof field, "laws[%d]", i);
-                    snprintf(what, sizeof what, "law '%s' (%s)", ml->name, t->name);
-                    st = inactive_dof(m, ml->loc, field, what, node, d, err);
-                    goto fail;
-                }
-                L->dof[side * nd + k] = dof;
-            }
-        }
-    }
+    for (int i = 0; i < m->nlaws; i++) /* the one maker, the one rule (law_instance.c) */
+        if ((st = gd_system_law_instance(sys, i, &tm->laws[i], err))) goto fail;
     sp->laws = tm->laws;
     sp->nlaws = m->nlaws;
 

@@ -75,6 +75,31 @@ TEST(law_errors_exit_2)
     scratch_close(&s);
 }
 
+/* One rule from a model's laws to their instances (issue 35 item 5): a law on a DOF the
+ * model does not keep is the same located error in every analysis (modal and static
+ * left it out without a word, transient and periodic refused it). */
+TEST(law_on_a_missing_dof_is_the_same_error_everywhere)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    char path[600], args[800];
+    snprintf(path, sizeof path, "%s/lost.yaml", s.dir);
+    write_file(path, "dofs: [x]\nshafts:\n  - {name: s, nodes: [{name: m}]}\n"
+                     "disks:\n  - {name: m, node: m, mass: 1}\n"
+                     "springs:\n  - {name: k, node: m, dof: x, stiffness: 1}\n"
+                     "laws:\n  - {type: polynomial_spring, name: side, node: m, dof: y, k3: 1}\n");
+    const char *runs[] = {"modal %s", "static %s", "campbell %s --speeds 0:10:2",
+                          "transient %s --duration 1", "periodic %s --speeds 1:1:1"};
+    for (size_t i = 0; i < sizeof runs / sizeof runs[0]; i++) {
+        snprintf(args, sizeof args, runs[i], path);
+        CHECK(run_fails_cleanly(&s, args,
+                                "lost.yaml:9:5: laws[0]: law 'side' (polynomial_spring) acts on "
+                                "m.y, which is not an active DOF of the model",
+                                "keep the DOF type in 'dofs:'"));
+    }
+    scratch_close(&s);
+}
+
 /* The linear analyses linearise the laws (docs/laws.md, "Laws in the linear analyses"):
  * the Duffing oscillator's damper (0.05 N s/m on 1 kg, 1 N/m) gives zeta = 0.025 in
  * modal, and campbell finds the oil whirl of the journal rotor at the short-bearing
@@ -97,4 +122,4 @@ TEST(laws_in_modal_and_campbell)
 }
 
 RUN_TESTS(T(check_lists_the_laws), T(law_records_in_transient_and_periodic), T(law_errors_exit_2),
-          T(laws_in_modal_and_campbell))
+          T(law_on_a_missing_dof_is_the_same_error_everywhere), T(laws_in_modal_and_campbell))

@@ -27,7 +27,7 @@ declare -A level=(
 declare -A header=(
     [error.h]=core [units.h]=core [version.h]=core [export.h]=core
     [testdata.h]=testdata [ema.h]=ema [correlate.h]=correlate
-    [sparse.h]=linalg [mesh_stiffness.h]=mesh_stiffness [spectrum.h]=signal [cycles.h]=signal [rattle.h]=signal
+    [sparse.h]=linalg [blas.h]=linalg [mesh_stiffness.h]=mesh_stiffness [spectrum.h]=signal [cycles.h]=signal [rattle.h]=signal
     [laws.h]=laws [law_type.h]=laws [bearing_geometry.h]=laws [reynolds.h]=laws
     [model.h]=model [material.h]=model [builder.h]=model [planetary.h]=model
     [model_file.h]=model_file [bearing_table.h]=model_file [elements.h]=elements
