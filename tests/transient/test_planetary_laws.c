@@ -296,7 +296,7 @@ TEST(periodic_against_transient)
                            {GD_REC_MESH_FORCE, f.m->nmeshes + 0, 0}}; /* lp.sun_mesh1 */
     gd_periodic_options po;
     gd_periodic_options_init(&po);
-    po.harmonics = 12;
+    po.harmonics = 24;
     po.stability = 0;
     gd_periodic_result *pr = NULL;
     REQUIRE(!gd_periodic_run(f.s, &sp, NULL, &speed, 1, &po, rec, 2, &pr, &err));
