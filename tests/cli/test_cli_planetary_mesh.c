@@ -76,22 +76,58 @@ TEST(check_prints_phases_and_contact_ratios)
     scratch_close(&s);
 }
 
+/* examples/planetary_phasing.yaml's set with more keys (%s) */
+static void write_bad(scratch *s, const char *more, char *path, size_t size)
+{
+    char *base = read_file(PH), text[8192];
+    snprintf(text, sizeof text, "%s%s", base ? base : "", more);
+    free(base);
+    snprintf(path, size, "%s/bad.yaml", s->dir);
+    write_file(path, text);
+}
+
+/* examples/planetary_mesh_laws.yaml with `from` replaced by `to`: refused with `what` */
+static int geometry_refused(scratch *s, const char *from, const char *to, const char *what)
+{
+    char *base = read_file("examples/planetary_mesh_laws.yaml"), text[8192], path[300], args[400];
+    char *at = base ? strstr(base, from) : NULL;
+    if (!at) {
+        free(base);
+        return 0;
+    }
+    snprintf(text, sizeof text, "%.*s%s%s", (int)(at - base), base, to, at + strlen(from));
+    free(base);
+    snprintf(path, sizeof path, "%s/geo.yaml", s->dir);
+    write_file(path, text);
+    snprintf(args, sizeof args, "check %s", path);
+    return run_refused(s, what, "geo.yaml:", args);
+}
+
 TEST(bad_inputs)
 {
     scratch s;
     REQUIRE(scratch_open(&s));
-    CHECK(run_refused(&s, "no planetary set 'xx'", NULL,
-                      "frf " PH
-                      " --input planetary:xx:sun_mesh:1 --output sun.x --freq 1000:2000:2"));
-    CHECK(run_refused(&s, "unknown mesh kind", NULL,
-                      "frf " PH
-                      " --input planetary:lp:planet:1 --output sun.x --freq 1000:2000:2"));
-    CHECK(run_refused(&s, "harmonic", NULL,
-                      "frf " PH
-                      " --input planetary:lp:sun_mesh:0 --output sun.x --freq 1000:2000:2"));
-    CHECK(run_refused(&s, "need its teeth", NULL,
-                      "frf examples/planetary_lin_parker.yaml --input planetary:lp:sun_mesh:1 "
-                      "--output sun.x --freq 1000:2000:2"));
+    static const char *const BAD[][2] = {
+        {"    geometry: {module: 3 mm, face_width: 30 mm}\n",
+         "pressure_angle given with the tooth geometry"},
+        {"    mesh_phases: {sun: [0, 0.25, 0.5]}\n", "3 phases for 4 planets"},
+        {"    mesh_phases: {sun: [0, 0.25, 0.5, 1.2]}\n", "mesh phase 1.2 is not in [0, 1)"},
+        {"    mesh_phases: {sun_ring: 1.5}\n", "sun-ring phase 1.5 is not in [0, 1)"},
+        {"    mesh_laws: {sun: {backlash: {gap: -1 um}}}\n", "gap"},
+        {"    mesh_laws: {sun: {stiffness: 3}}\n", "stiffness"},
+    };
+    for (size_t i = 0; i < sizeof BAD / sizeof BAD[0]; i++) {
+        char path[300], args[400];
+        write_bad(&s, BAD[i][0], path, sizeof path);
+        snprintf(args, sizeof args, "check %s", path);
+        CHECK(run_refused(&s, BAD[i][1], "bad.yaml:", args));
+    }
+    /* with the geometry: a sun shift that moves only the sun-planet centre distance; a
+       carrier radius given too */
+    CHECK(geometry_refused(&s, "face_width: 30 mm}",
+                           "face_width: 30 mm, profile_shift: {sun: 0.3}}", "centre distance"));
+    CHECK(geometry_refused(&s, "    geometry:", "    carrier_radius: 100 mm\n    geometry:",
+                           "carrier radius given with the tooth geometry"));
     scratch_close(&s);
 }
 
