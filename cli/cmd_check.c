@@ -29,6 +29,35 @@ static double input_ratio(const gd_model *m, const gd_planetary *g,
     return k->input < 0 ? 0 : m->shafts[m->nodes[g->member[k->input].node].shaft].speed_ratio;
 }
 
+/* +1 when the sun turns counterclockwise relative to the carrier at the model's speeds
+ * (the sense [ParkerLin2004]'s phases take), -1 clockwise; +1 when it does not turn. */
+static int sun_direction(const gd_model *m, const gd_planetary *g)
+{
+    double rel = m->shafts[m->nodes[g->member[GD_PLANETARY_SUN].node].shaft].speed_ratio -
+                 m->shafts[m->nodes[g->member[GD_PLANETARY_CARRIER].node].shaft].speed_ratio;
+    return rel < 0 ? -1 : 1;
+}
+
+/* Each mesh kind's contact ratio (tooth geometry), stiffness, law and each planet's
+ * phase (docs/planetary.md, "Meshes from geometry", "Meshes as laws"). */
+static void print_planetary_meshes(const gd_model *m, const gd_planetary *g)
+{
+    static const char *const KIND[2] = {"sun-planet ", "ring-planet"};
+    for (int k = 0; k < 2; k++) {
+        const gd_planetary_mesh_law *l = &g->mesh_law[k];
+        printf("  %s k %.6g N/m", KIND[k], g->mesh_stiffness[k]);
+        if (g->contact_ratio[k] > 0) printf(", contact ratio %.4f", g->contact_ratio[k]);
+        if (l->active)
+            printf(", law: %s%s", l->tvms ? "TVMS" : "constant k", l->backlash ? ", backlash" : "");
+        if (g->teeth[0] > 0) {
+            printf(", phases");
+            for (int n = 0; n < g->nplanets; n++)
+                printf(" %.4f", gd_planetary_mesh_phase(g, k, n, sun_direction(m, g)));
+        }
+        printf("\n");
+    }
+}
+
 /* Each planetary set: members, spacing, ratios, mesh frequency, assembly
  * (docs/planetary.md). */
 static void print_planetary(const gd_model *m)
@@ -72,6 +101,7 @@ static void print_planetary(const gd_model *m)
             if (g->equally_spaced) printf("; Z_s / N = %.6g", k.sun_teeth_per_planet);
             printf("\n");
         }
+        print_planetary_meshes(m, g);
     }
 }
 
@@ -109,6 +139,22 @@ static cJSON *planetary_json(const gd_model *m)
             cJSON_AddNullToObject(j, "assembles");
         else
             cJSON_AddBoolToObject(j, "assembles", k.assembles);
+        cJSON *ms = cJSON_AddArrayToObject(j, "meshes");
+        for (int q = 0; q < 2; q++) {
+            cJSON *e = cJSON_CreateObject();
+            cJSON_AddStringToObject(e, "kind", q ? "ring-planet" : "sun-planet");
+            cJSON_AddItemToObject(e, "stiffness", gd_cli_json_number(g->mesh_stiffness[q]));
+            if (g->contact_ratio[q] > 0)
+                cJSON_AddItemToObject(e, "contact_ratio", gd_cli_json_number(g->contact_ratio[q]));
+            else
+                cJSON_AddNullToObject(e, "contact_ratio");
+            cJSON_AddBoolToObject(e, "law", g->mesh_law[q].active);
+            cJSON *ph = cJSON_AddArrayToObject(e, "phases");
+            for (int n = 0; n < g->nplanets && g->teeth[0] > 0; n++)
+                cJSON_AddItemToArray(
+                    ph, gd_cli_json_number(gd_planetary_mesh_phase(g, q, n, sun_direction(m, g))));
+            cJSON_AddItemToArray(ms, e);
+        }
         cJSON_AddItemToArray(a, j);
     }
     return a;

@@ -53,15 +53,64 @@ static const gd_cli_command CMD = {
     .name = "frf",
     .args = "MODEL.yaml",
     .opts = OPTS,
-    .about = "Response to a unit harmonic force or moment. Inputs:\n"
-             "  NODE.DOF, node:NODE.DOF  force (x, y, z) or moment (rx, ry, rz) at a node, e.g. "
-             "pinion.y\n"
-             "  torque:NODE              torque about the shaft axis (= NODE.rz)\n"
-             "  NODE.xy                  directional FRFs: forward and backward (outputs NODE.xy "
-             "too)\n"
-             "Outputs (repeat --output):\n"
-             "  NODE.DOF, node:NODE.DOF  displacement (or velocity/acceleration, --type)\n",
+    .about =
+        "Response to a unit harmonic force or moment. Inputs:\n"
+        "  NODE.DOF, node:NODE.DOF  force (x, y, z) or moment (rx, ry, rz) at a node, e.g. "
+        "pinion.y\n"
+        "  torque:NODE              torque about the shaft axis (= NODE.rz)\n"
+        "  NODE.xy                  directional FRFs: forward and backward (outputs NODE.xy "
+        "too)\n"
+        "  planetary:SET:sun_mesh:L  planetary set SET's sun-planet (or ring_mesh) meshes at mesh\n"
+        "                           harmonic L, each planet's phase applied, per unit\n"
+        "                           transmission error\n"
+        "Outputs (repeat --output):\n"
+        "  NODE.DOF, node:NODE.DOF  displacement (or velocity/acceleration, --type)\n",
     .probes = 1};
+
+/* --input planetary:SET:sun_mesh:L (or ring_mesh): planetary set SET's phased mesh
+ * excitation at mesh harmonic L per unit static transmission error (docs/planetary.md,
+ * "Planet phasing"). 0 and *re set (the caller frees re, im) when it is one, 0 and *re
+ * NULL when text is another input, else the exit code of a usage error. */
+static int planetary_input(const char *cmd, const gd_system *s, const char *text, double **re,
+                           double **im, char *label, size_t cap)
+{
+    *re = *im = NULL;
+    if (strncmp(text, "planetary:", 10)) return 0;
+    const gd_model *m = s->model;
+    char buf[256], *kind, *harm;
+    snprintf(buf, sizeof buf, "%s", text + 10);
+    if (!(kind = strchr(buf, ':')) || !(harm = strchr(kind + 1, ':')))
+        return gd_cli_usage_error(cmd,
+                                  "--input '%s': write planetary:SET:sun_mesh:L or "
+                                  "planetary:SET:ring_mesh:L (L the mesh harmonic, 1, 2, ...)",
+                                  text);
+    *kind++ = 0;
+    *harm++ = 0;
+    int set = -1;
+    for (int i = 0; i < m->nplanetary; i++)
+        if (!strcmp(m->planetary[i].name, buf)) set = i;
+    if (set < 0)
+        return gd_cli_usage_error(cmd, "--input '%s': the model has no planetary set '%s'%s", text,
+                                  buf, m->nplanetary ? "" : " (it has none)");
+    int ring = !strcmp(kind, "ring_mesh");
+    if (!ring && strcmp(kind, "sun_mesh"))
+        return gd_cli_usage_error(
+            cmd, "--input '%s': unknown mesh kind '%s' (sun_mesh or ring_mesh)", text, kind);
+    char *end;
+    long l = strtol(harm, &end, 10);
+    if (*end || end == harm || l < 1 || l > 1000)
+        return gd_cli_usage_error(
+            cmd, "--input '%s': the harmonic '%s' is not a whole number from 1 to 1000", text,
+            harm);
+    *re = calloc((size_t)(s->ndof > 0 ? s->ndof : 1), sizeof **re);
+    *im = calloc((size_t)(s->ndof > 0 ? s->ndof : 1), sizeof **im);
+    if (!*re || !*im) return GD_EXIT_FAIL;
+    gd_error err;
+    if (gd_planetary_mesh_excitation(s, set, (int)l, ring, *re, *im, &err))
+        return gd_cli_report(&err);
+    snprintf(label, cap, "%s", text);
+    return 0;
+}
 
 int gd_cmd_frf(int argc, char **argv)
 {
@@ -113,15 +162,22 @@ int gd_cmd_frf(int argc, char **argv)
     opt.speed = m->speed;
     gd_frf_result *r = NULL;
     gd_series *ser = NULL;
-    double *dirbuf = NULL;
+    double *dirbuf = NULL, *load_re = NULL, *load_im = NULL;
     int nser = 0;
     if (speed && gd_cli_parse_speed(cmd, speed, &opt.speed)) {
         rc = GD_EXIT_INPUT;
         goto done;
     }
     if ((rc = gd_cli_operating_apply(s, &a.op, opt.speed, 1))) goto done;
-    if ((rc = gd_cli_parse_input(cmd, s, input, &inputs[0], &xy, inlabel, sizeof inlabel)))
+    if ((rc = planetary_input(cmd, s, input, &load_re, &load_im, inlabel, sizeof inlabel)))
         goto done;
+    if (load_re) {
+        inputs[0] = 0; /* the first DOF the load acts on, for the plot's label */
+        for (int i = s->ndof - 1; i >= 0; i--)
+            if (load_re[i] != 0 || load_im[i] != 0) inputs[0] = i;
+    } else if ((rc = gd_cli_parse_input(cmd, s, input, &inputs[0], &xy, inlabel, sizeof inlabel))) {
+        goto done;
+    }
     if (xy) {
         const char *in = !strncmp(input, "node:", 5) ? input + 5 : input;
         char buf[256];
@@ -169,7 +225,7 @@ int gd_cmd_frf(int argc, char **argv)
     opt.outputs = probes;
     opt.noutputs = np;
     gd_blas_set_threads(1); /* parallel over frequencies instead */
-    if (gd_frf(s, &opt, &r, &err)) {
+    if (load_re ? gd_frf_load(s, &opt, load_re, load_im, &r, &err) : gd_frf(s, &opt, &r, &err)) {
         rc = gd_cli_report(&err);
         goto done;
     }
@@ -255,14 +311,18 @@ int gd_cmd_frf(int argc, char **argv)
         cJSON_Delete(o);
     } else {
         printf("%s: FRF to a unit %s at %s, speed %g %s, %s method\n\n", m->file,
-               s->dof_type[inputs[0]] >= GD_RX ? "moment" : "force", inlabel,
-               gd_cli_speed_out(&u, opt.speed), gd_cli_speed_unit(&u),
+               load_re                           ? "mesh transmission error"
+               : s->dof_type[inputs[0]] >= GD_RX ? "moment"
+                                                 : "force",
+               inlabel, gd_cli_speed_out(&u, opt.speed), gd_cli_speed_unit(&u),
                opt.method == GD_FRF_MODAL ? "modal" : "direct");
         gd_series_table(stdout, ser, nser, u.freq_hz ? "f(Hz)" : "w(rad/s)",
                         gd_cli_freq_out(&u, 1.0));
         gd_cli_operating_print(s, &a.op, 0);
     }
 done:
+    free(load_re);
+    free(load_im);
     free(outbuf);
     free(ser);
     free(dirbuf);

@@ -188,7 +188,7 @@ static cJSON *summary_json(const gd_system *sys, const gd_transient_model *tm,
         const gd_tr_mesh *tmsh = &tm->meshes[i];
         const gd_tr_contact_stats *c = &res->contacts[i];
         cJSON *e = cJSON_CreateObject();
-        cJSON_AddStringToObject(e, "name", m->meshes[tmsh->mesh].name);
+        cJSON_AddStringToObject(e, "name", gd_model_mesh_name(m, tmsh->mesh));
         cJSON_AddBoolToObject(e, "backlash", tmsh->backlash);
         cJSON_AddNumberToObject(e, "contact_losses", c->contact_losses);
         cJSON_AddNumberToObject(e, "coast_impacts", c->coast_impacts);
@@ -234,7 +234,7 @@ static void print_text(const gd_system *sys, const gd_transient_model *tm,
         printf("%-20s %8s %14s %8s %8s %14s\n", "", "", "", "impacts", "impacts", "");
         for (int i = 0; i < tm->spec.nmeshes; i++) {
             const gd_tr_contact_stats *c = &res->contacts[i];
-            printf("%-20.20s %8s %14d %8d %8d %14.6g\n", m->meshes[tm->meshes[i].mesh].name,
+            printf("%-20.20s %8s %14d %8d %8d %14.6g\n", gd_model_mesh_name(m, tm->meshes[i].mesh),
                    tm->meshes[i].backlash ? "yes" : "no", c->contact_losses, c->coast_impacts,
                    c->drive_impacts, c->separated_time);
         }
@@ -701,6 +701,21 @@ static double top_mesh_order(const gd_model *m, int *which)
             *which = i;
         }
     }
+    /* a planetary set: Z_s times the sun's speed relative to the carrier (its first sun
+       mesh named) */
+    for (int k = 0, first = m->nmeshes; k < m->nplanetary;
+         first += 2 * m->planetary[k++].nplanets) {
+        const gd_planetary *g = &m->planetary[k];
+        if (g->teeth[0] <= 0) continue;
+        const gd_shaft *sh = m->shafts;
+        double order = g->teeth[0] *
+                       fabs(sh[m->nodes[g->member[GD_PLANETARY_SUN].node].shaft].speed_ratio -
+                            sh[m->nodes[g->member[GD_PLANETARY_CARRIER].node].shaft].speed_ratio);
+        if (order > top) {
+            top = order;
+            *which = first;
+        }
+    }
     return top;
 }
 
@@ -757,7 +772,7 @@ static int resolve_times(const cli_opts *o, const gd_model *m, double speed, run
                 "geardyn transient: note: the output interval %.3g s gives %.2g samples per "
                 "tooth-mesh cycle of mesh '%s' (%.4g Hz): peaks and peak-to-peak of mesh "
                 "quantities are not resolved; give --output-interval %.2g s or shorter\n",
-                ri->dt, mesh_period / ri->dt, m->meshes[mesh].name, 1.0 / mesh_period,
+                ri->dt, mesh_period / ri->dt, gd_model_mesh_name(m, mesh), 1.0 / mesh_period,
                 mesh_period / SAMPLES_PER_MESH_CYCLE);
     return 0;
 }
@@ -1239,7 +1254,7 @@ int gd_cmd_transient(int argc, char **argv)
             const char *names[64];
             int nn = rat.n < 64 ? rat.n : 64;
             for (int j = 0; j < nn; j++)
-                names[j] = m->meshes[tm->meshes[rat.mesh[j]].mesh].name;
+                names[j] = gd_model_mesh_name(m, tm->meshes[rat.mesh[j]].mesh);
             gd_plot *pr = NULL;
             pst = gd_plot_rattle(names, rat.metrics, nn, &pr, &err);
             if (!pst) pst = gd_plot_append(p, pr, &err);

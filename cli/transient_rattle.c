@@ -94,7 +94,7 @@ cJSON *gd_cli_rattle_json(const gd_cli_rattle *r, const gd_model *m, const gd_tr
     for (int j = 0; j < r->n; j++) {
         const gd_rattle_metrics *x = &r->metrics[j];
         cJSON *e = cJSON_CreateObject();
-        cJSON_AddStringToObject(e, "name", m->meshes[tm->meshes[r->mesh[j]].mesh].name);
+        cJSON_AddStringToObject(e, "name", gd_model_mesh_name(m, tm->meshes[r->mesh[j]].mesh));
         cJSON_AddNumberToObject(e, "window_s", x->duration);
         cJSON_AddNumberToObject(e, "batches", x->batches);
         cJSON_AddNumberToObject(e, "confidence", x->confidence);
@@ -135,7 +135,7 @@ void gd_cli_rattle_print(const gd_cli_rattle *r, const gd_model *m, const gd_tra
     for (int j = 0; j < r->n; j++) {
         const gd_rattle_metrics *x = &r->metrics[j];
         printf("%-16.16s %8.4g+-%-7.2g %8.4g+-%-7.2g %8.4g+-%-7.2g %8.4g+-%-7.2g%-3s %9.3g %9.3g\n",
-               m->meshes[tm->meshes[r->mesh[j]].mesh].name, x->separated.mean,
+               gd_model_mesh_name(m, tm->meshes[r->mesh[j]].mesh), x->separated.mean,
                x->separated.half_width, x->drive_rate.mean, x->drive_rate.half_width,
                x->coast_rate.mean, x->coast_rate.half_width, x->intensity.mean,
                x->intensity.half_width, r->mass[j] > 0 ? " W" : " *", x->v_rms, x->v_max);
@@ -144,7 +144,7 @@ void gd_cli_rattle_print(const gd_cli_rattle *r, const gd_model *m, const gd_tra
         const gd_rattle_metrics *x = &r->metrics[j];
         if (!x->converged)
             printf("%s: relative half-width %.3g > %g: about %.3g s of window needed\n",
-                   m->meshes[tm->meshes[r->mesh[j]].mesh].name, x->precision, r->target,
+                   gd_model_mesh_name(m, tm->meshes[r->mesh[j]].mesh), x->precision, r->target,
                    x->suggested_duration);
     }
     for (int j = 0; j < r->n; j++)

@@ -151,7 +151,7 @@ static int push_mesh(const gd_model *m, int i, int w, gd_cli_records *recs)
 {
     char tail[32];
     snprintf(tail, sizeof tail, ":%s", MESH_WHAT[w]);
-    return push(recs, MESH_KIND[w], i, 0, MESH_UNIT[w], "mesh:", m->meshes[i].name, tail);
+    return push(recs, MESH_KIND[w], i, 0, MESH_UNIT[w], "mesh:", gd_model_mesh_name(m, i), tail);
 }
 
 static int parse_mesh(const gd_system *sys, const char *cmd, const char *item, gd_cli_records *recs)
@@ -182,6 +182,8 @@ static int parse_mesh(const gd_system *sys, const char *cmd, const char *item, g
         return 0;
     }
     int i = gd_model_find_mesh(m, buf);
+    for (int k = m->nmeshes; i < 0 && k < gd_model_mesh_count(m); k++)
+        if (!strcmp(gd_model_mesh_name(m, k), buf)) i = k; /* a planetary set's mesh */
     if (i < 0) {
         char list[600] = "";
         size_t len = 0;

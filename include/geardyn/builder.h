@@ -223,6 +223,39 @@ typedef struct gd_planetary_member_spec {
 /* A planetary set ([LinParker1999]). Sizes: base radii of sun, ring and planet and the
  * carrier radius (planet centres), all > 0. Planets: nplanets >= 1 at planet_angles
  * (NULL: equally spaced, psi_n = 2 pi n / N), all with one mass, inertia and bearing. */
+/* Table data y(x) the builder copies (x increasing). n = 0: no table. */
+typedef struct gd_table_spec {
+    int n;
+    const double *x, *y;
+    gd_interp interp; /* default GD_INTERP_LINEAR */
+} gd_table_spec;
+
+/* A planetary mesh kind's law in transient and periodic runs (docs/planetary.md, "Meshes
+ * as laws"): any of these makes every mesh of the kind a gd_law_backlash_mesh. */
+typedef struct gd_planetary_mesh_law_spec {
+    gd_table_spec tvms;           /* k(sun angle relative to the carrier), N/m, over one sun
+                                     mesh period 2 pi / Z_s (needs teeth); n = 0: none */
+    double damping_per_stiffness; /* s, >= 0 */
+    double damping_separated;     /* N s/m while the teeth are apart, >= 0 */
+    int backlash;                 /* 1: a gap on each flank */
+    double backlash_gap;          /* m, >= 0 */
+    double coast_stiffness_ratio; /* >= 0, default 1; 0: one-sided contact */
+} gd_planetary_mesh_law_spec;
+
+/* A set's tooth geometry (docs/planetary.md, "Meshes from geometry"): with the teeth, the
+ * sun-planet (external) and ring-planet (internal) pairs of docs/mesh-stiffness.md give
+ * the base radii, carrier radius (the centre distance), operating pressure angles, contact
+ * ratios, the meshes' TVMS (their mean the linear stiffness unless mesh_stiffness is given)
+ * and the ring mesh's phase behind the sun mesh. */
+typedef struct gd_planetary_geometry {
+    double module;           /* normal module, m > 0 */
+    double pressure_angle;   /* normal pressure angle, rad; default 20 deg */
+    double face_width;       /* m > 0 */
+    double profile_shift[3]; /* sun, ring (ISO 21771 sign), planet; coefficients */
+    gd_tvms_options tvms;    /* method, points (gd_tvms_options_init) */
+} gd_planetary_geometry;
+GD_API void gd_planetary_geometry_init(gd_planetary_geometry *g);
+
 typedef struct gd_planetary_spec {
     const char *name; /* required; the planets' shafts and nodes are named after it */
     gd_planetary_member_spec member[GD_PLANETARY_NMEMBERS]; /* sun, ring, carrier */
@@ -246,6 +279,16 @@ typedef struct gd_planetary_spec {
        modelled in the fixed frame), -1 (default) all when every member sits on a shaft
        without sections, else the planets */
     int carrier_frame;
+    /* meshes as laws ([0] sun-planet, [1] ring-planet) and their phases: nplanets phases
+       each in mesh periods, [0, 1) (NULL: from the teeth, [ParkerLin2004]); the ring
+       mesh's lag behind the sun mesh (has_sun_ring_phase 0: from the geometry, or 0) */
+    gd_planetary_mesh_law_spec mesh_law[2];
+    const double *mesh_phases[2];
+    double sun_ring_phase;
+    int has_sun_ring_phase;
+    /* tooth geometry (NULL: none; needs teeth; then base_radius and carrier_radius stay 0
+       and mesh_stiffness may be 0: from the geometry) */
+    const gd_planetary_geometry *geometry;
     gd_loc loc;
     const char *path; /* NULL: "planetary_sets[<index>]" */
 } gd_planetary_spec;
@@ -262,13 +305,6 @@ GD_API gd_status gd_model_add_planetary(gd_model *m, const gd_planetary_spec *s,
                                         gd_error *err);
 
 /* ---- gear meshes ---- */
-
-/* Table data y(x) the builder copies (x increasing). n = 0: no table. */
-typedef struct gd_table_spec {
-    int n;
-    const double *x, *y;
-    gd_interp interp; /* default GD_INTERP_LINEAR */
-} gd_table_spec;
 
 /* An external gear mesh. The gear size is given by exactly one of base_radius,
  * pitch_radius, module (with teeth), or geometry. */

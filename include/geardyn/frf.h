@@ -53,6 +53,12 @@ GD_API void gd_frf_options_init(gd_frf_options *opt);
 GD_API gd_status gd_frf(const gd_system *sys, const gd_frf_options *opt, gd_frf_result **out,
                         gd_error *err);
 GD_API void gd_frf_free(gd_frf_result *r);
+/* The response to one complex load vector F (load_re, load_im: ndof, the caller's; load_im
+ * may be NULL): H(o) = sum_j F_j H(o, j), e.g. a planetary set's phased mesh excitation
+ * (gd_planetary_mesh_excitation). opt's inputs are ignored; the result has ninputs 1.
+ * GD_EINPUT when F is zero on every DOF. */
+GD_API gd_status gd_frf_load(const gd_system *sys, const gd_frf_options *opt, const double *load_re,
+                             const double *load_im, gd_frf_result **out, gd_error *err);
 
 /* Directional FRFs from the complex coordinates p = x + i y of the output node and
  * g = f_x + i f_y of the input node: forward H_f = (H_xx + H_yy + i (H_yx - H_xy)) / 2

@@ -158,11 +158,12 @@ GD_API gd_planetary_class gd_modal_planetary_class(const gd_system *sys, const g
                                                    int mode, int set);
 /* The load of planetary set `set`'s sun-planet meshes (ring 0) or ring-planet meshes (ring 1)
  * at mesh harmonic `harmonic`, per unit static transmission error amplitude, with each
- * planet's mesh phase harmonic Z psi_n ([Parker2000]; docs/planetary.md): the complex
- * amplitude F = sum_n k a_n exp(-i harmonic Z psi_n) over the system's DOFs (re, im: ndof,
- * the caller's). With equally spaced planets it excites only rotational modes when
- * harmonic Z_s / N is whole, only translational ones when (harmonic Z_s +- 1) / N is, and
- * otherwise only planet modes. GD_EINPUT without teeth. */
+ * planet's mesh phase gamma_n (gd_planetary_mesh_phase, [ParkerLin2004]: frac(Z_s psi_n /
+ * 2 pi) for the sun meshes; docs/planetary.md): the complex amplitude F = sum_n k a_n
+ * exp(-2 pi i harmonic gamma_n) over the system's DOFs (re, im: ndof, the caller's). With equally
+ * spaced planets it excites only rotational modes when harmonic Z_s / N is whole, only
+ * translational ones when (harmonic Z_s +- 1) / N is, and otherwise only planet modes. GD_EINPUT
+ * without teeth. */
 GD_API gd_status gd_planetary_mesh_excitation(const gd_system *sys, int set, int harmonic, int ring,
                                               double *re, double *im, gd_error *err);
 

@@ -225,6 +225,20 @@ typedef struct gd_planetary_body {
     double k_torsion;     /* N m/rad, to ground about z (the held member's holding spring) */
 } gd_planetary_body;
 
+/* A planetary mesh's law in transient and periodic runs (docs/planetary.md, "Meshes as
+ * laws"), the same gd_law_backlash_mesh a parallel mesh gets. Its angle variable is the
+ * sun's rotation relative to the carrier at its nominal speed (one mesh period =
+ * 2 pi / Z_s for both kinds of mesh), each planet's mesh delayed by its phase. */
+typedef struct gd_planetary_mesh_law {
+    int active;                   /* 1: the meshes of this kind are laws (else linear in K) */
+    gd_table *tvms;               /* k(sun angle rel. carrier), N/m, owned; NULL: constant */
+    double damping_per_stiffness; /* s */
+    double damping_separated;     /* N s/m while the teeth are apart */
+    int backlash;                 /* 1: a gap on each flank */
+    double gap;                   /* m */
+    double coast_stiffness_ratio; /* default 1; 0: one-sided contact */
+} gd_planetary_mesh_law;
+
 typedef struct gd_planetary {
     char name[GD_NAME_MAX];
     gd_planetary_body member[GD_PLANETARY_NMEMBERS];
@@ -248,6 +262,20 @@ typedef struct gd_planetary {
     /* the carrier-frame terms ([CooleyParker2012]) act on every body of the set (1) or on the
        planets only (0): docs/planetary.md */
     int carrier_frame_all;
+    /* meshes as laws, [0] sun-planet, [1] ring-planet (docs/planetary.md) */
+    gd_planetary_mesh_law mesh_law[2];
+    /* each planet's mesh phase, mesh periods in [0, 1) (planet n's mesh meets its tooth that
+       much after the reference), given (owned, nplanets each) or NULL: from the teeth
+       ([ParkerLin2004], gd_planetary_mesh_phase) */
+    double *mesh_phase[2];
+    /* the ring mesh's lag behind the sun mesh of the same planet, mesh periods: from the
+       tooth geometry (between the TVMS tables' origins) or given; 0 otherwise */
+    double sun_ring_phase;
+    /* from the tooth geometry (0: none): transverse contact ratios and the mesh stiffness
+       results, k(driver angle) of the sun (driver) - planet and planet (driver) - ring
+       pairs (owned) */
+    double contact_ratio[2];
+    struct gd_tvms_result *tvms[2];
     /* the names of the set's 3 + 4N element instances (strain-energy components), in the
        element's order: SET.sun, .ring, .carrier, .planet<n>, .sun_mesh<n>, .ring_mesh<n>,
        .bearing<n> (owned) */
@@ -322,6 +350,20 @@ GD_API double gd_mesh_linear_damping(const gd_mesh *mesh);
 GD_API int gd_model_find_node(const gd_model *model, const char *name);
 GD_API int gd_model_find_shaft(const gd_model *model, const char *name);
 GD_API int gd_model_find_mesh(const gd_model *model, const char *name);
+
+/* Mesh numbering of the time-integration laws (gd_tr_mesh.mesh): 0 .. nmeshes - 1 the gear
+ * meshes, then each planetary set's sun-planet meshes (planets 1..N) and ring-planet meshes.
+ * gd_model_mesh_count: that total. gd_model_planetary_mesh: 1 and the set, kind (0 sun,
+ * 1 ring) and planet of mesh i when it is a planetary mesh, else 0. gd_model_mesh_name: the
+ * mesh's name ("<set>.sun_mesh<n>" for a planetary mesh), "" out of range. */
+GD_API int gd_model_mesh_count(const gd_model *model);
+GD_API int gd_model_planetary_mesh(const gd_model *model, int i, int *set, int *ring, int *planet);
+GD_API const char *gd_model_mesh_name(const gd_model *model, int i);
+/* Planet n's mesh phase (mesh periods in [0, 1)) on its sun (ring = 0) or ring mesh: the
+ * given phases, else [ParkerLin2004] from the teeth and angles (gd_planet_mesh_phases, the
+ * sun turning counterclockwise relative to the carrier when sun_direction >= 0), plus the
+ * set's sun_ring_phase on ring meshes; 0 without teeth. */
+GD_API double gd_planetary_mesh_phase(const gd_planetary *set, int ring, int n, int sun_direction);
 
 /* Mass, polar and diametral inertia of a shaft with everything on its nodes. */
 typedef struct gd_shaft_summary {

@@ -1,10 +1,11 @@
 /* The mesh excitation of a planetary set at one harmonic of the mesh frequency, with each
- * planet's mesh phase ([Parker2000]): a static transmission error e_n = E cos(l w_m t -
- * l Z_s psi_n) on sun-planet mesh n (planet n meets its tooth l Z_s psi_n / 2 pi of a mesh
- * period after planet 1, psi_n in the sun's teeth) loads the system with k_sp e_n a_n, a_n
- * the mesh's deformation vector: complex amplitude F = sum_n k_sp a_n exp(-i l Z_s psi_n)
- * per unit E. The ring-planet meshes' phases l Z_r psi_n (plus the sun-ring phase) follow
- * the same way; docs/planetary.md. */
+ * planet's mesh phase ([Parker2000], [ParkerLin2004]): a static transmission error
+ * e_n = E cos(l w_m t - 2 pi l gamma_n) on mesh n, gamma_n the planet's phase in mesh
+ * periods (gd_planetary_mesh_phase: frac(Z_s psi_n / 2 pi) for the sun meshes when the sun
+ * turns counterclockwise relative to the carrier, the same for the ring meshes plus the
+ * sun-ring phase), loads the system with k e_n a_n, a_n the mesh's deformation vector:
+ * complex amplitude F = sum_n k a_n exp(-2 pi i l gamma_n) per unit E. The same phases the
+ * meshes' laws take in transient and periodic runs; docs/planetary.md. */
 #include <math.h>
 #include <string.h>
 
@@ -27,8 +28,11 @@ gd_status gd_planetary_mesh_excitation(const gd_system *sys, int set, int harmon
     memset(re, 0, (size_t)sys->ndof * sizeof *re);
     memset(im, 0, (size_t)sys->ndof * sizeof *im);
     int member = ring ? GD_PLANETARY_RING : GD_PLANETARY_SUN;
+    double rel = m->shafts[m->nodes[g->member[GD_PLANETARY_SUN].node].shaft].speed_ratio -
+                 m->shafts[m->nodes[g->member[GD_PLANETARY_CARRIER].node].shaft].speed_ratio;
     for (int n = 0; n < g->nplanets; n++) {
-        double a[12], ph = -harmonic * z * g->planet_angle[n];
+        double a[12],
+            ph = -2 * M_PI * harmonic * gd_planetary_mesh_phase(g, ring, n, rel < 0 ? -1 : 1);
         gd_planetary_mesh_vector(g, ring, n, a);
         for (int k = 0; k < 12; k++) {
             int i = gd_system_dof(sys, k < 6 ? g->member[member].node : g->first_planet + n,

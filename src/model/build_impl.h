@@ -139,5 +139,11 @@ gd_status gd_build_propagate_speeds(gd_model *m, gd_error *err); /* speed_propag
 gd_status gd_build_resolve_dynamics(gd_model *m, gd_error *err);
 gd_status gd_build_resolve_laws(gd_model *m, gd_error *err);      /* builder_laws.c */
 gd_status gd_build_resolve_planetary(gd_model *m, gd_error *err); /* builder_planetary.c */
+/* A set's tooth geometry into the spec (base radii, carrier radius, operating pressure
+ * angles, mean stiffness when 0, the sun-ring phase when not given) and the set (TVMS
+ * results and tables, contact ratios); planetary_mesh_geometry.c. On error g may hold
+ * results the caller frees. */
+gd_status gd_build_planetary_geometry(const gd_model *m, gd_planetary_spec *s, const char *path,
+                                      gd_planetary *g, gd_error *err);
 
 #endif

@@ -20,6 +20,7 @@ void gd_planetary_spec_init(gd_planetary_spec *s)
     s->held = -1;
     s->carrier_frame = -1;
     s->pressure_angle[0] = s->pressure_angle[1] = 20.0 * PI / 180.0;
+    s->mesh_law[0].coast_stiffness_ratio = s->mesh_law[1].coast_stiffness_ratio = 1.0;
 }
 
 static const char *const SIZE_KEYS[3] = {"sun", "ring", "planet"};
@@ -222,6 +223,87 @@ static gd_status check_geometry(const gd_model *m, gd_error *err, const gd_plane
     return GD_OK;
 }
 
+/* What the set owns beyond its angles and names: the meshes' tables, phases and TVMS. */
+static void free_mesh_data(gd_planetary *g)
+{
+    for (int k = 0; k < 2; k++) {
+        gd_table_free(g->mesh_law[k].tvms);
+        g->mesh_law[k].tvms = NULL;
+        free(g->mesh_phase[k]);
+        g->mesh_phase[k] = NULL;
+        gd_tvms_free(g->tvms[k]);
+        g->tvms[k] = NULL;
+    }
+}
+
+/* The meshes as laws (docs/planetary.md, "Meshes as laws"): values, tables over one sun
+ * mesh period, the given phases. */
+static gd_status mesh_laws(const gd_model *m, gd_error *err, const gd_planetary_spec *s,
+                           const char *path, gd_planetary *g)
+{
+    static const char *const KIND[2] = {"mesh_laws.sun", "mesh_laws.ring"};
+    static const char *const PHASES[2] = {"mesh_phases.sun", "mesh_phases.ring"};
+    gd_status st;
+    char q[200], msg[200];
+    for (int k = 0; k < 2; k++) {
+        const gd_planetary_mesh_law_spec *l = &s->mesh_law[k];
+        gd_planetary_mesh_law *L = &g->mesh_law[k];
+        gd_build_path(q, sizeof q, path, KIND[k]);
+        if ((st = gd_build_positive(m, err, s->loc, q, "damping.per_stiffness",
+                                    l->damping_per_stiffness, 1)) ||
+            (st = gd_build_positive(m, err, s->loc, q, "damping.separated", l->damping_separated,
+                                    1)) ||
+            (st = gd_build_positive(m, err, s->loc, q, "backlash.gap", l->backlash_gap, 1)) ||
+            (st = gd_build_positive(m, err, s->loc, q, "backlash.coast_stiffness_ratio",
+                                    l->coast_stiffness_ratio, 1)))
+            return st;
+        if (l->tvms.n > 0) {
+            if (s->teeth[0] <= 0)
+                return fail_at(m, err, s, path, KIND[k],
+                               "give the set's teeth: the table spans one sun mesh period",
+                               "a TVMS table needs the teeth");
+            gd_table_free(L->tvms); /* the geometry's, replaced */
+            L->tvms = NULL;
+            gd_error e = {0};
+            if (gd_table_new(l->tvms.n, l->tvms.x, l->tvms.y, 2 * PI / s->teeth[0], l->tvms.interp,
+                             &L->tvms, &e)) {
+                char key[64];
+                snprintf(key, sizeof key, "%s.tvms", KIND[k]);
+                return fail_at(m, err, s, path, key,
+                               "give increasing angles within one sun mesh period", e.message);
+            }
+        }
+        L->damping_per_stiffness = l->damping_per_stiffness;
+        L->damping_separated = l->damping_separated;
+        L->backlash = l->backlash;
+        L->gap = l->backlash ? l->backlash_gap : 0.0;
+        L->coast_stiffness_ratio = l->coast_stiffness_ratio;
+        L->active = L->active || L->tvms || l->backlash || l->damping_per_stiffness > 0 ||
+                    l->damping_separated > 0;
+        if (!s->mesh_phases[k]) continue;
+        g->mesh_phase[k] = malloc((size_t)s->nplanets * sizeof *g->mesh_phase[k]);
+        if (!g->mesh_phase[k]) return gd_build_oom(m, err);
+        for (int n = 0; n < s->nplanets; n++) {
+            double v = s->mesh_phases[k][n];
+            if (!(v >= 0 && v < 1)) {
+                char key[64];
+                snprintf(key, sizeof key, "%s[%d]", PHASES[k], n);
+                snprintf(msg, sizeof msg, "mesh phase %g is not in [0, 1)", v);
+                return fail_at(m, err, s, path, key,
+                               "give each planet's phase in mesh periods, from 0 to below 1", msg);
+            }
+            g->mesh_phase[k][n] = v;
+        }
+    }
+    if (!(s->sun_ring_phase >= 0 && s->sun_ring_phase < 1)) {
+        snprintf(msg, sizeof msg, "sun-ring phase %g is not in [0, 1)", s->sun_ring_phase);
+        return fail_at(m, err, s, path, "mesh_phases.sun_ring",
+                       "give the ring mesh's lag behind the sun mesh in mesh periods", msg);
+    }
+    g->sun_ring_phase = s->sun_ring_phase;
+    return GD_OK;
+}
+
 /* One lumped shaft with one node per planet: "<set>.planet<n>", node "<set>.p<n>". */
 static gd_status add_planet_shafts(gd_model *m, const gd_planetary_spec *s, const char *path,
                                    gd_error *err)
@@ -249,9 +331,12 @@ static gd_status add_planet_shafts(gd_model *m, const gd_planetary_spec *s, cons
     return GD_OK;
 }
 
-gd_status gd_model_add_planetary(gd_model *m, const gd_planetary_spec *s, int *index, gd_error *err)
+gd_status gd_model_add_planetary(gd_model *m, const gd_planetary_spec *spec, int *index,
+                                 gd_error *err)
 {
     gd_status st;
+    gd_planetary_spec copy = *spec; /* the tooth geometry fills in the sizes */
+    gd_planetary_spec *s = &copy;
     if ((st = gd_build_open(m, err))) return st;
     int idx = m->nplanetary;
     char path[160];
@@ -263,7 +348,15 @@ gd_status gd_model_add_planetary(gd_model *m, const gd_planetary_spec *s, int *i
     if (strlen(s->name) + 12 >= GD_NAME_MAX)
         return fail_at(m, err, s, path, "name", "use a shorter name",
                        "name too long for the planets' generated names");
-    if ((st = check_values(m, err, s, path)) || (st = check_geometry(m, err, s, path))) return st;
+    if (s->geometry && (st = gd_build_planetary_geometry(m, s, path, &g, err))) {
+        free_mesh_data(&g);
+        return st;
+    }
+    if ((st = check_values(m, err, s, path)) || (st = check_geometry(m, err, s, path)) ||
+        (st = mesh_laws(m, err, s, path, &g))) {
+        free_mesh_data(&g);
+        return st;
+    }
     for (int j = 0; j < GD_PLANETARY_NMEMBERS; j++) {
         const gd_planetary_member_spec *b = &s->member[j];
         g.member[j] = (gd_planetary_body){-1, b->mass, b->inertia, b->k_support, b->k_torsion};
@@ -305,6 +398,7 @@ gd_status gd_model_add_planetary(gd_model *m, const gd_planetary_spec *s, int *i
         free(g.planet_angle);
         free(g.pin_error);
         free(g.instance_name);
+        free_mesh_data(&g);
         return gd_build_oom(m, err);
     }
     /* the element's instance names (src/elements/planetary.c's order) */

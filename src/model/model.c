@@ -83,9 +83,15 @@ void gd_model_free(gd_model *model)
     free(model->prescribed);
     free(model->cams);
     free(model->laws);
-    for (int i = 0; i < model->nplanetary; i++)
-        free(model->planetary[i].planet_angle), free(model->planetary[i].pin_error),
-            free(model->planetary[i].instance_name);
+    for (int i = 0; i < model->nplanetary; i++) {
+        gd_planetary *g = &model->planetary[i];
+        free(g->planet_angle), free(g->pin_error), free(g->instance_name);
+        for (int k = 0; k < 2; k++) {
+            gd_table_free(g->mesh_law[k].tvms);
+            free(g->mesh_phase[k]);
+            gd_tvms_free(g->tvms[k]);
+        }
+    }
     free(model->planetary);
     free(model->meshes);
     free(model->unbalances);
@@ -116,6 +122,40 @@ int gd_model_find_mesh(const gd_model *model, const char *name)
     for (int i = 0; i < model->nmeshes; i++)
         if (!strcmp(model->meshes[i].name, name)) return i;
     return -1;
+}
+
+int gd_model_mesh_count(const gd_model *model)
+{
+    int n = model->nmeshes;
+    for (int s = 0; s < model->nplanetary; s++)
+        n += 2 * model->planetary[s].nplanets;
+    return n;
+}
+
+int gd_model_planetary_mesh(const gd_model *model, int i, int *set, int *ring, int *planet)
+{
+    if (i < model->nmeshes) return 0;
+    i -= model->nmeshes;
+    for (int s = 0; s < model->nplanetary; s++) {
+        int N = model->planetary[s].nplanets;
+        if (i < 2 * N) {
+            if (set) *set = s;
+            if (ring) *ring = i / N;
+            if (planet) *planet = i % N;
+            return 1;
+        }
+        i -= 2 * N;
+    }
+    return 0;
+}
+
+const char *gd_model_mesh_name(const gd_model *model, int i)
+{
+    int s, ring, n;
+    if (i >= 0 && i < model->nmeshes) return model->meshes[i].name;
+    if (i < 0 || !gd_model_planetary_mesh(model, i, &s, &ring, &n)) return "";
+    const gd_planetary *g = &model->planetary[s];
+    return g->instance_name[3 + (1 + ring) * g->nplanets + n]; /* the element's order */
 }
 
 void gd_model_shaft_summary(const gd_model *model, int shaft, gd_shaft_summary *out)

@@ -7,11 +7,30 @@
 
 #include "model_file/model_file_impl.h"
 
-static const char *const SET_KEYS[] = {
-    "name",           "held",           "sun",           "ring",
-    "carrier",        "planets",        "teeth",         "base_radius",
-    "carrier_radius", "pressure_angle", "helix_angle",   "planet_tip_radius",
-    "mesh_stiffness", "mesh_damping",   "carrier_frame", NULL};
+static const char *const SET_KEYS[] = {"name",
+                                       "held",
+                                       "sun",
+                                       "ring",
+                                       "carrier",
+                                       "planets",
+                                       "teeth",
+                                       "base_radius",
+                                       "carrier_radius",
+                                       "pressure_angle",
+                                       "helix_angle",
+                                       "planet_tip_radius",
+                                       "mesh_stiffness",
+                                       "mesh_damping",
+                                       "carrier_frame",
+                                       "geometry",
+                                       "mesh_laws",
+                                       "mesh_phases",
+                                       NULL};
+static const char *const GEOMETRY_KEYS[] = {
+    "module", "pressure_angle", "face_width", "profile_shift", "method", "points", NULL};
+static const char *const LAW_KEYS[] = {"tvms", "backlash", "damping", NULL};
+static const char *const PHASE_KEYS[] = {"sun", "ring", "sun_ring", NULL};
+static const char *const METHODS[] = {"energy", "iso6336", "single-pair-law", "square", NULL};
 static const char *const MEMBER_KEYS[] = {"node",      "mass",      "inertia",
                                           "k_support", "k_torsion", NULL};
 static const char *const PLANET_KEYS[] = {
@@ -128,6 +147,103 @@ static gd_status read_planets(gd_mparser *p, const gd_ynode *sm, const char *q,
     return GD_OK;
 }
 
+/* `geometry:` (docs/planetary.md, "Meshes from geometry") into g. */
+static gd_status read_geometry(gd_mparser *p, const gd_ynode *sm, const char *q,
+                               gd_planetary_geometry *g, int *given)
+{
+    gd_yreader *r = &p->r;
+    const gd_ynode *gm = gd_ymap_get(sm, "geometry");
+    *given = gm != NULL;
+    if (!gm) return GD_OK;
+    char gp[160];
+    gd_ypath_key(gp, sizeof gp, q, "geometry");
+    gd_status st;
+    int idx = 0, present = 0;
+    long points = 0;
+    if ((st = gd_yexpect(r, gm, GD_Y_MAP, gp)) || (st = gd_ycheck_keys(r, gm, gp, GEOMETRY_KEYS)) ||
+        (st = gd_yread_qty(r, gm, "module", gp, GD_QTY_LENGTH, GD_YREQ | GD_YPOS, &g->module,
+                           NULL)) ||
+        (st = gd_yread_qty(r, gm, "pressure_angle", gp, GD_QTY_ANGLE, GD_YPOS, &g->pressure_angle,
+                           NULL)) ||
+        (st = gd_yread_qty(r, gm, "face_width", gp, GD_QTY_LENGTH, GD_YREQ | GD_YPOS,
+                           &g->face_width, NULL)) ||
+        (st = read_per_gear(p, gm, gp, "profile_shift", SIZE_KEYS, 3, GD_QTY_DIMLESS, 0, 0,
+                            g->profile_shift)) ||
+        (st = gd_yread_str(r, gm, "method", gp, METHODS, 0, NULL, &idx, &present)))
+        return st;
+    if (present) g->tvms.method = (gd_tvms_method)idx;
+    if ((st = gd_yread_int(r, gm, "points", gp, 8, 100000, 0, &points, &present))) return st;
+    if (present) g->tvms.points = (int)points;
+    return GD_OK;
+}
+
+/* `mesh_laws: {sun: {...}, ring: {...}}`: the mesh keys of time integration
+ * (gd_mp_mesh_dynamics), the tables into tv[] (to free after the add). */
+static gd_status read_mesh_laws(gd_mparser *p, const gd_ynode *sm, const char *q,
+                                gd_planetary_spec *s, int sun_teeth, gd_table *tv[2])
+{
+    gd_yreader *r = &p->r;
+    const gd_ynode *lm = gd_ymap_get(sm, "mesh_laws");
+    if (!lm) return GD_OK;
+    char lp[160], kp[200];
+    gd_ypath_key(lp, sizeof lp, q, "mesh_laws");
+    gd_status st;
+    if ((st = gd_yexpect(r, lm, GD_Y_MAP, lp)) || (st = gd_ycheck_keys(r, lm, lp, MESH_KEYS)))
+        return st;
+    for (int k = 0; k < 2; k++) {
+        const gd_ynode *km = gd_ymap_get(lm, MESH_KEYS[k]);
+        if (!km) continue;
+        gd_ypath_key(kp, sizeof kp, lp, MESH_KEYS[k]);
+        if ((st = gd_yexpect(r, km, GD_Y_MAP, kp)) || (st = gd_ycheck_keys(r, km, kp, LAW_KEYS)))
+            return st;
+        gd_mesh_spec ms;
+        gd_mesh_spec_init(&ms);
+        gd_table *ste = NULL;
+        if ((st = gd_mp_mesh_dynamics(p, km, kp, sun_teeth, &ms, &tv[k], &ste))) return st;
+        gd_table_free(ste); /* not a key here */
+        gd_planetary_mesh_law_spec *l = &s->mesh_law[k];
+        l->tvms = gd_mp_table_spec(tv[k]);
+        l->damping_per_stiffness = ms.damping_per_stiffness;
+        l->damping_separated = ms.damping_separated;
+        l->backlash = ms.backlash;
+        l->backlash_gap = ms.backlash_gap;
+        l->coast_stiffness_ratio = ms.coast_stiffness_ratio;
+        if (ms.damping > 0) s->mesh_damping[k] = ms.damping;
+    }
+    return GD_OK;
+}
+
+/* `mesh_phases: {sun: [...], ring: [...], sun_ring: x}` (mesh periods) */
+static gd_status read_phases(gd_mparser *p, const gd_ynode *sm, const char *q, gd_planetary_spec *s,
+                             double *ph[2])
+{
+    gd_yreader *r = &p->r;
+    const gd_ynode *pm = gd_ymap_get(sm, "mesh_phases");
+    if (!pm) return GD_OK;
+    char pp[160];
+    gd_ypath_key(pp, sizeof pp, q, "mesh_phases");
+    gd_status st;
+    if ((st = gd_yexpect(r, pm, GD_Y_MAP, pp)) || (st = gd_ycheck_keys(r, pm, pp, PHASE_KEYS)) ||
+        (st = gd_yread_qty(r, pm, "sun_ring", pp, GD_QTY_DIMLESS, GD_YNONNEG, &s->sun_ring_phase,
+                           &s->has_sun_ring_phase)))
+        return st;
+    for (int k = 0; k < 2; k++) {
+        if (!gd_ymap_get(pm, MESH_KEYS[k])) continue;
+        int n = 0;
+        if ((st = gd_mp_read_qty_list(p, pm, MESH_KEYS[k], pp, GD_QTY_DIMLESS, &ph[k], &n)))
+            return st;
+        if (n != s->nplanets) {
+            char kp[200];
+            return gd_yfail(r, gd_ymap_get(pm, MESH_KEYS[k]),
+                            gd_ypath_key(kp, sizeof kp, pp, MESH_KEYS[k]),
+                            "give one phase per planet (mesh periods)", "%d phases for %d planets",
+                            n, s->nplanets);
+        }
+        s->mesh_phases[k] = ph[k];
+    }
+    return GD_OK;
+}
+
 static gd_status read_set(gd_mparser *p, const gd_ynode *sm, const char *q, size_t index)
 {
     (void)index;
@@ -136,8 +252,11 @@ static gd_status read_set(gd_mparser *p, const gd_ynode *sm, const char *q, size
     char name[GD_NAME_MAX];
     gd_planetary_spec s;
     gd_planetary_spec_init(&s);
-    double *angles = NULL, *errors = NULL, teeth[3] = {0, 0, 0};
-    int held = 3, frame = -1, has_frame = 0;
+    double *angles = NULL, *errors = NULL, teeth[3] = {0, 0, 0}, *phases[2] = {NULL, NULL};
+    int held = 3, frame = -1, has_frame = 0, has_geometry = 0;
+    gd_planetary_geometry geometry;
+    gd_planetary_geometry_init(&geometry);
+    gd_table *tv[2] = {NULL, NULL};
     if ((st = gd_yexpect(r, sm, GD_Y_MAP, q)) || (st = gd_ycheck_keys(r, sm, q, SET_KEYS)) ||
         (st = gd_mp_read_name(p, sm, q, name, "", 1)) ||
         (st = gd_yread_str(r, sm, "held", q, HELD, 0, NULL, &held, NULL)) ||
@@ -146,10 +265,17 @@ static gd_status read_set(gd_mparser *p, const gd_ynode *sm, const char *q, size
     s.carrier_frame = has_frame ? frame : -1;
     for (int j = 0; j < GD_PLANETARY_NMEMBERS; j++)
         if ((st = read_member(p, sm, q, j, &s.member[j]))) return st;
+    if ((st = read_geometry(p, sm, q, &geometry, &has_geometry))) return st;
+    /* with the tooth geometry, the sizes and the mean stiffness come from it */
+    const int req = has_geometry ? 0 : GD_YREQ;
+    if (has_geometry && gd_ymap_get(sm, "pressure_angle"))
+        return gd_yfail(r, gd_ymap_get(sm, "pressure_angle"), q,
+                        "give the normal pressure angle in `geometry:` (the operating ones follow)",
+                        "pressure_angle given with the tooth geometry");
     if ((st = read_per_gear(p, sm, q, "teeth", SIZE_KEYS, 3, GD_QTY_DIMLESS, GD_YPOS, 0, teeth)) ||
-        (st = read_per_gear(p, sm, q, "base_radius", SIZE_KEYS, 3, GD_QTY_LENGTH, GD_YREQ | GD_YPOS,
-                            0, s.base_radius)) ||
-        (st = gd_yread_qty(r, sm, "carrier_radius", q, GD_QTY_LENGTH, GD_YREQ | GD_YPOS,
+        (st = read_per_gear(p, sm, q, "base_radius", SIZE_KEYS, 3, GD_QTY_LENGTH, req | GD_YPOS, 0,
+                            s.base_radius)) ||
+        (st = gd_yread_qty(r, sm, "carrier_radius", q, GD_QTY_LENGTH, req | GD_YPOS,
                            &s.carrier_radius, NULL)) ||
         (st = gd_yread_qty(r, sm, "planet_tip_radius", q, GD_QTY_LENGTH, GD_YPOS,
                            &s.planet_tip_radius, NULL)) ||
@@ -158,23 +284,21 @@ static gd_status read_set(gd_mparser *p, const gd_ynode *sm, const char *q, size
         (st = gd_yread_qty(r, sm, "helix_angle", q, GD_QTY_ANGLE, GD_YNONNEG, &s.helix_angle,
                            NULL)) ||
         (st = read_per_gear(p, sm, q, "mesh_stiffness", MESH_KEYS, 2, GD_QTY_STIFFNESS,
-                            GD_YREQ | GD_YPOS, 1, s.mesh_stiffness)) ||
+                            req | GD_YPOS, 1, s.mesh_stiffness)) ||
         (st = read_per_gear(p, sm, q, "mesh_damping", MESH_KEYS, 2, GD_QTY_DAMPING, GD_YNONNEG, 1,
                             s.mesh_damping)) ||
-        (st = read_planets(p, sm, q, &s, &angles, &errors))) {
-        free(angles);
-        free(errors);
-        return st;
-    }
+        (st = read_planets(p, sm, q, &s, &angles, &errors)) ||
+        (st = read_mesh_laws(p, sm, q, &s, (int)teeth[0], tv)) ||
+        (st = read_phases(p, sm, q, &s, phases)))
+        goto done;
     for (int j = 0; j < 3; j++) {
         /* range-checked before the conversion to int */
         if (teeth[j] != 0 && (!(teeth[j] <= 100000) || teeth[j] != floor(teeth[j]))) {
-            free(angles);
-            free(errors);
             char tp[160];
-            return gd_yfail(r, gd_ymap_get(sm, "teeth"), gd_ypath_key(tp, sizeof tp, q, "teeth"),
-                            "teeth numbers are whole numbers from 3 to 100000",
-                            "invalid teeth number %g", teeth[j]);
+            st = gd_yfail(r, gd_ymap_get(sm, "teeth"), gd_ypath_key(tp, sizeof tp, q, "teeth"),
+                          "teeth numbers are whole numbers from 3 to 100000",
+                          "invalid teeth number %g", teeth[j]);
+            goto done;
         }
         s.teeth[j] = (int)teeth[j];
     }
@@ -182,9 +306,15 @@ static gd_status read_set(gd_mparser *p, const gd_ynode *sm, const char *q, size
     s.name = name;
     s.loc = gd_mp_loc(sm);
     s.path = q;
+    if (has_geometry) s.geometry = &geometry;
     st = gd_model_add_planetary(p->m, &s, NULL, r->err);
+done:
     free(angles);
     free(errors);
+    for (int k = 0; k < 2; k++) {
+        free(phases[k]);
+        gd_table_free(tv[k]);
+    }
     return st;
 }
 

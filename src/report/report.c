@@ -219,6 +219,18 @@ static gd_status add_runup(gd_plot *doc, const gd_system *sys, const gd_report_o
     const double wm = 0.5 * fabs(w0 + w1), wt = fmax(fabs(w0), fabs(w1));
     double top = 1;
     for (int i = 0; i < tm->spec.nmeshes; i++) {
+        int set;
+        if (gd_model_planetary_mesh(m, tm->meshes[i].mesh, &set, NULL, NULL)) {
+            /* a planetary mesh: Z_s times the sun's speed relative to the carrier */
+            const gd_planetary *pg = &m->planetary[set];
+            const gd_shaft *sh = m->shafts;
+            top = fmax(
+                top,
+                pg->teeth[0] *
+                    fabs(sh[m->nodes[pg->member[GD_PLANETARY_SUN].node].shaft].speed_ratio -
+                         sh[m->nodes[pg->member[GD_PLANETARY_CARRIER].node].shaft].speed_ratio));
+            continue;
+        }
         const gd_mesh *g = &m->meshes[tm->meshes[i].mesh];
         if (tm->meshes[i].tvms || tm->meshes[i].ste || tm->meshes[i].backlash)
             top = fmax(top, g->teeth[0] * fabs(m->shafts[m->nodes[g->driver].shaft].speed_ratio));

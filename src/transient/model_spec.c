@@ -53,7 +53,7 @@ gd_status gd_transient_model_build(const gd_system *sys, gd_transient_model **ou
         nvalves += m->cams[i].nvalves;
     for (int i = 0; i < m->nbearings; i++)
         nsfd += m->bearings[i].has_sfd != 0;
-    tm->meshes = xcalloc(m->nmeshes, sizeof *tm->meshes);
+    tm->meshes = xcalloc(gd_model_mesh_count(m), sizeof *tm->meshes);
     tm->owned = xcalloc(m->nmeshes, sizeof *tm->owned);
     tm->sfds = xcalloc(nsfd, sizeof *tm->sfds);
     tm->sfd_bearing = xcalloc(nsfd, sizeof *tm->sfd_bearing);
@@ -100,6 +100,23 @@ gd_status gd_transient_model_build(const gd_system *sys, gd_transient_model **ou
             d->coast_stiffness_ratio > 0 || (d->backlash && d->coast_stiffness_ratio == 0)
                 ? d->coast_stiffness_ratio
                 : 1.0;
+    }
+    /* the planetary sets' meshes with a law (docs/planetary.md, "Meshes as laws"); their
+       TVMS tables are the model's */
+    for (int i = m->nmeshes; i < gd_model_mesh_count(m); i++) {
+        int set, ring, n;
+        gd_model_planetary_mesh(m, i, &set, &ring, &n);
+        const gd_planetary_mesh_law *l = &m->planetary[set].mesh_law[ring];
+        if (!l->active) continue;
+        gd_tr_mesh *tmsh = &tm->meshes[sp->nmeshes++];
+        gd_tr_mesh_init(sys, i, tmsh);
+        tmsh->tvms = l->tvms;
+        tmsh->damping_per_k = l->damping_per_stiffness;
+        tmsh->damping_free = l->damping_separated;
+        tmsh->backlash = l->backlash;
+        tmsh->gap = l->gap;
+        tmsh->coast_scale =
+            l->coast_stiffness_ratio > 0 || l->backlash ? l->coast_stiffness_ratio : 1.0;
     }
     sp->meshes = tm->meshes;
 

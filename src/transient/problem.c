@@ -18,10 +18,18 @@ void gd_tr_mesh_init(const gd_system *sys, int mesh, gd_tr_mesh *m)
 {
     memset(m, 0, sizeof *m);
     m->mesh = mesh;
-    const gd_mesh *gm = &sys->model->meshes[mesh];
+    m->coast_scale = 1.0;
+    const gd_model *model = sys->model;
+    int set, ring, n;
+    if (gd_model_planetary_mesh(model, mesh, &set, &ring, &n)) {
+        m->stiffness = model->planetary[set].mesh_stiffness[ring];
+        m->damping = model->planetary[set].mesh_damping[ring];
+        return;
+    }
+    if (mesh < 0 || mesh >= model->nmeshes) return;
+    const gd_mesh *gm = &model->meshes[mesh];
     m->stiffness = gm->stiffness;
     m->damping = gm->damping;
-    m->coast_scale = 1.0;
 }
 
 /* Dense column-major n x n to CSC, dropping zeros. */
@@ -139,7 +147,7 @@ gd_status gd_transient_new(const gd_system *sys, const gd_transient_spec *spec, 
     }
     for (int i = 0; i < spec->nmeshes; i++) {
         const gd_tr_mesh *m = &spec->meshes[i];
-        if (m->mesh < 0 || m->mesh >= model->nmeshes)
+        if (m->mesh < 0 || m->mesh >= gd_model_mesh_count(model))
             return fail(err, GD_EINPUT, "meshes", "", "no such mesh");
         if (m->backlash && !(m->gap >= 0))
             return fail(err, GD_EINPUT, "meshes.backlash", "", "backlash gap must be >= 0");
@@ -242,13 +250,16 @@ gd_status gd_transient_new(const gd_system *sys, const gd_transient_spec *spec, 
     tr->nmodel_mesh = model->nmeshes;
     if (model->nmeshes) {
         tr->model_a = malloc((size_t)model->nmeshes * sizeof *tr->model_a);
-        tr->nl_of_mesh = malloc((size_t)model->nmeshes * sizeof *tr->nl_of_mesh);
-        if (!tr->model_a || !tr->nl_of_mesh) goto fail;
-        for (int k = 0; k < model->nmeshes; k++) {
+        if (!tr->model_a) goto fail;
+        for (int k = 0; k < model->nmeshes; k++)
             gd_system_mesh_vector(sys, k, &tr->model_a[k]);
-            tr->nl_of_mesh[k] = -1;
-        }
     }
+    tr->nall_mesh = gd_model_mesh_count(model);
+    tr->nl_of_mesh =
+        malloc((size_t)(tr->nall_mesh > 0 ? tr->nall_mesh : 1) * sizeof *tr->nl_of_mesh);
+    if (!tr->nl_of_mesh) goto fail;
+    for (int k = 0; k < tr->nall_mesh; k++)
+        tr->nl_of_mesh[k] = -1;
     /* the laws of the registry: meshes, dampers, loads, the spec's laws */
     if ((st = gd_transient_spec_laws(sys, spec, speed, &tr->law, &tr->nlaw, err))) goto fail;
     st = GD_ENOMEM;
@@ -436,7 +447,7 @@ int gd_transient_mode_records(const gd_transient *tr, gd_tr_record *rec, int cap
     int n = 0;
     for (int i = 0; i < tr->nmesh && n < cap; i++) {
         if (!gd_law_nswitches(&tr->law[i])) continue;
-        for (int m = 0; m < tr->nmodel_mesh; m++)
+        for (int m = 0; m < tr->nall_mesh; m++)
             if (tr->nl_of_mesh[m] == i) rec[n++] = (gd_tr_record){GD_REC_MESH_STATE, m, 0};
     }
     return n;

@@ -120,7 +120,8 @@ static gd_status check_record(const gd_transient *tr, const gd_tr_record *r, gd_
     case GD_REC_MESH_DEFLECTION:
     case GD_REC_MESH_STATE:
     case GD_REC_MESH_STIFFNESS:
-        ok = r->index >= 0 && r->index < tr->nmodel_mesh;
+        ok = r->index >= 0 && (r->index < tr->nmodel_mesh ||
+                               (r->index < tr->nall_mesh && tr->nl_of_mesh[r->index] >= 0));
         break;
     case GD_REC_SFD_FX:
     case GD_REC_SFD_FY:

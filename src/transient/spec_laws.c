@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "geardyn/model.h"
+#include "elements/elements_impl.h"
 #include "geardyn/transient.h"
 
 static double dof_rate(const gd_system *sys, int dof, double speed)
@@ -18,11 +19,67 @@ static double dof_rate(const gd_system *sys, int dof, double speed)
     return m->shafts[m->nodes[sys->dof_node[dof]].shaft].speed_ratio * speed;
 }
 
+/* A planetary set's mesh n (docs/planetary.md, "Meshes as laws"): the set's mesh vector
+ * (gd_planetary_mesh_vector: the member's and the planet's x, y, rz), its assembled
+ * k a a^T and c a a^T, the tables read at the sun's nominal angle relative to the carrier
+ * (no driver DOF: the mesh's parametric excitation follows the nominal motion) delayed by
+ * the planet's phase ([ParkerLin2004]). */
+static void planetary_mesh_law(const gd_system *sys, const gd_tr_mesh *s, double speed, gd_law *L,
+                               gd_mesh_law_data *m)
+{
+    const gd_model *model = sys->model;
+    int set, ring, n;
+    gd_model_planetary_mesh(model, s->mesh, &set, &ring, &n);
+    const gd_planetary *g = &model->planetary[set];
+    gd_law_init(L, &gd_law_backlash_mesh, gd_model_mesh_name(model, s->mesh));
+    double a[12];
+    gd_planetary_mesh_vector(g, ring, n, a);
+    m->na = 0;
+    for (int k = 0; k < 12; k++) {
+        int node = k < 6 ? g->member[ring ? GD_PLANETARY_RING : GD_PLANETARY_SUN].node
+                         : g->first_planet + n;
+        int dof = gd_system_dof(sys, node, (gd_dof)(k % 6));
+        if (a[k] == 0.0 || dof < 0) continue;
+        L->dof[m->na] = dof;
+        m->a[m->na++] = a[k];
+    }
+    L->ndofs = m->na > 0 ? m->na : 1;
+    if (m->na == 0) L->dof[0] = -1;
+    const gd_shaft *sh = model->shafts;
+    double rel = sh[model->nodes[g->member[GD_PLANETARY_SUN].node].shaft].speed_ratio -
+                 sh[model->nodes[g->member[GD_PLANETARY_CARRIER].node].shaft].speed_ratio;
+    m->drv = -1;
+    m->angle_fixed = 1;
+    m->sense = rel >= 0 ? 1 : -1;
+    m->drv_ratio = rel;
+    m->drv_rate = rel * speed;
+    m->tvms = s->tvms;
+    m->ste = s->ste;
+    m->stiffness = s->stiffness;
+    m->coast_scale = s->coast_scale >= 0 ? s->coast_scale : 1.0;
+    m->damping = s->damping;
+    m->damping_per_k = s->damping_per_k;
+    m->damping_free = s->damping_free;
+    m->backlash = s->backlash;
+    m->gap = s->gap;
+    /* planet n meets its tooth gamma mesh periods late: k_n(t) = k(t - gamma T) */
+    double period = g->teeth[0] > 0 ? 2 * M_PI / g->teeth[0] : 0.0;
+    m->angle_offset = s->angle_offset - gd_planetary_mesh_phase(g, ring, n, m->sense) * period;
+    m->k_lin = g->mesh_stiffness[ring];
+    m->c_lin = g->mesh_damping[ring];
+    L->data = m;
+    L->mode = GD_CONTACT_DRIVE;
+}
+
 /* The mesh law's data of spec mesh s (its mesh vector, driver, assembled linear part). */
 static void mesh_law(const gd_system *sys, const gd_transient_spec *spec, const gd_tr_mesh *s,
                      double speed, gd_law *L, gd_mesh_law_data *m)
 {
     const gd_model *model = sys->model;
+    if (s->mesh >= model->nmeshes) {
+        planetary_mesh_law(sys, s, speed, L, m);
+        return;
+    }
     const gd_mesh *gm = &model->meshes[s->mesh];
     gd_law_init(L, &gd_law_backlash_mesh, gm->name);
     m->tvms = s->tvms;
@@ -73,7 +130,7 @@ gd_status gd_transient_spec_laws(const gd_system *sys, const gd_transient_spec *
     if (spec->nlaws < 0 || (spec->nlaws && !spec->laws))
         return gd_error_set(err, GD_EINPUT, "", 0, 0, "laws", "", "laws missing");
     for (int i = 0; i < spec->nmeshes; i++)
-        if (spec->meshes[i].mesh < 0 || spec->meshes[i].mesh >= sys->model->nmeshes)
+        if (spec->meshes[i].mesh < 0 || spec->meshes[i].mesh >= gd_model_mesh_count(sys->model))
             return gd_error_set(err, GD_EINPUT, "", 0, 0, "meshes", "", "no such mesh");
     for (int i = 0; i < spec->ncams; i++)
         if (spec->cams[i].dof < 0 || spec->cams[i].dof >= sys->ndof || !spec->cams[i].law)

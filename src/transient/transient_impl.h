@@ -44,6 +44,7 @@ struct gd_transient {
     csn *Snum;
     double gamma;
     int nmodel_mesh;
+    int nall_mesh;           /* with the planetary sets' meshes (gd_model_mesh_count) */
     gd_mesh_vector *model_a; /* every model mesh, for records */
     int *nl_of_mesh;         /* model mesh -> index in law[] (its mesh law), or -1 */
     /* the laws of the registry (gd_transient_spec_laws): the spec's meshes
