@@ -70,6 +70,7 @@ void gd_model_build_free(gd_model *m)
             free(b->planetary[i].node[j]);
     }
     free(b->planetary);
+    gd_build_free_idlers(m);
     for (int i = 0; i < m->nexcitations && b->excitation_tables; i++)
         free_table(&b->excitation_tables[i]);
     for (int i = 0; i < m->nprescribed && b->prescribed_tables; i++)

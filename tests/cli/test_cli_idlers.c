@@ -1,0 +1,123 @@
+/* Idlers, synchronisers, gear selection and shifts through the CLI (docs/rattle.md,
+ * docs/model-format.md "idlers"):
+ *  - examples/manual_5speed.yaml runs through check, modal and campbell, the idlers'
+ *    orders named from their meshes ("1x idler gear2"), never as shafts;
+ *  - a shift's synchronisation time equals the closed form t = |w0| / (T_c (1/J_A +
+ *    1/J_B)) of the cone torque T_c = mu F R n / sin(alpha) between the two inertias;
+ *  - bad selections, a fixed gear on a synchroniser and negative drag viscosity exit 2
+ *    with a located message and nothing written. */
+#include <math.h>
+
+#include "cli_support.h"
+#include "harness.h"
+
+#define BOX "examples/manual_5speed.yaml"
+#define PI 3.14159265358979323846
+
+TEST(manual_5speed_runs_with_idler_orders_named)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    run_result r;
+    CHECK(run(&s, &r, "check " BOX) == 0);
+    run_free(&r);
+    cJSON *modal = run_json_args(&s, "modal " BOX " --modes 8");
+    CHECK(modal != NULL);
+    cJSON_Delete(modal);
+    CHECK(run(&s, &r, "campbell " BOX " --speeds 600:1000:3 --modes 4") == 0);
+    CHECK(contains(r.out, "1x idler gear2"));
+    CHECK(!contains(r.out, "1x idler2"));
+    run_free(&r);
+    scratch_close(&s);
+}
+
+/* The input (J_in = 2e-3) drives idlers a (J_a = 5e-4, base radii 20:40 mm) and b (J_b =
+   3e-4, 30:30 mm) on the output (J_out = 0.05); gear 1 (a) engaged; the shift to b at
+   0.01 s. Idler b turns at -W, the output at -W/2: slip w0 = -W/2. On b's side the input
+   and the free idler a: J_A = J_b + J_in + J_a (1/2)^2; on the output's, J_B = J_out. */
+static const char *SHIFT_MODEL =
+    "dofs: [rz]\nspeed: 800 rpm\n"
+    "shafts:\n  - {name: input, nodes: [{name: in}]}\n  - {name: output, nodes: [{name: out}]}\n"
+    "disks:\n  - {name: in, node: in, mass: 2, polar_inertia: 2e-3}\n"
+    "  - {name: out, node: out, mass: 5, polar_inertia: 0.05}\n"
+    "idlers:\n  - {name: a, on: out, mass: 0.5, polar_inertia: 5e-4, radial_stiffness: 1e8}\n"
+    "  - {name: b, on: out, mass: 0.4, polar_inertia: 3e-4, radial_stiffness: 1e8}\n"
+    "synchronisers:\n  - {name: sy, node: out, idlers: [a, b], stiffness: 1e6, damping: 1,\n"
+    "     cone: {mu: 0.1, force: 300 N, radius: 45 mm, angle: 8 deg}}\n"
+    "gears: {1: a, 2: b}\ngear: 1\n"
+    "meshes:\n"
+    "  - {name: ma, driver: in, driven: a, base_radius: [20 mm, 40 mm], stiffness: 2e8,"
+    " damping: 300}\n"
+    "  - {name: mb, driver: in, driven: b, base_radius: [30 mm, 30 mm], stiffness: 2e8,"
+    " damping: 300}\n";
+
+TEST(shift_synchronises_in_the_closed_form_time)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    char path[600], args[1200];
+    snprintf(path, sizeof path, "%s/shift.yaml", s.dir);
+    write_file(path, SHIFT_MODEL);
+    double T = 0.02; /* the window after the shift */
+    snprintf(args, sizeof args,
+             "transient '%s' --shift 1:2@0.01 --duration 0.03 --from 0.01 --output-interval 1e-5 "
+             "--record law:shift.cone:mode --record law:shift.cone:slip --record "
+             "law:shift.cone:torque",
+             path);
+    cJSON *o = run_json_args(&s, args);
+    REQUIRE(o);
+    const cJSON *recs = cJSON_GetObjectItemCaseSensitive(o, "records");
+    const cJSON *mode = cJSON_GetArrayItem(recs, 0), *slip = cJSON_GetArrayItem(recs, 1),
+                *torque = cJSON_GetArrayItem(recs, 2);
+    REQUIRE(mode && slip && torque);
+    double W = 800 * PI / 30, Tc = 0.1 * 300 * 0.045 / sin(8 * PI / 180);
+    double JA = 3e-4 + 2e-3 + 5e-4 * 0.25, JB = 0.05;
+    double t_sync = 0.5 * W / (Tc * (1 / JA + 1 / JB)); /* 9.99 ms */
+    /* mode 1 while slipping, 2 once locked: its mean over the window gives the time */
+    double measured = T * (2 - jnum(mode, "mean"));
+    CHECK_REL(measured, t_sync, 0.01);
+    /* the slip starts at -W/2 and the cone torque is T_c while it lasts */
+    CHECK_REL(jnum(slip, "min"), -0.5 * W, 0.01);
+    CHECK_REL(jnum(torque, "max"), Tc, 1e-9);
+    cJSON_Delete(o);
+    scratch_close(&s);
+}
+
+TEST(selection_errors_exit_2_located)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    CHECK(run_fails_cleanly(&s, "modal " BOX " --set gear=7", "gear 7 does not exist",
+                            "select one of the gears"));
+    CHECK(run_fails_cleanly(&s, "check " BOX " --set synchronisers.sync34.engaged=idler4",
+                            "two gears engaged on synchroniser 'sync34'", NULL));
+    CHECK(run_fails_cleanly(&s, "check " BOX " --set 'synchronisers.sync5.idlers=[input]'",
+                            "'input' is not an idler", "fixed on its shaft"));
+    CHECK(run_fails_cleanly(&s,
+                            "transient " BOX " --duration 0.1 --set "
+                            "laws.needle2.viscosity=-0.04",
+                            "viscosity", "must not be negative"));
+    CHECK(run_fails_cleanly(&s, "transient " BOX " --duration 0.1 --shift 3:9@0.05",
+                            "gear 9 does not exist", NULL));
+    CHECK(run_fails_cleanly(&s, "transient " BOX " --duration 0.1 --shift 3to4", "--shift",
+                            "FROM:TO@TIME"));
+    /* written in a file: file, line and field */
+    char path[600], args[700];
+    static char text[32768];
+    snprintf(path, sizeof path, "%s/bad.yaml", s.dir);
+    char *box = read_file(GD_SOURCE_DIR "/" BOX);
+    REQUIRE(box);
+    snprintf(text, sizeof text, "%s", box);
+    free(box);
+    /* sync5 engages the input shaft's node: a fixed gear */
+    char *at = strstr(text, "idlers: [idler5]");
+    REQUIRE(at);
+    memcpy(at, "idlers: [flywhe]", 16);
+    write_file(path, text);
+    snprintf(args, sizeof args, "check %s", path);
+    CHECK(run_fails_cleanly(&s, args, "bad.yaml:", "synchronisers[2].idlers[0]"));
+    scratch_close(&s);
+}
+
+RUN_TESTS(T(manual_5speed_runs_with_idler_orders_named),
+          T(shift_synchronises_in_the_closed_form_time), T(selection_errors_exit_2_located))
