@@ -160,9 +160,8 @@ gd_status gd_build_resolve_laws(gd_model *m, gd_error *err);      /* builder_law
 gd_status gd_build_resolve_planetary(gd_model *m, gd_error *err); /* builder_planetary.c */
 /* builder_idler.c: the selection checked and the engaged locks added as springs (by name,
  * before the model is resolved); the idlers' and synchronisers' nodes resolved (after the
- * supports); the builder's copies freed */
+ * supports). Their builder copies are freed with the rest (builder_state.c). */
 gd_status gd_build_engage_synchronisers(gd_model *m, gd_error *err);
 gd_status gd_build_resolve_idlers(gd_model *m, gd_error *err);
-void gd_build_free_idlers(gd_model *m);
 
 #endif

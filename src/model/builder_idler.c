@@ -476,26 +476,3 @@ gd_status gd_build_resolve_idlers(gd_model *m, gd_error *err)
     }
     return GD_OK;
 }
-
-void gd_build_free_idlers(gd_model *m)
-{
-    gd_model_build *b = m->build;
-    for (int i = 0; i < m->nidlers && b->idlers; i++) {
-        free(b->idlers[i].path);
-        free(b->idlers[i].on);
-    }
-    free(b->idlers);
-    for (int k = 0; k < m->nsynchronisers && b->syncs; k++) {
-        free(b->syncs[k].path);
-        free(b->syncs[k].node);
-        free(b->syncs[k].idlers[0]);
-        free(b->syncs[k].idlers[1]);
-        free(b->syncs[k].engaged);
-    }
-    free(b->syncs);
-    for (int i = 0; i < m->ngears && b->gears; i++) {
-        free(b->gears[i].path);
-        free(b->gears[i].idler);
-    }
-    free(b->gears);
-}

@@ -7,6 +7,9 @@
  *  - bad selections, a fixed gear on a synchroniser and negative drag viscosity exit 2
  *    with a located message and nothing written. */
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include "cli_support.h"
 #include "harness.h"
@@ -24,7 +27,7 @@ TEST(manual_5speed_runs_with_idler_orders_named)
     cJSON *modal = run_json_args(&s, "modal " BOX " --modes 8");
     CHECK(modal != NULL);
     cJSON_Delete(modal);
-    CHECK(run(&s, &r, "campbell " BOX " --speeds 600:1000:3 --modes 4") == 0);
+    CHECK(run(&s, &r, "campbell " BOX " --speeds 600:1000rpm:3 --modes 4") == 0);
     CHECK(contains(r.out, "1x idler gear2"));
     CHECK(!contains(r.out, "1x idler2"));
     run_free(&r);
@@ -83,15 +86,122 @@ TEST(shift_synchronises_in_the_closed_form_time)
     scratch_close(&s);
 }
 
+/* The 2nd-order amplitude (rad) of column 1 of a records.csv over whole periods of w from
+   t0 on, by its Fourier coefficients (the slow shuffle mode of the driveline, 1.2 Hz, is
+   orthogonal to it over the window to 1e-3 of its amplitude). */
+static double order_amplitude(const char *csv, double w, double t0)
+{
+    char *text = read_file(csv);
+    if (!text) return -1;
+    double c = 0, sn = 0, period = 2 * PI / w, t_end = -1;
+    int n = 0;
+    /* the last whole period: from the file's last time */
+    for (char *line = strtok(text, "\n"); line; line = strtok(NULL, "\n")) {
+        double t, y;
+        if (sscanf(line, "%lf,%lf", &t, &y) != 2) continue;
+        t_end = t;
+    }
+    free(text);
+    if (t_end < t0 + period) return -1;
+    double t1 = t0 + floor((t_end - t0) / period) * period;
+    text = read_file(csv);
+    for (char *line = strtok(text, "\n"); line; line = strtok(NULL, "\n")) {
+        double t, y;
+        if (sscanf(line, "%lf,%lf", &t, &y) != 2 || t < t0 || t >= t1) continue;
+        c += y * cos(w * t);
+        sn += y * sin(w * t);
+        n++;
+    }
+    free(text);
+    return n ? 2 * hypot(c, sn) / n : -1;
+}
+
+static double record_mean(const cJSON *o, const char *name)
+{
+    const cJSON *r;
+    cJSON_ArrayForEach(r, cJSON_GetObjectItemCaseSensitive(o, "records"))
+    {
+        if (!strcmp(jstr(r, "name"), name)) return jnum(r, "mean");
+    }
+    return NAN;
+}
+
+static double separated_s(const cJSON *o, const char *mesh)
+{
+    const cJSON *r;
+    cJSON_ArrayForEach(r, cJSON_GetObjectItemCaseSensitive(o, "meshes"))
+    {
+        if (!strcmp(jstr(r, "name"), mesh)) return jnum(r, "separated_time_s");
+    }
+    return NAN;
+}
+
+/* The classic threshold (docs/rattle.md) for the four free idlers of 3rd gear: the input's
+   2nd-order amplitude per N m from a run in contact (0.1 N m), each idler's drag (needle
+   bearing at its slip against the output, churning) from the same run's records; the
+   lowest T* = A* / (A / T) with A* = T_d / (J (r_p / r) W2^2). The transient: no idler
+   leaves its flank at 0.40 N m, 2nd gear's does at 0.45 (T* = 0.433). */
+TEST(manual_5speed_onset_brackets_the_threshold)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    char args[1200], dir[600], csv[700];
+    snprintf(dir, sizeof dir, "%s/lin", s.dir);
+    snprintf(args, sizeof args,
+             "transient " BOX " --duration 2 --from 0.5 --start static --output-interval 1e-4 "
+             "--set excitations.loads.firing.amplitude=0.1 --record input.rz,law:* --out '%s'",
+             dir);
+    cJSON *lin = run_json_args(&s, args);
+    REQUIRE(lin);
+    snprintf(csv, sizeof csv, "%s/records.csv", dir);
+    double W2 = 2 * 800 * PI / 30;
+    double A = order_amplitude(csv, W2, 0.5) / 0.1; /* rad per N m */
+    CHECK(A > 1e-3 && A < 2e-3);                    /* 1.35e-3 */
+    const double J[4] = {9.039e-4, 6.472e-4, 5.06e-4, 2.891e-4};
+    const double ratio[4] = {12.921 / 44.635, 19.968 / 42.286, 39.937 / 41.112, 44.635 / 36.413};
+    const char *needle[4] = {"law:needle1:torque", "law:needle2:torque", "law:needle4:torque",
+                             "law:needle5:torque"};
+    const char *churn[4] = {"law:churn1:torque", "law:churn2:torque", NULL, NULL};
+    double tstar = INFINITY;
+    int first = -1;
+    for (int i = 0; i < 4; i++) {
+        double Td = fabs(record_mean(lin, needle[i]) + (churn[i] ? record_mean(lin, churn[i]) : 0));
+        CHECK(Td > 1e-3 && Td < 0.05);
+        double t = Td / (J[i] * ratio[i] * W2 * W2) / A;
+        if (t < tstar) tstar = t, first = i;
+    }
+    CHECK(first == 1); /* 2nd gear's idler: its needle drag and churning nearly cancel */
+    CHECK(tstar > 0.40 && tstar < 0.45);
+    cJSON_Delete(lin);
+    const char *free_meshes[4] = {"gear1", "gear2", "gear4", "gear5"};
+    snprintf(args, sizeof args,
+             "transient " BOX " --duration 1.5 --from 0.5 --start static --record input.rz "
+             "--set excitations.loads.firing.amplitude=0.40");
+    cJSON *lo = run_json_args(&s, args);
+    snprintf(args, sizeof args,
+             "transient " BOX " --duration 1.5 --from 0.5 --start static --record input.rz "
+             "--set excitations.loads.firing.amplitude=0.45");
+    cJSON *hi = run_json_args(&s, args);
+    REQUIRE(lo && hi);
+    for (int i = 0; i < 4; i++)
+        CHECK(separated_s(lo, free_meshes[i]) == 0);
+    CHECK(separated_s(hi, "gear2") > 0.05);
+    /* the engaged gear and the final drive stay loaded */
+    CHECK(separated_s(hi, "gear3") == 0 && separated_s(hi, "final_drive") == 0);
+    cJSON_Delete(lo);
+    cJSON_Delete(hi);
+    scratch_close(&s);
+}
+
 TEST(selection_errors_exit_2_located)
 {
     scratch s;
     REQUIRE(scratch_open(&s));
     CHECK(run_fails_cleanly(&s, "modal " BOX " --set gear=7", "gear 7 does not exist",
                             "select one of the gears"));
-    CHECK(run_fails_cleanly(&s, "check " BOX " --set synchronisers.sync34.engaged=idler4",
+    CHECK(run_fails_cleanly(&s, "modal " BOX " --set synchronisers.sync34.engaged=idler4",
                             "two gears engaged on synchroniser 'sync34'", NULL));
-    CHECK(run_fails_cleanly(&s, "check " BOX " --set 'synchronisers.sync5.idlers=[input]'",
+    CHECK(run_fails_cleanly(&s, "modal " BOX " --set 'synchronisers.sync5.idlers=[input]'",
                             "'input' is not an idler", "fixed on its shaft"));
     CHECK(run_fails_cleanly(&s,
                             "transient " BOX " --duration 0.1 --set "
@@ -114,10 +224,11 @@ TEST(selection_errors_exit_2_located)
     REQUIRE(at);
     memcpy(at, "idlers: [flywhe]", 16);
     write_file(path, text);
-    snprintf(args, sizeof args, "check %s", path);
+    snprintf(args, sizeof args, "modal %s", path);
     CHECK(run_fails_cleanly(&s, args, "bad.yaml:", "synchronisers[2].idlers[0]"));
     scratch_close(&s);
 }
 
 RUN_TESTS(T(manual_5speed_runs_with_idler_orders_named),
-          T(shift_synchronises_in_the_closed_form_time), T(selection_errors_exit_2_located))
+          T(shift_synchronises_in_the_closed_form_time),
+          T(manual_5speed_onset_brackets_the_threshold), T(selection_errors_exit_2_located))

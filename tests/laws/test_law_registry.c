@@ -72,7 +72,6 @@ static void sample_law(const gd_law_type *t, gd_law *L)
     } else if (t == &gd_law_synchro_cone) {
         /* locked after its shift at 0.01 s: the viscous lock's Jacobian */
         L->value[0] = 0.01, L->value[1] = 9.7, L->value[2] = 500.0;
-        L->rate[0] = 80.0, L->rate[1] = 80.0;
         L->mode = 2;
     } else if (t == &gd_law_gear_release) {
         /* released at 0.01 s: the opposite of the lock spring */
