@@ -31,6 +31,15 @@ TEST(manual_5speed_runs_with_idler_orders_named)
     CHECK(contains(r.out, "1x idler gear2"));
     CHECK(!contains(r.out, "1x idler2"));
     run_free(&r);
+    /* the FE-shaft variant: 37 nodes of 6 DOFs, the same idlers and selection */
+    cJSON *fe = run_json_args(&s, "check examples/manual_5speed_fe.yaml");
+    REQUIRE(fe);
+    CHECK(jnum(fe, "dofs") == 222 && jnum(fe, "gear") == 3);
+    CHECK(cJSON_GetArraySize(cJSON_GetObjectItemCaseSensitive(fe, "idlers")) == 5);
+    cJSON_Delete(fe);
+    modal = run_json_args(&s, "modal examples/manual_5speed_fe.yaml --modes 12");
+    CHECK(modal != NULL);
+    cJSON_Delete(modal);
     scratch_close(&s);
 }
 
