@@ -84,7 +84,9 @@ TEST(shift_synchronises_in_the_closed_form_time)
     REQUIRE(mode && slip && torque);
     double W = 800 * PI / 30, Tc = 0.1 * 300 * 0.045 / sin(8 * PI / 180);
     double JA = 3e-4 + 2e-3 + 5e-4 * 0.25, JB = 0.05;
-    double t_sync = 0.5 * W / (Tc * (1 / JA + 1 / JB)); /* 9.99 ms */
+    /* 9.987 ms; had the old gear not been released, idler a would turn with the output
+       (J_A = 2.3e-3, J_B = 0.0505: 9.50 ms, 5 % off) */
+    double t_sync = 0.5 * W / (Tc * (1 / JA + 1 / JB));
     /* mode 1 while slipping, 2 once locked: its mean over the window gives the time */
     double measured = T * (2 - jnum(mode, "mean"));
     CHECK_REL(measured, t_sync, 0.01);
