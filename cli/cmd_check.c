@@ -160,6 +160,38 @@ static cJSON *planetary_json(const gd_model *m)
     return a;
 }
 
+/* The idlers: carrying node, synchroniser, engaged or idling (docs/model-format.md). */
+static void print_idlers(const gd_model *m)
+{
+    if (!m->nidlers) return;
+    printf("\n%-12s %-12s %-12s %-8s %s\n", "idler", "on", "synchro", "state", "order");
+    for (int i = 0; i < m->nidlers; i++) {
+        const gd_idler *id = &m->idlers[i];
+        char label[128];
+        gd_model_shaft_order_label(m, m->nodes[id->node].shaft, label, (int)sizeof label);
+        printf("%-12s %-12s %-12s %-8s %s\n", id->name, m->nodes[id->carrier].name,
+               id->synchroniser >= 0 ? m->synchronisers[id->synchroniser].name : "-",
+               id->engaged ? "engaged" : "idling", label);
+    }
+    if (m->gear) printf("gear      %d selected\n", m->gear);
+}
+
+static cJSON *idlers_json(const gd_model *m)
+{
+    cJSON *a = cJSON_CreateArray();
+    for (int i = 0; i < m->nidlers; i++) {
+        const gd_idler *id = &m->idlers[i];
+        cJSON *j = cJSON_CreateObject();
+        cJSON_AddStringToObject(j, "name", id->name);
+        cJSON_AddStringToObject(j, "on", m->nodes[id->carrier].name);
+        if (id->synchroniser >= 0)
+            cJSON_AddStringToObject(j, "synchroniser", m->synchronisers[id->synchroniser].name);
+        cJSON_AddBoolToObject(j, "engaged", id->engaged);
+        cJSON_AddItemToArray(a, j);
+    }
+    return a;
+}
+
 static void print_text(const gd_model *m, const gd_system *s)
 {
     printf("model     %s\n", m->file);
@@ -197,6 +229,7 @@ static void print_text(const gd_model *m, const gd_system *s)
         }
     }
     print_planetary(m);
+    print_idlers(m);
     if (m->nlaws) {
         /* laws of the registry: type, where, and the parameters that are not zero */
         printf("\n%-16s %-18s %-24s %s\n", "law", "type", "node -> to", "parameters (SI)");
@@ -257,6 +290,10 @@ static cJSON *summary_json(const gd_model *m, const gd_system *s)
         cJSON_AddItemToArray(meshes, j);
     }
     if (m->nplanetary) cJSON_AddItemToObject(o, "planetary_sets", planetary_json(m));
+    if (m->nidlers) {
+        cJSON_AddItemToObject(o, "idlers", idlers_json(m));
+        cJSON_AddNumberToObject(o, "gear", m->gear);
+    }
     cJSON *laws = cJSON_AddArrayToObject(o, "laws");
     for (int i = 0; i < m->nlaws; i++) {
         const gd_model_law *L = &m->laws[i];

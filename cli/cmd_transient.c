@@ -1,6 +1,7 @@
 /* geardyn transient MODEL: time integration of the nonlinear, time-varying system
  * (docs/transient.md), records, statistics, contact history and spectra. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -342,6 +343,7 @@ typedef struct cli_opts {
     int json, quiet, spectrum;
     int rattle, rattle_batches; /* --rattle, --rattle-batches */
     const char *rattle_extend;  /* --rattle-extend */
+    const char *shift;          /* --shift FROM:TO@T */
     double rattle_target;       /* --rattle-precision */
     gd_tr_method method;
     gd_tr_init init;
@@ -563,6 +565,10 @@ static const gd_cli_opt OPTS[] = {
     GD_CLI_ROW("rattle-extend", GD_CLI_STRING, F(rattle_extend), "T",
                "--rattle: while a metric's relative half-width exceeds --rattle-precision, run "
                "again with the window it needs (times 1.2), up to a run of T (e.g. 60s)"),
+    GD_CLI_ROW("shift", GD_CLI_STRING, F(shift), "A:B@T",
+               "shift from gear A to gear B at time T (e.g. 3:4@0.5): the old gear released, the "
+               "new one's synchroniser cone torque until the speeds meet, then locked "
+               "(docs/rattle.md; the model's `shift:` key)"),
     GD_CLI_ROW("revs-per-block", GD_CLI_CALL, F(revs_per_block), "N",
                "with a speed profile: revolutions per order spectrum (bins 1/N order)", .def = "16",
                .call = parse_revs_per_block),
@@ -1108,6 +1114,17 @@ int gd_cmd_transient(int argc, char **argv)
     memset(&rat, 0, sizeof rat);
     double *ptimes = NULL;
     int npt = 0;
+    char shift_set[160];
+    if (o.shift) {
+        int from, to, used = 0;
+        char at[64];
+        if (sscanf(o.shift, "%d:%d@%63s%n", &from, &to, at, &used) != 3 ||
+            used != (int)strlen(o.shift))
+            return gd_cli_usage_error(CMD, "--shift: '%s' is not FROM:TO@TIME (e.g. 3:4@0.5)",
+                                      o.shift);
+        snprintf(shift_set, sizeof shift_set, "shift={from: %d, to: %d, at: '%s'}", from, to, at);
+        if ((rc = gd_cli_add_set(CMD, &o.sets, shift_set))) return rc;
+    }
     rc = gd_cli_load(o.file, &o.sets, o.coupling, &m, &s);
     if (rc) return rc;
     run_info ri;

@@ -211,6 +211,71 @@ GD_API void gd_spring_spec_init(gd_spring_spec *s);
 GD_API gd_status gd_model_add_spring(gd_model *m, const gd_spring_spec *s, int *index,
                                      gd_error *err);
 
+/* ---- idling gears, synchronisers and gear selection (docs/model-format.md) ---- */
+
+/* An idler: a gear turning on the node `on` of its carrying shaft through a needle
+ * bearing. Adds a one-node shaft, its node and a disk, all named `name`, and the bearing
+ * "<name>.needle" from it to `on` (kxx = kyy = kzz = radial_stiffness, k_tilt, no
+ * torsion). Mesh it like any gear (driver or driven: its name). */
+typedef struct gd_idler_spec {
+    const char *name;         /* required, unique among shafts and nodes */
+    const char *on;           /* required: the carrying shaft's node */
+    double mass;              /* kg, > 0 */
+    double polar_inertia;     /* kg m^2, > 0 */
+    double diametral_inertia; /* kg m^2; < 0 (default): polar_inertia / 2 */
+    double radial_stiffness;  /* N/m, > 0: the needle bearing, radial and axial */
+    double tilt_stiffness;    /* N m/rad, >= 0 */
+    double radial_damping;    /* N s/m, >= 0 */
+    gd_loc loc;
+    const char *path; /* NULL: "idlers[<index>]" */
+} gd_idler_spec;
+/* Defaults: all zero, diametral_inertia -1. */
+GD_API void gd_idler_spec_init(gd_idler_spec *s);
+/* Errors now: a missing name or node, mass, inertia or radial stiffness not positive, a
+ * negative tilt stiffness or damping. At finish: an unknown node `on`, a name used by a
+ * shaft or node. */
+GD_API gd_status gd_model_add_idler(gd_model *m, const gd_idler_spec *s, int *index, gd_error *err);
+
+/* A synchroniser (or dog clutch) on a shaft node between one or two idlers of that
+ * shaft. The engaged one (`engaged`, or the selected gear's) is locked by a torsional
+ * spring "<name>.lock" of `stiffness` and `damping` to the node. */
+typedef struct gd_synchroniser_spec {
+    const char *name;      /* required */
+    const char *node;      /* required: a node of the shaft carrying its idlers */
+    const char *idlers[2]; /* idler names; idlers[1] NULL for a one-sided one */
+    const char *engaged;   /* NULL: neutral unless a selected gear engages one */
+    double stiffness;      /* N m/rad, > 0; default 1e7 */
+    double damping;        /* N m s/rad, >= 0; default 0 */
+    gd_synchro_cone cone;  /* the cone for shifts (all 0: none; then mu, force, radius,
+                              angle > 0 and cones >= 1) */
+    gd_loc loc;
+    const char *path; /* NULL: "synchronisers[<index>]" */
+} gd_synchroniser_spec;
+/* Defaults: all zero, stiffness 1e7 N m/rad. */
+GD_API void gd_synchroniser_spec_init(gd_synchroniser_spec *s);
+/* Errors now: missing name, node or idlers, the same idler twice, bad values. At finish:
+ * a name that is not an idler (a gear fixed on its shaft cannot be engaged), an idler on
+ * two synchronisers, `engaged` not one of its idlers, two gears engaged on it (its own
+ * `engaged` and the selected gear's), the node not on the idlers' carrying shaft. */
+GD_API gd_status gd_model_add_synchroniser(gd_model *m, const gd_synchroniser_spec *s, int *index,
+                                           gd_error *err);
+
+/* Gear `number` (>= 1; e.g. 1..5, reverse as 6) engages `idler` (`gears:`). path NULL:
+ * "gears.<number>". At finish: the idler must exist and be on a synchroniser. */
+GD_API gd_status gd_model_add_gear(gd_model *m, int number, const char *idler, gd_loc loc,
+                                   const char *path, gd_error *err);
+/* Selects gear `number` (0: none), the file's `gear:` (or `--set gear=3`). At finish:
+ * an error listing the gears when it is not among them. */
+GD_API gd_status gd_model_select_gear(gd_model *m, int number, gd_loc loc, gd_error *err);
+/* A gear shift in time integration (`shift:`, `transient --shift 3:4@0.5`): at `time` the
+ * engaged gear `from` is released (law gear_release cancels its lock) and the synchroniser
+ * of gear `to` pulls its idler to speed with its cone torque, then locks it (law
+ * synchro_cone, T_c = mu F R_c n / sin(alpha) from the synchroniser's `cone:`). The laws
+ * act in time integration only; the linear analyses see gear `from`. At finish: `from`
+ * must be engaged, `to` exist, differ and have a synchroniser with a cone. */
+GD_API gd_status gd_model_set_shift(gd_model *m, int from, int to, double time, gd_loc loc,
+                                    gd_error *err);
+
 /* ---- planetary gear sets (docs/planetary.md) ---- */
 /* One central member: its node and what the set adds there. */
 typedef struct gd_planetary_member_spec {

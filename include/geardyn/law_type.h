@@ -224,7 +224,8 @@ GD_API extern const gd_law_type *const gd_law_types[];
 GD_API extern const int gd_nlaw_types;
 GD_API extern const gd_law_type gd_law_sfd, gd_law_load, gd_law_polynomial_spring, gd_law_friction,
     gd_law_rolling_bearing, gd_law_journal_bearing, gd_law_unilateral_spring, gd_law_backlash_mesh,
-    gd_law_cam_torque, gd_law_churning_drag, gd_law_bearing_drag;
+    gd_law_cam_torque, gd_law_churning_drag, gd_law_bearing_drag, gd_law_synchro_cone,
+    gd_law_gear_release;
 /* The built-in type named name, or NULL. */
 GD_API const gd_law_type *gd_law_type_find(const char *name);
 

@@ -283,6 +283,48 @@ typedef struct gd_planetary {
     gd_loc loc;
 } gd_planetary;
 
+/* An idling gear (docs/model-format.md, "idlers"): a gear that turns on its carrying
+ * shaft through a needle bearing. It has a node of its own on a generated one-node shaft
+ * named after it (node, shaft and disk take the idler's name), joined to the carrying
+ * node by a bearing "<idler>.needle" (radial, axial and tilt stiffness, no torsion): its
+ * rotation is free except for the drag laws given on it and its synchroniser's lock. */
+typedef struct gd_idler {
+    char name[GD_NAME_MAX];
+    int node;         /* the idler's own node */
+    int carrier;      /* the carrying shaft's node */
+    int synchroniser; /* index of the synchroniser that engages it, -1: none */
+    int engaged;      /* 1: locked to its shaft by the selected gear */
+    gd_loc loc;
+} gd_idler;
+
+/* The cone of a synchroniser: its friction torque while the speeds are matched,
+ * T = mu F R_cone n_cones / sin(alpha) (docs/rattle.md, "Shifting"). */
+typedef struct gd_synchro_cone {
+    double mu, force, radius, angle; /* -, N, m, rad (the cone's half angle) */
+    int cones;                       /* friction surfaces */
+} gd_synchro_cone;
+
+/* A synchroniser or dog clutch on a shaft node between one or two idlers. The engaged
+ * idler is locked to the node by a stiff torsional spring "<synchroniser>.lock" (rz,
+ * `stiffness`, `damping`): a spring, not a constraint, so that every analysis and a shift
+ * in time integration see the same DOFs (docs/model-format.md). */
+typedef struct gd_synchroniser {
+    char name[GD_NAME_MAX];
+    int node;
+    int idler[2];              /* idler indices, idler[1] = -1 for a one-sided one */
+    int engaged;               /* idler index locked, -1: neutral */
+    int spring;                /* the lock's spring index, -1 when neutral */
+    double stiffness, damping; /* the lock: N m/rad, N m s/rad */
+    gd_synchro_cone cone;      /* cone.mu = 0: no cone given (a dog clutch) */
+    gd_loc loc;
+} gd_synchroniser;
+
+/* Gear number -> the idler its selection engages (`gears:`). */
+typedef struct gd_gear_choice {
+    int number;
+    int idler;
+} gd_gear_choice;
+
 typedef struct gd_model {
     char file[256];
     int nmaterials;
@@ -315,6 +357,13 @@ typedef struct gd_model {
     gd_model_law *laws;
     int nplanetary; /* planetary sets (docs/planetary.md) */
     gd_planetary *planetary;
+    int nidlers; /* idling gears and their synchronisers (docs/model-format.md) */
+    gd_idler *idlers;
+    int nsynchronisers;
+    gd_synchroniser *synchronisers;
+    int ngears;
+    gd_gear_choice *gears;
+    int gear;            /* the selected gear number, 0: none (the synchronisers' own `engaged`) */
     unsigned dof_mask;   /* active node DOFs (GD_DOF_BIT) */
     int reference_shaft; /* shaft whose speed is the reference speed */
     double speed;        /* reference speed, rad/s (0 unless given) */
@@ -350,6 +399,11 @@ GD_API double gd_mesh_linear_damping(const gd_mesh *mesh);
 GD_API int gd_model_find_node(const gd_model *model, const char *name);
 GD_API int gd_model_find_shaft(const gd_model *model, const char *name);
 GD_API int gd_model_find_mesh(const gd_model *model, const char *name);
+/* The idler whose own node is `node`, or -1. */
+GD_API int gd_model_idler_of_node(const gd_model *model, int node);
+/* The order label of shaft s: "1x <shaft>", or for an idler "1x idler <mesh>[+<mesh>]"
+ * named from the meshes it takes part in (docs/rattle.md). */
+GD_API void gd_model_shaft_order_label(const gd_model *model, int s, char *buf, int cap);
 
 /* Mesh numbering of the time-integration laws (gd_tr_mesh.mesh): 0 .. nmeshes - 1 the gear
  * meshes, then each planetary set's sun-planet meshes (planets 1..N) and ring-planet meshes.

@@ -32,7 +32,7 @@ int gd_campbell_orders(const gd_model *m, const gd_campbell_options *opt, gd_ord
     char label[96];
     if (opt->shaft_orders)
         for (int s = 0; s < m->nshafts; s++) {
-            snprintf(label, sizeof label, "1x %.80s", m->shafts[s].name);
+            gd_model_shaft_order_label(m, s, label, (int)sizeof label);
             add_order(o, &n, GD_ORDER_SHAFT, fabs(m->shafts[s].speed_ratio), label);
         }
     for (int i = 0; i < opt->norders; i++) {

@@ -14,7 +14,9 @@ const gd_law_type *const gd_law_types[] = {&gd_law_sfd,
                                            &gd_law_journal_bearing,
                                            &gd_law_unilateral_spring,
                                            &gd_law_churning_drag,
-                                           &gd_law_bearing_drag};
+                                           &gd_law_bearing_drag,
+                                           &gd_law_synchro_cone,
+                                           &gd_law_gear_release};
 const int gd_nlaw_types = (int)(sizeof gd_law_types / sizeof gd_law_types[0]);
 
 const gd_law_type *gd_law_type_find(const char *name)

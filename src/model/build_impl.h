@@ -64,6 +64,18 @@ typedef struct gd_bplanetary {
     char *node[GD_PLANETARY_NMEMBERS];
 } gd_bplanetary;
 
+/* Idlers, synchronisers and gears until finish (builder_idler.c) */
+typedef struct gd_bidler {
+    char *path, *on;
+} gd_bidler;
+typedef struct gd_bsync {
+    char *path, *node, *idlers[2], *engaged;
+} gd_bsync;
+typedef struct gd_bgear {
+    char *path, *idler;
+    gd_loc loc;
+} gd_bgear;
+
 typedef struct gd_model_build {
     gd_field_locator locator;
     char **material_path;
@@ -71,6 +83,13 @@ typedef struct gd_model_build {
     gd_bitem *disks, *bearings, *springs, *unbalances, *excitations, *prescribed, *cams, *laws;
     gd_bmesh *meshes;
     gd_bplanetary *planetary;
+    gd_bidler *idlers;
+    gd_bsync *syncs;
+    gd_bgear *gears;
+    gd_loc gear_loc;          /* of the selection (gd_model_select_gear) */
+    int shift_from, shift_to; /* gd_model_set_shift; 0: no shift */
+    double shift_time;
+    gd_loc shift_loc;
     gd_btable *excitation_tables, *prescribed_tables, *cam_tables;
     char *reference_shaft;
     int rotation;
@@ -145,5 +164,10 @@ gd_status gd_build_resolve_planetary(gd_model *m, gd_error *err); /* builder_pla
  * results the caller frees. */
 gd_status gd_build_planetary_geometry(const gd_model *m, gd_planetary_spec *s, const char *path,
                                       gd_planetary *g, gd_error *err);
+/* builder_idler.c: the selection checked and the engaged locks added as springs (by name,
+ * before the model is resolved); the idlers' and synchronisers' nodes resolved (after the
+ * supports). Their builder copies are freed with the rest (builder_state.c). */
+gd_status gd_build_engage_synchronisers(gd_model *m, gd_error *err);
+gd_status gd_build_resolve_idlers(gd_model *m, gd_error *err);
 
 #endif

@@ -265,12 +265,15 @@ gd_status gd_model_finish(gd_model *m, gd_error *err)
     if (m->nshafts == 0)
         return gd_build_fail(m, err, none, NULL, "shafts", "describe at least one shaft",
                              "no shafts");
+    /* the engaged synchronisers' locks are springs, added while adds are still open */
+    st = gd_build_engage_synchronisers(m, err);
     m->build->failed = 1; /* until it succeeds: half-resolved items cannot be redone */
+    if (st) return st;
     if ((st = gd_build_discretise_shafts(m, err)) || (st = finish_reference(m, err)) ||
         (st = gd_build_resolve_disks(m, err)) || (st = gd_build_resolve_supports(m, err)) ||
-        (st = gd_build_resolve_meshes(m, err)) || (st = gd_build_resolve_planetary(m, err)) ||
-        (st = gd_build_propagate_speeds(m, err)) || (st = gd_build_resolve_dynamics(m, err)) ||
-        (st = gd_build_resolve_laws(m, err)))
+        (st = gd_build_resolve_idlers(m, err)) || (st = gd_build_resolve_meshes(m, err)) ||
+        (st = gd_build_resolve_planetary(m, err)) || (st = gd_build_propagate_speeds(m, err)) ||
+        (st = gd_build_resolve_dynamics(m, err)) || (st = gd_build_resolve_laws(m, err)))
         return st;
     gd_model_build_free(m);
     return GD_OK;

@@ -70,6 +70,24 @@ void gd_model_build_free(gd_model *m)
             free(b->planetary[i].node[j]);
     }
     free(b->planetary);
+    for (int i = 0; i < m->nidlers && b->idlers; i++) {
+        free(b->idlers[i].path);
+        free(b->idlers[i].on);
+    }
+    free(b->idlers);
+    for (int k = 0; k < m->nsynchronisers && b->syncs; k++) {
+        free(b->syncs[k].path);
+        free(b->syncs[k].node);
+        free(b->syncs[k].idlers[0]);
+        free(b->syncs[k].idlers[1]);
+        free(b->syncs[k].engaged);
+    }
+    free(b->syncs);
+    for (int i = 0; i < m->ngears && b->gears; i++) {
+        free(b->gears[i].path);
+        free(b->gears[i].idler);
+    }
+    free(b->gears);
     for (int i = 0; i < m->nexcitations && b->excitation_tables; i++)
         free_table(&b->excitation_tables[i]);
     for (int i = 0; i < m->nprescribed && b->prescribed_tables; i++)

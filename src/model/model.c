@@ -93,6 +93,9 @@ void gd_model_free(gd_model *model)
         }
     }
     free(model->planetary);
+    free(model->idlers);
+    free(model->synchronisers);
+    free(model->gears);
     free(model->meshes);
     free(model->unbalances);
     free(model);
@@ -156,6 +159,32 @@ const char *gd_model_mesh_name(const gd_model *model, int i)
     if (i < 0 || !gd_model_planetary_mesh(model, i, &s, &ring, &n)) return "";
     const gd_planetary *g = &model->planetary[s];
     return g->instance_name[3 + (1 + ring) * g->nplanets + n]; /* the element's order */
+}
+
+int gd_model_idler_of_node(const gd_model *model, int node)
+{
+    for (int i = 0; i < model->nidlers; i++)
+        if (model->idlers[i].node == node) return i;
+    return -1;
+}
+
+void gd_model_shaft_order_label(const gd_model *model, int s, char *buf, int cap)
+{
+    const gd_shaft *sh = &model->shafts[s];
+    int idler = sh->nnodes == 1 ? gd_model_idler_of_node(model, sh->first_node) : -1;
+    if (idler < 0) {
+        snprintf(buf, (size_t)cap, "1x %.80s", sh->name);
+        return;
+    }
+    /* an idler's 1x is named from its meshes: "1x idler gear3" (issue 37: not a shaft) */
+    int n = snprintf(buf, (size_t)cap, "1x idler");
+    int nm = 0;
+    for (int k = 0; k < model->nmeshes && n < cap; k++) {
+        const gd_mesh *g = &model->meshes[k];
+        if (g->driver != sh->first_node && g->driven != sh->first_node) continue;
+        n += snprintf(buf + n, (size_t)(cap - n), "%s%.40s", nm++ ? "+" : " ", g->name);
+    }
+    if (!nm && n < cap) snprintf(buf + n, (size_t)(cap - n), " %.60s", sh->name);
 }
 
 void gd_model_shaft_summary(const gd_model *model, int shaft, gd_shaft_summary *out)

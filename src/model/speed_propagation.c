@@ -72,6 +72,24 @@ static gd_status spread_planetary(gd_model *m, int s, int *seen, int *queue, int
     return GD_OK;
 }
 
+/* An engaged synchroniser turns its idler with its shaft (ratio 1 either way). */
+static gd_status spread_synchronisers(gd_model *m, int s, int *seen, int *queue, int *tail,
+                                      gd_error *err)
+{
+    gd_status st;
+    for (int k = 0; k < m->nsynchronisers; k++) {
+        const gd_synchroniser *g = &m->synchronisers[k];
+        if (g->engaged < 0) continue;
+        int a = m->nodes[m->idlers[g->engaged].node].shaft, b = m->nodes[g->node].shaft;
+        int other = a == s ? b : b == s ? a : -1;
+        if (other < 0) continue;
+        if ((st = reach(m, seen, queue, tail, other, m->shafts[s].speed_ratio, "synchroniser",
+                        g->name, g->loc, m->build->syncs[k].path, err)))
+            return st;
+    }
+    return GD_OK;
+}
+
 static gd_status spread(gd_model *m, int *seen, int *queue, gd_error *err)
 {
     gd_model_build *b = m->build;
@@ -104,7 +122,9 @@ static gd_status spread(gd_model *m, int *seen, int *queue, gd_error *err)
                                 b->meshes[k].path, err)))
                     return st;
             }
-            if ((st = spread_planetary(m, s, seen, queue, &tail, err))) return st;
+            if ((st = spread_planetary(m, s, seen, queue, &tail, err)) ||
+                (st = spread_synchronisers(m, s, seen, queue, &tail, err)))
+                return st;
         }
     }
     return GD_OK;

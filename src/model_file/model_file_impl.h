@@ -53,6 +53,7 @@ gd_status gd_mp_springs(gd_mparser *p);
 gd_status gd_mp_meshes(gd_mparser *p);
 gd_status gd_mp_unbalances(gd_mparser *p);
 gd_status gd_mp_planetary(gd_mparser *p); /* planetary_read.c */
+gd_status gd_mp_idlers(gd_mparser *p);    /* idlers_read.c: idlers, synchronisers, gears */
 
 /* A list of n >= 1 quantities under key (tables_read.c; free *out). */
 gd_status gd_mp_read_qty_list(gd_mparser *p, const gd_ynode *map, const char *key, const char *path,

@@ -14,10 +14,12 @@
 #include "model_file/yaml_doc_impl.h"
 
 static const char *const TOP_KEYS[] = {
-    "title",      "description", "materials",      "dofs",        "shafts",          "disks",
-    "bearings",   "springs",     "meshes",         "speed",       "reference_shaft", "rotation",
-    "unbalances", "excitations", "prescribed",     "cam_torques", "limits",          "damping",
-    "gravity",    "laws",        "planetary_sets", NULL};
+    "title",           "description", "materials",     "dofs",        "shafts",
+    "disks",           "bearings",    "springs",       "meshes",      "speed",
+    "reference_shaft", "rotation",    "unbalances",    "excitations", "prescribed",
+    "cam_torques",     "limits",      "damping",       "gravity",     "laws",
+    "planetary_sets",  "idlers",      "synchronisers", "gears",       "gear",
+    "shift",           NULL};
 static const char *const GRAVITY_KEYS[] = {"direction", "g", NULL};
 static const char *const LIMIT_KEYS[] = {"max_nodes", NULL};
 static const char *const DAMPING_KEYS[] = {"rayleigh", NULL};
@@ -231,8 +233,8 @@ static gd_status parse(gd_mparser *p)
         (st = gd_mp_materials(p)) || (st = gd_mp_shafts(p)) || (st = parse_globals(p)) ||
         (st = parse_damping(p)) || (st = parse_gravity(p)) || (st = gd_mp_disks(p)) ||
         (st = gd_mp_bearings(p)) || (st = gd_mp_springs(p)) || (st = gd_mp_meshes(p)) ||
-        (st = gd_mp_planetary(p)) || (st = gd_mp_unbalances(p)) || (st = gd_mp_dynamics(p)) ||
-        (st = gd_mp_laws(p)))
+        (st = gd_mp_planetary(p)) || (st = gd_mp_idlers(p)) || (st = gd_mp_unbalances(p)) ||
+        (st = gd_mp_dynamics(p)) || (st = gd_mp_laws(p)))
         return st;
     return gd_model_finish(p->m, p->r.err);
 }

@@ -11,7 +11,7 @@
 
 TEST(registry_tables_are_valid)
 {
-    CHECK(gd_nlaw_types == 9);
+    CHECK(gd_nlaw_types == 11);
     for (int i = 0; i < gd_nlaw_types; i++) {
         const gd_law_type *t = gd_law_types[i];
         gd_error err;
@@ -69,6 +69,14 @@ static void sample_law(const gd_law_type *t, gd_law *L)
         L->value[0] = 3.0, L->value[1] = 0.035, L->value[2] = 0.04, L->value[4] = 5e-4;
         L->value[5] = 800.0;
         L->rate[0] = 150.0, L->rate[1] = 20.0;
+    } else if (t == &gd_law_synchro_cone) {
+        /* locked after its shift at 0.01 s: the viscous lock's Jacobian */
+        L->value[0] = 0.01, L->value[1] = 9.7, L->value[2] = 500.0;
+        L->mode = 2;
+    } else if (t == &gd_law_gear_release) {
+        /* released at 0.01 s: the opposite of the lock spring */
+        L->value[0] = 0.01, L->value[1] = 1e6, L->value[2] = 2.0;
+        L->mode = 1;
     }
 }
 
