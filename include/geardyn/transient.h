@@ -150,13 +150,13 @@ GD_API gd_status gd_transient_new_condensed(const gd_system *sys, const gd_trans
                                             double speed, double cutoff, gd_transient **out,
                                             gd_error *err);
 typedef struct gd_tr_condensed_info {
-    int ncoords, nstates;   /* coordinates (law DOFs), states */
-    int nkept, ndiscarded;  /* elastic modes kept (a pair once), replaced by the correction */
-    int nrigid;             /* rigid-body modes */
-    double cutoff;          /* rad/s (0: every mode) */
-    double first_discarded; /* |lambda| of the lowest discarded mode, rad/s (INFINITY: none) */
-    double excitation;      /* highest excitation frequency of the laws, rad/s (0: none) */
-    double contact;         /* highest mesh contact frequency, rad/s (0: none) */
+    int ncoords, nstates;     /* coordinates (law DOFs), states */
+    int nkept, ndiscarded;    /* elastic modes kept (a pair once), replaced by the correction */
+    int nrigid;               /* rigid-body modes */
+    double cutoff;            /* rad/s (0: every mode) */
+    double first_discarded;   /* |lambda| of the lowest discarded mode, rad/s (INFINITY: none) */
+    double excitation;        /* highest excitation frequency of the laws, rad/s (0: none) */
+    double contact;           /* highest mesh contact frequency, rad/s (0: none) */
     double static_correction; /* largest entry of G */
     double estimate; /* truncation estimate of the receptance at `excitation` over its largest
                         entry (gd_condense_receptance; 0 when every mode is kept) */

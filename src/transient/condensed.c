@@ -137,7 +137,7 @@ static void refresh_tangent(gd_transient *tr, double t, const double *qs, const 
             worst = fmax(worst, fabs(s));
         }
     k->loop = worst > 1e-12;
-    k->lok = !k->loop || LAPACKE_dgetrf(LAPACK_COL_MAJOR, nc, nc, k->L, nc, k->lpiv) == 0;
+    k->lok = !k->loop || LAPACKE_dgetrf_work(LAPACK_COL_MAJOR, nc, nc, k->L, nc, k->lpiv) == 0;
     for (int i = 0; i < tr->nlaw; i++)
         k->modes[i] = tr->law[i].mode;
     k->have_tangent = 1;
@@ -182,7 +182,7 @@ static void solve_loop(gd_transient *tr, double t, const double *x, double *qs, 
             }
             return;
         }
-        LAPACKE_dgetrs(LAPACK_COL_MAJOR, 'N', nc, 1, k->L, nc, k->lpiv, z, nc);
+        LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'N', nc, 1, k->L, nc, k->lpiv, z, nc);
         for (int i = 0; i < nc; i++)
             k->u[i] -= z[i];
         k->loop_iters++;
@@ -259,7 +259,7 @@ int gd_tr_condensed_psetup(sunrealtype t, N_Vector y, N_Vector fy, sunbooleantyp
                 D[i + (size_t)j * nc] = s;
             }
         if (k->loop && k->lok)
-            LAPACKE_dgetrs(LAPACK_COL_MAJOR, 'N', nc, ns, k->L, nc, k->lpiv, D, nc);
+            LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'N', nc, ns, k->L, nc, k->lpiv, D, nc);
         memcpy(k->J, k->A, (size_t)ns * ns * sizeof *k->J);
         for (int j = 0; j < ns; j++)
             for (int m = 0; m < nc; m++) {
@@ -280,7 +280,7 @@ int gd_tr_condensed_psetup(sunrealtype t, N_Vector y, N_Vector fy, sunbooleantyp
     for (int i = 0; i < ns; i++)
         k->P[i + (size_t)i * ns] += 1.0;
     k->setups++;
-    return LAPACKE_dgetrf(LAPACK_COL_MAJOR, ns, ns, k->P, ns, k->ppiv) ? 1 : 0;
+    return LAPACKE_dgetrf_work(LAPACK_COL_MAJOR, ns, ns, k->P, ns, k->ppiv) ? 1 : 0;
 }
 
 int gd_tr_condensed_psolve(sunrealtype t, N_Vector y, N_Vector fy, N_Vector r, N_Vector z,
@@ -297,7 +297,33 @@ int gd_tr_condensed_psolve(sunrealtype t, N_Vector y, N_Vector fy, N_Vector r, N
     const int ns = k->ns;
     double *zd = N_VGetArrayPointer(z);
     memcpy(zd, N_VGetArrayPointer(r), (size_t)ns * sizeof *zd);
-    return LAPACKE_dgetrs(LAPACK_COL_MAJOR, 'N', ns, 1, k->P, ns, k->ppiv, zd, ns) ? -1 : 0;
+    return LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'N', ns, 1, k->P, ns, k->ppiv, zd, ns) ? -1 : 0;
+}
+
+/* J v with the Jacobian of the last set-up: GMRES then solves the same matrix the
+ * preconditioner inverts, in one iteration (CVODE's modified Newton with a dense solve). */
+int gd_tr_condensed_jtimes(N_Vector v, N_Vector Jv, sunrealtype t, N_Vector y, N_Vector fy,
+                           void *ud, N_Vector tmp)
+{
+    (void)t;
+    (void)y;
+    (void)fy;
+    (void)tmp;
+    const gd_transient *tr = ud;
+    const gd_tr_condensed *k = tr->cond;
+    const int ns = k->ns;
+    const double *x = N_VGetArrayPointer(v);
+    double *o = N_VGetArrayPointer(Jv);
+    for (int i = 0; i < ns; i++)
+        o[i] = 0.0;
+    for (int j = 0; j < ns; j++) {
+        const double xj = x[j];
+        if (xj == 0.0) continue;
+        const double *c = k->J + (size_t)j * ns;
+        for (int i = 0; i < ns; i++)
+            o[i] += c[i] * xj;
+    }
+    return 0;
 }
 
 void gd_tr_condensed_atol(const gd_transient *tr, double atol_q, double atol_v, double *atol)
@@ -362,13 +388,12 @@ static double excitation_band(const gd_transient *tr)
 static double contact_band(gd_transient *tr)
 {
     double wmax = 0.0;
-    for (int m = 0; m < tr->nmodel_mesh; m++) {
-        int l = tr->nl_of_mesh[m];
-        if (l < 0 || !gd_law_nswitches(&tr->law[l])) continue;
+    for (int l = 0; l < tr->nmesh; l++) { /* the spec's meshes: law[0 .. nmesh - 1] */
+        if (!gd_law_nswitches(&tr->law[l])) continue;
         const gd_mesh_law_data *d = tr->law[l].data;
-        double k = d->stiffness, me = 0.0;
+        double k = fmax(d->stiffness, d->k_lin), me = 0.0; /* TVMS: its mean */
         gd_error e;
-        if (gd_transient_mesh_mass(tr, m, &me, &e) || !(me > 0)) continue;
+        if (gd_transient_mesh_mass(tr, l, &me, &e) || !(me > 0)) continue;
         if (k > 0) wmax = fmax(wmax, sqrt(k / me));
         if (d->coast_scale > 0) wmax = fmax(wmax, sqrt(d->coast_scale * k / me));
     }
@@ -376,8 +401,7 @@ static double contact_band(gd_transient *tr)
 }
 
 gd_status gd_transient_new_condensed(const gd_system *sys, const gd_transient_spec *spec,
-                                     double speed, double cutoff, gd_transient **out,
-                                     gd_error *err)
+                                     double speed, double cutoff, gd_transient **out, gd_error *err)
 {
     *out = NULL;
     const char *file = sys->model ? sys->model->file : "";
@@ -442,7 +466,8 @@ gd_status gd_transient_new_condensed(const gd_system *sys, const gd_transient_sp
     /* the cut-off: every mode when cutoff == 0; the rule when < 0 */
     k->w_exc = excitation_band(tr);
     k->w_contact = contact_band(tr);
-    if (cutoff < 0) cutoff = fmax(GD_TR_CONDENSE_EXC * k->w_exc, GD_TR_CONDENSE_CONTACT * k->w_contact);
+    if (cutoff < 0)
+        cutoff = fmax(GD_TR_CONDENSE_EXC * k->w_exc, GD_TR_CONDENSE_CONTACT * k->w_contact);
     k->cutoff = cutoff;
     int nmodes = 0;
     if (cutoff > 0) {

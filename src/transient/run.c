@@ -90,6 +90,9 @@ void *gd_tr_cvode_new(SUNContext ctx, const gd_transient_options *opt, double t0
     if (!*LS) f = -1;
     if (!f) f = CVodeSetLinearSolver(mem, *LS, NULL);
     if (!f) f = CVodeSetPreconditioner(mem, psetup, psolve);
+    /* the condensed model: J v from the set-up's dense Jacobian (condensed.c) */
+    if (!f && tr->cond && psetup == gd_tr_condensed_psetup)
+        f = CVodeSetJacTimes(mem, NULL, gd_tr_condensed_jtimes);
     if (!f) f = CVodeSetMaxNumSteps(mem, opt->max_steps > 0 ? opt->max_steps : 50000000L);
     if (!f && opt->max_step > 0) f = CVodeSetMaxStep(mem, opt->max_step);
     if (!f) f = CVodeSetStopTime(mem, t_stop);
@@ -335,8 +338,8 @@ static gd_status advance(gd_transient *tr, run_work *w, const gd_transient_optio
 
 /* The method that ran and what controlled its error, in res (why: the reason auto
  * chose it, NULL when the method was given). */
-static void method_note(const gd_transient *cond, const gd_transient_options *opt,
-                        const char *why, double dt, gd_transient_result *res)
+static void method_note(const gd_transient *cond, const gd_transient_options *opt, const char *why,
+                        double dt, gd_transient_result *res)
 {
     static const char *const names[] = {"bdf", "adams", "galpha", "auto", "lti"};
     char *b = res->method_note;
@@ -368,8 +371,7 @@ static void method_note(const gd_transient *cond, const gd_transient_options *op
             snprintf(b + k, len - k,
                      "; condensed: %d states on %d law DOFs, %d modes to %.4g Hz + static "
                      "correction, estimate %.2g",
-                     ci.nstates, ci.ncoords, ci.nkept, ci.cutoff / 6.283185307179586,
-                     ci.estimate);
+                     ci.nstates, ci.ncoords, ci.nkept, ci.cutoff / 6.283185307179586, ci.estimate);
         else
             snprintf(b + k, len - k, "; condensed: %d states on %d law DOFs, every mode kept",
                      ci.nstates, ci.ncoords);

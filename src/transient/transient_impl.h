@@ -36,16 +36,16 @@ typedef struct gd_tr_condensed {
     gd_condensation *c;
     gd_condense_info info;
     int ns, nc;
-    int *dof;                     /* nc: system DOF of each coordinate */
-    const double *A, *B, *C, *G;  /* the condensation's (ns x ns, ns x nc, nc x ns, nc x nc) */
-    double *CA, *CB;              /* nc x ns, nc x nc */
-    double *dK, *dD;              /* nc x nc: K_L, C_L of the model's laws at S */
-    double *u;                    /* nc: the coordinate forces of the last evaluation */
-    double *Fq, *Fv, *L;          /* nc x nc: the forces' tangent, the loop matrix (LU) */
+    int *dof;                    /* nc: system DOF of each coordinate */
+    const double *A, *B, *C, *G; /* the condensation's (ns x ns, ns x nc, nc x ns, nc x nc) */
+    double *CA, *CB;             /* nc x ns, nc x nc */
+    double *dK, *dD;             /* nc x nc: K_L, C_L of the model's laws at S */
+    double *u;                   /* nc: the coordinate forces of the last evaluation */
+    double *Fq, *Fv, *L;         /* nc x nc: the forces' tangent, the loop matrix (LU) */
     int *lpiv;
     int loop, lok, have_tangent, have_J;
-    int *modes;                   /* nlaw: the laws' modes the tangent was taken in */
-    double *J, *P;                /* ns x ns: Jacobian, I - gamma J (LU) */
+    int *modes;    /* nlaw: the laws' modes the tangent was taken in */
+    double *J, *P; /* ns x ns: Jacobian, I - gamma J (LU) */
     int *ppiv;
     double *work;
     double cutoff, w_exc, w_contact, est_rel;
@@ -60,6 +60,8 @@ int gd_tr_condensed_psetup(sunrealtype t, N_Vector y, N_Vector fy, sunbooleantyp
                            sunbooleantype *jcur, sunrealtype gamma, void *ud);
 int gd_tr_condensed_psolve(sunrealtype t, N_Vector y, N_Vector fy, N_Vector r, N_Vector z,
                            sunrealtype gamma, sunrealtype delta, int lr, void *ud);
+int gd_tr_condensed_jtimes(N_Vector v, N_Vector Jv, sunrealtype t, N_Vector y, N_Vector fy,
+                           void *ud, N_Vector tmp);
 void gd_tr_condensed_atol(const gd_transient *tr, double atol_q, double atol_v, double *atol);
 /* Before a run: the loop's start and the cached tangent cleared. */
 void gd_tr_condensed_reset(gd_transient *tr);
@@ -114,9 +116,9 @@ struct gd_transient {
     int nroot; /* the laws' switches (gd_law_nswitches), in law order */
     /* workspaces (n each) */
     double *q, *v, *acc, *r, *w1, *w2;
-    char msg[256];        /* last solver message */
-    void *mono;           /* gd_transient_monodromy's workspace while it runs */
-    gd_tr_reduction *red; /* NULL: the physical DOFs */
+    char msg[256];         /* last solver message */
+    void *mono;            /* gd_transient_monodromy's workspace while it runs */
+    gd_tr_reduction *red;  /* NULL: the physical DOFs */
     gd_tr_condensed *cond; /* NULL: not condensed (condensed.c) */
     int nterm; /* local force terms (local_forces.c), built on first use; -1 unsupported */
     gd_tr_term *term;
