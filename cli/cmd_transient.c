@@ -1273,10 +1273,23 @@ int gd_cmd_transient(int argc, char **argv)
         }
         if ((rc = gd_cli_plot_finish(pst, p, &err, o.plot))) goto done;
     }
-    int nfree = gd_transient_nstates(tr) / 2;
+    gd_tr_condensed_info ci;
+    const int condensed = gd_transient_condensed_info(tr, &ci);
+    int nfree = condensed ? s->ndof : gd_transient_nstates(tr) / 2;
     /* auto: the method chosen and its error control, in place of the name */
     if (o.method == GD_TR_AUTO || o.condense) ri.method = res->method_note;
     summary = summary_json(s, tm, &recs, res, spec, &ri, nfree);
+    if (condensed) {
+        cJSON *c = cJSON_AddObjectToObject(summary, "condensed");
+        cJSON_AddNumberToObject(c, "states", ci.nstates);
+        cJSON_AddNumberToObject(c, "law_dofs", ci.ncoords);
+        cJSON_AddNumberToObject(c, "modes_kept", ci.nkept);
+        cJSON_AddNumberToObject(c, "modes_discarded", ci.ndiscarded);
+        cJSON_AddNumberToObject(c, "cutoff_hz", ci.cutoff / (2 * M_PI));
+        cJSON_AddNumberToObject(c, "excitation_hz", ci.excitation / (2 * M_PI));
+        cJSON_AddNumberToObject(c, "contact_hz", ci.contact / (2 * M_PI));
+        cJSON_AddNumberToObject(c, "truncation_estimate", ci.estimate);
+    }
     int pperiod = 0, pdistinct = 0;
     char pverdict[32] = "";
     if (o.poincare) {

@@ -398,7 +398,7 @@ void gd_transient_free(gd_transient *tr)
     cs_spfree(tr->Gy);
     gd_tr_release_linear(tr);
     gd_tr_reduction_free(tr->red);
-    gd_tr_condensed_free(tr->cond);
+    if (tr->cond) tr->cond_free(tr->cond);
     free(tr->model_a);
     free(tr->nl_of_mesh);
     free(tr->law_order);

@@ -10,7 +10,7 @@ void gd_tr_fill(gd_transient *tr, double t, const double *y, double *q, double *
 {
     const int nf = tr->nf;
     if (tr->cond) { /* the state is the condensed model's (condensed.c) */
-        gd_tr_condensed_fill(tr, t, y, q, v, 1);
+        tr->cond_fill(tr, t, y, q, v, 1);
         if (acc) memset(acc, 0, (size_t)tr->n * sizeof *acc);
         return;
     }
@@ -261,7 +261,7 @@ void gd_transient_rhs(gd_transient *tr, double t, const double *y, double *ydot)
 {
     const int nf = tr->nf;
     if (tr->cond) {
-        gd_tr_condensed_rhs(tr, t, y, ydot);
+        tr->cond_rhs(tr, t, y, ydot);
         return;
     }
     gd_tr_fill(tr, t, y, tr->q, tr->v, tr->acc);
@@ -296,7 +296,7 @@ void gd_transient_rhs(gd_transient *tr, double t, const double *y, double *ydot)
 void gd_tr_roots(gd_transient *tr, double t, const double *y, double *g)
 {
     if (tr->cond) /* the switches need only the laws' DOFs */
-        gd_tr_condensed_fill(tr, t, y, tr->q, tr->v, 0);
+        tr->cond_fill(tr, t, y, tr->q, tr->v, 0);
     else
         gd_tr_fill(tr, t, y, tr->q, tr->v, NULL);
     int k = 0;

@@ -120,6 +120,11 @@ struct gd_transient {
     void *mono;            /* gd_transient_monodromy's workspace while it runs */
     gd_tr_reduction *red;  /* NULL: the physical DOFs */
     gd_tr_condensed *cond; /* NULL: not condensed (condensed.c) */
+    /* its operations, set by condensed.c (through pointers: rhs.c and problem.c do not
+     * depend on condensed.c, which uses their forces and problem) */
+    void (*cond_fill)(gd_transient *tr, double t, const double *x, double *q, double *v, int all);
+    void (*cond_rhs)(gd_transient *tr, double t, const double *x, double *xdot);
+    void (*cond_free)(gd_tr_condensed *k);
     int nterm; /* local force terms (local_forces.c), built on first use; -1 unsupported */
     gd_tr_term *term;
     /* run-up (speed_profile.c): the profile while a run uses it, else NULL */
