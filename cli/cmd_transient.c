@@ -482,7 +482,7 @@ static const gd_cli_opt OPTS[] = {
     GD_CLI_ROW("condense", GD_CLI_STRING, F(condense), "C",
                "integrate the structure condensed onto the DOFs the laws act on: its modes up "
                "to C (a frequency, e.g. 8kHz), 'auto' (5 x the highest excitation frequency and "
-               "1.5 x the highest mesh contact frequency) or 'all' (every mode: exact), the rest "
+               "2.5 x the highest mesh contact frequency) or 'all' (every mode: exact), the rest "
                "as their static correction; dense solves on the small state (bdf or adams, "
                "started at rest, no prescribed DOF)"),
     GD_CLI_ROW("start", GD_CLI_CHOICE, F(init), "S",

@@ -141,7 +141,7 @@ GD_API int gd_transient_reduced_size(const gd_transient *tr, int *nkept, int *nm
  * transient"; geardyn/condense.h): the coordinates are the DOFs the laws (meshes, loads,
  * drag, dampers) and unbalances act on; the state is the structure's modes up to cutoff
  * (rad/s; 0: every mode, exact; < 0: the rule max(5 x the highest excitation frequency,
- * 1.5 x the highest mesh contact frequency sqrt(k / m_e))), the others entering as
+ * 2.5 x the highest mesh contact frequency sqrt(k / m_e))), the others entering as
  * their static correction. Runs with bdf or adams (auto: bdf), started at rest; records,
  * q_end and v_end in the system's DOFs. GD_EINPUT: prescribed DOFs, cams with their
  * inertia, nothing to condense onto; GD_ENUMERIC from the condensation (a stiffness

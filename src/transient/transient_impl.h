@@ -30,7 +30,7 @@ typedef struct gd_tr_reduction {
  * modes, coordinates = the nc DOFs the laws and unbalances act on. */
 #include "geardyn/condense.h"
 #define GD_TR_CONDENSE_EXC 5.0     /* auto cut-off: 5 x the highest excitation frequency */
-#define GD_TR_CONDENSE_CONTACT 1.5 /* and 1.5 x the highest mesh contact frequency */
+#define GD_TR_CONDENSE_CONTACT 2.5 /* and 2.5 x the highest mesh contact frequency */
 #define GD_TR_CONDENSE_DENSE_MAX 3000
 typedef struct gd_tr_condensed {
     gd_condensation *c;
