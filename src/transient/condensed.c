@@ -4,7 +4,8 @@
  * the few DOFs they act on, and CVODE's Newton solved by a dense LU of I - gamma J on
  * the small state (J exact for the linear part, the laws' tangent by differences).
  *
- * Model (docs/condense.md, "Time domain"): with S the DOFs any law or unbalance acts on
+ * Model (docs/condense.md, "Time domain": kept modes plus residual flexibility,
+ * [CraigKurdila2006]): with S the DOFs any law or unbalance acts on
  * (each a unit coordinate) and u the forces there,
  *   x' = A x + B u,   q_S = C x + G u,   q_S' = C A x + C B u (the static correction's
  *   own rate G u' is left out: zero when every mode is kept),
