@@ -330,7 +330,7 @@ fail:
 typedef struct cli_opts {
     const char *file; /* the model */
     const char *duration, *revolutions, *speed, *from, *interval, *coupling, *out, *step, *reduce,
-        *plot;
+        *plot, *condense;
     const char *poincare, *settle, *sweep, *waterfall, *ramp, *table;
     double revs_per_block;
     int points, periods;
@@ -481,6 +481,12 @@ static const gd_cli_opt OPTS[] = {
                "modal reduction (Craig-Bampton): DOFs with laws stay physical, the rest become "
                "their modes below F (e.g. 5kHz) plus static constraint modes; any --method runs "
                "the reduced model"),
+    GD_CLI_ROW("condense", GD_CLI_STRING, F(condense), "C",
+               "integrate the structure condensed onto the DOFs the laws act on: its modes up "
+               "to C (a frequency, e.g. 8kHz), 'auto' (5 x the highest excitation frequency and "
+               "2.5 x the highest mesh contact frequency) or 'all' (every mode: exact), the rest "
+               "as their static correction; dense solves on the small state (bdf or adams, "
+               "started at rest, no prescribed DOF)"),
     GD_CLI_ROW("start", GD_CLI_CHOICE, F(init), "S",
                "rest: q = q' = 0 (nominal motion), or static: static equilibrium under the loads "
                "at t = 0",
@@ -622,6 +628,7 @@ static int parse_args(int argc, char **argv, cli_opts *o)
                             : o->poincare       ? "--poincare"
                             : o->revolutions    ? "--revolutions"
                             : o->reduce         ? "--reduce"
+                            : o->condense       ? "--condense"
                             : o->spectrum       ? "--spectrum (use --waterfall)"
                             : o->direction      ? "--run-down/--both-directions"
                                                 : NULL;
@@ -660,6 +667,7 @@ static int parse_args(int argc, char **argv, cli_opts *o)
                             : o->interval                  ? "--output-interval"
                             : o->spectrum                  ? "--spectrum"
                             : o->reduce                    ? "--reduce"
+                            : o->condense                  ? "--condense"
                             : o->step                      ? "--step"
                             : o->method == GD_TR_GEN_ALPHA ? "--method galpha"
                                                            : NULL;
@@ -1173,8 +1181,27 @@ int gd_cmd_transient(int argc, char **argv)
             goto done;
         }
     }
-    if (o.reduce ? gd_transient_new_reduced(s, &tm->spec, ri.speed, cutoff, &tr, &err)
-                 : gd_transient_new(s, &tm->spec, ri.speed, &tr, &err)) {
+    double ccut = 0;
+    if (o.condense && o.reduce) {
+        rc = gd_cli_usage_error(CMD, "--condense and --reduce: give one of them");
+        goto done;
+    }
+    if (o.condense && !strcmp(o.condense, "auto")) {
+        ccut = -1;
+    } else if (o.condense && strcmp(o.condense, "all")) {
+        gd_error why;
+        if (gd_parse_quantity(o.condense, GD_QTY_ANGULAR_SPEED, &ccut, &why) || !(ccut > 0) ||
+            !isfinite(ccut)) {
+            rc = gd_cli_usage_error(CMD,
+                                    "--condense: '%s' is not auto, all or a frequency > 0 (e.g. "
+                                    "8kHz)",
+                                    o.condense);
+            goto done;
+        }
+    }
+    if (o.condense ? gd_transient_new_condensed(s, &tm->spec, ri.speed, ccut, &tr, &err)
+        : o.reduce ? gd_transient_new_reduced(s, &tm->spec, ri.speed, cutoff, &tr, &err)
+                   : gd_transient_new(s, &tm->spec, ri.speed, &tr, &err)) {
         rc = gd_cli_report(&err);
         goto done;
     }
@@ -1278,10 +1305,23 @@ int gd_cmd_transient(int argc, char **argv)
         }
         if ((rc = gd_cli_plot_finish(pst, p, &err, o.plot))) goto done;
     }
-    int nfree = gd_transient_nstates(tr) / 2;
+    gd_tr_condensed_info ci;
+    const int condensed = gd_transient_condensed_info(tr, &ci);
+    int nfree = condensed ? s->ndof : gd_transient_nstates(tr) / 2;
     /* auto: the method chosen and its error control, in place of the name */
-    if (o.method == GD_TR_AUTO) ri.method = res->method_note;
+    if (o.method == GD_TR_AUTO || o.condense) ri.method = res->method_note;
     summary = summary_json(s, tm, &recs, res, spec, &ri, nfree);
+    if (condensed) {
+        cJSON *c = cJSON_AddObjectToObject(summary, "condensed");
+        cJSON_AddNumberToObject(c, "states", ci.nstates);
+        cJSON_AddNumberToObject(c, "law_dofs", ci.ncoords);
+        cJSON_AddNumberToObject(c, "modes_kept", ci.nkept);
+        cJSON_AddNumberToObject(c, "modes_discarded", ci.ndiscarded);
+        cJSON_AddNumberToObject(c, "cutoff_hz", ci.cutoff / (2 * M_PI));
+        cJSON_AddNumberToObject(c, "excitation_hz", ci.excitation / (2 * M_PI));
+        cJSON_AddNumberToObject(c, "contact_hz", ci.contact / (2 * M_PI));
+        cJSON_AddNumberToObject(c, "truncation_estimate", ci.estimate);
+    }
     int pperiod = 0, pdistinct = 0;
     char pverdict[32] = "";
     if (o.poincare) {

@@ -137,6 +137,33 @@ GD_API gd_status gd_transient_new_reduced(const gd_system *sys, const gd_transie
  * (either may be NULL; an unreduced problem: all kept, 0 modes). */
 GD_API int gd_transient_reduced_size(const gd_transient *tr, int *nkept, int *nmodes);
 
+/* The same problem integrated on the condensed structure (docs/transient.md, "Condensed
+ * transient"; geardyn/condense.h): the coordinates are the DOFs the laws (meshes, loads,
+ * drag, dampers) and unbalances act on; the state is the structure's modes up to cutoff
+ * (rad/s; 0: every mode, exact; < 0: the rule max(5 x the highest excitation frequency,
+ * 2.5 x the highest mesh contact frequency sqrt(k / m_e))), the others entering as
+ * their static correction. Runs with bdf or adams (auto: bdf), started at rest; records,
+ * q_end and v_end in the system's DOFs. GD_EINPUT: prescribed DOFs, cams with their
+ * inertia, nothing to condense onto; GD_ENUMERIC from the condensation (a stiffness
+ * singular beyond its rigid modes, a rigid mode with damping to ground). */
+GD_API gd_status gd_transient_new_condensed(const gd_system *sys, const gd_transient_spec *spec,
+                                            double speed, double cutoff, gd_transient **out,
+                                            gd_error *err);
+typedef struct gd_tr_condensed_info {
+    int ncoords, nstates;     /* coordinates (law DOFs), states */
+    int nkept, ndiscarded;    /* elastic modes kept (a pair once), replaced by the correction */
+    int nrigid;               /* rigid-body modes */
+    double cutoff;            /* rad/s (0: every mode) */
+    double first_discarded;   /* |lambda| of the lowest discarded mode, rad/s (INFINITY: none) */
+    double excitation;        /* highest excitation frequency of the laws, rad/s (0: none) */
+    double contact;           /* highest mesh contact frequency, rad/s (0: none) */
+    double static_correction; /* largest entry of G */
+    double estimate; /* truncation estimate of the receptance at `excitation` over its largest
+                        entry (gd_condense_receptance; 0 when every mode is kept) */
+} gd_tr_condensed_info;
+/* 1 and info filled when tr is condensed, else 0 (info zeroed). */
+GD_API int gd_transient_condensed_info(const gd_transient *tr, gd_tr_condensed_info *info);
+
 /* The state layout: y = [q_f; q_f'] over the nfree free DOFs (in increasing DOF order). */
 GD_API int gd_transient_nstates(const gd_transient *tr);
 /* The switch functions of the problem's laws (gd_law_nswitches: two per backlash mesh);

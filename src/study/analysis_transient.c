@@ -5,7 +5,9 @@
  * CLI), mesh (the mesh whose force and contacts are kept; default the first), rtol,
  * method (auto | bdf | adams; auto as the CLI's default), start (rest | static), max_steps (the
  * per-case step limit, default 50 million: a case that needs more fails with the reason before it
- * runs, and the others go on). Statistics are over the recorded window. */
+ * runs, and the others go on), condense (none | auto | all: the structure condensed onto the
+ * laws' DOFs, gd_transient_new_condensed, with the automatic cut-off or every mode).
+ * Statistics are over the recorded window. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,15 +17,17 @@
 #include "geardyn/transient_model.h"
 #include "study/study_impl.h"
 
-static const char *const KEYS[] = {"revolutions", "duration", "speed", "from",      "mesh",
-                                   "rtol",        "method",   "start", "max_steps", NULL};
+static const char *const KEYS[] = {"revolutions", "duration", "speed",  "from",
+                                   "mesh",        "rtol",     "method", "start",
+                                   "max_steps",   "condense", NULL};
+static const char *const CONDENSE[] = {"none", "auto", "all", NULL};
 static const char *const METHODS[] = {"auto", "bdf", "adams", NULL};
 static const gd_tr_method METHOD_OF[] = {GD_TR_AUTO, GD_TR_BDF, GD_TR_ADAMS};
 static const char *const STARTS[] = {"rest", "static", NULL};
 
 typedef struct tr_opts {
     double revolutions, duration, speed, from, rtol;
-    int has_speed, method, start;
+    int has_speed, method, start, condense;
     long max_steps;
     char mesh[128];
 } tr_opts;
@@ -112,6 +116,7 @@ static gd_status options(gd_yreader *r, const gd_ynode *map, void **out)
         gd_yread_qty(r, map, "rtol", "analysis", GD_QTY_DIMLESS, GD_YPOS, &o->rtol, NULL) ||
         gd_yread_str(r, map, "method", "analysis", METHODS, 0, NULL, &o->method, NULL) ||
         gd_yread_str(r, map, "start", "analysis", STARTS, 0, NULL, &o->start, NULL) ||
+        gd_yread_str(r, map, "condense", "analysis", CONDENSE, 0, NULL, &o->condense, NULL) ||
         gd_yread_int(r, map, "max_steps", "analysis", 1, 2000000000, 0, &o->max_steps, NULL))
         return map ? GD_EINPUT
                    : gd_yfail(r, map, "analysis",
@@ -166,7 +171,10 @@ static gd_status run(const gd_study_input *in, const void *opts, const gd_study_
     gd_transient *tr = NULL;
     gd_transient_result *res = NULL;
     st = gd_transient_model_build(sys, &tm, err);
-    if (!st) st = gd_transient_new(sys, &tm->spec, speed, &tr, err);
+    if (!st)
+        st = o->condense ? gd_transient_new_condensed(sys, &tm->spec, speed,
+                                                      o->condense == 1 ? -1.0 : 0.0, &tr, err)
+                         : gd_transient_new(sys, &tm->spec, speed, &tr, err);
     if (!st) {
         gd_transient_options opt;
         gd_transient_options_init(&opt);

@@ -72,6 +72,10 @@ typedef struct lti {
 int gd_tr_lti_reason(const gd_transient *tr, char *why, size_t len)
 {
     int nother = 0, first = -1;
+    if (tr->cond) {
+        snprintf(why, len, "condensed model");
+        return 0;
+    }
     for (int i = 0; i < tr->nlaw; i++)
         if (!(tr->law[i].type->flags & GD_LAW_ASSEMBLED) && nother++ == 0) first = i;
     if (nother > 0) {

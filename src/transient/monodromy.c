@@ -134,6 +134,9 @@ gd_status gd_transient_monodromy(gd_transient *tr, double t0, double period, con
                             "invalid period %g s", period);
     if (!y0 || !phi || !opt)
         return gd_error_set(err, GD_EINPUT, "", 0, 0, "y0", "", "state or output missing");
+    if (tr->cond)
+        return gd_error_set(err, GD_EINPUT, "", 0, 0, "condense", "use the full problem",
+                            "no monodromy matrix of a condensed problem");
     if (opt->profile)
         return gd_error_set(err, GD_EINPUT, "", 0, 0, "profile", "run at a constant speed",
                             "a monodromy matrix needs a periodic motion: no speed profile");

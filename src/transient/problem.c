@@ -409,6 +409,7 @@ void gd_transient_free(gd_transient *tr)
     cs_spfree(tr->Gy);
     gd_tr_release_linear(tr);
     gd_tr_reduction_free(tr->red);
+    if (tr->cond) tr->cond_free(tr->cond);
     free(tr->model_a);
     free(tr->nl_of_mesh);
     free(tr->law_order);
@@ -434,6 +435,7 @@ void gd_transient_free(gd_transient *tr)
 
 int gd_transient_nstates(const gd_transient *tr)
 {
+    if (tr->cond) return tr->cond->ns;
     return 2 * tr->nf;
 }
 

@@ -9,6 +9,11 @@
 void gd_tr_fill(gd_transient *tr, double t, const double *y, double *q, double *v, double *acc)
 {
     const int nf = tr->nf;
+    if (tr->cond) { /* the state is the condensed model's (condensed.c) */
+        tr->cond_fill(tr, t, y, q, v, 1);
+        if (acc) memset(acc, 0, (size_t)tr->n * sizeof *acc);
+        return;
+    }
     for (int f = 0; f < nf; f++) {
         int i = tr->free_dof[f];
         q[i] = y[f];
@@ -255,6 +260,10 @@ static void small_solve(int k, double *A, double *b)
 void gd_transient_rhs(gd_transient *tr, double t, const double *y, double *ydot)
 {
     const int nf = tr->nf;
+    if (tr->cond) {
+        tr->cond_rhs(tr, t, y, ydot);
+        return;
+    }
     gd_tr_fill(tr, t, y, tr->q, tr->v, tr->acc);
     gd_tr_residual(tr, t, tr->q, tr->v, tr->acc, tr->r);
     for (int i = 0; i < nf; i++)
@@ -286,7 +295,10 @@ void gd_transient_rhs(gd_transient *tr, double t, const double *y, double *ydot)
 
 void gd_tr_roots(gd_transient *tr, double t, const double *y, double *g)
 {
-    gd_tr_fill(tr, t, y, tr->q, tr->v, NULL);
+    if (tr->cond) /* the switches need only the laws' DOFs */
+        tr->cond_fill(tr, t, y, tr->q, tr->v, 0);
+    else
+        gd_tr_fill(tr, t, y, tr->q, tr->v, NULL);
     int k = 0;
     for (int i = 0; i < tr->nlaw; i++) {
         const gd_law *L = &tr->law[i];

@@ -90,6 +90,9 @@ void *gd_tr_cvode_new(SUNContext ctx, const gd_transient_options *opt, double t0
     if (!*LS) f = -1;
     if (!f) f = CVodeSetLinearSolver(mem, *LS, NULL);
     if (!f) f = CVodeSetPreconditioner(mem, psetup, psolve);
+    /* the condensed model: J v from the set-up's dense Jacobian (condensed.c) */
+    if (!f && tr->cond && psetup == gd_tr_condensed_psetup)
+        f = CVodeSetJacTimes(mem, NULL, gd_tr_condensed_jtimes);
     if (!f) f = CVodeSetMaxNumSteps(mem, opt->max_steps > 0 ? opt->max_steps : 50000000L);
     if (!f && opt->max_step > 0) f = CVodeSetMaxStep(mem, opt->max_step);
     if (!f) f = CVodeSetStopTime(mem, t_stop);
@@ -336,8 +339,8 @@ static gd_status advance(gd_transient *tr, run_work *w, const gd_transient_optio
 
 /* The method that ran and what controlled its error, in res (why: the reason auto
  * chose it, NULL when the method was given). */
-static void method_note(const gd_transient_options *opt, const char *why, double dt,
-                        gd_transient_result *res)
+static void method_note(const gd_transient *cond, const gd_transient_options *opt, const char *why,
+                        double dt, gd_transient_result *res)
 {
     static const char *const names[] = {"bdf", "adams", "galpha", "auto", "lti"};
     char *b = res->method_note;
@@ -360,8 +363,20 @@ static void method_note(const gd_transient_options *opt, const char *why, double
                  opt->rho_inf);
         return;
     }
-    snprintf(b + k, len - k, "%s, CVODE local error control, rtol %g%s%s%s", names[opt->method],
-             opt->rtol, why ? " (" : "", why ? why : "", why ? ")" : "");
+    k += snprintf(b + k, len - k, "%s, CVODE local error control, rtol %g%s%s%s",
+                  names[opt->method], opt->rtol, why ? " (" : "", why ? why : "", why ? ")" : "");
+    if (cond && k < (int)len) {
+        gd_tr_condensed_info ci;
+        gd_transient_condensed_info(cond, &ci);
+        if (ci.ndiscarded)
+            snprintf(b + k, len - k,
+                     "; condensed: %d states on %d law DOFs, %d modes to %.4g Hz + static "
+                     "correction, estimate %.2g",
+                     ci.nstates, ci.ncoords, ci.nkept, ci.cutoff / 6.283185307179586, ci.estimate);
+        else
+            snprintf(b + k, len - k, "; condensed: %d states on %d law DOFs, every mode kept",
+                     ci.nstates, ci.ncoords);
+    }
 }
 
 /* Refuses a run that cannot finish within the step limit (max_steps, default 50
@@ -481,6 +496,13 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
         opt = &resolved;
     }
     const int is_auto = why[0] != 0;
+    if (tr->cond && (opt->method == GD_TR_GEN_ALPHA || opt->method == GD_TR_LTI))
+        return gd_error_set(err, GD_EINPUT, "", 0, 0, "method", "use auto, bdf or adams",
+                            "the condensed model runs with CVODE (bdf or adams) only");
+    if (tr->cond && opt->init != GD_TR_INIT_REST)
+        return gd_error_set(err, GD_EINPUT, "", 0, 0, "start",
+                            "start at rest, or integrate the full model (--condense none)",
+                            "the condensed model starts at rest only");
     double from = opt->record_from > opt->t_start ? opt->record_from : opt->t_start;
     if (!(opt->t_end > opt->t_start) || !isfinite(opt->t_end) || !isfinite(opt->t_start) ||
         !(from <= opt->t_end) || !(opt->rtol > 0) || !(opt->atol_q > 0) || !(opt->atol_v > 0))
@@ -564,18 +586,23 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
         st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "SUNDIALS context");
         goto done;
     }
-    y = N_VNew_Serial(2 * nf, ctx);
-    atol = N_VNew_Serial(2 * nf, ctx);
+    const int N = tr->cond ? tr->cond->ns : 2 * nf;
+    y = N_VNew_Serial(N, ctx);
+    atol = N_VNew_Serial(N, ctx);
     if (!y || !atol) {
         st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
         goto done;
     }
     double *yd = N_VGetArrayPointer(y), *ad = N_VGetArrayPointer(atol);
-    for (int i = 0; i < nf; i++) {
+    for (int i = 0; !tr->cond && i < nf; i++) {
         ad[i] = opt->atol_q;
         ad[nf + i] = opt->atol_v;
     }
-    memset(yd, 0, (size_t)2 * nf * sizeof *yd);
+    if (tr->cond) {
+        gd_tr_condensed_atol(tr, opt->atol_q, opt->atol_v, ad);
+        gd_tr_condensed_reset(tr);
+    }
+    memset(yd, 0, (size_t)N * sizeof *yd);
     if (opt->init == GD_TR_INIT_GIVEN && tr->red) {
         gd_tr_project(tr, opt->q0, tr->w1);
         gd_tr_project(tr, opt->v0, tr->w2);
@@ -617,8 +644,9 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
         goto finish;
     }
     mem = gd_tr_cvode_new(ctx, opt, opt->t_start, opt->t_end, y, atol, cv_rhs, cv_root,
-                          tr->nroot && opt->locate_events ? tr->nroot : 0, gd_tr_cv_psetup,
-                          gd_tr_cv_psolve, tr, tr, &LS, &flag);
+                          tr->nroot && opt->locate_events ? tr->nroot : 0,
+                          tr->cond ? gd_tr_condensed_psetup : gd_tr_cv_psetup,
+                          tr->cond ? gd_tr_condensed_psolve : gd_tr_cv_psolve, tr, tr, &LS, &flag);
     if (!mem || flag) {
         st = gd_error_set(err, GD_ENUMERIC, "", 0, 0, "", "", "CVODE set-up failed (%d) %s", flag,
                           tr->msg);
@@ -652,7 +680,7 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
     }
     if ((st = advance(tr, &w, opt, &t, opt->t_end, err))) goto done;
 finish:
-    method_note(opt, is_auto ? why : NULL, dt, res);
+    method_note(tr->cond ? tr : NULL, opt, is_auto ? why : NULL, dt, res);
     if (opt->profile && tr->sys->has_speed_dependent) {
         size_t k = strlen(res->method_note);
         snprintf(res->method_note + k, sizeof res->method_note - k,

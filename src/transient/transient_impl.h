@@ -26,6 +26,46 @@ typedef struct gd_tr_reduction {
     double *MTI;  /* rows of M_II Phi in columns nb.. (projection of a state) */
 } gd_tr_reduction;
 
+/* The condensed structure a problem is integrated on (condensed.c): states x of the kept
+ * modes, coordinates = the nc DOFs the laws and unbalances act on. */
+#include "geardyn/condense.h"
+#define GD_TR_CONDENSE_EXC 5.0     /* auto cut-off: 5 x the highest excitation frequency */
+#define GD_TR_CONDENSE_CONTACT 2.5 /* and 2.5 x the highest mesh contact frequency */
+#define GD_TR_CONDENSE_DENSE_MAX 3000
+typedef struct gd_tr_condensed {
+    gd_condensation *c;
+    gd_condense_info info;
+    int ns, nc;
+    int *dof;                    /* nc: system DOF of each coordinate */
+    const double *A, *B, *C, *G; /* the condensation's (ns x ns, ns x nc, nc x ns, nc x nc) */
+    double *CA, *CB;             /* nc x ns, nc x nc */
+    double *dK, *dD;             /* nc x nc: K_L, C_L of the model's laws at S */
+    double *u;                   /* nc: the coordinate forces of the last evaluation */
+    double *Fq, *Fv, *L;         /* nc x nc: the forces' tangent, the loop matrix (LU) */
+    int *lpiv;
+    int loop, lok, have_tangent, have_J;
+    int *modes;    /* nlaw: the laws' modes the tangent was taken in */
+    double *J, *P; /* ns x ns: Jacobian, I - gamma J (LU) */
+    int *ppiv;
+    double *work;
+    double cutoff, w_exc, w_contact, est_rel;
+    long loop_iters, setups;
+} gd_tr_condensed;
+void gd_tr_condensed_free(gd_tr_condensed *k);
+void gd_tr_condensed_rhs(gd_transient *tr, double t, const double *x, double *xdot);
+/* q, v (length n) at (t, x): every DOF when all, else only the coordinates' DOFs. */
+void gd_tr_condensed_fill(gd_transient *tr, double t, const double *x, double *q, double *v,
+                          int all);
+int gd_tr_condensed_psetup(sunrealtype t, N_Vector y, N_Vector fy, sunbooleantype jok,
+                           sunbooleantype *jcur, sunrealtype gamma, void *ud);
+int gd_tr_condensed_psolve(sunrealtype t, N_Vector y, N_Vector fy, N_Vector r, N_Vector z,
+                           sunrealtype gamma, sunrealtype delta, int lr, void *ud);
+int gd_tr_condensed_jtimes(N_Vector v, N_Vector Jv, sunrealtype t, N_Vector y, N_Vector fy,
+                           void *ud, N_Vector tmp);
+void gd_tr_condensed_atol(const gd_transient *tr, double atol_q, double atol_v, double *atol);
+/* Before a run: the loop's start and the cached tangent cleared. */
+void gd_tr_condensed_reset(gd_transient *tr);
+
 struct gd_transient {
     const gd_system *sys;
     int n, nf, np;
@@ -77,9 +117,15 @@ struct gd_transient {
     int nroot; /* the laws' switches (gd_law_nswitches), in law order */
     /* workspaces (n each) */
     double *q, *v, *acc, *r, *w1, *w2;
-    char msg[256];        /* last solver message */
-    void *mono;           /* gd_transient_monodromy's workspace while it runs */
-    gd_tr_reduction *red; /* NULL: the physical DOFs */
+    char msg[256];         /* last solver message */
+    void *mono;            /* gd_transient_monodromy's workspace while it runs */
+    gd_tr_reduction *red;  /* NULL: the physical DOFs */
+    gd_tr_condensed *cond; /* NULL: not condensed (condensed.c) */
+    /* its operations, set by condensed.c (through pointers: rhs.c and problem.c do not
+     * depend on condensed.c, which uses their forces and problem) */
+    void (*cond_fill)(gd_transient *tr, double t, const double *x, double *q, double *v, int all);
+    void (*cond_rhs)(gd_transient *tr, double t, const double *x, double *xdot);
+    void (*cond_free)(gd_tr_condensed *k);
     int nterm; /* local force terms (local_forces.c), built on first use; -1 unsupported */
     gd_tr_term *term;
     /* run-up (speed_profile.c): the profile while a run uses it, else NULL */
