@@ -904,10 +904,49 @@ TEST(static_start_of_a_train_free_in_torsion)
     scratch_close(&s);
 }
 
+/* --condense (docs/transient.md, "Condensed transient"): every mode kept on the rattling
+ * pair gives the full model's mesh force statistics (rtol 1e-10: 1e-7 apart); auto states its
+ * cut-off in the JSON (5 x the 26.7 Hz firing order against 2.5 x the mesh's contact frequency,
+ * which wins); errors name the option. */
+TEST(condensed_transient)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    const char *pair = "tests/transient/condensed_pair.yaml --duration 0.05 --from 0 --rtol 1e-10";
+    cJSON *f = run_json(gd_ts_, &s, "transient %s --method bdf", pair);
+    cJSON *c = run_json(gd_ts_, &s, "transient %s --condense all", pair);
+    cJSON *a = run_json(gd_ts_, &s, "transient %s --condense auto", pair);
+    REQUIRE(f && c && a);
+    CHECK(jnum(f, "events") > 5 && jnum(c, "events") > 5); /* (26 and 29: the chatter's
+                                                              crossings back differ) */
+    const cJSON *rf = record_named(f, "mesh:m12:force"), *rc = record_named(c, "mesh:m12:force");
+    REQUIRE(rf && rc);
+    CHECK_REL(jnum(rc, "rms"), jnum(rf, "rms"), 1e-3);
+    CHECK_REL(jnum(rc, "max"), jnum(rf, "max"), 1e-3);
+    const cJSON *cc = cJSON_GetObjectItemCaseSensitive(a, "condensed");
+    REQUIRE(cc);
+    CHECK_REL(jnum(cc, "excitation_hz"), 800.0 / 60 * 2, 1e-12);
+    CHECK(jnum(cc, "contact_hz") > 1000);
+    CHECK_REL(jnum(cc, "cutoff_hz"), 2.5 * jnum(cc, "contact_hz"), 1e-12);
+    CHECK(jnum(cc, "law_dofs") == 2);
+    CHECK(strstr(jstr(a, "method"), "condensed") != NULL);
+    cJSON_Delete(f);
+    cJSON_Delete(c);
+    cJSON_Delete(a);
+    expect_error(gd_ts_, &s, "--condense: '0Hz' is not auto, all or a frequency", NULL,
+                 "transient tests/transient/condensed_pair.yaml --duration 1ms --condense 0Hz");
+    expect_error(gd_ts_, &s, "prescribed", NULL,
+                 "transient examples/rattle_idle.yaml --duration 1ms --condense auto");
+    expect_error(gd_ts_, &s, "--condense and --reduce", NULL,
+                 "transient tests/transient/condensed_pair.yaml --duration 1ms --condense all "
+                 "--reduce 5kHz");
+}
+
 RUN_TESTS(T(ducati_speed_ratios_and_contact_losses), T(ducati_text_static_start_and_wildcards),
           T(outputs_and_spectrum_files), T(chen_sfd_orbits), T(chen_sfd_spectrum_high_unbalance),
           T(chen_sfd_subsynchronous_near_the_mesh_mode), T(record_errors), T(option_errors),
           T(auto_takes_the_linear_method_on_a_linear_model), T(model_errors),
           T(poincare_single_run), T(poincare_sweep), T(poincare_errors),
           T(waterfall_outputs_and_errors), T(option_table_rows),
-          T(default_sampling_resolves_the_tooth_mesh), T(static_start_of_a_train_free_in_torsion))
+          T(default_sampling_resolves_the_tooth_mesh), T(static_start_of_a_train_free_in_torsion),
+          T(condensed_transient))
