@@ -35,33 +35,37 @@ double gd_sfd_correction_factor(double l_over_d)
 }
 
 /* Continuous eccentric anomaly of theta: gamma - theta lies in (-pi, pi) and both agree
- * at multiples of pi. */
-static double anomaly(double eps, double s, double theta)
+ * at multiples of pi; st, ct: sin and cos of theta. */
+static double anomaly(double eps, double s, double theta, double st, double ct)
 {
-    double g0 = atan2(s * sin(theta), eps + cos(theta));
+    double g0 = atan2(s * st, eps + ct);
     return theta + remainder(g0 - theta, 2.0 * M_PI);
 }
 
-static void antiderivatives(double eps, double s, double g, double out[3])
+/* The antiderivatives at gamma = g, with sg, cg its sine and cosine (from theta's:
+ * cos gamma = (eps + cos theta) / h, sin gamma = s sin theta / h, h = 1 + eps cos theta,
+ * so that one sine and cosine of theta serve an end of the film). */
+static void antiderivatives(double eps, double s, double g, double sg, double cg, double out[3])
 {
-    double sg = sin(g), cg = cos(g), s2g = 2.0 * sg * cg;
+    double s2g = 2.0 * sg * cg;
     double s3 = s * s * s, s4 = s3 * s, s5 = s4 * s;
     out[0] = ((0.5 + eps * eps) * g + 0.25 * s2g - 2.0 * eps * sg) / s5;
     out[1] = (0.5 * sg * sg + eps * cg) / s4;
     out[2] = (0.5 * g - 0.25 * s2g) / s3;
 }
 
-/* dF/deps along theta fixed of the antiderivatives above at gamma = g, theta = t:
+/* dF/deps along theta fixed of the antiderivatives above at gamma = g, theta = t (st, ct):
  * dF/deps|gamma + (dF/dgamma) dgamma/deps|theta with dF/dgamma = f(theta) h / s and
  * dgamma/deps|theta = -sin(theta) / (s h) (from cos gamma = (eps + cos theta) / h,
  * h = 1 + eps cos theta), f the integrands cos^2, sin cos, sin^2 over h^3. */
-static void antiderivatives_deps(double eps, double s, double g, double t, double out[3])
+static void antiderivatives_deps(double eps, double s, double g, double sg, double cg, double st,
+                                 double ct, double out[3])
 {
-    double sg = sin(g), cg = cos(g), s2g = 2.0 * sg * cg;
+    double s2g = 2.0 * sg * cg;
     double s2 = s * s, s3 = s2 * s, s4 = s3 * s, s5 = s4 * s;
     double a0 = (0.5 + eps * eps) * g + 0.25 * s2g - 2.0 * eps * sg;
     double a1 = 0.5 * sg * sg + eps * cg, a2 = 0.5 * g - 0.25 * s2g;
-    double st = sin(t), ct = cos(t), h = 1.0 + eps * ct, b = st / (s2 * h * h * h);
+    double h = 1.0 + eps * ct, b = st / (s2 * h * h * h);
     out[0] = (2.0 * eps * g - 2.0 * sg) / s5 + 5.0 * eps * a0 / (s5 * s2) - ct * ct * b;
     out[1] = cg / s4 + 4.0 * eps * a1 / (s4 * s2) - st * ct * b;
     out[2] = 3.0 * eps * a2 / (s3 * s2) - st * st * b;
@@ -75,19 +79,22 @@ static void integrals(double eps, double t1, double t2, double j[3], double dj[3
     /* keep gamma continuous over the interval: add whole turns of theta to gamma */
     double turns = floor((t2 - t1) / (2.0 * M_PI));
     double t2r = t2 - turns * 2.0 * M_PI;
-    double g2 = anomaly(eps, s, t2r);
-    double g1 = anomaly(eps, s, t1);
-    antiderivatives(eps, s, g1, a);
+    double st1 = sin(t1), ct1 = cos(t1), st2 = sin(t2r), ct2 = cos(t2r);
+    double h1 = 1.0 + eps * ct1, h2 = 1.0 + eps * ct2;
+    double sg1 = s * st1 / h1, cg1 = (eps + ct1) / h1, sg2 = s * st2 / h2, cg2 = (eps + ct2) / h2;
+    double g2 = anomaly(eps, s, t2r, st2, ct2);
+    double g1 = anomaly(eps, s, t1, st1, ct1);
+    antiderivatives(eps, s, g1, sg1, cg1, a);
     /* gamma(t2r) must not be below gamma(t1) when t2r >= t1 */
     while (g2 < g1 - 1e-15)
         g2 += 2.0 * M_PI;
     g2 += turns * 2.0 * M_PI;
-    antiderivatives(eps, s, g2, b);
+    antiderivatives(eps, s, g2, sg2, cg2, b);
     for (int k = 0; k < 3; k++)
         j[k] = b[k] - a[k];
     if (!dj) return;
-    antiderivatives_deps(eps, s, g1, t1, a);
-    antiderivatives_deps(eps, s, g2, t2, b);
+    antiderivatives_deps(eps, s, g1, sg1, cg1, st1, ct1, a);
+    antiderivatives_deps(eps, s, g2, sg2, cg2, st2, ct2, b);
     for (int k = 0; k < 3; k++)
         dj[k] = b[k] - a[k];
 }
