@@ -190,9 +190,11 @@ GD_API void gd_sfd_force(const gd_sfd_params *p, double x, double y, double vx, 
                          double *fx, double *fy);
 
 /* Jacobian of gd_sfd_force: jq[2 i + j] = d f_i / d x_j and jv[2 i + j] = d f_i / d v_j
- * (i, j: 0 x, 1 y), by central differences of gd_sfd_force (steps 1e-6 of the clearance
- * and of the clearance times the velocity scale |v| / c, so that one force law serves the
- * integrator and the frequency-domain solvers). fx, fy receive the forces. */
+ * (i, j: 0 x, 1 y), in closed form (src/laws/sfd.c: the film integrals differentiated
+ * in eps, the chain rule through the journal's polar frame); centred (e below 1e-9 c)
+ * or at rest in the pi film, by central differences of gd_sfd_force (steps 1e-6 of the
+ * clearance and of the velocity scale). One force law serves the integrator and the
+ * frequency-domain solvers. fx, fy receive the forces. Thread-safe. */
 GD_API void gd_sfd_force_jacobian(const gd_sfd_params *p, double x, double y, double vx, double vy,
                                   double *fx, double *fy, double jq[4], double jv[4]);
 

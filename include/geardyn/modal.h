@@ -56,6 +56,10 @@ typedef struct gd_modal_options {
      * residual_floor, the rounding of the model's matrices); 0: GD_MODAL_TOL_DEFAULT.
      * The dense solver (LAPACK) is accurate to rounding and ignores it. */
     double tol;
+    /* The state (ndof, borrowed) the system's laws are linearised about at speed; NULL
+     * (the default): the operating point solved at speed (gd_system_law_state). A
+     * Campbell sweep hands each speed the state it continued from the previous one. */
+    const double *law_state;
 } gd_modal_options;
 
 typedef struct gd_mode {

@@ -35,13 +35,53 @@ void gd_campbell_free(gd_campbell_result *r)
     free(r);
 }
 
+/* The laws' operating state at speed s of the sweep (NULL: none kept, solved where used). */
+static const double *state_at(const gd_system *sys, const double *states, int s)
+{
+    return states ? states + (size_t)s * sys->ndof : NULL;
+}
+
+/* The operating states of the laws at every speed, in speed order, each Newton
+ * iteration started from the previous speed's state (gd_system_law_state_from): a
+ * journal bearing's eccentricity moves little between neighbouring speeds, so a few
+ * steps replace the climb from rest. Solved once, before the threads, so the states do
+ * not depend on their number. NULL with no laws to linearise, or out of memory (then
+ * each speed solves its own, as before). */
+static double *operating_states(const gd_system *sys, const gd_campbell_options *opt)
+{
+    if (!sys->nlaws || sys->op_kind == GD_OPERATING_ZERO) return NULL;
+    const size_t n = (size_t)sys->ndof, n1 = n > 0 ? n : 1;
+    double *q = malloc(((size_t)opt->nspeeds + 1) * n1 * sizeof *q);
+    if (!q) return NULL;
+    double *start = q + (size_t)opt->nspeeds * n1; /* the predicted state */
+    const double *W = opt->speeds;
+    int found = 0, found2 = 0; /* at the previous speed, and at the one before */
+    for (int s = 0; s < opt->nspeeds; s++) {
+        const double *q0 = NULL;
+        if (found && found2) {
+            /* the secant through the two previous states: about one Newton step less */
+            double a = (W[s] - W[s - 1]) / (W[s - 1] - W[s - 2]);
+            for (size_t i = 0; i < n; i++)
+                start[i] = q[(s - 1) * n + i] + a * (q[(s - 1) * n + i] - q[(s - 2) * n + i]);
+            q0 = start;
+        } else if (found) {
+            q0 = q + (s - 1) * n;
+        }
+        found2 = found;
+        found = gd_system_law_state_from(sys, W[s], q0, q + s * n);
+    }
+    return q;
+}
+
 static gd_status solve_one(const gd_system *sys, const gd_dynmat *a, const gd_splu_symbolic *sym,
-                           const gd_campbell_options *opt, int nreq, double speed, gd_sparse_ws *ws,
-                           gd_modal_result **out, gd_error *err)
+                           const gd_campbell_options *opt, int nreq, double speed,
+                           const double *state, gd_sparse_ws *ws, gd_modal_result **out,
+                           gd_error *err)
 {
     gd_modal_options o;
     gd_modal_options_init(&o);
     o.speed = speed;
+    o.law_state = state;
     o.nmodes = nreq;
     o.kind = opt->kind;
     o.want_left = 0;
@@ -53,7 +93,7 @@ static gd_status solve_one(const gd_system *sys, const gd_dynmat *a, const gd_sp
 /* The cost model of gd_modal_solve (src/modal/method.c) per speed, judged at the
  * highest speed, where gyroscopic terms make the problem damped if any speed does. */
 static int sparse_cheaper(const gd_system *sys, const gd_dynmat *a, const gd_splu_symbolic *sym,
-                          const gd_campbell_options *opt)
+                          const gd_campbell_options *opt, const double *state)
 {
     size_t nz = (size_t)(a->pat.nnz > 0 ? a->pat.nnz : 1);
     double *k = malloc(nz * sizeof *k), *d = malloc(nz * sizeof *d);
@@ -62,6 +102,7 @@ static int sparse_cheaper(const gd_system *sys, const gd_dynmat *a, const gd_spl
         gd_modal_options o;
         gd_modal_options_init(&o);
         o.speed = opt->speeds[opt->nspeeds - 1];
+        o.law_state = state;
         o.kind = opt->kind;
         int damped = gd_modal_damped_at(a, &o, k, d);
         cheaper = gd_cost_sparse(&a->pat, sym, opt->nmodes) <
@@ -152,11 +193,14 @@ gd_status gd_campbell_run(const gd_system *sys, const gd_campbell_options *opt, 
     gd_campbell_result *r = calloc(1, sizeof *r);
     gd_sparse_ws *wss = NULL;
     int nt = 1;
+    double *states = NULL;
     if (!res || !errs || !sts || !elastic || !track || !nel || !nfb || !ncont || !r) goto nomem;
+    states = operating_states(sys, opt);
     if (sparse) {
         if ((st = gd_dynmat_build(sys, &a, err))) goto done;
         if ((st = gd_splu_analyze(&a.pat, &sym, err))) goto done;
-        if (opt->method == GD_EIG_AUTO && !sparse_cheaper(sys, &a, &sym, opt)) {
+        if (opt->method == GD_EIG_AUTO &&
+            !sparse_cheaper(sys, &a, &sym, opt, state_at(sys, states, ns - 1))) {
             gd_splu_symbolic_free(&sym);
             gd_dynmat_free(&a);
             memset(&a, 0, sizeof a);
@@ -172,8 +216,8 @@ gd_status gd_campbell_run(const gd_system *sys, const gd_campbell_options *opt, 
         for (int probe = opt->nmodes;; probe *= 2) {
             if (probe > sys->ndof) probe = sys->ndof;
             gd_modal_result *r0 = NULL;
-            if ((st = solve_one(sys, sparse ? &a : NULL, &sym, opt, probe, opt->speeds[0], NULL,
-                                &r0, err)))
+            if ((st = solve_one(sys, sparse ? &a : NULL, &sym, opt, probe, opt->speeds[0],
+                                state_at(sys, states, 0), NULL, &r0, err)))
                 goto done;
             nrigid = 0;
             for (int j = 0; j < r0->nmodes; j++)
@@ -210,11 +254,13 @@ gd_status gd_campbell_run(const gd_system *sys, const gd_campbell_options *opt, 
         if (gd_sparse_ws_chain(w0, a.pat.n)) goto nomem;
         w0->warm_ok = 0;
         gd_sparse_track_reset(w0);
-        if (!res[0] && (st = solve_one(sys, &a, &sym, opt, nreq, opt->speeds[0], w0, &res[0], err)))
+        if (!res[0] && (st = solve_one(sys, &a, &sym, opt, nreq, opt->speeds[0],
+                                       state_at(sys, states, 0), w0, &res[0], err)))
             goto done;
         gd_modal_options o;
         gd_modal_options_init(&o);
         o.speed = opt->speeds[1];
+        o.law_state = state_at(sys, states, 1);
         o.nmodes = nreq;
         o.kind = opt->kind;
         o.want_left = 0;
@@ -262,6 +308,7 @@ gd_status gd_campbell_run(const gd_system *sys, const gd_campbell_options *opt, 
                     gd_modal_options o;
                     gd_modal_options_init(&o);
                     o.speed = opt->speeds[s];
+                    o.law_state = state_at(sys, states, s);
                     o.nmodes = nreq;
                     o.kind = opt->kind;
                     o.want_left = 0;
@@ -279,8 +326,8 @@ gd_status gd_campbell_run(const gd_system *sys, const gd_campbell_options *opt, 
                 }
                 if (sts[s]) break;
                 if (!res[s])
-                    sts[s] = solve_one(sys, sparse ? &a : NULL, &sym, opt, nreq, opt->speeds[s], ws,
-                                       &res[s], &errs[s]);
+                    sts[s] = solve_one(sys, sparse ? &a : NULL, &sym, opt, nreq, opt->speeds[s],
+                                       state_at(sys, states, s), ws, &res[s], &errs[s]);
                 else if (ws) /* the first speed's probe, solved cold */
                     gd_sparse_ws_remember(ws, res[s]);
                 if (sts[s]) break;
@@ -351,6 +398,7 @@ done:
     for (int t = 0; wss && t < nt; t++)
         gd_sparse_ws_free(&wss[t]);
     free(wss);
+    free(states);
     if (sparse) {
         gd_splu_symbolic_free(&sym);
         gd_dynmat_free(&a);

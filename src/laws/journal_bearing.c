@@ -13,13 +13,23 @@
  * attitude angle tan(phi) = pi sqrt(1 - eps^2) / (4 eps) from the line of centres
  * (tests/laws/test_journal_bearing.c). The spin w is the spin of the journal node's
  * shaft minus that of the bush node's (law->spin). Local DOFs [x, y] of the journal,
- * then [x, y] of the bush (absent: ground). */
+ * then [x, y] of the bush (absent: ground).
+ *
+ * model: 1 takes the film's force from the finite-length Reynolds equation instead
+ * (geardyn/reynolds.h: finite differences on a 96 x 21 grid, SOR), at the same relative
+ * velocity in the frame turning at w / 2; cavitation 0 drops the negative pressures of
+ * the full film (Gumbel, half-Sommerfeld), 1 keeps p >= 0 during the solution
+ * (Christopherson: the Reynolds condition at the film's rupture). Its Jacobian is by
+ * central differences (steps 1e-5 of c and of c w): eight more film solutions. `film`
+ * is the short bearing's and is not used by it. */
 #include <math.h>
+#include <stdio.h>
 
 #include "geardyn/laws.h"
+#include "geardyn/reynolds.h"
 #include "laws/laws_impl.h"
 
-enum { JB_MU, JB_D, JB_L, JB_C, JB_FILM, JB_EMAX, JB_NPARAMS };
+enum { JB_MU, JB_D, JB_L, JB_C, JB_FILM, JB_EMAX, JB_MODEL, JB_CAV, JB_NPARAMS };
 
 static const gd_law_param jb_params[JB_NPARAMS] = {
     {"viscosity", GD_QTY_VISCOSITY, NAN, GD_LAW_POSITIVE, "the oil's dynamic viscosity, Pa s"},
@@ -29,6 +39,10 @@ static const gd_law_param jb_params[JB_NPARAMS] = {
     {"film", GD_QTY_DIMLESS, 0.0, GD_LAW_NONNEG, "0: pi (cavitated) film, 1: 2pi film"},
     {"max_eccentricity", GD_QTY_DIMLESS, 0.0, GD_LAW_NONNEG,
      "cap of the eccentricity ratio, below 1 (0: 0.995)"},
+    {"model", GD_QTY_DIMLESS, 0.0, GD_LAW_NONNEG,
+     "0: short bearing (Ocvirk), 1: finite length (Reynolds equation by finite differences)"},
+    {"cavitation", GD_QTY_DIMLESS, 0.0, GD_LAW_NONNEG,
+     "finite model: 0 Gumbel (half-Sommerfeld), 1 Reynolds condition (Christopherson)"},
 };
 
 static void jb_params_of(const gd_law *law, gd_sfd_params *p)
@@ -45,7 +59,52 @@ static void jb_params_of(const gd_law *law, gd_sfd_params *p)
 
 static int jb_check(const gd_law *law, const char **field, char *msg, size_t cap)
 {
-    return gd_law_check_film(law->value[JB_FILM], law->value[JB_EMAX], field, msg, cap);
+    const double *v = law->value;
+    if (v[JB_MODEL] != 0.0 && v[JB_MODEL] != 1.0) {
+        *field = "model";
+        snprintf(msg, cap, "model is 0 (short bearing) or 1 (finite length), not %g", v[JB_MODEL]);
+        return 1;
+    }
+    if (v[JB_CAV] != 0.0 && v[JB_CAV] != 1.0) {
+        *field = "cavitation";
+        snprintf(msg, cap, "cavitation is 0 (Gumbel) or 1 (Reynolds condition), not %g", v[JB_CAV]);
+        return 1;
+    }
+    return gd_law_check_film(v[JB_FILM], v[JB_EMAX], field, msg, cap);
+}
+
+/* The finite-length film's force at relative (x, y) and frame velocity (vx, vy). A grid
+ * that does not converge in SOR's sweep limit still gives its last (finite) iterate's
+ * force: the force law has no error channel, and the iterate is the best estimate. */
+static void finite_force(const gd_law *law, const gd_sfd_params *p, double x, double y, double vx,
+                         double vy, double *fx, double *fy)
+{
+    gd_reynolds_grid g;
+    gd_reynolds_grid_init(&g);
+    g.cavitation = law->value[JB_CAV] != 0.0 ? GD_FILM_REYNOLDS : GD_FILM_GUMBEL;
+    gd_error err;
+    gd_reynolds_force(p, &g, x, y, vx, vy, fx, fy, &err);
+}
+
+/* Its Jacobian by central differences, in the frame velocities (a, b as
+ * gd_sfd_force_jacobian's jq, jv). */
+static void finite_jacobian(const gd_law *law, const gd_sfd_params *p, double w, double x, double y,
+                            double vx, double vy, double *fx, double *fy, double a[4], double b[4])
+{
+    double u[4] = {x, y, vx, vy}, c = p->clearance;
+    double hs[4] = {1e-5 * c, 1e-5 * c, 1e-5 * c * fmax(fabs(w), 1.0),
+                    1e-5 * c * fmax(fabs(w), 1.0)};
+    finite_force(law, p, x, y, vx, vy, fx, fy);
+    for (int j = 0; j < 4; j++) {
+        double up[4] = {u[0], u[1], u[2], u[3]}, um[4] = {u[0], u[1], u[2], u[3]}, fp[2], fm[2];
+        up[j] += hs[j];
+        um[j] -= hs[j];
+        finite_force(law, p, up[0], up[1], up[2], up[3], &fp[0], &fp[1]);
+        finite_force(law, p, um[0], um[1], um[2], um[3], &fm[0], &fm[1]);
+        double *J = j < 2 ? a : b;
+        for (int i = 0; i < 2; i++)
+            J[2 * i + (j & 1)] = (fp[i] - fm[i]) / (2 * hs[j]);
+    }
 }
 
 /* force on the journal and, if J, its Jacobians (row-major 2 x 2: jq, jv) */
@@ -57,12 +116,19 @@ static void jb_eval(const gd_law *law, const gd_law_point *x, double *fx, double
     double h = 0.5 * (law->spin[0] - law->spin[1]);
     double rx = x->q[0] - x->q[2], ry = x->q[1] - x->q[3];
     double vx = x->v[0] - x->v[2] + h * ry, vy = x->v[1] - x->v[3] - h * rx;
+    int finite = law->value[JB_MODEL] != 0.0;
     if (!jq && !jv) {
-        gd_sfd_force(&p, rx, ry, vx, vy, fx, fy);
+        if (finite)
+            finite_force(law, &p, rx, ry, vx, vy, fx, fy);
+        else
+            gd_sfd_force(&p, rx, ry, vx, vy, fx, fy);
         return;
     }
     double a[4], b[4];
-    gd_sfd_force_jacobian(&p, rx, ry, vx, vy, fx, fy, a, b);
+    if (finite)
+        finite_jacobian(law, &p, 2.0 * h, rx, ry, vx, vy, fx, fy, a, b);
+    else
+        gd_sfd_force_jacobian(&p, rx, ry, vx, vy, fx, fy, a, b);
     /* chain rule through the turning frame: d(vx)/dy = h, d(vy)/dx = -h */
     if (jq) {
         jq[0] = a[0] - h * b[1];
@@ -97,7 +163,8 @@ static double jb_record(const gd_law *law, int k, const gd_law_point *x)
 
 const gd_law_type gd_law_journal_bearing = {
     .name = "journal_bearing",
-    .summary = "plain journal bearing, short-bearing (Ocvirk) theory with film rupture",
+    .summary = "plain journal bearing: short-bearing (Ocvirk) theory with film rupture, or the "
+               "finite-length Reynolds equation",
     .flags = GD_LAW_SMOOTH | GD_LAW_SUPPORT,
     .params = jb_params,
     .nparams = JB_NPARAMS,

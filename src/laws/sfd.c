@@ -35,39 +35,73 @@ double gd_sfd_correction_factor(double l_over_d)
 }
 
 /* Continuous eccentric anomaly of theta: gamma - theta lies in (-pi, pi) and both agree
- * at multiples of pi. */
-static double anomaly(double eps, double s, double theta)
+ * at multiples of pi; st, ct: sin and cos of theta. */
+static double anomaly(double eps, double s, double theta, double st, double ct)
 {
-    double g0 = atan2(s * sin(theta), eps + cos(theta));
+    double g0 = atan2(s * st, eps + ct);
     return theta + remainder(g0 - theta, 2.0 * M_PI);
 }
 
-static void antiderivatives(double eps, double s, double g, double out[3])
+/* The antiderivatives at gamma = g, with sg, cg its sine and cosine (from theta's:
+ * cos gamma = (eps + cos theta) / h, sin gamma = s sin theta / h, h = 1 + eps cos theta,
+ * so that one sine and cosine of theta serve an end of the film). */
+static void antiderivatives(double eps, double s, double g, double sg, double cg, double out[3])
 {
-    double sg = sin(g), cg = cos(g), s2g = 2.0 * sg * cg;
+    double s2g = 2.0 * sg * cg;
     double s3 = s * s * s, s4 = s3 * s, s5 = s4 * s;
     out[0] = ((0.5 + eps * eps) * g + 0.25 * s2g - 2.0 * eps * sg) / s5;
     out[1] = (0.5 * sg * sg + eps * cg) / s4;
     out[2] = (0.5 * g - 0.25 * s2g) / s3;
 }
 
-void gd_sfd_integrals(double eps, double t1, double t2, double j[3])
+/* dF/deps along theta fixed of the antiderivatives above at gamma = g, theta = t (st, ct):
+ * dF/deps|gamma + (dF/dgamma) dgamma/deps|theta with dF/dgamma = f(theta) h / s and
+ * dgamma/deps|theta = -sin(theta) / (s h) (from cos gamma = (eps + cos theta) / h,
+ * h = 1 + eps cos theta), f the integrands cos^2, sin cos, sin^2 over h^3. */
+static void antiderivatives_deps(double eps, double s, double g, double sg, double cg, double st,
+                                 double ct, double out[3])
+{
+    double s2g = 2.0 * sg * cg;
+    double s2 = s * s, s3 = s2 * s, s4 = s3 * s, s5 = s4 * s;
+    double a0 = (0.5 + eps * eps) * g + 0.25 * s2g - 2.0 * eps * sg;
+    double a1 = 0.5 * sg * sg + eps * cg, a2 = 0.5 * g - 0.25 * s2g;
+    double h = 1.0 + eps * ct, b = st / (s2 * h * h * h);
+    out[0] = (2.0 * eps * g - 2.0 * sg) / s5 + 5.0 * eps * a0 / (s5 * s2) - ct * ct * b;
+    out[1] = cg / s4 + 4.0 * eps * a1 / (s4 * s2) - st * ct * b;
+    out[2] = 3.0 * eps * a2 / (s3 * s2) - st * st * b;
+}
+
+/* J over [t1, t2] and, if dj, dJ/deps (theta's limits fixed). */
+static void integrals(double eps, double t1, double t2, double j[3], double dj[3])
 {
     double s = sqrt((1.0 - eps) * (1.0 + eps));
     double a[3], b[3];
     /* keep gamma continuous over the interval: add whole turns of theta to gamma */
     double turns = floor((t2 - t1) / (2.0 * M_PI));
     double t2r = t2 - turns * 2.0 * M_PI;
-    double g2 = anomaly(eps, s, t2r);
-    double g1 = anomaly(eps, s, t1);
-    antiderivatives(eps, s, g1, a);
+    double st1 = sin(t1), ct1 = cos(t1), st2 = sin(t2r), ct2 = cos(t2r);
+    double h1 = 1.0 + eps * ct1, h2 = 1.0 + eps * ct2;
+    double sg1 = s * st1 / h1, cg1 = (eps + ct1) / h1, sg2 = s * st2 / h2, cg2 = (eps + ct2) / h2;
+    double g2 = anomaly(eps, s, t2r, st2, ct2);
+    double g1 = anomaly(eps, s, t1, st1, ct1);
+    antiderivatives(eps, s, g1, sg1, cg1, a);
     /* gamma(t2r) must not be below gamma(t1) when t2r >= t1 */
     while (g2 < g1 - 1e-15)
         g2 += 2.0 * M_PI;
     g2 += turns * 2.0 * M_PI;
-    antiderivatives(eps, s, g2, b);
+    antiderivatives(eps, s, g2, sg2, cg2, b);
     for (int k = 0; k < 3; k++)
         j[k] = b[k] - a[k];
+    if (!dj) return;
+    antiderivatives_deps(eps, s, g1, sg1, cg1, st1, ct1, a);
+    antiderivatives_deps(eps, s, g2, sg2, cg2, st2, ct2, b);
+    for (int k = 0; k < 3; k++)
+        dj[k] = b[k] - a[k];
+}
+
+void gd_sfd_integrals(double eps, double t1, double t2, double j[3])
+{
+    integrals(eps, t1, t2, j, NULL);
 }
 
 void gd_sfd_force_polar(const gd_sfd_params *p, double e, double edot, double phidot, double *fr,
@@ -128,8 +162,10 @@ void gd_sfd_force(const gd_sfd_params *p, double x, double y, double vx, double 
     *fy = fr * sphi + ft * cphi;
 }
 
-void gd_sfd_force_jacobian(const gd_sfd_params *p, double x, double y, double vx, double vy,
-                           double *fx, double *fy, double jq[4], double jv[4])
+/* Central differences of gd_sfd_force (steps 1e-6 of the clearance and of the velocity
+ * scale): the Jacobian where the closed form below has no direction to work in. */
+static void jacobian_differences(const gd_sfd_params *p, double x, double y, double vx, double vy,
+                                 double *fx, double *fy, double jq[4], double jv[4])
 {
     double u[4] = {x, y, vx, vy};
     double c = p->clearance, vs = hypot(vx, vy);
@@ -147,6 +183,70 @@ void gd_sfd_force_jacobian(const gd_sfd_params *p, double x, double y, double vx
         int col = j & 1;
         for (int i = 0; i < 2; i++)
             J[2 * i + col] = (fp[i] - fm[i]) / (2.0 * h[j]);
+    }
+}
+
+/* The Jacobian in closed form. In the polar frame of the journal (e, phi) the force is
+ * F_r = -S (u J1 + w J2), F_t = -S (u J2 + w J3) with u = eps', w = eps phi' (velocities
+ * over c) and J(eps, psi0) over the squeezed half of the film. psi0 moves the film's
+ * ends, where the pressure u cos + w sin over h^3 vanishes: Leibniz's boundary terms are
+ * zero and J depends on the state through eps alone, dJ/deps from the antiderivatives
+ * (integrals()). The chain rule then runs through e, phi (the frame turning with phi:
+ * dF/dphi gains (-F_t, F_r)) and through u, w as the velocity components in that frame.
+ * At the eccentricity cap eps stops moving with e and w = eps_max ephi' / e. Centred
+ * (e below 1e-9 c) or at rest in the pi film (no squeezed half): central differences. */
+void gd_sfd_force_jacobian(const gd_sfd_params *p, double x, double y, double vx, double vy,
+                           double *fx, double *fy, double jq[4], double jv[4])
+{
+    const double c = p->clearance, e = hypot(x, y);
+    double emax = p->max_eccentricity > 0 ? p->max_eccentricity : 0.995;
+    if (!(e > 1e-9 * c)) {
+        jacobian_differences(p, x, y, vx, vy, fx, fy, jq, jv);
+        return;
+    }
+    double cp = x / e, sp = y / e;
+    double edot = vx * cp + vy * sp, ephid = -vx * sp + vy * cp;
+    int capped = e / c > emax;
+    double eps = capped ? emax : e / c, k = eps / e; /* w = k ephid */
+    double u = edot / c, w = eps * (ephid / e);      /* as gd_sfd_force_polar rounds it */
+    double eta = p->correction > 0   ? p->correction
+                 : p->correction < 0 ? 1.0
+                                     : gd_sfd_correction_factor(p->length / (2.0 * p->radius));
+    double S = p->viscosity * p->radius * p->length * p->length * p->length / (c * c) * eta;
+    double j[3], dj[3];
+    if (p->film == GD_SFD_2PI_FILM) {
+        integrals(eps, 0.0, 2.0 * M_PI, j, dj);
+    } else {
+        if (u == 0.0 && w == 0.0) {
+            jacobian_differences(p, x, y, vx, vy, fx, fy, jq, jv);
+            return;
+        }
+        double psi0 = atan2(w, u);
+        integrals(eps, psi0 + 0.5 * M_PI, psi0 + 1.5 * M_PI, j, dj);
+    }
+    double fr = -S * (u * j[0] + w * j[1]), ft = -S * (u * j[1] + w * j[2]);
+    *fx = fr * cp - ft * sp;
+    *fy = fr * sp + ft * cp;
+    /* polar partials in (eps, u, w) */
+    double fr_u = -S * j[0], fr_w = -S * j[1], ft_u = -S * j[1], ft_w = -S * j[2];
+    double fr_eps = -S * (u * dj[0] + w * dj[1]), ft_eps = -S * (u * dj[1] + w * dj[2]);
+    /* along e (phi, v fixed) and along phi (e, v fixed) */
+    double deps_de = capped ? 0.0 : 1.0 / c, dw_de = capped ? -w / e : 0.0;
+    double du_dphi = ephid / c, dw_dphi = -k * edot;
+    double Fr_e = fr_eps * deps_de + fr_w * dw_de, Ft_e = ft_eps * deps_de + ft_w * dw_de;
+    double Fr_p = fr_u * du_dphi + fr_w * dw_dphi, Ft_p = ft_u * du_dphi + ft_w * dw_dphi;
+    double fx_e = Fr_e * cp - Ft_e * sp, fy_e = Fr_e * sp + Ft_e * cp;
+    double fx_p = Fr_p * cp - Ft_p * sp - *fy, fy_p = Fr_p * sp + Ft_p * cp + *fx;
+    jq[0] = fx_e * cp - fx_p * sp / e;
+    jq[1] = fx_e * sp + fx_p * cp / e;
+    jq[2] = fy_e * cp - fy_p * sp / e;
+    jq[3] = fy_e * sp + fy_p * cp / e;
+    /* velocities: u = (vx cp + vy sp) / c, w = k (-vx sp + vy cp) */
+    double du[2] = {cp / c, sp / c}, dw[2] = {-k * sp, k * cp};
+    for (int m = 0; m < 2; m++) {
+        double Fr_v = fr_u * du[m] + fr_w * dw[m], Ft_v = ft_u * du[m] + ft_w * dw[m];
+        jv[m] = Fr_v * cp - Ft_v * sp;
+        jv[2 + m] = Fr_v * sp + Ft_v * cp;
     }
 }
 

@@ -100,7 +100,7 @@ gd_status gd_modal_directional(const gd_system *sys, const gd_modal_options *opt
     if (!M || !D || !K || !T || !W || !A || !B || !al || !be || !V || !partner || !flip || !roots ||
         !idx || !members || !F || !S || !mu || !lsc || !rsc || !Xc || !cv || !rw || !piv || !res)
         goto nomem;
-    gd_system_dense(sys, opt->speed, M, D, K);
+    gd_system_dense_at(sys, opt->speed, opt->law_state, M, D, K);
     if (opt->kind == GD_MODAL_UNDAMPED) memset(D, 0, (size_t)n * n * sizeof *D);
     /* T: [x; y] = 1/2 [1 1; -i i] [p; pbar] at each node with both; identity elsewhere */
     for (int i = 0; i < n; i++) {

@@ -5,6 +5,7 @@
  * factors and two products with the pattern per Krylov vector, and the
  * orthogonalisation of a basis of ncv vectors of length 2n. */
 #include <math.h>
+#include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -62,7 +63,7 @@ double gd_cost_sparse(const gd_pattern *p, const gd_splu_symbolic *sym, int nmod
 int gd_modal_damped_at(const gd_dynmat *a, const gd_modal_options *opt, double *k, double *d)
 {
     if (opt->kind == GD_MODAL_DAMPED) return 1;
-    gd_dynmat_at(a, opt->speed, k, d);
+    gd_dynmat_at_state(a, opt->speed, opt->law_state, k, d);
     if (!gd_pattern_symmetric(&a->pat, k)) return 1;
     if (opt->kind == GD_MODAL_UNDAMPED) return 0;
     for (int q = 0; q < a->pat.nnz; q++)
@@ -75,11 +76,21 @@ int gd_modal_damped_at(const gd_dynmat *a, const gd_modal_options *opt, double *
 static gd_status dense_with_residuals(const gd_system *sys, const gd_modal_options *opt,
                                       gd_modal_result **out, gd_error *err)
 {
-    gd_status st = gd_modal_solve_dense(sys, opt, out, err);
-    if (!st && (st = gd_modal_residuals(sys, *out, err))) {
+    /* the laws' operating state, solved once for the modes and their residuals */
+    gd_modal_options o = *opt;
+    double *q = NULL;
+    if (!o.law_state && sys->nlaws) {
+        q = malloc((size_t)sys->ndof * sizeof *q);
+        if (!q) return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
+        gd_system_law_state(sys, o.speed, q);
+        o.law_state = q;
+    }
+    gd_status st = gd_modal_solve_dense(sys, &o, out, err);
+    if (!st && (st = gd_modal_residuals(sys, *out, o.law_state, err))) {
         gd_modal_free(*out);
         *out = NULL;
     }
+    free(q);
     return st;
 }
 

@@ -52,7 +52,7 @@ gd_status gd_modal_solve_dense(const gd_system *sys, const gd_modal_options *opt
                           "out of memory for dense %d x %d matrices", N, N);
         goto done;
     }
-    gd_system_dense(sys, opt->speed, M, D, K);
+    gd_system_dense_at(sys, opt->speed, opt->law_state, M, D, K);
     int damped = opt->kind == GD_MODAL_DAMPED || (opt->kind == GD_MODAL_AUTO && any_nonzero(D, nn));
     if (opt->kind == GD_MODAL_UNDAMPED) memset(D, 0, nn * sizeof *D);
     if (!is_symmetric(K, N)) damped = 1; /* cross-coupled bearings: general problem */

@@ -85,8 +85,10 @@ gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
  * and *worst_floor (may be NULL): the largest over the elastic modes. GD_ENOMEM or GD_OK. */
 gd_status gd_modal_residuals_on(const gd_dynmat *a, const double *k, const double *d,
                                 gd_modal_result *r, double *worst, double *worst_floor);
-/* The same, building the sparse matrices of sys. */
-gd_status gd_modal_residuals(const gd_system *sys, gd_modal_result *r, gd_error *err);
+/* The same, building the sparse matrices of sys, its laws linearised about law_state
+ * (ndof; NULL: solved at r's speed). */
+gd_status gd_modal_residuals(const gd_system *sys, gd_modal_result *r, const double *law_state,
+                             gd_error *err);
 /* gd_sparse_modes to the precision opt->tol asks (GD_MODAL_TOL_DEFAULT when 0): the
  * Krylov-Schur tolerance tightened 100-fold while an elastic mode's residual is above
  * tol and above 100 times its rounding floor (at most to 1e-14); residuals filled. */

@@ -80,7 +80,8 @@ gd_status gd_modal_residuals_on(const gd_dynmat *a, const double *k, const doubl
     return GD_OK;
 }
 
-gd_status gd_modal_residuals(const gd_system *sys, gd_modal_result *r, gd_error *err)
+gd_status gd_modal_residuals(const gd_system *sys, gd_modal_result *r, const double *law_state,
+                             gd_error *err)
 {
     gd_dynmat a;
     gd_status st = gd_dynmat_build(sys, &a, err);
@@ -90,7 +91,7 @@ gd_status gd_modal_residuals(const gd_system *sys, gd_modal_result *r, gd_error 
     if (!k || !d) {
         st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
     } else {
-        gd_dynmat_at(&a, r->speed, k, d);
+        gd_dynmat_at_state(&a, r->speed, law_state, k, d);
         if (gd_modal_residuals_on(&a, k, r->damped ? d : NULL, r, NULL, NULL))
             st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
     }

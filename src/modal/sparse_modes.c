@@ -189,7 +189,7 @@ gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
     double *RU = NULL; /* rigid-body shapes */
     double *ure = NULL, *uim = NULL;
     gd_modal_result *res = NULL;
-    gd_dynmat_at(a, opt->speed, k, d);
+    gd_dynmat_at_state(a, opt->speed, opt->law_state, k, d);
     int any_d = 0;
     if (opt->kind == GD_MODAL_UNDAMPED)
         memset(d, 0, (size_t)nnz * sizeof *d);

@@ -730,7 +730,7 @@ static gd_status track(const gd_dynmat *a, const gd_splu_symbolic *sym, const gd
         return GD_OK;
     gd_status st = GD_OK;
     double *k = ws->k, *d = ws->d;
-    gd_dynmat_at(a, opt->speed, k, d);
+    gd_dynmat_at_state(a, opt->speed, opt->law_state, k, d);
     if (opt->kind == GD_MODAL_UNDAMPED) memset(d, 0, (size_t)nnz * sizeof *d);
     int any_d = 0;
     for (int i = 0; i < nnz; i++)

@@ -162,6 +162,11 @@ void gd_dynmat_add_speed_terms(const gd_dynmat *a, double speed, double *k, doub
 
 void gd_dynmat_at(const gd_dynmat *a, double speed, double *k, double *d)
 {
+    gd_dynmat_at_state(a, speed, NULL, k, d);
+}
+
+void gd_dynmat_at_state(const gd_dynmat *a, double speed, const double *state, double *k, double *d)
+{
     size_t z = (size_t)a->pat.nnz;
     if (k) memcpy(k, a->k, z * sizeof *k);
     if (d)
@@ -173,7 +178,7 @@ void gd_dynmat_at(const gd_dynmat *a, double speed, double *k, double *d)
     double *Kb = malloc((size_t)sys->law_block * 2 * sizeof *Kb);
     if (!Kb) return;
     double *Cb = Kb + sys->law_block;
-    gd_system_law_blocks(sys, speed, Kb, Cb);
+    gd_system_law_blocks_at(sys, speed, state, Kb, Cb);
     for (int p = 0; p < sys->law_block; p++) {
         int at = a->law_pos[p];
         if (at < 0) continue;

@@ -377,7 +377,7 @@ gd_status gd_system_set_operating_point(gd_system *s, gd_operating_kind kind, co
     return GD_OK;
 }
 
-int gd_system_law_state(const gd_system *s, double speed, double *q)
+int gd_system_law_state_from(const gd_system *s, double speed, const double *q0, double *q)
 {
     const int n = s->ndof;
     memset(q, 0, (size_t)n * sizeof *q);
@@ -390,7 +390,13 @@ int gd_system_law_state(const gd_system *s, double speed, double *q)
         else
             gd_system_mean_loads(s, 1, 1, f0);
         gd_system_dense_linear(s, speed, NULL, NULL, K);
-        found = gd_system_law_equilibrium(s, speed, K, f0, s->op_held, q, NULL);
+        if (q0) {
+            /* the neighbouring speed's state: a few Newton steps from there */
+            memcpy(q, q0, (size_t)n * sizeof *q);
+            found = gd_system_law_equilibrium(s, speed, K, f0, s->op_held, q, NULL);
+            if (!found) memset(q, 0, (size_t)n * sizeof *q);
+        }
+        if (!found) found = gd_system_law_equilibrium(s, speed, K, f0, s->op_held, q, NULL);
         if (!found) memset(q, 0, (size_t)n * sizeof *q);
     }
     free(f0);
@@ -398,20 +404,30 @@ int gd_system_law_state(const gd_system *s, double speed, double *q)
     return found;
 }
 
-void gd_system_law_blocks(const gd_system *s, double speed, double *Kb, double *Cb)
+int gd_system_law_state(const gd_system *s, double speed, double *q)
+{
+    return gd_system_law_state_from(s, speed, NULL, q);
+}
+
+void gd_system_law_blocks_at(const gd_system *s, double speed, const double *state, double *Kb,
+                             double *Cb)
 {
     if (!s->nlaws) return;
     memset(Kb, 0, (size_t)s->law_block * sizeof *Kb);
     memset(Cb, 0, (size_t)s->law_block * sizeof *Cb);
-    double *q = malloc((size_t)s->ndof * sizeof *q);
-    if (!q) return;
-    gd_system_law_state(s, speed, q);
+    double *q = NULL;
+    if (!state) {
+        q = malloc((size_t)s->ndof * sizeof *q);
+        if (!q) return;
+        gd_system_law_state(s, speed, q);
+        state = q;
+    }
     size_t at = 0;
     for (int i = 0; i < s->nlaws; i++) {
         gd_law L;
         law_at(s, i, speed, &L);
         double ql[GD_LAW_MAX_DOFS], v[GD_LAW_MAX_DOFS] = {0};
-        local_q(&L, q, ql);
+        local_q(&L, state, ql);
         gd_law_point x = {0.0, ql, v};
         L.type->linearize(&L, &x, Kb + at, Cb + at);
         at += (size_t)L.ndofs * L.ndofs;
@@ -419,13 +435,20 @@ void gd_system_law_blocks(const gd_system *s, double speed, double *Kb, double *
     free(q);
 }
 
-void gd_system_add_laws_dense(const gd_system *s, double speed, double *D, double *K)
+void gd_system_law_blocks(const gd_system *s, double speed, double *Kb, double *Cb)
+{
+    gd_system_law_blocks_at(s, speed, NULL, Kb, Cb);
+}
+
+/* D += the laws' C, K += their K about state (NULL: solved at speed). */
+static void add_laws_dense_at(const gd_system *s, double speed, const double *state, double *D,
+                              double *K)
 {
     if (!s->nlaws || (!D && !K)) return;
     double *Kb = malloc((size_t)s->law_block * 2 * sizeof *Kb);
     if (!Kb) return;
     double *Cb = Kb + s->law_block;
-    gd_system_law_blocks(s, speed, Kb, Cb);
+    gd_system_law_blocks_at(s, speed, state, Kb, Cb);
     size_t n = (size_t)s->ndof, at = 0;
     for (int i = 0; i < s->nlaws; i++) {
         const gd_law *L = &s->laws[i];
@@ -442,8 +465,19 @@ void gd_system_add_laws_dense(const gd_system *s, double speed, double *D, doubl
     free(Kb);
 }
 
-void gd_system_dense(const gd_system *s, double speed, double *M, double *D, double *K)
+void gd_system_add_laws_dense(const gd_system *s, double speed, double *D, double *K)
+{
+    add_laws_dense_at(s, speed, NULL, D, K);
+}
+
+void gd_system_dense_at(const gd_system *s, double speed, const double *state, double *M, double *D,
+                        double *K)
 {
     gd_system_dense_linear(s, speed, M, D, K);
-    gd_system_add_laws_dense(s, speed, D, K);
+    add_laws_dense_at(s, speed, state, D, K);
+}
+
+void gd_system_dense(const gd_system *s, double speed, double *M, double *D, double *K)
+{
+    gd_system_dense_at(s, speed, NULL, M, D, K);
 }

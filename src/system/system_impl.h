@@ -29,6 +29,9 @@ void gd_dynmat_add_speed_terms(const gd_dynmat *a, double speed, double *k, doub
 /* k = K + K_b(W) + K_laws(W), d = C + C_b(W) + W G + C_laws(W) on the pattern (nnz
  * each): the laws linearised about the static state at W (law_state.c). */
 void gd_dynmat_at(const gd_dynmat *a, double speed, double *k, double *d);
+/* The same with the laws linearised about state (ndof; NULL: solved at speed). */
+void gd_dynmat_at_state(const gd_dynmat *a, double speed, const double *state, double *k,
+                        double *d);
 
 /* Factors the complex dynamic stiffness Z(w) = K - w^2 M + i w D (k, d from
  * gd_dynmat_at; z: 2 nnz scratch). Returns as gd_splu_factor. */
@@ -63,6 +66,16 @@ int gd_system_law_records(const gd_system *sys, int i, double speed, const doubl
 /* The laws' K and C about the static state at W, law after law, each a column-major
  * ndofs x ndofs block (sys->law_block doubles each). */
 void gd_system_law_blocks(const gd_system *sys, double speed, double *Kb, double *Cb);
+/* gd_system_law_state started from q0 (ndof; NULL: from 0), the state of a neighbouring
+ * speed (a Campbell sweep's previous speed: a few Newton steps instead of the climb from
+ * rest); where it does not converge from q0, from 0 as gd_system_law_state. */
+int gd_system_law_state_from(const gd_system *sys, double speed, const double *q0, double *q);
+/* gd_system_law_blocks about a given state (ndof; NULL: gd_system_law_state at speed). */
+void gd_system_law_blocks_at(const gd_system *sys, double speed, const double *state, double *Kb,
+                             double *Cb);
+/* gd_system_dense with the laws linearised about state (ndof; NULL: solved at speed). */
+void gd_system_dense_at(const gd_system *sys, double speed, const double *state, double *M,
+                        double *D, double *K);
 /* D += the laws' C, K += their K (dense ndof^2, either may be NULL). */
 void gd_system_add_laws_dense(const gd_system *sys, double speed, double *D, double *K);
 

@@ -124,7 +124,7 @@ TEST(residual_is_the_frequency_error)
     for (int k = 0; k < 2; k++) {
         for (int j = 0; j < r->nmodes; j++)
             if (!r->modes[j].rigid_body) r->modes[j].lambda_im *= 1 + e[k];
-        REQUIRE(gd_modal_residuals(f.s, r, NULL) == GD_OK);
+        REQUIRE(gd_modal_residuals(f.s, r, NULL, NULL) == GD_OK);
         double expect = e[k] * (2 + e[k]) / (2 + 2 * e[k] + e[k] * e[k]);
         for (int j = 0; j < r->nmodes; j++) {
             if (r->modes[j].rigid_body) continue;
