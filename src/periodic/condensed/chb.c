@@ -25,7 +25,7 @@ struct gd_chb {
     /* the coordinates: sparse columns, entries sorted by DOF */
     int *cstart, *cidx, ccap;
     double *cval;
-    double *gram; /* nc x nc: Cholesky factor of C^T C */
+    double *gram; /* nc x nc: (C^T C)^-1, full */
     int nterm;
     int *tu, *tw;      /* per term: its u's and w's coordinate (-1: the term is empty) */
     double *tsu, *tsw; /* and their scales: u_t = tsu c_tu */
@@ -42,10 +42,15 @@ struct gd_chb {
     klu_symbolic *sym;
     long sym_pat;
     klu_common com;
+    klu_numeric **num; /* H + 1: each harmonic's LU, refactored at the next problem */
+    double *rcond0;    /* H + 1: its reciprocal pivot ratio at the last pivoting factor */
+    int *rrow, nr;     /* the DOFs where r is not zero at some sample */
     /* samples */
     double *ys, *vs;   /* nc x N: coordinate samples (row-major per coordinate) */
     double *gs;        /* nc x N: coordinate forces */
-    double *rs;        /* nf x N: the forces outside span C (setup only) */
+    double *rs;        /* nr x N: the forces outside span C on the rows rrow (setup only) */
+    size_t rs_cap;     /* rows rs holds room for */
+    int *rrow_of;      /* nf: the row of a DOF in rs, -1 none */
     double *jq, *jv;   /* N nc^2: the samples' local Jacobians dg/dy, dg/dy' */
     double *yfull, *f; /* 2 nf, nf */
     double *st;        /* 2 nterm */
@@ -62,9 +67,22 @@ struct gd_chb {
     long solves, gmres_iters;
 };
 
+static void free_numerics(gd_chb *c)
+{
+    if (c->num)
+        for (int k = 0; k <= c->H; k++)
+            if (c->num[k]) klu_z_free_numeric(&c->num[k], &c->com);
+    free(c->num);
+    c->num = NULL;
+}
+
 void gd_chb_free(gd_chb *c)
 {
     if (!c) return;
+    free_numerics(c);
+    free(c->rcond0);
+    free(c->rrow);
+    free(c->rrow_of);
     if (c->sym) klu_free_symbolic(&c->sym, &c->com);
     free(c->cstart);
     free(c->cidx);
@@ -272,6 +290,13 @@ static int build_coords(gd_chb *c, const hb *h, gd_transient *tr)
             c->na = 1;
             return 0;
         }
+    if (LAPACKE_dpotri(LAPACK_COL_MAJOR, 'L', nc, c->gram, nc)) {
+        c->na = 1;
+        return 0;
+    }
+    for (int j = 0; j < nc; j++) /* the upper triangle from the lower */
+        for (int i = 0; i < j; i++)
+            c->gram[i + (size_t)nc * j] = c->gram[j + (size_t)nc * i];
     return 0;
 }
 
@@ -286,7 +311,15 @@ int gd_chb_applies(gd_chb *c, const hb *h, gd_transient *tr)
 /* z := (C^T C)^-1 z */
 static void gram_solve(const gd_chb *c, double *z)
 {
-    LAPACKE_dpotrs(LAPACK_COL_MAJOR, 'L', c->nc, 1, c->gram, c->nc, z, c->nc);
+    const int nc = c->nc;
+    double t[64], *x = nc <= 64 ? t : c->cf;
+    memcpy(x, z, (size_t)nc * sizeof *z);
+    for (int i = 0; i < nc; i++) {
+        double s = 0.0;
+        for (int j = 0; j < nc; j++)
+            s += c->gram[i + (size_t)nc * j] * x[j];
+        z[i] = s;
+    }
 }
 
 /* ---------------------------------------------------------------- workspace */
@@ -374,8 +407,9 @@ static void analyse(gd_chb *c, const double *s, int nrow, double *G)
 }
 
 /* The forces at every sample of the coordinates Y: g into gs; with jac the local
- * Jacobians into jq, jv; with rsave the part of f outside span C into rs (nf x N).
- * 0 ok, 1 a force not finite. */
+ * Jacobians into jq, jv; with rsave the part of f outside span C into rs, on the rows
+ * where it is not zero (rrow, nr: set empty by the caller). 0 ok, 1 a force not finite,
+ * 2 out of memory. */
 static int forces(gd_chb *c, gd_transient *tr, double w, const double *Y, int jac, int rsave)
 {
     const int nc = c->nc, N = c->N, nf = c->nf, nt = c->nterm;
@@ -415,8 +449,23 @@ static int forces(gd_chb *c, gd_transient *tr, double w, const double *Y, int ja
             for (int i = 0; i < nc; i++)
                 for (int p = c->cstart[i]; p < c->cstart[i + 1]; p++)
                     c->f[c->cidx[p]] -= c->cval[p] * c->z[i];
-            for (int i = 0; i < nf; i++)
-                c->rs[(size_t)i * N + j] = c->f[i];
+            for (int i = 0; i < nf; i++) {
+                if (c->f[i] == 0.0) continue;
+                int row = c->rrow_of[i];
+                if (row < 0) { /* a new row: zero at the samples before */
+                    if ((size_t)c->nr == c->rs_cap) {
+                        size_t cap = 2 * c->rs_cap + 4;
+                        double *r = realloc(c->rs, cap * N * sizeof *r);
+                        if (!r) return 2;
+                        c->rs = r;
+                        c->rs_cap = cap;
+                    }
+                    row = c->rrow_of[i] = c->nr;
+                    c->rrow[c->nr++] = i;
+                    memset(c->rs + (size_t)row * N, 0, (size_t)N * sizeof *c->rs);
+                }
+                c->rs[(size_t)row * N + j] = c->f[i];
+            }
         }
         if (jac) { /* dg/dy = sum_t sq_t su_t sw_t e_u e_w^T (chb.h) */
             double *Jq = c->jq + (size_t)j * nc * nc, *Jv = c->jv + (size_t)j * nc * nc;
@@ -436,25 +485,36 @@ static int forces(gd_chb *c, gd_transient *tr, double w, const double *Y, int ja
 
 /* ---------------------------------------------------------------- receptances */
 
-/* Z_k per harmonic from the union pattern of K, M, D (hb_blocks.c): its complex sparse LU,
- * Z_k^-1 [C, r_k], H_k and y0. 0 ok, GD_CHB_NA singular, GD_CHB_NOMEM. */
+/* Z_k per harmonic from the union pattern of K, M, D (hb_blocks.c): its complex sparse LU
+ * (refactored with the last problem's pivot order while its pivots hold, as lowrank.c),
+ * Z_k^-1 [C, r_k], H_k and y0. r (the samples c->rs) enters only on the DOFs where it is
+ * not zero, and only at the harmonics where it is. 0 ok, GD_CHB_NA singular,
+ * GD_CHB_NOMEM. */
 static int receptances(gd_chb *c, hb *h, gd_transient *tr, double w)
 {
-    const int nf = c->nf, nc = c->nc, H = c->H, N = c->N;
+    const int nf = c->nf, nc = c->nc, H = c->H;
     if (gd_hb_linear_union(h, tr)) return GD_CHB_NOMEM;
     if (!c->sym || c->sym_pat != h->Upat_id) {
+        free_numerics(c);
         if (c->sym) klu_free_symbolic(&c->sym, &c->com);
         c->sym = klu_analyze(nf, h->Up, h->Ui, &c->com);
         if (!c->sym) return GD_CHB_NA;
         c->sym_pat = h->Upat_id;
     }
+    if (!c->num) {
+        c->num = calloc((size_t)H + 1, sizeof *c->num);
+        free(c->rcond0);
+        c->rcond0 = calloc((size_t)H + 1, sizeof *c->rcond0);
+        if (!c->num || !c->rcond0) return GD_CHB_NOMEM;
+    }
+    const int nr = c->nr;
     const int nz = h->Up[nf];
     double *Zx = malloc(2 * (size_t)(nz > 0 ? nz : 1) * sizeof *Zx);
     double *B = malloc(2 * (size_t)nf * (nc + 1) * sizeof *B);
-    double *rk = malloc((size_t)nf * c->nh * sizeof *rk);
+    double *rk = malloc((size_t)(nr > 0 ? nr : 1) * c->nh * sizeof *rk);
     int rc = GD_CHB_NOMEM;
     if (!Zx || !B || !rk) goto done;
-    analyse(c, c->rs, nf, rk); /* r_k of every DOF (cos / sin layout, stride nf) */
+    analyse(c, c->rs, nr, rk); /* r_k on those rows (cos / sin layout, stride nr) */
     rc = GD_CHB_NA;
     for (int k = 0; k <= H; k++) {
         const double kw = k * w, kw2 = kw * kw;
@@ -462,28 +522,47 @@ static int receptances(gd_chb *c, hb *h, gd_transient *tr, double w)
             Zx[2 * p] = h->UK[p] - kw2 * h->UM[p];
             Zx[2 * p + 1] = kw * h->UD[p];
         }
-        klu_numeric *num = klu_z_factor(h->Up, h->Ui, Zx, c->sym, &c->com);
-        if (!num) goto done;
-        memset(B, 0, 2 * (size_t)nf * (nc + 1) * sizeof *B);
+        int fresh = !c->num[k];
+        if (!fresh) { /* the pivot order of the last problem, unless the pivots degraded */
+            fresh = !klu_z_refactor(h->Up, h->Ui, Zx, c->sym, c->num[k], &c->com) ||
+                    !klu_z_rcond(c->sym, c->num[k], &c->com) ||
+                    !(c->com.rcond >= 1e-3 * c->rcond0[k]);
+            if (fresh) klu_z_free_numeric(&c->num[k], &c->com);
+        }
+        if (fresh) {
+            c->num[k] = klu_z_factor(h->Up, h->Ui, Zx, c->sym, &c->com);
+            if (!c->num[k] || !klu_z_rcond(c->sym, c->num[k], &c->com)) goto done;
+            c->rcond0[k] = c->com.rcond;
+        }
+        /* the right-hand sides: C, and r_k where it is not zero */
+        int with_r = 0;
+        double *br = B + 2 * (size_t)nc * nf;
+        for (int q = 0; q < nr; q++) {
+            double re = k ? rk[(size_t)(2 * k - 1) * nr + q] : rk[q];
+            double im = k ? -rk[(size_t)2 * k * nr + q] : 0.0; /* r_k = r_c - i r_s */
+            with_r |= re != 0.0 || im != 0.0;
+        }
+        memset(B, 0, 2 * (size_t)nf * (nc + with_r) * sizeof *B);
         for (int i = 0; i < nc; i++)
             for (int p = c->cstart[i]; p < c->cstart[i + 1]; p++)
                 B[2 * ((size_t)i * nf + c->cidx[p])] = c->cval[p];
-        double *br = B + 2 * (size_t)nc * nf;
-        for (int i = 0; i < nf; i++) { /* r_k = r_c - i r_s (x(t) = Re(X e^{ikwt})) */
-            br[2 * i] = k ? rk[(size_t)(2 * k - 1) * nf + i] : rk[i];
-            br[2 * i + 1] = k ? -rk[(size_t)2 * k * nf + i] : 0.0;
-        }
-        const int ok = klu_z_solve(c->sym, num, nf, nc + 1, B, &c->com);
-        klu_z_free_numeric(&num, &c->com);
-        if (!ok) goto done;
-        for (int p = 0; p < 2 * nf * (nc + 1); p++)
+        if (with_r)
+            for (int q = 0; q < nr; q++) {
+                br[2 * c->rrow[q]] = k ? rk[(size_t)(2 * k - 1) * nr + q] : rk[q];
+                br[2 * c->rrow[q] + 1] = k ? -rk[(size_t)2 * k * nr + q] : 0.0;
+            }
+        if (!klu_z_solve(c->sym, c->num[k], nf, nc + with_r, B, &c->com)) goto done;
+        for (int p = 0; p < 2 * nf * (nc + with_r); p++)
             if (!isfinite(B[p])) goto done;
         memcpy(c->Pk + 2 * (size_t)k * nf * nc, B, 2 * (size_t)nf * nc * sizeof *B);
-        memcpy(c->x0k + 2 * (size_t)k * nf, br, 2 * (size_t)nf * sizeof *B);
+        if (with_r)
+            memcpy(c->x0k + 2 * (size_t)k * nf, br, 2 * (size_t)nf * sizeof *B);
+        else
+            memset(c->x0k + 2 * (size_t)k * nf, 0, 2 * (size_t)nf * sizeof *B);
         /* H_k = C^T Z_k^-1 C, y0_k = C^T Z_k^-1 r_k */
         double *Hk = c->Hk + 2 * (size_t)k * nc * nc;
         for (int j = 0; j <= nc; j++) {
-            const double *col = B + 2 * (size_t)j * nf;
+            const double *col = j < nc ? B + 2 * (size_t)j * nf : c->x0k + 2 * (size_t)k * nf;
             for (int i = 0; i < nc; i++) {
                 double re = 0.0, im = 0.0;
                 for (int p = c->cstart[i]; p < c->cstart[i + 1]; p++) {
@@ -502,7 +581,6 @@ static int receptances(gd_chb *c, hb *h, gd_transient *tr, double w)
             }
         }
     }
-    (void)N;
     rc = GD_CHB_OK;
 done:
     free(Zx);
@@ -688,19 +766,26 @@ int gd_chb_solve(gd_chb *c, hb *h, gd_transient *tr, long stage_id, double w, do
     int rc = GD_CHB_OK;
     if (!c->have || c->stage_id != stage_id || c->w != w) {
         c->have = 0;
-        free(c->rs);
-        c->rs = malloc((size_t)nf * c->N * sizeof *c->rs);
-        if (!c->rs) {
-            rc = GD_CHB_NOMEM;
-            goto done;
+        if (!c->rrow_of) {
+            c->rrow_of = malloc((size_t)nf * sizeof *c->rrow_of);
+            c->rrow = malloc((size_t)nf * sizeof *c->rrow);
+            if (!c->rrow_of || !c->rrow) {
+                rc = GD_CHB_NOMEM;
+                goto done;
+            }
+            for (int i = 0; i < nf; i++)
+                c->rrow_of[i] = -1;
+            c->nr = 0;
         }
-        if (forces(c, tr, w, Y, 0, 1)) {
-            rc = GD_CHB_NOCONV;
+        for (int q = 0; q < c->nr; q++)
+            c->rrow_of[c->rrow[q]] = -1;
+        c->nr = 0;
+        int fr = forces(c, tr, w, Y, 0, 1);
+        if (fr) {
+            rc = fr == 2 ? GD_CHB_NOMEM : GD_CHB_NOCONV;
             goto done;
         }
         rc = receptances(c, h, tr, w);
-        free(c->rs);
-        c->rs = NULL;
         if (rc) goto done;
         c->have = 1;
         c->stage_id = stage_id;
