@@ -74,6 +74,7 @@ typedef struct ctx {
     long chb_solves;        /* fixed-value solves by the condensed harmonic balance */
     long chb_tried;         /* and those it was tried on (the rest: the full Newton) */
     int chb_nc;             /* its coordinate count */
+    int chb_streak;         /* its failures in a row: from 3 on, not tried again (default) */
 } ctx;
 
 typedef struct pstate {

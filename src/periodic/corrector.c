@@ -31,8 +31,12 @@ static int condensed_newton(ctx *c, double *X, double lam, double *R, int *iters
     const int force = c->opt->condensed > 0;
     stage *s = gd_per_get_stage(c, lam);
     if (!s) return force ? 2 : 1;
-    if (!h->chb) h->chb = gd_chb_new(h);
-    const int ap = gd_chb_applies(h->chb, h, s->tr);
+    if (!h->chb) h->chb = gd_chb_new(h->nf, h->H, h->N);
+    const int ap = gd_chb_applies(h->chb, s->tr);
+    /* a law the harmonic-diagonal preconditioner cannot follow (contact: the condensed
+     * Newton fails and hands over) stops being tried after three failures in a row: the
+     * receptances it builds first cost as much as a full Newton step (counts, not clocks) */
+    if (!force && c->chb_streak >= 3) return 1;
     if (ap < 0 || (ap == 0 && !force)) {
         if (force)
             snprintf(c->reason, sizeof c->reason,
@@ -47,7 +51,11 @@ static int condensed_newton(ctx *c, double *X, double lam, double *R, int *iters
     /* the condensed residual a hundredth of the full tolerance: its scale is the
      * coordinates', the full one's the largest of |L X| and |F| */
     const double tolc = fmax(1e-2 * c->opt->tol, 1e-14);
-    int cr = gd_chb_solve(h->chb, h, s->tr, s->id, s->w, X, tolc, &it);
+    int cr = GD_CHB_NOMEM;
+    if (!gd_hb_linear_union(h, s->tr)) {
+        const gd_chb_linear lin = {h->Up, h->Ui, h->UK, h->UM, h->UD, h->Upat_id};
+        cr = gd_chb_solve(h->chb, &lin, s->tr, s->id, s->w, X, tolc, &it);
+    }
     double scale = 0.0, rel = NAN;
     if (cr == GD_CHB_OK && !gd_hb_residual(h, s->tr, s->w, X, R, 0, &scale)) {
         double rn = gd_per_norm2(R, h->n);
@@ -59,8 +67,10 @@ static int condensed_newton(ctx *c, double *X, double lam, double *R, int *iters
         *iters = it;
         *resid = rel;
         c->chb_solves++;
+        c->chb_streak = 0;
         return 0;
     }
+    c->chb_streak++;
     memcpy(X, X0, (size_t)h->n * sizeof *X0);
     free(X0);
     if (force)

@@ -122,14 +122,14 @@ void gd_chb_free(gd_chb *c)
     free(c);
 }
 
-gd_chb *gd_chb_new(const hb *h)
+gd_chb *gd_chb_new(int nf, int H, int N)
 {
     gd_chb *c = calloc(1, sizeof *c);
     if (!c) return NULL;
-    c->nf = h->nf;
-    c->H = h->H;
-    c->N = h->N;
-    c->nh = 2 * h->H + 1;
+    c->nf = nf;
+    c->H = H;
+    c->N = N;
+    c->nh = 2 * H + 1;
     c->stage_id = -1;
     c->sym_pat = -1;
     klu_defaults(&c->com);
@@ -215,11 +215,10 @@ static int coord_of(gd_chb *c, int n, const int *idx0, const double *val0, doubl
 
 /* The coordinates from the terms of tr and the factor of their Gram matrix. 0 ok (c->na
  * set when they cannot serve), 1 out of memory. */
-static int build_coords(gd_chb *c, const hb *h, gd_transient *tr)
+static int build_coords(gd_chb *c, gd_transient *tr)
 {
     const gd_tr_term *term;
     const int nt = gd_transient_terms(tr, &term);
-    (void)h;
     if (c->built && nt == c->nterm) return 0;
     c->built = 1;
     c->na = 0;
@@ -300,10 +299,10 @@ static int build_coords(gd_chb *c, const hb *h, gd_transient *tr)
     return 0;
 }
 
-int gd_chb_applies(gd_chb *c, const hb *h, gd_transient *tr)
+int gd_chb_applies(gd_chb *c, gd_transient *tr)
 {
     if (!c) return -1;
-    if (build_coords(c, h, tr)) return -1;
+    if (build_coords(c, tr)) return -1;
     if (c->nterm <= 0 || c->nc == 0) return -1;
     return c->na ? 0 : 1;
 }
@@ -490,16 +489,15 @@ static int forces(gd_chb *c, gd_transient *tr, double w, const double *Y, int ja
  * Z_k^-1 [C, r_k], H_k and y0. r (the samples c->rs) enters only on the DOFs where it is
  * not zero, and only at the harmonics where it is. 0 ok, GD_CHB_NA singular,
  * GD_CHB_NOMEM. */
-static int receptances(gd_chb *c, hb *h, gd_transient *tr, double w)
+static int receptances(gd_chb *c, const gd_chb_linear *h, double w)
 {
     const int nf = c->nf, nc = c->nc, H = c->H;
-    if (gd_hb_linear_union(h, tr)) return GD_CHB_NOMEM;
-    if (!c->sym || c->sym_pat != h->Upat_id) {
+    if (!c->sym || c->sym_pat != h->pat_id) {
         free_numerics(c);
         if (c->sym) klu_free_symbolic(&c->sym, &c->com);
-        c->sym = klu_analyze(nf, h->Up, h->Ui, &c->com);
+        c->sym = klu_analyze(nf, (int *)h->Up, (int *)h->Ui, &c->com);
         if (!c->sym) return GD_CHB_NA;
-        c->sym_pat = h->Upat_id;
+        c->sym_pat = h->pat_id;
     }
     if (!c->num) {
         c->num = calloc((size_t)H + 1, sizeof *c->num);
@@ -524,13 +522,13 @@ static int receptances(gd_chb *c, hb *h, gd_transient *tr, double w)
         }
         int fresh = !c->num[k];
         if (!fresh) { /* the pivot order of the last problem, unless the pivots degraded */
-            fresh = !klu_z_refactor(h->Up, h->Ui, Zx, c->sym, c->num[k], &c->com) ||
+            fresh = !klu_z_refactor((int *)h->Up, (int *)h->Ui, Zx, c->sym, c->num[k], &c->com) ||
                     !klu_z_rcond(c->sym, c->num[k], &c->com) ||
                     !(c->com.rcond >= 1e-3 * c->rcond0[k]);
             if (fresh) klu_z_free_numeric(&c->num[k], &c->com);
         }
         if (fresh) {
-            c->num[k] = klu_z_factor(h->Up, h->Ui, Zx, c->sym, &c->com);
+            c->num[k] = klu_z_factor((int *)h->Up, (int *)h->Ui, Zx, c->sym, &c->com);
             if (!c->num[k] || !klu_z_rcond(c->sym, c->num[k], &c->com)) goto done;
             c->rcond0[k] = c->com.rcond;
         }
@@ -739,14 +737,13 @@ static int residual(gd_chb *c, gd_transient *tr, double w, const double *Y, int 
     return 0;
 }
 
-int gd_chb_solve(gd_chb *c, hb *h, gd_transient *tr, long stage_id, double w, double *X, double tol,
-                 int *iters)
+int gd_chb_solve(gd_chb *c, const gd_chb_linear *lin, gd_transient *tr, long stage_id, double w,
+                 double *X, double tol, int *iters)
 {
     const int nf = c->nf, H = c->H;
     *iters = 0;
-    if (h->nf != nf || h->H != H || h->N != c->N) return GD_CHB_NA;
     if (stage_id != c->stage_id) c->built = 0; /* a new problem: its terms' vectors anew */
-    if (build_coords(c, h, tr)) return GD_CHB_NOMEM;
+    if (build_coords(c, tr)) return GD_CHB_NOMEM;
     if (c->na) return GD_CHB_NA;
     const int nc = c->nc;
     if (c->n != nc * c->nh || !c->R) {
@@ -785,7 +782,7 @@ int gd_chb_solve(gd_chb *c, hb *h, gd_transient *tr, long stage_id, double w, do
             rc = fr == 2 ? GD_CHB_NOMEM : GD_CHB_NOCONV;
             goto done;
         }
-        rc = receptances(c, h, tr, w);
+        rc = receptances(c, lin, w);
         if (rc) goto done;
         c->have = 1;
         c->stage_id = stage_id;

@@ -17,7 +17,18 @@
  * The recovered X is checked against the full residual (gd_hb_residual) by the caller. */
 #ifndef GD_PERIODIC_CONDENSED_CHB_H
 #define GD_PERIODIC_CONDENSED_CHB_H
-#include "periodic/periodic_impl.h"
+#include <fftw3.h>
+#include <klu.h>
+
+#include "geardyn/transient.h"
+
+/* The linear part of the problem: K, M, D on one sorted CSC pattern over the nf free DOFs
+ * (hb_blocks.c's gd_hb_linear_union), pat_id changing with the pattern. Borrowed. */
+typedef struct gd_chb_linear {
+    const int *Up, *Ui;
+    const double *UK, *UM, *UD;
+    long pat_id;
+} gd_chb_linear;
 
 typedef struct gd_chb gd_chb;
 
@@ -30,20 +41,21 @@ enum {
     GD_CHB_NOMEM = 3
 };
 
-/* Workspace for the hb workspace h (its nf, H, N); freed by gd_chb_free. NULL: no memory. */
-gd_chb *gd_chb_new(const hb *h);
+/* Workspace for nf free DOFs, H harmonics and N AFT samples (those of the harmonic balance
+ * workspace it serves); freed by gd_chb_free. NULL: no memory. */
+gd_chb *gd_chb_new(int nf, int H, int N);
 void gd_chb_free(gd_chb *c);
 /* The coordinate count of the last problem (0 before the first solve). */
 int gd_chb_ncoords(const gd_chb *c);
-/* 1 when the condensed solve pays for problem tr in workspace h (coordinates well below
- * the DOFs: 4 nc <= nf), 0 when not, -1 when it cannot apply (no law terms). */
-int gd_chb_applies(gd_chb *c, const hb *h, gd_transient *tr);
-/* Solves the harmonic balance equations of tr at frequency w (stage_id: the problem's
- * identity, the receptances being reused while it holds) from the start X (nf (2H+1),
+/* 1 when the condensed solve pays for problem tr (coordinates well below the DOFs:
+ * 4 nc <= nf), 0 when not, -1 when it cannot apply (no law terms). */
+int gd_chb_applies(gd_chb *c, gd_transient *tr);
+/* Solves the harmonic balance equations of tr (its linear part lin) at frequency w (stage_id: the
+ * problem's identity, the receptances being reused while it holds) from the start X (nf (2H+1),
  * full coefficients): X receives the full solution on GD_CHB_OK. tol: the condensed
  * residual's relative tolerance; *iters the Newton iterations. */
-int gd_chb_solve(gd_chb *c, hb *h, gd_transient *tr, long stage_id, double w, double *X, double tol,
-                 int *iters);
+int gd_chb_solve(gd_chb *c, const gd_chb_linear *lin, gd_transient *tr, long stage_id, double w,
+                 double *X, double tol, int *iters);
 /* Counters (diagnostics): condensed solves that converged, GMRES iterations so far. */
 void gd_chb_counts(const gd_chb *c, long *solves, long *gmres_iters);
 
