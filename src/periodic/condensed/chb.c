@@ -30,7 +30,8 @@ struct gd_chb {
     int *tu, *tw;      /* per term: its u's and w's coordinate (-1: the term is empty) */
     double *tsu, *tsw; /* and their scales: u_t = tsu c_tu */
     int built;         /* coordinates made (for nterm terms) */
-    int na;            /* they cannot serve (dependent, too many): GD_CHB_NA */
+    int na;            /* they cannot serve (none, dependent): GD_CHB_NA */
+    int pays;          /* few enough to pay (4 nc <= nf, the recovery's memory within 2 GB) */
     /* receptances of one problem */
     long stage_id;
     double w;
@@ -253,7 +254,8 @@ static int build_coords(gd_chb *c, gd_transient *tr)
     const int nc = c->nc;
     /* it pays with few coordinates; Z_k^-1 C and Z_k^-1 r_k are kept for the recovery */
     const double bytes = 16.0 * (c->H + 1) * c->nf * (nc + 1);
-    if (nc == 0 || 4 * nc > c->nf || bytes > 2e9) {
+    c->pays = 4 * nc <= c->nf && bytes <= 2e9;
+    if (nc == 0) {
         c->na = 1;
         return 0;
     }
@@ -304,7 +306,7 @@ int gd_chb_applies(gd_chb *c, gd_transient *tr)
     if (!c) return -1;
     if (build_coords(c, tr)) return -1;
     if (c->nterm <= 0 || c->nc == 0) return -1;
-    return c->na ? 0 : 1;
+    return c->na || !c->pays ? 0 : 1;
 }
 
 /* z := (C^T C)^-1 z */
