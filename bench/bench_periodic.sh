@@ -40,6 +40,9 @@ OPENBLAS_NUM_THREADS=1 "$B/geardyn" periodic "$H2" --speeds 1000rpm:10000rpm:30 
     --no-stability --no-estimate --sequential --record gear1.y --record mesh:pair1:force \
     --record mesh:pair2:force | tail -1
 echo "   (H = 36 holds only the fundamental of mesh 1: the set below needs H = 108)"
+echo "-- the same curve at H = 591: condensed harmonic balance (the default) against the full"
+echo "   solve (--method full-hb), 40 speeds, CPU and ratio (bench_condensed_hb.sh)"
+bench/bench_condensed_hb.sh "$B" 591 1000rpm:8000rpm:40
 echo "-- the same model by arclength, 1000..2000 rpm, 4 speeds"
 OPENBLAS_NUM_THREADS=1 "$B/geardyn" periodic "$H2" --speeds 1000rpm:2000rpm:4 --harmonics 36 \
     --no-stability --no-estimate --record gear1.y | tail -1

@@ -469,18 +469,27 @@ static int parse_max_harmonics(const char *cmd, const char *text, void *field)
     return 0;
 }
 
-/* --method hb|harmonic-balance|shooting|auto */
+/* --method hb|harmonic-balance|condensed|full-hb|shooting|auto */
 static int parse_method(const char *cmd, const char *text, void *field)
 {
-    gd_per_kind *k = field;
+    periodic_args *a = field; /* field is .opt, the first member */
+    gd_per_kind *k = &a->opt.kind;
+    a->opt.condensed = 0;
     if (!strcmp(text, "hb") || !strcmp(text, "harmonic-balance"))
         *k = GD_PER_HB;
-    else if (!strcmp(text, "shooting"))
+    else if (!strcmp(text, "condensed")) {
+        *k = GD_PER_HB;
+        a->opt.condensed = 1;
+    } else if (!strcmp(text, "full-hb")) {
+        *k = GD_PER_HB;
+        a->opt.condensed = -1;
+    } else if (!strcmp(text, "shooting"))
         *k = GD_PER_SHOOTING;
     else if (!strcmp(text, "auto"))
         *k = GD_PER_AUTO;
     else
-        return gd_cli_usage_error(cmd, "--method: expected hb, shooting or auto, got '%s'", text);
+        return gd_cli_usage_error(
+            cmd, "--method: expected hb, condensed, full-hb, shooting or auto, got '%s'", text);
     return 0;
 }
 
@@ -584,11 +593,13 @@ static const gd_cli_opt OPTS[] = {
     GD_CLI_ROW("speeds", GD_CLI_STRING, F(speeds), "FROM:TO:COUNT",
                "reference speeds, units allowed (required, or --frequency); each requested speed "
                "is solved exactly wherever the branch crosses it"),
-    GD_CLI_ROW("method", GD_CLI_CALL, F(opt.kind), "M",
+    GD_CLI_ROW("method", GD_CLI_CALL, F(opt), "M",
                "auto (default): shooting where a law is not smooth (backlash, contact, a "
                "unilateral spring: its orbits solve the time-domain equations), else the cheaper "
                "by a cost counted from the model's sizes; a point the chosen method fails is "
-               "handed to the other (each choice is printed); hb: harmonic balance; shooting: "
+               "handed to the other (each choice is printed); hb: harmonic balance (condensed "
+               "onto the laws' coordinates where that applies, else the full solve); condensed: "
+               "always condensed; full-hb: never; shooting: "
                "Newton on the period map of transient's integrator (every law transient has, "
                "cams with include_acceleration included; pseudo-arclength through folds as hb, "
                "--sequential natural)",

@@ -146,6 +146,12 @@ typedef struct gd_periodic_options {
                             harmonic_error_* fields); 0: not (adaptive H always estimates) */
     double memory_limit; /* bytes for one harmonic balance workspace (0: half of the
                             physical memory); H beyond it is refused or not tried */
+    int condensed;       /* harmonic balance on the laws' coordinates only (docs/periodic.md,
+                            "Condensed harmonic balance"): 0 (default) wherever it applies
+                            (every fixed-value solve of a model whose law coordinates are at
+                            most a quarter of its free DOFs), its solution checked against
+                            the full residual, a failure handed to the full Newton; 1
+                            always (a point it cannot solve fails); -1 never */
     /* Called after every point is final (converged or not), in branch order, from the
      * calling thread: p the point (valid during the call only: the result's array grows),
      * index its place in the result, progress the share of the requested range (and

@@ -107,7 +107,10 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
             }
         }
     r->cpu_seconds = (double)(clock() - c0) / CLOCKS_PER_SEC;
-    int len = snprintf(r->method_note, sizeof r->method_note, "%s", note);
+    char run_note[256];
+    snprintf(run_note, sizeof run_note, "%s", r->method_note);
+    int len = snprintf(r->method_note, sizeof r->method_note, "%s%s%.200s", note,
+                       note[0] && run_note[0] ? "; " : "", run_note);
     if (failed && len >= 0 && (size_t)len < sizeof r->method_note)
         snprintf(r->method_note + len, sizeof r->method_note - (size_t)len,
                  "; %d failed point(s) handed to %s, %d solved there", failed,

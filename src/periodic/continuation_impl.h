@@ -71,6 +71,10 @@ typedef struct ctx {
     char floquet_note[200]; /* why the correction failed (the Magnus multipliers stand) */
     int corners;            /* a non-smooth law: a step whose turn does not shrink when halved is
                                a corner of the sampled branch, taken (continuation.c) */
+    long chb_solves;        /* fixed-value solves by the condensed harmonic balance */
+    long chb_tried;         /* and those it was tried on (the rest: the full Newton) */
+    int chb_nc;             /* its coordinate count */
+    int chb_streak;         /* its failures in a row: from 3 on, not tried again (default) */
 } ctx;
 
 typedef struct pstate {

@@ -9,6 +9,7 @@
 #include <time.h>
 
 #include "geardyn/transient_model.h"
+#include "periodic/condensed/chb.h"
 #include "periodic/continuation_impl.h"
 #include "periodic/periodic_impl.h"
 
@@ -18,6 +19,68 @@ double gd_per_norm2(const double *x, int n)
     for (int i = 0; i < n; i++)
         s += x[i] * x[i];
     return sqrt(s);
+}
+
+/* The fixed-value solve by the condensed harmonic balance (condensed/chb.h) where it
+ * applies, its solution accepted when the full residual (R: n workspace) is within tol.
+ * 0 solved (X, *iters, *resid set), 1 not (X as given: the full Newton goes on), 2 not
+ * and forced (opt->condensed 1: c->reason says why). */
+static int condensed_newton(ctx *c, double *X, double lam, double *R, int *iters, double *resid)
+{
+    hb *h = &c->h;
+    const int force = c->opt->condensed > 0;
+    stage *s = gd_per_get_stage(c, lam);
+    if (!s) return force ? 2 : 1;
+    if (!h->chb) h->chb = gd_chb_new(h->nf, h->H, h->N);
+    const int ap = gd_chb_applies(h->chb, s->tr);
+    /* a law the harmonic-diagonal preconditioner cannot follow (contact: the condensed
+     * Newton fails and hands over) stops being tried after three failures in a row: the
+     * receptances it builds first cost as much as a full Newton step (counts, not clocks) */
+    if (!force && c->chb_streak >= 3) return 1;
+    if (ap < 0 || (ap == 0 && !force)) {
+        if (force)
+            snprintf(c->reason, sizeof c->reason,
+                     "condensed harmonic balance does not apply (no law terms)");
+        return force ? 2 : 1;
+    }
+    double *X0 = malloc((size_t)h->n * sizeof *X0);
+    if (!X0) return force ? 2 : 1;
+    memcpy(X0, X, (size_t)h->n * sizeof *X0);
+    c->chb_tried++;
+    int it = 0;
+    /* the condensed residual a hundredth of the full tolerance: its scale is the
+     * coordinates', the full one's the largest of |L X| and |F| */
+    const double tolc = fmax(1e-2 * c->opt->tol, 1e-14);
+    int cr = GD_CHB_NOMEM;
+    if (!gd_hb_linear_union(h, s->tr)) {
+        const gd_chb_linear lin = {h->Up, h->Ui, h->UK, h->UM, h->UD, h->Upat_id};
+        cr = gd_chb_solve(h->chb, &lin, s->tr, s->id, s->w, X, tolc, &it);
+    }
+    double scale = 0.0, rel = NAN;
+    if (cr == GD_CHB_OK && !gd_hb_residual(h, s->tr, s->w, X, R, 0, &scale)) {
+        double rn = gd_per_norm2(R, h->n);
+        rel = scale > 0 ? rn / scale : rn;
+    }
+    c->chb_nc = gd_chb_ncoords(h->chb);
+    if (cr == GD_CHB_OK && rel <= c->opt->tol) {
+        free(X0);
+        *iters = it;
+        *resid = rel;
+        c->chb_solves++;
+        c->chb_streak = 0;
+        return 0;
+    }
+    c->chb_streak++;
+    memcpy(X, X0, (size_t)h->n * sizeof *X0);
+    free(X0);
+    if (force)
+        snprintf(c->reason, sizeof c->reason, "condensed harmonic balance on %d coordinates: %s",
+                 c->chb_nc,
+                 cr == GD_CHB_NA      ? "does not apply (dependent coordinates or a singular Z_k)"
+                 : cr == GD_CHB_NOMEM ? "out of memory"
+                 : cr == GD_CHB_OK    ? "the full residual is not within tol"
+                                      : "Newton did not converge");
+    return force ? 2 : 1;
 }
 
 /* Newton on R(X, lam) = 0 and, with tan (scaled tangent, n + 1), the hyperplane
@@ -34,6 +97,14 @@ int gd_per_newton(ctx *c, double *X, double *lam, const double *tan, const doubl
     if (!R || !R2 || !row) {
         snprintf(c->reason, sizeof c->reason, "out of memory");
         goto done;
+    }
+    if (!tan && c->opt->condensed >= 0) {
+        int cr = condensed_newton(c, X, *lam, R, iters, resid);
+        if (cr == 0) {
+            rc = 0;
+            goto done;
+        }
+        if (cr == 2) goto done; /* forced and failed: the reason is set */
     }
     double prev = INFINITY, have_scale = 0.0, hist[3] = {INFINITY, INFINITY, INFINITY};
     int have = 0;  /* the line search left R2 = R(X) with its term derivatives */

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "periodic/condensed/chb.h"
 #include "periodic/periodic_impl.h"
 #include "signal/fft_planner_impl.h"
 
@@ -52,6 +53,8 @@ int gd_hb_init(hb *h, int nf, int H, int N)
 
 void gd_hb_free(hb *h)
 {
+    gd_chb_free(h->chb);
+    h->chb = NULL;
     if (h->fwd_f) fftw_destroy_plan(h->fwd_f);
     if (h->inv_q) fftw_destroy_plan(h->inv_q);
     if (h->row_fwd) fftw_destroy_plan(h->row_fwd);

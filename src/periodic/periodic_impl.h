@@ -79,17 +79,18 @@ typedef struct hb {
     long L_id;     /* the problem and frequency L and P were made for */
     double L_w;
     /* the iterative capacitance (capacitance.c), used instead of S above the crossover */
-    int cap_iter;     /* 1: no S; S z = b by preconditioned GMRES */
-    int cap_nt;       /* nterm the workspace below was made for */
-    double *cT;       /* (H + 1) x nterm x ngroup complex: w_t^T Z_k^-1 u_g */
-    double *cpre;     /* (H + 1) x ngroup^2 complex: LU of the mean capacitance per harmonic */
-    int *cpiv;        /* (H + 1) x ngroup */
-    double *cq;       /* 2 nterm N: the samples s_q and w s_v of the factorized iterate */
-    double *cwork;    /* GMRES workspace */
-    long cap_iters;   /* GMRES iterations so far (diagnostics) */
-    double cap_resid; /* the largest relative residual a solve ended with */
-    double alias;     /* the last residual's aliasing floor: the force content in the top
-                         quarter below the Nyquist harmonic, relative to the residual's scale */
+    int cap_iter;       /* 1: no S; S z = b by preconditioned GMRES */
+    int cap_nt;         /* nterm the workspace below was made for */
+    double *cT;         /* (H + 1) x nterm x ngroup complex: w_t^T Z_k^-1 u_g */
+    double *cpre;       /* (H + 1) x ngroup^2 complex: LU of the mean capacitance per harmonic */
+    int *cpiv;          /* (H + 1) x ngroup */
+    double *cq;         /* 2 nterm N: the samples s_q and w s_v of the factorized iterate */
+    double *cwork;      /* GMRES workspace */
+    long cap_iters;     /* GMRES iterations so far (diagnostics) */
+    double cap_resid;   /* the largest relative residual a solve ended with */
+    double alias;       /* the last residual's aliasing floor: the force content in the top
+                           quarter below the Nyquist harmonic, relative to the residual's scale */
+    struct gd_chb *chb; /* the condensed solve's workspace (condensed/chb.h), or NULL */
 } hb;
 
 /* The low-rank (Woodbury) factorisation of the bordered system and its solve, used by

@@ -117,6 +117,9 @@ gd_status gd_per_check_options(const gd_periodic_param *param, const double *val
             "give 0 (Magnus about the Fourier orbit), 1 (non-smooth laws: the "
             "orbit corrected by shooting) or 2 (always)",
             "shoot_stability %d out of range", opt->shoot_stability);
+    if (opt->condensed < -1 || opt->condensed > 1)
+        BAD("condensed", "give 0 (where it applies), 1 (always) or -1 (never)",
+            "condensed %d out of range", opt->condensed);
     if (opt->shoot_dense_max < 0 || opt->shoot_budget < 0)
         BAD("shoot_dense_max", "give 0 (the default) or a positive value",
             "shoot_dense_max and shoot_budget must not be negative");
@@ -324,6 +327,13 @@ gd_status gd_per_run_kind(const gd_system *sys, const gd_transient_spec *spec,
     gd_hb_free(&c.hr);
     res->steps = c.steps;
     res->cpu_seconds = (double)(clock() - c0) / CLOCKS_PER_SEC;
+    if (c.chb_tried) { /* the choice stated (issue 33 item 3) */
+        size_t len = strlen(res->method_note);
+        snprintf(res->method_note + len, sizeof res->method_note - len,
+                 "%sharmonic balance condensed onto %d law coordinates: %ld of %ld fixed-value "
+                 "solves (the rest by the full Newton)",
+                 len ? "; " : "", c.chb_nc, c.chb_solves, c.chb_tried);
+    }
     if (rc) {
         gd_periodic_result_free(res);
         return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
