@@ -470,7 +470,7 @@ static int parse_max_harmonics(const char *cmd, const char *text, void *field)
     return 0;
 }
 
-/* --method hb|harmonic-balance|shooting|auto */
+/* --method hb|harmonic-balance|shooting|multifreq|auto */
 static int parse_method(const char *cmd, const char *text, void *field)
 {
     gd_per_kind *k = field;
@@ -480,8 +480,11 @@ static int parse_method(const char *cmd, const char *text, void *field)
         *k = GD_PER_SHOOTING;
     else if (!strcmp(text, "auto"))
         *k = GD_PER_AUTO;
+    else if (!strcmp(text, "multifreq"))
+        *k = GD_PER_MULTIFREQ;
     else
-        return gd_cli_usage_error(cmd, "--method: expected hb, shooting or auto, got '%s'", text);
+        return gd_cli_usage_error(
+            cmd, "--method: expected hb, shooting, multifreq or auto, got '%s'", text);
     return 0;
 }
 
