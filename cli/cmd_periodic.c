@@ -595,7 +595,9 @@ static const gd_cli_opt OPTS[] = {
                "handed to the other (each choice is printed); hb: harmonic balance; shooting: "
                "Newton on the period map of transient's integrator (every law transient has, "
                "cams with include_acceleration included; pseudo-arclength through folds as hb, "
-               "--sequential natural)",
+               "--sequential natural); multifreq: harmonic balance with one base frequency per "
+               "mesh group on their torus (co-prime tooth counts; auto takes it where the common "
+               "period holds more than 16 periods of the highest)",
                .def = "auto", .call = parse_method),
     GD_CLI_ROW("shoot-rtol", GD_CLI_CALL, F(opt.shoot_rtol), "TOL",
                "shooting: the integrator's relative tolerance", .def = "1e-9",

@@ -124,20 +124,21 @@ TEST(linear_two_frequencies_equal_the_closed_form)
 
 /* A two-stage train whose mesh frequencies are 20 W and 20 x 20 / 30 W = 2/3 of it: the
  * common period holds 3 cycles of mesh 1 and 2 of mesh 2. Each TVMS a sinusoid of 10 %
- * (a spline through 32 points). */
+ * (a spline through 64 points: its own harmonics near 64, which each method's
+ * samples fold differently, below 1e-9). */
 static char *commensurate_model(void)
 {
-    static char buf[8192];
-    char t1[1200] = "", t2[1200] = "", a1[1200] = "", a2[1200] = "";
-    for (int j = 0; j < 32; j++) {
+    static char buf[16384];
+    char t1[2400] = "", t2[2400] = "", a1[2400] = "", a2[2400] = "";
+    for (int j = 0; j < 64; j++) {
         char s[64];
-        snprintf(s, sizeof s, "%s%.17g", j ? ", " : "", TWO_PI / 20 * j / 32);
+        snprintf(s, sizeof s, "%s%.17g", j ? ", " : "", TWO_PI / 20 * j / 64);
         strcat(a1, s);
         strcat(a2, s);
-        snprintf(s, sizeof s, "%s%.17g", j ? ", " : "", 2e8 * (1 + 0.1 * cos(TWO_PI * j / 32)));
+        snprintf(s, sizeof s, "%s%.17g", j ? ", " : "", 2e8 * (1 + 0.1 * cos(TWO_PI * j / 64)));
         strcat(t1, s);
         snprintf(s, sizeof s, "%s%.17g", j ? ", " : "",
-                 3e8 * (1 + 0.08 * cos(TWO_PI * j / 32 + 0.7)));
+                 3e8 * (1 + 0.08 * cos(TWO_PI * j / 64 + 0.7)));
         strcat(t2, s);
     }
     snprintf(buf, sizeof buf,
@@ -185,17 +186,17 @@ TEST(commensurate_meshes_equal_ordinary_harmonic_balance)
     double *X = NULL;
     memset(&b, 0, sizeof b);
     memset(&q, 0, sizeof q);
-    REQUIRE(!solve_torus(&f, tm, speed, 16, &tr, &b, &q, &X));
+    REQUIRE(!solve_torus(&f, tm, speed, 20, &tr, &b, &q, &X));
     REQUIRE(b.d == 2);
     CHECK_REL(b.W[0], 2.0 / 3.0 * 20 * speed, 1e-12);
     CHECK_REL(b.W[1], 20 * speed, 1e-12);
     CHECK(b.order == 3);
     /* ordinary harmonic balance of the common period (w0 = 20 W / 3): the torus of order
-     * 16 holds orders up to 3 x 16 */
+     * 20 holds orders up to 20 x 3 (its cut: 20 times the highest base) */
     gd_periodic_options o;
     gd_periodic_options_init(&o);
     o.kind = GD_PER_HB;
-    o.harmonics = 52;
+    o.harmonics = 64;
     o.estimate = 0;
     o.stability = 0;
     o.tol = 1e-12;
@@ -221,7 +222,7 @@ TEST(commensurate_meshes_equal_ordinary_harmonic_balance)
             amp = fmax(amp, fabs(qt[i] - X[i]));
         }
     }
-    printf("  largest vibration %.4e rad, largest difference from ordinary HB (H = 52) %.2e "
+    printf("  largest vibration %.4e rad, largest difference from ordinary HB (H = 64) %.2e "
            "(%.1e of it)\n",
            amp, dmax, dmax / amp);
     CHECK(amp > 1e-7);
@@ -236,7 +237,8 @@ TEST(commensurate_meshes_equal_ordinary_harmonic_balance)
 }
 
 /* The co-prime gearbox with default options (auto method and harmonics) against a long
- * transient: the dynamic mesh forces (peak-to-peak and standard deviation) within 3 %. */
+ * transient: the dynamic mesh forces (the standard deviation and the peak-to-peak of each
+ * mesh force) within 3 % (measured: 1.6 % and 0.8 % at most). */
 TEST(coprime_gearbox_equals_long_transient)
 {
     fx f;
@@ -271,7 +273,7 @@ TEST(coprime_gearbox_equals_long_transient)
         to.rtol = 1e-9;
         to.record_from = 700 * Tm;               /* settled to 1e-4 of the mean force */
         to.t_end = to.record_from + 2 * 67 * Tm; /* two common periods */
-        to.output_interval = Tm / 128;
+        to.output_interval = Tm / 512;           /* the peaks: as the slice's sampling */
         gd_transient_result *tres = NULL;
         REQUIRE(gd_transient_run(tr, &to, rec, 2, &tres, &err) == GD_OK);
         for (int m = 0; m < 2; m++) {

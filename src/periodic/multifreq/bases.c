@@ -152,6 +152,21 @@ static int positive_half(const int *k, int d)
     return 0;
 }
 
+/* The least n' >= n whose prime factors are 2, 3 and 5 (FFTW's fast sizes). */
+static int smooth_size(int n)
+{
+    for (int m = n > 1 ? n : 1;; m++) {
+        int r = m;
+        while (r % 2 == 0)
+            r /= 2;
+        while (r % 3 == 0)
+            r /= 3;
+        while (r % 5 == 0)
+            r /= 5;
+        if (r == 1) return m;
+    }
+}
+
 int gd_qp_torus_init(gd_qp_torus *T, const gd_qp_bases *b, int H)
 {
     memset(T, 0, sizeof *T);
@@ -159,33 +174,52 @@ int gd_qp_torus_init(gd_qp_torus *T, const gd_qp_bases *b, int H)
     T->d = d;
     T->H = H;
     memcpy(T->W, b->W, sizeof T->W);
+    /* the frequency-weighted set sum |k_g| W_g <= H W_top: base g keeps its harmonics up
+     * to H_g = H W_top / W_g, so every harmonic of frequency content up to H times the
+     * highest base is kept whatever base it comes from (a pinion's mesh mode excited by
+     * the slow mesh's stiffness steps lies at a high order of that mesh) */
+    const double top = b->W[d - 1], cut = H * top * (1 + 1e-12);
+    int Hg[GD_QP_MAXD];
     long span = 1, count = 0;
-    for (int g = 0; g < d; g++)
-        span *= 2L * H + 1;
+    for (int g = 0; g < d; g++) {
+        Hg[g] = (int)floor(cut / b->W[g]);
+        span *= 2L * Hg[g] + 1;
+    }
     T->k = malloc((size_t)span * d * sizeof *T->k);
-    if (!T->k) return 1;
-    /* by |k|_1 ascending: the first harmonics of each base, then their combinations */
-    for (int order = 0; order <= H; order++)
-        for (long c = 0; c < span; c++) {
-            int k[GD_QP_MAXD], s = 0;
-            long r = c;
-            for (int g = d - 1; g >= 0; g--) {
-                k[g] = (int)(r % (2 * H + 1)) - H;
-                r /= 2 * H + 1;
-                s += abs(k[g]);
-            }
-            if (s != order || (order > 0 && !positive_half(k, d))) continue;
-            memcpy(T->k + count * d, k, (size_t)d * sizeof *k);
-            count++;
+    T->box = malloc((size_t)span * sizeof *T->box);
+    if (!T->k || !T->box) return 1;
+    memcpy(T->Hg, Hg, sizeof Hg);
+    T->span = span;
+    for (long c = 0; c < span; c++)
+        T->box[c] = -1;
+    /* k = 0, then the positive half in lexicographic order: the set of order H is a
+     * prefix of that of 2 H only in content, so pad() maps by value (qp_run.c) */
+    for (long c = 0; c < span; c++) {
+        int k[GD_QP_MAXD];
+        double w = 0.0;
+        long r = c;
+        for (int g = d - 1; g >= 0; g--) {
+            k[g] = (int)(r % (2 * Hg[g] + 1)) - Hg[g];
+            r /= 2 * Hg[g] + 1;
+            w += abs(k[g]) * b->W[g];
         }
-    T->nk = (int)count;
+        if (w > cut) continue;
+        int zero = 1;
+        for (int g = 0; g < d; g++)
+            zero &= k[g] == 0;
+        if (!zero && !positive_half(k, d)) continue;
+        long at = zero ? 0 : ++count; /* k = 0 first */
+        T->box[c] = (int)at;
+        memcpy(T->k + at * d, k, (size_t)d * sizeof *k);
+    }
+    T->nk = (int)count + 1;
     T->Ntot = 1;
     for (int g = 0; g < d; g++) {
-        int N = 16, want = d >= 3 ? 2 * (H + 1) : 4 * (H + 1);
-        while (N < want)
-            N *= 2;
-        T->N[g] = N;
-        T->Ntot *= N;
+        /* 4 (H_g + 1) samples, as the single-frequency AFT (at 3 (H_g + 1) the
+         * commensurate check, tests/periodic/test_multifreq.c, is off by 5e-8 from ordinary
+         * harmonic balance; at 4, 2e-9) */
+        T->N[g] = smooth_size(4 * (Hg[g] + 1) > 16 ? 4 * (Hg[g] + 1) : 16);
+        T->Ntot *= T->N[g];
     }
     T->pos = malloc((size_t)T->nk * sizeof *T->pos);
     T->neg = malloc((size_t)T->nk * sizeof *T->neg);
@@ -202,9 +236,20 @@ int gd_qp_torus_init(gd_qp_torus *T, const gd_qp_bases *b, int H)
     return 0;
 }
 
+int gd_qp_torus_find(const gd_qp_torus *T, const int *k)
+{
+    long c = 0;
+    for (int g = 0; g < T->d; g++) {
+        if (abs(k[g]) > T->Hg[g]) return -1;
+        c = c * (2L * T->Hg[g] + 1) + k[g] + T->Hg[g];
+    }
+    return T->box[c];
+}
+
 void gd_qp_torus_free(gd_qp_torus *T)
 {
     free(T->k);
+    free(T->box);
     free(T->pos);
     free(T->neg);
     memset(T, 0, sizeof *T);

@@ -39,10 +39,14 @@ int gd_qp_find_bases(gd_transient *tr, const gd_system *sys, const gd_transient_
                      double speed, gd_qp_bases *b, char *msg, size_t cap);
 void gd_qp_bases_free(gd_qp_bases *b);
 
-/* The truncation set: k = 0, then the half of {k : sum |k_g| <= H, k != 0} whose first
- * non-zero component is positive (-k is the same cosine and sine), in order of |k|_1. */
+/* The truncation set: k = 0, then the half of {k : sum |k_g| W_g <= H W_top, k != 0}
+ * (W_top the highest base: each base keeps its harmonics up to H W_top / W_g) whose first
+ * non-zero component is positive (-k is the same cosine and sine), lexicographically. */
 typedef struct gd_qp_torus {
     int d, H;
+    int Hg[GD_QP_MAXD]; /* each base's highest harmonic */
+    long span;          /* the box prod (2 H_g + 1) */
+    int *box;           /* span: the index of each k of the box in the set, or -1 */
     double W[GD_QP_MAXD];
     int nk; /* harmonics, k = 0 first */
     int *k; /* nk x d */
@@ -51,9 +55,11 @@ typedef struct gd_qp_torus {
     long *pos, *neg; /* nk: the grid (FFT) index of k and of -k */
 } gd_qp_torus;
 
-/* The set of order H for the bases (grid: per base the least power of 2 >= 4 (H + 1),
- * at least 16; 2 (H + 1) with three bases). 0 ok, 1 no memory. */
+/* The set of order H for the bases (grid: per base the least 2-3-5-smooth size >=
+ * 4 (H_g + 1), at least 16). 0 ok, 1 no memory. */
 int gd_qp_torus_init(gd_qp_torus *T, const gd_qp_bases *b, int H);
+/* The index of harmonic k (d entries) in the set, -1 when not in it. */
+int gd_qp_torus_find(const gd_qp_torus *T, const int *k);
 void gd_qp_torus_free(gd_qp_torus *T);
 /* Unknowns of a torus with nf DOFs: nf (2 nk - 1): X[0 .. nf-1] the mean, then per
  * harmonic j >= 1 the cosine block at (2 j - 1) nf and the sine block at 2 j nf. */
