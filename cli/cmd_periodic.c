@@ -469,7 +469,7 @@ static int parse_max_harmonics(const char *cmd, const char *text, void *field)
     return 0;
 }
 
-/* --method hb|harmonic-balance|condensed|full-hb|shooting|auto */
+/* --method hb|harmonic-balance|condensed|full-hb|shooting|multifreq|auto */
 static int parse_method(const char *cmd, const char *text, void *field)
 {
     periodic_args *a = field; /* field is .opt, the first member */
@@ -487,9 +487,12 @@ static int parse_method(const char *cmd, const char *text, void *field)
         *k = GD_PER_SHOOTING;
     else if (!strcmp(text, "auto"))
         *k = GD_PER_AUTO;
+    else if (!strcmp(text, "multifreq"))
+        *k = GD_PER_MULTIFREQ;
     else
         return gd_cli_usage_error(
-            cmd, "--method: expected hb, condensed, full-hb, shooting or auto, got '%s'", text);
+            cmd, "--method: expected hb, condensed, full-hb, shooting, multifreq or auto, got '%s'",
+            text);
     return 0;
 }
 
@@ -602,7 +605,9 @@ static const gd_cli_opt OPTS[] = {
                "always condensed; full-hb: never; shooting: "
                "Newton on the period map of transient's integrator (every law transient has, "
                "cams with include_acceleration included; pseudo-arclength through folds as hb, "
-               "--sequential natural)",
+               "--sequential natural); multifreq: harmonic balance with one base frequency per "
+               "mesh group on their torus (co-prime tooth counts; auto takes it where the common "
+               "period holds more than 16 periods of the highest)",
                .def = "auto", .call = parse_method),
     GD_CLI_ROW("shoot-rtol", GD_CLI_CALL, F(opt.shoot_rtol), "TOL",
                "shooting: the integrator's relative tolerance", .def = "1e-9",

@@ -43,7 +43,17 @@ typedef enum gd_per_method {
  * cost counted from the model's sizes (gd_periodic_choose); a requested point the chosen
  * method fails is handed to the other, solved there alone, and says so
  * (gd_periodic_point.method, reason). */
-typedef enum gd_per_kind { GD_PER_HB = 0, GD_PER_SHOOTING = 1, GD_PER_AUTO = 2 } gd_per_kind;
+/* GD_PER_MULTIFREQ: multi-frequency (quasi-periodic) harmonic balance, one base frequency
+ * per independent mesh group, the response a Fourier series on their torus (docs/
+ * periodic.md, "Several base frequencies"): a train whose meshes' frequencies have a long
+ * common period (co-prime tooth counts) without the harmonics of that period; speed
+ * continuation (natural), no Floquet multipliers (the response has no period). */
+typedef enum gd_per_kind {
+    GD_PER_HB = 0,
+    GD_PER_SHOOTING = 1,
+    GD_PER_AUTO = 2,
+    GD_PER_MULTIFREQ = 3
+} gd_per_kind;
 /* The Floquet multipliers of harmonic balance points (gd_periodic_options.floquet). */
 enum { GD_FLOQUET_AUTO = 0, GD_FLOQUET_DENSE = 1, GD_FLOQUET_KRYLOV = 2, GD_FLOQUET_REDUCED = 3 };
 GD_API const char *gd_per_kind_name(gd_per_kind k);

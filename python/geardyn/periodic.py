@@ -13,7 +13,8 @@ __all__ = ["periodic", "PeriodicResult"]
 
 _METHODS = {"arclength": lib.GD_PER_ARCLENGTH, "sequential": lib.GD_PER_SEQUENTIAL}
 _SOLVERS = {"hb": lib.GD_PER_HB, "harmonic_balance": lib.GD_PER_HB,
-            "shooting": lib.GD_PER_SHOOTING, "auto": lib.GD_PER_AUTO}
+            "shooting": lib.GD_PER_SHOOTING, "auto": lib.GD_PER_AUTO,
+            "multifreq": lib.GD_PER_MULTIFREQ}
 
 
 def _frequencies(values):

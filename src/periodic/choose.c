@@ -9,13 +9,17 @@
 #include <string.h>
 
 #include "geardyn/transient_model.h"
+#include "periodic/multifreq/qphb_impl.h"
 #include "periodic/periodic_impl.h"
 
 #define TWO_PI 6.28318530717958647692
 
 const char *gd_per_kind_name(gd_per_kind k)
 {
-    return k == GD_PER_SHOOTING ? "shooting" : k == GD_PER_AUTO ? "auto" : "harmonic_balance";
+    return k == GD_PER_SHOOTING    ? "shooting"
+           : k == GD_PER_AUTO      ? "auto"
+           : k == GD_PER_MULTIFREQ ? "multi_frequency_hb"
+                                   : "harmonic_balance";
 }
 
 /* Seconds of counted work (work.c) of one period integrated from rest at the shooting
@@ -93,6 +97,43 @@ static double shoot_periods(int n, int dense, const gd_periodic_options *opt)
     return NEWTON_PER_POINT * (gm + 2.0 + mult / 3.0) + 2.0 * (gm + 1.0) + 1.0 + mult;
 }
 
+/* Several base frequencies whose common period holds more than this many periods of the
+ * highest (or none at all): ordinary harmonic balance would need H of at least this
+ * times the harmonics one mesh cycle needs (issue 33: a gearbox with a common fundamental
+ * of 1/34 of the input speed walked to H = 850), the torus keeps each base's own. */
+#define QP_AUTO_ORDER 16
+/* ... on up to this many free DOFs (its preconditioner holds a dense nf x nf block per
+ * harmonic: 64 DOFs at order 16, 545 harmonics, 36 MB) */
+#define QP_AUTO_NF 64
+
+/* 1 (with note) when the multi-frequency harmonic balance is the method for the problem:
+ * smooth laws, two or more base frequencies, and a common period of more than
+ * QP_AUTO_ORDER periods of the highest or none. */
+static int multifreq_fits(const gd_system *sys, const gd_transient_spec *spec, double speed,
+                          const gd_periodic_options *opt, char *note)
+{
+    double W[GD_QP_MAXD];
+    long order = 0;
+    char why[200] = "";
+    if (opt->subharmonic > 1) return 0;
+    int nf = 0, d = gd_per_qp_probe(sys, spec, speed, W, &order, &nf, why, sizeof why);
+    if (d < 2 || (order > 0 && order <= QP_AUTO_ORDER)) return 0;
+    if (gd_per_nonsmooth(sys, spec, speed)) return 0; /* shooting's orbits: the rule below */
+    if (nf > QP_AUTO_NF) return 0;
+    if (order > 0)
+        snprintf(note, 256,
+                 "multi-frequency harmonic balance: %d base frequencies (%.5g, %.5g rad/s%s) "
+                 "with a common period of %ld periods of the highest: one period would need "
+                 "H >= %ld (limit %d)",
+                 d, W[0], W[1], d > 2 ? ", ..." : "", order, order, QP_AUTO_ORDER);
+    else
+        snprintf(note, 256,
+                 "multi-frequency harmonic balance: %d base frequencies (%.6g and %.6g rad/s%s) "
+                 "with no common period",
+                 d, W[0], W[1], d > 2 ? ", ..." : "");
+    return 1;
+}
+
 gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *spec,
                                const gd_periodic_param *param, double value,
                                const gd_periodic_options *opt, char *note)
@@ -128,6 +169,7 @@ gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *sp
         spec = &tm->spec;
         speed = param->speed;
     }
+    if (!param && multifreq_fits(sys, spec, speed, opt, note)) return GD_PER_MULTIFREQ;
     double w0;
     int order = 1;
     if (gd_periodic_fundamental(sys, spec, speed, &w0, &order, &err) ||

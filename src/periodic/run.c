@@ -20,6 +20,7 @@
 
 #include "geardyn/transient_model.h"
 #include "periodic/continuation_impl.h"
+#include "periodic/multifreq/qphb_impl.h"
 #include "periodic/periodic_impl.h"
 
 void gd_periodic_options_init(gd_periodic_options *opt)
@@ -94,8 +95,9 @@ gd_status gd_per_check_options(const gd_periodic_param *param, const double *val
         if (records[r].kind == GD_REC_ANGLE)
             BAD("record", "record the DOF's displacement (perturbation) instead",
                 "a total angle grows with time and has no periodic steady state");
-    if (opt->kind < GD_PER_HB || opt->kind > GD_PER_AUTO)
-        BAD("method", "give hb, shooting or auto", "unknown periodic method %d", (int)opt->kind);
+    if (opt->kind < GD_PER_HB || opt->kind > GD_PER_MULTIFREQ)
+        BAD("method", "give hb, shooting, multifreq or auto", "unknown periodic method %d",
+            (int)opt->kind);
     if (opt->shoot_rtol < 0 ||
         (opt->shoot_rtol > 0 && !(opt->shoot_rtol >= 1e-14 && opt->shoot_rtol < 1e-2)))
         BAD("shoot_rtol", "give 0 (1e-9) or a tolerance in [1e-14, 1e-2)",
@@ -146,13 +148,21 @@ gd_status gd_per_run_kind(const gd_system *sys, const gd_transient_spec *spec,
     {
         char note[256] = "";
         gd_per_kind kind = opt->kind;
-        if (kind == GD_PER_SHOOTING) {
+        if (kind == GD_PER_SHOOTING || kind == GD_PER_MULTIFREQ) {
+            if (kind == GD_PER_MULTIFREQ && param)
+                return gd_error_set(err, GD_EINPUT, "", 0, 0, "method",
+                                    "continue in speed, or use hb or shooting",
+                                    "the multi-frequency harmonic balance continues in speed "
+                                    "only");
             gd_periodic_result *res = calloc(1, sizeof *res);
             if (!res) return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
             res->nrecords = nrecords;
-            res->method = GD_PER_SHOOTING;
+            res->method = kind;
             snprintf(res->method_note, sizeof res->method_note, "%s", note);
-            if (gd_per_shoot_run(sys, spec, param, values, nvalues, opt, records, nrecords, res)) {
+            if (kind == GD_PER_SHOOTING
+                    ? gd_per_shoot_run(sys, spec, param, values, nvalues, opt, records, nrecords,
+                                       res)
+                    : gd_per_qp_run(sys, spec, values, nvalues, opt, records, nrecords, res)) {
                 gd_periodic_result_free(res);
                 return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
             }

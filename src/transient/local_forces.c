@@ -104,7 +104,7 @@ static void law_coefs(gd_transient *tr, double t, int with_assembled, double *sq
         int nt = L->type->nterms;
         double jq[GD_LAW_MAX_TERMS], jv[GD_LAW_MAX_TERMS];
         gd_law_point x;
-        gd_tr_law_point(L, t, tr->q, tr->v, tr->lq, tr->lv, &x);
+        gd_tr_law_point(L, gd_tr_law_t(tr, i, t), tr->q, tr->v, tr->lq, tr->lv, &x);
         memset(tr->lf, 0, (size_t)L->ndofs * sizeof *tr->lf);
         L->type->force(L, &x, tr->lf, jq, jv);
         for (int k = 0; k < nt; k++, (*n)++) {
@@ -124,7 +124,7 @@ void gd_transient_local(gd_transient *tr, double t, const double *y, double *f, 
         gd_law *L = &tr->law[i];
         if (!L->type->mode_at) continue;
         gd_law_point x;
-        gd_tr_law_here(tr, L, t, &x);
+        gd_tr_law_here(tr, L, gd_tr_law_t(tr, i, t), &x);
         L->mode = L->type->mode_at(L, &x);
     }
     if (f) {

@@ -42,7 +42,7 @@ double gd_tr_record_value(gd_transient *tr, const gd_tr_record *rec, double t, c
         if (nl >= 0) { /* the mesh law's records, in the same order */
             const gd_law *L = &tr->law[nl];
             gd_law_point x;
-            gd_tr_law_point(L, t, q, v, tr->lq, tr->lv, &x);
+            gd_tr_law_point(L, gd_tr_law_t(tr, nl, t), q, v, tr->lq, tr->lv, &x);
             return L->type->record(L, (int)(rec->kind - GD_REC_MESH_FORCE), &x);
         }
         /* a mesh without a law: its assembled linear force */
@@ -64,9 +64,10 @@ double gd_tr_record_value(gd_transient *tr, const gd_tr_record *rec, double t, c
     case GD_REC_LAW: {
         /* a damper's records are its law's fx, fy, ecc */
         int which = rec->kind == GD_REC_LAW ? rec->index2 : (int)(rec->kind - GD_REC_SFD_FX);
-        const gd_law *L = &tr->law[rec->kind == GD_REC_LAW ? tr->law_spec0 + i : tr->nmesh + i];
+        const int li = rec->kind == GD_REC_LAW ? tr->law_spec0 + i : tr->nmesh + i;
+        const gd_law *L = &tr->law[li];
         gd_law_point x;
-        gd_tr_law_point(L, t, q, v, tr->lq, tr->lv, &x);
+        gd_tr_law_point(L, gd_tr_law_t(tr, li, t), q, v, tr->lq, tr->lv, &x);
         return L->type->record(L, which, &x);
     }
     }

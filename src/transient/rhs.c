@@ -78,17 +78,18 @@ static void add_law_forces(gd_transient *tr, double t, const double *q, const do
                            const double *acc, double dw, double *r, int assembled)
 {
     double lq[GD_LAW_MAX_DOFS], lv[GD_LAW_MAX_DOFS], lf[GD_LAW_MAX_DOFS]; /* no aliasing */
-    const gd_law_point x = {t, lq, lv};
     const int k0 = assembled ? tr->nlaw_plain : 0, k1 = assembled ? tr->nlaw : tr->nlaw_plain;
     for (int k = k0; k < k1; k++) {
         const int i = tr->law_order[k];
         const gd_law *L = &tr->law[i];
+        const double tl = gd_tr_law_t(tr, i, t); /* the law's own time */
+        const gd_law_point x = {tl, lq, lv};
         const int n = L->ndofs;
         const int inert = tr->in_code ? tr->in_code[i] : 0; /* 0: no inertia */
         if (n == 1) { /* one DOF (a load, a cam): its force added to r in place */
             const int d = L->dof[0];
             if (d < 0) continue; /* on an absent DOF: no force */
-            const gd_law_point x1 = {t, q + d, v + d};
+            const gd_law_point x1 = {tl, q + d, v + d};
             if (!inert) {
                 L->type->force(L, &x1, r + d, NULL, NULL);
                 continue;

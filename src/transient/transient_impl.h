@@ -92,6 +92,10 @@ struct gd_transient {
      * (gd_law_cam_torque); dofs are the problem's (remapped by a reduction) */
     int nlaw;
     gd_law *law;
+    /* nlaw: each law's own time, borrowed (multi-frequency harmonic balance,
+     * src/periodic/multifreq: a law read at the phase of its base frequency on the torus);
+     * NULL, the default: every law at the problem's t */
+    const double *law_time;
     int nmesh;     /* law[0 .. nmesh - 1]: the spec's meshes (contact statistics) */
     int nsfd_law;  /* law[nmesh .. nmesh + nsfd_law - 1]: the spec's dampers (GD_REC_SFD_*) */
     int law_spec0; /* law[law_spec0 + i]: spec.laws[i] (GD_REC_LAW) */
@@ -170,6 +174,11 @@ void gd_tr_fill(gd_transient *tr, double t, const double *y, double *q, double *
  * free in torsion starts from its state under inertia relief. */
 gd_status gd_tr_static_state(gd_transient *tr, double t, double *y, gd_error *err);
 /* Law L's local view of (t, q, v) (full DOF vectors) in lq, lv (length L->ndofs). */
+/* The time law i is read at: its own (law_time) or the problem's t. */
+static inline double gd_tr_law_t(const gd_transient *tr, int i, double t)
+{
+    return tr->law_time ? tr->law_time[i] : t;
+}
 void gd_tr_law_point(const gd_law *L, double t, const double *q, const double *v, double *lq,
                      double *lv, gd_law_point *x);
 /* record_value.c: value of a record at (t, q, v) (full DOF vectors) with the current

@@ -1,0 +1,124 @@
+/* Multi-frequency (quasi-periodic) harmonic balance: the response of a train whose
+ * excitations have d independent base frequencies W_1..W_d (one per mesh group: tooth
+ * counts whose ratio is not a small whole number) as a Fourier series on the d-torus,
+ *   q(theta) = X_0 + sum_k C_k cos(k . theta) + S_k sin(k . theta),  theta_g = W_g t,
+ * over a truncation set of integer vectors k (Guskov & Thouverez, J. Vib. Acoust. 134
+ * (2012) 031003; Krack & Gross, Harmonic Balance for Nonlinear Vibration Problems, 2019,
+ * ch. 5). d/dt = sum_g W_g d/dtheta_g, so harmonic k has the frequency Omega_k = k . W and
+ * the linear part acts on it as on a harmonic of that frequency; the forces are sampled
+ * on a d-dimensional grid (AFT, multi-dimensional FFTW), each law read at the phase of
+ * its own base frequency. The physical response is the slice theta = W t. */
+#ifndef GD_QPHB_IMPL_H
+#define GD_QPHB_IMPL_H
+#include <complex.h>
+#include <fftw3.h>
+
+#include "geardyn/periodic.h"
+#include "geardyn/transient.h"
+
+#define GD_QP_MAXD 3
+
+/* The base frequencies of a problem and each law's group. */
+typedef struct gd_qp_bases {
+    int d;                /* 0: no excitation; 1..GD_QP_MAXD */
+    double W[GD_QP_MAXD]; /* rad/s, ascending */
+    int nlaw;             /* the problem's laws */
+    int *group;           /* nlaw: the base each law is read at (-1: a law without frequency) */
+    double common;        /* the common fundamental (rad/s) of the W when they have one whose
+                             orders are at most 100000, else 0 */
+    long order;           /* the highest W over common (0 without) */
+} gd_qp_bases;
+
+/* The base frequencies of the problem tr (built from sys, spec at speed): every law's
+ * excitation frequencies (gd_law_type.frequencies) grouped, a law joining a base of which
+ * its fundamental is a whole multiple (up to 64 times; or the base one of its own). 0 ok;
+ * 1 with msg (cap bytes) when the problem has an excitation the torus does not take
+ * (unbalances, prescribed periodic motions: their own time, not a law's), more than
+ * GD_QP_MAXD bases, or no memory. b->group is owned: gd_qp_bases_free. */
+int gd_qp_find_bases(gd_transient *tr, const gd_system *sys, const gd_transient_spec *spec,
+                     double speed, gd_qp_bases *b, char *msg, size_t cap);
+void gd_qp_bases_free(gd_qp_bases *b);
+
+/* The truncation set: k = 0, then the half of {k : sum |k_g| W_g <= H W_top, k != 0}
+ * (W_top the highest base: each base keeps its harmonics up to H W_top / W_g) whose first
+ * non-zero component is positive (-k is the same cosine and sine), lexicographically. */
+typedef struct gd_qp_torus {
+    int d, H;
+    int Hg[GD_QP_MAXD]; /* each base's highest harmonic */
+    long span;          /* the box prod (2 H_g + 1) */
+    int *box;           /* span: the index of each k of the box in the set, or -1 */
+    double W[GD_QP_MAXD];
+    int nk; /* harmonics, k = 0 first */
+    int *k; /* nk x d */
+    int N[GD_QP_MAXD];
+    long Ntot;       /* grid points */
+    long *pos, *neg; /* nk: the grid (FFT) index of k and of -k */
+} gd_qp_torus;
+
+/* The set of order H for the bases (grid: per base the least 2-3-5-smooth size >=
+ * 4 (H_g + 1), at least 16). 0 ok, 1 no memory. */
+int gd_qp_torus_init(gd_qp_torus *T, const gd_qp_bases *b, int H);
+/* The index of harmonic k (d entries) in the set, -1 when not in it. */
+int gd_qp_torus_find(const gd_qp_torus *T, const int *k);
+void gd_qp_torus_free(gd_qp_torus *T);
+/* Unknowns of a torus with nf DOFs: nf (2 nk - 1): X[0 .. nf-1] the mean, then per
+ * harmonic j >= 1 the cosine block at (2 j - 1) nf and the sine block at 2 j nf. */
+static inline long gd_qp_unknowns(const gd_qp_torus *T, int nf)
+{
+    return (long)nf * (2L * T->nk - 1);
+}
+
+/* One point's solver. */
+typedef struct gd_qp {
+    gd_transient *tr; /* borrowed */
+    int nf, nt;
+    const gd_tr_term *term;
+    const gd_qp_bases *b; /* borrowed */
+    gd_qp_torus T;        /* owned */
+    long n;
+    fftw_complex *buf; /* nf x Ntot, DOF-major */
+    fftw_plan inv, fwd;
+    double *qs, *vs, *fs; /* Ntot x nf, sample-major */
+    double *sq, *sv;      /* nt x Ntot: the terms' derivatives at the last residual */
+    double *ltime;        /* nlaw: each law's time at the current grid point */
+    double *y;            /* 2 nf */
+    double *st;           /* 2 nt: one sample's term derivatives */
+    double complex *P;    /* nk x nf x nf: LU of the mean-term harmonic blocks */
+    int *piv;             /* nk x nf */
+    double *w1, *w2;      /* n each */
+    long matvecs;         /* Jacobian-vector products so far */
+} gd_qp;
+
+/* Workspace for the problem tr on the torus of order H. 0 ok; 1 no memory, 2 too large
+ * (msg says how large). */
+int gd_qp_init(gd_qp *q, gd_transient *tr, const gd_qp_bases *b, int H, char *msg, size_t cap);
+void gd_qp_free(gd_qp *q);
+/* R = L X - F(X) (n); the terms' derivatives kept for the Jacobian; *scale
+ * max(|L X|, |F|). 0 ok, 1 a force is not finite. */
+int gd_qp_residual(gd_qp *q, const double *X, double *R, double *scale);
+/* Newton from X (n, in place) to the relative residual tol: Newton-Krylov, GMRES
+ * (SUNDIALS SPGMR) on Jacobian-vector products by the AFT of the linearised forces, right-
+ * preconditioned by the harmonic blocks with the terms' torus means. *resid the relative
+ * residual reached, *iters the Newton steps. 0 converged, 1 not (msg says why). */
+int gd_qp_newton(gd_qp *q, double *X, double tol, int max_iter, double *resid, int *iters,
+                 char *msg, size_t cap);
+/* q(t), q'(t) (nf each) of the slice theta = W t (phases of the bases at t). */
+void gd_qp_eval(const gd_qp *q, const double *X, double t, double *qt, double *vt);
+/* Samples of X over the grid (sample-major, Ntot x nf; velocities too), into q->qs, q->vs. */
+void gd_qp_samples(gd_qp *q, const double *X);
+/* Sets each law's time at grid point p (the problem's t, returned, is that of base 1). */
+double gd_qp_point_times(gd_qp *q, long p);
+
+/* The branch over speed by the torus (qp_run.c): natural continuation, each point from the
+ * last; adaptive H (opt->adaptive: 8 doubled until two orders' records agree to
+ * harmonic_tol, at most 64) or opt->harmonics. 0 ok, 1 no memory. */
+int gd_per_qp_run(const gd_system *sys, const gd_transient_spec *spec, const double *values,
+                  int nvalues, const gd_periodic_options *opt, const gd_tr_record *records,
+                  int nrecords, gd_periodic_result *res);
+
+/* The bases of the problem at speed, for `--method auto` (choose.c): d (0: none found or
+ * the torus cannot take the problem) with the common fundamental's order (0 when none)
+ * and the free DOFs nf. */
+int gd_per_qp_probe(const gd_system *sys, const gd_transient_spec *spec, double speed,
+                    double W[GD_QP_MAXD], long *order, int *nf, char *msg, size_t cap);
+#endif
