@@ -1,4 +1,4 @@
-/* examples/wind_turbine_gearbox.yaml (after the NREL GRC 750 kW gearbox, [GRC2011]) against
+/* examples/wind_turbine_gearbox.yaml (after the NREL GRC 750 kW gearbox, [Oyague2011]) against
  * hand computations: the speed ratios from the teeth, the mesh frequencies of the three stages,
  * and the lowest torsional frequency against an independent two-inertia model of the train. */
 #include "cli_support.h"
@@ -30,7 +30,7 @@ TEST(ratios_follow_the_teeth)
     CHECK_REL(shaft_ratio(o, "sun_shaft"), R_SUN, 1e-9);
     CHECK_REL(shaft_ratio(o, "intermediate_shaft"), R_INT, 1e-9);
     CHECK_REL(shaft_ratio(o, "hs_shaft"), R_HS, 1e-9);
-    CHECK_REL(R_HS, 81.491, 1e-5); /* the description's overall ratio 1:81.491 */
+    CHECK_REL(R_HS, 81.491, 1e-5); /* 81.491 */
     /* planets: (w_p - w_c) Z_p = -(w_s - w_c) Z_s, per unit carrier speed */
     CHECK_REL(shaft_ratio(o, "lss.planet1"), 1.0 - (R_SUN - 1.0) * 21.0 / 39.0, 1e-9);
     const cJSON *set = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(o, "planetary_sets"), 0);
@@ -120,5 +120,39 @@ TEST(lowest_torsional_mode_against_a_two_inertia_model)
     scratch_close(&s);
 }
 
-RUN_TESTS(T(ratios_follow_the_teeth), T(parallel_mesh_frequencies),
-          T(lowest_torsional_mode_against_a_two_inertia_model))
+static int count_of(const char *text, const char *word)
+{
+    int n = 0;
+    for (const char *at = strstr(text, word); at; at = strstr(at + 1, word))
+        n++;
+    return n;
+}
+
+/* The report of a planetary model: the set seen along its axis in the model section and each
+ * mode's class in the modal table, for Lin & Parker's N = 4 set: 20 elastic modes, 5 rotational
+ * (the sixth of their Table 2 is the rigid-body mode), 6 translational pairs, N - 3 = 1 planet
+ * mode at each of 3 frequencies. */
+TEST(report_draws_the_set_and_lists_classes)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    char path[512];
+    snprintf(path, sizeof path, "%s/lp.html", s.dir);
+    run_result r;
+    REQUIRE(run(&s, &r, "report examples/planetary_lin_parker.yaml --threads 1 --out '%s'", path) ==
+            0);
+    run_free(&r);
+    char *html = read_file(path);
+    REQUIRE(html);
+    CHECK(contains(html, "planetary set 'lp' seen along its axis"));
+    CHECK(contains(html, "planets (pitch circles)") && contains(html, "planet 4 at 270 deg"));
+    CHECK(contains(html, "class (lp)"));
+    CHECK(count_of(html, ">rotational<") == 5);
+    CHECK(count_of(html, ">translational<") == 12);
+    CHECK(count_of(html, ">planet<") == 3);
+    free(html);
+    scratch_close(&s);
+}
+
+RUN_TESTS(T(report_draws_the_set_and_lists_classes), T(ratios_follow_the_teeth),
+          T(parallel_mesh_frequencies), T(lowest_torsional_mode_against_a_two_inertia_model))
