@@ -85,7 +85,7 @@ void gd_model_free(gd_model *model)
     free(model->laws);
     for (int i = 0; i < model->nplanetary; i++)
         free(model->planetary[i].planet_angle), free(model->planetary[i].pin_error),
-            free(model->planetary[i].instance_name);
+            free(model->planetary[i].pin_error_radial), free(model->planetary[i].instance_name);
     free(model->planetary);
     free(model->meshes);
     free(model->unbalances);

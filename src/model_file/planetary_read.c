@@ -15,7 +15,8 @@ static const char *const SET_KEYS[] = {
 static const char *const MEMBER_KEYS[] = {"node",      "mass",      "inertia",
                                           "k_support", "k_torsion", NULL};
 static const char *const PLANET_KEYS[] = {
-    "count", "angles", "mass", "inertia", "bearing_stiffness", "pin_errors", NULL};
+    "count", "angles", "mass", "inertia", "bearing_stiffness", "pin_errors", "pin_errors_radial",
+    NULL};
 static const char *const SIZE_KEYS[] = {"sun", "ring", "planet", NULL};
 static const char *const MESH_KEYS[] = {"sun", "ring", NULL};
 static const char *const HELD[] = {"sun", "ring", "carrier", "none", NULL};
@@ -72,7 +73,7 @@ static gd_status read_per_gear(gd_mparser *p, const gd_ynode *sm, const char *q,
 }
 
 static gd_status read_planets(gd_mparser *p, const gd_ynode *sm, const char *q,
-                              gd_planetary_spec *s, double **angles, double **errors)
+                              gd_planetary_spec *s, double **angles, double *errors[2])
 {
     gd_yreader *r = &p->r;
     char pp[160];
@@ -112,19 +113,22 @@ static gd_status read_planets(gd_mparser *p, const gd_ynode *sm, const char *q,
     }
     s->nplanets = (int)count;
     s->planet_angles = *angles;
-    if (gd_ymap_get(pm, "pin_errors")) {
+    /* tangential (pin_errors) and radial (pin_errors_radial) pin position errors */
+    static const char *const EKEYS[2] = {"pin_errors", "pin_errors_radial"};
+    for (int k = 0; k < 2; k++) {
+        if (!gd_ymap_get(pm, EKEYS[k])) continue;
         int ne = 0;
-        if ((st = gd_mp_read_qty_list(p, pm, "pin_errors", pp, GD_QTY_LENGTH, errors, &ne)))
+        if ((st = gd_mp_read_qty_list(p, pm, EKEYS[k], pp, GD_QTY_LENGTH, &errors[k], &ne)))
             return st;
         if (ne != count) {
             char ep[200];
-            return gd_yfail(r, gd_ymap_get(pm, "pin_errors"),
-                            gd_ypath_key(ep, sizeof ep, pp, "pin_errors"),
+            return gd_yfail(r, gd_ymap_get(pm, EKEYS[k]), gd_ypath_key(ep, sizeof ep, pp, EKEYS[k]),
                             "give one pin error per planet (0 for an exact pin)",
                             "%d pin errors for %ld planets", ne, count);
         }
-        s->pin_errors = *errors;
     }
+    s->pin_errors = errors[0];
+    s->pin_errors_radial = errors[1];
     return GD_OK;
 }
 
@@ -136,7 +140,7 @@ static gd_status read_set(gd_mparser *p, const gd_ynode *sm, const char *q, size
     char name[GD_NAME_MAX];
     gd_planetary_spec s;
     gd_planetary_spec_init(&s);
-    double *angles = NULL, *errors = NULL, teeth[3] = {0, 0, 0};
+    double *angles = NULL, *errors[2] = {NULL, NULL}, teeth[3] = {0, 0, 0};
     int held = 3, frame = -1, has_frame = 0;
     if ((st = gd_yexpect(r, sm, GD_Y_MAP, q)) || (st = gd_ycheck_keys(r, sm, q, SET_KEYS)) ||
         (st = gd_mp_read_name(p, sm, q, name, "", 1)) ||
@@ -161,16 +165,18 @@ static gd_status read_set(gd_mparser *p, const gd_ynode *sm, const char *q, size
                             GD_YREQ | GD_YPOS, 1, s.mesh_stiffness)) ||
         (st = read_per_gear(p, sm, q, "mesh_damping", MESH_KEYS, 2, GD_QTY_DAMPING, GD_YNONNEG, 1,
                             s.mesh_damping)) ||
-        (st = read_planets(p, sm, q, &s, &angles, &errors))) {
+        (st = read_planets(p, sm, q, &s, &angles, errors))) {
         free(angles);
-        free(errors);
+        free(errors[0]);
+        free(errors[1]);
         return st;
     }
     for (int j = 0; j < 3; j++) {
         /* range-checked before the conversion to int */
         if (teeth[j] != 0 && (!(teeth[j] <= 100000) || teeth[j] != floor(teeth[j]))) {
             free(angles);
-            free(errors);
+            free(errors[0]);
+            free(errors[1]);
             char tp[160];
             return gd_yfail(r, gd_ymap_get(sm, "teeth"), gd_ypath_key(tp, sizeof tp, q, "teeth"),
                             "teeth numbers are whole numbers from 3 to 100000",
@@ -184,7 +190,8 @@ static gd_status read_set(gd_mparser *p, const gd_ynode *sm, const char *q, size
     s.path = q;
     st = gd_model_add_planetary(p->m, &s, NULL, r->err);
     free(angles);
-    free(errors);
+    free(errors[0]);
+    free(errors[1]);
     return st;
 }
 
