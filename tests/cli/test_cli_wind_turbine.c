@@ -154,5 +154,23 @@ TEST(report_draws_the_set_and_lists_classes)
     scratch_close(&s);
 }
 
-RUN_TESTS(T(report_draws_the_set_and_lists_classes), T(ratios_follow_the_teeth),
-          T(parallel_mesh_frequencies), T(lowest_torsional_mode_against_a_two_inertia_model))
+/* planets.pin_errors_radial (docs/planetary.md): located errors, exit 2, nothing written. */
+TEST(radial_pin_errors_bad_input)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    CHECK(run_fails_cleanly(&s,
+                            "static examples/planetary_lin_parker.yaml --set "
+                            "'planetary_sets.lp.planets.pin_errors_radial=[1 um, 0]'",
+                            "planets.pin_errors_radial: 2 pin errors for 4 planets",
+                            "give one pin error per planet"));
+    CHECK(run_fails_cleanly(&s,
+                            "static examples/planetary_lin_parker.yaml --set "
+                            "'planetary_sets.lp.planets.pin_errors_radial=[1 m, 0, 0, 0]'",
+                            "pin_errors_radial[0]: pin error 1 m", "below the carrier radius"));
+    scratch_close(&s);
+}
+
+RUN_TESTS(T(radial_pin_errors_bad_input), T(report_draws_the_set_and_lists_classes),
+          T(ratios_follow_the_teeth), T(parallel_mesh_frequencies),
+          T(lowest_torsional_mode_against_a_two_inertia_model))
