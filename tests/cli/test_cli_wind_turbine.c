@@ -171,6 +171,43 @@ TEST(radial_pin_errors_bad_input)
     scratch_close(&s);
 }
 
-RUN_TESTS(T(radial_pin_errors_bad_input), T(report_draws_the_set_and_lists_classes),
-          T(ratios_follow_the_teeth), T(parallel_mesh_frequencies),
-          T(lowest_torsional_mode_against_a_two_inertia_model))
+/* The static study's load_sharing[k] output over a pin error (examples/studies/
+ * wind_turbine_pin_error.yaml) against `geardyn static` with the same error set by --set. */
+TEST(study_load_sharing_over_a_pin_error)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    char dir[512], csv[600];
+    snprintf(dir, sizeof dir, "%s/st", s.dir);
+    run_result r;
+    REQUIRE(run(&s, &r, "study examples/studies/wind_turbine_pin_error.yaml --out '%s'", dir) == 0);
+    run_free(&r);
+    snprintf(csv, sizeof csv, "%s/results.csv", dir);
+    char *text = read_file(csv);
+    REQUIRE(text);
+    const char *errs[2] = {"0", "40 um"};
+    int cases[2] = {0, 2};
+    for (int i = 0; i < 2; i++) {
+        char key[16], args[300];
+        snprintf(key, sizeof key, "\n%d,", cases[i]);
+        const char *row = strstr(text, key);
+        REQUIRE(row);
+        double e = 0, ks = 0;
+        REQUIRE(sscanf(row + strlen(key), "%lf,%lf", &e, &ks) == 2);
+        CHECK_ABS(e, 20e-6 * cases[i], 1e-12);
+        snprintf(args, sizeof args,
+                 "static " WT " --set 'planetary_sets.lss.planets.pin_errors=[%s, 0, 0]'", errs[i]);
+        cJSON *o = run_json_args(&s, args);
+        REQUIRE(o);
+        const cJSON *set =
+            cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(o, "planetary_sets"), 0);
+        CHECK_REL(ks, jnum(set, "load_sharing_factor"), 1e-9);
+        cJSON_Delete(o);
+    }
+    free(text);
+    scratch_close(&s);
+}
+
+RUN_TESTS(T(study_load_sharing_over_a_pin_error), T(radial_pin_errors_bad_input),
+          T(report_draws_the_set_and_lists_classes), T(ratios_follow_the_teeth),
+          T(parallel_mesh_frequencies), T(lowest_torsional_mode_against_a_two_inertia_model))
