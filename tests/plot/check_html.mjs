@@ -29,7 +29,7 @@ try {
     const file = resolve(name);
     errors = [];
     const t0 = Date.now();
-    await page.goto(pathToFileURL(file).href, { waitUntil: 'load', timeout: 120000 });
+    await page.goto(pathToFileURL(file).href, { waitUntil: 'load' });
     await page.waitForFunction(() => [...document.querySelectorAll('div.plot')]
       .every(d => d.classList.contains('js-plotly-plot') && d._fullLayout), null, { timeout: 30000 })
       .catch(() => errors.push('plots not drawn within 30 s'));

@@ -25,9 +25,6 @@ g periodic tests/plot/mathieu_pair.yaml --speeds 680:730:11 --harmonics 4 --both
 g transient tests/plot/runup_pair.yaml --sweep-speeds 6800:8400rpm:5 --poincare shaft_a --points 16 \
   --settle 20rev --waterfall gear_a.x --quiet --plot "$out/waterfall.html"
 g report tests/plot/study.yaml --speeds 0:6000rpm:9 --freq-points 100 --out "$out/report.html"
-# a planetary set: drawn along its axis, its modes by class (docs/planetary.md)
-g report examples/planetary_lin_parker.yaml --speeds 0:6000rpm:5 --freq-points 50 \
-  --out "$out/report_planetary.html"
 # a run-up through a speed ramp, order-tracked (cascade, frequency and order maps, cuts),
 # and a report with its run-up waterfall
 g transient tests/transient/runup_rotor.yaml --speed-ramp 4000:9000rpm --duration 1s \
@@ -38,4 +35,4 @@ g report tests/transient/runup_rotor.yaml --speeds 0:9000rpm:7 --freq-points 50 
 exec node tests/plot/check_html.mjs "$out/modal.html:11" "$out/campbell.html:2" \
   "$out/frf_directional.html:3" "$out/unbalance.html:10" "$out/transient.html:3" \
   "$out/mesh_stiffness.html:4" "$out/periodic.html:3" "$out/waterfall.html:3" "$out/report.html:32" \
-  "$out/runup.html:4" "$out/report_runup.html:30" "$out/report_planetary.html:86"
+  "$out/runup.html:4" "$out/report_runup.html:30"
