@@ -331,6 +331,8 @@ typedef struct gd_planetary_spec {
     double bearing_stiffness;           /* N/m > 0, radial and tangential */
     const double *pin_errors;           /* nplanets tangential pin position errors, m (in the
                                            carrier's sense of rotation); NULL: none */
+    const double *pin_errors_radial;    /* nplanets radial pin position errors, m (outwards);
+                                           NULL: none */
     int teeth[3];                       /* sun, ring, planet; 0: not given (all or none) */
     double base_radius[3];              /* sun, ring, planet, m > 0 */
     double carrier_radius;              /* m > 0 */

@@ -257,6 +257,8 @@ typedef struct gd_planetary {
     double bearing_stiffness;           /* planet bearing, N/m radial and tangential */
     double *pin_error;        /* nplanets tangential pin position errors, m (owned; NULL: none):
                                  the bearing's unloaded position (static load sharing) */
+    double *pin_error_radial; /* nplanets radial pin position errors, m, outwards (owned; NULL:
+                                 none) */
     double mesh_stiffness[2]; /* sun-planet, ring-planet, N/m along the line of action */
     double mesh_damping[2];   /* N s/m */
     /* the carrier-frame terms ([CooleyParker2012]) act on every body of the set (1) or on the

@@ -57,16 +57,20 @@ static gd_status check_values(const gd_model *m, gd_error *err, const gd_planeta
         (st = gd_build_positive(m, err, s->loc, q, "inertia", s->planet_inertia, 0)) ||
         (st = gd_build_positive(m, err, s->loc, q, "bearing_stiffness", s->bearing_stiffness, 0)))
         return st;
-    for (int n = 0; s->pin_errors && n < s->nplanets; n++)
-        if (!isfinite(s->pin_errors[n]) || fabs(s->pin_errors[n]) >= s->carrier_radius) {
-            char key[64];
-            snprintf(key, sizeof key, "planets.pin_errors[%d]", n);
-            snprintf(msg, sizeof msg, "pin error %g m", s->pin_errors[n]);
-            return fail_at(m, err, s, path, key,
-                           "give small position errors in m (e.g. 20 um), below the carrier "
-                           "radius",
-                           msg);
-        }
+    for (int k = 0; k < 2; k++) {
+        const double *e = k ? s->pin_errors_radial : s->pin_errors;
+        for (int n = 0; e && n < s->nplanets; n++)
+            if (!isfinite(e[n]) || fabs(e[n]) >= s->carrier_radius) {
+                char key[64];
+                snprintf(key, sizeof key, "planets.%s[%d]", k ? "pin_errors_radial" : "pin_errors",
+                         n);
+                snprintf(msg, sizeof msg, "pin error %g m", e[n]);
+                return fail_at(m, err, s, path, key,
+                               "give small position errors in m (e.g. 20 um), below the carrier "
+                               "radius",
+                               msg);
+            }
+    }
     if (s->planet_angles)
         for (int n = 0; n < s->nplanets; n++) {
             double a = s->planet_angles[n];
@@ -388,7 +392,10 @@ gd_status gd_model_add_planetary(gd_model *m, const gd_planetary_spec *spec, int
     }
     g.planet_angle = malloc((size_t)g.nplanets * sizeof *g.planet_angle);
     if (s->pin_errors) g.pin_error = malloc((size_t)g.nplanets * sizeof *g.pin_error);
+    if (s->pin_errors_radial)
+        g.pin_error_radial = malloc((size_t)g.nplanets * sizeof *g.pin_error_radial);
     ok = ok && g.planet_angle && g.instance_name && (!s->pin_errors || g.pin_error) &&
+         (!s->pin_errors_radial || g.pin_error_radial) &&
          gd_build_grow(&m->planetary, m->nplanetary, sizeof *m->planetary) &&
          gd_build_grow(&m->build->planetary, m->nplanetary, sizeof *m->build->planetary);
     if (!ok) {
@@ -397,6 +404,7 @@ gd_status gd_model_add_planetary(gd_model *m, const gd_planetary_spec *spec, int
             free(bp.node[j]);
         free(g.planet_angle);
         free(g.pin_error);
+        free(g.pin_error_radial);
         free(g.instance_name);
         free_mesh_data(&g);
         return gd_build_oom(m, err);
@@ -413,6 +421,7 @@ gd_status gd_model_add_planetary(gd_model *m, const gd_planetary_spec *spec, int
     for (int n = 0; n < g.nplanets; n++) {
         g.planet_angle[n] = planet_angle(s, n);
         if (g.pin_error) g.pin_error[n] = s->pin_errors[n];
+        if (g.pin_error_radial) g.pin_error_radial[n] = s->pin_errors_radial[n];
     }
     m->planetary[idx] = g;
     m->build->planetary[idx] = bp;

@@ -85,7 +85,8 @@ void gd_model_free(gd_model *model)
     free(model->laws);
     for (int i = 0; i < model->nplanetary; i++) {
         gd_planetary *g = &model->planetary[i];
-        free(g->planet_angle), free(g->pin_error), free(g->instance_name);
+        free(g->planet_angle), free(g->pin_error), free(g->pin_error_radial);
+        free(g->instance_name);
         for (int k = 0; k < 2; k++) {
             gd_table_free(g->mesh_law[k].tvms);
             free(g->mesh_phase[k]);

@@ -34,7 +34,8 @@ static const char *const METHODS[] = {"energy", "iso6336", "single-pair-law", "s
 static const char *const MEMBER_KEYS[] = {"node",      "mass",      "inertia",
                                           "k_support", "k_torsion", NULL};
 static const char *const PLANET_KEYS[] = {
-    "count", "angles", "mass", "inertia", "bearing_stiffness", "pin_errors", NULL};
+    "count", "angles", "mass", "inertia", "bearing_stiffness", "pin_errors", "pin_errors_radial",
+    NULL};
 static const char *const SIZE_KEYS[] = {"sun", "ring", "planet", NULL};
 static const char *const MESH_KEYS[] = {"sun", "ring", NULL};
 static const char *const HELD[] = {"sun", "ring", "carrier", "none", NULL};
@@ -91,7 +92,7 @@ static gd_status read_per_gear(gd_mparser *p, const gd_ynode *sm, const char *q,
 }
 
 static gd_status read_planets(gd_mparser *p, const gd_ynode *sm, const char *q,
-                              gd_planetary_spec *s, double **angles, double **errors)
+                              gd_planetary_spec *s, double **angles, double *errors[2])
 {
     gd_yreader *r = &p->r;
     char pp[160];
@@ -131,19 +132,22 @@ static gd_status read_planets(gd_mparser *p, const gd_ynode *sm, const char *q,
     }
     s->nplanets = (int)count;
     s->planet_angles = *angles;
-    if (gd_ymap_get(pm, "pin_errors")) {
+    /* tangential (pin_errors) and radial (pin_errors_radial) pin position errors */
+    static const char *const EKEYS[2] = {"pin_errors", "pin_errors_radial"};
+    for (int k = 0; k < 2; k++) {
+        if (!gd_ymap_get(pm, EKEYS[k])) continue;
         int ne = 0;
-        if ((st = gd_mp_read_qty_list(p, pm, "pin_errors", pp, GD_QTY_LENGTH, errors, &ne)))
+        if ((st = gd_mp_read_qty_list(p, pm, EKEYS[k], pp, GD_QTY_LENGTH, &errors[k], &ne)))
             return st;
         if (ne != count) {
             char ep[200];
-            return gd_yfail(r, gd_ymap_get(pm, "pin_errors"),
-                            gd_ypath_key(ep, sizeof ep, pp, "pin_errors"),
+            return gd_yfail(r, gd_ymap_get(pm, EKEYS[k]), gd_ypath_key(ep, sizeof ep, pp, EKEYS[k]),
                             "give one pin error per planet (0 for an exact pin)",
                             "%d pin errors for %ld planets", ne, count);
         }
-        s->pin_errors = *errors;
     }
+    s->pin_errors = errors[0];
+    s->pin_errors_radial = errors[1];
     return GD_OK;
 }
 
@@ -252,7 +256,8 @@ static gd_status read_set(gd_mparser *p, const gd_ynode *sm, const char *q, size
     char name[GD_NAME_MAX];
     gd_planetary_spec s;
     gd_planetary_spec_init(&s);
-    double *angles = NULL, *errors = NULL, teeth[3] = {0, 0, 0}, *phases[2] = {NULL, NULL};
+    double *angles = NULL, *errors[2] = {NULL, NULL}, teeth[3] = {0, 0, 0};
+    double *phases[2] = {NULL, NULL};
     int held = 3, frame = -1, has_frame = 0, has_geometry = 0;
     gd_planetary_geometry geometry;
     gd_planetary_geometry_init(&geometry);
@@ -287,7 +292,7 @@ static gd_status read_set(gd_mparser *p, const gd_ynode *sm, const char *q, size
                             req | GD_YPOS, 1, s.mesh_stiffness)) ||
         (st = read_per_gear(p, sm, q, "mesh_damping", MESH_KEYS, 2, GD_QTY_DAMPING, GD_YNONNEG, 1,
                             s.mesh_damping)) ||
-        (st = read_planets(p, sm, q, &s, &angles, &errors)) ||
+        (st = read_planets(p, sm, q, &s, &angles, errors)) ||
         (st = read_mesh_laws(p, sm, q, &s, (int)teeth[0], tv)) ||
         (st = read_phases(p, sm, q, &s, phases)))
         goto done;
@@ -310,7 +315,8 @@ static gd_status read_set(gd_mparser *p, const gd_ynode *sm, const char *q, size
     st = gd_model_add_planetary(p->m, &s, NULL, r->err);
 done:
     free(angles);
-    free(errors);
+    free(errors[0]);
+    free(errors[1]);
     for (int k = 0; k < 2; k++) {
         free(phases[k]);
         gd_table_free(tv[k]);

@@ -360,17 +360,23 @@ static const char *component_name(const gd_system *sys, int c)
 static void energy_table(gd_plot *p, pl_section *s, const gd_system *sys, const gd_modal_result *r,
                          int nelastic)
 {
-    int nc = r->ncomponents, cols = 5 + GD_NMOTIONS + nc;
+    /* with planetary sets, each set's mode class ([LinParker1999]: docs/planetary.md) */
+    int nc = r->ncomponents, ns = sys->model->nplanetary, h = 5 + ns, cols = h + GD_NMOTIONS + nc;
     pl_panel *pn = pl_panel_add(
-        p, s, PL_TABLE, "modal strain energy (%): by motion type and by component", NULL, NULL);
+        p, s, PL_TABLE,
+        ns ? "modal strain energy (%): by motion type and by component; planetary mode classes"
+           : "modal strain energy (%): by motion type and by component",
+        NULL, NULL);
     pl_table_init(p, pn, nelastic, cols);
     const char *head[5] = {"mode", "f (Hz)", "zeta", "whirl", "dominant"};
     for (int c = 0; c < 5; c++)
         pl_cell(p, pn, 0, c, "%s", head[c]);
+    for (int k = 0; k < ns; k++)
+        pl_cell(p, pn, 0, 5 + k, "class (%s)", sys->model->planetary[k].name);
     for (int k = 0; k < GD_NMOTIONS; k++)
-        pl_cell(p, pn, 0, 5 + k, "%s", gd_motion_names[k]);
+        pl_cell(p, pn, 0, h + k, "%s", gd_motion_names[k]);
     for (int c = 0; c < nc; c++)
-        pl_cell(p, pn, 0, 5 + GD_NMOTIONS + c, "%s", component_name(sys, c));
+        pl_cell(p, pn, 0, h + GD_NMOTIONS + c, "%s", component_name(sys, c));
     int row = 1;
     for (int j = 0; j < r->nmodes; j++) {
         const gd_mode *md = &r->modes[j];
@@ -382,10 +388,13 @@ static void energy_table(gd_plot *p, pl_section *s, const gd_system *sys, const 
         pl_cell(p, pn, row, 2, "%s", z);
         pl_cell(p, pn, row, 3, "%s", gd_whirl_names[md->whirl]);
         pl_cell(p, pn, row, 4, "%s", gd_motion_names[md->dominant_motion]);
+        for (int k = 0; k < ns; k++)
+            pl_cell(p, pn, row, 5 + k, "%s",
+                    gd_planetary_class_names[gd_modal_planetary_class(sys, r, j, k)]);
         for (int k = 0; k < GD_NMOTIONS; k++)
-            pl_cell(p, pn, row, 5 + k, "%.1f", 100 * md->energy_share[k]);
+            pl_cell(p, pn, row, h + k, "%.1f", 100 * md->energy_share[k]);
         for (int c = 0; c < nc; c++)
-            pl_cell(p, pn, row, 5 + GD_NMOTIONS + c, "%.1f",
+            pl_cell(p, pn, row, h + GD_NMOTIONS + c, "%.1f",
                     100 * r->energy_by_component[c + (size_t)j * nc]);
         row++;
     }

@@ -1,7 +1,10 @@
 /* The model drawn to scale (side view, metres on both axes) and summarised in tables.
  * Each shaft lies along its own axis line; a mesh puts the driven shaft one centre
- * distance (sum of the pitch radii, r = r_b / cos alpha) below its driver. */
+ * distance (sum of the pitch radii, r = r_b / cos alpha) below its driver; a planetary set
+ * (docs/planetary.md) keeps its sun, ring and carrier on one axis, its planets in the sun's
+ * gear plane, and gets a panel of its own seen along the axis. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "plot/plot_impl.h"
@@ -80,6 +83,92 @@ static void shaft_span(const gd_model *m, int h, double *a, double *b)
     *b = m->nodes[sh->first_node + sh->nnodes - 1].position;
 }
 
+/* A planetary set's sun, ring and carrier share one axis; planet n is drawn r_c cos psi_n
+ * from it (the side view's vertical is the set's x). Places the shafts of every set with a
+ * placed member; returns 1 if it placed any. */
+static int place_planetary(const gd_model *m, double *off, int *placed)
+{
+    int any = 0;
+    for (int k = 0; k < m->nplanetary; k++) {
+        const gd_planetary *g = &m->planetary[k];
+        int axis = -1;
+        for (int j = 0; j < GD_PLANETARY_NMEMBERS && axis < 0; j++)
+            if (placed[m->nodes[g->member[j].node].shaft]) axis = m->nodes[g->member[j].node].shaft;
+        if (axis < 0) continue;
+        for (int j = 0; j < GD_PLANETARY_NMEMBERS; j++) {
+            int h = m->nodes[g->member[j].node].shaft;
+            if (!placed[h]) off[h] = off[axis], placed[h] = any = 1;
+        }
+        for (int n = 0; n < g->nplanets; n++) {
+            int h = m->nodes[g->first_planet + n].shaft;
+            if (!placed[h])
+                off[h] = off[axis] + g->carrier_radius * cos(g->planet_angle[n]),
+                placed[h] = any = 1;
+        }
+    }
+    return any;
+}
+
+/* Pitch radius of a set's sun (0), ring (1) or planet (2): r_b / cos alpha of its mesh. */
+static double set_pitch_radius(const gd_planetary *g, int which)
+{
+    double c = cos(g->pressure_angle[which == 1 ? 1 : 0]);
+    return c > 0 ? g->base_radius[which] / c : g->base_radius[which];
+}
+
+/* Each set seen along its axis: the pitch circles of sun, ring and planets at their angles,
+ * the carrier's circle of planet centres. */
+static void planetary_front_view(gd_plot *p, pl_section *s, const gd_model *m)
+{
+    enum { NC = 73 };
+    for (int k = 0; k < m->nplanetary; k++) {
+        const gd_planetary *g = &m->planetary[k];
+        char title[GD_NAME_MAX + 64];
+        snprintf(title, sizeof title, "planetary set '%s' seen along its axis", g->name);
+        pl_panel *pn = pl_panel_add(p, s, PL_XY, title, "x (m)", "y (m)");
+        if (!pn) continue;
+        pn->equal = 1;
+        double x[NC], y[NC];
+        const char *names[3] = {"sun (pitch circle)", "ring (pitch circle)",
+                                "carrier (planet centres)"};
+        const char *colors[3] = {"#1f77b4", "#555", "#9467bd"};
+        double radius[3] = {set_pitch_radius(g, 0), set_pitch_radius(g, 1), g->carrier_radius};
+        for (int j = 0; j < 3; j++) {
+            for (int i = 0; i < NC; i++)
+                x[i] = radius[j] * cos(2 * PI * i / (NC - 1)),
+                y[i] = radius[j] * sin(2 * PI * i / (NC - 1));
+            pl_trace *t = pl_trace_add(p, pn, names[j], NC, x, y, PL_LINES, colors[j]);
+            if (t && j == 2) t->dash = 1;
+        }
+        int np = g->nplanets, cap = np * (NC + 1);
+        double *px = malloc((size_t)cap * sizeof *px), *py = malloc((size_t)cap * sizeof *py);
+        double rp = set_pitch_radius(g, 2);
+        for (int n = 0, at = 0; px && py && n < np; n++) {
+            double cx = g->carrier_radius * cos(g->planet_angle[n]),
+                   cy = g->carrier_radius * sin(g->planet_angle[n]);
+            for (int i = 0; i < NC; i++)
+                px[at] = cx + rp * cos(2 * PI * i / (NC - 1)),
+                py[at++] = cy + rp * sin(2 * PI * i / (NC - 1));
+            px[at] = py[at] = NAN;
+            at++;
+        }
+        if (px && py)
+            pl_trace_add(p, pn, "planets (pitch circles)", cap - 1, px, py, PL_LINES, "#ff7f0e");
+        else
+            p->nomem = 1;
+        free(px);
+        free(py);
+        pl_trace *c = pl_trace_add(p, pn, "planet centres", np, NULL, NULL, PL_MARKERS, "#ff7f0e");
+        for (int n = 0; c && n < np; n++) {
+            c->x[n] = g->carrier_radius * cos(g->planet_angle[n]);
+            c->y[n] = g->carrier_radius * sin(g->planet_angle[n]);
+            pl_trace_text(p, c, n, "planet %d at %.4g deg (node %s)", n + 1,
+                          g->planet_angle[n] * 180 / PI, m->nodes[g->first_planet + n].name);
+        }
+        if (c) c->legend = 0;
+    }
+}
+
 gd_status gd_plot_model(const gd_model *m, gd_plot **out, gd_error *err)
 {
     if (m->nshafts == 0)
@@ -90,9 +179,11 @@ gd_status gd_plot_model(const gd_model *m, gd_plot **out, gd_error *err)
     if (st) return st;
     pl_section *s = pl_section_add(p, "Model");
     pl_note(p, s,
-            "%s: %d shafts, %d nodes, %d disks, %d bearings, %d meshes, %d unbalances. Side view "
-            "to scale; meshed shafts one centre distance apart.",
-            m->file, m->nshafts, m->nnodes, m->ndisks, m->nbearings, m->nmeshes, m->nunbalances);
+            "%s: %d shafts, %d nodes, %d disks, %d bearings, %d meshes, %d planetary sets, %d "
+            "unbalances. Side view to scale; meshed shafts one centre distance apart; a planetary "
+            "set's sun, ring and carrier on one axis, its planets r_c cos(psi) from it.",
+            m->file, m->nshafts, m->nnodes, m->ndisks, m->nbearings, m->nmeshes, m->nplanetary,
+            m->nunbalances);
     if (s) snprintf(s->csv_name, sizeof s->csv_name, "model_nodes.csv");
     double *off = malloc((size_t)m->nshafts * sizeof *off);
     int *placed = calloc((size_t)m->nshafts, sizeof *placed);
@@ -118,6 +209,7 @@ gd_status gd_plot_model(const gd_model *m, gd_plot **out, gd_error *err)
                 else if (placed[b] && !placed[a])
                     off[a] = off[b] + cd, placed[a] = changed = 1;
             }
+            changed |= place_planetary(m, off, placed);
         }
         for (int h = 0; h < m->nshafts; h++)
             if (placed[h]) bottom = fmin(bottom, off[h]);
@@ -146,6 +238,16 @@ gd_status gd_plot_model(const gd_model *m, gd_plot **out, gd_error *err)
         for (int k = 0; k < sh->nnodes; k++)
             nx[sh->first_node + k] = x + out_dir * 0.12 * span * (k + 1);
     }
+    for (int k = 0; nx && k < m->nplanetary; k++) {
+        const gd_planetary *g = &m->planetary[k];
+        double plane = nx[g->member[GD_PLANETARY_SUN].node];
+        for (int n = 0; n < g->nplanets; n++)
+            nx[g->first_planet + n] = plane;
+        int ring = g->member[GD_PLANETARY_RING].node;
+        if (m->shafts[m->nodes[ring].shaft].nsections == 0 &&
+            coupling_node(m, m->nodes[ring].shaft) < 0)
+            nx[ring] = plane;
+    }
     pl_panel *pn = pl_panel_add(p, s, PL_XY, "the model to scale (side view)", "axial position (m)",
                                 "radial position (m)");
     if (pn) pn->equal = 1;
@@ -173,6 +275,23 @@ gd_status gd_plot_model(const gd_model *m, gd_plot **out, gd_error *err)
             double w = fmax(0.25 * rp, 0.5 * maxod) / 2;
             rect(p, &gears, x - w, x + w, off[m->nodes[node].shaft] - rp,
                  off[m->nodes[node].shaft] + rp);
+        }
+    }
+    for (int k = 0; off && k < m->nplanetary; k++) {
+        const gd_planetary *g = &m->planetary[k];
+        int sun = g->member[GD_PLANETARY_SUN].node, ring = g->member[GD_PLANETARY_RING].node;
+        double rs = set_pitch_radius(g, 0), rr = set_pitch_radius(g, 1),
+               rp = set_pitch_radius(g, 2);
+        double w = fmax(0.25 * rs, 0.5 * maxod) / 2, xs = nx ? nx[sun] : 0, xr = nx ? nx[ring] : 0;
+        double ys = off[m->nodes[sun].shaft], yr = off[m->nodes[ring].shaft];
+        rect(p, &gears, xs - w, xs + w, ys - rs, ys + rs);
+        /* the ring: its teeth band above and below the axis */
+        rect(p, &gears, xr - w, xr + w, yr + rr, yr + 1.1 * rr);
+        rect(p, &gears, xr - w, xr + w, yr - 1.1 * rr, yr - rr);
+        for (int n = 0; n < g->nplanets; n++) {
+            int node = g->first_planet + n;
+            double x = nx ? nx[node] : 0, y = off[m->nodes[node].shaft];
+            rect(p, &gears, x - w, x + w, y - rp, y + rp);
         }
     }
     for (int d = 0; off && d < m->ndisks; d++) {
@@ -234,6 +353,7 @@ gd_status gd_plot_model(const gd_model *m, gd_plot **out, gd_error *err)
                       m->shafts[m->nodes[i].shaft].name, m->nodes[i].position);
     }
     if (nt) nt->legend = 0;
+    planetary_front_view(p, s, m);
     /* tables */
     pl_panel *t = pl_panel_add(p, s, PL_TABLE, "shafts", NULL, NULL);
     pl_table_init(p, t, m->nshafts, 6);

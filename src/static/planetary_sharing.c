@@ -1,11 +1,11 @@
 /* Planet load sharing in the static analysis (docs/planetary.md): the loads of the planets'
  * pin position errors, and each planet's mesh and bearing forces from the static state.
- * A pin displaced by e along the carrier's tangent moves the bearing's unloaded position:
- * its energy k_p (t . q - e)^2 / 2 ([LinParker1999] Eq. 4 with an offset) gives the load
- * k_p e t on K q = f. The load-sharing factor is the mesh load factor K_gamma of ISO 6336-1
- * / AGMA 6123: N max F_n / sum F_n over the sun-planet mesh forces F_n, signed in the sense of
- * their sum (a planet whose force changes sign would lose contact: the linear model does not
- * follow that). */
+ * A pin displaced by e along the carrier's tangent (or rho radially) moves the bearing's
+ * unloaded position: its energy k_p (t . q - e)^2 / 2 (k_p (r . q - rho)^2 / 2) ([LinParker1999]
+ * Eq. 4 with an offset) gives the load k_p e t (k_p rho r) on K q = f. The load-sharing factor is
+ * the mesh load factor K_gamma of ISO 6336-1 / AGMA 6123: N max F_n / sum F_n over the sun-planet
+ * mesh forces F_n, signed in the sense of their sum (a planet whose force changes sign would lose
+ * contact: the linear model does not follow that). */
 #include <math.h>
 #include <string.h>
 
@@ -23,14 +23,16 @@ void gd_st_planetary_loads(const gd_system *sys, double *f)
     const gd_model *m = sys->model;
     for (int k = 0; k < m->nplanetary; k++) {
         const gd_planetary *g = &m->planetary[k];
-        if (!g->pin_error) continue;
+        if (!g->pin_error && !g->pin_error_radial) continue;
         for (int n = 0; n < g->nplanets; n++) {
             double r[12], t[12];
+            double et = g->pin_error ? g->pin_error[n] : 0,
+                   er = g->pin_error_radial ? g->pin_error_radial[n] : 0;
             gd_planetary_bearing_vectors(g, n, r, t);
             for (int a = 0; a < 12; a++) {
                 int i =
                     local_dof(sys, g->member[GD_PLANETARY_CARRIER].node, g->first_planet + n, a);
-                if (i >= 0) f[i] += g->bearing_stiffness * g->pin_error[n] * t[a];
+                if (i >= 0) f[i] += g->bearing_stiffness * (et * t[a] + er * r[a]);
             }
         }
     }
@@ -69,8 +71,9 @@ gd_status gd_static_planetary(const gd_system *sys, const gd_static_result *res,
             g->mesh_stiffness[1] * project(sys, res->q, g->member[GD_PLANETARY_RING].node, p, a);
         gd_planetary_bearing_vectors(g, n, r, t);
         int c = g->member[GD_PLANETARY_CARRIER].node;
-        double e = g->pin_error ? g->pin_error[n] : 0;
-        out->bearing_force[n] = g->bearing_stiffness * hypot(project(sys, res->q, c, p, r),
+        double e = g->pin_error ? g->pin_error[n] : 0,
+               er = g->pin_error_radial ? g->pin_error_radial[n] : 0;
+        out->bearing_force[n] = g->bearing_stiffness * hypot(project(sys, res->q, c, p, r) - er,
                                                              project(sys, res->q, c, p, t) - e);
         sum += out->sun_force[n];
     }

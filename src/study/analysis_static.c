@@ -3,7 +3,8 @@
  * torque (N m, default 0), input and hold (node names, defaults as the CLI), gravity
  * (default true). Outputs, per mesh k or bearing k in model order: the mesh force, its
  * misalignment f_sh and tilt in the plane of action, the radial bearing reaction; the
- * largest lateral deflection of any node and the first hold's reaction. */
+ * largest lateral deflection of any node, the first hold's reaction and the load-sharing
+ * factor of each planetary set. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,7 +21,7 @@ typedef struct st_opts {
     char input[GD_NODE_NAME_MAX], hold[GD_NODE_NAME_MAX];
 } st_opts;
 
-enum { MESH_FORCE, F_SH, TILT, BEARING, MAX_DEFLECTION, HOLD };
+enum { MESH_FORCE, F_SH, TILT, BEARING, MAX_DEFLECTION, HOLD, LOAD_SHARING };
 static const gd_study_output_def OUTPUTS[] = {
     {"mesh_force", 1, "normal force of mesh k, N"},
     {"f_sh", 1, "misalignment of mesh k from the deformations (face width x tilt), m"},
@@ -28,6 +29,7 @@ static const gd_study_output_def OUTPUTS[] = {
     {"bearing_force", 1, "radial reaction |(Fx, Fy)| of bearing k, N"},
     {"max_deflection", 0, "largest lateral deflection |(x, y)| of any node, m"},
     {"hold_reaction", 0, "reaction of the first held DOF (motor or output torque), N m"},
+    {"load_sharing", 1, "load-sharing factor K_gamma of planetary set k (docs/planetary.md)"},
 };
 
 static gd_status options(gd_yreader *r, const gd_ynode *map, void **out)
@@ -100,6 +102,14 @@ static gd_status run(const gd_study_input *in, const void *opts, const gd_study_
         case MAX_DEFLECTION:
             values[i] = dmax;
             break;
+        case LOAD_SHARING: {
+            gd_static_planetary_loads pl;
+            values[i] = k >= 0 && k < in->sys->model->nplanetary &&
+                                !gd_static_planetary(in->sys, r, k, &pl, NULL)
+                            ? pl.load_sharing
+                            : NAN;
+            break;
+        }
         default:
             values[i] = r->nholds > 0 ? r->holds[0].reaction : NAN;
             break;

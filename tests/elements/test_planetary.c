@@ -557,6 +557,49 @@ TEST(pin_error_load_sharing_against_the_closed_form)
     CHECK_REL(pl.load_sharing, N * mx / sum, 1e-4);
 }
 
+/* A radial pin error rho_1 on planet 1, with a tangential one e_2 on planet 2 (docs/planetary.md,
+ * "Static load sharing"): the planet's equilibrium gets k_p rho_n r, r = (1, 0, 0) in its
+ * (zeta, eta, u), so F_n = T / (N r_s) + c2 (e_n - mean e) + c3 (rho_n - mean rho) with
+ * c3 = k_sp k_p a_s^T K_p^-1 r. With one pressure angle for both meshes c3 = 0: the planet
+ * moved out by rho turns by u = rho sin(alpha), which leaves both meshes undeformed
+ * (a_s . (rho, 0, rho sin alpha) = a_r . (...) = 0), so the set carries the radial error
+ * without any load: the forces are those of the tangential error alone, the bearings' too. */
+TEST(radial_pin_error_load_sharing_against_the_closed_form)
+{
+    const int N = 4;
+    const double e2 = -3e-6, T = 100;
+    gd_model *m = lp_model_ex(
+        N, 1e14, 1e14, ", pin_errors: [0, -3 um, 0, 0], pin_errors_radial: [8 um, 0, 0, 0]", "");
+    gd_model *m0 = lp_model_ex(N, 1e14, 1e14, ", pin_errors: [0, -3 um, 0, 0]", "");
+    REQUIRE(m && m0);
+    gd_static_planetary_loads pl, p0;
+    REQUIRE(sharing(m, T, &pl) && sharing(m0, T, &p0));
+    gd_model_free(m);
+    gd_model_free(m0);
+    double K[9] = {0}, x[6] = {0, 1, 0, 1, 0, 0}; /* K_p^-1 t and K_p^-1 r */
+    const double as[3] = {-sin(ALPHA), -cos(ALPHA), 1}, ar[3] = {sin(ALPHA), -cos(ALPHA), -1};
+    add_outer(K, 3, KSP, as);
+    add_outer(K, 3, KSP, ar);
+    K[0] += KB;
+    K[4] += KB;
+    REQUIRE(LAPACKE_dposv(LAPACK_COL_MAJOR, 'U', 3, 2, K, 3, x, 3) == 0);
+    double c2 = KSP * KB * (as[0] * x[0] + as[1] * x[1] + as[2] * x[2]);
+    double c3 = KSP * KB * (as[0] * x[3] + as[1] * x[4] + as[2] * x[5]);
+    CHECK(fabs(c3) < 1e-9 * fabs(c2));
+    double want[4], sum = 0, mx = 0;
+    for (int n = 0; n < N; n++) {
+        want[n] = T / (N * RS) + c2 * ((n == 1 ? e2 : 0) - e2 / N);
+        CHECK_REL(pl.sun_force[n], want[n], 1e-4);
+        CHECK_REL(pl.sun_force[n], p0.sun_force[n], 1e-9);
+        CHECK_REL(pl.ring_force[n], p0.ring_force[n], 1e-9);
+        CHECK_REL(pl.bearing_force[n], p0.bearing_force[n], 1e-9);
+        sum += want[n];
+        mx = fmax(mx, want[n]);
+    }
+    CHECK(fabs(pl.sun_force[1] - pl.sun_force[0]) > 0.05 * T / (N * RS)); /* e_2 matters */
+    CHECK_REL(pl.load_sharing, N * mx / sum, 1e-4);
+}
+
 /* Planet phasing ([Parker2000]) on a modal FRF: Lin & Parker's N = 4 set with Z_s = 21
  * (Z_r = 79, Z_p = 29: (21 + 79) / 4 whole). Mesh harmonic l's phased sun-mesh load F
  * (gd_planetary_mesh_excitation) drives mode k with the modal force p_k = phi_k^T F /
@@ -700,7 +743,8 @@ TEST(builder_api)
 
 RUN_TESTS(T(unequal_spacing_keeps_the_planet_modes), T(builder_api),
           T(planet_phasing_selects_the_mode_class), T(equal_load_sharing),
-          T(pin_error_load_sharing_against_the_closed_form), T(carrier_frame_terms),
+          T(pin_error_load_sharing_against_the_closed_form),
+          T(radial_pin_error_load_sharing_against_the_closed_form), T(carrier_frame_terms),
           T(cooley_parker_at_rest), T(rotating_carrier_against_the_hermitian_count),
           T(mode_classes_and_their_counts), T(bearing_matrix_by_hand),
           T(lin_parker_table2_and_independent_assembly), T(lin_parker_multiplicities),
