@@ -123,8 +123,8 @@ int gd_cmd_campbell(int argc, char **argv);
 int gd_cmd_frf(int argc, char **argv);
 int gd_cmd_unbalance(int argc, char **argv);
 
-/* n evenly spaced values from `from` to `to` into out (n doubles), both ends exact and no
- * overflow for any finite ends. */
+/* n evenly spaced values from `from` to `to` into out (n doubles), without overflow for
+ * any finite ends. */
 void gd_cli_linspace(double from, double to, long n, double *out);
 
 /* Parses FROM:TO:COUNT (speeds or frequencies, units allowed: "0:12000rpm:121"; a FROM

@@ -33,13 +33,18 @@ static const char *unit_of(const char *text)
     return end;
 }
 
-/* n points from `from` to `to`, both ends exact; (1 - t) a + t b never forms b - a, which
- * overflows for finite ends such as -1e308:1e308 (issue 38). */
+/* n points from `from` to `to`. from + (to - from) i / (n - 1), the formula the Python
+ * package uses too (their results agree bit for bit); where (to - from) i overflows (finite
+ * ends such as 1e8:1e308 or -1e308:1e308, issue 38) (1 - t) from + t to instead. */
 void gd_cli_linspace(double from, double to, long n, double *out)
 {
+    const double span = to - from;
+    const int safe = isfinite(span * (double)(n > 1 ? n - 1 : 1));
     for (long i = 0; i < n; i++) {
         const double t = n > 1 ? (double)i / (double)(n - 1) : 0.0;
-        out[i] = n > 1 && i == n - 1 ? to : (1.0 - t) * from + t * to;
+        out[i] = n == 1 ? from
+                 : safe ? from + span * (double)i / (double)(n - 1)
+                        : (1.0 - t) * from + t * to;
     }
 }
 
