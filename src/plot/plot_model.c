@@ -294,6 +294,14 @@ gd_status gd_plot_model(const gd_model *m, gd_plot **out, gd_error *err)
             rect(p, &gears, x - w, x + w, y - rp, y + rp);
         }
     }
+    /* A wind-turbine rotor's solid-disk radius (6.5 m on the GRC gearbox) squeezed the
+     * gearbox to a blob: disks are drawn at most 3x the largest gear's pitch radius. */
+    double rgear = 0;
+    for (int g = 0; g < m->nmeshes; g++)
+        rgear = fmax(rgear, fmax(pitch_radius(&m->meshes[g], 0), pitch_radius(&m->meshes[g], 1)));
+    for (int k = 0; k < m->nplanetary; k++)
+        rgear = fmax(rgear, set_pitch_radius(&m->planetary[k], 1));
+    int cut = 0;
     for (int d = 0; off && d < m->ndisks; d++) {
         const gd_disk *dk = &m->disks[d];
         int geared = 0;
@@ -302,13 +310,17 @@ gd_status gd_plot_model(const gd_model *m, gd_plot **out, gd_error *err)
         if (geared || !(dk->mass > 0) || !(dk->polar_inertia > 0)) continue;
         double rr = sqrt(2 * dk->polar_inertia / dk->mass),
                x = nx ? nx[dk->node] : m->nodes[dk->node].position; /* solid disk */
+        if (rgear > 0 && rr > 3 * rgear) rr = 3 * rgear, cut++;
         double w = fmax(0.2 * rr, 0.5 * maxod) / 2;
         rect(p, &disks, x - w, x + w, off[m->nodes[dk->node].shaft] - rr,
              off[m->nodes[dk->node].shaft] + rr);
     }
     flush(p, pn, &shafts, "shafts (outer diameter)", "#555");
     flush(p, pn, &gears, "gears (pitch diameter)", "#1f77b4");
-    flush(p, pn, &disks, "disks (solid-disk radius from J and m)", "#2ca02c");
+    flush(p, pn, &disks,
+          cut ? "disks (solid-disk radius from J and m, cut at 3x the largest gear)"
+              : "disks (solid-disk radius from J and m)",
+          "#2ca02c");
     pl_trace *bt = off && m->nbearings ? pl_trace_add(p, pn, "bearings", m->nbearings, NULL, NULL,
                                                       PL_MARKERS, "#d62728")
                                        : NULL;

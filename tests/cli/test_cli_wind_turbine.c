@@ -150,6 +150,15 @@ TEST(report_draws_the_set_and_lists_classes)
     CHECK(count_of(html, ">rotational<") == 5);
     CHECK(count_of(html, ">translational<") == 12);
     CHECK(count_of(html, ">planet<") == 3);
+    CHECK(!contains(html, "cut at 3x the largest gear")); /* no disk beyond the gears here */
+    free(html);
+    /* the GRC rotor's solid-disk radius (6.5 m) squeezed the gearbox drawing to a blob: drawn
+     * at 3x the ring's pitch radius, and the legend says so */
+    snprintf(path, sizeof path, "%s/wt.html", s.dir);
+    REQUIRE(run(&s, &r, "report " WT " --threads 1 --out '%s'", path) == 0);
+    run_free(&r);
+    REQUIRE((html = read_file(path)));
+    CHECK(contains(html, "disks (solid-disk radius from J and m, cut at 3x the largest gear)"));
     free(html);
     scratch_close(&s);
 }
