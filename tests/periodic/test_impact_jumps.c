@@ -6,7 +6,8 @@
  * from a pseudo-arclength in (t_s, Omega, s) and its folds from the extrema of Omega along
  * it. Checked: shooting's orbits (their sampled peak-to-peak, mean and first harmonic)
  * and stability, its two folds (the jump frequencies), harmonic balance within its
- * truncation estimate.
+ * truncation estimate, and a stepped sweep up and down in transient that jumps within a
+ * step of the folds.
  *
  * With GD_IMPACT_CURVE=FILE the closed-form branch and shooting's points are written to
  * FILE (bench/impact_figure.py draws docs/figures/impact_response.svg from it). */
@@ -17,6 +18,7 @@
 #include <string.h>
 
 #include "geardyn/periodic.h"
+#include "geardyn/transient.h"
 #include "geardyn/transient_model.h"
 #include "harness.h"
 #include "model_support.h"
@@ -395,6 +397,18 @@ static double compare(const branch *br, const gd_periodic_point *p, int n, int *
     return best;
 }
 
+/* The closed-form branch and the example; both freed by the caller (or here on failure). */
+static int setup(branch *br, fx *f)
+{
+    if (!trace(br)) {
+        free(br->o);
+        return 0;
+    }
+    if (load(f, GD_SOURCE_DIR "/examples/impact_oscillator.yaml", NULL)) return 1;
+    free(br->o);
+    return 0;
+}
+
 static gd_periodic_result *run(const fx *f, gd_per_kind kind, const double *v, int nv, int H)
 {
     gd_transient_model *tm = NULL;
@@ -418,9 +432,8 @@ static gd_periodic_result *run(const fx *f, gd_per_kind kind, const double *v, i
 TEST(shooting_equals_closed_form_and_jumps_at_its_folds)
 {
     branch br;
-    REQUIRE(trace(&br));
     fx f;
-    REQUIRE(load(&f, GD_SOURCE_DIR "/examples/impact_oscillator.yaml", NULL));
+    REQUIRE(setup(&br, &f));
     double v[32];
     int nv = values(v);
     gd_periodic_result *r = run(&f, GD_PER_SHOOTING, v, nv, 10);
@@ -494,9 +507,8 @@ TEST(shooting_equals_closed_form_and_jumps_at_its_folds)
 TEST(harmonic_balance_within_its_estimate)
 {
     branch br;
-    REQUIRE(trace(&br));
     fx f;
-    REQUIRE(load(&f, GD_SOURCE_DIR "/examples/impact_oscillator.yaml", NULL));
+    REQUIRE(setup(&br, &f));
     const double v[4] = {8000, 8500, 9500, 10500};
     /* the default method (auto) takes shooting for a backlash law: the test above */
     gd_transient_model *tm = NULL;
@@ -531,5 +543,86 @@ TEST(harmonic_balance_within_its_estimate)
     free(br.o);
 }
 
+/* A stepped sweep in transient: at each load frequency the run goes on from the previous
+ * one's end state (the load's phase w t continued, as `transient --sweep-speeds` does),
+ * in chunks of 20 periods until the peak-to-peak of the last period settles to 1e-4 (at
+ * most 300 periods). Returns the first frequency whose peak-to-peak (in b) is on the other
+ * side of level than at the start, or NAN. */
+static double sweep(const fx *f, gd_transient_model *tm, const orbit *start, int linear, double w0,
+                    double w1, double dw, double level, int *periods)
+{
+    gd_error err;
+    int above = 0;
+    double n_ = 1.0, t = 0.0, q[2] = {0.0, 0.0}, v[2] = {0.0, 0.0}, found = NAN, wprev = w0;
+    gd_tr_record rec = {GD_REC_MESH_DEFLECTION, 0, 0};
+    int steps = (int)lround((w1 - w0) / dw), gear = dof(f, "gear", GD_RZ);
+    *periods = 0;
+    for (int i = 0; i <= steps && isnan(found); i++) {
+        double w = w0 + i * dw, T = 2.0 * M_PI / w, prev = NAN, p2p = NAN;
+        tm->loads[0].law.frequency = w;
+        gd_transient *tr = NULL;
+        if (gd_transient_new(f->s, &tm->spec, 0.0, &tr, &err)) return NAN;
+        if (i == 0) { /* the closed-form orbit at t = 0; d = n_ q_gear (n_ from the mesh) */
+            double y[2] = {1.0, 0.0}, s[2];
+            n_ = gd_transient_record_value(tr, &rec, 0.0, y);
+            if (linear)
+                particular(1, w / WN, 0.0, s);
+            else
+                orbit_state(start, 0.0, s);
+            q[gear] = GAP * (1.0 + s[0]) / n_, v[gear] = GAP * WN * s[1] / n_;
+        } else
+            t *= wprev / w; /* the load's phase goes on */
+        for (int chunk = 0; chunk < 15; chunk++) {
+            gd_transient_options o;
+            gd_transient_options_init(&o);
+            o.t_start = t, o.t_end = t + 20 * T, o.record_from = o.t_end - T;
+            o.output_interval = T / 256, o.rtol = 1e-8, o.init = GD_TR_INIT_GIVEN;
+            o.q0 = q, o.v0 = v;
+            gd_transient_result *r = NULL;
+            if (gd_transient_run(tr, &o, &rec, 1, &r, &err)) {
+                fprintf(stderr, "  %s\n", err.message);
+                break;
+            }
+            memcpy(q, r->q_end, sizeof q);
+            memcpy(v, r->v_end, sizeof v);
+            t = o.t_end, p2p = r->stats[0].peak_to_peak, *periods += 20;
+            gd_transient_result_free(r);
+            if (fabs(p2p - prev) < 1e-4 * p2p) break;
+            prev = p2p;
+        }
+        gd_transient_free(tr);
+        if (i == 0) above = p2p > level * GAP;
+        if (i > 0 && (p2p > level * GAP) != above) found = w;
+        wprev = w;
+    }
+    return found;
+}
+
+TEST(transient_sweeps_jump_at_the_folds)
+{
+    branch br;
+    fx f;
+    REQUIRE(setup(&br, &f));
+    gd_transient_model *tm = NULL;
+    gd_error err;
+    REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
+    orbit up;
+    REQUIRE(orbit_at(&br, 2, 8010.0 / WN, &up));
+    int n1, n2;
+    /* up from the linear response at 9050: the lower branch (p2p 0.2 b) is left for the
+     * upper one (0.37 b) at the first 10 rad/s step past the first fold */
+    double jup = sweep(&f, tm, NULL, 1, 9050, 9130, 10, 0.3, &n1);
+    /* down from the upper branch at 8010 (0.47 b) to the linear response (0.11 b) */
+    double jdn = sweep(&f, tm, &up, 0, 8010, 7950, -10, 0.2, &n2);
+    printf("  transient sweeps (10 rad/s steps): jump up at %.0f rad/s (fold %.2f), down at "
+           "%.0f rad/s (fold %.2f); %d + %d periods integrated\n",
+           jup, br.fold[0] * WN, jdn, br.fold[1] * WN, n1, n2);
+    CHECK(jup >= br.fold[0] * WN && jup < br.fold[0] * WN + 10);
+    CHECK(jdn <= br.fold[1] * WN && jdn > br.fold[1] * WN - 10);
+    gd_transient_model_free(tm);
+    fx_free(&f);
+    free(br.o);
+}
+
 RUN_TESTS(T(closed_form_branch_and_folds), T(shooting_equals_closed_form_and_jumps_at_its_folds),
-          T(harmonic_balance_within_its_estimate))
+          T(harmonic_balance_within_its_estimate), T(transient_sweeps_jump_at_the_folds))
