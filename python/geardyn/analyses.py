@@ -247,8 +247,30 @@ class ModalResult(_Result):
         nc = int(self._owner.ncomponents)
         return self._view(self._owner.energy_by_component, (nc, self.nmodes), order="F")
 
+    @property
+    def planetary_classes(self):
+        """Each planetary set's class of every mode (docs/planetary.md, "Mode classes";
+        gd_modal_planetary_class): {set name: ["rotational", "translational", "planet",
+        "mixed" or "-" per mode]}, as `modal --json`'s modes[].planetary_classes; {} without
+        sets."""
+        h, sysh = self.system._model_handle, self.system._handle
+        names = [cstr(lib.gd_planetary_class_names[c]) for c in range(lib.GD_PCLASS_COUNT)]
+        return {cstr(h.planetary[k].name):
+                [names[lib.gd_modal_planetary_class(sysh, self._owner, j, k)]
+                 for j in range(self.nmodes)] for k in range(h.nplanetary)}
+
+    @property
+    def classes(self):
+        """The class of every mode: that of the first planetary set that moves in it ("-"
+        when none does), `modal --json`'s modes[].class; None without planetary sets."""
+        pc = list(self.planetary_classes.values())
+        if not pc:
+            return None
+        return [next((c[j] for c in pc if c[j] != "-"), "-") for j in range(self.nmodes)]
+
     def to_pandas(self):
-        """One row per mode, the columns of `geardyn modal --json`."""
+        """One row per mode, the columns of `geardyn modal --json` (with `class` when the
+        model has planetary sets)."""
         pd = _pandas()
         m = self.modes
         comp = self.system.components
@@ -266,6 +288,9 @@ class ModalResult(_Result):
         })
         for k, name in enumerate(_core.MOTION_NAMES):
             df["energy_" + name] = m["energy_share"][:, k]
+        classes = self.classes
+        if classes is not None:
+            df["class"] = classes
         return df.set_index("mode")
 
     def shapes_to_pandas(self):
