@@ -10,7 +10,8 @@
  *   pairs split (each planet opposite its partner);
  * and, derived here from the same equations (not the paper's), the conditions behind the
  * last case: S1 = sum exp(i psi_n) = 0 gives pure rotational and translational classes,
- * S1 = S2 = sum exp(2 i psi_n) = 0 the equally spaced set's whole spectrum. */
+ * S1 = S2 = sum exp(2 i psi_n) = 0 the equally spaced set's whole spectrum. The paper's text
+ * was not available: docs/planetary.md ("Unequal spacing") says which statements are its. */
 #include <complex.h>
 
 #include "geardyn/modal.h"
