@@ -293,6 +293,10 @@ void gd_frf_options_init(gd_frf_options *opt);
 gd_status gd_frf(const gd_system *sys, const gd_frf_options *opt, gd_frf_result **out,
                  gd_error *err);
 void gd_frf_free(gd_frf_result *r);
+gd_status gd_frf_load(const gd_system *sys, const gd_frf_options *opt, const double *load_re,
+                      const double *load_im, gd_frf_result **out, gd_error *err);
+gd_status gd_planetary_mesh_excitation(const gd_system *sys, int set, int harmonic, int ring,
+                                       double *re, double *im, gd_error *err);
 void gd_frf_directional(const gd_frf_result *r, int out_x, int out_y, double *fwd_re,
                         double *fwd_im, double *bwd_re, double *bwd_im);
 

@@ -172,3 +172,32 @@ def test_dict_errors_name_the_field(geardyn):
     assert e.value.field.startswith("planetary_sets[0].planets")
     with pytest.raises(geardyn.ModelError):
         geardyn.load(LP).planetary("nope")
+
+
+@pytest.mark.parametrize("harmonic,excited", [(1, "translational"), (2, "planet"),
+                                              (4, "rotational")])
+def test_phased_mesh_excitation_against_the_cli(geardyn, harmonic, excited):
+    """`frf --input planetary:lp:sun_mesh:L` ([Parker2000], docs/planetary.md "Planet
+    phasing"): bit for bit, and Z_s = 21, N = 4 selects the class: L = 1 translational
+    (the sun does not turn), 2 planet (the sun still), 4 rotational (the sun does not
+    translate)."""
+    inp = "planetary:lp:sun_mesh:%d" % harmonic
+    outs = ["sun.x", "sun.rz", "lp.p1.x"]
+    j = run_cli("frf", PHASING, "--input", inp, "--output", "sun.x", "--output", "sun.rz",
+                "--output", "lp.p1.x", "--freq", "500Hz:8500Hz:5")
+    r = geardyn.load(PHASING).frf(inp, outs, "500Hz:8500Hz:5")
+    ser = r.series()
+    assert len(ser) == len(j["outputs"]) == 3
+    for (name, _q, h), jo in zip(ser, j["outputs"]):
+        assert name == jo["name"]
+        assert same(h.real, nums(jo["real"])) and same(h.imag, nums(jo["imag"]))
+    sx, srz, p1 = (abs(h) for _n, _q, h in ser)
+    rs = 0.0387  # the sun's rotation as a length r_s theta
+    if excited == "translational":
+        assert (rs * srz).max() < 1e-9 * sx.max()
+    elif excited == "planet":
+        assert max(sx.max(), (rs * srz).max()) < 1e-9 * p1.max()
+    else:
+        assert sx.max() < 1e-9 * (rs * srz).max()
+    with pytest.raises(geardyn.ModelError):
+        geardyn.load(PHASING).frf("planetary:lp:moon_mesh:1", outs, "500Hz:8500Hz:5")
