@@ -85,6 +85,8 @@ void gd_model_free(gd_model *model);
 void gd_model_set_coupling(gd_model *model, gd_coupling level);
 int gd_model_find_node(const gd_model *model, const char *name);
 int gd_model_find_mesh(const gd_model *model, const char *name);
+int gd_model_mesh_count(const gd_model *model);
+const char *gd_model_mesh_name(const gd_model *model, int i);
 
 typedef struct { int nset; const char *const *set; } gd_load_options;
 void gd_load_options_init(gd_load_options *opt);

@@ -22,6 +22,13 @@ _DOF_UNIT = {"disp": ("m", "rad"), "vel": ("m/s", "rad/s"), "angle": ("m", "rad"
              "speed": ("m/s", "rad/s")}
 
 
+def _mesh_names(model):
+    """The time-integration laws' mesh numbering (gd_model_mesh_name): the gear meshes,
+    then each planetary set's "SET.sun_mesh<n>" and "SET.ring_mesh<n>"."""
+    h = model._handle
+    return [cstr(lib.gd_model_mesh_name(h, i)) for i in range(lib.gd_model_mesh_count(h))]
+
+
 def _pick(item, name, names, what, plural):
     """Indices of the item's NAME among names ('*': all)."""
     if not names:
@@ -61,7 +68,7 @@ def _parse_record(system, tm, item):
             raise model_error("record", "'%s': unknown mesh quantity '%s'" % (item, what),
                               "use force, state, deflection or stiffness")
         kind, unit = _MESH_WHAT[what]
-        meshes = m.meshes
+        meshes = _mesh_names(m)
         idx = _pick(item, name, meshes, "mesh", "meshes")
         return [(kind, i, 0, "mesh:%s:%s" % (meshes[i], what), unit) for i in idx]
     if item.startswith("sfd:"):
@@ -120,9 +127,10 @@ def _default_records(system, tm):
     state with backlash), every damper's fx and fy; else the total speed of every rz
     DOF; else every DOF's displacement (at most 64)."""
     m = system.model
+    meshes = _mesh_names(m)
     recs = []
     for i in range(tm.spec.nmeshes):
-        name = m.meshes[tm.meshes[i].mesh]
+        name = meshes[tm.meshes[i].mesh]
         recs.append((lib.GD_REC_MESH_FORCE, tm.meshes[i].mesh, 0, "mesh:%s:force" % name, "N"))
         if tm.meshes[i].backlash:
             recs.append((lib.GD_REC_MESH_STATE, tm.meshes[i].mesh, 0, "mesh:%s:state" % name,
@@ -428,7 +436,8 @@ def transient(system, duration=None, revolutions=None, speed=None, records=None,
     check(st, err)
     res = TransientResult(system, ffi.gc(out[0], lib.gd_transient_result_free),
                           [r[3] for r in recs], [r[4] for r in recs],
-                          [system.model.meshes[tm.meshes[i].mesh] for i in range(tm.spec.nmeshes)],
+                          [_mesh_names(system.model)[tm.meshes[i].mesh]
+                           for i in range(tm.spec.nmeshes)],
                           [bool(tm.meshes[i].backlash) for i in range(tm.spec.nmeshes)])
     res.speed, res.t_end, res.record_from, res.output_interval = w, t_end, frm, dt
     res.method, res.start = method, start

@@ -201,3 +201,21 @@ def test_phased_mesh_excitation_against_the_cli(geardyn, harmonic, excited):
         assert sx.max() < 1e-9 * (rs * srz).max()
     with pytest.raises(geardyn.ModelError):
         geardyn.load(PHASING).frf("planetary:lp:moon_mesh:1", outs, "500Hz:8500Hz:5")
+
+
+def test_transient_with_planetary_mesh_laws_against_the_cli(geardyn):
+    """The sets' meshes as laws (TVMS and backlash from the geometry) in time integration:
+    the meshes numbered after the gear meshes ("st.sun_mesh1" ...: gd_model_mesh_name),
+    the default records and a record by name, bit for bit."""
+    path = example("planetary_mesh_laws")
+    for args, kw in (([], {}), (["--record", "mesh:st.sun_mesh1:force,mesh:st.ring_mesh3"],
+                                {"records": "mesh:st.sun_mesh1:force,mesh:st.ring_mesh3"})):
+        j = run_cli("transient", path, "--quiet", "--duration", "5ms", *args)
+        r = geardyn.load(path).transient(duration="5ms", **kw)
+        assert r.names == [x["name"] for x in j["records"]]
+        assert r.meshes == [x["name"] for x in j["meshes"]] and len(r.meshes) == 6
+        assert (r.steps, r.rhs_evals, r.events) == (j["steps"], j["rhs_evaluations"],
+                                                    j["events"])
+        for k, x in enumerate(j["records"]):
+            for f in ("min", "max", "mean", "rms", "peak_to_peak"):
+                assert same(r.stats[k][f], nums([x[f]])[0]), (x["name"], f)
