@@ -16,6 +16,7 @@
 
 #include "geardyn/modal.h"
 #include "geardyn/model.h"
+#include "geardyn/model_file.h"
 #include "geardyn/system.h"
 #include "harness.h"
 
@@ -23,42 +24,25 @@
 #define NMAX 6
 #define NDOF (9 + 3 * NMAX)
 
-/* [LinParker1999] Table 1 (as examples/planetary_lin_parker.yaml): inertia = (I/r^2) r^2,
- * k_torsion = k_ru r_r^2. */
+/* [LinParker1999]'s Table 1 set, examples/planetary_lin_parker.yaml, with N planets at the
+ * given angles (NULL: equally spaced). */
 static gd_model *lp_set(int N, const double *angles_deg)
 {
-    char ang[160] = "";
-    if (angles_deg) {
-        int k = snprintf(ang, sizeof ang, ", angles: [");
-        for (int n = 0; n < N; n++)
-            k += snprintf(ang + k, sizeof ang - (size_t)k, "%s%.17g deg", n ? ", " : "",
-                          angles_deg[n]);
-        snprintf(ang + k, sizeof ang - (size_t)k, "]");
+    char count[64], ang[200] = "planetary_sets.lp.planets.angles=[";
+    snprintf(count, sizeof count, "planetary_sets.lp.planets.count=%d", N);
+    for (int n = 0; n < N && angles_deg; n++) {
+        size_t k = strlen(ang);
+        snprintf(ang + k, sizeof ang - k, "%s%.17g deg", n ? ", " : "", angles_deg[n]);
     }
-    char yaml[2048];
-    snprintf(
-        yaml, sizeof yaml,
-        "dofs: [x, y, rz]\n"
-        "shafts:\n"
-        "  - {name: a, nodes: [{name: sun}]}\n"
-        "  - {name: b, nodes: [{name: ring}]}\n"
-        "  - {name: c, nodes: [{name: carrier}]}\n"
-        "planetary_sets:\n"
-        "  - name: lp\n"
-        "    held: ring\n"
-        "    sun: {node: sun, mass: 0.4, inertia: %.17g, k_support: 1e8}\n"
-        "    ring: {node: ring, mass: 2.35, inertia: %.17g, k_support: 1e8, k_torsion: %.17g}\n"
-        "    carrier: {node: carrier, mass: 5.43, inertia: %.17g, k_support: 1e8}\n"
-        "    planets: {count: %d, mass: 0.66, inertia: %.17g, bearing_stiffness: 1e8%s}\n"
-        "    base_radius: {sun: 0.0387, ring: 0.1375, planet: 0.05015}\n"
-        "    carrier_radius: 0.0884\n"
-        "    pressure_angle: 24.6 deg\n"
-        "    mesh_stiffness: 5e8\n",
-        0.39 * 0.0387 * 0.0387, 3.00 * 0.1375 * 0.1375, 1e9 * 0.1375 * 0.1375,
-        6.29 * 0.0884 * 0.0884, N, 0.61 * 0.05015 * 0.05015, ang);
+    strcat(ang, "]");
+    const char *sets[2] = {count, ang};
+    gd_load_options opt;
+    gd_load_options_init(&opt);
+    opt.nset = angles_deg ? 2 : 1;
+    opt.set = sets;
     gd_model *m = NULL;
     gd_error err;
-    if (gd_model_load_string(yaml, "spacing.yaml", &m, &err))
+    if (gd_model_load_opts("examples/planetary_lin_parker.yaml", &opt, &m, &err))
         fprintf(stderr, "  %s\n", err.message);
     return m;
 }
