@@ -156,7 +156,8 @@ typedef struct { const char *name; gd_planetary_member_spec member[3]; int held;
                  const double *pin_errors_radial; int teeth[3]; double base_radius[3];
                  double carrier_radius; double pressure_angle[2]; double helix_angle;
                  double planet_tip_radius; double mesh_stiffness[2]; double mesh_damping[2];
-                 int carrier_frame; gd_loc loc; const char *path; ...; } gd_planetary_spec;
+                 int carrier_frame; int centrifugal_stiffness; gd_loc loc; const char *path;
+                 ...; } gd_planetary_spec;
 void gd_planetary_spec_init(gd_planetary_spec *s);
 gd_status gd_model_add_planetary(gd_model *m, const gd_planetary_spec *s, int *index,
                                  gd_error *err);

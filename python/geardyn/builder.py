@@ -238,7 +238,7 @@ def _unbalance(m, ctx, i, d):
 
 _PLANETARY_KEYS = ("name", "held", "sun", "ring", "carrier", "planets", "teeth", "base_radius",
                    "carrier_radius", "pressure_angle", "helix_angle", "planet_tip_radius",
-                   "mesh_stiffness", "mesh_damping", "carrier_frame")
+                   "mesh_stiffness", "mesh_damping", "carrier_frame", "centrifugal_stiffness")
 _MEMBERS = ("sun", "ring", "carrier")
 _MEMBER_KEYS = ("node", "mass", "inertia", "k_support", "k_torsion")
 _PLANET_KEYS = ("count", "angles", "mass", "inertia", "bearing_stiffness", "pin_errors",
@@ -297,6 +297,12 @@ def _planetary(m, ctx, i, d):
         s.carrier_frame = 1 if d["carrier_frame"] == "all" else 0
     else:
         s.carrier_frame = -1
+    if "centrifugal_stiffness" in d:
+        if not isinstance(d["centrifugal_stiffness"], bool):
+            raise model_error(path + ".centrifugal_stiffness",
+                              "'%s' is not true or false" % (d["centrifugal_stiffness"],),
+                              "write true or false")
+        s.centrifugal_stiffness = 1 if d["centrifugal_stiffness"] else 0
     for j, member in enumerate(_MEMBERS):
         p = "%s.%s" % (path, member)
         b = d.get(member)
