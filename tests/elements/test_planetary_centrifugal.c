@@ -5,8 +5,9 @@
  * [CooleyParker2012] Eq. 1: `centrifugal_stiffness: false` leaves it out).
  * - the element's term is the Hessian of F times the exact radial deformation (central
  *   differences), symmetric, and a rotation of the whole set loads no body;
- * - [LinParker1999]'s set (ring held, sun and carrier free: one rigid-body mode) keeps that
- *   mode at 0 Hz at speed with no unstable mode; without the term it diverges (8.5 Hz). */
+ * - [LinParker1999]'s set (ring held, sun and carrier free: one rigid-body mode; or nothing
+ *   held: two) keeps those modes at 0 Hz at speed with no unstable mode; without the term one
+ *   diverges (8.50 Hz; 41.24 Hz). */
 #include "elements/elements_impl.h"
 #include "geardyn/modal.h"
 #include "geardyn/model.h"
@@ -182,28 +183,33 @@ static int count_modes(const gd_model *m, double W, int *rigid, int *unstable, d
 
 /* examples/planetary_lin_parker.yaml (ring held, sun and carrier free) at 5000 rpm of the
  * sun (carrier 0.22 of it): the rigid-body mode stays at 0 Hz, nothing is unstable; with
- * `centrifugal_stiffness: false` ([CooleyParker2012] Eq. 1) that mode diverges at 8.50 Hz. */
-TEST(free_set_keeps_its_rigid_body_mode)
+ * `centrifugal_stiffness: false` ([CooleyParker2012] Eq. 1) that mode diverges at 8.50 Hz.
+ * The same set as a differential (nothing held, carrier at 5000 rpm): both rigid-body modes
+ * (the whole set turning, and the differential's free motion) at 0 Hz; without the term one
+ * of them diverges at 41.24 Hz. */
+TEST(free_set_keeps_its_rigid_body_modes)
 {
-    static const char *const off[] = {"planetary_sets.lp.centrifugal_stiffness=false"};
-    for (int k = 0; k < 2; k++) {
-        gd_model *m = load("examples/planetary_lin_parker.yaml", k, off);
+    static const char *const set[] = {"planetary_sets.lp.held=none",
+                                      "planetary_sets.lp.ring.k_torsion=0",
+                                      "planetary_sets.lp.centrifugal_stiffness=false"};
+    static const struct {
+        int first, nset, rigid, unstable;
+        double f_unstable;
+    } cases[] = {{2, 0, 1, 0, 0}, {2, 1, 0, 1, 8.5012}, {0, 2, 2, 0, 0}, {0, 3, 1, 1, 41.2413}};
+    for (int c = 0; c < 4; c++) {
+        gd_model *m =
+            load("examples/planetary_lin_parker.yaml", cases[c].nset, set + cases[c].first);
         REQUIRE(m);
         int rigid, unstable;
         double f_rigid, f_unstable;
         REQUIRE(count_modes(m, 5000 * RPM, &rigid, &unstable, &f_rigid, &f_unstable));
-        if (k == 0) {
-            CHECK(rigid == 1);
-            CHECK(f_rigid < 1e-6);
-            CHECK(unstable == 0);
-        } else {
-            CHECK(rigid == 0);
-            CHECK(unstable == 1);
-            CHECK_REL(f_unstable, 8.5012, 1e-4);
-        }
+        CHECK(rigid == cases[c].rigid);
+        CHECK(f_rigid < 1e-6);
+        CHECK(unstable == cases[c].unstable);
+        if (cases[c].unstable) CHECK_REL(f_unstable, cases[c].f_unstable, 1e-4);
         gd_model_free(m);
     }
 }
 
 RUN_TESTS(T(term_is_the_hessian_of_the_preloads_work), T(rotation_of_the_set_loads_nothing),
-          T(free_set_keeps_its_rigid_body_mode))
+          T(free_set_keeps_its_rigid_body_modes))
