@@ -708,6 +708,9 @@ done:
         gd_transient_result_free(res);
         return st;
     }
+    /* CVODE's error control is local: the global error from a second run */
+    if (opt->error_estimate && (opt->method == GD_TR_BDF || opt->method == GD_TR_ADAMS))
+        gd_tr_global_error(tr, opt, records, nrecords, res);
     *out = res;
     return GD_OK;
 }
