@@ -13,7 +13,7 @@ each call, best of REPEATS. Time response: unbalance from rest for 0.1 s sampled
 default (scipy.signal.lsim on the state space), CPU time of one call; the response of
 the record is written to OUT_DIR/NAME_METHOD.txt (t, x) for the error against
 geardyn's tight reference.
-usage: ross_side_by_side.py OUT_DIR [REPEATS]
+usage: ross_side_by_side.py OUT_DIR [REPEATS] (bench/bench_ross.sh runs it)
 ROSS itself is not a dependency of the project: PYTHONPATH must reach it (bench_ross.sh).
 """
 import sys
@@ -62,8 +62,10 @@ def cpu(f):
     return time.process_time() - t0, r
 
 
-rotors = {"ross42": (rs.rotor_example, [(2, 1e-4, 0.0)], 2),
-          "rig366": (rig366, [(15, 1e-5, 0.0), (46, 5e-6, np.pi / 2)], 15)}
+# unbalances (node, m e in kg m, phase, speed ratio of the shaft: the driven shaft turns
+# at -48/32 of the driving one), as in the geardyn models
+rotors = {"ross42": (rs.rotor_example, [(2, 1e-4, 0.0, 1.0)], 2),
+          "rig366": (rig366, [(15, 1e-5, 0.0, 1.0), (46, 5e-6, np.pi / 2, -1.5)], 15)}
 for name, (make, unb, rec_node) in rotors.items():
     tb, rotor = cpu(make)
     print(f"{name}: {rotor.ndof} DOFs, built in {tb:.3f} s CPU")
@@ -73,9 +75,10 @@ for name, (make, unb, rec_node) in rotors.items():
           f"wn[:6] Hz = {np.round(m.wn[:6] / 2 / np.pi, 2).tolist()}")
     t = np.linspace(0, 0.1, 1001)
     F = np.zeros((t.size, rotor.ndof))
-    for node, me, ph in unb:
-        F[:, 6 * node + 0] += me * W**2 * np.cos(W * t + ph)
-        F[:, 6 * node + 1] += me * W**2 * np.sin(W * t + ph)
+    for node, me, ph, ratio in unb:
+        w = ratio * W
+        F[:, 6 * node + 0] += me * w**2 * np.cos(w * t + ph)
+        F[:, 6 * node + 1] += me * w**2 * np.sin(w * t + ph)
     for method in ("newmark", "default"):
         secs, res = cpu(lambda: rotor.time_response(W, F, t, method=method))
         y = res[1]

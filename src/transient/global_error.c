@@ -49,11 +49,15 @@ static double difference(const gd_transient_result *a, const gd_transient_result
     return e;
 }
 
-void gd_tr_global_error(gd_transient *tr, const gd_transient_options *opt,
-                        const gd_tr_record *records, int nrecords, gd_transient_result *res)
+/* res->error_estimate and a clause of res->method_note for the finished CVODE run res
+ * of opt (method m): -1 with the reason in the note when the second run fails.
+ * res->cpu_seconds includes that run. */
+static void estimate(gd_transient *tr, const gd_transient_options *opt, gd_tr_method m,
+                     const gd_tr_record *records, int nrecords, gd_transient_result *res)
 {
     gd_transient_options o = *opt;
     const double f = GD_TR_EST_FACTOR;
+    o.method = m; /* auto resolved: the same method, bit for bit */
     o.rtol = opt->rtol * f;
     o.atol_q *= f;
     o.atol_v *= f;
@@ -65,7 +69,7 @@ void gd_tr_global_error(gd_transient *tr, const gd_transient_options *opt,
     gd_error err;
     size_t k = strlen(res->method_note);
     const size_t len = sizeof res->method_note;
-    if (gd_transient_run(tr, &o, records, nrecords, &b, &err)) {
+    if (gd_tr_run_once(tr, &o, records, nrecords, &b, &err)) {
         res->error_estimate = -1.0;
         snprintf(res->method_note + k, len - k, "; no error estimate (the run at rtol %.3g: %s)",
                  o.rtol, err.message);
@@ -76,4 +80,16 @@ void gd_tr_global_error(gd_transient *tr, const gd_transient_options *opt,
     snprintf(res->method_note + k, len - k, "; estimated error %.2g (against the run at rtol %.3g)",
              res->error_estimate, o.rtol);
     gd_transient_result_free(b);
+}
+
+gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
+                           const gd_tr_record *records, int nrecords, gd_transient_result **out,
+                           gd_error *err)
+{
+    gd_status st = gd_tr_run_once(tr, opt, records, nrecords, out, err);
+    if (st || !opt->error_estimate) return st;
+    /* CVODE's error control is local: the global error from a second run */
+    const gd_tr_method m = (*out)->method_used;
+    if (m == GD_TR_BDF || m == GD_TR_ADAMS) estimate(tr, opt, m, records, nrecords, *out);
+    return GD_OK;
 }

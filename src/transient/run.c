@@ -467,9 +467,9 @@ static gd_status profile_refusals(const gd_transient *tr, const gd_transient_opt
     return GD_OK;
 }
 
-gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
-                           const gd_tr_record *records, int nrecords, gd_transient_result **out,
-                           gd_error *err)
+gd_status gd_tr_run_once(gd_transient *tr, const gd_transient_options *opt,
+                         const gd_tr_record *records, int nrecords, gd_transient_result **out,
+                         gd_error *err)
 {
     *out = NULL;
     const int nf = tr->nf, n = tr->red ? tr->red->nfull : tr->n;
@@ -708,9 +708,6 @@ done:
         gd_transient_result_free(res);
         return st;
     }
-    /* CVODE's error control is local: the global error from a second run */
-    if (opt->error_estimate && (opt->method == GD_TR_BDF || opt->method == GD_TR_ADAMS))
-        gd_tr_global_error(tr, opt, records, nrecords, res);
     *out = res;
     return GD_OK;
 }

@@ -248,12 +248,12 @@ gd_status gd_tr_run_gen_alpha(gd_transient *tr, const gd_transient_options *opt,
                               double *y, gd_transient_result *res, gd_tr_contact_track *track,
                               gd_error *err);
 
-/* ---- global_error.c ---- */
-/* res->error_estimate (and a clause of res->method_note) for the finished CVODE run res
- * of opt: the global error from a second run at looser tolerances; -1 with the reason
- * in the note when that run fails. res->cpu_seconds includes it. */
-void gd_tr_global_error(gd_transient *tr, const gd_transient_options *opt,
-                        const gd_tr_record *records, int nrecords, gd_transient_result *res);
+/* ---- run.c ---- */
+/* gd_transient_run without the global error estimate of the CVODE methods
+ * (global_error.c wraps it with that estimate). */
+gd_status gd_tr_run_once(gd_transient *tr, const gd_transient_options *opt,
+                         const gd_tr_record *records, int nrecords, gd_transient_result **out,
+                         gd_error *err);
 
 /* ---- linear.c ---- */
 /* 1 when the problem is linear and time-invariant, forced by unbalances only (GD_TR_LTI
