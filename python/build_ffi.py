@@ -353,7 +353,7 @@ typedef struct { double t_start, t_end; double output_interval; double record_fr
                  double rtol; double atol_q, atol_v; gd_tr_method method; gd_tr_init init;
                  const double *q0, *v0; double max_step; long max_steps; int max_order;
                  int locate_events; double step; double rho_inf;
-                 const gd_speed_profile *profile; ...; } gd_transient_options;
+                 const gd_speed_profile *profile; int error_estimate; ...; } gd_transient_options;
 typedef enum { GD_REC_DISP, GD_REC_VEL, GD_REC_ANGLE, GD_REC_SPEED, GD_REC_SPEED_RATIO,
                GD_REC_MESH_FORCE, GD_REC_MESH_DEFLECTION, GD_REC_MESH_STATE,
                GD_REC_MESH_STIFFNESS, GD_REC_SFD_FX, GD_REC_SFD_FY,

@@ -423,6 +423,7 @@ def transient(system, duration=None, revolutions=None, speed=None, records=None,
     lib.gd_transient_options_init(opt)
     opt.t_end, opt.record_from, opt.output_interval, opt.rtol = t_end, frm, dt, float(rtol)
     opt.method = methods[method]
+    opt.error_estimate = 1  # as the CLI: CVODE's global error from a run at rtol / 10
     if step is not None:
         opt.step = quantity(step, "time", "step")
     if prof is not None:
