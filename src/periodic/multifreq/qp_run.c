@@ -149,7 +149,12 @@ static int record_stats(gd_qp *q, const double *X, const gd_tr_record *rec, int 
             free(v1);
             return 1;
         }
-        gd_qp_samples(q, X);
+        if (gd_qp_samples(q, X)) {
+            free(s);
+            free(val);
+            free(v1);
+            return 1;
+        }
         for (long p = 0; p < Nt; p++) {
             const double t = gd_qp_point_times(q, p);
             memcpy(q->y, q->qs + (size_t)p * nf, (size_t)nf * sizeof *q->y);
@@ -226,7 +231,8 @@ typedef struct qp_sol {
     double *X;
     int *k, nk, d; /* its harmonics (nk x d) */
     gd_per_record_stats *st;
-    int ok, iters;
+    int ok, iters, condensed;
+    long matvecs;
     double resid;
     char msg[200];
 } qp_sol;
@@ -292,6 +298,32 @@ static int solve_at(gd_transient *tr, const gd_qp_bases *b, int H, const qp_sol 
     gd_qp q;
     memset(s, 0, sizeof *s);
     s->H = H;
+    if (opt->condensed >= 0 && gd_qpc_applies(tr)) {
+        gd_qpc *c = gd_qpc_new(tr, b, H, s->msg, sizeof s->msg);
+        if (c) {
+            int rc = 0;
+            gd_qpc_view(c, &q);
+            s->condensed = 1;
+            s->n = q.n;
+            s->nk = q.T.nk;
+            s->d = q.T.d;
+            s->X = calloc((size_t)q.n, sizeof *s->X);
+            s->k = malloc((size_t)q.T.nk * q.T.d * sizeof *s->k);
+            if (!s->X || !s->k) rc = 1;
+            if (!rc) {
+                memcpy(s->k, q.T.k, (size_t)q.T.nk * q.T.d * sizeof *s->k);
+                if (x0 && x0->X) pad(x0->X, x0->k, x0->nk, q.nf, &q.T, s->X);
+                s->ok = !gd_qpc_newton(c, s->X, opt->tol, opt->max_iter, &s->resid, &s->iters,
+                                       s->msg, sizeof s->msg);
+                s->matvecs = gd_qpc_matvecs(c);
+                if (s->ok && record_stats(&q, s->X, rec, nrec, &s->st)) rc = 1;
+            }
+            gd_qp_view_release(&q);
+            gd_qpc_free(c);
+            return rc;
+        }
+        s->msg[0] = '\0'; /* the full torus below */
+    }
     int rc = gd_qp_init(&q, tr, b, H, s->msg, sizeof s->msg);
     if (rc) {
         gd_qp_free(&q);
@@ -310,6 +342,7 @@ static int solve_at(gd_transient *tr, const gd_qp_bases *b, int H, const qp_sol 
     if (x0 && x0->X) pad(x0->X, x0->k, x0->nk, q.nf, &q.T, s->X);
     s->ok = !gd_qp_newton(&q, s->X, opt->tol, opt->max_iter, &s->resid, &s->iters, s->msg,
                           sizeof s->msg);
+    s->matvecs = q.matvecs;
     if (s->ok && record_stats(&q, s->X, rec, nrec, &s->st)) rc = 1;
     gd_qp_free(&q);
     return rc;
@@ -329,6 +362,8 @@ int gd_per_qp_probe(const gd_system *sys, const gd_transient_spec *spec, double 
     memset(&b, 0, sizeof b);
     int d = 0;
     *nf = gd_transient_nstates(tr) / 2;
+    const int nc = gd_qpc_applies(tr); /* the condensed torus solves for the coordinates */
+    if (nc > 0) *nf = nc;
     if (gd_transient_terms(tr, NULL) >= 0 &&
         !gd_qp_find_bases(tr, sys, spec, speed, &b, msg, cap)) {
         d = b.d;
@@ -444,11 +479,13 @@ int gd_per_qp_run(const gd_system *sys, const gd_transient_spec *spec, const dou
             p->iterations = a.iters;
             p->records = a.st;
             a.st = NULL;
-            if (opt->stability && !p->reason[0])
-                snprintf(p->reason, sizeof p->reason,
-                         "stability not computed: the response is quasi-periodic (%d base "
-                         "frequencies); Floquet multipliers need a period",
-                         b.d);
+            if (opt->stability) {
+                char note[200] = "";
+                const int nf = (int)(a.n / (2L * a.nk - 1));
+                const int smax = opt->shoot_dense_max > 0 ? opt->shoot_dense_max : 64;
+                if (gd_qp_stability(tr, &b, a.X, a.k, a.nk, nf, smax, p, note, sizeof note)) rc = 1;
+                if (note[0] && !p->reason[0]) snprintf(p->reason, sizeof p->reason, "%s", note);
+            }
             sol_clear(&prev, nrecords);
             prev = a; /* its statistics moved to the point above */
             memset(&a, 0, sizeof a);
