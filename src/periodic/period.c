@@ -165,11 +165,11 @@ int gd_per_qp_refusal(const gd_system *sys, const gd_transient_spec *spec, doubl
         if (refuse) {
             const double T = TWO_PI / w0;
             snprintf(msg, cap,
-                     "no periodic method fits: the excitations' common period is %.6g input "
-                     "revolutions (%.4g s at %.6g rad/s), %d periods of the highest, so harmonic "
-                     "balance of it would need H >= %ld (about %.3g GB, over the %.3g GB limit), "
-                     "and the multi-frequency harmonic balance cannot take the model (%.150s)",
-                     speed / w0, T, speed, order, Hn, need / 1e9, limit / 1e9, why);
+                     "no periodic method fits: the common period is %.6g input revolutions "
+                     "(%.4g s), %d periods of the highest excitation; harmonic balance of it "
+                     "would need H >= %ld (about %.3g GB, limit %.3g GB); multi-frequency: "
+                     "%.150s",
+                     speed / w0, T, order, Hn, need / 1e9, limit / 1e9, why);
         }
     }
     gd_transient_free(tr);
