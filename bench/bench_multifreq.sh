@@ -5,7 +5,9 @@
 # its CPU time, and every point's dynamic mesh forces (standard deviation and peak-to-peak
 # of both meshes) against a long transient at the same speed (700 mesh cycles of settling,
 # then two common periods of 67 cycles, rtol 1e-9, 512 samples per cycle), the transient's CPU time as the floor
-# measured in the same run. Prints the largest deviation per record.
+# measured in the same run. Prints the largest deviation per record, and checks the
+# transient's numbers at 900 and 1700 rpm against those stored in
+# tests/periodic/test_multifreq.c (REF: mean, std, p2p per mesh) to 0.1 %.
 # usage: bench_multifreq.sh BUILD [COUNT]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -24,6 +26,10 @@ d = json.load(open(sys.argv[1]))
 B, M = sys.argv[2], sys.argv[3]
 print("   method:", d["method"], "|", d.get("method_choice", ""))
 worst = [0.0] * 4
+# the long-transient references stored in tests/periodic/test_multifreq.c (REF)
+stored = {900: [(255.02, 19.943, 283.94), (719.44, 26.023, 291.88)],
+          1700: [(255.02, 42.541, 426.67), (719.44, 89.255, 652.69)]}
+bad = 0
 tcpu = 0.0
 for p in d["points"]:
     rpm = p["speed_rad_s"] * 30 / math.pi
@@ -40,7 +46,15 @@ for p in d["points"]:
         f = line.split()
         if f and f[0].startswith("mesh:") and len(f) >= 7:
             mn, mx, mean, rms, p2p = map(float, f[2:7])
-            tr[f[0].split(":")[1]] = (math.sqrt(max(0.0, rms * rms - mean * mean)), p2p)
+            tr[f[0].split(":")[1]] = (math.sqrt(max(0.0, rms * rms - mean * mean)), p2p, mean)
+    if round(rpm) in stored:
+        for i, name in enumerate(["stage1", "stage2"]):
+            ref = stored[round(rpm)][i]
+            got = (tr[name][2], tr[name][0], tr[name][1])
+            ok = all(abs(g - r) <= 1e-3 * abs(r) for g, r in zip(got, ref))
+            bad += not ok
+            print("   stored reference %d rpm %s: mean/std/p2p %s, recomputed %s: %s" % (
+                round(rpm), name, ref, tuple("%.5g" % g for g in got), "ok" if ok else "DIFFERS"))
     row = []
     for i, name in enumerate(["stage1", "stage2"]):
         rec = p["records"]["mesh:%s:force" % name]
@@ -55,4 +69,5 @@ for p in d["points"]:
 print("   largest deviation from the transient: stage1 std %.2f %%, p2p %.2f %%; stage2 std "
       "%.2f %%, p2p %.2f %%" % tuple(100 * w for w in worst))
 print("   transients (the floor): %.1f s CPU for %d speeds" % (tcpu, len(d["points"])))
+sys.exit(1 if bad else 0)
 PY
