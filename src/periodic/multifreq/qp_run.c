@@ -125,7 +125,8 @@ done:
 /* The records' statistics: on the physical slice over one common period where the bases
  * have one (slice_values), else over the grid of the torus (the time average of a
  * quasi-periodic response is its torus mean; its extremes those of the torus); and the
- * amplitudes and phases of the harmonics m W_1 (m = 0..H) of the first base. 0 ok. */
+ * amplitudes and phases of the harmonics m W_1 (m = 0..2 H: the point reports 0..H, the
+ * truncation estimate compares the next order's range) of the first base. 0 ok. */
 static int record_stats(gd_qp *q, const double *X, const gd_tr_record *rec, int nrec,
                         gd_per_record_stats **out)
 {
@@ -168,31 +169,39 @@ static int record_stats(gd_qp *q, const double *X, const gd_tr_record *rec, int 
         stride = Nt / q->T.N[0]; /* row-major: the first base varies slowest */
         cyc = q->T.N[0];
     }
-    int bad = 0;
+    /* the amplitudes up to 2 H (the next order's, for the truncation estimate) by one
+     * real FFT per record of the samples folded by the phase of base 1: L phases (the
+     * slice: every sample, base 1 at bin n0 m; the grid: the rows of N_1) */
+    const int M = 2 * H;
+    const long L = cyc;
+    double *fold = fftw_malloc((size_t)L * sizeof *fold);
+    fftw_complex *spec = fftw_malloc((size_t)(L / 2 + 1) * sizeof *spec);
+    fftw_plan pl = fold && spec ? fftw_plan_dft_r2c_1d((int)L, fold, spec, FFTW_ESTIMATE) : NULL;
+    int bad = !pl;
     for (int r = 0; r < nrec && !bad; r++) {
         const double *v = val + (size_t)r * Nt;
         basic_stats(v, Nt, &s[r]);
-        s[r].amplitude = calloc((size_t)H + 1, sizeof(double));
-        s[r].phase_deg = calloc((size_t)H + 1, sizeof(double));
+        s[r].amplitude = calloc((size_t)M + 1, sizeof(double));
+        s[r].phase_deg = calloc((size_t)M + 1, sizeof(double));
         if (!s[r].amplitude || !s[r].phase_deg) {
             bad = 1;
             break;
         }
-        for (int m = 0; m <= H && 2 * m * n0 < cyc; m++) {
-            double re = 0.0, im = 0.0;
-            for (long p = 0; p < Nt; p++) {
-                double th = 6.28318530717958647692 * (double)m *
-                            (double)(((p / stride) * n0) % cyc) / (double)cyc;
-                re += v[p] * cos(th);
-                im -= v[p] * sin(th);
-            }
-            re /= Nt;
-            im /= Nt;
+        memset(fold, 0, (size_t)L * sizeof *fold);
+        for (long p = 0; p < Nt; p++)
+            fold[p / stride] += v[p];
+        fftw_execute(pl);
+        for (int m = 0; m <= M && 2 * m * n0 < L; m++) {
+            const double complex z = spec[m * n0] / (double)Nt;
+            const double re = creal(z), im = cimag(z);
             /* x = A cos(m theta + phi): coefficient of e^{i m theta} is A e^{i phi} / 2 */
             s[r].amplitude[m] = m ? 2.0 * hypot(re, im) : fabs(re);
             s[r].phase_deg[m] = m ? atan2(im, re) * 57.29577951308232 : 0.0;
         }
     }
+    if (pl) fftw_destroy_plan(pl);
+    fftw_free(fold);
+    fftw_free(spec);
     free(val);
     if (bad) {
         free_stats(s, nrec);

@@ -40,7 +40,7 @@ struct gd_qpc {
     double *rb;    /* nc x Ntot */
     fftw_complex *cb;
     fftw_plan c2r, r2c, r2c1;
-    double *ys, *vs, *gs, *jq, *jv; /* nc x Ntot; Ntot x nc x nc */
+    double *ys, *vs, *gs, *jq, *jv; /* nc x Ntot; nt x Ntot: each term's sq tsc, sv tsc */
     double *tq, *tv;                /* nc x nc: the terms' torus means (the shift) */
     double complex *Hk, *Pk, *x0;   /* nk x nc x nc; nk x nf x nc; nk x nf */
     double *y0, *R, *G, *w2, *yfull, *f, *st, *z, *ltime;
@@ -337,17 +337,11 @@ static int forces(gd_qpc *c, const double *Y, int jac, double *r)
                 for (int e = 0; e < c->ns; e++)
                     r[(size_t)c->sup[e] * Nt + p] -= c->cd[(size_t)i * nf + c->sup[e]] * c->z[i];
         }
-        if (jac) { /* dg/dy = sum_t sq_t tsc_t e_tu e_tw^T (the laws read y_tw) */
-            double *Jq = c->jq + (size_t)p * nc * nc, *Jv = c->jv + (size_t)p * nc * nc;
-            memset(Jq, 0, (size_t)nc * nc * sizeof *Jq);
-            memset(Jv, 0, (size_t)nc * nc * sizeof *Jv);
+        if (jac) /* dg/dy = sum_t sq_t tsc_t e_tu e_tw^T (the laws read y_tw) */
             for (int k = 0; k < nt; k++) {
-                if (c->tu[k] < 0) continue;
-                const size_t at = (size_t)c->tu[k] + (size_t)nc * c->tw[k];
-                Jq[at] += c->st[k] * c->tsc[k];
-                Jv[at] += c->st[nt + k] * c->tsc[k];
+                c->jq[(size_t)k * Nt + p] = c->tu[k] < 0 ? 0.0 : c->st[k] * c->tsc[k];
+                c->jv[(size_t)k * Nt + p] = c->tu[k] < 0 ? 0.0 : c->st[nt + k] * c->tsc[k];
             }
-        }
     }
     c->tr->law_time = NULL;
     return bad;
@@ -517,10 +511,11 @@ static void apply_h(const gd_qpc *c, const double *Y, const double *G, const dou
     }
 }
 
-/* R = Y - y0 - H' G'(Y); *scale max(|Y|, |y0 + H' G'|). 0 ok, 1 a force not finite. */
-static int residual(gd_qpc *c, const double *Y, double *R, double *scale)
+/* R = Y - y0 - H' G'(Y); *scale max(|Y|, |y0 + H' G'|); G keeps G(Y). 0 ok, 1 a force
+ * not finite. */
+static int residual(gd_qpc *c, const double *Y, double *R, double *scale, int sampled)
 {
-    int bad = forces(c, Y, 1, NULL);
+    int bad = sampled ? 0 : forces(c, Y, 1, NULL); /* sampled: gs, jq, jv hold Y's */
     analyse(c, c->gs, c->G);
     apply_h(c, Y, c->G, c->y0, R);
     double ny = 0.0, nr = 0.0;
@@ -541,15 +536,14 @@ static int atimes(void *data, N_Vector vv, N_Vector zz)
     const double *v = N_VGetArrayPointer(vv);
     synth(c, v, 0, c->ys);
     synth(c, v, 1, c->vs);
-    for (long p = 0; p < Nt; p++) {
-        const double *Jq = c->jq + (size_t)p * nc * nc, *Jv = c->jv + (size_t)p * nc * nc;
-        for (int a = 0; a < nc; a++) {
-            double s = 0.0;
-            for (int b2 = 0; b2 < nc; b2++)
-                s += Jq[a + (size_t)nc * b2] * c->ys[(size_t)b2 * Nt + p] +
-                     Jv[a + (size_t)nc * b2] * c->vs[(size_t)b2 * Nt + p];
-            c->gs[(size_t)a * Nt + p] = s;
-        }
+    memset(c->gs, 0, (size_t)nc * Nt * sizeof *c->gs);
+    for (int k = 0; k < c->nt; k++) { /* per term: g_tu += sq y_tw + sv y'_tw */
+        if (c->tu[k] < 0) continue;
+        const double *Jq = c->jq + (size_t)k * Nt, *Jv = c->jv + (size_t)k * Nt,
+                     *y = c->ys + (size_t)c->tw[k] * Nt, *yd = c->vs + (size_t)c->tw[k] * Nt;
+        double *g = c->gs + (size_t)c->tu[k] * Nt;
+        for (long p = 0; p < Nt; p++)
+            g[p] += Jq[p] * y[p] + Jv[p] * yd[p];
     }
     analyse(c, c->gs, c->G);
     apply_h(c, v, c->G, NULL, N_VGetArrayPointer(zz));
@@ -580,7 +574,7 @@ gd_qpc *gd_qpc_new(gd_transient *tr, const gd_qp_bases *b, int H, char *msg, siz
     c->n = (long)nc * (2L * nk - 1);
     c->Nh = Nt / c->T.N[d - 1] * (c->T.N[d - 1] / 2 + 1);
     const double bytes =
-        16.0 * nk * (nf * (nc + 1.0) + nc * nc) + 8.0 * Nt * nc * (3 + 2 * nc) + 8.0 * Nt * nf;
+        16.0 * nk * (nf * (nc + 1.0) + nc * nc) + 8.0 * Nt * (3.0 * nc + 2.0 * c->nt + nf);
     if (bytes > 3e9) {
         snprintf(msg, cap,
                  "the condensed torus of order %d (%d harmonics, %ld grid points) on %d DOFs "
@@ -596,8 +590,8 @@ gd_qpc *gd_qpc_new(gd_transient *tr, const gd_qp_bases *b, int H, char *msg, siz
     c->ys = fftw_malloc((size_t)Nt * nc * sizeof *c->ys);
     c->vs = fftw_malloc((size_t)Nt * nc * sizeof *c->vs);
     c->gs = fftw_malloc((size_t)Nt * nc * sizeof *c->gs);
-    c->jq = malloc((size_t)Nt * nc * nc * sizeof *c->jq);
-    c->jv = malloc((size_t)Nt * nc * nc * sizeof *c->jv);
+    c->jq = malloc((size_t)Nt * c->nt * sizeof *c->jq);
+    c->jv = malloc((size_t)Nt * c->nt * sizeof *c->jv);
     c->tq = calloc(2 * (size_t)nc * nc, sizeof *c->tq);
     c->Hk = malloc((size_t)nk * nc * nc * sizeof *c->Hk);
     c->Pk = malloc((size_t)nk * nf * nc * sizeof *c->Pk);
@@ -639,14 +633,15 @@ gd_qpc *gd_qpc_new(gd_transient *tr, const gd_qp_bases *b, int H, char *msg, siz
 }
 
 /* The loads' harmonics r_k (nk x nf): the forces outside the coordinates at Y (no law
- * moves them). 0 ok, 1 not finite, 2 no memory. */
+ * moves them), with Y's samples and local Jacobians kept. 0 ok, 1 not finite, 2 no
+ * memory. */
 static int loads(gd_qpc *c, const double *Y, double complex *rk)
 {
     const int nf = c->nf;
     const long Nt = c->T.Ntot;
     double *r = malloc((size_t)nf * Nt * sizeof *r);
     if (!r) return 2;
-    int bad = forces(c, Y, 0, r);
+    int bad = forces(c, Y, 1, r);
     memset(rk, 0, (size_t)c->T.nk * nf * sizeof *rk);
     for (int k = 0; k < nf && !bad; k++) {
         int any = 0;
@@ -664,12 +659,10 @@ static int loads(gd_qpc *c, const double *Y, double complex *rk)
     return bad;
 }
 
-/* X (full) from the coordinates Y: X_k = x0_k + P'_k G'_k. */
+/* X (full) from the coordinates Y of the last residual: X_k = x0_k + P'_k G'_k. */
 static void recover(gd_qpc *c, const double *Y, double *X)
 {
-    const int nf = c->nf, nc = c->nc;
-    forces(c, Y, 0, NULL);
-    analyse(c, c->gs, c->G);
+    const int nf = c->nf, nc = c->nc; /* G: the last residual's, at Y */
     for (int h = 0; h < c->T.nk; h++) {
         const double w = omega_of(&c->T, h);
         const size_t oc = (size_t)(h ? 2 * h - 1 : 0) * nc, os = oc + nc;
@@ -702,12 +695,12 @@ int gd_qpc_newton(gd_qpc *c, double *X, double tol, int max_iter, double *resid,
     SUNContext ctx = NULL;
     N_Vector x = NULL, bv = NULL;
     SUNLinearSolver LS = NULL;
-    double *Y = calloc((size_t)n, sizeof *Y), *Y0 = calloc((size_t)n, sizeof *Y0);
+    double *Y = calloc((size_t)n, sizeof *Y);
     double complex *rk = malloc((size_t)c->T.nk * nf * sizeof *rk);
     int rc = 1;
     *iters = 0;
     *resid = INFINITY;
-    if (!Y || !Y0 || !rk) {
+    if (!Y || !rk) {
         snprintf(msg, cap, "out of memory");
         goto done;
     }
@@ -720,20 +713,21 @@ int gd_qpc_newton(gd_qpc *c, double *X, double tol, int max_iter, double *resid,
             Y[(size_t)h * nc + a] = s;
         }
     /* the loads at rest; the shift: the terms' torus means about the start */
-    int lr = loads(c, Y0, rk);
-    if (!lr && forces(c, Y, 1, NULL)) lr = 1;
+    int lr = loads(c, Y, rk); /* also the start's samples and local Jacobians */
     if (lr) {
         snprintf(msg, cap, lr == 2 ? "out of memory" : "a force is not finite at the start");
         goto done;
     }
-    for (int a = 0; a < nc * nc; a++) {
+    memset(c->tq, 0, 2 * (size_t)nc * nc * sizeof *c->tq);
+    for (int k = 0; k < c->nt; k++) {
+        if (c->tu[k] < 0) continue;
         double sq = 0.0, sv = 0.0;
         for (long p = 0; p < c->T.Ntot; p++) {
-            sq += c->jq[(size_t)p * nc * nc + a];
-            sv += c->jv[(size_t)p * nc * nc + a];
+            sq += c->jq[(size_t)k * c->T.Ntot + p];
+            sv += c->jv[(size_t)k * c->T.Ntot + p];
         }
-        c->tq[a] = sq / c->T.Ntot;
-        c->tv[a] = sv / c->T.Ntot;
+        c->tq[c->tu[k] + (size_t)nc * c->tw[k]] += sq / c->T.Ntot;
+        c->tv[c->tu[k] + (size_t)nc * c->tw[k]] += sv / c->T.Ntot;
     }
     int rr = receptances(c, rk);
     if (rr) {
@@ -754,7 +748,7 @@ int gd_qpc_newton(gd_qpc *c, double *X, double tol, int max_iter, double *resid,
     SUNLinSolSetATimes(LS, c, atimes);
     if (SUNLinSolInitialize(LS)) goto done;
     double scale = 0.0;
-    if (residual(c, Y, c->R, &scale)) {
+    if (residual(c, Y, c->R, &scale, 1)) {
         snprintf(msg, cap, "a force is not finite at the start");
         goto done;
     }
@@ -790,7 +784,7 @@ int gd_qpc_newton(gd_qpc *c, double *X, double tol, int max_iter, double *resid,
             for (long i = 0; i < n; i++)
                 c->w2[i] = Y[i] + lam * xx[i];
             double n2 = 0.0;
-            if (!residual(c, c->w2, c->R, &scale)) {
+            if (!residual(c, c->w2, c->R, &scale, 0)) {
                 for (long i = 0; i < n; i++)
                     n2 += c->R[i] * c->R[i];
                 if (sqrt(n2) < nr) break;
@@ -814,7 +808,6 @@ done:
     if (bv) N_VDestroy(bv);
     if (ctx) SUNContext_Free(&ctx);
     free(Y);
-    free(Y0);
     free(rk);
     return rc;
 }
