@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Multi-frequency harmonic balance (issue 33 item 6) on the co-prime gearbox
 # (examples/gearbox_coprime.yaml: teeth 23/67 and 19/71, both TVMS from geometry): the
-# whole curve with default options (auto method, auto order) over 600..3000 rpm, 25 speeds,
+# whole curve with default options (auto method, auto order, stability) over 600..3000 rpm, 25 speeds,
 # its CPU time, and every point's dynamic mesh forces (standard deviation and peak-to-peak
 # of both meshes) against a long transient at the same speed (700 mesh cycles of settling,
 # then two common periods of 67 cycles, rtol 1e-9, 512 samples per cycle), the transient's CPU time as the floor
@@ -10,6 +10,7 @@
 # tests/periodic/test_multifreq.c (REF: mean, std, p2p per mesh) to 0.1 %.
 # usage: bench_multifreq.sh BUILD [COUNT]
 set -euo pipefail
+status=0
 cd "$(dirname "$0")/.."
 B=${1:-build}
 N=${2:-25}
@@ -20,7 +21,7 @@ echo "-- $M: periodic with default options, 600..3000 rpm, $N speeds"
 OPENBLAS_NUM_THREADS=1 "$B/geardyn" periodic "$M" --speeds "600rpm:3000rpm:$N" \
     --record mesh:stage1 --record mesh:stage2 --json 2>"$tmp/err" >"$tmp/qp.json"
 grep -o '[0-9.]* s CPU' "$tmp/err" | head -1 | sed 's/^/   whole curve: /'
-python3 - "$tmp/qp.json" "$B" "$M" <<'PY'
+python3 - "$tmp/qp.json" "$B" "$M" <<'PY' || status=1
 import json, math, subprocess, sys, time, resource
 d = json.load(open(sys.argv[1]))
 B, M = sys.argv[2], sys.argv[3]
@@ -71,3 +72,10 @@ print("   largest deviation from the transient: stage1 std %.2f %%, p2p %.2f %%;
 print("   transients (the floor): %.1f s CPU for %d speeds" % (tcpu, len(d["points"])))
 sys.exit(1 if bad else 0)
 PY
+F=examples/gearbox_coprime_full.yaml
+echo "-- $F (FE shafts, 138 DOFs: the condensed torus): periodic with default options, 3 speeds"
+OPENBLAS_NUM_THREADS=1 /usr/bin/time -f "   whole curve: %U+%S s CPU, %M kB" "$B/geardyn" periodic "$F" \
+    --speeds 900rpm:2600rpm:3 --record mesh:stage1 --record mesh:stage2 2>&1 >"$tmp/full.txt" |
+    grep -E "CPU|kB" || true
+grep -E "^ +[+-] " "$tmp/full.txt" | sed 's/^/  /'
+exit $status

@@ -1,6 +1,6 @@
 /* The branch over speed by multi-frequency harmonic balance (qphb_impl.h): one problem per
  * speed, its base frequencies, Newton on the torus from the last point's coefficients,
- * the order H doubled until two orders' records agree (the truncation estimate of the
+ * the order H raised until two orders' records agree (the truncation estimate of the
  * single-frequency solver, truncation.c), and the records' statistics over the torus. */
 #include <complex.h>
 #include <math.h>

@@ -147,8 +147,9 @@ int gd_qp_stability(gd_transient *tr, const gd_qp_bases *b, const double *X, con
                     int nf, int max_states, gd_periodic_point *p, char *note, size_t cap);
 
 /* The branch over speed by the torus (qp_run.c): natural continuation, each point from the
- * last; adaptive H (opt->adaptive: 8 doubled until two orders' records agree to
- * harmonic_tol, at most 64) or opt->harmonics. 0 ok, 1 no memory. */
+ * last; adaptive H (opt->adaptive: 32 raised by half until two orders' records agree to
+ * harmonic_tol, at most 48 or max_harmonics) or opt->harmonics; each point's stability
+ * (gd_qp_stability) with opt->stability. 0 ok, 1 no memory. */
 int gd_per_qp_run(const gd_system *sys, const gd_transient_spec *spec, const double *values,
                   int nvalues, const gd_periodic_options *opt, const gd_tr_record *records,
                   int nrecords, gd_periodic_result *res);
