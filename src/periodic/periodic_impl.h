@@ -310,5 +310,10 @@ int gd_per_floquet_shooting(const gd_system *sys, const gd_transient_spec *spec,
                             double *mim, int *nmu, double *change, char *msg, size_t cap);
 /* 1 when a law of the problem at speed has a switch or a kink (choose.c). */
 int gd_per_nonsmooth(const gd_system *sys, const gd_transient_spec *spec, double speed);
+/* 1 (with msg, cap bytes) when `--method auto` refuses the problem before solving
+ * (refuse.c): a common period too long for harmonic balance's memory at the H it would
+ * need and a model the multi-frequency torus cannot take; 0 otherwise. */
+int gd_per_qp_refusal(const gd_system *sys, const gd_transient_spec *spec, double speed,
+                      const gd_periodic_options *opt, char *msg, size_t cap);
 
 #endif
