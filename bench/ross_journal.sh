@@ -1,9 +1,13 @@
 #!/bin/sh
 # The plain journal bearing of examples/jeffcott_journal.yaml (D 50 mm, L 20 mm, c 50 um,
 # 0.02 Pa s, 98.1 N: half of the 20 kg rotor's weight) side by side with ROSS
-# (petrobras/ross, its current fluid-film engine: ross.bearings.plain_journal.PlainJournal,
-# one 360 deg land, isoviscous: thermal_type None, the oil's viscosity the same at every
-# temperature) (docs/bearings.md, "ROSS side by side"): eccentricity, attitude and the eight
+# (petrobras/ross, its current fluid-film engine: ross.bearings.fixed_geometry.
+# FixedGeometryBearing, the plain journal's one 360 deg land centred at 270 deg so that
+# the pad's edges, an axial groove at the supply pressure that ROSS's film always has,
+# sit at the top, in the cavitated zone; isoviscous: thermal_type None, the oil's
+# viscosity the same at every temperature) (docs/bearings.md, "ROSS side by side":
+# PlainJournal centres its land at 180 deg, the groove at 0 deg, which moves kxy and cxx
+# by up to 12 % at 10000 rpm): eccentricity, attitude and the eight
 # coefficients at several speeds on matched grids (ROSS's circumferential x axial elements
 # against geardyn's points around x interior points along, gd_reynolds_journal with the
 # Reynolds cavitation condition, which ROSS's solver also clamps to), and the threshold
@@ -17,16 +21,17 @@
 # (control, matplotlib, ccp, ...) are stubbed, as the bearing never calls them.
 #
 # usage: bench/ross_journal.sh ROSS_SRC [BUILD_DIR] [RPM_LIST] [ROSS_GRID] [OUR_GRID]
-#   defaults: build, "2000 5000 10000 15000", "80x40" (elements around x along),
-#   "192x39" (points around x interior points along)
-# CPU: one ROSS speed takes 15 s (40 x 20) to about a minute (80 x 40) here.
+#   defaults: build, "1000 2000 5000 10000 11000 11500 12000 12500", "80x40" (elements
+#   around x along), "192x41" (points around x interior points along)
+# CPU: one ROSS speed takes about 3 s at 80 x 40 and 15 s at 160 x 80 (after numba's
+# first compilation, about 15 s); geardyn about 1 s (192 x 41) to 12 s (384 x 81).
 set -e
 ROSS=${1:?give the ROSS source tree}
 SRC=$(cd "$(dirname "$0")/.." && pwd)
 BUILD=${2:-$SRC/build}
-RPMS=${3:-2000 5000 10000 15000}
+RPMS=${3:-1000 2000 5000 10000 11000 11500 12000 12500}
 RG=${4:-80x40}
-OG=${5:-192x39}
+OG=${5:-192x41}
 [ -f "$BUILD/libgeardyn.so" ] || { echo "no libgeardyn.so in $BUILD: build first" >&2; exit 2; }
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
@@ -71,7 +76,7 @@ sys.path.insert(0, sys.argv[1])
 warnings.simplefilter("ignore")
 for _ in range(40):  # stub the modules ROSS imports for what the bearing never calls
     try:
-        from ross.bearings.plain_journal import PlainJournal
+        from ross.bearings.fixed_geometry import FixedGeometryBearing
         break
     except ModuleNotFoundError as e:
         for k in [k for k in sys.modules if k == "ross" or k.startswith("ross.")]:
@@ -88,12 +93,16 @@ oil = {"liquid_viscosity1": mu, "temperature1": 300.0, "liquid_viscosity2": mu,
        "saturation_pressure": 1e5}
 nx, nz = int(sys.argv[2]), int(sys.argv[3])
 for rpm in sys.argv[4:]:
-    b = PlainJournal(n=0, pad_axial_length=0.02, journal_diameter=0.05, radial_clearance=50e-6,
-                     n_pads=1, pad_arc=np.radians(359.9), preload=0, oil_supply_temperature=320.0,
-                     frequency=[float(rpm) * np.pi / 30], fxs_load=0, fys_load=-98.1,
-                     lubricant=oil, thermal_type=None, total_ex_film=nx, total_ez_film=nz)
+    b = FixedGeometryBearing(
+        0, frequency=[float(rpm) * np.pi / 30], journal_diameter=0.05, radial_clearance=50e-6,
+        pad_thickness=0.0125, pivot_angle=[np.radians(270.0)], pad_arc=[np.radians(359.9)],
+        pad_axial_length=[0.02], preload=[0.0], offset=[0.5], lubricant=oil,
+        oil_supply_temperature=320.0, oil_flow_v=1e-2, fxs_load=0, fys_load=-98.1,
+        thermal_type=None, total_ex_film=nx, total_ez_film=nz, total_ey_film=10,
+        total_ey_pad=10, reference_temperature=320.0, initial_position=(0.1, -0.1))
+    out = b._results.outputs[0]
     k = [float(getattr(b, n)[0]) for n in ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy")]
-    print(rpm, *("%.6g" % v for v in [b.equilibrium_pos[0], b.equilibrium_pos[1]] + k), flush=True)
+    print(rpm, *("%.6g" % v for v in [out["eccentricity"][0], out["attitude"][0]] + k), flush=True)
 PEOF
 cat >"$TMP/table.py" <<'PEOF'
 """the side-by-side table and each side's threshold speed"""
@@ -120,6 +129,22 @@ for rpm in sorted(ours):
         worst[rpm] = max(worst.get(rpm, 0), abs(o[i] - r[i]) / big)
 for rpm in sorted(worst):
     print("%g rpm: largest coefficient difference %.2f %% of the largest of its kind" % (rpm, 100 * worst[rpm]))
+def growth(row):
+    """the largest real part of the roots of m s^2 + 2 C s + 2 K (20 kg, two bearings)"""
+    K = 2 * np.array(row[2:6]).reshape(2, 2)
+    C = 2 * np.array(row[6:10]).reshape(2, 2)
+    A = np.block([[np.zeros((2, 2)), np.eye(2)], [-K / 20.0, -C / 20.0]])
+    return max(np.linalg.eigvals(A).real)
+for name, side in (("geardyn", ours), ("ROSS", ross)):
+    sp = sorted(side)
+    g = [growth(side[r]) for r in sp]
+    onset = None
+    for i in range(1, len(sp)):
+        if g[i - 1] < 0 <= g[i]:
+            onset = sp[i - 1] + (sp[i] - sp[i - 1]) * -g[i - 1] / (g[i] - g[i - 1])
+    print("%s: threshold speed of the 20 kg rotor on two bearings %s" % (
+        name, "%.0f rpm (interpolated between the speeds)" % onset if onset else
+        "not within the speeds"))
 PEOF
 echo "ROSS ($RG elements), geardyn ($OG points), Reynolds cavitation, 98.1 N, speeds: $RPMS"
 "$TMP/ours" $(echo "$OG" | tr x ' ') $RPMS >"$TMP/ours.txt"
