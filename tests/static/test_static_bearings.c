@@ -280,6 +280,11 @@ static void equals_linear_bearings(gd_test_state *gd_ts_, const char *model)
     REQUIRE(gd_campbell(f.s, &co, &ca, &err) == GD_OK);
     REQUIRE(gd_campbell(g.s, &co, &cb, &err) == GD_OK);
     REQUIRE(ca->ntracks == cb->ntracks);
+    /* the sweep's own flags of the speeds without an equilibrium (the CLI's report reads
+       them): every speed has one; the model without laws has none to flag */
+    REQUIRE(ca->no_equilibrium != NULL);
+    CHECK(!ca->no_equilibrium[0] && !ca->no_equilibrium[1] && !ca->no_equilibrium[2]);
+    CHECK(cb->no_equilibrium == NULL);
     double cworst = 0;
     for (int t = 0; t < ca->ntracks; t++)
         for (int k = 0; k < 3; k++) {
