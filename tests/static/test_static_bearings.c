@@ -604,10 +604,45 @@ TEST(rig_on_geometric_bearings_at_two_torques)
     fx_free(&f);
 }
 
+/* A cylindrical roller bearing from geometry (contact angle 0) holds no axial motion:
+ * under an axial load static names the law and the 5-DOF law's hint, exit 2 in the CLI,
+ * never NaN. */
+TEST(axial_load_on_a_radial_roller_is_named)
+{
+    static const char YAML[] =
+        "dofs: [x, y, z]\n"
+        "shafts:\n"
+        "  - name: s\n"
+        "    nodes: [{name: m}]\n"
+        "disks:\n"
+        "  - {name: m, node: m, mass: 10}\n"
+        "laws:\n"
+        "  - {type: rolling_bearing_5dof, name: cyl, node: m, elements: 14, roller: 1,\n"
+        "     element_diameter: 7.5 mm, pitch_diameter: 46 mm, roller_length: 10 mm}\n"
+        "excitations:\n"
+        "  loads:\n"
+        "    - {node: m, dof: y, value: -200}\n"
+        "    - {node: m, dof: z, value: 100}\n";
+    fx f;
+    REQUIRE(load(&f, NULL, YAML));
+    gd_static_options o;
+    gd_static_options_init(&o);
+    gd_static_result *r = NULL;
+    gd_error err;
+    CHECK(gd_static_run(f.s, &o, &r, &err) == GD_EINPUT);
+    CHECK(r == NULL);
+    printf("  %s\n  hint: %s\n", err.message, err.hint);
+    CHECK(strstr(err.message, "rolling bearing 'cyl'") != NULL);
+    CHECK_STR(err.field, "laws[0]");
+    CHECK(strstr(err.hint, "radial bearing (contact angle 0) little axial or tilt load") != NULL);
+    gd_static_free(r);
+    fx_free(&f);
+}
+
 RUN_TESTS(T(roller_in_its_clearance_finds_equilibrium),
           T(rig_on_rolling_bearings_stiffens_with_torque),
           T(rig_on_geometric_bearings_at_two_torques),
           T(gearbox_free_in_torsion_equals_linear_bearings),
           T(gearbox_on_geometric_bearings_equals_linear_bearings),
           T(gearbox_in_five_directions_equals_its_tangent), T(tangents_against_central_differences),
-          T(bearing_that_cannot_carry_the_load_is_named))
+          T(bearing_that_cannot_carry_the_load_is_named), T(axial_load_on_a_radial_roller_is_named))
