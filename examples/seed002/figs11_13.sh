@@ -20,9 +20,10 @@
 # 2500 rpm: 43 % low against a long transient); 591 is what --harmonics auto takes at
 # 1817 and 3000 rpm, within 0.3 % of the transients there. Below 1000 rpm even 591 is
 # not enough (the estimate says up to 83 %: auto would need H = 18943 at 100 rpm); each
-# point's estimate is the peak_to_peak_error column of periodic.csv. About 35 min CPU
-# for the set with the estimate and the multipliers of every point (2060 s measured;
-# docs/periodic.md, "[JMSTHelical]: Figs. 11-13" and "Harmonic truncation").
+# point's estimate is the peak_to_peak_error column of periodic.csv. About 20-30 min CPU
+# for the set with the estimate and the multipliers of every point (2060 s measured
+# before; the full 0-deg curve 186 s on 2026-12-02; docs/periodic.md, "[JMSTHelical]:
+# Figs. 11-13" and "Harmonic truncation").
 # Why 100-8000 rpm: the OCR text of the paper has lost the figures' speed axes; this
 # range holds mesh-1 k = 1 of every mode of this model up to 6.9 kHz, among them the
 # modes with 10-37 % of their strain energy in the meshes (4.7-7.2 kHz, 5400-8000 rpm),
