@@ -600,6 +600,58 @@ TEST(radial_pin_error_load_sharing_against_the_closed_form)
     CHECK_REL(pl.load_sharing, N * mx / sum, 1e-4);
 }
 
+/* A carrier error E at phi (docs/planetary.md, "Static load sharing"): every pin moves by the
+ * same vector, pin n by rho_n = E cos(phi - psi_n) outwards and e_n = E sin(phi - psi_n)
+ * along its tangent. The builder's pin errors are those (the same forces as the lists written
+ * out, to 1e-9), and with rigid central members, one pressure angle (c3 = 0) and equal
+ * spacing (mean e = 0): F_n = T / (N r_s) + c2 E sin(phi - psi_n), K_gamma = 1 + N r_s
+ * max_n (c2 E sin(phi - psi_n)) / T. N = 3 and 4, E = 10 um at 30 deg. */
+TEST(carrier_error_load_sharing_against_the_closed_form)
+{
+    const double E = 10e-6, phi = 30 * PI / 180, T = 100;
+    double K[9] = {0}, x[3] = {0, 1, 0};
+    const double as[3] = {-sin(ALPHA), -cos(ALPHA), 1}, ar[3] = {sin(ALPHA), -cos(ALPHA), -1};
+    add_outer(K, 3, KSP, as);
+    add_outer(K, 3, KSP, ar);
+    K[0] += KB;
+    K[4] += KB;
+    REQUIRE(LAPACKE_dposv(LAPACK_COL_MAJOR, 'U', 3, 1, K, 3, x, 3) == 0);
+    double c2 = KSP * KB * (as[0] * x[0] + as[1] * x[1] + as[2] * x[2]);
+    for (int N = 3; N <= 4; N++) {
+        gd_model *m = lp_model_ex(N, 1e14, 1e14, "",
+                                  "    carrier_error: {magnitude: 10 um, "
+                                  "angle: 30 deg}\n");
+        char lists[512], *w = lists;
+        w += sprintf(w, ", pin_errors: [");
+        for (int n = 0; n < N; n++)
+            w += sprintf(w, "%s%.17g", n ? ", " : "", E * sin(phi - 2 * PI * n / N));
+        w += sprintf(w, "], pin_errors_radial: [");
+        for (int n = 0; n < N; n++)
+            w += sprintf(w, "%s%.17g", n ? ", " : "", E * cos(phi - 2 * PI * n / N));
+        sprintf(w, "]");
+        gd_model *m0 = lp_model_ex(N, 1e14, 1e14, lists, "");
+        REQUIRE(m && m0);
+        CHECK_ABS(m->planetary[0].carrier_error[0], E, 1e-18);
+        gd_static_planetary_loads pl, p0;
+        REQUIRE(sharing(m, T, &pl) && sharing(m0, T, &p0));
+        gd_model_free(m);
+        gd_model_free(m0);
+        double mx = -INFINITY;
+        for (int n = 0; n < N; n++) {
+            double sn = sin(phi - 2 * PI * n / N);
+            CHECK_REL(pl.sun_force[n], p0.sun_force[n], 1e-9);
+            CHECK_REL(pl.bearing_force[n], p0.bearing_force[n], 1e-9);
+            CHECK_REL(pl.sun_force[n], T / (N * RS) + c2 * E * sn, 1e-4);
+            mx = fmax(mx, c2 * E * sn);
+        }
+        double kg = 1 + mx * N * RS / T;
+        printf("  N = %d: c2 %.6g N/m, K_gamma %.6g (closed form %.6g)\n", N, c2, pl.load_sharing,
+               kg);
+        CHECK(kg > 1.2); /* the error matters */
+        CHECK_REL(pl.load_sharing, kg, 1e-4);
+    }
+}
+
 /* Planet phasing ([Parker2000]) on a modal FRF: Lin & Parker's N = 4 set with Z_s = 21
  * (Z_r = 79, Z_p = 29: (21 + 79) / 4 whole). Mesh harmonic l's phased sun-mesh load F
  * (gd_planetary_mesh_excitation) drives mode k with the modal force p_k = phi_k^T F /
@@ -744,7 +796,8 @@ TEST(builder_api)
 RUN_TESTS(T(unequal_spacing_keeps_the_planet_modes), T(builder_api),
           T(planet_phasing_selects_the_mode_class), T(equal_load_sharing),
           T(pin_error_load_sharing_against_the_closed_form),
-          T(radial_pin_error_load_sharing_against_the_closed_form), T(carrier_frame_terms),
+          T(radial_pin_error_load_sharing_against_the_closed_form),
+          T(carrier_error_load_sharing_against_the_closed_form), T(carrier_frame_terms),
           T(cooley_parker_at_rest), T(rotating_carrier_against_the_hermitian_count),
           T(mode_classes_and_their_counts), T(bearing_matrix_by_hand),
           T(lin_parker_table2_and_independent_assembly), T(lin_parker_multiplicities),
