@@ -13,11 +13,12 @@
  * problem, Q^H P(lambda) Q s = 0 (linearised, q <= 26), the values nearest the previous
  * ones kept; each residual r = P(lambda) x that fails the tolerance adds
  * P(sigma)^-1 r to Q (residual inverse iteration, Neumaier, SIAM J. Numer. Anal. 22,
- * 1985, accelerated by the projection), until every residual passes or the basis is
- * full. Then a completeness check: shift-invert at today's real shift -s, deflated by
- * the refined vectors (gd_ks_deflated_top); a remaining eigenvalue nearer -s than the
- * farthest refined one is a mode the continuation missed (one coming down from above
- * the window, or a copy of a repeated value).
+ * 1985, accelerated by the projection; after the first pass a cluster that split corrects
+ * each member at its own Ritz value until its residual is below GD_TRACK_OWN_SHIFT), until
+ * every residual passes or the basis is full. Then a completeness check: shift-invert at today's
+ * real shift -s, deflated by the refined vectors (gd_ks_deflated_top); a remaining eigenvalue
+ * nearer -s than the farthest refined one is a mode the continuation missed (one coming down from
+ * above the window, or a copy of a repeated value).
  *
  * Any failure (a cluster of more than GD_TRACK_MAXC modes, an overdamped or nearly
  * rigid mode, no convergence within the basis, a rigid-body mode whose shape is no
@@ -49,6 +50,9 @@
 #define GD_TRACK_MAXC 6       /* largest cluster refined together */
 #define GD_TRACK_MAXQ 8       /* basis columns per cluster member */
 #define GD_TRACK_MAXIT 8      /* Rayleigh-Ritz passes per cluster */
+#define GD_TRACK_OWN_SHIFT                                                                         \
+    1e-7 /* a split cluster's members correct at their own values above it                         \
+          */
 /* Complex factorisations kept from speed to speed (at most GD_TRACK_SLOTS, within
  * GD_TRACK_LU_BYTES per workspace): a cluster whose shift lies within GD_TRACK_REUSE
  * of its distance to the other modes from a kept one corrects with that one, for one
@@ -296,7 +300,7 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
     /* factored: a factorisation for this pass' corrections; reuse: a kept one may
      * serve; fresh_prev: the previous pass' corrections came from a fresh one (only
      * then does a residual that stops falling mean the rounding floor) */
-    int factored = 0, reuse = 1, fresh_prev = 1;
+    int factored = 0, reuse = 1, fresh_prev = 1, own = 0;
     for (int i = 0; i < nx0 && q < qmax; i++) {
         double complex *v = w->Q + (size_t)q * n;
         memcpy(v, x0 + (size_t)i * n, (size_t)n * sizeof *v);
@@ -415,7 +419,17 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
              * sigma the mean of the cluster's first Ritz values (already far nearer the
              * eigenvalues than the extrapolation) */
             if (q + nadd >= qmax) continue;
-            if (!factored) {
+            if (it > 0 && c > 1 && rel > GD_TRACK_OWN_SHIFT) {
+                /* a cluster that split (a double mode under the gyroscopic terms): each
+                 * member corrects at its own Ritz value while far from converged (the
+                 * mean shift gains only the half-split over the distance to the next
+                 * mode per pass); near convergence the mean again (a shift at the value
+                 * itself leaves a correction all along the vector already in the basis) */
+                int fr = track_lu(a, sym, k, d, lam, gap, 0, w);
+                if (fr) return fr < 0 ? -1 : 1;
+                factored = 1;
+                own = 1;
+            } else if (!factored) {
                 double complex sg = 0;
                 for (int i = 0; i < c; i++)
                     sg += (m == i ? lam : lam0[i]) / c;
@@ -437,6 +451,11 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
             if (corth(w->Q, n, q + nadd, v)) nadd++;
         }
         fresh_prev = !factored || w->fresh;
+        if (own) { /* the next pass' mean shift: a fresh factorisation */
+            factored = 0;
+            reuse = 0;
+            own = 0;
+        }
         if (factored && !w->fresh) { /* a kept factorisation serves one pass */
             factored = 0;
             reuse = 0;
