@@ -2,7 +2,7 @@
 # Speed of a planetary set in the linear analyses (docs/planetary.md): `modal` (all modes)
 # and `campbell` (11 speeds) of a 5-planet set between two FE shafts against a parallel
 # train of the same shafts joined by an idler (the floor, timed in the same run), per DOF.
-# CPU time (user + sys, /usr/bin/time), medians of 7 runs; with BENCH_CALLGRIND=1 the
+# CPU time (user + sys, /usr/bin/time), medians of 7 batches of 10 runs; with BENCH_CALLGRIND=1 the
 # instruction counts under valgrind's callgrind instead (one run each: deterministic, immune
 # to a shared machine's load). Read the ratio, not the absolute figures.
 # usage: [BENCH_CALLGRIND=1] bench/bench_planetary.sh [BUILD_DIR]   (default: build)
@@ -71,9 +71,11 @@ time_of() { # file, command args...: CPU seconds, or instructions with BENCH_CAL
             "$CLI" "$@" "$f" 2>&1 >/dev/null | sed -n 's/.*Collected : \([0-9]*\).*/\1/p'
         return
     fi
+    # batches of 10 runs (the CPU clock counts in 10 ms), per run
     for i in 1 2 3 4 5 6 7; do
-        OPENBLAS_NUM_THREADS=1 /usr/bin/time -f '%U %S' -o "$TMP/time" "$CLI" "$@" "$f" >/dev/null
-        awk '{print $1 + $2}' "$TMP/time"
+        OPENBLAS_NUM_THREADS=1 /usr/bin/time -f '%U %S' -o "$TMP/time" sh -c \
+            'for j in 1 2 3 4 5 6 7 8 9 10; do "$@" >/dev/null; done' sh "$CLI" "$@" "$f"
+        awk '{print ($1 + $2) / 10}' "$TMP/time"
     done | median
 }
 unit=$([ "${BENCH_CALLGRIND:-0}" = 1 ] && echo "instr" || echo "s CPU")
