@@ -2,8 +2,10 @@
 # Speed of a planetary set in the linear analyses (docs/planetary.md): `modal` (all modes)
 # and `campbell` (11 speeds) of a 5-planet set between two FE shafts against a parallel
 # train of the same shafts joined by an idler (the floor, timed in the same run), per DOF.
-# Medians of 7 runs. The machine is shared: read the ratio, not the absolute times.
-# usage: bench/bench_planetary.sh [BUILD_DIR]   (default: build)
+# CPU time (user + sys, /usr/bin/time), medians of 7 batches of 10 runs; with BENCH_CALLGRIND=1 the
+# instruction counts under valgrind's callgrind instead (one run each: deterministic, immune
+# to a shared machine's load). Read the ratio, not the absolute figures.
+# usage: [BENCH_CALLGRIND=1] bench/bench_planetary.sh [BUILD_DIR]   (default: build)
 set -e
 SRC=$(cd "$(dirname "$0")/.." && pwd)
 BUILD=${1:-$SRC/build}
@@ -61,19 +63,26 @@ meshes:
   - {name: m1, driver: sun, driven: idl, base_radius: [20 mm, 20 mm], stiffness: 4e8}
   - {name: m2, driver: idl, driven: carrier, base_radius: [20 mm, 45 mm], stiffness: 4e8, line_of_centres: 180 deg}
 YEOF
-now() { date +%s.%N; }
 median() { sort -g | awk '{a[NR] = $1} END {print a[int((NR + 1) / 2)]}'; }
-time_of() { # file, command args...
+time_of() { # file, command args...: CPU seconds, or instructions with BENCH_CALLGRIND=1
     f=$1; shift
+    if [ "${BENCH_CALLGRIND:-0}" = 1 ]; then
+        OPENBLAS_NUM_THREADS=1 valgrind --tool=callgrind --callgrind-out-file=/dev/null \
+            "$CLI" "$@" "$f" 2>&1 >/dev/null | sed -n 's/.*Collected : \([0-9]*\).*/\1/p'
+        return
+    fi
+    # batches of 10 runs (the CPU clock counts in 10 ms), per run
     for i in 1 2 3 4 5 6 7; do
-        t0=$(now); OPENBLAS_NUM_THREADS=1 "$CLI" "$@" "$f" >/dev/null; t1=$(now)
-        echo "$t1 - $t0" | bc -l
+        OPENBLAS_NUM_THREADS=1 /usr/bin/time -f '%U %S' -o "$TMP/time" sh -c \
+            'for j in 1 2 3 4 5 6 7 8 9 10; do "$@" >/dev/null; done' sh "$CLI" "$@" "$f"
+        awk '{print ($1 + $2) / 10}' "$TMP/time"
     done | median
 }
+unit=$([ "${BENCH_CALLGRIND:-0}" = 1 ] && echo "instr" || echo "s CPU")
 dofs() { OPENBLAS_NUM_THREADS=1 "$CLI" modal "$1" --json | sed -n 's/.*"dofs":[[:space:]]*\([0-9]*\).*/\1/p' | head -1; }
 np=$(dofs "$TMP/planetary.yaml"); nq=$(dofs "$TMP/parallel.yaml")
 for what in "modal --modes all" "campbell --speeds 0:3000rpm:11 --threads 1"; do
     tp=$(time_of "$TMP/planetary.yaml" $what); tq=$(time_of "$TMP/parallel.yaml" $what)
-    printf '%-44s planetary %6.4f s (%d DOFs)  parallel %6.4f s (%d DOFs)  per-DOF ratio %.3f\n' \
-        "$what" "$tp" "$np" "$tq" "$nq" "$(echo "($tp / $np) / ($tq / $nq)" | bc -l)"
+    printf '%-44s planetary %.6g %s (%d DOFs)  parallel %.6g %s (%d DOFs)  per-DOF ratio %.3f\n' \
+        "$what" "$tp" "$unit" "$np" "$tq" "$unit" "$nq" "$(echo "($tp / $np) / ($tq / $nq)" | bc -l)"
 done

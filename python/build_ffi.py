@@ -153,7 +153,8 @@ typedef struct { const char *node; double mass; double inertia; double k_support
 typedef struct { const char *name; gd_planetary_member_spec member[3]; int held;
                  int nplanets; const double *planet_angles; double planet_mass, planet_inertia;
                  double bearing_stiffness; const double *pin_errors;
-                 const double *pin_errors_radial; int teeth[3]; double base_radius[3];
+                 const double *pin_errors_radial;
+                 double carrier_error[2]; int teeth[3]; double base_radius[3];
                  double carrier_radius; double pressure_angle[2]; double helix_angle;
                  double planet_tip_radius; double mesh_stiffness[2]; double mesh_damping[2];
                  int carrier_frame; int centrifugal_stiffness; gd_loc loc; const char *path;

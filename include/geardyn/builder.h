@@ -333,14 +333,17 @@ typedef struct gd_planetary_spec {
                                            carrier's sense of rotation); NULL: none */
     const double *pin_errors_radial;    /* nplanets radial pin position errors, m (outwards);
                                            NULL: none */
-    int teeth[3];                       /* sun, ring, planet; 0: not given (all or none) */
-    double base_radius[3];              /* sun, ring, planet, m > 0 */
-    double carrier_radius;              /* m > 0 */
-    double pressure_angle[2];           /* sun-planet, ring-planet, rad; default 20 deg */
-    double helix_angle;                 /* rad, default 0 */
-    double planet_tip_radius;           /* m; 0: estimated from the teeth (docs/planetary.md) */
-    double mesh_stiffness[2];           /* sun-planet, ring-planet, N/m > 0 */
-    double mesh_damping[2];             /* N s/m >= 0 */
+    double carrier_error[2];  /* the carrier's position (eccentricity) error: magnitude, m >= 0,
+                                 and its angle, rad from +x as the planets' angles; every pin
+                                 moves by that vector (docs/planetary.md); 0 0: none */
+    int teeth[3];             /* sun, ring, planet; 0: not given (all or none) */
+    double base_radius[3];    /* sun, ring, planet, m > 0 */
+    double carrier_radius;    /* m > 0 */
+    double pressure_angle[2]; /* sun-planet, ring-planet, rad; default 20 deg */
+    double helix_angle;       /* rad, default 0 */
+    double planet_tip_radius; /* m; 0: estimated from the teeth (docs/planetary.md) */
+    double mesh_stiffness[2]; /* sun-planet, ring-planet, N/m > 0 */
+    double mesh_damping[2];   /* N s/m >= 0 */
     /* which bodies get the carrier-frame terms when the carrier turns: 1 all (the whole set
        in the carrier frame, [CooleyParker2012]), 0 the planets only (members on shafts
        modelled in the fixed frame), -1 (default) all when every member sits on a shaft

@@ -259,6 +259,8 @@ typedef struct gd_planetary {
                                  the bearing's unloaded position (static load sharing) */
     double *pin_error_radial; /* nplanets radial pin position errors, m, outwards (owned; NULL:
                                  none) */
+    double carrier_error[2];  /* the carrier's position error, m and rad (gd_planetary_spec),
+                                 included in pin_error and pin_error_radial */
     double mesh_stiffness[2]; /* sun-planet, ring-planet, N/m along the line of action */
     double mesh_damping[2];   /* N s/m */
     /* the carrier-frame terms ([CooleyParker2012]) act on every body of the set (1) or on the

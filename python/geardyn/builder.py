@@ -238,7 +238,8 @@ def _unbalance(m, ctx, i, d):
 
 _PLANETARY_KEYS = ("name", "held", "sun", "ring", "carrier", "planets", "teeth", "base_radius",
                    "carrier_radius", "pressure_angle", "helix_angle", "planet_tip_radius",
-                   "mesh_stiffness", "mesh_damping", "carrier_frame", "centrifugal_stiffness")
+                   "mesh_stiffness", "mesh_damping", "carrier_frame", "centrifugal_stiffness",
+                   "carrier_error")
 _MEMBERS = ("sun", "ring", "carrier")
 _MEMBER_KEYS = ("node", "mass", "inertia", "k_support", "k_torsion")
 _PLANET_KEYS = ("count", "angles", "mass", "inertia", "bearing_stiffness", "pin_errors",
@@ -303,6 +304,21 @@ def _planetary(m, ctx, i, d):
                               "'%s' is not true or false" % (d["centrifugal_stiffness"],),
                               "write true or false")
         s.centrifugal_stiffness = 1 if d["centrifugal_stiffness"] else 0
+    if "carrier_error" in d:
+        # {magnitude, angle}: the carrier's pin circle offset, as the file reader takes it
+        ce, cp = d["carrier_error"], path + ".carrier_error"
+        if not isinstance(ce, dict):
+            raise model_error(cp, "not a map", "write {magnitude: 20 um, angle: 30 deg}")
+        _keys(ce, ("magnitude", "angle"), cp)
+        if "magnitude" not in ce:
+            raise model_error(cp + ".magnitude", "the magnitude is missing",
+                              "give the carrier's position error, e.g. magnitude: 20 um")
+        mag = quantity(ce["magnitude"], "length", cp + ".magnitude")
+        if not mag >= 0:
+            raise model_error(cp + ".magnitude", "a negative magnitude",
+                              "give the error's size (>= 0) and its direction by angle")
+        s.carrier_error[0] = mag
+        s.carrier_error[1] = quantity(ce.get("angle", 0), "angle", cp + ".angle")
     for j, member in enumerate(_MEMBERS):
         p = "%s.%s" % (path, member)
         b = d.get(member)

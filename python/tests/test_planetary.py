@@ -219,3 +219,20 @@ def test_transient_with_planetary_mesh_laws_against_the_cli(geardyn):
         for k, x in enumerate(j["records"]):
             for f in ("min", "max", "mean", "rms", "peak_to_peak"):
                 assert same(r.stats[k][f], nums([x[f]])[0]), (x["name"], f)
+
+
+def test_carrier_error_dict_equals_the_file(geardyn):
+    """carrier_error: {magnitude, angle} built from a dict gives the file's load sharing
+    bit for bit (docs/planetary.md: every pin moved by the same vector), and a negative
+    magnitude names its field."""
+    d = copy.deepcopy(LP_DICT)
+    d["planetary_sets"][0]["carrier_error"] = {"magnitude": "20 um", "angle": "30 deg"}
+    f = geardyn.load(LP, sets=["planetary_sets.lp.carrier_error={magnitude: 20 um, angle: 30 deg}"])
+    ra = geardyn.build(d).static(torque=100, input="sun", hold="carrier").planetary[0]
+    rb = f.static(torque=100, input="sun", hold="carrier").planetary[0]
+    assert ra["load_sharing_factor"] == rb["load_sharing_factor"]
+    assert ra["load_sharing_factor"] > 1.01
+    d["planetary_sets"][0]["carrier_error"] = {"magnitude": "-1 um"}
+    with pytest.raises(geardyn.ModelError) as e:
+        geardyn.build(d)
+    assert "carrier_error.magnitude" in str(e.value)

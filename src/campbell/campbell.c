@@ -12,6 +12,11 @@
 
 /* Speeds per chain without the continuation (see gd_campbell_run). */
 #define GD_CAMPBELL_CHAIN 8
+/* Modes solved above the window when speeds are continued (a guard band: a pair the
+ * window's edge cuts is tracked whole, and gd_sparse_track drops what fails above the
+ * window instead of handing the speed to Krylov-Schur). Measured on the 5-planet set of
+ * bench/bench_planetary.sh, whose window of 12 cuts a translational pair at rest. */
+#define GD_CAMPBELL_GUARD 1
 
 void gd_campbell_options_init(gd_campbell_options *opt)
 {
@@ -222,9 +227,16 @@ gd_status gd_campbell_run(const gd_system *sys, const gd_campbell_options *opt, 
     /* rigid-body modes are not tracked: count them once at the first speed (they sort
      * first, so a probe that is not all rigid has found them all), then ask for that
      * many more; with none, the probe is the first speed's result */
-    int nreq = 0, nrigid = 0;
+    int nreq = 0, nrigid = 0, nsolve = 0;
+    /* with the continuation, the sparse solves give the guard band too (the window's
+     * modes are the lowest nreq whatever the band) */
+    /* (not on a system so small that the band crowds Krylov-Schur's basis) */
+    int guard =
+        sparse && continuation && ns > 1 && sys->ndof >= 4 * (opt->nmodes + GD_CAMPBELL_GUARD) + 12
+            ? GD_CAMPBELL_GUARD
+            : 0;
     if (opt->nmodes > 0) {
-        for (int probe = opt->nmodes;; probe *= 2) {
+        for (int probe = opt->nmodes + guard;; probe *= 2) {
             if (probe > sys->ndof) probe = sys->ndof;
             gd_modal_result *r0 = NULL;
             if ((st = solve_one(sys, sparse ? &a : NULL, &sym, opt, probe, opt->speeds[0],
@@ -236,7 +248,8 @@ gd_status gd_campbell_run(const gd_system *sys, const gd_campbell_options *opt, 
             if (nrigid < r0->nmodes || probe == sys->ndof) {
                 nreq = opt->nmodes + nrigid;
                 if (nreq > sys->ndof) nreq = sys->ndof;
-                if (nreq == probe)
+                nsolve = nreq + guard < sys->ndof ? nreq + guard : sys->ndof;
+                if (nsolve == probe)
                     res[0] = r0;
                 else
                     gd_modal_free(r0);
@@ -254,7 +267,7 @@ gd_status gd_campbell_run(const gd_system *sys, const gd_campbell_options *opt, 
     wss = calloc((size_t)nt, sizeof *wss);
     if (!wss) goto nomem;
     for (int t = 0; t < nt && sparse; t++)
-        if (gd_sparse_ws_init(&wss[t], &a, nreq)) memset(&wss[t], 0, sizeof wss[t]);
+        if (gd_sparse_ws_init(&wss[t], &a, nsolve)) memset(&wss[t], 0, sizeof wss[t]);
     /* A trial before the sweep: the second speed continued from the first. Where that
      * is hard (gd_sparse_track: near-double modes cut by the window's edge, as on a
      * finely meshed, weakly gyroscopic shaft), every speed goes to Krylov-Schur instead
@@ -265,7 +278,7 @@ gd_status gd_campbell_run(const gd_system *sys, const gd_campbell_options *opt, 
         if (gd_sparse_ws_chain(w0, a.pat.n)) goto nomem;
         w0->warm_ok = 0;
         gd_sparse_track_reset(w0);
-        if (!res[0] && (st = solve_one(sys, &a, &sym, opt, nreq, opt->speeds[0],
+        if (!res[0] && (st = solve_one(sys, &a, &sym, opt, nsolve, opt->speeds[0],
                                        state_at(sys, states, 0), w0, &res[0], err)))
             goto done;
         gd_modal_options o;
@@ -281,6 +294,7 @@ gd_status gd_campbell_run(const gd_system *sys, const gd_campbell_options *opt, 
             gd_modal_free(res[1]);
             res[1] = NULL;
             continuation = 0;
+            nsolve = nreq;            /* Krylov-Schur needs no guard band */
             gd_sparse_track_free(w0); /* its buffers and factorisations */
         } else {
             ncont[1] = 1;
@@ -337,7 +351,7 @@ gd_status gd_campbell_run(const gd_system *sys, const gd_campbell_options *opt, 
                 }
                 if (sts[s]) break;
                 if (!res[s])
-                    sts[s] = solve_one(sys, sparse ? &a : NULL, &sym, opt, nreq, opt->speeds[s],
+                    sts[s] = solve_one(sys, sparse ? &a : NULL, &sym, opt, nsolve, opt->speeds[s],
                                        state_at(sys, states, s), ws, &res[s], &errs[s]);
                 else if (ws) /* the first speed's probe, solved cold */
                     gd_sparse_ws_remember(ws, res[s]);

@@ -13,16 +13,22 @@
  * problem, Q^H P(lambda) Q s = 0 (linearised, q <= 26), the values nearest the previous
  * ones kept; each residual r = P(lambda) x that fails the tolerance adds
  * P(sigma)^-1 r to Q (residual inverse iteration, Neumaier, SIAM J. Numer. Anal. 22,
- * 1985, accelerated by the projection), until every residual passes or the basis is
- * full. Then a completeness check: shift-invert at today's real shift -s, deflated by
- * the refined vectors (gd_ks_deflated_top); a remaining eigenvalue nearer -s than the
- * farthest refined one is a mode the continuation missed (one coming down from above
- * the window, or a copy of a repeated value).
+ * 1985, accelerated by the projection; after the first pass a cluster that split corrects
+ * each member at its own Ritz value until its residual is below GD_TRACK_OWN_SHIFT), until
+ * every residual passes or the basis is full. Then a completeness check: shift-invert at today's
+ * real shift -s, deflated by the refined vectors (gd_ks_deflated_top); a remaining eigenvalue
+ * nearer -s than the farthest refined one is a mode the continuation missed (one coming down from
+ * above the window, or a copy of a repeated value).
  *
  * Any failure (a cluster of more than GD_TRACK_MAXC modes, an overdamped or nearly
  * rigid mode, no convergence within the basis, a rigid-body mode whose shape is no
  * longer in K's null space, a missed mode) returns no result, and the caller solves
- * that speed by Krylov-Schur (the fallback). */
+ * that speed by Krylov-Schur (the fallback). A caller that asks for fewer modes than the
+ * previous speed has (gd_modal_options.nmodes: Campbell's guard band above its window)
+ * gets those at least: a cluster above them that fails is dropped with all above it,
+ * and the completeness check vouches for the needed ones only (a double mode the
+ * window's edge cuts, as the planetary set's translational pairs at rest, then neither
+ * wanders between its split values nor makes the check hard). */
 #include <cblas.h>
 #include <complex.h>
 #include <lapacke.h>
@@ -42,8 +48,11 @@
 #define GD_TRACK_STALL 1e-8
 #define GD_TRACK_CLUSTER 0.01 /* relative distance of the eigenvalues of one cluster */
 #define GD_TRACK_MAXC 6       /* largest cluster refined together */
-#define GD_TRACK_MAXQ 6       /* basis columns per cluster member */
+#define GD_TRACK_MAXQ 8       /* basis columns per cluster member */
 #define GD_TRACK_MAXIT 8      /* Rayleigh-Ritz passes per cluster */
+#define GD_TRACK_OWN_SHIFT                                                                         \
+    1e-7 /* a split cluster's members correct at their own values above it                         \
+          */
 /* Complex factorisations kept from speed to speed (at most GD_TRACK_SLOTS, within
  * GD_TRACK_LU_BYTES per workspace): a cluster whose shift lies within GD_TRACK_REUSE
  * of its distance to the other modes from a kept one corrects with that one, for one
@@ -291,7 +300,7 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
     /* factored: a factorisation for this pass' corrections; reuse: a kept one may
      * serve; fresh_prev: the previous pass' corrections came from a fresh one (only
      * then does a residual that stops falling mean the rounding floor) */
-    int factored = 0, reuse = 1, fresh_prev = 1;
+    int factored = 0, reuse = 1, fresh_prev = 1, own = 0;
     for (int i = 0; i < nx0 && q < qmax; i++) {
         double complex *v = w->Q + (size_t)q * n;
         memcpy(v, x0 + (size_t)i * n, (size_t)n * sizeof *v);
@@ -410,7 +419,17 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
              * sigma the mean of the cluster's first Ritz values (already far nearer the
              * eigenvalues than the extrapolation) */
             if (q + nadd >= qmax) continue;
-            if (!factored) {
+            if (it > 0 && c > 1 && rel > GD_TRACK_OWN_SHIFT) {
+                /* a cluster that split (a double mode under the gyroscopic terms): each
+                 * member corrects at its own Ritz value while far from converged (the
+                 * mean shift gains only the half-split over the distance to the next
+                 * mode per pass); near convergence the mean again (a shift at the value
+                 * itself leaves a correction all along the vector already in the basis) */
+                int fr = track_lu(a, sym, k, d, lam, gap, 0, w);
+                if (fr) return fr < 0 ? -1 : 1;
+                factored = 1;
+                own = 1;
+            } else if (!factored) {
                 double complex sg = 0;
                 for (int i = 0; i < c; i++)
                     sg += (m == i ? lam : lam0[i]) / c;
@@ -432,6 +451,11 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
             if (corth(w->Q, n, q + nadd, v)) nadd++;
         }
         fresh_prev = !factored || w->fresh;
+        if (own) { /* the next pass' mean shift: a fresh factorisation */
+            factored = 0;
+            reuse = 0;
+            own = 0;
+        }
         if (factored && !w->fresh) { /* a kept factorisation serves one pass */
             factored = 0;
             reuse = 0;
@@ -747,6 +771,9 @@ static gd_status track(const gd_dynmat *a, const gd_splu_symbolic *sym, const gd
             hypot(prev->modes[j].lambda_re, prev->modes[j].lambda_im) < 10 * rtol)
             return GD_OK; /* overdamped or near-rigid modes: Krylov-Schur sorts those */
     int nel = km - kr, n2 = 2 * n, ok = 0;
+    /* the modes the caller needs (gd_modal_options.nmodes, rigid ones included); prev's
+     * others are a guard band that may be dropped */
+    int need = opt->nmodes > 0 && opt->nmodes < km && !undamped_ok ? opt->nmodes : km;
     double kmax = 0;
     for (int q = 0; q < nnz; q++)
         kmax = fmax(kmax, fabs(k[q]));
@@ -795,7 +822,7 @@ static gd_status track(const gd_dynmat *a, const gd_splu_symbolic *sym, const gd
     /* the speed before: each mode's nearest value there (when the nearest both ways)
      * extrapolates the eigenvalue linearly, and its vector joins the start basis (with the
      * previous one it spans the linear extrapolation of the eigenvector) */
-    int have2 = prev2 && prev2->shape_re && prev2->shape_im && prev2->nmodes == km &&
+    int have2 = prev2 && prev2->shape_re && prev2->shape_im && prev2->nmodes >= km &&
                 prev2->ndof == n && isfinite(opt->speed) && prev2->speed != prev->speed;
     double ratio = have2 ? (opt->speed - prev->speed) / (prev->speed - prev2->speed) : 0;
     for (int j = 0; j < nel; j++) {
@@ -803,7 +830,7 @@ static gd_status track(const gd_dynmat *a, const gd_splu_symbolic *sym, const gd
         if (!have2 || prev2->modes[kr + j].rigid_body) continue;
         int best = -1;
         double bd = INFINITY;
-        for (int i = kr; i < km; i++) {
+        for (int i = kr; i < prev2->nmodes; i++) {
             double dd = cabs(prev2->modes[i].lambda_re + I * prev2->modes[i].lambda_im - lam0[j]);
             if (dd < bd) {
                 bd = dd;
@@ -832,7 +859,11 @@ static gd_status track(const gd_dynmat *a, const gd_splu_symbolic *sym, const gd
         while (j1 < nel && cabs(lam0[j1] - lam0[j1 - 1]) <= GD_TRACK_CLUSTER * cabs(lam0[j1]))
             j1++;
         int c = j1 - j0;
-        if (c > GD_TRACK_MAXC) goto done;
+        if (c > GD_TRACK_MAXC) {
+            if (kr + j0 < need) goto done;
+            nel = j0; /* above the window: dropped (see below) */
+            break;
+        }
         int nx0 = 0;
         for (int m = 0; m < c; m++) {
             const double *re = prev->shape_re + (size_t)(kr + j0 + m) * n,
@@ -860,18 +891,41 @@ static gd_status track(const gd_dynmat *a, const gd_splu_symbolic *sym, const gd
         double tol = opt->tol > 0 ? fmin(opt->tol, GD_TRACK_TOL) : GD_TRACK_TOL;
         int rc = refine_cluster(a, sym, k, d, c, lam0 + j0, x0, nx0, gap, tol, wp, fd + j0);
         if (rc < 0) goto nomem;
-        if (rc > 0) goto done;
+        if (rc > 0) {
+            /* a cluster of the guard band above the caller's window (a pair its edge cuts,
+             * whose one member's refinement wanders between the two split values; a mode
+             * leaving upwards): dropped with all above it, the check then covers the rest */
+            if (kr + j0 < need) goto done;
+            nel = j0;
+            break;
+        }
         j0 = j1;
     }
     /* completeness: no eigenvalue of the shift-invert operator outside the found ones
-     * above the smallest found |mu| = 1 / |lambda + s| */
+     * above the smallest |mu| = 1 / |lambda + s| of the modes the caller needs (the
+     * need - kr largest found; the guard band's are deflated but not vouched for: a mode
+     * just above the window's edge then costs nothing) */
     double thr = INFINITY;
+    int want = need - kr < 1 ? 1 : need - kr;
     for (int j = 0; j < nel; j++) {
         double complex lam = fd[j].lam;
         if (cimag(lam) < 0) lam = conj(lam);
         fd[j].lam = lam;
         if (!(hypot(creal(lam), cimag(lam)) > rtol)) goto done;
-        thr = fmin(thr, 1.0 / cabs(lam + s));
+    }
+    for (int j = 0; j < nel; j++) {
+        /* mode j's rank by |lambda + s| (ties by index): the want-th sets thr, fewer
+         * modes than want the farthest */
+        double dj = cabs(fd[j].lam + s);
+        int rank = 0;
+        for (int i = 0; i < nel; i++) {
+            double di = cabs(fd[i].lam + s);
+            rank += di < dj || (di == dj && i < j);
+        }
+        if (rank == want - 1 || (rank == nel - 1 && nel < want)) thr = 1.0 / dj;
+    }
+    for (int j = 0; j < nel; j++) {
+        double complex lam = fd[j].lam;
         for (int part = 0; part < 2; part++) {
             for (int i = 0; i < n; i++) {
                 double complex z1 = fd[j].x[i], z2 = lam * fd[j].x[i] / g;
@@ -918,6 +972,7 @@ static gd_status track(const gd_dynmat *a, const gd_splu_symbolic *sym, const gd
         ord[j] = (track_order){j, cabs(lam)};
     }
     qsort(ord, (size_t)nel, sizeof *ord, cmp_order);
+    km = kr + nel;
     res = gd_modal_result_new(sys, km, 0);
     if (!res) {
         free(ord);

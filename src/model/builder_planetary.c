@@ -72,6 +72,18 @@ static gd_status check_values(const gd_model *m, gd_error *err, const gd_planeta
                                msg);
             }
     }
+    if (!(isfinite(s->carrier_error[0]) && s->carrier_error[0] >= 0 &&
+          s->carrier_error[0] < s->carrier_radius)) {
+        snprintf(msg, sizeof msg, "carrier error %g m", s->carrier_error[0]);
+        return fail_at(m, err, s, path, "carrier_error.magnitude",
+                       "give a small position error in m (e.g. 20 um), below the carrier radius",
+                       msg);
+    }
+    if (!isfinite(s->carrier_error[1])) {
+        snprintf(msg, sizeof msg, "carrier error angle %g rad", s->carrier_error[1]);
+        return fail_at(m, err, s, path, "carrier_error.angle",
+                       "give the error's direction as an angle (e.g. 30 deg)", msg);
+    }
     if (s->planet_angles)
         for (int n = 0; n < s->nplanets; n++) {
             double a = s->planet_angles[n];
@@ -393,11 +405,15 @@ gd_status gd_model_add_planetary(gd_model *m, const gd_planetary_spec *spec, int
         ok = ok && (!s->member[j].node || bp.node[j]);
     }
     g.planet_angle = malloc((size_t)g.nplanets * sizeof *g.planet_angle);
-    if (s->pin_errors) g.pin_error = malloc((size_t)g.nplanets * sizeof *g.pin_error);
-    if (s->pin_errors_radial)
+    /* a carrier error moves every pin: it adds to both lists (made when not given) */
+    int carrier_error = s->carrier_error[0] > 0;
+    if (s->pin_errors || carrier_error)
+        g.pin_error = malloc((size_t)g.nplanets * sizeof *g.pin_error);
+    if (s->pin_errors_radial || carrier_error)
         g.pin_error_radial = malloc((size_t)g.nplanets * sizeof *g.pin_error_radial);
-    ok = ok && g.planet_angle && g.instance_name && (!s->pin_errors || g.pin_error) &&
-         (!s->pin_errors_radial || g.pin_error_radial) &&
+    ok = ok && g.planet_angle && g.instance_name &&
+         (!(s->pin_errors || carrier_error) || g.pin_error) &&
+         (!(s->pin_errors_radial || carrier_error) || g.pin_error_radial) &&
          gd_build_grow(&m->planetary, m->nplanetary, sizeof *m->planetary) &&
          gd_build_grow(&m->build->planetary, m->nplanetary, sizeof *m->build->planetary);
     if (!ok) {
@@ -422,9 +438,18 @@ gd_status gd_model_add_planetary(gd_model *m, const gd_planetary_spec *spec, int
                      g.name, KINDS[k], n + 1);
     for (int n = 0; n < g.nplanets; n++) {
         g.planet_angle[n] = planet_angle(s, n);
-        if (g.pin_error) g.pin_error[n] = s->pin_errors[n];
-        if (g.pin_error_radial) g.pin_error_radial[n] = s->pin_errors_radial[n];
+        if (g.pin_error) g.pin_error[n] = s->pin_errors ? s->pin_errors[n] : 0;
+        if (g.pin_error_radial)
+            g.pin_error_radial[n] = s->pin_errors_radial ? s->pin_errors_radial[n] : 0;
+        /* the offset E at phi seen from pin n: radially E cos(phi - psi_n), along the
+         * tangent (-sin psi_n, cos psi_n) E sin(phi - psi_n) */
+        if (carrier_error) {
+            double e = s->carrier_error[0], phi = s->carrier_error[1] - g.planet_angle[n];
+            g.pin_error[n] += e * sin(phi);
+            g.pin_error_radial[n] += e * cos(phi);
+        }
     }
+    memcpy(g.carrier_error, s->carrier_error, sizeof g.carrier_error);
     m->planetary[idx] = g;
     m->build->planetary[idx] = bp;
     m->nplanetary++;

@@ -7,16 +7,32 @@
 
 #include "model_file/model_file_impl.h"
 
-static const char *const SET_KEYS[] = {
-    "name",           "held",           "sun",           "ring",
-    "carrier",        "planets",        "teeth",         "base_radius",
-    "carrier_radius", "pressure_angle", "helix_angle",   "planet_tip_radius",
-    "mesh_stiffness", "mesh_damping",   "carrier_frame", "centrifugal_stiffness",
-    "geometry",       "mesh_laws",      "mesh_phases",   NULL};
+static const char *const SET_KEYS[] = {"name",
+                                       "held",
+                                       "sun",
+                                       "ring",
+                                       "carrier",
+                                       "planets",
+                                       "teeth",
+                                       "base_radius",
+                                       "carrier_radius",
+                                       "pressure_angle",
+                                       "helix_angle",
+                                       "planet_tip_radius",
+                                       "mesh_stiffness",
+                                       "mesh_damping",
+                                       "carrier_frame",
+                                       "centrifugal_stiffness",
+                                       "geometry",
+                                       "mesh_laws",
+                                       "mesh_phases",
+                                       "carrier_error",
+                                       NULL};
 static const char *const GEOMETRY_KEYS[] = {
     "module", "pressure_angle", "face_width", "profile_shift", "method", "points", NULL};
 static const char *const LAW_KEYS[] = {"tvms", "backlash", "damping", NULL};
 static const char *const PHASE_KEYS[] = {"sun", "ring", "sun_ring", NULL};
+static const char *const CARRIER_ERROR_KEYS[] = {"magnitude", "angle", NULL};
 static const char *const METHODS[] = {"energy", "iso6336", "single-pair-law", "square", NULL};
 static const char *const MEMBER_KEYS[] = {"node",      "mass",      "inertia",
                                           "k_support", "k_torsion", NULL};
@@ -204,6 +220,26 @@ static gd_status read_mesh_laws(gd_mparser *p, const gd_ynode *sm, const char *q
     return GD_OK;
 }
 
+/* `carrier_error: {magnitude, angle}`: the carrier's pin circle offset by the magnitude at
+ * the angle (from +x, as the planets' angles), the same vector for every pin */
+static gd_status read_carrier_error(gd_mparser *p, const gd_ynode *sm, const char *q,
+                                    gd_planetary_spec *s)
+{
+    gd_yreader *r = &p->r;
+    const gd_ynode *em = gd_ymap_get(sm, "carrier_error");
+    if (!em) return GD_OK;
+    char ep[160];
+    gd_ypath_key(ep, sizeof ep, q, "carrier_error");
+    gd_status st;
+    if ((st = gd_yexpect(r, em, GD_Y_MAP, ep)) ||
+        (st = gd_ycheck_keys(r, em, ep, CARRIER_ERROR_KEYS)) ||
+        (st = gd_yread_qty(r, em, "magnitude", ep, GD_QTY_LENGTH, GD_YREQ | GD_YNONNEG,
+                           &s->carrier_error[0], NULL)) ||
+        (st = gd_yread_qty(r, em, "angle", ep, GD_QTY_ANGLE, 0, &s->carrier_error[1], NULL)))
+        return st;
+    return GD_OK;
+}
+
 /* `mesh_phases: {sun: [...], ring: [...], sun_ring: x}` (mesh periods) */
 static gd_status read_phases(gd_mparser *p, const gd_ynode *sm, const char *q, gd_planetary_spec *s,
                              double *ph[2])
@@ -282,7 +318,7 @@ static gd_status read_set(gd_mparser *p, const gd_ynode *sm, const char *q, size
                             s.mesh_damping)) ||
         (st = read_planets(p, sm, q, &s, &angles, errors)) ||
         (st = read_mesh_laws(p, sm, q, &s, (int)teeth[0], tv)) ||
-        (st = read_phases(p, sm, q, &s, phases)))
+        (st = read_phases(p, sm, q, &s, phases)) || (st = read_carrier_error(p, sm, q, &s)))
         goto done;
     for (int j = 0; j < 3; j++) {
         /* range-checked before the conversion to int */

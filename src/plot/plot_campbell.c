@@ -162,7 +162,11 @@ gd_status gd_plot_campbell_opt(const gd_campbell_result *r, const gd_plot_campbe
     int ncrit = 0;
     for (int k = 0; k < r->ncritical; k++)
         ncrit += r->critical[k].frequency_hz <= fcap;
-    pl_trace *c = pl_trace_add(p, fp, "critical speeds", ncrit, NULL, NULL, PL_MARKERS, "#000");
+    /* none: no trace (plotly draws no trace group for an empty one, so the page's declared
+     * count would not match what it shows) */
+    pl_trace *c =
+        ncrit > 0 ? pl_trace_add(p, fp, "critical speeds", ncrit, NULL, NULL, PL_MARKERS, "#000")
+                  : NULL;
     if (c && oper) {
         c->marker_color = calloc((size_t)ncrit + 1, sizeof *c->marker_color);
         if (!c->marker_color) p->nomem = 1;

@@ -202,6 +202,26 @@ TEST(static_load_sharing)
                             "static " LP " --torque 100N*m --set "
                             "'planetary_sets.lp.planets.pin_errors=[20 um, 0]'",
                             "pin_errors", "2 pin errors for 4 planets"));
+    /* a carrier error (every pin moved by 20 um at 30 deg): K_gamma 1.340 with Lin & Parker's
+     * supports (the closed form for rigid members is in tests/elements/test_planetary.c) */
+    o = run_json_args(&s, "static " LP " --torque 100N*m --input sun --hold carrier --set "
+                          "'planetary_sets.lp.carrier_error={magnitude: 20 um, angle: 30 deg}'");
+    REQUIRE(o);
+    p = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(o, "planetary_sets"), 0);
+    CHECK_REL(jnum(p, "load_sharing_factor"), 1.34047, 1e-5);
+    cJSON_Delete(o);
+    CHECK(run_fails_cleanly(&s,
+                            "static " LP " --torque 100N*m --set "
+                            "'planetary_sets.lp.carrier_error={magnitude: 1 m}'",
+                            "carrier_error.magnitude", "below the carrier radius"));
+    CHECK(run_fails_cleanly(&s,
+                            "static " LP " --torque 100N*m --set "
+                            "'planetary_sets.lp.carrier_error={magnitude: -2 um}'",
+                            "carrier_error.magnitude", "must not be negative"));
+    CHECK(run_fails_cleanly(&s,
+                            "static " LP " --torque 100N*m --set "
+                            "'planetary_sets.lp.carrier_error={angle: 30 deg}'",
+                            "carrier_error.magnitude", "missing"));
     scratch_close(&s);
 }
 

@@ -531,6 +531,23 @@ TEST(equal_load_sharing)
     }
 }
 
+/* The closed form's planet levers (docs/planetary.md, "Static load sharing"): c2 = k_sp k_p
+ * a_s^T K_p^-1 t and c3 = k_sp k_p a_s^T K_p^-1 r with K_p = k_sp a_s a_s^T + k_rp a_r a_r^T
+ * + k_p diag(1, 1, 0), K_p^-1 by LAPACK's dposv on the 3 x 3; 0 on failure. */
+static int planet_levers(double *c2, double *c3)
+{
+    double K[9] = {0}, x[6] = {0, 1, 0, 1, 0, 0}; /* K_p^-1 t and K_p^-1 r */
+    const double as[3] = {-sin(ALPHA), -cos(ALPHA), 1}, ar[3] = {sin(ALPHA), -cos(ALPHA), -1};
+    add_outer(K, 3, KSP, as);
+    add_outer(K, 3, KSP, ar);
+    K[0] += KB;
+    K[4] += KB;
+    if (LAPACKE_dposv(LAPACK_COL_MAJOR, 'U', 3, 2, K, 3, x, 3) != 0) return 0;
+    *c2 = KSP * KB * (as[0] * x[0] + as[1] * x[1] + as[2] * x[2]);
+    *c3 = KSP * KB * (as[0] * x[3] + as[1] * x[4] + as[2] * x[5]);
+    return 1;
+}
+
 /* A pin error e_1 on planet 1 (docs/planetary.md, "Load sharing"): with the central members'
  * translations rigid (supports 1e14 N/m: 5e-6 of the meshes' stiffness), each planet solves
  * K_p x = -k_sp u_s a_s + k_p e_n t with K_p = k_sp a_s a_s^T + k_rp a_r a_r^T + k_p diag(1,
@@ -545,14 +562,8 @@ TEST(pin_error_load_sharing_against_the_closed_form)
     gd_static_planetary_loads pl;
     REQUIRE(sharing(m, T, &pl));
     gd_model_free(m);
-    double K[9] = {0}, x[3] = {0, 1, 0};
-    const double as[3] = {-sin(ALPHA), -cos(ALPHA), 1}, ar[3] = {sin(ALPHA), -cos(ALPHA), -1};
-    add_outer(K, 3, KSP, as);
-    add_outer(K, 3, KSP, ar);
-    K[0] += KB;
-    K[4] += KB;
-    REQUIRE(LAPACKE_dposv(LAPACK_COL_MAJOR, 'U', 3, 1, K, 3, x, 3) == 0);
-    double c2 = KSP * KB * (as[0] * x[0] + as[1] * x[1] + as[2] * x[2]), mean = e1 / N;
+    double c2, c3, mean = e1 / N;
+    REQUIRE(planet_levers(&c2, &c3));
     double want[4], sum = 0, mx = 0;
     for (int n = 0; n < N; n++) {
         want[n] = T / (N * RS) + c2 * ((n == 0 ? e1 : 0) - mean);
@@ -583,15 +594,8 @@ TEST(radial_pin_error_load_sharing_against_the_closed_form)
     REQUIRE(sharing(m, T, &pl) && sharing(m0, T, &p0));
     gd_model_free(m);
     gd_model_free(m0);
-    double K[9] = {0}, x[6] = {0, 1, 0, 1, 0, 0}; /* K_p^-1 t and K_p^-1 r */
-    const double as[3] = {-sin(ALPHA), -cos(ALPHA), 1}, ar[3] = {sin(ALPHA), -cos(ALPHA), -1};
-    add_outer(K, 3, KSP, as);
-    add_outer(K, 3, KSP, ar);
-    K[0] += KB;
-    K[4] += KB;
-    REQUIRE(LAPACKE_dposv(LAPACK_COL_MAJOR, 'U', 3, 2, K, 3, x, 3) == 0);
-    double c2 = KSP * KB * (as[0] * x[0] + as[1] * x[1] + as[2] * x[2]);
-    double c3 = KSP * KB * (as[0] * x[3] + as[1] * x[4] + as[2] * x[5]);
+    double c2, c3;
+    REQUIRE(planet_levers(&c2, &c3));
     CHECK(fabs(c3) < 1e-9 * fabs(c2));
     double want[4], sum = 0, mx = 0;
     for (int n = 0; n < N; n++) {
@@ -605,6 +609,53 @@ TEST(radial_pin_error_load_sharing_against_the_closed_form)
     }
     CHECK(fabs(pl.sun_force[1] - pl.sun_force[0]) > 0.05 * T / (N * RS)); /* e_2 matters */
     CHECK_REL(pl.load_sharing, N * mx / sum, 1e-4);
+}
+
+/* A carrier error E at phi (docs/planetary.md, "Static load sharing"): every pin moves by the
+ * same vector, pin n by rho_n = E cos(phi - psi_n) outwards and e_n = E sin(phi - psi_n)
+ * along its tangent. The builder's pin errors are those (the same forces as the lists written
+ * out, to 1e-9), and with rigid central members, one pressure angle (c3 = 0) and equal
+ * spacing (mean e = 0): F_n = T / (N r_s) + c2 E sin(phi - psi_n), K_gamma = 1 + N r_s
+ * max_n (c2 E sin(phi - psi_n)) / T. N = 3 and 4, E = 10 um at 30 deg. */
+TEST(carrier_error_load_sharing_against_the_closed_form)
+{
+    const double E = 10e-6, phi = 30 * PI / 180, T = 100;
+    double c2, c3;
+    REQUIRE(planet_levers(&c2, &c3));
+    CHECK(fabs(c3) < 1e-9 * fabs(c2)); /* one pressure angle: the radial parts load nothing */
+    for (int N = 3; N <= 4; N++) {
+        gd_model *m = lp_model_ex(N, 1e14, 1e14, "",
+                                  "    carrier_error: {magnitude: 10 um, "
+                                  "angle: 30 deg}\n");
+        char lists[512], *w = lists;
+        w += sprintf(w, ", pin_errors: [");
+        for (int n = 0; n < N; n++)
+            w += sprintf(w, "%s%.17g", n ? ", " : "", E * sin(phi - 2 * PI * n / N));
+        w += sprintf(w, "], pin_errors_radial: [");
+        for (int n = 0; n < N; n++)
+            w += sprintf(w, "%s%.17g", n ? ", " : "", E * cos(phi - 2 * PI * n / N));
+        sprintf(w, "]");
+        gd_model *m0 = lp_model_ex(N, 1e14, 1e14, lists, "");
+        REQUIRE(m && m0);
+        CHECK_ABS(m->planetary[0].carrier_error[0], E, 1e-18);
+        gd_static_planetary_loads pl, p0;
+        REQUIRE(sharing(m, T, &pl) && sharing(m0, T, &p0));
+        gd_model_free(m);
+        gd_model_free(m0);
+        double mx = -INFINITY;
+        for (int n = 0; n < N; n++) {
+            double sn = sin(phi - 2 * PI * n / N);
+            CHECK_REL(pl.sun_force[n], p0.sun_force[n], 1e-9);
+            CHECK_REL(pl.bearing_force[n], p0.bearing_force[n], 1e-9);
+            CHECK_REL(pl.sun_force[n], T / (N * RS) + c2 * E * sn, 1e-4);
+            mx = fmax(mx, c2 * E * sn);
+        }
+        double kg = 1 + mx * N * RS / T;
+        printf("  N = %d: c2 %.6g N/m, K_gamma %.6g (closed form %.6g)\n", N, c2, pl.load_sharing,
+               kg);
+        CHECK(kg > 1.2); /* the error matters */
+        CHECK_REL(pl.load_sharing, kg, 1e-4);
+    }
 }
 
 /* Planet phasing ([Parker2000]) on a modal FRF: Lin & Parker's N = 4 set with Z_s = 21
@@ -751,7 +802,8 @@ TEST(builder_api)
 RUN_TESTS(T(unequal_spacing_keeps_the_planet_modes), T(builder_api),
           T(planet_phasing_selects_the_mode_class), T(equal_load_sharing),
           T(pin_error_load_sharing_against_the_closed_form),
-          T(radial_pin_error_load_sharing_against_the_closed_form), T(carrier_frame_terms),
+          T(radial_pin_error_load_sharing_against_the_closed_form),
+          T(carrier_error_load_sharing_against_the_closed_form), T(carrier_frame_terms),
           T(cooley_parker_at_rest), T(rotating_carrier_against_the_hermitian_count),
           T(mode_classes_and_their_counts), T(bearing_matrix_by_hand),
           T(lin_parker_table2_and_independent_assembly), T(lin_parker_multiplicities),

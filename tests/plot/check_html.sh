@@ -31,8 +31,11 @@ g transient tests/transient/runup_rotor.yaml --speed-ramp 4000:9000rpm --duratio
   --waterfall gear48.x --revs-per-block 8 --method galpha --step 1e-4 --plot "$out/runup.html"
 g report tests/transient/runup_rotor.yaml --speeds 0:9000rpm:7 --freq-points 50 \
   --run-up 4000:9000rpm --run-up-revolutions 100 --out "$out/report_runup.html"
+# a planetary set's report (Lin & Parker's set: its drawing, mode classes, a Campbell
+# diagram without critical speeds)
+g report examples/planetary_lin_parker.yaml --out "$out/report_planetary.html"
 # FILE:PLOTS, the plot elements each page must draw (the 3-D view counts as one)
 exec node tests/plot/check_html.mjs "$out/modal.html:11" "$out/campbell.html:2" \
   "$out/frf_directional.html:3" "$out/unbalance.html:10" "$out/transient.html:3" \
   "$out/mesh_stiffness.html:4" "$out/periodic.html:3" "$out/waterfall.html:3" "$out/report.html:32" \
-  "$out/runup.html:4" "$out/report_runup.html:30"
+  "$out/runup.html:4" "$out/report_runup.html:30" "$out/report_planetary.html:86"
