@@ -23,7 +23,7 @@
 
 #include "geardyn/transient_model.h"
 #include "periodic/continuation_impl.h"
-#include "periodic/shooting_impl.h"
+#include "periodic/shooting/shooting_impl.h"
 #include "periodic/periodic_impl.h"
 
 /* Most periods of the warm-start transient (it stops once a period changes the state by
