@@ -144,50 +144,103 @@ static int steps_agree(const double *a, const double *b, int n)
     return out_a == out_b;
 }
 
-int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double *X, int steps,
-                          int s0, int steps_cap, int *steps_used, const gd_tr_record *bl, int nbl,
-                          double wcut, double budget, double *mu_re, double *mu_im, int *nmu,
-                          int *nbasis, char *msg)
-{
-    const int nf = h->nf;
-    *nmu = 0;
-    *nbasis = 0;
-    msg[0] = '\0';
+/* The reduced problem of one point, built in the stages the method's description names
+ * (the modes, the residual flexibility, the balanced A0 and its eigenvectors, the inputs
+ * in that basis), then the step-count loop. Every array is owned (red_free). */
+typedef struct red {
+    const hb *h;
+    gd_transient *tr;
+    double om;
+    const double *X;
     const gd_tr_term *term;
-    const int nt = gd_transient_terms(tr, &term);
-    if (nt < 0) return 1;
-    if (nf > 6000) {
-        snprintf(msg, 160,
-                 "the reduced basis needs every mode of the %d free DOFs (dense, at most 6000)",
-                 nf);
-        return 5;
-    }
-    /* every mode of (K, M), dense: about 10 nf^3 flops before any step (work.c) */
-    const double setup = gd_per_work_seconds(10.0 * pow(nf, 3));
-    if (budget > 0 && setup > budget) {
-        snprintf(msg, 160,
-                 "stability not computed: the reduced basis's modes of %d DOFs would take "
-                 "about %.3g s (counted work), over the %g s budget per point",
-                 nf, setup, budget);
-        return 4;
-    }
-    int rc = 1;
+    int nf, nt;
+    /* red_modes: dense K, M, D (freed once reduced), the modes Phi and eigenvalues lam of
+     * (sym K, M), nk kept below the cut-off; the term groups by equal u (tg: each term's,
+     * grep: each group's first term, ng groups) */
+    double *Km, *Mm, *Dm, *Phi, *lam;
+    int *tg, *grep;
+    int nk, ng;
+    /* red_residual: nres residual vectors (columns of C, nd = nf - nk entries each) */
+    double *C;
+    int nd, nres;
+    /* red_reduce: the basis V (nf x r), the balanced A0 (n2 x n2, n2 = 2 r), the reduced
+     * force directions ur and input rows wr, the balancing cs, the discarded modes'
+     * damping dd; XR, XL and tmp are work (red_eigenbasis: XR the eigenvectors, XL their
+     * inverse) */
+    int r, n2;
+    size_t rr;
+    double *V, *A0, *XR, *XL, *lre, *lim, *ur, *wr, *cs, *dd, *tmp;
+    int *ipiv;
+    /* red_inputs: P, the input rows At, Bt in the eigenvector basis and their products;
+     * the propagation's work */
+    double *Pt, *At, *Bt, *AP, *BP, *Psi, *mod, *prev, *Rk, *Y, *Z, *sqv, *yv;
+    int *sup;
+    /* one step count: its steps tb (nsub), the terms' scalars at their Gauss points, the
+     * transform; the discarded modes' estimates est (nest) */
+    double *tb, *scal, *hc, *smp, *est, *small;
+    fftw_plan plan;
+    int nsub, nest;
+} red;
+
+static void red_free(red *R)
+{
+    if (R->plan) fftw_destroy_plan(R->plan);
+    fftw_free(R->hc);
+    free(R->smp);
+    free(R->Km);
+    free(R->Mm);
+    free(R->Dm);
+    free(R->Phi);
+    free(R->lam);
+    free(R->tg);
+    free(R->grep);
+    free(R->V);
+    free(R->C);
+    free(R->A0);
+    free(R->XR);
+    free(R->XL);
+    free(R->lre);
+    free(R->lim);
+    free(R->Pt);
+    free(R->At);
+    free(R->Bt);
+    free(R->AP);
+    free(R->BP);
+    free(R->Psi);
+    free(R->Rk);
+    free(R->Y);
+    free(R->Z);
+    free(R->sqv);
+    free(R->yv);
+    free(R->ur);
+    free(R->wr);
+    free(R->tmp);
+    free(R->tb);
+    free(R->ipiv);
+    free(R->sup);
+    free(R->dd);
+    free(R->est);
+    free(R->small);
+    free(R->cs);
+    free(R->scal);
+    free(R->mod);
+    free(R->prev);
+}
+
+/* The modes of (sym K, M) below the cut-off wcut (rad/s) and the term groups. 0 ok. */
+static int red_modes(red *R, double wcut, char *msg)
+{
+    const int nf = R->nf, nt = R->nt;
+    const gd_tr_term *term = R->term;
     const size_t ff = (size_t)nf * nf;
-    double *Km = malloc(ff * sizeof *Km), *Mm = malloc(ff * sizeof *Mm),
-           *Dm = malloc(ff * sizeof *Dm), *Phi = malloc(ff * sizeof *Phi),
-           *lam = malloc((size_t)nf * sizeof *lam);
-    int *tg = malloc((size_t)(nt + 1) * sizeof *tg),
-        *grep = malloc((size_t)(nt + 1) * sizeof *grep);
-    double *V = NULL, *C = NULL, *A0 = NULL, *XR = NULL, *XL = NULL, *lre = NULL, *lim = NULL,
-           *Pt = NULL, *At = NULL, *Bt = NULL, *AP = NULL, *BP = NULL, *Psi = NULL, *Rk = NULL,
-           *Y = NULL, *Z = NULL, *sqv = NULL, *yv = NULL, *ur = NULL, *wr = NULL, *tmp = NULL,
-           *tb = NULL, *hc = NULL, *smp = NULL, *dd = NULL, *est = NULL, *small = NULL, *cs = NULL;
-    double *scal = NULL, *mod = NULL, *prev = NULL;
-    int *ipiv = NULL, *sup = NULL;
-    fftw_plan plan = NULL;
-    if (!Km || !Mm || !Dm || !Phi || !lam || !tg || !grep) goto done;
+    double *Km = R->Km = malloc(ff * sizeof *Km), *Mm = R->Mm = malloc(ff * sizeof *Mm),
+           *Dm = R->Dm = malloc(ff * sizeof *Dm), *Phi = R->Phi = malloc(ff * sizeof *Phi),
+           *lam = R->lam = malloc((size_t)nf * sizeof *lam);
+    int *tg = R->tg = malloc((size_t)(nt + 1) * sizeof *tg),
+        *grep = R->grep = malloc((size_t)(nt + 1) * sizeof *grep);
+    if (!Km || !Mm || !Dm || !Phi || !lam || !tg || !grep) return 1;
     gd_csc M, D, K;
-    gd_transient_matrices(tr, &M, &D, &K);
+    gd_transient_matrices(R->tr, &M, &D, &K);
     dense_of(&K, nf, Km);
     dense_of(&M, nf, Mm);
     dense_of(&D, nf, Dm);
@@ -198,19 +251,20 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
             Phi[(size_t)j * nf + i] = 0.5 * (Km[(size_t)j * nf + i] + Km[(size_t)i * nf + j]);
     {
         double *Mc = malloc(ff * sizeof *Mc);
-        if (!Mc) goto done;
+        if (!Mc) return 1;
         memcpy(Mc, Mm, ff * sizeof *Mc);
         int info = LAPACKE_dsygvd(LAPACK_COL_MAJOR, 1, 'V', 'U', nf, Phi, nf, Mc, nf, lam);
         free(Mc);
         if (info) {
             snprintf(msg, 160, "stability not computed: the modes of (K, M) failed (dsygvd %d)",
                      info);
-            goto done;
+            return 1;
         }
     }
     int nk = 0;
     while (nk < nf && lam[nk] < wcut * wcut)
         nk++;
+    R->nk = nk;
     /* the term groups by equal u (the columns of P) */
     int ng = 0;
     for (int t = 0; t < nt; t++) {
@@ -222,16 +276,26 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
         if (g == ng) grep[ng++] = t;
         tg[t] = g;
     }
-    /* the residual flexibility of the discarded modes along each distinct u and w, in the
-     * discarded modes' coordinates (M-orthonormal there: Gram-Schmidt in plain dot
-     * products), dependent ones dropped */
+    R->ng = ng;
+    return 0;
+}
+
+/* The residual flexibility of the discarded modes along each distinct u and w, in the
+ * discarded modes' coordinates (M-orthonormal there: Gram-Schmidt in plain dot
+ * products), dependent ones dropped. 0 ok. */
+static int red_residual(red *R)
+{
+    const int nf = R->nf, nt = R->nt, nk = R->nk;
+    const gd_tr_term *term = R->term;
+    const int *tg = R->tg;
+    const double *Phi = R->Phi, *lam = R->lam;
     const int nord = GD_FLOQUET_RESID_ORDER;
-    const int nd = nf - nk, ncand = 2 * nt * nord;
+    const int nd = R->nd = nf - nk, ncand = 2 * nt * nord;
     int nres = 0;
     if (nd > 0 && ncand > 0) {
-        C = malloc((size_t)nd * ncand * sizeof *C);
-        tmp = malloc((size_t)nf * sizeof *tmp);
-        if (!C || !tmp) goto done;
+        double *C = R->C = malloc((size_t)nd * ncand * sizeof *C);
+        R->tmp = malloc((size_t)nf * sizeof *R->tmp);
+        if (!C || !R->tmp) return 1;
         for (int c = 0; c < ncand; c++) {
             const int ord = c / (2 * nt), cc = c % (2 * nt);
             const gd_tr_term *tm = &term[cc % nt];
@@ -267,27 +331,45 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
             nres++;
         }
     }
+    R->nres = nres;
+    return 0;
+}
+
+/* The basis V = [kept modes, residual vectors] (every mode where those would not be
+ * fewer), the reduced Kr, Dr, Mr, the balanced A0, the reduced force directions and input
+ * rows, and the discarded modes' damping; K, M and D are freed. 0 ok. */
+static int red_reduce(red *R, char *msg)
+{
+    const int nf = R->nf, nt = R->nt, nk = R->nk, nd = R->nd, nres = R->nres, ng = R->ng;
+    const gd_tr_term *term = R->term;
+    const int *grep = R->grep;
+    const double *Phi = R->Phi, *C = R->C, *Km = R->Km, *Mm = R->Mm, *Dm = R->Dm;
+    const size_t ff = (size_t)nf * nf;
     int r = nk + nres;
     if (r >= nf || nres >= nd) r = nf; /* every mode */
     if (r == 0) {
         snprintf(msg, 160, "stability not computed: the reduced basis is empty");
-        goto done;
+        return 1;
     }
     const int n2 = 2 * r;
     const size_t rr = (size_t)n2 * n2;
-    V = malloc((size_t)nf * r * sizeof *V);
-    A0 = calloc(rr, sizeof *A0);
-    XR = malloc(rr * sizeof *XR);
-    XL = malloc(rr * sizeof *XL);
-    lre = malloc((size_t)n2 * sizeof *lre);
-    lim = malloc((size_t)n2 * sizeof *lim);
-    ipiv = malloc((size_t)n2 * sizeof *ipiv);
-    ur = malloc(((size_t)ng * r + 1) * sizeof *ur);
-    cs = malloc((size_t)r * sizeof *cs);
-    wr = malloc(((size_t)nt * r + 1) * sizeof *wr);
-    free(tmp);
-    tmp = malloc(((size_t)nf * r + rr) * sizeof *tmp);
-    if (!V || !A0 || !XR || !XL || !lre || !lim || !ipiv || !ur || !wr || !tmp || !cs) goto done;
+    R->r = r;
+    R->n2 = n2;
+    R->rr = rr;
+    double *V = R->V = malloc((size_t)nf * r * sizeof *V);
+    double *A0 = R->A0 = calloc(rr, sizeof *A0);
+    double *XR = R->XR = malloc(rr * sizeof *XR);
+    double *XL = R->XL = malloc(rr * sizeof *XL);
+    R->lre = malloc((size_t)n2 * sizeof *R->lre);
+    R->lim = malloc((size_t)n2 * sizeof *R->lim);
+    int *ipiv = R->ipiv = malloc((size_t)n2 * sizeof *ipiv);
+    double *ur = R->ur = malloc(((size_t)ng * r + 1) * sizeof *ur);
+    double *cs = R->cs = malloc((size_t)r * sizeof *cs);
+    double *wr = R->wr = malloc(((size_t)nt * r + 1) * sizeof *wr);
+    free(R->tmp);
+    double *tmp = R->tmp = malloc(((size_t)nf * r + rr) * sizeof *tmp);
+    if (!V || !A0 || !XR || !XL || !R->lre || !R->lim || !ipiv || !ur || !wr || !tmp || !cs)
+        return 1;
     if (r == nf) {
         memcpy(V, Phi, ff * sizeof *V);
     } else {
@@ -332,14 +414,14 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
             }
         /* Mr^-1 [Kr, Dr, U] (Mr is I to rounding: M-orthonormal basis) */
         double *rhs = malloc(((size_t)r * (2 * r + ng) + 1) * sizeof *rhs);
-        if (!rhs) goto done;
+        if (!rhs) return 1;
         memcpy(rhs, Kr, (size_t)r * r * sizeof *rhs);
         memcpy(rhs + (size_t)r * r, Dr, (size_t)r * r * sizeof *rhs);
         memcpy(rhs + 2 * (size_t)r * r, ur, (size_t)ng * r * sizeof *rhs);
         int info = LAPACKE_dgesv(LAPACK_COL_MAJOR, r, 2 * r + ng, Mr, r, ipiv, rhs, r);
         if (info) {
             free(rhs);
-            goto done;
+            return 1;
         }
         memcpy(ur, rhs + 2 * (size_t)r * r, (size_t)ng * r * sizeof *ur);
         /* balanced state [c_j x_j; x_j'], c_j = sqrt(Kr_jj) (the kept mode's frequency):
@@ -362,11 +444,11 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
     }
     /* the discarded modes' damping phi_j^T D phi_j (their multipliers' estimate below) */
     if (r < nf) {
-        dd = malloc((size_t)nd * sizeof *dd);
+        double *dd = R->dd = malloc((size_t)nd * sizeof *dd);
         double *DP = malloc((size_t)nf * nd * sizeof *DP);
         if (!dd || !DP) {
             free(DP);
-            goto done;
+            return 1;
         }
         cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, nf, nd, nf, 1.0, Dm, nf,
                     Phi + (size_t)nk * nf, nf, 0.0, DP, nf);
@@ -374,71 +456,87 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
             dd[j] = cblas_ddot(nf, Phi + (size_t)(nk + j) * nf, 1, DP + (size_t)j * nf, 1);
         free(DP);
     }
-    free(Km);
-    free(Dm);
-    free(Mm);
-    Km = Dm = Mm = NULL;
-    /* A0 = XR Lambda XR^-1 (real blocks for the complex pairs) */
-    {
-        double dummy[1];
-        memcpy(XL, A0, rr * sizeof *XL);
-        int info =
-            LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'V', n2, XL, n2, lre, lim, dummy, 1, XR, n2);
-        if (info) goto done;
-        /* a defective eigenvalue (a free rotation: the Jordan block at 0) or a near one
-         * leaves no usable eigenvector basis: judged on XR in the balanced state
-         * [c x; x'] (c the largest kept frequency, so a mode's eigenvector is [c x; s x]
-         * with |s| <= c), each column of unit length: a free rotation's pair s ~ 0 has two
-         * parallel columns */
-        double rcond = 0.0;
-        const double cb = 1.0; /* the state is balanced already */
-        double *E = tmp;       /* nf r + rr >= rr */
-        for (int j = 0; j < n2; j++) {
-            double *e = E + (size_t)j * n2, nrm = 0.0;
-            for (int i = 0; i < n2; i++) {
-                e[i] = XR[(size_t)j * n2 + i] * (i < r ? cb : 1.0);
-                nrm += e[i] * e[i];
-            }
-            nrm = nrm > 0 ? 1.0 / sqrt(nrm) : 1.0;
-            for (int i = 0; i < n2; i++)
-                e[i] *= nrm;
+    free(R->Km);
+    free(R->Dm);
+    free(R->Mm);
+    R->Km = R->Dm = R->Mm = NULL;
+    return 0;
+}
+
+/* A0 = XR Lambda XR^-1 (real blocks for the complex pairs), XL = XR^-1; 5 (with msg)
+ * where A0 has no well-conditioned eigenvector basis, 1 another failure, 0 ok. */
+static int red_eigenbasis(red *R, char *msg)
+{
+    const int nf = R->nf, r = R->r, n2 = R->n2;
+    const size_t rr = R->rr;
+    double *XR = R->XR, *XL = R->XL, *tmp = R->tmp;
+    int *ipiv = R->ipiv;
+    const double *lam = R->lam;
+    double dummy[1];
+    memcpy(XL, R->A0, rr * sizeof *XL);
+    int info =
+        LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'V', n2, XL, n2, R->lre, R->lim, dummy, 1, XR, n2);
+    if (info) return 1;
+    /* a defective eigenvalue (a free rotation: the Jordan block at 0) or a near one
+     * leaves no usable eigenvector basis: judged on XR in the balanced state
+     * [c x; x'] (c the largest kept frequency, so a mode's eigenvector is [c x; s x]
+     * with |s| <= c), each column of unit length: a free rotation's pair s ~ 0 has two
+     * parallel columns */
+    double rcond = 0.0;
+    const double cb = 1.0; /* the state is balanced already */
+    double *E = tmp;       /* nf r + rr >= rr */
+    for (int j = 0; j < n2; j++) {
+        double *e = E + (size_t)j * n2, nrm = 0.0;
+        for (int i = 0; i < n2; i++) {
+            e[i] = XR[(size_t)j * n2 + i] * (i < r ? cb : 1.0);
+            nrm += e[i] * e[i];
         }
-        double anorm = LAPACKE_dlange(LAPACK_COL_MAJOR, '1', n2, n2, E, n2);
-        info = LAPACKE_dgetrf(LAPACK_COL_MAJOR, n2, n2, E, n2, ipiv);
-        if (!info) info = LAPACKE_dgecon(LAPACK_COL_MAJOR, '1', n2, E, n2, anorm, &rcond);
-        memcpy(XL, XR, rr * sizeof *XL);
-        if (!info) info = LAPACKE_dgetrf(LAPACK_COL_MAJOR, n2, n2, XL, n2, ipiv);
-        /* a free rotation shows plainly in the modes of (K, M): a zero eigenvalue */
-        const int free_body = lam[0] <= 1e-12 * fabs(lam[nf - 1]);
-        if (info || free_body || !(rcond > GD_FLOQUET_RCOND)) {
-            snprintf(msg, 160,
-                     "the reduced constant part has no well-conditioned eigenvector basis "
-                     "(%s, reciprocal condition %.1e)",
-                     free_body ? "a free rotation" : "near-defective modes", rcond);
-            rc = 5;
-            goto done;
-        }
-        if (LAPACKE_dgetri(LAPACK_COL_MAJOR, n2, XL, n2, ipiv)) goto done;
+        nrm = nrm > 0 ? 1.0 / sqrt(nrm) : 1.0;
+        for (int i = 0; i < n2; i++)
+            e[i] *= nrm;
     }
-    /* P (n2 x ng) = XR^-1 [0; ur_g]; At, Bt (nt x n2) rows [wr_t, 0] XR and [0, wr_t] XR;
-     * AP, BP (nt x ng) = At P, Bt P */
-    Pt = malloc(((size_t)n2 * ng + 1) * sizeof *Pt);
-    At = malloc(((size_t)nt * n2 + 1) * sizeof *At);
-    Bt = malloc(((size_t)nt * n2 + 1) * sizeof *Bt);
-    AP = malloc(((size_t)nt * ng + 1) * sizeof *AP);
-    BP = malloc(((size_t)nt * ng + 1) * sizeof *BP);
-    Psi = calloc(rr, sizeof *Psi);
-    mod = malloc((size_t)n2 * sizeof *mod);
-    prev = malloc((size_t)n2 * sizeof *prev);
-    Rk = malloc((2 * (size_t)nt * n2 + 1) * sizeof *Rk);
-    Y = malloc((2 * (size_t)nt * n2 + 1) * sizeof *Y);
-    Z = malloc((6 * (size_t)(ng + 1) * n2 + 1) * sizeof *Z);
-    sqv = malloc((2 * (size_t)nt + 2) * sizeof *sqv);
-    yv = calloc(2 * (size_t)nf, sizeof *yv);
-    sup = malloc((size_t)(nf > 0 ? nf : 1) * sizeof *sup);
-    if (!Pt || !At || !Bt || !AP || !BP || !Psi || !Rk || !Y || !Z || !sqv || !yv || !sup || !mod ||
-        !prev)
-        goto done;
+    double anorm = LAPACKE_dlange(LAPACK_COL_MAJOR, '1', n2, n2, E, n2);
+    info = LAPACKE_dgetrf(LAPACK_COL_MAJOR, n2, n2, E, n2, ipiv);
+    if (!info) info = LAPACKE_dgecon(LAPACK_COL_MAJOR, '1', n2, E, n2, anorm, &rcond);
+    memcpy(XL, XR, rr * sizeof *XL);
+    if (!info) info = LAPACKE_dgetrf(LAPACK_COL_MAJOR, n2, n2, XL, n2, ipiv);
+    /* a free rotation shows plainly in the modes of (K, M): a zero eigenvalue */
+    const int free_body = lam[0] <= 1e-12 * fabs(lam[nf - 1]);
+    if (info || free_body || !(rcond > GD_FLOQUET_RCOND)) {
+        snprintf(msg, 160,
+                 "the reduced constant part has no well-conditioned eigenvector basis "
+                 "(%s, reciprocal condition %.1e)",
+                 free_body ? "a free rotation" : "near-defective modes", rcond);
+        return 5;
+    }
+    if (LAPACKE_dgetri(LAPACK_COL_MAJOR, n2, XL, n2, ipiv)) return 1;
+    return 0;
+}
+
+/* P (n2 x ng) = XR^-1 [0; ur_g]; At, Bt (nt x n2) rows [wr_t, 0] XR and [0, wr_t] XR;
+ * AP, BP (nt x ng) = At P, Bt P; and the propagation's work. 0 ok. */
+static int red_inputs(red *R)
+{
+    const int nf = R->nf, nt = R->nt, ng = R->ng, r = R->r, n2 = R->n2;
+    const size_t rr = R->rr;
+    double *Pt = R->Pt = malloc(((size_t)n2 * ng + 1) * sizeof *Pt);
+    double *At = R->At = malloc(((size_t)nt * n2 + 1) * sizeof *At);
+    double *Bt = R->Bt = malloc(((size_t)nt * n2 + 1) * sizeof *Bt);
+    double *AP = R->AP = malloc(((size_t)nt * ng + 1) * sizeof *AP);
+    double *BP = R->BP = malloc(((size_t)nt * ng + 1) * sizeof *BP);
+    R->Psi = calloc(rr, sizeof *R->Psi);
+    R->mod = malloc((size_t)n2 * sizeof *R->mod);
+    R->prev = malloc((size_t)n2 * sizeof *R->prev);
+    double *Rk = R->Rk = malloc((2 * (size_t)nt * n2 + 1) * sizeof *Rk);
+    R->Y = malloc((2 * (size_t)nt * n2 + 1) * sizeof *R->Y);
+    R->Z = malloc((6 * (size_t)(ng + 1) * n2 + 1) * sizeof *R->Z);
+    R->sqv = malloc((2 * (size_t)nt + 2) * sizeof *R->sqv);
+    R->yv = calloc(2 * (size_t)nf, sizeof *R->yv);
+    R->sup = malloc((size_t)(nf > 0 ? nf : 1) * sizeof *R->sup);
+    if (!Pt || !At || !Bt || !AP || !BP || !R->Psi || !Rk || !R->Y || !R->Z || !R->sqv || !R->yv ||
+        !R->sup || !R->mod || !R->prev)
+        return 1;
+    const double *XR = R->XR, *XL = R->XL, *ur = R->ur, *wr = R->wr, *cs = R->cs;
     if (ng)
         cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n2, ng, r, 1.0, XL + (size_t)r * n2,
                     n2, ur, r, 0.0, Pt, n2);
@@ -461,184 +559,342 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
                         0.0, BP, nt);
         }
     }
-    /* The step count: fixed when the caller gives one (steps > 0); otherwise doubled from
-     * s0 until the moduli of the multipliers that decide stability agree with the previous
-     * count's (steps_agree), at most steps_cap. In the interaction picture the
-     * constant part is exact, so the steps only have to follow the laws' variation:
-     * measured on the [JMSTHelical] model (docs/periodic.md, "Stability at scale"), 512
-     * to 1024 steps per period agree with 16384 (the 4 x samples of H = 591) to 3e-8 */
-    int S = steps > 0 ? steps : s0, nsub = 0, nest = 0;
-    for (int pass = 0;; pass++) {
-        free(tb);
-        tb = NULL;
-        free(scal);
-        scal = NULL;
-        if (plan) fftw_destroy_plan(plan);
-        plan = NULL;
-        fftw_free(hc);
-        hc = NULL;
-        free(smp);
-        smp = NULL;
-        /* the steps and the term scalars at their two Gauss points (sq1, sv1, sq2, sv2) */
-        if (gd_hb_magnus_steps(h, tr, om, X, S, bl, nbl, &tb, &nsub)) goto done;
-        const double gp[2] = {0.5 - sqrt(3.0) / 6.0, 0.5 + sqrt(3.0) / 6.0};
-        scal = malloc(((size_t)nsub * 4 * nt + 1) * sizeof *scal);
-        if (!scal) goto done;
-        {
-            /* the input support: the DOFs the terms read (their w) */
-            unsigned char *mark = calloc((size_t)nf + 1, 1);
-            int ns = 0;
-            if (!mark) {
-                goto done;
-            }
-            for (int t = 0; t < nt; t++)
-                for (int b = 0; b < term[t].nw; b++)
-                    mark[term[t].w_idx[b]] = 1;
-            for (int i = 0; i < nf; i++)
-                if (mark[i]) sup[ns++] = i;
-            free(mark);
-            /* the transform is long enough for every harmonic of the orbit (Nt >= 2 H + 2,
-             * a multiple of the steps): the steps' own count may be below 2 H (their
-             * Gauss points then read every stride-th sample), and the law's coefficients
-             * must still see every harmonic the orbit has */
-            const int Ns = S, H = h->H;
-            int Nt = Ns;
-            while (Nt < 2 * H + 2)
-                Nt *= 2;
-            const int stride = Nt / Ns;
-            hc = fftw_malloc(2 * (size_t)Nt * sizeof *hc);
-            smp = malloc(((size_t)Ns * 4 * ns + 1) * sizeof *smp);
-            if (!hc || !smp) goto done;
-            plan = fftw_plan_r2r_1d(Nt, hc, hc + Nt, FFTW_HC2R, FFTW_ESTIMATE);
-            if (!plan) goto done;
-            /* q and q' of each support DOF at tau_j = (j + g) 2 pi / Ns for either Gauss point
-             * g: the coefficients shifted by g steps, one half-complex inverse transform each
-             * (FFTW's HC2R: x_j = hc_0 + 2 sum_k (Re_k cos - Im_k sin)) */
-            const int Hm = H < (Nt - 1) / 2 ? H : (Nt - 1) / 2;
-            for (int m = 0; m < ns; m++)
-                for (int pd = 0; pd < 4; pd++) {
-                    const int deriv = pd & 1;
-                    const double dl = gp[pd >> 1] * TWO_PI / Ns;
-                    const int i = sup[m];
-                    memset(hc, 0, (size_t)Nt * sizeof *hc);
-                    if (!deriv) hc[0] = X[i];
-                    for (int k = 1; k <= Hm; k++) {
-                        const double xc = X[(size_t)(2 * k - 1) * nf + i],
-                                     xs = X[(size_t)2 * k * nf + i], c = cos(k * dl),
-                                     s = sin(k * dl);
-                        /* x(tau + dl) = a cos(k tau) + b sin(k tau) */
-                        double a = xc * c + xs * s, b = xs * c - xc * s;
-                        if (deriv) { /* q' = k w (b cos - a sin) */
-                            double a2 = k * om * b, b2 = -k * om * a;
-                            a = a2;
-                            b = b2;
-                        }
-                        hc[k] = 0.5 * a;
-                        hc[Nt - k] = -0.5 * b;
-                    }
-                    fftw_execute(plan);
-                    for (int j = 0; j < Ns; j++)
-                        smp[((size_t)j * 4 + pd) * ns + m] = hc[Nt + (size_t)j * stride];
+    return 0;
+}
+
+/* The Magnus steps of S per period (split at contact changes) and the term scalars at
+ * their two Gauss points (sq1, sv1, sq2, sv2), the orbit there from inverse FFTs of the
+ * input DOFs' coefficients. 0 ok. */
+static int red_scalars(red *R, int S, const gd_tr_record *bl, int nbl)
+{
+    const int nf = R->nf, nt = R->nt;
+    const gd_tr_term *term = R->term;
+    const hb *h = R->h;
+    const double om = R->om, *X = R->X;
+    int *sup = R->sup;
+    double *yv = R->yv, *sqv = R->sqv;
+    free(R->tb);
+    R->tb = NULL;
+    free(R->scal);
+    R->scal = NULL;
+    if (R->plan) fftw_destroy_plan(R->plan);
+    R->plan = NULL;
+    fftw_free(R->hc);
+    R->hc = NULL;
+    free(R->smp);
+    R->smp = NULL;
+    /* the steps and the term scalars at their two Gauss points (sq1, sv1, sq2, sv2) */
+    if (gd_hb_magnus_steps(h, R->tr, om, X, S, bl, nbl, &R->tb, &R->nsub)) return 1;
+    const double *tb = R->tb;
+    const int nsub = R->nsub;
+    const double gp[2] = {0.5 - sqrt(3.0) / 6.0, 0.5 + sqrt(3.0) / 6.0};
+    double *scal = R->scal = malloc(((size_t)nsub * 4 * nt + 1) * sizeof *scal);
+    if (!scal) return 1;
+    /* the input support: the DOFs the terms read (their w) */
+    unsigned char *mark = calloc((size_t)nf + 1, 1);
+    int ns = 0;
+    if (!mark) return 1;
+    for (int t = 0; t < nt; t++)
+        for (int b = 0; b < term[t].nw; b++)
+            mark[term[t].w_idx[b]] = 1;
+    for (int i = 0; i < nf; i++)
+        if (mark[i]) sup[ns++] = i;
+    free(mark);
+    /* the transform is long enough for every harmonic of the orbit (Nt >= 2 H + 2,
+     * a multiple of the steps): the steps' own count may be below 2 H (their
+     * Gauss points then read every stride-th sample), and the law's coefficients
+     * must still see every harmonic the orbit has */
+    const int Ns = S, H = h->H;
+    int Nt = Ns;
+    while (Nt < 2 * H + 2)
+        Nt *= 2;
+    const int stride = Nt / Ns;
+    double *hc = R->hc = fftw_malloc(2 * (size_t)Nt * sizeof *hc);
+    double *smp = R->smp = malloc(((size_t)Ns * 4 * ns + 1) * sizeof *smp);
+    if (!hc || !smp) return 1;
+    R->plan = fftw_plan_r2r_1d(Nt, hc, hc + Nt, FFTW_HC2R, FFTW_ESTIMATE);
+    if (!R->plan) return 1;
+    /* q and q' of each support DOF at tau_j = (j + g) 2 pi / Ns for either Gauss point
+     * g: the coefficients shifted by g steps, one half-complex inverse transform each
+     * (FFTW's HC2R: x_j = hc_0 + 2 sum_k (Re_k cos - Im_k sin)) */
+    const int Hm = H < (Nt - 1) / 2 ? H : (Nt - 1) / 2;
+    for (int m = 0; m < ns; m++)
+        for (int pd = 0; pd < 4; pd++) {
+            const int deriv = pd & 1;
+            const double dl = gp[pd >> 1] * TWO_PI / Ns;
+            const int i = sup[m];
+            memset(hc, 0, (size_t)Nt * sizeof *hc);
+            if (!deriv) hc[0] = X[i];
+            for (int k = 1; k <= Hm; k++) {
+                const double xc = X[(size_t)(2 * k - 1) * nf + i], xs = X[(size_t)2 * k * nf + i],
+                             c = cos(k * dl), s = sin(k * dl);
+                /* x(tau + dl) = a cos(k tau) + b sin(k tau) */
+                double a = xc * c + xs * s, b = xs * c - xc * s;
+                if (deriv) { /* q' = k w (b cos - a sin) */
+                    double a2 = k * om * b, b2 = -k * om * a;
+                    a = a2;
+                    b = b2;
                 }
-            double *yfull = NULL;
-            for (int j = 0; j < nsub; j++) {
-                const double a = tb[j], b = tb[j + 1];
-                const long k = lround(a / TWO_PI * Ns);
-                const int uniform = fabs(a - TWO_PI * k / Ns) < 1e-12 &&
-                                    fabs(b - TWO_PI * (k + 1) / Ns) < 1e-12 && k < Ns;
-                for (int g = 0; g < 2; g++) {
-                    const double tau = a + gp[g] * (b - a);
-                    double *sj = scal + (size_t)j * 4 * nt + (size_t)g * 2 * nt;
-                    if (uniform) {
-                        const double *qs = smp + ((size_t)k * 4 + 2 * g) * ns, *vs = qs + ns;
-                        for (int m = 0; m < ns; m++) {
-                            yv[sup[m]] = qs[m];
-                            yv[nf + sup[m]] = vs[m];
-                        }
-                        gd_transient_local(tr, tau / om, yv, NULL, sqv, sqv + nt + 1);
-                    } else { /* a step split at a contact change: a direct sum */
-                        if (!yfull) yfull = malloc(2 * (size_t)nf * sizeof *yfull);
-                        if (!yfull) {
-                            goto done;
-                        }
-                        gd_hb_eval(h, om, X, tau, yfull, yfull + nf);
-                        gd_transient_local(tr, tau / om, yfull, NULL, sqv, sqv + nt + 1);
-                    }
-                    memcpy(sj, sqv, (size_t)nt * sizeof *sj);
-                    memcpy(sj + nt, sqv + nt + 1, (size_t)nt * sizeof *sj);
-                }
+                hc[k] = 0.5 * a;
+                hc[Nt - k] = -0.5 * b;
             }
-            free(yfull);
+            fftw_execute(R->plan);
+            for (int j = 0; j < Ns; j++)
+                smp[((size_t)j * 4 + pd) * ns + m] = hc[Nt + (size_t)j * stride];
         }
-        /* The discarded modes (r < nf) are not in the propagated basis: their multipliers are
-         * estimated as the constant-coefficient ones of each mode alone, exp(s T) with
-         * s^2 + d s + k = 0, k and d the mode's stiffness and damping with the laws' period
-         * means added (first order in the coupling; those modes lie far above every
-         * excitation, so the laws drive them quasi-statically, which the residual vectors
-         * carry). The largest ones fill the multipliers after the reduced ones. */
-        nest = 0;
-        if (r < nf) {
-            free(est);
-            est = malloc(4 * (size_t)nd * sizeof *est);
-            double *mq = calloc(2 * (size_t)nt + 1, sizeof *mq), T = TWO_PI / om;
-            if (!est || !mq) {
-                free(mq);
-                goto done;
-            }
-            for (int j = 0; j < nsub; j++) {
-                const double wgt = 0.5 * (tb[j + 1] - tb[j]) / TWO_PI;
-                for (int t = 0; t < 2 * nt; t++)
-                    mq[t] += wgt *
-                             (scal[(size_t)j * 4 * nt + t] + scal[(size_t)j * 4 * nt + 2 * nt + t]);
-            }
-            for (int j = 0; j < nd; j++) {
-                const double *ph = Phi + (size_t)(nk + j) * nf;
-                double kk = lam[nk + j], d = dd[j];
-                for (int t = 0; t < nt; t++) {
-                    double pu = 0.0, pw = 0.0;
-                    for (int a = 0; a < term[t].nu; a++)
-                        pu += ph[term[t].u_idx[a]] * term[t].u[a];
-                    for (int b = 0; b < term[t].nw; b++)
-                        pw += ph[term[t].w_idx[b]] * term[t].w[b];
-                    kk -= mq[t] * pu * pw;
-                    d -= mq[nt + t] * pu * pw;
+    double *yfull = NULL;
+    for (int j = 0; j < nsub; j++) {
+        const double a = tb[j], b = tb[j + 1];
+        const long k = lround(a / TWO_PI * Ns);
+        const int uniform =
+            fabs(a - TWO_PI * k / Ns) < 1e-12 && fabs(b - TWO_PI * (k + 1) / Ns) < 1e-12 && k < Ns;
+        for (int g = 0; g < 2; g++) {
+            const double tau = a + gp[g] * (b - a);
+            double *sj = scal + (size_t)j * 4 * nt + (size_t)g * 2 * nt;
+            if (uniform) {
+                const double *qs = smp + ((size_t)k * 4 + 2 * g) * ns, *vs = qs + ns;
+                for (int m = 0; m < ns; m++) {
+                    yv[sup[m]] = qs[m];
+                    yv[nf + sup[m]] = vs[m];
                 }
-                const double disc = d * d - 4.0 * kk;
-                double *e = est + 2 * (size_t)nest;
-                if (disc < 0) { /* a pair exp(-d T / 2) e^(+-i beta T) */
-                    const double a = exp(-0.5 * d * T), bt = 0.5 * sqrt(-disc) * T;
-                    e[0] = a * cos(bt);
-                    e[1] = a * sin(bt);
-                    e[2] = e[0];
-                    e[3] = -e[1];
-                } else {
-                    const double sq = sqrt(disc);
-                    e[0] = exp(0.5 * (-d + sq) * T);
-                    e[2] = exp(0.5 * (-d - sq) * T);
-                    e[1] = e[3] = 0.0;
-                }
-                if (isfinite(e[0]) && isfinite(e[1]) && isfinite(e[2])) nest += 2;
+                gd_transient_local(R->tr, tau / om, yv, NULL, sqv, sqv + nt + 1);
+            } else { /* a step split at a contact change: a direct sum */
+                if (!yfull) yfull = malloc(2 * (size_t)nf * sizeof *yfull);
+                if (!yfull) return 1;
+                gd_hb_eval(h, om, X, tau, yfull, yfull + nf);
+                gd_transient_local(R->tr, tau / om, yfull, NULL, sqv, sqv + nt + 1);
             }
+            memcpy(sj, sqv, (size_t)nt * sizeof *sj);
+            memcpy(sj + nt, sqv + nt + 1, (size_t)nt * sizeof *sj);
+        }
+    }
+    free(yfull);
+    return 0;
+}
+
+/* The discarded modes (r < nf) are not in the propagated basis: their multipliers are
+ * estimated as the constant-coefficient ones of each mode alone, exp(s T) with
+ * s^2 + d s + k = 0, k and d the mode's stiffness and damping with the laws' period
+ * means added (first order in the coupling; those modes lie far above every
+ * excitation, so the laws drive them quasi-statically, which the residual vectors
+ * carry). The largest ones fill the multipliers after the reduced ones. 0 ok. */
+static int red_estimates(red *R)
+{
+    const int nf = R->nf, nt = R->nt, nk = R->nk, nd = R->nd, nsub = R->nsub;
+    const gd_tr_term *term = R->term;
+    const double *Phi = R->Phi, *lam = R->lam, *dd = R->dd, *tb = R->tb, *scal = R->scal;
+    R->nest = 0;
+    if (R->r < nf) {
+        free(R->est);
+        double *est = R->est = malloc(4 * (size_t)nd * sizeof *est);
+        double *mq = calloc(2 * (size_t)nt + 1, sizeof *mq), T = TWO_PI / R->om;
+        if (!est || !mq) {
             free(mq);
+            return 1;
         }
-        /* The propagation: per step [0, h] about its midpoint m, the interaction picture
-         * zeta = E(m - t) z, d zeta/dt = E(m - t) B(t) E(t - m) zeta, whose fourth-order Magnus
-         * step with the two Gauss points (t_g - m = -+d, d = sqrt(3)/6 h) is
-         *   Omega = h/2 (B1^ + B2^) + sqrt(3)/12 h^2 [B2^, B1^],
-         *   B1^ = E(d) B1 E(-d),  B2^ = E(-d) B2 E(d),
-         * so z(h) = E(h/2) exp(Omega) E(h/2) z(0) (the order-4 Magnus step of Blanes, Casas,
-         * Oteo & Ros 2009, Eq. 4.3, applied to the interaction-picture equation). With B_g = P C
-         * R_g, Omega = U Cm V^T with U = [E(d) P, E(-d) P] (2 ng columns), V^T = [R1 E(-d); R2
-         * E(d)] (2 nt rows) and Cm = [h/2 C, -c2 C (R1^ P2^) C; c2 C (R2^ P1^) C, h/2 C],  c2 =
-         * sqrt(3)/12 h^2, and exp(U Cm V^T) = I + U phi1(Cm V^T U) Cm V^T: a rank-2 ng update. */
-        memset(Psi, 0, rr * sizeof *Psi);
-        for (int i = 0; i < n2; i++)
-            Psi[(size_t)i * n2 + i] = 1.0;
-        double pend = 0.0;
-        const int g2 = 2 * ng, t2 = 2 * nt, ga = 2 * g2;
+        for (int j = 0; j < nsub; j++) {
+            const double wgt = 0.5 * (tb[j + 1] - tb[j]) / TWO_PI;
+            for (int t = 0; t < 2 * nt; t++)
+                mq[t] +=
+                    wgt * (scal[(size_t)j * 4 * nt + t] + scal[(size_t)j * 4 * nt + 2 * nt + t]);
+        }
+        int nest = 0;
+        for (int j = 0; j < nd; j++) {
+            const double *ph = Phi + (size_t)(nk + j) * nf;
+            double kk = lam[nk + j], d = dd[j];
+            for (int t = 0; t < nt; t++) {
+                double pu = 0.0, pw = 0.0;
+                for (int a = 0; a < term[t].nu; a++)
+                    pu += ph[term[t].u_idx[a]] * term[t].u[a];
+                for (int b = 0; b < term[t].nw; b++)
+                    pw += ph[term[t].w_idx[b]] * term[t].w[b];
+                kk -= mq[t] * pu * pw;
+                d -= mq[nt + t] * pu * pw;
+            }
+            const double disc = d * d - 4.0 * kk;
+            double *e = est + 2 * (size_t)nest;
+            if (disc < 0) { /* a pair exp(-d T / 2) e^(+-i beta T) */
+                const double a = exp(-0.5 * d * T), bt = 0.5 * sqrt(-disc) * T;
+                e[0] = a * cos(bt);
+                e[1] = a * sin(bt);
+                e[2] = e[0];
+                e[3] = -e[1];
+            } else {
+                const double sq = sqrt(disc);
+                e[0] = exp(0.5 * (-d + sq) * T);
+                e[2] = exp(0.5 * (-d - sq) * T);
+                e[1] = e[3] = 0.0;
+            }
+            if (isfinite(e[0]) && isfinite(e[1]) && isfinite(e[2])) nest += 2;
+        }
+        R->nest = nest;
+        free(mq);
+    }
+    return 0;
+}
+
+/* The propagation over the steps of one count into R->Psi: per step [0, h] about its
+ * midpoint m, the interaction picture zeta = E(m - t) z, d zeta/dt = E(m - t) B(t)
+ * E(t - m) zeta, whose fourth-order Magnus step with the two Gauss points (t_g - m = -+d,
+ * d = sqrt(3)/6 h) is
+ *   Omega = h/2 (B1^ + B2^) + sqrt(3)/12 h^2 [B2^, B1^],
+ *   B1^ = E(d) B1 E(-d),  B2^ = E(-d) B2 E(d),
+ * so z(h) = E(h/2) exp(Omega) E(h/2) z(0) (the order-4 Magnus step of Blanes, Casas,
+ * Oteo & Ros 2009, Eq. 4.3, applied to the interaction-picture equation). With B_g = P C
+ * R_g, Omega = U Cm V^T with U = [E(d) P, E(-d) P] (2 ng columns), V^T = [R1 E(-d); R2
+ * E(d)] (2 nt rows) and Cm = [h/2 C, -c2 C (R1^ P2^) C; c2 C (R2^ P1^) C, h/2 C],  c2 =
+ * sqrt(3)/12 h^2, and exp(U Cm V^T) = I + U phi1(Cm V^T U) Cm V^T: a rank-2 ng update.
+ * *rc: 1 on entry (else nothing is propagated), 2 when Psi overflowed. 0 ok, 1 out of
+ * memory. */
+static int red_propagate(red *R, int *rc)
+{
+    const int nt = R->nt, ng = R->ng, n2 = R->n2, nsub = R->nsub;
+    const size_t rr = R->rr;
+    const double om = R->om, *tb = R->tb, *scal = R->scal, *lre = R->lre, *lim = R->lim,
+                 *At = R->At, *Bt = R->Bt, *Pt = R->Pt;
+    const int *tg = R->tg;
+    double *Psi = R->Psi, *Rk = R->Rk, *Y = R->Y, *Z = R->Z;
+    memset(Psi, 0, rr * sizeof *Psi);
+    for (int i = 0; i < n2; i++)
+        Psi[(size_t)i * n2 + i] = 1.0;
+    double pend = 0.0;
+    const int g2 = 2 * ng, t2 = 2 * nt, ga = 2 * g2;
+    const size_t gg = (size_t)ga * ga;
+    free(R->small);
+    double *small = R->small =
+        malloc((5 * gg + 2 * (size_t)g2 * t2 + (size_t)g2 * g2 + 1) * sizeof *small);
+    if (!small) return 1;
+    double *G = small, *F = G + gg, *W3 = F + gg, *Cm = W3 + 3 * gg, *VU = Cm + (size_t)g2 * t2,
+           *CV = VU + (size_t)g2 * t2;
+    double *U = Z + (size_t)2 * g2 * n2; /* n2 x g2 */
+    for (int j = 0; j < nsub && *rc == 1; j++) {
+        const double dt = (tb[j + 1] - tb[j]) / om, d = sqrt(3.0) / 6.0 * dt,
+                     c2 = sqrt(3.0) / 12.0 * dt * dt;
+        const double *sc = scal + (size_t)j * 4 * nt;
+        pend += 0.5 * dt;
+        int any = 0;
+        for (int t = 0; t < 2 * t2; t++)
+            any |= sc[t] != 0.0;
+        if (!any || !ng) { /* B = 0: the exponentials merge */
+            pend += 0.5 * dt;
+            continue;
+        }
+        apply_exp(n2, n2, lre, lim, pend, Psi);
+        pend = 0.5 * dt;
+        /* V^T rows (Rk: t2 rows of n2, row-major): R_g's rows times E(-+d) */
+        for (int g = 0; g < 2; g++) {
+            const double *sq = sc + (size_t)g * 2 * nt, *sv = sq + nt;
+            for (int t = 0; t < nt; t++) {
+                double *rk = Rk + (size_t)(g * nt + t) * n2;
+                const double *at = At + (size_t)t * n2, *bt = Bt + (size_t)t * n2;
+                for (int i = 0; i < n2; i++)
+                    rk[i] = sq[t] * at[i] + sv[t] * bt[i];
+            }
+        }
+        /* a row times E(s) is E(s)^T applied to the column: the rows of Rk as the columns
+         * of an n2 x t2 matrix, E^T's blocks [c, -s; s, c] */
+        for (int g = 0; g < 2; g++) {
+            const double sh = g ? d : -d;
+            for (int i = 0; i < n2; i++) {
+                if (lim[i] > 0.0 && i + 1 < n2) {
+                    const double e = exp(lre[i] * sh), cc = e * cos(lim[i] * sh),
+                                 ss = e * sin(lim[i] * sh);
+                    for (int t = 0; t < nt; t++) {
+                        double *p = Rk + (size_t)(g * nt + t) * n2 + i, a = p[0], b = p[1];
+                        p[0] = cc * a - ss * b;
+                        p[1] = ss * a + cc * b;
+                    }
+                    i++;
+                } else {
+                    const double e = exp(lre[i] * sh);
+                    for (int t = 0; t < nt; t++)
+                        Rk[(size_t)(g * nt + t) * n2 + i] *= e;
+                }
+            }
+        }
+        /* U = [E(d) P, E(-d) P] */
+        memcpy(U, Pt, (size_t)n2 * ng * sizeof *U);
+        memcpy(U + (size_t)n2 * ng, Pt, (size_t)n2 * ng * sizeof *U);
+        apply_exp(n2, ng, lre, lim, d, U);
+        apply_exp(n2, ng, lre, lim, -d, U + (size_t)n2 * ng);
+        /* VU = V^T U (t2 x g2) */
+        cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, t2, g2, n2, 1.0, Rk, n2, U, n2, 0.0,
+                    VU, t2);
+        /* Cm (g2 x t2): C h/2 on the diagonal blocks; the commutator's blocks
+         * (2,1) = c2 C (R2^ P1^) C (rows ng.., columns 0..nt), (1,2) = -c2 C (R1^ P2^) C */
+        memset(Cm, 0, (size_t)g2 * t2 * sizeof *Cm);
+        for (int t = 0; t < nt; t++) {
+            Cm[(size_t)t * g2 + tg[t]] = 0.5 * dt;
+            Cm[(size_t)(nt + t) * g2 + ng + tg[t]] = 0.5 * dt;
+        }
+        for (int t = 0; t < nt; t++) {           /* column t of block (2,1): from R1 row t */
+            for (int t2r = 0; t2r < nt; t2r++) { /* C (R2^ P1^): row group of term t2r */
+                /* (R2^ P1^)[t2r, g] = VU[nt + t2r, g]; times C[g, t] = (g == tg[t]) */
+                Cm[(size_t)t * g2 + ng + tg[t2r]] += c2 * VU[(size_t)tg[t] * t2 + nt + t2r];
+                /* block (1,2): -c2 C (R1^ P2^) C: (R1^ P2^)[t2r, g] = VU[t2r, ng + g] */
+                Cm[(size_t)(nt + t) * g2 + tg[t2r]] -= c2 * VU[(size_t)(ng + tg[t]) * t2 + t2r];
+            }
+        }
+        /* phi1(Cm VU) from exp([Cm VU, I; 0, 0]) (ga = 2 g2) */
+        cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, g2, g2, t2, 1.0, Cm, g2, VU, t2, 0.0,
+                    CV, g2);
+        memset(G, 0, (size_t)ga * ga * sizeof *G);
+        for (int b = 0; b < g2; b++)
+            for (int a = 0; a < g2; a++)
+                G[(size_t)b * ga + a] = CV[(size_t)b * g2 + a];
+        for (int g = 0; g < g2; g++)
+            G[(size_t)(g2 + g) * ga + g] = 1.0;
+        small_expm(ga, G, F, W3);
+        /* Y = V^T Psi (t2 x n2); Z = phi1 Cm Y (g2 x n2); Psi += U Z */
+        cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, t2, n2, n2, 1.0, Rk, n2, Psi, n2, 0.0,
+                    Y, t2);
+        double *CY = Z + (size_t)g2 * n2;
+        cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, g2, n2, t2, 1.0, Cm, g2, Y, t2, 0.0,
+                    CY, g2);
+        cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, g2, n2, g2, 1.0, F + (size_t)g2 * ga,
+                    ga, CY, g2, 0.0, Z, g2);
+        cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n2, n2, g2, 1.0, U, n2, Z, g2, 1.0,
+                    Psi, n2);
+        if ((j & 255) == 255 && (!isfinite(Psi[0]) || !isfinite(Psi[rr - 1]))) {
+            *rc = 2;
+            break;
+        }
+    }
+    if (*rc == 1) {
+        apply_exp(n2, n2, lre, lim, pend, Psi);
+        for (size_t m = 0; m < rr; m++)
+            if (!isfinite(Psi[m])) {
+                *rc = 2;
+                break;
+            }
+    }
+    return 0;
+}
+
+/* The step count: fixed when the caller gives one (steps > 0); otherwise doubled from s0
+ * until the moduli of the multipliers that decide stability agree with the previous
+ * count's (steps_agree), at most steps_cap. In the interaction picture the constant part
+ * is exact, so the steps only have to follow the laws' variation: measured on the
+ * [JMSTHelical] model (docs/periodic.md, "Stability at scale"), 512 to 1024 steps per
+ * period agree with 16384 (the 4 x samples of H = 591) to 3e-8. The reduced multipliers
+ * (n2) into mu_re, mu_im: 0, else the return codes of gd_hb_floquet_reduced. */
+static int red_step_counts(red *R, int steps, int s0, int steps_cap, int *steps_used,
+                           const gd_tr_record *bl, int nbl, double setup, double budget,
+                           double *mu_re, double *mu_im, char *msg)
+{
+    const int ng = R->ng, nt = R->nt, n2 = R->n2, r = R->r;
+    double *mod = R->mod, *prev = R->prev;
+    int rc = 1;
+    int S = steps > 0 ? steps : s0;
+    for (int pass = 0;; pass++) {
+        if (red_scalars(R, S, bl, nbl)) return rc;
+        if (red_estimates(R)) return rc;
+        const int nsub = R->nsub;
         {
-            /* counted (work.c): per step the four products below and the small exponential
-             * (about 30 ga^3), after the modes' set-up; decided before the first step */
+            /* counted (work.c): per step the four products of red_propagate and the small
+             * exponential (about 30 ga^3), after the modes' set-up; decided before the
+             * first step */
+            const int g2 = 2 * ng, t2 = 2 * nt, ga = 2 * g2;
             const double step = 2.0 * ((double)t2 * n2 * n2 + (double)g2 * n2 * t2 +
                                        (double)g2 * n2 * g2 + (double)n2 * n2 * g2) +
                                 30.0 * pow(ga, 3),
@@ -653,116 +909,7 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
                 rc = 4;
             }
         }
-        const size_t gg = (size_t)ga * ga;
-        free(small);
-        small = malloc((5 * gg + 2 * (size_t)g2 * t2 + (size_t)g2 * g2 + 1) * sizeof *small);
-        if (!small) {
-            goto done;
-        }
-        double *G = small, *F = G + gg, *W3 = F + gg, *Cm = W3 + 3 * gg, *VU = Cm + (size_t)g2 * t2,
-               *CV = VU + (size_t)g2 * t2;
-        double *U = Z + (size_t)2 * g2 * n2; /* n2 x g2 */
-        for (int j = 0; j < nsub && rc == 1; j++) {
-            const double dt = (tb[j + 1] - tb[j]) / om, d = sqrt(3.0) / 6.0 * dt,
-                         c2 = sqrt(3.0) / 12.0 * dt * dt;
-            const double *sc = scal + (size_t)j * 4 * nt;
-            pend += 0.5 * dt;
-            int any = 0;
-            for (int t = 0; t < 2 * t2; t++)
-                any |= sc[t] != 0.0;
-            if (!any || !ng) { /* B = 0: the exponentials merge */
-                pend += 0.5 * dt;
-                continue;
-            }
-            apply_exp(n2, n2, lre, lim, pend, Psi);
-            pend = 0.5 * dt;
-            /* V^T rows (Rk: t2 rows of n2, row-major): R_g's rows times E(-+d) */
-            for (int g = 0; g < 2; g++) {
-                const double *sq = sc + (size_t)g * 2 * nt, *sv = sq + nt;
-                for (int t = 0; t < nt; t++) {
-                    double *rk = Rk + (size_t)(g * nt + t) * n2;
-                    const double *at = At + (size_t)t * n2, *bt = Bt + (size_t)t * n2;
-                    for (int i = 0; i < n2; i++)
-                        rk[i] = sq[t] * at[i] + sv[t] * bt[i];
-                }
-            }
-            /* a row times E(s) is E(s)^T applied to the column: the rows of Rk as the columns
-             * of an n2 x t2 matrix, E^T's blocks [c, -s; s, c] */
-            for (int g = 0; g < 2; g++) {
-                const double sh = g ? d : -d;
-                for (int i = 0; i < n2; i++) {
-                    if (lim[i] > 0.0 && i + 1 < n2) {
-                        const double e = exp(lre[i] * sh), cc = e * cos(lim[i] * sh),
-                                     ss = e * sin(lim[i] * sh);
-                        for (int t = 0; t < nt; t++) {
-                            double *p = Rk + (size_t)(g * nt + t) * n2 + i, a = p[0], b = p[1];
-                            p[0] = cc * a - ss * b;
-                            p[1] = ss * a + cc * b;
-                        }
-                        i++;
-                    } else {
-                        const double e = exp(lre[i] * sh);
-                        for (int t = 0; t < nt; t++)
-                            Rk[(size_t)(g * nt + t) * n2 + i] *= e;
-                    }
-                }
-            }
-            /* U = [E(d) P, E(-d) P] */
-            memcpy(U, Pt, (size_t)n2 * ng * sizeof *U);
-            memcpy(U + (size_t)n2 * ng, Pt, (size_t)n2 * ng * sizeof *U);
-            apply_exp(n2, ng, lre, lim, d, U);
-            apply_exp(n2, ng, lre, lim, -d, U + (size_t)n2 * ng);
-            /* VU = V^T U (t2 x g2) */
-            cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, t2, g2, n2, 1.0, Rk, n2, U, n2,
-                        0.0, VU, t2);
-            /* Cm (g2 x t2): C h/2 on the diagonal blocks; the commutator's blocks
-             * (2,1) = c2 C (R2^ P1^) C (rows ng.., columns 0..nt), (1,2) = -c2 C (R1^ P2^) C */
-            memset(Cm, 0, (size_t)g2 * t2 * sizeof *Cm);
-            for (int t = 0; t < nt; t++) {
-                Cm[(size_t)t * g2 + tg[t]] = 0.5 * dt;
-                Cm[(size_t)(nt + t) * g2 + ng + tg[t]] = 0.5 * dt;
-            }
-            for (int t = 0; t < nt; t++) {           /* column t of block (2,1): from R1 row t */
-                for (int t2r = 0; t2r < nt; t2r++) { /* C (R2^ P1^): row group of term t2r */
-                    /* (R2^ P1^)[t2r, g] = VU[nt + t2r, g]; times C[g, t] = (g == tg[t]) */
-                    Cm[(size_t)t * g2 + ng + tg[t2r]] += c2 * VU[(size_t)tg[t] * t2 + nt + t2r];
-                    /* block (1,2): -c2 C (R1^ P2^) C: (R1^ P2^)[t2r, g] = VU[t2r, ng + g] */
-                    Cm[(size_t)(nt + t) * g2 + tg[t2r]] -= c2 * VU[(size_t)(ng + tg[t]) * t2 + t2r];
-                }
-            }
-            /* phi1(Cm VU) from exp([Cm VU, I; 0, 0]) (ga = 2 g2) */
-            cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, g2, g2, t2, 1.0, Cm, g2, VU, t2,
-                        0.0, CV, g2);
-            memset(G, 0, (size_t)ga * ga * sizeof *G);
-            for (int b = 0; b < g2; b++)
-                for (int a = 0; a < g2; a++)
-                    G[(size_t)b * ga + a] = CV[(size_t)b * g2 + a];
-            for (int g = 0; g < g2; g++)
-                G[(size_t)(g2 + g) * ga + g] = 1.0;
-            small_expm(ga, G, F, W3);
-            /* Y = V^T Psi (t2 x n2); Z = phi1 Cm Y (g2 x n2); Psi += U Z */
-            cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, t2, n2, n2, 1.0, Rk, n2, Psi, n2,
-                        0.0, Y, t2);
-            double *CY = Z + (size_t)g2 * n2;
-            cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, g2, n2, t2, 1.0, Cm, g2, Y, t2,
-                        0.0, CY, g2);
-            cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, g2, n2, g2, 1.0,
-                        F + (size_t)g2 * ga, ga, CY, g2, 0.0, Z, g2);
-            cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n2, n2, g2, 1.0, U, n2, Z, g2,
-                        1.0, Psi, n2);
-            if ((j & 255) == 255 && (!isfinite(Psi[0]) || !isfinite(Psi[rr - 1]))) {
-                rc = 2;
-                break;
-            }
-        }
-        if (rc == 1) {
-            apply_exp(n2, n2, lre, lim, pend, Psi);
-            for (size_t m = 0; m < rr; m++)
-                if (!isfinite(Psi[m])) {
-                    rc = 2;
-                    break;
-                }
-        }
+        if (red_propagate(R, &rc)) return rc;
         /* overflow: the steps are too long for the laws' variation (a long period: the
          * residual vectors carry the stiff mesh modes, whose coupling the steps must
          * follow); a count of its own doubles and tries again */
@@ -777,15 +924,15 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
             snprintf(msg, 160,
                      "stability not computed: the reduced monodromy over the period %.3g s "
                      "overflowed up to %d Magnus steps",
-                     TWO_PI / om, S);
+                     TWO_PI / R->om, S);
             rc = 6;
         }
-        if (rc != 1) goto done;
+        if (rc != 1) return rc;
         {
             double dummy[1];
-            if (LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', n2, Psi, n2, mu_re, mu_im, dummy, 1,
+            if (LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', n2, R->Psi, n2, mu_re, mu_im, dummy, 1,
                               dummy, 1))
-                goto done;
+                return rc;
         }
         if (steps > 0) break;
         for (int i = 0; i < n2; i++)
@@ -805,68 +952,66 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
                      "stability not computed: the reduced multipliers did not settle by %d Magnus "
                      "steps (moduli moved by %.2g from %d)",
                      S, worst, S / 2);
-            rc = 6;
-            goto done;
+            return 6;
         }
         memcpy(prev, mod, (size_t)n2 * sizeof *prev);
         S *= 2;
     }
     if (steps_used && steps > 0) *steps_used = S;
-    /* then the discarded modes' estimates, largest first, while there is room (2 nf) */
-    int nall = n2;
-    if (nest) {
-        qsort(est, (size_t)nest, 2 * sizeof *est, by_modulus);
-        for (int i = 0; i < nest && nall < 2 * nf; i++, nall++) {
-            mu_re[nall] = est[2 * i];
-            mu_im[nall] = est[2 * i + 1];
-        }
+    return 0;
+}
+
+int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double *X, int steps,
+                          int s0, int steps_cap, int *steps_used, const gd_tr_record *bl, int nbl,
+                          double wcut, double budget, double *mu_re, double *mu_im, int *nmu,
+                          int *nbasis, char *msg)
+{
+    const int nf = h->nf;
+    *nmu = 0;
+    *nbasis = 0;
+    msg[0] = '\0';
+    const gd_tr_term *term;
+    const int nt = gd_transient_terms(tr, &term);
+    if (nt < 0) return 1;
+    if (nf > 6000) {
+        snprintf(msg, 160,
+                 "the reduced basis needs every mode of the %d free DOFs (dense, at most 6000)",
+                 nf);
+        return 5;
     }
-    gd_hb_sort_multipliers(mu_re, mu_im, nall);
-    *nmu = nall;
-    *nbasis = r;
-    rc = 0;
-done:
-    if (plan) fftw_destroy_plan(plan);
-    fftw_free(hc);
-    free(smp);
-    free(Km);
-    free(Mm);
-    free(Dm);
-    free(Phi);
-    free(lam);
-    free(tg);
-    free(grep);
-    free(V);
-    free(C);
-    free(A0);
-    free(XR);
-    free(XL);
-    free(lre);
-    free(lim);
-    free(Pt);
-    free(At);
-    free(Bt);
-    free(AP);
-    free(BP);
-    free(Psi);
-    free(Rk);
-    free(Y);
-    free(Z);
-    free(sqv);
-    free(yv);
-    free(ur);
-    free(wr);
-    free(tmp);
-    free(tb);
-    free(ipiv);
-    free(sup);
-    free(dd);
-    free(est);
-    free(small);
-    free(cs);
-    free(scal);
-    free(mod);
-    free(prev);
+    /* every mode of (K, M), dense: about 10 nf^3 flops before any step (work.c) */
+    const double setup = gd_per_work_seconds(10.0 * pow(nf, 3));
+    if (budget > 0 && setup > budget) {
+        snprintf(msg, 160,
+                 "stability not computed: the reduced basis's modes of %d DOFs would take "
+                 "about %.3g s (counted work), over the %g s budget per point",
+                 nf, setup, budget);
+        return 4;
+    }
+    red R = {.h = h, .tr = tr, .om = om, .X = X, .term = term, .nf = nf, .nt = nt};
+    int rc = red_modes(&R, wcut, msg);
+    if (!rc) rc = red_residual(&R);
+    if (!rc) rc = red_reduce(&R, msg);
+    if (!rc) rc = red_eigenbasis(&R, msg);
+    if (!rc) rc = red_inputs(&R);
+    if (!rc)
+        rc = red_step_counts(&R, steps, s0, steps_cap, steps_used, bl, nbl, setup, budget, mu_re,
+                             mu_im, msg);
+    if (!rc) {
+        /* then the discarded modes' estimates, largest first, while there is room (2 nf) */
+        int nall = R.n2;
+        if (R.nest) {
+            qsort(R.est, (size_t)R.nest, 2 * sizeof *R.est, by_modulus);
+            for (int i = 0; i < R.nest && nall < 2 * nf; i++, nall++) {
+                mu_re[nall] = R.est[2 * i];
+                mu_im[nall] = R.est[2 * i + 1];
+            }
+        }
+        gd_hb_sort_multipliers(mu_re, mu_im, nall);
+        *nmu = nall;
+        *nbasis = R.r;
+    }
+    red_free(&R);
     return rc;
 }
 
