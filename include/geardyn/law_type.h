@@ -23,7 +23,7 @@
  * side) has derivatives that are sums of rank-one terms with a structure fixed per
  * instance, df/dq = sum_k jq_k u_k w_k^T and df/dq' = sum_k jv_k u_k w_k^T, u_k and w_k
  * local vectors from `term`, jq_k and jv_k computed with the force. Harmonic balance
- * and Newton use exactly these (src/periodic/lowrank.c groups terms with one u).
+ * and Newton use exactly these (src/periodic/hb/lowrank.c groups terms with one u).
  *
  * Ownership and threads: types are constants; an instance (gd_law) is a plain value the
  * caller owns (its `data` and `user` pointers are borrowed: they must outlive every

@@ -137,4 +137,21 @@ void gd_ks_result_free(gd_ks_result *r);
 gd_status gd_ks_deflated_top(gd_op_fn op, void *ctx, int n, const double *L, int nl, double tol,
                              gd_ks_work *ws, double *top);
 
+/* ---- gmres.c: matrix-free Arnoldi and restarted GMRES ---- */
+/* y = Op x; 0 ok, nonzero when the product failed (an integration, say): the caller's
+ * reason stays in ctx. */
+typedef int (*gd_op_try_fn)(void *ctx, const double *x, double *y);
+/* Arnoldi on op (n x n) from v0 (normalised here) for at most m steps: V (n x (m + 1)),
+ * H ((m + 1) x m, column-major, leading dimension m + 1), the steps taken in *steps. With
+ * x (n: GMRES, A x = v0) it stops when the least-squares residual is below tol |v0| and
+ * returns x. 0 ok, 1 a product failed, 2 out of memory. */
+int gd_arnoldi(gd_op_try_fn op, void *ctx, int n, const double *v0, int m, double *V, double *H,
+               int *steps, double tol, double *x);
+/* GMRES(m) on op: A x = b (n), each cycle to tol |b - A x0| in its least-squares residual,
+ * at most `cycles` cycles; between cycles the true residual b - A x is recomputed (one
+ * product) and the restarts stop once its square is below stop2 |b|^2. 0 ok, 1 a product
+ * failed, 2 out of memory. */
+int gd_gmres(gd_op_try_fn op, void *ctx, int n, int m, const double *b, double *x, double tol,
+             double stop2, int cycles);
+
 #endif

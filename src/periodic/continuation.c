@@ -11,115 +11,238 @@
 #include "periodic/continuation_impl.h"
 #include "periodic/periodic_impl.h"
 
-int gd_per_run_branch(ctx *c, const double *vals, int nv)
+/* The first requested value that converges, from rest or from a warm start (the ones
+ * before it fail with the reason): its index (nv: none), its solution in *X, or -1 when
+ * a failure could not be recorded. */
+static int first_point(ctx *c, const double *vals, int nv, double **X, double *lam, int *it,
+                       double *res)
 {
-    int n = c->h.n, it = 0, rc = 1, i0;
-    const int nb0 = c->res->nbifurcations;
-    double res = NAN, lam = 0.0, reached = 0.0, sign = 1.0;
-    double *X = calloc((size_t)n + 1, sizeof *X), *t = NULL, *t1 = NULL, *X1 = NULL, *Xg = NULL,
-           *yp = NULL, *Xb = NULL, *Yt = NULL, *ut = NULL;
-    double *mre = NULL, *mim = NULL, *mre1 = NULL, *mim1 = NULL;
-    if (!X) return 1;
+    int i0;
     for (i0 = 0; i0 < nv; i0++) {
-        lam = vals[i0];
-        memset(X, 0, (size_t)(c->h.n + 1) * sizeof *X);
-        if (!gd_per_get_stage(c, lam) || (gd_per_solve_fixed(c, &X, NULL, lam, &it, &res, 1) &&
-                                          gd_per_solve_warm(c, X, lam, &it, &res))) {
-            if (gd_per_fail_point(c, lam, c->reason)) goto done;
+        *lam = vals[i0];
+        memset(*X, 0, (size_t)(c->h.n + 1) * sizeof **X);
+        if (!gd_per_get_stage(c, *lam) || (gd_per_solve_fixed(c, X, NULL, *lam, it, res, 1) &&
+                                           gd_per_solve_warm(c, *X, *lam, it, res))) {
+            if (gd_per_fail_point(c, *lam, c->reason)) return -1;
             continue;
         }
         break;
     }
-    if (i0 == nv) {
-        rc = 0;
-        goto done;
-    }
-    if (gd_per_emit_point(c, X, lam, it, res)) goto done;
-    if (c->opt->adaptive && c->want_H > c->H) {
-        /* the first point needed more harmonics: the branch starts from it solved again
-         * at them (padded with zeros it is no solution there: the backlash pair over
-         * 300..2500 rad/s went from 300 to 292 rad/s on a step of 1e-6, a false fold at
-         * 241.85 and 300 rad/s reported twice) */
-        if (gd_per_follow_H(c, &X, NULL)) goto done;
-        if (gd_per_solve_fixed(c, &X, NULL, lam, &it, &res, 0)) {
-            snprintf(c->reason, sizeof c->reason,
-                     "the first point did not converge again at H = %d", c->H);
-            rc = 0;
-            for (int i = i0 + 1; i < nv; i++)
-                if (gd_per_fail_point(c, vals[i], c->reason)) rc = 1;
+    return i0;
+}
+
+/* --sequential: each requested value after vals[i0] (X solved at lam, n unknowns) from
+ * the secant through the last two solutions (the plain last solution if the secant
+ * start fails): on a smooth curve its error is second order in the step (the
+ * [JMSTHelical] curve: starting residual 4.5e-3 -> 1e-3, Newton iterations 601 -> 584
+ * over 300 speeds). 0 done, 1 an error. */
+static int sequential(ctx *c, const double *vals, int nv, int i0, double **Xio, double lam, int n)
+{
+    double *X = *Xio;
+    int it = 0;
+    double res = NAN;
+    int rc = 1;
+    double *Xp = NULL, lamx = lam, lamp = lam;
+    for (int i = i0 + 1; i < nv; i++) {
+        double *Xs = malloc((size_t)(c->h.n + 1) * sizeof *Xs);
+        if (!Xs) {
+            free(Xp);
             goto done;
         }
-    }
-    n = c->h.n;
-    if (c->opt->method == GD_PER_SEQUENTIAL) {
-        /* each speed from the secant through the last two solutions (the plain last
-         * solution if the secant start fails): on a smooth curve its error is second
-         * order in the step (the [JMSTHelical] curve: starting residual 4.5e-3 -> 1e-3, Newton
-         * iterations 601 -> 584 over 300 speeds) */
-        double *Xp = NULL, lamx = lam, lamp = lam;
-        for (int i = i0 + 1; i < nv; i++) {
-            double *Xs = malloc((size_t)(c->h.n + 1) * sizeof *Xs);
-            if (!Xs) {
-                free(Xp);
-                goto done;
-            }
-            memcpy(Xs, X, (size_t)(c->h.n + 1) * sizeof *Xs);
-            c->steps++;
-            int staged = gd_per_get_stage(c, vals[i]) != NULL, ok = 0;
-            if (staged && Xp && lamx != lamp) {
-                double f = (vals[i] - lamx) / (lamx - lamp);
-                for (int j = 0; j < n; j++)
-                    Xs[j] += f * (X[j] - Xp[j]);
-                ok = !gd_per_solve_fixed(c, &Xs, NULL, vals[i], &it, &res, 0);
-                if (!ok && c->h.n == n) {
-                    memcpy(Xs, X, (size_t)(n + 1) * sizeof *Xs);
-                    staged = gd_per_get_stage(c, vals[i]) != NULL;
-                } else if (!ok) {
-                    staged = 0; /* H grew on the way: no second start */
-                }
-            }
-            if (staged && !ok) ok = !gd_per_solve_fixed(c, &Xs, NULL, vals[i], &it, &res, 0);
-            if (!ok) {
-                free(Xs);
-                if (gd_per_fail_point(c, vals[i], c->reason)) {
-                    free(Xp);
-                    goto done;
-                }
-                continue;
-            }
-            free(Xp);
-            Xp = X;
-            lamp = lamx;
-            lamx = vals[i];
-            if (c->h.n != n) { /* H grew: the last solution no longer matches */
-                free(Xp);
-                Xp = NULL;
-            }
-            X = Xs;
-            n = c->h.n;
-            if (gd_per_emit_point(c, X, vals[i], it, res)) {
-                free(Xp);
-                goto done;
-            }
-            if (c->opt->adaptive && c->want_H > c->H) { /* the secant spans two H */
-                if (gd_per_follow_H(c, &X, NULL)) {
-                    free(Xp);
-                    goto done;
-                }
-                free(Xp);
-                Xp = NULL;
-                n = c->h.n;
+        memcpy(Xs, X, (size_t)(c->h.n + 1) * sizeof *Xs);
+        c->steps++;
+        int staged = gd_per_get_stage(c, vals[i]) != NULL, ok = 0;
+        if (staged && Xp && lamx != lamp) {
+            double f = (vals[i] - lamx) / (lamx - lamp);
+            for (int j = 0; j < n; j++)
+                Xs[j] += f * (X[j] - Xp[j]);
+            ok = !gd_per_solve_fixed(c, &Xs, NULL, vals[i], &it, &res, 0);
+            if (!ok && c->h.n == n) {
+                memcpy(Xs, X, (size_t)(n + 1) * sizeof *Xs);
+                staged = gd_per_get_stage(c, vals[i]) != NULL;
+            } else if (!ok) {
+                staged = 0; /* H grew on the way: no second start */
             }
         }
+        if (staged && !ok) ok = !gd_per_solve_fixed(c, &Xs, NULL, vals[i], &it, &res, 0);
+        if (!ok) {
+            free(Xs);
+            if (gd_per_fail_point(c, vals[i], c->reason)) {
+                free(Xp);
+                goto done;
+            }
+            continue;
+        }
         free(Xp);
-        rc = 0;
-        goto done;
+        Xp = X;
+        lamp = lamx;
+        lamx = vals[i];
+        if (c->h.n != n) { /* H grew: the last solution no longer matches */
+            free(Xp);
+            Xp = NULL;
+        }
+        X = Xs;
+        n = c->h.n;
+        if (gd_per_emit_point(c, X, vals[i], it, res)) {
+            free(Xp);
+            goto done;
+        }
+        if (c->opt->adaptive && c->want_H > c->H) { /* the secant spans two H */
+            if (gd_per_follow_H(c, &X, NULL)) {
+                free(Xp);
+                goto done;
+            }
+            free(Xp);
+            Xp = NULL;
+            n = c->h.n;
+        }
     }
-    if (i0 == nv - 1) {
-        rc = 0;
-        goto done;
+    free(Xp);
+    rc = 0;
+done:
+    *Xio = X;
+    return rc;
+}
+
+/* Step control by the turn of the tangent and the chord's direction for the step X, lam
+ * -> X1, l1 of length ds (tangents t and t1, n unknowns and the parameter): a step that
+ * turned more than ~25 deg, or whose corrector fell back behind the start (retracing a
+ * branch past a fold), is retried shorter. 1: retry with half the step; 0: taken (t1 the
+ * chord at a corner). *tt_rej: the turn of the last step refused from X (2: none). */
+static int refuse_step(ctx *c, int n, const double *t, double *t1, const double *X, double lam,
+                       const double *X1, double l1, double ds, double dsmin, double *tt_rej)
+{
+    double tt = 0.0, tc = 0.0;
+    for (int i = 0; i < n; i++) {
+        tt += t[i] * t1[i];
+        tc += t[i] * (X1[i] - X[i]) / c->sx;
     }
-    /* pseudo-arclength */
+    tt += t[n] * t1[n];
+    tc += t[n] * (l1 - lam) / c->sl;
+    /* a corrector that went far beyond the step (the chord more than 3 ds, in
+     * the scaled variables) jumped to another part of the branch: NLvib's
+     * example 03 at H = 3 went from 0.6537 to 0.9146 in 26 iterations on a step
+     * of 0.053; the backlash pair at H = 3 over 300..2500 rad/s from 354.04 to
+     * 428.14 rad/s in 20 iterations, onto the part of its branch already
+     * traced (the chord turned there: a false fold at 354.04 and the loop
+     * traced twice, seven folds instead of four) */
+    double cc = 0.0;
+    for (int i = 0; i < n; i++)
+        cc += (X1[i] - X[i]) * (X1[i] - X[i]);
+    cc = sqrt(cc / (c->sx * c->sx) + (l1 - lam) * (l1 - lam) / (c->sl * c->sl));
+    if (cc > 3.0 * ds && ds > 16 * dsmin) return 1;
+    /* a corner, not a curve: the turn did not shrink with the halved step (a
+     * contact switching at one sample makes the sampled branch piecewise smooth:
+     * NLvib's example 03 at 1024 samples turns by 27 deg at every step size near
+     * its resonance peak). It is taken with the chord as the next direction:
+     * the tangent at X1 may still be the other side's. */
+    const int corner = c->corners && tt < 0.9 && tc > 0.0 && *tt_rej <= 1.0 && tt <= *tt_rej + 0.02;
+    if ((tt < 0.9 || tc <= 0.0) && ds > 16 * dsmin && !corner) {
+        *tt_rej = tc > 0.0 ? tt : 2.0;
+        return 1;
+    }
+    *tt_rej = 2.0;
+    if (corner) {
+        double nc = 0.0;
+        for (int i = 0; i < n; i++) {
+            t1[i] = (X1[i] - X[i]) / c->sx;
+            nc += t1[i] * t1[i];
+        }
+        t1[n] = (l1 - lam) / c->sl;
+        nc = sqrt(nc + t1[n] * t1[n]);
+        for (int i = 0; i <= n; i++)
+            t1[i] /= nc;
+    }
+    return 0;
+}
+
+/* The requested values the step lam -> l1 crossed, in the step's order, each solved
+ * from the interpolate (Xg: work) and emitted. 0 ok, 1 an error. */
+static int emit_crossed(ctx *c, const double *vals, int nv, int i0, int step, int n,
+                        const double *X, double lam, const double *X1, double l1, double *Xg)
+{
+    const int up = vals[nv - 1] >= vals[0]; /* the requested values increase */
+    for (int q = 0; q < nv; q++) {
+        /* nearest to lam first: the values in the step's direction */
+        int i = (l1 >= lam) == up ? q : nv - 1 - q;
+        double v = vals[i];
+        if (i == i0 && step == 0) continue;
+        int crossed = l1 >= lam ? (v > lam && v <= l1) : (v < lam && v >= l1);
+        if (!crossed) continue;
+        double sig = (v - lam) / (l1 - lam);
+        for (int k = 0; k < n; k++)
+            Xg[k] = (1 - sig) * X[k] + sig * X1[k];
+        int itg;
+        double resg;
+        int bad = gd_per_newton(c, Xg, &v, NULL, NULL, &itg, &resg);
+        for (int end = 0; bad && end < 2; end++) { /* near a fold: from either step */
+            memcpy(Xg, end ? X1 : X, (size_t)n * sizeof *Xg);
+            v = vals[i];
+            bad = gd_per_newton(c, Xg, &v, NULL, NULL, &itg, &resg);
+        }
+        if (bad) {
+            if (gd_per_fail_point(c, v, c->reason)) return 1;
+        } else if (gd_per_emit_point(c, Xg, v, itg, resg)) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* A fold where the parameter itself turns: the chords before and after X (Xb, lamp: the
+ * point before, have_p: it exists at this H; X1, l1: the step's end) move it in opposite
+ * directions, so the branch from the point before X through X to X1 holds its extremum,
+ * located there by gd_per_locate_turn (Yt, ut: work) and added. Not the sign of the
+ * tangent's parameter component: with a contact law the sampled residual is only
+ * piecewise smooth and the tangent is not trusted near a turn (NLvib's example 03 at
+ * 2048 samples: 12 flips and one turn; at auto H a turn at 0.75560 with the component at
+ * +0.007 on both sides; the backlash pair at H = 20, 1024 samples and 81 speeds: a flip
+ * between 479.630 and 479.768 rad/s with the branch's maximum beyond both, a fold the
+ * tangent rule dropped). A step that turns within itself and back is refused by the step
+ * control (the tangent turned more than 25 deg). 1 a fold, 0 none, -1 an error. */
+static int fold_at_turn(ctx *c, const double *Xb, double lamp, int have_p, const double *X,
+                        double lam, const double *X1, double l1, double ds, double *Yt, double *ut)
+{
+    const double cl = l1 - lam, cp = have_p ? lam - lamp : 0.0;
+    const double tiny = 1e-13 * c->sl;
+    if (!(fabs(cl) > tiny && fabs(cp) > tiny && cp * cl < 0)) return 0;
+    double lf;
+    if (gd_per_locate_turn(c, Xb, lamp, X, lam, X1, l1, &lf, Yt, ut) < 0) return -1;
+    const double sg = lam >= lamp ? 1.0 : -1.0;
+    if (c->min_samples > 0) {
+        /* a contact law: the turn is the highest tooth of the saw there, once
+         * per zigzag (a turn within its reach and no higher takes it) */
+        const int reach =
+            c->climb_dir != 0 && c->climb_H == c->H && fabs(lf - c->climbed) < 1e-2 * c->sl;
+        const int same = reach && c->climb_dir == sg * c->dir;
+        if (same && sg * lf > sg * c->climbed) c->climbed = lf;
+        if (!reach) {
+            double best = lf;
+            if (gd_per_climb_teeth(c, Yt, ut, ds / 16, sg, &best) < 0) return -1;
+            c->climbed = best;
+            c->climb_dir = (int)sg * c->dir;
+            c->climb_H = c->H;
+        }
+        /* a turn the other way within the zigzag's reach is one of its
+         * teeth: left as located, gd_per_merge_zigzags takes the run */
+        if (!reach || same) lf = c->climbed;
+    }
+    if (gd_per_add_bif(c, GD_BIF_FOLD, lf, NAN, NAN)) return -1;
+    return 1;
+}
+
+/* Pseudo-arclength from X (*Xio, solved at vals[i0] = lam) to the last requested value:
+ * the steps, their control, the requested values on the way, folds and the crossings
+ * of the multipliers. 0 done (values beyond the furthest point reached failed with the
+ * reason), 1 an error. */
+static int arclength(ctx *c, const double *vals, int nv, int i0, double **Xio, double lam)
+{
+    double *X = *Xio;
+    int n = c->h.n, it = 0, rc = 1;
+    double res = NAN, reached = 0.0, sign = 1.0;
+    double *t = NULL, *t1 = NULL, *X1 = NULL, *Xg = NULL, *yp = NULL, *Xb = NULL, *Yt = NULL,
+           *ut = NULL;
+    double *mre = NULL, *mim = NULL, *mre1 = NULL, *mim1 = NULL;
     sign = vals[nv - 1] > vals[i0] ? 1.0 : -1.0;
     reached = lam;
     const double lend = vals[nv - 1], lstart = vals[i0];
@@ -184,130 +307,19 @@ int gd_per_run_branch(ctx *c, const double *vals, int nv)
             if (ds < dsmin) goto stop;
             continue;
         }
-        {
-            /* step control by the turn of the tangent and the chord's direction: a step
-             * that turned more than ~25 deg, or whose corrector fell back behind the
-             * start (retracing a branch past a fold), is retried shorter */
-            double tt = 0.0, tc = 0.0;
-            for (int i = 0; i < n; i++) {
-                tt += t[i] * t1[i];
-                tc += t[i] * (X1[i] - X[i]) / c->sx;
-            }
-            tt += t[n] * t1[n];
-            tc += t[n] * (l1 - lam) / c->sl;
-            /* a corrector that went far beyond the step (the chord more than 3 ds, in
-             * the scaled variables) jumped to another part of the branch: NLvib's
-             * example 03 at H = 3 went from 0.6537 to 0.9146 in 26 iterations on a step
-             * of 0.053; the backlash pair at H = 3 over 300..2500 rad/s from 354.04 to
-             * 428.14 rad/s in 20 iterations, onto the part of its branch already
-             * traced (the chord turned there: a false fold at 354.04 and the loop
-             * traced twice, seven folds instead of four) */
-            double cc = 0.0;
-            for (int i = 0; i < n; i++)
-                cc += (X1[i] - X[i]) * (X1[i] - X[i]);
-            cc = sqrt(cc / (c->sx * c->sx) + (l1 - lam) * (l1 - lam) / (c->sl * c->sl));
-            if (cc > 3.0 * ds && ds > 16 * dsmin) {
-                ds *= 0.5;
-                continue;
-            }
-            /* a corner, not a curve: the turn did not shrink with the halved step (a
-             * contact switching at one sample makes the sampled branch piecewise smooth:
-             * NLvib's example 03 at 1024 samples turns by 27 deg at every step size near
-             * its resonance peak). It is taken with the chord as the next direction:
-             * the tangent at X1 may still be the other side's. */
-            const int corner =
-                c->corners && tt < 0.9 && tc > 0.0 && tt_rej <= 1.0 && tt <= tt_rej + 0.02;
-            if ((tt < 0.9 || tc <= 0.0) && ds > 16 * dsmin && !corner) {
-                tt_rej = tc > 0.0 ? tt : 2.0;
-                ds *= 0.5;
-                continue;
-            }
-            tt_rej = 2.0;
-            if (corner) {
-                double nc = 0.0;
-                for (int i = 0; i < n; i++) {
-                    t1[i] = (X1[i] - X[i]) / c->sx;
-                    nc += t1[i] * t1[i];
-                }
-                t1[n] = (l1 - lam) / c->sl;
-                nc = sqrt(nc + t1[n] * t1[n]);
-                for (int i = 0; i <= n; i++)
-                    t1[i] /= nc;
-            }
+        if (refuse_step(c, n, t, t1, X, lam, X1, l1, ds, dsmin, &tt_rej)) {
+            ds *= 0.5;
+            continue;
         }
         int stable1 = -1;
         if (have_mu) {
             gd_per_floquet(c, X1, l1, mre1, mim1, &stable1, &mu_max);
             if (stable1 >= 0) gd_per_categorise(c, mre1, mim1, out1, rho1);
         }
-        /* requested values crossed on this step, in the step's order */
-        const int up = vals[nv - 1] >= vals[0]; /* the requested values increase */
-        for (int q = 0; q < nv; q++) {
-            /* nearest to lam first: the values in the step's direction */
-            int i = (l1 >= lam) == up ? q : nv - 1 - q;
-            double v = vals[i];
-            if (i == i0 && step == 0) continue;
-            int crossed = l1 >= lam ? (v > lam && v <= l1) : (v < lam && v >= l1);
-            if (!crossed) continue;
-            double sig = (v - lam) / (l1 - lam);
-            for (int k = 0; k < n; k++)
-                Xg[k] = (1 - sig) * X[k] + sig * X1[k];
-            int itg;
-            double resg;
-            int bad = gd_per_newton(c, Xg, &v, NULL, NULL, &itg, &resg);
-            for (int end = 0; bad && end < 2; end++) { /* near a fold: from either step */
-                memcpy(Xg, end ? X1 : X, (size_t)n * sizeof *Xg);
-                v = vals[i];
-                bad = gd_per_newton(c, Xg, &v, NULL, NULL, &itg, &resg);
-            }
-            if (bad) {
-                if (gd_per_fail_point(c, v, c->reason)) goto done;
-            } else if (gd_per_emit_point(c, Xg, v, itg, resg)) {
-                goto done;
-            }
-        }
+        if (emit_crossed(c, vals, nv, i0, step, n, X, lam, X1, l1, Xg)) goto done;
         /* bifurcations between the two steps */
-        /* a fold where the parameter itself turns: the chords before and after X move it
-         * in opposite directions, so the branch from the point before X through X to X1
-         * holds its extremum, located there by gd_per_locate_turn. Not the sign of the
-         * tangent's parameter component: with a contact law the sampled residual is
-         * only piecewise smooth and the tangent is not trusted near a turn (NLvib's
-         * example 03 at 2048 samples: 12 flips and one turn; at auto H a turn at
-         * 0.75560 with the component at +0.007 on both sides; the backlash pair at
-         * H = 20, 1024 samples and 81 speeds: a flip between 479.630 and 479.768 rad/s
-         * with the branch's maximum beyond both, a fold the tangent rule dropped). A
-         * step that turns within itself and back is refused by the step control (the
-         * tangent turned more than 25 deg). */
-        int fold = 0;
-        {
-            const double cl = l1 - lam, cp = have_p ? lam - lamp : 0.0;
-            const double tiny = 1e-13 * c->sl;
-            if (fabs(cl) > tiny && fabs(cp) > tiny && cp * cl < 0) {
-                double lf;
-                if (gd_per_locate_turn(c, Xb, lamp, X, lam, X1, l1, &lf, Yt, ut) < 0) goto done;
-                const double sg = lam >= lamp ? 1.0 : -1.0;
-                if (c->min_samples > 0) {
-                    /* a contact law: the turn is the highest tooth of the saw there, once
-                     * per zigzag (a turn within its reach and no higher takes it) */
-                    const int reach = c->climb_dir != 0 && c->climb_H == c->H &&
-                                      fabs(lf - c->climbed) < 1e-2 * c->sl;
-                    const int same = reach && c->climb_dir == sg * c->dir;
-                    if (same && sg * lf > sg * c->climbed) c->climbed = lf;
-                    if (!reach) {
-                        double best = lf;
-                        if (gd_per_climb_teeth(c, Yt, ut, ds / 16, sg, &best) < 0) goto done;
-                        c->climbed = best;
-                        c->climb_dir = (int)sg * c->dir;
-                        c->climb_H = c->H;
-                    }
-                    /* a turn the other way within the zigzag's reach is one of its
-                     * teeth: left as located, gd_per_merge_zigzags takes the run */
-                    if (!reach || same) lf = c->climbed;
-                }
-                fold = 1;
-                if (gd_per_add_bif(c, GD_BIF_FOLD, lf, NAN, NAN)) goto done;
-            }
-        }
+        const int fold = fold_at_turn(c, Xb, lamp, have_p, X, lam, X1, l1, ds, Yt, ut);
+        if (fold < 0) goto done;
         if (have_mu && stable1 >= 0) {
             int tot = out[0] + out[1] + out[2], tot1 = out1[0] + out1[1] + out1[2];
             if (tot != tot1) {
@@ -373,8 +385,7 @@ stop:
     rc = 0;
 done:
 #undef ALLOC_ALL
-    if (!rc) gd_per_merge_zigzags(c, nb0);
-    free(X);
+    *Xio = X;
     free(t);
     free(t1);
     free(X1);
@@ -387,5 +398,46 @@ done:
     free(mim);
     free(mre1);
     free(mim1);
+    return rc;
+}
+
+int gd_per_run_branch(ctx *c, const double *vals, int nv)
+{
+    int it = 0, rc = 1;
+    const int nb0 = c->res->nbifurcations;
+    double res = NAN, lam = 0.0;
+    double *X = calloc((size_t)c->h.n + 1, sizeof *X);
+    if (!X) return 1;
+    const int i0 = first_point(c, vals, nv, &X, &lam, &it, &res);
+    if (i0 < 0) goto done;
+    if (i0 == nv) {
+        rc = 0;
+        goto done;
+    }
+    if (gd_per_emit_point(c, X, lam, it, res)) goto done;
+    if (c->opt->adaptive && c->want_H > c->H) {
+        /* the first point needed more harmonics: the branch starts from it solved again
+         * at them (padded with zeros it is no solution there: the backlash pair over
+         * 300..2500 rad/s went from 300 to 292 rad/s on a step of 1e-6, a false fold at
+         * 241.85 and 300 rad/s reported twice) */
+        if (gd_per_follow_H(c, &X, NULL)) goto done;
+        if (gd_per_solve_fixed(c, &X, NULL, lam, &it, &res, 0)) {
+            snprintf(c->reason, sizeof c->reason,
+                     "the first point did not converge again at H = %d", c->H);
+            rc = 0;
+            for (int i = i0 + 1; i < nv; i++)
+                if (gd_per_fail_point(c, vals[i], c->reason)) rc = 1;
+            goto done;
+        }
+    }
+    if (c->opt->method == GD_PER_SEQUENTIAL)
+        rc = sequential(c, vals, nv, i0, &X, lam, c->h.n);
+    else if (i0 == nv - 1)
+        rc = 0;
+    else
+        rc = arclength(c, vals, nv, i0, &X, lam);
+done:
+    if (!rc) gd_per_merge_zigzags(c, nb0);
+    free(X);
     return rc;
 }

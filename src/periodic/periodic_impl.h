@@ -92,6 +92,8 @@ typedef struct hb {
                            quarter below the Nyquist harmonic, relative to the residual's scale */
     struct gd_chb *chb; /* the condensed solve's workspace (condensed/chb.h), or NULL */
     struct gd_floquet_modes *fmodes; /* floquet_reduced.c's modes of (K, M), or NULL */
+    /* and their destructor, set with them (hb/ does not call into floquet/: no circle) */
+    void (*fmodes_free)(struct gd_floquet_modes *);
 } hb;
 void gd_floquet_modes_free(struct gd_floquet_modes *m);
 

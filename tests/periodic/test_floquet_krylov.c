@@ -1,5 +1,5 @@
 /* Floquet multipliers without the dense monodromy (periodic.h, floquet = GD_FLOQUET_KRYLOV;
- * src/periodic/floquet_krylov.c): the multipliers from monodromy-vector products equal
+ * src/periodic/floquet/floquet_krylov.c): the multipliers from monodromy-vector products equal
  * the dense Magnus monodromy's over the same steps, on the Mathieu pair (two states: the
  * monodromy's columns from the products) and the Chen SFD pair (twelve states, the four
  * and the eight largest by Krylov-Schur), and the Mathieu tongue's stability and period

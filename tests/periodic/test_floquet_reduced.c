@@ -1,5 +1,5 @@
 /* Floquet multipliers in a reduced basis (periodic.h, floquet = GD_FLOQUET_REDUCED;
- * src/periodic/floquet_reduced.c) against the dense Magnus monodromy over the same steps:
+ * src/periodic/floquet/floquet_reduced.c) against the dense Magnus monodromy over the same steps:
  * the Mathieu pair (one DOF: the basis is the whole model, so only the Strang splitting
  * differs from the fourth-order Magnus steps), the Chen SFD pair (six DOFs, four local
  * terms) with every mode and with a cut-off that leaves modes out (their multipliers then

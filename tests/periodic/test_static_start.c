@@ -1,5 +1,5 @@
 /* Harmonic balance starts from the static state of the laws that carry a static load
- * (src/periodic/warmstart.c, gd_hb_static_start). From rest a rolling bearing with
+ * (src/periodic/hb/warmstart.c, gd_hb_static_start). From rest a rolling bearing with
  * clearance carries nothing and has no stiffness: the first Newton step is singular and
  * the point fails (so did the transient warm start, before the static start); a journal
  * bearing under load sits far off the centre, and Newton from rest needs about twice

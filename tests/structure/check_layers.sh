@@ -66,7 +66,9 @@ check_file() { # file module
     done < <(sed -n 's/^#include "\([^"]*\)".*/\1/p' "$f")
 }
 
-for f in src/*/*.c src/*/*.h; do
+# a module's subfolders (src/periodic/hb/, ...) belong to it
+shopt -s nullglob
+for f in src/*/*.c src/*/*.h src/*/*/*.c src/*/*/*.h; do
     mod=${f#src/}
     mod=${mod%%/*}
     [[ -n ${level[$mod]+x} ]] || { echo "$f: module '$mod' is not in the layer table"; bad=1; continue; }
@@ -89,4 +91,4 @@ if ((bad)); then
     echo "layers: violations found"
     exit 1
 fi
-echo "layers: $(ls src/*/*.[ch] include/geardyn/*.h | wc -l) files, no upward or sideways includes"
+echo "layers: $(ls src/*/*.[ch] src/*/*/*.[ch] include/geardyn/*.h | wc -l) files, no upward or sideways includes"

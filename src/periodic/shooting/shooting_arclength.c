@@ -28,7 +28,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "periodic/shooting_impl.h"
+#include "periodic/shooting/shooting_impl.h"
 
 /* The branch's scales and work arrays. */
 typedef struct arc {

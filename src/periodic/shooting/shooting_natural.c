@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "periodic/shooting_impl.h"
+#include "periodic/shooting/shooting_impl.h"
 
 /* The critical multiplier of kind k at value key from state y (a shooting solve):
  * |mu| - 1 in *g, the multiplier in (*re, *im). 0 ok. */

@@ -1,8 +1,8 @@
 /* Internals of shooting shared by shooting.c (the problem per value, the period map,
  * Newton, the points), shooting_arclength.c (pseudo-arclength continuation) and
  * shooting_natural.c (natural continuation, the entry gd_per_shoot_run). */
-#ifndef GD_PERIODIC_SHOOTING_IMPL_H
-#define GD_PERIODIC_SHOOTING_IMPL_H
+#ifndef GD_PERIODIC_SHOOTING_SHOOTING_IMPL_H
+#define GD_PERIODIC_SHOOTING_SHOOTING_IMPL_H
 #include "geardyn/periodic.h"
 #include "geardyn/transient_model.h"
 #include "periodic/periodic_impl.h"

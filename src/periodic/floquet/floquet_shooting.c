@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "periodic/shooting_impl.h"
+#include "periodic/shooting/shooting_impl.h"
 
 int gd_per_floquet_shooting(const gd_system *sys, const gd_transient_spec *spec,
                             const gd_periodic_param *param, const gd_periodic_options *opt,

@@ -22,8 +22,9 @@
 #include <time.h>
 
 #include "geardyn/transient_model.h"
+#include "linalg/linalg_impl.h"
 #include "periodic/continuation_impl.h"
-#include "periodic/shooting_impl.h"
+#include "periodic/shooting/shooting_impl.h"
 #include "periodic/periodic_impl.h"
 
 /* Most periods of the warm-start transient (it stops once a period changes the state by
@@ -464,111 +465,6 @@ static int kry_apply(shoot *sh, kry *k, const double *z, double *w)
     return 0;
 }
 
-/* Arnoldi on the operator of k from v0 (normalised here) for at most m steps: V (n x (m + 1)),
- * H ((m + 1) x m, column-major, leading dimension m + 1). With x (GMRES: solve A x = v0) it
- * stops when the least-squares residual is below tol |v0| and returns x. The number of steps
- * in *steps. 0 ok, 1 an integration failed. */
-static int arnoldi(shoot *sh, kry *k, const double *v0, int m, double *V, double *H, int *steps,
-                   double tol, double *x)
-{
-    const int N = k->n, ld = m + 1;
-    double beta = 0.0;
-    for (int i = 0; i < N; i++)
-        beta += v0[i] * v0[i];
-    beta = sqrt(beta);
-    *steps = 0;
-    if (x) memset(x, 0, (size_t)N * sizeof *x);
-    if (beta == 0.0) return 0;
-    double *cs = malloc((size_t)3 * (m + 1) * sizeof *cs), *sn = cs + m + 1, *g = sn + m + 1;
-    if (!cs) return 1;
-    memset(g, 0, (size_t)(m + 1) * sizeof *g);
-    g[0] = beta;
-    memset(H, 0, (size_t)ld * m * sizeof *H);
-    for (int i = 0; i < N; i++)
-        V[i] = v0[i] / beta;
-    int j = 0, rc = 0;
-    for (; j < m; j++) {
-        double *w = V + (size_t)(j + 1) * N;
-        if (kry_apply(sh, k, V + (size_t)j * N, w)) {
-            rc = 1;
-            break;
-        }
-        for (int l = 0; l <= j; l++) { /* modified Gram-Schmidt */
-            double hij = 0.0;
-            for (int i = 0; i < N; i++)
-                hij += w[i] * V[(size_t)l * N + i];
-            H[(size_t)j * ld + l] = hij;
-            for (int i = 0; i < N; i++)
-                w[i] -= hij * V[(size_t)l * N + i];
-        }
-        double hn = 0.0;
-        for (int i = 0; i < N; i++)
-            hn += w[i] * w[i];
-        hn = sqrt(hn);
-        H[(size_t)j * ld + j + 1] = hn;
-        if (hn > 0.0)
-            for (int i = 0; i < N; i++)
-                w[i] /= hn;
-        if (x) {
-            /* the least-squares problem by Givens rotations, on a copy of column j */
-            double *c = H + (size_t)j * ld, t[KRYLOV_M + 2];
-            memcpy(t, c, (size_t)(j + 2) * sizeof *t);
-            for (int l = 0; l < j; l++) {
-                double a = cs[l] * t[l] + sn[l] * t[l + 1];
-                t[l + 1] = -sn[l] * t[l] + cs[l] * t[l + 1];
-                t[l] = a;
-            }
-            double r = hypot(t[j], t[j + 1]);
-            cs[j] = r > 0 ? t[j] / r : 1.0;
-            sn[j] = r > 0 ? t[j + 1] / r : 0.0;
-            g[j + 1] = -sn[j] * g[j];
-            g[j] = cs[j] * g[j];
-            /* keep the rotated column in the upper part of a second copy: R in cs's tail
-             * is not needed, the triangle is rebuilt below from H */
-            if (fabs(g[j + 1]) <= tol * beta || hn == 0.0) {
-                j++;
-                break;
-            }
-        } else if (hn == 0.0) {
-            j++;
-            break;
-        }
-    }
-    *steps = j;
-    if (x && j > 0 && !rc) {
-        /* R y = g: the rotations applied again to H's first j columns */
-        double *R = malloc((size_t)(j + 1) * j * sizeof *R), *yy = malloc((size_t)j * sizeof *yy);
-        if (!R || !yy) {
-            rc = 1;
-        } else {
-            for (int c = 0; c < j; c++) {
-                double *col = R + (size_t)c * (j + 1);
-                memcpy(col, H + (size_t)c * ld,
-                       (size_t)(c + 2 < j + 1 ? c + 2 : j + 1) * sizeof *col);
-                for (int l = 0; l < c; l++) {
-                    double a = cs[l] * col[l] + sn[l] * col[l + 1];
-                    col[l + 1] = -sn[l] * col[l] + cs[l] * col[l + 1];
-                    col[l] = a;
-                }
-                col[c] = cs[c] * col[c] + sn[c] * col[c + 1];
-            }
-            for (int r = j - 1; r >= 0; r--) {
-                double sum = g[r];
-                for (int c = r + 1; c < j; c++)
-                    sum -= R[(size_t)c * (j + 1) + r] * yy[c];
-                yy[r] = R[(size_t)r * (j + 1) + r] != 0 ? sum / R[(size_t)r * (j + 1) + r] : 0.0;
-            }
-            for (int c = 0; c < j; c++)
-                for (int i = 0; i < N; i++)
-                    x[i] += yy[c] * V[(size_t)c * N + i];
-        }
-        free(R);
-        free(yy);
-    }
-    free(cs);
-    return rc;
-}
-
 void gd_per_sh_scales(const shoot *sh, const double *y, double *d)
 {
     double yq, yv;
@@ -579,44 +475,31 @@ void gd_per_sh_scales(const shoot *sh, const double *y, double *d)
         d[i] = i < sh->nf ? yq : yv;
 }
 
+/* kry_apply as linalg's operator (gmres.c) */
+typedef struct kry_op {
+    shoot *sh;
+    kry *k;
+} kry_op;
+
+static int kry_product(void *data, const double *z, double *w)
+{
+    kry_op *o = data;
+    return kry_apply(o->sh, o->k, z, w);
+}
+
 /* GMRES(KRYLOV_M) on the operator of k (k->n unknowns): A x = b, each cycle to tol |b| in
- * its least-squares residual, at most `cycles` cycles; between cycles the true residual
- * b - A x is recomputed (one product) and the restarts stop once its square is below
- * stop2 |b|^2. Used by Newton-Krylov and by the arclength's bordered corrector and
- * tangent (shooting_arclength.c). 0 ok, 1 an integration failed or out of memory. */
+ * its least-squares residual, at most `cycles` cycles, restarts stopped once the true
+ * residual's square is below stop2 |b|^2 (linalg/gmres.c). Used by Newton-Krylov and by
+ * the arclength's bordered corrector and tangent (shooting_arclength.c). 0 ok, 1 an
+ * integration failed or out of memory. */
 int gd_per_sh_gmres(shoot *sh, kry *k, const double *b, double *x, double tol, double stop2,
                     int cycles)
 {
     const int n = k->n, m = n < KRYLOV_M ? n : KRYLOV_M;
-    double *V = malloc(((size_t)n * (m + 1) + (size_t)(m + 1) * m + 3 * (size_t)n) * sizeof *V);
-    if (!V) {
-        snprintf(sh->why, sizeof sh->why, "out of memory");
-        return 1;
-    }
-    double *H = V + (size_t)n * (m + 1), *r = H + (size_t)(m + 1) * m, *dx = r + n, *w = dx + n;
-    memcpy(r, b, (size_t)n * sizeof *r);
-    memset(x, 0, (size_t)n * sizeof *x);
-    int rc = 1;
-    for (int cyc = 0; cyc < cycles; cyc++) {
-        int steps;
-        if (arnoldi(sh, k, r, m, V, H, &steps, tol, dx)) goto done;
-        for (int i = 0; i < n; i++)
-            x[i] += dx[i];
-        if (cyc == cycles - 1) break;
-        /* b - A x */
-        if (kry_apply(sh, k, x, w)) goto done;
-        double nb = 0.0, n0 = 0.0;
-        for (int i = 0; i < n; i++) {
-            r[i] = b[i] - w[i];
-            nb += r[i] * r[i];
-            n0 += b[i] * b[i];
-        }
-        if (nb <= stop2 * n0) break;
-    }
-    rc = 0;
-done:
-    free(V);
-    return rc;
+    kry_op o = {sh, k};
+    const int rc = gd_gmres(kry_product, &o, n, m, b, x, tol, stop2, cycles);
+    if (rc == 2) snprintf(sh->why, sizeof sh->why, "out of memory");
+    return rc != 0;
 }
 
 /* Newton-Krylov on F(y) = P(y) - y: each step GMRES(KRYLOV_M) on (Phi - I) dy = -F in
@@ -710,7 +593,8 @@ static int krylov_multipliers(shoot *sh, const double *y, double *mre, double *m
             .y = y, .py = py, .d = d, .yt = sh->yt, .pt = pt, .n = N, .shift = 0.0, .central = 1};
         for (int i = 0; i < N; i++) /* every state excited, none by symmetry left out */
             v0[i] = 1.0 + 0.5 * sin(1.0 + i);
-        if (!arnoldi(sh, &k, v0, m, V, H, &steps, 0.0, NULL) && steps > 0) {
+        kry_op o = {sh, &k};
+        if (!gd_arnoldi(kry_product, &o, N, v0, m, V, H, &steps, 0.0, NULL) && steps > 0) {
             for (int c = 0; c < steps; c++)
                 for (int r = 0; r < steps; r++)
                     Hs[(size_t)c * steps + r] = H[(size_t)c * (m + 1) + r];
