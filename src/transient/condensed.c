@@ -46,6 +46,9 @@ void gd_tr_condensed_free(gd_tr_condensed *k)
     free(k->D);
     free(k->yscale);
     free(k->ewt);
+    free(k->CCA);
+    free(k->xout);
+    free(k->yout);
     free(k->partner);
     if (k->Jm) SUNMatDestroy(k->Jm);
     free(k->work);
@@ -71,20 +74,26 @@ static void forces_at(gd_transient *tr, double t, const double *qs, const double
     }
 }
 
-/* y = C x (nc), yv = C A x */
-static void outputs(const gd_tr_condensed *k, const double *x, double *y, double *yv)
+/* y = C x (nc), yv = C A x (yv = y + nc: one product with [C; C A]), the last x's kept:
+ * CVODE evaluates the error weights and the switches at the same accepted state */
+static void outputs(gd_tr_condensed *k, const double *x, double *y)
 {
-    const int nc = k->nc, ns = k->ns;
-    for (int i = 0; i < nc; i++)
-        y[i] = yv[i] = 0.0;
+    const int nc2 = 2 * k->nc, ns = k->ns;
+    if (k->have_out && !memcmp(x, k->xout, (size_t)ns * sizeof *x)) {
+        memcpy(y, k->yout, (size_t)nc2 * sizeof *y);
+        return;
+    }
+    for (int i = 0; i < nc2; i++)
+        y[i] = 0.0;
     for (int j = 0; j < ns; j++) {
         const double xj = x[j];
-        const double *c = k->C + (size_t)j * nc, *ca = k->CA + (size_t)j * nc;
-        for (int i = 0; i < nc; i++) {
+        const double *c = k->CCA + (size_t)j * nc2;
+        for (int i = 0; i < nc2; i++)
             y[i] += c[i] * xj;
-            yv[i] += ca[i] * xj;
-        }
     }
+    memcpy(k->xout, x, (size_t)ns * sizeof *x);
+    memcpy(k->yout, y, (size_t)nc2 * sizeof *y);
+    k->have_out = 1;
 }
 
 /* q_S = y + G u, v_S = yv + C B u */
@@ -158,7 +167,7 @@ static void solve_loop(gd_transient *tr, double t, const double *x, double *qs, 
     gd_tr_condensed *k = tr->cond;
     const int nc = k->nc;
     double *y = k->work + 4 * nc, *yv = y + nc, *z = yv + nc;
-    outputs(k, x, y, yv);
+    outputs(k, x, y);
     if (!k->have_tangent || modes_changed(tr)) {
         coords_of(k, y, yv, k->u, qs, vs);
         refresh_tangent(tr, t, qs, vs);
@@ -209,7 +218,8 @@ void gd_tr_condensed_rhs(gd_transient *tr, double t, const double *x, double *xd
     /* x' = A x + B u, A block diagonal in the modal basis (each state and its partner) */
     for (int i = 0; i < ns; i++) {
         const int p = k->partner[i];
-        xdot[i] = k->A[i + (size_t)i * ns] * x[i] + (p != i ? k->A[i + (size_t)p * ns] * x[p] : 0.0);
+        xdot[i] =
+            k->A[i + (size_t)i * ns] * x[i] + (p != i ? k->A[i + (size_t)p * ns] * x[p] : 0.0);
     }
     if (!k->a_blocks)
         for (int j = 0; j < ns; j++)
@@ -264,7 +274,8 @@ static void jacobian(gd_transient *tr, double t, const double *x, double *out)
                      k->Fv[i + (size_t)m * nc] * k->CA[m + (size_t)j * nc];
             D[i + (size_t)j * nc] = s;
         }
-    if (k->loop && k->lok) LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'N', nc, ns, k->L, nc, k->lpiv, D, nc);
+    if (k->loop && k->lok)
+        LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'N', nc, ns, k->L, nc, k->lpiv, D, nc);
     memcpy(out, k->A, (size_t)ns * ns * sizeof *out);
     for (int j = 0; j < ns; j++)
         for (int m = 0; m < nc; m++) {
@@ -432,7 +443,7 @@ int gd_tr_condensed_ewt(N_Vector y, N_Vector ewt, void *ud)
     const double *x = N_VGetArrayPointer(y);
     double *w = N_VGetArrayPointer(ewt), *yq = k->work + 4 * nc, *yv = yq + nc;
     double *Y = k->yscale, *V = Y + nc;
-    outputs(k, x, yq, yv);
+    outputs(k, x, yq);
     /* the scales grow in steps of 5 %: the weights are recomputed only then */
     int grew = !k->have_ewt;
     for (int i = 0; i < nc; i++) {
@@ -473,6 +484,7 @@ void gd_tr_condensed_reset(gd_transient *tr)
     gd_tr_condensed *k = tr->cond;
     memset(k->u, 0, (size_t)k->nc * sizeof *k->u);
     k->have_tangent = 0;
+    k->have_out = 0;
     k->loop_iters = 0;
     k->setups = 0;
 }
@@ -519,6 +531,66 @@ static double contact_band(gd_transient *tr)
     return wmax;
 }
 
+/* The DOFs the laws and unbalances act on: mark[i] = 1 (n zeroed ints); their count. */
+static int law_dofs(const gd_transient *tr, int *mark)
+{
+    for (int i = 0; i < tr->nlaw; i++)
+        for (int j = 0; j < tr->law[i].ndofs; j++)
+            if (tr->law[i].dof[j] >= 0) mark[tr->law[i].dof[j]] = 1;
+    for (int i = 0; i < tr->nunb_all; i++) {
+        if (tr->unb[i].dx >= 0) mark[tr->unb[i].dx] = 1;
+        if (tr->unb[i].dy >= 0) mark[tr->unb[i].dy] = 1;
+    }
+    int nc = 0;
+    for (int i = 0; i < tr->n; i++)
+        nc += mark[i];
+    return nc;
+}
+
+int gd_transient_condense_pays(const gd_transient *tr, char *why, size_t len)
+{
+    char lin[160];
+    if (tr->cond) {
+        snprintf(why, len, "condensed already");
+        return 0;
+    }
+    if (tr->red) {
+        snprintf(why, len, "a reduced model");
+        return 0;
+    }
+    if (tr->n < GD_TRANSIENT_CONDENSE_DOFS) {
+        snprintf(why, len, "%d DOFs, fewer than %d", tr->n, GD_TRANSIENT_CONDENSE_DOFS);
+        return 0;
+    }
+    if (tr->np || tr->nin) {
+        snprintf(why, len, "%s", tr->np ? "prescribed DOFs" : "cam inertia");
+        return 0;
+    }
+    if (gd_tr_lti_reason(tr, lin, sizeof lin)) {
+        snprintf(why, len, "linear: the lti method is exact");
+        return 0;
+    }
+    if (tr->sys->nlaws > 0 && tr->n > GD_TR_CONDENSE_DENSE_MAX) {
+        snprintf(why, len, "%d DOFs, more than %d with model laws", tr->n,
+                 GD_TR_CONDENSE_DENSE_MAX);
+        return 0;
+    }
+    int *mark = calloc((size_t)tr->n, sizeof *mark);
+    if (!mark) {
+        snprintf(why, len, "out of memory");
+        return 0;
+    }
+    const int nc = law_dofs(tr, mark);
+    free(mark);
+    if (nc == 0 || nc * GD_TRANSIENT_CONDENSE_FEW > tr->n) {
+        snprintf(why, len, "laws on %d of %d DOFs, more than 1 in %d", nc, tr->n,
+                 GD_TRANSIENT_CONDENSE_FEW);
+        return 0;
+    }
+    snprintf(why, len, "%d DOFs, laws on %d", tr->n, nc);
+    return 1;
+}
+
 gd_status gd_transient_new_condensed(const gd_system *sys, const gd_transient_spec *spec,
                                      double speed, double cutoff, gd_transient **out, gd_error *err)
 {
@@ -556,16 +628,7 @@ gd_status gd_transient_new_condensed(const gd_system *sys, const gd_transient_sp
     tr->cond_fill = gd_tr_condensed_fill;
     tr->cond_rhs = gd_tr_condensed_rhs;
     tr->cond_free = gd_tr_condensed_free;
-    for (int i = 0; i < tr->nlaw; i++)
-        for (int j = 0; j < tr->law[i].ndofs; j++)
-            if (tr->law[i].dof[j] >= 0) mark[tr->law[i].dof[j]] = 1;
-    for (int i = 0; i < tr->nunb_all; i++) {
-        if (tr->unb[i].dx >= 0) mark[tr->unb[i].dx] = 1;
-        if (tr->unb[i].dy >= 0) mark[tr->unb[i].dy] = 1;
-    }
-    int nc = 0;
-    for (int i = 0; i < n; i++)
-        nc += mark[i];
+    const int nc = law_dofs(tr, mark);
     if (nc == 0) {
         free(mark);
         st = gd_error_set(err, GD_EINPUT, file, 0, 0, "laws",
@@ -645,11 +708,15 @@ gd_status gd_transient_new_condensed(const gd_system *sys, const gd_transient_sp
     k->D = calloc((size_t)nc * ns, sizeof *k->D);
     k->yscale = calloc((size_t)2 * nc, sizeof *k->yscale);
     k->ewt = calloc((size_t)ns, sizeof *k->ewt);
+    k->CCA = calloc((size_t)2 * nc * ns, sizeof *k->CCA);
+    k->xout = calloc((size_t)ns, sizeof *k->xout);
+    k->yout = calloc((size_t)2 * nc, sizeof *k->yout);
     k->partner = malloc((size_t)ns * sizeof *k->partner);
     k->work = calloc((size_t)9 * nc + ns + nc, sizeof *k->work);
     k->modes = calloc((size_t)(tr->nlaw ? tr->nlaw : 1), sizeof *k->modes);
     if (!k->CA || !k->CB || !k->dK || !k->dD || !k->u || !k->Fq || !k->Fv || !k->L || !k->lpiv ||
-        !k->D || !k->yscale || !k->ewt || !k->partner || !k->work || !k->modes) {
+        !k->D || !k->yscale || !k->ewt || !k->CCA || !k->xout || !k->yout || !k->partner ||
+        !k->work || !k->modes) {
         st = gd_error_set(err, GD_ENOMEM, file, 0, 0, "", "", "out of memory");
         goto fail;
     }
@@ -682,6 +749,11 @@ gd_status gd_transient_new_condensed(const gd_system *sys, const gd_transient_sp
             for (int i = 0; i < nc; i++)
                 k->CB[i + (size_t)j * nc] += k->C[i + (size_t)m * nc] * b;
         }
+    for (int j = 0; j < ns; j++) {
+        memcpy(k->CCA + (size_t)j * 2 * nc, k->C + (size_t)j * nc, (size_t)nc * sizeof *k->CCA);
+        memcpy(k->CCA + (size_t)j * 2 * nc + nc, k->CA + (size_t)j * nc,
+               (size_t)nc * sizeof *k->CCA);
+    }
     /* K_L, C_L: what the condensed structure (gd_system_dense) holds beyond the
      * transient's linear part, only on law DOFs (S x S) */
     if (sys->nlaws > 0) {

@@ -45,15 +45,18 @@ typedef struct gd_tr_condensed {
     double *Fq, *Fv, *L;         /* nc x nc: the forces' tangent, the loop matrix (LU) */
     int *lpiv;
     int loop, lok, have_tangent;
-    int *modes;   /* nlaw: the laws' modes the tangent was taken in */
-    double *D;    /* nc x ns: du/dx */
-    SUNMatrix Jm; /* ns x ns: CVODE's dense Jacobian (gd_tr_condensed_solver) */
+    int *modes;                  /* nlaw: the laws' modes the tangent was taken in */
+    double *D;                   /* nc x ns: du/dx */
+    SUNMatrix Jm;                /* ns x ns: CVODE's dense Jacobian (gd_tr_condensed_solver) */
     double rtol, atol_q, atol_v; /* the run's tolerances (gd_tr_condensed_ewt) */
     double *yscale;              /* 2 nc: the coordinates' largest |C x|, |C A x| so far */
     double *ewt;                 /* ns: the error weights at those scales */
+    double *CCA;                 /* 2 nc x ns: [C; C A] */
+    double *xout, *yout;         /* the last state given to outputs() and its [C x; C A x] */
+    int have_out;
     int have_ewt;
-    int *partner;                /* ns: the other state of each state's mode (itself if none) */
-    int a_blocks;                /* 1: A couples only partners (the modal basis) */
+    int *partner; /* ns: the other state of each state's mode (itself if none) */
+    int a_blocks; /* 1: A couples only partners (the modal basis) */
     double *work;
     double cutoff, w_exc, w_contact, est_rel;
     long loop_iters, setups;
