@@ -601,7 +601,7 @@ gd_status gd_transient_new_condensed(const gd_system *sys, const gd_transient_sp
     if (st) return st;
     if (tr->np) {
         st = gd_error_set(err, GD_EINPUT, file, 0, 0, "prescribed",
-                          "integrate the full model (--condense none), or replace the "
+                          "integrate the full model (--condense off), or replace the "
                           "prescribed motion by a load or a spring to ground",
                           "the condensed transient keeps the structure's own modes: no "
                           "prescribed DOF (%d given)",
@@ -610,7 +610,7 @@ gd_status gd_transient_new_condensed(const gd_system *sys, const gd_transient_sp
     }
     if (tr->nin) {
         st = gd_error_set(err, GD_EINPUT, file, 0, 0, "cam_torques",
-                          "integrate the full model (--condense none)",
+                          "integrate the full model (--condense off)",
                           "the condensed transient has no configuration-dependent inertia "
                           "(cam_acceleration)");
         goto fail;
@@ -759,7 +759,7 @@ gd_status gd_transient_new_condensed(const gd_system *sys, const gd_transient_sp
     if (sys->nlaws > 0) {
         if (n > GD_TR_CONDENSE_DENSE_MAX) {
             st = gd_error_set(err, GD_EINPUT, file, 0, 0, "laws",
-                              "integrate the full model (--condense none)",
+                              "integrate the full model (--condense off)",
                               "the condensed transient with model laws takes their "
                               "linearisation from the dense matrices: up to %d DOFs, not %d",
                               GD_TR_CONDENSE_DENSE_MAX, n);

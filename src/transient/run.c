@@ -93,7 +93,10 @@ void *gd_tr_cvode_new(SUNContext ctx, const gd_transient_options *opt, double t0
         if (!*LS) f = -1;
         if (!f) f = CVodeSetLinearSolver(mem, *LS, tr->cond->Jm);
         if (!f) f = CVodeSetJacFn(mem, gd_tr_condensed_jac);
-        if (!f) f = CVodeWFtolerances(mem, gd_tr_condensed_ewt);
+        /* below a cut-off, the error weights from the coordinates (condensed.c); with
+         * every mode kept (the exact condensation, a check of the full model) CVODE's own
+         * per-state weights */
+        if (!f && tr->cond->info.ndiscarded > 0) f = CVodeWFtolerances(mem, gd_tr_condensed_ewt);
     } else {
         *LS = SUNLinSol_SPGMR(y, SUN_PREC_LEFT, 20, ctx);
         if (!*LS) f = -1;
@@ -524,7 +527,7 @@ gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
                             "the condensed model runs with CVODE (bdf or adams) only");
     if (tr->cond && opt->init != GD_TR_INIT_REST)
         return gd_error_set(err, GD_EINPUT, "", 0, 0, "start",
-                            "start at rest, or integrate the full model (--condense none)",
+                            "start at rest, or integrate the full model (--condense off)",
                             "the condensed model starts at rest only");
     double from = opt->record_from > opt->t_start ? opt->record_from : opt->t_start;
     if (!(opt->t_end > opt->t_start) || !isfinite(opt->t_end) || !isfinite(opt->t_start) ||
