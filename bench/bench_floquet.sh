@@ -73,6 +73,10 @@ echo "-- large models: the reduced multipliers against the harmonic balance solv
 echo "   (dense about 1.2 s per Magnus step x 2048 steps, Krylov about 10 s per product and"
 echo "    no convergence in 30 min on the first: docs/periodic.md)"
 row_reduced "[JMSTHelical] 2500 rpm, 754 st." examples/helical_two_stage.yaml 2500rpm:2500rpm:1 108
+# the figures set's order (H = 591), two speeds: the second reuses the first's modes of
+# (K, M) (floquet_reduced.c, modes_of); the time is of both points
+row_reduced "[JMSTHelical] 2 speeds, H 591" examples/helical_two_stage.yaml 2500rpm:3000rpm:2 591 \
+    --sequential --method hb
 GB=(--set meshes.pair1.geometry.driver.teeth=23 --set meshes.pair1.geometry.driven.teeth=67
     --set meshes.pair2.geometry.driver.teeth=19 --set meshes.pair2.geometry.driven.teeth=71)
 row_reduced "gearbox 23/67-19/71, 1500 rpm" examples/helical_two_stage.yaml 1500rpm:1500rpm:1 auto "${GB[@]}"

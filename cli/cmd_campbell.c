@@ -372,8 +372,10 @@ int gd_cmd_campbell(int argc, char **argv)
             rc = gd_cli_plot_finish(pst, p, &err, plot);
         }
         if (out && rc == GD_EXIT_OK) rc = write_csv(r, out);
-        int *bad = calloc((size_t)r->nspeeds + 1, sizeof *bad);
-        if (rc == GD_EXIT_OK) gd_cli_operating_scan(s, r->speeds, r->nspeeds, bad);
+        /* the speeds without an equilibrium, as the sweep found them (not solved again) */
+        int *none = r->no_equilibrium ? NULL : calloc((size_t)r->nspeeds + 1, sizeof *none);
+        const int *bad = r->no_equilibrium ? r->no_equilibrium : none;
+        if (rc == GD_EXIT_OK) gd_cli_operating_warn(r->speeds, bad, r->nspeeds);
         if (rc == GD_EXIT_OK) {
             if (a.json) {
                 cJSON *o = result_json(s, r);
@@ -385,7 +387,7 @@ int gd_cmd_campbell(int argc, char **argv)
                 gd_cli_operating_print(s, &a.op, 1);
             }
         }
-        free(bad);
+        free(none);
         gd_campbell_free(r);
     }
     gd_system_free(s);

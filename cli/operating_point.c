@@ -34,26 +34,34 @@ int gd_cli_operating_apply(gd_system *s, const gd_cli_operating *op, double spee
     return GD_EXIT_OK;
 }
 
-int gd_cli_operating_scan(const gd_system *s, const double *speeds, int n, int *bad)
+void gd_cli_operating_warn(const double *speeds, const int *bad, int n)
 {
-    if (!s->nlaws || s->op_kind == GD_OPERATING_ZERO) return 0;
-    double *q = malloc((size_t)(s->ndof > 0 ? s->ndof : 1) * sizeof *q);
     int count = 0, first = -1;
-    for (int k = 0; k < n; k++) {
-        int found = q ? gd_system_law_state(s, speeds[k], q) : 0;
-        if (bad) bad[k] = !found;
-        if (!found) {
+    for (int k = 0; bad && k < n; k++)
+        if (bad[k]) {
             if (first < 0) first = k;
             count++;
         }
-    }
-    free(q);
     if (count)
         fprintf(stderr,
                 "geardyn: warning: the laws find no static equilibrium at %d of %d speeds "
                 "(the first %.6g rpm): they are linearised at q = 0 there, where a journal or "
                 "rolling bearing may have no stiffness\n",
                 count, n, speeds[first] * 30 / M_PI);
+}
+
+int gd_cli_operating_scan(const gd_system *s, const double *speeds, int n, int *bad)
+{
+    if (!s->nlaws || s->op_kind == GD_OPERATING_ZERO) return 0;
+    double *q = malloc((size_t)(s->ndof > 0 ? s->ndof : 1) * sizeof *q);
+    int count = 0;
+    for (int k = 0; k < n; k++) {
+        int found = q ? gd_system_law_state(s, speeds[k], q) : 0;
+        if (bad) bad[k] = !found;
+        count += !found;
+    }
+    free(q);
+    if (bad) gd_cli_operating_warn(speeds, bad, n);
     return count;
 }
 

@@ -29,10 +29,13 @@ typedef struct gd_cli_operating {
  * equilibrium at speed must exist: otherwise the located error of `static`, with the
  * hint to use --operating-point zero. Returns an exit code. */
 int gd_cli_operating_apply(gd_system *s, const gd_cli_operating *op, double speed, int check);
-/* The speeds (of n) where the laws found no equilibrium (linearised at q = 0 there): a
- * warning on stderr naming them; returns their count and, if bad is not NULL, flags them
- * in bad (n ints). */
+/* The speeds (of n) where the laws found no equilibrium (linearised at q = 0 there),
+ * each solved again from rest: a warning on stderr naming them (with bad); returns
+ * their count and, if bad is not NULL, flags them in bad (n ints). */
 int gd_cli_operating_scan(const gd_system *s, const double *speeds, int n, int *bad);
+/* The warning of gd_cli_operating_scan from flags the analysis already has (a Campbell
+ * result's no_equilibrium; bad may be NULL: nothing to say). */
+void gd_cli_operating_warn(const double *speeds, const int *bad, int n);
 /* "operating point: ..." (text), nothing for a model without laws. */
 void gd_cli_operating_print(const gd_system *s, const gd_cli_operating *op, int per_speed);
 /* o.operating_point = {state, torque_n_m, laws, [no_equilibrium_speeds_rpm]} for a model

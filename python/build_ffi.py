@@ -56,6 +56,14 @@ typedef struct { char name[...]; int node, node2; ...; } gd_bearing;
 typedef struct { char name[...]; int driver, driven; int teeth[2]; double stiffness;
                  ...; } gd_mesh;
 typedef struct { char name[...]; int node; double amount, phase; ...; } gd_unbalance;
+typedef struct { int node; double mass, inertia; double k_support; double k_torsion; }
+    gd_planetary_body;
+typedef struct { char name[...]; gd_planetary_body member[3]; int held; int nplanets;
+                 int first_planet; double *planet_angle; int equally_spaced; int teeth[3];
+                 double base_radius[3]; double carrier_radius; double pressure_angle[2];
+                 double planet_mass, planet_inertia; double bearing_stiffness;
+                 double mesh_stiffness[2]; double contact_ratio[2]; ...; } gd_planetary;
+extern const char *const gd_planetary_member_names[3];
 typedef struct gd_model {
     char file[...];
     int nshafts; gd_shaft *shafts;
@@ -64,13 +72,21 @@ typedef struct gd_model {
     int nmeshes; gd_mesh *meshes;
     int nunbalances; gd_unbalance *unbalances;
     double speed;
+    int nplanetary; gd_planetary *planetary;
     ...;
 } gd_model;
+/* kinematics and assembly of a set (planetary.h) */
+typedef struct { int input; double speed[3]; double planet_speed; double teeth_ratio;
+                 double mesh_order; int has_teeth; double assembly[...]; int assembles;
+                 double sun_teeth_per_planet; } gd_planetary_kinematics;
+void gd_planetary_kinematics_of(const gd_planetary *g, gd_planetary_kinematics *out);
 gd_status gd_model_load(const char *path, gd_model **out, gd_error *err);
 void gd_model_free(gd_model *model);
 void gd_model_set_coupling(gd_model *model, gd_coupling level);
 int gd_model_find_node(const gd_model *model, const char *name);
 int gd_model_find_mesh(const gd_model *model, const char *name);
+int gd_model_mesh_count(const gd_model *model);
+const char *gd_model_mesh_name(const gd_model *model, int i);
 
 typedef struct { int nset; const char *const *set; } gd_load_options;
 void gd_load_options_init(gd_load_options *opt);
@@ -129,6 +145,21 @@ gd_status gd_model_add_bearing(gd_model *m, const gd_bearing_spec *s, int *index
 gd_status gd_model_add_spring(gd_model *m, const gd_spring_spec *s, int *index, gd_error *err);
 gd_status gd_model_add_mesh(gd_model *m, const gd_mesh_spec *s, int *index, gd_error *err);
 gd_status gd_model_add_unbalance(gd_model *m, const gd_unbalance_spec *s, int *index,
+                                 gd_error *err);
+/* planetary sets (builder.h, docs/planetary.md): the constant-coefficient set; tooth
+   geometry and mesh laws are read from files */
+typedef struct { const char *node; double mass; double inertia; double k_support;
+                 double k_torsion; } gd_planetary_member_spec;
+typedef struct { const char *name; gd_planetary_member_spec member[3]; int held;
+                 int nplanets; const double *planet_angles; double planet_mass, planet_inertia;
+                 double bearing_stiffness; const double *pin_errors;
+                 const double *pin_errors_radial; int teeth[3]; double base_radius[3];
+                 double carrier_radius; double pressure_angle[2]; double helix_angle;
+                 double planet_tip_radius; double mesh_stiffness[2]; double mesh_damping[2];
+                 int carrier_frame; int centrifugal_stiffness; gd_loc loc; const char *path;
+                 ...; } gd_planetary_spec;
+void gd_planetary_spec_init(gd_planetary_spec *s);
+gd_status gd_model_add_planetary(gd_model *m, const gd_planetary_spec *s, int *index,
                                  gd_error *err);
 gd_status gd_model_set_dofs(gd_model *m, unsigned dof_mask, gd_error *err);
 gd_status gd_model_set_reference_shaft(gd_model *m, const char *shaft, int rotation,
@@ -194,6 +225,11 @@ void gd_modal_options_init(gd_modal_options *opt);
 gd_status gd_modal_solve(const gd_system *sys, const gd_modal_options *opt,
                          gd_modal_result **out, gd_error *err);
 void gd_modal_free(gd_modal_result *res);
+typedef enum { GD_PCLASS_NONE, GD_PCLASS_ROTATIONAL, GD_PCLASS_TRANSLATIONAL, GD_PCLASS_PLANET,
+               GD_PCLASS_MIXED, GD_PCLASS_COUNT } gd_planetary_class;
+extern const char *const gd_planetary_class_names[5];
+gd_planetary_class gd_modal_planetary_class(const gd_system *sys, const gd_modal_result *r,
+                                            int mode, int set);
 
 /* ---- static (static.h) ---- */
 typedef struct { double speed; double input_torque; int input_node; int hold_node;
@@ -215,6 +251,10 @@ void gd_static_options_init(gd_static_options *opt);
 gd_status gd_static_run(const gd_system *sys, const gd_static_options *opt,
                         gd_static_result **out, gd_error *err);
 void gd_static_free(gd_static_result *res);
+typedef struct { int nplanets; double sun_force[...], ring_force[...]; double bearing_force[...];
+                 double load_sharing; } gd_static_planetary_loads;
+gd_status gd_static_planetary(const gd_system *sys, const gd_static_result *res, int set,
+                              gd_static_planetary_loads *out, gd_error *err);
 
 /* ---- campbell ---- */
 typedef enum { GD_EIG_AUTO, GD_EIG_DENSE, GD_EIG_SPARSE, ... } gd_eig_method;
@@ -256,6 +296,10 @@ void gd_frf_options_init(gd_frf_options *opt);
 gd_status gd_frf(const gd_system *sys, const gd_frf_options *opt, gd_frf_result **out,
                  gd_error *err);
 void gd_frf_free(gd_frf_result *r);
+gd_status gd_frf_load(const gd_system *sys, const gd_frf_options *opt, const double *load_re,
+                      const double *load_im, gd_frf_result **out, gd_error *err);
+gd_status gd_planetary_mesh_excitation(const gd_system *sys, int set, int harmonic, int ring,
+                                       double *re, double *im, gd_error *err);
 void gd_frf_directional(const gd_frf_result *r, int out_x, int out_y, double *fwd_re,
                         double *fwd_im, double *bwd_re, double *bwd_im);
 
@@ -309,7 +353,7 @@ typedef struct { double t_start, t_end; double output_interval; double record_fr
                  double rtol; double atol_q, atol_v; gd_tr_method method; gd_tr_init init;
                  const double *q0, *v0; double max_step; long max_steps; int max_order;
                  int locate_events; double step; double rho_inf;
-                 const gd_speed_profile *profile; ...; } gd_transient_options;
+                 const gd_speed_profile *profile; int error_estimate; ...; } gd_transient_options;
 typedef enum { GD_REC_DISP, GD_REC_VEL, GD_REC_ANGLE, GD_REC_SPEED, GD_REC_SPEED_RATIO,
                GD_REC_MESH_FORCE, GD_REC_MESH_DEFLECTION, GD_REC_MESH_STATE,
                GD_REC_MESH_STIFFNESS, GD_REC_SFD_FX, GD_REC_SFD_FY,
@@ -330,6 +374,14 @@ gd_status gd_transient_model_build(const gd_system *sys, gd_transient_model **ou
 void gd_transient_model_free(gd_transient_model *tm);
 gd_status gd_transient_new(const gd_system *sys, const gd_transient_spec *spec, double speed,
                            gd_transient **out, gd_error *err);
+/* the transient condensed onto the laws' DOFs (`transient --condense`, docs/transient.md) */
+gd_status gd_transient_new_condensed(const gd_system *sys, const gd_transient_spec *spec,
+                                     double speed, double cutoff, gd_transient **out,
+                                     gd_error *err);
+typedef struct { int ncoords, nstates; int nkept, ndiscarded; int nrigid; double cutoff;
+                 double first_discarded; double excitation; double contact;
+                 double static_correction; double estimate; } gd_tr_condensed_info;
+int gd_transient_condensed_info(const gd_transient *tr, gd_tr_condensed_info *info);
 void gd_transient_free(gd_transient *tr);
 int gd_transient_nstates(const gd_transient *tr);
 void gd_transient_options_init(gd_transient_options *opt);

@@ -346,6 +346,9 @@ typedef struct gd_planetary_spec {
        modelled in the fixed frame), -1 (default) all when every member sits on a shaft
        without sections, else the planets */
     int carrier_frame;
+    /* 1 (default): the planet bearings' geometric stiffness of the planets' centrifugal load
+       at carrier speed; 0: left out, as in [CooleyParker2012] Eq. 1 (docs/planetary.md) */
+    int centrifugal_stiffness;
     /* meshes as laws ([0] sun-planet, [1] ring-planet) and their phases: nplanets phases
        each in mesh periods, [0, 1) (NULL: from the teeth, [ParkerLin2004]); the ring
        mesh's lag behind the sun mesh (has_sun_ring_phase 0: from the geometry, or 0) */
@@ -359,7 +362,7 @@ typedef struct gd_planetary_spec {
     gd_loc loc;
     const char *path; /* NULL: "planetary_sets[<index>]" */
 } gd_planetary_spec;
-/* Defaults: all zero, held -1, pressure angles 20 deg. */
+/* Defaults: all zero, held -1, pressure angles 20 deg, centrifugal_stiffness 1. */
 GD_API void gd_planetary_spec_init(gd_planetary_spec *s);
 /* *index: the set's index. Adds one lumped shaft per planet. Errors now: a missing or
  * too long name, values out of range, angles not increasing in [0, 2 pi), teeth given

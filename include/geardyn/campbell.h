@@ -70,6 +70,10 @@ typedef struct gd_campbell_result {
     int instability_track;       /* -1 when stable */
     int nrigid;                  /* rigid-body modes left out of the tracks */
     int sparse;                  /* the sparse eigensolver was used */
+    /* nspeeds flags, 1 where the laws find no static equilibrium at that speed (they are
+     * linearised at q = 0 there; docs/bearings.md); NULL for a model without laws to
+     * linearise (or --operating-point zero). Owned by the result. */
+    int *no_equilibrium;
 } gd_campbell_result;
 
 GD_API void gd_campbell_options_init(gd_campbell_options *opt);

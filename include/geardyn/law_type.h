@@ -40,8 +40,11 @@
 #include "geardyn/units.h"
 
 #define GD_LAW_MAX_DOFS 12
-#define GD_LAW_MAX_PARAMS 12
-#define GD_LAW_MAX_TERMS 8
+/* 16 parameters and 25 terms: a rolling bearing from its geometry (14 values, its 5 x 5
+ * stiffness as 25 rank-one terms; rolling_bearing_5dof.c). Raised from 12 and 8 in
+ * library version 0.2.0: gd_law and gd_model_law grew, an ABI change. */
+#define GD_LAW_MAX_PARAMS 16
+#define GD_LAW_MAX_TERMS 25
 #define GD_LAW_NAME_MAX 48
 #define GD_LAW_MAX_SWITCHES 8
 
@@ -78,7 +81,11 @@ enum {
     GD_LAW_INERTIA = 1u << 7,
     /* the law's own clock turns at the reference speed it was built for (a rolling
      * bearing's cage angle is its spin times t): a run-up or speed table refuses it */
-    GD_LAW_CONSTANT_SPEED = 1u << 8
+    GD_LAW_CONSTANT_SPEED = 1u << 8,
+    /* the law acts in those of its directions the model keeps: a direction the model's
+     * `dofs:` leaves out everywhere (a rotor without its axial DOF) stays at zero motion
+     * rather than being an error (a rolling bearing from geometry: radial, axial, tilt) */
+    GD_LAW_MODEL_DIRS = 1u << 9
 };
 
 /* Bounds of a parameter. */
@@ -223,9 +230,9 @@ GD_API int gd_law_nswitches(const gd_law *law);
 GD_API extern const gd_law_type *const gd_law_types[];
 GD_API extern const int gd_nlaw_types;
 GD_API extern const gd_law_type gd_law_sfd, gd_law_load, gd_law_polynomial_spring, gd_law_friction,
-    gd_law_rolling_bearing, gd_law_journal_bearing, gd_law_unilateral_spring, gd_law_backlash_mesh,
-    gd_law_cam_torque, gd_law_churning_drag, gd_law_bearing_drag, gd_law_synchro_cone,
-    gd_law_gear_release;
+    gd_law_rolling_bearing, gd_law_rolling_bearing_5dof, gd_law_journal_bearing,
+    gd_law_unilateral_spring, gd_law_backlash_mesh, gd_law_cam_torque, gd_law_churning_drag,
+    gd_law_bearing_drag, gd_law_synchro_cone, gd_law_gear_release;
 /* The built-in type named name, or NULL. */
 GD_API const gd_law_type *gd_law_type_find(const char *name);
 
@@ -237,6 +244,12 @@ GD_API void gd_law_init(gd_law *law, const gd_law_type *type, const char *name);
  * GD_EINPUT names the parameter (field) and the fix. */
 GD_API gd_status gd_law_type_validate(const gd_law_type *type, gd_error *err);
 GD_API gd_status gd_law_check(const gd_law *law, gd_error *err);
+/* Adds the force at x to f (ndofs) and its linearisation K = -df/dq, C = -df/dq' to K
+ * and C (ndofs x ndofs, column-major; the type must have a linearize op): one evaluation
+ * of the force where the linearisation is read off the law's terms, as a Newton
+ * iteration wants both. */
+GD_API void gd_law_force_tangent(const gd_law *law, const gd_law_point *x, double *f, double *K,
+                                 double *C);
 /* Index of parameter name in the type's table, or -1. */
 GD_API int gd_law_param_index(const gd_law_type *type, const char *name);
 /* Index of record name, or -1. */

@@ -264,6 +264,9 @@ typedef struct gd_planetary {
     /* the carrier-frame terms ([CooleyParker2012]) act on every body of the set (1) or on the
        planets only (0): docs/planetary.md */
     int carrier_frame_all;
+    /* 1: the planet bearings' geometric stiffness of the planets' centrifugal load at carrier
+       speed (default); 0: left out, as in [CooleyParker2012] Eq. 1 (docs/planetary.md) */
+    int centrifugal_stiffness;
     /* meshes as laws, [0] sun-planet, [1] ring-planet (docs/planetary.md) */
     gd_planetary_mesh_law mesh_law[2];
     /* each planet's mesh phase, mesh periods in [0, 1) (planet n's mesh meets its tooth that

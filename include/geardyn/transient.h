@@ -304,6 +304,16 @@ typedef struct gd_transient_options {
      * Not with GD_TR_LTI (auto picks BDF), a reduced problem, a prescribed speed or
      * angle table, or a rolling-bearing law (GD_EINPUT). Borrowed for the run. */
     const gd_speed_profile *profile;
+    /* GD_TR_BDF, GD_TR_ADAMS: 1 estimates the run's global error (CVODE controls only
+     * the local error of each step, which does not bound it) by a second run at
+     * tolerances 10 times tighter: error_estimate = their largest difference, relative
+     * to each record's peak (contact states not compared; the end displacements' peak
+     * when nothing is recorded), / 0.9 (the global error proportional to the
+     * tolerance). The records are those of the run at rtol, unchanged. Costs that
+     * second run (about 1.5 times the first). 0 (the default here: the library's
+     * internal callers keep their cost): none, error_estimate -1. geardyn transient and
+     * Python set 1. */
+    int error_estimate;
 } gd_transient_options;
 GD_API void gd_transient_options_init(gd_transient_options *opt);
 
@@ -412,7 +422,8 @@ typedef struct gd_transient_result {
     /* the method that ran (GD_TR_AUTO resolved) and what controlled its error:
      * GD_TR_LTI: the step taken (s) and the estimated error (largest difference to the
      * run at twice the step, relative to each record's peak); others: step 0 (adaptive
-     * or the given one), error_estimate -1 (CVODE: local error control by rtol/atol).
+     * or the given one), error_estimate -1 (CVODE: local error control by rtol/atol),
+     * or with options.error_estimate its global estimate (same measure as GD_TR_LTI's).
      * method_note: one line saying so, e.g. "auto: lti, step 1e-4 s, est. error 3e-7
      * <= rtol 1e-4" */
     gd_tr_method method_used;

@@ -247,8 +247,30 @@ class ModalResult(_Result):
         nc = int(self._owner.ncomponents)
         return self._view(self._owner.energy_by_component, (nc, self.nmodes), order="F")
 
+    @property
+    def planetary_classes(self):
+        """Each planetary set's class of every mode (docs/planetary.md, "Mode classes";
+        gd_modal_planetary_class): {set name: ["rotational", "translational", "planet",
+        "mixed" or "-" per mode]}, as `modal --json`'s modes[].planetary_classes; {} without
+        sets."""
+        h, sysh = self.system._model_handle, self.system._handle
+        names = [cstr(lib.gd_planetary_class_names[c]) for c in range(lib.GD_PCLASS_COUNT)]
+        return {cstr(h.planetary[k].name):
+                [names[lib.gd_modal_planetary_class(sysh, self._owner, j, k)]
+                 for j in range(self.nmodes)] for k in range(h.nplanetary)}
+
+    @property
+    def classes(self):
+        """The class of every mode: that of the first planetary set that moves in it ("-"
+        when none does), `modal --json`'s modes[].class; None without planetary sets."""
+        pc = list(self.planetary_classes.values())
+        if not pc:
+            return None
+        return [next((c[j] for c in pc if c[j] != "-"), "-") for j in range(self.nmodes)]
+
     def to_pandas(self):
-        """One row per mode, the columns of `geardyn modal --json`."""
+        """One row per mode, the columns of `geardyn modal --json` (with `class` when the
+        model has planetary sets)."""
         pd = _pandas()
         m = self.modes
         comp = self.system.components
@@ -266,6 +288,9 @@ class ModalResult(_Result):
         })
         for k, name in enumerate(_core.MOTION_NAMES):
             df["energy_" + name] = m["energy_share"][:, k]
+        classes = self.classes
+        if classes is not None:
+            df["class"] = classes
         return df.set_index("mode")
 
     def shapes_to_pandas(self):
@@ -473,19 +498,55 @@ def _probes(system, specs, what="output"):
 _QUANTITIES = ("receptance", "mobility", "accelerance")
 
 
+def _planetary_load(system, text):
+    """The load of `planetary:SET:sun_mesh:L` (or ring_mesh): gd_planetary_mesh_excitation
+    over the system's DOFs, as C arrays (re, im)."""
+    parts = text.split(":")
+    if len(parts) != 4:
+        raise model_error("input", "'%s': write planetary:SET:sun_mesh:L or "
+                          "planetary:SET:ring_mesh:L (L the mesh harmonic, 1, 2, ...)" % text)
+    _p, name, kind, harm = parts
+    sets = system.model.planetary_sets
+    if name not in sets:
+        raise model_error("input", "'%s': the model has no planetary set '%s'%s"
+                          % (text, name, "" if sets else " (it has none)"))
+    if kind not in ("sun_mesh", "ring_mesh"):
+        raise model_error("input", "'%s': unknown mesh kind '%s'" % (text, kind),
+                          "use sun_mesh or ring_mesh")
+    if not (harm.isdigit() and 1 <= int(harm) <= 1000):
+        raise model_error("input", "'%s': the harmonic '%s' is not a whole number from 1 to "
+                          "1000" % (text, harm))
+    n = max(system.ndof, 1)
+    re, im = ffi.new("double[]", n), ffi.new("double[]", n)
+    err = new_error()
+    check(lib.gd_planetary_mesh_excitation(system._handle, sets.index(name), int(harm),
+                                           1 if kind == "ring_mesh" else 0, re, im, err), err)
+    return re, im
+
+
 def frf(system, input, outputs, freqs, speed=None, method="direct", modes=None,
         quantity="receptance", threads=0):
     """Frequency response to a unit force or moment at `input` (NODE.DOF, torque:NODE, or
-    NODE.xy for directional FRFs) at `outputs` (NODE.DOF, mesh:NAME, bearing:NAME.DIR;
-    NODE.xy with a directional input) over `freqs` (rad/s or "FROM:TO:COUNT").
+    NODE.xy for directional FRFs; planetary:SET:sun_mesh:L or planetary:SET:ring_mesh:L,
+    a planetary set's phased mesh excitation at mesh harmonic L per unit transmission
+    error) at `outputs` (NODE.DOF, mesh:NAME, bearing:NAME.DIR; NODE.xy with a
+    directional input) over `freqs` (rad/s or "FROM:TO:COUNT").
     method: "direct" or "modal" (summing `modes` modes, default all). quantity:
     receptance, mobility or accelerance (displacement outputs)."""
     if isinstance(outputs, str):
         outputs = [outputs]
+    if not isinstance(input, str):
+        raise model_error("input", "expected an input spec (string), got %r" % (input,))
     fr = sweep(freqs, "speed", "freqs")
     inp = input[5:] if input.startswith("node:") else input
     directional = inp.endswith(".xy") and len(inp) > 3
-    if input.startswith("torque:"):
+    load = None
+    if input.startswith("planetary:"):
+        load = _planetary_load(system, input)
+        nz = [i for i in range(system.ndof) if load[0][i] != 0 or load[1][i] != 0]
+        inputs = [nz[0] if nz else 0]  # as the CLI: the first DOF the load acts on
+        directional = False
+    elif input.startswith("torque:"):
         inputs = [_dof_of(system, input[7:] + ".rz", "input")]
     elif directional:
         inputs = [_dof_of(system, inp[:-3] + ".x", "input"),
@@ -530,7 +591,10 @@ def frf(system, input, outputs, freqs, speed=None, method="direct", modes=None,
     opt.nthreads = whole(threads, "threads", 0, 4096)
     out = ffi.new("gd_frf_result **")
     err = new_error()
-    check(lib.gd_frf(system._handle, opt, out, err), err)
+    if load is None:
+        check(lib.gd_frf(system._handle, opt, out, err), err)
+    else:
+        check(lib.gd_frf_load(system._handle, opt, load[0], load[1], out, err), err)
     res = FrfResult(system, ffi.gc(out[0], lib.gd_frf_free), input, list(outputs), specs,
                     [probes[k].element != ffi.NULL for k in range(len(specs))],
                     quantity, method, float(opt.speed), directional)

@@ -7,7 +7,10 @@ model file read with any YAML reader builds the same model: materials, dofs, sha
 angles, stiffness, damping, coupling), unbalances, speed, reference_shaft, rotation.
 Values are SI numbers or strings with units ("25.4 mm", "3000 rpm"). Time-integration
 items (tables, backlash, loads, cams), bearing speed tables and gear geometry are
-file-only for now: load() or loads() reads them.
+file-only for now: load() or loads() reads them. planetary_sets (docs/planetary.md):
+members, planets (count or angles, pin errors), teeth, radii, angles, mesh stiffness and
+damping, carrier_frame; a set's tooth `geometry`, `mesh_laws` and `mesh_phases` are
+file-only.
 
 Errors are the builder's (field "bearings[1].kxx", line 0) raised as ModelError; an
 unknown key is refused with the keys known there, as the file reader does.
@@ -233,10 +236,140 @@ def _unbalance(m, ctx, i, d):
     return lib.gd_model_add_unbalance(m, s, ffi.NULL, ctx.err)
 
 
+_PLANETARY_KEYS = ("name", "held", "sun", "ring", "carrier", "planets", "teeth", "base_radius",
+                   "carrier_radius", "pressure_angle", "helix_angle", "planet_tip_radius",
+                   "mesh_stiffness", "mesh_damping", "carrier_frame", "centrifugal_stiffness")
+_MEMBERS = ("sun", "ring", "carrier")
+_MEMBER_KEYS = ("node", "mass", "inertia", "k_support", "k_torsion")
+_PLANET_KEYS = ("count", "angles", "mass", "inertia", "bearing_stiffness", "pin_errors",
+                "pin_errors_radial")
+_FILE_ONLY = ("geometry", "mesh_laws", "mesh_phases")
+
+
+def _per_gear(d, key, keys, kind, path, one_value):
+    """`key:` as a map {sun:, ring:[, planet:]} of quantities, or (one_value) one value for
+    all; None when absent (the file reader's read_per_gear)."""
+    if key not in d:
+        return None
+    v, p = d[key], "%s.%s" % (path, key)
+    if one_value and not isinstance(v, dict):
+        x = quantity(v, kind, p)
+        return [x] * len(keys)
+    _keys(v, keys, p)
+    return [quantity(v[k], kind, "%s.%s" % (p, k)) if k in v else 0.0 for k in keys]
+
+
+def _qty_list(ctx, values, kind, field, count=None, what=""):
+    """A list of quantities as a C double array kept alive by ctx."""
+    if not isinstance(values, (list, tuple)):
+        raise model_error(field, "expected a list, got %r" % (values,))
+    if count is not None and len(values) != count:
+        raise model_error(field, "%d %s for %d planets" % (len(values), what, count),
+                          "give one per planet")
+    arr = ffi.new("double[]", [quantity(v, kind, "%s[%d]" % (field, i))
+                               for i, v in enumerate(values)] or [0.0])
+    ctx.keep.append(arr)
+    return arr
+
+
+def _planetary(m, ctx, i, d):
+    """One planetary set (docs/planetary.md, "Model file keys"): the constant-coefficient
+    set; `geometry`, `mesh_laws` and `mesh_phases` are read from files only."""
+    path = "planetary_sets[%d]" % i
+    for k in _FILE_ONLY:
+        if isinstance(d, dict) and k in d:
+            raise model_error("%s.%s" % (path, k), "'%s' is not built from a dict yet" % k,
+                              "load the model from a file or text (geardyn.load / loads)")
+    _keys(d, _PLANETARY_KEYS, path)
+    s = ffi.new("gd_planetary_spec *")
+    lib.gd_planetary_spec_init(s)
+    s.path = ctx.s(path, path)
+    s.name = ctx.s(d.get("name"), path + ".name")
+    held = d.get("held", "none")
+    if held not in _MEMBERS + ("none",):
+        raise model_error(path + ".held", "unknown member '%s'" % (held,),
+                          "use sun, ring, carrier or none")
+    s.held = -1 if held == "none" else _MEMBERS.index(held)
+    if "carrier_frame" in d:
+        if d["carrier_frame"] not in ("planets", "all"):
+            raise model_error(path + ".carrier_frame", "unknown value '%s'" % (d["carrier_frame"],),
+                              "use all or planets")
+        s.carrier_frame = 1 if d["carrier_frame"] == "all" else 0
+    else:
+        s.carrier_frame = -1
+    if "centrifugal_stiffness" in d:
+        if not isinstance(d["centrifugal_stiffness"], bool):
+            raise model_error(path + ".centrifugal_stiffness",
+                              "'%s' is not true or false" % (d["centrifugal_stiffness"],),
+                              "write true or false")
+        s.centrifugal_stiffness = 1 if d["centrifugal_stiffness"] else 0
+    for j, member in enumerate(_MEMBERS):
+        p = "%s.%s" % (path, member)
+        b = d.get(member)
+        if b is None:
+            raise model_error(p, "the set's %s is missing" % member,
+                              "give {node: NAME, mass, inertia, k_support, k_torsion}")
+        _keys(b, _MEMBER_KEYS, p)
+        s.member[j].node = ctx.s(b.get("node"), p + ".node")
+        for key, kind in (("mass", "mass"), ("inertia", "inertia"), ("k_support", "stiffness"),
+                          ("k_torsion", "rot_stiffness")):
+            setattr(s.member[j], key, quantity(b.get(key, 0), kind, "%s.%s" % (p, key)))
+    teeth = _per_gear(d, "teeth", ("sun", "ring", "planet"), "dimless", path, False)
+    if teeth is not None:
+        for j, z in enumerate(teeth):
+            if z != 0 and (z != int(z) or not 0 < z <= 100000):
+                raise model_error(path + ".teeth", "invalid teeth number %g" % z,
+                                  "teeth numbers are whole numbers from 3 to 100000")
+            s.teeth[j] = int(z)
+    for key, keys, kind, one, attr in (
+            ("base_radius", ("sun", "ring", "planet"), "length", False, "base_radius"),
+            ("pressure_angle", ("sun", "ring"), "angle", True, "pressure_angle"),
+            ("mesh_stiffness", ("sun", "ring"), "stiffness", True, "mesh_stiffness"),
+            ("mesh_damping", ("sun", "ring"), "damping", True, "mesh_damping")):
+        v = _per_gear(d, key, keys, kind, path, one)
+        if v is not None:
+            setattr(s, attr, v)
+    for key, kind in (("carrier_radius", "length"), ("helix_angle", "angle"),
+                      ("planet_tip_radius", "length")):
+        if key in d:
+            setattr(s, key, quantity(d[key], kind, "%s.%s" % (path, key)))
+    pp = path + ".planets"
+    pl = d.get("planets")
+    if pl is None:
+        raise model_error(pp, "the set's planets are missing",
+                          "give {count: N, mass, inertia, bearing_stiffness}")
+    _keys(pl, _PLANET_KEYS, pp)
+    s.planet_mass = quantity(pl.get("mass", 0), "mass", pp + ".mass")
+    s.planet_inertia = quantity(pl.get("inertia", 0), "inertia", pp + ".inertia")
+    s.bearing_stiffness = quantity(pl.get("bearing_stiffness", 0), "stiffness",
+                                   pp + ".bearing_stiffness")
+    count = pl.get("count")
+    if count is not None:
+        count = _core.whole(count, pp + ".count", 1, 64)
+    if "angles" in pl:
+        angles = pl["angles"]
+        if count is not None and isinstance(angles, (list, tuple)) and count != len(angles):
+            raise model_error(pp + ".count", "count %d but %d angles" % (count, len(angles)),
+                              "give one angle per planet, or leave out count")
+        s.planet_angles = _qty_list(ctx, angles, "angle", pp + ".angles")
+        count = len(angles)
+    elif count is None:
+        raise model_error(pp, "the number of planets is missing",
+                          "give `count: N` (equally spaced) or `angles: [...]`")
+    s.nplanets = count
+    for key, attr in (("pin_errors", "pin_errors"), ("pin_errors_radial", "pin_errors_radial")):
+        if key in pl:
+            setattr(s, attr, _qty_list(ctx, pl[key], "length", "%s.%s" % (pp, key), count,
+                                       "pin errors"))
+    return lib.gd_model_add_planetary(m, s, ffi.NULL, ctx.err)
+
+
 _TOP = ("title", "description", "materials", "dofs", "shafts", "disks", "bearings", "springs",
-        "meshes", "unbalances", "speed", "reference_shaft", "rotation")
+        "meshes", "planetary_sets", "unbalances", "speed", "reference_shaft", "rotation")
+# the file reader's order (src/model_file/model_parse.c), so a dict and its YAML build the
+# same model
 _LISTS = (("shafts", _shaft), ("disks", _disk), ("bearings", _bearing), ("springs", _spring),
-          ("meshes", _mesh), ("unbalances", _unbalance))
+          ("meshes", _mesh), ("planetary_sets", _planetary), ("unbalances", _unbalance))
 
 
 def build_handle(spec, name):

@@ -42,8 +42,8 @@ class Law:
             raise model_error("law", "give a name of 1 to 47 characters")
         if not 1 <= len(dofs) <= 12:
             raise model_error("law", "a law acts on 1 to 12 DOFs, not %d" % len(dofs))
-        if not 0 <= len(terms) <= 8:
-            raise model_error("law", "a law has at most 8 Jacobian terms, not %d" % len(terms))
+        if not 0 <= len(terms) <= 25:
+            raise model_error("law", "a law has at most 25 Jacobian terms, not %d" % len(terms))
         for u, w in terms:
             if len(u) != len(dofs) or len(w) != len(dofs):
                 raise model_error("law", "every term's u and w have one entry per DOF (%d)"

@@ -158,6 +158,55 @@ class Model:
         return [cstr(self._handle.bearings[i].name) for i in range(self._handle.nbearings)]
 
     @property
+    def planetary_sets(self):
+        """The planetary sets' names (docs/planetary.md)."""
+        return [cstr(self._handle.planetary[i].name) for i in range(self._handle.nplanetary)]
+
+    def planetary(self, name):
+        """Planetary set `name` (or its index) as `geardyn check` describes it: held member,
+        planet nodes and angles (rad), teeth, radii, pressure angles, mesh stiffnesses, and
+        its kinematics (gd_planetary_kinematics_of): the speeds of sun, ring and carrier
+        and of the planets per unit input speed (the sun's, or the ring's when the sun is
+        held; NaN for a differential), the mesh order Z_s |w_s - w_c|, and the assembly
+        numbers (Z_s + Z_r) psi_n / 2 pi (whole when the set assembles)."""
+        h = self._handle
+        names = self.planetary_sets
+        if isinstance(name, str):
+            if name not in names:
+                raise model_error("planetary", "unknown planetary set '%s'" % name,
+                                  "sets: " + (", ".join(names) or "none"))
+            k = names.index(name)
+        else:
+            k = _core.whole(name, "planetary", 0, max(len(names) - 1, 0))
+            if not names:
+                raise model_error("planetary", "the model has no planetary set")
+        g = h.planetary[k]
+        kin = ffi.new("gd_planetary_kinematics *")
+        lib.gd_planetary_kinematics_of(ffi.addressof(h.planetary[k]), kin)
+        members = [cstr(lib.gd_planetary_member_names[j]) for j in range(3)]
+        n = int(g.nplanets)
+        return {
+            "name": names[k], "held": "none" if g.held < 0 else members[g.held],
+            "members": {members[j]: self.nodes[g.member[j].node] for j in range(3)},
+            "planets": [self.nodes[g.first_planet + i] for i in range(n)],
+            "angles": np.array([g.planet_angle[i] for i in range(n)]),
+            "equally_spaced": bool(g.equally_spaced),
+            "teeth": {"sun": g.teeth[0], "ring": g.teeth[1], "planet": g.teeth[2]},
+            "base_radius": {"sun": g.base_radius[0], "ring": g.base_radius[1],
+                            "planet": g.base_radius[2]},
+            "carrier_radius": float(g.carrier_radius),
+            "pressure_angle": {"sun": g.pressure_angle[0], "ring": g.pressure_angle[1]},
+            "mesh_stiffness": {"sun": g.mesh_stiffness[0], "ring": g.mesh_stiffness[1]},
+            "kinematics": {
+                "input": None if kin.input < 0 else members[kin.input],
+                "speed": {members[j]: kin.speed[j] for j in range(3)},
+                "planet_speed": float(kin.planet_speed), "teeth_ratio": float(kin.teeth_ratio),
+                "mesh_order": float(kin.mesh_order), "has_teeth": bool(kin.has_teeth),
+                "assembly": np.array([kin.assembly[i] for i in range(n)]),
+                "assembles": None if kin.assembles < 0 else bool(kin.assembles)},
+        }
+
+    @property
     def system(self):
         """The system (DOF numbering and matrices), built on first use."""
         if self._system is None:
@@ -165,8 +214,10 @@ class Model:
         return self._system
 
     def __repr__(self):
-        return "<geardyn.Model %s: %d shafts, %d nodes, %d meshes>" % (
-            self.file or "?", self._handle.nshafts, self._handle.nnodes, self._handle.nmeshes)
+        extra = ", %d planetary sets" % self._handle.nplanetary if self._handle.nplanetary else ""
+        return "<geardyn.Model %s: %d shafts, %d nodes, %d meshes%s>" % (
+            self.file or "?", self._handle.nshafts, self._handle.nnodes, self._handle.nmeshes,
+            extra)
 
     # ---- analyses (on the system) ----
     def matrices(self, speed=0.0):

@@ -55,7 +55,10 @@ class StaticResult:
     tilt_out_of_plane, face_width, f_sh, f_beta_x, on_driver and on_driven (x 6);
     holds: list of (node, dof, kind, reaction); law_forces: the laws' forces on the
     active DOFs (K q = f + law_forces); laws: {law name: {"type": ..., record: value}}
-    with each supporting law's records (a journal bearing's fx, fy, ecc) at the state."""
+    with each supporting law's records (a journal bearing's fx, fy, ecc) at the state.
+    planetary: one dict per planetary set (docs/planetary.md, "Static load sharing"):
+    name, load_sharing_factor (K_gamma), sun_mesh_force, ring_mesh_force, bearing_force
+    (N, arrays of one value per planet), the keys of `static --json`'s planetary_sets."""
 
     def __init__(self, system, owner):
         self.system = system
@@ -82,6 +85,22 @@ class StaticResult:
             for j in range(law.nrecords):
                 entry[cstr(law.record_names[j])] = law.records[j]
             self.laws[cstr(law.name)] = entry
+
+    @property
+    def planetary(self):
+        out = []
+        m = self.system._model_handle
+        for k in range(m.nplanetary):
+            pl = ffi.new("gd_static_planetary_loads *")
+            err = new_error()
+            check(lib.gd_static_planetary(self.system._handle, self._owner, k, pl, err), err)
+            n = int(pl.nplanets)
+            out.append({"name": cstr(m.planetary[k].name),
+                        "load_sharing_factor": float(pl.load_sharing),
+                        "sun_mesh_force": np.array([pl.sun_force[i] for i in range(n)]),
+                        "ring_mesh_force": np.array([pl.ring_force[i] for i in range(n)]),
+                        "bearing_force": np.array([pl.bearing_force[i] for i in range(n)])})
+        return out
 
     def __getattr__(self, name):
         if name in _MESH_DTYPE.names:

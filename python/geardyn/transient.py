@@ -22,6 +22,13 @@ _DOF_UNIT = {"disp": ("m", "rad"), "vel": ("m/s", "rad/s"), "angle": ("m", "rad"
              "speed": ("m/s", "rad/s")}
 
 
+def _mesh_names(model):
+    """The time-integration laws' mesh numbering (gd_model_mesh_name): the gear meshes,
+    then each planetary set's "SET.sun_mesh<n>" and "SET.ring_mesh<n>"."""
+    h = model._handle
+    return [cstr(lib.gd_model_mesh_name(h, i)) for i in range(lib.gd_model_mesh_count(h))]
+
+
 def _pick(item, name, names, what, plural):
     """Indices of the item's NAME among names ('*': all)."""
     if not names:
@@ -61,7 +68,7 @@ def _parse_record(system, tm, item):
             raise model_error("record", "'%s': unknown mesh quantity '%s'" % (item, what),
                               "use force, state, deflection or stiffness")
         kind, unit = _MESH_WHAT[what]
-        meshes = m.meshes
+        meshes = _mesh_names(m)
         idx = _pick(item, name, meshes, "mesh", "meshes")
         return [(kind, i, 0, "mesh:%s:%s" % (meshes[i], what), unit) for i in idx]
     if item.startswith("sfd:"):
@@ -120,9 +127,10 @@ def _default_records(system, tm):
     state with backlash), every damper's fx and fy; else the total speed of every rz
     DOF; else every DOF's displacement (at most 64)."""
     m = system.model
+    meshes = _mesh_names(m)
     recs = []
     for i in range(tm.spec.nmeshes):
-        name = m.meshes[tm.meshes[i].mesh]
+        name = meshes[tm.meshes[i].mesh]
         recs.append((lib.GD_REC_MESH_FORCE, tm.meshes[i].mesh, 0, "mesh:%s:force" % name, "N"))
         if tm.meshes[i].backlash:
             recs.append((lib.GD_REC_MESH_STATE, tm.meshes[i].mesh, 0, "mesh:%s:state" % name,
@@ -298,10 +306,39 @@ def _order_track(system, res, prof, index, revs_per_block, samples_per_rev):
     return Waterfall(w, res.units[index] if index < len(res.units) else "")
 
 
+def _cutoff(condense):
+    """The cut-off of `--condense C`: -1 for "auto", 0 for "all", else a frequency > 0
+    (rad/s, or a string with a unit)."""
+    if isinstance(condense, str) and condense in ("auto", "all"):
+        return -1.0 if condense == "auto" else 0.0
+    try:
+        f = quantity(condense, "speed", "condense")
+    except ValueError:
+        raise model_error("condense", "'%s' is not auto, all or a frequency > 0" % (condense,),
+                          "e.g. condense=\"8kHz\"") from None
+    if not (f > 0 and math.isfinite(f)):
+        raise model_error("condense", "'%s' is not auto, all or a frequency > 0" % (condense,),
+                          "e.g. condense=\"8kHz\"")
+    return f
+
+
+def _condensed_dict(ci):
+    """The condensation's description, the keys of the CLI's `condensed` JSON object
+    (frequencies in Hz) and the rest of gd_tr_condensed_info."""
+    hz = 1 / (2 * math.pi)
+    return {"states": int(ci.nstates), "law_dofs": int(ci.ncoords),
+            "modes_kept": int(ci.nkept), "modes_discarded": int(ci.ndiscarded),
+            "rigid_modes": int(ci.nrigid), "cutoff_hz": ci.cutoff * hz,
+            "first_discarded_hz": ci.first_discarded * hz,
+            "excitation_hz": ci.excitation * hz, "contact_hz": ci.contact * hz,
+            "static_correction": float(ci.static_correction),
+            "truncation_estimate": float(ci.estimate)}
+
+
 def transient(system, duration=None, revolutions=None, speed=None, records=None,
               record_from=None, output_interval=None, rtol=1e-6, method="auto", start="rest",
               laws=None, speed_ramp=None, speed_table=None, step=None, waterfall=None,
-              revs_per_block=16):
+              revs_per_block=16, condense=None):
     """Time integration at a constant reference speed (default: the model's), for
     `duration` (s or "12 ms") or `revolutions` of the reference shaft. records: list of
     record specs (NODE.DOF[:disp|vel|angle|speed], ratio:A/B, mesh:NAME[:force|state|
@@ -317,7 +354,12 @@ def transient(system, duration=None, revolutions=None, speed=None, records=None,
     reference the matrices are built at (default the profile's mid speed), records start
     at 0 s, method "auto" takes bdf ("galpha" with step= is usually much cheaper);
     waterfall=RECORD order-tracks that record into result.waterfall (a Waterfall) in
-    blocks of revs_per_block turns."""
+    blocks of revs_per_block turns.
+    condense: as `--condense` (docs/transient.md, "Condensed transient"): "auto" (the
+    cut-off rule), "all" (every mode: exact) or a cut-off frequency (rad/s, or "8kHz"):
+    the structure condensed onto the DOFs its laws act on, its modes up to the cut-off
+    and the rest as their static correction; result.condensed describes it (None when
+    not condensed). bdf or adams, started at rest, no prescribed DOF, no speed profile."""
     prof = keep_prof = None
     if speed_ramp is not None or speed_table is not None:
         if speed_ramp is not None and speed_table is not None:
@@ -371,12 +413,17 @@ def transient(system, duration=None, revolutions=None, speed=None, records=None,
             names.append(one[0][3])
         wi = names.index(one[0][3])
     trp = ffi.new("gd_transient **")
-    check(lib.gd_transient_new(system._handle, spec, w, trp, err), err)
+    if condense is None:
+        check(lib.gd_transient_new(system._handle, spec, w, trp, err), err)
+    else:
+        check(lib.gd_transient_new_condensed(system._handle, spec, w, _cutoff(condense),
+                                             trp, err), err)
     tr = ffi.gc(trp[0], lib.gd_transient_free)
     opt = ffi.new("gd_transient_options *")
     lib.gd_transient_options_init(opt)
     opt.t_end, opt.record_from, opt.output_interval, opt.rtol = t_end, frm, dt, float(rtol)
     opt.method = methods[method]
+    opt.error_estimate = 1  # as the CLI: CVODE's global error from a run at rtol / 10
     if step is not None:
         opt.step = quantity(step, "time", "step")
     if prof is not None:
@@ -390,7 +437,8 @@ def transient(system, duration=None, revolutions=None, speed=None, records=None,
     check(st, err)
     res = TransientResult(system, ffi.gc(out[0], lib.gd_transient_result_free),
                           [r[3] for r in recs], [r[4] for r in recs],
-                          [system.model.meshes[tm.meshes[i].mesh] for i in range(tm.spec.nmeshes)],
+                          [_mesh_names(system.model)[tm.meshes[i].mesh]
+                           for i in range(tm.spec.nmeshes)],
                           [bool(tm.meshes[i].backlash) for i in range(tm.spec.nmeshes)])
     res.speed, res.t_end, res.record_from, res.output_interval = w, t_end, frm, dt
     res.method, res.start = method, start
@@ -398,7 +446,13 @@ def transient(system, duration=None, revolutions=None, speed=None, records=None,
     if wi >= 0:
         res.waterfall = _order_track(system, res, prof, wi, revs_per_block, spr)
     del keep_prof
-    res.free_dofs = lib.gd_transient_nstates(tr) // 2
+    info = ffi.new("gd_tr_condensed_info *")
+    if lib.gd_transient_condensed_info(tr, info):
+        res.free_dofs = system.ndof  # as the CLI: the records are the system's DOFs
+        res.condensed = _condensed_dict(info)
+    else:
+        res.free_dofs = lib.gd_transient_nstates(tr) // 2
+        res.condensed = None
     del tr, tm, keep  # the problem borrows the spec: free it first
     return res
 

@@ -32,6 +32,7 @@ void gd_campbell_free(gd_campbell_result *r)
     free(r->modes);
     free(r->orders);
     free(r->critical);
+    free(r->no_equilibrium);
     free(r);
 }
 
@@ -45,9 +46,10 @@ static const double *state_at(const gd_system *sys, const double *states, int s)
  * iteration started from the previous speed's state (gd_system_law_state_from): a
  * journal bearing's eccentricity moves little between neighbouring speeds, so a few
  * steps replace the climb from rest. Solved once, before the threads, so the states do
- * not depend on their number. NULL with no laws to linearise, or out of memory (then
- * each speed solves its own, as before). */
-static double *operating_states(const gd_system *sys, const gd_campbell_options *opt)
+ * not depend on their number. NULL with no laws to linearise, or out of memory. found (nspeeds)
+ * flags the speeds that have an equilibrium: the result reports the others, so nobody solves them
+ * again to find out. */
+static double *operating_states(const gd_system *sys, const gd_campbell_options *opt, int *flag)
 {
     if (!sys->nlaws || sys->op_kind == GD_OPERATING_ZERO) return NULL;
     const size_t n = (size_t)sys->ndof, n1 = n > 0 ? n : 1;
@@ -69,6 +71,7 @@ static double *operating_states(const gd_system *sys, const gd_campbell_options 
         }
         found2 = found;
         found = gd_system_law_state_from(sys, W[s], q0, q + s * n);
+        flag[s] = found;
     }
     return q;
 }
@@ -195,7 +198,15 @@ gd_status gd_campbell_run(const gd_system *sys, const gd_campbell_options *opt, 
     int nt = 1;
     double *states = NULL;
     if (!res || !errs || !sts || !elastic || !track || !nel || !nfb || !ncont || !r) goto nomem;
-    states = operating_states(sys, opt);
+    if (sys->nlaws && sys->op_kind != GD_OPERATING_ZERO) {
+        /* every speed has an equilibrium until operating_states says otherwise */
+        if (!(r->no_equilibrium = malloc((size_t)ns * sizeof *r->no_equilibrium))) goto nomem;
+        for (int s = 0; s < ns; s++)
+            r->no_equilibrium[s] = 1;
+        if (!(states = operating_states(sys, opt, r->no_equilibrium))) goto nomem;
+        for (int s = 0; s < ns; s++)
+            r->no_equilibrium[s] = !r->no_equilibrium[s];
+    }
     if (sparse) {
         if ((st = gd_dynmat_build(sys, &a, err))) goto done;
         if ((st = gd_splu_analyze(&a.pat, &sym, err))) goto done;

@@ -110,7 +110,10 @@ int gd_campbell_crossings(gd_campbell_result *r)
         for (int s = 0; s < ns; s++) {
             if (!exists(&md[s]) || !md[s].unstable) continue;
             double w = r->speeds[s];
-            if (s > 0 && exists(&md[s - 1]) && md[s - 1].damping_ratio >= 0) {
+            /* Interpolate the damping ratio through zero only from a damped speed: an
+             * undamped (gyroscopic) mode sits at 0 to rounding (+-1e-15) until it diverges,
+             * and interpolating from there put the onset at the previous grid speed. */
+            if (s > 0 && exists(&md[s - 1]) && md[s - 1].damping_ratio > 1e-9) {
                 double z0 = md[s - 1].damping_ratio, z1 = md[s].damping_ratio;
                 w = r->speeds[s - 1] + z0 / (z0 - z1) * (r->speeds[s] - r->speeds[s - 1]);
             }

@@ -39,6 +39,11 @@ void gd_planetary_mesh_vector(const gd_planetary *g, int ring, int n, double a[1
  * bearing, [LinParker1999] Eq. 4. */
 void gd_planetary_bearing_vectors(const gd_planetary *g, int n, double radial[12],
                                   double tangential[12]);
+/* Geometric stiffness (12 x 12: carrier, then planet n) of planet n's centrifugal bearing
+ * preload F = m_p w^2 r_c at carrier speed w (rad/s): the Hessian of
+ * E = F (th_c e_t . (u_n - u_c) - r_c th_c^2 / 2) (docs/planetary.md, "Rotating carrier"). */
+void gd_planetary_centrifugal_stiffness(const gd_planetary *g, int n, double carrier_speed,
+                                        double K[144]);
 
 /* ---- connector.c: what bearings and springs share ---- */
 /* Motion types of a support's DOFs: x, y lateral, z axial, rx, ry tilt, rz torsion. */

@@ -22,30 +22,56 @@
  *             planet bearings (carrier, planet), Eq. 4: the planet against its pin, which the
  *             carrier moves by its translation and r_c th_c tangentially:
  *               d_radial = e_r . (u_n - u_c),  d_tangential = e_t . (u_n - u_c) - r_c th_c.
+ * After every set's 3 + 4N instances, when the carrier turns: each set's N bearing preloads
+ * (carrier, planet n), below; their energy counts in the bearing's strain-energy component.
  * A rigid rotation of the whole set gives d_sn = th (r_s + r_p - r_c cos alpha_s), zero for a
  * consistent geometry (tests). With the carrier turning at Omega = ratio W (the speed ratio
  * of the carrier's shaft), every body's translations, taken in the carrier frame, get the
  * Coriolis term 2 m Omega [0 -1; 1 0] (G per unit reference speed: ratio x that) and the
  * centripetal softening -m Omega^2 on x and y ([CooleyParker2012] Eq. 1, G and K_Omega). A set
  * whose members sit on shafts modelled in the fixed frame gives these terms to its planets only
- * (gd_planetary.carrier_frame_all 0): an approximation, docs/planetary.md. */
+ * (gd_planetary.carrier_frame_all 0): an approximation, docs/planetary.md.
+ * The planets' centrifugal load F = m_p Omega^2 r_c preloads each bearing radially; measured in
+ * the turning carrier the bearing's radial deformation has the second-order part
+ * th_c e_t . (u_n - u_c) - r_c th_c^2 / 2, and the preload's work on it,
+ *   E_n = F (th_c e_t . (u_n - u_c) - r_c th_c^2 / 2) = F (th_c d_tangential + r_c th_c^2 / 2),
+ * is the bearing's geometric stiffness (gd_planetary.centrifugal_stiffness, default on; not in
+ * [CooleyParker2012] Eq. 1). It cancels the planets' -m_p Omega^2 in a rotation of the set, so a
+ * set free to turn keeps its rigid-body mode at 0 Hz at any carrier speed (docs/planetary.md).
+ * An instance of its own, speed-dependent, so the bearing's constant K stays in the system's
+ * constant K (and in its Rayleigh damping). */
 #include <math.h>
 #include <string.h>
 
 #include "elements/elements_impl.h"
 
-enum { BODY, PLANET, SUN_MESH, RING_MESH, BEARING };
+enum { BODY, PLANET, SUN_MESH, RING_MESH, BEARING, PRELOAD };
 
-/* Set, kind and index within the kind of instance i. */
-static const gd_planetary *locate(const gd_model *m, int i, int *kind, int *k)
+static double preload_ratio(const gd_model *m, const gd_planetary *g);
+
+/* The sets' 3 + 4N instances (each its own strain-energy component). */
+static int pl_ncomponents(const gd_model *m)
+{
+    int n = 0;
+    for (int s = 0; s < m->nplanetary; s++)
+        n += 3 + 4 * m->planetary[s].nplanets;
+    return n;
+}
+
+/* Set, kind and index within the kind of instance i; *component: its strain-energy component
+ * (a preload's: its bearing's). */
+static const gd_planetary *locate_in(const gd_model *m, int i, int *kind, int *k, int *component)
 {
     *kind = BODY;
     *k = 0;
+    int c0 = 0;
+    *component = i;
     for (int s = 0; s < m->nplanetary; s++) {
         const gd_planetary *g = &m->planetary[s];
         int N = g->nplanets, n = 3 + 4 * N;
         if (i >= n) {
             i -= n;
+            c0 += n;
             continue;
         }
         if (i < 3) {
@@ -57,14 +83,35 @@ static const gd_planetary *locate(const gd_model *m, int i, int *kind, int *k)
         }
         return g;
     }
+    c0 = 0;
+    for (int s = 0; s < m->nplanetary; s++) {
+        const gd_planetary *g = &m->planetary[s];
+        int N = g->nplanets;
+        if (preload_ratio(m, g) != 0) {
+            if (i < N) {
+                *kind = PRELOAD;
+                *k = i;
+                *component = c0 + 3 + 3 * N + i;
+                return g;
+            }
+            i -= N;
+        }
+        c0 += 3 + 4 * N;
+    }
     return NULL;
+}
+
+static const gd_planetary *locate(const gd_model *m, int i, int *kind, int *k)
+{
+    int c;
+    return locate_in(m, i, kind, k, &c);
 }
 
 static int pl_count(const gd_model *m)
 {
-    int n = 0;
+    int n = pl_ncomponents(m);
     for (int s = 0; s < m->nplanetary; s++)
-        n += 3 + 4 * m->planetary[s].nplanets;
+        if (preload_ratio(m, &m->planetary[s]) != 0) n += m->planetary[s].nplanets;
     return n;
 }
 
@@ -107,6 +154,13 @@ static double frame_ratio(const gd_model *m, const gd_planetary *g, int kind)
     return kind == BODY && !g->carrier_frame_all ? 0.0 : carrier_ratio(m, g);
 }
 
+/* The carrier speed ratio of the planets' centrifugal bearing preload (0: left out, or no
+ * planet mass). The planets are in the carrier frame whatever carrier_frame says. */
+static double preload_ratio(const gd_model *m, const gd_planetary *g)
+{
+    return g->centrifugal_stiffness && g->planet_mass > 0 ? carrier_ratio(m, g) : 0.0;
+}
+
 static void body_values(const gd_planetary *g, int kind, int k, double *mass, double *inertia,
                         double *ks, double *kt)
 {
@@ -129,6 +183,7 @@ static unsigned pl_terms(const gd_model *m, int i)
     if (kind == SUN_MESH || kind == RING_MESH)
         return GD_TERM_K | (g->mesh_damping[kind - SUN_MESH] > 0 ? GD_TERM_C : 0);
     if (kind == BEARING) return GD_TERM_K;
+    if (kind == PRELOAD) return GD_TERM_K | GD_TERM_SPEED;
     double mass, inertia, ks, kt;
     body_values(g, kind, k, &mass, &inertia, &ks, &kt);
     unsigned t = GD_TERM_M | (ks > 0 || kt > 0 ? GD_TERM_K : 0);
@@ -173,6 +228,21 @@ static void outer_add(double *K, double k, const double a[12])
             K[r * 12 + s] += k * a[r] * a[s];
 }
 
+void gd_planetary_centrifugal_stiffness(const gd_planetary *g, int n, double carrier_speed,
+                                        double K[144])
+{
+    memset(K, 0, 144 * sizeof *K);
+    double r[12], t[12];
+    gd_planetary_bearing_vectors(g, n, r, t);
+    double F = g->planet_mass * carrier_speed * carrier_speed * g->carrier_radius;
+    /* E = F (th_c t . q + r_c th_c^2 / 2): Hessian F (e_th t^T + t e_th^T + r_c e_th e_th^T) */
+    for (int a = 0; a < 12; a++) {
+        K[GD_RZ * 12 + a] += F * t[a];
+        K[a * 12 + GD_RZ] += F * t[a];
+    }
+    K[GD_RZ * 12 + GD_RZ] += F * g->carrier_radius;
+}
+
 static void pl_matrices(const gd_model *m, int i, double speed, double *M, double *K, double *C,
                         double *G)
 {
@@ -200,6 +270,10 @@ static void pl_matrices(const gd_model *m, int i, double speed, double *M, doubl
         }
         return;
     }
+    if (kind == PRELOAD) {
+        if (K) gd_planetary_centrifugal_stiffness(g, k, preload_ratio(m, g) * speed, K);
+        return;
+    }
     double mass, inertia, ks, kt, ratio = frame_ratio(m, g, kind);
     body_values(g, kind, k, &mass, &inertia, &ks, &kt);
     if (M) {
@@ -219,17 +293,22 @@ static void pl_matrices(const gd_model *m, int i, double speed, double *M, doubl
 
 static void pl_speed_pattern(const gd_model *m, int i, int *acts)
 {
-    (void)m;
-    (void)i;
-    memset(acts, 0, 6 * sizeof *acts);
+    int kind, k;
+    locate(m, i, &kind, &k);
+    int node[2], nn = pl_nodes(m, i, node);
+    memset(acts, 0, (size_t)(6 * nn) * sizeof *acts);
     acts[GD_X] = acts[GD_Y] = 1;
+    if (kind == PRELOAD) /* carrier x, y, rz; planet x, y */
+        acts[GD_RZ] = acts[6 + GD_X] = acts[6 + GD_Y] = 1;
 }
 
-/* One strain-energy component per instance (its nodes give its shafts). */
+/* One strain-energy component per instance (its nodes give its shafts), a preload's its
+ * bearing's. */
 static int pl_component(const gd_model *m, int i)
 {
-    (void)m;
-    return i;
+    int kind, k, c;
+    locate_in(m, i, &kind, &k, &c);
+    return c;
 }
 
 static const char *pl_component_name(const gd_model *m, int c)
@@ -250,7 +329,7 @@ const gd_element_type gd_element_planetary = {
     .matrices = pl_matrices,
     .speed_pattern = pl_speed_pattern,
     .motion = gd_support_motion,
-    .ncomponents = pl_count,
+    .ncomponents = pl_ncomponents,
     .component = pl_component,
     .component_name = pl_component_name,
 };

@@ -19,6 +19,7 @@ void gd_planetary_spec_init(gd_planetary_spec *s)
     memset(s, 0, sizeof *s);
     s->held = -1;
     s->carrier_frame = -1;
+    s->centrifugal_stiffness = 1;
     s->pressure_angle[0] = s->pressure_angle[1] = 20.0 * PI / 180.0;
     s->mesh_law[0].coast_stiffness_ratio = s->mesh_law[1].coast_stiffness_ratio = 1.0;
 }
@@ -367,6 +368,7 @@ gd_status gd_model_add_planetary(gd_model *m, const gd_planetary_spec *spec, int
     }
     g.held = s->held;
     g.carrier_frame_all = s->carrier_frame; /* -1: decided at finish */
+    g.centrifugal_stiffness = s->centrifugal_stiffness != 0;
     g.nplanets = s->nplanets;
     g.equally_spaced = s->planet_angles == NULL;
     memcpy(g.teeth, s->teeth, sizeof g.teeth);

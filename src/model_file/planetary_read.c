@@ -7,25 +7,12 @@
 
 #include "model_file/model_file_impl.h"
 
-static const char *const SET_KEYS[] = {"name",
-                                       "held",
-                                       "sun",
-                                       "ring",
-                                       "carrier",
-                                       "planets",
-                                       "teeth",
-                                       "base_radius",
-                                       "carrier_radius",
-                                       "pressure_angle",
-                                       "helix_angle",
-                                       "planet_tip_radius",
-                                       "mesh_stiffness",
-                                       "mesh_damping",
-                                       "carrier_frame",
-                                       "geometry",
-                                       "mesh_laws",
-                                       "mesh_phases",
-                                       NULL};
+static const char *const SET_KEYS[] = {
+    "name",           "held",           "sun",           "ring",
+    "carrier",        "planets",        "teeth",         "base_radius",
+    "carrier_radius", "pressure_angle", "helix_angle",   "planet_tip_radius",
+    "mesh_stiffness", "mesh_damping",   "carrier_frame", "centrifugal_stiffness",
+    "geometry",       "mesh_laws",      "mesh_phases",   NULL};
 static const char *const GEOMETRY_KEYS[] = {
     "module", "pressure_angle", "face_width", "profile_shift", "method", "points", NULL};
 static const char *const LAW_KEYS[] = {"tvms", "backlash", "damping", NULL};
@@ -265,7 +252,8 @@ static gd_status read_set(gd_mparser *p, const gd_ynode *sm, const char *q, size
     if ((st = gd_yexpect(r, sm, GD_Y_MAP, q)) || (st = gd_ycheck_keys(r, sm, q, SET_KEYS)) ||
         (st = gd_mp_read_name(p, sm, q, name, "", 1)) ||
         (st = gd_yread_str(r, sm, "held", q, HELD, 0, NULL, &held, NULL)) ||
-        (st = gd_yread_str(r, sm, "carrier_frame", q, FRAMES, 0, NULL, &frame, &has_frame)))
+        (st = gd_yread_str(r, sm, "carrier_frame", q, FRAMES, 0, NULL, &frame, &has_frame)) ||
+        (st = gd_yread_bool(r, sm, "centrifugal_stiffness", q, 0, &s.centrifugal_stiffness, NULL)))
         return st;
     s.carrier_frame = has_frame ? frame : -1;
     for (int j = 0; j < GD_PLANETARY_NMEMBERS; j++)

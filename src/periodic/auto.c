@@ -83,6 +83,11 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
     if (cs) return cs;
     const clock_t c0 = clock(); /* reported only, never decides anything */
     char note[256] = "";
+    char refusal[480];
+    if (!param && gd_per_qp_refusal(sys, spec, values[0], opt, refusal, sizeof refusal))
+        return gd_error_set(err, GD_EINPUT, "", 0, 0, "method",
+                            "run a transient (`geardyn transient`), or --method shooting", "%s",
+                            refusal);
     gd_periodic_options o = *opt;
     o.kind = gd_periodic_choose(sys, spec, param, values[0], opt, note);
     /* harmonic balance's multipliers from the time-domain orbit where a law is not smooth */

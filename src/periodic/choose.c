@@ -106,6 +106,33 @@ static double shoot_periods(int n, int dense, const gd_periodic_options *opt)
  * harmonic: 64 DOFs at order 16, 545 harmonics, 36 MB) */
 #define QP_AUTO_NF 64
 
+/* 1 when the torus is the better choice for a long common period of `order` periods of
+ * the highest: on up to QP_AUTO_NF free DOFs (its Floquet multipliers are computed there),
+ * or where ordinary harmonic balance of the common period would need more than QP_HB_MAX_H
+ * harmonics (QP_H_PER_CYCLE per period of the highest: a mesh's TVMS from geometry) or
+ * more memory than allowed. Larger models whose common period harmonic balance holds
+ * (seed 002's two-stage helical train, order 36: H = 864; its Figs. 11-13 at H = 591 cost
+ * 0.375 s CPU a point) keep it and its multipliers at every point; the co-prime gearbox
+ * on FE shafts (order 67: H = 1608) goes to the torus. */
+#define QP_H_PER_CYCLE 24
+#define QP_HB_MAX_H 1000
+static int small_or_hb_too_large(const gd_system *sys, const gd_transient_spec *spec, double speed,
+                                 long order, const gd_periodic_options *opt)
+{
+    gd_transient *tr = NULL;
+    gd_error err;
+    if (gd_transient_new(sys, spec, speed, &tr, &err)) return 0;
+    int mnf, mnt, mng;
+    long mknz;
+    gd_hb_memory_params_tr(tr, &mnf, &mnt, &mng, &mknz);
+    gd_transient_free(tr);
+    if (mnf <= QP_AUTO_NF) return 1;
+    const long Hn = order * QP_H_PER_CYCLE;
+    if (Hn > QP_HB_MAX_H) return 1;
+    const int Hc = Hn > 1000000 ? 1000000 : (int)Hn;
+    return gd_hb_memory(mnf, Hc, gd_hb_samples_for(Hc), mnt, mng, mknz) > gd_hb_memory_limit(opt);
+}
+
 /* 1 (with note) when the multi-frequency harmonic balance is the method for the problem:
  * smooth laws, two or more base frequencies, and a common period of more than
  * QP_AUTO_ORDER periods of the highest or none. */
@@ -115,11 +142,13 @@ static int multifreq_fits(const gd_system *sys, const gd_transient_spec *spec, d
     double W[GD_QP_MAXD];
     long order = 0;
     char why[200] = "";
-    if (opt->subharmonic > 1) return 0;
+    /* a given --harmonics H counts harmonics of the common period: ordinary HB */
+    if (opt->subharmonic > 1 || !opt->adaptive) return 0;
     int nf = 0, d = gd_per_qp_probe(sys, spec, speed, W, &order, &nf, why, sizeof why);
     if (d < 2 || (order > 0 && order <= QP_AUTO_ORDER)) return 0;
     if (gd_per_nonsmooth(sys, spec, speed)) return 0; /* shooting's orbits: the rule below */
     if (nf > QP_AUTO_NF) return 0;
+    if (order > 0 && !small_or_hb_too_large(sys, spec, speed, order, opt)) return 0;
     if (order > 0)
         snprintf(note, 256,
                  "multi-frequency harmonic balance: %d base frequencies (%.5g, %.5g rad/s%s) "

@@ -54,6 +54,7 @@ static int condensed_newton(ctx *c, double *X, double lam, double *R, int *iters
     int cr = GD_CHB_NOMEM;
     if (!gd_hb_linear_union(h, s->tr)) {
         const gd_chb_linear lin = {h->Up, h->Ui, h->UK, h->UM, h->UD, h->Upat_id};
+        gd_chb_lend(h->chb, c->hr.chb); /* the other H's receptances of this problem */
         cr = gd_chb_solve(h->chb, &lin, s->tr, s->id, s->w, X, tolc, &it);
     }
     double scale = 0.0, rel = NAN;

@@ -53,31 +53,67 @@ static void dense_of(const gd_csc *A, int n, double *out)
     gd_csc_add_dense(A, 1.0, out);
 }
 
-/* E = exp(A) for a small n x n matrix: Taylor to 18 terms after scaling to a
- * norm of 1/2 (1/2^18/18! < 1e-21), then squaring. W: 3 n^2. */
-static void small_expm(int n, const double *A, double *E, double *W)
+/* C = A B, n x n column-major, for the small matrices of the Magnus steps (4 ng = 12 on
+ * the [JMSTHelical] model): inline, as a BLAS call per product cost more than its 1728
+ * multiply-adds (callgrind: 25 calls per step, half the stability's instructions). */
+static void small_mul(int n, double alpha, const double *A, const double *B, double *C)
+{
+    for (int j = 0; j < n; j++) {
+        double *c = C + (size_t)j * n;
+        for (int i = 0; i < n; i++)
+            c[i] = 0.0;
+        for (int l = 0; l < n; l++) {
+            const double b = alpha * B[(size_t)j * n + l];
+            if (b == 0.0) continue;
+            const double *a = A + (size_t)l * n;
+            for (int i = 0; i < n; i++)
+                c[i] += a[i] * b;
+        }
+    }
+}
+
+/* P = phi1(A) = sum_m A^m / (m + 1)! for a small n x n matrix (the rank-2 ng update's
+ * kernel, 2 ng = 6 on the [JMSTHelical] model): Taylor of exp and phi1 together after
+ * scaling A to a 1-norm of 1/2, until a term's 1-norm bound falls below 1e-18 of the sum's
+ * (at most 18 terms: 1/2^18/18! < 1e-21), then s doublings phi1(2 A) = phi1(A) (exp(A) +
+ * I) / 2, exp(2 A) = exp(A)^2. Before: the exponential of the 2n x 2n block [A, I; 0, 0],
+ * 8 times the multiply-adds. W: 4 n^2. */
+static void small_phi1(int n, const double *A, double *P, double *W)
 {
     const size_t nn = (size_t)n * n;
     const double norm = LAPACKE_dlange_work(LAPACK_COL_MAJOR, '1', n, n, A, n, NULL);
     int s = norm > 0.5 ? (int)ceil(log2(norm / 0.5)) : 0;
     if (s > 1000) s = 1000;
     const double sc = ldexp(1.0, -s);
-    double *S = W, *T = W + nn, *U = W + 2 * nn;
+    double *S = W, *T = W + nn, *U = W + 2 * nn, *E = W + 3 * nn;
     for (size_t k = 0; k < nn; k++)
         S[k] = A[k] * sc;
     memset(E, 0, nn * sizeof *E);
     memset(T, 0, nn * sizeof *T);
+    memset(P, 0, nn * sizeof *P);
     for (int i = 0; i < n; i++)
-        E[(size_t)i * n + i] = T[(size_t)i * n + i] = 1.0;
+        E[(size_t)i * n + i] = T[(size_t)i * n + i] = P[(size_t)i * n + i] = 1.0;
+    /* T = S^m / m!: |T| <= (norm sc)^m / m!; E += T, P += T / (m + 1) */
+    double bound = 1.0;
+    const double ns = norm * sc;
     for (int m = 1; m <= 18; m++) {
-        cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n, n, n, 1.0 / m, S, n, T, n, 0.0, U,
-                    n);
+        bound *= ns / m;
+        if (bound < 0.5e-18) break;
+        small_mul(n, 1.0 / m, S, T, U);
         memcpy(T, U, nn * sizeof *T);
-        for (size_t k = 0; k < nn; k++)
+        for (size_t k = 0; k < nn; k++) {
             E[k] += T[k];
+            P[k] += T[k] / (m + 1);
+        }
     }
     for (int k = 0; k < s; k++) {
-        cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n, n, n, 1.0, E, n, E, n, 0.0, U, n);
+        for (int i = 0; i < n; i++) /* E + I, then P (E + I) / 2 and E^2 */
+            E[(size_t)i * n + i] += 1.0;
+        small_mul(n, 0.5, P, E, U);
+        memcpy(P, U, nn * sizeof *P);
+        for (int i = 0; i < n; i++)
+            E[(size_t)i * n + i] -= 1.0;
+        small_mul(n, 1.0, E, E, U);
         memcpy(E, U, nn * sizeof *E);
     }
 }
@@ -144,8 +180,72 @@ static int steps_agree(const double *a, const double *b, int n)
     return out_a == out_b;
 }
 
-int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double *X, int steps,
-                          int s0, int steps_cap, int *steps_used, const gd_tr_record *bl, int nbl,
+/* The modes of (sym K, M) kept between points (hb's fmodes): every point of a curve
+ * whose structure does not change with speed has the same K and M, and their dense
+ * eigensolution (about 10 nf^3 flops: 0.16 G instructions of the 0.9 G a point's
+ * multipliers took on seed 002, callgrind) is the same. */
+struct gd_floquet_modes {
+    int nf;
+    double *K, *M; /* the matrices they are the modes of (sym K, M), dense */
+    double *Phi, *lam;
+};
+
+void gd_floquet_modes_free(struct gd_floquet_modes *m)
+{
+    if (!m) return;
+    free(m->K);
+    free(m->M);
+    free(m->Phi);
+    free(m->lam);
+    free(m);
+}
+
+/* Phi (in: sym K, dense; out: the M-orthonormal modes) and lam, from h's kept modes when
+ * K and M are those they were made of, else by LAPACK dsygvd (then kept). 0 ok, > 0
+ * dsygvd's info, -1 out of memory. */
+static int modes_of(hb *h, int nf, double *Phi, const double *Mm, double *lam)
+{
+    const size_t ff = (size_t)nf * nf;
+    struct gd_floquet_modes *m = h->fmodes;
+    if (m && m->nf == nf && !memcmp(m->K, Phi, ff * sizeof *Phi) &&
+        !memcmp(m->M, Mm, ff * sizeof *Mm)) {
+        memcpy(Phi, m->Phi, ff * sizeof *Phi);
+        memcpy(lam, m->lam, (size_t)nf * sizeof *lam);
+        return 0;
+    }
+    gd_floquet_modes_free(m);
+    h->fmodes = m = calloc(1, sizeof *m);
+    double *Mc = malloc(ff * sizeof *Mc);
+    if (m) {
+        m->nf = nf;
+        m->K = malloc(ff * sizeof *m->K);
+        m->M = malloc(ff * sizeof *m->M);
+        m->Phi = malloc(ff * sizeof *m->Phi);
+        m->lam = malloc((size_t)nf * sizeof *m->lam);
+    }
+    if (!Mc || !m || !m->K || !m->M || !m->Phi || !m->lam) {
+        free(Mc);
+        gd_floquet_modes_free(m);
+        h->fmodes = NULL;
+        return -1;
+    }
+    memcpy(m->K, Phi, ff * sizeof *Phi);
+    memcpy(m->M, Mm, ff * sizeof *Mm);
+    memcpy(Mc, Mm, ff * sizeof *Mc);
+    int info = LAPACKE_dsygvd(LAPACK_COL_MAJOR, 1, 'V', 'U', nf, Phi, nf, Mc, nf, lam);
+    free(Mc);
+    if (info) {
+        gd_floquet_modes_free(m);
+        h->fmodes = NULL;
+        return info;
+    }
+    memcpy(m->Phi, Phi, ff * sizeof *Phi);
+    memcpy(m->lam, lam, (size_t)nf * sizeof *lam);
+    return 0;
+}
+
+int gd_hb_floquet_reduced(hb *h, gd_transient *tr, double om, const double *X, int steps, int s0,
+                          int steps_cap, int *steps_used, const gd_tr_record *bl, int nbl,
                           double wcut, double budget, double *mu_re, double *mu_im, int *nmu,
                           int *nbasis, char *msg)
 {
@@ -197,11 +297,8 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
         for (int i = 0; i < nf; i++)
             Phi[(size_t)j * nf + i] = 0.5 * (Km[(size_t)j * nf + i] + Km[(size_t)i * nf + j]);
     {
-        double *Mc = malloc(ff * sizeof *Mc);
-        if (!Mc) goto done;
-        memcpy(Mc, Mm, ff * sizeof *Mc);
-        int info = LAPACKE_dsygvd(LAPACK_COL_MAJOR, 1, 'V', 'U', nf, Phi, nf, Mc, nf, lam);
-        free(Mc);
+        int info = modes_of(h, nf, Phi, Mm, lam);
+        if (info < 0) goto done;
         if (info) {
             snprintf(msg, 160, "stability not computed: the modes of (K, M) failed (dsygvd %d)",
                      info);
@@ -730,24 +827,18 @@ int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double om, const double
                     Cm[(size_t)(nt + t) * g2 + tg[t2r]] -= c2 * VU[(size_t)(ng + tg[t]) * t2 + t2r];
                 }
             }
-            /* phi1(Cm VU) from exp([Cm VU, I; 0, 0]) (ga = 2 g2) */
+            /* phi1(Cm VU) (small_phi1) */
             cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, g2, g2, t2, 1.0, Cm, g2, VU, t2,
                         0.0, CV, g2);
-            memset(G, 0, (size_t)ga * ga * sizeof *G);
-            for (int b = 0; b < g2; b++)
-                for (int a = 0; a < g2; a++)
-                    G[(size_t)b * ga + a] = CV[(size_t)b * g2 + a];
-            for (int g = 0; g < g2; g++)
-                G[(size_t)(g2 + g) * ga + g] = 1.0;
-            small_expm(ga, G, F, W3);
+            small_phi1(g2, CV, F, W3);
             /* Y = V^T Psi (t2 x n2); Z = phi1 Cm Y (g2 x n2); Psi += U Z */
             cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, t2, n2, n2, 1.0, Rk, n2, Psi, n2,
                         0.0, Y, t2);
             double *CY = Z + (size_t)g2 * n2;
             cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, g2, n2, t2, 1.0, Cm, g2, Y, t2,
                         0.0, CY, g2);
-            cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, g2, n2, g2, 1.0,
-                        F + (size_t)g2 * ga, ga, CY, g2, 0.0, Z, g2);
+            cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, g2, n2, g2, 1.0, F, g2, CY, g2,
+                        0.0, Z, g2);
             cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n2, n2, g2, 1.0, U, n2, Z, g2,
                         1.0, Psi, n2);
             if ((j & 255) == 255 && (!isfinite(Psi[0]) || !isfinite(Psi[rr - 1]))) {

@@ -55,6 +55,8 @@ void gd_hb_free(hb *h)
 {
     gd_chb_free(h->chb);
     h->chb = NULL;
+    gd_floquet_modes_free(h->fmodes);
+    h->fmodes = NULL;
     if (h->fwd_f) fftw_destroy_plan(h->fwd_f);
     if (h->inv_q) fftw_destroy_plan(h->inv_q);
     if (h->row_fwd) fftw_destroy_plan(h->row_fwd);

@@ -91,7 +91,9 @@ typedef struct hb {
     double alias;       /* the last residual's aliasing floor: the force content in the top
                            quarter below the Nyquist harmonic, relative to the residual's scale */
     struct gd_chb *chb; /* the condensed solve's workspace (condensed/chb.h), or NULL */
+    struct gd_floquet_modes *fmodes; /* floquet_reduced.c's modes of (K, M), or NULL */
 } hb;
+void gd_floquet_modes_free(struct gd_floquet_modes *m);
 
 /* The low-rank (Woodbury) factorisation of the bordered system and its solve, used by
  * gd_hb_factor / gd_hb_solve when solver is 2, or 0 with a large system whose nonlinear
@@ -204,8 +206,8 @@ int gd_hb_floquet_krylov(const hb *h, gd_transient *tr, double w, const double *
 /* The reduced basis's first step count of its own: 8 per period of the top excitation
  * order (top: the period's count of them), a power of 2, at least 256. */
 int gd_floquet_reduced_first_steps(long top);
-int gd_hb_floquet_reduced(const hb *h, gd_transient *tr, double w, const double *X, int steps,
-                          int s0, int steps_cap, int *steps_used, const gd_tr_record *bl, int nbl,
+int gd_hb_floquet_reduced(hb *h, gd_transient *tr, double w, const double *X, int steps, int s0,
+                          int steps_cap, int *steps_used, const gd_tr_record *bl, int nbl,
                           double wcut, double budget, double *mu_re, double *mu_im, int *nmu,
                           int *nbasis, char *msg);
 
@@ -310,5 +312,10 @@ int gd_per_floquet_shooting(const gd_system *sys, const gd_transient_spec *spec,
                             double *mim, int *nmu, double *change, char *msg, size_t cap);
 /* 1 when a law of the problem at speed has a switch or a kink (choose.c). */
 int gd_per_nonsmooth(const gd_system *sys, const gd_transient_spec *spec, double speed);
+/* 1 (with msg, cap bytes) when `--method auto` refuses the problem before solving
+ * (refuse.c): a common period too long for harmonic balance's memory at the H it would
+ * need and a model the multi-frequency torus cannot take; 0 otherwise. */
+int gd_per_qp_refusal(const gd_system *sys, const gd_transient_spec *spec, double speed,
+                      const gd_periodic_options *opt, char *msg, size_t cap);
 
 #endif

@@ -54,7 +54,9 @@ gd_status gd_st_no_equilibrium(const gd_system *sys, double speed, const double 
             double cap = c >= 0 && L->value[c] > 0 ? L->value[c] : 0.995;
             if (k >= 0 && k < nr && rec[k] >= 0.99 * cap && capped < 0)
                 capped = l, ecc_capped = cap;
-        } else if (L->type == &gd_law_rolling_bearing && rolling < 0) {
+        } else if ((L->type == &gd_law_rolling_bearing ||
+                    L->type == &gd_law_rolling_bearing_5dof) &&
+                   rolling < 0) {
             rolling = l;
         }
     }
@@ -76,9 +78,15 @@ gd_status gd_st_no_equilibrium(const gd_system *sys, double speed, const double 
                       ecc_capped, speed);
     if (rolling >= 0)
         return at_law(sys, rolling,
-                      "a rolling bearing carries radial (x, y) load only and nothing inside its "
-                      "clearance: check the loads' directions, the bearings' contact_stiffness "
-                      "and clearance, and that every load path ends in a bearing",
+                      sys->laws[rolling].type == &gd_law_rolling_bearing
+                          ? "a rolling bearing carries radial (x, y) load only and nothing inside "
+                            "its clearance: check the loads' directions, the bearings' "
+                            "contact_stiffness and clearance, and that every load path ends in a "
+                            "bearing"
+                          : "a rolling bearing carries nothing inside its clearance, and a "
+                            "radial bearing (contact angle 0) little axial or tilt load: check "
+                            "the loads' directions, the bearings' geometry and clearance, and "
+                            "that every load path ends in a bearing",
                       err,
                       "the laws find no static equilibrium with rolling bearing '%s' "
                       "(relative residual %.3g at %g rad/s)",

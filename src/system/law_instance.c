@@ -3,7 +3,8 @@
  * (law_state.c), transient and periodic through the transient spec (model_spec.c). A
  * law on a direction the model does not keep as an active DOF is a located error, the
  * same text whichever analysis runs: dropping it silently (what the linear analyses
- * did) gave modes without a bearing the user had written. */
+ * did) gave modes without a bearing the user had written. A law flagged
+ * GD_LAW_MODEL_DIRS leaves out the directions the model has nowhere (`dofs:`). */
 #include <stdio.h>
 #include <string.h>
 
@@ -22,6 +23,8 @@ gd_status gd_system_law_instance(const gd_system *s, int i, gd_law *L, gd_error 
         for (int k = 0; k < nd && node >= 0; k++) {
             gd_dof d = t->ndirs ? (gd_dof)t->dirs[k] : ml->dof;
             int dof = s->node_dof[6 * node + d]; /* node and d checked by the builder */
+            if (dof < 0 && (gd_law_flags(L) & GD_LAW_MODEL_DIRS) && !(m->dof_mask & GD_DOF_BIT(d)))
+                continue; /* the model has no such motion anywhere: held at zero */
             if (dof < 0) {
                 char field[32];
                 snprintf(field, sizeof field, "laws[%d]", i);

@@ -485,9 +485,9 @@ static gd_status profile_refusals(const gd_transient *tr, const gd_transient_opt
     return GD_OK;
 }
 
-gd_status gd_transient_run(gd_transient *tr, const gd_transient_options *opt,
-                           const gd_tr_record *records, int nrecords, gd_transient_result **out,
-                           gd_error *err)
+gd_status gd_tr_run_once(gd_transient *tr, const gd_transient_options *opt,
+                         const gd_tr_record *records, int nrecords, gd_transient_result **out,
+                         gd_error *err)
 {
     *out = NULL;
     const int nf = tr->nf, n = tr->red ? tr->red->nfull : tr->n;

@@ -263,6 +263,13 @@ gd_status gd_tr_run_gen_alpha(gd_transient *tr, const gd_transient_options *opt,
                               double *y, gd_transient_result *res, gd_tr_contact_track *track,
                               gd_error *err);
 
+/* ---- run.c ---- */
+/* gd_transient_run without the global error estimate of the CVODE methods
+ * (global_error.c wraps it with that estimate). */
+gd_status gd_tr_run_once(gd_transient *tr, const gd_transient_options *opt,
+                         const gd_tr_record *records, int nrecords, gd_transient_result **out,
+                         gd_error *err);
+
 /* ---- linear.c ---- */
 /* 1 when the problem is linear and time-invariant, forced by unbalances only (GD_TR_LTI
  * applies); else 0. why (len) receives the reason either way. */

@@ -232,6 +232,24 @@ TEST(campbell_splits_the_translational_pair)
     scratch_close(&s);
 }
 
+/* An undamped set's divergence: the damping ratio sits at 0 to rounding (+-1e-15) up to
+ * the first speed where a root is real, so the onset is that grid speed, not one
+ * interpolated from a rounding-level ratio (it printed 15000 rpm for +1e-16 there). */
+TEST(undamped_divergence_onset_is_the_first_unstable_speed)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    cJSON *o = run_json_args(&s, "campbell examples/planetary_cooley_parker.yaml --speeds "
+                                 "0:20000rpm:5 --threads 1");
+    REQUIRE(o);
+    const cJSON *on = cJSON_GetObjectItemCaseSensitive(o, "instability_onset_rpm");
+    REQUIRE(cJSON_IsNumber(on));
+    CHECK_REL(on->valuedouble, 20000, 1e-12);
+    cJSON_Delete(o);
+    scratch_close(&s);
+}
+
 RUN_TESTS(T(campbell_splits_the_translational_pair), T(static_load_sharing),
           T(stage_joins_a_parallel_train), T(modal_names_the_lin_parker_classes),
-          T(check_prints_ratios_mesh_order_and_assembly), T(bad_sets_fail_located))
+          T(check_prints_ratios_mesh_order_and_assembly), T(bad_sets_fail_located),
+          T(undamped_divergence_onset_is_the_first_unstable_speed))

@@ -11,7 +11,7 @@
 
 TEST(registry_tables_are_valid)
 {
-    CHECK(gd_nlaw_types == 11);
+    CHECK(gd_nlaw_types == 12);
     for (int i = 0; i < gd_nlaw_types; i++) {
         const gd_law_type *t = gd_law_types[i];
         gd_error err;
@@ -56,6 +56,10 @@ static void sample_law(const gd_law_type *t, gd_law *L)
         /* 9 balls, clearance 10 um, cage turning: a few elements in contact */
         L->value[0] = 9, L->value[1] = 1e10, L->value[3] = 1e-5, L->value[4] = 0.05;
         L->value[5] = 0.01, L->value[7] = 50.0, L->spin[0] = 300.0;
+    } else if (t == &gd_law_rolling_bearing_5dof) {
+        /* a 6205-size ball bearing, 2 um clearance, damped, cage turning */
+        L->value[0] = 9, L->value[1] = 7.94e-3, L->value[2] = 39.04e-3, L->value[4] = 2e-6;
+        L->value[12] = 50.0, L->spin[0] = 300.0;
     } else if (t == &gd_law_unilateral_spring) {
         /* in contact at the sample point (d = 4.5e-5 > gap) */
         L->value[0] = 3e7, L->value[1] = 1e-5, L->value[2] = 25.0;
@@ -85,6 +89,7 @@ static void sample_point(const gd_law *L, double *q, double *v)
 {
     int film = L->type == &gd_law_sfd || L->type == &gd_law_journal_bearing;
     double sq = film ? 3e-5 : (L->type == &gd_law_load ? 0.3 : 1e-4);
+    if (L->type == &gd_law_rolling_bearing_5dof) sq = 1e-6; /* a few um beyond the clearance */
     double sv = film ? 2e-3 : (L->type == &gd_law_friction ? 0.015 : 0.05);
     for (int j = 0; j < L->ndofs; j++) {
         q[j] = sq * (0.7 - 0.45 * j + 0.2 * j * j);

@@ -9,6 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <lapacke.h>
+
 #include "geardyn/campbell.h"
 #include "geardyn/law_type.h"
 #include "geardyn/modal.h"
@@ -198,10 +200,13 @@ static double static_gap(fx *f, double torque, const double *q, double *qmax_out
     return dmax / qmax;
 }
 
-TEST(gearbox_free_in_torsion_equals_linear_bearings)
+/* The modes and Campbell diagram of the gearbox with the laws of model at its operating
+ * state (input torque 50 N m) against the same gearbox on linear bearings of the laws'
+ * x-y tangent at that state. */
+static void equals_linear_bearings(gd_test_state *gd_ts_, const char *model)
 {
     fx f;
-    REQUIRE(load(&f, NULL, GEARBOX_LAWS));
+    REQUIRE(load(&f, NULL, model));
     int n = f.s->ndof;
     double *q = calloc((size_t)n, sizeof *q);
     REQUIRE(operating_state(&f, 50.0, q));
@@ -275,6 +280,11 @@ TEST(gearbox_free_in_torsion_equals_linear_bearings)
     REQUIRE(gd_campbell(f.s, &co, &ca, &err) == GD_OK);
     REQUIRE(gd_campbell(g.s, &co, &cb, &err) == GD_OK);
     REQUIRE(ca->ntracks == cb->ntracks);
+    /* the sweep's own flags of the speeds without an equilibrium (the CLI's report reads
+       them): every speed has one; the model without laws has none to flag */
+    REQUIRE(ca->no_equilibrium != NULL);
+    CHECK(!ca->no_equilibrium[0] && !ca->no_equilibrium[1] && !ca->no_equilibrium[2]);
+    CHECK(cb->no_equilibrium == NULL);
     double cworst = 0;
     for (int t = 0; t < ca->ntracks; t++)
         for (int k = 0; k < 3; k++) {
@@ -289,6 +299,128 @@ TEST(gearbox_free_in_torsion_equals_linear_bearings)
     gd_modal_free(ra);
     gd_modal_free(rb);
     free(q);
+    fx_free(&g);
+    fx_free(&f);
+}
+
+TEST(gearbox_free_in_torsion_equals_linear_bearings)
+{
+    equals_linear_bearings(gd_ts_, GEARBOX_LAWS);
+}
+
+/* The same gearbox on the 5-DOF laws from geometry (rolling_bearing_5dof): a 6205-size
+ * ball bearing with 2 um clearance at the pinion, a cylindrical roller bearing (14 rollers,
+ * 10 mm long) at the wheel; in the x-y plane their tangent is the linear bearings'. */
+static const char GEARBOX_GEOMETRY[] =
+    GEARBOX_HEAD "laws:\n"
+                 "  - {type: rolling_bearing_5dof, name: ball_a, node: gear_a, elements: 9,\n"
+                 "     element_diameter: 7.94 mm, pitch_diameter: 39.04 mm, clearance: 2 um,\n"
+                 "     phase: 10 deg}\n"
+                 "  - {type: rolling_bearing_5dof, name: roller_b, node: gear_b, elements: 14,\n"
+                 "     roller: 1, element_diameter: 7.5 mm, pitch_diameter: 46 mm,\n"
+                 "     roller_length: 10 mm, clearance: 5 um, phase: -90 deg}\n";
+
+TEST(gearbox_on_geometric_bearings_equals_linear_bearings)
+{
+    equals_linear_bearings(gd_ts_, GEARBOX_GEOMETRY);
+}
+
+/* The gearbox in all six directions per gear (x, y, z, rx, ry, rz) on two ball bearings
+ * from geometry: a 6205-size deep-groove bearing with 2 um clearance at the pinion and a
+ * 25 deg angular-contact bearing preloaded by 2 um at the wheel. Nothing else holds the
+ * gears axially or in tilt: the bearings' full 5 x 5 tangent at the static state does
+ * (radial, axial and tilt coupled). The modes at the operating state (input torque 50 N m)
+ * equal those of the same model without the laws, its stiffness plus the laws' tangents
+ * at that state (the linear bearings of the full tangent, which `bearings:` cannot
+ * write: it has no radial-tilt coupling), by LAPACK's dsygv: omega^2 to 1e-9 of the
+ * highest. */
+#define GEARBOX6_HEAD                                                                              \
+    "dofs: [x, y, z, rx, ry, rz]\n"                                                                \
+    "gravity: {direction: [0, -1, 0], g: 9.81}\n"                                                  \
+    "shafts:\n"                                                                                    \
+    "  - name: shaft_a\n"                                                                          \
+    "    nodes: [{name: gear_a}]\n"                                                                \
+    "  - name: shaft_b\n"                                                                          \
+    "    nodes: [{name: gear_b}]\n"                                                                \
+    "disks:\n"                                                                                     \
+    "  - {name: gear_a, node: gear_a, mass: 8.975, polar_inertia: 21.45e-3,\n"                     \
+    "     diametral_inertia: 11e-3}\n"                                                             \
+    "  - {name: gear_b, node: gear_b, mass: 9.124, polar_inertia: 5.097e-3,\n"                     \
+    "     diametral_inertia: 3e-3}\n"                                                              \
+    "meshes:\n"                                                                                    \
+    "  - {name: mesh, driver: gear_a, driven: gear_b, base_radius: [30 mm, 54 mm],\n"              \
+    "     pressure_angle: 20 deg, line_of_centres: 0, stiffness: 34 MN/m, damping: 0,\n"           \
+    "     coupling: lateral-torsional}\n"                                                          \
+    "excitations:\n"                                                                               \
+    "  loads:\n"                                                                                   \
+    "    - {name: brake, node: gear_b, dof: rz, value: 20}\n"
+
+static const char GEARBOX6_LAWS[] =
+    GEARBOX6_HEAD "laws:\n"
+                  "  - {type: rolling_bearing_5dof, name: ball_a, node: gear_a, elements: 9,\n"
+                  "     element_diameter: 7.94 mm, pitch_diameter: 39.04 mm, clearance: 2 um,\n"
+                  "     phase: 10 deg}\n"
+                  "  - {type: rolling_bearing_5dof, name: angular_b, node: gear_b, elements: 13,\n"
+                  "     element_diameter: 7.5 mm, pitch_diameter: 40 mm, contact_angle: 25 deg,\n"
+                  "     clearance: -2 um}\n";
+
+TEST(gearbox_in_five_directions_equals_its_tangent)
+{
+    fx f, g;
+    REQUIRE(load(&f, NULL, GEARBOX6_LAWS));
+    REQUIRE(load(&g, NULL, GEARBOX6_HEAD));
+    const int n = f.s->ndof;
+    REQUIRE(g.s->ndof == n);
+    double *q = calloc((size_t)n, sizeof *q), *M = calloc((size_t)n * n, sizeof *M),
+           *K = calloc((size_t)n * n, sizeof *K), *w = calloc((size_t)n, sizeof *w);
+    REQUIRE(q && M && K && w);
+    REQUIRE(operating_state(&f, 50.0, q));
+    double qmax, gap = static_gap(&f, 50.0, q, &qmax);
+    printf("  static vs operating state: %.3g of the largest deflection %.4g um\n", gap,
+           qmax * 1e6);
+    CHECK(gap >= 0 && gap <= 1e-9);
+    /* the linear model plus the laws' tangents, scattered to their DOFs */
+    gd_system_dense(g.s, 0.0, M, NULL, K);
+    for (int l = 0; l < f.s->nlaws; l++) {
+        double Kl[GD_LAW_MAX_DOFS * GD_LAW_MAX_DOFS], Cl[GD_LAW_MAX_DOFS * GD_LAW_MAX_DOFS];
+        law_tangent(f.s, l, q, 0.0, Kl, Cl);
+        const gd_law *L = &f.s->laws[l];
+        const int nd = L->ndofs;
+        printf("  %s: kxx %.5g kzz %.5g N/m, krxrx %.5g N m/rad, kz-rx %.5g N, kx-ry %.5g N\n",
+               L->name, Kl[0], Kl[2 + nd * 2], Kl[3 + nd * 3], Kl[2 + nd * 3], Kl[0 + nd * 4]);
+        CHECK(Kl[2 + nd * 2] > 1e5 && Kl[3 + nd * 3] > 10); /* axial and tilt held */
+        for (int a = 0; a < nd; a++)
+            for (int b = 0; b < nd; b++)
+                if (L->dof[a] >= 0 && L->dof[b] >= 0)
+                    K[L->dof[a] + (size_t)n * L->dof[b]] += Kl[a + nd * b];
+    }
+    REQUIRE(LAPACKE_dsygv(LAPACK_COL_MAJOR, 1, 'N', 'U', n, K, n, M, n, w) == 0);
+    gd_modal_options mo;
+    gd_modal_options_init(&mo);
+    mo.kind = GD_MODAL_UNDAMPED;
+    mo.method = GD_EIG_DENSE;
+    gd_modal_result *r = NULL;
+    gd_error err;
+    REQUIRE(gd_modal_solve(f.s, &mo, &r, &err) == GD_OK);
+    REQUIRE(r->nmodes == n);
+    /* eigenvalues omega^2 against dsygv's (the rigid mode's omega is the square root of
+       round-off) */
+    double worst = 0;
+    int rigid = 0;
+    for (int k = 0; k < n; k++) {
+        double om = r->modes[k].omega_n;
+        worst = fmax(worst, fabs(om * om - w[k]) / w[n - 1]);
+        rigid += r->modes[k].rigid_body;
+    }
+    printf("  modal: %d modes, %d rigid, %.5g .. %.5g Hz, worst relative difference %.2g\n", n,
+           rigid, r->modes[1].frequency_hz, r->modes[n - 1].frequency_hz, worst);
+    CHECK(rigid == 1);
+    CHECK(worst <= 1e-9);
+    gd_modal_free(r);
+    free(q);
+    free(M);
+    free(K);
+    free(w);
     fx_free(&g);
     fx_free(&f);
 }
@@ -421,7 +553,96 @@ TEST(rig_on_rolling_bearings_stiffens_with_torque)
     fx_free(&f);
 }
 
+/* The rig on its four bearings from geometry alone (examples/rig2018_geometry.yaml: 6205-size
+ * ball bearings as rolling_bearing_5dof laws, radial and tilt), at two input torques: the
+ * operating state is static's, one rigid-body mode (the train's torsion), and the first
+ * ten elastic frequencies (docs/bearings.md's table) rise as the balls take the mesh
+ * load, radially and in tilt: the shaft-bending pairs (2-5) and modes 8-9 by 3 to 10 %,
+ * modes 6-7 by 15 to 25 %, modes 10-11 by 25 to 40 % (loose bands about the measured
+ * shifts: the sign and size, not the digits). */
+TEST(rig_on_geometric_bearings_at_two_torques)
+{
+    fx f;
+    REQUIRE(load(&f, "examples/rig2018_geometry.yaml", NULL));
+    int n = f.s->ndof;
+    double *q = calloc((size_t)n, sizeof *q), hz[2][11] = {{0}};
+    const double torque[2] = {5, 50};
+    for (int c = 0; c < 2; c++) {
+        REQUIRE(operating_state(&f, torque[c], q));
+        double gap = static_gap(&f, torque[c], q, NULL);
+        CHECK(gap >= 0 && gap <= 1e-9);
+        gd_error err;
+        gd_modal_options mo;
+        gd_modal_options_init(&mo);
+        mo.kind = GD_MODAL_UNDAMPED;
+        mo.method = GD_EIG_DENSE;
+        gd_modal_result *r = NULL;
+        REQUIRE(gd_modal_solve(f.s, &mo, &r, &err) == GD_OK);
+        int rigid = 0;
+        for (int k = 0; k < r->nmodes; k++)
+            rigid += r->modes[k].rigid_body;
+        printf("  torque %g N m (%d rigid, state vs static %.2g):", torque[c], rigid, gap);
+        for (int k = 0; k < 11; k++) {
+            hz[c][k] = r->modes[k].frequency_hz;
+            printf(" %.1f", hz[c][k]);
+        }
+        printf(" Hz\n");
+        CHECK(rigid == 1);
+        gd_modal_free(r);
+    }
+    for (int k = 1; k < 11; k++) {
+        double shift = hz[1][k] / hz[0][k] - 1;
+        printf("    mode %d: %+.1f %%\n", k + 1, 100 * shift);
+        /* measured (modes 2-11): +7.0 +5.0 +7.0 +6.6 +19.2 +19.4 +5.8 +7.5 +31.9 +32.8 % */
+        static const double lo[11] = {0,    0.03, 0.03, 0.03, 0.03, 0.15,
+                                      0.15, 0.03, 0.03, 0.25, 0.25},
+                            hi[11] = {0,    0.10, 0.10, 0.10, 0.10, 0.25,
+                                      0.25, 0.10, 0.10, 0.40, 0.40};
+        CHECK(shift > lo[k] && shift < hi[k]);
+    }
+    free(q);
+    fx_free(&f);
+}
+
+/* A cylindrical roller bearing from geometry (contact angle 0) holds no axial motion:
+ * under an axial load static names the law and the 5-DOF law's hint, exit 2 in the CLI,
+ * never NaN. */
+TEST(axial_load_on_a_radial_roller_is_named)
+{
+    static const char YAML[] =
+        "dofs: [x, y, z]\n"
+        "shafts:\n"
+        "  - name: s\n"
+        "    nodes: [{name: m}]\n"
+        "disks:\n"
+        "  - {name: m, node: m, mass: 10}\n"
+        "laws:\n"
+        "  - {type: rolling_bearing_5dof, name: cyl, node: m, elements: 14, roller: 1,\n"
+        "     element_diameter: 7.5 mm, pitch_diameter: 46 mm, roller_length: 10 mm}\n"
+        "excitations:\n"
+        "  loads:\n"
+        "    - {node: m, dof: y, value: -200}\n"
+        "    - {node: m, dof: z, value: 100}\n";
+    fx f;
+    REQUIRE(load(&f, NULL, YAML));
+    gd_static_options o;
+    gd_static_options_init(&o);
+    gd_static_result *r = NULL;
+    gd_error err;
+    CHECK(gd_static_run(f.s, &o, &r, &err) == GD_EINPUT);
+    CHECK(r == NULL);
+    printf("  %s\n  hint: %s\n", err.message, err.hint);
+    CHECK(strstr(err.message, "rolling bearing 'cyl'") != NULL);
+    CHECK_STR(err.field, "laws[0]");
+    CHECK(strstr(err.hint, "radial bearing (contact angle 0) little axial or tilt load") != NULL);
+    gd_static_free(r);
+    fx_free(&f);
+}
+
 RUN_TESTS(T(roller_in_its_clearance_finds_equilibrium),
           T(rig_on_rolling_bearings_stiffens_with_torque),
+          T(rig_on_geometric_bearings_at_two_torques),
           T(gearbox_free_in_torsion_equals_linear_bearings),
-          T(tangents_against_central_differences), T(bearing_that_cannot_carry_the_load_is_named))
+          T(gearbox_on_geometric_bearings_equals_linear_bearings),
+          T(gearbox_in_five_directions_equals_its_tangent), T(tangents_against_central_differences),
+          T(bearing_that_cannot_carry_the_load_is_named), T(axial_load_on_a_radial_roller_is_named))

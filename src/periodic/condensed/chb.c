@@ -66,6 +66,10 @@ struct gd_chb {
     N_Vector vb, vx;
     SUNLinearSolver ls;
     long solves, gmres_iters;
+    /* the pattern of the last receptances (a lender's is compared with the borrower's) */
+    int *lp, *li, lnz;
+    gd_chb *lender; /* gd_chb_lend: borrowed, NULL none */
+    long lent;      /* harmonics taken from a lender (diagnostics) */
 };
 
 static void free_numerics(gd_chb *c)
@@ -82,6 +86,8 @@ void gd_chb_free(gd_chb *c)
     if (!c) return;
     free_numerics(c);
     free(c->rcond0);
+    free(c->lp);
+    free(c->li);
     free(c->rrow);
     free(c->rrow_of);
     if (c->sym) klu_free_symbolic(&c->sym, &c->com);
@@ -157,6 +163,16 @@ void gd_chb_counts(const gd_chb *c, long *solves, long *gmres_iters)
 {
     if (solves) *solves = c ? c->solves : 0;
     if (gmres_iters) *gmres_iters = c ? c->gmres_iters : 0;
+}
+
+void gd_chb_lend(gd_chb *c, gd_chb *lender)
+{
+    if (c && lender != c) c->lender = lender;
+}
+
+long gd_chb_lent(const gd_chb *c)
+{
+    return c ? c->lent : 0;
 }
 
 /* ---------------------------------------------------------------- coordinates */
@@ -491,7 +507,70 @@ static int forces(gd_chb *c, gd_transient *tr, double w, const double *Y, int ja
  * Z_k^-1 [C, r_k], H_k and y0. r (the samples c->rs) enters only on the DOFs where it is
  * not zero, and only at the harmonics where it is. 0 ok, GD_CHB_NA singular,
  * GD_CHB_NOMEM. */
-static int receptances(gd_chb *c, const gd_chb_linear *h, double w)
+/* y0's harmonic k: C^T x0 (x0 = Z_k^-1 r_k, nf complex) in the cos / sin layout. */
+static void project_r(gd_chb *c, int k, const double *x0)
+{
+    const int nc = c->nc;
+    for (int i = 0; i < nc; i++) {
+        double re = 0.0, im = 0.0;
+        for (int p = c->cstart[i]; p < c->cstart[i + 1]; p++) {
+            re += c->cval[p] * x0[2 * c->cidx[p]];
+            im += c->cval[p] * x0[2 * c->cidx[p] + 1];
+        }
+        if (k == 0) {
+            c->y0[i] = re;
+        } else {
+            c->y0[(size_t)(2 * k - 1) * nc + i] = re;
+            c->y0[(size_t)2 * k * nc + i] = -im;
+        }
+    }
+}
+
+/* The harmonics 0 .. the returned count - 1 whose receptances the lender (gd_chb_lend)
+ * holds for this problem: the same stage and frequency, coordinates and pattern of
+ * K, M, D (the same Z_k). 0: none. */
+static int lender_harmonics(const gd_chb *c, const gd_chb_linear *h, long stage_id, double w)
+{
+    const gd_chb *d = c->lender;
+    const int nf = c->nf, nc = c->nc;
+    if (!d || !d->have || d->stage_id != stage_id || d->w != w || d->nf != nf || d->nc != nc ||
+        !d->num || !d->lp || d->lnz != h->Up[nf])
+        return 0;
+    if (memcmp(d->lp, h->Up, (size_t)(nf + 1) * sizeof *h->Up) ||
+        memcmp(d->li, h->Ui, (size_t)d->lnz * sizeof *h->Ui))
+        return 0;
+    const int ne = c->cstart[nc];
+    if (memcmp(d->cstart, c->cstart, (size_t)(nc + 1) * sizeof *c->cstart) ||
+        memcmp(d->cidx, c->cidx, (size_t)ne * sizeof *c->cidx) ||
+        memcmp(d->cval, c->cval, (size_t)ne * sizeof *c->cval))
+        return 0;
+    return (d->H < c->H ? d->H : c->H) + 1;
+}
+
+/* The pattern of these receptances kept (a borrower compares it). 0 ok, 1 no memory. */
+static int keep_pattern(gd_chb *c, const gd_chb_linear *h)
+{
+    const int nf = c->nf, nz = h->Up[nf];
+    if (c->lp && c->lnz == nz && !memcmp(c->lp, h->Up, (size_t)(nf + 1) * sizeof *h->Up) &&
+        !memcmp(c->li, h->Ui, (size_t)nz * sizeof *h->Ui))
+        return 0;
+    free(c->lp);
+    free(c->li);
+    c->lp = malloc((size_t)(nf + 1) * sizeof *c->lp);
+    c->li = malloc((size_t)(nz > 0 ? nz : 1) * sizeof *c->li);
+    if (!c->lp || !c->li) {
+        free(c->lp);
+        free(c->li);
+        c->lp = c->li = NULL;
+        return 1;
+    }
+    memcpy(c->lp, h->Up, (size_t)(nf + 1) * sizeof *h->Up);
+    memcpy(c->li, h->Ui, (size_t)nz * sizeof *h->Ui);
+    c->lnz = nz;
+    return 0;
+}
+
+static int receptances(gd_chb *c, const gd_chb_linear *h, long stage_id, double w)
 {
     const int nf = c->nf, nc = c->nc, H = c->H;
     if (!c->sym || c->sym_pat != h->pat_id) {
@@ -515,9 +594,43 @@ static int receptances(gd_chb *c, const gd_chb_linear *h, double w)
     int rc = GD_CHB_NOMEM;
     if (!Zx || !B || !rk) goto done;
     analyse(c, c->rs, nr, rk); /* r_k on those rows (cos / sin layout, stride nr) */
+    if (keep_pattern(c, h)) goto done;
     rc = GD_CHB_NA;
+    gd_chb *d = c->lender;
+    const int nlent = lender_harmonics(c, h, stage_id, w);
     for (int k = 0; k <= H; k++) {
         const double kw = k * w, kw2 = kw * kw;
+        /* the right-hand sides r_k where they are not zero */
+        int with_r = 0;
+        double *br = B + 2 * (size_t)nc * nf;
+        for (int q = 0; q < nr; q++) {
+            double re = k ? rk[(size_t)(2 * k - 1) * nr + q] : rk[q];
+            double im = k ? -rk[(size_t)2 * k * nr + q] : 0.0; /* r_k = r_c - i r_s */
+            with_r |= re != 0.0 || im != 0.0;
+        }
+        if (k < nlent && d->num[k]) {
+            /* the lender's Z_k: its H_k and Z_k^-1 C as they are, Z_k^-1 r_k by its LU (this
+             * LU, not refreshed, is dropped: a later problem factors anew) */
+            if (c->num[k]) klu_z_free_numeric(&c->num[k], &c->com);
+            memcpy(c->Pk + 2 * (size_t)k * nf * nc, d->Pk + 2 * (size_t)k * nf * nc,
+                   2 * (size_t)nf * nc * sizeof *B);
+            memcpy(c->Hk + 2 * (size_t)k * nc * nc, d->Hk + 2 * (size_t)k * nc * nc,
+                   2 * (size_t)nc * nc * sizeof *B);
+            double *x0 = c->x0k + 2 * (size_t)k * nf;
+            memset(x0, 0, 2 * (size_t)nf * sizeof *x0);
+            if (with_r) {
+                for (int q = 0; q < nr; q++) {
+                    x0[2 * c->rrow[q]] = k ? rk[(size_t)(2 * k - 1) * nr + q] : rk[q];
+                    x0[2 * c->rrow[q] + 1] = k ? -rk[(size_t)2 * k * nr + q] : 0.0;
+                }
+                if (!klu_z_solve(d->sym, d->num[k], nf, 1, x0, &d->com)) goto done;
+                for (int p = 0; p < 2 * nf; p++)
+                    if (!isfinite(x0[p])) goto done;
+            }
+            project_r(c, k, x0);
+            c->lent++;
+            continue;
+        }
         for (int p = 0; p < nz; p++) {
             Zx[2 * p] = h->UK[p] - kw2 * h->UM[p];
             Zx[2 * p + 1] = kw * h->UD[p];
@@ -535,13 +648,6 @@ static int receptances(gd_chb *c, const gd_chb_linear *h, double w)
             c->rcond0[k] = c->com.rcond;
         }
         /* the right-hand sides: C, and r_k where it is not zero */
-        int with_r = 0;
-        double *br = B + 2 * (size_t)nc * nf;
-        for (int q = 0; q < nr; q++) {
-            double re = k ? rk[(size_t)(2 * k - 1) * nr + q] : rk[q];
-            double im = k ? -rk[(size_t)2 * k * nr + q] : 0.0; /* r_k = r_c - i r_s */
-            with_r |= re != 0.0 || im != 0.0;
-        }
         memset(B, 0, 2 * (size_t)nf * (nc + with_r) * sizeof *B);
         for (int i = 0; i < nc; i++)
             for (int p = c->cstart[i]; p < c->cstart[i + 1]; p++)
@@ -561,25 +667,18 @@ static int receptances(gd_chb *c, const gd_chb_linear *h, double w)
             memset(c->x0k + 2 * (size_t)k * nf, 0, 2 * (size_t)nf * sizeof *B);
         /* H_k = C^T Z_k^-1 C, y0_k = C^T Z_k^-1 r_k */
         double *Hk = c->Hk + 2 * (size_t)k * nc * nc;
-        for (int j = 0; j <= nc; j++) {
-            const double *col = j < nc ? B + 2 * (size_t)j * nf : c->x0k + 2 * (size_t)k * nf;
+        for (int j = 0; j < nc; j++)
             for (int i = 0; i < nc; i++) {
+                const double *col = B + 2 * (size_t)j * nf;
                 double re = 0.0, im = 0.0;
                 for (int p = c->cstart[i]; p < c->cstart[i + 1]; p++) {
                     re += c->cval[p] * col[2 * c->cidx[p]];
                     im += c->cval[p] * col[2 * c->cidx[p] + 1];
                 }
-                if (j < nc) {
-                    Hk[2 * (i + (size_t)nc * j)] = re;
-                    Hk[2 * (i + (size_t)nc * j) + 1] = im;
-                } else if (k == 0) {
-                    c->y0[i] = re;
-                } else {
-                    c->y0[(size_t)(2 * k - 1) * nc + i] = re;
-                    c->y0[(size_t)2 * k * nc + i] = -im;
-                }
+                Hk[2 * (i + (size_t)nc * j)] = re;
+                Hk[2 * (i + (size_t)nc * j) + 1] = im;
             }
-        }
+        project_r(c, k, c->x0k + 2 * (size_t)k * nf);
     }
     rc = GD_CHB_OK;
 done:
@@ -784,7 +883,7 @@ int gd_chb_solve(gd_chb *c, const gd_chb_linear *lin, gd_transient *tr, long sta
             rc = fr == 2 ? GD_CHB_NOMEM : GD_CHB_NOCONV;
             goto done;
         }
-        rc = receptances(c, lin, w);
+        rc = receptances(c, lin, stage_id, w);
         if (rc) goto done;
         c->have = 1;
         c->stage_id = stage_id;

@@ -56,6 +56,14 @@ int gd_chb_applies(gd_chb *c, gd_transient *tr);
  * residual's relative tolerance; *iters the Newton iterations. */
 int gd_chb_solve(gd_chb *c, const gd_chb_linear *lin, gd_transient *tr, long stage_id, double w,
                  double *X, double tol, int *iters);
+/* Lends lender's receptances to c (borrowed; NULL: none): c's next solve of the problem
+ * the lender solved last (the same stage, frequency, coordinates and pattern of K, M, D:
+ * the same Z_k) takes H_k and Z_k^-1 C of the harmonics both hold from it, and
+ * Z_k^-1 r_k from its LU, instead of factoring Z_k (the truncation estimate's solve at
+ * 2 H + 1 after the point's at H: H + 1 of its 2 H + 2 factorizations). */
+void gd_chb_lend(gd_chb *c, gd_chb *lender);
+/* The harmonics c took from a lender so far (diagnostics). */
+long gd_chb_lent(const gd_chb *c);
 /* Counters (diagnostics): condensed solves that converged, GMRES iterations so far. */
 void gd_chb_counts(const gd_chb *c, long *solves, long *gmres_iters);
 

@@ -206,10 +206,37 @@ double gd_qp_point_times(gd_qp *q, long p)
     return t0;
 }
 
-void gd_qp_samples(gd_qp *q, const double *X)
+/* A view's sample buffers (gd_qpc_view): made when first needed. 0 ok. */
+static int view_buffers(gd_qp *q)
 {
+    if (q->buf) return 0;
+    const long Nt = q->T.Ntot;
+    q->buf = fftw_malloc((size_t)Nt * q->nf * sizeof *q->buf);
+    q->qs = malloc((size_t)Nt * q->nf * sizeof *q->qs);
+    q->vs = malloc((size_t)Nt * q->nf * sizeof *q->vs);
+    if (!q->buf || !q->qs || !q->vs) return 1;
+    q->inv = fftw_plan_many_dft(q->T.d, q->T.N, q->nf, q->buf, NULL, 1, (int)Nt, q->buf, NULL, 1,
+                                (int)Nt, FFTW_BACKWARD, FFTW_ESTIMATE);
+    return q->inv ? 0 : 1;
+}
+
+void gd_qp_view_release(gd_qp *q)
+{
+    if (q->inv) fftw_destroy_plan(q->inv);
+    fftw_free(q->buf);
+    free(q->qs);
+    free(q->vs);
+    q->inv = NULL;
+    q->buf = NULL;
+    q->qs = q->vs = NULL;
+}
+
+int gd_qp_samples(gd_qp *q, const double *X)
+{
+    if (view_buffers(q)) return 1;
     synth(q, X, 0, q->qs);
     synth(q, X, 1, q->vs);
+    return 0;
 }
 
 int gd_qp_residual(gd_qp *q, const double *X, double *R, double *scale)

@@ -104,21 +104,60 @@ int gd_qp_newton(gd_qp *q, double *X, double tol, int max_iter, double *resid, i
                  char *msg, size_t cap);
 /* q(t), q'(t) (nf each) of the slice theta = W t (phases of the bases at t). */
 void gd_qp_eval(const gd_qp *q, const double *X, double t, double *qt, double *vt);
-/* Samples of X over the grid (sample-major, Ntot x nf; velocities too), into q->qs, q->vs. */
-void gd_qp_samples(gd_qp *q, const double *X);
+/* Samples of X over the grid (sample-major, Ntot x nf; velocities too), into q->qs, q->vs.
+ * 0 ok, 1 no memory (a view's buffers). */
+int gd_qp_samples(gd_qp *q, const double *X);
 /* Sets each law's time at grid point p (the problem's t, returned, is that of base 1). */
 double gd_qp_point_times(gd_qp *q, long p);
 
+/* The condensed torus (qpc.c): the laws' coordinates y = C^T q (C: the distinct
+ * directions of the terms, nc columns) as the only unknowns, the linear structure by its
+ * receptance at each harmonic's frequency,
+ *   Y_k = C^T Z_k^-1 r_k + H_k G_k(Y),  H_k = C^T Z_k^-1 C,  Z_k = K - W_k^2 M + i W_k D,
+ * (Petrov & Ewins 2003, Sec. 2, on the torus of Guskov & Thouverez 2012) with g = (C^T
+ * C)^-1 C^T f the forces along C at each grid point and r the rest (loads: no law moves
+ * them). One sparse complex LU (KLU) of Z_k per harmonic gives H_k and Z_k^-1 [C r_k];
+ * the full coefficients are recovered after convergence, X_k = Z_k^-1 (r_k + C G_k). Real
+ * FFTs over the nc coordinates only: its cost does not grow with the DOFs. */
+typedef struct gd_qpc gd_qpc;
+/* The coordinate count nc when the problem's terms give independent coordinates, fewer
+ * than the free DOFs (the condensed torus applies), else 0. */
+int gd_qpc_applies(gd_transient *tr);
+/* Workspace on the torus of order H; NULL with msg when it cannot be made. */
+gd_qpc *gd_qpc_new(gd_transient *tr, const gd_qp_bases *b, int H, char *msg, size_t cap);
+void gd_qpc_free(gd_qpc *c);
+const gd_qp_torus *gd_qpc_torus(const gd_qpc *c);
+/* Newton-Krylov from the full coefficients X (gd_qp_unknowns(T, nf)): X receives the
+ * recovered full solution. Same contract as gd_qp_newton. */
+int gd_qpc_newton(gd_qpc *c, double *X, double tol, int max_iter, double *resid, int *iters,
+                  char *msg, size_t cap);
+/* A view of the problem and torus for the records (gd_qp without the full workspace:
+ * gd_qp_samples makes its sample buffers when first called; gd_qp_view_release frees them). */
+void gd_qpc_view(gd_qpc *c, gd_qp *q);
+void gd_qp_view_release(gd_qp *q);
+/* Jacobian-vector products so far. */
+long gd_qpc_matvecs(const gd_qpc *c);
+
+/* The stability of a point (qp_stability.c): the Floquet multipliers of the slice over
+ * the bases' common period (the integrated monodromy from the slice's state at t = 0;
+ * stability_method GD_PER_MULTIFREQ), or without one a Lyapunov estimate (said in note).
+ * X: the full coefficients on the harmonics k (nk x d). Up to max_states states, else
+ * note says why not. 0 done (p's multipliers set, or note says why not), 1 no memory. */
+int gd_qp_stability(gd_transient *tr, const gd_qp_bases *b, const double *X, const int *k, int nk,
+                    int nf, int max_states, gd_periodic_point *p, char *note, size_t cap);
+
 /* The branch over speed by the torus (qp_run.c): natural continuation, each point from the
- * last; adaptive H (opt->adaptive: 8 doubled until two orders' records agree to
- * harmonic_tol, at most 64) or opt->harmonics. 0 ok, 1 no memory. */
+ * last; adaptive H (opt->adaptive: 32 raised by half until two orders' records agree to
+ * harmonic_tol, at most 48 or max_harmonics) or opt->harmonics; each point's stability
+ * (gd_qp_stability) with opt->stability. 0 ok, 1 no memory. */
 int gd_per_qp_run(const gd_system *sys, const gd_transient_spec *spec, const double *values,
                   int nvalues, const gd_periodic_options *opt, const gd_tr_record *records,
                   int nrecords, gd_periodic_result *res);
 
 /* The bases of the problem at speed, for `--method auto` (choose.c): d (0: none found or
  * the torus cannot take the problem) with the common fundamental's order (0 when none)
- * and the free DOFs nf. */
+ * and the DOFs nf the torus solves for (the laws' coordinates where it condenses, else
+ * the free DOFs). */
 int gd_per_qp_probe(const gd_system *sys, const gd_transient_spec *spec, double speed,
                     double W[GD_QP_MAXD], long *order, int *nf, char *msg, size_t cap);
 #endif

@@ -1,0 +1,1 @@
+# bench stub: ccp (seals only) is not packaged in Debian
