@@ -86,7 +86,7 @@ run5 "after: default (condensed, adams)" auto.json $MD $MF "$G"
 run5 "after: --method bdf" bdf.json $MD $MF "$G" --method bdf
 sed 's/, backlash: {gap: [0-9]* um}//; /^ *backlash:/d' "$M" > "$tmp/m5floor.yaml"
 FC=$(python3 -c "import json; print('%.6gHz' % json.load(open('$tmp/auto.json'))['condensed']['cutoff_hz'])")
-c=$(cpu "$G" transient "$tmp/m5floor.yaml" --duration $MD --from $MF --json --condense $FC)
+c=$(cpu "$G" transient "$tmp/m5floor.yaml" --duration $MD --from $MF --rattle --json --condense $FC)
 printf "  %-40s %8.2f s/s\n" "floor: same cut-off, no backlash" "$(echo "$c / $MD" | bc -l)"
 python3 -c "
 f = float(open('$tmp/full.json.cpu').read()) / $FD; a = float(open('$tmp/auto.json.cpu').read()) / $MD
