@@ -161,6 +161,15 @@ typedef struct gd_tr_condensed_info {
     double estimate; /* truncation estimate of the receptance at `excitation` over its largest
                         entry (gd_condense_receptance; 0 when every mode is kept) */
 } gd_tr_condensed_info;
+/* The default of `transient` (docs/transient.md, "Condensed transient"): 1 when the
+ * condensed transient pays for the (full) problem tr: at least GD_TRANSIENT_CONDENSE_DOFS DOFs,
+ * laws and unbalances acting on at most one in GD_TRANSIENT_CONDENSE_FEW of them, a law
+ * that is not linear as assembled (a linear model runs exactly by the lti method), and
+ * nothing the condensed transient refuses (prescribed DOFs, cam inertia). why (len)
+ * receives the reason either way. */
+#define GD_TRANSIENT_CONDENSE_DOFS 100
+#define GD_TRANSIENT_CONDENSE_FEW 4
+GD_API int gd_transient_condense_pays(const gd_transient *tr, char *why, size_t len);
 /* 1 and info filled when tr is condensed, else 0 (info zeroed). */
 GD_API int gd_transient_condensed_info(const gd_transient *tr, gd_tr_condensed_info *info);
 

@@ -20,6 +20,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sundials/sundials_linearsolver.h>
 
 #include "geardyn/condense.h"
 #include "geardyn/laws.h"
@@ -42,9 +43,14 @@ void gd_tr_condensed_free(gd_tr_condensed *k)
     free(k->Fv);
     free(k->L);
     free(k->lpiv);
-    free(k->J);
-    free(k->P);
-    free(k->ppiv);
+    free(k->D);
+    free(k->yscale);
+    free(k->ewt);
+    free(k->CCA);
+    free(k->xout);
+    free(k->yout);
+    free(k->partner);
+    if (k->Jm) SUNMatDestroy(k->Jm);
     free(k->work);
     free(k->modes);
     free(k);
@@ -68,21 +74,26 @@ static void forces_at(gd_transient *tr, double t, const double *qs, const double
     }
 }
 
-/* y = C x (nc), yv = C A x */
-static void outputs(const gd_tr_condensed *k, const double *x, double *y, double *yv)
+/* y = C x (nc), yv = C A x (yv = y + nc: one product with [C; C A]), the last x's kept:
+ * CVODE evaluates the error weights and the switches at the same accepted state */
+static void outputs(gd_tr_condensed *k, const double *x, double *y)
 {
-    const int nc = k->nc, ns = k->ns;
-    for (int i = 0; i < nc; i++)
-        y[i] = yv[i] = 0.0;
+    const int nc2 = 2 * k->nc, ns = k->ns;
+    if (k->have_out && !memcmp(x, k->xout, (size_t)ns * sizeof *x)) {
+        memcpy(y, k->yout, (size_t)nc2 * sizeof *y);
+        return;
+    }
+    for (int i = 0; i < nc2; i++)
+        y[i] = 0.0;
     for (int j = 0; j < ns; j++) {
         const double xj = x[j];
-        if (xj == 0.0) continue;
-        const double *c = k->C + (size_t)j * nc, *ca = k->CA + (size_t)j * nc;
-        for (int i = 0; i < nc; i++) {
+        const double *c = k->CCA + (size_t)j * nc2;
+        for (int i = 0; i < nc2; i++)
             y[i] += c[i] * xj;
-            yv[i] += ca[i] * xj;
-        }
     }
+    memcpy(k->xout, x, (size_t)ns * sizeof *x);
+    memcpy(k->yout, y, (size_t)nc2 * sizeof *y);
+    k->have_out = 1;
 }
 
 /* q_S = y + G u, v_S = yv + C B u */
@@ -94,7 +105,6 @@ static void coords_of(const gd_tr_condensed *k, const double *y, const double *y
     memcpy(vs, yv, (size_t)nc * sizeof *vs);
     for (int j = 0; j < nc; j++) {
         const double uj = u[j];
-        if (uj == 0.0) continue;
         for (int i = 0; i < nc; i++) {
             qs[i] += k->G[i + (size_t)j * nc] * uj;
             vs[i] += k->CB[i + (size_t)j * nc] * uj;
@@ -157,7 +167,7 @@ static void solve_loop(gd_transient *tr, double t, const double *x, double *qs, 
     gd_tr_condensed *k = tr->cond;
     const int nc = k->nc;
     double *y = k->work + 4 * nc, *yv = y + nc, *z = yv + nc;
-    outputs(k, x, y, yv);
+    outputs(k, x, y);
     if (!k->have_tangent || modes_changed(tr)) {
         coords_of(k, y, yv, k->u, qs, vs);
         refresh_tangent(tr, t, qs, vs);
@@ -205,19 +215,18 @@ void gd_tr_condensed_rhs(gd_transient *tr, double t, const double *x, double *xd
     const int ns = k->ns, nc = k->nc;
     double *qs = k->work + 7 * nc, *vs = qs + nc;
     solve_loop(tr, t, x, qs, vs);
-    /* x' = A x + B u */
-    for (int i = 0; i < ns; i++)
-        xdot[i] = 0.0;
-    for (int j = 0; j < ns; j++) {
-        const double xj = x[j];
-        if (xj == 0.0) continue;
-        const double *a = k->A + (size_t)j * ns;
-        for (int i = 0; i < ns; i++)
-            xdot[i] += a[i] * xj;
+    /* x' = A x + B u, A block diagonal in the modal basis (each state and its partner) */
+    for (int i = 0; i < ns; i++) {
+        const int p = k->partner[i];
+        xdot[i] =
+            k->A[i + (size_t)i * ns] * x[i] + (p != i ? k->A[i + (size_t)p * ns] * x[p] : 0.0);
     }
+    if (!k->a_blocks)
+        for (int j = 0; j < ns; j++)
+            for (int i = 0; i < ns; i++)
+                if (i != j && k->partner[i] != j) xdot[i] += k->A[i + (size_t)j * ns] * x[j];
     for (int j = 0; j < nc; j++) {
         const double uj = k->u[j];
-        if (uj == 0.0) continue;
         const double *b = k->B + (size_t)j * ns;
         for (int i = 0; i < ns; i++)
             xdot[i] += b[i] * uj;
@@ -245,95 +254,145 @@ void gd_tr_condensed_fill(gd_transient *tr, double t, const double *x, double *q
     }
 }
 
-/* ---- CVODE's linear solver: P = I - gamma J, J = A + B du/dx, dense LU ---- */
-int gd_tr_condensed_psetup(sunrealtype t, N_Vector y, N_Vector fy, sunbooleantype jok,
-                           sunbooleantype *jcur, sunrealtype gamma, void *ud)
+/* ---- CVODE's linear solver: SUNDIALS' dense LU of I - gamma J on the small state ---- */
+
+/* J = A + B du/dx at (t, x) into out (ns x ns, column-major), du/dx = L^-1 (F_q C + F_v C A)
+ * (nc x ns) from the feedthrough loop u = f(C x + G u, C A x + C B u) */
+static void jacobian(gd_transient *tr, double t, const double *x, double *out)
 {
-    (void)fy;
-    gd_transient *tr = ud;
     gd_tr_condensed *k = tr->cond;
     const int ns = k->ns, nc = k->nc;
-    if (!jok || !k->have_J) {
-        const double *x = N_VGetArrayPointer(y);
-        double *qs = k->work + 7 * nc, *vs = qs + nc;
-        solve_loop(tr, t, x, qs, vs);
-        refresh_tangent(tr, t, qs, vs);
-        /* du/dx = L^-1 (F_q C + F_v C A) (nc x ns) */
-        double *D = k->P; /* scratch, ns x ns >= nc x ns */
-        for (int j = 0; j < ns; j++)
-            for (int i = 0; i < nc; i++) {
-                double s = 0.0;
-                for (int m = 0; m < nc; m++)
-                    s += k->Fq[i + (size_t)m * nc] * k->C[m + (size_t)j * nc] +
-                         k->Fv[i + (size_t)m * nc] * k->CA[m + (size_t)j * nc];
-                D[i + (size_t)j * nc] = s;
-            }
-        if (k->loop && k->lok)
-            LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'N', nc, ns, k->L, nc, k->lpiv, D, nc);
-        memcpy(k->J, k->A, (size_t)ns * ns * sizeof *k->J);
-        for (int j = 0; j < ns; j++)
-            for (int m = 0; m < nc; m++) {
-                double d = D[m + (size_t)j * nc];
-                if (d == 0.0) continue;
-                const double *b = k->B + (size_t)m * ns;
-                double *Jj = k->J + (size_t)j * ns;
-                for (int i = 0; i < ns; i++)
-                    Jj[i] += b[i] * d;
-            }
-        k->have_J = 1;
-        *jcur = SUNTRUE;
-    } else {
-        *jcur = SUNFALSE;
-    }
-    for (size_t p = 0; p < (size_t)ns * ns; p++)
-        k->P[p] = -gamma * k->J[p];
-    for (int i = 0; i < ns; i++)
-        k->P[i + (size_t)i * ns] += 1.0;
+    double *qs = k->work + 7 * nc, *vs = qs + nc;
+    solve_loop(tr, t, x, qs, vs);
+    refresh_tangent(tr, t, qs, vs);
+    double *D = k->D;
+    for (int j = 0; j < ns; j++)
+        for (int i = 0; i < nc; i++) {
+            double s = 0.0;
+            for (int m = 0; m < nc; m++)
+                s += k->Fq[i + (size_t)m * nc] * k->C[m + (size_t)j * nc] +
+                     k->Fv[i + (size_t)m * nc] * k->CA[m + (size_t)j * nc];
+            D[i + (size_t)j * nc] = s;
+        }
+    if (k->loop && k->lok)
+        LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'N', nc, ns, k->L, nc, k->lpiv, D, nc);
+    memcpy(out, k->A, (size_t)ns * ns * sizeof *out);
+    for (int j = 0; j < ns; j++)
+        for (int m = 0; m < nc; m++) {
+            double d = D[m + (size_t)j * nc];
+            if (d == 0.0) continue;
+            const double *b = k->B + (size_t)m * ns;
+            double *Jj = out + (size_t)j * ns;
+            for (int i = 0; i < ns; i++)
+                Jj[i] += b[i] * d;
+        }
     k->setups++;
-    return LAPACKE_dgetrf_work(LAPACK_COL_MAJOR, ns, ns, k->P, ns, k->ppiv) ? 1 : 0;
 }
 
-int gd_tr_condensed_psolve(sunrealtype t, N_Vector y, N_Vector fy, N_Vector r, N_Vector z,
-                           sunrealtype gamma, sunrealtype delta, int lr, void *ud)
+int gd_tr_condensed_jac(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix Jac, void *ud,
+                        N_Vector tmp1, N_Vector tmp2, N_Vector tmp3)
 {
-    (void)t;
-    (void)y;
     (void)fy;
-    (void)gamma;
-    (void)delta;
-    (void)lr;
+    (void)tmp1;
+    (void)tmp2;
+    (void)tmp3;
     gd_transient *tr = ud;
-    gd_tr_condensed *k = tr->cond;
-    const int ns = k->ns;
-    double *zd = N_VGetArrayPointer(z);
-    memcpy(zd, N_VGetArrayPointer(r), (size_t)ns * sizeof *zd);
-    return LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'N', ns, 1, k->P, ns, k->ppiv, zd, ns) ? -1 : 0;
+    /* SUNDIALS' dense matrix: column-major, leading dimension = rows = ns */
+    jacobian(tr, t, N_VGetArrayPointer(y), SUNDenseMatrix_Data(Jac));
+    return 0;
 }
 
-/* J v with the Jacobian of the last set-up: GMRES then solves the same matrix the
- * preconditioner inverts, in one iteration (CVODE's modified Newton with a dense solve). */
-int gd_tr_condensed_jtimes(N_Vector v, N_Vector Jv, sunrealtype t, N_Vector y, N_Vector fy,
-                           void *ud, N_Vector tmp)
+/* CVODE's direct-solver interface (it keeps J, forms I - gamma J in the dense matrix and
+ * calls set-up when gamma or J changed) with LAPACK's LU: SUNLinSol_Dense's own
+ * elimination took 5.6e5 instructions per 42 x 42 factorisation and 4.7e4 per solve
+ * (callgrind, the 236-DOF box), most of the run. */
+static SUNLinearSolver_Type lu_type(SUNLinearSolver S)
 {
-    (void)t;
-    (void)y;
-    (void)fy;
-    (void)tmp;
-    const gd_transient *tr = ud;
-    const gd_tr_condensed *k = tr->cond;
-    const int ns = k->ns;
-    const double *x = N_VGetArrayPointer(v);
-    double *o = N_VGetArrayPointer(Jv);
-    for (int i = 0; i < ns; i++)
-        o[i] = 0.0;
-    for (int j = 0; j < ns; j++) {
-        const double xj = x[j];
-        if (xj == 0.0) continue;
-        const double *c = k->J + (size_t)j * ns;
-        for (int i = 0; i < ns; i++)
-            o[i] += c[i] * xj;
+    (void)S;
+    return SUNLINEARSOLVER_DIRECT;
+}
+
+static SUNLinearSolver_ID lu_id(SUNLinearSolver S)
+{
+    (void)S;
+    return SUNLINEARSOLVER_CUSTOM;
+}
+
+static int lu_setup(SUNLinearSolver S, SUNMatrix A)
+{
+    const int n = (int)SUNDenseMatrix_Rows(A);
+    return LAPACKE_dgetrf_work(LAPACK_COL_MAJOR, n, n, SUNDenseMatrix_Data(A), n, S->content)
+               ? SUNLS_LUFACT_FAIL /* > 0: recoverable, CVODE cuts the step */
+               : SUNLS_SUCCESS;
+}
+
+/* x = (P L U)^-1 b with dgetrf's factors: the row interchanges, then the column-oriented
+ * triangular solves (dgetrs costs 1.9e4 instructions per call at n = 42, these 4e3) */
+static int lu_solve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b, sunrealtype tol)
+{
+    (void)tol;
+    const int n = (int)SUNDenseMatrix_Rows(A);
+    const lapack_int *piv = S->content;
+    const double *F = SUNDenseMatrix_Data(A);
+    double *z = N_VGetArrayPointer(x);
+    memcpy(z, N_VGetArrayPointer(b), (size_t)n * sizeof *z);
+    for (int i = 0; i < n; i++) {
+        const int p = piv[i] - 1;
+        if (p != i) {
+            const double h = z[i];
+            z[i] = z[p];
+            z[p] = h;
+        }
     }
+    for (int j = 0; j < n; j++) { /* L, unit diagonal */
+        const double zj = z[j];
+        const double *c = F + (size_t)j * n;
+        for (int i = j + 1; i < n; i++)
+            z[i] -= c[i] * zj;
+    }
+    for (int j = n - 1; j >= 0; j--) { /* U */
+        const double *c = F + (size_t)j * n;
+        const double zj = z[j] /= c[j];
+        for (int i = 0; i < j; i++)
+            z[i] -= c[i] * zj;
+    }
+    return SUNLS_SUCCESS;
+}
+
+static int lu_free(SUNLinearSolver S)
+{
+    if (!S) return 0;
+    free(S->content);
+    S->content = NULL;
+    SUNLinSolFreeEmpty(S);
     return 0;
+}
+
+SUNLinearSolver gd_tr_condensed_solver(gd_transient *tr, N_Vector y, SUNContext ctx)
+{
+    (void)y;
+    gd_tr_condensed *k = tr->cond;
+    gd_tr_condensed_solver_free(tr);
+    k->Jm = SUNDenseMatrix(k->ns, k->ns, ctx);
+    SUNLinearSolver S = k->Jm ? SUNLinSolNewEmpty(ctx) : NULL;
+    if (!S) return NULL;
+    S->content = malloc((size_t)k->ns * sizeof(lapack_int));
+    if (!S->content) {
+        SUNLinSolFreeEmpty(S);
+        return NULL;
+    }
+    S->ops->gettype = lu_type;
+    S->ops->getid = lu_id;
+    S->ops->setup = lu_setup;
+    S->ops->solve = lu_solve;
+    S->ops->free = lu_free;
+    return S;
+}
+
+void gd_tr_condensed_solver_free(gd_transient *tr)
+{
+    if (tr->cond && tr->cond->Jm) SUNMatDestroy(tr->cond->Jm);
+    if (tr->cond) tr->cond->Jm = NULL;
 }
 
 void gd_tr_condensed_atol(const gd_transient *tr, double atol_q, double atol_v, double *atol)
@@ -358,12 +417,74 @@ void gd_tr_condensed_atol(const gd_transient *tr, double atol_q, double atol_v, 
     }
 }
 
+void gd_tr_condensed_tolerances(gd_transient *tr, double rtol, double atol_q, double atol_v)
+{
+    gd_tr_condensed *k = tr->cond;
+    k->rtol = rtol;
+    k->atol_q = atol_q;
+    k->atol_v = atol_v;
+    memset(k->yscale, 0, (size_t)2 * k->nc * sizeof *k->yscale);
+    k->have_ewt = 0;
+}
+
+/* CVODE's error weights from what the state is integrated for, the coordinates (their
+ * displacements and rates feed the laws and the contact metrics): state j's error e_j
+ * moves coordinate i by C_ij e_j and its rate by (C A)_ij e_j, and each coordinate is
+ * wanted to rtol of its largest excursion so far (Y_i, V_i) plus atol, so
+ *   w_j = max_i max(|C_ij| / (rtol Y_i + atol_q), |(C A)_ij| / (rtol V_i + atol_v)),
+ * the larger of a mode's two states for both (they exchange amplitude every period).
+ * CVODE's default rtol |x_j| + atol_j asks every kept mode for its own relative accuracy:
+ * a lightly damped shaft mode ringing at 1e-9 of the coordinates then sets the step. */
+int gd_tr_condensed_ewt(N_Vector y, N_Vector ewt, void *ud)
+{
+    gd_transient *tr = ud;
+    gd_tr_condensed *k = tr->cond;
+    const int ns = k->ns, nc = k->nc;
+    const double *x = N_VGetArrayPointer(y);
+    double *w = N_VGetArrayPointer(ewt), *yq = k->work + 4 * nc, *yv = yq + nc;
+    double *Y = k->yscale, *V = Y + nc;
+    outputs(k, x, yq);
+    /* the scales grow in steps of 5 %: the weights are recomputed only then */
+    int grew = !k->have_ewt;
+    for (int i = 0; i < nc; i++) {
+        const double a = fabs(yq[i]), b = fabs(yv[i]);
+        if (a > 1.05 * Y[i]) Y[i] = a, grew = 1;
+        if (b > 1.05 * V[i]) V[i] = b, grew = 1;
+    }
+    double *W = k->ewt;
+    if (grew) {
+        for (int i = 0; i < nc; i++) {
+            yq[i] = 1.0 / (k->rtol * Y[i] + k->atol_q);
+            yv[i] = 1.0 / (k->rtol * V[i] + k->atol_v);
+        }
+        for (int j = 0; j < ns; j++) {
+            const double *c = k->C + (size_t)j * nc, *ca = k->CA + (size_t)j * nc;
+            double m = 0.0;
+            for (int i = 0; i < nc; i++) {
+                const double a = fabs(c[i]) * yq[i], b = fabs(ca[i]) * yv[i];
+                m = a > m ? a : m;
+                m = b > m ? b : m;
+            }
+            W[j] = m;
+        }
+        for (int j = 0; j < ns; j++) {
+            const int p = k->partner[j];
+            if (p > j) W[j] = W[p] = W[j] > W[p] ? W[j] : W[p];
+        }
+        for (int j = 0; j < ns; j++)
+            if (!(W[j] > 0)) W[j] = 1.0 / k->atol_q; /* a state no coordinate sees */
+        k->have_ewt = 1;
+    }
+    memcpy(w, W, (size_t)ns * sizeof *w);
+    return 0;
+}
+
 void gd_tr_condensed_reset(gd_transient *tr)
 {
     gd_tr_condensed *k = tr->cond;
     memset(k->u, 0, (size_t)k->nc * sizeof *k->u);
     k->have_tangent = 0;
-    k->have_J = 0;
+    k->have_out = 0;
     k->loop_iters = 0;
     k->setups = 0;
 }
@@ -410,6 +531,66 @@ static double contact_band(gd_transient *tr)
     return wmax;
 }
 
+/* The DOFs the laws and unbalances act on: mark[i] = 1 (n zeroed ints); their count. */
+static int law_dofs(const gd_transient *tr, int *mark)
+{
+    for (int i = 0; i < tr->nlaw; i++)
+        for (int j = 0; j < tr->law[i].ndofs; j++)
+            if (tr->law[i].dof[j] >= 0) mark[tr->law[i].dof[j]] = 1;
+    for (int i = 0; i < tr->nunb_all; i++) {
+        if (tr->unb[i].dx >= 0) mark[tr->unb[i].dx] = 1;
+        if (tr->unb[i].dy >= 0) mark[tr->unb[i].dy] = 1;
+    }
+    int nc = 0;
+    for (int i = 0; i < tr->n; i++)
+        nc += mark[i];
+    return nc;
+}
+
+int gd_transient_condense_pays(const gd_transient *tr, char *why, size_t len)
+{
+    char lin[160];
+    if (tr->cond) {
+        snprintf(why, len, "condensed already");
+        return 0;
+    }
+    if (tr->red) {
+        snprintf(why, len, "a reduced model");
+        return 0;
+    }
+    if (tr->n < GD_TRANSIENT_CONDENSE_DOFS) {
+        snprintf(why, len, "%d DOFs, fewer than %d", tr->n, GD_TRANSIENT_CONDENSE_DOFS);
+        return 0;
+    }
+    if (tr->np || tr->nin) {
+        snprintf(why, len, "%s", tr->np ? "prescribed DOFs" : "cam inertia");
+        return 0;
+    }
+    if (gd_tr_lti_reason(tr, lin, sizeof lin)) {
+        snprintf(why, len, "linear: the lti method is exact");
+        return 0;
+    }
+    if (tr->sys->nlaws > 0 && tr->n > GD_TR_CONDENSE_DENSE_MAX) {
+        snprintf(why, len, "%d DOFs, more than %d with model laws", tr->n,
+                 GD_TR_CONDENSE_DENSE_MAX);
+        return 0;
+    }
+    int *mark = calloc((size_t)tr->n, sizeof *mark);
+    if (!mark) {
+        snprintf(why, len, "out of memory");
+        return 0;
+    }
+    const int nc = law_dofs(tr, mark);
+    free(mark);
+    if (nc == 0 || nc * GD_TRANSIENT_CONDENSE_FEW > tr->n) {
+        snprintf(why, len, "laws on %d of %d DOFs, more than 1 in %d", nc, tr->n,
+                 GD_TRANSIENT_CONDENSE_FEW);
+        return 0;
+    }
+    snprintf(why, len, "%d DOFs, laws on %d", tr->n, nc);
+    return 1;
+}
+
 gd_status gd_transient_new_condensed(const gd_system *sys, const gd_transient_spec *spec,
                                      double speed, double cutoff, gd_transient **out, gd_error *err)
 {
@@ -420,7 +601,7 @@ gd_status gd_transient_new_condensed(const gd_system *sys, const gd_transient_sp
     if (st) return st;
     if (tr->np) {
         st = gd_error_set(err, GD_EINPUT, file, 0, 0, "prescribed",
-                          "integrate the full model (--condense none), or replace the "
+                          "integrate the full model (--condense off), or replace the "
                           "prescribed motion by a load or a spring to ground",
                           "the condensed transient keeps the structure's own modes: no "
                           "prescribed DOF (%d given)",
@@ -429,7 +610,7 @@ gd_status gd_transient_new_condensed(const gd_system *sys, const gd_transient_sp
     }
     if (tr->nin) {
         st = gd_error_set(err, GD_EINPUT, file, 0, 0, "cam_torques",
-                          "integrate the full model (--condense none)",
+                          "integrate the full model (--condense off)",
                           "the condensed transient has no configuration-dependent inertia "
                           "(cam_acceleration)");
         goto fail;
@@ -447,16 +628,7 @@ gd_status gd_transient_new_condensed(const gd_system *sys, const gd_transient_sp
     tr->cond_fill = gd_tr_condensed_fill;
     tr->cond_rhs = gd_tr_condensed_rhs;
     tr->cond_free = gd_tr_condensed_free;
-    for (int i = 0; i < tr->nlaw; i++)
-        for (int j = 0; j < tr->law[i].ndofs; j++)
-            if (tr->law[i].dof[j] >= 0) mark[tr->law[i].dof[j]] = 1;
-    for (int i = 0; i < tr->nunb_all; i++) {
-        if (tr->unb[i].dx >= 0) mark[tr->unb[i].dx] = 1;
-        if (tr->unb[i].dy >= 0) mark[tr->unb[i].dy] = 1;
-    }
-    int nc = 0;
-    for (int i = 0; i < n; i++)
-        nc += mark[i];
+    const int nc = law_dofs(tr, mark);
     if (nc == 0) {
         free(mark);
         st = gd_error_set(err, GD_EINPUT, file, 0, 0, "laws",
@@ -533,16 +705,35 @@ gd_status gd_transient_new_condensed(const gd_system *sys, const gd_transient_sp
     k->Fv = calloc((size_t)nc * nc, sizeof *k->Fv);
     k->L = calloc((size_t)nc * nc, sizeof *k->L);
     k->lpiv = calloc((size_t)nc, sizeof *k->lpiv);
-    k->J = calloc((size_t)ns * ns, sizeof *k->J);
-    k->P = calloc((size_t)ns * (ns > nc ? ns : nc), sizeof *k->P);
-    k->ppiv = calloc((size_t)ns, sizeof *k->ppiv);
+    k->D = calloc((size_t)nc * ns, sizeof *k->D);
+    k->yscale = calloc((size_t)2 * nc, sizeof *k->yscale);
+    k->ewt = calloc((size_t)ns, sizeof *k->ewt);
+    k->CCA = calloc((size_t)2 * nc * ns, sizeof *k->CCA);
+    k->xout = calloc((size_t)ns, sizeof *k->xout);
+    k->yout = calloc((size_t)2 * nc, sizeof *k->yout);
+    k->partner = malloc((size_t)ns * sizeof *k->partner);
     k->work = calloc((size_t)9 * nc + ns + nc, sizeof *k->work);
     k->modes = calloc((size_t)(tr->nlaw ? tr->nlaw : 1), sizeof *k->modes);
     if (!k->CA || !k->CB || !k->dK || !k->dD || !k->u || !k->Fq || !k->Fv || !k->L || !k->lpiv ||
-        !k->J || !k->P || !k->ppiv || !k->work || !k->modes) {
+        !k->D || !k->yscale || !k->ewt || !k->CCA || !k->xout || !k->yout || !k->partner ||
+        !k->work || !k->modes) {
         st = gd_error_set(err, GD_ENOMEM, file, 0, 0, "", "", "out of memory");
         goto fail;
     }
+    /* a mode's two states (a conjugate pair's real and imaginary part, a rigid mode's
+     * amplitude and rate): the other state A couples it to (A is block diagonal) */
+    for (int j = 0; j < ns; j++) {
+        k->partner[j] = j;
+        for (int m = 0; m < ns; m++)
+            if (m != j && (k->A[j + (size_t)m * ns] != 0.0 || k->A[m + (size_t)j * ns] != 0.0)) {
+                k->partner[j] = m;
+                break;
+            }
+    }
+    k->a_blocks = 1;
+    for (int j = 0; j < ns; j++)
+        for (int i = 0; i < ns; i++)
+            if (i != j && k->partner[i] != j && k->A[i + (size_t)j * ns] != 0.0) k->a_blocks = 0;
     /* CA = C A, CB = C B */
     for (int j = 0; j < ns; j++)
         for (int m = 0; m < ns; m++) {
@@ -558,12 +749,17 @@ gd_status gd_transient_new_condensed(const gd_system *sys, const gd_transient_sp
             for (int i = 0; i < nc; i++)
                 k->CB[i + (size_t)j * nc] += k->C[i + (size_t)m * nc] * b;
         }
+    for (int j = 0; j < ns; j++) {
+        memcpy(k->CCA + (size_t)j * 2 * nc, k->C + (size_t)j * nc, (size_t)nc * sizeof *k->CCA);
+        memcpy(k->CCA + (size_t)j * 2 * nc + nc, k->CA + (size_t)j * nc,
+               (size_t)nc * sizeof *k->CCA);
+    }
     /* K_L, C_L: what the condensed structure (gd_system_dense) holds beyond the
      * transient's linear part, only on law DOFs (S x S) */
     if (sys->nlaws > 0) {
         if (n > GD_TR_CONDENSE_DENSE_MAX) {
             st = gd_error_set(err, GD_EINPUT, file, 0, 0, "laws",
-                              "integrate the full model (--condense none)",
+                              "integrate the full model (--condense off)",
                               "the condensed transient with model laws takes their "
                               "linearisation from the dense matrices: up to %d DOFs, not %d",
                               GD_TR_CONDENSE_DENSE_MAX, n);

@@ -4,6 +4,7 @@
 #include <cs.h>
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
+#include <sunmatrix/sunmatrix_dense.h>
 
 #include "geardyn/transient.h"
 
@@ -43,10 +44,19 @@ typedef struct gd_tr_condensed {
     double *u;                   /* nc: the coordinate forces of the last evaluation */
     double *Fq, *Fv, *L;         /* nc x nc: the forces' tangent, the loop matrix (LU) */
     int *lpiv;
-    int loop, lok, have_tangent, have_J;
-    int *modes;    /* nlaw: the laws' modes the tangent was taken in */
-    double *J, *P; /* ns x ns: Jacobian, I - gamma J (LU) */
-    int *ppiv;
+    int loop, lok, have_tangent;
+    int *modes;                  /* nlaw: the laws' modes the tangent was taken in */
+    double *D;                   /* nc x ns: du/dx */
+    SUNMatrix Jm;                /* ns x ns: CVODE's dense Jacobian (gd_tr_condensed_solver) */
+    double rtol, atol_q, atol_v; /* the run's tolerances (gd_tr_condensed_ewt) */
+    double *yscale;              /* 2 nc: the coordinates' largest |C x|, |C A x| so far */
+    double *ewt;                 /* ns: the error weights at those scales */
+    double *CCA;                 /* 2 nc x ns: [C; C A] */
+    double *xout, *yout;         /* the last state given to outputs() and its [C x; C A x] */
+    int have_out;
+    int have_ewt;
+    int *partner; /* ns: the other state of each state's mode (itself if none) */
+    int a_blocks; /* 1: A couples only partners (the modal basis) */
     double *work;
     double cutoff, w_exc, w_contact, est_rel;
     long loop_iters, setups;
@@ -56,13 +66,18 @@ void gd_tr_condensed_rhs(gd_transient *tr, double t, const double *x, double *xd
 /* q, v (length n) at (t, x): every DOF when all, else only the coordinates' DOFs. */
 void gd_tr_condensed_fill(gd_transient *tr, double t, const double *x, double *q, double *v,
                           int all);
-int gd_tr_condensed_psetup(sunrealtype t, N_Vector y, N_Vector fy, sunbooleantype jok,
-                           sunbooleantype *jcur, sunrealtype gamma, void *ud);
-int gd_tr_condensed_psolve(sunrealtype t, N_Vector y, N_Vector fy, N_Vector r, N_Vector z,
-                           sunrealtype gamma, sunrealtype delta, int lr, void *ud);
-int gd_tr_condensed_jtimes(N_Vector v, N_Vector Jv, sunrealtype t, N_Vector y, N_Vector fy,
-                           void *ud, N_Vector tmp);
+/* CVODE's Jacobian of the condensed model (user data: the gd_transient): A + B du/dx. */
+int gd_tr_condensed_jac(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix Jac, void *ud,
+                        N_Vector tmp1, N_Vector tmp2, N_Vector tmp3);
+/* SUNDIALS' dense direct solver on the condensed state, its matrix held by tr->cond until
+ * gd_tr_condensed_solver_free (before the context is freed). NULL: out of memory. */
+SUNLinearSolver gd_tr_condensed_solver(gd_transient *tr, N_Vector y, SUNContext ctx);
+void gd_tr_condensed_solver_free(gd_transient *tr);
 void gd_tr_condensed_atol(const gd_transient *tr, double atol_q, double atol_v, double *atol);
+/* Before a run: its tolerances for the error weights, their scales cleared. */
+void gd_tr_condensed_tolerances(gd_transient *tr, double rtol, double atol_q, double atol_v);
+/* CVODE's error-weight function of the condensed state (user data: the gd_transient). */
+int gd_tr_condensed_ewt(N_Vector y, N_Vector ewt, void *ud);
 /* Before a run: the loop's start and the cached tangent cleared. */
 void gd_tr_condensed_reset(gd_transient *tr);
 
@@ -266,7 +281,8 @@ gd_status gd_tr_run_lti(gd_transient *tr, const gd_transient_options *opt,
                         double *y, gd_transient_result *res, gd_error *err);
 
 /* CVODE for the problem (user data ud): method, tolerances (rtol, vector atol), step
- * limits and stop time from opt, SPGMR with left preconditioning by psetup/psolve, and
+ * limits and stop time from opt, SPGMR with left preconditioning by psetup/psolve (or,
+ * on a condensed problem with psetup NULL, the dense solver with its Jacobian), and
  * nroot root functions (0: none). *flag != 0 or NULL on failure; the caller frees the
  * memory and *LS. Messages go to tr->msg. */
 void *gd_tr_cvode_new(SUNContext ctx, const gd_transient_options *opt, double t0, double t_stop,

@@ -933,13 +933,36 @@ TEST(condensed_transient)
     cJSON_Delete(f);
     cJSON_Delete(c);
     cJSON_Delete(a);
-    expect_error(gd_ts_, &s, "--condense: '0Hz' is not auto, all or a frequency", NULL,
+    expect_error(gd_ts_, &s, "--condense: '0Hz' is not auto, off, all or a frequency", NULL,
                  "transient tests/transient/condensed_pair.yaml --duration 1ms --condense 0Hz");
     expect_error(gd_ts_, &s, "prescribed", NULL,
                  "transient examples/rattle_idle.yaml --duration 1ms --condense auto");
     expect_error(gd_ts_, &s, "--condense and --reduce", NULL,
                  "transient tests/transient/condensed_pair.yaml --duration 1ms --condense all "
                  "--reduce 5kHz");
+    /* the default: the 3-DOF pair stays full (no choice stated); the pair with its input
+     * gear on an FE shaft (103 DOFs, laws on 2) is condensed and says so (20 ms: 0.07 s
+     * CPU, the full model 24 s), --condense off keeps it full */
+    cJSON *p = run_json(gd_ts_, &s, "transient tests/transient/condensed_pair.yaml --duration 1ms");
+    const char *shaft = "tests/transient/condensed_shaft.yaml --from 0";
+    cJSON *d = run_json(gd_ts_, &s, "transient %s --duration 20ms", shaft);
+    cJSON *o = run_json(gd_ts_, &s, "transient %s --duration 0.05ms --condense off", shaft);
+    REQUIRE(p && d && o);
+    CHECK(!cJSON_GetObjectItemCaseSensitive(p, "condense"));
+    CHECK(!cJSON_GetObjectItemCaseSensitive(p, "condensed"));
+    CHECK(strstr(jstr(p, "method"), "condensed") == NULL);
+    CHECK(strstr(jstr(d, "condense"), "condensed by default (103 DOFs, laws on 2") != NULL);
+    CHECK(strstr(jstr(d, "method"), "auto: adams") != NULL);
+    CHECK(jnum(d, "events") > 5);
+    const cJSON *dc = cJSON_GetObjectItemCaseSensitive(d, "condensed");
+    REQUIRE(dc);
+    CHECK(jnum(dc, "law_dofs") == 2 && jnum(dc, "states") == 8);
+    CHECK(!cJSON_GetObjectItemCaseSensitive(o, "condense"));
+    CHECK(!cJSON_GetObjectItemCaseSensitive(o, "condensed"));
+    CHECK(jnum(o, "dofs") == 103);
+    cJSON_Delete(p);
+    cJSON_Delete(d);
+    cJSON_Delete(o);
 }
 
 RUN_TESTS(T(ducati_speed_ratios_and_contact_losses), T(ducati_text_static_start_and_wildcards),
