@@ -383,6 +383,7 @@ typedef struct { int ncoords, nstates; int nkept, ndiscarded; int nrigid; double
                  double first_discarded; double excitation; double contact;
                  double static_correction; double estimate; } gd_tr_condensed_info;
 int gd_transient_condensed_info(const gd_transient *tr, gd_tr_condensed_info *info);
+int gd_transient_condense_pays(const gd_transient *tr, char *why, size_t len);
 void gd_transient_free(gd_transient *tr);
 int gd_transient_nstates(const gd_transient *tr);
 void gd_transient_options_init(gd_transient_options *opt);

@@ -314,10 +314,10 @@ def _cutoff(condense):
     try:
         f = quantity(condense, "speed", "condense")
     except ValueError:
-        raise model_error("condense", "'%s' is not auto, all or a frequency > 0" % (condense,),
+        raise model_error("condense", "'%s' is not off, auto, all or a frequency > 0" % (condense,),
                           "e.g. condense=\"8kHz\"") from None
     if not (f > 0 and math.isfinite(f)):
-        raise model_error("condense", "'%s' is not auto, all or a frequency > 0" % (condense,),
+        raise model_error("condense", "'%s' is not off, auto, all or a frequency > 0" % (condense,),
                           "e.g. condense=\"8kHz\"")
     return f
 
@@ -355,8 +355,11 @@ def transient(system, duration=None, revolutions=None, speed=None, records=None,
     at 0 s, method "auto" takes bdf ("galpha" with step= is usually much cheaper);
     waterfall=RECORD order-tracks that record into result.waterfall (a Waterfall) in
     blocks of revs_per_block turns.
-    condense: as `--condense` (docs/transient.md, "Condensed transient"): "auto" (the
-    cut-off rule), "all" (every mode: exact) or a cut-off frequency (rad/s, or "8kHz"):
+    condense: as `--condense` (docs/transient.md, "Condensed transient"): None (the
+    default, as the CLI's: condensed by the cut-off rule where it pays, at least 100 DOFs
+    with laws on at most a quarter of them, else the full model), "off" (the full model),
+    "auto" (the cut-off rule), "all" (every mode: exact) or a cut-off frequency (rad/s,
+    or "8kHz"):
     the structure condensed onto the DOFs its laws act on, its modes up to the cut-off
     and the rest as their static correction; result.condensed describes it (None when
     not condensed). bdf or adams, started at rest, no prescribed DOF, no speed profile."""
@@ -413,8 +416,19 @@ def transient(system, duration=None, revolutions=None, speed=None, records=None,
             names.append(one[0][3])
         wi = names.index(one[0][3])
     trp = ffi.new("gd_transient **")
-    if condense is None:
+    if condense is None or (isinstance(condense, str) and condense == "off"):
         check(lib.gd_transient_new(system._handle, spec, w, trp, err), err)
+        # the CLI's default: condensed where it pays (gd_transient_condense_pays), from
+        # rest by bdf or adams at a constant speed; condense="off" keeps the full model
+        if condense is None and prof is None and start == "rest" and \
+                method in ("auto", "bdf", "adams"):
+            why = ffi.new("char[160]")
+            if lib.gd_transient_condense_pays(trp[0], why, 160):
+                ct = ffi.new("gd_transient **")
+                cerr = ffi.new("gd_error *")
+                if lib.gd_transient_new_condensed(system._handle, spec, w, -1.0, ct, cerr) == 0:
+                    lib.gd_transient_free(trp[0])
+                    trp = ct
     else:
         check(lib.gd_transient_new_condensed(system._handle, spec, w, _cutoff(condense),
                                              trp, err), err)

@@ -57,3 +57,22 @@ def test_condense_bad_value(geardyn, bad):
     with pytest.raises(geardyn.ModelError) as e:
         geardyn.load(PAIR).transient(duration="30ms", condense=bad)
     assert e.value.field == "condense"
+
+
+SHAFT = os.path.join(ROOT, "tests", "transient", "condensed_shaft.yaml")
+
+
+def test_default_condenses_where_it_pays_as_the_cli(geardyn):
+    """The CLI's default (docs/transient.md): the 103-DOF shaft model is condensed by the
+    cut-off rule without being asked, bit for bit the CLI's; condense="off" and the 3-DOF
+    pair keep the full model."""
+    args = ["--duration", "5ms", "--record", "mesh:m12:force"]
+    j = run_cli("transient", SHAFT, "--quiet", *args)
+    m = geardyn.load(SHAFT)
+    r = m.transient(duration="5ms", records="mesh:m12:force")
+    assert r.condensed is not None and r.condensed["states"] == j["condensed"]["states"]
+    assert (r.steps, r.rhs_evals, r.events) == (j["steps"], j["rhs_evaluations"], j["events"])
+    for f in ("rms", "peak_to_peak"):
+        assert same(r.stats[0][f], nums([j["records"][0][f]])[0]), f
+    assert m.transient(duration="5ms", records="mesh:m12:force", condense="off").condensed is None
+    assert geardyn.load(PAIR).transient(duration="5ms").condensed is None
