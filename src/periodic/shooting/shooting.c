@@ -576,10 +576,10 @@ done:
 /* The largest Floquet multipliers of the orbit through y without the dense monodromy: the
  * Ritz values of m Arnoldi steps on Phi (monodromy-vector products by central
  * differences, two periods each) from a fixed start vector; the outer ones, which decide
- * stability, converge first. With res (m entries) the Ritz values of the eigenvector solve
- * replace nothing: the reported values stay those of dgeev without vectors, and res gets
- * each one's residual (gd_ritz, its values in vre, vim). Their count, or -1 when an
- * integration failed. */
+ * stability, converge first. With res (m entries) also each one's residual (gd_ritz, which
+ * solves for the eigenvectors too: its values, equal to rounding, in vre, vim), the
+ * reported ones staying those of dgeev without vectors as before. Their count, or -1 when
+ * an integration failed. */
 static int krylov_multipliers(shoot *sh, const double *y, int m, double *mre, double *mim,
                               double *vre, double *vim, double *res)
 {
