@@ -154,4 +154,15 @@ int gd_arnoldi(gd_op_try_fn op, void *ctx, int n, const double *v0, int m, doubl
 int gd_gmres(gd_op_try_fn op, void *ctx, int n, int m, const double *b, double *x, double tol,
              double stop2, int cycles);
 
+/* ---- ritz.c: Ritz values of an Arnoldi factorisation and their residuals ---- */
+/* The m Ritz values of gd_arnoldi's H (leading dimension ld, m steps: H's (m + 1) x m part
+ * read) in (re, im) as LAPACK orders them, and each one's residual |h_{m+1,m}| |e_m^T s_j|
+ * (s_j its unit eigenvector of H_m) in res. 0 ok, 1 the eigensolver failed, 2 out of memory. */
+int gd_ritz(const double *H, int ld, int m, double *re, double *im, double *res);
+/* A stability verdict only where converged Ritz values decide it: 0 (unstable) when one lies
+ * outside the circle of radius bound by more than its residual, 1 (stable) when every one
+ * lies inside it by more than its residual, -1 otherwise (a value within its residual of
+ * the circle: not a verdict). */
+int gd_ritz_verdict(const double *re, const double *im, const double *res, int n, double bound);
+
 #endif

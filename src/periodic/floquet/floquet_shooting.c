@@ -50,11 +50,14 @@ int gd_per_floquet_shooting(const gd_system *sys, const gd_transient_spec *spec,
             y0[i] = y[i] - y0[i];
         *change = gd_per_sh_norm(&sh, y, y0);
     }
-    int nm = gd_per_sh_multipliers(&sh, y, mre, mim);
+    int stable, nm = gd_per_sh_verdict(&sh, y, mre, mim, &stable, sh.why, sizeof sh.why);
     if (nm < 0) {
         snprintf(sh.why, sizeof sh.why, "the eigenvalues of the monodromy failed");
         goto done;
     }
+    /* matrix-free Ritz values that leave the verdict open are no verdict: the caller falls
+     * back on the harmonic balance orbit's multipliers, saying why */
+    if (stable < 0) goto done;
     *nmu = nm;
     rc = 0;
 done:

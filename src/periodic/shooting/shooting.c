@@ -408,9 +408,6 @@ double gd_per_sh_noise(shoot *sh, const double *y)
 
 /* ---------------------------------------------------------------- Newton-Krylov */
 
-/* Largest Krylov dimension (GMRES restart length, Arnoldi steps for the multipliers). */
-#define KRYLOV_M 40
-
 /* Matrix-free monodromy in scaled variables z = y / d (d the block scales of
  * scaled_norm): w = Phi z by a forward difference of the period map about y (py = P(y)),
  * the step sqrt(rtol) of the scales: the truncation error (h |P''|) and the integration
@@ -572,14 +569,21 @@ done:
     return rc;
 }
 
+/* Arnoldi steps for a stability verdict the first KRYLOV_M Ritz values leave open: up to
+ * every state when there are at most this many (2 N periods integrated). */
+#define KRYLOV_FULL 400
+
 /* The largest Floquet multipliers of the orbit through y without the dense monodromy: the
- * Ritz values of KRYLOV_M Arnoldi steps on Phi (monodromy-vector products by central
+ * Ritz values of m Arnoldi steps on Phi (monodromy-vector products by central
  * differences, two periods each) from a fixed start vector; the outer ones, which decide
- * stability, converge first. Their count, or -1
- * when an integration failed. */
-static int krylov_multipliers(shoot *sh, const double *y, double *mre, double *mim)
+ * stability, converge first. With res (m entries) also each one's residual (gd_ritz, which
+ * solves for the eigenvectors too: its values, equal to rounding, in vre, vim), the
+ * reported ones staying those of dgeev without vectors as before. Their count, or -1 when
+ * an integration failed. */
+static int krylov_multipliers(shoot *sh, const double *y, int m, double *mre, double *mim,
+                              double *vre, double *vim, double *res)
 {
-    const int N = sh->N, m = N < KRYLOV_M ? N : KRYLOV_M;
+    const int N = sh->N;
     double *V = malloc(((size_t)N * (m + 1) + (size_t)(m + 1) * m + 4 * (size_t)N + (size_t)m * m) *
                        sizeof *V);
     if (!V) return -1;
@@ -600,12 +604,83 @@ static int krylov_multipliers(shoot *sh, const double *y, double *mre, double *m
                     Hs[(size_t)c * steps + r] = H[(size_t)c * (m + 1) + r];
             double dummy[1];
             if (!LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', steps, Hs, steps, mre, mim, dummy, 1,
-                               dummy, 1))
+                               dummy, 1) &&
+                (!res || !gd_ritz(H, m + 1, steps, vre, vim, res)))
                 n = steps;
         }
     }
     free(V);
     return n;
+}
+
+/* Multipliers of the orbit through y: the eigenvalues of sh->phi (destroyed), or the
+ * Krylov estimate of the largest. Their count, -1 on failure. */
+int gd_per_sh_multipliers(shoot *sh, const double *y, double *mre, double *mim)
+{
+    if (!sh->dense) {
+        const int m = sh->N < KRYLOV_M ? sh->N : KRYLOV_M;
+        return krylov_multipliers(sh, y, m, mre, mim, NULL, NULL, NULL);
+    }
+    double dummy[1];
+    return LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', sh->N, sh->phi, sh->N, mre, mim, dummy, 1,
+                         dummy, 1)
+               ? -1
+               : sh->N;
+}
+
+int gd_per_sh_verdict(shoot *sh, const double *y, double *mre, double *mim, int *stable, char *note,
+                      size_t cap)
+{
+    const int N = sh->N;
+    note[0] = '\0';
+    *stable = -1;
+    if (sh->dense) {
+        int nm = gd_per_sh_multipliers(sh, y, mre, mim);
+        if (nm > 0) {
+            double m = 0.0;
+            for (int i = 0; i < nm; i++)
+                m = fmax(m, hypot(mre[i], mim[i]));
+            *stable = m <= 1.0 + 1e-6;
+        }
+        return nm;
+    }
+    double *w = malloc(3 * (size_t)N * sizeof *w);
+    if (!w) {
+        snprintf(sh->why, sizeof sh->why, "out of memory");
+        return -1;
+    }
+    double *vre = w + N, *vim = vre + N;
+    int m = N < KRYLOV_M ? N : KRYLOV_M, nm;
+    for (;;) {
+        nm = krylov_multipliers(sh, y, m, mre, mim, vre, vim, w);
+        if (nm < 0) break;
+        *stable = gd_ritz_verdict(vre, vim, w, nm, 1.0 + 1e-6);
+        if (*stable >= 0 || m >= N || N > KRYLOV_FULL) break;
+        m = N; /* the cluster needs the whole space: Arnoldi again to every state */
+    }
+    if (nm >= 0) {
+        int open = -1; /* the largest value whose residual straddles the circle */
+        for (int j = 0; j < nm; j++) {
+            double a = hypot(vre[j], vim[j]);
+            if (a + w[j] > 1.0 + 1e-6 && (open < 0 || a > hypot(vre[open], vim[open]))) open = j;
+        }
+        if (*stable < 0)
+            snprintf(note, cap,
+                     "stability not determined: %d Arnoldi steps on monodromy-vector products "
+                     "leave the Ritz value %.6g%+.4gi (|mu| %.6f) within its residual %.2g of "
+                     "the unit circle (%d states; --floquet reduced or a smaller model)",
+                     nm, vre[open], vim[open], hypot(vre[open], vim[open]), w[open], N);
+        else
+            snprintf(note, cap,
+                     "multipliers: the %d largest of %d, Ritz values of Arnoldi on "
+                     "monodromy-vector products%s",
+                     nm, N,
+                     m > KRYLOV_M ? " (the first 40 left the verdict open: Arnoldi to every "
+                                    "state)"
+                                  : "");
+    }
+    free(w);
+    return nm;
 }
 
 /* Newton on F(y) = P(y) - y from y (in place). On success sh->phi is the monodromy at y.
@@ -738,18 +813,6 @@ static void announce(shoot *sh, double key)
                       ((sh->dir < 0 ? 1 : 0) + f) / sh->ndir, sh->opt->user);
 }
 
-/* Multipliers of the orbit through y: the eigenvalues of sh->phi (destroyed), or the
- * Krylov estimate of the largest. Their count, -1 on failure. */
-int gd_per_sh_multipliers(shoot *sh, const double *y, double *mre, double *mim)
-{
-    if (!sh->dense) return krylov_multipliers(sh, y, mre, mim);
-    double dummy[1];
-    return LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', sh->N, sh->phi, sh->N, mre, mim, dummy, 1,
-                         dummy, 1)
-               ? -1
-               : sh->N;
-}
-
 /* The point at the converged state y: records and coefficients from one integrated period
  * sampled at Nr times, multipliers from sh->phi. 0 ok, 1 out of memory. */
 int gd_per_sh_emit(shoot *sh, double key, const double *y, int iters, double resid)
@@ -806,23 +869,19 @@ int gd_per_sh_emit(shoot *sh, double key, const double *y, int iters, double res
         p->mu_re = malloc((size_t)sh->N * sizeof *p->mu_re);
         p->mu_im = malloc((size_t)sh->N * sizeof *p->mu_im);
         if (!p->mu_re || !p->mu_im) goto done;
-        int nm = gd_per_sh_multipliers(sh, y, p->mu_re, p->mu_im);
+        int stable,
+            nm = gd_per_sh_verdict(sh, y, p->mu_re, p->mu_im, &stable, p->reason, sizeof p->reason);
         if (nm < 0) {
             snprintf(p->reason, sizeof p->reason, "stability not computed: %.200s",
                      sh->dense ? "dgeev failed" : sh->why);
-        } else {
+        } else if (stable >= 0) {
             double m = 0.0;
             for (int i = 0; i < nm; i++)
                 m = fmax(m, hypot(p->mu_re[i], p->mu_im[i]));
             p->mu_max = m;
-            p->stable = m <= 1.0 + 1e-6;
+            p->stable = stable;
             p->stability_method = GD_PER_SHOOTING;
             p->nmult = nm;
-            if (!sh->dense)
-                snprintf(p->reason, sizeof p->reason,
-                         "multipliers: the %d largest of %d, Ritz values of Arnoldi on "
-                         "monodromy-vector products",
-                         nm, sh->N);
         }
     }
     rc = 0;

@@ -366,7 +366,11 @@ int gd_per_sh_arclength(shoot *sh, const double *vals, int nv)
     const double lend = vals[nv - 1], lstart = vals[i0], sign = lend > lstart ? 1.0 : -1.0;
     const gd_periodic_point *p0 = &sh->res->points[sh->res->npoints - 1];
     int nmu = stab ? p0->nmult : 0, nmu1 = 0, fold_prev = 0;
-    if (nmu) {
+    if (stab && a.kry && p0->converged && (p0->stable < 0 || nmu > (N < KRYLOV_M ? N : KRYLOV_M))) {
+        /* the start's verdict took Arnoldi to every state, or had none: the crossings
+         * compare the same KRYLOV_M Ritz values as every step's */
+        if (point_multipliers(&a, y, mre, mim, &nmu)) nmu = 0;
+    } else if (nmu) {
         memcpy(mre, p0->mu_re, (size_t)nmu * sizeof *mre);
         memcpy(mim, p0->mu_im, (size_t)nmu * sizeof *mim);
     }

@@ -90,7 +90,16 @@ int gd_per_sh_emit(shoot *sh, double key, const double *y, int iters, double res
 int gd_per_sh_fail(shoot *sh, double key);
 int gd_per_sh_add_bif(shoot *sh, gd_bifurcation_type type, double key, double mre, double mim);
 void gd_per_sh_kinds(const double *re, const double *im, int n, double g[3], int at[3]);
+/* Largest Krylov dimension (GMRES restart length, Arnoldi steps for the multipliers). */
+#define KRYLOV_M 40
 int gd_per_sh_multipliers(shoot *sh, const double *y, double *mre, double *mim);
+/* The multipliers at y for the point's stability verdict in *stable (1 stable, 0 unstable,
+ * -1 not determined): dense, all of them; matrix-free, Ritz values, the verdict only where
+ * converged ones decide it (gd_ritz_verdict), Arnoldi run again to every state (N at most
+ * KRYLOV_FULL) where the first KRYLOV_M leave it open. The note (cap bytes, "" when dense)
+ * says which and, when not determined, why. Their count, -1 on failure (sh->why). */
+int gd_per_sh_verdict(shoot *sh, const double *y, double *mre, double *mim, int *stable, char *note,
+                      size_t cap);
 int gd_per_sh_arclength(shoot *sh, const double *vals, int nv);
 void gd_per_sh_free(shoot *sh); /* everything sh owns (not sh) */
 
