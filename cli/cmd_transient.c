@@ -349,6 +349,7 @@ typedef struct cli_opts {
     long max_steps;
     int json, quiet, spectrum;
     int rattle, rattle_batches; /* --rattle, --rattle-batches */
+    int no_estimate;            /* --no-estimate */
     const char *rattle_extend;  /* --rattle-extend */
     const char *shift;          /* --shift FROM:TO@T */
     double rattle_target;       /* --rattle-precision */
@@ -466,6 +467,10 @@ static const gd_cli_opt OPTS[] = {
                "enough"),
     GD_CLI_ROW("rtol", GD_CLI_CALL, F(rtol), "R", "relative tolerance", .def = "1e-6",
                .call = parse_rtol),
+    GD_CLI_ROW("no-estimate", GD_CLI_FLAG, F(no_estimate), NULL,
+               "bdf and adams: skip the error estimate (a second run at rtol / 10, about 1.5x "
+               "the run's cost, docs/transient.md); --rattle never estimates (its metrics carry "
+               "their 95 % intervals)"),
     GD_CLI_ROW("method", GD_CLI_CALL, F(method), "M",
                "auto (default): a linear time-invariant model (no law, no backlash, TVMS or STE, "
                "no cam) by its exact harmonic response plus the free motion at a step halved "
@@ -1015,7 +1020,7 @@ static int runup(const cli_opts *o, gd_model *m, gd_system *s, run_info *ri)
     opt.output_interval = ri->dt;
     opt.rtol = o->rtol;
     opt.method = o->method;
-    opt.error_estimate = 1;
+    opt.error_estimate = !o->no_estimate;
     opt.init = o->init;
     opt.rho_inf = o->rho_inf;
     opt.max_steps = o->max_steps;
@@ -1247,7 +1252,7 @@ int gd_cmd_transient(int argc, char **argv)
      * chaotic, its trajectories part whatever the tolerance (1.5 of the peak on the 5-speed
      * box, docs/rattle.md) and the metrics carry their own 95 % intervals, while the second
      * run at rtol / 10 cost 1.5 x the run */
-    opt.error_estimate = !o.rattle;
+    opt.error_estimate = !o.rattle && !o.no_estimate;
     opt.init = o.init;
     opt.rho_inf = o.rho_inf;
     opt.max_steps = o.max_steps;

@@ -338,7 +338,7 @@ def _condensed_dict(ci):
 def transient(system, duration=None, revolutions=None, speed=None, records=None,
               record_from=None, output_interval=None, rtol=1e-6, method="auto", start="rest",
               laws=None, speed_ramp=None, speed_table=None, step=None, waterfall=None,
-              revs_per_block=16, condense=None):
+              revs_per_block=16, condense=None, estimate=True):
     """Time integration at a constant reference speed (default: the model's), for
     `duration` (s or "12 ms") or `revolutions` of the reference shaft. records: list of
     record specs (NODE.DOF[:disp|vel|angle|speed], ratio:A/B, mesh:NAME[:force|state|
@@ -363,7 +363,9 @@ def transient(system, duration=None, revolutions=None, speed=None, records=None,
     the structure condensed onto the DOFs its laws act on, its modes up to the cut-off
     and the rest as their static correction; result.condensed describes it (None when
     not condensed). bdf or adams, started at rest, no speed profile; prescribed DOFs are
-    clamped in the condensed structure, their motion a forcing through its coupling."""
+    clamped in the condensed structure, their motion a forcing through its coupling.
+    estimate: bdf and adams repeat the run at rtol / 10 for result.error_estimate (about
+    1.5x the run's cost); False skips it, as the CLI's --no-estimate."""
     prof = keep_prof = None
     if speed_ramp is not None or speed_table is not None:
         if speed_ramp is not None and speed_table is not None:
@@ -438,7 +440,8 @@ def transient(system, duration=None, revolutions=None, speed=None, records=None,
     lib.gd_transient_options_init(opt)
     opt.t_end, opt.record_from, opt.output_interval, opt.rtol = t_end, frm, dt, float(rtol)
     opt.method = methods[method]
-    opt.error_estimate = 1  # as the CLI: CVODE's global error from a run at rtol / 10
+    # as the CLI: CVODE's global error from a run at rtol / 10 (estimate=False: --no-estimate)
+    opt.error_estimate = 1 if estimate else 0
     if step is not None:
         opt.step = quantity(step, "time", "step")
     if prof is not None:

@@ -279,3 +279,18 @@ def test_matrices(geardyn, path, speed, tmp_path):
         assert a.shape == (jm["size"], jm["size"]) and a.nnz == jm["nnz"]
         assert list(a.row + 1) == jm["rows"] and list(a.col + 1) == jm["cols"], name
         assert same(a.data, jm["values"]), name
+
+
+def test_transient_error_estimate_and_no_estimate(geardyn):
+    """bdf's error estimate (a second run at rtol / 10) bit for bit the CLI's, and
+    estimate=False as --no-estimate: no estimate (-1), the same records."""
+    args = ("--revolutions", "0.5", "--record", "mesh:m01:force")
+    j = run_cli("transient", DUCATI, *args)
+    jn = run_cli("transient", DUCATI, *args, "--no-estimate")
+    m = geardyn.load(DUCATI)
+    r = m.transient(revolutions=0.5, records="mesh:m01:force")
+    rn = m.transient(revolutions=0.5, records="mesh:m01:force", estimate=False)
+    assert same(r.error_estimate, j["error_estimate"]) and 0 < r.error_estimate < 1
+    assert rn.error_estimate == -1 and "error_estimate" not in jn
+    assert same(rn.stats[0]["rms"], nums([jn["records"][0]["rms"]])[0])
+    assert same(r.stats[0]["rms"], rn.stats[0]["rms"])
