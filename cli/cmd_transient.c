@@ -1347,7 +1347,7 @@ int gd_cmd_transient(int argc, char **argv)
     }
     gd_tr_condensed_info ci;
     const int condensed = gd_transient_condensed_info(tr, &ci);
-    int nfree = condensed ? s->ndof : gd_transient_nstates(tr) / 2;
+    int nfree = condensed ? s->ndof - tm->spec.nprescribed : gd_transient_nstates(tr) / 2;
     /* auto: the method chosen and its error control, in place of the name */
     if (o.method == GD_TR_AUTO || o.condense) ri.method = res->method_note;
     summary = summary_json(s, tm, &recs, res, spec, &ri, nfree);

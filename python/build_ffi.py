@@ -340,7 +340,8 @@ extern "Python" void gd_py_law_force(const gd_law *law, const gd_law_point *x, d
                                      double *jq, double *jv);
 extern "Python" double gd_py_law_record(const gd_law *law, int k, const gd_law_point *x);
 typedef struct { int mesh; int backlash; ...; } gd_tr_mesh;
-typedef struct { int nmeshes; int nsfds; const gd_law *laws; int nlaws; ...; } gd_transient_spec;
+typedef struct { int nmeshes; int nsfds; const gd_law *laws; int nlaws; int nprescribed; ...; }
+    gd_transient_spec;
 typedef struct gd_transient gd_transient;
 typedef enum { GD_TR_BDF, GD_TR_ADAMS, GD_TR_GEN_ALPHA, GD_TR_AUTO, GD_TR_LTI, ... } gd_tr_method;
 typedef enum { GD_TR_INIT_REST, GD_TR_INIT_STATIC, GD_TR_INIT_GIVEN, ... } gd_tr_init;

@@ -74,6 +74,11 @@ typedef struct gd_condense_options {
     double speed; /* reference speed, rad/s */
     int nmodes;   /* elastic modes kept (the lowest); 0: all (exact to round-off; dense) */
     gd_condense_method method; /* default AUTO */
+    /* ndof flags (NULL: none): 1 where the DOF is held at zero, its rows and columns of
+       M, D, K removed (the structure of the free DOFs, clamped there: a prescribed
+       motion then enters as coordinate forces through the coupling blocks, applied by
+       the caller). DENSE only; a coordinate on a held DOF is GD_EINPUT. Borrowed. */
+    const int *held;
 } gd_condense_options;
 GD_API void gd_condense_options_init(gd_condense_options *o);
 

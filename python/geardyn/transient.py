@@ -362,7 +362,8 @@ def transient(system, duration=None, revolutions=None, speed=None, records=None,
     or "8kHz"):
     the structure condensed onto the DOFs its laws act on, its modes up to the cut-off
     and the rest as their static correction; result.condensed describes it (None when
-    not condensed). bdf or adams, started at rest, no prescribed DOF, no speed profile.
+    not condensed). bdf or adams, started at rest, no speed profile; prescribed DOFs are
+    clamped in the condensed structure, their motion a forcing through its coupling.
     estimate: bdf and adams repeat the run at rtol / 10 for result.error_estimate (about
     1.5x the run's cost); False skips it, as the CLI's --no-estimate."""
     prof = keep_prof = None
@@ -465,7 +466,8 @@ def transient(system, duration=None, revolutions=None, speed=None, records=None,
     del keep_prof
     info = ffi.new("gd_tr_condensed_info *")
     if lib.gd_transient_condensed_info(tr, info):
-        res.free_dofs = system.ndof  # as the CLI: the records are the system's DOFs
+        # as the CLI: the records are the system's DOFs, less the prescribed ones
+        res.free_dofs = system.ndof - tm.spec.nprescribed
         res.condensed = _condensed_dict(info)
     else:
         res.free_dofs = lib.gd_transient_nstates(tr) // 2

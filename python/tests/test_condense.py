@@ -1,8 +1,8 @@
 """transient(condense=...) is `geardyn transient --condense` (docs/transient.md, "Condensed
 transient"; issue 37): the same condensed problem, so the same numbers, bit for bit
 (conftest.same), on the input gear and idler with backlash, drag and a governor spring of
-tests/transient/condensed_pair.yaml (the condensed transient takes no prescribed DOF, so
-not examples/rattle_pair.yaml)."""
+tests/transient/condensed_pair.yaml; and with a prescribed DOF (examples/rattle_pair.yaml's
+input gear: the structure clamped there, its motion a forcing)."""
 import os
 
 import pytest
@@ -10,6 +10,7 @@ import pytest
 from conftest import ROOT, run_cli, nums, same
 
 PAIR = os.path.join(ROOT, "tests", "transient", "condensed_pair.yaml")
+PRESCRIBED = os.path.join(ROOT, "examples", "rattle_pair.yaml")
 
 
 # a 3-DOF model: auto (10.1 kHz) and all keep its 3 modes, 2 kHz and 9000 rad/s
@@ -76,3 +77,15 @@ def test_default_condenses_where_it_pays_as_the_cli(geardyn):
         assert same(r.stats[0][f], nums([j["records"][0][f]])[0]), f
     assert m.transient(duration="5ms", records="mesh:m12:force", condense="off").condensed is None
     assert geardyn.load(PAIR).transient(duration="5ms").condensed is None
+
+
+def test_prescribed_dof_against_the_cli(geardyn):
+    j = run_cli("transient", PRESCRIBED, "--quiet", "--condense", "all", "--duration", "50ms",
+                "--record", "mesh:m12:force")
+    r = geardyn.load(PRESCRIBED).transient(duration="50ms", records="mesh:m12:force",
+                                           condense="all")
+    assert r.method_note == j["method"] and "condensed" in r.method_note
+    assert r.free_dofs == j["free_dofs"] == 1
+    assert (r.steps, r.rhs_evals, r.events) == (j["steps"], j["rhs_evaluations"], j["events"])
+    for f in ("min", "max", "mean", "rms", "peak_to_peak", "std"):
+        assert same(r.stats[0][f], nums([j["records"][0][f]])[0]), f

@@ -13,6 +13,7 @@
 #include "condense/condense_impl.h"
 #include "geardyn/modal.h"
 #include "linalg/linalg_impl.h"
+#include "modal/modal_impl.h"
 #include "system/system_impl.h"
 
 void gd_condense_options_init(gd_condense_options *o)
@@ -318,6 +319,61 @@ done:
     return st;
 }
 
+/* The held DOFs' rows and columns of the dense M, D, K cleared, K's diagonal there 1:
+ * the clamped structure embedded in the full numbering (a held DOF's static solution and
+ * every mode's shape there are 0). */
+static void clamp_dense(int N, const int *held, double *M, double *D, double *K)
+{
+    for (int j = 0; j < N; j++)
+        for (int i = 0; i < N; i++)
+            if (held[i] || held[j]) {
+                size_t p = i + (size_t)j * N;
+                M[p] = D[p] = 0.0;
+                K[p] = i == j ? 1.0 : 0.0;
+            }
+}
+
+/* The damped modes of the clamped structure (M, D, K from clamp_dense) with their left
+ * vectors: the held DOFs join the statically condensed (massless) ones, eliminated with
+ * K_sm = 0, i.e. held at 0 (the dense solver's Guyan step, src/system/condense.c). */
+static gd_status clamped_modes(const gd_system *sys, const int *held, const gd_modal_options *mo,
+                               const double *M, const double *D, const double *K,
+                               gd_modal_result **mr, gd_error *err)
+{
+    const int N = sys->ndof;
+    gd_system s = *sys; /* a view: the massless flags replaced */
+    int *ml = malloc((size_t)N * sizeof *ml);
+    if (!ml) return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
+    s.nmassless = 0;
+    for (int i = 0; i < N; i++) {
+        ml[i] = sys->massless[i] || held[i];
+        s.nmassless += ml[i];
+    }
+    s.massless = ml;
+    gd_condense cond = {0};
+    gd_status st = gd_condense_setup(&s, K, D, &cond, err);
+    if (!st) st = gd_modal_state_space(&s, mo, &cond, M, D, K, mr, err);
+    gd_condense_free(&cond);
+    free(ml);
+    return st;
+}
+
+/* v scaled to v^T (2 lambda M + D) u = 1 on the dense matrices (what the refinement does
+ * on the sparse problem, left out for a clamped structure: its pattern is the free one's) */
+static void normalise_left(int N, const double *M, const double *D, double complex lam,
+                           const double complex *u, double complex *v)
+{
+    double complex s = 0;
+    for (int j = 0; j < N; j++) {
+        if (u[j] == 0) continue;
+        for (int i = 0; i < N; i++)
+            s += v[i] * (2.0 * lam * M[i + (size_t)j * N] + D[i + (size_t)j * N]) * u[j];
+    }
+    if (s != 0)
+        for (int i = 0; i < N; i++)
+            v[i] /= s;
+}
+
 gd_status gd_condense_build(const gd_system *sys, const gd_condense_coords *cc,
                             const gd_condense_options *opt, gd_condensation **out, gd_error *err)
 {
@@ -338,8 +394,19 @@ gd_status gd_condense_build(const gd_system *sys, const gd_condense_coords *cc,
                             "give a finite speed and nmodes >= 0 (0: all)",
                             "bad condensation options (speed %g, nmodes %d)", opt->speed,
                             opt->nmodes);
-    int sparse = opt->method == GD_CONDENSE_SPARSE ||
-                 (opt->method == GD_CONDENSE_AUTO && opt->nmodes > 0 && N > GD_CONDENSE_DENSE_MAX);
+    const int *held = opt->held;
+    for (int e = 0; held && e < cc->nnz; e++)
+        if (held[cc->dof[e]] && cc->a[e] != 0.0)
+            return gd_error_set(err, GD_EINPUT, file, 0, 0, "coordinates",
+                                "leave the held DOFs out of the coordinates",
+                                "a coordinate acts on held DOF %d", cc->dof[e]);
+    if (held && opt->method == GD_CONDENSE_SPARSE)
+        return gd_error_set(err, GD_EINPUT, file, 0, 0, "method", "use the dense method",
+                            "held DOFs need the dense condensation");
+    int sparse =
+        !held &&
+        (opt->method == GD_CONDENSE_SPARSE ||
+         (opt->method == GD_CONDENSE_AUTO && opt->nmodes > 0 && N > GD_CONDENSE_DENSE_MAX));
     if (sparse && opt->nmodes < 1)
         return gd_error_set(err, GD_EINPUT, file, 0, 0, "nmodes",
                             "give the number of modes to keep (the sparse method computes the "
@@ -393,7 +460,11 @@ gd_status gd_condense_build(const gd_system *sys, const gd_condense_coords *cc,
         mo.nmodes = 0; /* the dense solver computes them all anyway: the first discarded known */
         mo.want_left = 1;
         mo.method = GD_EIG_DENSE;
-        if ((st = gd_modal_solve(sys, &mo, &mr, err))) goto done;
+        if (held) {
+            clamp_dense(N, held, M, D, K);
+            if ((st = clamped_modes(sys, held, &mo, M, D, K, &mr, err))) goto done;
+        } else if ((st = gd_modal_solve(sys, &mo, &mr, err)))
+            goto done;
         if (!mr->left_re || !mr->left_im) {
             st = gd_error_set(err, GD_ENUMERIC, file, 0, 0, "", "",
                               "the modal solve gave no left vectors");
@@ -463,8 +534,11 @@ gd_status gd_condense_build(const gd_system *sys, const gd_condense_coords *cc,
             c->info.zeta_discarded =
                 fmax(c->info.zeta_discarded, fmin(-creal(c->lam[k]) / cabs(c->lam[k]), 1.0));
     }
-    if ((st = gd_condense_refine(sys, opt->speed, nm, c->lam, c->U, V, 2, &c->info.refine_step,
-                                 err)))
+    if (held)
+        for (int k = 0; k < nm; k++)
+            normalise_left(N, M, D, c->lam[k], c->U + (size_t)k * N, V + (size_t)k * N);
+    else if ((st = gd_condense_refine(sys, opt->speed, nm, c->lam, c->U, V, 2, &c->info.refine_step,
+                                      err)))
         goto done;
     for (int k = 0; k < nm; k++) {
         const double complex *u = c->U + (size_t)k * N, *v = V + (size_t)k * N;

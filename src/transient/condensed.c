@@ -56,6 +56,16 @@ void gd_tr_condensed_free(gd_tr_condensed *k)
     free(k);
 }
 
+/* The prescribed motion u_p(t), u_p', u_p'' into q, v, acc at the prescribed DOFs, as the
+ * full transient has it (gd_tr_fill). */
+static void prescribed_at(const gd_transient *tr, double t, double *q, double *v, double *acc)
+{
+    for (int p = 0; p < tr->np; p++) {
+        const int d = tr->pres[p].dof;
+        gd_prescribed_eval(&tr->pres[p].law, t, tr->rate[d], &q[d], &v[d], &acc[d]);
+    }
+}
+
 /* The transient's forces at S (u without the loop): r_S + K_L q_S + C_L q_S'. */
 static void forces_at(gd_transient *tr, double t, const double *qs, const double *vs, double *u)
 {
@@ -65,6 +75,9 @@ static void forces_at(gd_transient *tr, double t, const double *qs, const double
         tr->q[k->dof[i]] = qs[i];
         tr->v[k->dof[i]] = vs[i];
     }
+    prescribed_at(tr, t, tr->q, tr->v, tr->acc);
+    /* with the prescribed columns: - K_fp u_p - D_fp u_p' - M_fp u_p'' on the coupled free
+     * DOFs (coordinates), the structure being clamped at the prescribed DOFs */
     gd_tr_forces(tr, t, tr->q, tr->v, tr->acc, tr->r, 1);
     for (int i = 0; i < nc; i++) {
         double s = tr->r[k->dof[i]];
@@ -252,6 +265,7 @@ void gd_tr_condensed_fill(gd_transient *tr, double t, const double *x, double *q
         q[k->dof[i]] = qs[i];
         v[k->dof[i]] = vs[i];
     }
+    if (tr->np) prescribed_at(tr, t, q, v, tr->acc); /* their records: the motion itself */
 }
 
 /* ---- CVODE's linear solver: SUNDIALS' dense LU of I - gamma J on the small state ---- */
@@ -512,6 +526,12 @@ static double excitation_band(const gd_transient *tr)
     }
     for (int i = 0; i < tr->nunb; i++)
         wmax = fmax(wmax, fabs(tr->unb[i].omega));
+    for (int p = 0; p < tr->np; p++) { /* its forcing through the coupling blocks */
+        int nw = gd_prescribed_frequencies(&tr->pres[p].law, tr->rate[tr->pres[p].dof], w, 64, msg,
+                                           sizeof msg);
+        for (int j = 0; j < nw; j++)
+            wmax = fmax(wmax, fabs(w[j]));
+    }
     return wmax;
 }
 
@@ -531,9 +551,17 @@ static double contact_band(gd_transient *tr)
     return wmax;
 }
 
-/* The DOFs the laws and unbalances act on: mark[i] = 1 (n zeroed ints); their count. */
+/* The coordinates S: the free DOFs the laws and unbalances act on and those a prescribed
+ * DOF is coupled to (K, D, M), mark[i] = 1 (n zeroed ints); their count. */
 static int law_dofs(const gd_transient *tr, int *mark)
 {
+    for (int p = 0; p < tr->np; p++) {
+        const int d = tr->pres[p].dof;
+        const cs *A[3] = {tr->K, tr->D, tr->M};
+        for (int a = 0; a < 3; a++)
+            for (int e = A[a]->p[d]; e < A[a]->p[d + 1]; e++)
+                if (A[a]->x[e] != 0.0) mark[A[a]->i[e]] = 1;
+    }
     for (int i = 0; i < tr->nlaw; i++)
         for (int j = 0; j < tr->law[i].ndofs; j++)
             if (tr->law[i].dof[j] >= 0) mark[tr->law[i].dof[j]] = 1;
@@ -542,8 +570,10 @@ static int law_dofs(const gd_transient *tr, int *mark)
         if (tr->unb[i].dy >= 0) mark[tr->unb[i].dy] = 1;
     }
     int nc = 0;
-    for (int i = 0; i < tr->n; i++)
+    for (int i = 0; i < tr->n; i++) {
+        if (tr->fidx[i] < 0) mark[i] = 0; /* prescribed: its motion is known */
         nc += mark[i];
+    }
     return nc;
 }
 
@@ -562,8 +592,13 @@ int gd_transient_condense_pays(const gd_transient *tr, char *why, size_t len)
         snprintf(why, len, "%d DOFs, fewer than %d", tr->n, GD_TRANSIENT_CONDENSE_DOFS);
         return 0;
     }
-    if (tr->np || tr->nin) {
-        snprintf(why, len, "%s", tr->np ? "prescribed DOFs" : "cam inertia");
+    if (tr->nin) {
+        snprintf(why, len, "cam inertia");
+        return 0;
+    }
+    if (tr->np && tr->n > GD_CONDENSE_DENSE_MAX) {
+        snprintf(why, len, "prescribed DOFs on %d DOFs, more than %d (dense only)", tr->n,
+                 GD_CONDENSE_DENSE_MAX);
         return 0;
     }
     if (gd_tr_lti_reason(tr, lin, sizeof lin)) {
@@ -599,13 +634,12 @@ gd_status gd_transient_new_condensed(const gd_system *sys, const gd_transient_sp
     gd_transient *tr = NULL;
     gd_status st = gd_transient_new(sys, spec, speed, &tr, err);
     if (st) return st;
-    if (tr->np) {
+    if (tr->np && tr->n > GD_CONDENSE_DENSE_MAX) {
         st = gd_error_set(err, GD_EINPUT, file, 0, 0, "prescribed",
-                          "integrate the full model (--condense off), or replace the "
-                          "prescribed motion by a load or a spring to ground",
-                          "the condensed transient keeps the structure's own modes: no "
-                          "prescribed DOF (%d given)",
-                          tr->np);
+                          "integrate the full model (--condense off)",
+                          "the condensed transient clamps prescribed DOFs on the dense "
+                          "condensation: up to %d DOFs, not %d",
+                          GD_CONDENSE_DENSE_MAX, tr->n);
         goto fail;
     }
     if (tr->nin) {
@@ -684,7 +718,17 @@ gd_status gd_transient_new_condensed(const gd_system *sys, const gd_transient_sp
     gd_condense_options_init(&o);
     o.speed = speed;
     o.nmodes = nmodes;
+    int *held = NULL;
+    if (!st && tr->np) { /* the structure clamped at the prescribed DOFs */
+        if (!(held = malloc((size_t)n * sizeof *held)))
+            st = gd_error_set(err, GD_ENOMEM, file, 0, 0, "", "", "out of memory");
+        for (int i = 0; held && i < n; i++)
+            held[i] = tr->fidx[i] < 0;
+        o.held = held;
+        o.method = GD_CONDENSE_DENSE;
+    }
     if (!st) st = gd_condense_build(sys, &cc, &o, &k->c, err);
+    free(held);
     gd_condense_coords_release(&cc);
     if (st) goto fail;
     gd_condense_lti l;
@@ -789,6 +833,7 @@ gd_status gd_transient_new_condensed(const gd_system *sys, const gd_transient_sp
         for (int j = 0; j < n; j++)
             for (int i = 0; i < n; i++) {
                 double kv = Kd[i + (size_t)j * n], dv = Dd[i + (size_t)j * n];
+                if (tr->fidx[i] < 0 || tr->fidx[j] < 0) continue; /* clamped: the laws' own */
                 if (pos[i] >= 0 && pos[j] >= 0) {
                     k->dK[pos[i] + (size_t)pos[j] * nc] = kv;
                     k->dD[pos[i] + (size_t)pos[j] * nc] = dv;

@@ -12,9 +12,8 @@ void gd_tr_fill(gd_transient *tr, double t, const double *y, double *q, double *
     if (tr->cond) { /* the state is the condensed model's (condensed.c) */
         tr->cond_fill(tr, t, y, q, v, 1);
         if (acc) memset(acc, 0, (size_t)tr->n * sizeof *acc);
-        return;
     }
-    for (int f = 0; f < nf; f++) {
+    for (int f = 0; !tr->cond && f < nf; f++) {
         int i = tr->free_dof[f];
         q[i] = y[f];
         v[i] = y[nf + f];

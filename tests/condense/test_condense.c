@@ -264,7 +264,7 @@ TEST(sparse_method_equals_dense)
            worst, b.refine_step);
     CHECK(worst < 1e-9);
     gd_condense_destroy(cs);
-    CHECK(gd_condense_build(f.s, &cc, &(gd_condense_options){0, 0, GD_CONDENSE_SPARSE}, &cs,
+    CHECK(gd_condense_build(f.s, &cc, &(gd_condense_options){0, 0, GD_CONDENSE_SPARSE, NULL}, &cs,
                             &err) == GD_EINPUT);
     CHECK_STR(err.field, "nmodes");
     gd_condense_destroy(cd);
