@@ -527,6 +527,12 @@ static int residual(gd_qpc *c, const double *Y, double *R, double *scale, int sa
     return bad;
 }
 
+/* residual() as gd_qp_damped_step takes it (the samples are not kept) */
+static int step_residual(void *c, const double *Y, double *R, double *scale)
+{
+    return residual(c, Y, R, scale, 0);
+}
+
 /* z = J v = v - H' ((T v) - Tmean v) at the last residual's samples */
 static int atimes(void *data, N_Vector vv, N_Vector zz)
 {
@@ -779,24 +785,12 @@ int gd_qpc_newton(gd_qpc *c, double *X, double tol, int max_iter, double *resid,
             snprintf(msg, cap, "GMRES failed (%d) at Newton step %d", lrc, it);
             goto done;
         }
-        double lam = 1.0;
-        for (int ls = 0;; ls++) {
-            for (long i = 0; i < n; i++)
-                c->w2[i] = Y[i] + lam * xx[i];
-            double n2 = 0.0;
-            if (!residual(c, c->w2, c->R, &scale, 0)) {
-                for (long i = 0; i < n; i++)
-                    n2 += c->R[i] * c->R[i];
-                if (sqrt(n2) < nr) break;
-            }
-            if (ls >= 4) {
-                snprintf(msg, cap,
-                         "Newton stalled at step %d (relative residual %.2g, condensed "
-                         "multi-frequency harmonic balance of order %d)",
-                         it, *resid, c->T.H);
-                goto done;
-            }
-            lam *= 0.5;
+        if (gd_qp_damped_step(n, Y, xx, nr, step_residual, c, c->w2, c->R, &scale)) {
+            snprintf(msg, cap,
+                     "Newton stalled at step %d (relative residual %.2g, condensed "
+                     "multi-frequency harmonic balance of order %d)",
+                     it, *resid, c->T.H);
+            goto done;
         }
         memcpy(Y, c->w2, (size_t)n * sizeof *Y);
         (*iters)++;

@@ -390,6 +390,29 @@ static int psolve(void *data, N_Vector r, N_Vector z, realtype tol, int lr)
     prec_solve(data, N_VGetArrayPointer(r), N_VGetArrayPointer(z));
     return 0;
 }
+int gd_qp_damped_step(long n, const double *X, const double *dx, double nr, gd_qp_residual_fn res,
+                      void *ctx, double *w2, double *R, double *scale)
+{
+    /* a step that raises the residual is halved (up to 4 times) */
+    double lam = 1.0;
+    for (int ls = 0;; ls++) {
+        for (long i = 0; i < n; i++)
+            w2[i] = X[i] + lam * dx[i];
+        double n2 = 0.0;
+        if (!res(ctx, w2, R, scale)) {
+            for (long i = 0; i < n; i++)
+                n2 += R[i] * R[i];
+            if (sqrt(n2) < nr) return 0;
+        }
+        if (ls >= 4) return 1;
+        lam *= 0.5;
+    }
+}
+
+static int full_residual(void *q, const double *X, double *R, double *scale)
+{
+    return gd_qp_residual(q, X, R, scale);
+}
 
 int gd_qp_newton(gd_qp *q, double *X, double tol, int max_iter, double *resid, int *iters,
                  char *msg, size_t cap)
@@ -452,25 +475,12 @@ int gd_qp_newton(gd_qp *q, double *X, double tol, int max_iter, double *resid, i
             snprintf(msg, cap, "GMRES failed (%d) at Newton step %d", lrc, it);
             goto done;
         }
-        /* a step that raises the residual is halved (up to 4 times) */
-        double lam = 1.0;
-        for (int ls = 0;; ls++) {
-            for (long i = 0; i < n; i++)
-                q->w2[i] = X[i] + lam * xx[i];
-            double n2 = 0.0;
-            if (!gd_qp_residual(q, q->w2, R, &scale)) {
-                for (long i = 0; i < n; i++)
-                    n2 += R[i] * R[i];
-                if (sqrt(n2) < nr) break;
-            }
-            if (ls >= 4) {
-                snprintf(msg, cap,
-                         "Newton stalled at step %d (relative residual %.2g, multi-frequency "
-                         "harmonic balance of order %d)",
-                         it, *resid, q->T.H);
-                goto done;
-            }
-            lam *= 0.5;
+        if (gd_qp_damped_step(n, X, xx, nr, full_residual, q, q->w2, R, &scale)) {
+            snprintf(msg, cap,
+                     "Newton stalled at step %d (relative residual %.2g, multi-frequency "
+                     "harmonic balance of order %d)",
+                     it, *resid, q->T.H);
+            goto done;
         }
         memcpy(X, q->w2, (size_t)n * sizeof *X); /* R and scale are its residual's */
         (*iters)++;

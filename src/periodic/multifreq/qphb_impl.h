@@ -96,6 +96,12 @@ void gd_qp_free(gd_qp *q);
 /* R = L X - F(X) (n); the terms' derivatives kept for the Jacobian; *scale
  * max(|L X|, |F|). 0 ok, 1 a force is not finite. */
 int gd_qp_residual(gd_qp *q, const double *X, double *R, double *scale);
+/* The damped Newton step of both tori (full and condensed): w2 = X + lam dx with lam halved
+ * (up to 4 times) until the residual res(ctx, w2, R, scale) falls below nr. 0 accepted
+ * (w2, R and scale are the accepted point's), 1 stalled. */
+typedef int (*gd_qp_residual_fn)(void *ctx, const double *X, double *R, double *scale);
+int gd_qp_damped_step(long n, const double *X, const double *dx, double nr, gd_qp_residual_fn res,
+                      void *ctx, double *w2, double *R, double *scale);
 /* Newton from X (n, in place) to the relative residual tol: Newton-Krylov, GMRES
  * (SUNDIALS SPGMR) on Jacobian-vector products by the AFT of the linearised forces, right-
  * preconditioned by the harmonic blocks with the terms' torus means. *resid the relative
