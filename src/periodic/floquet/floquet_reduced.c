@@ -126,22 +126,61 @@ static int same_vec(int na, const int *ia, const double *va, int nb, const int *
            !memcmp(va, vb, (size_t)na * sizeof *va);
 }
 
-/* Psi's rows <- exp(h Lambda) rows (the block-diagonal A0 in its eigenvector basis). */
-static void apply_exp(int n, int ncol, const double *lre, const double *lim, double h, double *Psi)
+/* The blocks of E(s) = exp(s Lambda) (ec, es: a pair's e^(s re) (cos, sin)(s im) at its
+ * first row, a real eigenvalue's e^(s re) in ec) and of E(-s), its inverse (ic, is). */
+static void exp_blocks(int n, const double *lre, const double *lim, double s, double *ec,
+                       double *es, double *ic, double *is)
 {
     for (int i = 0; i < n; i++) {
-        if (lim[i] > 0.0 && i + 1 < n) { /* the pair's 2 x 2 block [a, b; -b, a] */
-            const double e = exp(lre[i] * h), c = e * cos(lim[i] * h), s = e * sin(lim[i] * h);
-            for (int j = 0; j < ncol; j++) {
-                double *p = Psi + (size_t)j * n + i, a = p[0], b = p[1];
-                p[0] = c * a + s * b;
-                p[1] = -s * a + c * b;
-            }
+        const double e = exp(lre[i] * s);
+        if (lim[i] > 0.0 && i + 1 < n) {
+            const double c = cos(lim[i] * s), sn = sin(lim[i] * s);
+            ec[i] = e * c;
+            es[i] = e * sn;
+            ic[i] = c / e;
+            is[i] = -sn / e;
             i++;
         } else {
-            const double e = exp(lre[i] * h);
-            for (int j = 0; j < ncol; j++)
-                Psi[(size_t)j * n + i] *= e;
+            ec[i] = e;
+            ic[i] = 1.0 / e;
+        }
+    }
+}
+
+/* M's rows <- E M (n x ncol, column-major) with E's blocks [c, s; -s, c] from exp_blocks */
+static void rotate(int n, int ncol, const double *lim, const double *ec, const double *es,
+                   double *M)
+{
+    for (int j = 0; j < ncol; j++) {
+        double *p = M + (size_t)j * n;
+        for (int i = 0; i < n; i++) {
+            if (lim[i] > 0.0 && i + 1 < n) {
+                const double a = p[i], b = p[i + 1];
+                p[i] = ec[i] * a + es[i] * b;
+                p[i + 1] = -es[i] * a + ec[i] * b;
+                i++;
+            } else {
+                p[i] *= ec[i];
+            }
+        }
+    }
+}
+
+/* M's columns <- E^T M: a row times E, for rows stored as columns */
+static void rotate_t(int n, int ncol, const double *lim, const double *ec, const double *es,
+                     double *M)
+{
+    for (int j = 0; j < ncol; j++) {
+        double *p = M + (size_t)j * n;
+        for (int i = 0; i < n; i++) {
+            if (lim[i] > 0.0 && i + 1 < n) {
+                const double a = p[i], b = p[i + 1];
+                p[i] = ec[i] * a - es[i] * b;
+                p[i + 1] = es[i] * a + ec[i] * b;
+                i++;
+            } else {
+                p[i] *= ec[i];
+            }
         }
     }
 }
@@ -261,6 +300,10 @@ typedef struct red {
     double *Km, *Mm, *Dm, *Phi, *lam;
     int *tg, *grep;
     int nk, ng;
+    /* the terms with the same u and the same w act as one (their scalars add: mrep[c] the
+     * first of class c, mcls[t] each term's, nm classes); red_scalars folds them */
+    int *mrep, *mcls, *mtg;
+    int nm;
     /* red_residual: nres residual vectors (columns of C, nd = nf - nk entries each) */
     double *C;
     int nd, nres;
@@ -295,6 +338,9 @@ static void red_free(red *R)
     free(R->lam);
     free(R->tg);
     free(R->grep);
+    free(R->mrep);
+    free(R->mcls);
+    free(R->mtg);
     free(R->V);
     free(R->C);
     free(R->A0);
@@ -375,6 +421,26 @@ static int red_modes(red *R, double wcut, char *msg)
         tg[t] = g;
     }
     R->ng = ng;
+    /* the classes of equal (u, w) */
+    int *mrep = R->mrep = malloc((size_t)(nt + 1) * sizeof *mrep),
+        *mcls = R->mcls = malloc((size_t)(nt + 1) * sizeof *mcls),
+        *mtg = R->mtg = malloc((size_t)(nt + 1) * sizeof *mtg);
+    if (!mrep || !mcls || !mtg) return 1;
+    int nm = 0;
+    for (int t = 0; t < nt; t++) {
+        int c = 0;
+        for (; c < nm; c++)
+            if (tg[mrep[c]] == tg[t] && same_vec(term[t].nw, term[t].w_idx, term[t].w,
+                                                 term[mrep[c]].nw, term[mrep[c]].w_idx,
+                                                 term[mrep[c]].w))
+                break;
+        if (c == nm) {
+            mtg[nm] = tg[t];
+            mrep[nm++] = t;
+        }
+        mcls[t] = c;
+    }
+    R->nm = nm;
     return 0;
 }
 
@@ -716,16 +782,25 @@ static int red_scalars(red *R, int S, const gd_tr_record *bl, int nbl)
      * g: the coefficients shifted by g steps, one half-complex inverse transform each
      * (FFTW's HC2R: x_j = hc_0 + 2 sum_k (Re_k cos - Im_k sin)) */
     const int Hm = H < (Nt - 1) / 2 ? H : (Nt - 1) / 2;
+    /* cos and sin of k dl for the two Gauss points (the same for every DOF) */
+    double *cs2 = malloc((4 * (size_t)Hm + 4) * sizeof *cs2);
+    if (!cs2) return 1;
+    for (int g = 0; g < 2; g++)
+        for (int k = 1; k <= Hm; k++) {
+            const double dl = gp[g] * TWO_PI / Ns;
+            cs2[(size_t)g * 2 * (Hm + 1) + 2 * k] = cos(k * dl);
+            cs2[(size_t)g * 2 * (Hm + 1) + 2 * k + 1] = sin(k * dl);
+        }
     for (int m = 0; m < ns; m++)
         for (int pd = 0; pd < 4; pd++) {
             const int deriv = pd & 1;
-            const double dl = gp[pd >> 1] * TWO_PI / Ns;
+            const double *csg = cs2 + (size_t)(pd >> 1) * 2 * (Hm + 1);
             const int i = sup[m];
             memset(hc, 0, (size_t)Nt * sizeof *hc);
             if (!deriv) hc[0] = X[i];
             for (int k = 1; k <= Hm; k++) {
                 const double xc = X[(size_t)(2 * k - 1) * nf + i], xs = X[(size_t)2 * k * nf + i],
-                             c = cos(k * dl), s = sin(k * dl);
+                             c = csg[2 * k], s = csg[2 * k + 1];
                 /* x(tau + dl) = a cos(k tau) + b sin(k tau) */
                 double a = xc * c + xs * s, b = xs * c - xc * s;
                 if (deriv) { /* q' = k w (b cos - a sin) */
@@ -740,6 +815,7 @@ static int red_scalars(red *R, int S, const gd_tr_record *bl, int nbl)
             for (int j = 0; j < Ns; j++)
                 smp[((size_t)j * 4 + pd) * ns + m] = hc[Nt + (size_t)j * stride];
         }
+    free(cs2);
     double *yfull = NULL;
     for (int j = 0; j < nsub; j++) {
         const double a = tb[j], b = tb[j + 1];
@@ -764,6 +840,14 @@ static int red_scalars(red *R, int S, const gd_tr_record *bl, int nbl)
             }
             memcpy(sj, sqv, (size_t)nt * sizeof *sj);
             memcpy(sj + nt, sqv + nt + 1, (size_t)nt * sizeof *sj);
+            /* a term of an earlier one's class adds to that one's scalars */
+            for (int t = 0; t < nt; t++) {
+                const int rt = R->mrep[R->mcls[t]];
+                if (rt == t) continue;
+                sj[rt] += sj[t];
+                sj[nt + rt] += sj[nt + t];
+                sj[t] = sj[nt + t] = 0.0;
+            }
         }
     }
     free(yfull);
@@ -846,75 +930,64 @@ static int red_estimates(red *R)
  * memory. */
 static int red_propagate(red *R, int *rc)
 {
-    const int nt = R->nt, ng = R->ng, n2 = R->n2, nsub = R->nsub;
+    /* nt: the classes of equal (u, w) (their rows); ntt: the terms (the scalars' stride) */
+    const int ntt = R->nt, nt = R->nm, ng = R->ng, n2 = R->n2, nsub = R->nsub;
     const size_t rr = R->rr;
     const double om = R->om, *tb = R->tb, *scal = R->scal, *lre = R->lre, *lim = R->lim,
                  *At = R->At, *Bt = R->Bt, *Pt = R->Pt;
-    const int *tg = R->tg;
+    const int *tg = R->mtg, *mrep = R->mrep;
     double *Psi = R->Psi, *Rk = R->Rk, *Y = R->Y, *Z = R->Z;
     memset(Psi, 0, rr * sizeof *Psi);
     for (int i = 0; i < n2; i++)
         Psi[(size_t)i * n2 + i] = 1.0;
-    double pend = 0.0;
     const int g2 = 2 * ng, t2 = 2 * nt, ga = 2 * g2;
     const size_t gg = (size_t)ga * ga;
     free(R->small);
     double *small = R->small =
-        malloc((5 * gg + 2 * (size_t)g2 * t2 + (size_t)g2 * g2 + 1) * sizeof *small);
+        malloc((5 * gg + 2 * (size_t)g2 * t2 + (size_t)g2 * g2 + 4 * (size_t)n2 + 1) *
+               sizeof *small);
     if (!small) return 1;
     double *G = small, *F = G + gg, *W3 = F + gg, *Cm = W3 + 3 * gg, *VU = Cm + (size_t)g2 * t2,
-           *CV = VU + (size_t)g2 * t2;
+           *CV = VU + (size_t)g2 * t2, *ec = CV + (size_t)g2 * g2, *es = ec + n2,
+           *ic = es + n2, *is = ic + n2;
     double *U = Z + (size_t)2 * g2 * n2; /* n2 x g2 */
+    /* the anchor ta (s) of Psi's frame and how far from it the frame may drift: e^20 */
+    double lmax = 0.0, ta = 0.0;
+    for (int i = 0; i < n2; i++)
+        lmax = fmax(lmax, fabs(lre[i]));
+    const double drift = 20.0;
     for (int j = 0; j < nsub && *rc == 1; j++) {
         const double dt = (tb[j + 1] - tb[j]) / om, d = sqrt(3.0) / 6.0 * dt,
-                     c2 = sqrt(3.0) / 12.0 * dt * dt;
-        const double *sc = scal + (size_t)j * 4 * nt;
-        pend += 0.5 * dt;
+                     c2 = sqrt(3.0) / 12.0 * dt * dt, m = 0.5 * (tb[j] + tb[j + 1]) / om;
+        const double *sc = scal + (size_t)j * 4 * ntt;
         int any = 0;
-        for (int t = 0; t < 2 * t2; t++)
+        for (int t = 0; t < 4 * ntt; t++)
             any |= sc[t] != 0.0;
-        if (!any || !ng) { /* B = 0: the exponentials merge */
-            pend += 0.5 * dt;
-            continue;
+        if (!any || !ng) continue; /* B = 0: Psi's frame carries E exactly */
+        if (lmax * (m + d - ta) > drift) { /* a new anchor at the step's start */
+            const double t0 = tb[j] / om;
+            exp_blocks(n2, lre, lim, t0 - ta, ec, es, ic, is);
+            rotate(n2, n2, lim, ec, es, Psi);
+            ta = t0;
         }
-        apply_exp(n2, n2, lre, lim, pend, Psi);
-        pend = 0.5 * dt;
-        /* V^T rows (Rk: t2 rows of n2, row-major): R_g's rows times E(-+d) */
+        /* V^T rows (Rk: t2 rows of n2, row-major): R_g's rows times E(t_g - ta), and
+         * U = [E(ta - t_1) P, E(ta - t_2) P] */
         for (int g = 0; g < 2; g++) {
-            const double *sq = sc + (size_t)g * 2 * nt, *sv = sq + nt;
+            const double *sq = sc + (size_t)g * 2 * ntt, *sv = sq + ntt;
+            double *rg = Rk + (size_t)g * nt * n2, *ug = U + (size_t)g * ng * n2;
             for (int t = 0; t < nt; t++) {
-                double *rk = Rk + (size_t)(g * nt + t) * n2;
-                const double *at = At + (size_t)t * n2, *bt = Bt + (size_t)t * n2;
+                double *rk = rg + (size_t)t * n2;
+                const int rt = mrep[t];
+                const double *at = At + (size_t)rt * n2, *bt = Bt + (size_t)rt * n2;
                 for (int i = 0; i < n2; i++)
-                    rk[i] = sq[t] * at[i] + sv[t] * bt[i];
+                    rk[i] = sq[rt] * at[i] + sv[rt] * bt[i];
             }
+            exp_blocks(n2, lre, lim, m + (g ? d : -d) - ta, ec, es, ic, is);
+            /* a row times E(s) is E(s)^T applied to the column: the transposed blocks */
+            rotate_t(n2, nt, lim, ec, es, rg);
+            memcpy(ug, Pt, (size_t)n2 * ng * sizeof *ug);
+            rotate(n2, ng, lim, ic, is, ug);
         }
-        /* a row times E(s) is E(s)^T applied to the column: the rows of Rk as the columns
-         * of an n2 x t2 matrix, E^T's blocks [c, -s; s, c] */
-        for (int g = 0; g < 2; g++) {
-            const double sh = g ? d : -d;
-            for (int i = 0; i < n2; i++) {
-                if (lim[i] > 0.0 && i + 1 < n2) {
-                    const double e = exp(lre[i] * sh), cc = e * cos(lim[i] * sh),
-                                 ss = e * sin(lim[i] * sh);
-                    for (int t = 0; t < nt; t++) {
-                        double *p = Rk + (size_t)(g * nt + t) * n2 + i, a = p[0], b = p[1];
-                        p[0] = cc * a - ss * b;
-                        p[1] = ss * a + cc * b;
-                    }
-                    i++;
-                } else {
-                    const double e = exp(lre[i] * sh);
-                    for (int t = 0; t < nt; t++)
-                        Rk[(size_t)(g * nt + t) * n2 + i] *= e;
-                }
-            }
-        }
-        /* U = [E(d) P, E(-d) P] */
-        memcpy(U, Pt, (size_t)n2 * ng * sizeof *U);
-        memcpy(U + (size_t)n2 * ng, Pt, (size_t)n2 * ng * sizeof *U);
-        apply_exp(n2, ng, lre, lim, d, U);
-        apply_exp(n2, ng, lre, lim, -d, U + (size_t)n2 * ng);
         /* VU = V^T U (t2 x g2) */
         cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, t2, g2, n2, 1.0, Rk, n2, U, n2, 0.0,
                     VU, t2);
@@ -953,7 +1026,8 @@ static int red_propagate(red *R, int *rc)
         }
     }
     if (*rc == 1) {
-        apply_exp(n2, n2, lre, lim, pend, Psi);
+        exp_blocks(n2, lre, lim, tb[nsub] / om - ta, ec, es, ic, is);
+        rotate(n2, n2, lim, ec, es, Psi);
         for (size_t m = 0; m < rr; m++)
             if (!isfinite(Psi[m])) {
                 *rc = 2;
@@ -963,30 +1037,54 @@ static int red_propagate(red *R, int *rc)
     return 0;
 }
 
-/* The step count: fixed when the caller gives one (steps > 0); otherwise doubled from s0
- * until the moduli of the multipliers that decide stability agree with the previous
- * count's (steps_agree), at most steps_cap. In the interaction picture the constant part
- * is exact, so the steps only have to follow the laws' variation: measured on the
- * [JMSTHelical] model (docs/periodic.md, "Stability at scale"), 512 to 1024 steps per
- * period agree with 16384 (the 4 x samples of H = 591) to 3e-8. The reduced multipliers
- * (n2) into mu_re, mu_im: 0, else the return codes of gd_hb_floquet_reduced. */
+/* The step count: fixed when the caller gives one (steps > 0); otherwise doubled until the
+ * moduli of the multipliers that decide stability agree between two counts (steps_agree),
+ * at most steps_cap. In the interaction picture the constant part is exact, so the steps
+ * only have to follow the laws' variation: measured on the [JMSTHelical] model
+ * (docs/periodic.md, "Stability at scale"), 512 to 1024 steps per period agree with 16384
+ * (the 4 x samples of H = 591) to 3e-8.
+ * Without a contact law every step has the same length, and the step (Gauss points about
+ * the midpoint, the exact E(h/2) either side) is symmetric, so the monodromy's error is a
+ * series in even powers of h, c4 h^4 + c6 h^6 + ... (Hairer, Lubich & Wanner, Geometric
+ * Numerical Integration, 2nd ed. 2006, Thm. II.3.2): one Richardson step,
+ *   Psi_x = Psi_S + (Psi_S - Psi_S/2) / 15,
+ * removes the h^4 term (sixth order). Then the first count is s0 / 2, and S is accepted
+ * when the moduli of Psi_x agree with those of Psi_S (the difference is Psi_S's own
+ * error, the one the plain comparison of S with 2 S measures), and Psi_x's multipliers
+ * are returned: the same test at half the steps (S + S / 2 against 2 S + S). A contact
+ * law splits steps at the contact changes (unequal lengths, different splits per count):
+ * there the plain comparison from s0. The reduced multipliers (n2) into mu_re, mu_im: 0,
+ * else the return codes of gd_hb_floquet_reduced. */
 static int red_step_counts(red *R, int steps, int s0, int steps_cap, int *steps_used,
                            const gd_tr_record *bl, int nbl, double setup, double budget,
                            double *mu_re, double *mu_im, char *msg)
 {
-    const int ng = R->ng, nt = R->nt, n2 = R->n2, r = R->r;
+    const int ng = R->ng, n2 = R->n2, r = R->r;
+    const size_t rr = R->rr;
     double *mod = R->mod, *prev = R->prev;
     int rc = 1;
-    int S = steps > 0 ? steps : s0;
+    const int rich = steps <= 0 && nbl == 0 && s0 >= 256;
+    int S = steps > 0 ? steps : rich ? s0 / 2 : s0;
+    double *Pc = NULL, *Pf = NULL, *modx = NULL;
+    if (rich) {
+        Pc = malloc(2 * rr * sizeof *Pc);
+        modx = malloc((size_t)n2 * sizeof *modx);
+        if (!Pc || !modx) {
+            free(Pc);
+            free(modx);
+            return rc;
+        }
+        Pf = Pc + rr;
+    }
     for (int pass = 0;; pass++) {
-        if (red_scalars(R, S, bl, nbl)) return rc;
-        if (red_estimates(R)) return rc;
+        if (red_scalars(R, S, bl, nbl)) break;
+        if (red_estimates(R)) break;
         const int nsub = R->nsub;
         {
             /* counted (work.c): per step the four products of red_propagate and the small
              * exponential (about 30 ga^3), after the modes' set-up; decided before the
              * first step */
-            const int g2 = 2 * ng, t2 = 2 * nt, ga = 2 * g2;
+            const int g2 = 2 * ng, t2 = 2 * R->nm, ga = 2 * g2;
             const double step = 2.0 * ((double)t2 * n2 * n2 + (double)g2 * n2 * t2 +
                                        (double)g2 * n2 * g2 + (double)n2 * n2 * g2) +
                                 30.0 * pow(ga, 3),
@@ -1001,7 +1099,7 @@ static int red_step_counts(red *R, int steps, int s0, int steps_cap, int *steps_
                 rc = 4;
             }
         }
-        if (red_propagate(R, &rc)) return rc;
+        if (red_propagate(R, &rc)) break;
         /* overflow: the steps are too long for the laws' variation (a long period: the
          * residual vectors carry the stiff mesh modes, whose coupling the steps must
          * follow); a count of its own doubles and tries again */
@@ -1019,19 +1117,43 @@ static int red_step_counts(red *R, int steps, int s0, int steps_cap, int *steps_
                      TWO_PI / R->om, S);
             rc = 6;
         }
-        if (rc != 1) return rc;
+        if (rc != 1) break;
+        if (rich && pass == 0 && can_double) { /* the first count's multipliers decide nothing */
+            memcpy(Pc, R->Psi, rr * sizeof *Pc);
+            S *= 2;
+            continue;
+        }
+        if (rich) memcpy(Pf, R->Psi, rr * sizeof *Pf);
         {
             double dummy[1];
             if (LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', n2, R->Psi, n2, mu_re, mu_im, dummy, 1,
                               dummy, 1))
-                return rc;
+                break;
         }
-        if (steps > 0) break;
+        if (steps > 0) {
+            rc = 0;
+            break;
+        }
         for (int i = 0; i < n2; i++)
             mod[i] = hypot(mu_re[i], mu_im[i]);
         qsort(mod, (size_t)n2, sizeof *mod, by_value_desc);
-        if (pass > 0 && steps_agree(mod, prev, n2)) {
+        const double *cmp = prev; /* what S's moduli are compared with */
+        if (rich && pass > 0) {
+            /* Psi_x = Psi_S + (Psi_S - Psi_S/2) / 15 (into Pc) and its multipliers */
+            for (size_t m = 0; m < rr; m++)
+                Pc[m] = Pf[m] + (Pf[m] - Pc[m]) / 15.0;
+            double dummy[1];
+            if (LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', n2, Pc, n2, mu_re, mu_im, dummy, 1,
+                              dummy, 1))
+                break;
+            for (int i = 0; i < n2; i++)
+                modx[i] = hypot(mu_re[i], mu_im[i]);
+            qsort(modx, (size_t)n2, sizeof *modx, by_value_desc);
+            cmp = modx;
+        }
+        if (pass > 0 && steps_agree(cmp, mod, n2)) {
             if (steps_used) *steps_used = S;
+            rc = 0;
             break;
         }
         if (!can_double) {
@@ -1039,18 +1161,22 @@ static int red_step_counts(red *R, int steps, int s0, int steps_cap, int *steps_
              * |mu|max 2.8e73 at 100 rpm on the [JMSTHelical] model) */
             double worst = 0.0;
             for (int i = 0; pass > 0 && i < n2; i++)
-                worst = fmax(worst, fabs(mod[i] - prev[i]));
+                worst = fmax(worst, fabs(mod[i] - cmp[i]));
             snprintf(msg, 160,
                      "stability not computed: the reduced multipliers did not settle by %d Magnus "
                      "steps (moduli moved by %.2g from %d)",
                      S, worst, S / 2);
-            return 6;
+            rc = 6;
+            break;
         }
         memcpy(prev, mod, (size_t)n2 * sizeof *prev);
+        if (rich) memcpy(Pc, Pf, rr * sizeof *Pc);
         S *= 2;
     }
-    if (steps_used && steps > 0) *steps_used = S;
-    return 0;
+    free(Pc);
+    free(modx);
+    if (!rc && steps_used && steps > 0) *steps_used = S;
+    return rc;
 }
 
 int gd_hb_floquet_reduced(hb *h, gd_transient *tr, double om, const double *X, int steps, int s0,
