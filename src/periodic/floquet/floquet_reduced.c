@@ -430,9 +430,9 @@ static int red_modes(red *R, double wcut, char *msg)
     for (int t = 0; t < nt; t++) {
         int c = 0;
         for (; c < nm; c++)
-            if (tg[mrep[c]] == tg[t] && same_vec(term[t].nw, term[t].w_idx, term[t].w,
-                                                 term[mrep[c]].nw, term[mrep[c]].w_idx,
-                                                 term[mrep[c]].w))
+            if (tg[mrep[c]] == tg[t] &&
+                same_vec(term[t].nw, term[t].w_idx, term[t].w, term[mrep[c]].nw,
+                         term[mrep[c]].w_idx, term[mrep[c]].w))
                 break;
         if (c == nm) {
             mtg[nm] = tg[t];
@@ -943,13 +943,12 @@ static int red_propagate(red *R, int *rc)
     const int g2 = 2 * ng, t2 = 2 * nt, ga = 2 * g2;
     const size_t gg = (size_t)ga * ga;
     free(R->small);
-    double *small = R->small =
-        malloc((5 * gg + 2 * (size_t)g2 * t2 + (size_t)g2 * g2 + 4 * (size_t)n2 + 1) *
-               sizeof *small);
+    double *small = R->small = malloc(
+        (5 * gg + 2 * (size_t)g2 * t2 + (size_t)g2 * g2 + 4 * (size_t)n2 + 1) * sizeof *small);
     if (!small) return 1;
     double *G = small, *F = G + gg, *W3 = F + gg, *Cm = W3 + 3 * gg, *VU = Cm + (size_t)g2 * t2,
-           *CV = VU + (size_t)g2 * t2, *ec = CV + (size_t)g2 * g2, *es = ec + n2,
-           *ic = es + n2, *is = ic + n2;
+           *CV = VU + (size_t)g2 * t2, *ec = CV + (size_t)g2 * g2, *es = ec + n2, *ic = es + n2,
+           *is = ic + n2;
     double *U = Z + (size_t)2 * g2 * n2; /* n2 x g2 */
     /* the anchor ta (s) of Psi's frame and how far from it the frame may drift: e^20 */
     double lmax = 0.0, ta = 0.0;
@@ -963,7 +962,7 @@ static int red_propagate(red *R, int *rc)
         int any = 0;
         for (int t = 0; t < 4 * ntt; t++)
             any |= sc[t] != 0.0;
-        if (!any || !ng) continue; /* B = 0: Psi's frame carries E exactly */
+        if (!any || !ng) continue;         /* B = 0: Psi's frame carries E exactly */
         if (lmax * (m + d - ta) > drift) { /* a new anchor at the step's start */
             const double t0 = tb[j] / om;
             exp_blocks(n2, lre, lim, t0 - ta, ec, es, ic, is);
@@ -1143,8 +1142,8 @@ static int red_step_counts(red *R, int steps, int s0, int steps_cap, int *steps_
             for (size_t m = 0; m < rr; m++)
                 Pc[m] = Pf[m] + (Pf[m] - Pc[m]) / 15.0;
             double dummy[1];
-            if (LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', n2, Pc, n2, mu_re, mu_im, dummy, 1,
-                              dummy, 1))
+            if (LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', n2, Pc, n2, mu_re, mu_im, dummy, 1, dummy,
+                              1))
                 break;
             for (int i = 0; i < n2; i++)
                 modx[i] = hypot(mu_re[i], mu_im[i]);
