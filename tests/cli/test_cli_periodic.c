@@ -637,8 +637,8 @@ TEST(floquet_reduced_json_and_text)
     CHECK(!strcmp(jstr(p, "floquet_method"), "reduced"));
     CHECK(!strcmp(jstr(q, "floquet_method"), "dense"));
     CHECK(jnum(p, "floquet_basis") == 6);
-    /* dense: 4 x samples (256); reduced: its own, 256 extrapolated with 128 (Richardson) */
-    CHECK(jnum(p, "floquet_steps") == 256 && jnum(q, "floquet_steps") == 256);
+    /* dense: 4 x samples (256); reduced: its own, 256 and 512 agreeing */
+    CHECK(jnum(p, "floquet_steps") == 512 && jnum(q, "floquet_steps") == 256);
     CHECK(cJSON_GetArraySize(cJSON_GetObjectItemCaseSensitive(p, "floquet_re")) == 12);
     printf("  |mu|max reduced %.12f, dense %.12f\n", jnum(p, "floquet_multiplier_max_abs"),
            jnum(q, "floquet_multiplier_max_abs"));

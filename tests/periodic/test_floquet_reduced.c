@@ -51,12 +51,11 @@ static double worst_distance(const gd_periodic_point *a, int n, const gd_periodi
  *  - H = 8, 2048 steps each: within 1e-10 (measured 9e-14 and 2.1e-13: two fourth-order
  *    schemes, the interaction picture's and the plain Magnus steps, in balanced states);
  *  - H = 64, every step count default: dense takes 4 x samples (2048), the reduced method
- *    its own count: no contact law, so the Richardson step from s0 / 2 = 128 and 256 (s0:
- *    8 per period of the top excitation order, at least 256), accepted when its moduli
- *    agree with the 256 steps' (each within 1 % of its distance from the circle, at least
- *    1e-7): it stops at 256 (before the Richardson step: 512, compared with 256) within
- *    1e-12 of dense (measured 4.5e-15 and 8e-15; 8e-14 and 4e-14 before: its constant part
- *    is exact, the steps only follow the stiffness). */
+ *    its own count, from 256 (8 per period of the top excitation order, at least 256)
+ *    doubled until two counts' moduli agree (each within 1 % of its distance from the
+ *    circle, at least 1e-7): it stops far below 2048 (measured 512) within 1e-7 of dense
+ *    (measured 8e-14 and 4e-14: its constant part is exact, the steps only follow the
+ *    stiffness). */
 TEST(mathieu_reduced_equals_dense)
 {
     fx f;
@@ -82,10 +81,10 @@ TEST(mathieu_reduced_equals_dense)
                    H, W[c], pd->floquet_steps, pd->mu_max, pr->floquet_steps, pr->mu_max, w);
             CHECK(pd->floquet_steps == 2048);
             if (own)
-                CHECK(pr->floquet_steps == 256);
+                CHECK(pr->floquet_steps >= 512 && pr->floquet_steps <= 1024);
             else
                 CHECK(pr->floquet_steps == 2048);
-            CHECK(w <= (own ? 1e-12 : 1e-10));
+            CHECK(w <= (own ? 1e-7 : 1e-10));
             CHECK(pr->stable == pd->stable);
             CHECK(pd->stable == (c == 0)); /* 707 rad/s lies inside the tongue */
             gd_periodic_result_free(d);
@@ -178,49 +177,6 @@ TEST(chen_sfd_reduced_equals_dense)
         gd_periodic_result_free(d);
         gd_periodic_result_free(r);
     }
-    gd_transient_model_free(tm);
-    fx_free(&f);
-}
-
-/* The Richardson step of the reduced basis's own count: the Chen SFD pair at 5650 rad/s (a
- * Neimark-Sacker region, |mu|max 1.178), every multiplier against the same method at 16384
- * fixed steps (fourth order: about 1e-12 from its limit there). Its own count (s0 = 256:
- * 128 and 256, extrapolated) is within 1e-7 of it (measured 4.6e-8), closer than the
- * plain fourth-order steps at the same 256 (measured 1.4e-6) and at 512 (the count the
- * method took before, 512 compared with 256: measured 9e-8): half the steps and more
- * accurate. */
-TEST(richardson_own_count_sixth_order)
-{
-    fx f;
-    gd_error err;
-    REQUIRE(load_chen(&f, 0));
-    gd_transient_model *tm = NULL;
-    REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
-    gd_periodic_result *ref =
-        floquet_point(&f, &tm->spec, 5650.0, 12, 16384, GD_FLOQUET_REDUCED, 0, 0);
-    gd_periodic_result *own = floquet_point(&f, &tm->spec, 5650.0, 12, 0, GD_FLOQUET_REDUCED, 0, 0);
-    gd_periodic_result *p1 =
-        floquet_point(&f, &tm->spec, 5650.0, 12, 256, GD_FLOQUET_REDUCED, 0, 0);
-    gd_periodic_result *p2 =
-        floquet_point(&f, &tm->spec, 5650.0, 12, 512, GD_FLOQUET_REDUCED, 0, 0);
-    REQUIRE(ref && own && p1 && p2);
-    const gd_periodic_point *pf = &ref->points[0], *po = &own->points[0], *pa = &p1->points[0],
-                            *pb = &p2->points[0];
-    const double wo = worst_distance(po, po->nmult, pf), wa = worst_distance(pa, pa->nmult, pf),
-                 wb = worst_distance(pb, pb->nmult, pf);
-    printf("  own count %d: |mu|max %.12f, distance %.2g; plain 256 steps %.2g, 512 steps "
-           "%.2g; 16384 steps |mu|max %.12f\n",
-           po->floquet_steps, po->mu_max, wo, wa, wb, pf->mu_max);
-    CHECK(po->floquet_steps == 256);
-    CHECK(po->nmult == 12 && pf->nmult == 12);
-    CHECK(wo <= 1e-7);
-    CHECK(wa >= 5e-7);
-    CHECK(wo < wb);
-    CHECK(po->stable == 0 && pf->stable == 0);
-    gd_periodic_result_free(ref);
-    gd_periodic_result_free(own);
-    gd_periodic_result_free(p1);
-    gd_periodic_result_free(p2);
     gd_transient_model_free(tm);
     fx_free(&f);
 }
@@ -320,7 +276,6 @@ TEST(reduced_options_checked)
     fx_free(&f);
 }
 
-RUN_TESTS(T(mathieu_reduced_equals_dense), T(richardson_own_count_sixth_order),
-          T(stiff_dof_dense_equals_reduced), T(mathieu_bifurcations_by_reduced),
-          T(chen_sfd_reduced_equals_dense), T(free_rotation_falls_back_to_dense),
-          T(reduced_options_checked))
+RUN_TESTS(T(mathieu_reduced_equals_dense), T(stiff_dof_dense_equals_reduced),
+          T(mathieu_bifurcations_by_reduced), T(chen_sfd_reduced_equals_dense),
+          T(free_rotation_falls_back_to_dense), T(reduced_options_checked))

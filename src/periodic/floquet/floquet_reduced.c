@@ -1036,48 +1036,29 @@ static int red_propagate(red *R, int *rc)
     return 0;
 }
 
-/* The step count: fixed when the caller gives one (steps > 0); otherwise doubled until the
- * moduli of the multipliers that decide stability agree between two counts (steps_agree),
- * at most steps_cap. In the interaction picture the constant part is exact, so the steps
- * only have to follow the laws' variation: measured on the [JMSTHelical] model
- * (docs/periodic.md, "Stability at scale"), 512 to 1024 steps per period agree with 16384
- * (the 4 x samples of H = 591) to 3e-8.
- * Without a contact law every step has the same length, and the step (Gauss points about
- * the midpoint, the exact E(h/2) either side) is symmetric, so the monodromy's error is a
- * series in even powers of h, c4 h^4 + c6 h^6 + ... (Hairer, Lubich & Wanner, Geometric
- * Numerical Integration, 2nd ed. 2006, Thm. II.3.2): one Richardson step,
- *   Psi_x = Psi_S + (Psi_S - Psi_S/2) / 15,
- * removes the h^4 term (sixth order). Then the first count is s0 / 2, and S is accepted
- * when the moduli of Psi_x agree with those of Psi_S (the difference is Psi_S's own
- * error, the one the plain comparison of S with 2 S measures), and Psi_x's multipliers
- * are returned: the same test at half the steps (S + S / 2 against 2 S + S). A contact
- * law splits steps at the contact changes (unequal lengths, different splits per count):
- * there the plain comparison from s0. The reduced multipliers (n2) into mu_re, mu_im: 0,
- * else the return codes of gd_hb_floquet_reduced. */
+/* The step count: fixed when the caller gives one (steps > 0); otherwise doubled from s0
+ * until the moduli of the multipliers that decide stability agree with the previous
+ * count's (steps_agree), at most steps_cap. In the interaction picture the constant part
+ * is exact, so the steps only have to follow the laws' variation: measured on the
+ * [JMSTHelical] model (docs/periodic.md, "Stability at scale"), 512 to 1024 steps per
+ * period agree with 16384 (the 4 x samples of H = 591) to 3e-8. A Richardson step on the
+ * symmetric steps' h^4 error (Psi_S + (Psi_S - Psi_S/2) / 15, accepted when it agrees with
+ * Psi_S: half the steps) was tried and left out: on seed 002's 0-deg curve it accepted 512
+ * steps where the plain rule takes 2048 and 28 of 300 points missed the 1 % rule (3.1 % at
+ * 2689 rpm against 8192 steps: the 256 steps are not yet in the h^4 regime there;
+ * docs/periodic.md, "Toward 20 ms per point"). The reduced multipliers
+ * (n2) into mu_re, mu_im: 0, else the return codes of gd_hb_floquet_reduced. */
 static int red_step_counts(red *R, int steps, int s0, int steps_cap, int *steps_used,
                            const gd_tr_record *bl, int nbl, double setup, double budget,
                            double *mu_re, double *mu_im, char *msg)
 {
     const int ng = R->ng, n2 = R->n2, r = R->r;
-    const size_t rr = R->rr;
     double *mod = R->mod, *prev = R->prev;
     int rc = 1;
-    const int rich = steps <= 0 && nbl == 0 && s0 >= 256;
-    int S = steps > 0 ? steps : rich ? s0 / 2 : s0;
-    double *Pc = NULL, *Pf = NULL, *modx = NULL;
-    if (rich) {
-        Pc = malloc(2 * rr * sizeof *Pc);
-        modx = malloc((size_t)n2 * sizeof *modx);
-        if (!Pc || !modx) {
-            free(Pc);
-            free(modx);
-            return rc;
-        }
-        Pf = Pc + rr;
-    }
+    int S = steps > 0 ? steps : s0;
     for (int pass = 0;; pass++) {
-        if (red_scalars(R, S, bl, nbl)) break;
-        if (red_estimates(R)) break;
+        if (red_scalars(R, S, bl, nbl)) return rc;
+        if (red_estimates(R)) return rc;
         const int nsub = R->nsub;
         {
             /* counted (work.c): per step the four products of red_propagate and the small
@@ -1098,7 +1079,7 @@ static int red_step_counts(red *R, int steps, int s0, int steps_cap, int *steps_
                 rc = 4;
             }
         }
-        if (red_propagate(R, &rc)) break;
+        if (red_propagate(R, &rc)) return rc;
         /* overflow: the steps are too long for the laws' variation (a long period: the
          * residual vectors carry the stiff mesh modes, whose coupling the steps must
          * follow); a count of its own doubles and tries again */
@@ -1116,43 +1097,19 @@ static int red_step_counts(red *R, int steps, int s0, int steps_cap, int *steps_
                      TWO_PI / R->om, S);
             rc = 6;
         }
-        if (rc != 1) break;
-        if (rich && pass == 0 && can_double) { /* the first count's multipliers decide nothing */
-            memcpy(Pc, R->Psi, rr * sizeof *Pc);
-            S *= 2;
-            continue;
-        }
-        if (rich) memcpy(Pf, R->Psi, rr * sizeof *Pf);
+        if (rc != 1) return rc;
         {
             double dummy[1];
             if (LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', n2, R->Psi, n2, mu_re, mu_im, dummy, 1,
                               dummy, 1))
-                break;
+                return rc;
         }
-        if (steps > 0) {
-            rc = 0;
-            break;
-        }
+        if (steps > 0) break;
         for (int i = 0; i < n2; i++)
             mod[i] = hypot(mu_re[i], mu_im[i]);
         qsort(mod, (size_t)n2, sizeof *mod, by_value_desc);
-        const double *cmp = prev; /* what S's moduli are compared with */
-        if (rich && pass > 0) {
-            /* Psi_x = Psi_S + (Psi_S - Psi_S/2) / 15 (into Pc) and its multipliers */
-            for (size_t m = 0; m < rr; m++)
-                Pc[m] = Pf[m] + (Pf[m] - Pc[m]) / 15.0;
-            double dummy[1];
-            if (LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', n2, Pc, n2, mu_re, mu_im, dummy, 1, dummy,
-                              1))
-                break;
-            for (int i = 0; i < n2; i++)
-                modx[i] = hypot(mu_re[i], mu_im[i]);
-            qsort(modx, (size_t)n2, sizeof *modx, by_value_desc);
-            cmp = modx;
-        }
-        if (pass > 0 && steps_agree(cmp, mod, n2)) {
+        if (pass > 0 && steps_agree(mod, prev, n2)) {
             if (steps_used) *steps_used = S;
-            rc = 0;
             break;
         }
         if (!can_double) {
@@ -1160,22 +1117,18 @@ static int red_step_counts(red *R, int steps, int s0, int steps_cap, int *steps_
              * |mu|max 2.8e73 at 100 rpm on the [JMSTHelical] model) */
             double worst = 0.0;
             for (int i = 0; pass > 0 && i < n2; i++)
-                worst = fmax(worst, fabs(mod[i] - cmp[i]));
+                worst = fmax(worst, fabs(mod[i] - prev[i]));
             snprintf(msg, 160,
                      "stability not computed: the reduced multipliers did not settle by %d Magnus "
                      "steps (moduli moved by %.2g from %d)",
                      S, worst, S / 2);
-            rc = 6;
-            break;
+            return 6;
         }
         memcpy(prev, mod, (size_t)n2 * sizeof *prev);
-        if (rich) memcpy(Pc, Pf, rr * sizeof *Pc);
         S *= 2;
     }
-    free(Pc);
-    free(modx);
-    if (!rc && steps_used && steps > 0) *steps_used = S;
-    return rc;
+    if (steps_used && steps > 0) *steps_used = S;
+    return 0;
 }
 
 int gd_hb_floquet_reduced(hb *h, gd_transient *tr, double om, const double *X, int steps, int s0,
