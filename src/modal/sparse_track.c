@@ -260,15 +260,27 @@ static int small_rqi(int q2, const double complex *A, const double complex *B, d
     v[e] = 1;
     v[q + e] = sg;
     for (int it = 0; it < 8; it++) {
-        for (int i = 0; i < q2 * q2; i++)
-            Mw[i] = A[i] - sg * B[i];
-        for (int i = 0; i < q2; i++) { /* t = B v */
+        /* t = (A - sg B)^-1 B v by blocks (A = [0 I; -Kq -Dq], B = [I 0; 0 Mq]): the
+         * first block row gives t2 = v1 + sg t1, the second then
+         * (Kq + sg Dq + sg^2 Mq) t1 = -Mq v2 - (Dq + sg Mq) v1, a q x q solve in place
+         * of the 2q x 2q one (an eighth of the elimination) */
+        for (int j = 0; j < q; j++)
+            for (int i = 0; i < q; i++) {
+                size_t ij = q + i + (size_t)(q + j) * q2; /* Mq[i, j] in B, -Dq[i, j] in A */
+                double complex mq = B[ij], dq = -A[ij], kq = -A[q + i + (size_t)j * q2];
+                Mw[i + (size_t)j * q] = kq + sg * (dq + sg * mq);
+            }
+        for (int i = 0; i < q; i++) {
             double complex sum = 0;
-            for (int j = 0; j < q2; j++)
-                sum += B[i + (size_t)j * q2] * v[j];
-            t[i] = sum;
+            for (int j = 0; j < q; j++) {
+                size_t ij = q + i + (size_t)(q + j) * q2;
+                sum += B[ij] * v[q + j] + (sg * B[ij] - A[ij]) * v[j];
+            }
+            t[i] = -sum;
         }
-        if (!small_solve(q2, Mw, t)) return 0;
+        if (!small_solve(q, Mw, t)) return 0;
+        for (int i = 0; i < q; i++)
+            t[q + i] = v[i] + sg * t[i];
         /* t = (A - sg B)^-1 B v = mu v at convergence, lambda = sg + 1 / mu */
         double complex vt = cdot(v, t, q2), vv = cdot(v, v, q2);
         double nt = cnrm(t, q2);
