@@ -133,6 +133,46 @@ static void caxpy(int n, double complex a, const double complex *x, double compl
     }
 }
 
+/* a^H m, a^H d, a^H k in one sweep over a (the three projections of one basis pair) */
+static void cdot3(const double complex *a, const double complex *m, const double complex *d,
+                  const double complex *k, int n, double complex *out)
+{
+    const double *x = (const double *)a, *y1 = (const double *)m, *y2 = (const double *)d,
+                 *y3 = (const double *)k;
+    double r1 = 0, i1 = 0, r2 = 0, i2 = 0, r3 = 0, i3 = 0;
+#pragma omp simd reduction(+ : r1, i1, r2, i2, r3, i3)
+    for (int i = 0; i < n; i++) {
+        double xr = x[2 * i], xi = x[2 * i + 1];
+        r1 += xr * y1[2 * i] + xi * y1[2 * i + 1];
+        i1 += xr * y1[2 * i + 1] - xi * y1[2 * i];
+        r2 += xr * y2[2 * i] + xi * y2[2 * i + 1];
+        i2 += xr * y2[2 * i + 1] - xi * y2[2 * i];
+        r3 += xr * y3[2 * i] + xi * y3[2 * i + 1];
+        i3 += xr * y3[2 * i + 1] - xi * y3[2 * i];
+    }
+    out[0] = r1 + I * i1;
+    out[1] = r2 + I * i2;
+    out[2] = r3 + I * i3;
+}
+
+/* r += cm m + cd d + ck k (complex), in one sweep over r: a Ritz vector's residual
+ * P(lambda) x from the basis' products */
+static void caxpy3(int n, double complex cm, const double complex *m, double complex cd,
+                   const double complex *d, double complex ck, const double complex *k,
+                   double complex *r)
+{
+    const double *u1 = (const double *)m, *u2 = (const double *)d, *u3 = (const double *)k;
+    double *v = (double *)r, ar = creal(cm), ai = cimag(cm), br = creal(cd), bi = cimag(cd),
+           cr = creal(ck), ci = cimag(ck);
+#pragma omp simd
+    for (int i = 0; i < n; i++) {
+        double mr = u1[2 * i], mi = u1[2 * i + 1], dr = u2[2 * i], di = u2[2 * i + 1],
+               kr = u3[2 * i], ki = u3[2 * i + 1];
+        v[2 * i] += ar * mr - ai * mi + br * dr - bi * di + cr * kr - ci * ki;
+        v[2 * i + 1] += ar * mi + ai * mr + br * di + bi * dr + cr * ki + ci * kr;
+    }
+}
+
 static double cnrm(const double complex *a, int n)
 {
     double s = 0;
@@ -332,10 +372,12 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
         for (int j = 0; j < q; j++)
             for (int i = 0; i < q; i++) {
                 if (i < done && j < done) continue;
-                const double complex *qi = w->Q + (size_t)i * n;
-                w->Mq[i + (size_t)j * qmax] = cdot(qi, w->MQ + (size_t)j * n, n);
-                w->Dq[i + (size_t)j * qmax] = cdot(qi, w->DQ + (size_t)j * n, n);
-                w->Kq[i + (size_t)j * qmax] = cdot(qi, w->KQ + (size_t)j * n, n);
+                double complex pr[3];
+                cdot3(w->Q + (size_t)i * n, w->MQ + (size_t)j * n, w->DQ + (size_t)j * n,
+                      w->KQ + (size_t)j * n, n, pr);
+                w->Mq[i + (size_t)j * qmax] = pr[0];
+                w->Dq[i + (size_t)j * qmax] = pr[1];
+                w->Kq[i + (size_t)j * qmax] = pr[2];
             }
         done = q;
         /* [0 I; -Kq -Dq] v = lambda [I 0; 0 Mq] v */
@@ -409,9 +451,7 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
                                      *dj = w->DQ + (size_t)j * n, *kj = w->KQ + (size_t)j * n;
                 double complex sj = s[j];
                 caxpy(n, sj, qj, x);
-                caxpy(n, sj * lam * lam, mj, w->r);
-                caxpy(n, sj * lam, dj, w->r);
-                caxpy(n, sj, kj, w->r);
+                caxpy3(n, sj * lam * lam, mj, sj * lam, dj, sj, kj, w->r);
             }
             /* x^H P'(lambda) x = s^H (2 lambda Mq + Dq) s, from the projections */
             double complex dp = 0;
