@@ -50,6 +50,7 @@
 #define GD_TRACK_MAXC 6       /* largest cluster refined together */
 #define GD_TRACK_MAXQ 8       /* basis columns per cluster member */
 #define GD_TRACK_MAXIT 8      /* Rayleigh-Ritz passes per cluster */
+#define GD_TRACK_TIE 1e-9     /* relative distance of two predictions taken as equal */
 #define GD_TRACK_OWN_SHIFT                                                                         \
     1e-7 /* a split cluster's members correct at their own values above it                         \
           */
@@ -129,6 +130,46 @@ static void caxpy(int n, double complex a, const double complex *x, double compl
         double ur = u[2 * i], ui = u[2 * i + 1];
         v[2 * i] += ar * ur - ai * ui;
         v[2 * i + 1] += ar * ui + ai * ur;
+    }
+}
+
+/* a^H m, a^H d, a^H k in one sweep over a (the three projections of one basis pair) */
+static void cdot3(const double complex *a, const double complex *m, const double complex *d,
+                  const double complex *k, int n, double complex *out)
+{
+    const double *x = (const double *)a, *y1 = (const double *)m, *y2 = (const double *)d,
+                 *y3 = (const double *)k;
+    double r1 = 0, i1 = 0, r2 = 0, i2 = 0, r3 = 0, i3 = 0;
+#pragma omp simd reduction(+ : r1, i1, r2, i2, r3, i3)
+    for (int i = 0; i < n; i++) {
+        double xr = x[2 * i], xi = x[2 * i + 1];
+        r1 += xr * y1[2 * i] + xi * y1[2 * i + 1];
+        i1 += xr * y1[2 * i + 1] - xi * y1[2 * i];
+        r2 += xr * y2[2 * i] + xi * y2[2 * i + 1];
+        i2 += xr * y2[2 * i + 1] - xi * y2[2 * i];
+        r3 += xr * y3[2 * i] + xi * y3[2 * i + 1];
+        i3 += xr * y3[2 * i + 1] - xi * y3[2 * i];
+    }
+    out[0] = r1 + I * i1;
+    out[1] = r2 + I * i2;
+    out[2] = r3 + I * i3;
+}
+
+/* r += cm m + cd d + ck k (complex), in one sweep over r: a Ritz vector's residual
+ * P(lambda) x from the basis' products */
+static void caxpy3(int n, double complex cm, const double complex *m, double complex cd,
+                   const double complex *d, double complex ck, const double complex *k,
+                   double complex *r)
+{
+    const double *u1 = (const double *)m, *u2 = (const double *)d, *u3 = (const double *)k;
+    double *v = (double *)r, ar = creal(cm), ai = cimag(cm), br = creal(cd), bi = cimag(cd),
+           cr = creal(ck), ci = cimag(ck);
+#pragma omp simd
+    for (int i = 0; i < n; i++) {
+        double mr = u1[2 * i], mi = u1[2 * i + 1], dr = u2[2 * i], di = u2[2 * i + 1],
+               kr = u3[2 * i], ki = u3[2 * i + 1];
+        v[2 * i] += ar * mr - ai * mi + br * dr - bi * di + cr * kr - ci * ki;
+        v[2 * i + 1] += ar * mi + ai * mr + br * di + bi * dr + cr * ki + ci * kr;
     }
 }
 
@@ -259,15 +300,27 @@ static int small_rqi(int q2, const double complex *A, const double complex *B, d
     v[e] = 1;
     v[q + e] = sg;
     for (int it = 0; it < 8; it++) {
-        for (int i = 0; i < q2 * q2; i++)
-            Mw[i] = A[i] - sg * B[i];
-        for (int i = 0; i < q2; i++) { /* t = B v */
+        /* t = (A - sg B)^-1 B v by blocks (A = [0 I; -Kq -Dq], B = [I 0; 0 Mq]): the
+         * first block row gives t2 = v1 + sg t1, the second then
+         * (Kq + sg Dq + sg^2 Mq) t1 = -Mq v2 - (Dq + sg Mq) v1, a q x q solve in place
+         * of the 2q x 2q one (an eighth of the elimination) */
+        for (int j = 0; j < q; j++)
+            for (int i = 0; i < q; i++) {
+                size_t ij = q + i + (size_t)(q + j) * q2; /* Mq[i, j] in B, -Dq[i, j] in A */
+                double complex mq = B[ij], dq = -A[ij], kq = -A[q + i + (size_t)j * q2];
+                Mw[i + (size_t)j * q] = kq + sg * (dq + sg * mq);
+            }
+        for (int i = 0; i < q; i++) {
             double complex sum = 0;
-            for (int j = 0; j < q2; j++)
-                sum += B[i + (size_t)j * q2] * v[j];
-            t[i] = sum;
+            for (int j = 0; j < q; j++) {
+                size_t ij = q + i + (size_t)(q + j) * q2;
+                sum += B[ij] * v[q + j] + (sg * B[ij] - A[ij]) * v[j];
+            }
+            t[i] = -sum;
         }
-        if (!small_solve(q2, Mw, t)) return 0;
+        if (!small_solve(q, Mw, t)) return 0;
+        for (int i = 0; i < q; i++)
+            t[q + i] = v[i] + sg * t[i];
         /* t = (A - sg B)^-1 B v = mu v at convergence, lambda = sg + 1 / mu */
         double complex vt = cdot(v, t, q2), vv = cdot(v, v, q2);
         double nt = cnrm(t, q2);
@@ -319,10 +372,12 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
         for (int j = 0; j < q; j++)
             for (int i = 0; i < q; i++) {
                 if (i < done && j < done) continue;
-                const double complex *qi = w->Q + (size_t)i * n;
-                w->Mq[i + (size_t)j * qmax] = cdot(qi, w->MQ + (size_t)j * n, n);
-                w->Dq[i + (size_t)j * qmax] = cdot(qi, w->DQ + (size_t)j * n, n);
-                w->Kq[i + (size_t)j * qmax] = cdot(qi, w->KQ + (size_t)j * n, n);
+                double complex pr[3];
+                cdot3(w->Q + (size_t)i * n, w->MQ + (size_t)j * n, w->DQ + (size_t)j * n,
+                      w->KQ + (size_t)j * n, n, pr);
+                w->Mq[i + (size_t)j * qmax] = pr[0];
+                w->Dq[i + (size_t)j * qmax] = pr[1];
+                w->Kq[i + (size_t)j * qmax] = pr[2];
             }
         done = q;
         /* [0 I; -Kq -Dq] v = lambda [I 0; 0 Mq] v */
@@ -343,7 +398,11 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
          * solves, and more accurate than QZ, whose errors scale with the pencil's norm
          * (the stiff modes' in the projections: on a 10k-DOF gearbox's cluster of three
          * QZ's Ritz values left the residuals at 1e-7); QZ when an iteration fails or two
-         * do not settle apart, each nearest its own prediction */
+         * do not settle apart, each nearest its own prediction (predictions within
+         * GD_TRACK_TIE of each other, the members of a double mode at rest, are a tie:
+         * either assignment is right; taking it as a failure sent every pass of every
+         * pair of the planetary set's first continued speed to QZ, 28 M of its 553 M
+         * instructions, bench/bench_planetary.sh) */
         int nritz = q2, byrqi = c <= q;
         for (int m = 0; m < c && byrqi; m++) {
             byrqi = small_rqi(q2, w->A2, w->B2, it ? out[m].lam : lam0[m], m, w->Mw, w->t,
@@ -352,7 +411,8 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
         }
         for (int m = 0; m < c && byrqi; m++)
             for (int j = 0; j < c; j++)
-                if (j != m && (cabs(w->al[m] - lam0[j]) <= cabs(w->al[m] - lam0[m]) ||
+                if (j != m && (cabs(w->al[m] - lam0[j]) <=
+                                   cabs(w->al[m] - lam0[m]) - GD_TRACK_TIE * cabs(lam0[m]) ||
                                cabs(w->al[m] - w->al[j]) <= 1e-8 * cabs(w->al[m])))
                     byrqi = 0;
         if (byrqi) {
@@ -391,9 +451,7 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
                                      *dj = w->DQ + (size_t)j * n, *kj = w->KQ + (size_t)j * n;
                 double complex sj = s[j];
                 caxpy(n, sj, qj, x);
-                caxpy(n, sj * lam * lam, mj, w->r);
-                caxpy(n, sj * lam, dj, w->r);
-                caxpy(n, sj, kj, w->r);
+                caxpy3(n, sj * lam * lam, mj, sj * lam, dj, sj, kj, w->r);
             }
             /* x^H P'(lambda) x = s^H (2 lambda Mq + Dq) s, from the projections */
             double complex dp = 0;
