@@ -140,9 +140,10 @@ TEST(journal_coefficients_against_short_bearing)
  * journal pushed towards -60 deg at eps 0.4 spinning at 1047 rad/s (10000 rpm) has its
  * film ruptured from about the thinnest film (-60 deg) to the thickest (120 deg), so a
  * groove at 30 deg gives the groove-less film's force within the grids' difference
- * (Reynolds condition); a groove at -100 deg, in the pressure peak, takes a large part
- * of it away. The supply pressure acts on the land's edges and the groove: a journal
- * with no speed, centred, carries no force from it (symmetric land). */
+ * (Reynolds condition: 4e-5 of the force measured, tolerance 0.5 %); a groove at
+ * -100 deg, in the pressure peak, takes a large part of it away (88 % measured). The supply
+ * pressure acts on the land's edges and the groove: a journal with no speed, centred, carries no
+ * force from it (symmetric land). */
 TEST(groove_in_cavitated_zone_and_in_pressure_peak)
 {
     gd_sfd_params p = {0.02, 0.025, 0.02, 50e-6, GD_SFD_PI_FILM, -1.0, 0};
@@ -183,9 +184,11 @@ TEST(groove_in_cavitated_zone_and_in_pressure_peak)
 
 /* The journal under 98.1 N at 10000 rpm (examples/jeffcott_journal.yaml's bearing) with
  * the groove at the top, as ROSS's one 360 deg land centred at 270 deg: its eccentricity
- * and eight coefficients equal the groove-less film's within 1 % of the largest of their
- * kind (the groove sits in the cavitated zone; the grids differ: 128 points on the land
- * against 128 around). */
+ * and eight coefficients equal the groove-less film's within 1.5 % of the largest of their
+ * kind (the groove sits in the cavitated zone; the discretisations differ: 128 intervals
+ * on the land against 128 points around, the wedge term as face differences in the bush's
+ * frame against the turning frame's pointwise dh/dt: 0.97 % (K) and 0.13 % (C)
+ * measured). */
 TEST(grooved_journal_equals_plain_film_when_the_groove_is_cavitated)
 {
     gd_sfd_params p = {0.02, 0.025, 0.02, 50e-6, GD_SFD_PI_FILM, -1.0, 0};
@@ -210,7 +213,7 @@ TEST(grooved_journal_equals_plain_film_when_the_groove_is_cavitated)
     printf("  eps %.5f / %.5f, attitude %.5f / %.5f; K within %.2g, C within %.2g\n", e0, e1, a0,
            a1, dk, dc);
     CHECK_ABS(e1, e0, 0.01 * e0);
-    CHECK(dk <= 0.01 && dc <= 0.01);
+    CHECK(dk <= 0.015 && dc <= 0.015);
 }
 
 RUN_TESTS(T(groove_in_cavitated_zone_and_in_pressure_peak),
