@@ -22,15 +22,10 @@ void gd_reynolds_grid_init(gd_reynolds_grid *g)
     g->tol = 1e-10;
 }
 
-gd_status gd_reynolds_force(const gd_sfd_params *p, const gd_reynolds_grid *grid, double x,
-                            double y, double vx, double vy, double *fx, double *fy, gd_error *err)
+/* the grid, the film's parameters and the state, shared by the plain and grooved films */
+static gd_status check_inputs(const gd_sfd_params *p, const gd_reynolds_grid *grid, double x,
+                              double y, double vx, double vy, gd_error *err)
 {
-    *fx = *fy = 0;
-    gd_reynolds_grid def;
-    if (!grid) {
-        gd_reynolds_grid_init(&def);
-        grid = &def;
-    }
     const int nt = grid->ntheta, nz = grid->nz;
     if (nt < 16 || nt > 100000 || nz < 3 || nz > 100000 || !(grid->tol > 0))
         return gd_error_set(err, GD_EINPUT, "", 0, 0, "grid",
@@ -43,6 +38,21 @@ gd_status gd_reynolds_force(const gd_sfd_params *p, const gd_reynolds_grid *grid
     if (!isfinite(x) || !isfinite(y) || !isfinite(vx) || !isfinite(vy))
         return gd_error_set(err, GD_EINPUT, "", 0, 0, "", "give finite values",
                             "position or velocity not finite");
+    return GD_OK;
+}
+
+gd_status gd_reynolds_force(const gd_sfd_params *p, const gd_reynolds_grid *grid, double x,
+                            double y, double vx, double vy, double *fx, double *fy, gd_error *err)
+{
+    *fx = *fy = 0;
+    gd_reynolds_grid def;
+    if (!grid) {
+        gd_reynolds_grid_init(&def);
+        grid = &def;
+    }
+    gd_status st = check_inputs(p, grid, x, y, vx, vy, err);
+    if (st) return st;
+    const int nt = grid->ntheta, nz = grid->nz;
     const double c = p->clearance, R = p->radius, L = p->length, mu = p->viscosity;
     const double emax = p->max_eccentricity > 0 ? p->max_eccentricity : 0.995;
     double e = hypot(x, y), cphi = 1, sphi = 0;
@@ -66,7 +76,7 @@ gd_status gd_reynolds_force(const gd_sfd_params *p, const gd_reynolds_grid *grid
         rhs[i] = 12 * mu * (edot * cos(th) + ephid * sin(th)); /* 12 mu dh/dt */
     }
     int proj = grid->cavitation == GD_FILM_REYNOLDS, done = 0;
-    gd_status st = GD_OK;
+    st = GD_OK;
     for (int sweep = 0; sweep < 20000 && !done; sweep++) {
         double du = 0, pm = 0;
         for (int i = 0; i < nt; i++) {
@@ -237,18 +247,8 @@ gd_status gd_reynolds_land_force(const gd_sfd_params *p, const gd_reynolds_grid 
         gd_reynolds_grid_init(&def);
         grid = &def;
     }
-    if (grid->ntheta < 16 || grid->ntheta > 100000 || grid->nz < 3 || grid->nz > 100000 ||
-        !(grid->tol > 0))
-        return gd_error_set(err, GD_EINPUT, "", 0, 0, "grid",
-                            "at least 16 points around and 3 along, a tolerance > 0",
-                            "bad Reynolds grid %d x %d", grid->ntheta, grid->nz);
-    if (!(p->viscosity > 0) || !(p->radius > 0) || !(p->length > 0) || !(p->clearance > 0))
-        return gd_error_set(err, GD_EINPUT, "", 0, 0, "clearance",
-                            "viscosity, radius, length and clearance must be positive",
-                            "bad film parameters");
-    if (!isfinite(x) || !isfinite(y) || !isfinite(vx) || !isfinite(vy))
-        return gd_error_set(err, GD_EINPUT, "", 0, 0, "", "give finite values",
-                            "position or velocity not finite");
+    gd_status st = check_inputs(p, grid, x, y, vx, vy, err);
+    if (st) return st;
     return land_solve(p, grid, land, w, x, y, vx, vy, fx, fy, err);
 }
 
