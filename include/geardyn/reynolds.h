@@ -54,4 +54,40 @@ GD_API gd_status gd_reynolds_journal(const gd_sfd_params *p, const gd_reynolds_g
                                      double load, double speed, double *eps, double *attitude,
                                      double K[4], double C[4], gd_error *err);
 
+/* An axial groove and the land it bounds (ROSS's FixedGeometryBearing with one pad: a
+ * land of angular extent `arc` from `start`, the groove filling the rest of the bore).
+ * Angles from the bush's +x axis towards +y (the journal's spin direction, about +z);
+ * the film runs from the land's leading edge `start` to its trailing edge start + arc,
+ * where it meets the groove again. The groove holds the oil at `supply_pressure` (Pa,
+ * gauge: p at both land edges and over the groove's own arc; the bearing's axial ends
+ * are at 0). arc = 0 means no groove: the 360 deg film periodic around the bore. */
+typedef struct gd_journal_land {
+    double start;           /* rad */
+    double arc;             /* rad, 0 (no groove) or in (0, 2 pi) */
+    double supply_pressure; /* Pa, >= 0 */
+} gd_journal_land;
+
+/* The film's force (fx, fy) on a journal spinning at w (rad/s, about +z, relative to the
+ * bush) at relative position (x, y) and velocity (vx, vy) in the bush's frame, on the land
+ * of `land` (NULL or arc 0: the groove-less film, = gd_reynolds_force in the frame turning
+ * at w / 2). With a groove the Reynolds equation is solved in the bush's frame,
+ *   (1 / R^2) d/dtheta (h^3 dp/dtheta) + d/dz (h^3 dp/dz) = 6 mu w dh/dtheta + 12 mu dh/dt,
+ * h = c - x cos theta - y sin theta, on grid->ntheta intervals along the land (its two
+ * edges at the supply pressure) x grid->nz interior points along the length. With
+ * GD_FILM_REYNOLDS the film, once ruptured, stays ruptured to the trailing edge: p = 0
+ * where the film converges again downstream of its thinnest point (the oil that the
+ * cavitated zone carries cannot refill a gap thicker than the rupture's before the
+ * groove supplies it: Jakobsson-Floberg-Olsson mass conservation; ROSS's rule too).
+ * Errors as gd_reynolds_force, and GD_EINPUT for a bad land. */
+GD_API gd_status gd_reynolds_land_force(const gd_sfd_params *p, const gd_reynolds_grid *grid,
+                                        const gd_journal_land *land, double w, double x, double y,
+                                        double vx, double vy, double *fx, double *fy,
+                                        gd_error *err);
+
+/* gd_reynolds_journal on the land of `land` (NULL: groove-less, = gd_reynolds_journal). */
+GD_API gd_status gd_reynolds_journal_land(const gd_sfd_params *p, const gd_reynolds_grid *grid,
+                                          const gd_journal_land *land, double load, double speed,
+                                          double *eps, double *attitude, double K[4], double C[4],
+                                          gd_error *err);
+
 #endif

@@ -21,7 +21,14 @@
  * the full film (Gumbel, half-Sommerfeld), 1 keeps p >= 0 during the solution
  * (Christopherson: the Reynolds condition at the film's rupture). Its Jacobian is by
  * central differences (steps 1e-5 of c and of c w): eight more film solutions. `film`
- * is the short bearing's and is not used by it. */
+ * is the short bearing's and is not used by it.
+ *
+ * land_arc > 0 (finite model only) gives the bush an axial groove: the film covers the
+ * land from land_start over land_arc (angles from the bush's +x towards +y, the spin's
+ * direction), its edges at supply_pressure, solved in the bush's frame
+ * (gd_reynolds_land_force; ROSS's FixedGeometryBearing with one pad). The position and
+ * velocity are then the journal's relative to the bush as they are, and the Jacobian is
+ * by central differences in them directly. */
 #include <math.h>
 #include <stdio.h>
 
@@ -29,7 +36,20 @@
 #include "geardyn/reynolds.h"
 #include "laws/laws_impl.h"
 
-enum { JB_MU, JB_D, JB_L, JB_C, JB_FILM, JB_EMAX, JB_MODEL, JB_CAV, JB_NPARAMS };
+enum {
+    JB_MU,
+    JB_D,
+    JB_L,
+    JB_C,
+    JB_FILM,
+    JB_EMAX,
+    JB_MODEL,
+    JB_CAV,
+    JB_LSTART,
+    JB_LARC,
+    JB_PSUP,
+    JB_NPARAMS
+};
 
 static const gd_law_param jb_params[JB_NPARAMS] = {
     {"viscosity", GD_QTY_VISCOSITY, NAN, GD_LAW_POSITIVE, "the oil's dynamic viscosity, Pa s"},
@@ -43,6 +63,13 @@ static const gd_law_param jb_params[JB_NPARAMS] = {
      "0: short bearing (Ocvirk), 1: finite length (Reynolds equation by finite differences)"},
     {"cavitation", GD_QTY_DIMLESS, 0.0, GD_LAW_NONNEG,
      "finite model: 0 Gumbel (half-Sommerfeld), 1 Reynolds condition (Christopherson)"},
+    {"land_start", GD_QTY_ANGLE, 0.0, GD_LAW_ANY,
+     "finite model with a groove: the land's leading edge, from the bush's +x towards +y"},
+    {"land_arc", GD_QTY_ANGLE, 0.0, GD_LAW_NONNEG,
+     "finite model: the land's extent below 360 deg, an axial groove filling the rest (0: no "
+     "groove)"},
+    {"supply_pressure", GD_QTY_PRESSURE, 0.0, GD_LAW_NONNEG,
+     "finite model with a groove: the oil's gauge pressure in the groove"},
 };
 
 static void jb_params_of(const gd_law *law, gd_sfd_params *p)
@@ -70,7 +97,56 @@ static int jb_check(const gd_law *law, const char **field, char *msg, size_t cap
         snprintf(msg, cap, "cavitation is 0 (Gumbel) or 1 (Reynolds condition), not %g", v[JB_CAV]);
         return 1;
     }
+    if (v[JB_LARC] != 0.0 && (v[JB_MODEL] != 1.0 || !(v[JB_LARC] < 6.283185307179586))) {
+        *field = "land_arc";
+        snprintf(msg, cap,
+                 "a groove (land_arc %g rad) needs model: 1 and a land below 360 deg (2 pi rad)",
+                 v[JB_LARC]);
+        return 1;
+    }
     return gd_law_check_film(v[JB_FILM], v[JB_EMAX], field, msg, cap);
+}
+
+static int jb_grooved(const gd_law *law)
+{
+    return law->value[JB_MODEL] != 0.0 && law->value[JB_LARC] > 0.0;
+}
+
+/* The grooved film's force at relative (x, y, vx, vy) in the bush's frame, spinning at w;
+ * as finite_force, its last iterate's force if SOR does not converge. */
+static void land_force(const gd_law *law, const gd_sfd_params *p, double w, const double *u,
+                       double *f)
+{
+    gd_reynolds_grid g;
+    gd_reynolds_grid_init(&g);
+    g.cavitation = law->value[JB_CAV] != 0.0 ? GD_FILM_REYNOLDS : GD_FILM_GUMBEL;
+    gd_journal_land land = {law->value[JB_LSTART], law->value[JB_LARC], law->value[JB_PSUP]};
+    gd_error err;
+    gd_reynolds_land_force(p, &g, &land, w, u[0], u[1], u[2], u[3], &f[0], &f[1], &err);
+}
+
+/* the grooved film's force and, if jq or jv, its Jacobians by central differences */
+static void land_eval(const gd_law *law, const gd_sfd_params *p, double w, const double *u,
+                      double *fx, double *fy, double *jq, double *jv)
+{
+    double f[2];
+    land_force(law, p, w, u, f);
+    *fx = f[0];
+    *fy = f[1];
+    if (!jq && !jv) return;
+    double c = p->clearance, hv = 1e-5 * c * fmax(fabs(w), 1.0);
+    double hs[4] = {1e-5 * c, 1e-5 * c, hv, hv};
+    for (int j = 0; j < 4; j++) {
+        double *J = j < 2 ? jq : jv;
+        if (!J) continue;
+        double up[4] = {u[0], u[1], u[2], u[3]}, um[4] = {u[0], u[1], u[2], u[3]}, fp[2], fm[2];
+        up[j] += hs[j];
+        um[j] -= hs[j];
+        land_force(law, p, w, up, fp);
+        land_force(law, p, w, um, fm);
+        for (int i = 0; i < 2; i++)
+            J[2 * i + (j & 1)] = (fp[i] - fm[i]) / (2 * hs[j]);
+    }
 }
 
 /* The finite-length film's force at relative (x, y) and frame velocity (vx, vy). A grid
@@ -115,6 +191,11 @@ static void jb_eval(const gd_law *law, const gd_law_point *x, double *fx, double
     jb_params_of(law, &p);
     double h = 0.5 * (law->spin[0] - law->spin[1]);
     double rx = x->q[0] - x->q[2], ry = x->q[1] - x->q[3];
+    if (jb_grooved(law)) {
+        double u[4] = {rx, ry, x->v[0] - x->v[2], x->v[1] - x->v[3]};
+        land_eval(law, &p, 2.0 * h, u, fx, fy, jq, jv);
+        return;
+    }
     double vx = x->v[0] - x->v[2] + h * ry, vy = x->v[1] - x->v[3] - h * rx;
     int finite = law->value[JB_MODEL] != 0.0;
     if (!jq && !jv) {
