@@ -20,6 +20,7 @@
 
 #include "geardyn/transient_model.h"
 #include "periodic/continuation_impl.h"
+#include "periodic/method.h"
 #include "periodic/multifreq/qphb_impl.h"
 #include "periodic/periodic_impl.h"
 
@@ -136,42 +137,35 @@ gd_status gd_per_run_kind(const gd_system *sys, const gd_transient_spec *spec,
 {
     *out = NULL;
     clock_t c0 = clock();
-    char c_note[256] = "";
     {
         gd_status cs = gd_per_check_options(param, values, nvalues, opt, records, nrecords, err);
         if (cs) return cs;
     }
-    if (opt->kind == GD_PER_AUTO)
+    const gd_per_method_row *mt = gd_per_method_find(opt->kind);
+    if (!mt)
         return gd_error_set(err, GD_EINPUT, "", 0, 0, "method", "",
                             "auto is resolved by the caller");
-
-    {
-        char note[256] = "";
-        gd_per_kind kind = opt->kind;
-        if (kind == GD_PER_SHOOTING || kind == GD_PER_MULTIFREQ) {
-            if (kind == GD_PER_MULTIFREQ && param)
-                return gd_error_set(err, GD_EINPUT, "", 0, 0, "method",
-                                    "continue in speed, or use hb or shooting",
-                                    "the multi-frequency harmonic balance continues in speed "
-                                    "only");
-            gd_periodic_result *res = calloc(1, sizeof *res);
-            if (!res) return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
-            res->nrecords = nrecords;
-            res->method = kind;
-            snprintf(res->method_note, sizeof res->method_note, "%s", note);
-            if (kind == GD_PER_SHOOTING
-                    ? gd_per_shoot_run(sys, spec, param, values, nvalues, opt, records, nrecords,
-                                       res)
-                    : gd_per_qp_run(sys, spec, values, nvalues, opt, records, nrecords, res)) {
-                gd_periodic_result_free(res);
-                return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
-            }
-            res->cpu_seconds = (double)(clock() - c0) / CLOCKS_PER_SEC;
-            *out = res;
-            return GD_OK;
-        }
-        snprintf(c_note, sizeof c_note, "%s", note);
+    gd_periodic_result *res = calloc(1, sizeof *res);
+    if (!res) return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
+    res->nrecords = nrecords;
+    res->method = mt->kind;
+    gd_status st = mt->run(sys, spec, param, values, nvalues, opt, records, nrecords, res, err);
+    if (st) {
+        gd_periodic_result_free(res);
+        return st;
     }
+    res->cpu_seconds = (double)(clock() - c0) / CLOCKS_PER_SEC;
+    *out = res;
+    return GD_OK;
+}
+
+/* The method table's row for harmonic balance (method.h): the workspace, the first H and
+ * its cap from memory, the sampling the laws need, both directions by gd_per_run_branch. */
+gd_status gd_per_hb_run(const gd_system *sys, const gd_transient_spec *spec,
+                        const gd_periodic_param *param, const double *values, int nvalues,
+                        const gd_periodic_options *opt, const gd_tr_record *records, int nrecords,
+                        gd_periodic_result *res, gd_error *err)
+{
     ctx c;
     memset(&c, 0, sizeof c);
     c.sys = sys;
@@ -182,12 +176,7 @@ gd_status gd_per_run_kind(const gd_system *sys, const gd_transient_spec *spec,
     c.nrec = nrecords;
     c.H = opt->harmonics;
     c.shoot_stab = opt->shoot_stability == 2 && opt->stability;
-    gd_periodic_result *res = calloc(1, sizeof *res);
-    if (!res) return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
     c.res = res;
-    res->nrecords = nrecords;
-    res->method = GD_PER_HB;
-    snprintf(res->method_note, sizeof res->method_note, "%s", c_note);
     int mnf = 0, mnt = 0, mng = 0, mem_ok = 0; /* what the workspace's memory depends on */
     long mknz = 0;
     /* the number of free DOFs, from a problem at the first value */
@@ -201,14 +190,12 @@ gd_status gd_per_run_kind(const gd_system *sys, const gd_transient_spec *spec,
                 gd_error_set(err, GD_EINPUT, "", 0, 0, param->name ? param->name : "param", "",
                              "%s", s.msg);
                 gd_per_stage_clear(&s);
-                gd_periodic_result_free(res);
                 return GD_EINPUT;
             }
             c.nf = gd_transient_nstates(s.tr) / 2;
             gd_per_stage_clear(&s);
         } else {
             if ((st = gd_transient_new(sys, spec, values[0], &tr, err))) {
-                gd_periodic_result_free(res);
                 return st;
             }
             int nt = gd_transient_terms(tr, NULL);
@@ -217,7 +204,6 @@ gd_status gd_per_run_kind(const gd_system *sys, const gd_transient_spec *spec,
             mem_ok = 1;
             gd_transient_free(tr);
             if (nt < 0) {
-                gd_periodic_result_free(res);
                 return gd_error_set(err, GD_EINPUT, "", 0, 0, "cam_torques",
                                     "solve by shooting (--method shooting, or auto), which "
                                     "integrates them, or set include_acceleration: false",
@@ -307,7 +293,6 @@ gd_status gd_per_run_kind(const gd_system *sys, const gd_transient_spec *spec,
             }
         gd_per_stage_clear(&st0);
         if (H0 > c.Hcap) {
-            gd_periodic_result_free(res);
             return gd_error_set(err, GD_EINPUT, "", 0, 0, "harmonics",
                                 "give fewer harmonics (or raise memory_limit)",
                                 "H = %d needs about %.2g GB for its workspace, more than the "
@@ -336,7 +321,6 @@ gd_status gd_per_run_kind(const gd_system *sys, const gd_transient_spec *spec,
     gd_hb_free(&c.h);
     gd_hb_free(&c.hr);
     res->steps = c.steps;
-    res->cpu_seconds = (double)(clock() - c0) / CLOCKS_PER_SEC;
     if (c.chb_tried) { /* the choice stated (issue 33 item 3) */
         size_t len = strlen(res->method_note);
         snprintf(res->method_note + len, sizeof res->method_note - len,
@@ -344,11 +328,7 @@ gd_status gd_per_run_kind(const gd_system *sys, const gd_transient_spec *spec,
                  "solves (the rest by the full Newton)",
                  len ? "; " : "", c.chb_nc, c.chb_solves, c.chb_tried);
     }
-    if (rc) {
-        gd_periodic_result_free(res);
-        return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
-    }
-    *out = res;
+    if (rc) return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
     return GD_OK;
 }
 
