@@ -1,6 +1,7 @@
-/* The continuation driver (continuation_impl.h): pseudo-arclength (Keller 1977) or
- * sequential steps from the first requested value to the last, step control by the
- * corrector's iteration count, every requested value hit exactly, adaptive H. */
+/* Harmonic balance's branch (continuation_impl.h): the first point, then sequential steps
+ * from the first requested value to the last, or pseudo-arclength by the shared driver
+ * (arclength.c, method.h) over harmonic balance's operations defined here (corrector,
+ * tangent, multipliers, the fold and crossing rules, the scale of X, adaptive H). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

@@ -9,11 +9,12 @@
  * (gd_transient_monodromy, the saltation matrices included) and dF/dlambda by a forward
  * difference of the period map (the problem at lambda + dl, with its own period T), both in
  * the variables scaled as harmonic balance's continuation scales them: each block of y0
- * (displacements, velocities) by its largest entry, lambda by the requested range. The step
- * control, the turn limit, the outputs at the requested values (a Newton at that fixed value
- * from the step's interpolate) and the fold rule (where the tangent's lambda component changes
- * sign) are those of continuation.c. Folds, period doublings, Neimark-Sacker and branch points
- * are located on the branch between two steps by Illinois iterations over points of the
+ * (displacements, velocities) by its largest entry, lambda by the requested range. The
+ * predictor, the step control, the turn limit and the outputs at the requested values (a
+ * Newton at that fixed value from the step's interpolate) are the shared driver's
+ * (arclength.c), over the operations defined here (method.h). The fold rule: where the
+ * tangent's lambda component changes sign. Folds, period doublings, Neimark-Sacker and branch
+ * points are located on the branch between two steps by Illinois iterations over points of the
  * branch (each a corrector on the hyperplane normal to the chord), on the tangent's lambda
  * component or on the critical multiplier's modulus minus 1.
  *
