@@ -9,11 +9,12 @@
  * (gd_transient_monodromy, the saltation matrices included) and dF/dlambda by a forward
  * difference of the period map (the problem at lambda + dl, with its own period T), both in
  * the variables scaled as harmonic balance's continuation scales them: each block of y0
- * (displacements, velocities) by its largest entry, lambda by the requested range. The step
- * control, the turn limit, the outputs at the requested values (a Newton at that fixed value
- * from the step's interpolate) and the fold rule (where the tangent's lambda component changes
- * sign) are those of continuation.c. Folds, period doublings, Neimark-Sacker and branch points
- * are located on the branch between two steps by Illinois iterations over points of the
+ * (displacements, velocities) by its largest entry, lambda by the requested range. The
+ * predictor, the step control, the turn limit and the outputs at the requested values (a
+ * Newton at that fixed value from the step's interpolate) are the shared driver's
+ * (arclength.c), over the operations defined here (method.h). The fold rule: where the
+ * tangent's lambda component changes sign. Folds, period doublings, Neimark-Sacker and branch
+ * points are located on the branch between two steps by Illinois iterations over points of the
  * branch (each a corrector on the hyperplane normal to the chord), on the tangent's lambda
  * component or on the critical multiplier's modulus minus 1.
  *
@@ -28,23 +29,27 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "periodic/method.h"
 #include "periodic/shooting/shooting_impl.h"
 
 /* The branch's scales and work arrays. */
 typedef struct arc {
     shoot *sh;
     int N;
-    double sl;  /* scale of lambda: the requested range */
-    double *D;  /* N: the block scales of y (gd_per_sh_scales) */
-    double *Fl; /* N: dF/dlambda at the last point */
-    double *J;  /* (N + 1)^2: dense only */
-    double *b;  /* N + 1 */
-    double *P2; /* N */
-    int *ipiv;  /* N + 1 */
-    int kry;    /* matrix-free (sh->dense 0) */
-    double *f;  /* N: the border D^-1 Fl sl (Krylov) */
-    double *x;  /* N + 1: GMRES's solution (Krylov) */
-    double *pt; /* N: the products' work (Krylov) */
+    double sl;                       /* scale of lambda: the requested range */
+    double *D;                       /* N: the block scales of y (gd_per_sh_scales; the driver's) */
+    double *Dold;                    /* N: the last scales (rescale) */
+    double *Fl;                      /* N: dF/dlambda at the last point */
+    double *J;                       /* (N + 1)^2: dense only */
+    double *b;                       /* N + 1 */
+    double *P2;                      /* N */
+    int *ipiv;                       /* N + 1 */
+    int kry;                         /* matrix-free (sh->dense 0) */
+    double *f;                       /* N: the border D^-1 Fl sl (Krylov) */
+    double *x;                       /* N + 1: GMRES's solution (Krylov) */
+    double *pt;                      /* N: the products' work (Krylov) */
+    double *mre, *mim, *mre1, *mim1; /* N each: the step's start's and end's multipliers */
+    int nmu, nmu1;                   /* their counts (0: none) */
 } arc;
 
 /* P(y) at lam into sh->yT, and (dense) the monodromy into sh->phi. 0 ok. */
@@ -314,6 +319,170 @@ done:
     return located ? best : NAN;
 }
 
+/* ------------------------------------------ shooting's operations for arclength.c */
+
+static int op_size(void *m)
+{
+    return ((arc *)m)->N;
+}
+
+static void op_step(void *m)
+{
+    shoot *sh = ((arc *)m)->sh;
+    sh->steps++;
+    sh->work = 0.0;
+    sh->budget_hit = 0;
+}
+
+/* The start's multipliers (the crossings compare like with like), its scales and tangent. */
+static int op_start(void *m, const double *y, double lam, double sign, double sl, double *D,
+                    double *t)
+{
+    arc *a = m;
+    shoot *sh = a->sh;
+    const gd_periodic_point *p0 = &sh->res->points[sh->res->npoints - 1];
+    a->nmu = sh->opt->stability ? p0->nmult : 0;
+    if (sh->opt->stability && a->kry && p0->converged &&
+        (p0->stable < 0 || a->nmu > (a->N < KRYLOV_M ? a->N : KRYLOV_M))) {
+        /* the start's verdict took Arnoldi to every state, or had none: the crossings
+         * compare the same KRYLOV_M Ritz values as every step's */
+        if (point_multipliers(a, y, a->mre, a->mim, &a->nmu)) a->nmu = 0;
+    } else if (a->nmu) {
+        memcpy(a->mre, p0->mu_re, (size_t)a->nmu * sizeof *a->mre);
+        memcpy(a->mim, p0->mu_im, (size_t)a->nmu * sizeof *a->mim);
+    }
+    a->sl = sl;
+    a->D = D;
+    gd_per_sh_tolerances(sh, y);
+    gd_per_sh_scales(sh, y, a->D);
+    if (evaluate(a, y, lam) || tangent(a, y, lam, NULL, sign, t)) {
+        snprintf(sh->why, sizeof sh->why, "shooting (arclength): no tangent at the start");
+        return 1;
+    }
+    return 0;
+}
+
+static int op_correct(void *m, double *y, double *lam, const double *t, const double *yp, int *it,
+                      double *res)
+{
+    return corrector(m, y, lam, t, yp, it, res);
+}
+
+static int op_tangent(void *m, const double *y, double lam, const double *prev, double sign,
+                      double *t)
+{
+    return tangent(m, y, lam, prev, sign, t);
+}
+
+static int op_give_up(void *m)
+{
+    return ((arc *)m)->sh->budget_hit;
+}
+
+/* The multipliers at the step (dense: sh->phi is its monodromy). */
+static void op_measure(void *m, const double *y1, double l1)
+{
+    arc *a = m;
+    (void)l1;
+    if (a->nmu && point_multipliers(a, y1, a->mre1, a->mim1, &a->nmu1)) a->nmu1 = 0;
+}
+
+static int op_solve_at(void *m, double *y, double v, int *it, double *res)
+{
+    shoot *sh = ((arc *)m)->sh;
+    sh->work = 0.0;
+    sh->budget_hit = 0;
+    return gd_per_sh_problem(sh, v) || gd_per_sh_newton(sh, y, it, res);
+}
+
+static int op_emit(void *m, const double *y, double v, int it, double res)
+{
+    return gd_per_sh_emit(((arc *)m)->sh, v, y, it, res);
+}
+
+static int op_fail(void *m, double v)
+{
+    return gd_per_sh_fail(((arc *)m)->sh, v);
+}
+
+/* A fold where the tangent's lambda component changes sign, and multipliers through the
+ * unit circle: a real one through -1 (period doubling), a complex pair (Neimark-Sacker), a
+ * real one through +1 away from a fold (a branch point), each located on the branch and
+ * reported when |mu| is 1 to 1e-4 there. */
+static int op_detect(void *m, const gd_per_arc_step *s)
+{
+    arc *a = m;
+    shoot *sh = a->sh;
+    const int N = a->N;
+    const double *y = s->y, *y1 = s->y1, *t = s->t, *t1 = s->t1, lam = s->lam, l1 = s->l1;
+    int fold = 0;
+    if (t[N] * t1[N] < 0) {
+        double off, re, im;
+        double lf = locate(a, -1, y, lam, t, t[N], y1, l1, t1[N], &re, &im, &off);
+        if (isnan(lf)) { /* not located: the extremum of the cubic through the steps */
+            const double ds = s->ds, sq = t[N] / (t[N] - t1[N]), s2 = sq * sq, s3 = s2 * sq;
+            lf = (2 * s3 - 3 * s2 + 1) * lam + (s3 - 2 * s2 + sq) * ds * t[N] * a->sl +
+                 (-2 * s3 + 3 * s2) * l1 + (s3 - s2) * ds * t1[N] * a->sl;
+        }
+        fold = 1;
+        if (gd_per_sh_add_bif(sh, GD_BIF_FOLD, lf, NAN, NAN)) return -1;
+    }
+    if (a->nmu && a->nmu1) {
+        double ga[3], gb[3];
+        int aa[3], ab[3];
+        gd_per_sh_kinds(a->mre, a->mim, a->nmu, ga, aa);
+        gd_per_sh_kinds(a->mre1, a->mim1, a->nmu1, gb, ab);
+        static const gd_bifurcation_type type[3] = {GD_BIF_BRANCH_POINT, GD_BIF_PERIOD_DOUBLING,
+                                                    GD_BIF_NEIMARK_SACKER};
+        for (int k = 0; k < 3; k++) {
+            if ((ga[k] > 1.0) == (gb[k] > 1.0) || (k == 0 && (fold || s->fold_prev))) continue;
+            double re = NAN, im = NAN, off;
+            double lx = locate(a, k, y, lam, t, ga[k] - 1.0, y1, l1, gb[k] - 1.0, &re, &im, &off);
+            if (!isnan(lx) && off < 1e-4 &&
+                gd_per_sh_add_bif(sh, type[k], lx, k == 0 ? NAN : re, k == 0 ? NAN : im))
+                return -1;
+        }
+    }
+    if (a->nmu) {
+        a->nmu = a->nmu1;
+        memcpy(a->mre, a->mre1, (size_t)N * sizeof *a->mre);
+        memcpy(a->mim, a->mim1, (size_t)N * sizeof *a->mim);
+    }
+    return fold;
+}
+
+/* The scales follow the orbit's size: the tangent re-expressed in them. */
+static void op_rescale(void *m, const double *y, double *D, double *t)
+{
+    arc *a = m;
+    const int N = a->N;
+    double nt = t[N] * t[N];
+    memcpy(a->Dold, D, (size_t)N * sizeof *D);
+    gd_per_sh_tolerances(a->sh, y);
+    gd_per_sh_scales(a->sh, y, D);
+    for (int i = 0; i < N; i++) {
+        t[i] *= a->Dold[i] / D[i];
+        nt += t[i] * t[i];
+    }
+    nt = sqrt(nt);
+    for (int i = 0; i <= N; i++)
+        t[i] /= nt;
+}
+
+static const gd_per_arc_ops shoot_ops = {.size = op_size,
+                                         .step = op_step,
+                                         .start = op_start,
+                                         .correct = op_correct,
+                                         .tangent = op_tangent,
+                                         .give_up = op_give_up,
+                                         .measure = op_measure,
+                                         .solve_at = op_solve_at,
+                                         .emit = op_emit,
+                                         .fail = op_fail,
+                                         .detect = op_detect,
+                                         .rescale = op_rescale,
+                                         .grow = NULL};
+
 /* The first converged point from vals[*i0] on (a transient warm start, then Newton), each
  * failed value reported. 0 with one found or none left; 1 out of memory. */
 static int first_point(shoot *sh, const double *vals, int nv, int *i0, double *y)
@@ -335,22 +504,25 @@ static int first_point(shoot *sh, const double *vals, int nv, int *i0, double *y
 
 int gd_per_sh_arclength(shoot *sh, const double *vals, int nv)
 {
-    const int N = sh->N, stab = sh->opt->stability;
-    int i0 = 0, rc = 1, it = 0;
+    const int N = sh->N;
+    int i0 = 0, rc = 1;
     arc a = {.sh = sh, .N = N, .kry = !sh->dense};
-    /* y, y1, yg, yp (N + 1), t, t1 (N + 1), D, Fl, P2, b (N + 1), J (dense) or f, x (N + 1)
-     * and pt (Krylov), multipliers 4 N */
+    /* y (N + 1, the driver's), Fl, P2, Dold, b (N + 1), J (dense) or f, x (N + 1) and pt
+     * (Krylov), multipliers 4 N */
     const size_t nJ = a.kry ? 3 * (size_t)N + 1 : (size_t)(N + 1) * (N + 1);
-    double *w = malloc(((size_t)14 * N + 4 + nJ) * sizeof *w);
+    double *y = calloc((size_t)N + 1, sizeof *y);
+    double *w = malloc(((size_t)8 * N + 1 + nJ) * sizeof *w);
     a.ipiv = malloc((size_t)(N + 1) * sizeof *a.ipiv);
-    if (!w || !a.ipiv) goto done;
-    double *y = w, *y1 = y + N, *yg = y1 + N, *yp = yg + N, *t = yp + N + 1, *t1 = t + N + 1;
-    a.D = t1 + N + 1;
-    a.Fl = a.D + N;
+    if (!y || !w || !a.ipiv) goto done;
+    a.Fl = w;
     a.P2 = a.Fl + N;
-    a.b = a.P2 + N;
+    a.Dold = a.P2 + N;
+    a.b = a.Dold + N;
     a.J = a.b + N + 1;
-    double *mre = a.J + nJ, *mim = mre + N, *mre1 = mim + N, *mim1 = mre1 + N;
+    a.mre = a.J + nJ;
+    a.mim = a.mre + N;
+    a.mre1 = a.mim + N;
+    a.mim1 = a.mre1 + N;
     if (a.kry) {
         a.f = a.J;
         a.x = a.f + N;
@@ -362,159 +534,17 @@ int gd_per_sh_arclength(shoot *sh, const double *vals, int nv)
         rc = 0;
         goto done;
     }
-    double lam = vals[i0], reached = lam, res = NAN;
-    const double lend = vals[nv - 1], lstart = vals[i0], sign = lend > lstart ? 1.0 : -1.0;
-    const gd_periodic_point *p0 = &sh->res->points[sh->res->npoints - 1];
-    int nmu = stab ? p0->nmult : 0, nmu1 = 0, fold_prev = 0;
-    if (stab && a.kry && p0->converged && (p0->stable < 0 || nmu > (N < KRYLOV_M ? N : KRYLOV_M))) {
-        /* the start's verdict took Arnoldi to every state, or had none: the crossings
-         * compare the same KRYLOV_M Ritz values as every step's */
-        if (point_multipliers(&a, y, mre, mim, &nmu)) nmu = 0;
-    } else if (nmu) {
-        memcpy(mre, p0->mu_re, (size_t)nmu * sizeof *mre);
-        memcpy(mim, p0->mu_im, (size_t)nmu * sizeof *mim);
-    }
-    a.sl = fabs(lend - lstart);
-    gd_per_sh_tolerances(sh, y);
-    gd_per_sh_scales(sh, y, a.D);
-    if (evaluate(&a, y, lam) || tangent(&a, y, lam, NULL, sign, t)) {
-        snprintf(sh->why, sizeof sh->why, "shooting (arclength): no tangent at the start");
-        goto stop;
-    }
-    double ds = fmin(1.0 / (nv - 1), 0.05), dsmax = fmin(2.0 / (nv - 1), 0.1);
-    const double dsmin = 1e-6;
-    const int maxsteps = sh->opt->max_steps > 0 ? sh->opt->max_steps : 50 * nv + 200;
-    for (int step = 0;; step++) {
-        if (step >= maxsteps) {
-            snprintf(sh->why, sizeof sh->why,
-                     "continuation stopped after %d steps (raise max_steps)", maxsteps);
-            goto stop;
-        }
-        sh->steps++;
-        sh->work = 0.0;
-        sh->budget_hit = 0;
-        for (int i = 0; i < N; i++)
-            yp[i] = y1[i] = y[i] + ds * t[i] * a.D[i];
-        double l1 = yp[N] = lam + ds * t[N] * a.sl;
-        if (corrector(&a, y1, &l1, t, yp, &it, &res) || tangent(&a, y1, l1, t, sign, t1)) {
-            if (sh->budget_hit) goto stop;
-            ds *= 0.5;
-            if (ds < dsmin) goto stop;
-            continue;
-        }
-        /* the turn of the tangent and the chord's direction: a step that turned more than
-         * ~25 deg, or whose corrector fell back behind the start, is retried shorter */
-        double tt = t[N] * t1[N], tc = t[N] * (l1 - lam) / a.sl;
-        for (int i = 0; i < N; i++) {
-            tt += t[i] * t1[i];
-            tc += t[i] * (y1[i] - y[i]) / a.D[i];
-        }
-        /* a corrector that went far beyond the step (the chord more than 3 ds, scaled)
-         * jumped to another part of the branch: at rtol 1e-11 the backlash pair's step
-         * of 0.1 from 362 rad/s landed at 326.5 rad/s with the tangent turned by less
-         * than the limit */
-        double cc = (l1 - lam) * (l1 - lam) / (a.sl * a.sl);
-        for (int i = 0; i < N; i++)
-            cc += (y1[i] - y[i]) * (y1[i] - y[i]) / (a.D[i] * a.D[i]);
-        if ((tt < 0.9 || tc <= 0.0 || sqrt(cc) > 3.0 * ds) && ds > 16 * dsmin) {
-            ds *= 0.5;
-            continue;
-        }
-        /* the multipliers at the step (dense: sh->phi is its monodromy) */
-        if (nmu && point_multipliers(&a, y1, mre1, mim1, &nmu1)) nmu1 = 0;
-        /* requested values crossed on this step, nearest to lam first */
-        const int up = vals[nv - 1] >= vals[0];
-        for (int q = 0; q < nv; q++) {
-            int i = (l1 >= lam) == up ? q : nv - 1 - q;
-            const double v = vals[i];
-            if (i == i0 && step == 0) continue;
-            if (!(l1 >= lam ? (v > lam && v <= l1) : (v < lam && v >= l1))) continue;
-            const double sig = (v - lam) / (l1 - lam);
-            int itg = 0, bad = 1;
-            double resg = NAN;
-            for (int start = 0; bad && start < 3; start++) { /* near a fold: either end */
-                for (int k = 0; k < N; k++)
-                    yg[k] = start == 0 ? (1 - sig) * y[k] + sig * y1[k] : start == 1 ? y[k] : y1[k];
-                sh->work = 0.0;
-                sh->budget_hit = 0;
-                bad = gd_per_sh_problem(sh, v) || gd_per_sh_newton(sh, yg, &itg, &resg);
-            }
-            if (bad ? gd_per_sh_fail(sh, v) : gd_per_sh_emit(sh, v, yg, itg, resg)) goto done;
-        }
-        /* a fold where the tangent's lambda component changes sign, located on the branch */
-        int fold = 0;
-        if (t[N] * t1[N] < 0) {
-            double off, re, im;
-            double lf = locate(&a, -1, y, lam, t, t[N], y1, l1, t1[N], &re, &im, &off);
-            if (isnan(lf)) { /* not located: the extremum of the cubic through the steps */
-                const double s = t[N] / (t[N] - t1[N]), s2 = s * s, s3 = s2 * s;
-                lf = (2 * s3 - 3 * s2 + 1) * lam + (s3 - 2 * s2 + s) * ds * t[N] * a.sl +
-                     (-2 * s3 + 3 * s2) * l1 + (s3 - s2) * ds * t1[N] * a.sl;
-            }
-            fold = 1;
-            if (gd_per_sh_add_bif(sh, GD_BIF_FOLD, lf, NAN, NAN)) goto done;
-        }
-        /* multipliers through the unit circle: a real one through -1 (period doubling), a
-         * complex pair (Neimark-Sacker), a real one through +1 away from a fold (a branch
-         * point), each located on the branch and reported when |mu| is 1 to 1e-4 there */
-        if (nmu && nmu1) {
-            double ga[3], gb[3];
-            int aa[3], ab[3];
-            gd_per_sh_kinds(mre, mim, nmu, ga, aa);
-            gd_per_sh_kinds(mre1, mim1, nmu1, gb, ab);
-            static const gd_bifurcation_type type[3] = {GD_BIF_BRANCH_POINT, GD_BIF_PERIOD_DOUBLING,
-                                                        GD_BIF_NEIMARK_SACKER};
-            for (int k = 0; k < 3; k++) {
-                if ((ga[k] > 1.0) == (gb[k] > 1.0) || (k == 0 && (fold || fold_prev))) continue;
-                double re = NAN, im = NAN, off;
-                double lx =
-                    locate(&a, k, y, lam, t, ga[k] - 1.0, y1, l1, gb[k] - 1.0, &re, &im, &off);
-                if (!isnan(lx) && off < 1e-4 &&
-                    gd_per_sh_add_bif(sh, type[k], lx, k == 0 ? NAN : re, k == 0 ? NAN : im))
-                    goto done;
-            }
-        }
-        if (nmu) {
-            nmu = nmu1;
-            memcpy(mre, mre1, (size_t)N * sizeof *mre);
-            memcpy(mim, mim1, (size_t)N * sizeof *mim);
-        }
-        fold_prev = fold;
-        memcpy(y, y1, (size_t)N * sizeof *y);
-        memcpy(t, t1, (size_t)(N + 1) * sizeof *t);
-        lam = l1;
-        if (sign * (lam - reached) > 0) reached = lam;
-        {
-            /* the scales follow the orbit's size (a growing resonance does not eat the
-             * arclength): the tangent re-expressed in them */
-            double nt = t[N] * t[N];
-            memcpy(yg, a.D, (size_t)N * sizeof *yg);
-            gd_per_sh_tolerances(sh, y);
-            gd_per_sh_scales(sh, y, a.D);
-            for (int i = 0; i < N; i++) {
-                t[i] *= yg[i] / a.D[i];
-                nt += t[i] * t[i];
-            }
-            nt = sqrt(nt);
-            for (int i = 0; i <= N; i++)
-                t[i] /= nt;
-        }
-        if (it <= 3) ds = fmin(ds * 1.6, dsmax);
-        if (it > 6) ds *= 0.6;
-        if (sign * (lam - lend) >= 0) break;
-        if (sign * (lam - lstart) < -0.5 * a.sl || (!sh->param && lam <= 0)) {
-            snprintf(sh->why, sizeof sh->why, "the branch turned back out of the range");
-            goto stop;
-        }
-    }
-    rc = 0;
-    goto done;
-stop:
-    /* values beyond the furthest point reached get the reason */
-    for (int i = i0 + 1; i < nv; i++)
-        if (sign * (vals[i] - reached) > 0 && gd_per_sh_fail(sh, vals[i])) goto done;
-    rc = 0;
+    const gd_per_arc br = {.ops = &shoot_ops,
+                           .m = &a,
+                           .why = sh->why,
+                           .why_cap = sizeof sh->why,
+                           .speed = !sh->param,
+                           .max_steps = sh->opt->max_steps,
+                           .dsmin = 1e-6,
+                           .corners = 0};
+    rc = gd_per_arclength(&br, vals, nv, i0, &y, vals[i0]);
 done:
+    free(y);
     free(w);
     free(a.ipiv);
     return rc;

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "periodic/method.h"
 #include "periodic/shooting/shooting_impl.h"
 
 /* The critical multiplier of kind k at value key from state y (a shooting solve):
@@ -240,4 +241,15 @@ int gd_per_shoot_run(const gd_system *sys, const gd_transient_spec *spec,
     res->steps += sh.steps;
     gd_per_sh_free(&sh);
     return rc;
+}
+
+/* The method table's row for shooting (method.h). */
+gd_status gd_per_shoot_method(const gd_system *sys, const gd_transient_spec *spec,
+                              const gd_periodic_param *param, const double *values, int nvalues,
+                              const gd_periodic_options *opt, const gd_tr_record *records,
+                              int nrecords, gd_periodic_result *res, gd_error *err)
+{
+    if (gd_per_shoot_run(sys, spec, param, values, nvalues, opt, records, nrecords, res))
+        return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
+    return GD_OK;
 }

@@ -1,0 +1,110 @@
+/* One continuation driver over a method table (issue 33 item 7; docs/periodic.md,
+ * "Structure"). A method is a row of gd_per_methods (method_table.c): its entry, which
+ * builds its own context (the problem per value, its unknowns and scales) and runs each
+ * direction, and the operations the shared pseudo-arclength driver (arclength.c) calls on
+ * that context. The driver owns the branch: the predictor, the step control (turn of the
+ * tangent, the chord's length and direction, corners of a sampled branch), the requested
+ * values crossed on a step, the range and the step count, and the reasons of the values
+ * beyond the furthest point reached. A method owns what differs: its problem, corrector,
+ * tangent, multipliers and the rule that finds bifurcations between two steps.
+ *
+ * Not thread-safe per context (a run is one thread); the table is constant. */
+#ifndef GD_PERIODIC_METHOD_H
+#define GD_PERIODIC_METHOD_H
+#include <stddef.h>
+
+#include "geardyn/periodic.h"
+
+/* One accepted step of the branch, handed to the method's bifurcation rule: the point
+ * before y (yb at lb, have_b 0 when there is none at this size), the step's start y (lam,
+ * unit tangent t) and end y1 (l1, t1), n unknowns (the arrays hold n + 1, the parameter
+ * last), the step length ds in the scaled variables (y / D, lambda / sl). */
+typedef struct gd_per_arc_step {
+    int n;
+    double ds, sl;
+    const double *D;
+    const double *yb;
+    double lb;
+    int have_b;
+    const double *y, *t;
+    double lam;
+    const double *y1, *t1;
+    double l1;
+    int fold_prev; /* the last step found a fold */
+} gd_per_arc_step;
+
+/* The operations of one method on its context m. Return codes: 0 ok, 1 failed (the
+ * method's reason buffer says why) unless noted. */
+typedef struct gd_per_arc_ops {
+    int (*size)(void *m);  /* the unknowns now (they may grow: grow) */
+    void (*step)(void *m); /* a step begins: counted, per-point budgets reset */
+    /* the converged start y at lam: its scales D (n) given the range sl, the unit tangent
+     * t (n + 1) oriented so that lambda moves by sign, its multipliers; 1: no tangent */
+    int (*start)(void *m, const double *y, double lam, double sign, double sl, double *D,
+                 double *t);
+    /* the corrector on the hyperplane normal to t through the predictor yp (n + 1) */
+    int (*correct)(void *m, double *y, double *lam, const double *t, const double *yp, int *it,
+                   double *res);
+    /* the unit tangent at a converged point, oriented along prev (or lambda by sign) */
+    int (*tangent)(void *m, const double *y, double lam, const double *prev, double sign,
+                   double *t);
+    int (*give_up)(void *m); /* NULL, or 1 after a failed step: the branch stops */
+    void (*measure)(void *m, const double *y1, double l1); /* the step end's multipliers */
+    int (*solve_at)(void *m, double *y, double v, int *it, double *res); /* fixed value v */
+    int (*emit)(void *m, const double *y, double v, int it, double res); /* 1: out of memory */
+    int (*fail)(void *m, double v); /* v not solved, the reason recorded; 1: out of memory */
+    int (*detect)(void *m, const gd_per_arc_step *s); /* 1 a fold, 0 none, -1 an error */
+    void (*rescale)(void *m, const double *y, double *D, double *t); /* D to y's size */
+    /* NULL, or after an accepted step at lam: 0 nothing; 1 the unknowns grew (*y, *t, *D
+     * reallocated to size() + 1, y solved again, its iterations in *it); 2 grown but not
+     * solved (the branch stops); -1 an error */
+    int (*grow)(void *m, double **y, double **t, double **D, double lam, int *it);
+} gd_per_arc_ops;
+
+/* The branch a method hands to the driver. */
+typedef struct gd_per_arc {
+    const gd_per_arc_ops *ops;
+    void *m;
+    char *why; /* the method's reason buffer (the driver's own stops are written there) */
+    size_t why_cap;
+    int speed;     /* 1: lambda is a speed, the branch ends where it reaches 0 */
+    int max_steps; /* opt->max_steps, 0: 50 per requested value + 200 */
+    double dsmin;  /* the shortest step (scaled) before the branch stops */
+    int corners;   /* a step whose turn does not shrink when halved is a corner, taken */
+} gd_per_arc;
+
+/* Pseudo-arclength (Keller 1977; Seydel 2010 Sec. 4.5) from *y, solved at vals[i0] = lam,
+ * to vals[nv - 1]: every requested value crossed solved and emitted, the method's
+ * bifurcations between steps, the values beyond the furthest point reached failed with
+ * the reason. *y may be reallocated (grow). 0 done, 1 an error (out of memory). */
+int gd_per_arclength(const gd_per_arc *a, const double *vals, int nv, int i0, double **y,
+                     double lam);
+
+/* One row of the method table: the kind and name (the JSON's "method"), and the run of
+ * the whole branch (both directions) into res. GD_OK, or the located error. */
+typedef gd_status (*gd_per_run_fn)(const gd_system *sys, const gd_transient_spec *spec,
+                                   const gd_periodic_param *param, const double *values,
+                                   int nvalues, const gd_periodic_options *opt,
+                                   const gd_tr_record *records, int nrecords,
+                                   gd_periodic_result *res, gd_error *err);
+typedef struct gd_per_method_row {
+    gd_per_kind kind;
+    const char *name;
+    gd_per_run_fn run;
+} gd_per_method_row;
+
+/* The row of kind (NULL: none, GD_PER_AUTO is resolved by the caller). */
+const gd_per_method_row *gd_per_method_find(gd_per_kind kind);
+
+/* The rows' runs (hb: run.c, shooting: shooting/shooting_natural.c, multifreq:
+ * method_table.c over multifreq/qp_run.c). */
+gd_status gd_per_hb_run(const gd_system *sys, const gd_transient_spec *spec,
+                        const gd_periodic_param *param, const double *values, int nvalues,
+                        const gd_periodic_options *opt, const gd_tr_record *records, int nrecords,
+                        gd_periodic_result *res, gd_error *err);
+gd_status gd_per_shoot_method(const gd_system *sys, const gd_transient_spec *spec,
+                              const gd_periodic_param *param, const double *values, int nvalues,
+                              const gd_periodic_options *opt, const gd_tr_record *records,
+                              int nrecords, gd_periodic_result *res, gd_error *err);
+
+#endif

@@ -1,0 +1,34 @@
+/* The method table (method.h): one row per periodic method. A new method is one folder
+ * (its problem per value and the operations of gd_per_arc_ops over its context, driven by
+ * arclength.c) and one row here. GD_PER_AUTO is no row: auto.c picks a row per problem
+ * (choose.c) and hands a failed point to the other. */
+#include "periodic/method.h"
+#include "periodic/multifreq/qphb_impl.h"
+
+/* The multi-frequency torus (multifreq/qp_run.c): speed continuation only. */
+static gd_status multifreq_run(const gd_system *sys, const gd_transient_spec *spec,
+                               const gd_periodic_param *param, const double *values, int nvalues,
+                               const gd_periodic_options *opt, const gd_tr_record *records,
+                               int nrecords, gd_periodic_result *res, gd_error *err)
+{
+    if (param)
+        return gd_error_set(err, GD_EINPUT, "", 0, 0, "method",
+                            "continue in speed, or use hb or shooting",
+                            "the multi-frequency harmonic balance continues in speed only");
+    if (gd_per_qp_run(sys, spec, values, nvalues, opt, records, nrecords, res))
+        return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
+    return GD_OK;
+}
+
+static const gd_per_method_row methods[] = {
+    {GD_PER_HB, "harmonic_balance", gd_per_hb_run},          /* run.c, hb/, condensed/ */
+    {GD_PER_SHOOTING, "shooting", gd_per_shoot_method},      /* shooting/ */
+    {GD_PER_MULTIFREQ, "multi_frequency_hb", multifreq_run}, /* multifreq/ */
+};
+
+const gd_per_method_row *gd_per_method_find(gd_per_kind kind)
+{
+    for (size_t i = 0; i < sizeof methods / sizeof methods[0]; i++)
+        if (methods[i].kind == kind) return &methods[i];
+    return NULL;
+}
