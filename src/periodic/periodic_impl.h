@@ -172,6 +172,9 @@ int gd_hb_floquet(const hb *h, gd_transient *tr, double w, const double *X, int 
 int gd_hb_floquet_budget(const hb *h, gd_transient *tr, double w, const double *X, int steps,
                          const gd_tr_record *bl, int nbl, double budget, double *mu_re,
                          double *mu_im, char *msg);
+/* E = exp(A) (n x n, column-major) by scaling and squaring with the Pade approximant of
+ * gd_hb_floquet; W: 6 n^2 workspace, ipiv: n. 0 ok, 1 A not finite or singular. */
+int gd_expm_dense(int n, const double *A, double *E, double *W, int *ipiv);
 /* The Magnus step boundaries of gd_hb_floquet (phases 0..2 pi): `steps` equal steps,
  * each split at the contact changes of the backlash meshes bl. *tau (nsub + 1 entries,
  * the caller frees). 0 ok, 1 out of memory. */

@@ -4,6 +4,7 @@
  * mesh frequencies are commensurate (3:2: ordinary harmonic balance of their common
  * period), and the co-prime gearbox of examples/gearbox_coprime.yaml (a long transient). */
 #include <complex.h>
+#include <lapacke.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -16,6 +17,12 @@
 #include "periodic/multifreq/qphb_impl.h"
 
 #define TWO_PI 6.28318530717958647692
+
+static int cmp_desc(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x < y) - (x > y);
+}
 
 /* Solves the problem of f at speed on the torus of order H into *X (n; the caller frees). */
 static int solve_torus(const fx *f, const gd_transient_model *tm, double speed, int H,
@@ -345,6 +352,73 @@ TEST(condensed_torus_equals_full_torus)
     fx_free(&f);
 }
 
+/* The stability of a torus point (gd_qp_stability: the Magnus monodromy over the common
+ * period on the slice's local Jacobians) equals the integrated monodromy
+ * (gd_transient_monodromy, CVODE at rtol 1e-7) from the slice's state at t = 0: every
+ * multiplier's modulus, on the co-prime gearbox at 1700 rpm (torus order 16). */
+TEST(magnus_monodromy_equals_the_integrated_one)
+{
+    fx f;
+    REQUIRE(load(&f, "examples/gearbox_coprime.yaml", NULL));
+    gd_transient_model *tm = NULL;
+    gd_error err;
+    REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
+    const double speed = 1700 * TWO_PI / 60;
+    gd_transient *tr = NULL;
+    gd_qp_bases b;
+    gd_qp q;
+    double *X = NULL;
+    memset(&b, 0, sizeof b);
+    memset(&q, 0, sizeof q);
+    REQUIRE(!solve_torus(&f, tm, speed, 16, &tr, &b, &q, &X));
+    REQUIRE(b.common > 0);
+    const int nf = q.nf, n = 2 * nf;
+    gd_periodic_point p;
+    memset(&p, 0, sizeof p);
+    char note[200] = "";
+    REQUIRE(!gd_qp_stability(tr, &b, X, q.T.k, q.T.nk, nf, 64, &p, note, sizeof note));
+    REQUIRE(p.nmult == n && p.mu_re && p.mu_im);
+    /* the slice's state at t = 0, as gd_qp_stability takes it */
+    double *y0 = calloc((size_t)n, sizeof *y0), *phi = malloc((size_t)n * n * sizeof *phi);
+    REQUIRE(y0 && phi);
+    gd_qp_eval(&q, X, 0.0, y0, y0 + nf);
+    gd_transient_options o;
+    gd_transient_options_init(&o);
+    o.rtol = 1e-7;
+    o.atol_q *= 0.1;
+    o.atol_v *= 0.1;
+    REQUIRE(gd_transient_monodromy(tr, 0.0, TWO_PI / b.common, y0, &o, phi, NULL, &err) == GD_OK);
+    double complex ev[64];
+    double wr[64], wi[64], ma[64], mb[64];
+    REQUIRE(!LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', n, phi, n, wr, wi, NULL, 1, NULL, 1));
+    for (int i = 0; i < n; i++) {
+        ev[i] = wr[i] + I * wi[i];
+        ma[i] = cabs(ev[i]);
+        mb[i] = hypot(p.mu_re[i], p.mu_im[i]);
+    }
+    qsort(ma, (size_t)n, sizeof *ma, cmp_desc);
+    qsort(mb, (size_t)n, sizeof *mb, cmp_desc);
+    double dmax = 0.0;
+    for (int i = 0; i < n; i++)
+        dmax = fmax(dmax, fabs(ma[i] - mb[i]));
+    printf("  1700 rpm: |mu|max %.7f by Magnus, %.7f integrated; largest difference of the "
+           "moduli %.2e\n",
+           mb[0], ma[0], dmax);
+    CHECK(mb[0] > 1e-3);
+    CHECK_REL(mb[0], ma[0], 1e-4);
+    CHECK(dmax <= 1e-4 * ma[0]);
+    free(p.mu_re);
+    free(p.mu_im);
+    free(y0);
+    free(phi);
+    free(X);
+    gd_qp_free(&q);
+    gd_qp_bases_free(&b);
+    gd_transient_free(tr);
+    gd_transient_model_free(tm);
+    fx_free(&f);
+}
+
 /* Four base frequencies (the two meshes and two loads at 101 and 103 times the common
  * fundamental W 23 / 67) with a memory limit that harmonic balance of the common period
  * cannot meet: `auto` refuses before solving, naming the period and the H. */
@@ -394,4 +468,4 @@ TEST(auto_refuses_when_nothing_fits)
 RUN_TESTS(T(linear_two_frequencies_equal_the_closed_form),
           T(commensurate_meshes_equal_ordinary_harmonic_balance),
           T(coprime_gearbox_equals_long_transient), T(condensed_torus_equals_full_torus),
-          T(auto_refuses_when_nothing_fits))
+          T(magnus_monodromy_equals_the_integrated_one), T(auto_refuses_when_nothing_fits))

@@ -303,3 +303,9 @@ done:
     free(ipiv);
     return rc;
 }
+
+/* the same exponential for the multi-frequency stability (multifreq/qp_stability.c) */
+int gd_expm_dense(int n, const double *A, double *E, double *W, int *ipiv)
+{
+    return expm(n, A, E, W, ipiv);
+}
