@@ -11,7 +11,8 @@
 # usage: bench/periodic_examples.sh [BUILD] [all]      (from the repository root)
 #   BUILD (default build): where geardyn is; "all" also runs the cases marked slow
 #   (minutes each: the 754-state seed-002 train, the Ducati train, the wind turbine).
-# environment: OUT (default /tmp/periodic_examples), BIF_TOL (default 1e-4)
+# environment: OUT (default /tmp/periodic_examples), BIF_TOL (default 1e-4), ONLY (a
+#   regular expression: only the cases whose name matches)
 set -uo pipefail
 
 BUILD=${1:-build}
@@ -56,6 +57,7 @@ for c in "${CASES[@]}"; do
     IFS='|' read -r name model args cmp slow <<<"$c"
     i=$((i + 1))
     [ "$slow" = 1 ] && [ "$ALL" != all ] && continue
+    [ -n "${ONLY:-}" ] && ! [[ $name =~ $ONLY ]] && continue
     # shellcheck disable=SC2086
     run "d$i" "$model" $args
     if [ "$cmp" = 1 ]; then
