@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "geardyn/transient_model.h"
+#include "periodic/condensed/chb.h"
 #include "periodic/multifreq/qphb_impl.h"
 #include "periodic/periodic_impl.h"
 
@@ -22,29 +23,67 @@ const char *gd_per_kind_name(gd_per_kind k)
                                    : "harmonic_balance";
 }
 
-/* Seconds of counted work (work.c) of one period integrated from rest at the shooting
- * tolerance: the integrator's right-hand sides, counted, times their flops; NAN when it
- * fails or needs more than max_steps steps (the cap that keeps the measurement cheap:
- * shooting could not win then). The integrator's step sequence is deterministic, so is
- * the count. */
-static double period_cost(gd_transient *tr, const gd_transient_spec *spec, double T, double rtol,
-                          long max_steps)
+/* The time one integration reached (its progress report). */
+static void reached(double t, double t0, double t1, void *data)
+{
+    (void)t0;
+    (void)t1;
+    *(double *)data = t;
+}
+
+/* One integration from rest (the static equilibrium under loads) over [0, t_end] at the
+ * shooting tolerance, at most max_steps steps: its right-hand sides, -1 when it failed
+ * (*t_reached: how far it got). */
+static long integrate(gd_transient *tr, const gd_transient_spec *spec, double t_end, double rtol,
+                      long max_steps, double *t_reached)
 {
     gd_transient_options o;
     gd_transient_options_init(&o);
     o.rtol = rtol;
     o.atol_q *= rtol / 1e-6;
     o.atol_v *= rtol / 1e-6;
-    o.t_end = T;
-    o.output_interval = T;
+    o.t_end = t_end;
+    /* output samples (no records) only for the progress report of the time reached */
+    o.output_interval = t_end / 4096;
     o.max_steps = max_steps;
     o.init = spec->nloads ? GD_TR_INIT_STATIC : GD_TR_INIT_REST;
+    *t_reached = 0.0;
+    o.progress = reached;
+    o.progress_data = t_reached;
     gd_transient_result *r = NULL;
     gd_error err;
     gd_status st = gd_transient_run(tr, &o, NULL, 0, &r, &err);
-    double t = st ? NAN : (double)r->rhs_evals * gd_per_work_seconds(gd_per_rhs_flops(tr, spec));
+    const long n = st ? -1 : r->rhs_evals;
+    if (!st) *t_reached = t_end;
     gd_transient_result_free(r);
-    return t;
+    return n;
+}
+
+/* Seconds of counted work (work.c) of one period T integrated from rest at the shooting
+ * tolerance: the integrator's right-hand sides, counted, times their flops; NAN when it
+ * fails. At most max_steps steps are taken (the cap that keeps the measurement cheap:
+ * shooting could not win above it): a period that needs more is extrapolated from the
+ * stretch the cap reached (*part: its fraction of T, 1 when the whole period ran),
+ * integrated again to its last report so that its right-hand sides are counted, where
+ * that stretch is 1/64 of the period at least (the start from rest, small steps, is in
+ * it, so the extrapolation errs on the long side); NAN below that (*part 1: the cap is
+ * then the bound).
+ * The integrator's step sequence is deterministic, so is the count. */
+static double period_cost(gd_transient *tr, const gd_transient_spec *spec, double T, double rtol,
+                          long max_steps, double *part)
+{
+    const double rhs = gd_per_work_seconds(gd_per_rhs_flops(tr, spec));
+    double t = 0.0;
+    *part = 1.0;
+    long n = integrate(tr, spec, T, rtol, max_steps, &t);
+    if (n >= 0) return (double)n * rhs;
+    /* too short a stretch is mostly the start's small steps: only a lower bound then */
+    if (!(t >= T / 64) || !(t < T)) return NAN;
+    double t2 = 0.0; /* its start step differs (CVODE's first step follows t_end) */
+    n = integrate(tr, spec, t, rtol, 2 * max_steps, &t2);
+    if (n < 0) return NAN;
+    *part = t / T;
+    return (double)n * rhs / *part;
 }
 
 /* 1 when a law of the problem is not smooth (a switch: backlash, contact; or a kink: a
@@ -73,6 +112,12 @@ int gd_per_nonsmooth(const gd_system *sys, const gd_transient_spec *spec, double
  * orbits solve the time-domain equations, so the multipliers and bifurcations are those
  * shooting's oracle finds (issue 33 item 1); above it, harmonic balance. */
 #define NONSMOOTH_RATIO 20.0
+/* ... or, whatever the ratio, up to this many seconds of counted work per point: the
+ * rattling idler of examples/rattle_pair.yaml (shooting 0.55 s against 0.0017 s, 330x)
+ * has unstable orbits that shooting's branch follows at every speed, where harmonic
+ * balance fails two of three and a failed point handed to shooting alone, from rest,
+ * finds no orbit (bench/periodic_examples.sh) */
+#define NONSMOOTH_FLOOR 1.0
 
 /* Shooting's cost per point in integrated periods (n states; dense: the monodromy up to
  * --shoot-dense-max). A dense monodromy of n + 1 columns costs 2 n + 1 periods (its
@@ -95,6 +140,99 @@ static double shoot_periods(int n, int dense, const gd_periodic_options *opt)
     if (opt->method != GD_PER_ARCLENGTH) return dense ? 5.0 * (2.0 * n + 1.0) : 5.0 * 60.0 + 80.0;
     if (dense) return NEWTON_PER_POINT * (2.0 * n + 2.0) + 2.0 * (2.0 * n + 1.0) + 1.0;
     return NEWTON_PER_POINT * (gm + 2.0 + mult / 3.0) + 2.0 * (gm + 1.0) + 1.0 + mult;
+}
+
+/* One complex sparse LU of a harmonic block Z_k = K - (k w)^2 M + i k w D (KLU on the
+ * union pattern of K, M, D) and one solve with it, in flops: the fill taken as 4 (knz + nf)
+ * entries (the memory estimate's, truncation.c), a refactorization 24 flops per entry of
+ * the fill, a solve (forward and back) 4 per entry and right-hand side: on seed 002 (377
+ * DOFs, 5404 pattern entries) 0.555 M and 0.093 M, calibrated to the 0.54 M instructions
+ * per refactorization and 0.57 M per solve with 6 right-hand sides callgrind measured
+ * (docs/periodic.md, "Why not a modal sum"). */
+static double block_lu_flops(long knz, int nf)
+{
+    return 24.0 * 4.0 * ((double)knz + nf);
+}
+
+static double block_solve_flops(long knz, int nf)
+{
+    return 4.0 * 4.0 * ((double)knz + nf);
+}
+
+/* GMRES products of the iterative capacitance per Newton step (capacitance.c: its
+ * preconditioner holds the laws' means, so it iterates on the TVMS' variation only) */
+#define CAP_PRODUCTS 30.0
+
+/* One Newton step of the full harmonic balance at H harmonics and N samples: the whole
+ * sparse LU on small models (gd_per_hb_step_flops, work.c); on the low-rank path
+ * (gd_hb_use_lowrank: from 2000 unknowns with the laws' rank r = ngroup (2 H + 1) at most
+ * a quarter of them, or solver 2-4) the residual, H + 1 block LUs, L^-1 U (ngroup solves
+ * per block), the transfer scalars w^T Z_k^-1 u, and the capacitance: dense (2/3 r^3)
+ * below GD_HB_CAP_CROSSOVER, else CAP_PRODUCTS GMRES products of one AFT per term. Not
+ * the dense 2/3 r^3 at every rank: that put seed 002's point at 361 s, 1000x its cost. */
+static double full_step_flops(gd_transient *tr, int H, int N, int solver)
+{
+    int nf, nterm, ngroup;
+    long knz;
+    gd_hb_memory_params_tr(tr, &nf, &nterm, &ngroup, &knz);
+    const double nh = 2.0 * H + 1.0, r = (double)ngroup * nh, n = (double)nf * nh,
+                 fft = 2.5 * N * log2((double)N);
+    const int lowrank = solver == 1 ? 0 : solver >= 2 ? 1 : n >= 2000 && 4.0 * r <= n;
+    if (!lowrank) return gd_per_hb_step_flops(tr, H, N);
+    const int iterative = solver == 3 || (solver != 4 && r >= GD_HB_CAP_CROSSOVER);
+    const double resid = 2.0 * nf * fft + (double)N * GD_PER_TERM_FLOPS * nterm + 20.0 * nh * knz,
+                 blocks = (H + 1.0) *
+                          (block_lu_flops(knz, nf) + (ngroup + 1.0) * block_solve_flops(knz, nf)),
+                 transfer = (H + 1.0) * 8.0 * nterm * ngroup * nf,
+                 cap = iterative ? CAP_PRODUCTS * (nterm * (2.0 * fft + 4.0 * N) +
+                                                   8.0 * (H + 1.0) * nterm * ngroup)
+                                 : 2.0 * nterm * nh * nh + 2.0 / 3.0 * r * r * r;
+    return resid + blocks + transfer + cap;
+}
+
+/* Newton iterations and GMRES products of one condensed fixed-value solve (condensed/
+ * chb.c; measured on seed 002 at H = 591, sequential, from the previous speed's orbit:
+ * see docs/periodic.md, "Choosing the method") */
+#define CHB_NEWTON 4.0
+#define CHB_PRODUCTS 25.0
+
+/* One fixed-value solve by the condensed harmonic balance on nc coordinates at H
+ * harmonics and N samples (condensed/chb.h), lent of its H + 1 block LUs borrowed
+ * (the truncation estimate's solve at 2 H + 1 takes the point's): the receptances (H + 1
+ * block LUs and nc + 1 solves each), CHB_NEWTON residuals (the coordinates' AFT, the laws
+ * at N samples reading q = C (C^T C)^-1 y, Y - H_k G_k), CHB_PRODUCTS GMRES products (the
+ * AFT of the samples' nc x nc Jacobians), the recovery X_k = Z_k^-1 r_k + Z_k^-1 C G_k and
+ * the full residual it is checked by. */
+static double chb_solve_flops(gd_transient *tr, int H, int N, int nc, int lent)
+{
+    int nf, nterm, ngroup;
+    long knz;
+    gd_hb_memory_params_tr(tr, &nf, &nterm, &ngroup, &knz);
+    const double nh = 2.0 * H + 1.0, fft = 2.5 * N * log2((double)N), h1 = H + 1.0;
+    const double rec = (h1 - lent) * block_lu_flops(knz, nf) +
+                       h1 * (nc + 1.0) * block_solve_flops(knz, nf) + h1 * 8.0 * nf * nc * nc,
+                 resid = 3.0 * nc * fft + (double)N * (GD_PER_TERM_FLOPS * nterm + 2.0 * nf * nc) +
+                         8.0 * h1 * nc * nc,
+                 product = 3.0 * nc * fft + 4.0 * (double)N * nc * nc + 8.0 * h1 * nc * nc,
+                 recover = h1 * 8.0 * nf * nc,
+                 check = 2.0 * nf * fft + (double)N * GD_PER_TERM_FLOPS * nterm + 20.0 * nh * knz;
+    return rec + CHB_NEWTON * resid + CHB_PRODUCTS * product + recover + check;
+}
+
+/* The condensed solve's coordinate count where it will be used for the fixed-value
+ * solves of problem tr (the corrector's test, gd_chb_applies: coordinates at most a
+ * quarter of the free DOFs; forced by condensed 1), 0 where the full Newton runs. */
+static int chb_coords(gd_transient *tr, int H, int N, const gd_periodic_options *opt)
+{
+    if (opt->condensed < 0) return 0;
+    int nf, nterm, ngroup;
+    long knz;
+    gd_hb_memory_params_tr(tr, &nf, &nterm, &ngroup, &knz);
+    gd_chb *c = gd_chb_new(nf, H, N);
+    if (!c) return 0;
+    const int ap = gd_chb_applies(c, tr), nc = gd_chb_ncoords(c);
+    gd_chb_free(c);
+    return ap > 0 || (ap == 0 && opt->condensed > 0) ? nc : 0;
 }
 
 /* Several base frequencies whose common period holds more than this many periods of the
@@ -240,13 +378,26 @@ gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *sp
         double Ns = opt->samples > 0 ? opt->samples : gd_hb_samples_for(H);
         if (backlash && Ns < 128) Ns = 128;
         if (Ns < 2 * H + 2) Ns = 2 * H + 2;
-        double th = gd_per_work_seconds(gd_per_hb_step_flops(tr, H, (int)Ns));
+        const double th = gd_per_work_seconds(full_step_flops(tr, H, (int)Ns, opt->solver));
         /* harmonic balance: eight Newton steps (NEWTON_PER_POINT), three times that with the
-         * solution at 2 H + 1 of the truncation estimate, and the Magnus monodromy (4 x
-         * samples steps of about 30 (2 nf)^3 flops at 2 GFlop/s, at most floquet_budget) */
+         * solution at 2 H + 1 of the truncation estimate; where the condensed solve takes
+         * the fixed-value solves (every point with --sequential, the crossing of each
+         * requested value on the arclength, the estimate's solve at 2 H + 1 with the
+         * point's H + 1 receptances borrowed), those at its own counts */
+        const int nc = chb_coords(tr, H, (int)Ns, opt);
+        const int est = opt->estimate || opt->adaptive;
+        double ch = NEWTON_PER_POINT * th * (est ? 3.0 : 1.0);
+        if (nc > 0) {
+            const int H2 = 2 * H + 1;
+            double N2 = opt->samples > 0 ? 2.0 * opt->samples : gd_hb_samples_for(H2);
+            if (backlash && N2 < 128) N2 = 128;
+            if (N2 < 2 * H2 + 2) N2 = 2 * H2 + 2;
+            ch = gd_per_work_seconds(chb_solve_flops(tr, H, (int)Ns, nc, 0));
+            if (est) ch += gd_per_work_seconds(chb_solve_flops(tr, H2, (int)N2, nc, H + 1));
+            if (opt->method == GD_PER_ARCLENGTH) ch += NEWTON_PER_POINT * th;
+        }
         double N = opt->samples > 0 ? opt->samples : gd_hb_samples_for(H);
         double steps = opt->monodromy_steps > 0 ? opt->monodromy_steps : fmax(256.0, 4.0 * N);
-        double ch = NEWTON_PER_POINT * th * ((opt->estimate || opt->adaptive) ? 3.0 : 1.0);
         /* the reduced basis (floquet_reduced.c, auto above floquet_dmax states): every mode
          * of (K, M) once, then per step about 8 nterm (2 r)^2 flops, r about 64 (48 on
          * the [JMSTHelical] model, 22 on the two-stage gearbox: docs/periodic.md) */
@@ -268,23 +419,42 @@ gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *sp
          * multipliers and bifurcations are those of the dynamics), unless it would cost more
          * than NONSMOOTH_RATIO times harmonic balance */
         const int nonsmooth = gd_per_nonsmooth(sys, spec, speed);
-        const double ratio = nonsmooth ? NONSMOOTH_RATIO : 1.0;
+        const double ratio =
+            nonsmooth ? fmax(NONSMOOTH_RATIO, ch > 0 ? NONSMOOTH_FLOOR / ch : NONSMOOTH_RATIO)
+                      : 1.0;
         /* the period is integrated only as far as shooting could still win: at most the
          * steps (one right-hand side each, at least) that fit in ratio ch / per_period */
         double tr1 = gd_per_work_seconds(gd_per_rhs_flops(tr, spec)), cs = NAN, tp = NAN;
         long cap =
             isfinite(th) && tr1 > 0 ? (long)fmin(2e6, ratio * ch / per_period / tr1) + 100 : 0;
-        tp = period_cost(tr, spec, TWO_PI / w, opt->shoot_rtol > 0 ? opt->shoot_rtol : 1e-9, cap);
+        double part = 1.0;
+        tp = period_cost(tr, spec, TWO_PI / w, opt->shoot_rtol > 0 ? opt->shoot_rtol : 1e-9, cap,
+                         &part);
         cs = per_period * tp;
+        char msg[512];
+        if (part < 1.0 && isfinite(th)) {
+            /* the cap was reached: shooting cannot win (its steps alone exceed what would),
+             * the estimate extrapolated from the stretch integrated says by how much */
+            snprintf(msg, sizeof msg,
+                     "harmonic balance%s: estimated %.3g s per point (H = %d%s) against about "
+                     "%.3g s by shooting (%d states; one period extrapolated from %.2g %% of "
+                     "it, %ld steps; counted work)",
+                     nonsmooth ? " (a non-smooth law, shooting over 20x and 1 s)" : "", ch, H,
+                     nc > 0 ? ", condensed" : "", cs, n, 100.0 * part, cap);
+            snprintf(note, 256, "%.255s", msg);
+            goto done;
+        }
         if (!isfinite(cs) && isfinite(th)) {
-            snprintf(note, 256,
-                     "harmonic balance: estimated %.3g s per point (H = %d), and one period of "
-                     "shooting's integration (%d states) needs more than %ld steps: shooting "
+            snprintf(msg, sizeof msg,
+                     "harmonic balance: estimated %.3g s per point (H = %d%s), and one period "
+                     "of shooting's integration (%d states) needs more than %ld steps: shooting "
                      "could not be %s",
-                     ch, H, n, cap,
-                     nonsmooth ? "within 20 times of it (non-smooth law: stability by harmonic "
-                                 "balance)"
-                               : "cheaper");
+                     ch, H, nc > 0 ? ", condensed" : "", n, cap,
+                     nonsmooth
+                         ? "within 20 times of it or 1 s (non-smooth law: stability by harmonic "
+                           "balance)"
+                         : "cheaper");
+            snprintf(note, 256, "%.255s", msg);
             goto done;
         }
         if (!isfinite(cs)) {
@@ -296,13 +466,14 @@ gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *sp
             k = cs < ratio * ch ? GD_PER_SHOOTING : GD_PER_HB;
             snprintf(note, 256,
                      "%s%s: estimated %.3g s per point by shooting (%s%s, %d states) against "
-                     "%.3g s by harmonic balance (H = %d; counted work)",
+                     "%.3g s by harmonic balance (H = %d%s; counted work)",
                      k == GD_PER_SHOOTING ? "shooting" : "harmonic balance",
-                     nonsmooth ? (k == GD_PER_SHOOTING ? " (a non-smooth law)"
-                                                       : " (a non-smooth law, shooting over 20x)")
-                               : "",
+                     nonsmooth
+                         ? (k == GD_PER_SHOOTING ? " (a non-smooth law)"
+                                                 : " (a non-smooth law, shooting over 20x and 1 s)")
+                         : "",
                      cs, opt->method == GD_PER_ARCLENGTH ? "arclength, " : "",
-                     dense ? "dense" : "matrix-free", n, ch, H);
+                     dense ? "dense" : "matrix-free", n, ch, H, nc > 0 ? ", condensed" : "");
         }
     }
 done:
