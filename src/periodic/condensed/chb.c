@@ -978,3 +978,55 @@ done:
     free(Y);
     return rc;
 }
+
+/* ---------------------------------------------------------------- the check */
+
+/* sum_k |C G_k|^2 over the cos / sin layout of G (stride nc); v: nf scratch, zero on
+ * entry and on return. */
+static double coord_norm2(const gd_chb *c, const double *G, double *v)
+{
+    const int nc = c->nc;
+    double s = 0.0;
+    for (int hh = 0; hh < c->nh; hh++) {
+        const double *g = G + (size_t)hh * nc;
+        for (int i = 0; i < nc; i++)
+            for (int p = c->cstart[i]; p < c->cstart[i + 1]; p++)
+                v[c->cidx[p]] += c->cval[p] * g[i];
+        for (int i = 0; i < nc; i++)
+            for (int p = c->cstart[i]; p < c->cstart[i + 1]; p++) {
+                s += v[c->cidx[p]] * v[c->cidx[p]];
+                v[c->cidx[p]] = 0.0;
+            }
+    }
+    return s;
+}
+
+int gd_chb_check(gd_chb *c, gd_transient *tr, double w, const double *X, double *rel)
+{
+    if (!c || !c->have || c->nr > 0 || c->solves % 16 == 1) return 1;
+    const int nc = c->nc, nf = c->nf, n = c->n;
+    double *Ys = malloc(2 * (size_t)n * sizeof *Ys), *Gs = Ys + n;
+    double *v = calloc((size_t)nf, sizeof *v);
+    int rc = 1;
+    if (!Ys || !v) goto done;
+    for (int hh = 0; hh < c->nh; hh++) /* C^T X */
+        for (int i = 0; i < nc; i++) {
+            double s = 0.0;
+            for (int p = c->cstart[i]; p < c->cstart[i + 1]; p++)
+                s += c->cval[p] * X[(size_t)hh * nf + c->cidx[p]];
+            Ys[(size_t)hh * nc + i] = s;
+        }
+    if (forces(c, tr, w, Ys, 0, 0)) goto done;
+    analyse(c, c->gs, nc, Gs);
+    /* |F| = |C G(C^T X)| (r = 0); |L X| = |C G(Y)| up to e_k */
+    const double f2 = coord_norm2(c, Gs, v), l2 = coord_norm2(c, c->Gk, v);
+    for (int i = 0; i < n; i++)
+        Gs[i] = c->Gk[i] - Gs[i];
+    const double r2 = coord_norm2(c, Gs, v), sc = sqrt(fmax(f2, l2));
+    *rel = sc > 0 ? sqrt(r2) / sc : sqrt(r2);
+    rc = !isfinite(*rel);
+done:
+    free(Ys);
+    free(v);
+    return rc;
+}
