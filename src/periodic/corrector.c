@@ -58,7 +58,9 @@ static int condensed_newton(ctx *c, double *X, double lam, double *R, int *iters
         cr = gd_chb_solve(h->chb, &lin, s->tr, s->id, s->w, X, tolc, &it);
     }
     double scale = 0.0, rel = NAN;
-    if (cr == GD_CHB_OK && !gd_hb_residual(h, s->tr, s->w, X, R, 0, &scale)) {
+    /* the full residual from the coordinates, the full check on a count (chb.h) */
+    if (cr == GD_CHB_OK && gd_chb_check(h->chb, s->tr, s->w, X, &rel) &&
+        !gd_hb_residual(h, s->tr, s->w, X, R, 0, &scale)) {
         double rn = gd_per_norm2(R, h->n);
         rel = scale > 0 ? rn / scale : rn;
     }

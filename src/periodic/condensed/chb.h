@@ -64,6 +64,17 @@ int gd_chb_solve(gd_chb *c, const gd_chb_linear *lin, gd_transient *tr, long sta
 void gd_chb_lend(gd_chb *c, gd_chb *lender);
 /* The harmonics c took from a lender so far (diagnostics). */
 long gd_chb_lent(const gd_chb *c);
+/* The full harmonic balance residual of the X the last gd_chb_solve returned, relative
+ * to the scale of gd_hb_residual (the larger of |L X| and |F|), from the coordinates
+ * only: with X_k = Z_k^-1 (r_k + C G_k(Y)) and the laws reading X through C^T X,
+ *   Z_k X_k - F_k(X) = C (G_k(Y) - G_k(C^T X)) + e_k,
+ * e_k the rounding of the sparse solves (docs/periodic.md, "Condensed harmonic balance").
+ * One more evaluation of the laws at the samples, no transform of the DOFs and no
+ * product with K, M, D. Returns 0 with *rel set; 1 when the full check is due instead:
+ * the first solve of this workspace and every 16th after it (a count: e_k and the laws'
+ * contract, every force in span C, are checked on a schedule), a load outside span C
+ * (r not zero) or a force not finite. */
+int gd_chb_check(gd_chb *c, gd_transient *tr, double w, const double *X, double *rel);
 /* Counters (diagnostics): condensed solves that converged, GMRES iterations so far. */
 void gd_chb_counts(const gd_chb *c, long *solves, long *gmres_iters);
 
