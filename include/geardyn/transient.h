@@ -225,8 +225,8 @@ typedef enum gd_tr_method {
      * (method_used, method_note) */
     GD_TR_AUTO = 3,
     /* linear time-invariant models only (GD_EINPUT otherwise): the unbalances' harmonic
-     * response solved exactly, the free motion advanced by the (4,4) Pade approximant
-     * of the exponential (order 8) at a step halved from the output interval until the
+     * response solved exactly, the free motion advanced by the (8,8) Pade approximant
+     * of the exponential (order 16) at a step halved from the output interval until the
      * run agrees with the run at twice its step to rtol of every record's peak (and of
      * the end displacements); step, error_estimate in the result. max_step, step,
      * rho_inf, atol, locate_events are not used */
@@ -422,7 +422,7 @@ typedef struct gd_transient_result {
     /* the method that ran (GD_TR_AUTO resolved) and what controlled its error:
      * GD_TR_LTI: the step of the run returned (s) and its estimated error, relative to
      * each record's peak: its largest difference to the run at half the step, or, where
-     * the error is seen to fall as h^8, 1/255 of that to the run at twice the step;
+     * the error is seen to fall as h^16, 1/65535 of that to the run at twice the step;
      * others: step 0 (adaptive or the given one), error_estimate -1 (CVODE: local
      * error control by rtol/atol), or with options.error_estimate its global estimate
      * (same measure as GD_TR_LTI's).

@@ -368,10 +368,10 @@ static void method_note(const gd_transient *cond, const gd_transient_options *op
     if (why) k = snprintf(b, len, "auto: ");
     if (opt->method == GD_TR_LTI) {
         snprintf(b + k, len - k,
-                 "lti (exact harmonic forcing, Pade(4,4) free motion), step %.3g s, estimated "
+                 "lti (exact harmonic forcing, Pade(%d,%d) free motion), step %.3g s, estimated "
                  "error %.2g %s rtol %g",
-                 res->step, res->error_estimate, res->error_estimate <= opt->rtol ? "<=" : ">",
-                 opt->rtol);
+                 GD_TR_LTI_PADE, GD_TR_LTI_PADE, res->step, res->error_estimate,
+                 res->error_estimate <= opt->rtol ? "<=" : ">", opt->rtol);
         return;
     }
     res->error_estimate = -1.0;

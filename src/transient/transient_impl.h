@@ -271,6 +271,9 @@ gd_status gd_tr_run_once(gd_transient *tr, const gd_transient_options *opt,
                          gd_error *err);
 
 /* ---- linear.c ---- */
+/* Degree m of the (m, m) Pade approximant the linear method advances the free motion by
+ * (src/transient/linear.c). */
+#define GD_TR_LTI_PADE 8
 /* 1 when the problem is linear and time-invariant, forced by unbalances only (GD_TR_LTI
  * applies); else 0. why (len) receives the reason either way. */
 int gd_tr_lti_reason(const gd_transient *tr, char *why, size_t len);
