@@ -318,6 +318,7 @@ typedef struct live {
     int tty, drawn, nfail;
     int quiet;              /* --quiet: no progress at all */
     struct timespec t0, tl; /* the run's start, the last point's end */
+    struct timespec tp;     /* the last progress output (a point or a step line) */
     const char *param;      /* the continued quantity's name (NULL: the speed) */
     int freq;
 } live;
@@ -339,7 +340,7 @@ static void on_point(const gd_periodic_point *p, int index, double progress, voi
     struct timespec t;
     clock_gettime(CLOCK_MONOTONIC, &t);
     const double el = since(&l->t0, &t), took = since(&l->tl, &t);
-    l->tl = t;
+    l->tl = l->tp = t;
     if (!l->tty) {
         /* not a terminal (a log, a pipe): one line per point that took more than a second,
          * so a long run is never silent; stdout is untouched (the same output every run) */
@@ -366,6 +367,29 @@ static void on_point(const gd_periodic_point *p, int index, double progress, voi
             (int)(100 * progress), index + 1, l->nfail, p->speed * 30 / PI, p->harmonics, eta);
     fflush(stderr);
     l->drawn = 1;
+}
+
+/* An arclength step between requested points: without a terminal, a line whenever more
+ * than a second passed since the last line or point (a long branch is never silent); on
+ * a terminal the bar stays (it is redrawn at the next point). */
+static void on_step(double value, void *user)
+{
+    live *l = user;
+    if (l->quiet || l->tty) return;
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    if (since(&l->tp, &t) <= 1.0) return;
+    const double el = since(&l->t0, &t);
+    l->tp = t;
+    if (l->freq)
+        fprintf(stderr, "geardyn periodic: continuing, at load frequency %.6g rad/s (%.1f s)\n",
+                value, el);
+    else if (l->param)
+        fprintf(stderr, "geardyn periodic: continuing, at %s = %.6g (%.1f s)\n", l->param, value,
+                el);
+    else
+        fprintf(stderr, "geardyn periodic: continuing, at speed %.6g rad/s (%.1f s)\n", value, el);
+    fflush(stderr);
 }
 
 /* Where no stable periodic orbit came out (a point unstable or not converged), the
@@ -806,13 +830,14 @@ int gd_cmd_periodic(int argc, char **argv)
     lv2.param = pv && !a.freq ? ppath : NULL;
     lv2.freq = a.freq != NULL;
     clock_gettime(CLOCK_MONOTONIC, &lv2.t0);
-    lv2.tl = lv2.t0;
+    lv2.tl = lv2.tp = lv2.t0;
     if (a.out) {
         made_dir = mkdir(a.out, 0777) == 0; /* the partial file goes in it */
         snprintf(partial, sizeof partial, "%s/periodic.partial.csv", a.out);
         if ((lv2.csv = fopen(partial, "w"))) csv_header(lv2.csv);
     }
     opt.on_point = on_point;
+    opt.on_step = on_step;
     opt.user = &lv2;
     gd_status pst0 = gd_periodic_run(s, &tm->spec, pv ? &prm : NULL, pv ? pv : sp, pv ? npv : nsp,
                                      &opt, rv, recs.n, &r, &err);

@@ -28,10 +28,6 @@
 # range holds mesh-1 k = 1 of every mode of this model up to 6.9 kHz, among them the
 # modes with 10-37 % of their strain energy in the meshes (4.7-7.2 kHz, 5400-8000 rpm),
 # and their k = 2, 3 super-harmonics (1800-4100 rpm), with a 26.4 rpm grid.
-# Why --method hb: the laws here are smooth (TVMS only), so auto picks harmonic balance
-# anyway, but only after integrating up to 72156 steps of one period to price shooting
-# (8.5 s CPU per curve, about 85 s of the set: docs/periodic.md, "[JMSTHelical]: Figs.
-# 11-13").
 # Why --sequential: TVMS is the only law here (teeth never separate at 50 N m), the
 # response has no folds, and the arclength winds through the narrow super-harmonic
 # peaks at many steps per requested speed (docs/periodic.md).
@@ -56,7 +52,7 @@ run_curve() { # coupling helix_deg
     rm -rf "$dir"
     /usr/bin/time -f "%e %U %S" -o "$dir.time" \
         "$GEARDYN" periodic "$MODEL" --speeds "$SPEEDS" --harmonics "$H" \
-        --method hb --sequential $STAB $NOEST --quiet --coupling "$c" \
+        --sequential $STAB $NOEST --quiet --coupling "$c" \
         --set "meshes.pair1.geometry.helix_angle=${b}deg" \
         --set "meshes.pair2.geometry.helix_angle=${b}deg" \
         --record gear1.x --record gear1.z --record gear1.ry --record gear1.rz \

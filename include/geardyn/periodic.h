@@ -167,6 +167,12 @@ typedef struct gd_periodic_options {
      * index its place in the result, progress the share of the requested range (and
      * directions) covered so far, 0..1. May be NULL. */
     void (*on_point)(const struct gd_periodic_point *p, int index, double progress, void *user);
+    /* Called after every accepted step of an arclength branch (harmonic balance or
+     * shooting), from the calling thread, value the continued quantity there (rad/s for a
+     * speed or a load frequency, else the parameter's own value): a long stretch between
+     * requested points is then never silent. Steps are not points: nothing to store.
+     * May be NULL. */
+    void (*on_step)(double value, void *user);
     void *user;
 } gd_periodic_options;
 GD_API void gd_periodic_options_init(gd_periodic_options *opt);

@@ -169,6 +169,7 @@ int gd_per_arclength(const gd_per_arc *a, const double *vals, int nv, int i0, do
         o->rescale(m, y, D, t);
         lam = l1;
         if (sign * (lam - reached) > 0) reached = lam;
+        if (a->on_step) a->on_step(lam, a->user);
         if (o->grow) {
             /* a requested point needed more unknowns (harmonics): the branch goes on with
              * them from the last point solved again */

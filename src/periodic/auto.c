@@ -37,6 +37,7 @@ static int hand_over(const gd_system *sys, const gd_transient_spec *spec,
     o.method = GD_PER_SEQUENTIAL;
     o.both_directions = 0;
     o.on_point = NULL;
+    o.on_step = NULL;
     o.user = NULL;
     const double v = param ? p->parameter : p->speed;
     gd_periodic_result *r = NULL;

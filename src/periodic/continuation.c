@@ -340,6 +340,8 @@ static int arclength(ctx *c, const double *vals, int nv, int i0, double **Xio, d
                                .why_cap = sizeof c->reason,
                                .speed = !c->param,
                                .max_steps = c->opt->max_steps,
+                               .on_step = c->opt->on_step,
+                               .user = c->opt->user,
                                .dsmin = 1e-7,
                                .corners = c->corners};
         rc = gd_per_arclength(&br, vals, nv, i0, Xio, lam);

@@ -71,6 +71,8 @@ typedef struct gd_per_arc {
     int max_steps; /* opt->max_steps, 0: 50 per requested value + 200 */
     double dsmin;  /* the shortest step (scaled) before the branch stops */
     int corners;   /* a step whose turn does not shrink when halved is a corner, taken */
+    void (*on_step)(double lam, void *user); /* opt->on_step: after every accepted step */
+    void *user;
 } gd_per_arc;
 
 /* Pseudo-arclength (Keller 1977; Seydel 2010 Sec. 4.5) from *y, solved at vals[i0] = lam,

@@ -540,6 +540,8 @@ int gd_per_sh_arclength(shoot *sh, const double *vals, int nv)
                            .why_cap = sizeof sh->why,
                            .speed = !sh->param,
                            .max_steps = sh->opt->max_steps,
+                           .on_step = sh->opt->on_step,
+                           .user = sh->opt->user,
                            .dsmin = 1e-6,
                            .corners = 0};
     rc = gd_per_arclength(&br, vals, nv, i0, &y, vals[i0]);
