@@ -41,6 +41,40 @@ static gd_status check_inputs(const gd_sfd_params *p, const gd_reynolds_grid *gr
     return GD_OK;
 }
 
+/* Successive over-relaxation of the Reynolds equation's five-point scheme: rows i (theta)
+ * of nz points along z (pressure zero beyond both ends), rows i0 .. i1 - 1 swept, a row's
+ * east and west neighbours (i +- 1) mod nrow (the plain film is periodic; a land's edge
+ * rows 0 and nrow - 1 are never swept, so they hold the supply pressure), rows with fix[i]
+ * kept (the Reynolds condition's cavitated gap); proj clamps p >= 0. Until the largest
+ * change is tol of the largest pressure: 1 converged, 0 not within maxsweeps. */
+static int sor(double *P, int nrow, int i0, int i1, int nz, const double *h3, const double *he,
+               const double *rhs, double ct, double cz, double om, int proj, const char *fix,
+               double tol, int maxsweeps)
+{
+    for (int sweep = 0; sweep < maxsweeps; sweep++) {
+        double du = 0, pm = 0;
+        for (int i = i0; i < i1; i++) {
+            if (fix && fix[i]) continue;
+            const int ie = (i + 1) % nrow, iw = (i + nrow - 1) % nrow;
+            double ae = he[i] * ct, aw = he[iw] * ct, az = h3[i] * cz;
+            double diag = ae + aw + 2 * az;
+            double *Pi = P + (size_t)i * nz;
+            const double *Pe = P + (size_t)ie * nz, *Pw = P + (size_t)iw * nz;
+            for (int k = 0; k < nz; k++) {
+                double pn = k + 1 < nz ? Pi[k + 1] : 0, pz = k > 0 ? Pi[k - 1] : 0;
+                double gs = (ae * Pe[k] + aw * Pw[k] + az * (pn + pz) - rhs[i]) / diag;
+                double old = Pi[k], v = old + om * (gs - old);
+                if (proj && v < 0) v = 0;
+                Pi[k] = v;
+                du = fmax(du, fabs(v - old));
+                pm = fmax(pm, fabs(v));
+            }
+        }
+        if (du <= tol * pm || pm == 0) return 1;
+    }
+    return 0;
+}
+
 gd_status gd_reynolds_force(const gd_sfd_params *p, const gd_reynolds_grid *grid, double x,
                             double y, double vx, double vy, double *fx, double *fy, gd_error *err)
 {
@@ -75,27 +109,9 @@ gd_status gd_reynolds_force(const gd_sfd_params *p, const gd_reynolds_grid *grid
         he[i] = hf * hf * hf;
         rhs[i] = 12 * mu * (edot * cos(th) + ephid * sin(th)); /* 12 mu dh/dt */
     }
-    int proj = grid->cavitation == GD_FILM_REYNOLDS, done = 0;
+    int proj = grid->cavitation == GD_FILM_REYNOLDS;
     st = GD_OK;
-    for (int sweep = 0; sweep < 20000 && !done; sweep++) {
-        double du = 0, pm = 0;
-        for (int i = 0; i < nt; i++) {
-            int ie = (i + 1) % nt, iw = (i + nt - 1) % nt;
-            double ae = he[i] * ct, aw = he[iw] * ct, az = h3[i] * cz;
-            double diag = ae + aw + 2 * az;
-            for (int k = 0; k < nz; k++) {
-                double pn = k + 1 < nz ? P[i * nz + k + 1] : 0, ps = k > 0 ? P[i * nz + k - 1] : 0;
-                double gs =
-                    (ae * P[ie * nz + k] + aw * P[iw * nz + k] + az * (pn + ps) - rhs[i]) / diag;
-                double old = P[i * nz + k], v = old + 1.8 * (gs - old);
-                if (proj && v < 0) v = 0;
-                P[i * nz + k] = v;
-                du = fmax(du, fabs(v - old));
-                pm = fmax(pm, fabs(v));
-            }
-        }
-        if (du <= grid->tol * pm || pm == 0) done = 1;
-    }
+    int done = sor(P, nt, 0, nt, nz, h3, he, rhs, ct, cz, 1.8, proj, NULL, grid->tol, 20000);
     if (!done) {
         st = gd_error_set(err, GD_ENUMERIC, "", 0, 0, "grid", "use a coarser grid",
                           "the Reynolds equation's SOR did not converge");
@@ -175,27 +191,8 @@ static gd_status land_solve(const gd_sfd_params *p, const gd_reynolds_grid *grid
             P[(size_t)i * nz + k] = (i == 0 || i == nt) ? ps : 0;
     double rho = (ct * cos(M_PI / nt) + cz * cos(M_PI / (nz + 1))) / (ct + cz);
     double om = 2.0 / (1.0 + sqrt(fmax(1 - rho * rho, 0)));
-    int done = 0;
     gd_status st = GD_OK;
-    for (int sweep = 0; sweep < 100000 && !done; sweep++) {
-        double du = 0, pm = 0;
-        for (int i = 1; i < nt; i++) {
-            if (fix[i]) continue;
-            double ae = he[i] * ct, aw = he[i - 1] * ct, az = h3[i] * cz;
-            double diag = ae + aw + 2 * az;
-            double *Pi = P + (size_t)i * nz, *Pe = Pi + nz, *Pw = Pi - nz;
-            for (int k = 0; k < nz; k++) {
-                double pn = k + 1 < nz ? Pi[k + 1] : 0, pz = k > 0 ? Pi[k - 1] : 0;
-                double gs = (ae * Pe[k] + aw * Pw[k] + az * (pn + pz) - rhs[i]) / diag;
-                double old = Pi[k], v = old + om * (gs - old);
-                if (proj && v < 0) v = 0;
-                Pi[k] = v;
-                du = fmax(du, fabs(v - old));
-                pm = fmax(pm, fabs(v));
-            }
-        }
-        if (du <= grid->tol * pm || pm == 0) done = 1;
-    }
+    int done = sor(P, nt + 1, 1, nt, nz, h3, he, rhs, ct, cz, om, proj, fix, grid->tol, 100000);
     if (!done) {
         st = gd_error_set(err, GD_ENUMERIC, "", 0, 0, "grid", "use a coarser grid",
                           "the Reynolds equation's SOR did not converge on the land");
