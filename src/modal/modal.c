@@ -38,6 +38,66 @@ static int any_nonzero(const double *A, size_t n)
     return 0;
 }
 
+gd_status gd_modal_undamped_frequencies(const gd_system *sys, const gd_modal_options *opt,
+                                        double **omega, int *n, gd_error *err)
+{
+    *omega = NULL;
+    *n = 0;
+    int N = sys->ndof;
+    size_t nn = (size_t)N * N;
+    double *M = malloc(nn * sizeof *M), *D = malloc(nn * sizeof *D), *K = malloc(nn * sizeof *K);
+    double *Mr = NULL, *Kr = NULL, *w = NULL;
+    gd_condense cond = {0};
+    gd_status st = GD_OK;
+    if (!M || !D || !K) goto nomem;
+    gd_system_dense_at(sys, opt->speed, opt->law_state, M, D, K);
+    if (!is_symmetric(K, N)) goto done;
+    if ((st = gd_condense_setup(sys, K, NULL, &cond, err))) goto done;
+    const int m = cond.nm;
+    Mr = gd_condense_matrix(&cond, M, 0);
+    Kr = gd_condense_matrix(&cond, K, 1);
+    w = malloc((size_t)m * sizeof *w);
+    if (!Mr || !Kr || !w) goto nomem;
+    /* the "zero" scale of gd_modal_undamped: the largest diagonal ratio K_ii / M_ii */
+    double wscale2 = 0;
+    for (int i = 0; i < m; i++) {
+        double r = Kr[i + (size_t)i * m] / Mr[i + (size_t)i * m];
+        if (r > wscale2) wscale2 = r;
+    }
+    lapack_int info = LAPACKE_dsygvd(LAPACK_COL_MAJOR, 1, 'N', 'U', m, Kr, m, Mr, m, w);
+    if (info != 0) {
+        /* the full solve words every failure (inf entries, a mass not positive definite) */
+        gd_modal_result *r = NULL;
+        gd_modal_options o = *opt;
+        o.kind = GD_MODAL_UNDAMPED;
+        st = gd_modal_solve_dense(sys, &o, &r, err);
+        gd_modal_free(r);
+        if (!st)
+            st = gd_error_set(err, GD_ENUMERIC, sys->model->file, 0, 0, "", "",
+                              "the eigensolver did not converge (LAPACK info %d)", (int)info);
+        goto done;
+    }
+    const double tol = 1e-12 * wscale2;
+    for (int j = 0; j < m; j++)
+        w[j] = fabs(w[j]) <= tol ? -1.0 : sqrt(fabs(w[j]));
+    *omega = w;
+    *n = m;
+    w = NULL;
+    goto done;
+nomem:
+    st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "reduce the model size",
+                      "out of memory for dense %d x %d matrices", N, N);
+done:
+    gd_condense_free(&cond);
+    free(M);
+    free(D);
+    free(K);
+    free(Mr);
+    free(Kr);
+    free(w);
+    return st;
+}
+
 gd_status gd_modal_solve_dense(const gd_system *sys, const gd_modal_options *opt,
                                gd_modal_result **out, gd_error *err)
 {

@@ -45,6 +45,15 @@ gd_status gd_modal_state_space(const gd_system *sys, const gd_modal_options *opt
 gd_status gd_modal_solve_dense(const gd_system *sys, const gd_modal_options *opt,
                                gd_modal_result **out, gd_error *err);
 
+/* The undamped natural frequencies only, by the dense solver's matrices, condensation
+ * and rigid-body rule (gd_modal_solve_dense with GD_MODAL_UNDAMPED), without vectors or
+ * mode properties: for counting modes (Campbell's default mode count). *omega (the
+ * caller frees it) holds *n ascending values, -1 for a rigid-body mode, sqrt|lambda| for a
+ * divergence; *omega NULL (GD_OK) where K is not symmetric (the general problem: ask
+ * gd_modal_solve). */
+gd_status gd_modal_undamped_frequencies(const gd_system *sys, const gd_modal_options *opt,
+                                        double **omega, int *n, gd_error *err);
+
 /* Allocates a result for nmodes modes (shapes zeroed). */
 gd_modal_result *gd_modal_result_new(const gd_system *sys, int nmodes, int with_left);
 
