@@ -58,12 +58,7 @@ gd_status gd_modal_undamped_frequencies(const gd_system *sys, const gd_modal_opt
     Kr = gd_condense_matrix(&cond, K, 1);
     w = malloc((size_t)m * sizeof *w);
     if (!Mr || !Kr || !w) goto nomem;
-    /* the "zero" scale of gd_modal_undamped: the largest diagonal ratio K_ii / M_ii */
-    double wscale2 = 0;
-    for (int i = 0; i < m; i++) {
-        double r = Kr[i + (size_t)i * m] / Mr[i + (size_t)i * m];
-        if (r > wscale2) wscale2 = r;
-    }
+    const double tol = gd_modal_zero_tol(Kr, Mr, m); /* gd_modal_undamped's rigid rule */
     lapack_int info = LAPACKE_dsygvd(LAPACK_COL_MAJOR, 1, 'N', 'U', m, Kr, m, Mr, m, w);
     if (info != 0) {
         /* the full solve words every failure (inf entries, a mass not positive definite) */
@@ -77,7 +72,6 @@ gd_status gd_modal_undamped_frequencies(const gd_system *sys, const gd_modal_opt
                               "the eigensolver did not converge (LAPACK info %d)", (int)info);
         goto done;
     }
-    const double tol = 1e-12 * wscale2;
     for (int j = 0; j < m; j++)
         w[j] = fabs(w[j]) <= tol ? -1.0 : sqrt(fabs(w[j]));
     *omega = w;

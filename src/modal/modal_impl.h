@@ -35,6 +35,10 @@ void gd_rigid_modes_fill(const gd_system *sys, double speed, gd_modal_result *re
 int gd_rigid_null_sparse(const gd_dynmat *a, const gd_splu_symbolic *sym, const double *k,
                          double sigma, double tol, double *U, int r0);
 
+/* Eigenvalues of (Kr, Mr) (n x n, condensed) within this of zero are rigid-body modes:
+ * 1e-12 of the largest diagonal ratio K_ii / M_ii. */
+double gd_modal_zero_tol(const double *Kr, const double *Mr, int n);
+
 gd_status gd_modal_undamped(const gd_system *sys, const gd_modal_options *opt, const gd_condense *c,
                             const double *M, const double *K, gd_modal_result **out, gd_error *err);
 gd_status gd_modal_state_space(const gd_system *sys, const gd_modal_options *opt,

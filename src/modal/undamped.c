@@ -8,6 +8,16 @@
 #include "modal/modal_impl.h"
 #include "linalg/linalg_impl.h"
 
+double gd_modal_zero_tol(const double *Kr, const double *Mr, int n)
+{
+    double wscale2 = 0; /* the largest diagonal ratio K_ii / M_ii */
+    for (int i = 0; i < n; i++) {
+        double r = Kr[i + (size_t)i * n] / Mr[i + (size_t)i * n];
+        if (r > wscale2) wscale2 = r;
+    }
+    return 1e-12 * wscale2;
+}
+
 gd_status gd_modal_undamped(const gd_system *sys, const gd_modal_options *opt, const gd_condense *c,
                             const double *M, const double *K, gd_modal_result **out, gd_error *err)
 {
@@ -21,12 +31,7 @@ gd_status gd_modal_undamped(const gd_system *sys, const gd_modal_options *opt, c
     gd_status st = GD_OK;
     if (!Mr || !Kr || !w || !work || !res) goto nomem;
 
-    /* scale for "zero" frequencies: the largest diagonal ratio K_ii/M_ii */
-    double wscale2 = 0;
-    for (int i = 0; i < n; i++) {
-        double r = Kr[i + (size_t)i * n] / Mr[i + (size_t)i * n];
-        if (r > wscale2) wscale2 = r;
-    }
+    const double tol = gd_modal_zero_tol(Kr, Mr, n); /* before dsygvd overwrites them */
     lapack_int info;
     if (k == n) {
         info = LAPACKE_dsygvd(LAPACK_COL_MAJOR, 1, 'V', 'U', n, Kr, n, Mr, n, w);
@@ -69,7 +74,6 @@ gd_status gd_modal_undamped(const gd_system *sys, const gd_modal_options *opt, c
     res->speed = opt->speed;
     /* the rigid-body modes (contiguous: ascending eigenvalues) are any M-orthonormal
        basis of the null space of K: rotated so that each moves one way */
-    double tol = 1e-12 * wscale2;
     int r0 = 0, nrigid = 0;
     while (r0 < k && w[r0] < -tol)
         r0++;

@@ -147,36 +147,18 @@ static void exp_blocks(int n, const double *lre, const double *lim, double s, do
     }
 }
 
-/* M's rows <- E M (n x ncol, column-major) with E's blocks [c, s; -s, c] from exp_blocks */
+/* M's rows <- E M (n x ncol, column-major) with E's blocks [c, s; -s, c] from exp_blocks;
+ * sgn -1 applies E^T instead (a row times E, for rows stored as columns) */
 static void rotate(int n, int ncol, const double *lim, const double *ec, const double *es,
-                   double *M)
+                   double sgn, double *M)
 {
     for (int j = 0; j < ncol; j++) {
         double *p = M + (size_t)j * n;
         for (int i = 0; i < n; i++) {
             if (lim[i] > 0.0 && i + 1 < n) {
-                const double a = p[i], b = p[i + 1];
-                p[i] = ec[i] * a + es[i] * b;
-                p[i + 1] = -es[i] * a + ec[i] * b;
-                i++;
-            } else {
-                p[i] *= ec[i];
-            }
-        }
-    }
-}
-
-/* M's columns <- E^T M: a row times E, for rows stored as columns */
-static void rotate_t(int n, int ncol, const double *lim, const double *ec, const double *es,
-                     double *M)
-{
-    for (int j = 0; j < ncol; j++) {
-        double *p = M + (size_t)j * n;
-        for (int i = 0; i < n; i++) {
-            if (lim[i] > 0.0 && i + 1 < n) {
-                const double a = p[i], b = p[i + 1];
-                p[i] = ec[i] * a - es[i] * b;
-                p[i + 1] = es[i] * a + ec[i] * b;
+                const double a = p[i], b = p[i + 1], s = sgn * es[i];
+                p[i] = ec[i] * a + s * b;
+                p[i + 1] = -s * a + ec[i] * b;
                 i++;
             } else {
                 p[i] *= ec[i];
@@ -966,7 +948,7 @@ static int red_propagate(red *R, int *rc)
         if (lmax * (m + d - ta) > drift) { /* a new anchor at the step's start */
             const double t0 = tb[j] / om;
             exp_blocks(n2, lre, lim, t0 - ta, ec, es, ic, is);
-            rotate(n2, n2, lim, ec, es, Psi);
+            rotate(n2, n2, lim, ec, es, 1.0, Psi);
             ta = t0;
         }
         /* V^T rows (Rk: t2 rows of n2, row-major): R_g's rows times E(t_g - ta), and
@@ -983,9 +965,9 @@ static int red_propagate(red *R, int *rc)
             }
             exp_blocks(n2, lre, lim, m + (g ? d : -d) - ta, ec, es, ic, is);
             /* a row times E(s) is E(s)^T applied to the column: the transposed blocks */
-            rotate_t(n2, nt, lim, ec, es, rg);
+            rotate(n2, nt, lim, ec, es, -1.0, rg);
             memcpy(ug, Pt, (size_t)n2 * ng * sizeof *ug);
-            rotate(n2, ng, lim, ic, is, ug);
+            rotate(n2, ng, lim, ic, is, 1.0, ug);
         }
         /* VU = V^T U (t2 x g2) */
         cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, t2, g2, n2, 1.0, Rk, n2, U, n2, 0.0,
@@ -1026,7 +1008,7 @@ static int red_propagate(red *R, int *rc)
     }
     if (*rc == 1) {
         exp_blocks(n2, lre, lim, tb[nsub] / om - ta, ec, es, ic, is);
-        rotate(n2, n2, lim, ec, es, Psi);
+        rotate(n2, n2, lim, ec, es, 1.0, Psi);
         for (size_t m = 0; m < rr; m++)
             if (!isfinite(Psi[m])) {
                 *rc = 2;
