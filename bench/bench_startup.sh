@@ -6,8 +6,11 @@
 # first use only). Prints each time, its excess over the floor and the ratio to it.
 # The shared libraries each process maps are counted too (ldd): the dynamic loader is
 # most of a small run, so the instructions of `geardyn --version` are counted too
-# (valgrind callgrind: the same on any machine, whatever else runs). One thread (OPENBLAS_NUM_THREADS=1, OMP_NUM_THREADS=1), as the
-# project's other benchmarks.
+# (valgrind callgrind: the same on any machine, whatever else runs), and each run's CPU
+# time (user + system, best of N, as bench_ross.sh times geardyn) and minor page faults
+# (fewest of N): the kernel's share of a small run (exec, mapping, first touch of each
+# page) that instructions do not see. One thread (OPENBLAS_NUM_THREADS=1,
+# OMP_NUM_THREADS=1), as the project's other benchmarks.
 # With a second build folder (e.g. one of an older commit), its program is timed too,
 # the runs of the two interleaved (the machine may be shared), and the ratio printed.
 # usage: bench_startup.sh [BUILD] [N] [OTHER_BUILD]
@@ -17,31 +20,52 @@ B=${1:-build}
 N=${2:-40}
 OTHER=${3:-}
 export OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1
-echo "libraries mapped: libgeardyn.so $(ldd "$B/libgeardyn.so" | wc -l), geardyn $(ldd "$B/geardyn" | wc -l)"
-[ -z "$OTHER" ] || echo "libraries mapped ($OTHER): libgeardyn.so $(ldd "$OTHER/libgeardyn.so" | wc -l), geardyn $(ldd "$OTHER/geardyn" | wc -l)"
+# geardyn carries the library unless built with GD_STATIC_CLI=OFF (CMakeLists.txt)
+mapped() { # BUILD
+    local n
+    n=$(ldd "$1/geardyn" | wc -l)
+    if ldd "$1/geardyn" | grep -q 'libgeardyn\.so'; then
+        echo "geardyn $n (with libgeardyn.so), libgeardyn.so $(ldd "$1/libgeardyn.so" | wc -l)"
+    else
+        echo "geardyn $n (the library inside it), libgeardyn.so $(ldd "$1/libgeardyn.so" 2>/dev/null | wc -l)"
+    fi
+}
+echo "libraries mapped: $(mapped "$B")"
+[ -z "$OTHER" ] || echo "libraries mapped ($OTHER): $(mapped "$OTHER")"
 /usr/bin/python3 - "$B" "$N" "$OTHER" <<'PY'
 import os, subprocess, sys, time
 B, N, OTHER = sys.argv[1], int(sys.argv[2]), sys.argv[3]
 
-def best(cmd, env=None):
-    t = float("inf")
-    for _ in range(N):
-        t0 = time.perf_counter()
-        subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True, env=env)
-        t = min(t, time.perf_counter() - t0)
+CPU = {}  # command -> [best CPU time (user + system), fewest minor page faults]
+def once(cmd, env=None):
+    """wall time of one run; its CPU time and page faults kept in CPU"""
+    t0 = time.perf_counter()
+    p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env)
+    _, st, ru = os.wait4(p.pid, 0)
+    t = time.perf_counter() - t0
+    if st:
+        raise SystemExit("failed: " + " ".join(cmd))
+    c = CPU.setdefault(tuple(cmd), [float("inf"), 1 << 60])
+    c[0] = min(c[0], ru.ru_utime + ru.ru_stime)
+    c[1] = min(c[1], ru.ru_minflt)
     return t
 
+def best(cmd, env=None):
+    return min(once(cmd, env) for _ in range(N))
+
+def cpu(cmd):
+    c = CPU[tuple(cmd)]
+    return "CPU %5.2f ms, %4d page faults" % (c[0] * 1e3, c[1])
+
 floor = best(["/bin/true"])
-print("floor /bin/true: %.2f ms (best of %d)" % (floor * 1e3, N))
+print("floor /bin/true: %.2f ms (best of %d); %s" % (floor * 1e3, N, cpu(["/bin/true"])))
 gd = os.path.join(B, "geardyn")
 def best2(a, b):
     """best of N of each, interleaved"""
     ta = tb = float("inf")
     for _ in range(N):
         for cmd, which in ((a, 0), (b, 1)):
-            t0 = time.perf_counter()
-            subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
-            t = time.perf_counter() - t0
+            t = once(cmd)
             if which == 0:
                 ta = min(ta, t)
             else:
@@ -52,6 +76,7 @@ RUNS = [
     ("geardyn --version", ["--version"]),
     ("geardyn check examples/kumar2011_coupled.yaml (8 DOFs)", ["check", "examples/kumar2011_coupled.yaml"]),
     ("geardyn modal examples/kumar2011_coupled.yaml (8 DOFs)", ["modal", "examples/kumar2011_coupled.yaml"]),
+    ("geardyn modal bench/models/ross_example42.yaml --speed 3000rpm --modes 12 (42 DOFs)", ["modal", "bench/models/ross_example42.yaml", "--speed", "3000rpm", "--modes", "12"]),
     ("geardyn modal examples/rig2018.yaml --speed 3000rpm (170 DOFs)", ["modal", "examples/rig2018.yaml", "--speed", "3000rpm"]),
     ("geardyn modal bench/models/rig366.yaml --speed 3000rpm --modes 12 (366 DOFs)", ["modal", "bench/models/rig366.yaml", "--speed", "3000rpm", "--modes", "12"]),
 ]
@@ -60,9 +85,11 @@ for label, args in RUNS:
         t, t2 = best2([gd] + args, [os.path.join(OTHER, "geardyn")] + args)
         print("%-80s %7.2f ms  (floor + %6.2f ms, %5.1fx the floor); %s: %7.2f ms, %.2fx this" % (
             label, t * 1e3, (t - floor) * 1e3, t / floor, OTHER, t2 * 1e3, t2 / t))
+        print("%-80s %s; %s: %s" % ("", cpu([gd] + args), OTHER, cpu([os.path.join(OTHER, "geardyn")] + args)))
     else:
         t = best([gd] + args)
-        print("%-80s %7.2f ms  (floor + %6.2f ms, %5.1fx the floor)" % (label, t * 1e3, (t - floor) * 1e3, t / floor))
+        print("%-80s %7.2f ms  (floor + %6.2f ms, %5.1fx the floor); %s" % (
+            label, t * 1e3, (t - floor) * 1e3, t / floor, cpu([gd] + args)))
 
 # The instructions of each run (valgrind's callgrind, when installed): the same count on
 # any machine and under any load (a wall time on a shared machine is not); for --version

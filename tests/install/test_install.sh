@@ -2,9 +2,11 @@
 # The installed library, used as another program would (ctest: test_install).
 #   1. cmake --install of this build tree into a temporary prefix (nothing is built);
 #   2. every installed header compiles on its own, and none includes a private header;
-#   3. the installed CLI runs and finds the installed libgeardyn.so (RPATH $ORIGIN/..),
-#      writes an HTML plot with the installed plotly.js (share/geardyn) and a PNG through
-#      the installed plugin LIBDIR/geardyn/geardyn-raster.so (a located error without it);
+#   3. the installed CLI runs: it carries the library (GD_STATIC_CLI: it maps no
+#      libgeardyn.so) or finds the installed libgeardyn.so (RPATH $ORIGIN/..), as
+#      geardyn-mpi does; it writes an HTML plot with the installed plotly.js
+#      (share/geardyn) and a PNG through the installed plugin
+#      LIBDIR/geardyn/geardyn-raster.so, also when found on PATH (a located error without it);
 #   4. tests/install/consumer.c built with `pkg-config --cflags --libs geardyn` only
 #      (shared), then with `pkg-config --static` against libgeardyn.a;
 #   5. the same program built by tests/install/cmake_consumer (find_package(geardyn)),
@@ -78,7 +80,17 @@ done
 echo "  $n headers"
 
 echo "3. installed CLI"
-(unset LD_LIBRARY_PATH; check_loads_installed "installed CLI" "$prefix/bin/geardyn")
+# the program carries the library when the build's does (GD_STATIC_CLI)
+if ldd "$build/geardyn" | grep -q 'libgeardyn\.so'; then
+    (unset LD_LIBRARY_PATH; check_loads_installed "installed CLI" "$prefix/bin/geardyn")
+else
+    ! (unset LD_LIBRARY_PATH; ldd "$prefix/bin/geardyn") | grep -q geardyn ||
+        fail "the installed CLI loads a geardyn library; the build's carries it"
+    echo "  bin/geardyn carries the library (no libgeardyn.so mapped)"
+fi
+if [ -e "$prefix/bin/geardyn-mpi" ]; then
+    (unset LD_LIBRARY_PATH; check_loads_installed "installed geardyn-mpi" "$prefix/bin/geardyn-mpi")
+fi
 out=$(env -u LD_LIBRARY_PATH "$prefix/bin/geardyn" --version)
 [ "$out" = "geardyn $version" ] || fail "geardyn --version printed '$out'"
 echo "  $out"
@@ -98,6 +110,10 @@ if [ -e "$build/geardyn-raster.so" ]; then
     env -u LD_LIBRARY_PATH -u GEARDYN_RASTER_PLUGIN "$prefix/bin/geardyn" modal "$model" \
         --plot "$tmp/m.png" >/dev/null || fail "installed CLI: --plot m.png"
     head -c 8 "$tmp/m.png" | od -An -c | grep -q 'P   N   G' || fail "m.png is not a PNG"
+    # run as `geardyn` from PATH (the loader then knows the program by that bare name)
+    (cd "$tmp" && env -u LD_LIBRARY_PATH -u GEARDYN_RASTER_PLUGIN PATH="$prefix/bin:$PATH" \
+        geardyn modal "$OLDPWD/$model" --plot p.pdf >/dev/null) || fail "geardyn on PATH: --plot p.pdf"
+    head -c 5 "$tmp/p.pdf" | grep -q '%PDF-' || fail "p.pdf is not a PDF"
     # and only there: without it the installed CLI says which plugin is missing
     mv "$prefix/$libdir/geardyn/geardyn-raster.so" "$tmp/"
     env -u LD_LIBRARY_PATH -u GEARDYN_RASTER_PLUGIN "$prefix/bin/geardyn" modal "$model" \
@@ -106,7 +122,7 @@ if [ -e "$build/geardyn-raster.so" ]; then
         fail "the missing-plugin error does not name $libdir/geardyn/geardyn-raster.so: $(cat "$tmp/err")"
     [ ! -e "$tmp/n.png" ] || fail "n.png written without the plugin"
     mv "$tmp/geardyn-raster.so" "$prefix/$libdir/geardyn/"
-    echo "  --plot m.png through $libdir/geardyn/geardyn-raster.so"
+    echo "  --plot m.png (and p.pdf, geardyn on PATH) through $libdir/geardyn/geardyn-raster.so"
 fi
 
 echo "4a. pkg-config --cflags --libs geardyn"
