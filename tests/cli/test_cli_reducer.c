@@ -2,6 +2,8 @@
  * from the docs alone) and what that round found: `report` linearises the model's laws
  * (rolling bearings from geometry) about the static equilibrium, as `modal` does, and
  * never silently at q = 0, where a bearing with clearance holds nothing. */
+#include <math.h>
+
 #include "cli_support.h"
 #include "harness.h"
 
@@ -63,5 +65,34 @@ TEST(report_without_an_equilibrium_is_the_located_error)
     scratch_close(&s);
 }
 
+TEST(rounding_noise_of_zeta_is_shown_as_zero)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    /* Cooley & Parker's undamped set at 3000 rpm: the state-space eigenvalues carry
+       zeta -1.578e-15 (rounding); the tables showed it, read as a negative damping */
+    run_result r;
+    run(&s, &r, "modal examples/planetary_cooley_parker.yaml --speed 3000rpm --modes 3");
+    CHECK(r.code == 0);
+    CHECK(contains(r.out, "   1      229.286      1440.64      1440.64         0         0  "));
+    run_free(&r);
+    /* the JSON keeps the value */
+    cJSON *o = run_json_args(&s, "modal examples/planetary_cooley_parker.yaml --speed 3000rpm "
+                                 "--modes 3");
+    REQUIRE(o);
+    double z =
+        jnum(cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(o, "modes"), 0), "damping_ratio");
+    CHECK(z != 0 && fabs(z) < 1e-12);
+    cJSON_Delete(o);
+    /* campbell's smallest log decrement per mode: the same rule */
+    run(&s, &r, "campbell examples/planetary_cooley_parker.yaml --speeds 0:3000rpm:2 --modes 3");
+    CHECK(r.code == 0);
+    CHECK(contains(r.out, "   1  forward   lateral         265.678      229.286          0\n"));
+    CHECK(!contains(r.out, "e-15"));
+    run_free(&r);
+    scratch_close(&s);
+}
+
 RUN_TESTS(T(report_modes_are_those_of_modal_at_the_static_state),
-          T(report_without_an_equilibrium_is_the_located_error))
+          T(report_without_an_equilibrium_is_the_located_error),
+          T(rounding_noise_of_zeta_is_shown_as_zero))
