@@ -279,6 +279,8 @@ typedef struct { int nspeeds, ntracks, ndof; double *speeds; gd_campbell_track *
                  gd_critical_speed *critical; double instability_onset;
                  int instability_track; int nrigid; int sparse; ...; } gd_campbell_result;
 void gd_campbell_options_init(gd_campbell_options *opt);
+gd_status gd_campbell_default_modes(const gd_system *sys, const gd_campbell_options *opt,
+                                   int *nmodes, double *limit, gd_error *err);
 gd_status gd_campbell(const gd_system *sys, const gd_campbell_options *opt,
                       gd_campbell_result **out, gd_error *err);
 void gd_campbell_free(gd_campbell_result *r);

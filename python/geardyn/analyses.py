@@ -340,7 +340,9 @@ def campbell(system, speeds, modes=None, orders=(), shaft_orders=True, mesh_orde
              operating_point="static", torque=None):
     """Damped modes over `speeds` (rad/s array or "FROM:TO:COUNT"), tracked by MAC;
     critical speeds for the shaft, user (`orders`) and tooth-mesh orders; instability
-    onset. modes: elastic modes tracked (default 12, "all" or 0: all)."""
+    onset. modes: elastic modes tracked ("all" or 0: all; None, the default, as the CLI:
+    every mode up to 1.25 x the highest order at the top speed, plus 2, at least 12,
+    gd_campbell_default_modes). operating_point, torque: as modal()."""
     sp = sweep(speeds, "speed", "speeds")
     ords = np.ascontiguousarray(np.asarray(orders, dtype=np.float64).ravel())
     opt = ffi.new("gd_campbell_options *")
@@ -365,6 +367,10 @@ def campbell(system, speeds, modes=None, orders=(), shaft_orders=True, mesh_orde
     _operating(system, operating_point, torque, -1.0, False)
     out = ffi.new("gd_campbell_result **")
     err = new_error()
+    if modes is None:  # the CLI's count, from the orders at the top speed
+        n, limit = ffi.new("int *"), ffi.new("double *")
+        check(lib.gd_campbell_default_modes(system._handle, opt, n, limit, err), err)
+        opt.nmodes = n[0]
     check(lib.gd_campbell(system._handle, opt, out, err), err)
     return CampbellResult(system, ffi.gc(out[0], lib.gd_campbell_free))
 

@@ -44,3 +44,14 @@ def test_bad_operating_point_is_named(geardyn):
     with pytest.raises(geardyn.ModelError) as e:
         m.modal(operating_point="rest")
     assert e.value.field == "operating_point"
+
+
+def test_campbell_default_mode_count_as_the_cli(geardyn):
+    """campbell() without modes tracks the CLI's default count (the rig: 31 modes up to
+    1.25 x its 48x mesh order at 6000 rpm), not 12."""
+    rig = example("rig2018")
+    j = run_cli("campbell", rig, "--speeds", "0:6000rpm:3")
+    c = geardyn.load(rig).campbell("0:6000rpm:3")
+    assert c.ntracks == len(j["modes"]) == 31
+    for k, t in enumerate(j["modes"]):
+        assert same(c.frequency_hz[k], nums(t["frequency_hz"]))
