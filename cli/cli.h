@@ -187,6 +187,12 @@ int gd_cli_plot_finish_as(gd_status st, gd_plot *p, gd_error *err, const char *p
 /* v as "%WIDTH.PRECISIONg" in buf, or "-" in that width when it is NaN (no value: the
  * JSON's null; "nan" in a text table read as a number). Returns buf. */
 const char *gd_cli_num(char *buf, size_t size, int width, int precision, double v);
+/* A damping ratio (or log decrement) as a table shows it: 0 where |zeta| < 1e-9, the
+ * rounding of an undamped mode's eigenvalue in the state-space solve (-8.8e-28 read as a
+ * negative damping); the rule of the modal figure's titles (src/plot/plot_modal.c). The
+ * JSON and CSV keep the value. NaN stays NaN. */
+double gd_cli_zeta_shown(double zeta);
+double gd_cli_logdec_shown(double logdec);
 
 /* ---- SIGINT, SIGTERM, SIGHUP (signals.c) ---- */
 /* One process-wide handler for the three, installed by main before any thread starts

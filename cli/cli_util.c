@@ -159,6 +159,17 @@ void gd_cli_print_json(FILE *f, const cJSON *item)
     }
 }
 
+double gd_cli_zeta_shown(double zeta)
+{
+    return fabs(zeta) < 1e-9 ? 0.0 : zeta;
+}
+
+/* log decrement 2 pi zeta / sqrt(1 - zeta^2): 2 pi times the same threshold */
+double gd_cli_logdec_shown(double logdec)
+{
+    return fabs(logdec) < 2 * M_PI * 1e-9 ? 0.0 : logdec;
+}
+
 const char *gd_cli_num(char *buf, size_t size, int width, int precision, double v)
 {
     if (isnan(v))

@@ -110,7 +110,7 @@ static void print_tables(const gd_system *s, const gd_campbell_result *r, const 
         printf("%4d  %-9s %-10s %s %s %s\n", r->tracks[t].id, gd_whirl_names[r->tracks[t].whirl],
                gd_motion_names[r->tracks[t].dominant_motion], gd_cli_num(b[0], 32, 12, 6, f0),
                gd_cli_num(b[1], 32, 12, 6, f1),
-               gd_cli_num(b[2], 32, 10, 4, isfinite(ld) ? ld : NAN));
+               gd_cli_num(b[2], 32, 10, 4, isfinite(ld) ? gd_cli_logdec_shown(ld) : NAN));
     }
     snprintf(h0, sizeof h0, "f(%s)", gd_cli_freq_unit(u));
     printf("\ncritical speeds\n%4s  %-32s %12s %12s\n", "mode", "order", gd_cli_speed_unit(u), h0);

@@ -115,13 +115,14 @@ static void print_table(const gd_system *s, const gd_modal_result *r)
         if (isnan(md->log_decrement))
             snprintf(ld, sizeof ld, "-");
         else
-            snprintf(ld, sizeof ld, "%.4g", md->log_decrement);
+            snprintf(ld, sizeof ld, "%.4g", gd_cli_logdec_shown(md->log_decrement));
         printf("%4d %12.6g %12.6g %12.6g %9.4g %9s  %-10s %-10s %-14.14s %5.1f %5.1f %5.1f %5.1f "
                "%8.1e%s%s%s\n",
-               j + 1, md->frequency_hz, md->omega_n, md->omega_d, md->damping_ratio, ld,
-               gd_whirl_names[md->whirl], gd_motion_names[md->dominant_motion],
-               component_name(s, md->dominant_component), share(md, 0), share(md, 1), share(md, 2),
-               share(md, 3), md->residual, pl ? "  " : "", pl ? mode_class(s, r, j) : "",
+               j + 1, md->frequency_hz, md->omega_n, md->omega_d,
+               gd_cli_zeta_shown(md->damping_ratio), ld, gd_whirl_names[md->whirl],
+               gd_motion_names[md->dominant_motion], component_name(s, md->dominant_component),
+               share(md, 0), share(md, 1), share(md, 2), share(md, 3), md->residual, pl ? "  " : "",
+               pl ? mode_class(s, r, j) : "",
                md->unstable ? "  UNSTABLE" : (md->overdamped ? "  overdamped" : ""));
     }
 }

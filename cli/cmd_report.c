@@ -4,6 +4,7 @@
 
 #include "geardyn/blas.h"
 #include "cli.h"
+#include "operating_point.h"
 #include "options.h"
 #include "geardyn/report.h"
 
@@ -11,6 +12,7 @@ typedef struct report_args {
     gd_report_options opt;
     const char *out, *speeds, *speed, *coupling, *runup;
     gd_cli_sets sets;
+    gd_cli_operating op; /* the laws' operating point, as modal, campbell, frf, unbalance */
 } report_args;
 
 /* --run-up-revolutions N: a number (not only whole) from 16 to 1e5. */
@@ -48,6 +50,7 @@ static const gd_cli_opt OPTS[] = {
                "its length in turns of the reference shaft at the mean speed (more: a slower "
                "ramp, a sharper peak)",
                .def = "200", .call = parse_revolutions),
+    GD_CLI_ROWS_OPERATING(report_args, op),
     GD_CLI_ROW_COUPLING(report_args, coupling),
     GD_CLI_ROW_SET(report_args, sets),
     {0}};
@@ -99,6 +102,10 @@ int gd_cmd_report(int argc, char **argv)
     }
     if (speed && gd_cli_parse_speed(cmd, speed, &opt.speed)) {
         rc = GD_EXIT_INPUT;
+    } else if ((rc = gd_cli_operating_apply(s, &a.op, opt.speed >= 0 ? opt.speed : m->speed, 1))) {
+        /* the laws (rolling, journal bearings) linearised about the static equilibrium,
+         * as the analyses' own commands do: at q = 0 a bearing with clearance holds
+         * nothing and every mode of the report was rigid-body */
     } else {
         gd_blas_set_threads(1); /* the sweeps are parallel over points instead */
         gd_error err;

@@ -184,6 +184,7 @@ typedef struct gd_system {
     gd_dof *dof_type;
     int nmassless;
     int ncomponents;
+    int nlaws;
     ...;
 } gd_system;
 gd_status gd_system_build(const gd_model *model, gd_system **out, gd_error *err);
@@ -191,6 +192,9 @@ void gd_system_free(gd_system *sys);
 int gd_system_dof(const gd_system *sys, int node, gd_dof dof);
 gd_status gd_system_matrices(const gd_system *sys, double speed, gd_csc *M, gd_csc *K,
                              gd_csc *C, gd_csc *G, gd_error *err);
+typedef enum { GD_OPERATING_STATIC = 0, GD_OPERATING_ZERO = 1 } gd_operating_kind;
+gd_status gd_system_set_operating_point(gd_system *sys, gd_operating_kind kind,
+                                        const double *f0, const int *held, gd_error *err);
 const gd_element_type *gd_system_component(const gd_system *sys, int c, int *index,
                                       const char **name);
 
@@ -249,6 +253,8 @@ typedef struct { int ndof, nnodes, nbearings, nsprings, nmeshes, nholds; double 
                  double *law_forces; int nlaws; gd_static_law *laws;
                  ...; } gd_static_result;
 void gd_static_options_init(gd_static_options *opt);
+gd_status gd_static_operating_point(gd_system *sys, const gd_static_options *opt, int check,
+                                    gd_error *err);
 gd_status gd_static_run(const gd_system *sys, const gd_static_options *opt,
                         gd_static_result **out, gd_error *err);
 void gd_static_free(gd_static_result *res);
@@ -273,6 +279,8 @@ typedef struct { int nspeeds, ntracks, ndof; double *speeds; gd_campbell_track *
                  gd_critical_speed *critical; double instability_onset;
                  int instability_track; int nrigid; int sparse; ...; } gd_campbell_result;
 void gd_campbell_options_init(gd_campbell_options *opt);
+gd_status gd_campbell_default_modes(const gd_system *sys, const gd_campbell_options *opt,
+                                   int *nmodes, double *limit, gd_error *err);
 gd_status gd_campbell(const gd_system *sys, const gd_campbell_options *opt,
                       gd_campbell_result **out, gd_error *err);
 void gd_campbell_free(gd_campbell_result *r);

@@ -124,13 +124,42 @@ _KINDS = {"auto": lib.GD_MODAL_AUTO, "undamped": lib.GD_MODAL_UNDAMPED,
 _tls = threading.local()
 
 
-def modal(system, speed=None, modes=None, kind="auto", left=False, tol=None):
+
+def _operating(system, operating_point, torque, speed, check_eq):
+    """The state the model's laws (rolling and journal bearings) are linearised about,
+    as the CLI's `--operating-point static|zero` and `--torque` (docs/bearings.md):
+    "static" (the default) the static equilibrium under the mean loads, gravity and
+    `torque` (N m at the reference shaft's first node), solved at each speed; "zero"
+    q = 0. With check_eq (one speed: modal, frf) a missing equilibrium at `speed` raises
+    the located ModelError of `static`. Nothing to do for a model without laws."""
+    if operating_point not in ("static", "zero"):
+        raise model_error("operating_point", "unknown operating point '%s'" % (operating_point,),
+                          "use static or zero")
+    t = 0.0 if torque is None else quantity(torque, "torque", "torque")
+    if not system._handle.nlaws:
+        return
+    err = new_error()
+    if operating_point == "zero":
+        check(lib.gd_system_set_operating_point(system._handle, lib.GD_OPERATING_ZERO,
+                                                ffi.NULL, ffi.NULL, err), err)
+        return
+    so = ffi.new("gd_static_options *")
+    lib.gd_static_options_init(so)
+    so.speed = speed
+    so.input_torque = t
+    check(lib.gd_static_operating_point(system._handle, so, 1 if check_eq else 0, err), err)
+
+
+def modal(system, speed=None, modes=None, kind="auto", left=False, tol=None,
+          operating_point="static", torque=None):
     """Modes at reference speed `speed` (default: the model's). modes: number of lowest
     modes, "all" or 0 for all; None as the CLI: all up to 30 DOFs, else 20. kind:
     "auto" (damped when the model has damping or gyroscopics), "undamped", "damped".
     left: also the bi-orthonormal left eigenvectors (damped modes). tol: the relative
     residual the sparse solver iterates to (None: 1e-9, as `geardyn modal --tol`); each
-    mode's is in `residual` (and `residual_floor`, what rounding leaves)."""
+    mode's is in `residual` (and `residual_floor`, what rounding leaves).
+    operating_point, torque: the laws' operating point, as `--operating-point`,
+    `--torque` (the static equilibrium by default; docs/bearings.md)."""
     try:
         opt, out, err = _tls.modal
     except AttributeError:
@@ -154,6 +183,7 @@ def modal(system, speed=None, modes=None, kind="auto", left=False, tol=None):
             raise model_error("tol", "tol must be a number in [1e-15, 1), got %r" % (tol,),
                               "give a relative residual such as 1e-10")
         opt.tol = float(tol)
+    _operating(system, operating_point, torque, opt.speed, True)
     if lib.gd_modal_solve(system._handle, opt, out, err) != lib.GD_OK:
         check(err.status, err)
     return ModalResult(system, ffi.gc(out[0], lib.gd_modal_free))
@@ -306,10 +336,13 @@ _METHODS = {"auto": "GD_EIG_AUTO", "dense": "GD_EIG_DENSE", "sparse": "GD_EIG_SP
 
 
 def campbell(system, speeds, modes=None, orders=(), shaft_orders=True, mesh_orders=True,
-             method="auto", kind="auto", shift=None, mac_min=None, threads=0):
+             method="auto", kind="auto", shift=None, mac_min=None, threads=0,
+             operating_point="static", torque=None):
     """Damped modes over `speeds` (rad/s array or "FROM:TO:COUNT"), tracked by MAC;
     critical speeds for the shaft, user (`orders`) and tooth-mesh orders; instability
-    onset. modes: elastic modes tracked (default 12, "all" or 0: all)."""
+    onset. modes: elastic modes tracked ("all" or 0: all; None, the default, as the CLI:
+    every mode up to 1.25 x the highest order at the top speed, plus 2, at least 12,
+    gd_campbell_default_modes). operating_point, torque: as modal()."""
     sp = sweep(speeds, "speed", "speeds")
     ords = np.ascontiguousarray(np.asarray(orders, dtype=np.float64).ravel())
     opt = ffi.new("gd_campbell_options *")
@@ -331,8 +364,13 @@ def campbell(system, speeds, modes=None, orders=(), shaft_orders=True, mesh_orde
     if mac_min is not None:
         opt.mac_min = float(mac_min)
     opt.nthreads = whole(threads, "threads", 0, 4096)
+    _operating(system, operating_point, torque, -1.0, False)
     out = ffi.new("gd_campbell_result **")
     err = new_error()
+    if modes is None:  # the CLI's count, from the orders at the top speed
+        n, limit = ffi.new("int *"), ffi.new("double *")
+        check(lib.gd_campbell_default_modes(system._handle, opt, n, limit, err), err)
+        opt.nmodes = n[0]
     check(lib.gd_campbell(system._handle, opt, out, err), err)
     return CampbellResult(system, ffi.gc(out[0], lib.gd_campbell_free))
 
@@ -525,7 +563,7 @@ def _planetary_load(system, text):
 
 
 def frf(system, input, outputs, freqs, speed=None, method="direct", modes=None,
-        quantity="receptance", threads=0):
+        quantity="receptance", threads=0, operating_point="static", torque=None):
     """Frequency response to a unit force or moment at `input` (NODE.DOF, torque:NODE, or
     NODE.xy for directional FRFs; planetary:SET:sun_mesh:L or planetary:SET:ring_mesh:L,
     a planetary set's phased mesh excitation at mesh harmonic L per unit transmission
@@ -589,6 +627,7 @@ def frf(system, input, outputs, freqs, speed=None, method="direct", modes=None,
     if modes is not None:
         opt.nmodes = 0 if modes == "all" else whole(modes, "modes", 0, 1000000)
     opt.nthreads = whole(threads, "threads", 0, 4096)
+    _operating(system, operating_point, torque, opt.speed, True)
     out = ffi.new("gd_frf_result **")
     err = new_error()
     if load is None:
@@ -694,7 +733,8 @@ def _default_unbalance_outputs(system):
     return names[:64], [nodes[n] for n in orbits]
 
 
-def unbalance(system, speeds, outputs=None, orbits=None, threads=0):
+def unbalance(system, speeds, outputs=None, orbits=None, threads=0,
+              operating_point="static", torque=None):
     """Steady response to the model's unbalances over `speeds` (rad/s or
     "FROM:TO:COUNT"), one harmonic per distinct shaft speed. outputs: NODE.DOF,
     mesh:NAME, bearing:NAME.DIR, orbit:NODE; None: the CLI's defaults."""
@@ -726,6 +766,7 @@ def unbalance(system, speeds, outputs=None, orbits=None, threads=0):
     opt.noutputs, opt.outputs = len(specs), probes
     opt.norbits, opt.orbit_nodes = len(orb), orbit_arr
     opt.nthreads = whole(threads, "threads", 0, 4096)
+    _operating(system, operating_point, torque, -1.0, False)
     out = ffi.new("gd_unbalance_result **")
     err = new_error()
     check(lib.gd_unbalance_response(system._handle, opt, out, err), err)

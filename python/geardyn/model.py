@@ -366,8 +366,9 @@ class System:
         return Matrices(*out, dofs=list(self.dofs))
 
     # the analyses (analyses.py, transient.py), each documented there
-    def modal(self, speed=None, modes=None, kind="auto", left=False, tol=None):
-        return _analyses.modal(self, speed, modes, kind, left, tol)
+    def modal(self, speed=None, modes=None, kind="auto", left=False, tol=None,
+              operating_point="static", torque=None):
+        return _analyses.modal(self, speed, modes, kind, left, tol, operating_point, torque)
 
     def campbell(self, speeds, **kw):
         return _analyses.campbell(self, speeds, **kw)
