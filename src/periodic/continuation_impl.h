@@ -121,6 +121,7 @@ double gd_per_inf_norm(const double *x, int n);
 int gd_per_solve_warm(ctx *c, double *X, double lam, int *it, double *res);
 int gd_per_solve_fixed(ctx *c, double **X, double **t, double lam, int *it, double *res, int rest);
 int gd_per_follow_H(ctx *c, double **X, double **t);
-int gd_per_run_branch(ctx *c, const double *vals, int nv);
+struct gd_per_arc_ops;
+int gd_per_run_branch(ctx *c, const struct gd_per_arc_ops *ops, const double *vals, int nv);
 
 #endif
