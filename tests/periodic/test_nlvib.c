@@ -326,8 +326,9 @@ TEST(nlvib_example_03_default_options)
  * run-up: harmonic balance on the Duffing oscillator upwards (H = 7) jumps to the lower
  * branch after the fold at 1.2696 (before 2026-12-02 the 7 values from 1.3 on failed:
  * no start but the neighbours); shooting on NLvib's example 03 downwards (11 frequencies,
- * the CLI's defaults) solves 0.62 and 0.59 from the last point after the secant failed and
- * locates the two Neimark-Sacker points between them, those of its arclength
+ * the CLI's defaults) solves 0.62 from the last point (the secant across the jump at 0.65
+ * fails there) and 0.59 from the secant, and locates the two Neimark-Sacker points between
+ * them, those of its arclength
  * (docs/periodic.md, "Choosing the method": 0.618607, 0.581901; before, the history was
  * cleared after the failed 0.62, so 0.59 failed too and neither was located). */
 TEST(run_ups_jump_at_folds)
