@@ -144,6 +144,27 @@ static int hb_grow(void *m, double **X, double **t, double **D, double lam, int 
     return 2;
 }
 
+/* A direction begins: its range, the branch's H back to the first (the backward branch
+ * starts at the run's first H, as the forward one did). */
+static int hb_direction(void *m, int dir, double v0, double v1)
+{
+    hb_arc *a = m;
+    ctx *c = a->c;
+    c->dir = dir;
+    c->v0 = v0;
+    c->v1 = v1;
+    c->want_H = 0;
+    a->nb0 = c->res->nbifurcations;
+    return dir < 0 && gd_per_hb_setup(c, a->H0);
+}
+
+/* A contact law's zigzags of folds merged into one turn, for the direction's branch. */
+static void hb_branch_end(void *m)
+{
+    hb_arc *a = m;
+    gd_per_merge_zigzags(a->c, a->nb0);
+}
+
 const gd_per_arc_ops gd_per_hb_ops = {.size = hb_size,
                                       .step = hb_step,
                                       .begin = NULL,
@@ -153,6 +174,8 @@ const gd_per_arc_ops gd_per_hb_ops = {.size = hb_size,
                                       .start = hb_start,
                                       .correct = hb_correct,
                                       .tangent = hb_tangent,
+                                      .direction = hb_direction,
+                                      .branch_end = hb_branch_end,
                                       .give_up = NULL,
                                       .measure = hb_measure,
                                       .solve_at = hb_solve_at,
@@ -165,12 +188,11 @@ const gd_per_arc_ops gd_per_hb_ops = {.size = hb_size,
                                       .grow = hb_grow};
 
 /* Both directions' branch of harmonic balance by the shared drivers, its operations ops
- * (the method table's row). 0 done, 1 an error. */
-int gd_per_run_branch(ctx *c, const gd_per_arc_ops *ops, const double *vals, int nv)
+ * (the method table's row), H0 the first H. 0 done, 1 an error. */
+int gd_per_run_branch(ctx *c, const gd_per_arc_ops *ops, const double *vals, int nv, int H0)
 {
-    hb_arc a = {.c = c};
+    hb_arc a = {.c = c, .H0 = H0};
     const size_t nm = 2 * (size_t)c->nf;
-    const int nb0 = c->res->nbifurcations;
     int rc = 1;
     a.mre = malloc(nm * sizeof *a.mre);
     a.mim = malloc(nm * sizeof *a.mim);
@@ -187,9 +209,9 @@ int gd_per_run_branch(ctx *c, const gd_per_arc_ops *ops, const double *vals, int
                                .user = c->opt->user,
                                .dsmin = 1e-7,
                                .corners = c->corners};
-        rc = gd_per_branch(&br, vals, nv, c->opt->method == GD_PER_SEQUENTIAL);
+        rc = gd_per_directions(&br, vals, nv, c->opt->both_directions,
+                               c->opt->method == GD_PER_SEQUENTIAL);
     }
-    if (!rc) gd_per_merge_zigzags(c, nb0);
     free(a.mre);
     free(a.mim);
     free(a.mre1);

@@ -59,9 +59,15 @@ typedef struct gd_per_arc_ops {
     /* the unit tangent at a converged point, oriented along prev (or lambda by sign) */
     int (*tangent)(void *m, const double *y, double lam, const double *prev, double sign,
                    double *t);
-    int (*give_up)(void *m); /* NULL, or 1 after a failed step: the branch stops */
+    /* NULL, or a direction begins (dir 1 from the first requested value, -1 from the last,
+     * v0 to v1): 0 ok, 1 an error */
+    int (*direction)(void *m, int dir, double v0, double v1);
+    void (*branch_end)(void *m); /* NULL, or after a direction's branch that succeeded */
+    /* NULL, or 1 when the point's budget ran out: after a failed arclength step the branch
+     * stops, after a failed start of a sequential point no further start is tried */
+    int (*give_up)(void *m);
     void (*measure)(void *m, const double *y1, double l1); /* the step end's multipliers */
-    /* the fixed-value solve at v from y (Newton; the problem at v made current) */
+    /* the fixed-value solve at v from y (Newton; it makes the problem at v current) */
     int (*solve_at)(void *m, double *y, double v, int *it, double *res);
     int (*emit)(void *m, const double *y, double v, int it, double res); /* 1: out of memory */
     int (*fail)(void *m, double v); /* v not solved, the reason recorded; 1: out of memory */
@@ -103,10 +109,13 @@ int gd_per_arclength(const gd_per_arc *a, const double *vals, int nv, int i0, do
  * emitted and grown, then natural continuation to the last (sequential 1) or the
  * pseudo-arclength (gd_per_arclength). 0 done, 1 an error (out of memory). */
 int gd_per_branch(const gd_per_arc *a, const double *vals, int nv, int sequential);
+/* The branch from the first requested value to the last and, both 1, back from the last
+ * (driver/sequential.c): each a direction of gd_per_branch. 0 done, 1 an error. */
+int gd_per_directions(const gd_per_arc *a, const double *vals, int nv, int both, int sequential);
 
 /* One row of the method table: the kind and name (the JSON's "method"), the run of the
  * whole branch (both directions) into res, which builds its context and hands it with the
- * row's operations (NULL: the run has its own loop) to gd_per_branch. GD_OK, or the
+ * row's operations (NULL: the run has its own loop) to gd_per_directions. GD_OK, or the
  * located error. */
 typedef gd_status (*gd_per_run_fn)(const gd_per_arc_ops *ops, const gd_system *sys,
                                    const gd_transient_spec *spec, const gd_periodic_param *param,

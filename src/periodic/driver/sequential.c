@@ -1,4 +1,4 @@
-/* The branch of one direction for every method of the table (method.h): the first point,
+/* The branch of every method of the table (method.h), in each direction: the first point,
  * then the natural continuation of --sequential (one fixed-value solve per requested value
  * from the points before it) or the pseudo-arclength (arclength.c). Before (2026-12-02)
  * harmonic balance (continuation.c) and shooting (shooting/shooting_natural.c) each had
@@ -169,5 +169,21 @@ int gd_per_branch(const gd_per_arc *a, const double *vals, int nv, int seq)
         rc = gd_per_arclength(a, vals, nv, i0, &y, vals[i0]);
 done:
     free(y);
+    return rc;
+}
+
+int gd_per_directions(const gd_per_arc *a, const double *vals, int nv, int both, int seq)
+{
+    const gd_per_arc_ops *o = a->ops;
+    double *rev = malloc((size_t)nv * sizeof *rev);
+    int rc = !rev;
+    for (int d = 0; d < (both ? 2 : 1) && !rc; d++) {
+        for (int i = 0; i < nv; i++)
+            rev[i] = d ? vals[nv - 1 - i] : vals[i];
+        rc = o->direction && o->direction(a->m, d ? -1 : 1, rev[0], rev[nv - 1]);
+        if (!rc) rc = gd_per_branch(a, rev, nv, seq);
+        if (!rc && o->branch_end) o->branch_end(a->m);
+    }
+    free(rev);
     return rc;
 }

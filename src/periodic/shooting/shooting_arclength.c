@@ -406,6 +406,15 @@ static int op_tangent(void *m, const double *y, double lam, const double *prev, 
     return tangent(m, y, lam, prev, sign, t);
 }
 
+static int op_direction(void *m, int dir, double v0, double v1)
+{
+    shoot *sh = ((arc *)m)->sh;
+    sh->dir = dir;
+    sh->v0 = v0;
+    sh->v1 = v1;
+    return 0;
+}
+
 static int op_give_up(void *m)
 {
     return ((arc *)m)->sh->budget_hit;
@@ -508,6 +517,8 @@ const gd_per_arc_ops gd_per_sh_ops = {.size = op_size,
                                       .start = op_start,
                                       .correct = op_correct,
                                       .tangent = op_tangent,
+                                      .direction = op_direction,
+                                      .branch_end = NULL,
                                       .give_up = op_give_up,
                                       .measure = op_measure,
                                       .solve_at = op_solve_at,
@@ -518,7 +529,7 @@ const gd_per_arc_ops gd_per_sh_ops = {.size = op_size,
                                       .rescale = op_rescale,
                                       .grow = NULL};
 
-/* One direction's branch by the shared drivers (method.h) over ops. 0 done, 1 out of
+/* Both directions' branch by the shared drivers (method.h) over ops. 0 done, 1 out of
  * memory. */
 static int branch(shoot *sh, const gd_per_arc_ops *ops, const double *vals, int nv)
 {
@@ -559,7 +570,8 @@ static int branch(shoot *sh, const gd_per_arc_ops *ops, const double *vals, int 
                            .user = sh->opt->user,
                            .dsmin = 1e-6,
                            .corners = 0};
-    rc = gd_per_branch(&br, vals, nv, sh->opt->method == GD_PER_SEQUENTIAL);
+    rc = gd_per_directions(&br, vals, nv, sh->opt->both_directions,
+                           sh->opt->method == GD_PER_SEQUENTIAL);
 done:
     free(w);
     free(a.ipiv);
@@ -584,17 +596,7 @@ gd_status gd_per_shoot_method(const gd_per_arc_ops *ops, const gd_system *sys,
     sh.nrec = nrecords;
     sh.res = res;
     sh.ndir = opt->both_directions ? 2 : 1;
-    double *rev = malloc((size_t)nvalues * sizeof *rev);
-    int rc = !rev;
-    for (int d = 0; d < sh.ndir && !rc; d++) {
-        sh.dir = d ? -1 : 1;
-        for (int i = 0; i < nvalues; i++)
-            rev[i] = d ? values[nvalues - 1 - i] : values[i];
-        sh.v0 = rev[0];
-        sh.v1 = rev[nvalues - 1];
-        rc = branch(&sh, ops, rev, nvalues);
-    }
-    free(rev);
+    const int rc = branch(&sh, ops, values, nvalues);
     res->steps += sh.steps;
     gd_per_sh_free(&sh);
     if (rc) return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
