@@ -1,7 +1,9 @@
-/* Bifurcations between continuation steps (continuation_impl.h): the critical
+/* Harmonic balance's bifurcation rules (continuation_impl.h; its row's, method_table.c):
+ * between two arclength steps (gd_per_hb_detect, the driver's detect), the critical
  * multiplier's modulus through 1 located by secant iterations on points of the branch
  * (period doubling, Neimark-Sacker, branch point), folds at the parameter's extremum
- * where it turns, and close runs of folds merged into one turn. */
+ * where it turns (a contact law's at the highest tooth of the sampled saw), and close runs
+ * of folds merged into one turn. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -10,6 +12,7 @@
 
 #include "geardyn/transient_model.h"
 #include "periodic/continuation_impl.h"
+#include "periodic/method.h"
 #include "periodic/periodic_impl.h"
 
 /* multiplier categories outside the unit circle: 0 real > 0, 1 real < 0, 2 complex;
@@ -495,3 +498,89 @@ void gd_per_merge_zigzags(ctx *c, int nb0)
 }
 
 /* ---------------------------------------------------------------- branches */
+
+/* A fold where the parameter itself turns: the chords before and after X (Xb, lamp: the
+ * point before, have_p: it exists at this H; X1, l1: the step's end) move it in opposite
+ * directions, so the branch from the point before X through X to X1 holds its extremum,
+ * located there by gd_per_locate_turn (Yt, ut: work) and added. Not the sign of the
+ * tangent's parameter component: with a contact law the sampled residual is only
+ * piecewise smooth and the tangent is not trusted near a turn (NLvib's example 03 at
+ * 2048 samples: 12 flips and one turn; at auto H a turn at 0.75560 with the component at
+ * +0.007 on both sides; the backlash pair at H = 20, 1024 samples and 81 speeds: a flip
+ * between 479.630 and 479.768 rad/s with the branch's maximum beyond both, a fold the
+ * tangent rule dropped). A step that turns within itself and back is refused by the step
+ * control (the tangent turned more than 25 deg). 1 a fold, 0 none, -1 an error. */
+static int fold_at_turn(ctx *c, const double *Xb, double lamp, int have_p, const double *X,
+                        double lam, const double *X1, double l1, double ds, double *Yt, double *ut)
+{
+    const double cl = l1 - lam, cp = have_p ? lam - lamp : 0.0;
+    const double tiny = 1e-13 * c->sl;
+    if (!(fabs(cl) > tiny && fabs(cp) > tiny && cp * cl < 0)) return 0;
+    double lf;
+    if (gd_per_locate_turn(c, Xb, lamp, X, lam, X1, l1, &lf, Yt, ut) < 0) return -1;
+    const double sg = lam >= lamp ? 1.0 : -1.0;
+    if (c->min_samples > 0) {
+        /* a contact law: the turn is the highest tooth of the saw there, once
+         * per zigzag (a turn within its reach and no higher takes it) */
+        const int reach =
+            c->climb_dir != 0 && c->climb_H == c->H && fabs(lf - c->climbed) < 1e-2 * c->sl;
+        const int same = reach && c->climb_dir == sg * c->dir;
+        if (same && sg * lf > sg * c->climbed) c->climbed = lf;
+        if (!reach) {
+            double best = lf;
+            if (gd_per_climb_teeth(c, Yt, ut, ds / 16, sg, &best) < 0) return -1;
+            c->climbed = best;
+            c->climb_dir = (int)sg * c->dir;
+            c->climb_H = c->H;
+        }
+        /* a turn the other way within the zigzag's reach is one of its
+         * teeth: left as located, gd_per_merge_zigzags takes the run */
+        if (!reach || same) lf = c->climbed;
+    }
+    if (gd_per_add_bif(c, GD_BIF_FOLD, lf, NAN, NAN)) return -1;
+    return 1;
+}
+
+/* Harmonic balance's bifurcation rule between two arclength steps (method.h, detect; the
+ * row's rule, method_table.c): a fold where the parameter turns (fold_at_turn), and a
+ * multiplier through the circle (two meeting on the real axis only move between
+ * categories), located on the branch; a real one through +1 at a fold is the fold. */
+int gd_per_hb_detect(void *m, const gd_per_arc_step *s)
+{
+    hb_arc *a = m;
+    ctx *c = a->c;
+    const int n = s->n;
+    double *Yt = NULL, *ut = NULL;
+    int fold = 0;
+    {
+        const double cl = s->l1 - s->lam, cp = s->have_b ? s->lam - s->lb : 0.0;
+        const double tiny = 1e-13 * c->sl;
+        if (fabs(cl) > tiny && fabs(cp) > tiny && cp * cl < 0) { /* its work only then */
+            Yt = calloc((size_t)n + 1, sizeof *Yt);
+            ut = calloc((size_t)n + 1, sizeof *ut);
+            fold = !Yt || !ut ? -1
+                              : fold_at_turn(c, s->yb, s->lb, s->have_b, s->y, s->lam, s->y1, s->l1,
+                                             s->ds, Yt, ut);
+            free(Yt);
+            free(ut);
+        }
+    }
+    if (fold < 0) return -1;
+    if (a->have_mu && a->stable1 >= 0) {
+        int tot = a->out[0] + a->out[1] + a->out[2], tot1 = a->out1[0] + a->out1[1] + a->out1[2];
+        if (tot != tot1) {
+            int mm = tot < tot1 ? tot1 : tot, ia, ib;
+            double ga = gd_per_ranked(c, a->mre, a->mim, mm, &ia) - 1.0;
+            double gb = gd_per_ranked(c, a->mre1, a->mim1, mm, &ib) - 1.0;
+            /* a tangent that flipped on this step: the turn is seen on the next */
+            c->near_fold = fold || s->fold_prev || s->t[n] * s->t1[n] < 0;
+            if (gd_per_locate(c, mm, s->y, s->lam, ga, s->y1, s->l1, gb, s->t, a->mre1, a->mim1))
+                return -1;
+        }
+        memcpy(a->out, a->out1, sizeof a->out);
+        memcpy(a->mre, a->mre1, 2 * (size_t)c->nf * sizeof *a->mre);
+        memcpy(a->mim, a->mim1, 2 * (size_t)c->nf * sizeof *a->mim);
+    }
+    a->have_mu = a->have_mu && a->stable1 >= 0;
+    return fold;
+}

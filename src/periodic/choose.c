@@ -10,6 +10,7 @@
 
 #include "geardyn/transient_model.h"
 #include "periodic/condensed/chb.h"
+#include "periodic/method.h"
 #include "periodic/multifreq/qphb_impl.h"
 #include "periodic/periodic_impl.h"
 
@@ -17,10 +18,10 @@
 
 const char *gd_per_kind_name(gd_per_kind k)
 {
-    return k == GD_PER_SHOOTING    ? "shooting"
-           : k == GD_PER_AUTO      ? "auto"
-           : k == GD_PER_MULTIFREQ ? "multi_frequency_hb"
-                                   : "harmonic_balance";
+    /* the rows' names (method_table.c); auto is no row */
+    if (k == GD_PER_AUTO) return "auto";
+    const gd_per_method_row *row = gd_per_method_find(k);
+    return (row ? row : gd_per_method_find(GD_PER_HB))->name;
 }
 
 /* The time one integration reached (its progress report). */

@@ -1,7 +1,8 @@
-/* Harmonic balance's branch (continuation_impl.h): the first point, then sequential steps
- * from the first requested value to the last, or pseudo-arclength by the shared driver
- * (arclength.c, method.h) over harmonic balance's operations defined here (corrector,
- * tangent, multipliers, the fold and crossing rules, the scale of X, adaptive H). */
+/* Harmonic balance's branch (continuation_impl.h) by the shared drivers (method.h:
+ * driver/sequential.c, the first point and --sequential; driver/arclength.c) over harmonic
+ * balance's operations defined here (gd_per_hb_ops: its start from rest, corrector,
+ * tangent, multipliers, the scale of X, adaptive H; its bifurcation rule is
+ * bifurcation.c's gd_per_hb_detect). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,149 +14,6 @@
 #include "periodic/method.h"
 #include "periodic/periodic_impl.h"
 
-/* The first requested value that converges, from rest or from a warm start (the ones
- * before it fail with the reason): its index (nv: none), its solution in *X, or -1 when
- * a failure could not be recorded. */
-static int first_point(ctx *c, const double *vals, int nv, double **X, double *lam, int *it,
-                       double *res)
-{
-    int i0;
-    for (i0 = 0; i0 < nv; i0++) {
-        *lam = vals[i0];
-        memset(*X, 0, (size_t)(c->h.n + 1) * sizeof **X);
-        if (!gd_per_get_stage(c, *lam) || (gd_per_solve_fixed(c, X, NULL, *lam, it, res, 1) &&
-                                           gd_per_solve_warm(c, *X, *lam, it, res))) {
-            if (gd_per_fail_point(c, *lam, c->reason)) return -1;
-            continue;
-        }
-        break;
-    }
-    return i0;
-}
-
-/* --sequential: each requested value after vals[i0] (X solved at lam, n unknowns) from
- * the secant through the last two solutions (the plain last solution if the secant
- * start fails): on a smooth curve its error is second order in the step (the
- * [JMSTHelical] curve: starting residual 4.5e-3 -> 1e-3, Newton iterations 601 -> 584
- * over 300 speeds). 0 done, 1 an error. */
-static int sequential(ctx *c, const double *vals, int nv, int i0, double **Xio, double lam, int n)
-{
-    double *X = *Xio;
-    int it = 0;
-    double res = NAN;
-    int rc = 1;
-    double *Xp = NULL, lamx = lam, lamp = lam;
-    for (int i = i0 + 1; i < nv; i++) {
-        double *Xs = malloc((size_t)(c->h.n + 1) * sizeof *Xs);
-        if (!Xs) {
-            free(Xp);
-            goto done;
-        }
-        memcpy(Xs, X, (size_t)(c->h.n + 1) * sizeof *Xs);
-        c->steps++;
-        int staged = gd_per_get_stage(c, vals[i]) != NULL, ok = 0;
-        if (staged && Xp && lamx != lamp) {
-            double f = (vals[i] - lamx) / (lamx - lamp);
-            for (int j = 0; j < n; j++)
-                Xs[j] += f * (X[j] - Xp[j]);
-            ok = !gd_per_solve_fixed(c, &Xs, NULL, vals[i], &it, &res, 0);
-            if (!ok && c->h.n == n) {
-                memcpy(Xs, X, (size_t)(n + 1) * sizeof *Xs);
-                staged = gd_per_get_stage(c, vals[i]) != NULL;
-            } else if (!ok) {
-                staged = 0; /* H grew on the way: no second start */
-            }
-        }
-        if (staged && !ok) ok = !gd_per_solve_fixed(c, &Xs, NULL, vals[i], &it, &res, 0);
-        if (!ok) {
-            free(Xs);
-            if (gd_per_fail_point(c, vals[i], c->reason)) {
-                free(Xp);
-                goto done;
-            }
-            continue;
-        }
-        free(Xp);
-        Xp = X;
-        lamp = lamx;
-        lamx = vals[i];
-        if (c->h.n != n) { /* H grew: the last solution no longer matches */
-            free(Xp);
-            Xp = NULL;
-        }
-        X = Xs;
-        n = c->h.n;
-        if (gd_per_emit_point(c, X, vals[i], it, res)) {
-            free(Xp);
-            goto done;
-        }
-        if (c->opt->adaptive && c->want_H > c->H) { /* the secant spans two H */
-            if (gd_per_follow_H(c, &X, NULL)) {
-                free(Xp);
-                goto done;
-            }
-            free(Xp);
-            Xp = NULL;
-            n = c->h.n;
-        }
-    }
-    free(Xp);
-    rc = 0;
-done:
-    *Xio = X;
-    return rc;
-}
-
-/* A fold where the parameter itself turns: the chords before and after X (Xb, lamp: the
- * point before, have_p: it exists at this H; X1, l1: the step's end) move it in opposite
- * directions, so the branch from the point before X through X to X1 holds its extremum,
- * located there by gd_per_locate_turn (Yt, ut: work) and added. Not the sign of the
- * tangent's parameter component: with a contact law the sampled residual is only
- * piecewise smooth and the tangent is not trusted near a turn (NLvib's example 03 at
- * 2048 samples: 12 flips and one turn; at auto H a turn at 0.75560 with the component at
- * +0.007 on both sides; the backlash pair at H = 20, 1024 samples and 81 speeds: a flip
- * between 479.630 and 479.768 rad/s with the branch's maximum beyond both, a fold the
- * tangent rule dropped). A step that turns within itself and back is refused by the step
- * control (the tangent turned more than 25 deg). 1 a fold, 0 none, -1 an error. */
-static int fold_at_turn(ctx *c, const double *Xb, double lamp, int have_p, const double *X,
-                        double lam, const double *X1, double l1, double ds, double *Yt, double *ut)
-{
-    const double cl = l1 - lam, cp = have_p ? lam - lamp : 0.0;
-    const double tiny = 1e-13 * c->sl;
-    if (!(fabs(cl) > tiny && fabs(cp) > tiny && cp * cl < 0)) return 0;
-    double lf;
-    if (gd_per_locate_turn(c, Xb, lamp, X, lam, X1, l1, &lf, Yt, ut) < 0) return -1;
-    const double sg = lam >= lamp ? 1.0 : -1.0;
-    if (c->min_samples > 0) {
-        /* a contact law: the turn is the highest tooth of the saw there, once
-         * per zigzag (a turn within its reach and no higher takes it) */
-        const int reach =
-            c->climb_dir != 0 && c->climb_H == c->H && fabs(lf - c->climbed) < 1e-2 * c->sl;
-        const int same = reach && c->climb_dir == sg * c->dir;
-        if (same && sg * lf > sg * c->climbed) c->climbed = lf;
-        if (!reach) {
-            double best = lf;
-            if (gd_per_climb_teeth(c, Yt, ut, ds / 16, sg, &best) < 0) return -1;
-            c->climbed = best;
-            c->climb_dir = (int)sg * c->dir;
-            c->climb_H = c->H;
-        }
-        /* a turn the other way within the zigzag's reach is one of its
-         * teeth: left as located, gd_per_merge_zigzags takes the run */
-        if (!reach || same) lf = c->climbed;
-    }
-    if (gd_per_add_bif(c, GD_BIF_FOLD, lf, NAN, NAN)) return -1;
-    return 1;
-}
-
-/* Harmonic balance's operations for the shared driver (arclength.c): its context, the
- * multipliers of the step's start (mre, mim, their categories out) and end (mre1, mim1). */
-typedef struct hb_arc {
-    ctx *c;
-    double *mre, *mim, *mre1, *mim1;
-    int have_mu, stable1, out[3], out1[3];
-} hb_arc;
-
 static int hb_size(void *m)
 {
     return ((hb_arc *)m)->c->h.n;
@@ -164,6 +22,19 @@ static int hb_size(void *m)
 static void hb_step(void *m)
 {
     ((hb_arc *)m)->c->steps++;
+}
+
+static int hb_prepare(void *m, double v)
+{
+    return !gd_per_get_stage(((hb_arc *)m)->c, v);
+}
+
+/* From rest, then from a short transient's last period (its reason kept). */
+static int hb_cold(void *m, double **X, double v, int *it, double *res)
+{
+    ctx *c = ((hb_arc *)m)->c;
+    memset(*X, 0, (size_t)(c->h.n + 1) * sizeof **X);
+    return gd_per_solve_fixed(c, X, NULL, v, it, res, 1) && gd_per_solve_warm(c, *X, v, it, res);
 }
 
 /* X's scale: its largest coefficient (1 when all are 0), the same for every unknown. */
@@ -232,49 +103,6 @@ static int hb_fail(void *m, double v)
     return gd_per_fail_point(c, v, c->reason);
 }
 
-/* Bifurcations between the two steps: a fold where the parameter turns (fold_at_turn),
- * and a multiplier through the circle (two meeting on the real axis only move between
- * categories), located on the branch; a real one through +1 at a fold is the fold. */
-static int hb_detect(void *m, const gd_per_arc_step *s)
-{
-    hb_arc *a = m;
-    ctx *c = a->c;
-    const int n = s->n;
-    double *Yt = NULL, *ut = NULL;
-    int fold = 0;
-    {
-        const double cl = s->l1 - s->lam, cp = s->have_b ? s->lam - s->lb : 0.0;
-        const double tiny = 1e-13 * c->sl;
-        if (fabs(cl) > tiny && fabs(cp) > tiny && cp * cl < 0) { /* its work only then */
-            Yt = calloc((size_t)n + 1, sizeof *Yt);
-            ut = calloc((size_t)n + 1, sizeof *ut);
-            fold = !Yt || !ut ? -1
-                              : fold_at_turn(c, s->yb, s->lb, s->have_b, s->y, s->lam, s->y1, s->l1,
-                                             s->ds, Yt, ut);
-            free(Yt);
-            free(ut);
-        }
-    }
-    if (fold < 0) return -1;
-    if (a->have_mu && a->stable1 >= 0) {
-        int tot = a->out[0] + a->out[1] + a->out[2], tot1 = a->out1[0] + a->out1[1] + a->out1[2];
-        if (tot != tot1) {
-            int mm = tot < tot1 ? tot1 : tot, ia, ib;
-            double ga = gd_per_ranked(c, a->mre, a->mim, mm, &ia) - 1.0;
-            double gb = gd_per_ranked(c, a->mre1, a->mim1, mm, &ib) - 1.0;
-            /* a tangent that flipped on this step: the turn is seen on the next */
-            c->near_fold = fold || s->fold_prev || s->t[n] * s->t1[n] < 0;
-            if (gd_per_locate(c, mm, s->y, s->lam, ga, s->y1, s->l1, gb, s->t, a->mre1, a->mim1))
-                return -1;
-        }
-        memcpy(a->out, a->out1, sizeof a->out);
-        memcpy(a->mre, a->mre1, 2 * (size_t)c->nf * sizeof *a->mre);
-        memcpy(a->mim, a->mim1, 2 * (size_t)c->nf * sizeof *a->mim);
-    }
-    a->have_mu = a->have_mu && a->stable1 >= 0;
-    return fold;
-}
-
 /* X's scale to its present size: the tangent re-expressed in it. */
 static void hb_rescale(void *m, const double *X, double *D, double *t)
 {
@@ -300,33 +128,70 @@ static int hb_grow(void *m, double **X, double **t, double **D, double lam, int 
     ctx *c = ((hb_arc *)m)->c;
     if (!c->opt->adaptive || c->want_H <= c->H) return 0;
     if (gd_per_follow_H(c, X, t)) return -1;
-    free(*D);
-    *D = malloc(((size_t)c->h.n + 1) * sizeof **D);
-    if (!*D) return -1;
-    hb_fill_scales(c, *D, c->h.n);
+    if (D) {
+        free(*D);
+        *D = malloc(((size_t)c->h.n + 1) * sizeof **D);
+        if (!*D) return -1;
+        hb_fill_scales(c, *D, c->h.n);
+    }
+    if (!it) return 1;
     double res;
-    return gd_per_solve_fixed(c, X, t, lam, it, &res, 0) ? 2 : 1;
+    if (!gd_per_solve_fixed(c, X, t, lam, it, &res, 0)) return 1;
+    char why[320];
+    snprintf(why, sizeof why, "%s", c->reason);
+    snprintf(c->reason, sizeof c->reason,
+             "the point at %.6g did not converge again at H = %d: %.200s", lam, c->H, why);
+    return 2;
 }
 
-static const gd_per_arc_ops hb_ops = {.size = hb_size,
+/* A direction begins: its range, the branch's H back to the first (the backward branch
+ * starts at the run's first H, as the forward one did). */
+static int hb_direction(void *m, int dir, double v0, double v1)
+{
+    hb_arc *a = m;
+    ctx *c = a->c;
+    c->dir = dir;
+    c->v0 = v0;
+    c->v1 = v1;
+    c->want_H = 0;
+    a->nb0 = c->res->nbifurcations;
+    return dir < 0 && gd_per_hb_setup(c, a->H0);
+}
+
+/* A contact law's zigzags of folds merged into one turn, for the direction's branch. */
+static void hb_branch_end(void *m)
+{
+    hb_arc *a = m;
+    gd_per_merge_zigzags(a->c, a->nb0);
+}
+
+const gd_per_arc_ops gd_per_hb_ops = {.size = hb_size,
                                       .step = hb_step,
+                                      .begin = NULL,
+                                      .prepare = hb_prepare,
+                                      .cold = hb_cold,
+                                      .cold_name = "rest",
                                       .start = hb_start,
                                       .correct = hb_correct,
                                       .tangent = hb_tangent,
+                                      .direction = hb_direction,
+                                      .branch_end = hb_branch_end,
                                       .give_up = NULL,
                                       .measure = hb_measure,
                                       .solve_at = hb_solve_at,
                                       .emit = hb_emit,
                                       .fail = hb_fail,
-                                      .detect = hb_detect,
+                                      .detect = gd_per_hb_detect,
+                                      /* none: docs/periodic.md, "Continuation" */
+                                      .between = NULL,
                                       .rescale = hb_rescale,
                                       .grow = hb_grow};
 
-/* Pseudo-arclength from X (*Xio, solved at vals[i0] = lam) to the last requested value by
- * the shared driver. 0 done, 1 an error. */
-static int arclength(ctx *c, const double *vals, int nv, int i0, double **Xio, double lam)
+/* Both directions' branch of harmonic balance by the shared drivers, its operations ops
+ * (the method table's row), H0 the first H. 0 done, 1 an error. */
+int gd_per_run_branch(ctx *c, const gd_per_arc_ops *ops, const double *vals, int nv, int H0)
 {
-    hb_arc a = {.c = c};
+    hb_arc a = {.c = c, .H0 = H0};
     const size_t nm = 2 * (size_t)c->nf;
     int rc = 1;
     a.mre = malloc(nm * sizeof *a.mre);
@@ -334,7 +199,7 @@ static int arclength(ctx *c, const double *vals, int nv, int i0, double **Xio, d
     a.mre1 = malloc(nm * sizeof *a.mre1);
     a.mim1 = malloc(nm * sizeof *a.mim1);
     if (a.mre && a.mim && a.mre1 && a.mim1) {
-        const gd_per_arc br = {.ops = &hb_ops,
+        const gd_per_arc br = {.ops = ops,
                                .m = &a,
                                .why = c->reason,
                                .why_cap = sizeof c->reason,
@@ -344,52 +209,12 @@ static int arclength(ctx *c, const double *vals, int nv, int i0, double **Xio, d
                                .user = c->opt->user,
                                .dsmin = 1e-7,
                                .corners = c->corners};
-        rc = gd_per_arclength(&br, vals, nv, i0, Xio, lam);
+        rc = gd_per_directions(&br, vals, nv, c->opt->both_directions,
+                               c->opt->method == GD_PER_SEQUENTIAL);
     }
     free(a.mre);
     free(a.mim);
     free(a.mre1);
     free(a.mim1);
-    return rc;
-}
-
-int gd_per_run_branch(ctx *c, const double *vals, int nv)
-{
-    int it = 0, rc = 1;
-    const int nb0 = c->res->nbifurcations;
-    double res = NAN, lam = 0.0;
-    double *X = calloc((size_t)c->h.n + 1, sizeof *X);
-    if (!X) return 1;
-    const int i0 = first_point(c, vals, nv, &X, &lam, &it, &res);
-    if (i0 < 0) goto done;
-    if (i0 == nv) {
-        rc = 0;
-        goto done;
-    }
-    if (gd_per_emit_point(c, X, lam, it, res)) goto done;
-    if (c->opt->adaptive && c->want_H > c->H) {
-        /* the first point needed more harmonics: the branch starts from it solved again
-         * at them (padded with zeros it is no solution there: the backlash pair over
-         * 300..2500 rad/s went from 300 to 292 rad/s on a step of 1e-6, a false fold at
-         * 241.85 and 300 rad/s reported twice) */
-        if (gd_per_follow_H(c, &X, NULL)) goto done;
-        if (gd_per_solve_fixed(c, &X, NULL, lam, &it, &res, 0)) {
-            snprintf(c->reason, sizeof c->reason,
-                     "the first point did not converge again at H = %d", c->H);
-            rc = 0;
-            for (int i = i0 + 1; i < nv; i++)
-                if (gd_per_fail_point(c, vals[i], c->reason)) rc = 1;
-            goto done;
-        }
-    }
-    if (c->opt->method == GD_PER_SEQUENTIAL)
-        rc = sequential(c, vals, nv, i0, &X, lam, c->h.n);
-    else if (i0 == nv - 1)
-        rc = 0;
-    else
-        rc = arclength(c, vals, nv, i0, &X, lam);
-done:
-    if (!rc) gd_per_merge_zigzags(c, nb0);
-    free(X);
     return rc;
 }

@@ -121,6 +121,22 @@ double gd_per_inf_norm(const double *x, int n);
 int gd_per_solve_warm(ctx *c, double *X, double lam, int *it, double *res);
 int gd_per_solve_fixed(ctx *c, double **X, double **t, double lam, int *it, double *res, int rest);
 int gd_per_follow_H(ctx *c, double **X, double **t);
-int gd_per_run_branch(ctx *c, const double *vals, int nv);
+/* Harmonic balance's context for the shared drivers (method.h; continuation.c): the run's,
+ * the multipliers of the step's start (mre, mim, their categories out) and end (mre1,
+ * mim1). */
+typedef struct hb_arc {
+    ctx *c;
+    double *mre, *mim, *mre1, *mim1;
+    int have_mu, stable1, out[3], out1[3];
+    int H0;  /* the run's first H (each direction starts there) */
+    int nb0; /* the bifurcations before this direction's branch */
+} hb_arc;
+
+struct gd_per_arc_ops;
+struct gd_per_arc_step;
+int gd_per_run_branch(ctx *c, const struct gd_per_arc_ops *ops, const double *vals, int nv, int H0);
+/* Harmonic balance's bifurcation rule between two arclength steps (bifurcation.c; m an
+ * hb_arc): 1 a fold, 0 none, -1 an error. */
+int gd_per_hb_detect(void *m, const struct gd_per_arc_step *s);
 
 #endif

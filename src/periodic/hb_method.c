@@ -1,8 +1,8 @@
 /* Harmonic balance's row of the method table (method.h): its context (continuation_impl.h)
  * for the run, the first H and its cap from the workspace's memory, the sampling its laws
  * need (backlash 128, a kink 1024 samples and corners), both directions by
- * gd_per_run_branch (continuation.c), which hands its operations to the shared
- * pseudo-arclength driver (arclength.c). */
+ * gd_per_run_branch (continuation.c), which hands its context and operations (the row's
+ * ops) to the shared drivers (driver/). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,10 +15,11 @@
 
 /* The method table's row for harmonic balance (method.h): the workspace, the first H and
  * its cap from memory, the sampling the laws need, both directions by gd_per_run_branch. */
-gd_status gd_per_hb_run(const gd_system *sys, const gd_transient_spec *spec,
-                        const gd_periodic_param *param, const double *values, int nvalues,
-                        const gd_periodic_options *opt, const gd_tr_record *records, int nrecords,
-                        gd_periodic_result *res, gd_error *err)
+gd_status gd_per_hb_run(const gd_per_arc_ops *ops, const gd_system *sys,
+                        const gd_transient_spec *spec, const gd_periodic_param *param,
+                        const double *values, int nvalues, const gd_periodic_options *opt,
+                        const gd_tr_record *records, int nrecords, gd_periodic_result *res,
+                        gd_error *err)
 {
     ctx c;
     memset(&c, 0, sizeof c);
@@ -155,21 +156,8 @@ gd_status gd_per_hb_run(const gd_system *sys, const gd_transient_spec *spec,
         }
         c.H = H0;
     }
-    int rc = 0;
-    double *rev = malloc((size_t)nvalues * sizeof *rev);
-    if (!rev || gd_per_hb_setup(&c, H0)) rc = 1;
     c.ndir = opt->both_directions ? 2 : 1;
-    for (int d = 0; d < c.ndir && !rc; d++) {
-        c.dir = d ? -1 : 1;
-        for (int i = 0; i < nvalues; i++)
-            rev[i] = d ? values[nvalues - 1 - i] : values[i];
-        c.v0 = rev[0];
-        c.v1 = rev[nvalues - 1];
-        c.want_H = 0;
-        if (d && gd_per_hb_setup(&c, H0)) rc = 1;
-        if (!rc) rc = gd_per_run_branch(&c, rev, nvalues);
-    }
-    free(rev);
+    int rc = gd_per_hb_setup(&c, H0) || gd_per_run_branch(&c, ops, values, nvalues, H0);
     gd_per_stage_clear(&c.st[0]);
     gd_per_stage_clear(&c.st[1]);
     gd_hb_free(&c.h);

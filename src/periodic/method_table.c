@@ -6,11 +6,13 @@
 #include "periodic/multifreq/qphb_impl.h"
 
 /* The multi-frequency torus (multifreq/qp_run.c): speed continuation only. */
-static gd_status multifreq_run(const gd_system *sys, const gd_transient_spec *spec,
-                               const gd_periodic_param *param, const double *values, int nvalues,
-                               const gd_periodic_options *opt, const gd_tr_record *records,
-                               int nrecords, gd_periodic_result *res, gd_error *err)
+static gd_status multifreq_run(const gd_per_arc_ops *ops, const gd_system *sys,
+                               const gd_transient_spec *spec, const gd_periodic_param *param,
+                               const double *values, int nvalues, const gd_periodic_options *opt,
+                               const gd_tr_record *records, int nrecords, gd_periodic_result *res,
+                               gd_error *err)
 {
+    (void)ops;
     if (param)
         return gd_error_set(err, GD_EINPUT, "", 0, 0, "method",
                             "continue in speed, or use hb or shooting",
@@ -20,10 +22,22 @@ static gd_status multifreq_run(const gd_system *sys, const gd_transient_spec *sp
     return GD_OK;
 }
 
+/* Each row's operations hold its bifurcation rules: detect between two arclength steps,
+ * between (NULL: none) between two points of --sequential.
+ * - hb (hb_method.c, continuation.c, bifurcation.c, hb/, condensed/, floquet/): a fold where
+ *   the chord's parameter turns (a contact law's at the highest tooth of the sampled saw,
+ *   zigzags merged); a multiplier through the circle located on the branch by Illinois
+ *   iterations; none between sequential points (docs/periodic.md, "Continuation": on the
+ *   [JMSTHelical] spur curve the search took 150 s and did not settle).
+ * - shooting (shooting/): a fold where the tangent's parameter component changes sign, a
+ *   multiplier through the circle, both located on the branch by Illinois iterations;
+ *   between sequential points, a multiplier through the circle located by fixed-value
+ *   solves (the real one through +1 reported as the fold it usually is).
+ * - multifreq (multifreq/): its own speed loop, no row operations. */
 static const gd_per_method_row methods[] = {
-    {GD_PER_HB, "harmonic_balance", gd_per_hb_run},          /* run.c, hb/, condensed/ */
-    {GD_PER_SHOOTING, "shooting", gd_per_shoot_method},      /* shooting/ */
-    {GD_PER_MULTIFREQ, "multi_frequency_hb", multifreq_run}, /* multifreq/ */
+    {GD_PER_HB, "harmonic_balance", gd_per_hb_run, &gd_per_hb_ops},
+    {GD_PER_SHOOTING, "shooting", gd_per_shoot_method, &gd_per_sh_ops},
+    {GD_PER_MULTIFREQ, "multi_frequency_hb", multifreq_run, NULL},
 };
 
 const gd_per_method_row *gd_per_method_find(gd_per_kind kind)

@@ -251,18 +251,11 @@ double gd_hb_memory_limit(const gd_periodic_options *opt);
 int gd_hb_memory_params(const gd_system *sys, const gd_transient_spec *spec, double speed, int *nf,
                         int *nterm, int *ngroup, long *knz);
 void gd_hb_memory_params_tr(gd_transient *tr, int *nf, int *nterm, int *ngroup, long *knz);
-int gd_hb_samples_for(int H);
+int gd_hb_samples_for(int H); /* the default AFT samples: 4 (H + 1) up to 2^k, >= 16 */
 /* Statistics of one record from Nr samples over one period (points.c): mean, rms,
  * peak-to-peak, harmonics 0..H (plan: R2HC of length Nr, buf -> out). 0 ok. */
 int gd_per_sample_stats(const double *v, int Nr, int H, fftw_plan plan, double *buf, double *out,
                         gd_per_record_stats *st);
-/* The branch by shooting (shooting.c) into res (points, bifurcations, steps). 0 ok, 1 out of
- * memory. */
-int gd_per_shoot_run(
-    const gd_system *sys, const gd_transient_spec *spec, const gd_periodic_param *param,
-    const double *values, int nvalues, const gd_periodic_options *opt, const gd_tr_record *records,
-    int nrecords,
-    gd_periodic_result *res); /* the default AFT samples: 4 (H + 1) up to 2^k, >= 16 */
 
 /* The spec with its time-harmonic loads at frequency value (frequency.c): *out a copy of
  * spec whose loads are *loads (the caller frees it). 0 ok; 1 with msg (no such load). */

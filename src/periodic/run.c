@@ -141,7 +141,8 @@ gd_status gd_per_run_kind(const gd_system *sys, const gd_transient_spec *spec,
     if (!res) return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
     res->nrecords = nrecords;
     res->method = mt->kind;
-    gd_status st = mt->run(sys, spec, param, values, nvalues, opt, records, nrecords, res, err);
+    gd_status st =
+        mt->run(mt->ops, sys, spec, param, values, nvalues, opt, records, nrecords, res, err);
     if (st) {
         gd_periodic_result_free(res);
         return st;

@@ -322,6 +322,64 @@ TEST(nlvib_example_03_default_options)
     fx_free(&f);
 }
 
+/* Natural continuation (--sequential, driver/sequential.c) through the folds, as a slow
+ * run-up: harmonic balance on the Duffing oscillator upwards (H = 7) jumps to the lower
+ * branch after the fold at 1.2696 (before 2026-12-02 the 7 values from 1.3 on failed:
+ * no start but the neighbours); shooting on NLvib's example 03 downwards (11 frequencies,
+ * the CLI's defaults) solves 0.62 from the last point (the secant across the jump at 0.65
+ * fails there) and 0.59 from the secant, and locates the two Neimark-Sacker points between
+ * them, those of its arclength
+ * (docs/periodic.md, "Choosing the method": 0.618607, 0.581901; before, the history was
+ * cleared after the failed 0.62, so 0.59 failed too and neither was located). */
+TEST(run_ups_jump_at_folds)
+{
+    gd_periodic_param prm = {.name = "load frequency", .load_frequency = 1};
+    gd_error err;
+    for (int m = 0; m < 2; m++) {
+        fx f;
+        REQUIRE(load(&f,
+                     m ? GD_SOURCE_DIR "/examples/nlvib_ex03.yaml"
+                       : GD_SOURCE_DIR "/examples/duffing.yaml",
+                     NULL));
+        gd_transient_model *tm = NULL;
+        REQUIRE(gd_transient_model_build(f.s, &tm, &err) == GD_OK);
+        gd_periodic_options opt;
+        gd_periodic_options_init(&opt);
+        opt.method = GD_PER_SEQUENTIAL;
+        opt.kind = m ? GD_PER_SHOOTING : GD_PER_HB;
+        opt.harmonics = 7;
+        opt.adaptive = m;
+        const int nv = m ? 11 : 23;
+        double vals[23];
+        for (int i = 0; i < nv; i++)
+            vals[i] = m ? 0.8 - 0.03 * i : 0.5 + 0.05 * i;
+        gd_periodic_result *r = NULL;
+        REQUIRE(gd_periodic_run(f.s, &tm->spec, &prm, vals, nv, &opt, NULL, 0, &r, &err) == GD_OK);
+        int bad = 0, ns = 0;
+        double at[2] = {NAN, NAN};
+        for (int i = 0; i < r->npoints; i++)
+            bad += !r->points[i].converged;
+        for (int b = 0; b < r->nbifurcations; b++)
+            if (r->bifurcations[b].type == GD_BIF_NEIMARK_SACKER && ns < 2)
+                at[ns++] = r->bifurcations[b].parameter;
+        printf("  %s: %d points, %d not converged, %d steps, Neimark-Sacker %.10f %.10f\n",
+               m ? "example 03, shooting" : "Duffing, harmonic balance", r->npoints, bad, r->steps,
+               at[0], at[1]);
+        CHECK(r->npoints == nv && bad == 0 && r->steps == nv - 1);
+        if (m) {
+            CHECK(ns == 2);
+            CHECK_REL(at[0], 0.618607, 1e-5);
+            CHECK_REL(at[1], 0.581901, 1e-5);
+            CHECK(r->points[6].stable == 1 && r->points[7].stable == 0); /* 0.62, 0.59 */
+        } else { /* on the lower branch beyond the fold (the CLI's |mu|max at 1.6) */
+            CHECK_REL(r->points[nv - 1].mu_max, 0.9064904622, 1e-8);
+        }
+        gd_periodic_result_free(r);
+        gd_transient_model_free(tm);
+        fx_free(&f);
+    }
+}
+
 RUN_TESTS(T(duffing_equals_nlvib_example_01), T(unilateral_spring_equals_nlvib_example_03),
           T(nlvib_example_03_whole_curve), T(nlvib_example_03_default_options),
-          T(duffing_folds_whatever_the_grid))
+          T(duffing_folds_whatever_the_grid), T(run_ups_jump_at_folds))

@@ -14,6 +14,7 @@
 #include "geardyn/unbalance.h"
 #include "harness.h"
 #include "model_support.h"
+#include "periodic/method.h"
 #include "periodic/periodic_impl.h"
 
 #ifndef M_PI
@@ -1121,6 +1122,130 @@ TEST(record_zero_to_rounding_has_no_truncation_error)
     CHECK(b[0].p2p_error > 0.1);
 }
 
+/* A toy method for the natural-continuation driver (driver/sequential.c): one unknown on
+ * y = v^2 up to v = 7, then flat at 49; its Newton converges from a start within 6.5 of the
+ * solution and never at v = 4; its own start (cold) converges except at v = 4; no problem
+ * can be made at v = 0. Every solve is logged as s<v>:<start> (c<v> for the cold start),
+ * every between-rule call as b<la>-<lb>. */
+typedef struct toy {
+    char why[256], log[512], blog[128], fails[128];
+    int steps, nemit;
+} toy;
+
+static double toy_y(double v)
+{
+    return v <= 7 ? v * v : 49.0;
+}
+
+static void toy_log(char *buf, size_t cap, const char *fmt, double a, double b)
+{
+    size_t len = strlen(buf);
+    snprintf(buf + len, cap - len, fmt, a, b);
+}
+
+static int toy_size(void *m)
+{
+    (void)m;
+    return 1;
+}
+
+static void toy_step(void *m)
+{
+    ((toy *)m)->steps++;
+}
+
+static int toy_prepare(void *m, double v)
+{
+    toy *t = m;
+    if (v != 0) return 0;
+    snprintf(t->why, sizeof t->why, "no problem at 0");
+    return 1;
+}
+
+static int toy_solve(void *m, double *y, double v, int *it, double *res)
+{
+    toy *t = m;
+    toy_log(t->log, sizeof t->log, " s%g:%g", v, y[0]);
+    *it = 1;
+    *res = 0;
+    if (v == 4 || !(fabs(y[0] - toy_y(v)) < 6.5)) {
+        snprintf(t->why, sizeof t->why, "toy Newton failed at %g", v);
+        return 1;
+    }
+    y[0] = toy_y(v);
+    return 0;
+}
+
+static int toy_cold(void *m, double **y, double v, int *it, double *res)
+{
+    toy *t = m;
+    toy_log(t->log, sizeof t->log, " c%g", v, 0);
+    *it = 5;
+    *res = 0;
+    if (v == 4) {
+        snprintf(t->why, sizeof t->why, "toy start failed at %g", v);
+        return 1;
+    }
+    (*y)[0] = toy_y(v);
+    return 0;
+}
+
+static int toy_emit(void *m, const double *y, double v, int it, double res)
+{
+    toy *t = m;
+    (void)it;
+    (void)res;
+    t->nemit++;
+    return !(y[0] == toy_y(v));
+}
+
+static int toy_fail(void *m, double v)
+{
+    toy *t = m;
+    size_t len = strlen(t->fails);
+    snprintf(t->fails + len, sizeof t->fails - len, " %g(%s)", v, t->why);
+    return 0;
+}
+
+static int toy_between(void *m, const double *ya, double la, const double *yb, double lb)
+{
+    toy *t = m;
+    (void)ya;
+    (void)yb;
+    toy_log(t->blog, sizeof t->blog, " b%g-%g", la, lb);
+    return 0;
+}
+
+/* The rules of the natural continuation, one method for all (issue 33 item 7): the first
+ * point from the method's own start after a value whose problem cannot be made; then the
+ * secant through the last two points, else the last point, else the method's own start (the
+ * failed starts' reasons kept); a failed value keeps the history (5 starts from the secant
+ * through 2 and 3); the bifurcation rule between consecutive points only; a step per value
+ * after the first point. */
+TEST(sequential_driver_rules)
+{
+    static const gd_per_arc_ops ops = {.size = toy_size,
+                                       .step = toy_step,
+                                       .prepare = toy_prepare,
+                                       .cold = toy_cold,
+                                       .cold_name = "the toy start",
+                                       .solve_at = toy_solve,
+                                       .emit = toy_emit,
+                                       .fail = toy_fail,
+                                       .between = toy_between};
+    toy t;
+    memset(&t, 0, sizeof t);
+    const gd_per_arc a = {.ops = &ops, .m = &t, .why = t.why, .why_cap = sizeof t.why};
+    const double v[9] = {0, 1, 2, 3, 4, 5, 6, 7, 8};
+    CHECK(gd_per_branch(&a, v, 9, 1) == 0);
+    printf("  starts:%s\n  between:%s\n  failed:%s\n", t.log, t.blog, t.fails);
+    CHECK(!strcmp(t.log, " c1 s2:1 s3:7 s4:14 s4:9 c4 s5:19 s6:33 s7:47 s8:62 s8:49"));
+    CHECK(!strcmp(t.blog, " b1-2 b2-3 b5-6 b6-7 b7-8"));
+    CHECK(!strcmp(t.fails, " 0(no problem at 0) 4(toy Newton failed at 4; from the toy "
+                           "start: toy start failed at 4)"));
+    CHECK(t.nemit == 7 && t.steps == 7);
+}
+
 RUN_TESTS(T(linear_equals_unbalance), T(mathieu_tongue_period_doubling),
           T(floquet_against_monodromy), T(backlash_against_transient),
           T(sfd_pair_against_transient), T(backlash_folds_traced_through_unstable_branch),
@@ -1128,4 +1253,4 @@ RUN_TESTS(T(linear_equals_unbalance), T(mathieu_tongue_period_doubling),
           T(chen_sfd_neimark_sacker_matches_transient), T(lowrank_solver_equals_sparse_lu),
           T(iterative_capacitance_equals_dense), T(few_magnus_steps_leave_stability_undecided),
           T(option_bounds_named), T(extreme_low_speeds_scale_the_step_exponential),
-          T(record_zero_to_rounding_has_no_truncation_error))
+          T(record_zero_to_rounding_has_no_truncation_error), T(sequential_driver_rules))

@@ -83,6 +83,7 @@ static int emit_crossed(const gd_per_arc *a, const double *vals, int nv, int i0,
         for (int start = 0; bad && start < 3; start++) {
             for (int k = 0; k < n; k++)
                 yg[k] = start == 0 ? (1 - sig) * y[k] + sig * y1[k] : start == 1 ? y[k] : y1[k];
+            if (o->begin) o->begin(a->m);
             bad = o->solve_at(a->m, yg, v, &itg, &resg);
         }
         if (bad ? o->fail(a->m, v) : o->emit(a->m, yg, v, itg, resg)) return 1;

@@ -1,4 +1,8 @@
-/* Pseudo-arclength continuation of shooting's orbits (docs/periodic.md, "Shooting"; Keller
+/* Shooting's row of the method table (method.h): the entry gd_per_shoot_method and its
+ * operations gd_per_sh_ops, which the shared drivers (driver/: the first point, --sequential,
+ * the pseudo-arclength) call.
+ *
+ * Pseudo-arclength continuation of shooting's orbits (docs/periodic.md, "Shooting"; Keller
  * 1977, Seydel 2010 Sec. 4.5): the unknowns are the initial state y0 and the value lambda
  * (speed or parameter), the equations
  *
@@ -326,12 +330,40 @@ static int op_size(void *m)
     return ((arc *)m)->N;
 }
 
-static void op_step(void *m)
+/* A point's solve begins: its budget, and no warm start seen yet (a budget message cites
+ * only this point's). */
+static void op_begin(void *m)
 {
     shoot *sh = ((arc *)m)->sh;
-    sh->steps++;
     sh->work = 0.0;
+    sh->t_mono = 0.0;
+    sh->warm_change = NAN;
     sh->budget_hit = 0;
+}
+
+static void op_step(void *m)
+{
+    ((arc *)m)->sh->steps++;
+    op_begin(m);
+}
+
+static int op_prepare(void *m, double v)
+{
+    return gd_per_sh_problem(((arc *)m)->sh, v);
+}
+
+/* A short transient from rest (or the static state under the loads), which a stable orbit
+ * attracts, then Newton. */
+static int op_cold(void *m, double **y, double v, int *it, double *res)
+{
+    shoot *sh = ((arc *)m)->sh;
+    (void)v;
+    return gd_per_sh_warm(sh, *y) || gd_per_sh_newton(sh, *y, it, res);
+}
+
+static int op_between(void *m, const double *ya, double la, const double *yb, double lb)
+{
+    return gd_per_sh_between(((arc *)m)->sh, ya, la, yb, lb);
 }
 
 /* The start's multipliers (the crossings compare like with like), its scales and tangent. */
@@ -374,6 +406,15 @@ static int op_tangent(void *m, const double *y, double lam, const double *prev, 
     return tangent(m, y, lam, prev, sign, t);
 }
 
+static int op_direction(void *m, int dir, double v0, double v1)
+{
+    shoot *sh = ((arc *)m)->sh;
+    sh->dir = dir;
+    sh->v0 = v0;
+    sh->v1 = v1;
+    return 0;
+}
+
 static int op_give_up(void *m)
 {
     return ((arc *)m)->sh->budget_hit;
@@ -390,8 +431,6 @@ static void op_measure(void *m, const double *y1, double l1)
 static int op_solve_at(void *m, double *y, double v, int *it, double *res)
 {
     shoot *sh = ((arc *)m)->sh;
-    sh->work = 0.0;
-    sh->budget_hit = 0;
     return gd_per_sh_problem(sh, v) || gd_per_sh_newton(sh, y, it, res);
 }
 
@@ -469,51 +508,43 @@ static void op_rescale(void *m, const double *y, double *D, double *t)
         t[i] /= nt;
 }
 
-static const gd_per_arc_ops shoot_ops = {.size = op_size,
-                                         .step = op_step,
-                                         .start = op_start,
-                                         .correct = op_correct,
-                                         .tangent = op_tangent,
-                                         .give_up = op_give_up,
-                                         .measure = op_measure,
-                                         .solve_at = op_solve_at,
-                                         .emit = op_emit,
-                                         .fail = op_fail,
-                                         .detect = op_detect,
-                                         .rescale = op_rescale,
-                                         .grow = NULL};
+const gd_per_arc_ops gd_per_sh_ops = {.size = op_size,
+                                      .step = op_step,
+                                      .begin = op_begin,
+                                      .prepare = op_prepare,
+                                      .cold = op_cold,
+                                      .cold_name = "a transient",
+                                      .start = op_start,
+                                      .correct = op_correct,
+                                      .tangent = op_tangent,
+                                      .direction = op_direction,
+                                      .branch_end = NULL,
+                                      .give_up = op_give_up,
+                                      .measure = op_measure,
+                                      .solve_at = op_solve_at,
+                                      .emit = op_emit,
+                                      .fail = op_fail,
+                                      .detect = op_detect,
+                                      .between = op_between,
+                                      .rescale = op_rescale,
+                                      .grow = NULL};
 
-/* The first converged point from vals[*i0] on (a transient warm start, then Newton), each
- * failed value reported. 0 with one found or none left; 1 out of memory. */
-static int first_point(shoot *sh, const double *vals, int nv, int *i0, double *y)
+/* Both directions' branch by the shared drivers (method.h) over ops. 0 done, 1 out of
+ * memory. */
+static int branch(shoot *sh, const gd_per_arc_ops *ops, const double *vals, int nv)
 {
-    for (; *i0 < nv; ++*i0) {
-        const double v = vals[*i0];
-        int it = 0;
-        double res = NAN;
-        sh->work = 0.0;
-        sh->t_mono = 0.0;
-        sh->budget_hit = 0;
-        if (!gd_per_sh_problem(sh, v) && !gd_per_sh_warm(sh, y) &&
-            !gd_per_sh_newton(sh, y, &it, &res))
-            return gd_per_sh_emit(sh, v, y, it, res);
-        if (gd_per_sh_fail(sh, v)) return 1;
-    }
-    return 0;
-}
-
-int gd_per_sh_arclength(shoot *sh, const double *vals, int nv)
-{
+    /* the state's size and the dense or matrix-free path from the first problem that can
+     * be made (none: every value fails with its reason, by the driver) */
+    for (int k = 0; k < nv && gd_per_sh_problem(sh, vals[k]); k++)
+        ;
     const int N = sh->N;
-    int i0 = 0, rc = 1;
+    int rc = 1;
     arc a = {.sh = sh, .N = N, .kry = !sh->dense};
-    /* y (N + 1, the driver's), Fl, P2, Dold, b (N + 1), J (dense) or f, x (N + 1) and pt
-     * (Krylov), multipliers 4 N */
+    /* Fl, P2, Dold, b (N + 1), J (dense) or f, x (N + 1) and pt (Krylov), multipliers 4 N */
     const size_t nJ = a.kry ? 3 * (size_t)N + 1 : (size_t)(N + 1) * (N + 1);
-    double *y = calloc((size_t)N + 1, sizeof *y);
     double *w = malloc(((size_t)8 * N + 1 + nJ) * sizeof *w);
     a.ipiv = malloc((size_t)(N + 1) * sizeof *a.ipiv);
-    if (!y || !w || !a.ipiv) goto done;
+    if (!w || !a.ipiv) goto done;
     a.Fl = w;
     a.P2 = a.Fl + N;
     a.Dold = a.P2 + N;
@@ -529,12 +560,7 @@ int gd_per_sh_arclength(shoot *sh, const double *vals, int nv)
         a.pt = a.x + N + 1;
         a.J = NULL;
     }
-    if (first_point(sh, vals, nv, &i0, y)) goto done;
-    if (i0 >= nv - 1) {
-        rc = 0;
-        goto done;
-    }
-    const gd_per_arc br = {.ops = &shoot_ops,
+    const gd_per_arc br = {.ops = ops,
                            .m = &a,
                            .why = sh->why,
                            .why_cap = sizeof sh->why,
@@ -544,10 +570,35 @@ int gd_per_sh_arclength(shoot *sh, const double *vals, int nv)
                            .user = sh->opt->user,
                            .dsmin = 1e-6,
                            .corners = 0};
-    rc = gd_per_arclength(&br, vals, nv, i0, &y, vals[i0]);
+    rc = gd_per_directions(&br, vals, nv, sh->opt->both_directions,
+                           sh->opt->method == GD_PER_SEQUENTIAL);
 done:
-    free(y);
     free(w);
     free(a.ipiv);
     return rc;
+}
+
+/* The method table's row for shooting (method.h): both directions by the shared drivers
+ * over ops. */
+gd_status gd_per_shoot_method(const gd_per_arc_ops *ops, const gd_system *sys,
+                              const gd_transient_spec *spec, const gd_periodic_param *param,
+                              const double *values, int nvalues, const gd_periodic_options *opt,
+                              const gd_tr_record *records, int nrecords, gd_periodic_result *res,
+                              gd_error *err)
+{
+    shoot sh;
+    memset(&sh, 0, sizeof sh);
+    sh.sys0 = sys;
+    sh.spec0 = spec;
+    sh.param = param;
+    sh.opt = opt;
+    sh.rec = records;
+    sh.nrec = nrecords;
+    sh.res = res;
+    sh.ndir = opt->both_directions ? 2 : 1;
+    const int rc = branch(&sh, ops, values, nvalues);
+    res->steps += sh.steps;
+    gd_per_sh_free(&sh);
+    if (rc) return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
+    return GD_OK;
 }

@@ -1,6 +1,6 @@
 /* Internals of shooting shared by shooting.c (the problem per value, the period map,
- * Newton, the points), shooting_arclength.c (pseudo-arclength continuation) and
- * shooting_natural.c (natural continuation, the entry gd_per_shoot_run). */
+ * Newton, the points), shooting_arclength.c (the entry, its operations for the shared drivers) and
+ * shooting_natural.c (the bifurcation rule between sequential points). */
 #ifndef GD_PERIODIC_SHOOTING_SHOOTING_IMPL_H
 #define GD_PERIODIC_SHOOTING_SHOOTING_IMPL_H
 #include "geardyn/periodic.h"
@@ -100,7 +100,8 @@ int gd_per_sh_multipliers(shoot *sh, const double *y, double *mre, double *mim);
  * says which and, when not determined, why. Their count, -1 on failure (sh->why). */
 int gd_per_sh_verdict(shoot *sh, const double *y, double *mre, double *mim, int *stable, char *note,
                       size_t cap);
-int gd_per_sh_arclength(shoot *sh, const double *vals, int nv);
+/* Natural continuation's bifurcation rule (shooting_natural.c; method.h, between). */
+int gd_per_sh_between(shoot *sh, const double *ya, double la, const double *yb, double lb);
 void gd_per_sh_free(shoot *sh); /* everything sh owns (not sh) */
 
 #endif

@@ -1,11 +1,7 @@
-/* Shooting's natural continuation in the value (docs/periodic.md, "Shooting"), and the
- * entry gd_per_shoot_run, which takes the pseudo-arclength (shooting_arclength.c, dense
- * or matrix-free) unless --sequential: each point starts from the previous points' states
- * extrapolated linearly, the first (or one whose Newton fails from there) from a short
- * transient from rest or from the static state under the loads, which a stable orbit
- * attracts. Bifurcations are found between points where the multipliers cross the unit
- * circle and located by secant iterations on the critical multiplier's modulus, each a
- * shooting solve. */
+/* Shooting's bifurcation rule between two points of the natural continuation (--sequential,
+ * driver/sequential.c; method.h, between; docs/periodic.md, "Shooting"): where the
+ * multipliers cross the unit circle, located by secant iterations on the critical
+ * multiplier's modulus, each a shooting solve at fixed value. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -118,138 +114,24 @@ static int detect(shoot *sh, double la, const double *ya, const double *ma_re, c
     return 0;
 }
 
-/* ---------------------------------------------------------------- the branch */
-
-static int run_direction(shoot *sh, const double *vals, int nv)
+/* Bifurcations between two consecutive points of the natural continuation, ya at la and
+ * yb at lb, both emitted (the last two points of res): every kind whose largest modulus
+ * crossed 1 (method.h, between). 0 ok, 1 an error. */
+int gd_per_sh_between(shoot *sh, const double *ya, double la, const double *yb, double lb)
 {
-    /* pseudo-arclength (shooting_arclength.c, dense or matrix-free) unless --sequential */
-    if (sh->opt->method == GD_PER_ARCLENGTH && nv >= 2 && !gd_per_sh_problem(sh, vals[0]))
-        return gd_per_sh_arclength(sh, vals, nv);
-    sh->steps += nv;
-    const int stab = sh->opt->stability;
-    double *ys = NULL; /* the last two converged states, their values */
-    double lv[2] = {NAN, NAN};
-    int nprev = 0, rc = 1;
-    double *mre = NULL, *mim = NULL, *y = NULL;
-    int have_mu = 0;
-    for (int v = 0; v < nv; v++) {
-        double key = vals[v];
-        if (gd_per_sh_problem(sh, key)) {
-            if (gd_per_sh_fail(sh, key)) goto done;
-            nprev = 0;
-            continue;
-        }
-        const int N = sh->N;
-        if (!ys) {
-            ys = malloc((size_t)5 * N * sizeof *ys);
-            if (!ys) goto done;
-            y = ys + 2 * (size_t)N;
-            mre = y + N;
-            mim = mre + N;
-        }
-        int it = 0, ok = 0;
-        double res = NAN;
-        sh->work = 0.0;
-        sh->t_mono = 0.0;
-        sh->warm_change = NAN;
-        sh->budget_hit = 0;
-        if (nprev) {
-            /* predictor: the last state, or the secant through the last two */
-            if (nprev == 2) {
-                double s = (key - lv[1]) / (lv[1] - lv[0]);
-                for (int i = 0; i < N; i++)
-                    y[i] = ys[N + i] + s * (ys[N + i] - ys[i]);
-            } else { /* one state only: ys[0..N) is not set yet (0 * garbage can be NaN) */
-                memcpy(y, ys + N, (size_t)N * sizeof *y);
-            }
-            ok = !gd_per_sh_newton(sh, y, &it, &res);
-        }
-        if (!ok && !sh->budget_hit) {
-            char first[256];
-            snprintf(first, sizeof first, "%s", nprev ? sh->why : "");
-            ok = !gd_per_sh_warm(sh, y) && !gd_per_sh_newton(sh, y, &it, &res);
-            if (!ok && first[0] && strcmp(first, sh->why)) {
-                char both[256];
-                snprintf(both, sizeof both, "%.110s; from a transient: %.110s", first, sh->why);
-                snprintf(sh->why, sizeof sh->why, "%s", both);
-            }
-        }
-        if (!ok) {
-            if (gd_per_sh_fail(sh, key)) goto done;
-            nprev = 0;
-            have_mu = 0;
-            continue;
-        }
-        if (gd_per_sh_emit(sh, key, y, it, res)) goto done;
-        gd_periodic_point *p = &sh->res->points[sh->res->npoints - 1];
-        if (stab && p->nmult && have_mu && nprev) {
-            /* the previous point's state and multipliers are ys[N..] and mre/mim */
-            double *ya = malloc((size_t)2 * N * sizeof *ya);
-            if (!ya) goto done;
-            memcpy(ya, ys + N, (size_t)N * sizeof *ya);
-            memcpy(ya + N, y, (size_t)N * sizeof *ya);
-            double la = lv[1];
-            int e = detect(sh, la, ya, mre, mim, have_mu, key, ya + N, p);
-            free(ya);
-            if (e) goto done;
-            if (gd_per_sh_problem(sh, key)) goto done; /* locate moved the problem: back */
-        }
-        p = &sh->res->points[sh->res->npoints - 1];
-        have_mu = p->nmult; /* the count of the previous point's multipliers */
-        if (have_mu) {
-            memcpy(mre, p->mu_re, (size_t)have_mu * sizeof *mre);
-            memcpy(mim, p->mu_im, (size_t)have_mu * sizeof *mim);
-        }
-        if (nprev) memcpy(ys, ys + N, (size_t)N * sizeof *ys);
-        lv[0] = lv[1];
-        memcpy(ys + N, y, (size_t)N * sizeof *ys);
-        lv[1] = key;
-        nprev = nprev < 2 ? nprev + 1 : 2;
-    }
-    rc = 0;
-done:
-    free(ys);
-    return rc;
-}
-
-int gd_per_shoot_run(const gd_system *sys, const gd_transient_spec *spec,
-                     const gd_periodic_param *param, const double *values, int nvalues,
-                     const gd_periodic_options *opt, const gd_tr_record *records, int nrecords,
-                     gd_periodic_result *res)
-{
-    shoot sh;
-    memset(&sh, 0, sizeof sh);
-    sh.sys0 = sys;
-    sh.spec0 = spec;
-    sh.param = param;
-    sh.opt = opt;
-    sh.rec = records;
-    sh.nrec = nrecords;
-    sh.res = res;
-    sh.ndir = opt->both_directions ? 2 : 1;
-    double *rev = malloc((size_t)nvalues * sizeof *rev);
-    int rc = !rev;
-    for (int d = 0; d < sh.ndir && !rc; d++) {
-        sh.dir = d ? -1 : 1;
-        for (int i = 0; i < nvalues; i++)
-            rev[i] = d ? values[nvalues - 1 - i] : values[i];
-        sh.v0 = rev[0];
-        sh.v1 = rev[nvalues - 1];
-        rc = run_direction(&sh, rev, nvalues);
-    }
-    free(rev);
-    res->steps += sh.steps;
-    gd_per_sh_free(&sh);
-    return rc;
-}
-
-/* The method table's row for shooting (method.h). */
-gd_status gd_per_shoot_method(const gd_system *sys, const gd_transient_spec *spec,
-                              const gd_periodic_param *param, const double *values, int nvalues,
-                              const gd_periodic_options *opt, const gd_tr_record *records,
-                              int nrecords, gd_periodic_result *res, gd_error *err)
-{
-    if (gd_per_shoot_run(sys, spec, param, values, nvalues, opt, records, nrecords, res))
-        return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
-    return GD_OK;
+    const gd_periodic_result *r = sh->res;
+    const gd_periodic_point *pa = &r->points[r->npoints - 2], *pb = &r->points[r->npoints - 1];
+    if (!sh->opt->stability || !pb->nmult || !pa->nmult) return 0;
+    /* locate works on copies: its solves use sh's work arrays */
+    const int N = sh->N;
+    double *w = malloc((size_t)(2 * N + 2 * pa->nmult) * sizeof *w);
+    if (!w) return 1;
+    memcpy(w, ya, (size_t)N * sizeof *w);
+    memcpy(w + N, yb, (size_t)N * sizeof *w);
+    memcpy(w + 2 * N, pa->mu_re, (size_t)pa->nmult * sizeof *w);
+    memcpy(w + 2 * N + pa->nmult, pa->mu_im, (size_t)pa->nmult * sizeof *w);
+    int e = detect(sh, la, w, w + 2 * N, w + 2 * N + pa->nmult, pa->nmult, lb, w + N, pb);
+    free(w);
+    /* locate moved the problem: back to lb's */
+    return e || gd_per_sh_problem(sh, lb);
 }
