@@ -3,7 +3,8 @@
  * "Reduced shooting"): the mean and peak-to-peak of both mesh forces at one speed, the
  * basis size, the largest multiplier and the CPU, for a given step count and cut-off; with
  * H > 0 also harmonic balance at H (public API, no estimate) for comparison.
- * usage: bench_orbit_reduced MODEL RPM STEPS CUTOFF_HZ H [PATH=VALUE]... */
+ * usage: [STEPS_OUT=N] bench_orbit_reduced MODEL RPM STEPS CUTOFF_HZ H [PATH=VALUE]...
+ * (STEPS_OUT: the records' grid, finer than the monodromy's STEPS) */
 #include <cblas.h>
 #include <math.h>
 #include <stdio.h>
@@ -30,6 +31,7 @@ int main(int argc, char **argv)
     openblas_set_num_threads(1);
     const double W = atof(argv[2]) * 6.28318530717958647692 / 60.0;
     const int steps = atoi(argv[3]), H = atoi(argv[5]);
+    const int steps_out = getenv("STEPS_OUT") ? atoi(getenv("STEPS_OUT")) : 0;
     const double wcut = atof(argv[4]) * 6.28318530717958647692;
     gd_load_options lo = {argc - 6, (const char *const *)(argv + 6)};
     gd_model *m = NULL;
@@ -59,7 +61,8 @@ int main(int argc, char **argv)
     int nb = 0;
     char msg[160];
     double t0 = cpu();
-    int rc = gd_hb_orbit_reduced(&h, tr, w0, steps, wcut, rec, 4, mean, p2p, &nb, &mumax, msg);
+    int rc = gd_hb_orbit_reduced(&h, tr, w0, steps, steps_out, wcut, rec, 4, mean, p2p, &nb, &mumax,
+                                 msg);
     double t1 = cpu();
     if (rc) {
         fprintf(stderr, "bench_orbit_reduced: failed (%d): %s\n", rc, msg);

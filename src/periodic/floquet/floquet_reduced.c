@@ -1307,7 +1307,7 @@ static int orbit_static(red *R, double *xs, char *msg)
     return rc;
 }
 
-int gd_hb_orbit_reduced(hb *h, gd_transient *tr, double om, int steps, double wcut,
+int gd_hb_orbit_reduced(hb *h, gd_transient *tr, double om, int steps, int steps_out, double wcut,
                         const gd_tr_record *rec, int nrec, double *mean, double *p2p, int *nbasis,
                         double *mumax, char *msg)
 {
@@ -1454,6 +1454,12 @@ int gd_hb_orbit_reduced(hb *h, gd_transient *tr, double om, int steps, double wc
                     }
                 }
             memmove(R.Psi, R.Psi + (size_t)n2 * n2, (size_t)n2 * sizeof *R.Psi);
+            /* the records at a finer grid than the monodromy's steps: the orbit's pass
+             * propagates one vector (2 (nt + ng) n2 a step against the monodromy's
+             * 2 (nt + ng) n2^2), so its steps are cheap */
+            if (steps_out > steps) rc = red_scalars(&R, steps_out, NULL, 0);
+        }
+        if (!rc) {
             R.ncol = 1;
             R.orb = orbit_at;
             R.orb_user = &o;
