@@ -167,6 +167,58 @@ static void rotate(int n, int ncol, const double *lim, const double *ec, const d
     }
 }
 
+/* E(s + h)'s blocks from E(s)'s and E(h)'s (hc, hs): a pair's e^(lambda s) times
+ * e^(lambda h), a real eigenvalue's product; so do the inverse blocks with E(-h)'s. For a
+ * run of equal steps, in place of exp_blocks' exponentials, sines and cosines (a third of
+ * a vector pass's instructions, callgrind). */
+static void exp_advance(int n, const double *lim, double *ec, double *es, const double *hc,
+                        const double *hs)
+{
+    for (int i = 0; i < n; i++) {
+        if (lim[i] > 0.0 && i + 1 < n) {
+            const double a = ec[i], b = es[i];
+            ec[i] = a * hc[i] - b * hs[i];
+            es[i] = a * hs[i] + b * hc[i];
+            i++;
+        } else {
+            ec[i] *= hc[i];
+        }
+    }
+}
+
+/* The blocks of E(s) (8 n: ec, es, ic, is, then E(h)'s and E(-h)'s) for a sequence of
+ * arguments s: advanced from the last one when s is the last plus h (then exact to the
+ * rounding of a few hundred products: refreshed every 256), else from exp_blocks. */
+typedef struct exp_run {
+    double *b; /* 8 n */
+    double last, h;
+    int have, cnt;
+} exp_run;
+
+static const double *exp_at(exp_run *e, int n, const double *lre, const double *lim, double s,
+                            double h)
+{
+    double *ec = e->b, *es = ec + n, *ic = es + n, *is = ic + n, *hc = is + n, *hs = hc + n,
+           *hic = hs + n, *his = hic + n;
+    /* equal steps differ by the rounding of their ends (1e-16 relative) */
+    const int same = e->have && fabs(h - e->h) <= 1e-12 * fabs(h);
+    if (same && e->cnt < 256 && fabs(s - (e->last + e->h)) <= 1e-9 * fabs(h)) {
+        exp_advance(n, lim, ec, es, hc, hs);
+        exp_advance(n, lim, ic, is, hic, his);
+        e->cnt++;
+    } else {
+        exp_blocks(n, lre, lim, s, ec, es, ic, is);
+        if (!same) {
+            exp_blocks(n, lre, lim, h, hc, hs, hic, his);
+            e->h = h;
+        }
+        e->have = 1;
+        e->cnt = 0;
+    }
+    e->last = s;
+    return e->b;
+}
+
 /* qsort: complex pairs (re, im) by decreasing modulus, then decreasing imaginary part */
 static int by_modulus(const void *pa, const void *pb)
 {
@@ -970,6 +1022,12 @@ static int red_propagate(red *R, int *rc)
            *CV = VU + (size_t)g2 * t2, *ec = CV + (size_t)g2 * g2, *es = ec + n2, *ic = es + n2,
            *is = ic + n2;
     double *U = Z + (size_t)2 * g2 * (n2 + 1); /* n2 x g2 (Z and CY: up to n2 + 1 columns) */
+    exp_run run[2] = {{0}, {0}};
+    if (R->ncol == 1) {
+        run[0].b = malloc(16 * (size_t)n2 * sizeof *run[0].b);
+        if (!run[0].b) return 1;
+        run[1].b = run[0].b + 8 * (size_t)n2;
+    }
     /* the anchor ta (s) of Psi's frame and how far from it the frame may drift: e^20 */
     double lmax = 0.0, ta = 0.0;
     for (int i = 0; i < n2; i++)
@@ -1004,11 +1062,15 @@ static int red_propagate(red *R, int *rc)
                 for (int i = 0; i < n2; i++)
                     rk[i] = sq[rt] * at[i] + sv[rt] * bt[i];
             }
-            exp_blocks(n2, lre, lim, m + (g ? d : -d) - ta, ec, es, ic, is);
+            const double *eb = ec;
+            if (R->ncol == 1) /* the vector pass: equal steps advance the blocks */
+                eb = exp_at(&run[g], n2, lre, lim, m + (g ? d : -d) - ta, dt);
+            else
+                exp_blocks(n2, lre, lim, m + (g ? d : -d) - ta, ec, es, ic, is);
             /* a row times E(s) is E(s)^T applied to the column: the transposed blocks */
-            rotate(n2, nt, lim, ec, es, -1.0, rg);
+            rotate(n2, nt, lim, eb, eb + n2, -1.0, rg);
             memcpy(ug, Pt, (size_t)n2 * ng * sizeof *ug);
-            rotate(n2, ng, lim, ic, is, 1.0, ug);
+            rotate(n2, ng, lim, eb + 2 * (size_t)n2, eb + 3 * (size_t)n2, 1.0, ug);
         }
         /* VU = V^T U (t2 x g2) */
         cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, t2, g2, n2, 1.0, Rk, n2, U, n2, 0.0,
@@ -1064,6 +1126,7 @@ static int red_propagate(red *R, int *rc)
                 break;
             }
     }
+    free(run[0].b);
     return 0;
 }
 
@@ -1224,7 +1287,8 @@ typedef struct orbit_rec {
     const gd_tr_record *rec;
     int nrec, ns;
     int *sup;
-    double *G, *xs, *y, *z, *ec, *es, *ic, *is, *vals, *lo, *hi, *sum;
+    double *G, *xs, *y, *z, *vals, *lo, *hi, *sum;
+    exp_run run;
     long cnt;
 } orbit_rec;
 
@@ -1233,9 +1297,10 @@ static void orbit_at(red *R, int j, double ta)
     orbit_rec *o = R->orb_user;
     const int n2 = R->n2, ns = o->ns, nf = R->nf;
     const double t = R->tb[j] / R->om;
-    exp_blocks(n2, R->lre, R->lim, t - ta, o->ec, o->es, o->ic, o->is);
+    const double *eb =
+        exp_at(&o->run, n2, R->lre, R->lim, t - ta, (R->tb[j] - R->tb[j - 1]) / R->om);
     memcpy(o->z, R->Psi, (size_t)n2 * sizeof *o->z);
-    rotate(n2, 1, R->lim, o->ec, o->es, 1.0, o->z);
+    rotate(n2, 1, R->lim, eb, eb + n2, 1.0, o->z);
     for (int m = 0; m < 2 * ns; m++) {
         double a = 0.0;
         for (int i = 0; i < n2; i++)
@@ -1260,7 +1325,7 @@ static void orbit_rec_free(orbit_rec *o)
     free(o->xs);
     free(o->y);
     free(o->z);
-    free(o->ec);
+    free(o->run.b);
     free(o->vals);
 }
 
@@ -1432,14 +1497,11 @@ int gd_hb_orbit_reduced(hb *h, gd_transient *tr, double om, int steps, int steps
             o.G = calloc(2 * (size_t)ns * n2 + 1, sizeof *o.G);
             o.y = calloc(2 * (size_t)nf, sizeof *o.y);
             o.z = malloc((size_t)n2 * sizeof *o.z);
-            o.ec = malloc(4 * (size_t)n2 * sizeof *o.ec);
+            o.run.b = malloc(8 * (size_t)n2 * sizeof *o.run.b);
             o.vals = calloc(4 * (size_t)nrec + 1, sizeof *o.vals);
-            if (!o.G || !o.y || !o.z || !o.ec || !o.vals) rc = 1;
+            if (!o.G || !o.y || !o.z || !o.run.b || !o.vals) rc = 1;
         }
         if (!rc) {
-            o.es = o.ec + n2;
-            o.ic = o.es + n2;
-            o.is = o.ic + n2;
             o.lo = o.vals + nrec;
             o.hi = o.lo + nrec;
             o.sum = o.hi + nrec;
