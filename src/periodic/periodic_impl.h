@@ -216,6 +216,18 @@ int gd_hb_floquet_reduced(hb *h, gd_transient *tr, double w, const double *X, in
                           double wcut, double budget, double *mu_re, double *mu_im, int *nmu,
                           int *nbasis, char *msg);
 
+/* The periodic orbit of the problem linearised at rest (a linear time-periodic system:
+ * the laws' terms at q = 0) in the reduced basis of gd_hb_floquet_reduced with the cut-off
+ * wcut (rad/s), exact in time to the steps: one pass of `steps` Magnus steps gives the
+ * monodromy Phi and the forced response p from the static state x_s = K^-1 f(t, 0), the
+ * orbit starts at (I - Phi)^-1 p, a second pass of max(steps, steps_out) steps evaluates
+ * the nrec records at every step's end: their mean and peak-to-peak (nrec each), *nbasis the basis,
+ * *mumax (may be NULL) the largest multiplier of the reduced monodromy. 0 ok, 2 msg says why, else
+ * failures. */
+int gd_hb_orbit_reduced(hb *h, gd_transient *tr, double om, int steps, int steps_out, double wcut,
+                        const gd_tr_record *rec, int nrec, double *mean, double *p2p, int *nbasis,
+                        double *mumax, char *msg);
+
 /* Static start (warmstart.c): where the model has laws that carry a static load
  * (GD_LAW_SUPPORT), the zeroth harmonic of X (its first nf entries; the rest untouched)
  * set to the laws' static equilibrium at speed under the spec's mean loads. Returns 1

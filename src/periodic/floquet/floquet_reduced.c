@@ -167,6 +167,58 @@ static void rotate(int n, int ncol, const double *lim, const double *ec, const d
     }
 }
 
+/* E(s + h)'s blocks from E(s)'s and E(h)'s (hc, hs): a pair's e^(lambda s) times
+ * e^(lambda h), a real eigenvalue's product; so do the inverse blocks with E(-h)'s. For a
+ * run of equal steps, in place of exp_blocks' exponentials, sines and cosines (a third of
+ * a vector pass's instructions, callgrind). */
+static void exp_advance(int n, const double *lim, double *ec, double *es, const double *hc,
+                        const double *hs)
+{
+    for (int i = 0; i < n; i++) {
+        if (lim[i] > 0.0 && i + 1 < n) {
+            const double a = ec[i], b = es[i];
+            ec[i] = a * hc[i] - b * hs[i];
+            es[i] = a * hs[i] + b * hc[i];
+            i++;
+        } else {
+            ec[i] *= hc[i];
+        }
+    }
+}
+
+/* The blocks of E(s) (8 n: ec, es, ic, is, then E(h)'s and E(-h)'s) for a sequence of
+ * arguments s: advanced from the last one when s is the last plus h (then exact to the
+ * rounding of a few hundred products: refreshed every 256), else from exp_blocks. */
+typedef struct exp_run {
+    double *b; /* 8 n */
+    double last, h;
+    int have, cnt;
+} exp_run;
+
+static const double *exp_at(exp_run *e, int n, const double *lre, const double *lim, double s,
+                            double h)
+{
+    double *ec = e->b, *es = ec + n, *ic = es + n, *is = ic + n, *hc = is + n, *hs = hc + n,
+           *hic = hs + n, *his = hic + n;
+    /* equal steps differ by the rounding of their ends (1e-16 relative) */
+    const int same = e->have && fabs(h - e->h) <= 1e-12 * fabs(h);
+    if (same && e->cnt < 256 && fabs(s - (e->last + e->h)) <= 1e-9 * fabs(h)) {
+        exp_advance(n, lim, ec, es, hc, hs);
+        exp_advance(n, lim, ic, is, hic, his);
+        e->cnt++;
+    } else {
+        exp_blocks(n, lre, lim, s, ec, es, ic, is);
+        if (!same) {
+            exp_blocks(n, lre, lim, h, hc, hs, hic, his);
+            e->h = h;
+        }
+        e->have = 1;
+        e->cnt = 0;
+    }
+    e->last = s;
+    return e->b;
+}
+
 /* qsort: complex pairs (re, im) by decreasing modulus, then decreasing imaginary part */
 static int by_modulus(const void *pa, const void *pb)
 {
@@ -306,6 +358,18 @@ typedef struct red {
     double *tb, *scal, *hc, *smp, *est, *small;
     fftw_plan plan;
     int nsub, nest;
+    /* the forced orbit (gd_hb_orbit_reduced): Psi has ncol columns (0: n2, the
+     * monodromy); aug 1: its last column carries the constant coordinate 1 of the
+     * augmented state, whose forcing is the laws' force about the static state, f(t, x_s)
+     * - f0 = sum_g u_g c_g(t): red_scalars fills fc (c at every Gauss point, ng each) from
+     * f0 and the groups' least-squares rows upi (ng x nf) when they are set; orb, when
+     * set, is called at every step's end with Psi (one column) in the frame of the
+     * anchor ta */
+    int ncol, aug;
+    double *fc, *f0, *upi, *fw;
+    int *gfirst; /* ng: the first class row of each group */
+    void (*orb)(struct red *R, int j, double ta);
+    void *orb_user;
 } red;
 
 static void red_free(red *R)
@@ -354,6 +418,11 @@ static void red_free(red *R)
     free(R->scal);
     free(R->mod);
     free(R->prev);
+    free(R->fc);
+    free(R->f0);
+    free(R->upi);
+    free(R->fw);
+    free(R->gfirst);
 }
 
 /* The modes of (sym K, M) below the cut-off wcut (rad/s) and the term groups. 0 ok. */
@@ -674,8 +743,8 @@ static int red_inputs(red *R)
     R->mod = malloc((size_t)n2 * sizeof *R->mod);
     R->prev = malloc((size_t)n2 * sizeof *R->prev);
     double *Rk = R->Rk = malloc((2 * (size_t)nt * n2 + 1) * sizeof *Rk);
-    R->Y = malloc((2 * (size_t)nt * n2 + 1) * sizeof *R->Y);
-    R->Z = malloc((6 * (size_t)(ng + 1) * n2 + 1) * sizeof *R->Z);
+    R->Y = malloc((2 * (size_t)nt * (n2 + 1) + 1) * sizeof *R->Y);
+    R->Z = malloc((6 * (size_t)(ng + 1) * (n2 + 1) + 1) * sizeof *R->Z);
     R->sqv = malloc((2 * (size_t)nt + 2) * sizeof *R->sqv);
     R->yv = calloc(2 * (size_t)nf, sizeof *R->yv);
     R->sup = malloc((size_t)(nf > 0 ? nf : 1) * sizeof *R->sup);
@@ -736,6 +805,13 @@ static int red_scalars(red *R, int S, const gd_tr_record *bl, int nbl)
     const double gp[2] = {0.5 - sqrt(3.0) / 6.0, 0.5 + sqrt(3.0) / 6.0};
     double *scal = R->scal = malloc(((size_t)nsub * 4 * nt + 1) * sizeof *scal);
     if (!scal) return 1;
+    double *fw = NULL;
+    if (R->upi) {
+        free(R->fc);
+        R->fc = malloc(((size_t)nsub * 2 * R->ng + 1) * sizeof *R->fc);
+        fw = R->fw;
+        if (!R->fc) return 1;
+    }
     /* the input support: the DOFs the terms read (their w) */
     unsigned char *mark = calloc((size_t)nf + 1, 1);
     int ns = 0;
@@ -813,12 +889,21 @@ static int red_scalars(red *R, int S, const gd_tr_record *bl, int nbl)
                     yv[sup[m]] = qs[m];
                     yv[nf + sup[m]] = vs[m];
                 }
-                gd_transient_local(R->tr, tau / om, yv, NULL, sqv, sqv + nt + 1);
+                gd_transient_local(R->tr, tau / om, yv, fw, sqv, sqv + nt + 1);
             } else { /* a step split at a contact change: a direct sum */
                 if (!yfull) yfull = malloc(2 * (size_t)nf * sizeof *yfull);
                 if (!yfull) return 1;
                 gd_hb_eval(h, om, X, tau, yfull, yfull + nf);
-                gd_transient_local(R->tr, tau / om, yfull, NULL, sqv, sqv + nt + 1);
+                gd_transient_local(R->tr, tau / om, yfull, fw, sqv, sqv + nt + 1);
+            }
+            if (fw) { /* the groups' coefficients of f - f0 (least squares on the u_g) */
+                double *cg = R->fc + ((size_t)j * 2 + g) * R->ng;
+                for (int gr = 0; gr < R->ng; gr++) {
+                    double acc = 0.0;
+                    for (int i = 0; i < nf; i++)
+                        acc += R->upi[(size_t)i * R->ng + gr] * (fw[i] - R->f0[i]);
+                    cg[gr] = acc;
+                }
             }
             memcpy(sj, sqv, (size_t)nt * sizeof *sj);
             memcpy(sj + nt, sqv + nt + 1, (size_t)nt * sizeof *sj);
@@ -919,9 +1004,14 @@ static int red_propagate(red *R, int *rc)
                  *At = R->At, *Bt = R->Bt, *Pt = R->Pt;
     const int *tg = R->mtg, *mrep = R->mrep;
     double *Psi = R->Psi, *Rk = R->Rk, *Y = R->Y, *Z = R->Z;
-    memset(Psi, 0, rr * sizeof *Psi);
-    for (int i = 0; i < n2; i++)
-        Psi[(size_t)i * n2 + i] = 1.0;
+    /* the monodromy: Psi = I (n2 columns); the forced orbit: the caller's columns */
+    const int nc = R->ncol > 0 ? R->ncol : n2, aug = R->aug;
+    const size_t rc_n = (size_t)n2 * nc;
+    if (R->ncol <= 0) {
+        memset(Psi, 0, rr * sizeof *Psi);
+        for (int i = 0; i < n2; i++)
+            Psi[(size_t)i * n2 + i] = 1.0;
+    }
     const int g2 = 2 * ng, t2 = 2 * nt, ga = 2 * g2;
     const size_t gg = (size_t)ga * ga;
     free(R->small);
@@ -931,7 +1021,13 @@ static int red_propagate(red *R, int *rc)
     double *G = small, *F = G + gg, *W3 = F + gg, *Cm = W3 + 3 * gg, *VU = Cm + (size_t)g2 * t2,
            *CV = VU + (size_t)g2 * t2, *ec = CV + (size_t)g2 * g2, *es = ec + n2, *ic = es + n2,
            *is = ic + n2;
-    double *U = Z + (size_t)2 * g2 * n2; /* n2 x g2 */
+    double *U = Z + (size_t)2 * g2 * (n2 + 1); /* n2 x g2 (Z and CY: up to n2 + 1 columns) */
+    exp_run run[2] = {{0}, {0}};
+    if (R->ncol == 1) {
+        run[0].b = malloc(16 * (size_t)n2 * sizeof *run[0].b);
+        if (!run[0].b) return 1;
+        run[1].b = run[0].b + 8 * (size_t)n2;
+    }
     /* the anchor ta (s) of Psi's frame and how far from it the frame may drift: e^20 */
     double lmax = 0.0, ta = 0.0;
     for (int i = 0; i < n2; i++)
@@ -944,11 +1040,14 @@ static int red_propagate(red *R, int *rc)
         int any = 0;
         for (int t = 0; t < 4 * ntt; t++)
             any |= sc[t] != 0.0;
-        if (!any || !ng) continue;         /* B = 0: Psi's frame carries E exactly */
+        if (!any || !ng) { /* B = 0: Psi's frame carries E exactly */
+            if (R->orb) R->orb(R, j + 1, ta);
+            continue;
+        }
         if (lmax * (m + d - ta) > drift) { /* a new anchor at the step's start */
             const double t0 = tb[j] / om;
             exp_blocks(n2, lre, lim, t0 - ta, ec, es, ic, is);
-            rotate(n2, n2, lim, ec, es, 1.0, Psi);
+            rotate(n2, nc, lim, ec, es, 1.0, Psi);
             ta = t0;
         }
         /* V^T rows (Rk: t2 rows of n2, row-major): R_g's rows times E(t_g - ta), and
@@ -963,11 +1062,15 @@ static int red_propagate(red *R, int *rc)
                 for (int i = 0; i < n2; i++)
                     rk[i] = sq[rt] * at[i] + sv[rt] * bt[i];
             }
-            exp_blocks(n2, lre, lim, m + (g ? d : -d) - ta, ec, es, ic, is);
+            const double *eb = ec;
+            if (R->ncol == 1) /* the vector pass: equal steps advance the blocks */
+                eb = exp_at(&run[g], n2, lre, lim, m + (g ? d : -d) - ta, dt);
+            else
+                exp_blocks(n2, lre, lim, m + (g ? d : -d) - ta, ec, es, ic, is);
             /* a row times E(s) is E(s)^T applied to the column: the transposed blocks */
-            rotate(n2, nt, lim, ec, es, -1.0, rg);
+            rotate(n2, nt, lim, eb, eb + n2, -1.0, rg);
             memcpy(ug, Pt, (size_t)n2 * ng * sizeof *ug);
-            rotate(n2, ng, lim, ic, is, 1.0, ug);
+            rotate(n2, ng, lim, eb + 2 * (size_t)n2, eb + 3 * (size_t)n2, 1.0, ug);
         }
         /* VU = V^T U (t2 x g2) */
         cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, t2, g2, n2, 1.0, Rk, n2, U, n2, 0.0,
@@ -992,29 +1095,38 @@ static int red_propagate(red *R, int *rc)
                     CV, g2);
         small_phi1(g2, CV, F, W3);
         /* Y = V^T Psi (t2 x n2); Z = phi1 Cm Y (g2 x n2); Psi += U Z */
-        cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, t2, n2, n2, 1.0, Rk, n2, Psi, n2, 0.0,
+        cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, t2, nc, n2, 1.0, Rk, n2, Psi, n2, 0.0,
                     Y, t2);
-        double *CY = Z + (size_t)g2 * n2;
-        cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, g2, n2, t2, 1.0, Cm, g2, Y, t2, 0.0,
+        if (aug) { /* the constant coordinate's entry of the first row of each group: the
+                    * forcing's coefficient c_g at the Gauss point (E is 1 on it) */
+            double *ya = Y + (size_t)(nc - 1) * t2;
+            for (int g = 0; g < 2; g++)
+                for (int a = 0; a < ng; a++)
+                    ya[(size_t)g * nt + R->gfirst[a]] += R->fc[((size_t)j * 2 + g) * ng + a];
+        }
+        double *CY = Z + (size_t)g2 * (n2 + 1);
+        cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, g2, nc, t2, 1.0, Cm, g2, Y, t2, 0.0,
                     CY, g2);
-        cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, g2, n2, g2, 1.0, F, g2, CY, g2, 0.0,
+        cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, g2, nc, g2, 1.0, F, g2, CY, g2, 0.0,
                     Z, g2);
-        cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n2, n2, g2, 1.0, U, n2, Z, g2, 1.0,
+        cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n2, nc, g2, 1.0, U, n2, Z, g2, 1.0,
                     Psi, n2);
-        if ((j & 255) == 255 && (!isfinite(Psi[0]) || !isfinite(Psi[rr - 1]))) {
+        if ((j & 255) == 255 && (!isfinite(Psi[0]) || !isfinite(Psi[rc_n - 1]))) {
             *rc = 2;
             break;
         }
+        if (R->orb) R->orb(R, j + 1, ta);
     }
     if (*rc == 1) {
         exp_blocks(n2, lre, lim, tb[nsub] / om - ta, ec, es, ic, is);
-        rotate(n2, n2, lim, ec, es, 1.0, Psi);
-        for (size_t m = 0; m < rr; m++)
+        rotate(n2, nc, lim, ec, es, 1.0, Psi);
+        for (size_t m = 0; m < rc_n; m++)
             if (!isfinite(Psi[m])) {
                 *rc = 2;
                 break;
             }
     }
+    free(run[0].b);
     return 0;
 }
 
@@ -1163,6 +1275,272 @@ int gd_hb_floquet_reduced(hb *h, gd_transient *tr, double om, const double *X, i
         *nmu = nall;
         *nbasis = R.r;
     }
+    red_free(&R);
+    return rc;
+}
+
+/* The records along the forced orbit (gd_hb_orbit_reduced's second pass): at a step's
+ * end t, the state z = E(t - ta) zeta of the anchored frame, the record DOFs' q and q'
+ * from z by G (their rows of V C^-1 XR, V XR) plus the static state, the records'
+ * values, their least, largest and mean over the steps' ends. */
+typedef struct orbit_rec {
+    const gd_tr_record *rec;
+    int nrec, ns;
+    int *sup;
+    double *G, *xs, *y, *z, *vals, *lo, *hi, *sum;
+    exp_run run;
+    long cnt;
+} orbit_rec;
+
+static void orbit_at(red *R, int j, double ta)
+{
+    orbit_rec *o = R->orb_user;
+    const int n2 = R->n2, ns = o->ns, nf = R->nf;
+    const double t = R->tb[j] / R->om;
+    const double *eb =
+        exp_at(&o->run, n2, R->lre, R->lim, t - ta, (R->tb[j] - R->tb[j - 1]) / R->om);
+    memcpy(o->z, R->Psi, (size_t)n2 * sizeof *o->z);
+    rotate(n2, 1, R->lim, eb, eb + n2, 1.0, o->z);
+    for (int m = 0; m < 2 * ns; m++) {
+        double a = 0.0;
+        for (int i = 0; i < n2; i++)
+            a += o->G[(size_t)i * 2 * ns + m] * o->z[i];
+        const int d = o->sup[m % ns];
+        o->y[m < ns ? d : nf + d] = m < ns ? o->xs[d] + a : a;
+    }
+    gd_transient_record_values(R->tr, o->rec, o->nrec, t, o->y, o->vals);
+    for (int k = 0; k < o->nrec; k++) {
+        const double v = o->vals[k];
+        if (!o->cnt || v < o->lo[k]) o->lo[k] = v;
+        if (!o->cnt || v > o->hi[k]) o->hi[k] = v;
+        o->sum[k] += v;
+    }
+    o->cnt++;
+}
+
+static void orbit_rec_free(orbit_rec *o)
+{
+    free(o->sup);
+    free(o->G);
+    free(o->xs);
+    free(o->y);
+    free(o->z);
+    free(o->run.b);
+    free(o->vals);
+}
+
+/* x_s = K^-1 f0, f0 = f(t, 0) (R->f0: the forces at rest), when those forces do not change
+ * over the period (loads and prescribed couplings constant: the laws at rest give none).
+ * 0 ok, 1 out of memory, 2 they change (msg), 3 K singular. */
+static int orbit_static(red *R, double *xs, char *msg)
+{
+    const int nf = R->nf;
+    double *y = calloc(2 * (size_t)nf, sizeof *y), *f = malloc((size_t)nf * sizeof *f),
+           *Kd = malloc((size_t)nf * nf * sizeof *Kd);
+    int *piv = malloc((size_t)nf * sizeof *piv), rc = 0;
+    if (!y || !f || !Kd || !piv) rc = 1;
+    if (!rc) {
+        const double T = TWO_PI / R->om;
+        gd_transient_local(R->tr, 0.0, y, xs, NULL, NULL);
+        double big = 0.0, dif = 0.0;
+        for (int i = 0; i < nf; i++)
+            big = fmax(big, fabs(xs[i]));
+        for (int k = 1; k < 8; k++) {
+            gd_transient_local(R->tr, T * k / 8.0 * 0.987, y, f, NULL, NULL);
+            for (int i = 0; i < nf; i++)
+                dif = fmax(dif, fabs(f[i] - xs[i]));
+        }
+        if (dif > 1e-9 * big) {
+            snprintf(msg, 160,
+                     "the forces at rest change over the period (%.3g of %.3g): not a constant "
+                     "load",
+                     dif, big);
+            rc = 2;
+        }
+    }
+    if (!rc) {
+        gd_csc M, D, K;
+        gd_transient_matrices(R->tr, &M, &D, &K);
+        dense_of(&K, nf, Kd);
+        memcpy(R->f0, xs, (size_t)nf * sizeof *xs);
+        if (LAPACKE_dgesv(LAPACK_COL_MAJOR, nf, 1, Kd, nf, piv, xs, nf)) rc = 3;
+    }
+    free(y);
+    free(f);
+    free(Kd);
+    free(piv);
+    return rc;
+}
+
+int gd_hb_orbit_reduced(hb *h, gd_transient *tr, double om, int steps, int steps_out, double wcut,
+                        const gd_tr_record *rec, int nrec, double *mean, double *p2p, int *nbasis,
+                        double *mumax, char *msg)
+{
+    const int nf = h->nf;
+    msg[0] = '\0';
+    *nbasis = 0;
+    const gd_tr_term *term;
+    const int nt = gd_transient_terms(tr, &term);
+    if (nt < 0) return 1;
+    double *X = calloc((size_t)nf * h->nh, sizeof *X);
+    if (!X) return 1;
+    red R = {.h = h, .tr = tr, .om = om, .X = X, .term = term, .nf = nf, .nt = nt};
+    orbit_rec o = {.rec = rec, .nrec = nrec};
+    /* the static state x_s, the linearisation's point (the orbit X = x_s constant) */
+    o.xs = malloc((size_t)nf * sizeof *o.xs);
+    R.f0 = malloc((size_t)nf * sizeof *R.f0);
+    R.fw = malloc((size_t)nf * sizeof *R.fw);
+    int rc = !o.xs || !R.f0 || !R.fw;
+    if (!rc) rc = orbit_static(&R, o.xs, msg);
+    if (!rc) memcpy(X, o.xs, (size_t)nf * sizeof *X);
+    if (!rc) rc = red_modes(&R, wcut, msg);
+    if (!rc) rc = red_residual(&R);
+    if (!rc) rc = red_reduce(&R, msg);
+    if (!rc) rc = red_eigenbasis(&R, msg);
+    if (!rc) rc = red_inputs(&R);
+    const int n2 = R.n2, r = R.r, ng = R.ng;
+    /* the groups' least-squares rows (U^T U)^-1 U^T and each group's first class */
+    if (!rc) {
+        R.upi = calloc((size_t)nf * ng + 1, sizeof *R.upi);
+        R.gfirst = malloc(((size_t)ng + 1) * sizeof *R.gfirst);
+        double *gram = calloc((size_t)ng * ng + 1, sizeof *gram);
+        int *gp = malloc(((size_t)ng + 1) * sizeof *gp);
+        if (!R.upi || !R.gfirst || !gram || !gp) rc = 1;
+        for (int a = 0; !rc && a < ng; a++) {
+            const gd_tr_term *u = &term[R.grep[a]];
+            for (int b = 0; b < u->nu; b++)
+                R.upi[(size_t)u->u_idx[b] * ng + a] = u->u[b];
+            R.gfirst[a] = -1;
+        }
+        for (int t = R.nm - 1; !rc && t >= 0; t--)
+            R.gfirst[R.mtg[t]] = t;
+        for (int a = 0; !rc && a < ng; a++)
+            for (int b = 0; b < ng; b++)
+                for (int i = 0; i < nf; i++)
+                    gram[(size_t)b * ng + a] +=
+                        R.upi[(size_t)i * ng + a] * R.upi[(size_t)i * ng + b];
+        /* upi^T (nf x ng, row-major ng per DOF) <- U gram^-1: solve gram Y = U^T */
+        if (!rc && LAPACKE_dgesv(LAPACK_COL_MAJOR, ng, nf, gram, ng, gp, R.upi, ng)) rc = 3;
+        free(gram);
+        free(gp);
+    }
+    if (!rc) rc = red_scalars(&R, steps, NULL, 0);
+    /* pass 1: the monodromy and the response p over one period from x_s at rest, in the
+     * eigenvector coordinates: Psi = [I | 0] with the constant coordinate */
+    double *A = NULL;
+    int *piv = NULL;
+    if (!rc) {
+        free(R.Psi);
+        R.Psi = calloc((size_t)n2 * (n2 + 1), sizeof *R.Psi);
+        A = malloc((size_t)n2 * n2 * sizeof *A);
+        piv = malloc((size_t)n2 * sizeof *piv);
+        if (!R.Psi || !A || !piv) rc = 1;
+    }
+    if (!rc) {
+        for (int i = 0; i < n2; i++)
+            R.Psi[(size_t)i * n2 + i] = 1.0;
+        R.ncol = n2 + 1;
+        R.aug = 1;
+        int prc = 1;
+        if (red_propagate(&R, &prc))
+            rc = 1;
+        else if (prc != 1) {
+            snprintf(msg, 160, "the reduced monodromy overflowed at %d steps", steps);
+            rc = 2;
+        }
+    }
+    /* the periodic orbit's start xi0 = (I - Phi)^-1 p */
+    if (!rc) {
+        for (size_t m = 0; m < (size_t)n2 * n2; m++)
+            A[m] = -R.Psi[m];
+        for (int i = 0; i < n2; i++)
+            A[(size_t)i * n2 + i] += 1.0;
+        if (LAPACKE_dgesv(LAPACK_COL_MAJOR, n2, 1, A, n2, piv, R.Psi + (size_t)n2 * n2, n2)) {
+            snprintf(msg, 160, "a multiplier at 1: no isolated periodic orbit");
+            rc = 2;
+        }
+    }
+    if (!rc && mumax) {
+        double *wr = malloc(2 * (size_t)n2 * sizeof *wr), dummy[1];
+        for (size_t m = 0; m < (size_t)n2 * n2; m++)
+            A[m] = R.Psi[m];
+        *mumax = 0.0;
+        if (wr &&
+            !LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', n2, A, n2, wr, wr + n2, dummy, 1, dummy, 1))
+            for (int i = 0; i < n2; i++)
+                *mumax = fmax(*mumax, hypot(wr[i], wr[n2 + i]));
+        free(wr);
+    }
+    /* pass 2: the orbit from xi0, the records at every step's end */
+    if (!rc) {
+        int *idx = malloc(64 * (size_t)(nrec + 1) * sizeof *idx);
+        unsigned char *mark = calloc((size_t)nf + 1, 1);
+        int ns = 0;
+        if (!idx || !mark) rc = 1;
+        for (int k = 0; !rc && k < nrec; k++) {
+            const int c = gd_transient_record_dofs(tr, &rec[k], idx, 64);
+            if (c < 0) {
+                snprintf(msg, 160, "a record reads every DOF");
+                rc = 2;
+            }
+            for (int i = 0; !rc && i < c; i++)
+                mark[idx[i]] = 1;
+        }
+        o.sup = malloc((size_t)(nf + 1) * sizeof *o.sup);
+        if (!o.sup) rc = 1;
+        for (int i = 0; !rc && i < nf; i++)
+            if (mark[i]) o.sup[ns++] = i;
+        o.ns = ns;
+        free(idx);
+        free(mark);
+        if (!rc) {
+            o.G = calloc(2 * (size_t)ns * n2 + 1, sizeof *o.G);
+            o.y = calloc(2 * (size_t)nf, sizeof *o.y);
+            o.z = malloc((size_t)n2 * sizeof *o.z);
+            o.run.b = malloc(8 * (size_t)n2 * sizeof *o.run.b);
+            o.vals = calloc(4 * (size_t)nrec + 1, sizeof *o.vals);
+            if (!o.G || !o.y || !o.z || !o.run.b || !o.vals) rc = 1;
+        }
+        if (!rc) {
+            o.lo = o.vals + nrec;
+            o.hi = o.lo + nrec;
+            o.sum = o.hi + nrec;
+            /* G rows: q = V C^-1 x~, q' = V x~' of the support DOFs, x~ = XR xi */
+            for (int m = 0; m < ns; m++)
+                for (int k = 0; k < r; k++) {
+                    const double v = R.V[(size_t)k * nf + o.sup[m]];
+                    if (v == 0.0) continue;
+                    for (int i = 0; i < n2; i++) {
+                        o.G[(size_t)i * 2 * ns + m] += v * R.XR[(size_t)i * n2 + k] / R.cs[k];
+                        o.G[(size_t)i * 2 * ns + ns + m] += v * R.XR[(size_t)i * n2 + r + k];
+                    }
+                }
+            memmove(R.Psi, R.Psi + (size_t)n2 * n2, (size_t)n2 * sizeof *R.Psi);
+            /* the records at a finer grid than the monodromy's steps: the orbit's pass
+             * propagates one vector (2 (nt + ng) n2 a step against the monodromy's
+             * 2 (nt + ng) n2^2), so its steps are cheap */
+            if (steps_out > steps) rc = red_scalars(&R, steps_out, NULL, 0);
+        }
+        if (!rc) {
+            R.ncol = 1;
+            R.orb = orbit_at;
+            R.orb_user = &o;
+            int prc = 1;
+            if (red_propagate(&R, &prc))
+                rc = 1;
+            else if (prc != 1)
+                rc = 2;
+        }
+        for (int k = 0; !rc && k < nrec; k++) {
+            mean[k] = o.sum[k] / (double)o.cnt;
+            p2p[k] = o.hi[k] - o.lo[k];
+        }
+    }
+    if (!rc) *nbasis = r;
+    free(A);
+    free(piv);
+    free(X);
+    orbit_rec_free(&o);
     red_free(&R);
     return rc;
 }
