@@ -59,8 +59,12 @@ static int hand_over(const gd_system *sys, const gd_transient_spec *spec,
         r->points[0].records = NULL;
         char own[256], msg[600];
         snprintf(own, sizeof own, "%s", p->reason);
-        snprintf(msg, sizeof msg, "solved by %s (%s failed: %.120s)%s%.80s", other, first, was,
-                 own[0] ? "; " : "", own);
+        if (from == k) /* the same method alone at this value, off its branch */
+            snprintf(msg, sizeof msg, "solved by %s alone at this value (%.120s)%s%.80s", other,
+                     was, own[0] ? "; " : "", own);
+        else
+            snprintf(msg, sizeof msg, "solved by %s (%s failed: %.120s)%s%.80s", other, first, was,
+                     own[0] ? "; " : "", own);
         snprintf(p->reason, sizeof p->reason, "%.255s", msg);
         (*solved)++;
     } else {
@@ -134,10 +138,10 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
                        note[0] && run_note[0] ? "; " : "", run_note);
     if (failed && len >= 0 && (size_t)len < sizeof r->method_note)
         snprintf(r->method_note + len, sizeof r->method_note - (size_t)len,
-                 "; %d failed point(s) handed to %s%s, %d solved there", failed,
-                 alone ? "shooting alone past its branch" : "",
-                 alone && !hb_ok            ? ""
-                 : alone                    ? ", then harmonic balance"
+                 alone ? "; %d failed, handed to shooting alone%s: %d solved"
+                       : "; %d failed point(s) handed to %s, %d solved there",
+                 failed,
+                 alone                      ? (hb_ok ? " (then harmonic balance)" : "")
                  : other == GD_PER_SHOOTING ? "shooting"
                                             : "harmonic balance",
                  solved);

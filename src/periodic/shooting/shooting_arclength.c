@@ -394,8 +394,8 @@ static int op_give_up(void *m)
     char last[160];
     snprintf(last, sizeof last, "%.150s", sh->why);
     snprintf(sh->why, sizeof sh->why,
-             "the branch stops at %.6g%s: %d steps in a row failed (%.100s); --sequential "
-             "solves each value alone",
+             "the branch stops at %.6g%s after %d failed steps in a row; --sequential solves "
+             "each value alone (the last: %.100s)",
              a->lam_ok, sh->param && !sh->param->load_frequency ? "" : " rad/s", ARC_FAILS, last);
     return 1;
 }
