@@ -80,7 +80,7 @@ for c in "${CASES[@]}"; do
     fi
     python3 - "$OUT" "$i" "$cmp" "$BIF_TOL" "$name" "$args" "$same" <<'EOF'
 import json, sys
-out, i, cmp, tol, name, args, same = sys.argv[1], sys.argv[2], sys.argv[3] == "1", float(sys.argv[4]), sys.argv[5], sys.argv[6], sys.argv[7]
+out, i, cmp, tol, name, args, ident = sys.argv[1], sys.argv[2], sys.argv[3] == "1", float(sys.argv[4]), sys.argv[5], sys.argv[6], sys.argv[7]
 def load(tag):
     try:
         return json.load(open(f"{out}/{tag}.json"))
@@ -95,7 +95,7 @@ def cpu(tag):
 d = load(f"d{i}")
 if d is None:
     err = open(f"{out}/d{i}.err").read().strip().splitlines()
-    print(f"| {name} | `{args}` | - | refused: {err[-1][:120] if err else '?'} | - | - | {same} | {cpu('d'+str(i))} |")
+    print(f"| {name} | `{args}` | - | refused: {err[-1][:120] if err else '?'} | - | - | {ident} | {cpu('d'+str(i))} |")
     sys.exit(0)
 pts = d["points"]
 conv = sum(1 for p in pts if p["converged"])
@@ -129,6 +129,6 @@ if cmp:
         bs = sorted((b["type"], loc(b)) for b in s.get("bifurcations") or [])
         ok = len(bd) == len(bs) and all(a[0] == b[0] and abs(a[1] - b[1]) <= tol * abs(b[1]) for a, b in zip(bd, bs))
         bifs = ("yes" if ok else "NO") + f" ({len(bd)} / {len(bs)})"
-print(f"| {name} | `{args}` | {chose} | {conv} / {len(fail)} ({expl}) | {verd} | {bifs} | {same} | {cpu('d'+str(i))} / {cpu('s'+str(i)) if cmp else '-'} |")
+print(f"| {name} | `{args}` | {chose} | {conv} / {len(fail)} ({expl}) | {verd} | {bifs} | {ident} | {cpu('d'+str(i))} / {cpu('s'+str(i)) if cmp else '-'} |")
 EOF
 done
