@@ -6,13 +6,16 @@
 # Prints one table row per case: the method auto chose, points converged / failed (a
 # failed point must carry a reason), verdicts equal to shooting's, bifurcations (type
 # and location to BIF_TOL relative) equal to shooting's, and the CPU of each run
-# (/usr/bin/time user + system: noisy on a shared machine, not a timed test).
+# (/usr/bin/time user + system: noisy on a shared machine, not a timed test), and whether
+# RUNS identical default runs gave byte-identical JSON (issue 33: "Five identical runs
+# give identical outputs"; every budget and choice is decided from counted work).
 #
 # usage: bench/periodic_examples.sh [BUILD] [all]      (from the repository root)
 #   BUILD (default build): where geardyn is; "all" also runs the cases marked slow
 #   (minutes each: the 754-state seed-002 train, the Ducati train, the wind turbine).
 # environment: OUT (default /tmp/periodic_examples), BIF_TOL (default 1e-4), ONLY (a
-#   regular expression: only the cases whose name matches)
+#   regular expression: only the cases whose name matches), RUNS (default 5: the default
+#   run repeated that many times in all and compared byte for byte; 1 skips it)
 set -uo pipefail
 
 BUILD=${1:-build}
@@ -20,6 +23,7 @@ ALL=${2:-}
 GEARDYN=$BUILD/geardyn
 OUT=${OUT:-/tmp/periodic_examples}
 BIF_TOL=${BIF_TOL:-1e-4}
+RUNS=${RUNS:-5}
 export OPENBLAS_NUM_THREADS=1
 [ -x "$GEARDYN" ] || { echo "periodic_examples.sh: $GEARDYN not built (make)" >&2; exit 2; }
 mkdir -p "$OUT"
@@ -50,8 +54,8 @@ run() { # tag model args... -> OUT/tag.json, OUT/tag.err, OUT/tag.time
     echo $? >"$OUT/$tag.rc"
 }
 
-echo "| case | options | auto chose | converged / failed (explained) | verdicts = shooting | bifurcations = shooting | CPU default / shooting |"
-echo "|---|---|---|---|---|---|---|"
+echo "| case | options | auto chose | converged / failed (explained) | verdicts = shooting | bifurcations = shooting | $RUNS runs identical | CPU default / shooting |"
+echo "|---|---|---|---|---|---|---|---|"
 i=0
 for c in "${CASES[@]}"; do
     IFS='|' read -r name model args cmp slow <<<"$c"
@@ -60,13 +64,23 @@ for c in "${CASES[@]}"; do
     [ -n "${ONLY:-}" ] && ! [[ $name =~ $ONLY ]] && continue
     # shellcheck disable=SC2086
     run "d$i" "$model" $args
+    same=-
+    if [ "$RUNS" -gt 1 ]; then
+        same="yes"
+        for k in $(seq 2 "$RUNS"); do
+            # shellcheck disable=SC2086
+            run "d$i.$k" "$model" $args
+            cmp -s "$OUT/d$i.json" "$OUT/d$i.$k.json" &&
+                cmp -s "$OUT/d$i.rc" "$OUT/d$i.$k.rc" || same="NO (run $k differs)"
+        done
+    fi
     if [ "$cmp" = 1 ]; then
         # shellcheck disable=SC2086
         run "s$i" "$model" $args --method shooting
     fi
-    python3 - "$OUT" "$i" "$cmp" "$BIF_TOL" "$name" "$args" <<'EOF'
+    python3 - "$OUT" "$i" "$cmp" "$BIF_TOL" "$name" "$args" "$same" <<'EOF'
 import json, sys
-out, i, cmp, tol, name, args = sys.argv[1], sys.argv[2], sys.argv[3] == "1", float(sys.argv[4]), sys.argv[5], sys.argv[6]
+out, i, cmp, tol, name, args, ident = sys.argv[1], sys.argv[2], sys.argv[3] == "1", float(sys.argv[4]), sys.argv[5], sys.argv[6], sys.argv[7]
 def load(tag):
     try:
         return json.load(open(f"{out}/{tag}.json"))
@@ -81,7 +95,7 @@ def cpu(tag):
 d = load(f"d{i}")
 if d is None:
     err = open(f"{out}/d{i}.err").read().strip().splitlines()
-    print(f"| {name} | `{args}` | - | refused: {err[-1][:120] if err else '?'} | - | - | {cpu('d'+str(i))} |")
+    print(f"| {name} | `{args}` | - | refused: {err[-1][:120] if err else '?'} | - | - | {ident} | {cpu('d'+str(i))} |")
     sys.exit(0)
 pts = d["points"]
 conv = sum(1 for p in pts if p["converged"])
@@ -115,6 +129,6 @@ if cmp:
         bs = sorted((b["type"], loc(b)) for b in s.get("bifurcations") or [])
         ok = len(bd) == len(bs) and all(a[0] == b[0] and abs(a[1] - b[1]) <= tol * abs(b[1]) for a, b in zip(bd, bs))
         bifs = ("yes" if ok else "NO") + f" ({len(bd)} / {len(bs)})"
-print(f"| {name} | `{args}` | {chose} | {conv} / {len(fail)} ({expl}) | {verd} | {bifs} | {cpu('d'+str(i))} / {cpu('s'+str(i)) if cmp else '-'} |")
+print(f"| {name} | `{args}` | {chose} | {conv} / {len(fail)} ({expl}) | {verd} | {bifs} | {ident} | {cpu('d'+str(i))} / {cpu('s'+str(i)) if cmp else '-'} |")
 EOF
 done

@@ -24,12 +24,13 @@ static void free_point(gd_periodic_point *p, int nrec)
     free(p->records);
 }
 
-/* Point p (not converged) solved by method k alone at its value: replaced by that
- * solution when it converges, else its reason gains the other method's. 0 ok, 1 out of
+/* Point p (not converged by method `from`) solved by method k alone at its value: replaced
+ * by that solution when it converges, else its reason gains method k's. 0 ok, 1 out of
  * memory. */
 static int hand_over(const gd_system *sys, const gd_transient_spec *spec,
-                     const gd_periodic_param *param, const gd_periodic_options *opt, gd_per_kind k,
-                     const gd_tr_record *records, int nrecords, gd_periodic_point *p, int *solved)
+                     const gd_periodic_param *param, const gd_periodic_options *opt,
+                     gd_per_kind from, gd_per_kind k, const gd_tr_record *records, int nrecords,
+                     gd_periodic_point *p, int *solved)
 {
     gd_periodic_options o = *opt;
     o.kind = k;
@@ -45,7 +46,7 @@ static int hand_over(const gd_system *sys, const gd_transient_spec *spec,
     gd_status st = gd_per_run_kind(sys, spec, param, &v, 1, &o, records, nrecords, &r, &err);
     if (st == GD_ENOMEM) return 1;
     const char *other = k == GD_PER_SHOOTING ? "shooting" : "harmonic balance";
-    const char *first = k == GD_PER_SHOOTING ? "harmonic balance" : "shooting";
+    const char *first = from == GD_PER_SHOOTING ? "shooting" : "harmonic balance";
     char was[256];
     snprintf(was, sizeof was, "%s", p->reason);
     if (!st && r->npoints >= 1 && r->points[0].converged) {
@@ -58,8 +59,12 @@ static int hand_over(const gd_system *sys, const gd_transient_spec *spec,
         r->points[0].records = NULL;
         char own[256], msg[600];
         snprintf(own, sizeof own, "%s", p->reason);
-        snprintf(msg, sizeof msg, "solved by %s (%s failed: %.120s)%s%.80s", other, first, was,
-                 own[0] ? "; " : "", own);
+        if (from == k) /* the same method alone at this value, off its branch */
+            snprintf(msg, sizeof msg, "solved by %s alone at this value (%.120s)%s%.80s", other,
+                     was, own[0] ? "; " : "", own);
+        else
+            snprintf(msg, sizeof msg, "solved by %s (%s failed: %.120s)%s%.80s", other, first, was,
+                     own[0] ? "; " : "", own);
         snprintf(p->reason, sizeof p->reason, "%.255s", msg);
         (*solved)++;
     } else {
@@ -98,20 +103,34 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
     if (st) return st;
     gd_periodic_result *r = *out;
     const gd_per_kind other = o.kind == GD_PER_SHOOTING ? GD_PER_HB : GD_PER_SHOOTING;
-    int failed = 0, solved = 0;
+    int failed = 0, solved = 0, alone = 0;
     /* cams with include_acceleration: harmonic balance cannot take them */
     int hb_ok = other != GD_PER_HB || strncmp(note, "shooting: harmonic balance cannot", 33);
-    for (int i = 0; i < r->npoints && hb_ok; i++)
-        if (!r->points[i].converged &&
-            !strstr(r->points[i].reason, "period is undefined")) { /* no method has one */
-            failed++;
-            if (hand_over(sys, spec, param, opt, other, records, nrecords, &r->points[i],
-                          &solved)) {
-                gd_periodic_result_free(r);
-                *out = NULL;
-                return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
-            }
+    for (int i = 0; i < r->npoints; i++) {
+        gd_periodic_point *p = &r->points[i];
+        if (p->converged || strstr(p->reason, "period is undefined")) /* no method has one */
+            continue;
+        int s0 = solved, oom = 0, tried = 0;
+        /* a value beyond where shooting's branch stopped (a fold its corrector could not
+         * pass, shooting_arclength.c): first shooting alone at it from its own transient,
+         * as --sequential would, then harmonic balance */
+        if (o.kind == GD_PER_SHOOTING &&
+            strstr(p->reason, "--sequential solves each value alone")) {
+            tried = 1;
+            alone++;
+            oom = hand_over(sys, spec, param, opt, o.kind, o.kind, records, nrecords, p, &solved);
         }
+        if (!oom && solved == s0 && hb_ok) {
+            tried = 1;
+            oom = hand_over(sys, spec, param, opt, o.kind, other, records, nrecords, p, &solved);
+        }
+        failed += tried;
+        if (oom) {
+            gd_periodic_result_free(r);
+            *out = NULL;
+            return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
+        }
+    }
     r->cpu_seconds = (double)(clock() - c0) / CLOCKS_PER_SEC;
     char run_note[256];
     snprintf(run_note, sizeof run_note, "%s", r->method_note);
@@ -119,7 +138,12 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
                        note[0] && run_note[0] ? "; " : "", run_note);
     if (failed && len >= 0 && (size_t)len < sizeof r->method_note)
         snprintf(r->method_note + len, sizeof r->method_note - (size_t)len,
-                 "; %d failed point(s) handed to %s, %d solved there", failed,
-                 other == GD_PER_SHOOTING ? "shooting" : "harmonic balance", solved);
+                 alone ? "; %d failed, handed to shooting alone%s: %d solved"
+                       : "; %d failed point(s) handed to %s, %d solved there",
+                 failed,
+                 alone                      ? (hb_ok ? " (then harmonic balance)" : "")
+                 : other == GD_PER_SHOOTING ? "shooting"
+                                            : "harmonic balance",
+                 solved);
     return GD_OK;
 }

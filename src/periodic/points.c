@@ -304,10 +304,22 @@ done:
  * Adaptive H: H doubles until the change is within harmonic_tol, and p becomes the finer
  * solution of the last comparison. A refinement that fails (Newton, or memory) leaves p
  * as it is with the reason. Returns 0. */
+/* Adaptive H stops where a doubling did not shrink the truncation estimate to this
+ * fraction of the doubling before, both from H = STALL_MIN_H on: a series that falls
+ * slower than 1 / sqrt(H) there will not reach the tolerance at any H that fits
+ * (planetary_mesh_laws.yaml, geometry TVMS with backlash: 7.3 % between H = 1 and 3 and
+ * between 3 and 7, 40 % between 31 and 63; the walk on to H = 1023 took minutes a point;
+ * a TVMS step alone falls as 1 / H, 0.5 a doubling, and walks on). Below STALL_MIN_H
+ * the first harmonics may change alike before the series falls. Counts, no clock. */
+#define STALL_RATIO 0.7
+#define STALL_MIN_H 15
+
 static int estimate_point(ctx *c, gd_periodic_point *p, double lam)
 {
     const int adaptive = c->opt->adaptive, nrec = c->nrec;
     const double tol = c->opt->harmonic_tol;
+    double prev = NAN; /* the estimate of the doubling before (adaptive) */
+    int prevH = 0;
     for (;;) {
         const int Hc = p->harmonics,
                   Hf = 2 * Hc + 1; /* odd: a response with only odd harmonics (a symmetric law)
@@ -376,6 +388,19 @@ static int estimate_point(ctx *c, gd_periodic_point *p, double lam)
                  "harmonic truncation: between H = %d and %d the peak-to-peak changes by %.2g "
                  "and the harmonic amplitudes by %.2g (tolerance %.2g)",
                  Hc, Hf, ep, ea, tol);
+        const double e = fmax(ep, ea);
+        if (isfinite(prev) && prevH >= STALL_MIN_H && e > STALL_RATIO * prev) {
+            char msg[320];
+            snprintf(msg, sizeof msg,
+                     "harmonic truncation not within the tolerance: %.2g between H = %d and %d "
+                     "after %.2g between %d and %d, it does not converge at any H that fits "
+                     "(--method shooting, or --harmonics N to accept one)",
+                     e, Hc, Hf, prev, prevH, Hc);
+            snprintf(p->reason, sizeof p->reason, "%.255s", msg);
+            return 0;
+        }
+        prev = e;
+        prevH = p->harmonics_ref;
     }
 }
 

@@ -306,7 +306,74 @@ TEST(rattling_pair_default_is_shooting)
     scratch_close(&s);
 }
 
+/* The matrix-free verdict (shooting above --shoot-dense-max states: Arnoldi on
+ * monodromy-vector products) within a counted budget: on the Chen pair (12 states, forced
+ * matrix-free) at 1000 rad/s its 12 Arnoldi steps cost about 0.018 s of counted work, so
+ * under --floquet-budget 1e-4 they are not started and the point says "not determined",
+ * naming the budget (the verdict ignored every budget before and spent them); with the
+ * default budget the verdict is stable, |mu|max 0.884956 (the dense monodromy's 0.88496). */
+TEST(krylov_verdict_within_counted_budget)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    static const char *fb[2] = {"1e-4", "30"};
+    for (int c = 0; c < 2; c++) {
+        char args[200];
+        snprintf(args, sizeof args,
+                 "periodic " CHEN " --speeds 1000:1000:1 --method shooting "
+                 "--shoot-dense-max 1 --sequential --floquet-budget %s",
+                 fb[c]);
+        cJSON *o = run_json_args(&s, args);
+        REQUIRE(o);
+        const cJSON *p = point(o, 0);
+        CHECK(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(p, "converged")));
+        const char *why = cJSON_GetStringValue(cJSON_GetObjectItemCaseSensitive(p, "reason"));
+        const double m =
+            cJSON_GetNumberValue(cJSON_GetObjectItemCaseSensitive(p, "floquet_multiplier_max_abs"));
+        if (!c) {
+            CHECK(cJSON_IsNull(cJSON_GetObjectItemCaseSensitive(p, "stable")));
+            CHECK(why && strstr(why, "stability not determined: 12 Arnoldi steps") &&
+                  strstr(why, "--floquet-budget"));
+        } else {
+            CHECK(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(p, "stable")));
+            CHECK(fabs(m - 0.884956) < 1e-5);
+        }
+        cJSON_Delete(o);
+    }
+    scratch_close(&s);
+}
+
+/* A branch that stops: the rattling idler (examples/rattle_idle.yaml, backlash) at
+ * --shoot-rtol 1e-7 from 62.8 rad/s (stable, |mu|max 0.7194) to 66 rad/s. Its stable
+ * branch ends near 65 rad/s, where shooting's corrector fails at every step length (30
+ * iterations at residual 2e-3, about 1.3 s CPU a try at the default rtol's tenth); the
+ * arclength stops after 6 failed steps in a row (it halved on to 1e-6 of the range before,
+ * minutes at the default rtol) and names --sequential; `auto` solves the value past the
+ * stop by shooting alone, from its own transient. About 8 s CPU. */
+TEST(branch_stop_handed_to_shooting_alone)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    cJSON *o = run_json_args(
+        &s, "periodic examples/rattle_idle.yaml --speeds 62.8:66:2 --shoot-rtol 1e-7");
+    REQUIRE(o);
+    CHECK(npoints(o) == 2);
+    const cJSON *p0 = point(o, 0), *p1 = point(o, 1);
+    CHECK(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(p0, "stable")));
+    CHECK(fabs(cJSON_GetNumberValue(
+                   cJSON_GetObjectItemCaseSensitive(p0, "floquet_multiplier_max_abs")) -
+               0.719426) < 1e-4);
+    CHECK(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(p1, "converged")));
+    const char *why = cJSON_GetStringValue(cJSON_GetObjectItemCaseSensitive(p1, "reason"));
+    CHECK(why && strstr(why, "solved by shooting alone at this value (the branch stops at "
+                             "64.9759 rad/s after 6 failed steps in a row; --sequential"));
+    CHECK(strstr(jstr(o, "method_choice"), "1 failed, handed to shooting alone") != NULL);
+    cJSON_Delete(o);
+    scratch_close(&s);
+}
+
 RUN_TESTS(T(five_runs_identical), T(unilateral_spring_default_is_shooting),
           T(hb_stability_from_corrected_orbit), T(truncated_points_take_the_corrected_orbit),
           T(failed_points_handed_over), T(frequency_messages_name_the_quantity), T(dofs_option),
-          T(progress_without_terminal), T(rattling_pair_default_is_shooting))
+          T(progress_without_terminal), T(rattling_pair_default_is_shooting),
+          T(krylov_verdict_within_counted_budget), T(branch_stop_handed_to_shooting_alone))

@@ -628,6 +628,39 @@ int gd_per_sh_multipliers(shoot *sh, const double *y, double *mre, double *mim)
                : sh->N;
 }
 
+/* The counted cost of m Arnoldi steps on central-difference products at y: P(y) and two
+ * periods a product, (2 m + 1) periods of the last one's counted work (work.c). */
+static double arnoldi_cost(const shoot *sh, int m)
+{
+    return (2.0 * m + 1.0) * sh->t_period;
+}
+
+/* 1 when m more Arnoldi steps fit the verdict's budget (spent: what its earlier steps
+ * took): the point's multipliers within opt->floquet_budget and the point within
+ * opt->shoot_budget (seconds of counted work, 0: no limit; never a clock, so the verdict
+ * is the same every run). Else 0 and why (cap bytes) names the cost and the option. */
+static int verdict_fits(const shoot *sh, int m, double spent, char *why, size_t cap)
+{
+    const double next = arnoldi_cost(sh, m), fb = sh->opt->floquet_budget,
+                 sb = sh->opt->shoot_budget;
+    if (!(sh->t_period > 0)) return 1; /* nothing integrated yet: nothing to predict from */
+    if (fb > 0 && spent + next > fb) {
+        snprintf(why, cap,
+                 "%d Arnoldi steps need about %.2g s (counted) over the multipliers' "
+                 "budget of %.3g s (--floquet-budget)",
+                 m, spent + next, fb);
+        return 0;
+    }
+    if (sb > 0 && sh->work + next > sb) {
+        snprintf(why, cap,
+                 "%d Arnoldi steps need about %.2g s more (counted) than the point's "
+                 "budget of %.3g s leaves (--shoot-budget)",
+                 m, next, sb);
+        return 0;
+    }
+    return 1;
+}
+
 int gd_per_sh_verdict(shoot *sh, const double *y, double *mre, double *mim, int *stable, char *note,
                       size_t cap)
 {
@@ -650,26 +683,38 @@ int gd_per_sh_verdict(shoot *sh, const double *y, double *mre, double *mim, int 
         return -1;
     }
     double *vre = w + N, *vim = vre + N;
-    int m = N < KRYLOV_M ? N : KRYLOV_M, nm;
+    int m = N < KRYLOV_M ? N : KRYLOV_M, nm = 0;
+    double spent = 0.0;
+    char over[200] = "";
+    /* KRYLOV_M steps, then (the verdict open) once more to every state, each run only where
+     * the counted budget holds it: a run stopped by it would discard its products */
     for (;;) {
+        if (!verdict_fits(sh, m, spent, over, sizeof over)) break;
+        const double w0 = sh->work;
         nm = krylov_multipliers(sh, y, m, mre, mim, vre, vim, w);
+        spent += sh->work - w0;
         if (nm < 0) break;
         *stable = gd_ritz_verdict(vre, vim, w, nm, 1.0 + 1e-6);
         if (*stable >= 0 || m >= N || N > KRYLOV_FULL) break;
         m = N; /* the cluster needs the whole space: Arnoldi again to every state */
     }
-    if (nm >= 0) {
+    if (nm == 0 && over[0]) /* not even the first run fitted */
+        snprintf(note, cap, "stability not determined: %s", over);
+    else if (nm > 0) {
         int open = -1; /* the largest value whose residual straddles the circle */
         for (int j = 0; j < nm; j++) {
             double a = hypot(vre[j], vim[j]);
             if (a + w[j] > 1.0 + 1e-6 && (open < 0 || a > hypot(vre[open], vim[open]))) open = j;
         }
-        if (*stable < 0)
+        if (*stable < 0 && open >= 0)
             snprintf(note, cap,
-                     "stability not determined: %d Arnoldi steps on monodromy-vector products "
-                     "leave the Ritz value %.6g%+.4gi (|mu| %.6f) within its residual %.2g of "
-                     "the unit circle (%d states; --floquet reduced or a smaller model)",
-                     nm, vre[open], vim[open], hypot(vre[open], vim[open]), w[open], N);
+                     "stability not determined: %d Arnoldi steps leave the Ritz value "
+                     "%.6g%+.4gi (|mu| %.6f) within its residual %.2g of the unit circle (%d "
+                     "states; %s)",
+                     nm, vre[open], vim[open], hypot(vre[open], vim[open]), w[open], N,
+                     over[0] ? over : "--floquet reduced or a smaller model");
+        else if (*stable < 0)
+            snprintf(note, cap, "stability not determined: %d Arnoldi steps (%d states)", nm, N);
         else
             snprintf(note, cap,
                      "multipliers: the %d largest of %d, Ritz values of Arnoldi on "

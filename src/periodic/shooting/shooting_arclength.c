@@ -54,7 +54,16 @@ typedef struct arc {
     double *pt;                      /* N: the products' work (Krylov) */
     double *mre, *mim, *mre1, *mim1; /* N each: the step's start's and end's multipliers */
     int nmu, nmu1;                   /* their counts (0: none) */
+    int fails;                       /* failed steps since the last one taken */
+    double lam_ok;                   /* the value of the last point of the branch */
 } arc;
+
+/* Failed steps in a row (each a corrector of up to max_iter monodromies, the step halved
+ * after each) after which the branch stops: a rattling idler's stable branch
+ * (examples/rattle_idle.yaml) ends near 64.8 rad/s in a fold its corrector cannot pass
+ * (30 iterations at residual 5e-4, then a jump to -53 rad/s), and halving on to dsmin took
+ * minutes of CPU at about 5 s a failed step; a count, never a clock. */
+#define ARC_FAILS 6
 
 /* P(y) at lam into sh->yT, and (dense) the monodromy into sh->phi. 0 ok. */
 static int evaluate(arc *a, const double *y, double lam)
@@ -384,6 +393,8 @@ static int op_start(void *m, const double *y, double lam, double sign, double sl
         memcpy(a->mim, p0->mu_im, (size_t)a->nmu * sizeof *a->mim);
     }
     a->sl = sl;
+    a->fails = 0;
+    a->lam_ok = lam;
     a->D = D;
     gd_per_sh_tolerances(sh, y);
     gd_per_sh_scales(sh, y, a->D);
@@ -417,14 +428,25 @@ static int op_direction(void *m, int dir, double v0, double v1)
 
 static int op_give_up(void *m)
 {
-    return ((arc *)m)->sh->budget_hit;
+    arc *a = m;
+    shoot *sh = a->sh;
+    if (sh->budget_hit) return 1;
+    if (++a->fails < ARC_FAILS) return 0;
+    char last[160];
+    snprintf(last, sizeof last, "%.150s", sh->why);
+    snprintf(sh->why, sizeof sh->why,
+             "the branch stops at %.6g%s after %d failed steps in a row; --sequential solves "
+             "each value alone (the last: %.100s)",
+             a->lam_ok, sh->param && !sh->param->load_frequency ? "" : " rad/s", ARC_FAILS, last);
+    return 1;
 }
 
 /* The multipliers at the step (dense: sh->phi is its monodromy). */
 static void op_measure(void *m, const double *y1, double l1)
 {
     arc *a = m;
-    (void)l1;
+    a->fails = 0;
+    a->lam_ok = l1;
     if (a->nmu && point_multipliers(a, y1, a->mre1, a->mim1, &a->nmu1)) a->nmu1 = 0;
 }
 
