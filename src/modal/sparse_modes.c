@@ -297,7 +297,7 @@ gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
     int ncs = r > 0 ? nc - nrig : nc;
     int km = r + ncs < want ? r + ncs : want, kr = r < km ? r : km;
     res = gd_modal_result_new(sys, km, 0);
-    px = malloc((size_t)4 * n * sizeof *px);
+    px = malloc((size_t)17 * n * sizeof *px);
     if (!res || !px) goto nomem;
     py = px + 2 * n;
     res->damped = any_d || opt->kind == GD_MODAL_DAMPED || !conservative;
@@ -312,13 +312,26 @@ gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
         double *re = res->shape_re + (size_t)j * n, *im = res->shape_im + (size_t)j * n;
         memcpy(re, ks.vec_re + (size_t)c->idx * n, (size_t)n * sizeof *re);
         memcpy(im, ks.vec_im + (size_t)c->idx * n, (size_t)n * sizeof *im);
-        if (!c->rigid) purify(&op, sym, c->re, c->im, re, im, px, py);
         gd_normalise_max(re, im, n);
+    }
+    const double *dd = res->damped ? d : NULL;
+    if (gd_modal_residuals_on(a, k, dd, res, NULL, NULL)) goto nomem;
+    /* purified where the mode fails the tolerance and its rounding floor lies well below it;
+     * a mode at its floor (a fine mesh: gearbox100k) is left to the refinement, whose
+     * Rayleigh-Ritz takes its eigenvalue closer (gd_sparse_modes_to_tol) */
+    double tol = opt->tol > 0 ? opt->tol : GD_MODAL_TOL_DEFAULT;
+    for (int j = kr; j < km; j++) {
+        gd_mode *md = &res->modes[j];
+        double *re = res->shape_re + (size_t)j * n, *im = res->shape_im + (size_t)j * n;
+        if (!md->rigid_body && md->residual > tol && 100 * md->residual_floor < tol) {
+            purify(&op, sym, md->lambda_re, md->lambda_im, re, im, px, py);
+            gd_normalise_max(re, im, n);
+            gd_mode_residual(a, k, dd, md, re, im, px + 4 * (size_t)n);
+        }
         gd_mode_finish(sys, opt->speed, md, re, im,
                        res->energy_by_component + (size_t)j * sys->ncomponents);
     }
     if (ws->chain) gd_sparse_ws_remember(ws, res);
-    if (gd_modal_residuals_on(a, k, res->damped ? d : NULL, res, NULL, NULL)) goto nomem;
     *out = res;
     res = NULL;
     goto done;

@@ -25,14 +25,14 @@ static double worst_residual(const gd_modal_result *r, double want)
     return w;
 }
 
-/* Each elastic mode of r whose residual fails want (even within 100 times its floor,
- * which a step often passes): one step of inverse iteration at its own eigenvalue, u <-
- * P(lambda)^-1 P'(lambda) u with a complex factorisation of P(lambda) (KLU on a's analysis). The
- * Krylov-Schur eigenvalue is already accurate (1e-12 of itself on rig366) while its vector is not
- * (the rounding of the basis, multiplied by the stiff directions: residuals 1e-9 to 1e-7
- * after purification), so one step takes the residual to near its floor; the shape is
- * kept only when its residual falls. k, d: the values r was solved with (d NULL:
- * undamped). 0, or -1 when out of memory. */
+/* Each elastic mode of r whose residual fails want while its rounding floor lies 100 times
+ * below it (one at its floor is the refinement's, below): one step of inverse iteration at its own
+ * eigenvalue, u <- P(lambda)^-1 P'(lambda) u with a complex factorisation of P(lambda) (KLU on a's
+ * analysis). The Krylov-Schur eigenvalue is already accurate (1e-12 of itself on rig366) while its
+ * vector is not (the rounding of the basis, multiplied by the stiff directions: residuals 1e-9 to
+ * 1e-7 after purification), so one step takes the residual to near its floor; the shape is kept
+ * only when its residual falls. k, d: the values r was solved with (d NULL: undamped). 0, or -1
+ * when out of memory. */
 static int inverse_step(const gd_dynmat *a, const gd_splu_symbolic *sym, const double *k,
                         const double *d, gd_modal_result *r, double want)
 {
@@ -43,7 +43,7 @@ static int inverse_step(const gd_dynmat *a, const gd_splu_symbolic *sym, const d
     int rc = pv && b && w ? 0 : -1;
     for (int j = 0; j < r->nmodes && !rc; j++) {
         gd_mode *md = &r->modes[j];
-        if (md->rigid_body || !(md->residual > want)) continue;
+        if (md->rigid_body || !(md->residual > want && 100 * md->residual_floor < want)) continue;
         double lr = md->lambda_re, li = md->lambda_im, l2r = lr * lr - li * li, l2i = 2 * lr * li;
         for (int q = 0; q < nnz; q++) {
             double dq = d ? d[q] : 0;
