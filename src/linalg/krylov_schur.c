@@ -605,53 +605,57 @@ static void deflated_apply(void *c, const double *x, double *y)
  * (m x p), T into T (p x p) and the eigenvalues into wr, wi. Returns 1 when the vectors
  * are nearly dependent (a defective cluster such as the rigid-body zero), for the full
  * Schur route instead (T and Q untouched), -1 on failure. */
-/* Column c of S (a member of a defective pair: its Ritz vector meets its partner's,
- * column c - 1, at ~sqrt(tol)) replaced by a vector that spans the pair's invariant
- * subspace with the partner (the eigenvector and the generalised one of the Jordan
- * block): three steps of subspace iteration with (H - theta I)^-1, theta the pair's real
- * part, on the block [partner, a fixed vector], orthonormalised after each step. Inverse
- * iteration on one vector would converge to the eigenvector alone; the block's span
- * converges to the subspace, by |theta_0 - theta| / |theta_k - theta| a step. 0, or 1
- * when H - theta I is singular. Uses T (m x m), wr2 and ifail. */
-static int jordan_column(gd_ks_work *ws, int m, int c)
+/* The real part of the Ritz value whose columns of S hold column c (ritz_pairs' order). */
+static double column_value(const gd_ks_work *ws, int m, int c)
 {
-    int ldh = ws->ncv + 1, col = 0;
-    double theta = 0;
-    if (c < 1) return 1;
-    for (int k = 0; k < m; k++) { /* the value whose columns hold c (ritz_pairs' order) */
+    for (int k = 0, col = 0; k < m; k++) {
         int j = ws->grp[k], w = ws->wi[j] > 0 ? 2 : 1;
-        if (c < col + w) {
-            theta = ws->wr[j];
-            break;
-        }
+        if (c < col + w) return ws->wr[j];
         col += w;
     }
+    return 0;
+}
+
+/* Column c of S (a member of a defective cluster: its Ritz vector meets those of the
+ * earlier columns of the same value at ~sqrt(tol)) replaced by a vector that completes
+ * them to the cluster's invariant subspace (eigenvectors and generalised ones of the
+ * Jordan blocks): three steps of subspace iteration with (H - theta I)^-1, theta the
+ * value's real part, on the block [those columns, a fixed vector], orthonormalised
+ * after each step; the block's last vector. Inverse iteration on one vector would
+ * converge to an eigenvector alone; the block's span converges to the subspace, by
+ * |theta_0 - theta| / |theta_k - theta| a step. 0, or 1 when H - theta I is singular.
+ * Uses T (m x m), Z (m x (c + 1)) and ifail. */
+static int jordan_column(gd_ks_work *ws, int m, int c)
+{
+    int ldh = ws->ncv + 1, q = 0;
+    double theta = column_value(ws, m, c), *Y = ws->Z;
+    for (int j = 0; j < c; j++)
+        if (fabs(column_value(ws, m, j) - theta) <= 1e-3 * fabs(theta))
+            memcpy(Y + (size_t)q++ * m, ws->S + (size_t)j * m, (size_t)m * sizeof *Y);
+    if (q == 0) return 1;
+    start_vector(Y + (size_t)q++ * m, m, 5u);
     for (int j = 0; j < m; j++)
         for (int i = 0; i < m; i++)
             ws->T[i + (size_t)j * m] = ws->H[i + (size_t)j * ldh] - (i == j ? theta : 0.0);
     lapack_int *piv = ws->ifail;
     if (LAPACKE_dgetrf_work(LAPACK_COL_MAJOR, m, m, ws->T, m, piv)) return 1;
-    double *y1 = ws->wr2, *y2 = ws->S + (size_t)c * m;
-    memcpy(y1, ws->S + (size_t)(c - 1) * m, (size_t)m * sizeof *y1);
-    start_vector(y2, m, 5u);
     for (int it = 0; it < 3; it++) {
-        if (LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'N', m, 1, ws->T, m, piv, y1, m) ||
-            LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'N', m, 1, ws->T, m, piv, y2, m))
-            return 1;
-        double n1 = nrm2(y1, m);
-        if (!(n1 > 0) || !isfinite(n1)) return 1;
-        for (int i = 0; i < m; i++)
-            y1[i] /= n1;
-        for (int pass = 0; pass < 2; pass++) {
-            double h = dot(y1, y2, m);
+        if (LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'N', m, q, ws->T, m, piv, Y, m)) return 1;
+        for (int a = 0; a < q; a++) { /* modified Gram-Schmidt, twice */
+            double *ya = Y + (size_t)a * m;
+            for (int pass = 0; pass < 2; pass++)
+                for (int b = 0; b < a; b++) {
+                    double h = dot(Y + (size_t)b * m, ya, m);
+                    for (int i = 0; i < m; i++)
+                        ya[i] -= h * Y[i + (size_t)b * m];
+                }
+            double nr = nrm2(ya, m);
+            if (!(nr > 0) || !isfinite(nr)) return 1;
             for (int i = 0; i < m; i++)
-                y2[i] -= h * y1[i];
+                ya[i] /= nr;
         }
-        double n2 = nrm2(y2, m);
-        if (!(n2 > 0) || !isfinite(n2)) return 1;
-        for (int i = 0; i < m; i++)
-            y2[i] /= n2;
     }
+    memcpy(ws->S + (size_t)c * m, Y + (size_t)(q - 1) * m, (size_t)m * sizeof *Y);
     return 0;
 }
 
