@@ -355,7 +355,8 @@ TEST(condensed_torus_equals_full_torus)
 /* The stability of a torus point (gd_qp_stability: the Magnus monodromy over the common
  * period on the slice's local Jacobians) equals the integrated monodromy
  * (gd_transient_monodromy, CVODE at rtol 1e-7) from the slice's state at t = 0: every
- * multiplier's modulus, on the co-prime gearbox at 1700 rpm (torus order 16). */
+ * multiplier's modulus, on the co-prime gearbox at 1700 rpm (torus order 16); and so does
+ * the reduced basis that takes models over shoot_dense_max states, forced here. */
 TEST(magnus_monodromy_equals_the_integrated_one)
 {
     fx f;
