@@ -8,17 +8,19 @@
 # measured in the same run. Prints the largest deviation per record, and checks the
 # transient's numbers at 900 and 1700 rpm against those stored in
 # tests/periodic/test_multifreq.c (REF: mean, std, p2p per mesh) to 0.1 %.
-# usage: bench_multifreq.sh BUILD [COUNT]
+# usage: bench_multifreq.sh BUILD [COUNT [FROM TO]]   (FROM, TO in rpm; default 600 3000)
 set -euo pipefail
 status=0
 cd "$(dirname "$0")/.."
 B=${1:-build}
 N=${2:-25}
+LO=${3:-600}
+HI=${4:-3000}
 M=examples/gearbox_coprime.yaml
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-echo "-- $M: periodic with default options, 600..3000 rpm, $N speeds"
-OPENBLAS_NUM_THREADS=1 "$B/geardyn" periodic "$M" --speeds "600rpm:3000rpm:$N" \
+echo "-- $M: periodic with default options, $LO..$HI rpm, $N speeds"
+OPENBLAS_NUM_THREADS=1 "$B/geardyn" periodic "$M" --speeds "${LO}rpm:${HI}rpm:$N" \
     --record mesh:stage1 --record mesh:stage2 --json 2>"$tmp/err" >"$tmp/qp.json"
 grep -o '[0-9.]* s CPU' "$tmp/err" | head -1 | sed 's/^/   whole curve: /'
 python3 - "$tmp/qp.json" "$B" "$M" <<'PY' || status=1

@@ -582,8 +582,7 @@ int gd_per_qp_run(const gd_system *sys, const gd_transient_spec *spec, const dou
             if (opt->stability) {
                 char note[200] = "";
                 const int nf = (int)(a.n / (2L * a.nk - 1));
-                const int smax = opt->shoot_dense_max > 0 ? opt->shoot_dense_max : 64;
-                if (gd_qp_stability(tr, &b, a.X, a.k, a.nk, nf, smax, p, note, sizeof note)) rc = 1;
+                if (gd_qp_stability(tr, &b, a.X, a.k, a.nk, nf, opt, p, note, sizeof note)) rc = 1;
                 if (note[0] && !p->reason[0]) snprintf(p->reason, sizeof p->reason, "%s", note);
             }
             sol_clear(&prev, nrecords);

@@ -194,9 +194,91 @@ done:
     return rc;
 }
 
-int gd_qp_stability(gd_transient *tr, const gd_qp_bases *b, const double *X, const int *k, int nk,
-                    int nf, int max_states, gd_periodic_point *p, char *note, size_t cap)
+/* The slice's coefficients gathered by whole order n = k . W / w0 into the single-frequency
+ * layout of hb.c (the mean, then the cosine and sine rows of orders 1..top; a harmonic of
+ * negative order enters with its sine negated, one of order 0 adds its cosine to the
+ * mean), so the periodic orbit's tools (floquet_reduced.c) take the slice as they take a
+ * harmonic balance solution of period 2 pi / w0. NULL when out of memory. */
+static double *slice_series(const gd_qp_bases *b, const double *X, const int *k, int nk, int nf,
+                            int *top_out)
 {
+    long top = 0;
+    long *ord = malloc((size_t)nk * sizeof *ord);
+    if (!ord) return NULL;
+    for (int j = 0; j < nk; j++) {
+        double w = 0.0;
+        for (int g = 0; g < b->d; g++)
+            w += k[(size_t)j * b->d + g] * b->W[g];
+        ord[j] = lround(w / b->common);
+        if (labs(ord[j]) > top) top = labs(ord[j]);
+    }
+    double *Xs = calloc((size_t)(2 * top + 1) * nf, sizeof *Xs);
+    if (Xs) {
+        memcpy(Xs, X, (size_t)nf * sizeof *Xs);
+        for (int j = 1; j < nk; j++) {
+            const long o = labs(ord[j]);
+            const double sg = ord[j] < 0 ? -1.0 : 1.0;
+            const double *xc = X + (size_t)(2 * j - 1) * nf, *xs = X + (size_t)2 * j * nf;
+            double *dc = o ? Xs + (size_t)(2 * o - 1) * nf : Xs, *ds = Xs + (size_t)2 * o * nf;
+            for (int i = 0; i < nf; i++) {
+                dc[i] += xc[i];
+                if (o) ds[i] += sg * xs[i];
+            }
+        }
+    }
+    *top_out = (int)top;
+    free(ord);
+    return Xs;
+}
+
+/* the largest step count the reduced basis doubles to (floquet_reduced.c's own cap) */
+#define REDUCED_STEPS_CAP 131072
+
+/* The multipliers of a model over max_states states: the slice (a periodic orbit of the
+ * common period) handed to the reduced basis of floquet_reduced.c (the modes of (sym K, M)
+ * below opt->floquet_cutoff (0: 4) times the highest base, the residual flexibility of the
+ * rest along the laws' directions, fourth-order Magnus steps of the local part doubled
+ * from 8 per cycle of the highest base until two counts agree; the discarded modes'
+ * multipliers estimated one by one). wr, wi: 2 nf. 0 ok (*nmu set), else note says why. */
+static int reduced_multipliers(gd_transient *tr, const gd_qp_bases *b, const double *X,
+                               const int *k, int nk, int nf, const gd_periodic_options *opt,
+                               double *wr, double *wi, int *nmu, char *note, size_t cap)
+{
+    int top = 0, nbasis = 0, used = 0;
+    double *Xs = slice_series(b, X, k, nk, nf, &top);
+    char msg[160] = "";
+    if (!Xs) {
+        snprintf(note, cap, "stability not computed: out of memory");
+        return 1;
+    }
+    hb h;
+    memset(&h, 0, sizeof h);
+    h.nf = nf;
+    h.H = top;
+    const double fc = opt->floquet_cutoff > 0 ? opt->floquet_cutoff : 4.0;
+    const int s0 = gd_floquet_reduced_first_steps(b->order > 0 ? b->order : 1);
+    tr->law_time = NULL;
+    int rc =
+        gd_hb_floquet_reduced(&h, tr, b->common, Xs, 0, s0, REDUCED_STEPS_CAP, &used, NULL, 0,
+                              fc * b->W[b->d - 1], opt->floquet_budget, wr, wi, nmu, &nbasis, msg);
+    if (h.fmodes_free) h.fmodes_free(h.fmodes);
+    free(Xs);
+    if (rc)
+        snprintf(note, cap, "%s%s", strncmp(msg, "stability", 9) ? "stability not computed: " : "",
+                 msg[0] ? msg : "the reduced basis failed");
+    else
+        snprintf(note, cap,
+                 "stability: %d states, over the %d of a dense monodromy: the reduced basis "
+                 "(%d vectors, %d Magnus steps)",
+                 2 * nf, opt->shoot_dense_max > 0 ? opt->shoot_dense_max : 64, nbasis, used);
+    return rc;
+}
+
+int gd_qp_stability(gd_transient *tr, const gd_qp_bases *b, const double *X, const int *k, int nk,
+                    int nf, const gd_periodic_options *opt, gd_periodic_point *p, char *note,
+                    size_t cap)
+{
+    const int max_states = opt->shoot_dense_max > 0 ? opt->shoot_dense_max : 64;
     const int n = 2 * nf, d = b->d;
     note[0] = '\0';
     const int periodic = b->common > 0;
@@ -223,13 +305,23 @@ int gd_qp_stability(gd_transient *tr, const gd_qp_bases *b, const double *X, con
             y0[nf + i] += w * X[(size_t)2 * j * nf + i];
         }
     }
-    if (n > max_states) { /* a perturbation's decay over two common periods by transients
-                             was tried: the full co-prime gearbox (274 states) integrates
-                             one common period in 26 s CPU, about 100 s a point */
+    int nmu = n, red = -1;
+    if (n > max_states && periodic && gd_transient_nswitches(tr) == 0) {
+        red = reduced_multipliers(tr, b, X, k, nk, nf, opt, wr, wi, &nmu, note, cap);
+        if (red) {
+            free(y0);
+            free(phi);
+            free(wr);
+            free(wi);
+            return 0;
+        }
+    } else if (n > max_states) {
         snprintf(note, cap,
                  "stability not computed: %d states, over the %d of a dense monodromy "
-                 "(--shoot-dense-max)",
-                 n, max_states);
+                 "(--shoot-dense-max), and %s",
+                 n, max_states,
+                 periodic ? "contact changes (the reduced basis needs smooth laws)"
+                          : "no common period");
         free(y0);
         free(phi);
         free(wr);
@@ -246,7 +338,9 @@ int gd_qp_stability(gd_transient *tr, const gd_qp_bases *b, const double *X, con
     int rc = 0, mg = -1;
     /* smooth laws on a common period: the Magnus monodromy on the slice; contact changes
      * (backlash) or no common period: the integrated one */
-    if (periodic && gd_transient_nswitches(tr) == 0) {
+    if (red == 0) {
+        mg = 0; /* the reduced multipliers are in wr, wi */
+    } else if (periodic && gd_transient_nswitches(tr) == 0) {
         mg = magnus_monodromy(tr, b, X, k, nk, nf, phi);
         if (mg == 1) rc = 1;
     }
@@ -254,11 +348,12 @@ int gd_qp_stability(gd_transient *tr, const gd_qp_bases *b, const double *X, con
         snprintf(note, cap, "stability not computed: out of memory");
     } else if (mg != 0 && gd_transient_monodromy(tr, 0.0, T, y0, &o, phi, NULL, &err) != GD_OK) {
         snprintf(note, cap, "stability not computed: the monodromy failed (%.150s)", err.message);
-    } else if (LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', n, phi, n, wr, wi, NULL, 1, NULL, 1)) {
+    } else if (red != 0 &&
+               LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', n, phi, n, wr, wi, NULL, 1, NULL, 1)) {
         snprintf(note, cap, "stability not computed: the eigenvalues did not converge");
     } else {
         double mx = 0.0;
-        for (int i = 0; i < n; i++)
+        for (int i = 0; i < nmu; i++)
             mx = fmax(mx, hypot(wr[i], wi[i]));
         p->mu_max = mx;
         p->stable = mx < 1.0;
@@ -267,7 +362,7 @@ int gd_qp_stability(gd_transient *tr, const gd_qp_bases *b, const double *X, con
         free(p->mu_im);
         p->mu_re = wr;
         p->mu_im = wi;
-        p->nmult = n;
+        p->nmult = nmu;
         wr = wi = NULL;
         if (!periodic)
             snprintf(note, cap,

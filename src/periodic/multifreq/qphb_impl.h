@@ -147,10 +147,13 @@ long gd_qpc_matvecs(const gd_qpc *c);
 /* The stability of a point (qp_stability.c): the Floquet multipliers of the slice over
  * the bases' common period (the integrated monodromy from the slice's state at t = 0;
  * stability_method GD_PER_MULTIFREQ), or without one a Lyapunov estimate (said in note).
- * X: the full coefficients on the harmonics k (nk x d). Up to max_states states, else
- * note says why not. 0 done (p's multipliers set, or note says why not), 1 no memory. */
+ * X: the full coefficients on the harmonics k (nk x d). Up to opt->shoot_dense_max (0: 64)
+ * states the dense Magnus monodromy; above, with a common period and smooth laws, the
+ * reduced basis of floquet_reduced.c on the slice (note says so), else note says why not.
+ * 0 done (p's multipliers set, or note says why not), 1 no memory. */
 int gd_qp_stability(gd_transient *tr, const gd_qp_bases *b, const double *X, const int *k, int nk,
-                    int nf, int max_states, gd_periodic_point *p, char *note, size_t cap);
+                    int nf, const gd_periodic_options *opt, gd_periodic_point *p, char *note,
+                    size_t cap);
 
 /* The branch over speed by the torus (qp_run.c): natural continuation, each point from the
  * last; adaptive H (opt->adaptive: 32 raised by half until two orders' records agree to
