@@ -396,7 +396,7 @@ static void on_step(double value, void *user)
  * response may have none (a rattling train): name the `transient` run that gives its
  * per-period statistics and Poincare verdict (docs/transient.md). */
 static void rattle_hint(const char *model, const gd_periodic_result *r, const char *param, int freq,
-                        int load_index)
+                        int load_index, const gd_system *sys, const gd_transient_spec *spec)
 {
     int first = -1, n = 0;
     for (int i = 0; i < r->npoints; i++)
@@ -412,7 +412,21 @@ static void rattle_hint(const char *model, const gd_periodic_result *r, const ch
            "first at %s). Where the response has none (rattle, a torus), its statistics over "
            "many periods and the Poincare verdict come from `geardyn transient`",
            n, r->npoints, at);
-    if (freq) {
+    double w0 = 0;
+    gd_error perr;
+    gd_error_clear(&perr);
+    if (!freq && p->speed > 0 && gd_periodic_fundamental(sys, spec, p->speed, &w0, NULL, &perr)) {
+        /* no common period (incommensurate excitations): --periods has none to count, so a
+           run of a given length, its statistics over the last 100 revolutions */
+        const double rev = 6.283185307179586 / p->speed;
+        char set[300] = "";
+        if (param) snprintf(set, sizeof set, " --set %s=%.9g", param, p->parameter);
+        printf(" over a given time instead (the excitations have no common period: no "
+               "Poincare section, and --periods has none to count), e.g. 300 revolutions, the "
+               "statistics of the last 100:\n"
+               "  geardyn transient %s%s --speed %.6g --duration %.6g --from %.6g\n",
+               model, set, p->speed, 300.0 * rev, 200.0 * rev);
+    } else if (freq) {
         /* a forced response: the model's loads at that frequency, set in the model file
          * (transient has no frequency option; the speed is the model's) */
         const double T = p->parameter > 0 ? 6.283185307179586 / p->parameter : 1.0;
@@ -921,7 +935,7 @@ int gd_cmd_periodic(int argc, char **argv)
         int li = 0; /* the first time-harmonic load (the model's order) */
         while (li < tm->spec.nloads && tm->spec.loads[li].law.kind != GD_LOAD_HARMONIC_TIME)
             li++;
-        rattle_hint(file, r, pv && !a.freq ? ppath : NULL, a.freq != NULL, li);
+        rattle_hint(file, r, pv && !a.freq ? ppath : NULL, a.freq != NULL, li, s, &tm->spec);
     }
 done:
     /* the partial file goes once the complete files are in place, and on an error (which

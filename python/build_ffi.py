@@ -424,7 +424,8 @@ typedef struct { int harmonics; int adaptive; double harmonic_tol; int max_harmo
                  int subharmonic; int samples; double tol; int max_iter; int stability;
                  int monodromy_steps; gd_per_method method; int both_directions;
                  int max_steps; int solver; gd_per_kind kind; double shoot_rtol;
-                 double shoot_budget; double floquet_budget; ...; } gd_periodic_options;
+                 double shoot_budget; double floquet_budget; int shoot_stability;
+                 ...; } gd_periodic_options;
 typedef struct { double mean, rms, peak_to_peak; double *amplitude, *phase_deg;
                  ...; } gd_per_record_stats;
 typedef struct { double speed; double parameter; int direction; int converged;

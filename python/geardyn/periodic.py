@@ -31,25 +31,27 @@ def _frequencies(values):
     return sweep(values, "speed", "frequency")
 
 
-def periodic(system, speeds=None, harmonics=10, subharmonic=1, records=None,
+def periodic(system, speeds=None, harmonics="auto", subharmonic=1, records=None,
              method="arclength", both_directions=False, stability=True, tol=1e-10,
-             samples=0, laws=None, solver="hb", shoot_budget=None, frequency=None,
-             floquet_budget=None):
+             samples=0, laws=None, solver="auto", shoot_budget=30.0, frequency=None,
+             floquet_budget=30.0):
     """Periodic steady state over the reference speeds `speeds` (rad/s array or
-    "FROM:TO:COUNT" with units), as `geardyn periodic`: harmonics H (or "auto": raised
-    from 10 until the top quarter carries < 1e-6 of the response), subharmonic N,
+    "FROM:TO:COUNT" with units), as `geardyn periodic`, with its defaults: harmonics H
+    ("auto", the default: from the excitations, raised until the truncation estimate
+    holds, as `--harmonics auto`), subharmonic N,
     records as for transient() (NODE.DOF[:disp|vel|speed], ratio:A/B, mesh:NAME[:what],
     sfd:BEARING[:what]; None: the CLI's defaults; a total angle has no periodic steady
     state), method "arclength" (through folds: several points per speed on a hysteresis
     loop) or "sequential" (a run-up), both_directions (also the run back), stability
     (Floquet multipliers and bifurcations), tol (Newton's relative residual), samples
     (AFT samples per period; 0: automatic). laws: geardyn.Law objects (laws of your own
-    in Python) added to the model's. solver: "hb" (harmonic balance, default), "shooting"
+    in Python) added to the model's. solver: "hb" (harmonic balance), "shooting"
     (Newton on the period map of the transient integrator: cam torques with
-    include_acceleration too) or "auto" (the cheaper by a measured cost; the result's
-    solver and solver_note say which ran and why), as `--method`; shoot_budget: CPU
-    seconds per shooting point (None: no limit); floquet_budget: CPU seconds for one
-    point's Floquet multipliers (None: no limit; a point over it keeps its orbit, with
+    include_acceleration too) or "auto" (the default, as `--method auto`: the cheaper by a
+    measured cost; the result's solver and solver_note say which ran and why);
+    shoot_budget: CPU seconds per shooting point (30, the CLI's; None: no limit);
+    floquet_budget: CPU seconds for one point's Floquet multipliers (30, the CLI's; None:
+    no limit; a point over it keeps its orbit, with
     stable None and a reason saying how long they would take). frequency: continue in the frequency of
     the model's time-harmonic loads instead of the speed, as `--frequency` (rad/s array in
     the order to follow, or "FROM:TO:COUNT" with units, e.g. "0.8:0.5:31"; several loads
@@ -75,6 +77,7 @@ def periodic(system, speeds=None, harmonics=10, subharmonic=1, records=None,
     opt = ffi.new("gd_periodic_options *")
     lib.gd_periodic_options_init(opt)
     opt.kind = _SOLVERS[solver]
+    opt.shoot_stability = 1  # the CLI's: a non-smooth orbit's multipliers in the time domain
     if shoot_budget is not None:
         if not float(shoot_budget) > 0:
             raise model_error("shoot_budget", "expected CPU seconds > 0, got %r" % shoot_budget)

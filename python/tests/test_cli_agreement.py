@@ -194,6 +194,9 @@ MATHIEU = os.path.join(os.path.dirname(os.path.dirname(CHEN)), "tests", "plot",
     (CHEN, ["--speeds", "900:1000:2", "--harmonics", "10", "--method", "shooting",
             "--record", "gear_a.x"],
      {"speeds": "900:1000:2", "harmonics": 10, "solver": "shooting", "records": "gear_a.x"}),
+    # the defaults (no harmonics, no solver): the CLI's --harmonics auto --method auto
+    (CHEN, ["--speeds", "900:1000:2", "--record", "gear_a.x"],
+     {"speeds": "900:1000:2", "records": "gear_a.x"}),
     # continuation in the load frequency, downwards through the Duffing hysteresis loop
     (DUFFING, ["--frequency", "1.6:0.5:12", "--harmonics", "7", "--record", "m.x"],
      {"frequency": "1.6:0.5:12", "harmonics": 7, "records": "m.x"}),

@@ -211,4 +211,21 @@ void gd_model_shaft_summary(const gd_model *model, int shaft, gd_shaft_summary *
         out->mass += dk->mass;
         out->polar_inertia += dk->polar_inertia;
     }
+    /* a planetary set's members and planets carry their mass on their nodes (the
+       element's M, src/elements/planetary.c): a planet or ring housing is no 0 kg shaft */
+    for (int k = 0; k < model->nplanetary; k++) {
+        const gd_planetary *g = &model->planetary[k];
+        for (int b = 0; b < GD_PLANETARY_NMEMBERS; b++) {
+            int node = g->member[b].node;
+            if (node < 0 || node >= model->nnodes || model->nodes[node].shaft != shaft) continue;
+            out->mass += g->member[b].mass;
+            out->polar_inertia += g->member[b].inertia;
+        }
+        for (int p = 0; p < g->nplanets; p++) {
+            int node = g->first_planet + p;
+            if (node < 0 || node >= model->nnodes || model->nodes[node].shaft != shaft) continue;
+            out->mass += g->planet_mass;
+            out->polar_inertia += g->planet_inertia;
+        }
+    }
 }

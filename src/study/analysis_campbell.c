@@ -78,7 +78,15 @@ static gd_status run(const gd_study_input *in, const void *opts, const gd_study_
     return GD_OK;
 }
 
+/* a sweep: the equilibrium solved at each speed */
+static double operating_speed(const void *opts)
+{
+    (void)opts;
+    return -1;
+}
+
 const gd_study_runner gd_study_campbell = {.name = "campbell",
+                                           .operating_speed = operating_speed,
                                            .keys = KEYS,
                                            .options = options,
                                            .outputs = OUTPUTS,

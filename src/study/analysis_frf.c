@@ -100,8 +100,14 @@ static gd_status run(const gd_study_input *in, const void *opts, const gd_study_
     return GD_OK;
 }
 
+static double operating_speed(const void *opts)
+{
+    return ((const frf_opts *)opts)->speed;
+}
+
 const gd_study_runner gd_study_frf = {.name = "frf",
                                       .keys = KEYS,
+                                      .operating_speed = operating_speed,
                                       .options = options,
                                       .check = check,
                                       .outputs = OUTPUTS,

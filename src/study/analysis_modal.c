@@ -75,8 +75,14 @@ static gd_status run(const gd_study_input *in, const void *opts, const gd_study_
     return GD_OK;
 }
 
+static double operating_speed(const void *opts)
+{
+    return ((const gd_modal_options *)opts)->speed;
+}
+
 const gd_study_runner gd_study_modal = {.name = "modal",
                                         .keys = KEYS,
+                                        .operating_speed = operating_speed,
                                         .options = options,
                                         .outputs = OUTPUTS,
                                         .noutputs = sizeof OUTPUTS / sizeof OUTPUTS[0],

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "geardyn/static.h"
 #include "geardyn/system.h"
 #include "study/study_impl.h"
 
@@ -30,6 +31,14 @@ static gd_status run_analysis(const gd_study *s, const gd_load_options *opt, dou
     gd_system *sys = NULL;
     gd_status st = gd_model_source_model(s->src, opt, &m, err);
     if (!st) st = gd_system_build(m, &sys, err);
+    if (!st && a->operating_speed) {
+        /* the laws linearised about the static equilibrium, as the CLI's analyses */
+        double speed = a->operating_speed(s->opts);
+        gd_static_options so;
+        gd_static_options_init(&so);
+        so.speed = speed;
+        st = gd_static_operating_point(sys, &so, speed >= 0, err);
+    }
     if (!st) {
         in.sys = sys;
         st = a->run(&in, s->opts, s->req, s->noutputs, values, err);

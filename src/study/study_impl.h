@@ -54,6 +54,12 @@ typedef struct gd_study_runner {
     /* Optional: checks the options against the model as the file gives it (names of
      * meshes and nodes), before any case runs. */
     gd_status (*check)(const gd_system *sys, const void *opts, gd_error *err);
+    /* Optional, for the analyses that linearise the model's laws (modal, campbell, frf,
+     * unbalance): the one speed the analysis runs at, rad/s (the static equilibrium is
+     * solved and checked there, as `geardyn modal` does), or -1 for a sweep (solved at
+     * each speed). The case sets the operating point as the CLI does
+     * (gd_static_operating_point, docs/bearings.md). NULL: nothing linearised. */
+    double (*operating_speed)(const void *opts);
     const gd_study_output_def *outputs;
     int noutputs;
     /* Fills values[i] for each request (NaN where it does not exist). */

@@ -14,12 +14,82 @@
  * inertia relief (as in FE statics of free structures): the net load that would turn
  * the train is balanced by the inertia of a uniform angular acceleration a of the whole
  * train, K q = f(q) - M phi a, with the gauge phi^T M q = 0 (the bordered system below);
- * the run then starts from the elastic state under the loads and accelerates from it. */
+ * the run then starts from the elastic state under the loads and accelerates from it.
+ *
+ * A model whose laws carry static load (GD_LAW_SUPPORT: rolling or journal bearings) has
+ * no linear stiffness in their directions (a rolling bearing's clearance, a journal's
+ * film), so K_ff is singular there and the iteration above cannot start (issue 35 item
+ * 6). Its start is the static analysis's equilibrium (src/static: the same solver, laws
+ * and holds as `geardyn static`) under the run's loads at t: K q = f(t) + f_law(q) with
+ * the prescribed DOFs and one torsion DOF per free train held, or its located error
+ * naming the DOF that moves or the law that cannot carry the load. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "static/static_impl.h"
+#include "system/system_impl.h"
 #include "transient/transient_impl.h"
+
+/* 1 when one of the problem's laws carries static load (the model's bearings). */
+static int support_laws(const gd_transient *tr)
+{
+    for (int i = 0; i < tr->nlaw; i++)
+        if (tr->law[i].type->flags & GD_LAW_SUPPORT) return 1;
+    return 0;
+}
+
+/* The static analysis's equilibrium under the run's loads at t (the residual at rest
+ * less the system laws' forces there, which the static solver adds itself) into y. */
+static gd_status static_of_laws(gd_transient *tr, double t, double *y, gd_error *err)
+{
+    const gd_system *sys = tr->sys;
+    const int n = sys->ndof, nf = tr->nf;
+    size_t n1 = (size_t)(n > 0 ? n : 1);
+    double *K = malloc(n1 * n1 * sizeof *K), *Kd = malloc(n1 * n1 * sizeof *Kd);
+    double *f = calloc(n1, sizeof *f), *fl = calloc(n1, sizeof *fl), *q = calloc(n1, sizeof *q);
+    int *held = malloc(n1 * sizeof *held);
+    gd_status st = GD_OK;
+    if (!K || !Kd || !f || !fl || !q || !held) {
+        st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
+        goto out;
+    }
+    memset(y, 0, (size_t)2 * nf * sizeof *y);
+    gd_tr_fill(tr, t, y, tr->q, tr->v, tr->acc);
+    memset(tr->acc, 0, (size_t)tr->n * sizeof *tr->acc);
+    gd_tr_residual(tr, t, tr->q, tr->v, tr->acc, tr->r);
+    gd_system_law_forces(sys, tr->speed, q, fl);
+    for (int i = 0; i < n; i++)
+        f[i] = tr->r[i] - fl[i];
+    gd_static_options so;
+    gd_static_options_init(&so);
+    so.speed = tr->speed;
+    gd_system_dense_linear(sys, tr->speed, NULL, NULL, K);
+    gd_st_supported_stiffness(sys, K, Kd);
+    if ((st = gd_st_holds(sys, Kd, &so, held, err))) goto out;
+    if ((st = gd_st_solve_with_laws(sys, K, f, held, tr->speed, q, err))) goto out;
+    for (int i = 0; i < nf; i++)
+        y[i] = q[tr->free_dof[i]];
+    /* the laws' contact states (a backlash mesh's flank) at that state */
+    gd_tr_fill(tr, t, y, tr->q, tr->v, NULL);
+    for (int i = 0; i < tr->nlaw; i++) {
+        gd_law *L = &tr->law[i];
+        if (!L->type->static_mode) continue;
+        L->mode = L->type->hold_mode;
+        if (!gd_law_nswitches(L)) continue;
+        gd_law_point lx;
+        gd_tr_law_here(tr, L, t, &lx);
+        L->mode = L->type->static_mode(L, &lx);
+    }
+out:
+    free(K);
+    free(Kd);
+    free(f);
+    free(fl);
+    free(q);
+    free(held);
+    return st;
+}
 
 /* phi (nf): the free DOFs' share of the train's rotation (rz by the shaft's speed
  * ratio); 1 when K_ff phi vanishes to rounding against the torsional stiffness on phi,
@@ -71,6 +141,9 @@ static cs *bordered(const gd_transient *tr, const double *phi, double *m)
 gd_status gd_tr_static_state(gd_transient *tr, double t, double *y, gd_error *err)
 {
     const int nf = tr->nf;
+    /* the physical DOFs are the system's: the static analysis's solver applies */
+    if (!tr->red && tr->n == tr->sys->ndof && support_laws(tr))
+        return static_of_laws(tr, t, y, err);
     double *phi = malloc((size_t)(nf + 1) * sizeof *phi);
     double *m = malloc((size_t)(nf + 1) * sizeof *m);
     double *b = malloc((size_t)(nf + 1) * sizeof *b), *x = malloc((size_t)(nf + 1) * sizeof *x);

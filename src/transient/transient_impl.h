@@ -186,7 +186,9 @@ void gd_tr_profile_laws(gd_transient *tr, double t, double phi, double w);
  * ones from their laws (acc is zero on free DOFs). */
 void gd_tr_fill(gd_transient *tr, double t, const double *y, double *q, double *v, double *acc);
 /* The static initial state at t into y (2 nf: q, then q' = 0), static_start.c; a train
- * free in torsion starts from its state under inertia relief. */
+ * free in torsion starts from its state under inertia relief; a model whose laws carry
+ * the static load (bearings) from the static analysis's equilibrium under the run's loads
+ * at t, with its holds (or its located error). */
 gd_status gd_tr_static_state(gd_transient *tr, double t, double *y, gd_error *err);
 /* Law L's local view of (t, q, v) (full DOF vectors) in lq, lv (length L->ndofs). */
 /* The time law i is read at: its own (law_time) or the problem's t. */

@@ -201,5 +201,37 @@ TEST(periodic_points_to_transient)
     scratch_close(&s);
 }
 
+/* The three-stage reducer's excitations (its stages' mesh frequencies, two unbalances)
+ * have no common period: `periodic` says so and names a transient run of a given time,
+ * not `--periods 100` (which fails for the same reason), and the library's hint says the
+ * response is quasi-periodic instead of asking for a periodic excitation it has. The
+ * suggested command's options run (here over 2 ms). */
+TEST(no_common_period_points_to_duration)
+{
+    scratch s;
+    REQUIRE(scratch_open(&s));
+    run_result r;
+    run(&s, &r, "periodic examples/reducer_three_stage.yaml --speeds 1500rpm:1500rpm:1");
+    CHECK(r.code == 1);
+    CHECK(contains(r.out, "no common period"));
+    CHECK(contains(r.out, "geardyn transient examples/reducer_three_stage.yaml --speed 157.08 "
+                          "--duration 12 --from 8\n"));
+    CHECK(!contains(r.out, "--periods 100"));
+    run_free(&r);
+    run(&s, &r, "transient examples/reducer_three_stage.yaml --periods 100");
+    CHECK(r.code == 2);
+    CHECK(contains(r.err, "quasi-periodic") && contains(r.err, "--duration T"));
+    CHECK(!contains(r.err, "give the model a periodic excitation"));
+    run_free(&r);
+    run(&s, &r,
+        "transient examples/reducer_three_stage.yaml --speed 157.08 --duration 2ms "
+        "--from 1ms");
+    CHECK(r.code == 0);
+    if (r.code) show(&r);
+    run_free(&r);
+    scratch_close(&s);
+}
+
 RUN_TESTS(T(mathieu_periodic_json_text_csv), T(mathieu_backlash_period_2),
-          T(chen_torus_quasi_periodic), T(periods_errors), T(periodic_points_to_transient))
+          T(chen_torus_quasi_periodic), T(periods_errors), T(periodic_points_to_transient),
+          T(no_common_period_points_to_duration))

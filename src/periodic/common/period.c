@@ -12,12 +12,17 @@
 #define MAXF 256
 #define TWO_PI 6.28318530717958647692
 
+static const char NO_EXCITATION[] = "give the model a periodic excitation (unbalance, TVMS, "
+                                    "load) and a non-zero speed";
+
+static gd_status undefined_hint(gd_error *err, const char *field, const char *hint, const char *msg)
+{
+    return gd_error_set(err, GD_EINPUT, "", 0, 0, field, hint, "the period is undefined: %s", msg);
+}
+
 static gd_status undefined(gd_error *err, const char *field, const char *msg)
 {
-    return gd_error_set(err, GD_EINPUT, "", 0, 0, field,
-                        "give the model a periodic excitation (unbalance, TVMS, load) and a "
-                        "non-zero speed",
-                        "the period is undefined: %s", msg);
+    return undefined_hint(err, field, NO_EXCITATION, msg);
 }
 
 static double shaft_rate(const gd_system *sys, int node, double speed)
@@ -106,7 +111,14 @@ gd_status gd_periodic_fundamental(const gd_system *sys, const gd_transient_spec 
                  "the excitation frequencies have no common period (highest %.6g rad/s is "
                  "not a whole multiple of a fundamental above %.3g rad/s)",
                  fmax, fmax / 10000);
-        return undefined(err, "speed", msg);
+        /* the excitations exist but are incommensurate (gear ratios with no small common
+           multiple beside unbalances): the response is quasi-periodic, not periodic */
+        return undefined_hint(err, "speed",
+                              "the response is quasi-periodic: integrate it over a given time "
+                              "(`geardyn transient --duration T`, not --periods); `periodic "
+                              "--method multifreq` takes up to 3 independent base frequencies "
+                              "of meshes and loads, without unbalances",
+                              msg);
     }
     *w0 = g;
     if (max_order) *max_order = (int)lround(fmax / g);
