@@ -115,6 +115,26 @@ gd_status gd_st_solve_with_laws(const gd_system *sys, const double *K, const dou
     return gd_st_no_equilibrium(sys, speed, q, fmin(res, res0), err);
 }
 
+gd_status gd_st_equilibrium(const gd_system *sys, const gd_static_options *opt, double speed,
+                            const double *f, int solve, int *held, double *q, gd_error *err)
+{
+    size_t n1 = (size_t)(sys->ndof > 0 ? sys->ndof : 1);
+    double *K = malloc(n1 * n1 * sizeof *K), *Kd = malloc(n1 * n1 * sizeof *Kd);
+    gd_status st = GD_OK;
+    if (!K || !Kd) {
+        st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
+        goto out;
+    }
+    gd_system_dense_linear(sys, speed, NULL, NULL, K);
+    gd_st_supported_stiffness(sys, K, Kd);
+    if ((st = gd_st_holds(sys, Kd, opt, held, err))) goto out;
+    if (solve) st = gd_st_solve_with_laws(sys, K, f, held, speed, q, err);
+out:
+    free(K);
+    free(Kd);
+    return st;
+}
+
 gd_status gd_static_operating_point(gd_system *sys, const gd_static_options *opt, int check,
                                     gd_error *err)
 {
@@ -129,20 +149,18 @@ gd_status gd_static_operating_point(gd_system *sys, const gd_static_options *opt
     if (st) return st;
     const int n = sys->ndof;
     size_t n1 = (size_t)(n > 0 ? n : 1);
-    double *K = malloc(n1 * n1 * sizeof *K), *Kd = malloc(n1 * n1 * sizeof *Kd);
     double *f = malloc(n1 * sizeof *f), *q = malloc(n1 * sizeof *q);
     int *held = malloc(n1 * sizeof *held);
     double speed = opt->speed >= 0 ? opt->speed : m->speed;
-    if (!K || !Kd || !f || !q || !held) {
+    if (!f || !q || !held) {
         st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
         goto out;
     }
-    gd_system_dense_linear(sys, speed, NULL, NULL, K);
     if ((st = gd_st_loads(sys, opt, f, err))) goto out;
-    gd_st_supported_stiffness(sys, K, Kd);
-    if ((st = gd_st_holds(sys, Kd, opt, held, err))) goto out;
+    /* (the operating point only records f and the holds: set after the solve, which does
+       not read it) */
+    if ((st = gd_st_equilibrium(sys, opt, speed, f, check, held, q, err))) goto out;
     if ((st = gd_system_set_operating_point(sys, GD_OPERATING_STATIC, f, held, err))) goto out;
-    if (check) st = gd_st_solve_with_laws(sys, K, f, held, speed, q, err);
     /* the state the analyses will linearise about (from rest, not from the linear
        solution static starts from): never silently q = 0 where static found a state */
     if (check && !st && !gd_system_law_state(sys, speed, q))
@@ -153,8 +171,6 @@ gd_status gd_static_operating_point(gd_system *sys, const gd_static_options *opt
                           "rad/s",
                           speed);
 out:
-    free(K);
-    free(Kd);
     free(f);
     free(q);
     free(held);

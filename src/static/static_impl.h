@@ -34,6 +34,12 @@ void gd_st_supported_stiffness(const gd_system *sys, const double *K, double *Kd
  * error of gd_st_no_equilibrium when there is none. */
 gd_status gd_st_solve_with_laws(const gd_system *sys, const double *K, const double *f,
                                 const int *held, double speed, double *q, gd_error *err);
+/* The static analysis's holds (held, ndof) for the model's stiffness at speed, and, when
+ * solve is set, its equilibrium q (ndof) under the loads f by gd_st_solve_with_laws: the one
+ * sequence `geardyn static`'s linearisation (gd_static_operating_point) and the transient's
+ * static start share. */
+gd_status gd_st_equilibrium(const gd_system *sys, const gd_static_options *opt, double speed,
+                            const double *f, int solve, int *held, double *q, gd_error *err);
 /* GD_EINPUT located at the law that cannot hold the load at the best state q (relative
  * residual res), with the fix for its kind. */
 gd_status gd_st_no_equilibrium(const gd_system *sys, double speed, const double *q, double res,

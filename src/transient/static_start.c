@@ -46,11 +46,10 @@ static gd_status static_of_laws(gd_transient *tr, double t, double *y, gd_error 
     const gd_system *sys = tr->sys;
     const int n = sys->ndof, nf = tr->nf;
     size_t n1 = (size_t)(n > 0 ? n : 1);
-    double *K = malloc(n1 * n1 * sizeof *K), *Kd = malloc(n1 * n1 * sizeof *Kd);
     double *f = calloc(n1, sizeof *f), *fl = calloc(n1, sizeof *fl), *q = calloc(n1, sizeof *q);
     int *held = malloc(n1 * sizeof *held);
     gd_status st = GD_OK;
-    if (!K || !Kd || !f || !fl || !q || !held) {
+    if (!f || !fl || !q || !held) {
         st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
         goto out;
     }
@@ -64,10 +63,7 @@ static gd_status static_of_laws(gd_transient *tr, double t, double *y, gd_error 
     gd_static_options so;
     gd_static_options_init(&so);
     so.speed = tr->speed;
-    gd_system_dense_linear(sys, tr->speed, NULL, NULL, K);
-    gd_st_supported_stiffness(sys, K, Kd);
-    if ((st = gd_st_holds(sys, Kd, &so, held, err))) goto out;
-    if ((st = gd_st_solve_with_laws(sys, K, f, held, tr->speed, q, err))) goto out;
+    if ((st = gd_st_equilibrium(sys, &so, tr->speed, f, 1, held, q, err))) goto out;
     for (int i = 0; i < nf; i++)
         y[i] = q[tr->free_dof[i]];
     /* the laws' contact states (a backlash mesh's flank) at that state */
@@ -82,8 +78,6 @@ static gd_status static_of_laws(gd_transient *tr, double t, double *y, gd_error 
         L->mode = L->type->static_mode(L, &lx);
     }
 out:
-    free(K);
-    free(Kd);
     free(f);
     free(fl);
     free(q);
