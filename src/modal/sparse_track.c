@@ -403,16 +403,23 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
          * either assignment is right; taking it as a failure sent every pass of every
          * pair of the planetary set's first continued speed to QZ, 28 M of its 553 M
          * instructions, bench/bench_planetary.sh) */
+        /* each member's reference: its prediction, then its previous pass' Ritz value (a
+         * pair whose values moved past each other's predictions then keeps its
+         * assignment by Rayleigh quotient iteration instead of going to QZ, as the
+         * planetary set's pairs at a chain's first continued speed did) */
+        double complex ref[GD_TRACK_MAXC];
+        for (int m = 0; m < c; m++)
+            ref[m] = it ? out[m].lam : lam0[m];
         int nritz = q2, byrqi = c <= q;
         for (int m = 0; m < c && byrqi; m++) {
-            byrqi = small_rqi(q2, w->A2, w->B2, it ? out[m].lam : lam0[m], m, w->Mw, w->t,
-                              w->VR + (size_t)m * q2, &w->al[m]);
+            byrqi = small_rqi(q2, w->A2, w->B2, ref[m], m, w->Mw, w->t, w->VR + (size_t)m * q2,
+                              &w->al[m]);
             w->be[m] = 1;
         }
         for (int m = 0; m < c && byrqi; m++)
             for (int j = 0; j < c; j++)
-                if (j != m && (cabs(w->al[m] - lam0[j]) <=
-                                   cabs(w->al[m] - lam0[m]) - GD_TRACK_TIE * cabs(lam0[m]) ||
+                if (j != m && (cabs(w->al[m] - ref[j]) <=
+                                   cabs(w->al[m] - ref[m]) - GD_TRACK_TIE * cabs(ref[m]) ||
                                cabs(w->al[m] - w->al[j]) <= 1e-8 * cabs(w->al[m])))
                     byrqi = 0;
         if (byrqi) {
@@ -424,7 +431,7 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
         memset(used, 0, sizeof used);
         int nadd = 0, allconv = 1;
         for (int m = 0; m < c; m++) {
-            /* the Ritz value nearest this mode's previous eigenvalue */
+            /* the Ritz value nearest this mode's reference */
             int best = -1;
             double bd = INFINITY;
             for (int j = 0; j < nritz; j++) {
@@ -432,7 +439,7 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
                 double nb = creal(be) * creal(be) + cimag(be) * cimag(be),
                        na = creal(al) * creal(al) + cimag(al) * cimag(al);
                 if (used[j] || !(nb > 1e-28 * na)) continue;
-                double complex dl = al / be - lam0[m];
+                double complex dl = al / be - ref[m];
                 double dist = creal(dl) * creal(dl) + cimag(dl) * cimag(dl);
                 if (dist < bd) {
                     bd = dist;
