@@ -46,11 +46,17 @@
  * is 1e-9 in the first-order form. */
 #define GD_TRACK_TOL 1e-10
 #define GD_TRACK_STALL 1e-8
-#define GD_TRACK_CLUSTER 0.01 /* relative distance of the eigenvalues of one cluster */
-#define GD_TRACK_MAXC 6       /* largest cluster refined together */
-#define GD_TRACK_MAXQ 8       /* basis columns per cluster member */
-#define GD_TRACK_MAXIT 8      /* Rayleigh-Ritz passes per cluster */
-#define GD_TRACK_TIE 1e-9     /* relative distance of two predictions taken as equal */
+/* relative distance of the eigenvalues of one cluster: a pair split further is refined as
+ * two modes, each at its own shift (a cluster's shift at the mean gains only the
+ * half-split over the distance to the next mode per pass). 1e-2 to 3e-3: campbell
+ * instructions -4.5 % on the planetary set of bench/bench_planetary.sh, -1.9 % on its
+ * parallel train, -2.1 % on rig366 (100 speeds), no fallback; 1e-3 a little less again,
+ * 3e-4 sent the parallel train's split pairs to Krylov-Schur (+38 %) */
+#define GD_TRACK_CLUSTER 3e-3
+#define GD_TRACK_MAXC 6   /* largest cluster refined together */
+#define GD_TRACK_MAXQ 8   /* basis columns per cluster member */
+#define GD_TRACK_MAXIT 8  /* Rayleigh-Ritz passes per cluster */
+#define GD_TRACK_TIE 1e-9 /* relative distance of two predictions taken as equal */
 #define GD_TRACK_OWN_SHIFT                                                                         \
     1e-7 /* a split cluster's members correct at their own values above it                         \
           */
@@ -403,16 +409,23 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
          * either assignment is right; taking it as a failure sent every pass of every
          * pair of the planetary set's first continued speed to QZ, 28 M of its 553 M
          * instructions, bench/bench_planetary.sh) */
+        /* each member's reference: its prediction, then its previous pass' Ritz value (a
+         * pair whose values moved past each other's predictions then keeps its
+         * assignment by Rayleigh quotient iteration instead of going to QZ, as the
+         * planetary set's pairs at a chain's first continued speed did) */
+        double complex ref[GD_TRACK_MAXC];
+        for (int m = 0; m < c; m++)
+            ref[m] = it ? out[m].lam : lam0[m];
         int nritz = q2, byrqi = c <= q;
         for (int m = 0; m < c && byrqi; m++) {
-            byrqi = small_rqi(q2, w->A2, w->B2, it ? out[m].lam : lam0[m], m, w->Mw, w->t,
-                              w->VR + (size_t)m * q2, &w->al[m]);
+            byrqi = small_rqi(q2, w->A2, w->B2, ref[m], m, w->Mw, w->t, w->VR + (size_t)m * q2,
+                              &w->al[m]);
             w->be[m] = 1;
         }
         for (int m = 0; m < c && byrqi; m++)
             for (int j = 0; j < c; j++)
-                if (j != m && (cabs(w->al[m] - lam0[j]) <=
-                                   cabs(w->al[m] - lam0[m]) - GD_TRACK_TIE * cabs(lam0[m]) ||
+                if (j != m && (cabs(w->al[m] - ref[j]) <=
+                                   cabs(w->al[m] - ref[m]) - GD_TRACK_TIE * cabs(ref[m]) ||
                                cabs(w->al[m] - w->al[j]) <= 1e-8 * cabs(w->al[m])))
                     byrqi = 0;
         if (byrqi) {
@@ -424,7 +437,7 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
         memset(used, 0, sizeof used);
         int nadd = 0, allconv = 1;
         for (int m = 0; m < c; m++) {
-            /* the Ritz value nearest this mode's previous eigenvalue */
+            /* the Ritz value nearest this mode's reference */
             int best = -1;
             double bd = INFINITY;
             for (int j = 0; j < nritz; j++) {
@@ -432,7 +445,7 @@ static int refine_cluster(const gd_dynmat *a, const gd_splu_symbolic *sym, const
                 double nb = creal(be) * creal(be) + cimag(be) * cimag(be),
                        na = creal(al) * creal(al) + cimag(al) * cimag(al);
                 if (used[j] || !(nb > 1e-28 * na)) continue;
-                double complex dl = al / be - lam0[m];
+                double complex dl = al / be - ref[m];
                 double dist = creal(dl) * creal(dl) + cimag(dl) * cimag(dl);
                 if (dist < bd) {
                     bd = dist;
