@@ -14,7 +14,8 @@ __all__ = ["periodic", "PeriodicResult"]
 _METHODS = {"arclength": lib.GD_PER_ARCLENGTH, "sequential": lib.GD_PER_SEQUENTIAL}
 _SOLVERS = {"hb": lib.GD_PER_HB, "harmonic_balance": lib.GD_PER_HB,
             "shooting": lib.GD_PER_SHOOTING, "auto": lib.GD_PER_AUTO,
-            "multifreq": lib.GD_PER_MULTIFREQ}
+            "multifreq": lib.GD_PER_MULTIFREQ,
+            "reduced_shooting": lib.GD_PER_REDUCED_SHOOTING}
 
 
 def _frequencies(values):
@@ -46,7 +47,9 @@ def periodic(system, speeds=None, harmonics=10, subharmonic=1, records=None,
     (AFT samples per period; 0: automatic). laws: geardyn.Law objects (laws of your own
     in Python) added to the model's. solver: "hb" (harmonic balance, default), "shooting"
     (Newton on the period map of the transient integrator: cam torques with
-    include_acceleration too) or "auto" (the cheaper by a measured cost; the result's
+    include_acceleration too), "reduced_shooting" (laws linear in the state at fixed time
+    only: the orbit in a reduced basis, as `--method reduced-shooting`), "multifreq" or
+    "auto" (the cheaper by a measured cost; the result's
     solver and solver_note say which ran and why), as `--method`; shoot_budget: CPU
     seconds per shooting point (None: no limit); floquet_budget: CPU seconds for one
     point's Floquet multipliers (None: no limit; a point over it keeps its orbit, with
@@ -71,7 +74,8 @@ def periodic(system, speeds=None, harmonics=10, subharmonic=1, records=None,
     if method not in _METHODS:
         raise model_error("method", "unknown method '%s'" % method, "use arclength or sequential")
     if solver not in _SOLVERS:
-        raise model_error("solver", "unknown solver '%s'" % solver, "use hb, shooting or auto")
+        raise model_error("solver", "unknown solver '%s'" % solver,
+                          "use hb, shooting, reduced_shooting, multifreq or auto")
     opt = ffi.new("gd_periodic_options *")
     lib.gd_periodic_options_init(opt)
     opt.kind = _SOLVERS[solver]

@@ -29,7 +29,8 @@ static void free_point(gd_periodic_point *p, int nrec)
  * memory. */
 static int hand_over(const gd_system *sys, const gd_transient_spec *spec,
                      const gd_periodic_param *param, const gd_periodic_options *opt, gd_per_kind k,
-                     const gd_tr_record *records, int nrecords, gd_periodic_point *p, int *solved)
+                     const gd_tr_record *records, int nrecords, gd_periodic_point *p, int *solved,
+                     const char *was_kind)
 {
     gd_periodic_options o = *opt;
     o.kind = k;
@@ -45,7 +46,7 @@ static int hand_over(const gd_system *sys, const gd_transient_spec *spec,
     gd_status st = gd_per_run_kind(sys, spec, param, &v, 1, &o, records, nrecords, &r, &err);
     if (st == GD_ENOMEM) return 1;
     const char *other = k == GD_PER_SHOOTING ? "shooting" : "harmonic balance";
-    const char *first = k == GD_PER_SHOOTING ? "harmonic balance" : "shooting";
+    const char *first = k == GD_PER_SHOOTING ? "harmonic balance" : was_kind;
     char was[256];
     snprintf(was, sizeof was, "%s", p->reason);
     if (!st && r->npoints >= 1 && r->points[0].converged) {
@@ -97,7 +98,12 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
         gd_per_run_kind(sys, spec, param, values, nvalues, &o, records, nrecords, out, err);
     if (st) return st;
     gd_periodic_result *r = *out;
-    const gd_per_kind other = o.kind == GD_PER_SHOOTING ? GD_PER_HB : GD_PER_SHOOTING;
+    /* reduced shooting's failed points go to harmonic balance (full shooting of such a
+     * model integrates every DOF: 34 s a period on seed 002) */
+    const gd_per_kind other = o.kind == GD_PER_SHOOTING || o.kind == GD_PER_REDUCED_SHOOTING
+                                  ? GD_PER_HB
+                                  : GD_PER_SHOOTING;
+    const char *was_kind = o.kind == GD_PER_REDUCED_SHOOTING ? "reduced shooting" : "shooting";
     int failed = 0, solved = 0;
     /* cams with include_acceleration: harmonic balance cannot take them */
     int hb_ok = other != GD_PER_HB || strncmp(note, "shooting: harmonic balance cannot", 33);
@@ -105,8 +111,8 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
         if (!r->points[i].converged &&
             !strstr(r->points[i].reason, "period is undefined")) { /* no method has one */
             failed++;
-            if (hand_over(sys, spec, param, opt, other, records, nrecords, &r->points[i],
-                          &solved)) {
+            if (hand_over(sys, spec, param, opt, other, records, nrecords, &r->points[i], &solved,
+                          was_kind)) {
                 gd_periodic_result_free(r);
                 *out = NULL;
                 return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
