@@ -643,8 +643,8 @@ static const gd_cli_opt OPTS[] = {
                "in the state at fixed time only (meshes without backlash: TVMS, STE; constant "
                "loads): the orbit by one Magnus sweep in the modes below 30 kHz, no harmonic "
                "truncation, each point at S and 2 S steps (their change is the error column), "
-               "natural continuation (auto takes it where harmonic balance's truncation "
-               "estimate at H = 591 is over --harmonic-tol)",
+               "natural continuation (auto takes it with --harmonics auto where harmonic "
+               "balance's truncation estimate at H = 591 is over --harmonic-tol)",
                .def = "auto", .call = parse_method),
     GD_CLI_ROW("shoot-rtol", GD_CLI_CALL, F(opt.shoot_rtol), "TOL",
                "shooting: the integrator's relative tolerance", .def = "1e-9",

@@ -306,8 +306,9 @@ static int multifreq_fits(const gd_system *sys, const gd_transient_spec *spec, d
  * the state at fixed time, constant loads) and harmonic balance's own truncation estimate
  * at its default H is over harmonic_tol: the point at the first value solved at H and 2 H
  * + 1, every mesh force recorded (with a stepping TVMS their peak-to-peaks converge
- * slowest in H). The default H: a given --harmonics H, else the automatic ladder from the
- * excitations' order (H -> 2 H + 1) to RS_PROBE_H at least (591 on [JMSTHelical], where
+ * slowest in H). Only with --harmonics auto (a given H asks for harmonic balance at it);
+ * the default H: the automatic ladder from the excitations' order (H -> 2 H + 1) to
+ * RS_PROBE_H at least (591 on [JMSTHelical], where
  * `--harmonics auto` settles at 1817 and 3000 rpm; docs/periodic.md, "Reduced shooting at
  * low speed": 100-1000 rpm 17-83 % there). 1 (note) to take it. */
 #define RS_PROBE_H 512
@@ -315,7 +316,9 @@ static int reduced_fits(const gd_system *sys, const gd_transient_spec *spec, dou
                         int order, const gd_periodic_options *opt, char *note)
 {
     char why[256];
-    if (speed == 0.0 || gd_per_rs_refusal(sys, spec, speed, opt, why, sizeof why)) return 0;
+    /* a given --harmonics H asks for harmonic balance at that H */
+    if (!opt->adaptive || speed == 0.0 || gd_per_rs_refusal(sys, spec, speed, opt, why, sizeof why))
+        return 0;
     gd_periodic_options o = *opt;
     o.kind = GD_PER_HB;
     o.method = GD_PER_SEQUENTIAL;
