@@ -360,9 +360,9 @@ static int reduced_fits(const gd_system *sys, const gd_transient_spec *spec, dou
         const double e = fmax(p->harmonic_error_p2p, p->harmonic_error_amp);
         if (!(e <= opt->harmonic_tol)) {
             snprintf(note, 256,
-                     "reduced shooting: the laws are linear in the state at fixed time and "
-                     "harmonic balance's truncation estimate at H = %d is %.3g (H against %d, "
-                     "the mesh forces), over %g",
+                     "reduced shooting: laws linear in the state at fixed time; harmonic "
+                     "balance's truncation estimate at H = %d is %.3g (against %d, mesh forces), "
+                     "over %g",
                      o.harmonics, e, p->harmonics_ref, opt->harmonic_tol);
             take = 1;
         }

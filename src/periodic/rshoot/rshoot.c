@@ -511,8 +511,8 @@ gd_status gd_per_rs_run(const gd_per_arc_ops *ops, const gd_system *sys,
     }
     if (opt->method == GD_PER_ARCLENGTH)
         snprintf(res->method_note, sizeof res->method_note,
-                 "reduced shooting, natural continuation (each point one direct solve of a "
-                 "linear time-periodic problem: no folds to follow)");
+                 "reduced shooting, natural continuation: one direct solve per point (a linear "
+                 "problem, no folds)");
     gd_per_arc a = {.ops = ops,
                     .m = &c,
                     .why = c.why,
