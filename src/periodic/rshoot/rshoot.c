@@ -67,6 +67,8 @@ static void drop_solution(rs *c)
         free(c->x[i].values);
         free(c->x[i].mu);
         c->x[i].values = c->x[i].mu = NULL;
+        free(c->mean[i]); /* p2p[i] points into it */
+        c->mean[i] = c->p2p[i] = NULL;
     }
     c->solved = 0;
 }
