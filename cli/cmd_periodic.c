@@ -176,19 +176,24 @@ static void print_table(const gd_periodic_result *r, const gd_cli_records *recs,
     printf("method: %s\n", r->method_note[0] ? r->method_note : gd_per_kind_name(r->method));
     {
         /* how each point's orbit and multipliers were found, counted */
-        int orb[2] = {0, 0}, stab[2] = {0, 0}, none = 0;
+        int orb[3] = {0, 0, 0}, stab[3] = {0, 0, 0}, none = 0;
         for (int i = 0; i < r->npoints; i++) {
             const gd_periodic_point *p = &r->points[i];
             if (!p->converged) continue;
-            orb[p->method == GD_PER_SHOOTING]++;
+            orb[p->method == GD_PER_REDUCED_SHOOTING ? 2 : p->method == GD_PER_SHOOTING]++;
             if (p->stability_method < 0)
                 none++;
             else
-                stab[p->stability_method == GD_PER_SHOOTING]++;
+                stab[p->stability_method == GD_PER_REDUCED_SHOOTING
+                         ? 2
+                         : p->stability_method == GD_PER_SHOOTING]++;
         }
-        printf("points: %d by harmonic balance, %d by shooting; stability: %d from harmonic "
-               "balance orbits, %d from shooting orbits, %d not computed\n",
-               orb[0], orb[1], stab[0], stab[1], none);
+        printf("points: %d by harmonic balance, %d by shooting", orb[0], orb[1]);
+        if (orb[2]) printf(", %d by reduced shooting", orb[2]);
+        printf("; stability: %d from harmonic balance orbits, %d from shooting orbits", stab[0],
+               stab[1]);
+        if (stab[2]) printf(", %d from reduced shooting orbits", stab[2]);
+        printf(", %d not computed\n", none);
     }
     for (int i = 0; i < r->npoints; i++)
         if (r->points[i].floquet_basis) {
@@ -507,7 +512,7 @@ static int parse_max_harmonics(const char *cmd, const char *text, void *field)
     return 0;
 }
 
-/* --method hb|harmonic-balance|condensed|full-hb|shooting|multifreq|auto */
+/* --method hb|harmonic-balance|condensed|full-hb|shooting|reduced-shooting|multifreq|auto */
 static int parse_method(const char *cmd, const char *text, void *field)
 {
     periodic_args *a = field; /* field is .opt, the first member */
@@ -527,10 +532,13 @@ static int parse_method(const char *cmd, const char *text, void *field)
         *k = GD_PER_AUTO;
     else if (!strcmp(text, "multifreq"))
         *k = GD_PER_MULTIFREQ;
+    else if (!strcmp(text, "reduced-shooting"))
+        *k = GD_PER_REDUCED_SHOOTING;
     else
-        return gd_cli_usage_error(
-            cmd, "--method: expected hb, condensed, full-hb, shooting, multifreq or auto, got '%s'",
-            text);
+        return gd_cli_usage_error(cmd,
+                                  "--method: expected hb, condensed, full-hb, shooting, "
+                                  "reduced-shooting, multifreq or auto, got '%s'",
+                                  text);
     return 0;
 }
 
@@ -645,7 +653,12 @@ static const gd_cli_opt OPTS[] = {
                "cams with include_acceleration included; pseudo-arclength through folds as hb, "
                "--sequential natural); multifreq: harmonic balance with one base frequency per "
                "mesh group on their torus (co-prime tooth counts; auto takes it where the common "
-               "period holds more than 16 periods of the highest)",
+               "period holds more than 16 periods of the highest); reduced-shooting: laws linear "
+               "in the state at fixed time only (meshes without backlash: TVMS, STE; constant "
+               "loads): the orbit by one Magnus sweep in the modes below 30 kHz, no harmonic "
+               "truncation, each point at S and 2 S steps (their change is the error column), "
+               "natural continuation (auto takes it with --harmonics auto where harmonic "
+               "balance's truncation estimate at H = 591 is over --harmonic-tol)",
                .def = "auto", .call = parse_method),
     GD_CLI_ROW("shoot-rtol", GD_CLI_CALL, F(opt.shoot_rtol), "TOL",
                "shooting: the integrator's relative tolerance", .def = "1e-9",

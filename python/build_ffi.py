@@ -418,7 +418,7 @@ void gd_waterfall_free(gd_waterfall *w);
 
 /* ---- periodic (harmonic balance) ---- */
 typedef enum { GD_PER_ARCLENGTH, GD_PER_SEQUENTIAL, ... } gd_per_method;
-typedef enum { GD_PER_HB = 0, GD_PER_SHOOTING = 1, GD_PER_AUTO = 2, GD_PER_MULTIFREQ = 3 } gd_per_kind;
+typedef enum { GD_PER_HB = 0, GD_PER_SHOOTING = 1, GD_PER_AUTO = 2, GD_PER_MULTIFREQ = 3, GD_PER_REDUCED_SHOOTING = 4 } gd_per_kind;
 const char *gd_per_kind_name(gd_per_kind k);
 typedef struct { int harmonics; int adaptive; double harmonic_tol; int max_harmonics;
                  int subharmonic; int samples; double tol; int max_iter; int stability;

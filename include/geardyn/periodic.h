@@ -48,11 +48,19 @@ typedef enum gd_per_method {
  * periodic.md, "Several base frequencies"): a train whose meshes' frequencies have a long
  * common period (co-prime tooth counts) without the harmonics of that period; speed
  * continuation (natural), no Floquet multipliers (the response has no period). */
+/* GD_PER_REDUCED_SHOOTING: for a model whose laws are linear in the state at fixed time
+ * (gear meshes without backlash: TVMS, STE; constant loads), the orbit of the problem
+ * linearised at its static state by one Magnus sweep in a reduced basis (the modes below
+ * 30 kHz and the laws' residual flexibility): x0 = (I - Phi)^-1 p, no harmonic truncation,
+ * each point at S and 2 S steps (the change is its error column), the multipliers of the
+ * same monodromy; natural continuation; GD_EINPUT naming the law on other models
+ * (docs/periodic.md, "Reduced shooting"). */
 typedef enum gd_per_kind {
     GD_PER_HB = 0,
     GD_PER_SHOOTING = 1,
     GD_PER_AUTO = 2,
-    GD_PER_MULTIFREQ = 3
+    GD_PER_MULTIFREQ = 3,
+    GD_PER_REDUCED_SHOOTING = 4
 } gd_per_kind;
 /* The Floquet multipliers of harmonic balance points (gd_periodic_options.floquet). */
 enum { GD_FLOQUET_AUTO = 0, GD_FLOQUET_DENSE = 1, GD_FLOQUET_KRYLOV = 2, GD_FLOQUET_REDUCED = 3 };

@@ -14,7 +14,8 @@ __all__ = ["periodic", "PeriodicResult"]
 _METHODS = {"arclength": lib.GD_PER_ARCLENGTH, "sequential": lib.GD_PER_SEQUENTIAL}
 _SOLVERS = {"hb": lib.GD_PER_HB, "harmonic_balance": lib.GD_PER_HB,
             "shooting": lib.GD_PER_SHOOTING, "auto": lib.GD_PER_AUTO,
-            "multifreq": lib.GD_PER_MULTIFREQ}
+            "multifreq": lib.GD_PER_MULTIFREQ,
+            "reduced_shooting": lib.GD_PER_REDUCED_SHOOTING}
 
 
 def _frequencies(values):
@@ -47,11 +48,12 @@ def periodic(system, speeds=None, harmonics="auto", subharmonic=1, records=None,
     (AFT samples per period; 0: automatic). laws: geardyn.Law objects (laws of your own
     in Python) added to the model's. solver: "hb" (harmonic balance), "shooting"
     (Newton on the period map of the transient integrator: cam torques with
-    include_acceleration too) or "auto" (the default, as `--method auto`: the cheaper by a
-    measured cost; the result's solver and solver_note say which ran and why);
-    shoot_budget: CPU seconds per shooting point (30, the CLI's; None: no limit);
-    floquet_budget: CPU seconds for one point's Floquet multipliers (30, the CLI's; None:
-    no limit; a point over it keeps its orbit, with
+    include_acceleration too), "reduced_shooting" (laws linear in the state at fixed time
+    only: the orbit in a reduced basis, as `--method reduced-shooting`), "multifreq" or
+    "auto" (the default, as `--method auto`: the cheaper by a measured cost; the result's
+    solver and solver_note say which ran and why); shoot_budget: CPU seconds per shooting
+    point (30, the CLI's; None: no limit); floquet_budget: CPU seconds for one point's
+    Floquet multipliers (30, the CLI's; None: no limit; a point over it keeps its orbit, with
     stable None and a reason saying how long they would take). frequency: continue in the frequency of
     the model's time-harmonic loads instead of the speed, as `--frequency` (rad/s array in
     the order to follow, or "FROM:TO:COUNT" with units, e.g. "0.8:0.5:31"; several loads
@@ -73,7 +75,8 @@ def periodic(system, speeds=None, harmonics="auto", subharmonic=1, records=None,
     if method not in _METHODS:
         raise model_error("method", "unknown method '%s'" % method, "use arclength or sequential")
     if solver not in _SOLVERS:
-        raise model_error("solver", "unknown solver '%s'" % solver, "use hb, shooting or auto")
+        raise model_error("solver", "unknown solver '%s'" % solver,
+                          "use hb, shooting, reduced_shooting, multifreq or auto")
     opt = ffi.new("gd_periodic_options *")
     lib.gd_periodic_options_init(opt)
     opt.kind = _SOLVERS[solver]

@@ -24,6 +24,14 @@ static void free_point(gd_periodic_point *p, int nrec)
     free(p->records);
 }
 
+/* A method's name in a point's reason. */
+static const char *prose(gd_per_kind k)
+{
+    return k == GD_PER_SHOOTING           ? "shooting"
+           : k == GD_PER_REDUCED_SHOOTING ? "reduced shooting"
+                                          : "harmonic balance";
+}
+
 /* Point p (not converged by method `from`) solved by method k alone at its value: replaced
  * by that solution when it converges, else its reason gains method k's. 0 ok, 1 out of
  * memory. */
@@ -45,8 +53,7 @@ static int hand_over(const gd_system *sys, const gd_transient_spec *spec,
     gd_error err;
     gd_status st = gd_per_run_kind(sys, spec, param, &v, 1, &o, records, nrecords, &r, &err);
     if (st == GD_ENOMEM) return 1;
-    const char *other = k == GD_PER_SHOOTING ? "shooting" : "harmonic balance";
-    const char *first = from == GD_PER_SHOOTING ? "shooting" : "harmonic balance";
+    const char *other = prose(k), *first = prose(from);
     char was[256];
     snprintf(was, sizeof was, "%s", p->reason);
     if (!st && r->npoints >= 1 && r->points[0].converged) {
@@ -102,7 +109,11 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
         gd_per_run_kind(sys, spec, param, values, nvalues, &o, records, nrecords, out, err);
     if (st) return st;
     gd_periodic_result *r = *out;
-    const gd_per_kind other = o.kind == GD_PER_SHOOTING ? GD_PER_HB : GD_PER_SHOOTING;
+    /* reduced shooting's failed points go to harmonic balance (full shooting of such a
+     * model integrates every DOF: 34 s a period on seed 002) */
+    const gd_per_kind other = o.kind == GD_PER_SHOOTING || o.kind == GD_PER_REDUCED_SHOOTING
+                                  ? GD_PER_HB
+                                  : GD_PER_SHOOTING;
     int failed = 0, solved = 0, alone = 0;
     /* cams with include_acceleration: harmonic balance cannot take them */
     int hb_ok = other != GD_PER_HB || strncmp(note, "shooting: harmonic balance cannot", 33);

@@ -302,6 +302,76 @@ static int multifreq_fits(const gd_system *sys, const gd_transient_spec *spec, d
     return 1;
 }
 
+/* Reduced shooting (rshoot/) instead of harmonic balance where the laws qualify (linear in
+ * the state at fixed time, constant loads) and harmonic balance's own truncation estimate
+ * at its default H is over harmonic_tol: the point at the first value solved at H and 2 H
+ * + 1, every mesh force recorded (with a stepping TVMS their peak-to-peaks converge
+ * slowest in H). Only with --harmonics auto (a given H asks for harmonic balance at it);
+ * the default H: the automatic ladder from the excitations' order (H -> 2 H + 1) to
+ * RS_PROBE_H at least (591 on [JMSTHelical], where
+ * `--harmonics auto` settles at 1817 and 3000 rpm; docs/periodic.md, "Reduced shooting at
+ * low speed": 100-1000 rpm 17-83 % there). 1 (note) to take it. */
+#define RS_PROBE_H 512
+static int reduced_fits(const gd_system *sys, const gd_transient_spec *spec, double speed,
+                        int order, const gd_periodic_options *opt, char *note)
+{
+    char why[256];
+    /* a given --harmonics H asks for harmonic balance at that H */
+    if (!opt->adaptive || speed == 0.0 || gd_per_rs_refusal(sys, spec, speed, opt, why, sizeof why))
+        return 0;
+    gd_periodic_options o = *opt;
+    o.kind = GD_PER_HB;
+    o.method = GD_PER_SEQUENTIAL;
+    o.both_directions = 0;
+    o.stability = 0;
+    o.estimate = 1;
+    o.on_point = NULL;
+    o.on_step = NULL;
+    o.user = NULL;
+    if (o.adaptive) {
+        long H = (long)order * opt->subharmonic;
+        while (H < RS_PROBE_H)
+            H = 2 * H + 1;
+        o.harmonics = (int)H;
+        o.adaptive = 0;
+    }
+    const int nr = spec->nmeshes;
+    gd_tr_record *rec = calloc((size_t)nr + 1, sizeof *rec);
+    if (!rec) return 0;
+    for (int k = 0; k < nr; k++)
+        rec[k] = (gd_tr_record){GD_REC_MESH_FORCE, k, 0};
+    gd_periodic_result *r = NULL;
+    gd_error err;
+    int take = 0;
+    if (gd_per_run_kind(sys, spec, NULL, &speed, 1, &o, rec, nr, &r, &err)) {
+        snprintf(note, 256,
+                 "reduced shooting: the laws are linear in the state at fixed time and harmonic "
+                 "balance at H = %d failed (%.120s)",
+                 o.harmonics, err.message);
+        take = 1;
+    } else if (r->npoints < 1 || !r->points[0].converged) {
+        snprintf(note, 256,
+                 "reduced shooting: the laws are linear in the state at fixed time and harmonic "
+                 "balance at H = %d did not converge",
+                 o.harmonics);
+        take = 1;
+    } else {
+        const gd_periodic_point *p = &r->points[0];
+        const double e = fmax(p->harmonic_error_p2p, p->harmonic_error_amp);
+        if (!(e <= opt->harmonic_tol)) {
+            snprintf(note, 256,
+                     "reduced shooting: laws linear in the state at fixed time; harmonic "
+                     "balance's truncation estimate at H = %d is %.3g (against %d, mesh forces), "
+                     "over %g",
+                     o.harmonics, e, p->harmonics_ref, opt->harmonic_tol);
+            take = 1;
+        }
+    }
+    gd_periodic_result_free(r);
+    free(rec);
+    return take;
+}
+
 gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *spec,
                                const gd_periodic_param *param, double value,
                                const gd_periodic_options *opt, char *note)
@@ -478,6 +548,9 @@ gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *sp
         }
     }
 done:
+    if (k == GD_PER_HB && tr && !(param && param->load_frequency) &&
+        reduced_fits(sys, spec, speed, order, opt, note))
+        k = GD_PER_REDUCED_SHOOTING;
     gd_transient_free(tr);
     free(floads);
     gd_transient_model_free(tm);

@@ -146,5 +146,17 @@ gd_status gd_per_shoot_method(const gd_per_arc_ops *ops, const gd_system *sys,
                               const gd_tr_record *records, int nrecords, gd_periodic_result *res,
                               gd_error *err);
 extern const gd_per_arc_ops gd_per_hb_ops, gd_per_sh_ops;
+/* Reduced shooting (rshoot/rshoot.c): its run (natural continuation always: a linear
+ * problem) and operations; its refusal (1, msg) of a problem at speed whose laws are not
+ * linear in the state at fixed time or whose forces at rest change over the period,
+ * naming the law (`--method auto` asks it before taking the row). */
+gd_status gd_per_rs_run(const gd_per_arc_ops *ops, const gd_system *sys,
+                        const gd_transient_spec *spec, const gd_periodic_param *param,
+                        const double *values, int nvalues, const gd_periodic_options *opt,
+                        const gd_tr_record *records, int nrecords, gd_periodic_result *res,
+                        gd_error *err);
+extern const gd_per_arc_ops gd_per_rs_ops;
+int gd_per_rs_refusal(const gd_system *sys, const gd_transient_spec *spec, double speed,
+                      const gd_periodic_options *opt, char *msg, size_t cap);
 
 #endif

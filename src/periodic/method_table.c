@@ -33,11 +33,14 @@ static gd_status multifreq_run(const gd_per_arc_ops *ops, const gd_system *sys,
  *   multiplier through the circle, both located on the branch by Illinois iterations;
  *   between sequential points, a multiplier through the circle located by fixed-value
  *   solves (the real one through +1 reported as the fold it usually is).
- * - multifreq (multifreq/): its own speed loop, no row operations. */
+ * - multifreq (multifreq/): its own speed loop, no row operations.
+ * - reduced shooting (rshoot/): natural continuation only (a linear problem: one direct
+ *   solve per value, no folds), no bifurcation rule (the verdicts per point). */
 static const gd_per_method_row methods[] = {
     {GD_PER_HB, "harmonic_balance", gd_per_hb_run, &gd_per_hb_ops},
     {GD_PER_SHOOTING, "shooting", gd_per_shoot_method, &gd_per_sh_ops},
     {GD_PER_MULTIFREQ, "multi_frequency_hb", multifreq_run, NULL},
+    {GD_PER_REDUCED_SHOOTING, "reduced_shooting", gd_per_rs_run, &gd_per_rs_ops},
 };
 
 const gd_per_method_row *gd_per_method_find(gd_per_kind kind)

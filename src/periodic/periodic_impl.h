@@ -227,6 +227,21 @@ int gd_hb_floquet_reduced(hb *h, gd_transient *tr, double w, const double *X, in
 int gd_hb_orbit_reduced(hb *h, gd_transient *tr, double om, int steps, int steps_out, double wcut,
                         const gd_tr_record *rec, int nrec, double *mean, double *p2p, int *nbasis,
                         double *mumax, char *msg);
+/* The same with the orbit's samples and multipliers (the method row of reduced shooting,
+ * rshoot/): x->values (nrec x x->n, record k at sample j, time j T / n, n = max(steps,
+ * steps_out)) and x->mu (the 2 x->nmu = 2 (2 nbasis) real then imaginary parts of the
+ * reduced monodromy's eigenvalues), both allocated here, the caller's to free (also on a
+ * failure: set them NULL before). */
+typedef struct gd_orbit_samples {
+    double *values;
+    int n;
+    double *mu;
+    int nmu;
+} gd_orbit_samples;
+int gd_hb_orbit_reduced_out(hb *h, gd_transient *tr, double om, int steps, int steps_out,
+                            double wcut, const gd_tr_record *rec, int nrec, double *mean,
+                            double *p2p, int *nbasis, double *mumax, gd_orbit_samples *x,
+                            char *msg);
 
 /* Static start (warmstart.c): where the model has laws that carry a static load
  * (GD_LAW_SUPPORT), the zeroth harmonic of X (its first nf entries; the rest untouched)

@@ -88,9 +88,9 @@ gd_status gd_per_check_options(const gd_periodic_param *param, const double *val
         if (records[r].kind == GD_REC_ANGLE)
             BAD("record", "record the DOF's displacement (perturbation) instead",
                 "a total angle grows with time and has no periodic steady state");
-    if (opt->kind < GD_PER_HB || opt->kind > GD_PER_MULTIFREQ)
-        BAD("method", "give hb, shooting, multifreq or auto", "unknown periodic method %d",
-            (int)opt->kind);
+    if (opt->kind < GD_PER_HB || opt->kind > GD_PER_REDUCED_SHOOTING)
+        BAD("method", "give hb, shooting, multifreq, reduced-shooting or auto",
+            "unknown periodic method %d", (int)opt->kind);
     if (opt->shoot_rtol < 0 ||
         (opt->shoot_rtol > 0 && !(opt->shoot_rtol >= 1e-14 && opt->shoot_rtol < 1e-2)))
         BAD("shoot_rtol", "give 0 (1e-9) or a tolerance in [1e-14, 1e-2)",

@@ -1290,6 +1290,8 @@ typedef struct orbit_rec {
     double *G, *xs, *y, *z, *vals, *lo, *hi, *sum;
     exp_run run;
     long cnt;
+    double *smp; /* NULL, or nrec x nsmp: the records on the grid (gd_orbit_samples) */
+    long nsmp;
 } orbit_rec;
 
 static void orbit_at(red *R, int j, double ta)
@@ -1314,6 +1316,8 @@ static void orbit_at(red *R, int j, double ta)
         if (!o->cnt || v < o->lo[k]) o->lo[k] = v;
         if (!o->cnt || v > o->hi[k]) o->hi[k] = v;
         o->sum[k] += v;
+        /* step end cnt + 1 is at (cnt + 1) T / nsmp: t = T is the grid's t = 0 */
+        if (o->smp && o->cnt < o->nsmp) o->smp[(size_t)k * o->nsmp + (o->cnt + 1) % o->nsmp] = v;
     }
     o->cnt++;
 }
@@ -1375,6 +1379,14 @@ static int orbit_static(red *R, double *xs, char *msg)
 int gd_hb_orbit_reduced(hb *h, gd_transient *tr, double om, int steps, int steps_out, double wcut,
                         const gd_tr_record *rec, int nrec, double *mean, double *p2p, int *nbasis,
                         double *mumax, char *msg)
+{
+    return gd_hb_orbit_reduced_out(h, tr, om, steps, steps_out, wcut, rec, nrec, mean, p2p, nbasis,
+                                   mumax, NULL, msg);
+}
+
+int gd_hb_orbit_reduced_out(hb *h, gd_transient *tr, double om, int steps, int steps_out,
+                            double wcut, const gd_tr_record *rec, int nrec, double *mean,
+                            double *p2p, int *nbasis, double *mumax, gd_orbit_samples *x, char *msg)
 {
     const int nf = h->nf;
     msg[0] = '\0';
@@ -1460,15 +1472,25 @@ int gd_hb_orbit_reduced(hb *h, gd_transient *tr, double om, int steps, int steps
             rc = 2;
         }
     }
-    if (!rc && mumax) {
+    if (!rc && (mumax || x)) {
         double *wr = malloc(2 * (size_t)n2 * sizeof *wr), dummy[1];
         for (size_t m = 0; m < (size_t)n2 * n2; m++)
             A[m] = R.Psi[m];
-        *mumax = 0.0;
+        double mx = 0.0;
         if (wr &&
             !LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', n2, A, n2, wr, wr + n2, dummy, 1, dummy, 1))
             for (int i = 0; i < n2; i++)
-                *mumax = fmax(*mumax, hypot(wr[i], wr[n2 + i]));
+                mx = fmax(mx, hypot(wr[i], wr[n2 + i]));
+        else if (x) { /* the multipliers are an output: no eigenvalues is a failure */
+            snprintf(msg, 160, "the eigenvalues of the reduced monodromy failed");
+            rc = wr ? 2 : 1;
+        }
+        if (mumax) *mumax = mx;
+        if (!rc && x) { /* handed over: wr holds n2 real parts then n2 imaginary parts */
+            x->mu = wr;
+            x->nmu = n2;
+            wr = NULL;
+        }
         free(wr);
     }
     /* pass 2: the orbit from xi0, the records at every step's end */
@@ -1500,6 +1522,12 @@ int gd_hb_orbit_reduced(hb *h, gd_transient *tr, double om, int steps, int steps
             o.run.b = malloc(8 * (size_t)n2 * sizeof *o.run.b);
             o.vals = calloc(4 * (size_t)nrec + 1, sizeof *o.vals);
             if (!o.G || !o.y || !o.z || !o.run.b || !o.vals) rc = 1;
+            if (!rc && x) {
+                o.nsmp = steps_out > steps ? steps_out : steps;
+                o.smp = x->values = calloc((size_t)nrec * o.nsmp + 1, sizeof *o.smp);
+                x->n = (int)o.nsmp;
+                if (!o.smp) rc = 1;
+            }
         }
         if (!rc) {
             o.lo = o.vals + nrec;
@@ -1530,6 +1558,11 @@ int gd_hb_orbit_reduced(hb *h, gd_transient *tr, double om, int steps, int steps
                 rc = 1;
             else if (prc != 1)
                 rc = 2;
+        }
+        if (!rc && x && o.cnt != o.nsmp) { /* steps split at breakpoints: no equal grid */
+            snprintf(msg, 160, "the records' grid is not equally spaced (%ld steps for %ld)", o.cnt,
+                     o.nsmp);
+            rc = 2;
         }
         for (int k = 0; !rc && k < nrec; k++) {
             mean[k] = o.sum[k] / (double)o.cnt;
