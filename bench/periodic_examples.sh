@@ -15,7 +15,10 @@
 #   (minutes each: the 754-state seed-002 train, the Ducati train, the wind turbine).
 # environment: OUT (default /tmp/periodic_examples), BIF_TOL (default 1e-4), ONLY (a
 #   regular expression: only the cases whose name matches), RUNS (default 5: the default
-#   run repeated that many times in all and compared byte for byte; 1 skips it)
+#   run repeated that many times in all and compared byte for byte; 1 skips it), TIMEOUT
+#   (seconds of wall time per run, none by default: a run stopped by it is reported as
+#   such; on a loaded machine a process gets a fraction of a core, so the CPU column
+#   says how far it got)
 set -uo pipefail
 
 BUILD=${1:-build}
@@ -24,6 +27,7 @@ GEARDYN=$BUILD/geardyn
 OUT=${OUT:-/tmp/periodic_examples}
 BIF_TOL=${BIF_TOL:-1e-4}
 RUNS=${RUNS:-5}
+TIMEOUT=${TIMEOUT:-}
 export OPENBLAS_NUM_THREADS=1
 [ -x "$GEARDYN" ] || { echo "periodic_examples.sh: $GEARDYN not built (make)" >&2; exit 2; }
 mkdir -p "$OUT"
@@ -49,8 +53,10 @@ CASES=(
 run() { # tag model args... -> OUT/tag.json, OUT/tag.err, OUT/tag.time
     local tag=$1
     shift
-    /usr/bin/time -f "%U %S" -o "$OUT/$tag.time" "$GEARDYN" periodic "$@" --json --quiet \
-        >"$OUT/$tag.json" 2>"$OUT/$tag.err"
+    local cap=()
+    [ -n "$TIMEOUT" ] && cap=(timeout "$TIMEOUT")
+    /usr/bin/time -f "%U %S" -o "$OUT/$tag.time" "${cap[@]}" "$GEARDYN" periodic "$@" --json \
+        --quiet >"$OUT/$tag.json" 2>"$OUT/$tag.err"
     echo $? >"$OUT/$tag.rc"
 }
 
@@ -78,9 +84,9 @@ for c in "${CASES[@]}"; do
         # shellcheck disable=SC2086
         run "s$i" "$model" $args --method shooting
     fi
-    python3 - "$OUT" "$i" "$cmp" "$BIF_TOL" "$name" "$args" "$same" <<'EOF'
+    python3 - "$OUT" "$i" "$cmp" "$BIF_TOL" "$name" "$args" "$same" "$TIMEOUT" <<'EOF'
 import json, sys
-out, i, cmp, tol, name, args, ident = sys.argv[1], sys.argv[2], sys.argv[3] == "1", float(sys.argv[4]), sys.argv[5], sys.argv[6], sys.argv[7]
+out, i, cmp, tol, name, args, ident, cap = sys.argv[1], sys.argv[2], sys.argv[3] == "1", float(sys.argv[4]), sys.argv[5], sys.argv[6], sys.argv[7], sys.argv[8]
 def load(tag):
     try:
         return json.load(open(f"{out}/{tag}.json"))
@@ -92,7 +98,15 @@ def cpu(tag):
         return f"{float(u) + float(s):.2f} s"
     except Exception:
         return "-"
+def rc(tag):
+    try:
+        return int(open(f"{out}/{tag}.rc").read())
+    except Exception:
+        return -1
 d = load(f"d{i}")
+if d is None and rc(f"d{i}") == 124:
+    print(f"| {name} | `{args}` | - | stopped by TIMEOUT after {cap} s wall, no answer | - | - | {ident} | {cpu('d'+str(i))} |")
+    sys.exit(0)
 if d is None:
     err = open(f"{out}/d{i}.err").read().strip().splitlines()
     print(f"| {name} | `{args}` | - | refused: {err[-1][:120] if err else '?'} | - | - | {ident} | {cpu('d'+str(i))} |")

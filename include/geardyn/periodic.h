@@ -94,8 +94,8 @@ typedef struct gd_periodic_options {
                               131072); at most GD_PERIODIC_MAX_SAMPLES */
     int floquet;           /* how the multipliers are found (docs/periodic.md, "Stability at
                               scale"): GD_FLOQUET_AUTO (default: dense up to floquet_dmax
-                              states, reduced above), GD_FLOQUET_DENSE (every multiplier, the
-                              dense 2 nf x 2 nf monodromy), GD_FLOQUET_KRYLOV (the
+                              states and floquet_budget, reduced else), GD_FLOQUET_DENSE (every
+                              multiplier, the dense 2 nf x 2 nf monodromy), GD_FLOQUET_KRYLOV (the
                               floquet_count largest by Krylov-Schur on monodromy-vector
                               products over the same Magnus steps; no dense matrix),
                               GD_FLOQUET_REDUCED (the monodromy in a reduced basis: the

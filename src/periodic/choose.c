@@ -473,8 +473,12 @@ gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *sp
          * of (K, M) once, then per step about 8 nterm (2 r)^2 flops, r about 64 (48 on
          * the [JMSTHelical] model, 22 on the two-stage gearbox: docs/periodic.md) */
         const int dmax = opt->floquet_dmax > 0 ? opt->floquet_dmax : 300;
+        const double fdense = steps * 30.0 * pow(2.0 * nf, 3) / 2e9;
+        /* auto also where the dense one is over the budget (points.c) */
         const int reduced =
-            opt->floquet == GD_FLOQUET_REDUCED || (opt->floquet == GD_FLOQUET_AUTO && n > dmax);
+            opt->floquet == GD_FLOQUET_REDUCED ||
+            (opt->floquet == GD_FLOQUET_AUTO &&
+             (n > dmax || (opt->floquet_budget > 0 && fdense > opt->floquet_budget)));
         const double rb = fmin(nf, 64.0), nterm = fmax(1.0, gd_transient_terms(tr, NULL));
         /* the reduced basis picks its own steps: s0 = 8 per period of the top order (a power
          * of 2, at least 256), then 2 s0 to compare, so about 3 s0 steps in all */
@@ -482,8 +486,8 @@ gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *sp
             opt->monodromy_steps > 0
                 ? steps
                 : 3.0 * gd_floquet_reduced_first_steps((long)order * opt->subharmonic);
-        const double fq = reduced ? (10.0 * pow(nf, 3) + rsteps * 8.0 * nterm * 4.0 * rb * rb) / 2e9
-                                  : steps * 30.0 * pow(2.0 * nf, 3) / 2e9;
+        const double fq =
+            reduced ? (10.0 * pow(nf, 3) + rsteps * 8.0 * nterm * 4.0 * rb * rb) / 2e9 : fdense;
         if (opt->stability) /* no more than the multipliers' budget: over it they are left out */
             ch += fmin(fq, opt->floquet_budget > 0 ? opt->floquet_budget : INFINITY);
         /* a non-smooth law: shooting, whose orbits solve the time-domain equations (their

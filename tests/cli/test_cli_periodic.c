@@ -434,9 +434,16 @@ TEST(method_shooting_auto_and_bad_value)
                             "--floquet-budget", NULL));
     /* over the multipliers' budget: the orbit, stability unknown and the reason (exit 0:
      * every requested point converged) */
-    run(&s, &r, "periodic " CHEN " --speeds 1000:1000:1 --harmonics 7 --floquet-budget 1e-9");
+    run(&s, &r,
+        "periodic " CHEN
+        " --speeds 1000:1000:1 --harmonics 7 --floquet-budget 1e-9 --floquet dense");
     CHECK(r.code == 0 &&
           contains(r.out, "stability not computed: the dense monodromy of 12 states") &&
+          contains(r.out, "over the 1e-09 s budget per point"));
+    run_free(&r);
+    /* auto: the dense monodromy over the budget, the reduced basis is tried (points.c) */
+    run(&s, &r, "periodic " CHEN " --speeds 1000:1000:1 --harmonics 7 --floquet-budget 1e-9");
+    CHECK(r.code == 0 && contains(r.out, "stability not computed: the reduced basis's modes") &&
           contains(r.out, "over the 1e-09 s budget per point"));
     if (r.code) show(&r);
     run_free(&r);

@@ -36,7 +36,7 @@ TEST(five_runs_identical)
     REQUIRE(scratch_open(&s));
     static const char *cmd[2] = {"periodic " DUFFING " --frequency 0.5:1.6:12 --json",
                                  "periodic " CHEN " --speeds 900:1100:3 --harmonics 7 "
-                                 "--floquet-budget 1e-6"};
+                                 "--floquet-budget 1e-6 --floquet dense"};
     for (int c = 0; c < 2; c++) {
         char *first = NULL;
         for (int k = 0; k < 5; k++) {
