@@ -708,7 +708,8 @@ static const gd_cli_opt OPTS[] = {
     GD_CLI_ROW("no-stability", GD_CLI_CLEAR, F(opt.stability), NULL,
                "skip the Floquet multipliers (and bifurcations)"),
     GD_CLI_ROW("floquet", GD_CLI_CHOICE, F(opt.floquet), "M",
-               "auto (dense up to 300 states, reduced above), dense, krylov (the 8 largest "
+               "auto (dense up to 300 states when its counted cost fits --floquet-budget, reduced "
+               "else), dense, krylov (the 8 largest "
                "multipliers from monodromy-vector products) or reduced (every multiplier of the "
                "monodromy in the modes below --floquet-cutoff plus the local laws' residual "
                "flexibility)",
