@@ -277,22 +277,13 @@ static int warm_check(int nev, int ncv)
 
 /* Basis size of the next check: the worst residual falls about geometrically with
  * the basis size, so extrapolate from the last two checks to the size where it reaches
- * tol (at least two more vectors); a fixed step after the first. When a check costs
- * more than a Krylov vector (its Hessenberg QR, ~10 m^3, against ~4 n m for the
- * orthogonalisation of a vector of length n: small models), aim at a tenth of tol, and
- * extrapolate the first step too, at 0.5 decades a vector: the rate slows as the basis
- * grows (rig366, 12 modes: 0.6 decades a vector from 48 to 52 vectors, 0.5 from 52 to
- * 55, which stopped at 1.02 tol) and a check there costs as much as 25 vectors. */
-static int next_check(int n, int m, double worst, int prev_m, double prev_worst, int nev,
-                      double tol)
+ * tol (at least two more vectors); a fixed step after the first. */
+static int next_check(int m, double worst, int prev_m, double prev_worst, int nev, double tol)
 {
     int add = nev / 6 > 4 ? nev / 6 : 4;
-    int costly = 2.5 * m * m > n;
-    double rate = costly ? 0.5 * log(10.0) : 0, aim = costly ? 0.1 * tol : tol;
-    if (prev_m > 0 && worst < prev_worst && worst > 0)
-        rate = log(prev_worst / worst) / (m - prev_m);
-    if (rate > 0 && worst > 0) {
-        double need = ceil(log(worst / aim) / rate);
+    if (prev_m > 0 && worst < prev_worst && worst > 0) {
+        double rate = log(prev_worst / worst) / (m - prev_m);
+        double need = ceil(log(worst / tol) / rate);
         add = need < 2 ? 2 : need > 4 * add ? 4 * add : (int)need;
     }
     return m + add;
@@ -493,7 +484,7 @@ static gd_status ks_iterate(gd_op_fn op, void *ctx, int n, int nev, int ncv, dou
         }
         if (it == maxit && m == ncv) return GD_ENUMERIC;
         if (m < ncv) { /* grow the same Arnoldi decomposition */
-            int next = next_check(n, m, worst, prev_m, prev_worst, nev, tol);
+            int next = next_check(m, worst, prev_m, prev_worst, nev, tol);
             prev_m = m;
             prev_worst = worst;
             m = next < ncv ? next : ncv;
@@ -605,83 +596,23 @@ static void deflated_apply(void *c, const double *x, double *y)
  * (m x p), T into T (p x p) and the eigenvalues into wr, wi. Returns 1 when the vectors
  * are nearly dependent (a defective cluster such as the rigid-body zero), for the full
  * Schur route instead (T and Q untouched), -1 on failure. */
-/* The real part of the Ritz value whose columns of S hold column c (ritz_pairs' order). */
-static double column_value(const gd_ks_work *ws, int m, int c)
-{
-    for (int k = 0, col = 0; k < m; k++) {
-        int j = ws->grp[k], w = ws->wi[j] > 0 ? 2 : 1;
-        if (c < col + w) return ws->wr[j];
-        col += w;
-    }
-    return 0;
-}
-
-/* Column c of S (a member of a defective cluster: its Ritz vector meets those of the
- * earlier columns of the same value at ~sqrt(tol)) replaced by a vector that completes
- * them to the cluster's invariant subspace (eigenvectors and generalised ones of the
- * Jordan blocks): three steps of subspace iteration with (H - theta I)^-1, theta the
- * value's real part, on the block [those columns, a fixed vector], orthonormalised
- * after each step; the block's last vector. Inverse iteration on one vector would
- * converge to an eigenvector alone; the block's span converges to the subspace, by
- * |theta_0 - theta| / |theta_k - theta| a step. 0, or 1 when H - theta I is singular.
- * Uses T (m x m), Z (m x (c + 1)) and ifail. */
-static int jordan_column(gd_ks_work *ws, int m, int c)
-{
-    int ldh = ws->ncv + 1, q = 0;
-    double theta = column_value(ws, m, c), *Y = ws->Z;
-    for (int j = 0; j < c; j++)
-        if (fabs(column_value(ws, m, j) - theta) <= 1e-3 * fabs(theta))
-            memcpy(Y + (size_t)q++ * m, ws->S + (size_t)j * m, (size_t)m * sizeof *Y);
-    if (q == 0) return 1;
-    start_vector(Y + (size_t)q++ * m, m, 5u);
-    for (int j = 0; j < m; j++)
-        for (int i = 0; i < m; i++)
-            ws->T[i + (size_t)j * m] = ws->H[i + (size_t)j * ldh] - (i == j ? theta : 0.0);
-    lapack_int *piv = ws->ifail;
-    if (LAPACKE_dgetrf_work(LAPACK_COL_MAJOR, m, m, ws->T, m, piv)) return 1;
-    for (int it = 0; it < 3; it++) {
-        if (LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'N', m, q, ws->T, m, piv, Y, m)) return 1;
-        for (int a = 0; a < q; a++) { /* modified Gram-Schmidt, twice */
-            double *ya = Y + (size_t)a * m;
-            for (int pass = 0; pass < 2; pass++)
-                for (int b = 0; b < a; b++) {
-                    double h = dot(Y + (size_t)b * m, ya, m);
-                    for (int i = 0; i < m; i++)
-                        ya[i] -= h * Y[i + (size_t)b * m];
-                }
-            double nr = nrm2(ya, m);
-            if (!(nr > 0) || !isfinite(nr)) return 1;
-            for (int i = 0; i < m; i++)
-                ya[i] /= nr;
-        }
-    }
-    memcpy(ws->S + (size_t)c * m, Y + (size_t)(q - 1) * m, (size_t)m * sizeof *Y);
-    return 0;
-}
-
 static int small_schur(gd_ks_work *ws, int m, int p)
 {
     int ldh = ws->ncv + 1;
     double *A = ws->X, *HQ = ws->Z, *tau = ws->b;
     lapack_int lw = (lapack_int)((m + 3) * m);
-    for (int tries = 0;; tries++) {
-        for (int c = 0; c < p; c++) { /* unit columns: R's diagonal measures the angles */
-            double *a = A + (size_t)c * m, nr = nrm2(ws->S + (size_t)c * m, m);
-            if (!(nr > 0)) return 1;
-            for (int i = 0; i < m; i++)
-                a[i] = ws->S[i + (size_t)c * m] / nr;
-        }
-        if (LAPACKE_dgeqrf_work(LAPACK_COL_MAJOR, m, p, A, m, tau, ws->work, lw)) return 1;
-        /* the difference of two vectors at an angle a is accurate to ~eps / a^2: a
-         * defective value (the rigid-body zero), whose Ritz vectors meet at ~sqrt(tol),
-         * has the second column replaced (jordan_column; measured: the full Schur route
-         * instead was 13 % of rig366's 12 modes); twice, then the full route */
-        int bad = -1;
-        for (int c = 0; c < p && bad < 0; c++)
-            if (!(fabs(A[c + (size_t)c * m]) > 1e-3)) bad = c;
-        if (bad < 0) break;
-        if (tries == 2 || jordan_column(ws, m, bad)) return 1;
+    for (int c = 0; c < p; c++) { /* unit columns: R's diagonal measures the angles */
+        double *a = A + (size_t)c * m, nr = nrm2(ws->S + (size_t)c * m, m);
+        if (!(nr > 0)) return 1;
+        for (int i = 0; i < m; i++)
+            a[i] = ws->S[i + (size_t)c * m] / nr;
     }
+    if (LAPACKE_dgeqrf_work(LAPACK_COL_MAJOR, m, p, A, m, tau, ws->work, lw)) return 1;
+    /* the difference of two vectors at an angle a is accurate to ~eps / a^2: a
+     * defective value (the rigid-body zero), whose Ritz vectors meet at ~sqrt(tol),
+     * takes the full route */
+    for (int c = 0; c < p; c++)
+        if (!(fabs(A[c + (size_t)c * m]) > 1e-3)) return 1;
     if (LAPACKE_dorgqr_work(LAPACK_COL_MAJOR, m, p, p, A, m, tau, ws->work, lw)) return 1;
     for (int c = 0; c < p; c++) /* HQ = H Qs (not Hessenberg after a restart) */
         for (int i = 0; i < m; i++) {
