@@ -109,7 +109,10 @@ TEST(seed002_exact_receptance_equals_direct)
     int nc;
     double worst = exact_against_direct(gd_ts_, &f, 0.0, 0, 2 * PI * 8000, 0.0, &nc);
     CHECK(nc == 2);
-    CHECK(worst < 1e-9);
+    /* 1.41e-9 on a machine whose OpenBLAS takes other kernels (2026-12-02, measured on
+     * 310fc54 and after: the rounding of the dense eigenvectors of 754 states summed over
+     * every mode), below 1e-9 before; a dropped mode or a wrong residue gives 1e-3 and more */
+    CHECK(worst < 5e-9);
     printf("  seed002 (%d DOFs): max rel. difference %.2e\n", f.s->ndof, worst);
     fx_free(&f);
 }
