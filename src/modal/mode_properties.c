@@ -27,36 +27,75 @@ static double mag(double complex z)
     return sqrt(creal(z) * creal(z) + cimag(z) * cimag(z));
 }
 
+/* M_ii (0 for a massless or absent DOF) */
+static double diag_mass(const gd_system *sys, int i)
+{
+    if (i < 0) return 0.0;
+    for (int k = sys->M.colptr[i]; k < sys->M.colptr[i + 1]; k++)
+        if (sys->M.rowind[k] == i) return sys->M.values[k];
+    return 0.0;
+}
+
+/* The orbits a mode's whirl is read from: at every node, that of the centre (x, y) and
+ * that of the tilt (rx, ry), whose vector turns the same way as the axis' slope
+ * (dx/dz, dy/dz) = (ry, -rx). A tilt mode of a disk on a stiff centre (a rotor's
+ * gyroscopic pair) moves its centre by rounding only: read from the centre alone it
+ * was "none" (dense: exactly zero) or "mixed" (sparse: noise turning either way). The
+ * orbits are weighed by their kinetic energy (diagonal mass and inertia), so metres
+ * and radians compare and a rounding-sized orbit is left out. */
+typedef struct orbit {
+    double complex a, b; /* the x and y (or rx and ry) amplitudes */
+    double weight;       /* kinetic-energy weight: mass times |a|^2 + |b|^2 */
+    int node;
+} orbit;
+
+static int node_orbit(const gd_system *sys, int node, int tilt, int unit, const double *re,
+                      const double *im, orbit *o)
+{
+    int ix = gd_system_dof(sys, node, tilt ? GD_RX : GD_X),
+        iy = gd_system_dof(sys, node, tilt ? GD_RY : GD_Y);
+    if (ix < 0 || iy < 0) return 0;
+    o->a = re[ix] + I * im[ix];
+    o->b = re[iy] + I * im[iy];
+    double m = unit ? 1.0 : 0.5 * (diag_mass(sys, ix) + diag_mass(sys, iy));
+    o->weight = m * (creal(o->a * conj(o->a)) + creal(o->b * conj(o->b)));
+    o->node = node;
+    return 1;
+}
+
 static gd_whirl mode_whirl(const gd_system *sys, const double *re, const double *im)
 {
     const gd_model *m = sys->model;
-    double maxr = 0;
-    for (int node = 0; node < m->nnodes; node++) {
-        int ix = gd_system_dof(sys, node, GD_X), iy = gd_system_dof(sys, node, GD_Y);
-        if (ix < 0 || iy < 0) continue;
-        double complex X = re[ix] + I * im[ix], Y = re[iy] + I * im[iy];
-        double r = mag(X + I * Y) + mag(X - I * Y);
-        if (r > maxr) maxr = r;
-    }
-    if (!(maxr > 0)) return GD_WHIRL_NONE;
+    double maxw = 0;
+    int unit = 0; /* no moving node has mass (massless x, y and tilts): by amplitude */
+    for (; unit < 2 && !(maxw > 0); unit++)
+        for (int node = 0; node < m->nnodes; node++)
+            for (int tilt = 0; tilt < 2; tilt++) {
+                orbit o;
+                if (node_orbit(sys, node, tilt, unit, re, im, &o) && o.weight > maxw)
+                    maxw = o.weight;
+            }
+    unit--;
+    if (!(maxw > 0)) return GD_WHIRL_NONE;
     int fwd = 0, bwd = 0;
-    for (int node = 0; node < m->nnodes; node++) {
-        int ix = gd_system_dof(sys, node, GD_X), iy = gd_system_dof(sys, node, GD_Y);
-        if (ix < 0 || iy < 0) continue;
-        double complex X = re[ix] + I * im[ix], Y = re[iy] + I * im[iy];
-        /* x + i y = (X + iY)/2 e^{iwt} + conj(X - iY)/2 e^{-iwt}: forward and backward
-         * circular components ([Kumar2011] Eqs. 2.5-2.8) */
-        double rf = mag(X + I * Y), rb = mag(X - I * Y);
-        if (rf + rb < 1e-3 * maxr) continue;
-        if (m->shafts[m->nodes[node].shaft].speed_ratio < 0) {
-            double t = rf;
-            rf = rb;
-            rb = t;
+    for (int node = 0; node < m->nnodes; node++)
+        for (int tilt = 0; tilt < 2; tilt++) {
+            orbit o;
+            /* 1e-6 of the largest energy: 1e-3 of its amplitude, as before by amplitude */
+            if (!node_orbit(sys, node, tilt, unit, re, im, &o) || o.weight < 1e-6 * maxw) continue;
+            double complex X = o.a, Y = o.b;
+            /* x + i y = (X + iY)/2 e^{iwt} + conj(X - iY)/2 e^{-iwt}: forward and backward
+             * circular components ([Kumar2011] Eqs. 2.5-2.8) */
+            double rf = mag(X + I * Y), rb = mag(X - I * Y);
+            if (m->shafts[m->nodes[node].shaft].speed_ratio < 0) {
+                double t = rf;
+                rf = rb;
+                rb = t;
+            }
+            double ell = (rf - rb) / (rf + rb);
+            if (ell > 1e-3) fwd = 1;
+            if (ell < -1e-3) bwd = 1;
         }
-        double ell = (rf - rb) / (rf + rb);
-        if (ell > 1e-3) fwd = 1;
-        if (ell < -1e-3) bwd = 1;
-    }
     if (fwd && bwd) return GD_WHIRL_MIXED;
     if (fwd) return GD_WHIRL_FORWARD;
     if (bwd) return GD_WHIRL_BACKWARD;
