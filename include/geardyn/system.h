@@ -45,7 +45,8 @@ typedef struct gd_system {
     int has_speed_dependent; /* a bearing has a speed table */
     int has_damping;         /* C, a bearing table or a law may have damping terms */
     int has_gyroscopic;      /* G is not zero */
-    int ncomponents;         /* nshafts + nbearings + nsprings + nmeshes */
+    int ncomponents;         /* nshafts + nbearings + nsprings + nmeshes (+ planetary),
+                                then one per linearised law (nlaws) */
     int ninstances;          /* every element of every kind, in registry order */
     gd_element_instance *instances;
     double *instance_K; /* storage of the instances' K */
@@ -121,7 +122,9 @@ GD_API gd_status gd_system_matrices(const gd_system *sys, double speed, gd_csc *
                                     gd_csc *C, gd_csc *G, gd_error *err);
 
 /* Component c -> its element kind (a type of the registry, geardyn/elements.h), its
- * index within the kind and its name; NULL (index -1, name "") when c is out of range. */
+ * index within the kind and its name; NULL (index -1, name "") when c is out of range.
+ * The last nlaws components are the linearised laws (sys->laws): NULL, index the law's
+ * place in sys->laws, name the law's. */
 GD_API const gd_element_type *gd_system_component(const gd_system *sys, int c, int *index,
                                                   const char **name);
 
@@ -135,7 +138,9 @@ GD_API void gd_system_mesh_vector(const gd_system *sys, int mesh, gd_mesh_vector
 
 /* Modal strain energy of displacement u (complex: re, im; im may be NULL) at speed W,
  * split by motion type (by_motion[GD_NMOTIONS]) and by component (by_component
- * [ncomponents], may be NULL). Returns the total. */
+ * [ncomponents], may be NULL). Returns the total. The laws count with their stiffness
+ * linearised about the static state at W (gd_system_law_state: one static solve per
+ * call when the model has laws), each as its own component. */
 GD_API double gd_system_strain_energy(const gd_system *sys, double speed, const double *re,
                                       const double *im, double *by_motion, double *by_component);
 /* The same energy split both ways at once: table[c * GD_NMOTIONS + k] is component c's
@@ -143,7 +148,7 @@ GD_API double gd_system_strain_energy(const gd_system *sys, double speed, const 
 GD_API double gd_system_strain_energy_table(const gd_system *sys, double speed, const double *re,
                                             const double *im, double *table);
 /* The shafts component c is grouped with ([JMSTHelical] Tables 4-7: "the gears are included
- * into the shafts"): a shaft is its own; a bearing, spring or mesh belongs to the
+ * into the shafts"): a shaft is its own; a bearing, spring, mesh or law belongs to the
  * shafts of its nodes, half to each when they are two. Fills shafts[] and weights[]
  * (summing to 1) and returns how many (1 or 2; 0 for no such component). */
 GD_API int gd_system_component_shafts(const gd_system *sys, int c, int shafts[2],

@@ -336,7 +336,8 @@ class System:
         for c in range(h.ncomponents):
             kind = lib.gd_system_component(h, c, idx, name)
             self.components.append(cstr(name[0]))
-            self.component_kinds.append(cstr(kind.name))
+            # a linearised law (after the elements) has no element kind
+            self.component_kinds.append(cstr(kind.name) if kind != ffi.NULL else "law")
 
     def dof(self, node, dof):
         """Active DOF index of (node name, "x".."rz"), or -1."""

@@ -86,6 +86,8 @@ static gd_status dense_with_residuals(const gd_system *sys, const gd_modal_optio
         o.law_state = q;
     }
     gd_status st = gd_modal_solve_dense(sys, &o, out, err);
+    if (!st && gd_modal_energies_laws(sys, *out, o.law_state))
+        st = gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
     if (!st && (st = gd_modal_residuals(sys, *out, o.law_state, err))) {
         gd_modal_free(*out);
         *out = NULL;

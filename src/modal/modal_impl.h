@@ -6,9 +6,18 @@
 #include "geardyn/modal.h"
 #include "system/system_impl.h"
 
-/* Energy shares, dominant motion/component and whirl of a mode with full shape u. */
+/* Energy shares, dominant motion/component and whirl of a mode with full shape u, the
+ * laws' strain energy left out (their components 0): the solvers' first labels. */
 void gd_mode_finish(const gd_system *sys, double speed, gd_mode *md, const double *re,
                     const double *im, double *comp_share);
+/* The same with the laws' stiffness blocks law_K (gd_system_law_blocks' layout; NULL: as
+ * gd_mode_finish). */
+void gd_mode_finish_laws(const gd_system *sys, double speed, const double *law_K, gd_mode *md,
+                         const double *re, const double *im, double *comp_share);
+/* Every elastic mode of r finished again with the laws' stiffness about law_state (ndof;
+ * NULL: solved at r's speed), the K the modes were computed with, so a linearised bearing
+ * law's strain energy is its own component's (strain_energy.c). GD_OK or GD_ENOMEM. */
+gd_status gd_modal_energies_laws(const gd_system *sys, gd_modal_result *r, const double *law_state);
 double complex gd_normalise_max(double *re, double *im, int n);
 
 /* ---- rigid_modes.c ---- */

@@ -14,10 +14,7 @@ const char *const gd_whirl_names[4] = {"none", "forward", "backward", "mixed"};
 
 gd_motion gd_dof_motion(gd_dof d)
 {
-    return d == GD_RZ                   ? GD_MOTION_TORSIONAL
-           : d == GD_Z                  ? GD_MOTION_AXIAL
-           : (d == GD_RX || d == GD_RY) ? GD_MOTION_TILT
-                                        : GD_MOTION_LATERAL;
+    return gd_system_dof_motion(d);
 }
 
 /* |z| without hypot's care for overflow (the shapes are normalised to a largest entry
@@ -105,10 +102,17 @@ static gd_whirl mode_whirl(const gd_system *sys, const double *re, const double 
 void gd_mode_finish(const gd_system *sys, double speed, gd_mode *md, const double *re,
                     const double *im, double *comp_share)
 {
+    gd_mode_finish_laws(sys, speed, NULL, md, re, im, comp_share);
+}
+
+void gd_mode_finish_laws(const gd_system *sys, double speed, const double *law_K, gd_mode *md,
+                         const double *re, const double *im, double *comp_share)
+{
     int nc = sys->ncomponents;
     double by_motion[GD_NMOTIONS];
     double *by_comp = comp_share;
-    double total = gd_system_strain_energy(sys, speed, re, im, by_motion, by_comp);
+    double total =
+        gd_system_strain_energy_laws(sys, speed, law_K, re, im, by_motion, by_comp, NULL);
     md->dominant_motion = GD_MOTION_LATERAL;
     md->dominant_component = -1;
     /* a divergent mode (negative stiffness) has negative strain energy: its shares are
@@ -158,6 +162,22 @@ void gd_mode_finish(const gd_system *sys, double speed, gd_mode *md, const doubl
         md->energy_share[GD_MOTION_LATERAL] + md->energy_share[GD_MOTION_TILT] <
             GD_WHIRL_MIN_LATERAL)
         md->whirl = GD_WHIRL_NONE;
+}
+
+gd_status gd_modal_energies_laws(const gd_system *sys, gd_modal_result *r, const double *law_state)
+{
+    if (!sys->nlaws || r->ndof != sys->ndof) return GD_OK;
+    double *Kb = malloc((size_t)sys->law_block * 2 * sizeof *Kb);
+    if (!Kb) return GD_ENOMEM;
+    gd_system_law_blocks_at(sys, r->speed, law_state, Kb, Kb + sys->law_block);
+    for (int j = 0; j < r->nmodes; j++) {
+        if (r->modes[j].rigid_body) continue;
+        size_t n = (size_t)r->ndof * j;
+        gd_mode_finish_laws(sys, r->speed, Kb, &r->modes[j], r->shape_re + n, r->shape_im + n,
+                            r->energy_by_component + (size_t)j * sys->ncomponents);
+    }
+    free(Kb);
+    return GD_OK;
 }
 
 /* Scales a complex vector so its largest entry is 1 + 0i; returns the divisor. */

@@ -19,6 +19,7 @@ gd_status gd_modal_energy_by_shaft(const gd_system *sys, const gd_modal_result *
     if (!ct) return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
     const double *re = r->shape_re + (size_t)mode * r->ndof,
                  *im = r->shape_im + (size_t)mode * r->ndof;
+    /* the laws about the static state at r's speed, as the modes (gd_modal_energies_laws) */
     double total = gd_system_strain_energy_table(sys, r->speed, re, im, ct);
     if (total != 0 && !r->modes[mode].rigid_body)
         for (int c = 0; c < nc; c++) {

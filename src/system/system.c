@@ -195,6 +195,7 @@ gd_status gd_system_build(const gd_model *m, gd_system **out, gd_error *err)
         gd_trip_compress(&as.G, s->node_dof, n, &s->G) || build_instances(s))
         goto nomem;
     if (gd_system_make_laws(s, err)) goto fail;
+    s->ncomponents += s->nlaws; /* each linearised law its own component, after the elements' */
     for (int j = 0; j < n; j++) {
         int has = 0;
         for (int k = s->M.colptr[j]; k < s->M.colptr[j + 1]; k++)
@@ -270,6 +271,11 @@ const gd_element_type *gd_system_component(const gd_system *s, int c, int *index
             return t;
         }
         c -= nc;
+    }
+    if (c >= 0 && c < s->nlaws) { /* a linearised law: no element kind */
+        *index = c;
+        *name = s->laws[c].name;
+        return NULL;
     }
     *index = -1;
     *name = "";

@@ -79,6 +79,17 @@ void gd_system_dense_at(const gd_system *sys, double speed, const double *state,
 /* D += the laws' C, K += their K (dense ndof^2, either may be NULL). */
 void gd_system_add_laws_dense(const gd_system *sys, double speed, double *D, double *K);
 
+/* ---- strain_energy.c ---- */
+/* The motion type a DOF's motion counts as (rz torsional, z axial, rx/ry tilt, else
+ * lateral). */
+gd_motion gd_system_dof_motion(gd_dof d);
+/* gd_system_strain_energy (by_motion, may be NULL, and by_component) and its table (may be
+ * NULL) at once, with the laws' stiffness blocks law_K given (gd_system_law_blocks' layout,
+ * the K the modes were computed with; NULL: the laws left out): no static solve. */
+double gd_system_strain_energy_laws(const gd_system *sys, double speed, const double *law_K,
+                                    const double *re, const double *im, double *by_motion,
+                                    double *by_component, double *table);
+
 /* ---- condense.c ---- */
 /* Static condensation of massless DOFs: master = DOFs with mass, slave = without. */
 typedef struct gd_condense {
