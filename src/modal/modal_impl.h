@@ -19,6 +19,9 @@ void gd_mode_finish_laws(const gd_system *sys, double speed, const double *law_K
  * law's strain energy is its own component's (strain_energy.c). GD_OK or GD_ENOMEM. */
 gd_status gd_modal_energies_laws(const gd_system *sys, gd_modal_result *r, const double *law_state);
 double complex gd_normalise_max(double *re, double *im, int n);
+/* The eigenvalue lambda = lr + i li of an elastic mode (li >= 0) and what follows from it:
+ * natural and damped frequency, damping ratio, log decrement, overdamped, unstable. */
+void gd_mode_set_lambda(gd_mode *md, double lr, double li);
 
 /* ---- rigid_modes.c ---- */
 /* The motion type a DOF's motion counts as (rz torsional, z axial, rx/ry tilt, else
@@ -103,6 +106,9 @@ gd_status gd_sparse_modes(const gd_dynmat *a, const gd_splu_symbolic *sym,
                           const gd_modal_options *opt, double shift, gd_sparse_ws *ws,
                           gd_modal_result **out, gd_error *err);
 /* ---- residual.c: gd_mode.residual and residual_floor ---- */
+/* Of one mode md with the shape ur + i ui (n = a's size); w: 13 n scratch. */
+void gd_mode_residual(const gd_dynmat *a, const double *k, const double *d, gd_mode *md,
+                      const double *ur, const double *ui, double *w);
 /* Of every mode of r, on a's pattern with k, d at r's speed (d NULL: undamped); *worst
  * and *worst_floor (may be NULL): the largest over the elastic modes. GD_ENOMEM or GD_OK. */
 gd_status gd_modal_residuals_on(const gd_dynmat *a, const double *k, const double *d,

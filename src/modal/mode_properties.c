@@ -99,6 +99,21 @@ static gd_whirl mode_whirl(const gd_system *sys, const double *re, const double 
     return GD_WHIRL_NONE;
 }
 
+void gd_mode_set_lambda(gd_mode *md, double lr, double li)
+{
+    double mag = hypot(lr, li);
+    md->lambda_re = lr;
+    md->lambda_im = li;
+    md->omega_n = mag;
+    md->omega_d = li;
+    md->frequency_hz = mag / (2 * PI);
+    md->damping_ratio = -lr / mag;
+    md->overdamped = li == 0;
+    md->unstable = lr > 1e-8 * mag;
+    double z = md->damping_ratio;
+    md->log_decrement = li > 0 && fabs(z) < 1 ? 2 * PI * z / sqrt(1 - z * z) : NAN;
+}
+
 void gd_mode_finish(const gd_system *sys, double speed, gd_mode *md, const double *re,
                     const double *im, double *comp_share)
 {

@@ -35,6 +35,35 @@ static double nrm(const double *a, const double *b, int n)
     return sqrt(s);
 }
 
+void gd_mode_residual(const gd_dynmat *a, const double *k, const double *d, gd_mode *md,
+                      const double *ur, const double *ui, double *w)
+{
+    int n = a->pat.n;
+    double *ua = w, *mr = w + n, *mi = w + 2 * n, *ma = w + 3 * n, *dr = w + 4 * n, *di = w + 5 * n,
+           *da = w + 6 * n, *kr = w + 7 * n, *ki = w + 8 * n, *ka = w + 9 * n, *pr = w + 10 * n,
+           *pi = w + 11 * n, *pa = w + 12 * n;
+    for (int i = 0; i < n; i++)
+        ua[i] = hypot(ur[i], ui[i]);
+    double lr = md->rigid_body ? 0 : md->lambda_re, li = md->rigid_body ? 0 : md->lambda_im;
+    double l2r = lr * lr - li * li, l2i = 2 * lr * li, al = hypot(lr, li);
+    spmv(&a->pat, a->m, ur, ui, ua, mr, mi, ma);
+    spmv(&a->pat, k, ur, ui, ua, kr, ki, ka);
+    if (d)
+        spmv(&a->pat, d, ur, ui, ua, dr, di, da);
+    else
+        memset(dr, 0, (size_t)3 * n * sizeof *dr); /* dr, di, da */
+    for (int i = 0; i < n; i++) {
+        pr[i] = l2r * mr[i] - l2i * mi[i] + lr * dr[i] - li * di[i] + kr[i];
+        pi[i] = l2r * mi[i] + l2i * mr[i] + lr * di[i] + li * dr[i] + ki[i];
+        pa[i] = al * al * ma[i] + al * da[i] + ka[i];
+    }
+    double num = nrm(pr, pi, n), terms = nrm(pa, NULL, n);
+    double den =
+        md->rigid_body ? terms : al * al * nrm(mr, mi, n) + al * nrm(dr, di, n) + nrm(kr, ki, n);
+    md->residual = den > 0 ? num / den : 0;
+    md->residual_floor = den > 0 ? DBL_EPSILON * terms / den : DBL_EPSILON;
+}
+
 gd_status gd_modal_residuals_on(const gd_dynmat *a, const double *k, const double *d,
                                 gd_modal_result *r, double *worst, double *worst_floor)
 {
@@ -44,33 +73,9 @@ gd_status gd_modal_residuals_on(const gd_dynmat *a, const double *k, const doubl
     if (n != r->ndof) return GD_OK; /* not this system's result */
     double *w = malloc((size_t)13 * n * sizeof *w);
     if (!w) return GD_ENOMEM;
-    double *ua = w, *mr = w + n, *mi = w + 2 * n, *ma = w + 3 * n, *dr = w + 4 * n, *di = w + 5 * n,
-           *da = w + 6 * n, *kr = w + 7 * n, *ki = w + 8 * n, *ka = w + 9 * n, *pr = w + 10 * n,
-           *pi = w + 11 * n, *pa = w + 12 * n;
     for (int j = 0; j < r->nmodes; j++) {
         gd_mode *md = &r->modes[j];
-        const double *ur = r->shape_re + (size_t)j * n, *ui = r->shape_im + (size_t)j * n;
-        for (int i = 0; i < n; i++)
-            ua[i] = hypot(ur[i], ui[i]);
-        double lr = md->rigid_body ? 0 : md->lambda_re, li = md->rigid_body ? 0 : md->lambda_im;
-        double l2r = lr * lr - li * li, l2i = 2 * lr * li, al = hypot(lr, li);
-        spmv(&a->pat, a->m, ur, ui, ua, mr, mi, ma);
-        spmv(&a->pat, k, ur, ui, ua, kr, ki, ka);
-        if (d)
-            spmv(&a->pat, d, ur, ui, ua, dr, di, da);
-        else
-            memset(dr, 0, (size_t)3 * n * sizeof *dr); /* dr, di, da */
-        for (int i = 0; i < n; i++) {
-            pr[i] = l2r * mr[i] - l2i * mi[i] + lr * dr[i] - li * di[i] + kr[i];
-            pi[i] = l2r * mi[i] + l2i * mr[i] + lr * di[i] + li * dr[i] + ki[i];
-            pa[i] = al * al * ma[i] + al * da[i] + ka[i];
-        }
-        double num = nrm(pr, pi, n), terms = nrm(pa, NULL, n);
-        double den = md->rigid_body
-                         ? terms
-                         : al * al * nrm(mr, mi, n) + al * nrm(dr, di, n) + nrm(kr, ki, n);
-        md->residual = den > 0 ? num / den : 0;
-        md->residual_floor = den > 0 ? DBL_EPSILON * terms / den : DBL_EPSILON;
+        gd_mode_residual(a, k, d, md, r->shape_re + (size_t)j * n, r->shape_im + (size_t)j * n, w);
         if (!md->rigid_body) {
             if (worst && md->residual > *worst) *worst = md->residual;
             if (worst_floor && md->residual_floor > *worst_floor) *worst_floor = md->residual_floor;
