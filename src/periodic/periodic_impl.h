@@ -343,4 +343,11 @@ int gd_per_nonsmooth(const gd_system *sys, const gd_transient_spec *spec, double
 int gd_per_qp_refusal(const gd_system *sys, const gd_transient_spec *spec, double speed,
                       const gd_periodic_options *opt, char *msg, size_t cap);
 
+/* A new point appended to r (its array grown by doubling, *cap_points its capacity), every
+ * field cleared and the "not computed" values set (stable -1, mu_max and residual NaN,
+ * harmonic_ok -1), of method and direction dir; NULL when out of memory. points.c; one
+ * rule for every method's points. */
+gd_periodic_point *gd_per_point_new(gd_periodic_result *r, int *cap_points, int dir,
+                                    gd_per_kind method);
+
 #endif

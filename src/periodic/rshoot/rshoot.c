@@ -323,24 +323,9 @@ static int op_direction(void *m, int dir, double v0, double v1)
 
 static gd_periodic_point *new_point(rs *c)
 {
-    gd_periodic_result *r = c->res;
-    if (r->npoints == c->cap_points) {
-        int cap = c->cap_points ? 2 * c->cap_points : 64;
-        gd_periodic_point *p = realloc(r->points, (size_t)cap * sizeof *p);
-        if (!p) return NULL;
-        r->points = p;
-        c->cap_points = cap;
-    }
-    gd_periodic_point *p = &r->points[r->npoints++];
-    memset(p, 0, sizeof *p);
-    p->direction = c->dir;
-    p->stable = -1;
-    p->mu_max = NAN;
-    p->method = GD_PER_REDUCED_SHOOTING;
-    p->stability_method = -1;
-    p->residual = NAN;
-    p->harmonic_ok = -1;
-    p->harmonic_error_p2p = p->harmonic_error_amp = NAN;
+    gd_periodic_point *p =
+        gd_per_point_new(c->res, &c->cap_points, c->dir, GD_PER_REDUCED_SHOOTING);
+    if (!p) return NULL;
     p->speed = c->param ? c->param->speed : c->key;
     p->parameter = c->param ? c->key : NAN;
     p->harmonics = c->H;

@@ -825,24 +825,8 @@ int gd_per_sh_newton(shoot *sh, double *y, int *iters, double *resid)
 
 static gd_periodic_point *new_point(shoot *sh, double key)
 {
-    gd_periodic_result *r = sh->res;
-    if (r->npoints == sh->cap_points) {
-        int cap = sh->cap_points ? 2 * sh->cap_points : 64;
-        gd_periodic_point *p = realloc(r->points, (size_t)cap * sizeof *p);
-        if (!p) return NULL;
-        r->points = p;
-        sh->cap_points = cap;
-    }
-    gd_periodic_point *p = &r->points[r->npoints++];
-    memset(p, 0, sizeof *p);
-    p->direction = sh->dir;
-    p->stable = -1;
-    p->mu_max = NAN;
-    p->method = GD_PER_SHOOTING;
-    p->stability_method = -1;
-    p->residual = NAN;
-    p->harmonic_ok = -1;
-    p->harmonic_error_p2p = p->harmonic_error_amp = NAN;
+    gd_periodic_point *p = gd_per_point_new(sh->res, &sh->cap_points, sh->dir, GD_PER_SHOOTING);
+    if (!p) return NULL;
     p->speed = sh->param ? sh->param->speed : key;
     p->parameter = sh->param ? key : NAN;
     p->harmonics = sh->p->H;
