@@ -345,8 +345,8 @@ int gd_per_qp_refusal(const gd_system *sys, const gd_transient_spec *spec, doubl
 
 /* A new point appended to r (its array grown by doubling, *cap_points its capacity), every
  * field cleared and the "not computed" values set (stable -1, mu_max and residual NaN,
- * harmonic_ok -1), of method and direction dir; NULL when out of memory. points.c; one
- * rule for every method's points. */
+ * harmonic_ok -1), of method and direction dir; NULL when out of memory. common/point_new.c;
+ * one rule for every method's points. */
 gd_periodic_point *gd_per_point_new(gd_periodic_result *r, int *cap_points, int dir,
                                     gd_per_kind method);
 

@@ -134,29 +134,6 @@ void gd_per_floquet(ctx *c, const double *X, double lam, double *mre, double *mi
     c->floquet_steps = nbasis ? used : steps;
 }
 
-gd_periodic_point *gd_per_point_new(gd_periodic_result *r, int *cap_points, int dir,
-                                    gd_per_kind method)
-{
-    if (r->npoints == *cap_points) {
-        int cap = *cap_points ? 2 * *cap_points : 64;
-        gd_periodic_point *p = realloc(r->points, (size_t)cap * sizeof *p);
-        if (!p) return NULL;
-        r->points = p;
-        *cap_points = cap;
-    }
-    gd_periodic_point *p = &r->points[r->npoints++];
-    memset(p, 0, sizeof *p);
-    p->direction = dir;
-    p->stable = -1;
-    p->mu_max = NAN;
-    p->method = method;
-    p->stability_method = -1;
-    p->residual = NAN;
-    p->harmonic_ok = -1;
-    p->harmonic_error_p2p = p->harmonic_error_amp = NAN;
-    return p;
-}
-
 static gd_periodic_point *new_point(ctx *c)
 {
     return gd_per_point_new(c->res, &c->cap_points, c->dir, GD_PER_HB);
