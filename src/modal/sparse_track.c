@@ -1056,18 +1056,8 @@ static gd_status track(const gd_dynmat *a, const gd_splu_symbolic *sym, const gd
     for (int j = kr; j < km; j++) {
         gd_mode *md = &res->modes[j];
         const found *f = &fd[ord[j - kr].idx];
-        double lr = creal(f->lam), li = cimag(f->lam), mag = hypot(lr, li);
         md->rigid_body = 0;
-        md->lambda_re = lr;
-        md->lambda_im = li;
-        md->omega_n = mag;
-        md->omega_d = li;
-        md->frequency_hz = mag / (2 * PI);
-        md->damping_ratio = -lr / mag;
-        md->overdamped = li == 0;
-        md->unstable = lr > 1e-8 * mag;
-        double z = md->damping_ratio;
-        md->log_decrement = li > 0 && fabs(z) < 1 ? 2 * PI * z / sqrt(1 - z * z) : NAN;
+        gd_mode_set_lambda(md, creal(f->lam), cimag(f->lam));
         double *re = res->shape_re + (size_t)j * n, *im = res->shape_im + (size_t)j * n;
         for (int i = 0; i < n; i++) {
             re[i] = creal(f->x[i]);
