@@ -29,10 +29,11 @@ try {
     const file = resolve(name);
     errors = [];
     const t0 = Date.now();
-    await page.goto(pathToFileURL(file).href, { waitUntil: 'load' });
+    // a shared 2-core machine at a load of 20 took over 30 s (the default) to load a report
+    await page.goto(pathToFileURL(file).href, { waitUntil: 'load', timeout: 180000 });
     await page.waitForFunction(() => [...document.querySelectorAll('div.plot')]
-      .every(d => d.classList.contains('js-plotly-plot') && d._fullLayout), null, { timeout: 30000 })
-      .catch(() => errors.push('plots not drawn within 30 s'));
+      .every(d => d.classList.contains('js-plotly-plot') && d._fullLayout), null, { timeout: 180000 })
+      .catch(() => errors.push('plots not drawn within 180 s'));
     const got = await page.evaluate(() => [...document.querySelectorAll('div.plot')].map(d => ({
       id: d.id, declared: +d.dataset.traces, data: (d.data || []).length,
       is3d: d.classList.contains('mode3d'),

@@ -22,9 +22,9 @@ try {
     const [name, out, which, mode] = arg.split(':');
     const file = resolve(name);
     if (file !== last) {
-      await page.goto(pathToFileURL(file).href, { waitUntil: 'load' });
+      await page.goto(pathToFileURL(file).href, { waitUntil: 'load', timeout: 180000 });
       await page.waitForFunction(() => [...document.querySelectorAll('div.plot')]
-        .every(d => d.classList.contains('js-plotly-plot') && d._fullLayout), null, { timeout: 60000 });
+        .every(d => d.classList.contains('js-plotly-plot') && d._fullLayout), null, { timeout: 180000 });
       last = file;
     }
     if (which === 'top') {
