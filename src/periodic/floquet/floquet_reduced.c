@@ -1113,9 +1113,12 @@ static int red_propagate(red *R, int *rc)
     red_block B = {0};
     if (blocked && red_block_init(&B, n2, g2, t2)) return 1;
     exp_run run[2] = {{0}, {0}};
-    if (R->ncol == 1) {
+    if (R->ncol == 1 || blocked) {
         run[0].b = malloc(16 * (size_t)n2 * sizeof *run[0].b);
-        if (!run[0].b) return 1;
+        if (!run[0].b) {
+            red_block_free(&B);
+            return 1;
+        }
         run[1].b = run[0].b + 8 * (size_t)n2;
     }
     /* the anchor ta (s) of Psi's frame and how far from it the frame may drift: e^20 */
@@ -1155,7 +1158,7 @@ static int red_propagate(red *R, int *rc)
                     rk[i] = sq[rt] * at[i] + sv[rt] * bt[i];
             }
             const double *eb = ec;
-            if (R->ncol == 1) /* the vector pass: equal steps advance the blocks */
+            if (run[0].b) /* the vector and monodromy passes: equal steps advance the blocks */
                 eb = exp_at(&run[g], n2, lre, lim, m + (g ? d : -d) - ta, dt);
             else
                 exp_blocks(n2, lre, lim, m + (g ? d : -d) - ta, ec, es, ic, is);
