@@ -11,7 +11,8 @@
 # Krylov / dense, reduced / dense, and reduced / floor. docs/periodic.md, "Stability at
 # scale". With CALLGRIND=1 also the instructions of gd_hb_floquet_reduced per point on
 # seed 002 at H = 591 (2500 and 3000 rpm; the second point reuses the first's modes of
-# (K, M)), the count that does not depend on the machine's load.
+# (K, M)), the count that does not depend on the machine's load: 1.26 G for both points
+# before the blocked steps, 0.99 G after (2026-12-02; issue 33 item 5 asks about 0.13 G).
 # usage: [CALLGRIND=1] bench_floquet.sh BUILD
 set -euo pipefail
 cd "$(dirname "$0")/.."
