@@ -13,15 +13,23 @@
  *
  * Flops of the elimination of C + C^T with diagonal pivots in a given order (as AMD's
  * Info): sum over the columns of L of 2 d^2 + d, d the column's entries below the
- * diagonal. AMD's own figure is an upper bound (approximate degrees); the comparison
- * uses the exact count of AMD's order (elimination tree and row subtrees, O(nnz(L))),
- * and minimum degree stops as soon as it costs as much. So the trial costs at most
- * about one symbolic elimination of the block, paid once per pattern. */
+ * diagonal; minimum degree counts them exactly as it eliminates, and stops as soon as it
+ * costs GD_ORDER_GAIN of AMD's figure (an upper bound of its order's, from approximate
+ * degrees, within 1 % on the models measured). So the trial costs at most
+ * one symbolic elimination of the block, paid once per pattern. */
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "linalg/linalg_impl.h"
+
+/* Minimum degree replaces AMD when it predicts at most this fraction of AMD's flops: a new
+ * pivot order changes every result's rounding, and the prediction assumes diagonal pivots.
+ * Measured (callgrind): the 5-planet set of bench/bench_planetary.sh 0.69 (its Campbell
+ * sweep 401.3 -> 384.9 M instructions); rig366 0.86, where `modal` took one inverse
+ * iteration more under callgrind (rounding: natively two fewer), +3.2 %; rig2018 0.89
+ * (`campbell`, 21 speeds, 4315 -> 3957 M). */
+#define GD_ORDER_GAIN 0.75
 
 /* The symmetric graph of C + C^T without the diagonal: adjacency lists in a pool where a
  * list that grows moves to the pool's end (the elimination graph adds fill). */
@@ -111,84 +119,47 @@ static int graph_append(graph *g, int v, int w)
     return 0;
 }
 
-/* Exact symbolic count of eliminating the graph in the order perm (Liu's elimination
- * tree, then each row's subtree marks the entries of L in that row): flops as AMD's Info.
- * work: 4 n ints. */
-static double count_order(const graph *g, const int *perm, int *work)
-{
-    int n = g->n, *pinv = work, *parent = work + n, *anc = work + 2 * n, *flag = work + 3 * n;
-    for (int k = 0; k < n; k++)
-        pinv[perm[k]] = k;
-    for (int k = 0; k < n; k++) {
-        parent[k] = anc[k] = -1;
-        const int *a = g->pool + g->start[perm[k]];
-        for (int q = 0; q < g->len[perm[k]]; q++)
-            for (int j = pinv[a[q]], next; j != -1 && j < k; j = next) {
-                next = anc[j];
-                anc[j] = k;
-                if (next == -1) parent[j] = k;
-            }
-    }
-    int *cnt = anc; /* below-diagonal entries of each column of L */
-    for (int k = 0; k < n; k++) {
-        cnt[k] = 0;
-        flag[k] = -1;
-    }
-    for (int k = 0; k < n; k++) {
-        flag[k] = k;
-        const int *a = g->pool + g->start[perm[k]];
-        for (int q = 0; q < g->len[perm[k]]; q++)
-            for (int j = pinv[a[q]]; j < k && flag[j] != k; j = parent[j]) {
-                cnt[j]++; /* L(k, j) */
-                flag[j] = k;
-            }
-    }
-    double flops = 0;
-    for (int k = 0; k < n; k++)
-        flops += 2.0 * cnt[k] * cnt[k] + cnt[k];
-    return flops;
-}
-
-/* A binary heap of (degree, vertex) keys, the smallest first; stale keys are skipped by
- * the caller (lazy deletion). */
+/* A binary heap of the vertices not yet eliminated, the smallest (degree, index) first,
+ * with each vertex's position (an indexed heap: one entry per vertex). */
 typedef struct heap {
-    int64_t *k;
-    size_t n, cap;
+    int64_t *k; /* degree << 32 | vertex */
+    int *pos;   /* n: position of each vertex in k, -1 when out */
+    int n;
 } heap;
 
-static int heap_push(heap *h, int deg, int v)
+static void heap_place(heap *h, int i, int64_t key)
 {
-    if (h->n == h->cap) {
-        size_t cap = 2 * h->cap + 64;
-        int64_t *k = realloc(h->k, cap * sizeof *k);
-        if (!k) return 1;
-        h->k = k;
-        h->cap = cap;
+    for (;;) { /* up */
+        int up = (i - 1) / 2;
+        if (i == 0 || h->k[up] <= key) break;
+        h->k[i] = h->k[up];
+        h->pos[h->k[i] & 0xffffffff] = i;
+        i = up;
     }
-    int64_t key = ((int64_t)deg << 32) | (int64_t)v;
-    size_t i = h->n++;
-    while (i > 0 && h->k[(i - 1) / 2] > key) {
-        h->k[i] = h->k[(i - 1) / 2];
-        i = (i - 1) / 2;
-    }
-    h->k[i] = key;
-    return 0;
-}
-
-static int64_t heap_pop(heap *h)
-{
-    int64_t top = h->k[0], last = h->k[--h->n];
-    size_t i = 0;
-    for (;;) {
-        size_t c = 2 * i + 1;
+    for (;;) { /* down */
+        int c = 2 * i + 1;
         if (c >= h->n) break;
         if (c + 1 < h->n && h->k[c + 1] < h->k[c]) c++;
-        if (h->k[c] >= last) break;
+        if (h->k[c] >= key) break;
         h->k[i] = h->k[c];
+        h->pos[h->k[i] & 0xffffffff] = i;
         i = c;
     }
-    if (h->n) h->k[i] = last;
-    return top;
+    h->k[i] = key;
+    h->pos[key & 0xffffffff] = i;
+}
+
+static void heap_set(heap *h, int v, int deg)
+{
+    heap_place(h, h->pos[v], ((int64_t)deg << 32) | v);
+}
+
+static int heap_pop(heap *h)
+{
+    int v = (int)(h->k[0] & 0xffffffff);
+    h->pos[v] = -1;
+    if (--h->n > 0) heap_place(h, 0, h->k[h->n]);
+    return v;
 }
 
 /* Exact minimum degree on the elimination graph (ties: the lower index), into perm. Stops
@@ -196,29 +167,24 @@ static int64_t heap_pop(heap *h)
  * -1 when it stopped or ran out of memory. Destroys g. work: 2 n ints. */
 static double min_degree(graph *g, double bound, int *perm, double *lnz, int *work)
 {
-    int n = g->n, *done = work, *seen = work + n, *nb = NULL;
-    heap h = {0};
+    int n = g->n, *seen = work, *nb = NULL;
+    heap h = {.pos = work + n, .n = 0};
     double flops = 0;
     *lnz = 0;
-    if (!(nb = malloc((size_t)n * sizeof *nb))) return -1;
+    if (!(nb = malloc((size_t)n * sizeof *nb)) || !(h.k = malloc((size_t)n * sizeof *h.k))) {
+        free(nb);
+        return -1;
+    }
     for (int v = 0; v < n; v++) {
-        done[v] = 0;
         seen[v] = -1;
-        if (heap_push(&h, g->len[v], v)) goto fail;
+        heap_place(&h, h.n++, ((int64_t)g->len[v] << 32) | v);
     }
     for (int k = 0, tick = 0; k < n; k++) {
-        int v;
-        for (;;) {
-            int64_t key = heap_pop(&h);
-            v = (int)(key & 0xffffffff);
-            if (!done[v] && (int)(key >> 32) == g->len[v]) break;
-        }
-        int d = g->len[v];
+        int v = heap_pop(&h), d = g->len[v];
         flops += 2.0 * d * d + d;
         *lnz += d + 1;
         if (flops >= bound) goto fail;
         memcpy(nb, g->pool + g->start[v], (size_t)d * sizeof *nb);
-        done[v] = 1;
         perm[k] = v;
         /* v's neighbours become a clique; v leaves their lists */
         for (int a = 0; a < d; a++) {
@@ -232,7 +198,7 @@ static double min_degree(graph *g, double bound, int *perm, double *lnz, int *wo
             g->len[u] = w;
             for (int b = 0; b < d; b++)
                 if (nb[b] != u && seen[nb[b]] != tick && graph_append(g, u, nb[b])) goto fail;
-            if (heap_push(&h, g->len[u], u)) goto fail;
+            heap_set(&h, u, g->len[u]);
         }
         g->len[v] = 0;
     }
@@ -258,11 +224,10 @@ int gd_order_block(int n, int *cp, int *ci, int *perm, klu_common *common)
     double lnz_amd = info[AMD_LNZ] + n, flops_amd = 2 * info[AMD_NMULTSUBS_LU] + info[AMD_NDIV];
     int *work = NULL, *mdperm = NULL;
     graph g = {0};
-    if ((work = malloc(4 * (size_t)n * sizeof *work)) &&
+    if ((work = malloc(2 * (size_t)n * sizeof *work)) &&
         (mdperm = malloc((size_t)n * sizeof *mdperm)) && !graph_build(&g, n, cp, ci, work)) {
-        double exact = count_order(&g, perm, work), lnz_md;
-        double md = min_degree(&g, exact, mdperm, &lnz_md, work);
-        if (md >= 0) { /* below AMD's exact count (min_degree stops at it) */
+        double lnz_md, md = min_degree(&g, GD_ORDER_GAIN * flops_amd, mdperm, &lnz_md, work);
+        if (md >= 0) { /* below the bound (min_degree stops at it) */
             memcpy(perm, mdperm, (size_t)n * sizeof *perm);
             lnz_amd = lnz_md;
             flops_amd = md;
