@@ -45,10 +45,22 @@ int gd_pattern_symmetric(const gd_pattern *p, const double *k);
 void gd_pattern_mul2(const gd_pattern *p, const double *s, const double *x, const double *t,
                      const double *z, double *y);
 
+/* ---- ordering.c: each KLU block's fill-reducing ordering ---- */
+typedef struct gd_order_choice {
+    double flops;      /* predicted flops of the blocks ordered so far (as AMD's Info) */
+    int nmd;           /* blocks given the minimum-degree order */
+    int out_of_memory; /* AMD ran out of memory */
+} gd_order_choice;
+/* KLU's user_order (klu_common.user_data: a gd_order_choice): AMD's order of the n x n
+ * block (cp, ci), or an exact minimum-degree one when it predicts fewer flops. Returns
+ * the predicted entries of L (with the diagonal), 0 on failure. */
+int gd_order_block(int n, int *cp, int *ci, int *perm, klu_common *common);
+
 /* ---- sparse_lu.c: KLU, symbolic analysis once, numeric factorisation per point ---- */
 typedef struct gd_splu_symbolic {
-    klu_symbolic *sym;
+    klu_symbolic *sym; /* est_flops, lnz, unz: of the chosen orderings */
     klu_common common;
+    int nmd; /* blocks ordered by minimum degree instead of AMD (ordering.c) */
 } gd_splu_symbolic;
 
 typedef struct gd_splu {
