@@ -18,27 +18,29 @@
 #define REQUIRE_RET(cond, v)                                                                       \
     do {                                                                                           \
         if (!(cond)) {                                                                             \
-            fprintf(stderr, "  %s:%d: REQUIRE(%s) failed\n", __FILE__, __LINE__, #cond);          \
+            fprintf(stderr, "  %s:%d: REQUIRE(%s) failed\n", __FILE__, __LINE__, #cond);           \
             gd_ts_->checks_failed++;                                                               \
             return v;                                                                              \
         }                                                                                          \
     } while (0)
 
-/* The modal mode of r whose natural frequency is nearest f (relative), -1 if none within
- * rel. */
-static int nearest(const gd_modal_result *r, double f, double rel)
+/* The elastic mode of r whose eigenvalue is nearest that of c, -1 if none within rel of
+ * |lambda| (by the eigenvalue, not |lambda|: the reducer's axial mode at 290.576 Hz has
+ * the |lambda| of the lateral pair beside it). */
+static int nearest(const gd_modal_result *r, const gd_mode *c, double rel)
 {
     int best = -1;
     double bd = INFINITY;
     for (int j = 0; j < r->nmodes; j++) {
         if (r->modes[j].rigid_body) continue;
-        double d = fabs(r->modes[j].omega_n - f);
+        double d =
+            hypot(r->modes[j].lambda_re - c->lambda_re, r->modes[j].lambda_im - c->lambda_im);
         if (d < bd) {
             bd = d;
             best = j;
         }
     }
-    return bd <= rel * f ? best : -1;
+    return bd <= rel * c->omega_n ? best : -1;
 }
 
 /* Returns the number of (speed, mode) labels compared; *law_dominated counts those whose
@@ -82,7 +84,7 @@ static int compare(gd_test_state *gd_ts_, const char *file, const double *rpm, i
         for (int t = 0; t < c->ntracks; t++) {
             const gd_mode *cm = &c->modes[(size_t)t * ns + k];
             if (cm->rigid_body < 0) continue;
-            int j = nearest(r, cm->omega_n, 1e-6);
+            int j = nearest(r, cm, 1e-6);
             if (j < 0) continue; /* at the modal window's edge */
             const gd_mode *md = &r->modes[j];
             compared++;
@@ -97,8 +99,8 @@ static int compare(gd_test_state *gd_ts_, const char *file, const double *rpm, i
             CHECK(cm->dominant_component == md->dominant_component);
             CHECK(cm->dominant_motion == md->dominant_motion);
             CHECK(cm->whirl == md->whirl);
-            CHECK_REL(cm->energy_share[GD_MOTION_LATERAL], md->energy_share[GD_MOTION_LATERAL],
-                      1e-4);
+            for (int e = 0; e < GD_NMOTIONS; e++)
+                CHECK_ABS(cm->energy_share[e], md->energy_share[e], 1e-6);
         }
         gd_modal_free(r);
     }
@@ -113,9 +115,11 @@ TEST(campbell_labels_equal_modal_reducer)
     static const double rpm[] = {500, 1000, 1500};
     for (int pass = 0; pass < 2; pass++) {
         int law = 0;
-        int n = compare(gd_ts_, "examples/reducer_three_stage.yaml", rpm, 3, 8,
+        /* 6 elastic modes: up to the motor's tilt pair at 226 Hz, well below the next
+           (290.6 Hz), so no window cuts a repeated pair */
+        int n = compare(gd_ts_, "examples/reducer_three_stage.yaml", rpm, 3, 6,
                         pass ? GD_EIG_SPARSE : GD_EIG_AUTO, &law);
-        CHECK(n >= 3 * 7);
+        CHECK(n == 3 * 6);
         CHECK(law >= 3); /* the axial mode (OUTA) at each speed, at least */
     }
 }
@@ -125,10 +129,11 @@ TEST(campbell_labels_equal_modal_rig2018_geometry)
     static const double rpm[] = {300, 1500, 3000};
     for (int pass = 0; pass < 2; pass++) {
         int law = 0;
+        /* its modes are the shafts' (bearings from geometry are stiff): the labels agree
+           with and without the laws' energy, and must stay so */
         int n = compare(gd_ts_, "examples/rig2018_geometry.yaml", rpm, 3, 10,
                         pass ? GD_EIG_SPARSE : GD_EIG_AUTO, &law);
-        CHECK(n >= 3 * 9);
-        CHECK(law >= 1);
+        CHECK(n == 3 * 10);
     }
 }
 

@@ -10,7 +10,6 @@
 #include "geardyn/study.h"
 #include "harness.h"
 
-
 /* Loads a study text (written into the scratch folder; the model path is absolute). */
 static gd_status load_text(const scratch *sc, const char *text, gd_study **s, gd_error *err)
 {
@@ -143,4 +142,5 @@ TEST(study_operating_point_errors_are_located)
     scratch_close(&sc);
 }
 
-RUN_TESTS(T(study_operating_point_equals_cli_both_ways), T(study_operating_point_errors_are_located))
+RUN_TESTS(T(study_operating_point_equals_cli_both_ways),
+          T(study_operating_point_errors_are_located))
