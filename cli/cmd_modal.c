@@ -196,14 +196,16 @@ static void warn_residuals(const gd_system *s, const gd_modal_result *r, double 
     else
         snprintf(dense, sizeof dense,
                  "--method dense (LAPACK on all %d DOFs, %s: about %s of memory and %s by the "
-                 "cost model) reaches about 10 x this floor, not exact rounding",
+                 "cost model) has a rounding floor of its own, not eps: residuals up to 1.4e-11 "
+                 "on a 336-DOF and 1.6e-10 on a 366-DOF model, growing with the model",
                  s->ndof, r->damped ? "state space" : "undamped", human(b1, sizeof b1, bytes, 0),
                  human(b3, sizeof b3, secs, 1));
     fprintf(stderr,
             "geardyn: warning: %d mode(s) (the first: mode %d) have a relative residual up to "
             "%.1e, above --tol %.1e and above what rounding leaves (%.1e): the sparse solver's "
-            "refinement did not converge. Reachable here: --tol %.0e with this solver; %s\n",
-            n, first + 1, worst, tol, floor_max, pow(10, ceil(log10(worst))), dense);
+            "refinement did not converge (it reached %.1e at this --tol; the default 1e-9 may do "
+            "better); %s\n",
+            n, first + 1, worst, tol, floor_max, worst, dense);
 }
 
 /* a number, or null when not finite (JSON has no NaN) */
