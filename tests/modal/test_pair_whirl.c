@@ -55,7 +55,7 @@ static int pairs(gd_test_state *gd_ts_, const char *yaml, gd_modal_kind kind, do
         }
         for (int j = 0; j + 1 < 6; j++) {
             const gd_mode *a = &r[0]->modes[j], *b = &r[0]->modes[j + 1];
-            if (fabs(a->omega_n - b->omega_n) > 1e-8 * a->omega_n) continue;
+            if (fabs(a->omega_n - b->omega_n) > 1e-6 * a->omega_n) continue; /* pair_whirl's rule */
             npairs++;
             /* a lateral pair: one forward and one backward circle, the forward one first */
             CHECK(a->whirl == (speed != 0 ? GD_WHIRL_FORWARD : GD_WHIRL_NONE));
@@ -81,7 +81,8 @@ TEST(undamped_pairs_label_alike_by_both_solvers)
    complex pairs at speed */
 TEST(damped_pairs_without_gyroscopics_label_alike)
 {
-    CHECK(pairs(gd_ts_, ROTOR("[x, y]"), GD_MODAL_DAMPED, 314.159) == 1);
+    int np = pairs(gd_ts_, ROTOR("[x, y]"), GD_MODAL_DAMPED, 314.159);
+    CHECK(np == 1);
 }
 
 /* a gyroscopic rotor at speed has no repeated pair: its labels are its own vectors' (the
