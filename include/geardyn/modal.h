@@ -143,6 +143,12 @@ GD_API gd_status gd_modal_energy_by_shaft(const gd_system *sys, const gd_modal_r
 GD_API gd_status gd_modal_solve_sparse(const gd_system *sys, const gd_modal_options *opt,
                                        double shift, gd_modal_result **out, gd_error *err);
 
+/* What the dense (LAPACK) solver would cost on sys, damped (state space, 2 ndof) or not
+ * (the symmetric problem): *seconds by the measured cost model `--method auto` chooses
+ * with, *bytes its peak memory (the n x n matrices and the dense eigenproblem's work
+ * arrays). Either pointer may be NULL. For a hint that names what is reachable. */
+GD_API void gd_modal_dense_cost(const gd_system *sys, int damped, double *seconds, double *bytes);
+
 /* The class of planetary set `set`'s motion in mode `mode` of r (solved on sys),
  * [LinParker1999] Sec. 4 (docs/planetary.md): rotational (the central members rotate and do
  * not translate, all planets move alike), translational (the central members translate and

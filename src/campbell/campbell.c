@@ -364,6 +364,12 @@ gd_status gd_campbell_run(const gd_system *sys, const gd_campbell_options *opt, 
                 st = sts[s];
                 goto done;
             }
+        /* the sparse solves label their modes without the laws' strain energy: finished
+           here with the same stiffness blocks as `geardyn modal` at that speed (the dense
+           path, gd_modal_solve, already did), so a bearing-dominated mode carries the same
+           component label in both. Shapes, hence tracking, are untouched. */
+        for (int s = b0; s < b1 && sparse; s++)
+            if (gd_modal_energies_laws(sys, res[s], state_at(sys, states, s))) goto nomem;
         for (int s = b0; s < b1; s++) {
             int cap = res[s]->nmodes > 0 ? res[s]->nmodes : 1;
             elastic[s] = malloc((size_t)cap * sizeof **elastic);

@@ -2,6 +2,7 @@
  * of each node's x/y orbit, modal strain energy shares by motion type and by
  * component, the dominant ones, and the normalisation of a complex shape. */
 #include <complex.h>
+#include <lapacke.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -99,6 +100,19 @@ static gd_whirl mode_whirl(const gd_system *sys, const double *re, const double 
     return GD_WHIRL_NONE;
 }
 
+/* No lateral motion to speak of: no whirl. A gearbox's torsional mode carries a few per
+ * cent of lateral strain energy through its meshes, whose small orbits turn either way;
+ * called "backward" it was drawn as a whirling mode in Campbell (issue 35: a
+ * 97 %-torsional mode). An elastic mode with less than GD_WHIRL_MIN_LATERAL of its strain
+ * energy in lateral and tilt motion (its shares set: a nonzero total) is not a whirling
+ * mode. */
+static int whirl_suppressed(const gd_mode *md)
+{
+    return !md->rigid_body &&
+           md->energy_share[GD_MOTION_LATERAL] + md->energy_share[GD_MOTION_TILT] <
+               GD_WHIRL_MIN_LATERAL;
+}
+
 void gd_mode_set_lambda(gd_mode *md, double lr, double li)
 {
     double mag = hypot(lr, li);
@@ -168,31 +182,128 @@ void gd_mode_finish_laws(const gd_system *sys, double speed, const double *law_K
     }
     /* whirl is relative to the spin; at rest there is no direction to compare with */
     md->whirl = speed != 0.0 ? mode_whirl(sys, re, im) : GD_WHIRL_NONE;
-    /* no lateral motion to speak of: no whirl. A gearbox's torsional mode carries a few
-     * per cent of lateral strain energy through its meshes, whose small orbits turn
-     * either way; called "backward" it was drawn as a whirling mode in Campbell (issue
-     * 35: a 97 %-torsional mode). A mode with less than GD_WHIRL_MIN_LATERAL of its
-     * strain energy in lateral and tilt motion is not a whirling mode. */
-    if (!md->rigid_body && total != 0 &&
-        md->energy_share[GD_MOTION_LATERAL] + md->energy_share[GD_MOTION_TILT] <
-            GD_WHIRL_MIN_LATERAL)
-        md->whirl = GD_WHIRL_NONE;
+    if (total != 0 && whirl_suppressed(md)) md->whirl = GD_WHIRL_NONE;
+}
+
+/* The whirl of a repeated eigenvalue's modes (an axisymmetric rotor's x/y pair where
+ * nothing splits it: no gyroscopic term, or --undamped at speed). Any basis of the pair's
+ * space is an eigenbasis, and solvers return different ones (LAPACK two straight-line
+ * orbits, "none"; Krylov-Schur complex mixtures, "forward" or "backward" or "mixed"), so a
+ * label read from the returned vectors depended on the solver. The space itself does
+ * not: the combinations extremal in forward share, the generalized eigenvectors of
+ * F c = mu S c with F the kinetic-energy-weighted forward circular components of every
+ * centre and tilt orbit and S forward plus backward (the pair turned to circular orbits,
+ * as the directional modes' clusters in directional.c), are the same whatever basis.
+ * The cluster's modes are labelled by those combinations, most forward first (an
+ * isotropic pair: mode j forward, mode j + 1 backward, by either solver); the shapes are
+ * left as solved. Clusters: consecutive elastic modes within 1e-6 of each other's
+ * eigenvalue, at most CLUSTER_MAX. */
+enum { CLUSTER_MAX = 8 };
+
+static double orbit_weight(const gd_system *sys, int ix, int iy, int unit)
+{
+    return unit ? 1.0 : 0.5 * (diag_mass(sys, ix) + diag_mass(sys, iy));
+}
+
+static void cluster_whirl(const gd_system *sys, gd_modal_result *r, int j0, int g, double *wre,
+                          double *wim)
+{
+    const gd_model *m = sys->model;
+    const int n = r->ndof;
+    double complex F[CLUSTER_MAX * CLUSTER_MAX] = {0}, S[CLUSTER_MAX * CLUSTER_MAX] = {0};
+    double mu[CLUSTER_MAX];
+    int unit = 1; /* by mass where any centre or tilt has one, as mode_whirl */
+    for (int node = 0; node < m->nnodes && unit; node++)
+        for (int tilt = 0; tilt < 2 && unit; tilt++) {
+            int ix = gd_system_dof(sys, node, tilt ? GD_RX : GD_X),
+                iy = gd_system_dof(sys, node, tilt ? GD_RY : GD_Y);
+            if (ix >= 0 && iy >= 0 && orbit_weight(sys, ix, iy, 0) > 0) unit = 0;
+        }
+    for (int node = 0; node < m->nnodes; node++)
+        for (int tilt = 0; tilt < 2; tilt++) {
+            int ix = gd_system_dof(sys, node, tilt ? GD_RX : GD_X),
+                iy = gd_system_dof(sys, node, tilt ? GD_RY : GD_Y);
+            if (ix < 0 || iy < 0) continue;
+            double w = orbit_weight(sys, ix, iy, unit);
+            double sg = m->shafts[m->nodes[node].shaft].speed_ratio < 0 ? -1.0 : 1.0;
+            for (int a = 0; a < g; a++) {
+                size_t oa = (size_t)(j0 + a) * n;
+                double complex xa = r->shape_re[oa + ix] + I * r->shape_im[oa + ix],
+                               ya = r->shape_re[oa + iy] + I * r->shape_im[oa + iy];
+                double complex fa = xa + sg * I * ya, ba = xa - sg * I * ya;
+                for (int b = 0; b < g; b++) {
+                    size_t ob = (size_t)(j0 + b) * n;
+                    double complex xb = r->shape_re[ob + ix] + I * r->shape_im[ob + ix],
+                                   yb = r->shape_re[ob + iy] + I * r->shape_im[ob + iy];
+                    double complex fb = xb + sg * I * yb, bb = xb - sg * I * yb;
+                    F[a + b * g] += w * conj(fa) * fb;
+                    S[a + b * g] += w * (conj(fa) * fb + conj(ba) * bb);
+                }
+            }
+        }
+    /* S singular (no orbit in the space): the labels stay as they are */
+    if (LAPACKE_zhegv(LAPACK_COL_MAJOR, 1, 'V', 'U', g, F, g, S, g, mu) != 0) return;
+    for (int k = 0; k < g; k++) {
+        /* zhegv sorts mu ascending: the most forward combination is the last */
+        const double complex *c = F + (size_t)(g - 1 - k) * g;
+        for (int i = 0; i < n; i++) {
+            double complex v = 0;
+            for (int b = 0; b < g; b++) {
+                size_t ob = (size_t)(j0 + b) * n;
+                v += c[b] * (r->shape_re[ob + i] + I * r->shape_im[ob + i]);
+            }
+            wre[(size_t)k * n + i] = creal(v);
+            wim[(size_t)k * n + i] = cimag(v);
+        }
+    }
+    for (int k = 0; k < g; k++) {
+        gd_mode *md = &r->modes[j0 + k];
+        md->whirl = whirl_suppressed(md)
+                        ? GD_WHIRL_NONE
+                        : mode_whirl(sys, wre + (size_t)k * n, wim + (size_t)k * n);
+    }
+}
+
+static gd_status pair_whirl(const gd_system *sys, gd_modal_result *r)
+{
+    if (r->speed == 0.0 || !r->shape_re || !r->shape_im || r->ndof != sys->ndof) return GD_OK;
+    double *w = NULL;
+    for (int j = 0; j < r->nmodes;) {
+        const gd_mode *a = &r->modes[j];
+        int g = 1;
+        while (!a->rigid_body && j + g < r->nmodes && g < CLUSTER_MAX &&
+               !r->modes[j + g].rigid_body &&
+               cabs((r->modes[j + g].lambda_re - a->lambda_re) +
+                    I * (r->modes[j + g].lambda_im - a->lambda_im)) <= 1e-6 * a->omega_n)
+            g++;
+        if (g > 1) {
+            if (!w && !(w = malloc((size_t)2 * CLUSTER_MAX * r->ndof * sizeof *w)))
+                return GD_ENOMEM;
+            cluster_whirl(sys, r, j, g, w, w + (size_t)CLUSTER_MAX * r->ndof);
+        }
+        j += g;
+    }
+    free(w);
+    return GD_OK;
 }
 
 gd_status gd_modal_energies_laws(const gd_system *sys, gd_modal_result *r, const double *law_state)
 {
-    if (!sys->nlaws || r->ndof != sys->ndof) return GD_OK;
-    double *Kb = malloc((size_t)sys->law_block * 2 * sizeof *Kb);
-    if (!Kb) return GD_ENOMEM;
-    gd_system_law_blocks_at(sys, r->speed, law_state, Kb, Kb + sys->law_block);
-    for (int j = 0; j < r->nmodes; j++) {
-        if (r->modes[j].rigid_body) continue;
-        size_t n = (size_t)r->ndof * j;
-        gd_mode_finish_laws(sys, r->speed, Kb, &r->modes[j], r->shape_re + n, r->shape_im + n,
-                            r->energy_by_component + (size_t)j * sys->ncomponents);
+    if (r->ndof != sys->ndof) return GD_OK;
+    if (sys->nlaws) {
+        double *Kb = malloc((size_t)sys->law_block * 2 * sizeof *Kb);
+        if (!Kb) return GD_ENOMEM;
+        gd_system_law_blocks_at(sys, r->speed, law_state, Kb, Kb + sys->law_block);
+        for (int j = 0; j < r->nmodes; j++) {
+            if (r->modes[j].rigid_body) continue;
+            size_t n = (size_t)r->ndof * j;
+            gd_mode_finish_laws(sys, r->speed, Kb, &r->modes[j], r->shape_re + n, r->shape_im + n,
+                                r->energy_by_component + (size_t)j * sys->ncomponents);
+        }
+        free(Kb);
     }
-    free(Kb);
-    return GD_OK;
+    /* the labels of repeated eigenvalues from their space, not the solver's basis */
+    return pair_whirl(sys, r);
 }
 
 /* Scales a complex vector so its largest entry is 1 + 0i; returns the divisor. */

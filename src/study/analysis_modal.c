@@ -26,6 +26,10 @@ static gd_status options(gd_yreader *r, const gd_ynode *map, void **out)
     gd_modal_options *o = malloc(sizeof *o);
     if (!(*out = o)) return gd_error_set(r->err, GD_ENOMEM, r->file, 0, 0, "", "", "out of memory");
     gd_modal_options_init(o);
+    /* no left vectors, as `geardyn modal`: they are no output here, and asking for them
+     * kept every case on the dense solver where the CLI takes the sparse one when it is
+     * cheaper (frequencies 1e-11 apart, not the CLI's numbers bit for bit) */
+    o->want_left = 0;
     if (!map) return GD_OK;
     long modes = 0;
     int kind = 0;

@@ -31,7 +31,10 @@ static gd_status run_analysis(const gd_study *s, const gd_load_options *opt, dou
     gd_system *sys = NULL;
     gd_status st = gd_model_source_model(s->src, opt, &m, err);
     if (!st) st = gd_system_build(m, &sys, err);
-    if (!st && a->operating_speed) {
+    if (!st && a->operating_speed && s->op_kind == GD_OPERATING_ZERO) {
+        /* about q = 0, as the CLI's --operating-point zero (gd_cli_operating_apply) */
+        if (sys->nlaws) st = gd_system_set_operating_point(sys, GD_OPERATING_ZERO, NULL, NULL, err);
+    } else if (!st && a->operating_speed) {
         /* the laws linearised about the static equilibrium, as the CLI's analyses */
         double speed = a->operating_speed(s->opts);
         gd_static_options so;

@@ -16,6 +16,8 @@ static const char *const PARAM_KEYS[] = {"name", "path", "values", "range", "sca
 static const char *const RANGE_KEYS[] = {"from", "to", "count", "spacing", NULL};
 static const char *const DESIGNS[] = {"factorial", "zip", "random", "latin-hypercube", NULL};
 static const char *const SPACINGS[] = {"linear", "log", NULL};
+/* gd_operating_kind's order, the words of `--operating-point` */
+static const char *const OPERATING_POINTS[] = {"static", "zero", NULL};
 
 static gd_status oom(gd_yreader *r)
 {
@@ -268,9 +270,22 @@ static gd_status read_analysis(gd_yreader *r, gd_study *s, const gd_ynode *root)
     if (map) {
         const char *allowed[32] = {"type"};
         int n = 1;
-        for (const char *const *k = s->analysis->keys; k && *k && n < 31; k++)
+        for (const char *const *k = s->analysis->keys; k && *k && n < 30; k++)
             allowed[n++] = *k;
+        const gd_ynode *op = gd_ymap_get(map, "operating_point");
+        if (op && !s->analysis->operating_speed)
+            return gd_yfail(r, op, "analysis.operating_point",
+                            "drop it: only modal, campbell, frf and unbalance linearise the "
+                            "model's laws",
+                            "analysis '%s' linearises nothing", s->analysis->name);
+        if (s->analysis->operating_speed) allowed[n++] = "operating_point";
         if (gd_ycheck_keys(r, map, "analysis", allowed)) return GD_EINPUT;
+        /* the state the laws are linearised about, as `--operating-point` of the CLI */
+        int kind = GD_OPERATING_STATIC;
+        if (gd_yread_str(r, map, "operating_point", "analysis", OPERATING_POINTS, 0, NULL, &kind,
+                         NULL))
+            return GD_EINPUT;
+        s->op_kind = kind;
     }
     return s->analysis->options(r, map, &s->opts);
 }

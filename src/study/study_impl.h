@@ -124,6 +124,7 @@ struct gd_study {
     gd_model_source *src;
     const gd_study_runner *analysis;
     void *opts;
+    int op_kind; /* gd_operating_kind of `analysis: {operating_point: static|zero}` */
     gd_study_design design;
     int nparams;
     gd_study_param *params;
