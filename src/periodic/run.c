@@ -62,6 +62,9 @@ gd_status gd_per_check_options(const gd_periodic_param *param, const double *val
                 i + 1, values[i]);
     if (opt->harmonics < 1)
         BAD("harmonics", "give H >= 1", "harmonic count %d out of range", opt->harmonics);
+    if (opt->harmonics_from < 0 || opt->harmonics_from > GD_PERIODIC_MAX_SAMPLES / 2)
+        BAD("harmonics_from", "give 0 (the excitations' order) or a first H",
+            "first harmonic count %d out of range", opt->harmonics_from);
     if (opt->max_harmonics < 0 || opt->memory_limit < 0)
         BAD("max_harmonics", "give 0 (memory decides) or a positive cap",
             "max_harmonics and memory_limit must not be negative");

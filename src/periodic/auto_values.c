@@ -1,0 +1,417 @@
+/* `--method auto` per value (issue 33 item 3; gd_per_run_per_value, periodic_impl.h): on a
+ * model whose laws are linear in the state at fixed time, with --harmonics auto, each
+ * value is solved by harmonic balance where its truncation estimate is within
+ * --harmonic-tol by the pair (hc, hf) of gd_per_probe_harmonics (591 against 1183 on seed
+ * 002), else by reduced shooting, which has no harmonic truncation. The choice at a value
+ * comes from the points before, not from the first value for the whole curve (a 100-8000
+ * rpm curve started at 100 rpm ran reduced shooting at every speed):
+ *  - every point leaves an estimate of harmonic balance's truncation at (hc, hf): its own
+ *    (scaled from the pair it passed at, H_c, by 1 / H, a stiffness step's decay) or, for
+ *    a reduced-shooting point, the change of its orbit's peak-to-peak and harmonics when
+ *    its spectrum is cut from hf to hc (calibrated by the last point where harmonic
+ *    balance was tried and failed, kappa);
+ *  - the estimate at the next value is extrapolated from the last two (log-log in the
+ *    value, the step's change at most 4x); over the tolerance: reduced shooting at once
+ *    (no harmonic balance solve); within it: harmonic balance from the least H of the
+ *    ladder the estimate allows, capped at hf, which confirms it (a point not within the
+ *    tolerance at hf goes to reduced shooting: the one double solve, where the trend
+ *    erred); the first value has no trend: harmonic balance tried from the order.
+ * Counts and estimates only, no clock: the same run decides the same way. Each point's
+ * reason says which method solved it and why; the result's note counts them. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "periodic/periodic_impl.h"
+
+/* The largest change of the estimate extrapolated over one step: a resonance between two
+ * points bends the trend, and a runaway slope would decide far beyond what was seen. */
+#define MAX_STEP_FACTOR 4.0
+#define DEG 0.01745329251994329577
+#define MAX_RUNGS 40
+
+typedef struct {
+    const gd_system *sys;
+    const gd_transient_spec *spec;
+    const gd_periodic_param *param;
+    const gd_periodic_options *opt;
+    gd_tr_record *rec; /* the caller's records, then every mesh force not among them */
+    int nrec_user, nrec;
+    int hc, hf, h_report;       /* the deciding pair; reduced shooting's reported H */
+    int rung[MAX_RUNGS], nrung; /* the ladder order, 2 order + 1, ..., hc */
+    int nhist;
+    double hv[2], he[2]; /* the last two values and their estimates at (hc, hf) */
+    double kappa;        /* reduced shooting's spectral estimate -> harmonic balance's */
+    gd_periodic_result *res;
+    int cap_points;
+    int n_hb, n_rs_trend, n_rs_after, hb_solves, n_failed;
+} pv;
+
+static void free_records(gd_per_record_stats *r, int from, int to)
+{
+    for (int k = from; k < to; k++) {
+        free(r[k].amplitude);
+        free(r[k].phase_deg);
+        r[k].amplitude = r[k].phase_deg = NULL;
+    }
+}
+
+static void free_point(gd_periodic_point *p, int nrec)
+{
+    free(p->coef);
+    free(p->mu_re);
+    free(p->mu_im);
+    if (p->records) free_records(p->records, 0, nrec);
+    free(p->records);
+    memset(p, 0, sizeof *p);
+}
+
+/* The estimate at value v from the last two (NAN with none). */
+static double predict(const pv *c, double v)
+{
+    if (c->nhist == 0) return NAN;
+    if (c->nhist == 1) return c->he[1];
+    const int lg = c->hv[0] > 0 && c->hv[1] > 0 && v > 0;
+    const double x0 = lg ? log(c->hv[0]) : c->hv[0], x1 = lg ? log(c->hv[1]) : c->hv[1],
+                 x = lg ? log(v) : v;
+    if (x1 == x0) return c->he[1];
+    double d = (log(c->he[1]) - log(c->he[0])) / (x1 - x0) * (x - x1);
+    const double m = log(MAX_STEP_FACTOR);
+    d = d > m ? m : d < -m ? -m : d;
+    return c->he[1] * exp(d);
+}
+
+static void remember(pv *c, double v, double e)
+{
+    if (!isfinite(e)) return;
+    e = fmax(e, 1e-12);
+    c->hv[0] = c->hv[1];
+    c->he[0] = c->he[1];
+    c->hv[1] = v;
+    c->he[1] = e;
+    if (c->nhist < 2) c->nhist++;
+}
+
+/* A harmonic balance point's estimate carried to the pair (hc, hf): passed at H_c below
+ * hc, it scales as 1 / H. */
+static double at_pair(const pv *c, const gd_periodic_point *p)
+{
+    const double e = fmax(p->harmonic_error_p2p, p->harmonic_error_amp);
+    const int h = p->harmonics_ref;
+    return h > 0 && h < c->hc ? e * h / c->hc : e;
+}
+
+/* The change of record s (harmonics 0..hf) when its series is cut at hc: the peak-to-peak
+ * on gd_hb_samples_for(hf) samples, relative, as harmonic balance's estimate compares its
+ * solutions at hc and hf. NAN on no memory. */
+static double spectral_cut(const gd_per_record_stats *s, int hc, int hf)
+{
+    const int M = gd_hb_samples_for(hf);
+    double *hcx = fftw_malloc((size_t)M * sizeof *hcx), *x = fftw_malloc((size_t)M * sizeof *x);
+    double e = NAN;
+    if (!hcx || !x) goto done;
+    fftw_plan plan = fftw_plan_r2r_1d(M, hcx, x, FFTW_HC2R, FFTW_ESTIMATE);
+    double p2p[2];
+    for (int pass = 0; pass < 2; pass++) {
+        const int K = pass ? hf : hc;
+        memset(hcx, 0, (size_t)M * sizeof *hcx);
+        hcx[0] = s->amplitude[0];
+        /* x_j = sum_k A_k cos(k theta_j + phi_k): halfcomplex r_k = A cos(phi) / 2,
+         * i_k = A sin(phi) / 2 (sample_stats.c's convention) */
+        for (int k = 1; k <= K && k < M / 2; k++) {
+            const double ph = s->phase_deg[k] * DEG;
+            hcx[k] = 0.5 * s->amplitude[k] * cos(ph);
+            hcx[M - k] = 0.5 * s->amplitude[k] * sin(ph);
+        }
+        fftw_execute(plan);
+        double mn = INFINITY, mx = -INFINITY;
+        for (int j = 0; j < M; j++) {
+            mn = fmin(mn, x[j]);
+            mx = fmax(mx, x[j]);
+        }
+        p2p[pass] = mx - mn;
+    }
+    fftw_destroy_plan(plan);
+    /* the amplitudes up to hc do not change by the cut (harmonic balance's amplitude
+     * estimate compares those only): the peak-to-peak says it */
+    e = p2p[1] == p2p[0] ? 0.0 : p2p[1] > 0 ? fabs(p2p[0] - p2p[1]) / p2p[1] : 1.0;
+done:
+    fftw_free(hcx);
+    fftw_free(x);
+    return e;
+}
+
+/* The records the caller did not ask for dropped (their estimate kept out of the point's:
+ * the largest over the caller's records, where there are any). */
+static void strip(const pv *c, gd_periodic_point *p)
+{
+    if (!p->records || c->nrec == c->nrec_user) return;
+    free_records(p->records, c->nrec_user, c->nrec);
+    if (c->nrec_user == 0 || !p->converged) return;
+    double ep = 0.0, ea = 0.0;
+    for (int k = 0; k < c->nrec_user; k++) {
+        ep = fmax(ep, p->records[k].p2p_error);
+        ea = fmax(ea, p->records[k].amp_error);
+    }
+    if (isfinite(p->harmonic_error_p2p)) p->harmonic_error_p2p = ep;
+    if (isfinite(p->harmonic_error_amp)) p->harmonic_error_amp = ea;
+    if (p->harmonic_ok >= 0)
+        p->harmonic_ok = ep <= c->opt->harmonic_tol && ea <= c->opt->harmonic_tol;
+}
+
+/* One value by method k alone: *r its one-point result (NULL on an input error: why). */
+static gd_status solve_one(const pv *c, gd_per_kind k, int from, double v, gd_periodic_result **r,
+                           char *why, size_t cap)
+{
+    gd_periodic_options o = *c->opt;
+    o.kind = k;
+    o.method = GD_PER_SEQUENTIAL; /* one value: linear in the state, no folds to follow */
+    o.both_directions = 0;
+    o.on_point = NULL;
+    o.on_step = NULL;
+    o.user = NULL;
+    if (k == GD_PER_HB) {
+        o.adaptive = 1;
+        o.harmonics_from = from;
+        o.max_harmonics = c->hf;
+    } else { /* reduced shooting's spectrum to hf: the cut at hc is its estimate */
+        o.adaptive = 0;
+        o.harmonics = c->hf;
+        o.harmonics_from = 0;
+    }
+    gd_error e;
+    gd_status st = gd_per_run_kind(c->sys, c->spec, c->param, &v, 1, &o, c->rec, c->nrec, r, &e);
+    if (st == GD_ENOMEM) return st;
+    if (st || (*r)->npoints < 1) {
+        snprintf(why, cap, "%.200s", st ? e.message : "no point");
+        gd_periodic_result_free(*r);
+        *r = NULL;
+    }
+    return GD_OK;
+}
+
+/* The solves harmonic balance made: the rungs from `from` to the point's H. */
+static int solves(const pv *c, int from, const gd_periodic_point *p)
+{
+    int n = 0;
+    for (int i = 0; i < c->nrung; i++)
+        if (c->rung[i] >= from && c->rung[i] <= p->harmonics) n++;
+    return n + (p->harmonics > c->hc); /* hf */
+}
+
+/* Point src appended to the result (its arrays moved), direction dir, reason prefixed by
+ * why. 0 ok, 1 out of memory. */
+static int take(pv *c, gd_periodic_point *src, int dir, const char *why)
+{
+    strip(c, src);
+    gd_periodic_point *p = gd_per_point_new(c->res, &c->cap_points, dir, src->method);
+    if (!p) return 1;
+    *p = *src;
+    p->direction = dir;
+    memset(src, 0, sizeof *src);
+    char own[256], msg[640];
+    snprintf(own, sizeof own, "%s", p->reason);
+    snprintf(msg, sizeof msg, "%s%s%s", why, own[0] ? "; " : "", own);
+    snprintf(p->reason, sizeof p->reason, "%.255s", msg);
+    return 0;
+}
+
+/* The value v: its method, its point appended. 0 ok, 1 out of memory. */
+static int value(pv *c, double v, int dir)
+{
+    const double tol = c->opt->harmonic_tol, pred = predict(c, v);
+    char why[256], fail[224] = "";
+    gd_periodic_result *hbr = NULL, *rs = NULL;
+    int from = c->rung[0];
+    if (isfinite(pred)) /* the least rung whose estimate, by 1 / H, is within tol */
+        for (int i = c->nrung - 1; i >= 0 && pred * c->hc / c->rung[i] <= tol; i--)
+            from = c->rung[i];
+    if (isfinite(pred) && pred > tol) {
+        c->n_rs_trend++;
+        snprintf(why, sizeof why,
+                 "reduced shooting: harmonic balance's estimate at H = %d (against %d) "
+                 "extrapolated from the points before to %.2g, over %g",
+                 c->hc, c->hf, pred, tol);
+    } else {
+        if (solve_one(c, GD_PER_HB, from, v, &hbr, fail, sizeof fail)) return 1;
+        gd_periodic_point *p = hbr ? &hbr->points[0] : NULL;
+        if (p && p->converged && p->harmonic_ok == 1) {
+            c->n_hb++;
+            c->hb_solves += solves(c, from, p);
+            const double e = at_pair(c, p);
+            char trend[64];
+            if (isfinite(pred))
+                snprintf(trend, sizeof trend, "extrapolated %.2g", pred);
+            else
+                snprintf(trend, sizeof trend, "the first value");
+            snprintf(why, sizeof why,
+                     "harmonic balance: its estimate %.2g at H = %d against %d, within %g "
+                     "(%s)",
+                     fmax(p->harmonic_error_p2p, p->harmonic_error_amp), p->harmonics_ref,
+                     p->harmonics, tol, trend);
+            remember(c, v, e);
+            const int rc = take(c, p, dir, why);
+            gd_periodic_result_free(hbr);
+            return rc;
+        }
+        if (p) {
+            c->hb_solves += p->converged ? solves(c, from, p) : 1;
+            if (p->converged)
+                snprintf(fail, sizeof fail, "estimate %.2g at H = %d against %d",
+                         fmax(p->harmonic_error_p2p, p->harmonic_error_amp), p->harmonics_ref,
+                         p->harmonics);
+            else
+                snprintf(fail, sizeof fail, "%.200s", p->reason);
+        }
+        c->n_rs_after++;
+        snprintf(why, sizeof why, "reduced shooting: harmonic balance's %.140s, over %g%s", fail,
+                 tol, isfinite(pred) ? " (the trend had it within)" : "");
+    }
+    char rfail[224] = "";
+    if (solve_one(c, GD_PER_REDUCED_SHOOTING, 0, v, &rs, rfail, sizeof rfail)) {
+        gd_periodic_result_free(hbr);
+        return 1;
+    }
+    gd_periodic_point *q = rs ? &rs->points[0] : NULL;
+    int rc = 0;
+    if (q && q->converged) {
+        double e = 0.0;
+        for (int k = 0; k < c->nrec && q->records; k++)
+            e = fmax(e, spectral_cut(&q->records[k], c->hc, c->hf));
+        if (c->nrec == 0) e = NAN;
+        /* harmonic balance failed here: its own estimate calibrates the spectral one */
+        const gd_periodic_point *p = hbr ? &hbr->points[0] : NULL;
+        if (p && p->converged && p->harmonics_ref == c->hc && e > 0)
+            c->kappa = fmax(c->kappa, at_pair(c, p) / e);
+        remember(c, v, c->kappa * e);
+        /* the harmonics reported as with --harmonics auto (the spectrum cut there) */
+        if (q->harmonics > c->h_report) q->harmonics = c->h_report;
+        char msg[600];
+        snprintf(msg, sizeof msg, "%s (its orbit's spectrum cut at H = %d: %.2g)", why, c->hc, e);
+        rc = take(c, q, dir, msg);
+    } else {
+        /* reduced shooting failed: harmonic balance's point where it converged, else the
+         * failure of both */
+        gd_periodic_point *p = hbr ? &hbr->points[0] : NULL;
+        c->n_failed++;
+        if (!p) {
+            if (solve_one(c, GD_PER_HB, from, v, &hbr, fail, sizeof fail)) {
+                gd_periodic_result_free(rs);
+                return 1;
+            }
+            p = hbr ? &hbr->points[0] : NULL;
+        }
+        char msg[400];
+        snprintf(msg, sizeof msg, "reduced shooting failed (%.120s): harmonic balance's point",
+                 q ? q->reason : rfail);
+        if (p)
+            rc = take(c, p, dir, msg);
+        else if (q)
+            rc = take(c, q, dir, "reduced shooting and harmonic balance failed");
+        else {
+            gd_periodic_point *f =
+                gd_per_point_new(c->res, &c->cap_points, dir, GD_PER_REDUCED_SHOOTING);
+            if (!f)
+                rc = 1;
+            else {
+                f->speed = c->param ? c->param->speed : v;
+                f->parameter = c->param ? v : NAN;
+                snprintf(f->reason, sizeof f->reason, "%.120s; %.120s", rfail, fail);
+            }
+        }
+    }
+    if (hbr) free_point(&hbr->points[0], hbr->nrecords);
+    if (rs) free_point(&rs->points[0], rs->nrecords);
+    gd_periodic_result_free(hbr);
+    gd_periodic_result_free(rs);
+    return rc;
+}
+
+gd_status gd_per_run_per_value(const gd_system *sys, const gd_transient_spec *spec,
+                               const gd_periodic_param *param, const double *values, int nvalues,
+                               const gd_periodic_options *opt, const gd_tr_record *records,
+                               int nrecords, const char *note, gd_periodic_result **out,
+                               gd_error *err)
+{
+    *out = NULL;
+    pv c;
+    memset(&c, 0, sizeof c);
+    c.sys = sys;
+    c.spec = spec;
+    c.param = param;
+    c.opt = opt;
+    c.kappa = 1.0;
+    c.nrec_user = nrecords;
+    /* the excitations' order (the ladder's first rung) at the first value */
+    int order = 1;
+    {
+        double w0;
+        gd_error e;
+        const double sp = param ? param->speed : values[0];
+        if (!param && gd_periodic_fundamental(sys, spec, sp, &w0, &order, &e)) order = 1;
+        if (param && !param->load_frequency) { /* the model at the first value */
+            gd_model *m = NULL;
+            gd_system *s = NULL;
+            gd_transient_model *tm = NULL;
+            if (!param->rebuild(values[0], param->data, &m, &s, &tm, &e)) {
+                if (gd_periodic_fundamental(s, &tm->spec, sp, &w0, &order, &e)) order = 1;
+                gd_transient_model_free(tm);
+                gd_system_free(s);
+                gd_model_free(m);
+            }
+        }
+    }
+    c.hf = gd_per_probe_harmonics(order, opt);
+    c.hc = (c.hf - 1) / 2;
+    {
+        long h = (long)order * opt->subharmonic;
+        if (h < 1) h = 1;
+        for (; h < c.hc && c.nrung < MAX_RUNGS - 1; h = 2 * h + 1)
+            c.rung[c.nrung++] = (int)h;
+        c.rung[c.nrung++] = c.hc;
+        const long need = (long)order * opt->subharmonic;
+        c.h_report = opt->harmonics > need ? opt->harmonics : (int)need;
+    }
+    /* the records: the caller's, then every mesh force (with a stepping stiffness their
+     * peak-to-peaks converge slowest in H) */
+    const int nm = spec ? spec->nmeshes : 0;
+    c.rec = calloc((size_t)nrecords + (size_t)nm + 1, sizeof *c.rec);
+    c.res = calloc(1, sizeof *c.res);
+    if (!c.rec || !c.res) goto oom;
+    if (nrecords) memcpy(c.rec, records, (size_t)nrecords * sizeof *records);
+    c.nrec = nrecords;
+    for (int k = 0; k < nm; k++) {
+        int have = 0;
+        for (int r = 0; r < nrecords; r++)
+            have |= records[r].kind == GD_REC_MESH_FORCE && records[r].index == k &&
+                    records[r].index2 == 0;
+        if (!have) c.rec[c.nrec++] = (gd_tr_record){GD_REC_MESH_FORCE, k, 0};
+    }
+    c.res->nrecords = nrecords;
+    const int ndir = opt->both_directions ? 2 : 1;
+    for (int d = 0; d < ndir; d++)
+        for (int i = 0; i < nvalues; i++) {
+            const int j = d ? nvalues - 1 - i : i;
+            if (value(&c, values[j], d ? -1 : 1)) goto oom;
+            if (opt->on_point)
+                opt->on_point(&c.res->points[c.res->npoints - 1], c.res->npoints - 1,
+                              (d + (i + 1.0) / nvalues) / ndir, opt->user);
+        }
+    const int nrs = c.n_rs_trend + c.n_rs_after;
+    c.res->method = nrs > c.n_hb ? GD_PER_REDUCED_SHOOTING : GD_PER_HB;
+    char msg[600];
+    snprintf(msg, sizeof msg,
+             "%.200s: %d points by harmonic balance (%d solves), %d by reduced shooting (%d by "
+             "the trend, %d after harmonic balance's estimate)%s",
+             note, c.n_hb, c.hb_solves, nrs, c.n_rs_trend, c.n_rs_after,
+             c.n_failed ? "; reduced shooting failed at some" : "");
+    snprintf(c.res->method_note, sizeof c.res->method_note, "%.255s", msg);
+    free(c.rec);
+    *out = c.res;
+    return GD_OK;
+oom:
+    free(c.rec);
+    gd_periodic_result_free(c.res);
+    return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
+}
