@@ -8,10 +8,12 @@
  *  - every value where harmonic balance ran leaves its estimate, carried to the pair
  *    (hc, hf): a point within the tolerance at H_c < hc scaled by (H_c / hc)^2, one that
  *    failed as it is;
- *  - the estimate at the next speed is extrapolated from the last one as v^-s: s from the
- *    last two where both were within the tolerance (clamped to 1..3), else S_SPEED (the
- *    estimate at H = 591 on seed 002's 0-deg curve falls as v^-1.96 from 100 to 2000 rpm);
- *    in a model parameter, the last estimate as it is;
+ *  - the estimate at the next speed is extrapolated as v^-s from the measurement nearest
+ *    in speed (on a sweep the last one; on the return run the outward run's at that
+ *    speed): s from the last two where that is the last and both were within the
+ *    tolerance (clamped to 1..3), else S_SPEED (the estimate at H = 591 on seed 002's
+ *    0-deg curve falls as v^-1.96 from 100 to 2000 rpm); in a model parameter, that
+ *    estimate as it is;
  *  - over the tolerance: reduced shooting at once (no harmonic balance solve); within it:
  *    harmonic balance from the least rung of the ladder the estimate allows, capped at hf,
  *    which confirms it; a point not within the tolerance at hf goes to reduced shooting
@@ -45,9 +47,11 @@ typedef struct {
     int nrec_user, nrec;
     int hc, hf;                 /* the deciding pair */
     int rung[MAX_RUNGS], nrung; /* the ladder order, 2 order + 1, ..., hc */
-    int nhist, hok[2];
-    double hv[2], he[2]; /* the last two values harmonic balance ran at, their estimates
-                            at (hc, hf), within the tolerance or not */
+    /* every value harmonic balance ran at, its estimate at (hc, hf), within the tolerance
+     * or not, in the order solved */
+    int nhist, *hok;
+    double *hv, *he;
+    int near; /* the measurement the last prediction came from */
     gd_periodic_result *res;
     int cap_points;
     int n_hb, n_rs_trend, n_rs_after, hb_solves, n_failed;
@@ -72,31 +76,34 @@ static void free_point(gd_periodic_point *p, int nrec)
     memset(p, 0, sizeof *p);
 }
 
-/* The estimate at value v from the last two (NAN with none); *from_v the value it was
- * measured at. */
-static double predict(const pv *c, double v)
+/* The estimate at value v (NAN with none), from the measurement nearest in value (the
+ * latest of equals: on a sweep the one before, on the return run the outward run's at the
+ * same speed); c->near says which. */
+static double predict(pv *c, double v)
 {
     if (c->nhist == 0) return NAN;
-    if (c->param || !(c->hv[1] > 0) || !(v > 0)) return c->he[1];
+    int n = c->nhist - 1;
+    for (int i = c->nhist - 2; i >= 0; i--)
+        if (fabs(c->hv[i] - v) < fabs(c->hv[n] - v)) n = i;
+    c->near = n;
+    if (c->param || !(c->hv[n] > 0) || !(v > 0)) return c->he[n];
     double s = S_SPEED;
-    if (c->nhist == 2 && c->hok[0] && c->hok[1] && c->hv[0] > 0 && c->hv[0] != c->hv[1]) {
-        s = -(log(c->he[1]) - log(c->he[0])) / (log(c->hv[1]) - log(c->hv[0]));
+    const int l = c->nhist - 1;
+    if (n == l && l > 0 && c->hok[l] && c->hok[l - 1] && c->hv[l - 1] > 0 &&
+        c->hv[l - 1] != c->hv[l]) {
+        s = -(log(c->he[l]) - log(c->he[l - 1])) / (log(c->hv[l]) - log(c->hv[l - 1]));
         s = s < S_MIN ? S_MIN : s > S_MAX ? S_MAX : s;
     }
-    return c->he[1] * pow(c->hv[1] / v, s);
+    return c->he[n] * pow(c->hv[n] / v, s);
 }
 
+/* (the arrays hold a measurement per value solved: nvalues x directions) */
 static void remember(pv *c, double v, double e, int ok)
 {
     if (!isfinite(e)) return;
-    e = fmax(e, 1e-12);
-    c->hv[0] = c->hv[1];
-    c->he[0] = c->he[1];
-    c->hok[0] = c->hok[1];
-    c->hv[1] = v;
-    c->he[1] = e;
-    c->hok[1] = ok;
-    if (c->nhist < 2) c->nhist++;
+    c->hv[c->nhist] = v;
+    c->he[c->nhist] = fmax(e, 1e-12);
+    c->hok[c->nhist++] = ok;
 }
 
 /* A harmonic balance point's estimate carried to the pair (hc, hf): within the tolerance
@@ -194,8 +201,8 @@ static int value(pv *c, double v, int dir)
         for (int i = c->nrung - 1; i >= 0 && pred * pow((double)c->hc / c->rung[i], S_SPEED) <= tol;
              i--)
             from = c->rung[i];
-        snprintf(trend, sizeof trend, "%.2g extrapolated from %.2g at %.6g", pred, c->he[1],
-                 c->hv[1]);
+        snprintf(trend, sizeof trend, "%.2g extrapolated from %.2g at %.6g", pred, c->he[c->near],
+                 c->hv[c->near]);
     }
     if (isfinite(pred) && pred > tol) {
         c->n_rs_trend++;
@@ -327,7 +334,11 @@ gd_status gd_per_run_per_value(const gd_system *sys, const gd_transient_spec *sp
     const int nm = spec ? spec->nmeshes : 0;
     c.rec = calloc((size_t)nrecords + (size_t)nm + 1, sizeof *c.rec);
     c.res = calloc(1, sizeof *c.res);
-    if (!c.rec || !c.res) goto oom;
+    const size_t nh = 2 * (size_t)nvalues + 1;
+    c.hv = malloc(nh * sizeof *c.hv);
+    c.he = malloc(nh * sizeof *c.he);
+    c.hok = malloc(nh * sizeof *c.hok);
+    if (!c.rec || !c.res || !c.hv || !c.he || !c.hok) goto oom;
     if (nrecords) memcpy(c.rec, records, (size_t)nrecords * sizeof *records);
     c.nrec = nrecords;
     for (int k = 0; k < nm; k++) {
@@ -357,10 +368,16 @@ gd_status gd_per_run_per_value(const gd_system *sys, const gd_transient_spec *sp
              c.n_failed ? "; reduced shooting failed at some" : "");
     snprintf(c.res->method_note, sizeof c.res->method_note, "%.255s", msg);
     free(c.rec);
+    free(c.hv);
+    free(c.he);
+    free(c.hok);
     *out = c.res;
     return GD_OK;
 oom:
     free(c.rec);
+    free(c.hv);
+    free(c.he);
+    free(c.hok);
     gd_periodic_result_free(c.res);
     return gd_error_set(err, GD_ENOMEM, "", 0, 0, "", "", "out of memory");
 }
