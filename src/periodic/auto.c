@@ -12,19 +12,6 @@
 
 #include "periodic/periodic_impl.h"
 
-static void free_point(gd_periodic_point *p, int nrec)
-{
-    free(p->coef);
-    free(p->mu_re);
-    free(p->mu_im);
-    if (p->records)
-        for (int k = 0; k < nrec; k++) {
-            free(p->records[k].amplitude);
-            free(p->records[k].phase_deg);
-        }
-    free(p->records);
-}
-
 /* A method's name in a point's reason. */
 static const char *prose(gd_per_kind k)
 {
@@ -59,7 +46,7 @@ static int hand_over(const gd_system *sys, const gd_transient_spec *spec,
     snprintf(was, sizeof was, "%s", p->reason);
     if (!st && r->npoints >= 1 && r->points[0].converged) {
         const int dir = p->direction;
-        free_point(p, nrecords);
+        gd_per_point_free(p, nrecords);
         *p = r->points[0];
         p->direction = dir;
         /* ownership moved: the result keeps no pointers into it */

@@ -66,16 +66,6 @@ static void free_records(gd_per_record_stats *r, int from, int to)
     }
 }
 
-static void free_point(gd_periodic_point *p, int nrec)
-{
-    free(p->coef);
-    free(p->mu_re);
-    free(p->mu_im);
-    if (p->records) free_records(p->records, 0, nrec);
-    free(p->records);
-    memset(p, 0, sizeof *p);
-}
-
 /* The estimate at value v (NAN with none), from the measurement nearest in value (the
  * latest of equals: on a sweep the one before, on the return run the outward run's at the
  * same speed); c->near says which. */
@@ -280,8 +270,8 @@ static int value(pv *c, double v, int dir)
             }
         }
     }
-    if (hbr) free_point(&hbr->points[0], hbr->nrecords);
-    if (rs) free_point(&rs->points[0], rs->nrecords);
+    if (hbr) gd_per_point_free(&hbr->points[0], hbr->nrecords);
+    if (rs) gd_per_point_free(&rs->points[0], rs->nrecords);
     gd_periodic_result_free(hbr);
     gd_periodic_result_free(rs);
     return rc;

@@ -382,5 +382,8 @@ int gd_per_qp_given_h_refusal(const gd_system *sys, const gd_transient_spec *spe
  * one rule for every method's points. */
 gd_periodic_point *gd_per_point_new(gd_periodic_result *r, int *cap_points, int dir,
                                     gd_per_kind method);
+/* The arrays of point p (nrec records) freed and their pointers cleared (the auto runs'
+ * handed-over and dropped points; gd_periodic_result_free). */
+void gd_per_point_free(gd_periodic_point *p, int nrec);
 
 #endif

@@ -158,18 +158,8 @@ gd_status gd_per_run_kind(const gd_system *sys, const gd_transient_spec *spec,
 void gd_periodic_result_free(gd_periodic_result *r)
 {
     if (!r) return;
-    for (int i = 0; i < r->npoints; i++) {
-        gd_periodic_point *p = &r->points[i];
-        free(p->coef);
-        free(p->mu_re);
-        free(p->mu_im);
-        if (p->records)
-            for (int k = 0; k < r->nrecords; k++) {
-                free(p->records[k].amplitude);
-                free(p->records[k].phase_deg);
-            }
-        free(p->records);
-    }
+    for (int i = 0; i < r->npoints; i++)
+        gd_per_point_free(&r->points[i], r->nrecords);
     free(r->points);
     free(r->bifurcations);
     free(r);
