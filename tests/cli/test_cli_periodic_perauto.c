@@ -99,30 +99,29 @@ TEST(coprime_given_h_refused_where_the_torus_does_not_fit)
     scratch_close(&s);
 }
 
-/* Seed 002 upward 300 -> 2500 rpm at --harmonic-tol 0.02: at 300 rpm (the first value, no
- * trend) harmonic balance's ladder stops at H = 295 against 591 (estimate 1.0, not falling)
- * and reduced shooting solves the point; at 2500 rpm the estimate extrapolated from it as
- * v^-2 (0.014) is within 0.02, harmonic balance runs there and confirms it (0.0071 at H =
- * 591 against 1183), its mesh forces within 1 % of the docs' H = 591 point (536.911 /
- * 464.686 N). Mutation caught: the old rule (the first value decides the whole curve:
- * reduced shooting at 2500 rpm too). */
+/* Seed 002 upward 300 -> 2500 rpm: at 300 rpm (the first value, no trend) harmonic
+ * balance's estimate at H = 591 against 1183 is 0.56 and reduced shooting solves the point;
+ * at 2500 rpm the estimate extrapolated from it as v^-2 (0.008) is within 0.01, harmonic
+ * balance runs there and confirms it (0.0071), its mesh forces within 1 % of the docs'
+ * H = 591 point (536.911 / 464.686 N). Mutation caught: the old rule (the first value
+ * decides the whole curve: reduced shooting at 2500 rpm too). */
 TEST(seed002_the_method_per_value)
 {
     scratch s;
     REQUIRE(scratch_open(&s));
-    cJSON *o = run_json_args(&s, SEED002 " --speeds 300rpm:2500rpm:2 --harmonic-tol 0.02");
+    cJSON *o = run_json_args(&s, SEED002 " --speeds 300rpm:2500rpm:2");
     REQUIRE(o);
     const cJSON *a = point(o, 0), *b = point(o, 1);
     REQUIRE(a && b);
     CHECK(!strcmp(jstr(a, "method"), "reduced_shooting"));
     CHECK(contains(jstr(a, "reason"), "the first value"));
     CHECK(!strcmp(jstr(b, "method"), "harmonic_balance"));
-    CHECK(contains(jstr(b, "reason"), "within 0.02 (trend: 0.014 extrapolated from 1"));
+    CHECK(contains(jstr(b, "reason"), "within 0.01 (trend: 0.008 extrapolated from 0.56"));
     CHECK(jnum(b, "harmonics") == 1183);
     CHECK_REL(p2p(b, "mesh:pair1:force"), 536.911, 0.01);
     CHECK_REL(p2p(b, "mesh:pair2:force"), 464.686, 0.01);
     CHECK(contains(jstr(o, "method_choice"),
-                   "1 points by harmonic balance (7 solves), 1 by reduced shooting (0 by the "
+                   "1 points by harmonic balance (4 solves), 1 by reduced shooting (0 by the "
                    "trend, 1 after harmonic balance's estimate)"));
     printf("  %s\n  %s\n", jstr(a, "reason"), jstr(b, "reason"));
     cJSON_Delete(o);
