@@ -89,9 +89,9 @@ int gd_per_sh_warm(shoot *sh, double *y);
  * (opt->shoot_budget): sh->why says so with what the warm start saw. */
 int gd_per_sh_over_budget(shoot *sh, double next, const char *what);
 /* The periodicity probe of an unsettled transient (probe.c) from y (the state after
- * sh->warm_periods periods of a transient from `from`, named in the message): y carried on
- * over its periods; 1 the response is not periodic at T (sh->why gives the evidence), 0 no
- * such verdict (Newton goes on from y), -1 an integration failed (sh->why). */
+ * sh->warm_periods periods of a transient from `from`, named in the message): 1 no orbit
+ * attracts it at T (sh->why gives the evidence, y the probe's last state), 0 no such
+ * verdict (y unchanged: Newton goes on from it), -1 an integration failed (sh->why). */
 int gd_per_sh_probe(shoot *sh, double *y, const char *from);
 double gd_per_sh_noise(shoot *sh, const double *y);
 int gd_per_sh_newton(shoot *sh, double *y, int *iters, double *resid);
