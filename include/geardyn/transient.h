@@ -454,5 +454,14 @@ GD_API void gd_transient_result_free(gd_transient_result *r);
 GD_API gd_status gd_transient_monodromy(gd_transient *tr, double t0, double period,
                                         const double *y0, const gd_transient_options *opt,
                                         double *phi, double *y_end, gd_error *err);
+/* The same with a counted limit: max_rhs (0: none) right-hand sides of the model (each
+ * evaluation of the augmented system counts 1 + 2 nstates, a saltation update 2),
+ * checked after every integrator step; past it, GD_ENUMERIC naming the time reached
+ * within the period and the counts. *nrhs (may be NULL) receives the count spent, also on
+ * failure. Deterministic: the count, not a clock, stops it (issue 33). */
+GD_API gd_status gd_transient_monodromy_limited(gd_transient *tr, double t0, double period,
+                                                const double *y0, const gd_transient_options *opt,
+                                                long max_rhs, long *nrhs, double *phi,
+                                                double *y_end, gd_error *err);
 
 #endif

@@ -35,6 +35,7 @@ typedef struct mono {
     double *yp, *ym, *fp, *fm, *f0; /* N each */
     double *gp, *gm;                /* nroot each */
     double tscale;                  /* s: a time over which the explicit t-dependence is smooth */
+    long nrhs; /* the model's right-hand sides evaluated (the budget's count) */
 } mono;
 
 /* Step h for the direction v about y: max_i |h v_i| / (|y_i| + scale_i) = eps^(1/3);
@@ -62,6 +63,7 @@ static void jac_vec(mono *m, double t, const double *y, const double *v, double 
     }
     gd_transient_rhs(m->tr, t, m->yp, m->fp);
     gd_transient_rhs(m->tr, t, m->ym, m->fm);
+    m->nrhs += 2;
     for (int i = 0; i < N; i++)
         out[i] = (m->fp[i] - m->fm[i]) / (2.0 * h);
 }
@@ -89,6 +91,7 @@ static int aug_rhs(sunrealtype t, N_Vector Y, N_Vector Yd, void *ud)
     const double *y = N_VGetArrayPointer(Y);
     double *yd = N_VGetArrayPointer(Yd);
     gd_transient_rhs(m->tr, t, y, yd);
+    m->nrhs++;
     for (int j = 0; j < N; j++)
         jac_vec(m, t, y, y + (size_t)N * (j + 1), yd + (size_t)N * (j + 1));
     return 0;
@@ -113,6 +116,7 @@ static void saltation(mono *m, int i, int ns, int k, double t, double *Y)
     double *df = m->f0;
     /* f+ - f- (f+ into fm: root_rate does not use it) */
     gd_transient_rhs(m->tr, t, Y, m->fm);
+    m->nrhs += 2;
     for (int p = 0; p < N; p++)
         df[p] = m->fm[p] - df[p];
     for (int j = 0; j < N; j++) {
@@ -128,6 +132,15 @@ gd_status gd_transient_monodromy(gd_transient *tr, double t0, double period, con
                                  const gd_transient_options *opt, double *phi, double *y_end,
                                  gd_error *err)
 {
+    return gd_transient_monodromy_limited(tr, t0, period, y0, opt, 0, NULL, phi, y_end, err);
+}
+
+gd_status gd_transient_monodromy_limited(gd_transient *tr, double t0, double period,
+                                         const double *y0, const gd_transient_options *opt,
+                                         long max_rhs, long *nrhs, double *phi, double *y_end,
+                                         gd_error *err)
+{
+    if (nrhs) *nrhs = 0;
     const int N = 2 * tr->nf;
     if (!(period > 0) || !isfinite(period) || !isfinite(t0))
         return gd_error_set(err, GD_EINPUT, "", 0, 0, "period", "give a finite period > 0",
@@ -207,7 +220,22 @@ gd_status gd_transient_monodromy(gd_transient *tr, double t0, double period, con
         goto done;
     }
     double t = t0;
+    long events = 0;
     while (t < t1) {
+        /* the counted limit, checked after every step (a step evaluates the augmented
+         * system a few times, each 1 + 2 N of the model's): one matrix through a rattling
+         * train can take minutes (examples/manual_5speed.yaml: 461914 right-hand sides
+         * without one matrix ending), and a budget checked only between matrices never
+         * stops it */
+        if (max_rhs > 0 && m.nrhs >= max_rhs) {
+            st =
+                gd_error_set(err, GD_ENUMERIC, "", 0, 0, "", "raise the budget, or run a transient",
+                             "monodromy stopped at t = %.6g s, %.0f %% of the period %.6g s: "
+                             "%ld right-hand sides of the model (limit %ld; %ld contact "
+                             "changes so far)",
+                             t, 100.0 * (t - t0) / period, period, m.nrhs, max_rhs, events);
+            goto done;
+        }
         flag = CVode(mem, t1, Y, &t, CV_ONE_STEP);
         if (flag < 0) {
             st =
@@ -235,12 +263,16 @@ gd_status gd_transient_monodromy(gd_transient *tr, double t0, double period, con
             }
             kr += nsw;
         }
-        if (changed) CVodeReInit(mem, t, Y);
+        if (changed) {
+            events++;
+            CVodeReInit(mem, t, Y);
+        }
     }
     for (int j = 0; j < N; j++)
         memcpy(phi + (size_t)N * j, Yd + (size_t)N * (j + 1), (size_t)N * sizeof *phi);
     if (y_end) memcpy(y_end, Yd, (size_t)N * sizeof *y_end);
 done:
+    if (nrhs) *nrhs = m.nrhs;
     tr->mono = NULL;
     if (mem) CVodeFree(&mem);
     if (LS) SUNLinSolFree(LS);

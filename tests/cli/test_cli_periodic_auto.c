@@ -190,9 +190,9 @@ TEST(failed_points_handed_over)
         const cJSON *p = point(o, i);
         CHECK(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(p, "converged")));
         CHECK(!strcmp(jstr(p, "method"), "harmonic_balance"));
-        /* its multipliers still from the corrected orbit (the first monodromy of a point
-         * is never refused: the budget counts from its cost) */
-        CHECK(!strcmp(jstr(p, "stability_method"), "shooting"));
+        /* its multipliers from the harmonic balance orbit: the budget now reaches inside
+         * the correction's first monodromy too (counted right-hand sides, issue 33) */
+        CHECK(!strcmp(jstr(p, "stability_method"), "harmonic_balance"));
         CHECK(strstr(jstr(p, "reason"), "solved by harmonic balance (shooting failed") != NULL);
     }
     cJSON_Delete(o);

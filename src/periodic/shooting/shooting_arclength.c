@@ -348,6 +348,7 @@ static void op_begin(void *m)
     sh->t_mono = 0.0;
     sh->warm_change = NAN;
     sh->budget_hit = 0;
+    sh->not_periodic = 0;
 }
 
 static void op_step(void *m)

@@ -57,8 +57,9 @@ typedef struct shoot {
     double last_work;   /* the last integration's */
     double warm_change; /* the last warm-start period's scaled change (NAN: none) */
     int warm_periods;
-    int budget_hit; /* the point stopped at its budget */
-    int dense;      /* the dense monodromy (else Newton-Krylov on monodromy-vector products) */
+    int budget_hit;   /* the point stopped at its budget */
+    int not_periodic; /* the periodicity probe's verdict (probe.c): no orbit attracts */
+    int dense;        /* the dense monodromy (else Newton-Krylov on monodromy-vector products) */
 } shoot;
 
 /* Matrix-free monodromy in scaled variables z = y / d (shooting.c, phi_vec): Phi z by a
@@ -84,6 +85,14 @@ void gd_per_sh_scales(const shoot *sh, const double *y, double *d);
 int gd_per_sh_period(shoot *sh, const double *y, double *yT);
 int gd_per_sh_monodromy(shoot *sh, const double *y, double *phi, double *yT);
 int gd_per_sh_warm(shoot *sh, double *y);
+/* 1 when the next job (predicted counted cost next) would take the point past its budget
+ * (opt->shoot_budget): sh->why says so with what the warm start saw. */
+int gd_per_sh_over_budget(shoot *sh, double next, const char *what);
+/* The periodicity probe of an unsettled transient (probe.c) from y (the state after
+ * sh->warm_periods periods of a transient from `from`, named in the message): 1 no orbit
+ * attracts it at T (sh->why gives the evidence, y the probe's last state), 0 no such
+ * verdict (y unchanged: Newton goes on from it), -1 an integration failed (sh->why). */
+int gd_per_sh_probe(shoot *sh, double *y, const char *from);
 double gd_per_sh_noise(shoot *sh, const double *y);
 int gd_per_sh_newton(shoot *sh, double *y, int *iters, double *resid);
 int gd_per_sh_emit(shoot *sh, double key, const double *y, int iters, double resid);
