@@ -123,6 +123,15 @@ gd_status gd_modal_residuals(const gd_system *sys, gd_modal_result *r, const dou
 gd_status gd_sparse_modes_to_tol(const gd_dynmat *a, const gd_splu_symbolic *sym,
                                  const gd_modal_options *opt, double shift, gd_sparse_ws *ws,
                                  gd_modal_result **out, gd_error *err);
+/* ---- sparse_project.c ---- */
+/* The lowest opt->nmodes damped modes at opt->speed from the undamped modes (block
+ * shift-invert Lanczos), the damped problem projected on them and refined and checked for
+ * completeness by gd_sparse_track; *out NULL with GD_OK where the rule of sparse_project.c
+ * sends the solve to Krylov-Schur (gd_sparse_modes). ws: as for gd_sparse_modes (its k, d
+ * and Krylov work, 2 n by at least 20 vectors). */
+gd_status gd_sparse_modes_projected(const gd_dynmat *a, const gd_splu_symbolic *sym,
+                                    const gd_modal_options *opt, gd_sparse_ws *ws,
+                                    gd_modal_result **out, gd_error *err);
 /* ---- sparse_track.c: continuation along a sweep ---- */
 /* The modes of prev (a result of this pattern at a nearby speed, with its shapes: the
  * same count, rigid-body modes first; prev2, may be NULL, the one before it, for a

@@ -131,7 +131,17 @@ gd_status gd_sparse_modes_to_tol(const gd_dynmat *a, const gd_splu_symbolic *sym
                                 "out of memory in the sparse eigensolver");
         tw = &local;
     }
-    gd_status st = gd_sparse_modes(a, sym, &o, shift, tw, out, err);
+    /* the projection of the undamped modes first (sparse_project.c), Krylov-Schur where its
+     * rule declines */
+    gd_status st = GD_OK;
+    *out = NULL;
+    if (shift <= 0 && !tw->chain) {
+        st = gd_sparse_modes_projected(a, sym, &o, tw, out, err);
+        if (!st && *out &&
+            gd_modal_residuals_on(a, tw->k, (*out)->damped ? tw->d : NULL, *out, NULL, NULL))
+            st = GD_ENOMEM;
+    }
+    if (!st && !*out) st = gd_sparse_modes(a, sym, &o, shift, tw, out, err);
     if (!st && worst_residual(*out, want) > 0 &&
         inverse_step(a, sym, tw->k, (*out)->damped ? tw->d : NULL, *out, want))
         st = GD_ENOMEM;

@@ -851,6 +851,10 @@ static gd_status track(const gd_dynmat *a, const gd_splu_symbolic *sym, const gd
     gd_track_cache *tc = cache_get(ws, n, nnz, km);
     if (!tc) goto nomem;
     track_ws *wp = &tc->w;
+    /* a one-shot solve (no chain: gd_sparse_modes_to_tol) keeps no factorisation for a later
+     * speed: with one slot each factorisation after the first is a refactorisation with its
+     * pivot order (klu_refactor, no pivot search) */
+    if (!ws->chain) wp->maxslot = 1;
     found *fd = tc->fd;
     double complex *X = tc->X, *lam0 = tc->lam0, *x0 = tc->x0;
     int *match = tc->match;
