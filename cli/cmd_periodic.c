@@ -209,11 +209,6 @@ static void print_table(const gd_periodic_result *r, const gd_cli_records *recs,
                    r->points[i].nmult);
             break;
         }
-    /* a run whose points were solved by different methods (auto per value): each row is
-     * followed by its method and why */
-    int mixed = 0;
-    for (int i = 1; i < r->npoints; i++)
-        mixed |= r->points[i].method != r->points[0].method;
     printf("%3s %14s %12s%s %4s %9s %8s %8s %6s %10s", "dir", "speed_rad_s", "speed_rpm",
            param ? "      parameter" : "", "H", "residual", "err_p2p", "err_amp", "stable",
            "|mu|max");
@@ -237,10 +232,7 @@ static void print_table(const gd_periodic_result *r, const gd_cli_records *recs,
         for (int k = 0; k < recs->n; k++)
             printf("  %.6g,%.6g", p->records[k].rms, p->records[k].peak_to_peak);
         printf("%s\n", p->harmonic_ok == 0 ? "  (truncation not within tolerance)" : "");
-        if (mixed)
-            printf("      %s: %s\n", gd_per_kind_name(p->method), p->reason);
-        else if (p->stable < 0 && p->reason[0])
-            printf("      %s\n", p->reason);
+        if (p->stable < 0 && p->reason[0]) printf("      %s\n", p->reason);
     }
     if (r->nbifurcations) printf("\nbifurcations:\n");
     for (int i = 0; i < r->nbifurcations; i++) {
@@ -665,10 +657,8 @@ static const gd_cli_opt OPTS[] = {
                "in the state at fixed time only (meshes without backlash: TVMS, STE; constant "
                "loads): the orbit by one Magnus sweep in the modes below 30 kHz, no harmonic "
                "truncation, each point at S and 2 S steps (their change is the error column), "
-               "natural continuation (auto, with --harmonics auto, chooses per value: harmonic "
-               "balance where its truncation estimate at H = 591 against 1183 is within "
-               "--harmonic-tol, reduced shooting where not, from the trend of the points before; "
-               "a given --harmonics H on a long common period is the torus' order, or refused)",
+               "natural continuation (auto takes it with --harmonics auto where harmonic "
+               "balance's truncation estimate at H = 591 is over --harmonic-tol)",
                .def = "auto", .call = parse_method),
     GD_CLI_ROW("shoot-rtol", GD_CLI_CALL, F(opt.shoot_rtol), "TOL",
                "shooting: the integrator's relative tolerance", .def = "1e-9",

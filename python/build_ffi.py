@@ -432,7 +432,6 @@ typedef struct { double speed; double parameter; int direction; int converged;
                  char reason[...]; int harmonics; double omega; double residual;
                  int iterations; int stable; double mu_max; int nmult; double *mu_re, *mu_im;
                  int nfree; double *coef; gd_per_record_stats *records;
-                 gd_per_kind method; int stability_method;
                  ...; } gd_periodic_point;
 typedef enum { GD_BIF_FOLD, GD_BIF_PERIOD_DOUBLING, GD_BIF_NEIMARK_SACKER,
                GD_BIF_BRANCH_POINT, ... } gd_bifurcation_type;

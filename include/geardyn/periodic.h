@@ -82,9 +82,6 @@ typedef struct gd_periodic_options {
                               largest) between H and 2 H (default 0.01) */
     int max_harmonics;     /* cap of H (0, default: the largest whose workspace fits in
                               memory_limit) */
-    int harmonics_from;    /* adaptive: the first H when larger than the excitations' order
-                              (0, default: that order); GD_PER_AUTO's choice per value
-                              starts each point where the previous ones' trend says */
     int subharmonic;       /* N >= 1: solutions of period N T_0 (default 1) */
     int samples;           /* AFT samples per period; 0: 4 (H + 1) rounded up to 2^k,
                               at least 16; at most GD_PERIODIC_MAX_SAMPLES */

@@ -144,9 +144,7 @@ class PeriodicResult(_Result):
     H + 1, NaN-padded); multipliers(i) (complex Floquet multipliers of point i);
     bifurcations (list of dicts: type, speed, parameter, direction, multiplier); reasons
     (why a point did not converge); names and units of the records; steps, cpu_seconds;
-    solver ("harmonic_balance" or "shooting": what ran) and solver_note (with solver="auto": why);
-    methods (per point: the method that solved it) and notes (per point: why, and what
-    else it says)."""
+    solver ("harmonic_balance" or "shooting": what ran) and solver_note (with solver="auto": why)."""
 
     _figure = "periodic"
     _FIELDS_DTYPE = POINT_DTYPE  # served by __getattr__
@@ -168,11 +166,6 @@ class PeriodicResult(_Result):
                 "multiplier": complex(b.mu_re, b.mu_im)})
         self.reasons = [cstr(r.points[i].reason) if not r.points[i].converged else ""
                         for i in range(self.npoints)]
-        # how each point was solved and why (solver "auto" chooses per value where
-        # harmonic balance and reduced shooting both apply)
-        self.methods = [cstr(lib.gd_per_kind_name(r.points[i].method))
-                        for i in range(self.npoints)]
-        self.notes = [cstr(r.points[i].reason) for i in range(self.npoints)]
         # per record statistics, copied out of the per-point arrays of the C result
         shape = (self.npoints, self.nrecords)
         self.mean, self.rms, self.peak_to_peak = (np.full(shape, np.nan) for _ in range(3))

@@ -1,9 +1,8 @@
 /* The entry gd_periodic_run: harmonic balance or shooting as asked (run.c), or
- * `--method auto` (GD_PER_AUTO): the method the cost rule picks (gd_per_choose) runs
- * the whole branch, or, where harmonic balance and reduced shooting both apply, each value
- * by the one its truncation trend says (auto_values.c); a requested point it fails is handed to the
- * other method, solved there alone (natural continuation from its own warm start), and says so in
- * its reason and its method (issue 33 item 3). */
+ * `--method auto` (GD_PER_AUTO): the method the cost rule picks (gd_periodic_choose) runs
+ * the whole branch; a requested point it fails is handed to the other method, solved there
+ * alone (natural continuation from its own warm start), and says so in its reason and its
+ * method (issue 33 item 3). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -11,6 +10,19 @@
 #include <time.h>
 
 #include "periodic/periodic_impl.h"
+
+static void free_point(gd_periodic_point *p, int nrec)
+{
+    free(p->coef);
+    free(p->mu_re);
+    free(p->mu_im);
+    if (p->records)
+        for (int k = 0; k < nrec; k++) {
+            free(p->records[k].amplitude);
+            free(p->records[k].phase_deg);
+        }
+    free(p->records);
+}
 
 /* A method's name in a point's reason. */
 static const char *prose(gd_per_kind k)
@@ -46,7 +58,7 @@ static int hand_over(const gd_system *sys, const gd_transient_spec *spec,
     snprintf(was, sizeof was, "%s", p->reason);
     if (!st && r->npoints >= 1 && r->points[0].converged) {
         const int dir = p->direction;
-        gd_per_point_free(p, nrecords);
+        free_point(p, nrecords);
         *p = r->points[0];
         p->direction = dir;
         /* ownership moved: the result keeps no pointers into it */
@@ -90,22 +102,9 @@ gd_status gd_periodic_run(const gd_system *sys, const gd_transient_spec *spec,
                             "run a transient (`geardyn transient`), or --method shooting", "%s",
                             refusal);
     gd_periodic_options o = *opt;
-    int per_value = 0;
-    o.kind = gd_per_choose(sys, spec, param, values[0], opt, note, &per_value);
-    /* a given H too short for a long common period (the torus did not take it) */
-    char hint[160];
-    if (!param && o.kind == GD_PER_HB &&
-        gd_per_qp_given_h_refusal(sys, spec, values[0], opt, refusal, sizeof refusal, hint,
-                                  sizeof hint))
-        return gd_error_set(err, GD_EINPUT, "", 0, 0, "harmonics", hint, "%s", refusal);
+    o.kind = gd_periodic_choose(sys, spec, param, values[0], opt, note);
     /* harmonic balance's multipliers from the time-domain orbit where a law is not smooth */
     if (o.shoot_stability == 0) o.shoot_stability = 1;
-    if (per_value) {
-        gd_status ps = gd_per_run_per_value(sys, spec, param, values, nvalues, &o, records,
-                                            nrecords, note, out, err);
-        if (!ps) (*out)->cpu_seconds = (double)(clock() - c0) / CLOCKS_PER_SEC;
-        return ps;
-    }
     gd_status st =
         gd_per_run_kind(sys, spec, param, values, nvalues, &o, records, nrecords, out, err);
     if (st) return st;

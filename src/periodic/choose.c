@@ -240,7 +240,7 @@ static int chb_coords(gd_transient *tr, int H, int N, const gd_periodic_options 
  * highest (or none at all): ordinary harmonic balance would need H of at least this
  * times the harmonics one mesh cycle needs (issue 33: a gearbox with a common fundamental
  * of 1/34 of the input speed walked to H = 850), the torus keeps each base's own. */
-#define QP_AUTO_ORDER GD_PER_LONG_ORDER
+#define QP_AUTO_ORDER 16
 /* ... on up to this many free DOFs (its preconditioner holds a dense nf x nf block per
  * harmonic: 64 DOFs at order 16, 545 harmonics, 36 MB) */
 #define QP_AUTO_NF 64
@@ -253,7 +253,7 @@ static int chb_coords(gd_transient *tr, int H, int N, const gd_periodic_options 
  * (seed 002's two-stage helical train, order 36: H = 864; its Figs. 11-13 at H = 591 cost
  * 0.375 s CPU a point) keep it and its multipliers at every point; the co-prime gearbox
  * on FE shafts (order 67: H = 1608) goes to the torus. */
-#define QP_H_PER_CYCLE GD_PER_H_PER_CYCLE
+#define QP_H_PER_CYCLE 24
 #define QP_HB_MAX_H 1000
 static int small_or_hb_too_large(const gd_system *sys, const gd_transient_spec *spec, double speed,
                                  long order, const gd_periodic_options *opt)
@@ -281,27 +281,14 @@ static int multifreq_fits(const gd_system *sys, const gd_transient_spec *spec, d
     double W[GD_QP_MAXD];
     long order = 0;
     char why[200] = "";
-    if (opt->subharmonic > 1) return 0;
+    /* a given --harmonics H counts harmonics of the common period: ordinary HB */
+    if (opt->subharmonic > 1 || !opt->adaptive) return 0;
     int nf = 0, d = gd_per_qp_probe(sys, spec, speed, W, &order, &nf, why, sizeof why);
     if (d < 2 || (order > 0 && order <= QP_AUTO_ORDER)) return 0;
-    /* a given --harmonics H of QP_H_PER_CYCLE or more per period of the highest counts
-     * harmonics of the common period (ordinary harmonic balance holds the excitations);
-     * fewer (issue 33: H = 72 on the co-prime gearbox, one harmonic of mesh 1, a wrong
-     * orbit with no warning) is the torus' order where the torus fits, else refused
-     * (gd_per_qp_given_h_refusal) */
-    const int given = !opt->adaptive;
-    if (given && order > 0 && (long)opt->harmonics >= order * QP_H_PER_CYCLE) return 0;
     if (gd_per_nonsmooth(sys, spec, speed)) return 0; /* shooting's orbits: the rule below */
     if (nf > QP_AUTO_NF) return 0;
-    if (!given && order > 0 && !small_or_hb_too_large(sys, spec, speed, order, opt)) return 0;
-    if (given)
-        snprintf(note, 256,
-                 "multi-frequency harmonic balance: %d base frequencies (%.5g, %.5g rad/s%s), a "
-                 "common period of %ld periods of the highest; --harmonics %d read as the "
-                 "torus' order (one period would need H >= %ld)",
-                 d, W[0], W[1], d > 2 ? ", ..." : "", order, opt->harmonics,
-                 order * QP_H_PER_CYCLE);
-    else if (order > 0)
+    if (order > 0 && !small_or_hb_too_large(sys, spec, speed, order, opt)) return 0;
+    if (order > 0)
         snprintf(note, 256,
                  "multi-frequency harmonic balance: %d base frequencies (%.5g, %.5g rad/s%s) "
                  "with a common period of %ld periods of the highest: one period would need "
@@ -325,16 +312,6 @@ static int multifreq_fits(const gd_system *sys, const gd_transient_spec *spec, d
  * `--harmonics auto` settles at 1817 and 3000 rpm; docs/periodic.md, "Reduced shooting at
  * low speed": 100-1000 rpm 17-83 % there). 1 (note) to take it. */
 #define RS_PROBE_H 512
-
-int gd_per_probe_harmonics(int order, const gd_periodic_options *opt)
-{
-    long H = (long)order * opt->subharmonic;
-    if (H < 1) H = 1;
-    while (H < RS_PROBE_H)
-        H = 2 * H + 1;
-    return (int)(2 * H + 1);
-}
-
 static int reduced_fits(const gd_system *sys, const gd_transient_spec *spec, double speed,
                         int order, const gd_periodic_options *opt, char *note)
 {
@@ -352,7 +329,10 @@ static int reduced_fits(const gd_system *sys, const gd_transient_spec *spec, dou
     o.on_step = NULL;
     o.user = NULL;
     if (o.adaptive) {
-        o.harmonics = gd_per_probe_harmonics(order, opt) / 2;
+        long H = (long)order * opt->subharmonic;
+        while (H < RS_PROBE_H)
+            H = 2 * H + 1;
+        o.harmonics = (int)H;
         o.adaptive = 0;
     }
     const int nr = spec->nmeshes;
@@ -396,14 +376,6 @@ gd_per_kind gd_periodic_choose(const gd_system *sys, const gd_transient_spec *sp
                                const gd_periodic_param *param, double value,
                                const gd_periodic_options *opt, char *note)
 {
-    return gd_per_choose(sys, spec, param, value, opt, note, NULL);
-}
-
-gd_per_kind gd_per_choose(const gd_system *sys, const gd_transient_spec *spec,
-                          const gd_periodic_param *param, double value,
-                          const gd_periodic_options *opt, char *note, int *per_value)
-{
-    if (per_value) *per_value = 0;
     char buf[256];
     if (!note) note = buf;
     note[0] = '\0';
@@ -580,21 +552,9 @@ gd_per_kind gd_per_choose(const gd_system *sys, const gd_transient_spec *spec,
         }
     }
 done:
-    if (k == GD_PER_HB && tr && !(param && param->load_frequency)) {
-        char why[256];
-        if (!per_value) {
-            if (reduced_fits(sys, spec, speed, order, opt, note)) k = GD_PER_REDUCED_SHOOTING;
-        } else if (opt->adaptive && speed != 0.0 &&
-                   !gd_per_rs_refusal(sys, spec, speed, opt, why, sizeof why)) {
-            /* the choice per value (auto_values.c): no probe here, the first point is it */
-            *per_value = 1;
-            const int hf = gd_per_probe_harmonics(order, opt);
-            snprintf(note, 256,
-                     "per value: harmonic balance where its truncation estimate at H = %d "
-                     "(against %d) is within %g, else reduced shooting",
-                     (hf - 1) / 2, hf, opt->harmonic_tol);
-        }
-    }
+    if (k == GD_PER_HB && tr && !(param && param->load_frequency) &&
+        reduced_fits(sys, spec, speed, order, opt, note))
+        k = GD_PER_REDUCED_SHOOTING;
     gd_transient_free(tr);
     free(floads);
     gd_transient_model_free(tm);

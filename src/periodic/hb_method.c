@@ -86,7 +86,6 @@ gd_status gd_per_hb_run(const gd_per_arc_ops *ops, const gd_system *sys,
         gd_error e2;
         if (opt->adaptive && s0 && !gd_periodic_fundamental(s0, sp0, sp, &w0, &order, &e2))
             H0 = order * opt->subharmonic > 0 ? order * opt->subharmonic : 1;
-        if (opt->adaptive && opt->harmonics_from > H0) H0 = opt->harmonics_from;
         double lim = gd_hb_memory_limit(opt), need = 0.0;
         c.Hcap = opt->max_harmonics > 0 ? opt->max_harmonics : 1 << 20;
         if (!mem_ok && s0) mem_ok = !gd_hb_memory_params(s0, sp0, sp, &mnf, &mnt, &mng, &mknz);

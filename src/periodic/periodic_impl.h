@@ -335,25 +335,6 @@ int gd_per_floquet_shooting(const gd_system *sys, const gd_transient_spec *spec,
                             const gd_periodic_param *param, const gd_periodic_options *opt,
                             double key, const hb *h, double w, const double *X, double *mre,
                             double *mim, int *nmu, double *change, char *msg, size_t cap);
-/* gd_periodic_choose with per_value (may be NULL): where harmonic balance would run and
- * reduced shooting can (laws linear in the state at fixed time, --harmonics auto), *per_value
- * 1 and no probe: the method is chosen at each value (auto_values.c); with NULL, the
- * probe at value decides for the whole curve (choose.c). */
-gd_per_kind gd_per_choose(const gd_system *sys, const gd_transient_spec *spec,
-                          const gd_periodic_param *param, double value,
-                          const gd_periodic_options *opt, char *note, int *per_value);
-/* The finer harmonic count of the estimate that decides harmonic balance against reduced
- * shooting: the ladder H -> 2 H + 1 from the excitations' order to 512 at least, then
- * 2 H + 1 (1183 on seed 002, compared with 591; choose.c). */
-int gd_per_probe_harmonics(int order, const gd_periodic_options *opt);
-/* --method auto where *per_value (gd_per_choose): each value by harmonic balance or reduced
- * shooting, decided by the truncation estimates of the points before (auto_values.c);
- * note: the choice's note, extended with the counts. */
-gd_status gd_per_run_per_value(const gd_system *sys, const gd_transient_spec *spec,
-                               const gd_periodic_param *param, const double *values, int nvalues,
-                               const gd_periodic_options *opt, const gd_tr_record *records,
-                               int nrecords, const char *note, gd_periodic_result **out,
-                               gd_error *err);
 /* 1 when a law of the problem at speed has a switch or a kink (choose.c). */
 int gd_per_nonsmooth(const gd_system *sys, const gd_transient_spec *spec, double speed);
 /* 1 (with msg, cap bytes) when `--method auto` refuses the problem before solving
@@ -361,20 +342,6 @@ int gd_per_nonsmooth(const gd_system *sys, const gd_transient_spec *spec, double
  * need and a model the multi-frequency torus cannot take; 0 otherwise. */
 int gd_per_qp_refusal(const gd_system *sys, const gd_transient_spec *spec, double speed,
                       const gd_periodic_options *opt, char *msg, size_t cap);
-/* Harmonics per period of the highest excitation that ordinary harmonic balance of a long
- * common period needs (the torus' first order on a mesh's TVMS from geometry,
- * docs/periodic.md "Several base frequencies"); common periods of more than
- * GD_PER_LONG_ORDER periods of the highest are long. */
-#define GD_PER_H_PER_CYCLE 24
-#define GD_PER_LONG_ORDER 16
-/* 1 (msg: the common period, the H it needs, the options that work; hint: the option) when
- * `--method auto` refuses a given --harmonics H (opt->adaptive 0) that auto would run as
- * ordinary harmonic balance on a common period of more than GD_PER_LONG_ORDER periods of
- * the highest excitation with fewer than GD_PER_H_PER_CYCLE harmonics a period of it
- * (refuse.c; issue 33: H = 72 on the co-prime gearbox held one harmonic of mesh 1). */
-int gd_per_qp_given_h_refusal(const gd_system *sys, const gd_transient_spec *spec, double speed,
-                              const gd_periodic_options *opt, char *msg, size_t cap, char *hint,
-                              size_t hcap);
 
 /* A new point appended to r (its array grown by doubling, *cap_points its capacity), every
  * field cleared and the "not computed" values set (stable -1, mu_max and residual NaN,
@@ -382,8 +349,5 @@ int gd_per_qp_given_h_refusal(const gd_system *sys, const gd_transient_spec *spe
  * one rule for every method's points. */
 gd_periodic_point *gd_per_point_new(gd_periodic_result *r, int *cap_points, int dir,
                                     gd_per_kind method);
-/* The arrays of point p (nrec records) freed and their pointers cleared (the auto runs'
- * handed-over and dropped points; gd_periodic_result_free). */
-void gd_per_point_free(gd_periodic_point *p, int nrec);
 
 #endif

@@ -14,8 +14,11 @@
 #include "periodic/periodic_impl.h"
 
 #define TWO_PI 6.28318530717958647692
-#define H_PER_CYCLE GD_PER_H_PER_CYCLE
-#define LONG_ORDER GD_PER_LONG_ORDER
+/* harmonics per period of the highest excitation a point needs at least (the torus'
+ * first order: a mesh's TVMS from geometry, docs/periodic.md "Several base frequencies") */
+#define H_PER_CYCLE 24
+/* common periods up to this many periods of the highest: ordinary harmonic balance */
+#define LONG_ORDER 16
 /* the torus' own DOF limit without condensation (choose.c, QP_AUTO_NF) */
 #define TORUS_NF 64
 
@@ -66,40 +69,4 @@ int gd_per_qp_refusal(const gd_system *sys, const gd_transient_spec *spec, doubl
     }
     gd_transient_free(tr);
     return refuse;
-}
-
-int gd_per_qp_given_h_refusal(const gd_system *sys, const gd_transient_spec *spec, double speed,
-                              const gd_periodic_options *opt, char *msg, size_t cap, char *hint,
-                              size_t hcap)
-{
-    double w0 = 0.0;
-    int order = 0;
-    gd_error err;
-    if (opt->adaptive || opt->subharmonic > 1 || speed == 0.0) return 0;
-    if (gd_periodic_fundamental(sys, spec, speed, &w0, &order, &err) || order <= LONG_ORDER)
-        return 0;
-    const long Hn = (long)order * H_PER_CYCLE;
-    if (opt->harmonics >= Hn) return 0;
-    double W[GD_QP_MAXD];
-    long qorder = 0;
-    int nf = 0;
-    char why[200] = "";
-    const int d = gd_per_qp_probe(sys, spec, speed, W, &qorder, &nf, why, sizeof why);
-    /* one excitation and its multiples (a mesh with unbalances): its own period */
-    if (d < 2 && strncmp(why, "more than", 9)) return 0;
-    if (d >= 2 && gd_per_nonsmooth(sys, spec, speed))
-        snprintf(why, sizeof why, "a law is not smooth (backlash or contact)");
-    else if (d >= 2 && !why[0])
-        snprintf(why, sizeof why, "%d DOFs that do not condense onto the laws' coordinates", nf);
-    const double T = TWO_PI / w0;
-    snprintf(msg, cap,
-             "--harmonics %d counts harmonics of the common period, %.6g input revolutions "
-             "(%.4g s), %d periods of the highest excitation: %.3g harmonics of it, where "
-             "harmonic balance of that period needs H >= %ld (%d a period of the highest); "
-             "the multi-frequency torus does not take the model: %.120s",
-             opt->harmonics, speed / w0, T, order, (double)opt->harmonics / order, Hn, H_PER_CYCLE,
-             why);
-    snprintf(hint, hcap, "give --harmonics %ld or more, --harmonics auto, or --method shooting",
-             Hn);
-    return 1;
 }

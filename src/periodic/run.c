@@ -62,9 +62,6 @@ gd_status gd_per_check_options(const gd_periodic_param *param, const double *val
                 i + 1, values[i]);
     if (opt->harmonics < 1)
         BAD("harmonics", "give H >= 1", "harmonic count %d out of range", opt->harmonics);
-    if (opt->harmonics_from < 0 || opt->harmonics_from > GD_PERIODIC_MAX_SAMPLES / 2)
-        BAD("harmonics_from", "give 0 (the excitations' order) or a first H",
-            "first harmonic count %d out of range", opt->harmonics_from);
     if (opt->max_harmonics < 0 || opt->memory_limit < 0)
         BAD("max_harmonics", "give 0 (memory decides) or a positive cap",
             "max_harmonics and memory_limit must not be negative");
@@ -158,8 +155,18 @@ gd_status gd_per_run_kind(const gd_system *sys, const gd_transient_spec *spec,
 void gd_periodic_result_free(gd_periodic_result *r)
 {
     if (!r) return;
-    for (int i = 0; i < r->npoints; i++)
-        gd_per_point_free(&r->points[i], r->nrecords);
+    for (int i = 0; i < r->npoints; i++) {
+        gd_periodic_point *p = &r->points[i];
+        free(p->coef);
+        free(p->mu_re);
+        free(p->mu_im);
+        if (p->records)
+            for (int k = 0; k < r->nrecords; k++) {
+                free(p->records[k].amplitude);
+                free(p->records[k].phase_deg);
+            }
+        free(p->records);
+    }
     free(r->points);
     free(r->bifurcations);
     free(r);

@@ -1,5 +1,4 @@
-/* A new point of any method's result and its arrays freed (periodic_impl.h,
- * gd_per_point_new, gd_per_point_free): shared by
+/* A new point of any method's result (periodic_impl.h, gd_per_point_new): shared by
  * harmonic balance's points (points.c), shooting's (shooting.c) and reduced shooting's
  * (rshoot/rshoot.c). */
 #include <math.h>
@@ -29,19 +28,4 @@ gd_periodic_point *gd_per_point_new(gd_periodic_result *r, int *cap_points, int 
     p->harmonic_ok = -1;
     p->harmonic_error_p2p = p->harmonic_error_amp = NAN;
     return p;
-}
-
-void gd_per_point_free(gd_periodic_point *p, int nrec)
-{
-    free(p->coef);
-    free(p->mu_re);
-    free(p->mu_im);
-    if (p->records)
-        for (int k = 0; k < nrec; k++) {
-            free(p->records[k].amplitude);
-            free(p->records[k].phase_deg);
-        }
-    free(p->records);
-    p->coef = p->mu_re = p->mu_im = NULL;
-    p->records = NULL;
 }
