@@ -58,7 +58,7 @@ typedef struct shoot {
     double warm_change; /* the last warm-start period's scaled change (NAN: none) */
     int warm_periods;
     int budget_hit;   /* the point stopped at its budget */
-    int not_periodic; /* the periodicity probe's verdict (probe.c): no orbit attracts */
+    int not_periodic; /* the periodicity probe's verdict (shooting.c): no orbit attracts */
     int dense;        /* the dense monodromy (else Newton-Krylov on monodromy-vector products) */
 } shoot;
 
@@ -88,7 +88,7 @@ int gd_per_sh_warm(shoot *sh, double *y);
 /* 1 when the next job (predicted counted cost next) would take the point past its budget
  * (opt->shoot_budget): sh->why says so with what the warm start saw. */
 int gd_per_sh_over_budget(shoot *sh, double next, const char *what);
-/* The periodicity probe of an unsettled transient (probe.c) from y (the state after
+/* The periodicity probe of an unsettled transient (shooting.c) from y (the state after
  * sh->warm_periods periods of a transient from `from`, named in the message): 1 no orbit
  * attracts it at T (sh->why gives the evidence, y the probe's last state), 0 no such
  * verdict (y unchanged: Newton goes on from it), -1 an integration failed (sh->why). */
